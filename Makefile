@@ -1,0 +1,35 @@
+# subcontact: `make cylinder` runs the paper's example, `make test` the suite.
+# Both install what they need first (`make deps`): the gmsh CLI (Debian) and
+# meshio (pip, used by the tests to open the VTU files).
+
+CARGO   ?= cargo
+BIN     := target/release/subcontact
+PYTHON  ?= python3
+
+.PHONY: all deps build cylinder test clean
+
+all: build
+
+deps:
+	@command -v gmsh >/dev/null 2>&1 || { \
+	  echo "gmsh CLI not found: installing it with apt-get (Debian package gmsh)"; \
+	  if command -v apt-get >/dev/null 2>&1; then \
+	    (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq gmsh >/dev/null) || \
+	    { echo "error: could not install gmsh; run 'apt-get install -y gmsh' as root (or install gmsh 4.x so that 'gmsh' is on PATH)"; exit 1; }; \
+	  else echo "error: gmsh is missing and apt-get is not available: install gmsh 4.x so that 'gmsh' is on PATH"; exit 1; fi; }
+	@$(PYTHON) -c "import meshio" >/dev/null 2>&1 || $(PYTHON) -m pip install -q meshio || \
+	  { echo "error: could not install the Python package meshio (pip install meshio)"; exit 1; }
+
+build:
+	$(CARGO) build --release
+
+# The paper's example: the fine default mesh and the paper's own 30-hex mesh,
+# with Tables 1 and 2 side by side in results/cylinder/report.md.
+cylinder: deps build
+	$(BIN) paper geo/cylinder.toml geo/cylinder_paper.toml
+
+test: deps
+	$(CARGO) test --release
+
+clean:
+	rm -rf results/*/ target

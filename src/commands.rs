@@ -1,0 +1,61 @@
+//! What each subcommand does, on top of the driver; the only place besides
+//! `main` that prints to the terminal.
+
+use std::path::Path;
+
+use anyhow::{Context, Result};
+
+use crate::driver::{self, state_counts, RunOptions};
+use crate::model::Model;
+use crate::output::report;
+use crate::scene::Scene;
+use crate::substructure;
+
+pub fn solve(scene: &Path, opts: &RunOptions) -> Result<()> {
+    let run = driver::run(scene, opts)?;
+    print_summary(&run);
+    Ok(())
+}
+
+fn print_summary(run: &driver::Run) {
+    let t = &run.timings;
+    println!("{}: {} DOFs ({} interface), {:.2} s", run.scene.name, run.dofs_total, run.dofs_interface, t.total);
+    if let Some(c) = &run.contact {
+        let k = state_counts(&c.states);
+        println!("  contact: {} pairs, {} iteration(s), {} stick / {} slip / {} open", c.states.len(), c.iterations, k[2], k[1], k[0]);
+    }
+    if let Some(e) = &run.errors {
+        println!("  error vs closed form: displacement {:.3e}, stress {:.3e} (relative L2)", e.displacement_l2, e.stress_l2);
+    }
+    println!("  results in {}", run.out.display());
+}
+
+pub fn check(scene_path: &Path) -> Result<()> {
+    let scene = Scene::load(scene_path)?;
+    let out = Path::new("results").join(&scene.name);
+    let (mesh, msh, _) = driver::load_mesh(&scene, &out)?;
+    let model = Model::build(&mesh, &scene)?;
+    let parts = substructure::parts(&model);
+    println!("{}: scene and mesh `{}` are consistent", scene_path.display(), msh.display());
+    println!("  {} bodies, {} elements, {} model nodes, {} contact pairs, {} part(s)", model.bodies.len(), model.bodies.iter().map(|b| b.cells.len()).sum::<usize>(), model.n_nodes(), model.pairs.len(), parts.len());
+    Ok(())
+}
+
+pub fn paper(fine: &Path, paper: &Path, verbose: bool) -> Result<()> {
+    let opts = RunOptions { verbose, ..Default::default() };
+    let run_paper = driver::run(paper, &opts)?;
+    print_summary(&run_paper);
+    let run_fine = driver::run(fine, &opts)?;
+    print_summary(&run_fine);
+    let tables = report::lame_tables(&[("paper mesh (30 hex8)", &run_paper), ("default mesh", &run_fine)], true);
+    println!("{tables}");
+    let path = run_fine.out.join("report.md");
+    let mut text = std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
+    text += "\n# The paper's tables: theory, the paper, this tool on the paper's mesh and on the default mesh\n";
+    text += &tables;
+    let tmp = run_fine.out.join(".report.md.tmp");
+    std::fs::write(&tmp, text).with_context(|| format!("writing {}", tmp.display()))?;
+    std::fs::rename(&tmp, &path).with_context(|| format!("writing {}", path.display()))?;
+    println!("tables written to {}", path.display());
+    Ok(())
+}

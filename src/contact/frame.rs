@@ -1,0 +1,109 @@
+//! Local frames of contact pairs, `T = [n; t; b]` (rows), and their
+//! alignment with supports.
+//!
+//! 2D: t is n rotated +90 degrees about z. 3D: t = normalize(e_z x n) unless
+//! n is within ~25 degrees of z, then t = normalize(n x e_x), so the frame
+//! varies smoothly with n over each side of that cone; b = n x t.
+//!
+//! An interface node that is also supported (a symmetry line crossing the
+//! interface) must have its supported global directions along local axes, so
+//! the support becomes a prescribed local DOF. The frame is adjusted for
+//! this: n is projected off the supported directions (or snapped onto one
+//! when the interface lies in a symmetry plane), and in 3D b is taken along a
+//! supported direction perpendicular to n.
+
+use crate::fem::element::{cross, dot, norm};
+
+pub type Frame = [[f64; 3]; 3];
+
+fn unit(v: [f64; 3]) -> [f64; 3] {
+    let l = norm(v);
+    [v[0] / l, v[1] / l, v[2] / l]
+}
+
+/// The frame of a pair with normal `n` whose nodes have the global
+/// directions `fixed` supported; `nd` is 2 or 3.
+pub fn frame(nd: usize, n: [f64; 3], fixed: [bool; 3]) -> Frame {
+    let axes = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    let mut n = n;
+    let fixed: Vec<usize> = (0..nd).filter(|&c| fixed[c]).collect();
+    if let Some(&c) = fixed.iter().find(|&&c| n[c].abs() > 0.9) {
+        // the interface lies in a supported plane: n along that axis
+        let sign = n[c].signum();
+        n = [0.0; 3];
+        n[c] = sign;
+    } else if !fixed.is_empty() {
+        for &c in &fixed {
+            n[c] = 0.0;
+        }
+        n = unit(n);
+    }
+    if nd == 2 {
+        return [[n[0], n[1], 0.0], [-n[1], n[0], 0.0], [0.0, 0.0, 1.0]];
+    }
+    let perp = fixed.iter().copied().find(|&c| n[c].abs() < 0.5);
+    let (t, b) = match perp {
+        Some(c) => {
+            let b = axes[c];
+            (cross(b, n), b)
+        }
+        None => {
+            let t = if n[2].abs() < 0.9 { unit(cross(axes[2], n)) } else { unit(cross(n, axes[0])) };
+            (t, cross(n, t))
+        }
+    };
+    [n, t, b]
+}
+
+/// For each supported global direction c, the local axis it lies along and
+/// the sign (`T[a][c] = sign`), or None when the frame does not align.
+pub fn aligned_axis(frame: &Frame, nd: usize, c: usize) -> Option<(usize, f64)> {
+    (0..nd).find(|&a| (frame[a][c].abs() - 1.0).abs() < 1e-9).map(|a| (a, frame[a][c].signum()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn orthonormal(f: &Frame) {
+        for i in 0..3 {
+            for j in 0..3 {
+                let want = if i == j { 1.0 } else { 0.0 };
+                assert!((dot(f[i], f[j]) - want).abs() < 1e-12);
+            }
+        }
+        // right-handed: n x t = b
+        let b = cross(f[0], f[1]);
+        for i in 0..3 {
+            assert!((b[i] - f[2][i]).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn frames_are_right_handed_and_orthonormal() {
+        let s = 0.5f64.sqrt();
+        for n in [[s, s, 0.0], [0.0, 0.0, 1.0], [0.3, -0.4, (1.0f64 - 0.25).sqrt()], [-1.0, 0.0, 0.0]] {
+            orthonormal(&frame(3, n, [false; 3]));
+        }
+        let f = frame(2, [s, -s, 0.0], [false; 3]);
+        orthonormal(&f);
+        assert!((f[1][0] - s).abs() < 1e-15 && (f[1][1] - s).abs() < 1e-15);
+    }
+
+    #[test]
+    fn supported_directions_become_local_axes() {
+        // a radial interface at 45 degrees in a slab held in z
+        let s = 0.5f64.sqrt();
+        let f = frame(3, [-s, s, 0.0], [false, false, true]);
+        orthonormal(&f);
+        assert_eq!(aligned_axis(&f, 3, 2), Some((2, 1.0)));
+        // a curved interface ending on the symmetry line y = 0 (uy held)
+        let f = frame(2, [0.99, 0.1, 0.0], [false, true, false]);
+        assert_eq!(f[0], [1.0, 0.0, 0.0]);
+        assert_eq!(aligned_axis(&f, 2, 1), Some((1, 1.0)));
+        // an interface lying in the symmetry plane x = 0 (ux held)
+        let f = frame(2, [-0.98, 0.2, 0.0], [true, false, false]);
+        assert_eq!(f[0], [-1.0, 0.0, 0.0]);
+        assert_eq!(aligned_axis(&f, 2, 0), Some((0, -1.0)));
+    }
+}

@@ -1,0 +1,318 @@
+//! The interface system: the condensed parts in the pairs' local frames,
+//! assembled according to the contact states and solved densely.
+//!
+//! Per part, `S' = T S T^T`, `G' = T G` (T block-diagonal, one pair frame per
+//! interface node). For each pair and local axis, the two nodes share one
+//! unknown where the state ties them (stick: all axes; slip: the normal only;
+//! open: none), so the equal and opposite contact forces cancel and
+//! `K_c d_c = R_c` holds no unknown force. After the solve, the contact force
+//! on body I is `f = S'_I d' - G'_I` at k (eq. 13), the stresses `f / A` (eq. 14).
+
+use faer::{Mat, Side};
+
+use super::frame::{aligned_axis, frame, Frame};
+use super::law::{ContactState, PairResult};
+use crate::fem::sparse::NONE;
+use crate::model::{Model, ModelError};
+use crate::substructure::Condensed;
+
+/// One part's condensed matrices in local coordinates.
+struct LocalPart {
+    /// Frame of each interface node.
+    t: Vec<Frame>,
+    nc: usize,
+    s: Vec<f64>,
+    g: Vec<f64>,
+    /// Whether anything in the part is supported.
+    supported: bool,
+}
+
+/// The interface problem, set up once; solved for any set of states.
+pub struct InterfaceProblem {
+    nd: usize,
+    pub frames: Vec<Frame>,
+    /// (part, position in that part's interface) of each pair's k and l.
+    at: Vec<[(usize, usize); 2]>,
+    /// Prescribed local values of each pair's k and l, per local axis.
+    fixed: Vec<[[Option<f64>; 3]; 2]>,
+    parts: Vec<LocalPart>,
+    areas: Vec<f64>,
+}
+
+/// Result of one interface solve.
+pub struct InterfaceSolution {
+    pub pairs: Vec<PairResult>,
+    /// Global interface displacements of each part (order of its interface nodes).
+    pub d_c: Vec<Vec<f64>>,
+    /// Relative residual of the dense interface solve.
+    pub residual: f64,
+}
+
+/// Why an interface solve failed.
+pub enum SolveFailure {
+    /// These bodies are held by nothing.
+    NotHeld(Vec<usize>),
+    /// Singular for another reason (e.g. slipping with nothing holding the bodies tangentially).
+    Singular,
+}
+
+impl InterfaceProblem {
+    pub fn new(model: &Model, parts: &[Condensed]) -> Result<InterfaceProblem, ModelError> {
+        let nd = model.nd;
+        let mut where_is = vec![(NONE, NONE); model.n_nodes()];
+        for (pi, p) in parts.iter().enumerate() {
+            for (q, &n) in p.part.interface.iter().enumerate() {
+                where_is[n] = (pi, q);
+            }
+        }
+        let mut frames = Vec::with_capacity(model.pairs.len());
+        let mut at = Vec::with_capacity(model.pairs.len());
+        let mut fixed = Vec::with_capacity(model.pairs.len());
+        let mut node_frame: Vec<Option<Frame>> = vec![None; model.n_nodes()];
+        for pair in &model.pairs {
+            let mut sup = [false; 3];
+            for node in [pair.k, pair.l] {
+                for c in 0..nd {
+                    sup[c] |= model.prescribed[node * nd + c].is_some();
+                }
+            }
+            let f = frame(nd, pair.normal, sup);
+            let mut fx = [[None; 3]; 2];
+            for (side, node) in [pair.k, pair.l].into_iter().enumerate() {
+                for c in 0..nd {
+                    if let Some(v) = model.prescribed[node * nd + c] {
+                        let (a, sign) = aligned_axis(&f, nd, c).ok_or_else(|| ModelError::Invalid {
+                            scene: "model".into(),
+                            key: "supports".into(),
+                            msg: format!(
+                                "the contact node at {:?} is supported in direction {} which is not along its contact frame (normal {:?}): support it along the contact normal or tangent",
+                                model.coords[node],
+                                ["x", "y", "z"][c],
+                                pair.normal
+                            ),
+                        })?;
+                        fx[side][a] = Some(sign * v);
+                    }
+                }
+                node_frame[node] = Some(f);
+            }
+            frames.push(f);
+            at.push([where_is[pair.k], where_is[pair.l]]);
+            fixed.push(fx);
+        }
+        let local = parts
+            .iter()
+            .map(|p| {
+                let nc = p.nc;
+                let nodes = p.part.interface.clone();
+                let t: Vec<Frame> = nodes.iter().map(|&n| node_frame[n].unwrap_or([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])).collect();
+                // S T^T: column block r becomes S[:, r] T_r^T
+                let mut st = vec![0.0; nc * nc];
+                for (r, tr) in t.iter().enumerate() {
+                    for a in 0..nd {
+                        for i in 0..nc {
+                            st[i + (r * nd + a) * nc] = (0..nd).map(|c| p.s[i + (r * nd + c) * nc] * tr[a][c]).sum();
+                        }
+                    }
+                }
+                let mut s = vec![0.0; nc * nc];
+                for (q, tq) in t.iter().enumerate() {
+                    for a in 0..nd {
+                        for j in 0..nc {
+                            s[q * nd + a + j * nc] = (0..nd).map(|c| tq[a][c] * st[q * nd + c + j * nc]).sum();
+                        }
+                    }
+                }
+                let mut g = vec![0.0; nc];
+                for (q, tq) in t.iter().enumerate() {
+                    for a in 0..nd {
+                        g[q * nd + a] = (0..nd).map(|c| tq[a][c] * p.g[q * nd + c]).sum();
+                    }
+                }
+                let supported = p.part.bodies.iter().any(|&b| {
+                    model.bodies[b].cells.iter().any(|c| c.nodes.iter().any(|&n| (0..nd).any(|k| model.prescribed[n * nd + k].is_some())))
+                });
+                LocalPart { t, nc, s, g, supported }
+            })
+            .collect();
+        let areas = model.pairs.iter().map(|p| p.area).collect();
+        Ok(InterfaceProblem { nd, frames, at, fixed, parts: local, areas })
+    }
+
+    /// Solves the interface system for the given states; `shear` adds known
+    /// tangential forces on body I (local axes, equal and opposite on body II)
+    /// at slipping pairs.
+    pub fn solve(&self, states: &[ContactState], shear: &[[f64; 3]]) -> Result<InterfaceSolution, SolveFailure> {
+        let nd = self.nd;
+        // slot of each (part, interface dof): unknown index or fixed value
+        #[derive(Clone, Copy)]
+        enum Slot {
+            Free(usize),
+            Fixed(f64),
+        }
+        let mut slots: Vec<Vec<Slot>> = self.parts.iter().map(|p| vec![Slot::Fixed(0.0); p.nc]).collect();
+        let mut m = 0;
+        let mut new_slot = |fixed: Option<f64>| match fixed {
+            Some(v) => Slot::Fixed(v),
+            None => {
+                m += 1;
+                Slot::Free(m - 1)
+            }
+        };
+        for (p, st) in states.iter().enumerate() {
+            let [(pk, qk), (pl, ql)] = self.at[p];
+            for a in 0..nd {
+                let shared = match st {
+                    ContactState::Stick => true,
+                    ContactState::Slip => a == 0,
+                    ContactState::Open => false,
+                };
+                let fx = self.fixed[p];
+                if shared {
+                    let s = new_slot(fx[0][a].or(fx[1][a]));
+                    slots[pk][qk * nd + a] = s;
+                    slots[pl][ql * nd + a] = s;
+                } else {
+                    slots[pk][qk * nd + a] = new_slot(fx[0][a]);
+                    slots[pl][ql * nd + a] = new_slot(fx[1][a]);
+                }
+            }
+        }
+        let mut k = Mat::<f64>::zeros(m, m);
+        let mut r = Mat::<f64>::zeros(m, 1);
+        for (pi, lp) in self.parts.iter().enumerate() {
+            let sl = &slots[pi];
+            for j in 0..lp.nc {
+                match sl[j] {
+                    Slot::Free(jj) => {
+                        r[(jj, 0)] += lp.g[j];
+                        for i in 0..lp.nc {
+                            if let Slot::Free(ii) = sl[i] {
+                                k[(ii, jj)] += lp.s[i + j * lp.nc];
+                            }
+                        }
+                    }
+                    Slot::Fixed(v) if v != 0.0 => {
+                        for i in 0..lp.nc {
+                            if let Slot::Free(ii) = sl[i] {
+                                r[(ii, 0)] -= lp.s[i + j * lp.nc] * v;
+                            }
+                        }
+                    }
+                    Slot::Fixed(_) => {}
+                }
+            }
+        }
+        for (p, st) in states.iter().enumerate() {
+            if *st == ContactState::Stick {
+                continue;
+            }
+            let [(pk, qk), (pl, ql)] = self.at[p];
+            for a in 1..nd {
+                if let Slot::Free(i) = slots[pk][qk * nd + a] {
+                    r[(i, 0)] += shear[p][a];
+                }
+                if let Slot::Free(i) = slots[pl][ql * nd + a] {
+                    r[(i, 0)] -= shear[p][a];
+                }
+            }
+        }
+        let z = if m == 0 {
+            Mat::<f64>::zeros(0, 1)
+        } else {
+            let llt = match k.llt(Side::Lower) {
+                Ok(l) => l,
+                Err(_) => return Err(self.diagnose(states)),
+            };
+            use faer::linalg::solvers::Solve;
+            llt.solve(&r)
+        };
+        if z.col(0).iter().any(|v| !v.is_finite()) {
+            return Err(self.diagnose(states));
+        }
+        let residual = if m == 0 {
+            0.0
+        } else {
+            let res = &k * &z - &r;
+            res.norm_l2() / r.norm_l2().max(f64::MIN_POSITIVE)
+        };
+        // local displacements and forces per part
+        let mut d_loc: Vec<Vec<f64>> = Vec::with_capacity(self.parts.len());
+        let mut f_loc: Vec<Vec<f64>> = Vec::with_capacity(self.parts.len());
+        for (pi, lp) in self.parts.iter().enumerate() {
+            let d: Vec<f64> = slots[pi]
+                .iter()
+                .map(|s| match *s {
+                    Slot::Free(i) => z[(i, 0)],
+                    Slot::Fixed(v) => v,
+                })
+                .collect();
+            let f: Vec<f64> = (0..lp.nc).map(|i| (0..lp.nc).map(|j| lp.s[i + j * lp.nc] * d[j]).sum::<f64>() - lp.g[i]).collect();
+            d_loc.push(d);
+            f_loc.push(f);
+        }
+        let pairs = (0..states.len())
+            .map(|p| {
+                let [(pk, qk), (pl, ql)] = self.at[p];
+                let fk = &f_loc[pk][qk * nd..qk * nd + nd];
+                let dk = &d_loc[pk][qk * nd..qk * nd + nd];
+                let dl = &d_loc[pl][ql * nd..ql * nd + nd];
+                let a = self.areas[p];
+                let rel: Vec<f64> = (0..nd).map(|i| dl[i] - dk[i]).collect();
+                PairResult {
+                    sigma_n: fk[0] / a,
+                    tau_t: fk[1] / a,
+                    tau_b: if nd == 3 { fk[2] / a } else { 0.0 },
+                    gap: rel[0],
+                    slip: rel[1..].iter().map(|v| v * v).sum::<f64>().sqrt(),
+                }
+            })
+            .collect();
+        // back to global axes
+        let d_c = self
+            .parts
+            .iter()
+            .zip(&d_loc)
+            .map(|(lp, d)| {
+                let mut g = vec![0.0; lp.nc];
+                for (q, t) in lp.t.iter().enumerate() {
+                    for c in 0..nd {
+                        g[q * nd + c] = (0..nd).map(|a| t[a][c] * d[q * nd + a]).sum();
+                    }
+                }
+                g
+            })
+            .collect();
+        Ok(InterfaceSolution { pairs, d_c, residual })
+    }
+
+    /// Which parts are held by nothing: no support, and joined to a supported
+    /// part by no closed pair.
+    fn diagnose(&self, states: &[ContactState]) -> SolveFailure {
+        let np = self.parts.len();
+        let mut held: Vec<bool> = self.parts.iter().map(|p| p.supported).collect();
+        loop {
+            let mut changed = false;
+            for (p, st) in states.iter().enumerate() {
+                if *st == ContactState::Open {
+                    continue;
+                }
+                let [(a, _), (b, _)] = self.at[p];
+                if held[a] != held[b] {
+                    held[a] = true;
+                    held[b] = true;
+                    changed = true;
+                }
+            }
+            if !changed {
+                break;
+            }
+        }
+        let free: Vec<usize> = (0..np).filter(|&p| !held[p]).collect();
+        if free.is_empty() {
+            SolveFailure::Singular
+        } else {
+            SolveFailure::NotHeld(free)
+        }
+    }
+}

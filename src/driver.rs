@@ -1,0 +1,303 @@
+//! The pipeline of one run, in the order data flows:
+//!
+//! 1. read and validate the scene;
+//! 2. mesh the .geo with the gmsh CLI (cached) or read the .msh;
+//! 3. build the model: bodies, loads, supports, contact pairs;
+//! 4. assemble and factorise every part once, condensing it onto its
+//!    contact interface (parts without contact are solved directly);
+//! 5. iterate the contact states on the interface system;
+//! 6. recover interior displacements and stresses, errors and probes;
+//! 7. write every result file at once (none when anything failed).
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{bail, Context, Result};
+
+use crate::analytic;
+use crate::contact::law::{ContactState, PairResult, Strength};
+use crate::contact::system::{InterfaceProblem, SolveFailure};
+use crate::contact::{self, Outcome};
+use crate::mesh::{gmsh, msh, Mesh};
+use crate::model::Model;
+use crate::output;
+use crate::recover::{self, BodyStress, Errors, Sample};
+use crate::scene::{MeshSource, Scene};
+use crate::substructure::{self, Condensed};
+
+/// Options of a run beyond the scene.
+#[derive(Clone, Debug, Default)]
+pub struct RunOptions {
+    pub out: Option<PathBuf>,
+    /// Treat every contact as bonded (shared nodes): the monolithic solve.
+    pub bonded: bool,
+    /// Print stage progress on stderr.
+    pub verbose: bool,
+}
+
+/// Seconds spent in each stage.
+#[derive(Clone, Debug, Default, serde::Serialize)]
+pub struct Timings {
+    pub mesh: f64,
+    pub assemble: f64,
+    pub condense: f64,
+    pub interface: f64,
+    pub recover: f64,
+    pub output: f64,
+    pub total: f64,
+}
+
+/// Everything a run computed, for the output writers.
+pub struct Run {
+    pub scene: Scene,
+    pub out: PathBuf,
+    pub msh: PathBuf,
+    pub mesh_cached: bool,
+    pub model: Model,
+    pub u: Vec<f64>,
+    pub stresses: Vec<BodyStress>,
+    pub contact: Option<ContactRun>,
+    pub errors: Option<Errors>,
+    pub contact_error_max: Option<f64>,
+    pub probes: Vec<(String, Vec<Sample>)>,
+    pub timings: Timings,
+    pub dofs_total: usize,
+    pub dofs_interface: usize,
+    pub parts: usize,
+    pub condensed_parts: usize,
+    pub residual_interface: f64,
+}
+
+/// The contact iteration's result.
+pub struct ContactRun {
+    pub states: Vec<ContactState>,
+    pub pairs: Vec<PairResult>,
+    pub iterations: usize,
+    pub converged: bool,
+    pub cycled: bool,
+    pub history: Vec<Vec<ContactState>>,
+}
+
+fn progress(opts: &RunOptions, msg: &str) {
+    if opts.verbose {
+        eprintln!("subcontact: {msg}");
+    }
+}
+
+/// Reads the mesh of a scene, running gmsh when it is a .geo.
+pub fn load_mesh(scene: &Scene, out: &Path) -> Result<(Mesh, PathBuf, bool)> {
+    match &scene.mesh {
+        MeshSource::Msh(p) => Ok((msh::read_msh(p)?, p.clone(), false)),
+        MeshSource::Geo(geo) => {
+            let msh_path = out.join("mesh").join(format!("{}.msh", scene.name));
+            let job = gmsh::GmshJob {
+                geo: geo.clone(),
+                msh: msh_path.clone(),
+                dim: scene.analysis.dim(),
+                order: scene.gmsh.order,
+                setnumber: scene.gmsh.setnumber.clone(),
+                clscale: scene.gmsh.clscale,
+                ..Default::default()
+            };
+            let meshed = gmsh::mesh(&job)?;
+            let mesh = msh::read_msh(&msh_path)?;
+            Ok((mesh, msh_path, matches!(meshed, gmsh::Meshed::Cached)))
+        }
+    }
+}
+
+/// Runs a scene end to end and writes its results.
+pub fn run(scene_path: &Path, opts: &RunOptions) -> Result<Run> {
+    let t0 = Instant::now();
+    let mut timings = Timings::default();
+    // sparse work is sequential: rayon did not help on 2 cores (DESIGN.md §5)
+    faer::set_global_parallelism(faer::Par::Seq);
+
+    // 1. Scene.
+    let mut scene = Scene::load(scene_path)?;
+    if opts.bonded {
+        scene.contacts.clear();
+    }
+    let out = opts.out.clone().unwrap_or_else(|| PathBuf::from("results").join(&scene.name));
+
+    // 2. Mesh.
+    progress(opts, "meshing");
+    let t = Instant::now();
+    let (mesh, msh_path, mesh_cached) = load_mesh(&scene, &out)?;
+    timings.mesh = t.elapsed().as_secs_f64();
+
+    // 3. Model.
+    let t = Instant::now();
+    let model = Model::build(&mesh, &scene)?;
+    drop(mesh);
+    let parts = substructure::parts(&model);
+    let n_parts = parts.len();
+
+    // 4. Assemble, factorise, condense.
+    progress(opts, &format!("assembling and factorising {} part(s)", n_parts));
+    let mut condensed: Vec<Condensed> = Vec::with_capacity(n_parts);
+    let mut assemble_s = 0.0;
+    for part in parts {
+        let c = substructure::condense(&model, part)?;
+        assemble_s += c.assemble_s;
+        condensed.push(c);
+    }
+    let condense_total = t.elapsed().as_secs_f64();
+    timings.assemble = assemble_s;
+    timings.condense = condense_total - assemble_s;
+    let dofs_total: usize = condensed.iter().map(|c| c.ni + c.nc).sum();
+    let dofs_interface: usize = condensed.iter().map(|c| c.nc).sum();
+    let condensed_parts = condensed.iter().filter(|c| c.nc > 0).count();
+
+    // 5. Contact iteration.
+    let t = Instant::now();
+    let mut d_c: Vec<Vec<f64>> = condensed.iter().map(|c| vec![0.0; c.nc]).collect();
+    let mut contact_run = None;
+    let mut residual_interface = 0.0;
+    if !model.pairs.is_empty() {
+        progress(opts, &format!("contact iteration on {} pairs", model.pairs.len()));
+        let problem = InterfaceProblem::new(&model, &condensed)?;
+        let strength: Vec<Strength> = model
+            .pairs
+            .iter()
+            .map(|p| {
+                let c = &scene.contacts[p.contact];
+                Strength {
+                    friction: c.friction,
+                    cohesion: c.cohesion,
+                    tensile_strength: c.tensile_strength,
+                    residual_cohesion: c.residual_cohesion,
+                }
+            })
+            .collect();
+        let n = model.pairs.len();
+        let outcome = contact::iterate(&problem, &strength, vec![ContactState::Stick; n], vec![false; n], scene.solver.max_iterations);
+        let Outcome { states, solution, iterations, converged, cycled, history, .. } = match outcome {
+            Ok(o) => o,
+            Err(f) => bail!(failure_message(&model, &condensed, &scene, f)),
+        };
+        residual_interface = solution.residual;
+        d_c = solution.d_c;
+        contact_run = Some(ContactRun { states, pairs: solution.pairs, iterations, converged, cycled, history });
+    }
+    timings.interface = t.elapsed().as_secs_f64();
+
+    // 6. Recovery.
+    progress(opts, "recovering displacements and stresses");
+    let t = Instant::now();
+    let mut u = vec![0.0; model.n_nodes() * model.nd];
+    for (c, d) in condensed.iter().zip(&d_c) {
+        c.recover(&model, d, &mut u);
+    }
+    drop(condensed);
+    let stresses = recover::nodal_stresses(&model, &u);
+    let exact = scene.analytic.as_ref().map(|a| {
+        let b0 = &model.bodies[0];
+        analytic::exact(a, model.analysis, b0.e, b0.nu)
+    });
+    let errors = exact.as_ref().map(|e| recover::errors(&model, &u, e.as_ref()));
+    let contact_error_max = match (&exact, &contact_run) {
+        (Some(e), Some(c)) => Some(contact_error(&model, e.as_ref(), &c.pairs)),
+        _ => None,
+    };
+    let probes = scene.probes.iter().map(|p| (p.name.clone(), recover::probe(&model, &u, p))).collect();
+    timings.recover = t.elapsed().as_secs_f64();
+
+    let mut run = Run {
+        scene,
+        out,
+        msh: msh_path,
+        mesh_cached,
+        model,
+        u,
+        stresses,
+        contact: contact_run,
+        errors,
+        contact_error_max,
+        probes,
+        timings,
+        dofs_total,
+        dofs_interface,
+        parts: n_parts,
+        condensed_parts,
+        residual_interface,
+    };
+
+    // 7. Output, all at once.
+    progress(opts, &format!("writing results to {}", run.out.display()));
+    let t = Instant::now();
+    run.timings.total = t0.elapsed().as_secs_f64();
+    let staged = output::stage(&run)?;
+    run.timings.output = t.elapsed().as_secs_f64();
+    run.timings.total = t0.elapsed().as_secs_f64();
+    // the summary carries the final timings
+    let staged = output::restage_summary(staged, &run)?;
+    staged.commit().with_context(|| format!("writing results to {}", run.out.display()))?;
+    if let Some(c) = &run.contact {
+        if !c.converged {
+            bail!(
+                "{}: the contact iteration did not converge after {} iteration(s){}; the results in {} are those of the last iteration (summary.json contact.converged = false, report.md lists the last two state sets). Try more [solver] max_iterations or load steps",
+                run.scene.path.display(),
+                c.iterations,
+                if c.cycled { " (the states cycle)" } else { "" },
+                run.out.display()
+            );
+        }
+    }
+    Ok(run)
+}
+
+/// Max |sigma_n - exact normal traction| over the pairs, relative to the largest exact one.
+fn contact_error(model: &Model, exact: &dyn analytic::Exact, pairs: &[PairResult]) -> f64 {
+    let mut worst: f64 = 0.0;
+    let mut scale: f64 = 0.0;
+    for (p, r) in model.pairs.iter().zip(pairs) {
+        let s = exact.stress(model.coords[p.k]);
+        let n = p.normal;
+        let t = [s[0] * n[0] + s[3] * n[1] + s[5] * n[2], s[3] * n[0] + s[1] * n[1] + s[4] * n[2], s[5] * n[0] + s[4] * n[1] + s[2] * n[2]];
+        let sn = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
+        worst = worst.max((r.sigma_n - sn).abs());
+        scale = scale.max(sn.abs());
+    }
+    worst / scale.max(f64::MIN_POSITIVE)
+}
+
+fn failure_message(model: &Model, parts: &[Condensed], scene: &Scene, f: contact::Failed) -> String {
+    let counts = state_counts(&f.states);
+    match f.failure {
+        SolveFailure::NotHeld(ids) => {
+            let bodies: Vec<usize> = ids.iter().flat_map(|&i| parts[i].part.bodies.iter().copied()).collect();
+            let one = bodies.len() == 1;
+            format!(
+                "{path}: {what} {names} {verb} held by nothing at contact iteration {it} ({stick} stick, {slip} slip, {open} open): {its} contact pairs opened and no support holds {it_them}. Add a support, or check the loads that pull the contact apart",
+                path = scene.path.display(),
+                what = if one { "body" } else { "bodies" },
+                names = model.body_names(&bodies),
+                verb = if one { "is" } else { "are" },
+                it = f.iteration,
+                stick = counts[2],
+                slip = counts[1],
+                open = counts[0],
+                its = if one { "its" } else { "their" },
+                it_them = if one { "it" } else { "them" },
+            )
+        }
+        SolveFailure::Singular => format!(
+            "{}: the interface system is singular at contact iteration {} ({} stick, {} slip, {} open): a body slides or rotates freely on its contacts. Add a support that holds it tangentially, or friction",
+            scene.path.display(),
+            f.iteration,
+            counts[2],
+            counts[1],
+            counts[0]
+        ),
+    }
+}
+
+/// Counts of open, slip, stick.
+pub fn state_counts(states: &[ContactState]) -> [usize; 3] {
+    let mut c = [0; 3];
+    for s in states {
+        c[s.code() as usize] += 1;
+    }
+    c
+}

@@ -1,0 +1,306 @@
+//! Element kernels: stiffness `K_e = ∫ B^T D B dV`, body forces `∫ N^T b dV`,
+//! boundary tractions `∫ N^T t dA` and stresses at quadrature points.
+//!
+//! Element DOFs are node-major: DOF `a * nd + c` is component `c` of node `a`
+//! (gmsh node order), `nd` = 2 for plane and axisymmetric analyses, 3 for
+//! solids. The volume measure is `t dA` in plane analyses (thickness t),
+//! `2 pi r dA` in axisymmetric ones (whole ring) and `dV` for solids, so
+//! reactions and contact forces are totals in every analysis.
+
+use super::material::n_strain;
+use super::quadrature::{self, QuadPoint};
+use super::shape;
+use crate::mesh::CellKind;
+use crate::scene::Analysis;
+
+/// A cell whose Jacobian determinant is not positive somewhere.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Inverted {
+    pub det_j: f64,
+}
+
+/// Geometry of a cell at one reference point.
+pub struct Point {
+    /// Shape function values.
+    pub n: Vec<f64>,
+    /// Physical gradients dN_a/dx_j.
+    pub dndx: Vec<[f64; 3]>,
+    /// Jacobian determinant.
+    pub det_j: f64,
+    /// Physical position.
+    pub x: [f64; 3],
+}
+
+/// Shape functions, physical gradients and Jacobian of a cell whose dimension
+/// equals the space dimension.
+pub fn point(kind: CellKind, coords: &[[f64; 3]], xi: [f64; 3]) -> Result<Point, Inverted> {
+    let nn = kind.n_nodes();
+    let dim = kind.dim();
+    let mut n = vec![0.0; nn];
+    let mut dn = vec![[0.0; 3]; nn];
+    shape::eval(kind, xi, &mut n, &mut dn);
+    // J[i][j] = dx_i/dxi_j
+    let mut jac = [[0.0; 3]; 3];
+    let mut x = [0.0; 3];
+    for a in 0..nn {
+        for i in 0..3 {
+            x[i] += n[a] * coords[a][i];
+        }
+        for i in 0..dim {
+            for j in 0..dim {
+                jac[i][j] += coords[a][i] * dn[a][j];
+            }
+        }
+    }
+    let (det_j, inv) = if dim == 2 {
+        let det = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
+        let inv = [[jac[1][1] / det, -jac[0][1] / det, 0.0], [-jac[1][0] / det, jac[0][0] / det, 0.0], [0.0; 3]];
+        (det, inv)
+    } else {
+        let m = jac;
+        let det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+        let mut inv = [[0.0; 3]; 3];
+        for i in 0..3 {
+            for j in 0..3 {
+                // inverse = adjugate / det, adj[i][j] = cofactor[j][i]
+                let (r0, r1) = ((j + 1) % 3, (j + 2) % 3);
+                let (c0, c1) = ((i + 1) % 3, (i + 2) % 3);
+                inv[i][j] = (m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0]) / det;
+            }
+        }
+        (det, inv)
+    };
+    if !(det_j > 0.0) {
+        return Err(Inverted { det_j });
+    }
+    // dN/dx_k = sum_j dN/dxi_j * dxi_j/dx_k = sum_j dn[j] inv[j][k]
+    let dndx = dn
+        .iter()
+        .map(|g| {
+            let mut d = [0.0; 3];
+            for k in 0..dim {
+                d[k] = (0..dim).map(|j| g[j] * inv[j][k]).sum();
+            }
+            d
+        })
+        .collect();
+    Ok(Point { n, dndx, det_j, x })
+}
+
+/// Volume weight factor at a point: thickness, 2 pi r or 1.
+fn measure(analysis: Analysis, thickness: f64, x: &[f64; 3]) -> f64 {
+    match analysis {
+        Analysis::PlaneStrain | Analysis::PlaneStress => thickness,
+        Analysis::Axisymmetric => 2.0 * std::f64::consts::PI * x[0],
+        Analysis::Solid => 1.0,
+    }
+}
+
+/// DOFs per node of an analysis.
+pub fn dofs_per_node(analysis: Analysis) -> usize {
+    if analysis == Analysis::Solid {
+        3
+    } else {
+        2
+    }
+}
+
+/// The strain-displacement matrix B, row-major `n_strain x (nn * nd)`.
+fn b_matrix(analysis: Analysis, p: &Point, b: &mut [f64]) {
+    let nd = dofs_per_node(analysis);
+    let nn = p.n.len();
+    let w = nn * nd;
+    b.iter_mut().for_each(|v| *v = 0.0);
+    for a in 0..nn {
+        let g = p.dndx[a];
+        let c = a * nd;
+        match analysis {
+            Analysis::PlaneStrain | Analysis::PlaneStress => {
+                b[c] = g[0];
+                b[w + c + 1] = g[1];
+                b[2 * w + c] = g[1];
+                b[2 * w + c + 1] = g[0];
+            }
+            Analysis::Axisymmetric => {
+                b[c] = g[0];
+                b[w + c + 1] = g[1];
+                b[2 * w + c] = p.n[a] / p.x[0];
+                b[3 * w + c] = g[1];
+                b[3 * w + c + 1] = g[0];
+            }
+            Analysis::Solid => {
+                b[c] = g[0];
+                b[w + c + 1] = g[1];
+                b[2 * w + c + 2] = g[2];
+                b[3 * w + c] = g[1];
+                b[3 * w + c + 1] = g[0];
+                b[4 * w + c + 1] = g[2];
+                b[4 * w + c + 2] = g[1];
+                b[5 * w + c] = g[2];
+                b[5 * w + c + 2] = g[0];
+            }
+        }
+    }
+}
+
+/// Element stiffness, row-major `(nn nd) x (nn nd)`, written into `ke`.
+pub fn stiffness(
+    analysis: Analysis,
+    kind: CellKind,
+    coords: &[[f64; 3]],
+    d: &[f64],
+    thickness: f64,
+    rule: &[QuadPoint],
+    ke: &mut Vec<f64>,
+) -> Result<(), Inverted> {
+    let nd = dofs_per_node(analysis);
+    let m = kind.n_nodes() * nd;
+    let ns = n_strain(analysis);
+    ke.clear();
+    ke.resize(m * m, 0.0);
+    let mut b = vec![0.0; ns * m];
+    let mut db = vec![0.0; ns * m];
+    for q in rule {
+        let p = point(kind, coords, q.xi)?;
+        let f = q.w * p.det_j * measure(analysis, thickness, &p.x);
+        b_matrix(analysis, &p, &mut b);
+        for i in 0..ns {
+            for c in 0..m {
+                db[i * m + c] = (0..ns).map(|k| d[i * ns + k] * b[k * m + c]).sum::<f64>() * f;
+            }
+        }
+        for r in 0..m {
+            for i in 0..ns {
+                let bir = b[i * m + r];
+                if bir != 0.0 {
+                    let row = &mut ke[r * m..(r + 1) * m];
+                    let dbi = &db[i * m..(i + 1) * m];
+                    for c in 0..m {
+                        row[c] += bir * dbi[c];
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Consistent nodal forces of a body force `g` per unit volume.
+pub fn body_force(
+    analysis: Analysis,
+    kind: CellKind,
+    coords: &[[f64; 3]],
+    g: [f64; 3],
+    thickness: f64,
+    fe: &mut [f64],
+) -> Result<(), Inverted> {
+    let nd = dofs_per_node(analysis);
+    let rule = quadrature::rule(kind, 2 * kind.order() + 1);
+    for q in &rule {
+        let p = point(kind, coords, q.xi)?;
+        let f = q.w * p.det_j * measure(analysis, thickness, &p.x);
+        for a in 0..kind.n_nodes() {
+            for c in 0..nd {
+                fe[a * nd + c] += p.n[a] * g[c] * f;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Unit normal and area element of a boundary facet (a line in a plane
+/// model, a surface in a solid) at reference point `xi`; the normal is
+/// (dx/dxi rotated -90 degrees) in 2D and `a1 x a2` in 3D, to be oriented by
+/// the caller. Also returns the shape values and the physical point.
+pub fn facet_point(kind: CellKind, coords: &[[f64; 3]], xi: [f64; 3]) -> (Vec<f64>, [f64; 3], f64, [f64; 3]) {
+    let nn = kind.n_nodes();
+    let mut n = vec![0.0; nn];
+    let mut dn = vec![[0.0; 3]; nn];
+    shape::eval(kind, xi, &mut n, &mut dn);
+    let mut a1 = [0.0; 3];
+    let mut a2 = [0.0; 3];
+    let mut x = [0.0; 3];
+    for a in 0..nn {
+        for i in 0..3 {
+            x[i] += n[a] * coords[a][i];
+            a1[i] += coords[a][i] * dn[a][0];
+            a2[i] += coords[a][i] * dn[a][1];
+        }
+    }
+    let normal = if kind.dim() == 1 { [a1[1], -a1[0], 0.0] } else { cross(a1, a2) };
+    let da = norm(normal);
+    let unit = if da > 0.0 { [normal[0] / da, normal[1] / da, normal[2] / da] } else { [0.0; 3] };
+    (n, unit, da, x)
+}
+
+/// +1 or -1: the sign that turns the facet's natural normal into the outward
+/// normal of the body cell `cell_coords` it bounds.
+pub fn outward_sign(facet: CellKind, facet_coords: &[[f64; 3]], cell: CellKind, cell_coords: &[[f64; 3]]) -> f64 {
+    let (_, n, _, x) = facet_point(facet, facet_coords, shape::reference_centre(facet));
+    let nc = cell.n_corners();
+    let mut c = [0.0; 3];
+    for p in &cell_coords[..nc] {
+        for i in 0..3 {
+            c[i] += p[i] / nc as f64;
+        }
+    }
+    if dot(n, sub(x, c)) >= 0.0 {
+        1.0
+    } else {
+        -1.0
+    }
+}
+
+/// Consistent nodal forces of a traction on a boundary facet; `traction`
+/// gets the point and the outward unit normal.
+pub fn facet_force(
+    analysis: Analysis,
+    kind: CellKind,
+    coords: &[[f64; 3]],
+    sign: f64,
+    thickness: f64,
+    traction: &dyn Fn([f64; 3], [f64; 3]) -> [f64; 3],
+    fe: &mut [f64],
+) {
+    let nd = dofs_per_node(analysis);
+    let rule = quadrature::rule(kind, 2 * kind.order() + 2);
+    for q in &rule {
+        let (n, unit, da, x) = facet_point(kind, coords, q.xi);
+        let normal = [unit[0] * sign, unit[1] * sign, unit[2] * sign];
+        let t = traction(x, normal);
+        let f = q.w * da * measure(analysis, thickness, &x);
+        for a in 0..kind.n_nodes() {
+            for c in 0..nd {
+                fe[a * nd + c] += n[a] * t[c] * f;
+            }
+        }
+    }
+}
+
+/// Strain vector (analysis components) at a point from element displacements.
+pub fn strain(analysis: Analysis, p: &Point, ue: &[f64]) -> [f64; 6] {
+    let nd = dofs_per_node(analysis);
+    let ns = n_strain(analysis);
+    let m = p.n.len() * nd;
+    let mut b = vec![0.0; ns * m];
+    b_matrix(analysis, p, &mut b);
+    let mut e = [0.0; 6];
+    for i in 0..ns {
+        e[i] = (0..m).map(|c| b[i * m + c] * ue[c]).sum();
+    }
+    e
+}
+
+pub fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+pub fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+pub fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+pub fn norm(a: [f64; 3]) -> f64 {
+    dot(a, a).sqrt()
+}

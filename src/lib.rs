@@ -1,0 +1,21 @@
+//! subcontact: contact between elastic bodies by the substructure interface
+//! method (condense every body onto its contact interface once, iterate the
+//! contact states on the small interface system).
+//!
+//! Data flows one way: [`mesh`] → [`fem`] (elements, assembly) →
+//! [`substructure`] (condensation) → [`contact`] (pairs, frames, law,
+//! iteration) → [`recover`] → [`output`]; [`driver`] strings the stages
+//! together, [`scene`] and [`cli`] turn user input into a validated run.
+
+pub mod analytic;
+pub mod cli;
+pub mod commands;
+pub mod contact;
+pub mod driver;
+pub mod fem;
+pub mod mesh;
+pub mod model;
+pub mod output;
+pub mod recover;
+pub mod scene;
+pub mod substructure;

@@ -1,0 +1,201 @@
+//! The mesh as the rest of the program sees it: node coordinates, and cells
+//! grouped by gmsh physical group. Cells keep gmsh's node order; node indices
+//! are 0-based positions in `Mesh::coords` (gmsh tags are kept for messages).
+//!
+//! Reading `.msh` files lives in [`msh`], running the gmsh CLI in [`gmsh`].
+//! Nothing here knows about elasticity.
+
+pub mod gmsh;
+pub mod msh;
+
+/// Cell kinds, named and numbered as in gmsh (`gmsh_code`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum CellKind {
+    Point1,
+    Line2,
+    Line3,
+    Tri3,
+    Tri6,
+    Quad4,
+    Quad8,
+    Quad9,
+    Tet4,
+    Tet10,
+    Hex8,
+    Hex20,
+    Hex27,
+}
+
+impl CellKind {
+    pub const ALL: [CellKind; 13] = [
+        CellKind::Point1,
+        CellKind::Line2,
+        CellKind::Line3,
+        CellKind::Tri3,
+        CellKind::Tri6,
+        CellKind::Quad4,
+        CellKind::Quad8,
+        CellKind::Quad9,
+        CellKind::Tet4,
+        CellKind::Tet10,
+        CellKind::Hex8,
+        CellKind::Hex20,
+        CellKind::Hex27,
+    ];
+
+    /// gmsh element type number (MSH format).
+    pub fn gmsh_code(self) -> i32 {
+        match self {
+            CellKind::Point1 => 15,
+            CellKind::Line2 => 1,
+            CellKind::Line3 => 8,
+            CellKind::Tri3 => 2,
+            CellKind::Tri6 => 9,
+            CellKind::Quad4 => 3,
+            CellKind::Quad8 => 16,
+            CellKind::Quad9 => 10,
+            CellKind::Tet4 => 4,
+            CellKind::Tet10 => 11,
+            CellKind::Hex8 => 5,
+            CellKind::Hex20 => 17,
+            CellKind::Hex27 => 12,
+        }
+    }
+
+    pub fn from_gmsh(code: i32) -> Option<Self> {
+        Self::ALL.into_iter().find(|k| k.gmsh_code() == code)
+    }
+
+    pub fn n_nodes(self) -> usize {
+        match self {
+            CellKind::Point1 => 1,
+            CellKind::Line2 => 2,
+            CellKind::Line3 => 3,
+            CellKind::Tri3 => 3,
+            CellKind::Tri6 => 6,
+            CellKind::Quad4 => 4,
+            CellKind::Quad8 => 8,
+            CellKind::Quad9 => 9,
+            CellKind::Tet4 => 4,
+            CellKind::Tet10 => 10,
+            CellKind::Hex8 => 8,
+            CellKind::Hex20 => 20,
+            CellKind::Hex27 => 27,
+        }
+    }
+
+    /// Number of corner (vertex) nodes; they come first in gmsh order.
+    pub fn n_corners(self) -> usize {
+        match self {
+            CellKind::Point1 => 1,
+            CellKind::Line2 | CellKind::Line3 => 2,
+            CellKind::Tri3 | CellKind::Tri6 => 3,
+            CellKind::Quad4 | CellKind::Quad8 | CellKind::Quad9 => 4,
+            CellKind::Tet4 | CellKind::Tet10 => 4,
+            CellKind::Hex8 | CellKind::Hex20 | CellKind::Hex27 => 8,
+        }
+    }
+
+    /// Topological dimension.
+    pub fn dim(self) -> usize {
+        match self {
+            CellKind::Point1 => 0,
+            CellKind::Line2 | CellKind::Line3 => 1,
+            CellKind::Tri3 | CellKind::Tri6 | CellKind::Quad4 | CellKind::Quad8 | CellKind::Quad9 => 2,
+            _ => 3,
+        }
+    }
+
+    /// Polynomial order of the geometry/interpolation (1 or 2).
+    pub fn order(self) -> usize {
+        if self.n_nodes() == self.n_corners() {
+            1
+        } else {
+            2
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            CellKind::Point1 => "point1",
+            CellKind::Line2 => "line2",
+            CellKind::Line3 => "line3",
+            CellKind::Tri3 => "tri3",
+            CellKind::Tri6 => "tri6",
+            CellKind::Quad4 => "quad4",
+            CellKind::Quad8 => "quad8",
+            CellKind::Quad9 => "quad9",
+            CellKind::Tet4 => "tet4",
+            CellKind::Tet10 => "tet10",
+            CellKind::Hex8 => "hex8",
+            CellKind::Hex20 => "hex20",
+            CellKind::Hex27 => "hex27",
+        }
+    }
+}
+
+/// One mesh cell: its kind, its nodes (indices into `Mesh::coords`, gmsh
+/// order) and its gmsh element tag (for messages).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Cell {
+    pub kind: CellKind,
+    pub nodes: Vec<usize>,
+    pub tag: u64,
+}
+
+/// A gmsh physical group with the cells of all its entities.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Group {
+    pub name: String,
+    pub dim: usize,
+    pub tag: i32,
+    pub cells: Vec<Cell>,
+}
+
+impl Group {
+    /// The distinct nodes of the group's cells, sorted.
+    pub fn nodes(&self) -> Vec<usize> {
+        let mut nodes: Vec<usize> = self.cells.iter().flat_map(|c| c.nodes.iter().copied()).collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        nodes
+    }
+}
+
+/// Node coordinates and physical groups. Only nodes referenced by some group
+/// need be meaningful; gmsh writes every node of a saved entity.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Mesh {
+    pub coords: Vec<[f64; 3]>,
+    /// gmsh node tag of each node, for messages.
+    pub node_tags: Vec<u64>,
+    pub groups: Vec<Group>,
+}
+
+impl Mesh {
+    pub fn group(&self, name: &str) -> Option<&Group> {
+        self.groups.iter().find(|g| g.name == name)
+    }
+
+    /// The highest dimension of any group (2 for a plane mesh, 3 for a solid).
+    pub fn dim(&self) -> usize {
+        self.groups.iter().map(|g| g.dim).max().unwrap_or(0)
+    }
+
+    /// Length of the bounding-box diagonal of all nodes used by a group.
+    pub fn size(&self) -> f64 {
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for g in &self.groups {
+            for c in &g.cells {
+                for &n in &c.nodes {
+                    for d in 0..3 {
+                        lo[d] = lo[d].min(self.coords[n][d]);
+                        hi[d] = hi[d].max(self.coords[n][d]);
+                    }
+                }
+            }
+        }
+        (0..3).map(|d| (hi[d] - lo[d]).powi(2)).sum::<f64>().sqrt()
+    }
+}

@@ -1,0 +1,590 @@
+//! The mechanical model built from a mesh and a scene: bodies with their
+//! cells, boundary loads on facets, supports, and contact pairs.
+//!
+//! Contact splitting: a node on a contact group gets one copy per body that
+//! uses it (the first body keeps the mesh node, the others get new model
+//! nodes at the same place), so the two sides of a contact can move apart.
+//! With `groups = [a, b]` the two sides already have their own nodes, which
+//! are paired by position. Pairs are ordered (k on body I, l on body II),
+//! body I being the one listed first in `[[bodies]]`.
+//!
+//! Everything else (loads, supports) refers to mesh nodes; loads are moved to
+//! the copy of the body the loaded facet bounds, supports hold every copy.
+
+use std::collections::HashMap;
+
+use crate::fem::element::{self, dofs_per_node};
+use crate::mesh::{Cell, CellKind, Mesh};
+use crate::scene::{Analysis, ContactGroups, LoadKind, Scene};
+
+/// A body of the model: cells in model node numbering.
+#[derive(Clone, Debug)]
+pub struct Body {
+    pub name: String,
+    pub e: f64,
+    pub nu: f64,
+    pub density: f64,
+    pub cells: Vec<Cell>,
+}
+
+/// A load on one boundary facet of one body.
+#[derive(Clone, Debug)]
+pub struct FacetLoad {
+    pub cell: Cell,
+    /// Turns the facet's natural normal into the body's outward normal.
+    pub sign: f64,
+    pub kind: LoadKind,
+    /// The body whose boundary the facet is.
+    pub body: usize,
+}
+
+/// One contact node pair: k on body I, l on body II.
+#[derive(Clone, Debug)]
+pub struct Pair {
+    pub k: usize,
+    pub l: usize,
+    pub contact: usize,
+    /// Unit outward normal of body I at k (area-weighted over its facets).
+    pub normal: [f64; 3],
+    /// Area the pair controls, `∫ N_k dA` over the facets of body I (with
+    /// thickness or 2 pi r as for every other integral).
+    pub area: f64,
+}
+
+/// One contact surface: the two bodies and the facets on body I's side.
+#[derive(Clone, Debug)]
+pub struct Interface {
+    pub name: String,
+    pub body_i: usize,
+    pub body_ii: usize,
+    pub facets: Vec<Cell>,
+}
+
+#[derive(Clone, Debug)]
+pub struct Model {
+    pub analysis: Analysis,
+    pub nd: usize,
+    pub thickness: f64,
+    pub gravity: [f64; 3],
+    pub coords: Vec<[f64; 3]>,
+    pub bodies: Vec<Body>,
+    pub loads: Vec<FacetLoad>,
+    /// Prescribed value of each DOF (`node * nd + c`), None when free.
+    pub prescribed: Vec<Option<f64>>,
+    pub pairs: Vec<Pair>,
+    pub interfaces: Vec<Interface>,
+    /// Mesh node of every model node.
+    pub mesh_node: Vec<usize>,
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum ModelError {
+    #[error("{scene}: {key} = \"{group}\" is not a physical group of the mesh `{mesh}`; it has: {known}. Check the name in the .geo's Physical statements")]
+    UnknownGroup { scene: String, key: String, group: String, mesh: String, known: String },
+    #[error("{scene}: {key} = \"{group}\" is a physical {found}, but a {wanted} is needed here")]
+    WrongDimension { scene: String, key: String, group: String, found: String, wanted: String },
+    #[error("{scene}: {key}: {msg}")]
+    Invalid { scene: String, key: String, msg: String },
+    #[error("element {tag} of body \"{body}\" is inverted or degenerate (Jacobian determinant {det_j:.3e}): fix the mesh (node order or a collapsed element)")]
+    Inverted { body: String, tag: u64, det_j: f64 },
+}
+
+fn dim_name(d: usize) -> &'static str {
+    ["point", "curve", "surface", "volume"][d.min(3)]
+}
+
+/// Node → cells incidence (CSR) of one body's cells.
+struct Incidence {
+    start: Vec<usize>,
+    cells: Vec<usize>,
+}
+
+impl Incidence {
+    fn new(n_nodes: usize, cells: &[Cell]) -> Incidence {
+        let mut count = vec![0usize; n_nodes + 1];
+        for c in cells {
+            for &n in &c.nodes {
+                count[n + 1] += 1;
+            }
+        }
+        for i in 0..n_nodes {
+            count[i + 1] += count[i];
+        }
+        let mut fill = count.clone();
+        let mut list = vec![0; count[n_nodes]];
+        for (ci, c) in cells.iter().enumerate() {
+            for &n in &c.nodes {
+                list[fill[n]] = ci;
+                fill[n] += 1;
+            }
+        }
+        Incidence { start: count, cells: list }
+    }
+    fn of(&self, node: usize) -> &[usize] {
+        &self.cells[self.start[node]..self.start[node + 1]]
+    }
+    /// A cell containing every node of `nodes`.
+    fn containing(&self, cells: &[Cell], nodes: &[usize]) -> Option<usize> {
+        self.of(nodes[0]).iter().copied().find(|&ci| nodes.iter().all(|n| cells[ci].nodes.contains(n)))
+    }
+}
+
+struct Builder<'a> {
+    mesh: &'a Mesh,
+    scene: &'a Scene,
+    scene_name: String,
+}
+
+impl<'a> Builder<'a> {
+    fn group(&self, key: &str, name: &str, dims: &[usize]) -> Result<&'a crate::mesh::Group, ModelError> {
+        let g = self.mesh.group(name).ok_or_else(|| ModelError::UnknownGroup {
+            scene: self.scene_name.clone(),
+            key: key.to_string(),
+            group: name.to_string(),
+            mesh: self.scene.mesh.path().display().to_string(),
+            known: self
+                .mesh
+                .groups
+                .iter()
+                .map(|g| format!("\"{}\" ({})", g.name, dim_name(g.dim)))
+                .collect::<Vec<_>>()
+                .join(", "),
+        })?;
+        if !dims.contains(&g.dim) {
+            return Err(ModelError::WrongDimension {
+                scene: self.scene_name.clone(),
+                key: key.to_string(),
+                group: name.to_string(),
+                found: dim_name(g.dim).to_string(),
+                wanted: dims.iter().map(|&d| dim_name(d)).collect::<Vec<_>>().join(" or "),
+            });
+        }
+        Ok(g)
+    }
+
+    fn invalid(&self, key: String, msg: String) -> ModelError {
+        ModelError::Invalid { scene: self.scene_name.clone(), key, msg }
+    }
+}
+
+/// Which bodies use each mesh node.
+fn node_bodies(n_nodes: usize, bodies: &[Body]) -> Vec<Vec<usize>> {
+    let mut nb: Vec<Vec<usize>> = vec![Vec::new(); n_nodes];
+    for (b, body) in bodies.iter().enumerate() {
+        for c in &body.cells {
+            for &n in &c.nodes {
+                if nb[n].last() != Some(&b) {
+                    nb[n].push(b);
+                }
+            }
+        }
+    }
+    for v in &mut nb {
+        v.sort_unstable();
+        v.dedup();
+    }
+    nb
+}
+
+/// Bodies containing every node of a facet (via their corner nodes).
+fn facet_bodies(nb: &[Vec<usize>], facet: &Cell) -> Vec<usize> {
+    let corners = &facet.nodes[..facet.kind.n_corners()];
+    let mut set = nb[corners[0]].clone();
+    for n in &corners[1..] {
+        set.retain(|b| nb[*n].contains(b));
+    }
+    set
+}
+
+impl Model {
+    pub fn build(mesh: &Mesh, scene: &Scene) -> Result<Model, ModelError> {
+        let b = Builder { mesh, scene, scene_name: scene.path.display().to_string() };
+        let sd = scene.analysis.dim();
+        let nd = dofs_per_node(scene.analysis);
+
+        // 1. Bodies.
+        let mut bodies = Vec::new();
+        for (i, body) in scene.bodies.iter().enumerate() {
+            let g = b.group(&format!("bodies[{i}].group"), &body.group, &[sd])?;
+            let m = scene.material_of(body);
+            bodies.push(Body { name: body.group.clone(), e: m.e, nu: m.nu, density: m.density, cells: g.cells.clone() });
+        }
+        if sd == 2 {
+            if let Some((body, cell)) = bodies
+                .iter()
+                .flat_map(|bd| bd.cells.iter().map(move |c| (bd, c)))
+                .find(|(_, c)| c.nodes.iter().any(|&n| mesh.coords[n][2].abs() > 1e-9 * mesh.size().max(1.0)))
+            {
+                return Err(b.invalid(
+                    "analysis".into(),
+                    format!(
+                        "plane and axisymmetric analyses need a mesh in the plane z = 0, but element {} of body \"{}\" is not; use analysis = \"solid\" for a 3D mesh",
+                        cell.tag, body.name
+                    ),
+                ));
+            }
+        }
+        if scene.analysis == Analysis::Axisymmetric {
+            let tol = 1e-9 * mesh.size();
+            if let Some((body, cell)) = bodies
+                .iter()
+                .flat_map(|bd| bd.cells.iter().map(move |c| (bd, c)))
+                .find(|(_, c)| c.nodes.iter().any(|&n| mesh.coords[n][0] < -tol))
+            {
+                return Err(b.invalid(
+                    "analysis".into(),
+                    format!("axisymmetric models lie in x = r >= 0, but element {} of body \"{}\" has x < 0", cell.tag, body.name),
+                ));
+            }
+        }
+        let nb = node_bodies(mesh.coords.len(), &bodies);
+
+        // 2. Contacts: split shared nodes, pair coincident ones.
+        let mut coords = mesh.coords.clone();
+        let mut mesh_node: Vec<usize> = (0..coords.len()).collect();
+        // (body, mesh node) -> model node, for split nodes only
+        let mut copy: HashMap<(usize, usize), usize> = HashMap::new();
+        let mut raw_pairs: Vec<(usize, usize, usize)> = Vec::new(); // (k, l, contact)
+        let mut interfaces = Vec::new();
+        let size = mesh.size();
+        for (ci, contact) in scene.contacts.iter().enumerate() {
+            match &contact.groups {
+                ContactGroups::Shared(name) => {
+                    let key = format!("contacts[{ci}].group");
+                    let g = b.group(&key, name, &[sd - 1])?;
+                    let (bi, bii) = contact_bodies(&b, &key, name, &nb, &bodies, &g.cells, None)?;
+                    for n in g.nodes() {
+                        let l = coords.len();
+                        coords.push(mesh.coords[n]);
+                        mesh_node.push(n);
+                        if copy.insert((bii, n), l).is_some() {
+                            return Err(b.invalid(
+                                key.clone(),
+                                format!("node at {:?} lies on two contacts of body \"{}\": junctions of contact surfaces are not supported yet", mesh.coords[n], bodies[bii].name),
+                            ));
+                        }
+                        raw_pairs.push((n, l, ci));
+                    }
+                    interfaces.push(Interface { name: name.clone(), body_i: bi, body_ii: bii, facets: g.cells.clone() });
+                }
+                ContactGroups::Pair(na, nb_name) => {
+                    let ka = format!("contacts[{ci}].groups[0]");
+                    let kb = format!("contacts[{ci}].groups[1]");
+                    let ga = b.group(&ka, na, &[sd - 1])?;
+                    let gb = b.group(&kb, nb_name, &[sd - 1])?;
+                    let ba = single_body(&b, &ka, na, &nb, &bodies, &ga.cells)?;
+                    let bb = single_body(&b, &kb, nb_name, &nb, &bodies, &gb.cells)?;
+                    if ba == bb {
+                        return Err(b.invalid(
+                            format!("contacts[{ci}].groups"),
+                            format!(
+                                "both \"{na}\" and \"{nb_name}\" bound body \"{}\": a contact between a body and itself is not supported; split the body into two physical groups",
+                                bodies[ba].name
+                            ),
+                        ));
+                    }
+                    let (gi, gii, bi, bii) = if ba < bb { (ga, gb, ba, bb) } else { (gb, ga, bb, ba) };
+                    let pairs = pair_by_position(&mesh.coords, &gi.nodes(), &gii.nodes(), 1e-6 * size)
+                        .map_err(|msg| b.invalid(format!("contacts[{ci}].groups"), msg))?;
+                    raw_pairs.extend(pairs.into_iter().map(|(k, l)| (k, l, ci)));
+                    let name = format!("{}|{}", gi.name, gii.name);
+                    interfaces.push(Interface { name, body_i: bi, body_ii: bii, facets: gi.cells.clone() });
+                }
+            }
+        }
+        for (bi, body) in bodies.iter_mut().enumerate() {
+            for c in &mut body.cells {
+                for n in &mut c.nodes {
+                    if let Some(&m) = copy.get(&(bi, *n)) {
+                        *n = m;
+                    }
+                }
+            }
+        }
+        let n_model = coords.len();
+        // every model node of each mesh node
+        let mut copies_of: HashMap<usize, Vec<usize>> = HashMap::new();
+        for (&(_, n), &m) in &copy {
+            copies_of.entry(n).or_default().push(m);
+        }
+
+        // 3. Supports hold every copy of a node.
+        let mut prescribed: Vec<Option<f64>> = vec![None; n_model * nd];
+        for (i, s) in scene.supports.iter().enumerate() {
+            let g = b.group(&format!("supports[{i}].group"), &s.group, &(0..=sd).collect::<Vec<_>>())?;
+            for n in g.nodes() {
+                let all = std::iter::once(n).chain(copies_of.get(&n).into_iter().flatten().copied());
+                for m in all {
+                    for c in 0..nd {
+                        if let Some(v) = s.prescribed[c] {
+                            prescribed[m * nd + c] = Some(v);
+                        } else if s.fix[c] {
+                            prescribed[m * nd + c] = Some(0.0);
+                        }
+                    }
+                }
+            }
+        }
+
+        // 4. Loads, each facet on the copy of the body it bounds.
+        let incidences: Vec<Incidence> = bodies.iter().map(|bd| Incidence::new(n_model, &bd.cells)).collect();
+        let mut loads = Vec::new();
+        for (i, load) in scene.loads.iter().enumerate() {
+            let key = format!("loads[{i}].group");
+            let g = b.group(&key, &load.group, &[sd - 1])?;
+            for f in &g.cells {
+                let owners = facet_bodies(&nb, f);
+                let body = match owners.as_slice() {
+                    [one] => *one,
+                    [] => {
+                        return Err(b.invalid(
+                            key.clone(),
+                            format!("element {} of group \"{}\" is not on the boundary of any body", f.tag, load.group),
+                        ))
+                    }
+                    _ => {
+                        return Err(b.invalid(
+                            key.clone(),
+                            format!(
+                                "element {} of group \"{}\" lies between bodies {}: loads go on outer boundaries",
+                                f.tag,
+                                load.group,
+                                owners.iter().map(|&o| format!("\"{}\"", bodies[o].name)).collect::<Vec<_>>().join(" and ")
+                            ),
+                        ))
+                    }
+                };
+                let mut cell = f.clone();
+                for n in &mut cell.nodes {
+                    if let Some(&m) = copy.get(&(body, *n)) {
+                        *n = m;
+                    }
+                }
+                let sign = facet_sign(&coords, &cell, &bodies[body].cells, &incidences[body]).ok_or_else(|| {
+                    b.invalid(key.clone(), format!("element {} of group \"{}\" is not a face of an element of body \"{}\"", f.tag, load.group, bodies[body].name))
+                })?;
+                loads.push(FacetLoad { cell, sign, kind: load.kind.clone(), body });
+            }
+        }
+
+        // 5. Pair normals and areas from body I's facets.
+        let mut model = Model {
+            analysis: scene.analysis,
+            nd,
+            thickness: scene.thickness,
+            gravity: scene.gravity,
+            coords,
+            bodies,
+            loads,
+            prescribed,
+            pairs: Vec::new(),
+            interfaces,
+            mesh_node,
+        };
+        let mut normal = vec![[0.0; 3]; n_model];
+        let mut area = vec![0.0; n_model];
+        for iface in &model.interfaces {
+            let body = iface.body_i;
+            for f in &iface.facets {
+                let sign = facet_sign(&model.coords, f, &model.bodies[body].cells, &incidences[body]).ok_or_else(|| {
+                    b.invalid("contacts".into(), format!("element {} of contact \"{}\" is not a face of body \"{}\"", f.tag, iface.name, model.bodies[body].name))
+                })?;
+                accumulate_facet(&model, f, sign, &mut normal, &mut area);
+            }
+        }
+        for (k, l, contact) in raw_pairs {
+            let nrm = element::norm(normal[k]);
+            let n = if nrm > 0.0 { [normal[k][0] / nrm, normal[k][1] / nrm, normal[k][2] / nrm] } else { [0.0; 3] };
+            model.pairs.push(Pair { k, l, contact, normal: n, area: area[k] });
+        }
+        Ok(model)
+    }
+
+    pub fn n_nodes(&self) -> usize {
+        self.coords.len()
+    }
+
+    /// Names of the bodies, for messages.
+    pub fn body_names(&self, ids: &[usize]) -> String {
+        ids.iter().map(|&b| format!("\"{}\"", self.bodies[b].name)).collect::<Vec<_>>().join(", ")
+    }
+}
+
+/// Sign making the natural normal of `facet` outward for the body cell that has it as a face.
+fn facet_sign(coords: &[[f64; 3]], facet: &Cell, cells: &[Cell], inc: &Incidence) -> Option<f64> {
+    let ci = inc.containing(cells, &facet.nodes[..facet.kind.n_corners()])?;
+    let fc: Vec<[f64; 3]> = facet.nodes.iter().map(|&n| coords[n]).collect();
+    let cc: Vec<[f64; 3]> = cells[ci].nodes.iter().map(|&n| coords[n]).collect();
+    Some(element::outward_sign(facet.kind, &fc, cells[ci].kind, &cc))
+}
+
+/// Adds a facet's area-weighted outward normal and `∫ N_a dA` to its nodes.
+fn accumulate_facet(model: &Model, f: &Cell, sign: f64, normal: &mut [[f64; 3]], area: &mut [f64]) {
+    let fc: Vec<[f64; 3]> = f.nodes.iter().map(|&n| model.coords[n]).collect();
+    let rule = crate::fem::quadrature::rule(f.kind, 2 * f.kind.order() + 2);
+    for q in &rule {
+        let (n, unit, da, x) = element::facet_point(f.kind, &fc, q.xi);
+        let measure = match model.analysis {
+            Analysis::PlaneStrain | Analysis::PlaneStress => model.thickness,
+            Analysis::Axisymmetric => 2.0 * std::f64::consts::PI * x[0],
+            Analysis::Solid => 1.0,
+        };
+        for (a, &node) in f.nodes.iter().enumerate() {
+            let w = q.w * da * measure * n[a];
+            area[node] += w;
+            // normals weighted by geometry only (N_a >= 0 weights avoid
+            // cancelling on serendipity faces)
+            for i in 0..3 {
+                normal[node][i] += sign * unit[i] * q.w * da * n[a].abs();
+            }
+        }
+    }
+}
+
+/// The two bodies on either side of a shared contact group.
+fn contact_bodies(
+    b: &Builder,
+    key: &str,
+    name: &str,
+    nb: &[Vec<usize>],
+    bodies: &[Body],
+    facets: &[Cell],
+    _: Option<()>,
+) -> Result<(usize, usize), ModelError> {
+    let mut found: Option<(usize, usize)> = None;
+    for f in facets {
+        let owners = facet_bodies(nb, f);
+        let pair = match owners.as_slice() {
+            [x, y] => (*x.min(y), *x.max(y)),
+            [one] => {
+                return Err(b.invalid(
+                    key.to_string(),
+                    format!(
+                        "group \"{name}\" touches only body \"{}\" (element {}): a contact needs a body on each side sharing the {} (group = ..), or two coincident groups (groups = [..]); a contact between a body and itself is not supported, split the body into two physical groups",
+                        bodies[*one].name,
+                        f.tag,
+                        if f.kind.dim() == 1 { "curve" } else { "surface" }
+                    ),
+                ))
+            }
+            [] => return Err(b.invalid(key.to_string(), format!("element {} of group \"{name}\" touches no body", f.tag))),
+            many => {
+                return Err(b.invalid(
+                    key.to_string(),
+                    format!("element {} of group \"{name}\" is shared by more than two bodies ({})", f.tag, many.len()),
+                ))
+            }
+        };
+        match found {
+            None => found = Some(pair),
+            Some(p) if p != pair => {
+                return Err(b.invalid(
+                    key.to_string(),
+                    format!(
+                        "group \"{name}\" lies between several pairs of bodies (\"{}\"|\"{}\" and \"{}\"|\"{}\"): give each pair of bodies its own contact group",
+                        bodies[p.0].name, bodies[p.1].name, bodies[pair.0].name, bodies[pair.1].name
+                    ),
+                ))
+            }
+            _ => {}
+        }
+    }
+    found.ok_or_else(|| b.invalid(key.to_string(), format!("group \"{name}\" has no elements")))
+}
+
+/// The one body a group (one side of a `groups = [..]` contact) bounds.
+fn single_body(b: &Builder, key: &str, name: &str, nb: &[Vec<usize>], bodies: &[Body], facets: &[Cell]) -> Result<usize, ModelError> {
+    let mut found = None;
+    for f in facets {
+        let owners = facet_bodies(nb, f);
+        match (owners.as_slice(), found) {
+            ([one], None) => found = Some(*one),
+            ([one], Some(prev)) if *one == prev => {}
+            _ => {
+                return Err(b.invalid(
+                    key.to_string(),
+                    format!(
+                        "element {} of group \"{name}\" must bound exactly one body (it bounds {}); with groups = [..] each group is the face of one body",
+                        f.tag,
+                        if owners.is_empty() { "none".to_string() } else { owners.iter().map(|&o| format!("\"{}\"", bodies[o].name)).collect::<Vec<_>>().join(", ") }
+                    ),
+                ))
+            }
+        }
+    }
+    found.ok_or_else(|| b.invalid(key.to_string(), format!("group \"{name}\" has no elements")))
+}
+
+/// Pairs every node of `a` with the one node of `b` within `tol`; error when
+/// a node has no partner or several.
+fn pair_by_position(coords: &[[f64; 3]], a: &[usize], b: &[usize], tol: f64) -> Result<Vec<(usize, usize)>, String> {
+    // Sort b by x and search a window: robust for large offsets because only
+    // differences of nearby coordinates are compared.
+    let mut sorted: Vec<usize> = b.to_vec();
+    sorted.sort_by(|&p, &q| coords[p][0].total_cmp(&coords[q][0]));
+    let xs: Vec<f64> = sorted.iter().map(|&n| coords[n][0]).collect();
+    let mut pairs = Vec::with_capacity(a.len());
+    let mut used = vec![false; sorted.len()];
+    let mut lonely = Vec::new();
+    for &k in a {
+        let x = coords[k];
+        let lo = xs.partition_point(|&v| v < x[0] - tol);
+        let hits: Vec<usize> = (lo..sorted.len())
+            .take_while(|&j| xs[j] <= x[0] + tol)
+            .filter(|&j| element::norm(element::sub(coords[sorted[j]], x)) <= tol)
+            .collect();
+        match hits.as_slice() {
+            [j] => {
+                used[*j] = true;
+                pairs.push((k, sorted[*j]));
+            }
+            [] => lonely.push(x),
+            _ => return Err(format!("node at {:?} has {} partners within {:.1e}: the mesh has duplicate nodes", x, hits.len(), tol)),
+        }
+    }
+    lonely.extend(sorted.iter().zip(&used).filter(|(_, &u)| !u).map(|(&n, _)| coords[n]));
+    if !lonely.is_empty() {
+        let first: Vec<String> = lonely.iter().take(5).map(|p| format!("({:.6}, {:.6}, {:.6})", p[0], p[1], p[2])).collect();
+        return Err(format!(
+            "{} node(s) find no partner on the other side within {:.1e}, first at {}: the two groups must have coincident nodes (same mesh divisions on both curves/surfaces)",
+            lonely.len(),
+            tol,
+            first.join(", ")
+        ));
+    }
+    Ok(pairs)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pairing_by_position_is_robust_far_from_origin() {
+        let base = [5.0e5, 4.2e6, 0.0];
+        let mut coords = Vec::new();
+        for i in 0..5 {
+            coords.push([base[0] + i as f64 * 0.1, base[1] + 0.3 * i as f64, 0.0]);
+        }
+        for i in (0..5).rev() {
+            // the same points, with round-off
+            coords.push([base[0] + i as f64 * 0.1 + 1e-9, base[1] + 0.3 * i as f64 - 1e-9, 0.0]);
+        }
+        let pairs = pair_by_position(&coords, &[0, 1, 2, 3, 4], &[5, 6, 7, 8, 9], 1e-6 * 2.0).unwrap();
+        assert_eq!(pairs, vec![(0, 9), (1, 8), (2, 7), (3, 6), (4, 5)]);
+        coords[5][0] += 0.05;
+        let err = pair_by_position(&coords, &[0, 1, 2, 3, 4], &[5, 6, 7, 8, 9], 1e-6 * 2.0).unwrap_err();
+        assert!(err.contains("no partner"), "{err}");
+    }
+
+    #[test]
+    fn incidence_finds_the_cell_of_a_facet() {
+        let cells = vec![
+            Cell { kind: CellKind::Tri3, nodes: vec![0, 1, 2], tag: 1 },
+            Cell { kind: CellKind::Tri3, nodes: vec![1, 3, 2], tag: 2 },
+        ];
+        let inc = Incidence::new(4, &cells);
+        assert_eq!(inc.containing(&cells, &[3, 1]), Some(1));
+        assert_eq!(inc.containing(&cells, &[0, 3]), None);
+    }
+}

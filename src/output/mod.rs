@@ -1,0 +1,193 @@
+//! Result files of a run, staged in memory and written together:
+//! `<name>.vtu` (bodies), `<name>_contact.vtu` (interfaces), `contact.csv`,
+//! `probes.csv`, `summary.json`, `report.md`.
+
+pub mod files;
+pub mod report;
+pub mod vtu;
+
+use anyhow::Result;
+use serde_json::json;
+
+use crate::driver::{state_counts, Run};
+use crate::fem::material::von_mises;
+use crate::mesh::Cell;
+use files::Staged;
+use vtu::{Field, IntField};
+
+/// Stages every result file of a run except `summary.json`.
+pub fn stage(run: &Run) -> Result<Staged> {
+    let mut staged = Staged::new(&run.out);
+    let name = &run.scene.name;
+    staged.add(&format!("{name}.vtu"), bodies_vtu(run)?);
+    if let Some(c) = &run.contact {
+        staged.add(&format!("{name}_contact.vtu"), contact_vtu(run)?);
+        staged.add("contact.csv", contact_csv(run, c).into_bytes());
+    }
+    if !run.probes.is_empty() {
+        staged.add("probes.csv", probes_csv(run).into_bytes());
+    }
+    staged.add("report.md", report::report(run).into_bytes());
+    Ok(staged)
+}
+
+/// Adds `summary.json`, with the run's final timings.
+pub fn restage_summary(mut staged: Staged, run: &Run) -> Result<Staged> {
+    staged.add("summary.json", serde_json::to_vec_pretty(&summary(run))?);
+    Ok(staged)
+}
+
+/// Points of the bodies' VTU: each body's nodes, so stresses averaged per
+/// body stay apart where bodies share nodes.
+fn bodies_vtu(run: &Run) -> Result<Vec<u8>> {
+    let model = &run.model;
+    let nd = model.nd;
+    let mut points = Vec::new();
+    let mut disp = Vec::new();
+    let mut stress = Vec::new();
+    let mut vm = Vec::new();
+    let mut cells = Vec::new();
+    let mut body_id = Vec::new();
+    let mut local = vec![usize::MAX; model.n_nodes()];
+    for (b, (body, bs)) in model.bodies.iter().zip(&run.stresses).enumerate() {
+        let base = points.len();
+        for (i, (&n, s)) in bs.nodes.iter().zip(&bs.stress).enumerate() {
+            local[n] = base + i;
+            points.push(model.coords[n]);
+            for c in 0..3 {
+                disp.push(if c < nd { run.u[n * nd + c] } else { 0.0 });
+            }
+            stress.extend_from_slice(s);
+            vm.push(von_mises(s));
+        }
+        for c in &body.cells {
+            cells.push(Cell { kind: c.kind, nodes: c.nodes.iter().map(|&n| local[n]).collect(), tag: c.tag });
+            body_id.push(b as i32);
+        }
+    }
+    let point_data = [
+        Field { name: "displacement", n_comp: 3, values: &disp },
+        Field { name: "stress", n_comp: 6, values: &stress },
+        Field { name: "von_mises", n_comp: 1, values: &vm },
+    ];
+    Ok(vtu::vtu_bytes(&points, &cells, &point_data, &[], &[IntField { name: "body", values: &body_id }])?)
+}
+
+/// The interfaces, as body I's facets, with the pair values at their nodes.
+fn contact_vtu(run: &Run) -> Result<Vec<u8>> {
+    let model = &run.model;
+    let c = run.contact.as_ref().expect("contact run");
+    let mut pair_of = vec![usize::MAX; model.n_nodes()];
+    for (i, p) in model.pairs.iter().enumerate() {
+        pair_of[p.k] = i;
+    }
+    let mut local = vec![usize::MAX; model.n_nodes()];
+    let mut points = Vec::new();
+    let mut pairs = Vec::new();
+    let mut cells = Vec::new();
+    let mut iface_id = Vec::new();
+    for (ii, iface) in model.interfaces.iter().enumerate() {
+        for f in &iface.facets {
+            let nodes = f
+                .nodes
+                .iter()
+                .map(|&n| {
+                    if local[n] == usize::MAX {
+                        local[n] = points.len();
+                        points.push(model.coords[n]);
+                        pairs.push(pair_of[n]);
+                    }
+                    local[n]
+                })
+                .collect();
+            cells.push(Cell { kind: f.kind, nodes, tag: f.tag });
+            iface_id.push(ii as i32);
+        }
+    }
+    let get = |f: &dyn Fn(usize) -> f64| -> Vec<f64> { pairs.iter().map(|&p| if p == usize::MAX { 0.0 } else { f(p) }).collect() };
+    let status: Vec<i32> = pairs.iter().map(|&p| if p == usize::MAX { -1 } else { c.states[p].code() }).collect();
+    let sigma_n = get(&|p| c.pairs[p].sigma_n);
+    let tau = get(&|p| c.pairs[p].tau());
+    let gap = get(&|p| c.pairs[p].gap);
+    let slip = get(&|p| c.pairs[p].slip);
+    let status_f: Vec<f64> = status.iter().map(|&s| s as f64).collect();
+    let point_data = [
+        Field { name: "status", n_comp: 1, values: &status_f },
+        Field { name: "sigma_n", n_comp: 1, values: &sigma_n },
+        Field { name: "tau", n_comp: 1, values: &tau },
+        Field { name: "gap", n_comp: 1, values: &gap },
+        Field { name: "slip", n_comp: 1, values: &slip },
+    ];
+    Ok(vtu::vtu_bytes(&points, &cells, &point_data, &[], &[IntField { name: "interface", values: &iface_id }])?)
+}
+
+fn contact_csv(run: &Run, c: &crate::driver::ContactRun) -> String {
+    let mut s = String::from("pair,x,y,z,status,sigma_n,tau_t,tau_b,gap,slip\n");
+    for (i, (p, r)) in run.model.pairs.iter().zip(&c.pairs).enumerate() {
+        let x = run.model.coords[p.k];
+        s += &format!(
+            "{i},{:.12e},{:.12e},{:.12e},{},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e}\n",
+            x[0],
+            x[1],
+            x[2],
+            c.states[i].code(),
+            r.sigma_n,
+            r.tau_t,
+            r.tau_b,
+            r.gap,
+            r.slip
+        );
+    }
+    s
+}
+
+fn probes_csv(run: &Run) -> String {
+    let mut s = String::from("probe,point,x,y,z,ux,uy,uz,sxx,syy,szz,sxy,syz,sxz,von_mises,found\n");
+    for (name, samples) in &run.probes {
+        for (i, p) in samples.iter().enumerate() {
+            let vals: Vec<String> = p
+                .x
+                .iter()
+                .chain(&p.displacement)
+                .chain(&p.stress)
+                .chain(std::iter::once(&p.von_mises))
+                .map(|v| format!("{v:.12e}"))
+                .collect();
+            s += &format!("{name},{i},{},{}\n", vals.join(","), p.found);
+        }
+    }
+    s
+}
+
+fn summary(run: &Run) -> serde_json::Value {
+    let mut v = json!({
+        "scene": run.scene.path.display().to_string(),
+        "title": run.scene.title,
+        "analysis": format!("{:?}", run.scene.analysis),
+        "mesh": { "file": run.msh.display().to_string(), "cached": run.mesh_cached, "nodes": run.model.n_nodes(),
+                  "elements": run.model.bodies.iter().map(|b| b.cells.len()).sum::<usize>() },
+        "bodies": run.model.bodies.iter().map(|b| b.name.clone()).collect::<Vec<_>>(),
+        "dofs": { "total": run.dofs_total, "interface": run.dofs_interface },
+        "parts": { "total": run.parts, "condensed": run.condensed_parts },
+        "timings_s": run.timings,
+        "residuals": { "interface": run.residual_interface },
+    });
+    if let Some(c) = &run.contact {
+        let counts = state_counts(&c.states);
+        v["contact"] = json!({
+            "pairs": c.states.len(),
+            "iterations": c.iterations,
+            "converged": c.converged,
+            "cycled": c.cycled,
+            "states": { "stick": counts[2], "slip": counts[1], "open": counts[0] },
+            "history": c.history.iter().map(|h| { let k = state_counts(h); json!({"stick": k[2], "slip": k[1], "open": k[0]}) }).collect::<Vec<_>>(),
+        });
+    }
+    if let Some(e) = &run.errors {
+        v["errors"] = json!({ "displacement_l2": e.displacement_l2, "stress_l2": e.stress_l2, "contact_max": run.contact_error_max });
+    }
+    let probes: serde_json::Map<String, serde_json::Value> =
+        run.probes.iter().map(|(name, s)| (name.clone(), serde_json::to_value(s).unwrap_or_default())).collect();
+    v["probes"] = serde_json::Value::Object(probes);
+    v
+}

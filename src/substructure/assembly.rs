@@ -1,0 +1,116 @@
+//! Assembly of one part (a set of bodies joined by shared nodes): stiffness
+//! and load vector over a given DOF numbering.
+//!
+//! `dof_of[node * nd + c]` is the equation of a DOF or [`NONE`]. A DOF with a
+//! prescribed value (`Model::prescribed`) that is not numbered moves its
+//! `K_e u` contribution to the right-hand side; a DOF that is neither
+//! numbered nor prescribed belongs to another part and is skipped.
+
+use crate::fem::element::{self, Inverted};
+use crate::fem::material::d_matrix;
+use crate::fem::quadrature;
+use crate::fem::sparse::{SymMatrix, NONE};
+use crate::mesh::CellKind;
+use crate::model::{Model, ModelError};
+use crate::scene::LoadKind;
+
+/// Stiffness (lower triangle) and right-hand side of a part.
+pub struct Assembled {
+    pub k: SymMatrix,
+    pub f: Vec<f64>,
+}
+
+fn cell_coords(model: &Model, nodes: &[usize]) -> Vec<[f64; 3]> {
+    nodes.iter().map(|&n| model.coords[n]).collect()
+}
+
+fn element_dofs(nodes: &[usize], nd: usize, dof_of: &[usize], out: &mut Vec<usize>) {
+    out.clear();
+    for &n in nodes {
+        for c in 0..nd {
+            out.push(dof_of[n * nd + c]);
+        }
+    }
+}
+
+/// Assembles the bodies `bodies` of the model into `n` equations.
+pub fn assemble(model: &Model, bodies: &[usize], dof_of: &[usize], n: usize) -> Result<Assembled, ModelError> {
+    let nd = model.nd;
+    let cells = bodies.iter().flat_map(|&b| model.bodies[b].cells.iter().map(|c| c.nodes.as_slice()));
+    let mut k = SymMatrix::pattern(n, nd, dof_of, cells);
+    let mut f = vec![0.0; n];
+    let mut ke = Vec::new();
+    let mut dofs = Vec::new();
+    let mut rules: Vec<(CellKind, Vec<quadrature::QuadPoint>)> = Vec::new();
+    for &b in bodies {
+        let body = &model.bodies[b];
+        let d = d_matrix(model.analysis, body.e, body.nu);
+        let g = model.gravity;
+        let weight = [g[0] * body.density, g[1] * body.density, g[2] * body.density];
+        let has_weight = weight.iter().any(|&w| w != 0.0);
+        for cell in &body.cells {
+            let rule = match rules.iter().find(|(kind, _)| *kind == cell.kind) {
+                Some((_, r)) => r,
+                None => {
+                    rules.push((cell.kind, quadrature::stiffness_rule(cell.kind)));
+                    &rules.last().expect("just pushed").1
+                }
+            };
+            let xe = cell_coords(model, &cell.nodes);
+            let inverted = |e: Inverted| ModelError::Inverted { body: body.name.clone(), tag: cell.tag, det_j: e.det_j };
+            element::stiffness(model.analysis, cell.kind, &xe, &d, model.thickness, rule, &mut ke).map_err(inverted)?;
+            element_dofs(&cell.nodes, nd, dof_of, &mut dofs);
+            k.add(&dofs, &ke);
+            let m = dofs.len();
+            let mut fe = vec![0.0; m];
+            if has_weight {
+                element::body_force(model.analysis, cell.kind, &xe, weight, model.thickness, &mut fe).map_err(inverted)?;
+            }
+            // prescribed displacements: f -= K_e[:, j] u_j
+            for (j, &node) in cell.nodes.iter().enumerate() {
+                for c in 0..nd {
+                    let jj = j * nd + c;
+                    if dofs[jj] != NONE {
+                        continue;
+                    }
+                    if let Some(u) = model.prescribed[node * nd + c] {
+                        if u != 0.0 {
+                            for i in 0..m {
+                                fe[i] -= ke[i * m + jj] * u;
+                            }
+                        }
+                    }
+                }
+            }
+            scatter(&dofs, &fe, &mut f);
+        }
+    }
+    // boundary loads on facets of these bodies
+    for load in &model.loads {
+        if !bodies.contains(&load.body) {
+            continue;
+        }
+        element_dofs(&load.cell.nodes, nd, dof_of, &mut dofs);
+        let xe = cell_coords(model, &load.cell.nodes);
+        let mut fe = vec![0.0; dofs.len()];
+        let kind = load.kind.clone();
+        let traction = move |_x: [f64; 3], n: [f64; 3]| -> [f64; 3] {
+            match kind {
+                LoadKind::Pressure(p) => [-p * n[0], -p * n[1], -p * n[2]],
+                LoadKind::Traction(t) => t,
+            }
+        };
+        element::facet_force(model.analysis, load.cell.kind, &xe, load.sign, model.thickness, &traction, &mut fe);
+        scatter(&dofs, &fe, &mut f);
+    }
+    Ok(Assembled { k, f })
+}
+
+fn scatter(dofs: &[usize], fe: &[f64], f: &mut [f64]) {
+    for (i, &d) in dofs.iter().enumerate() {
+        if d != NONE {
+            f[d] += fe[i];
+        }
+    }
+}
+
