@@ -97,7 +97,6 @@ pub fn load_mesh(scene: &Scene, out: &Path) -> Result<(Mesh, PathBuf, bool)> {
                 order: scene.gmsh.order,
                 setnumber: scene.gmsh.setnumber.clone(),
                 clscale: scene.gmsh.clscale,
-                ..Default::default()
             };
             let meshed = gmsh::mesh(&job)?;
             let mesh = msh::read_msh(&msh_path)?;

@@ -14,7 +14,7 @@
 use std::collections::HashMap;
 
 use crate::fem::element::{self, dofs_per_node};
-use crate::mesh::{Cell, CellKind, Mesh};
+use crate::mesh::{Cell, Mesh};
 use crate::scene::{Analysis, ContactGroups, LoadKind, Scene};
 
 /// A body of the model: cells in model node numbering.

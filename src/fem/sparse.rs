@@ -8,7 +8,8 @@
 
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::LltError;
-use faer::sparse::{Llt, SparseColMat, SymbolicLlt, SymbolicSparseColMat};
+use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
+use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::{MatMut, Side};
 
 /// Marks a DOF that is not an unknown of the matrix.
