@@ -39,6 +39,8 @@ pub struct RunOptions {
 #[derive(Clone, Debug, Default, serde::Serialize)]
 pub struct Timings {
     pub mesh: f64,
+    /// Building the model: groups, contact split and pairing, loads.
+    pub model: f64,
     pub assemble: f64,
     pub condense: f64,
     pub interface: f64,
@@ -131,6 +133,8 @@ pub fn run(scene_path: &Path, opts: &RunOptions) -> Result<Run> {
     drop(mesh);
     let parts = substructure::parts(&model);
     let n_parts = parts.len();
+    timings.model = t.elapsed().as_secs_f64();
+    let t = Instant::now();
 
     // 4. Assemble, factorise, condense.
     progress(opts, &format!("assembling and factorising {} part(s)", n_parts));

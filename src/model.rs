@@ -209,11 +209,13 @@ impl Model {
             let m = scene.material_of(body);
             bodies.push(Body { name: body.group.clone(), e: m.e, nu: m.nu, density: m.density, cells: g.cells.clone() });
         }
+        let size = mesh.size();
         if sd == 2 {
+            let tol = 1e-9 * size.max(1.0);
             if let Some((body, cell)) = bodies
                 .iter()
                 .flat_map(|bd| bd.cells.iter().map(move |c| (bd, c)))
-                .find(|(_, c)| c.nodes.iter().any(|&n| mesh.coords[n][2].abs() > 1e-9 * mesh.size().max(1.0)))
+                .find(|(_, c)| c.nodes.iter().any(|&n| mesh.coords[n][2].abs() > tol))
             {
                 return Err(b.invalid(
                     "analysis".into(),
@@ -225,7 +227,7 @@ impl Model {
             }
         }
         if scene.analysis == Analysis::Axisymmetric {
-            let tol = 1e-9 * mesh.size();
+            let tol = 1e-9 * size;
             if let Some((body, cell)) = bodies
                 .iter()
                 .flat_map(|bd| bd.cells.iter().map(move |c| (bd, c)))
@@ -246,7 +248,6 @@ impl Model {
         let mut copy: HashMap<(usize, usize), usize> = HashMap::new();
         let mut raw_pairs: Vec<(usize, usize, usize)> = Vec::new(); // (k, l, contact)
         let mut interfaces = Vec::new();
-        let size = mesh.size();
         for (ci, contact) in scene.contacts.iter().enumerate() {
             match &contact.groups {
                 ContactGroups::Shared(name) => {
