@@ -88,7 +88,8 @@ pub struct Condensed {
     chol: Cholesky,
     /// K_ci as rows: for interface DOF r, its (interior equation, value) entries.
     k_ci: Vec<Vec<(usize, f64)>>,
-    f_i: Vec<f64>,
+    /// K_ii^-1 F_i: the interior displacements when the interface is held fixed.
+    d_i0: Vec<f64>,
     /// Schur complement, column-major nc x nc.
     pub s: Vec<f64>,
     /// Condensed load.
@@ -182,13 +183,12 @@ pub fn condense(model: &Model, part: Part) -> Result<Condensed, ModelError> {
     }
     let k_ii = SymMatrix { n: ni, col_ptr, row_idx, values };
     let chol = Cholesky::factor(&k_ii).map_err(|e| not_held(model, &part, e))?;
-    let f_i = a.f[..ni].to_vec();
     let mut g = a.f[ni..].to_vec();
     // G = F_c - K_ci K_ii^-1 F_i
-    let mut y = f_i.clone();
-    chol.solve(&mut y);
+    let mut d_i0 = a.f[..ni].to_vec();
+    chol.solve(&mut d_i0);
     for r in 0..nc {
-        g[r] -= k_ci[r].iter().map(|&(c, v)| v * y[c]).sum::<f64>();
+        g[r] -= k_ci[r].iter().map(|&(c, v)| v * d_i0[c]).sum::<f64>();
     }
     // S = K_cc - K_ci K_ii^-1 K_ic, a chunk of right-hand sides at a time
     let chunk = (25_000_000 / ni.max(1)).clamp(1, 100);
@@ -226,7 +226,7 @@ pub fn condense(model: &Model, part: Part) -> Result<Condensed, ModelError> {
             *d = NONE;
         }
     }
-    Ok(Condensed { part, dof_of, ni, nc, chol, k_ci, f_i, s, g, assemble_s })
+    Ok(Condensed { part, dof_of, ni, nc, chol, k_ci, d_i0, s, g, assemble_s })
 }
 
 impl Condensed {
@@ -235,16 +235,23 @@ impl Condensed {
     /// together with `d_c` itself and the prescribed values.
     pub fn recover(&self, model: &Model, d_c: &[f64], u: &mut [f64]) {
         let nd = model.nd;
-        let mut rhs = self.f_i.clone();
-        for (r, row) in self.k_ci.iter().enumerate() {
-            for &(c, v) in row {
-                rhs[c] -= v * d_c[r];
+        // d_i = K_ii^-1 F_i - K_ii^-1 K_ic d_c; no solve at all without interface
+        let mut d_i = self.d_i0.clone();
+        if d_c.iter().any(|&v| v != 0.0) {
+            let mut w = vec![0.0; self.ni];
+            for (r, row) in self.k_ci.iter().enumerate() {
+                for &(c, v) in row {
+                    w[c] += v * d_c[r];
+                }
+            }
+            self.chol.solve(&mut w);
+            for (a, b) in d_i.iter_mut().zip(&w) {
+                *a -= b;
             }
         }
-        self.chol.solve(&mut rhs);
         for (i, &d) in self.dof_of.iter().enumerate() {
             if d != NONE {
-                u[i] = rhs[d];
+                u[i] = d_i[d];
             } else if let Some(v) = model.prescribed[i] {
                 u[i] = v;
             }
