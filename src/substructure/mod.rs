@@ -17,8 +17,10 @@
 //! solved directly.
 
 pub mod assembly;
+pub mod schur;
 
-use crate::fem::sparse::{Cholesky, FactorError, SymMatrix, NONE};
+use crate::fem::sparse::{FactorError, NONE};
+use schur::PartialCholesky;
 use crate::model::{Model, ModelError};
 
 /// Bodies that share nodes, and the part's contact nodes.
@@ -85,11 +87,10 @@ pub struct Condensed {
     pub ni: usize,
     /// Number of interface DOFs (`interface.len() * nd`).
     pub nc: usize,
-    chol: Cholesky,
-    /// K_ci as rows: for interface DOF r, its (interior equation, value) entries.
-    k_ci: Vec<Vec<(usize, f64)>>,
-    /// K_ii^-1 F_i: the interior displacements when the interface is held fixed.
-    d_i0: Vec<f64>,
+    /// The part's factor, interface last (see [`schur`]).
+    chol: PartialCholesky,
+    /// The load vector `[F_i; F_c]`.
+    f: Vec<f64>,
     /// Schur complement, column-major nc x nc.
     pub s: Vec<f64>,
     /// Condensed load.
@@ -154,79 +155,22 @@ pub fn condense(model: &Model, part: Part) -> Result<Condensed, ModelError> {
     let (mut dof_of, ni, nc) = numbering(model, &part);
     let a = assembly::assemble(model, &part.bodies, &dof_of, ni + nc)?;
     let assemble_s = t.elapsed().as_secs_f64();
-    // split the lower triangle into K_ii (leading block), K_ci and K_cc
-    let k = &a.k;
-    let mut col_ptr = Vec::with_capacity(ni + 1);
-    let mut row_idx = Vec::new();
-    let mut values = Vec::new();
-    let mut k_ci: Vec<Vec<(usize, f64)>> = vec![Vec::new(); nc];
-    col_ptr.push(0);
-    for col in 0..ni {
-        for p in k.col_ptr[col]..k.col_ptr[col + 1] {
-            let r = k.row_idx[p];
-            if r < ni {
-                row_idx.push(r);
-                values.push(k.values[p]);
-            } else {
-                k_ci[r - ni].push((col, k.values[p]));
-            }
-        }
-        col_ptr.push(row_idx.len());
-    }
-    let mut s = vec![0.0; nc * nc];
-    for col in ni..ni + nc {
-        for p in k.col_ptr[col]..k.col_ptr[col + 1] {
-            let (r, c) = (k.row_idx[p] - ni, col - ni);
-            s[r + c * nc] = k.values[p];
-            s[c + r * nc] = k.values[p];
-        }
-    }
-    let k_ii = SymMatrix { n: ni, col_ptr, row_idx, values };
-    let chol = Cholesky::factor(&k_ii).map_err(|e| not_held(model, &part, e))?;
+    let chol = PartialCholesky::factor(&a.k, ni).map_err(|e| not_held(model, &part, e))?;
+    let s = chol.schur();
+    // G = F_c + (S + alpha I) x_c with K' [x_i; x_c] = [F_i; 0]
+    let mut x = a.f.clone();
+    x[ni..].iter_mut().for_each(|v| *v = 0.0);
+    chol.solve_many(&mut x, 1);
     let mut g = a.f[ni..].to_vec();
-    // G = F_c - K_ci K_ii^-1 F_i
-    let mut d_i0 = a.f[..ni].to_vec();
-    chol.solve(&mut d_i0);
     for r in 0..nc {
-        g[r] -= k_ci[r].iter().map(|&(c, v)| v * d_i0[c]).sum::<f64>();
-    }
-    // S = K_cc - K_ci K_ii^-1 K_ic, a chunk of right-hand sides at a time
-    let chunk = (25_000_000 / ni.max(1)).clamp(1, 100);
-    let mut w = Vec::new();
-    let mut j0 = 0;
-    while j0 < nc {
-        let m = chunk.min(nc - j0);
-        w.clear();
-        w.resize(ni * m, 0.0);
-        for j in 0..m {
-            for &(c, v) in &k_ci[j0 + j] {
-                w[c + j * ni] = v;
-            }
-        }
-        chol.solve_many(&mut w, m);
-        for j in 0..m {
-            let col = &w[j * ni..(j + 1) * ni];
-            for r in 0..nc {
-                let v: f64 = k_ci[r].iter().map(|&(c, v)| v * col[c]).sum();
-                s[r + (j0 + j) * nc] -= v;
-            }
-        }
-        j0 += m;
-    }
-    // symmetrise the round-off
-    for c in 0..nc {
-        for r in c + 1..nc {
-            let v = 0.5 * (s[r + c * nc] + s[c + r * nc]);
-            s[r + c * nc] = v;
-            s[c + r * nc] = v;
-        }
+        g[r] += chol.alpha() * x[ni + r] + (0..nc).map(|c| s[r + c * nc] * x[ni + c]).sum::<f64>();
     }
     for d in dof_of.iter_mut() {
         if *d != NONE && *d >= ni {
             *d = NONE;
         }
     }
-    Ok(Condensed { part, dof_of, ni, nc, chol, k_ci, d_i0, s, g, assemble_s })
+    Ok(Condensed { part, dof_of, ni, nc, chol, f: a.f, s, g, assemble_s })
 }
 
 impl Condensed {
@@ -235,20 +179,15 @@ impl Condensed {
     /// together with `d_c` itself and the prescribed values.
     pub fn recover(&self, model: &Model, d_c: &[f64], u: &mut [f64]) {
         let nd = model.nd;
-        // d_i = K_ii^-1 F_i - K_ii^-1 K_ic d_c; no solve at all without interface
-        let mut d_i = self.d_i0.clone();
-        if d_c.iter().any(|&v| v != 0.0) {
-            let mut w = vec![0.0; self.ni];
-            for (r, row) in self.k_ci.iter().enumerate() {
-                for &(c, v) in row {
-                    w[c] += v * d_c[r];
-                }
-            }
-            self.chol.solve(&mut w);
-            for (a, b) in d_i.iter_mut().zip(&w) {
-                *a -= b;
-            }
+        // K' [d_i; d_c] = [F_i; F_c + f_c + alpha d_c], f_c = S d_c - G
+        let (ni, nc) = (self.ni, self.nc);
+        let mut x = self.f.clone();
+        for r in 0..nc {
+            let f_c = (0..nc).map(|c| self.s[r + c * nc] * d_c[c]).sum::<f64>() - self.g[r];
+            x[ni + r] += f_c + self.chol.alpha() * d_c[r];
         }
+        self.chol.solve_many(&mut x, 1);
+        let d_i = &x[..ni];
         for (i, &d) in self.dof_of.iter().enumerate() {
             if d != NONE {
                 u[i] = d_i[d];
