@@ -6,7 +6,7 @@ CARGO   ?= cargo
 BIN     := target/release/subcontact
 PYTHON  ?= python3
 
-.PHONY: all deps build cylinder test clean
+.PHONY: all deps build cylinder test bench clean
 
 all: build
 
@@ -27,6 +27,11 @@ build:
 # with Tables 1 and 2 side by side in results/cylinder/report.md.
 cylinder: deps build
 	$(BIN) paper geo/cylinder.toml geo/cylinder_paper.toml
+
+# Run time against error on the cylinder, orders 1 and 2, up to ~2.6e6 DOFs:
+# results/cylinder/bench.{csv,md,svg}.
+bench: deps build
+	$(BIN) bench geo/cylinder.toml --orders 1,2 --levels 7 --start 0.4 --max-dofs 3000000
 
 test: deps
 	$(CARGO) test --release

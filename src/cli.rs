@@ -23,6 +23,8 @@ const EXAMPLES: &str = "Examples:
   subcontact solve geo/cylinder.toml              results in results/cylinder/
   subcontact solve geo/cylinder.toml --out /tmp/c  results elsewhere
   subcontact check geo/cylinder.toml              validate scene, mesh and model; solve nothing
+  subcontact bench geo/cylinder.toml --orders 1,2 --levels 5 --start 0.4
+                                                  run time against error, results/cylinder/bench.*
   subcontact paper geo/cylinder.toml geo/cylinder_paper.toml
                                                   the paper's Tables 1 and 2 side by side
 
@@ -45,6 +47,33 @@ pub enum Command {
         /// Print no progress.
         #[arg(long, short)]
         quiet: bool,
+    },
+    /// Run time against error: mesh the scene at successive refinements for each element order,
+    /// solve each (with contact, and bonded as the floor of one linear solve), and write
+    /// bench.csv, bench.md (table, fitted convergence rates) and bench.svg to results/<name>/.
+    Bench {
+        scene: PathBuf,
+        /// Number of refinement levels per order.
+        #[arg(long, default_value_t = 4)]
+        levels: usize,
+        /// Element orders, comma separated.
+        #[arg(long, value_delimiter = ',', default_value = "1,2")]
+        orders: Vec<usize>,
+        /// Refinement ratio between levels (the element size is divided by it).
+        #[arg(long, default_value_t = 2.0)]
+        ratio: f64,
+        /// Element size (the scene's setnumber parameter, or clscale) of level 0; default the scene's.
+        #[arg(long)]
+        start: Option<f64>,
+        /// Skip levels estimated above this many DOFs.
+        #[arg(long, default_value_t = 3_000_000)]
+        max_dofs: usize,
+        /// Do not time the bonded monolithic solve of each mesh.
+        #[arg(long)]
+        no_monolithic: bool,
+        /// Directory for bench.csv/md/svg (default results/<scene name>).
+        #[arg(long)]
+        out: Option<PathBuf>,
     },
     /// Validate a scene, its mesh and its model (groups, pairs, supports) without solving.
     Check {

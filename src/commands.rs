@@ -59,3 +59,26 @@ pub fn paper(fine: &Path, paper: &Path, verbose: bool) -> Result<()> {
     println!("tables written to {}", path.display());
     Ok(())
 }
+
+pub fn bench(scene: &Path, opts: &crate::bench::BenchOptions) -> Result<()> {
+    use indicatif::{ProgressBar, ProgressStyle};
+    if opts.orders.iter().any(|&o| o != 1 && o != 2) || opts.levels == 0 || !(opts.ratio > 1.0) {
+        anyhow::bail!("bench: --orders takes 1 and/or 2, --levels at least 1, --ratio above 1");
+    }
+    let total = (opts.orders.len() * opts.levels) as u64;
+    let bar = ProgressBar::new(total);
+    bar.set_style(ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} {msg}").unwrap_or_else(|_| ProgressStyle::default_bar()));
+    bar.set_message("meshing and solving level 0");
+    let (rows, out) = crate::bench::bench(scene, opts, &mut |done, _, msg| {
+        bar.set_position(done as u64);
+        bar.println(msg);
+    })?;
+    bar.finish_and_clear();
+    let title = scene.display().to_string();
+    let files = crate::bench::write(&rows, &out, &title)?;
+    println!("{}", crate::bench::table(&rows));
+    for f in files {
+        println!("wrote {}", f.display());
+    }
+    Ok(())
+}

@@ -33,6 +33,8 @@ pub struct RunOptions {
     pub bonded: bool,
     /// Print stage progress on stderr.
     pub verbose: bool,
+    /// Compute everything but write no result files (benchmarks).
+    pub skip_output: bool,
 }
 
 /// Seconds spent in each stage.
@@ -107,15 +109,19 @@ pub fn load_mesh(scene: &Scene, out: &Path) -> Result<(Mesh, PathBuf, bool)> {
     }
 }
 
-/// Runs a scene end to end and writes its results.
+/// Runs a scene file end to end and writes its results.
 pub fn run(scene_path: &Path, opts: &RunOptions) -> Result<Run> {
+    run_scene(Scene::load(scene_path)?, opts)
+}
+
+/// Runs a validated scene end to end and writes its results.
+pub fn run_scene(mut scene: Scene, opts: &RunOptions) -> Result<Run> {
     let t0 = Instant::now();
     let mut timings = Timings::default();
     // sparse work is sequential: rayon did not help on 2 cores (DESIGN.md §5)
     faer::set_global_parallelism(faer::Par::Seq);
 
     // 1. Scene.
-    let mut scene = Scene::load(scene_path)?;
     if opts.bonded {
         scene.contacts.clear();
     }
@@ -227,6 +233,10 @@ pub fn run(scene_path: &Path, opts: &RunOptions) -> Result<Run> {
     };
 
     // 7. Output, all at once.
+    if opts.skip_output {
+        run.timings.total = t0.elapsed().as_secs_f64();
+        return Ok(run);
+    }
     progress(opts, &format!("writing results to {}", run.out.display()));
     let t = Instant::now();
     run.timings.total = t0.elapsed().as_secs_f64();

@@ -8,6 +8,7 @@
 //! together, [`scene`] and [`cli`] turn user input into a validated run.
 
 pub mod analytic;
+pub mod bench;
 pub mod cli;
 pub mod commands;
 pub mod contact;

@@ -3,6 +3,7 @@
 //! `probes.csv`, `summary.json`, `report.md`.
 
 pub mod files;
+pub mod plot;
 pub mod report;
 pub mod vtu;
 

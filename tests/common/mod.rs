@@ -50,7 +50,7 @@ impl Case {
     pub fn run_with(&self, scene: &Path, bonded: bool) -> anyhow::Result<Run> {
         let stem = scene.file_stem().expect("stem").to_string_lossy().to_string();
         let out = self.out(&format!("{stem}{}", if bonded { "-bonded" } else { "" }));
-        driver::run(scene, &RunOptions { out: Some(out), bonded, verbose: false })
+        driver::run(scene, &RunOptions { out: Some(out), bonded, ..Default::default() })
     }
 
     /// Runs the real binary in this case's directory.
