@@ -11,16 +11,37 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Solve { scene, out, bonded, quiet } => {
-            commands::solve(&scene, &RunOptions { out, bonded, verbose: !quiet })
+            commands::solve(&scene, &RunOptions { out, bonded, verbose: !quiet, ..Default::default() })
         }
         Command::Check { scene } => commands::check(&scene),
+        Command::Bench { scene, levels, orders, ratio, start, max_dofs, no_monolithic, out } => commands::bench(
+            &scene,
+            &subcontact::bench::BenchOptions { levels, orders, ratio, start, max_dofs, monolithic: !no_monolithic, out },
+        ),
         Command::Paper { fine, paper, quiet } => commands::paper(&fine, &paper, !quiet),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e:#}");
+            eprintln!("error: {}", chain(&e));
             ExitCode::FAILURE
         }
     }
+}
+
+/// The error and its causes as one line, `outer: inner: ...`, leaving out a
+/// cause whose text the message before it already quotes (several library
+/// errors put their source into their own message).
+fn chain(e: &anyhow::Error) -> String {
+    let mut msg = e.to_string();
+    let mut last = msg.clone();
+    for cause in e.chain().skip(1) {
+        let text = cause.to_string();
+        if !last.contains(&text) {
+            msg += ": ";
+            msg += &text;
+        }
+        last = text;
+    }
+    msg
 }
