@@ -112,6 +112,13 @@ fn b_matrix(analysis: Analysis, p: &Point, b: &mut [f64]) {
     let nn = p.n.len();
     let w = nn * nd;
     b.iter_mut().for_each(|v| *v = 0.0);
+    // On the axis (r = 0, where u_r = 0) the hoop strain u_r / r is 0 / 0;
+    // its limit is du_r/dr. "On" means within round-off of the cell size
+    // (quadrature points never are; probes and nodes may be).
+    let on_axis = analysis == Analysis::Axisymmetric && {
+        let inv_h = p.dndx.iter().fold(0.0f64, |m, g| m.max(g[0].abs()).max(g[1].abs()));
+        p.x[0] * inv_h < 1e-10
+    };
     for a in 0..nn {
         let g = p.dndx[a];
         let c = a * nd;
@@ -125,7 +132,7 @@ fn b_matrix(analysis: Analysis, p: &Point, b: &mut [f64]) {
             Analysis::Axisymmetric => {
                 b[c] = g[0];
                 b[w + c + 1] = g[1];
-                b[2 * w + c] = p.n[a] / p.x[0];
+                b[2 * w + c] = if on_axis { g[0] } else { p.n[a] / p.x[0] };
                 b[3 * w + c] = g[1];
                 b[3 * w + c + 1] = g[0];
             }

@@ -1,0 +1,372 @@
+//! Lamé's thick-walled cylinder under internal pressure: the finite element
+//! solution converges to the closed form at the rates theory predicts, in
+//! plane strain, in 3D and in axisymmetry, and the paper's Table 1 is
+//! reproduced on the default scene.
+//!
+//! Reference: G. Lamé (1852), *Leçons sur la théorie mathématique de
+//! l'élasticité des corps solides*; S. P. Timoshenko and J. N. Goodier,
+//! *Theory of Elasticity*, §28 (thick cylinder); the seed paper's section 3
+//! and Table 1 (DESIGN.md §3). Rates: the L2 error of the displacement of
+//! elements of order p falls as h^(p+1) (Aubin–Nitsche), provided the
+//! curved boundary is represented by isoparametric elements of the same
+//! order (Ciarlet and Raviart 1972).
+//!
+//! Goal: tie the whole pipeline (gmsh CLI → mesh → assembly → solve →
+//! recovery → error norms) to a closed form, through rates, not just small
+//! numbers; and check the paper's table within 0.5 %.
+//!
+//! ```text
+//!        y
+//!        |
+//!      b +.                  a = 3, b = 5, p = 0.1 on r = a, r = b free
+//!        |   .               symmetry: u_x = 0 on x = 0, u_y = 0 on y = 0
+//!      a +.    .             k = p a^2 / (b^2 - a^2)
+//!        | p .   .           sigma_r = k (1 - b^2/r^2), sigma_t = k (1 + b^2/r^2)
+//!        +-----+---+--- x    u_r = (1 + nu) k / E ((1 - 2 nu) r + b^2 / r)
+//!              a   b         (plane strain; sigma_z = 2 nu k)
+//! ```
+//!
+//! Parameters: E = 2.0e5, nu = 0.167 (the paper's concrete), `[analytic]
+//! kind = "lame_cylinder"` gives the relative L2 errors `displacement_l2`
+//! and `stress_l2`. The mesh size h is the mean element size
+//! sqrt(area / cells); rates are least-squares slopes on log–log axes.
+//!
+//! 1. Quarter annulus (geo/cylinder.geo, both halves bonded: no contact),
+//!    quadrilaterals of order 1 and 2, in plane strain and plane stress:
+//!    displacement rates 2 and 3, stress rates 1 and 2. The arcs are
+//!    polygons for quad4 (an O(h^2) geometry error) and parabolas for quad9
+//!    (O(h^3)): neither pollutes its rate, which every pair of successive
+//!    meshes must show too.
+//! 2. A slice of the cylinder in 3D (tests/geo/lame_slice.geo, one layer of
+//!    hexahedra as thick as they are wide, w = 0 on both faces): hex8 rate
+//!    2, hex27 rate 3; where its plan view is the plane strain mesh, the
+//!    errors equal the plane strain ones to round-off.
+//! 3. Axisymmetric meridian section (tests/geo/lame_axisym.geo, u_axial = 0
+//!    at both ends): quad4 rate 2, quad9 rate 3.
+//! 4. The paper's Table 1 from the default scene geo/cylinder.toml (two
+//!    bodies in contact along the 45-degree cut, quad9, lc = 0.05): every
+//!    pair stuck, sigma_r and sigma_theta at r = 3.2 ... 4.8 within 0.5 %.
+
+mod common;
+
+use std::time::Instant;
+
+use common::{loglog_slope, Case};
+use subcontact::analytic::Lame;
+use subcontact::driver::Run;
+use subcontact::output::report::table1_values;
+use subcontact::scene::Analysis;
+
+const A: f64 = 3.0;
+const B: f64 = 5.0;
+const P: f64 = 0.1;
+const E: f64 = 2.0e5;
+const NU: f64 = 0.167;
+
+/// One mesh of a refinement study.
+struct Level {
+    lc: f64,
+    cells: usize,
+    h: f64,
+    displacement_l2: f64,
+    stress_l2: f64,
+    seconds: f64,
+}
+
+/// Runs a scene template (with `{order}` and `{lc}` placeholders) for each
+/// mesh size; `area` is the exact area (volume) of the model, `dim` its dimension.
+fn study(case: &Case, name: &str, template: &str, order: usize, lcs: &[f64], area: f64, dim: i32) -> Vec<Level> {
+    lcs.iter()
+        .map(|&lc| {
+            let text = template.replace("{order}", &order.to_string()).replace("{lc}", &lc.to_string());
+            let path = case.write(&format!("{name}_p{order}_lc{lc}.toml"), &text);
+            let t = Instant::now();
+            let run = case.run(&path).unwrap_or_else(|e| panic!("{name}, order {order}, lc {lc}: {e:#}"));
+            let seconds = t.elapsed().as_secs_f64();
+            let cells: usize = run.model.bodies.iter().map(|b| b.cells.len()).sum();
+            for body in &run.model.bodies {
+                assert!(body.cells.iter().all(|c| c.kind.order() == order), "{name}: cells of order {order} expected");
+            }
+            let errors = run.errors.as_ref().expect("[analytic] gives errors");
+            Level {
+                lc,
+                cells,
+                h: (area / cells as f64).powf(1.0 / dim as f64),
+                displacement_l2: errors.displacement_l2,
+                stress_l2: errors.stress_l2,
+                seconds,
+            }
+        })
+        .collect()
+}
+
+/// Fitted rates (displacement, stress), printed with the levels.
+fn rates(title: &str, levels: &[Level]) -> (f64, f64) {
+    let h: Vec<f64> = levels.iter().map(|l| l.h).collect();
+    let eu: Vec<f64> = levels.iter().map(|l| l.displacement_l2).collect();
+    let es: Vec<f64> = levels.iter().map(|l| l.stress_l2).collect();
+    let (ru, rs) = (loglog_slope(&h, &eu), loglog_slope(&h, &es));
+    eprintln!("{title}: displacement rate {ru:.3}, stress rate {rs:.3}");
+    for l in levels {
+        eprintln!(
+            "    lc {:<6} {:>6} cells  h {:.4}  displacement_l2 {:.3e}  stress_l2 {:.3e}  {:.2} s",
+            l.lc, l.cells, l.h, l.displacement_l2, l.stress_l2, l.seconds
+        );
+    }
+    (ru, rs)
+}
+
+/// Asserts the fitted rates of elements of order p: displacement p + 1 and
+/// stress p, within 0.2; and every rate between two successive meshes
+/// within 0.3 of p + 1, so that neither the coarsest mesh nor round-off or
+/// the boundary's approximation on the finest pollutes the fit.
+fn assert_rates(what: &str, p: usize, displacement: f64, stress: f64, levels: &[Level]) {
+    let p = p as f64;
+    assert!(levels.len() >= 3, "{what}: a rate needs at least 3 meshes");
+    assert!((displacement - (p + 1.0)).abs() < 0.2, "{what}: displacement rate {displacement:.3}, expected {}", p + 1.0);
+    assert!((stress - p).abs() < 0.2, "{what}: stress rate {stress:.3}, expected {p}");
+    for w in levels.windows(2) {
+        let local = (w[0].displacement_l2 / w[1].displacement_l2).ln() / (w[0].h / w[1].h).ln();
+        assert!(
+            (local - (p + 1.0)).abs() < 0.3,
+            "{what}: displacement rate {local:.3} between lc {} and {}, expected {}",
+            w[0].lc,
+            w[1].lc,
+            p + 1.0
+        );
+    }
+}
+
+/// The quarter annulus area.
+fn quarter_annulus() -> f64 {
+    std::f64::consts::PI / 4.0 * (B * B - A * A)
+}
+
+const PLANE_STRAIN: &str = r#"
+title = "Lame cylinder, plane strain, bonded halves"
+mesh = "cylinder.geo"
+analysis = "plane_strain"
+
+[gmsh]
+order = {order}
+setnumber = { lc = {lc} }
+
+[materials.concrete]
+E = 2.0e5
+nu = 0.167
+
+[[bodies]]
+group = "body_1"
+material = "concrete"
+
+[[bodies]]
+group = "body_2"
+material = "concrete"
+
+[[supports]]
+group = "symmetry_x0"
+fix = ["x"]
+
+[[supports]]
+group = "symmetry_y0"
+fix = ["y"]
+
+[[loads]]
+group = "inner"
+pressure = 0.1
+
+[analytic]
+kind = "lame_cylinder"
+a = 3.0
+b = 5.0
+p = 0.1
+"#;
+
+#[test]
+fn plane_strain_displacement_converges_at_rate_2_for_quad4_and_3_for_quad9() {
+    let case = Case::new("lame-plane-strain");
+    case.copy("geo/cylinder.geo");
+    let p1 = study(&case, "plane_strain", PLANE_STRAIN, 1, &[0.4, 0.2, 0.1, 0.05], quarter_annulus(), 2);
+    let p2 = study(&case, "plane_strain", PLANE_STRAIN, 2, &[0.4, 0.2, 0.1, 0.05], quarter_annulus(), 2);
+    let (r1, s1) = rates("plane strain quad4", &p1);
+    let (r2, s2) = rates("plane strain quad9", &p2);
+    assert_rates("plane strain quad4", 1, r1, s1, &p1);
+    assert_rates("plane strain quad9", 2, r2, s2, &p2);
+}
+
+#[test]
+fn plane_stress_displacement_converges_at_rate_2_for_quad4_and_3_for_quad9() {
+    // the plane stress closed form differs (u_r = k/E ((1 - nu) r + (1 + nu) b^2/r), sigma_z = 0)
+    let case = Case::new("lame-plane-stress");
+    case.copy("geo/cylinder.geo");
+    let template = PLANE_STRAIN.replace("plane_strain", "plane_stress").replace("plane strain", "plane stress");
+    let p1 = study(&case, "plane_stress", &template, 1, &[0.4, 0.2, 0.1], quarter_annulus(), 2);
+    let p2 = study(&case, "plane_stress", &template, 2, &[0.4, 0.2, 0.1], quarter_annulus(), 2);
+    let (r1, s1) = rates("plane stress quad4", &p1);
+    let (r2, s2) = rates("plane stress quad9", &p2);
+    assert_rates("plane stress quad4", 1, r1, s1, &p1);
+    assert_rates("plane stress quad9", 2, r2, s2, &p2);
+}
+
+const SLICE: &str = r#"
+title = "Lame cylinder, 3D slice with w = 0 on both faces"
+mesh = "lame_slice.geo"
+analysis = "solid"
+
+[gmsh]
+order = {order}
+setnumber = { lc = {lc} }
+
+[materials.concrete]
+E = 2.0e5
+nu = 0.167
+
+[[bodies]]
+group = "body"
+material = "concrete"
+
+[[supports]]
+group = "x0"
+fix = ["x"]
+
+[[supports]]
+group = "y0"
+fix = ["y"]
+
+[[supports]]
+group = "z0"
+fix = ["z"]
+
+[[supports]]
+group = "z1"
+fix = ["z"]
+
+[[loads]]
+group = "inner"
+pressure = 0.1
+
+[analytic]
+kind = "lame_cylinder"
+a = 3.0
+b = 5.0
+p = 0.1
+"#;
+
+#[test]
+fn solid_slice_displacement_converges_at_rate_2_for_hex8_and_3_for_hex27() {
+    let case = Case::new("lame-slice");
+    case.copy("tests/geo/lame_slice.geo");
+    // one layer of thickness lc: the volume is the area times lc, h the in-plane size
+    let p1 = study(&case, "slice", SLICE, 1, &[0.4, 0.2, 0.1], quarter_annulus(), 2);
+    let p2 = study(&case, "slice", SLICE, 2, &[0.4, 0.2, 0.1], quarter_annulus(), 2);
+    let (r1, s1) = rates("solid slice hex8", &p1);
+    let (r2, s2) = rates("solid slice hex27", &p2);
+    assert_rates("hex8", 1, r1, s1, &p1);
+    assert_rates("hex27", 2, r2, s2, &p2);
+    // At lc = 0.4 and 0.2 the slice's plan view is the plane strain mesh of
+    // geo/cylinder.geo node for node; with w = 0 on both faces the hexahedra
+    // must give the plane strain solution, so the same errors.
+    case.copy("geo/cylinder.geo");
+    for (order, levels) in [(1, &p1), (2, &p2)] {
+        let plane = study(&case, "plane_strain", PLANE_STRAIN, order, &[0.4, 0.2], quarter_annulus(), 2);
+        for (s, q) in levels.iter().zip(&plane) {
+            assert_eq!(s.cells, q.cells);
+            let du = (s.displacement_l2 - q.displacement_l2).abs() / q.displacement_l2;
+            let ds = (s.stress_l2 - q.stress_l2).abs() / q.stress_l2;
+            eprintln!("    order {order}, lc {}: slice vs plane strain errors differ by {du:.1e} (displacement), {ds:.1e} (stress)", s.lc);
+            assert!(
+                du < 1e-6 && ds < 1e-6,
+                "order {order}, lc {}: the slice ({:.6e}, {:.6e}) is not the plane strain solution ({:.6e}, {:.6e})",
+                s.lc,
+                s.displacement_l2,
+                s.stress_l2,
+                q.displacement_l2,
+                q.stress_l2
+            );
+        }
+    }
+}
+
+const AXISYMMETRIC: &str = r#"
+title = "Lame cylinder, axisymmetric, axial displacement held at both ends"
+mesh = "lame_axisym.geo"
+analysis = "axisymmetric"
+
+[gmsh]
+order = {order}
+setnumber = { lc = {lc} }
+
+[materials.concrete]
+E = 2.0e5
+nu = 0.167
+
+[[bodies]]
+group = "body"
+material = "concrete"
+
+[[supports]]
+group = "bottom"
+fix = ["y"]
+
+[[supports]]
+group = "top"
+fix = ["y"]
+
+[[loads]]
+group = "inner"
+pressure = 0.1
+
+[analytic]
+kind = "lame_cylinder"
+a = 3.0
+b = 5.0
+p = 0.1
+"#;
+
+#[test]
+fn axisymmetric_displacement_converges_at_rate_2_for_quad4_and_3_for_quad9() {
+    let case = Case::new("lame-axisym");
+    case.copy("tests/geo/lame_axisym.geo");
+    let p1 = study(&case, "axisym", AXISYMMETRIC, 1, &[0.5, 0.25, 0.125, 0.0625], 2.0, 2);
+    let p2 = study(&case, "axisym", AXISYMMETRIC, 2, &[0.5, 0.25, 0.125, 0.0625], 2.0, 2);
+    let (r1, s1) = rates("axisymmetric quad4", &p1);
+    let (r2, s2) = rates("axisymmetric quad9", &p2);
+    assert_rates("axisymmetric quad4", 1, r1, s1, &p1);
+    assert_rates("axisymmetric quad9", 2, r2, s2, &p2);
+}
+
+#[test]
+fn default_cylinder_scene_reproduces_paper_table_1_within_half_a_percent() {
+    let case = Case::new("lame-table1");
+    case.copy("geo/cylinder.geo");
+    let scene = case.copy("geo/cylinder.toml");
+    let t = Instant::now();
+    let run: Run = case.run(&scene).unwrap_or_else(|e| panic!("geo/cylinder.toml: {e:#}"));
+    let seconds = t.elapsed().as_secs_f64();
+    // the paper: every pair stays stuck
+    let contact = run.contact.as_ref().expect("the default scene has a contact");
+    assert!(contact.converged);
+    assert!(contact.states.iter().all(|s| s.code() == 2), "every pair of the 45-degree cut stays stuck");
+    let lame = Lame { a: A, b: B, p: P, e: E, nu: NU, analysis: Analysis::PlaneStrain };
+    let values = table1_values(&run);
+    let radii = [3.2, 3.6, 4.0, 4.4, 4.8];
+    assert_eq!(values.len(), radii.len());
+    eprintln!("Table 1 on geo/cylinder.toml ({:.2} s), units 1e-2 MPa:", seconds);
+    let mut worst: f64 = 0.0;
+    for (&r, v) in radii.iter().zip(&values) {
+        let (sr, st) = v.unwrap_or_else(|| panic!("no probe value at r = {r}"));
+        let (er, et) = (lame.sigma_r(r), lame.sigma_theta(r));
+        let (dr, dt) = ((sr - er) / er.abs(), (st - et) / et.abs());
+        eprintln!(
+            "    r {r}: sigma_r {:.4} (theory {:.4}, {:+.3} %), sigma_theta {:.4} (theory {:.4}, {:+.3} %)",
+            sr * 100.0,
+            er * 100.0,
+            dr * 100.0,
+            st * 100.0,
+            et * 100.0,
+            dt * 100.0
+        );
+        worst = worst.max(dr.abs()).max(dt.abs());
+    }
+    assert!(worst < 0.005, "Table 1 is {:.3} % off the closed form (0.5 % allowed)", worst * 100.0);
+}
