@@ -62,6 +62,8 @@ pub struct Interface {
 
 #[derive(Clone, Debug)]
 pub struct Model {
+    /// The scene file, for messages.
+    pub scene: String,
     pub analysis: Analysis,
     pub nd: usize,
     pub thickness: f64,
@@ -85,6 +87,8 @@ pub enum ModelError {
     WrongDimension { scene: String, key: String, group: String, found: String, wanted: String },
     #[error("{scene}: {key}: {msg}")]
     Invalid { scene: String, key: String, msg: String },
+    #[error("{scene}: {key} = \"{group}\" is a physical {dim} of the mesh `{mesh}` without elements: its Physical statement names no entity that exists (gmsh keeps such a group without a word). Check the entity numbers in the .geo's Physical statement for \"{group}\"")]
+    EmptyGroup { scene: String, key: String, group: String, dim: String, mesh: String },
     #[error("element {tag} of body \"{body}\" is inverted or degenerate (Jacobian determinant {det_j:.3e}): fix the mesh (node order or a collapsed element)")]
     Inverted { body: String, tag: u64, det_j: f64 },
 }
@@ -159,6 +163,15 @@ impl<'a> Builder<'a> {
                 wanted: dims.iter().map(|&d| dim_name(d)).collect::<Vec<_>>().join(" or "),
             });
         }
+        if g.cells.is_empty() {
+            return Err(ModelError::EmptyGroup {
+                scene: self.scene_name.clone(),
+                key: key.to_string(),
+                group: name.to_string(),
+                dim: dim_name(g.dim).to_string(),
+                mesh: self.scene.mesh.path().display().to_string(),
+            });
+        }
         Ok(g)
     }
 
@@ -201,6 +214,28 @@ impl Model {
         let b = Builder { mesh, scene, scene_name: scene.path.display().to_string() };
         let sd = scene.analysis.dim();
         let nd = dofs_per_node(scene.analysis);
+
+        // 0. The mesh's dimension is the analysis's: a plane analysis of a 3D
+        // mesh (or of a 3D .geo meshed in 2D) is a wrong `analysis`, not a
+        // wrong body group.
+        let mesh_dim = mesh.dim();
+        if mesh_dim != sd {
+            return Err(b.invalid(
+                "analysis".into(),
+                format!(
+                    "analysis = \"{}\" needs a {sd}D mesh with the bodies as physical {}s, but the mesh `{}` is {mesh_dim}D (it has physical {}s): {}",
+                    scene.analysis,
+                    dim_name(sd),
+                    scene.mesh.path().display(),
+                    dim_name(mesh_dim),
+                    if mesh_dim == 3 {
+                        "use analysis = \"solid\"".to_string()
+                    } else {
+                        "use a plane analysis (plane_strain, plane_stress, axisymmetric), or give the .geo physical volumes".to_string()
+                    }
+                ),
+            ));
+        }
 
         // 1. Bodies.
         let mut bodies = Vec::new();
@@ -286,7 +321,7 @@ impl Model {
                     }
                     let (gi, gii, bi, bii) = if ba < bb { (ga, gb, ba, bb) } else { (gb, ga, bb, ba) };
                     let pairs = pair_by_position(&mesh.coords, &gi.nodes(), &gii.nodes(), 1e-6 * size)
-                        .map_err(|msg| b.invalid(format!("contacts[{ci}].groups"), msg))?;
+                        .map_err(|msg| b.invalid(format!("contacts[{ci}].groups"), format!("pairing the nodes of \"{}\" with those of \"{}\": {msg}", gi.name, gii.name)))?;
                     raw_pairs.extend(pairs.into_iter().map(|(k, l)| (k, l, ci)));
                     let name = format!("{}|{}", gi.name, gii.name);
                     interfaces.push(Interface { name, body_i: bi, body_ii: bii, facets: gi.cells.clone() });
@@ -326,6 +361,12 @@ impl Model {
                 }
             }
         }
+
+        // 3b. Every rigid-body motion of every cluster of bodies (joined by
+        // shared nodes or contacts, contacts counted as closed) must be
+        // stopped by a support: a free one makes the stiffness singular only
+        // up to round-off, which the Cholesky factorisation may not notice.
+        check_held(&b, &coords, &bodies, &nb, &interfaces, &prescribed)?;
 
         // 4. Loads, each facet on the copy of the body it bounds.
         let incidences: Vec<Incidence> = bodies.iter().map(|bd| Incidence::new(n_model, &bd.cells)).collect();
@@ -370,6 +411,7 @@ impl Model {
 
         // 5. Pair normals and areas from body I's facets.
         let mut model = Model {
+            scene: b.scene_name.clone(),
             analysis: scene.analysis,
             nd,
             thickness: scene.thickness,
@@ -409,6 +451,114 @@ impl Model {
     pub fn body_names(&self, ids: &[usize]) -> String {
         ids.iter().map(|&b| format!("\"{}\"", self.bodies[b].name)).collect::<Vec<_>>().join(", ")
     }
+}
+
+/// Value of rigid-body mode `m` at displacement component `a` of a point at
+/// `x` (relative to the cluster's centre): translations, then rotations.
+fn rigid_mode(analysis: Analysis, m: usize, a: usize, x: [f64; 3]) -> f64 {
+    match analysis {
+        Analysis::PlaneStrain | Analysis::PlaneStress => match (m, a) {
+            (0, 0) | (1, 1) => 1.0,
+            (2, 0) => -x[1],
+            (2, 1) => x[0],
+            _ => 0.0,
+        },
+        // only the axial translation is rigid: a radial one strains the hoop
+        Analysis::Axisymmetric => f64::from(u8::from(m == 0 && a == 1)),
+        Analysis::Solid => {
+            if m < 3 {
+                return f64::from(u8::from(m == a));
+            }
+            // omega x x with omega the unit vector of axis m - 3
+            let w = m - 3;
+            let (i, j) = ((w + 1) % 3, (w + 2) % 3);
+            if a == i {
+                -x[j]
+            } else if a == j {
+                x[i]
+            } else {
+                0.0
+            }
+        }
+    }
+}
+
+/// Fails naming the bodies and the motion when some rigid-body motion of a
+/// cluster of bodies is stopped by no prescribed DOF.
+fn check_held(b: &Builder, coords: &[[f64; 3]], bodies: &[Body], nb: &[Vec<usize>], interfaces: &[Interface], prescribed: &[Option<f64>]) -> Result<(), ModelError> {
+    let analysis = b.scene.analysis;
+    let nd = dofs_per_node(analysis);
+    let mut parent: Vec<usize> = (0..bodies.len()).collect();
+    fn root(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    let links = nb.iter().flat_map(|v| v.windows(2).map(|w| (w[0], w[1]))).chain(interfaces.iter().map(|i| (i.body_i, i.body_ii)));
+    for (p, q) in links.collect::<Vec<_>>() {
+        let (rp, rq) = (root(&mut parent, p), root(&mut parent, q));
+        parent[rp] = rq;
+    }
+    let names: &[&str] = match analysis {
+        Analysis::PlaneStrain | Analysis::PlaneStress => &["translation in x", "translation in y", "rotation about z"],
+        Analysis::Axisymmetric => &["translation along the axis (y)"],
+        Analysis::Solid => &["translation in x", "translation in y", "translation in z", "rotation about x", "rotation about y", "rotation about z"],
+    };
+    let nm = names.len();
+    for r in 0..bodies.len() {
+        let members: Vec<usize> = (0..bodies.len()).filter(|&i| root(&mut parent, i) == r).collect();
+        if members.is_empty() {
+            continue;
+        }
+        let mut nodes: Vec<usize> = members.iter().flat_map(|&i| bodies[i].cells.iter().flat_map(|c| c.nodes.iter().copied())).collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for &n in &nodes {
+            for d in 0..3 {
+                lo[d] = lo[d].min(coords[n][d]);
+                hi[d] = hi[d].max(coords[n][d]);
+            }
+        }
+        let centre: [f64; 3] = std::array::from_fn(|d| 0.5 * (lo[d] + hi[d]));
+        let size = (0..3).map(|d| (hi[d] - lo[d]).powi(2)).sum::<f64>().sqrt().max(f64::MIN_POSITIVE);
+        // Gram matrix of the rigid modes over the prescribed DOFs: singular
+        // exactly when some combination of them moves no prescribed DOF
+        let mut g = nalgebra::DMatrix::<f64>::zeros(nm, nm);
+        for &n in &nodes {
+            let x: [f64; 3] = std::array::from_fn(|d| (coords[n][d] - centre[d]) / size);
+            for a in 0..nd {
+                if prescribed[n * nd + a].is_some() {
+                    let phi: Vec<f64> = (0..nm).map(|m| rigid_mode(analysis, m, a, x)).collect();
+                    for i in 0..nm {
+                        for j in 0..nm {
+                            g[(i, j)] += phi[i] * phi[j];
+                        }
+                    }
+                }
+            }
+        }
+        let eig = nalgebra::SymmetricEigen::new(g);
+        let mut free: Vec<&str> = (0..nm).filter(|&k| eig.eigenvalues[k] < 1e-9).map(|k| names[eig.eigenvectors.column(k).iamax()]).collect();
+        free.sort_unstable();
+        free.dedup();
+        if !free.is_empty() {
+            let one = members.len() == 1;
+            return Err(b.invalid(
+                "supports".into(),
+                format!(
+                    "{} {} not held: no support stops {} {} (contacts counted as closed), so the stiffness matrix is singular. Add a support that stops it (fix = [..] on a physical point, curve or surface)",
+                    if one { "body" } else { "bodies" },
+                    members.iter().map(|&i| format!("\"{}\"", bodies[i].name)).collect::<Vec<_>>().join(", "),
+                    if one { "its" } else { "their" },
+                    free.join(", ")
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Sign making the natural normal of `facet` outward for the body cell that has it as a face.
@@ -559,6 +709,7 @@ fn pair_by_position(coords: &[[f64; 3]], a: &[usize], b: &[usize], tol: f64) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::CellKind;
 
     #[test]
     fn pairing_by_position_is_robust_far_from_origin() {

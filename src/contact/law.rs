@@ -117,8 +117,9 @@ mod tests {
         let cases = [
             ((2.0, 0.0), Open),   // at the tensile strength
             ((3.0, 5.0), Open),   // above it, whatever the shear
-            ((1.9, 0.0), Stick),  // tension below f_t, no shear: limit c - f s = 0.05
-            ((1.9, 0.05), Slip),  // on the limit
+            ((1.5, 0.0), Stick),  // tension below f_t, no shear: limit c - f s = 0.25
+            ((1.5, 0.25), Slip),  // on the limit (binary-exact numbers: 1 - 0.5 * 1.9 is not 0.05)
+            ((1.5, 0.2499), Stick),
             ((-4.0, 2.9), Stick), // compression raises the limit to 3
             ((-4.0, 3.0), Slip),
             ((-4.0, -3.5), Slip), // shear sign does not matter

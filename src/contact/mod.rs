@@ -9,6 +9,7 @@
 
 pub mod frame;
 pub mod law;
+pub mod rigid;
 pub mod system;
 
 use law::{judge, ContactState, PairResult, Strength};

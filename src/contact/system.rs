@@ -7,11 +7,15 @@
 //! open: none), so the equal and opposite contact forces cancel and
 //! `K_c d_c = R_c` holds no unknown force. After the solve, the contact force
 //! on body I is `f = S'_I d' - G'_I` at k (eq. 13), the stresses `f / A` (eq. 14).
+//! On a local axis where k is supported that force includes the support
+//! reaction, so it is read as `-(S'_II d' - G'_II)` at l instead, and taken as
+//! zero (all carried by the supports) where both nodes are supported.
 
 use faer::{Mat, Side};
 
 use super::frame::{aligned_axis, frame, Frame};
 use super::law::{ContactState, PairResult};
+use super::rigid::{free_parts, RigidModes, Tie};
 use crate::fem::sparse::NONE;
 use crate::model::{Model, ModelError};
 use crate::substructure::Condensed;
@@ -23,8 +27,6 @@ struct LocalPart {
     nc: usize,
     s: Vec<f64>,
     g: Vec<f64>,
-    /// Whether anything in the part is supported.
-    supported: bool,
 }
 
 /// The interface problem, set up once; solved for any set of states.
@@ -37,6 +39,10 @@ pub struct InterfaceProblem {
     fixed: Vec<[[Option<f64>; 3]; 2]>,
     parts: Vec<LocalPart>,
     areas: Vec<f64>,
+    /// Rigid motions of each part and the position of each pair, to tell
+    /// which parts nothing holds.
+    rigid: Vec<RigidModes>,
+    positions: Vec<[f64; 3]>,
 }
 
 /// Result of one interface solve.
@@ -129,14 +135,13 @@ impl InterfaceProblem {
                         g[q * nd + a] = (0..nd).map(|c| tq[a][c] * p.g[q * nd + c]).sum();
                     }
                 }
-                let supported = p.part.bodies.iter().any(|&b| {
-                    model.bodies[b].cells.iter().any(|c| c.nodes.iter().any(|&n| (0..nd).any(|k| model.prescribed[n * nd + k].is_some())))
-                });
-                LocalPart { t, nc, s, g, supported }
+                LocalPart { t, nc, s, g }
             })
             .collect();
         let areas = model.pairs.iter().map(|p| p.area).collect();
-        Ok(InterfaceProblem { nd, frames, at, fixed, parts: local, areas })
+        let rigid = parts.iter().map(|p| RigidModes::new(model, &p.part.bodies)).collect();
+        let positions = model.pairs.iter().map(|p| model.coords[p.k]).collect();
+        Ok(InterfaceProblem { nd, frames, at, fixed, parts: local, areas, rigid, positions })
     }
 
     /// Solves the interface system for the given states; `shear` adds known
@@ -144,6 +149,16 @@ impl InterfaceProblem {
     /// at slipping pairs.
     pub fn solve(&self, states: &[ContactState], shear: &[[f64; 3]]) -> Result<InterfaceSolution, SolveFailure> {
         let nd = self.nd;
+        // A part nothing holds makes K_c singular only up to round-off (its
+        // S has rigid-body modes of size eps * |S|), so the factorisation
+        // may well succeed and return huge displacements: decide it from the
+        // states and the supports, before any arithmetic.
+        if let failure @ SolveFailure::NotHeld(_) = self.diagnose(states) {
+            return Err(failure);
+        }
+        if !self.free(states, false).is_empty() {
+            return Err(SolveFailure::Singular);
+        }
         // slot of each (part, interface dof): unknown index or fixed value
         #[derive(Clone, Copy)]
         enum Slot {
@@ -236,6 +251,11 @@ impl InterfaceProblem {
             let res = &k * &z - &r;
             res.norm_l2() / r.norm_l2().max(f64::MIN_POSITIVE)
         };
+        // Singular up to round-off (a body sliding freely on slipping pairs)
+        // lets the factorisation pass: its residual is O(1), not O(eps).
+        if residual > 1e-6 {
+            return Err(self.diagnose(states));
+        }
         // local displacements and forces per part
         let mut d_loc: Vec<Vec<f64>> = Vec::with_capacity(self.parts.len());
         let mut f_loc: Vec<Vec<f64>> = Vec::with_capacity(self.parts.len());
@@ -255,14 +275,24 @@ impl InterfaceProblem {
             .map(|p| {
                 let [(pk, qk), (pl, ql)] = self.at[p];
                 let fk = &f_loc[pk][qk * nd..qk * nd + nd];
+                let fl = &f_loc[pl][ql * nd..ql * nd + nd];
                 let dk = &d_loc[pk][qk * nd..qk * nd + nd];
                 let dl = &d_loc[pl][ql * nd..ql * nd + nd];
                 let a = self.areas[p];
                 let rel: Vec<f64> = (0..nd).map(|i| dl[i] - dk[i]).collect();
+                // On a supported local axis the node's force is contact plus
+                // support reaction: read the contact force on the side that is
+                // not supported, and where both are, the support carries it all.
+                let fx = self.fixed[p];
+                let force = |ax: usize| match (fx[0][ax], fx[1][ax]) {
+                    (None, _) => fk[ax],
+                    (Some(_), None) => -fl[ax],
+                    (Some(_), Some(_)) => 0.0,
+                };
                 PairResult {
-                    sigma_n: fk[0] / a,
-                    tau_t: fk[1] / a,
-                    tau_b: if nd == 3 { fk[2] / a } else { 0.0 },
+                    sigma_n: force(0) / a,
+                    tau_t: force(1) / a,
+                    tau_b: if nd == 3 { force(2) / a } else { 0.0 },
                     gap: rel[0],
                     slip: rel[1..].iter().map(|v| v * v).sum::<f64>().sqrt(),
                 }
@@ -286,29 +316,28 @@ impl InterfaceProblem {
         Ok(InterfaceSolution { pairs, d_c, residual })
     }
 
-    /// Which parts are held by nothing: no support, and joined to a supported
-    /// part by no closed pair.
+    /// Parts that a rigid motion moves which the supports and the pairs tied
+    /// by `states` do not stop; `slip_holds`: count slipping pairs as stuck
+    /// (then only open pairs release anything).
+    fn free(&self, states: &[ContactState], slip_holds: bool) -> Vec<usize> {
+        let nd = self.nd;
+        let ties = states.iter().enumerate().flat_map(|(p, st)| {
+            let axes = match st {
+                ContactState::Stick => nd,
+                ContactState::Slip if slip_holds => nd,
+                ContactState::Slip => 1,
+                ContactState::Open => 0,
+            };
+            let [(pk, _), (pl, _)] = self.at[p];
+            (0..axes).map(move |a| Tie { parts: [pk, pl], x: self.positions[p], dir: self.frames[p][a] })
+        });
+        free_parts(&self.rigid, ties)
+    }
+
+    /// Why the interface system is singular: parts held by nothing once
+    /// their open pairs let go, or else a part sliding on slipping pairs.
     fn diagnose(&self, states: &[ContactState]) -> SolveFailure {
-        let np = self.parts.len();
-        let mut held: Vec<bool> = self.parts.iter().map(|p| p.supported).collect();
-        loop {
-            let mut changed = false;
-            for (p, st) in states.iter().enumerate() {
-                if *st == ContactState::Open {
-                    continue;
-                }
-                let [(a, _), (b, _)] = self.at[p];
-                if held[a] != held[b] {
-                    held[a] = true;
-                    held[b] = true;
-                    changed = true;
-                }
-            }
-            if !changed {
-                break;
-            }
-        }
-        let free: Vec<usize> = (0..np).filter(|&p| !held[p]).collect();
+        let free = self.free(states, true);
         if free.is_empty() {
             SolveFailure::Singular
         } else {

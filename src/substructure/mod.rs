@@ -110,7 +110,7 @@ pub fn not_held(model: &Model, part: &Part, e: FactorError) -> ModelError {
         ),
         FactorError::Resource(r) => format!("bodies {names}: {r}"),
     };
-    ModelError::Invalid { scene: String::from("model"), key: String::from("supports"), msg }
+    ModelError::Invalid { scene: model.scene.clone(), key: String::from("supports"), msg }
 }
 
 /// Number the interior free DOFs (0..ni) and the interface DOFs (ni..ni+nc).
@@ -202,3 +202,6 @@ impl Condensed {
         }
     }
 }
+
+#[cfg(test)]
+mod tests;

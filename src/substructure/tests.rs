@@ -1,0 +1,214 @@
+//! Condensation against the dense Schur complement of the same assembled
+//! matrix: `S = K_cc - K_ci K_ii^-1 K_ic`, `G = F_c - K_ci K_ii^-1 F_i` and the
+//! recovery `d_i = K_ii^-1 (F_i - K_ic d_c)`, computed with nalgebra from the
+//! full stiffness of a small two-body model built in code.
+//!
+//! ```text
+//!   y                        body 1 (no support: held only by contact,
+//!   1 +-----+-----+  +-----+  S singular), traction on its right edge
+//!     |  0  |  0  |  |  1  |
+//!     +-----+-----+  +-----+   interface x = 1.2: three node pairs, the
+//!     |  0  |  0  |  |  1  |   lower pair supported in y
+//!   0 +-----+-----+  +-----+--- x
+//!     0    (x = 0: ux held, one node moved by a prescribed uy)
+//! ```
+//! Both bodies have gravity; the grid is distorted so no entry is special.
+
+use nalgebra::{DMatrix, DVector};
+
+use super::{assembly, condense, parts};
+use crate::fem::sparse::NONE;
+use crate::mesh::{Cell, CellKind};
+use crate::model::{Body, FacetLoad, Interface, Model, Pair};
+use crate::scene::{Analysis, LoadKind};
+
+/// Node `(i, j)` of a grid of `nx + 1` by `ny + 1` nodes starting at `first`.
+fn quads(first: usize, nx: usize, ny: usize, tag0: u64) -> Vec<Cell> {
+    let id = |i: usize, j: usize| first + j * (nx + 1) + i;
+    let mut cells = Vec::new();
+    for j in 0..ny {
+        for i in 0..nx {
+            cells.push(Cell { kind: CellKind::Quad4, nodes: vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)], tag: tag0 + cells.len() as u64 });
+        }
+    }
+    cells
+}
+
+fn two_body_model() -> Model {
+    let (ny, h) = (2usize, 1.0);
+    let wobble = |x: f64, y: f64| [x + 0.05 * (3.0 * y).sin() * (x * (1.2 - x)), y + 0.04 * (2.0 * x).cos() * (y * (h - y)), 0.0];
+    let mut coords = Vec::new();
+    // body 0: 3 x 3 nodes on [0, 1.2] x [0, 1]; its right column is the interface
+    for j in 0..=ny {
+        for i in 0..=2 {
+            coords.push(wobble(0.6 * i as f64, h * j as f64 / ny as f64));
+        }
+    }
+    // body 1: 2 x 3 nodes on [1.2, 2.0] x [0, 1]; its left column is a copy of the interface
+    let first1 = coords.len();
+    for j in 0..=ny {
+        for i in 0..=1 {
+            let x = 1.2 + 0.8 * i as f64;
+            let p = wobble(x.min(1.2), h * j as f64 / ny as f64);
+            coords.push([if i == 0 { p[0] } else { x }, p[1], 0.0]);
+        }
+    }
+    let n = coords.len();
+    let nd = 2;
+    let iface0: Vec<usize> = (0..=ny).map(|j| j * 3 + 2).collect();
+    let iface1: Vec<usize> = (0..=ny).map(|j| first1 + j * 2).collect();
+    let mut prescribed = vec![None; n * nd];
+    for j in 0..=ny {
+        prescribed[(j * 3) * nd] = Some(0.0); // x = 0: ux held
+    }
+    prescribed[1] = Some(0.0); // the origin: uy held
+    prescribed[(2 * 3) * nd + 1] = Some(-2e-3); // top left node moved down
+    prescribed[iface0[0] * nd + 1] = Some(0.0); // the lower pair held in y
+    prescribed[iface1[0] * nd + 1] = Some(0.0);
+    let right = Cell { kind: CellKind::Line2, nodes: vec![first1 + 1, first1 + 3], tag: 900 };
+    let right2 = Cell { kind: CellKind::Line2, nodes: vec![first1 + 3, first1 + 5], tag: 901 };
+    let loads = [right, right2].into_iter().map(|cell| FacetLoad { cell, sign: 1.0, kind: LoadKind::Traction([0.7, -0.3, 0.0]), body: 1 }).collect();
+    let pairs = iface0.iter().zip(&iface1).map(|(&k, &l)| Pair { k, l, contact: 0, normal: [1.0, 0.0, 0.0], area: 0.5 }).collect();
+    Model {
+        scene: "two_body_model".into(),
+        analysis: Analysis::PlaneStrain,
+        nd,
+        thickness: 1.0,
+        gravity: [0.0, -9.81, 0.0],
+        mesh_node: (0..n).collect(),
+        coords,
+        bodies: vec![
+            Body { name: "left".into(), e: 1000.0, nu: 0.3, density: 0.02, cells: quads(0, 2, ny, 1) },
+            Body { name: "right".into(), e: 3000.0, nu: 0.2, density: 0.01, cells: quads(first1, 1, ny, 100) },
+        ],
+        loads,
+        prescribed,
+        pairs,
+        interfaces: vec![Interface { name: "cut".into(), body_i: 0, body_ii: 1, facets: Vec::new() }],
+    }
+}
+
+/// The dense reference of one part: interior DOFs numbered in reverse
+/// node order (not the condensation's own numbering), interface DOFs in the
+/// order of `part.interface`.
+struct Dense {
+    s: DMatrix<f64>,
+    g: DVector<f64>,
+    k_ii: DMatrix<f64>,
+    k_ic: DMatrix<f64>,
+    f_i: DVector<f64>,
+    /// model DOF of each interior equation
+    interior: Vec<usize>,
+}
+
+fn dense(model: &Model, bodies: &[usize], interface: &[usize]) -> Dense {
+    let nd = model.nd;
+    let mut used: Vec<usize> = bodies.iter().flat_map(|&b| model.bodies[b].cells.iter().flat_map(|c| c.nodes.iter().copied())).collect();
+    used.sort_unstable();
+    used.dedup();
+    let mut dof_of = vec![NONE; model.n_nodes() * nd];
+    let mut interior = Vec::new();
+    for &n in used.iter().rev() {
+        if interface.contains(&n) {
+            continue;
+        }
+        for c in 0..nd {
+            if model.prescribed[n * nd + c].is_none() {
+                dof_of[n * nd + c] = interior.len();
+                interior.push(n * nd + c);
+            }
+        }
+    }
+    let ni = interior.len();
+    for (q, &n) in interface.iter().enumerate() {
+        for c in 0..nd {
+            dof_of[n * nd + c] = ni + q * nd + c;
+        }
+    }
+    let nc = interface.len() * nd;
+    let a = assembly::assemble(model, bodies, &dof_of, ni + nc).expect("assemble");
+    let k = DMatrix::from_fn(ni + nc, ni + nc, |r, c| a.k.get(r, c));
+    let f = DVector::from_vec(a.f);
+    let k_ii = k.view((0, 0), (ni, ni)).into_owned();
+    let k_ic = k.view((0, ni), (ni, nc)).into_owned();
+    let k_cc = k.view((ni, ni), (nc, nc)).into_owned();
+    let f_i = f.rows(0, ni).into_owned();
+    let f_c = f.rows(ni, nc).into_owned();
+    let chol = k_ii.clone().cholesky().expect("K_ii is positive definite");
+    let x = chol.solve(&k_ic);
+    let y = chol.solve(&f_i);
+    let s = &k_cc - k_ic.transpose() * x;
+    let g = f_c - k_ic.transpose() * y;
+    Dense { s, g, k_ii, k_ic, f_i, interior }
+}
+
+fn rel(a: impl Iterator<Item = f64>, b: impl Iterator<Item = f64>) -> f64 {
+    let (mut diff, mut scale) = (0.0f64, 0.0f64);
+    for (x, y) in a.zip(b) {
+        diff = diff.max((x - y).abs());
+        scale = scale.max(y.abs());
+    }
+    diff / scale
+}
+
+#[test]
+fn condensation_equals_the_dense_schur_complement() {
+    let model = two_body_model();
+    let parts = parts(&model);
+    assert_eq!(parts.len(), 2);
+    for part in parts {
+        let dense = dense(&model, &part.bodies, &part.interface);
+        let name = model.body_names(&part.bodies);
+        let c = condense(&model, part).expect("condense");
+        let nc = c.nc;
+        assert_eq!(nc, 3 * model.nd, "{name}: every component of the three interface nodes");
+        assert_eq!(c.ni, dense.interior.len(), "{name}");
+        let es = rel((0..nc * nc).map(|i| c.s[i]), (0..nc * nc).map(|i| dense.s[(i % nc, i / nc)]));
+        let eg = rel(c.g.iter().copied(), dense.g.iter().copied());
+        assert!(es < 1e-12, "{name}: S differs by {es:.3e} (relative)");
+        assert!(eg < 1e-12, "{name}: G differs by {eg:.3e} (relative)");
+        assert!(dense.g.amax() > 0.0 && dense.s.amax() > 0.0);
+
+        // recovery of the interior for an arbitrary interface displacement
+        let d_c: Vec<f64> = (0..nc).map(|i| 1e-3 * ((i as f64) * 0.7).sin()).collect();
+        let mut u = vec![0.0; model.n_nodes() * model.nd];
+        c.recover(&model, &d_c, &mut u);
+        let d_i = dense.k_ii.clone().cholesky().expect("K_ii").solve(&(&dense.f_i - &dense.k_ic * DVector::from_column_slice(&d_c)));
+        let eu = rel(dense.interior.iter().map(|&dof| u[dof]), d_i.iter().copied());
+        assert!(eu < 1e-12, "{name}: recovered interior differs by {eu:.3e} (relative)");
+        eprintln!("{name}: S {es:.1e}, G {eg:.1e}, d_i {eu:.1e} (max relative difference to dense)");
+        for (q, &n) in c.part.interface.iter().enumerate() {
+            for k in 0..model.nd {
+                assert_eq!(u[n * model.nd + k], d_c[q * model.nd + k]);
+            }
+        }
+    }
+}
+
+/// The right body has no support: its S keeps the three rigid-body modes
+/// of the interface (translations and the rotation about the origin).
+#[test]
+fn condensed_floating_body_keeps_its_rigid_body_modes() {
+    let model = two_body_model();
+    let part = parts(&model).into_iter().find(|p| p.bodies == [1]).expect("the right body");
+    let c = condense(&model, part).expect("condense");
+    let nc = c.nc;
+    let s = DMatrix::from_column_slice(nc, nc, &c.s);
+    let nodes = &c.part.interface;
+    let modes = [
+        DVector::from_fn(nc, |i, _| if i % 2 == 0 { 1.0 } else { 0.0 }),
+        DVector::from_fn(nc, |i, _| if i % 2 == 1 { 1.0 } else { 0.0 }),
+        DVector::from_fn(nc, |i, _| {
+            let x = model.coords[nodes[i / 2]];
+            if i % 2 == 0 { -x[1] } else { x[0] }
+        }),
+    ];
+    for (m, v) in modes.iter().enumerate() {
+        let r = (&s * v).amax() / (s.amax() * v.amax());
+        assert!(r < 1e-12, "mode {m}: |S v| / (|S| |v|) = {r:.3e}");
+    }
+    // and nothing else: exactly three eigenvalues vanish
+    let eig = s.symmetric_eigenvalues();
+    let big = eig.amax();
+    assert_eq!(eig.iter().filter(|&&e| e.abs() < 1e-10 * big).count(), 3, "{eig}");
+}
