@@ -89,13 +89,15 @@ mod tests {
 
     #[test]
     fn paper_table_values() {
-        // DESIGN.md §3, units 1e-2 MPa
+        // DESIGN.md §3, units 1e-2 MPa; the printed values are cut, not
+        // rounded (sigma_r(3.2) = -8.108 is printed -8.10, sigma_theta(4.0) =
+        // 14.414 is printed 14.4), hence the tolerance of 0.015
         let l = Lame { a: 3.0, b: 5.0, p: 0.1, e: 2.0e5, nu: 0.167, analysis: Analysis::PlaneStrain };
         let sr = [-8.10, -5.23, -3.16, -1.63, -0.47];
         let st = [19.35, 16.47, 14.4, 12.88, 11.72];
         for (i, r) in [3.2, 3.6, 4.0, 4.4, 4.8].iter().enumerate() {
-            assert!((l.sigma_r(*r) * 100.0 - sr[i]).abs() < 0.006, "{r}");
-            assert!((l.sigma_theta(*r) * 100.0 - st[i]).abs() < 0.006, "{r}");
+            assert!((l.sigma_r(*r) * 100.0 - sr[i]).abs() < 0.015, "{r}");
+            assert!((l.sigma_theta(*r) * 100.0 - st[i]).abs() < 0.015, "{r}");
         }
         // the boundary conditions: sigma_r(a) = -p, sigma_r(b) = 0
         assert!((l.sigma_r(3.0) + 0.1).abs() < 1e-15);

@@ -107,6 +107,18 @@ impl fmt::Display for SlipLaw {
     }
 }
 
+/// How contact stresses are recovered from the pair forces (`traction = "..."`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TractionRecovery {
+    /// Force over the area the pair controls (the paper's eq. 14, default).
+    #[default]
+    Lumped,
+    /// Solve the interface mass matrix `M t = f` (exact for tractions the
+    /// facets' shape functions contain, end pairs included).
+    Consistent,
+}
+
 /// `[materials.NAME]`: linear isotropic elasticity.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Material {
@@ -148,6 +160,8 @@ pub struct Contact {
     pub slip: SlipLaw,
     /// Cohesion kept once the pair has opened (default 0, <= cohesion).
     pub residual_cohesion: f64,
+    /// Contact stress recovery (default lumped).
+    pub traction: TractionRecovery,
 }
 
 /// `[[supports]]`: displacement conditions on a physical group.
@@ -184,6 +198,8 @@ pub struct Solver {
     pub load_steps: usize,
     /// Contact state iterations per step (default 100), >= 1.
     pub max_iterations: usize,
+    /// How pair states are updated between iterations (default robust).
+    pub rule: StateRule,
 }
 
 impl Default for Solver {
@@ -191,8 +207,23 @@ impl Default for Solver {
         Solver {
             load_steps: 1,
             max_iterations: 100,
+            rule: StateRule::Robust,
         }
     }
+}
+
+/// The state update of the contact iteration (`[solver] rule = "..."`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StateRule {
+    /// Open pairs follow their gap, slipping pairs their slip direction,
+    /// cracked pairs keep f_t = 0; a cycle of state sets is broken by
+    /// changing only the most violated pair (default).
+    #[default]
+    Robust,
+    /// The paper: every pair judged by eq. 15–17 from its stresses alone,
+    /// every change at once; a cycle is reported, not resolved.
+    Paper,
 }
 
 /// `[[probes]]`: sample the solution at `points` equally spaced points on the
@@ -440,6 +471,7 @@ struct RawContact {
     tensile_strength: Option<f64>,
     slip: Option<SlipLaw>,
     residual_cohesion: Option<f64>,
+    traction: Option<TractionRecovery>,
 }
 
 #[derive(Deserialize)]
@@ -465,6 +497,7 @@ struct RawLoad {
 struct RawSolver {
     load_steps: Option<i64>,
     max_iterations: Option<i64>,
+    rule: Option<StateRule>,
 }
 
 #[derive(Deserialize)]
@@ -789,6 +822,7 @@ impl Checker<'_> {
                     "solver.max_iterations",
                     "the contact iteration limit",
                 )?,
+                rule: s.rule.unwrap_or_default(),
             },
         };
         let probes = self.probes(raw.probes, analysis)?;
@@ -1091,6 +1125,7 @@ impl Checker<'_> {
                 tensile_strength,
                 slip: c.slip.unwrap_or_default(),
                 residual_cohesion,
+                traction: c.traction.unwrap_or_default(),
             });
         }
         Ok(out)
@@ -1493,6 +1528,7 @@ p = 0.1
                 tensile_strength: 3.0e5,
                 slip: SlipLaw::Coulomb,
                 residual_cohesion: 0.0,
+                traction: TractionRecovery::Lumped,
             }]
         );
         assert_eq!(
@@ -1512,10 +1548,7 @@ p = 0.1
         );
         assert_eq!(
             s.solver,
-            Solver {
-                load_steps: 1,
-                max_iterations: 100
-            }
+            Solver::default()
         );
         assert_eq!(
             s.probes,
@@ -1568,10 +1601,7 @@ p = 0.1
         assert_eq!(c.slip, SlipLaw::Coulomb);
         assert_eq!(
             s.solver,
-            Solver {
-                load_steps: 1,
-                max_iterations: 100
-            }
+            Solver::default()
         );
         assert!(s.supports.is_empty() && s.loads.is_empty() && s.probes.is_empty());
         assert_eq!(s.analytic, None);

@@ -40,7 +40,11 @@ pub enum MshError {
         source: std::io::Error,
     },
 
-    #[error("`{}` is not a complete MSH 4.1 file (truncated?): {detail}", path.display())]
+    #[error(
+        "`{}` is not a complete MSH 4.1 file (truncated?): {detail}. Mesh the .geo again \
+         with gmsh (-format msh41), or point `mesh =` in the scene at a complete file",
+        path.display()
+    )]
     Malformed { path: PathBuf, detail: String },
 
     #[error("`{}` is MSH {version}: re-export it with gmsh -format msh41", path.display())]

@@ -164,7 +164,7 @@ fn summary(run: &Run) -> serde_json::Value {
     let mut v = json!({
         "scene": run.scene.path.display().to_string(),
         "title": run.scene.title,
-        "analysis": format!("{:?}", run.scene.analysis),
+        "analysis": run.scene.analysis.as_str(),
         "mesh": { "file": run.msh.display().to_string(), "cached": run.mesh_cached, "nodes": run.model.n_nodes(),
                   "elements": run.model.bodies.iter().map(|b| b.cells.len()).sum::<usize>() },
         "bodies": run.model.bodies.iter().map(|b| b.name.clone()).collect::<Vec<_>>(),

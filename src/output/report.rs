@@ -96,7 +96,7 @@ pub fn report(run: &Run) -> String {
     let mut s = String::new();
     let sc = &run.scene;
     let _ = writeln!(s, "# {}\n", sc.title);
-    let _ = writeln!(s, "Scene `{}`, analysis {:?}, mesh `{}`{}.\n", sc.path.display(), sc.analysis, run.msh.display(), if run.mesh_cached { " (cached)" } else { "" });
+    let _ = writeln!(s, "Scene `{}`, analysis {}, mesh `{}`{}.\n", sc.path.display(), sc.analysis, run.msh.display(), if run.mesh_cached { " (cached)" } else { "" });
     let _ = writeln!(s, "| quantity | value |\n|---|---|");
     let _ = writeln!(s, "| bodies | {} |", run.model.bodies.iter().map(|b| b.name.as_str()).collect::<Vec<_>>().join(", "));
     let _ = writeln!(s, "| elements | {} |", run.model.bodies.iter().map(|b| b.cells.len()).sum::<usize>());
