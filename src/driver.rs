@@ -17,12 +17,13 @@ use anyhow::{bail, Context, Result};
 use crate::analytic;
 use crate::contact::law::{ContactState, PairResult, Strength};
 use crate::contact::system::{InterfaceProblem, SolveFailure};
-use crate::contact::{self, Outcome};
+use crate::contact::traction::ConsistentTraction;
+use crate::contact::{self, History, Outcome, PairLaw};
 use crate::mesh::{gmsh, msh, Mesh};
 use crate::model::Model;
 use crate::output;
 use crate::recover::{self, BodyStress, Errors, Sample};
-use crate::scene::{MeshSource, Scene};
+use crate::scene::{MeshSource, Scene, TractionRecovery};
 use crate::substructure::{self, Condensed};
 
 /// Options of a run beyond the scene.
@@ -61,6 +62,8 @@ pub struct Run {
     pub u: Vec<f64>,
     pub stresses: Vec<BodyStress>,
     pub contact: Option<ContactRun>,
+    /// Every load step (the last one is also `u`, `stresses`, `contact`).
+    pub steps: Vec<StepResult>,
     pub errors: Option<Errors>,
     pub contact_error_max: Option<f64>,
     pub probes: Vec<(String, Vec<Sample>)>,
@@ -72,13 +75,28 @@ pub struct Run {
     pub residual_interface: f64,
 }
 
+/// One load step.
+pub struct StepResult {
+    pub step: usize,
+    /// The ramp factor k / load_steps.
+    pub load_factor: f64,
+    pub u: Vec<f64>,
+    /// Nodal stresses (empty when `[output] fields` leaves stress out, but
+    /// for the last step).
+    pub stresses: Vec<BodyStress>,
+    pub contact: Option<ContactRun>,
+}
+
 /// The contact iteration's result.
+#[derive(Clone)]
 pub struct ContactRun {
     pub states: Vec<ContactState>,
     pub pairs: Vec<PairResult>,
     pub iterations: usize,
     pub converged: bool,
     pub cycled: bool,
+    /// Cycles broken by changing one pair at a time.
+    pub cycles_broken: usize,
     pub history: Vec<Vec<ContactState>>,
 }
 
@@ -158,48 +176,91 @@ pub fn run_scene(mut scene: Scene, opts: &RunOptions) -> Result<Run> {
     let dofs_interface: usize = condensed.iter().map(|c| c.nc).sum();
     let condensed_parts = condensed.iter().filter(|c| c.nc > 0).count();
 
-    // 5. Contact iteration.
-    let t = Instant::now();
-    let mut d_c: Vec<Vec<f64>> = condensed.iter().map(|c| vec![0.0; c.nc]).collect();
-    let mut contact_run = None;
-    let mut residual_interface = 0.0;
-    if !model.pairs.is_empty() {
-        progress(opts, &format!("contact iteration on {} pairs", model.pairs.len()));
-        let problem = InterfaceProblem::new(&model, &condensed)?;
-        let strength: Vec<Strength> = model
-            .pairs
-            .iter()
-            .map(|p| {
-                let c = &scene.contacts[p.contact];
-                Strength {
+    // 5.–6. Load steps: contact iteration on the interface system, then
+    // recovery of the interior displacements and stresses.
+    let n_steps = scene.solver.load_steps;
+    let problem = if model.pairs.is_empty() {
+        None
+    } else {
+        progress(opts, &format!("contact iteration on {} pairs, {} load step(s)", model.pairs.len(), n_steps));
+        Some(InterfaceProblem::new(&model, &condensed)?)
+    };
+    let laws: Vec<PairLaw> = model
+        .pairs
+        .iter()
+        .map(|p| {
+            let c = &scene.contacts[p.contact];
+            PairLaw {
+                strength: Strength {
                     friction: c.friction,
                     cohesion: c.cohesion,
                     tensile_strength: c.tensile_strength,
                     residual_cohesion: c.residual_cohesion,
+                },
+                slip: c.slip,
+            }
+        })
+        .collect();
+    let consistent = scene.contacts.iter().any(|c| c.traction == TractionRecovery::Consistent);
+    let traction = if consistent {
+        Some(ConsistentTraction::new(&model).map_err(|e| anyhow::anyhow!("{}: consistent contact traction: the interface mass matrix: {e}", scene.path.display()))?)
+    } else {
+        None
+    };
+    let mut hist = History::new(model.pairs.len());
+    let mut residual_interface: f64 = 0.0;
+    let mut steps: Vec<StepResult> = Vec::with_capacity(n_steps);
+    let (mut interface_s, mut recover_s) = (0.0, 0.0);
+    for step in 1..=n_steps {
+        let lambda: Vec<f64> = model.cases.iter().map(|c| c[step - 1]).collect();
+        let t = Instant::now();
+        let mut d_c: Vec<Vec<f64>> = condensed.iter().map(|c| vec![0.0; c.nc]).collect();
+        let mut contact_step = None;
+        if let Some(problem) = &problem {
+            let outcome = contact::iterate(problem, &laws, scene.solver.rule, &lambda, &mut hist, scene.solver.max_iterations);
+            let Outcome { states, solution, iterations, converged, cycled, cycles_broken, history } = match outcome {
+                Ok(o) => o,
+                Err(f) => bail!(failure_message(&model, &condensed, &scene, step, f)),
+            };
+            residual_interface = residual_interface.max(solution.residual);
+            let mut pairs = solution.pairs;
+            if let Some(tr) = &traction {
+                let t = tr.recover(&solution.forces);
+                for (p, pr) in pairs.iter_mut().enumerate() {
+                    if scene.contacts[model.pairs[p].contact].traction == TractionRecovery::Consistent {
+                        pr.sigma_n = t[p][0];
+                        pr.tau_t = t[p][1];
+                        pr.tau_b = t[p][2];
+                    }
                 }
-            })
-            .collect();
-        let n = model.pairs.len();
-        let outcome = contact::iterate(&problem, &strength, vec![ContactState::Stick; n], vec![false; n], scene.solver.max_iterations);
-        let Outcome { states, solution, iterations, converged, cycled, history, .. } = match outcome {
-            Ok(o) => o,
-            Err(f) => bail!(failure_message(&model, &condensed, &scene, f)),
-        };
-        residual_interface = solution.residual;
-        d_c = solution.d_c;
-        contact_run = Some(ContactRun { states, pairs: solution.pairs, iterations, converged, cycled, history });
-    }
-    timings.interface = t.elapsed().as_secs_f64();
-
-    // 6. Recovery.
-    progress(opts, "recovering displacements and stresses");
-    let t = Instant::now();
-    let mut u = vec![0.0; model.n_nodes() * model.nd];
-    for (c, d) in condensed.iter().zip(&d_c) {
-        c.recover(&model, d, &mut u);
+            }
+            d_c = solution.d_c;
+            contact_step = Some(ContactRun { states, pairs, iterations, converged, cycled, cycles_broken, history });
+        }
+        interface_s += t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let mut u = vec![0.0; model.n_nodes() * model.nd];
+        for (c, d) in condensed.iter().zip(&d_c) {
+            c.recover(&model, d, &lambda, &mut u);
+        }
+        let stresses = if scene.output.wants("stress") || step == n_steps { recover::nodal_stresses(&model, &u) } else { Vec::new() };
+        recover_s += t.elapsed().as_secs_f64();
+        let stop = contact_step.as_ref().is_some_and(|c| !c.converged);
+        if opts.verbose && n_steps > 1 {
+            progress(opts, &format!("load step {step}/{n_steps} done"));
+        }
+        steps.push(StepResult { step, load_factor: lambda[0], u, stresses, contact: contact_step });
+        if stop {
+            break;
+        }
     }
     drop(condensed);
-    let stresses = recover::nodal_stresses(&model, &u);
+    timings.interface = interface_s;
+    let t = Instant::now();
+    let last = steps.last().expect("at least one step");
+    let u = last.u.clone();
+    let stresses = if last.stresses.is_empty() { recover::nodal_stresses(&model, &u) } else { last.stresses.clone() };
+    let contact_run = last.contact.clone();
     let exact = scene.analytic.as_ref().map(|a| {
         let b0 = &model.bodies[0];
         analytic::exact(a, model.analysis, b0.e, b0.nu)
@@ -210,7 +271,7 @@ pub fn run_scene(mut scene: Scene, opts: &RunOptions) -> Result<Run> {
         _ => None,
     };
     let probes = scene.probes.iter().map(|p| (p.name.clone(), recover::probe(&model, &u, p))).collect();
-    timings.recover = t.elapsed().as_secs_f64();
+    timings.recover = recover_s + t.elapsed().as_secs_f64();
 
     let mut run = Run {
         scene,
@@ -221,6 +282,7 @@ pub fn run_scene(mut scene: Scene, opts: &RunOptions) -> Result<Run> {
         u,
         stresses,
         contact: contact_run,
+        steps,
         errors,
         contact_error_max,
         probes,
@@ -275,15 +337,17 @@ fn contact_error(model: &Model, exact: &dyn analytic::Exact, pairs: &[PairResult
     worst / scale.max(f64::MIN_POSITIVE)
 }
 
-fn failure_message(model: &Model, parts: &[Condensed], scene: &Scene, f: contact::Failed) -> String {
+fn failure_message(model: &Model, parts: &[Condensed], scene: &Scene, step: usize, f: contact::Failed) -> String {
+    let at = if scene.solver.load_steps > 1 { format!("load step {step}, ") } else { String::new() };
     let counts = state_counts(&f.states);
     match f.failure {
         SolveFailure::NotHeld(ids) => {
             let bodies: Vec<usize> = ids.iter().flat_map(|&i| parts[i].part.bodies.iter().copied()).collect();
             let one = bodies.len() == 1;
             format!(
-                "{path}: {what} {names} {verb} held by nothing at contact iteration {it} ({stick} stick, {slip} slip, {open} open): {its} contact pairs opened and no support holds {it_them}. Add a support, or check the loads that pull the contact apart",
+                "{path}: {what} {names} {verb} held by nothing at {at}contact iteration {it} ({stick} stick, {slip} slip, {open} open): {its} contact pairs opened and no support holds {it_them}. Add a support, or check the loads that pull the contact apart",
                 path = scene.path.display(),
+                at = at,
                 what = if one { "body" } else { "bodies" },
                 names = model.body_names(&bodies),
                 verb = if one { "is" } else { "are" },
@@ -295,14 +359,18 @@ fn failure_message(model: &Model, parts: &[Condensed], scene: &Scene, f: contact
                 it_them = if one { "it" } else { "them" },
             )
         }
-        SolveFailure::Singular => format!(
-            "{}: the interface system is singular at contact iteration {} ({} stick, {} slip, {} open): a body slides or rotates freely on its contacts. Add a support that holds it tangentially, or friction",
-            scene.path.display(),
-            f.iteration,
-            counts[2],
-            counts[1],
-            counts[0]
-        ),
+        SolveFailure::Singular(ids) => {
+            let bodies: Vec<usize> = ids.iter().flat_map(|&i| parts[i].part.bodies.iter().copied()).collect();
+            format!(
+                "{}: the interface system is singular at {at}contact iteration {} ({} stick, {} slip, {} open): {} slides or rotates freely on its contacts — loss of equilibrium: the load along the contact exceeds what friction and cohesion can carry. Reduce the load, or add a support that holds it tangentially, or friction",
+                scene.path.display(),
+                f.iteration,
+                counts[2],
+                counts[1],
+                counts[0],
+                if bodies.is_empty() { "a body".to_string() } else { format!("{} {}", if bodies.len() == 1 { "body" } else { "bodies" }, model.body_names(&bodies)) },
+            )
+        }
     }
 }
 

@@ -36,6 +36,8 @@ pub struct FacetLoad {
     pub kind: LoadKind,
     /// The body whose boundary the facet is.
     pub body: usize,
+    /// Its load case (index into `Model::cases`).
+    pub case: usize,
 }
 
 /// One contact node pair: k on body I, l on body II.
@@ -77,6 +79,11 @@ pub struct Model {
     pub interfaces: Vec<Interface>,
     /// Mesh node of every model node.
     pub mesh_node: Vec<usize>,
+    /// Load factor of each load case at each load step. Case 0 is the ramp
+    /// k / load_steps, which also scales prescribed displacements.
+    pub cases: Vec<Vec<f64>>,
+    /// The load case of gravity.
+    pub gravity_case: usize,
 }
 
 #[derive(Debug, thiserror::Error)]
@@ -371,7 +378,16 @@ impl Model {
         // 4. Loads, each facet on the copy of the body it bounds.
         let incidences: Vec<Incidence> = bodies.iter().map(|bd| Incidence::new(n_model, &bd.cells)).collect();
         let mut loads = Vec::new();
+        let steps = scene.solver.load_steps;
+        let mut cases: Vec<Vec<f64>> = vec![(1..=steps).map(|k| k as f64 / steps as f64).collect()];
         for (i, load) in scene.loads.iter().enumerate() {
+            let case = match &load.factors {
+                None => 0,
+                Some(f) => {
+                    cases.push(f.clone());
+                    cases.len() - 1
+                }
+            };
             let key = format!("loads[{i}].group");
             let g = b.group(&key, &load.group, &[sd - 1])?;
             for f in &g.cells {
@@ -405,7 +421,7 @@ impl Model {
                 let sign = facet_sign(&coords, &cell, &bodies[body].cells, &incidences[body]).ok_or_else(|| {
                     b.invalid(key.clone(), format!("element {} of group \"{}\" is not a face of an element of body \"{}\"", f.tag, load.group, bodies[body].name))
                 })?;
-                loads.push(FacetLoad { cell, sign, kind: load.kind.clone(), body });
+                loads.push(FacetLoad { cell, sign, kind: load.kind.clone(), body, case });
             }
         }
 
@@ -423,6 +439,14 @@ impl Model {
             pairs: Vec::new(),
             interfaces,
             mesh_node,
+            gravity_case: match &scene.solver.gravity_factors {
+                None => 0,
+                Some(f) => {
+                    cases.push(f.clone());
+                    cases.len() - 1
+                }
+            },
+            cases,
         };
         let mut normal = vec![[0.0; 3]; n_model];
         let mut area = vec![0.0; n_model];

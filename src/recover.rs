@@ -11,6 +11,7 @@ use crate::scene::Probe;
 
 /// Nodal stresses of one body: `nodes[i]` is a model node, `stress[i]` its
 /// averaged stress.
+#[derive(Clone)]
 pub struct BodyStress {
     pub nodes: Vec<usize>,
     pub stress: Vec<[f64; 6]>,

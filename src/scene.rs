@@ -189,6 +189,9 @@ pub enum LoadKind {
 pub struct Load {
     pub group: String,
     pub kind: LoadKind,
+    /// Load factor at each load step (`factors = [..]`, one per step);
+    /// None: the ramp k / load_steps.
+    pub factors: Option<Vec<f64>>,
 }
 
 /// `[solver]`.
@@ -200,6 +203,8 @@ pub struct Solver {
     pub max_iterations: usize,
     /// How pair states are updated between iterations (default robust).
     pub rule: StateRule,
+    /// Factor of the gravity load at each step (default the ramp k / load_steps).
+    pub gravity_factors: Option<Vec<f64>>,
 }
 
 impl Default for Solver {
@@ -208,6 +213,7 @@ impl Default for Solver {
             load_steps: 1,
             max_iterations: 100,
             rule: StateRule::Robust,
+            gravity_factors: None,
         }
     }
 }
@@ -490,6 +496,7 @@ struct RawLoad {
     group: Option<String>,
     pressure: Option<f64>,
     traction: Option<Vec<f64>>,
+    factors: Option<Vec<f64>>,
 }
 
 #[derive(Deserialize)]
@@ -498,6 +505,7 @@ struct RawSolver {
     load_steps: Option<i64>,
     max_iterations: Option<i64>,
     rule: Option<StateRule>,
+    gravity_factors: Option<Vec<f64>>,
 }
 
 #[derive(Deserialize)]
@@ -823,8 +831,32 @@ impl Checker<'_> {
                     "the contact iteration limit",
                 )?,
                 rule: s.rule.unwrap_or_default(),
+                gravity_factors: match s.gravity_factors {
+                    None => None,
+                    Some(f) => Some(
+                        f.iter()
+                            .enumerate()
+                            .map(|(j, &v)| self.finite(v, &format!("solver.gravity_factors[{j}]")))
+                            .collect::<R<Vec<f64>>>()?,
+                    ),
+                },
             },
         };
+        // load factor tables have one entry per load step
+        let steps = solver.load_steps;
+        let tables = loads
+            .iter()
+            .enumerate()
+            .filter_map(|(i, l)| l.factors.as_ref().map(|f| (format!("loads[{i}].factors"), f)))
+            .chain(solver.gravity_factors.as_ref().map(|f| ("solver.gravity_factors".to_string(), f)));
+        for (key, f) in tables {
+            if f.len() != steps {
+                return Err(self.err(
+                    key,
+                    format!("has {} value(s) but [solver] load_steps = {steps}: give one load factor per step.", f.len()),
+                ));
+            }
+        }
         let probes = self.probes(raw.probes, analysis)?;
         let analytic = raw.analytic.map(|a| self.analytic(a)).transpose()?;
         let output = self.output(raw.output)?;
@@ -1243,7 +1275,16 @@ impl Checker<'_> {
             (Some(p), None) => LoadKind::Pressure(self.finite(p, &format!("{k}.pressure"))?),
             (None, Some(t)) => LoadKind::Traction(self.vec3(&t, &format!("{k}.traction"), analysis)?),
         };
-        Ok(Load { group, kind })
+        let factors = match l.factors {
+            None => None,
+            Some(f) => Some(
+                f.iter()
+                    .enumerate()
+                    .map(|(j, &v)| self.finite(v, &format!("{k}.factors[{j}]")))
+                    .collect::<R<Vec<f64>>>()?,
+            ),
+        };
+        Ok(Load { group, kind, factors })
     }
 
     fn probes(&self, raw: Vec<RawProbe>, analysis: Analysis) -> R<Vec<Probe>> {
@@ -1543,7 +1584,8 @@ p = 0.1
             s.loads,
             vec![Load {
                 group: "inner_surface".into(),
-                kind: LoadKind::Pressure(0.1)
+                kind: LoadKind::Pressure(0.1),
+                factors: None,
             }]
         );
         assert_eq!(

@@ -68,14 +68,64 @@ impl PairResult {
     }
 }
 
-/// The next state of a pair from its current state, its result and whether
-/// it is cracked; `gap_tol` is the gap below which an open pair counts as
-/// closed (a small multiple of round-off in displacements).
-pub fn judge(current: ContactState, r: &PairResult, s: &Strength, cracked: bool, gap_tol: f64) -> ContactState {
-    let (ft, c) = if cracked { (0.0, s.residual_cohesion) } else { (s.tensile_strength, s.cohesion) };
+impl Strength {
+    /// Tensile strength and cohesion in force, once cracked or not.
+    fn effective(&self, cracked: bool) -> (f64, f64) {
+        if cracked {
+            (0.0, self.residual_cohesion)
+        } else {
+            (self.tensile_strength, self.cohesion)
+        }
+    }
+
+    /// The Mohr–Coulomb shear limit `c - f sigma_n` (never negative).
+    pub fn shear_limit(&self, sigma_n: f64, cracked: bool) -> f64 {
+        let (_, c) = self.effective(cracked);
+        (c - self.friction * sigma_n).max(0.0)
+    }
+}
+
+/// The paper's rule: every pair judged by eq. 15–17 from its stresses
+/// alone, whatever its state (an open pair carries no stress, so it is
+/// judged stuck again: this rule cycles on opening problems).
+pub fn judge_paper(r: &PairResult, s: &Strength) -> ContactState {
+    if r.sigma_n >= s.tensile_strength {
+        ContactState::Open
+    } else if r.tau() >= s.cohesion - s.friction * r.sigma_n {
+        ContactState::Slip
+    } else {
+        ContactState::Stick
+    }
+}
+
+/// What the robust rule needs besides the stresses: the slip increment of
+/// this step along the assumed friction direction, and tolerances.
+#[derive(Clone, Copy, Debug)]
+pub struct Kinematics {
+    /// `(slip increment) . (friction direction)`: negative when the pair
+    /// moves against the friction it was given (then it is stuck).
+    pub slip_along: f64,
+    /// Whether the slip law carries friction (Coulomb) or not.
+    pub coulomb: bool,
+    /// Gaps below `-gap_tol` count as closed, slips below `slip_tol` as none.
+    pub gap_tol: f64,
+    pub slip_tol: f64,
+}
+
+/// The robust rule: the next state of a pair from its current state.
+///
+/// - stick: eq. 15–17 on its stresses;
+/// - slip: open when `sigma_n >= f_t`; stuck again when, with Coulomb
+///   friction, its slip increment runs against the friction direction;
+/// - open: stuck again when the bodies would interpenetrate (gap < 0),
+///   otherwise open whatever its (zero) stress says.
+///
+/// Cracked pairs (ever opened or slipped) have `f_t = 0` and the residual cohesion.
+pub fn judge(current: ContactState, r: &PairResult, s: &Strength, cracked: bool, k: &Kinematics) -> ContactState {
+    let (ft, _) = s.effective(cracked);
     match current {
         ContactState::Open => {
-            if r.gap < -gap_tol {
+            if r.gap < -k.gap_tol {
                 ContactState::Stick
             } else {
                 ContactState::Open
@@ -84,6 +134,8 @@ pub fn judge(current: ContactState, r: &PairResult, s: &Strength, cracked: bool,
         ContactState::Slip => {
             if r.sigma_n >= ft {
                 ContactState::Open
+            } else if k.coulomb && k.slip_along < -k.slip_tol {
+                ContactState::Stick
             } else {
                 ContactState::Slip
             }
@@ -91,7 +143,7 @@ pub fn judge(current: ContactState, r: &PairResult, s: &Strength, cracked: bool,
         ContactState::Stick => {
             if r.sigma_n >= ft {
                 ContactState::Open
-            } else if r.tau() >= c - s.friction * r.sigma_n {
+            } else if r.tau() >= s.shear_limit(r.sigma_n, cracked) {
                 ContactState::Slip
             } else {
                 ContactState::Stick
@@ -111,6 +163,10 @@ mod tests {
         PairResult { sigma_n, tau_t: tau, tau_b: 0.0, gap, slip: 0.0 }
     }
 
+    fn kin(slip_along: f64, tol: f64) -> Kinematics {
+        Kinematics { slip_along, coulomb: true, gap_tol: tol, slip_tol: tol }
+    }
+
     #[test]
     fn truth_table_of_the_paper_criteria() {
         // (sigma_n, tau) -> state, from stick
@@ -125,22 +181,44 @@ mod tests {
             ((-4.0, -3.5), Slip), // shear sign does not matter
         ];
         for ((sn, tau), want) in cases {
-            assert_eq!(judge(Stick, &r(sn, tau, 0.0), &S, false, 0.0), want, "sigma_n {sn} tau {tau}");
+            assert_eq!(judge(Stick, &r(sn, tau, 0.0), &S, false, &kin(0.0, 0.0)), want, "sigma_n {sn} tau {tau}");
         }
     }
 
     #[test]
     fn cracked_pairs_lose_tensile_strength_and_cohesion() {
-        assert_eq!(judge(Stick, &r(0.5, 0.0, 0.0), &S, false, 0.0), Stick);
-        assert_eq!(judge(Stick, &r(0.5, 0.0, 0.0), &S, true, 0.0), Open);
-        assert_eq!(judge(Stick, &r(-1.0, 0.6, 0.0), &S, true, 0.0), Slip);
+        assert_eq!(judge(Stick, &r(0.5, 0.0, 0.0), &S, false, &kin(0.0, 0.0)), Stick);
+        assert_eq!(judge(Stick, &r(0.5, 0.0, 0.0), &S, true, &kin(0.0, 0.0)), Open);
+        assert_eq!(judge(Stick, &r(-1.0, 0.6, 0.0), &S, true, &kin(0.0, 0.0)), Slip);
     }
 
     #[test]
     fn open_pairs_follow_their_gap() {
-        assert_eq!(judge(Open, &r(0.0, 0.0, 1e-3), &S, true, 1e-12), Open);
-        assert_eq!(judge(Open, &r(0.0, 0.0, -1e-3), &S, true, 1e-12), Stick);
-        assert_eq!(judge(Slip, &r(-1.0, 0.0, 0.0), &S, true, 1e-12), Slip);
-        assert_eq!(judge(Slip, &r(0.1, 0.0, 0.0), &S, true, 1e-12), Open);
+        assert_eq!(judge(Open, &r(0.0, 0.0, 1e-3), &S, true, &kin(0.0, 1e-12)), Open);
+        assert_eq!(judge(Open, &r(0.0, 0.0, -1e-3), &S, true, &kin(0.0, 1e-12)), Stick);
+        assert_eq!(judge(Slip, &r(-1.0, 0.0, 0.0), &S, true, &kin(0.0, 1e-12)), Slip);
+        assert_eq!(judge(Slip, &r(0.1, 0.0, 0.0), &S, true, &kin(0.0, 1e-12)), Open);
+    }
+
+    #[test]
+    fn slipping_pairs_stick_again_when_they_move_against_their_friction() {
+        assert_eq!(judge(Slip, &r(-1.0, 0.5, 0.0), &S, true, &kin(1e-3, 1e-12)), Slip);
+        assert_eq!(judge(Slip, &r(-1.0, 0.5, 0.0), &S, true, &kin(-1e-3, 1e-12)), Stick);
+        let frictionless = Kinematics { coulomb: false, ..kin(-1e-3, 1e-12) };
+        assert_eq!(judge(Slip, &r(-1.0, 0.0, 0.0), &S, true, &frictionless), Slip);
+    }
+
+    #[test]
+    fn paper_rule_judges_open_pairs_by_their_zero_stress() {
+        assert_eq!(judge_paper(&r(0.0, 0.0, 1e-3), &S), Stick);
+        assert_eq!(judge_paper(&r(2.5, 0.0, 0.0), &S), Open);
+        assert_eq!(judge_paper(&r(-4.0, 3.0, 0.0), &S), Slip);
+    }
+
+    #[test]
+    fn shear_limit_is_mohr_coulomb_and_never_negative() {
+        assert_eq!(S.shear_limit(-4.0, false), 3.0);
+        assert_eq!(S.shear_limit(-4.0, true), 2.0);
+        assert_eq!(S.shear_limit(3.0, false), 0.0);
     }
 }

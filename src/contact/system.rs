@@ -26,7 +26,20 @@ struct LocalPart {
     t: Vec<Frame>,
     nc: usize,
     s: Vec<f64>,
-    g: Vec<f64>,
+    /// Condensed loads in local axes, one per load case.
+    g: Vec<Vec<f64>>,
+}
+
+/// What the interface system is solved for besides the states.
+pub struct Loading<'a> {
+    /// Load factor of each load case (case 0 also scales prescribed values).
+    pub lambda: &'a [f64],
+    /// Known tangential force on body I at each pair (local axes; equal and
+    /// opposite on body II), applied where the tangential axes are not tied.
+    pub shear: &'a [[f64; 3]],
+    /// Relative displacement `d'_l - d'_k` kept on each tied axis (slip
+    /// accumulated before the pair stuck again; the normal entry is 0).
+    pub offset: &'a [[f64; 3]],
 }
 
 /// The interface problem, set up once; solved for any set of states.
@@ -48,6 +61,10 @@ pub struct InterfaceProblem {
 /// Result of one interface solve.
 pub struct InterfaceSolution {
     pub pairs: Vec<PairResult>,
+    /// Contact force on body I at each pair, local axes (n, t, b).
+    pub forces: Vec<[f64; 3]>,
+    /// Relative displacement `d'_l - d'_k` at each pair, local axes.
+    pub rel: Vec<[f64; 3]>,
     /// Global interface displacements of each part (order of its interface nodes).
     pub d_c: Vec<Vec<f64>>,
     /// Relative residual of the dense interface solve.
@@ -58,8 +75,9 @@ pub struct InterfaceSolution {
 pub enum SolveFailure {
     /// These bodies are held by nothing.
     NotHeld(Vec<usize>),
-    /// Singular for another reason (e.g. slipping with nothing holding the bodies tangentially).
-    Singular,
+    /// These bodies slide (or rotate) freely on slipping pairs: nothing holds
+    /// them tangentially (empty when the cause is not found).
+    Singular(Vec<usize>),
 }
 
 impl InterfaceProblem {
@@ -129,12 +147,19 @@ impl InterfaceProblem {
                         }
                     }
                 }
-                let mut g = vec![0.0; nc];
-                for (q, tq) in t.iter().enumerate() {
-                    for a in 0..nd {
-                        g[q * nd + a] = (0..nd).map(|c| tq[a][c] * p.g[q * nd + c]).sum();
-                    }
-                }
+                let g = p
+                    .g
+                    .iter()
+                    .map(|gc| {
+                        let mut g = vec![0.0; nc];
+                        for (q, tq) in t.iter().enumerate() {
+                            for a in 0..nd {
+                                g[q * nd + a] = (0..nd).map(|c| tq[a][c] * gc[q * nd + c]).sum();
+                            }
+                        }
+                        g
+                    })
+                    .collect();
                 LocalPart { t, nc, s, g }
             })
             .collect();
@@ -144,11 +169,15 @@ impl InterfaceProblem {
         Ok(InterfaceProblem { nd, frames, at, fixed, parts: local, areas, rigid, positions })
     }
 
-    /// Solves the interface system for the given states; `shear` adds known
-    /// tangential forces on body I (local axes, equal and opposite on body II)
-    /// at slipping pairs.
-    pub fn solve(&self, states: &[ContactState], shear: &[[f64; 3]]) -> Result<InterfaceSolution, SolveFailure> {
+    /// The area pair `p` controls.
+    pub fn area(&self, p: usize) -> f64 {
+        self.areas[p]
+    }
+
+    /// Solves the interface system for the given states and loading.
+    pub fn solve(&self, states: &[ContactState], loading: &Loading) -> Result<InterfaceSolution, SolveFailure> {
         let nd = self.nd;
+        let ramp = loading.lambda[0];
         // A part nothing holds makes K_c singular only up to round-off (its
         // S has rigid-body modes of size eps * |S|), so the factorisation
         // may well succeed and return huge displacements: decide it from the
@@ -156,22 +185,24 @@ impl InterfaceProblem {
         if let failure @ SolveFailure::NotHeld(_) = self.diagnose(states) {
             return Err(failure);
         }
-        if !self.free(states, false).is_empty() {
-            return Err(SolveFailure::Singular);
+        let sliding = self.free(states, false);
+        if !sliding.is_empty() {
+            return Err(SolveFailure::Singular(sliding));
         }
         // slot of each (part, interface dof): unknown index or fixed value
+        // an unknown plus an offset, or a fixed value
         #[derive(Clone, Copy)]
         enum Slot {
-            Free(usize),
+            Free(usize, f64),
             Fixed(f64),
         }
         let mut slots: Vec<Vec<Slot>> = self.parts.iter().map(|p| vec![Slot::Fixed(0.0); p.nc]).collect();
         let mut m = 0;
         let mut new_slot = |fixed: Option<f64>| match fixed {
-            Some(v) => Slot::Fixed(v),
+            Some(v) => Slot::Fixed(v * ramp),
             None => {
                 m += 1;
-                Slot::Free(m - 1)
+                Slot::Free(m - 1, 0.0)
             }
         };
         for (p, st) in states.iter().enumerate() {
@@ -186,7 +217,10 @@ impl InterfaceProblem {
                 if shared {
                     let s = new_slot(fx[0][a].or(fx[1][a]));
                     slots[pk][qk * nd + a] = s;
-                    slots[pl][ql * nd + a] = s;
+                    slots[pl][ql * nd + a] = match s {
+                        Slot::Free(i, _) => Slot::Free(i, loading.offset[p][a]),
+                        fixed => fixed,
+                    };
                 } else {
                     slots[pk][qk * nd + a] = new_slot(fx[0][a]);
                     slots[pl][ql * nd + a] = new_slot(fx[1][a]);
@@ -195,26 +229,43 @@ impl InterfaceProblem {
         }
         let mut k = Mat::<f64>::zeros(m, m);
         let mut r = Mat::<f64>::zeros(m, 1);
+        let g_loc: Vec<Vec<f64>> = self
+            .parts
+            .iter()
+            .map(|lp| {
+                let mut g = vec![0.0; lp.nc];
+                for (gc, &l) in lp.g.iter().zip(loading.lambda) {
+                    if l != 0.0 {
+                        for (o, v) in g.iter_mut().zip(gc) {
+                            *o += l * v;
+                        }
+                    }
+                }
+                g
+            })
+            .collect();
         for (pi, lp) in self.parts.iter().enumerate() {
             let sl = &slots[pi];
             for j in 0..lp.nc {
-                match sl[j] {
-                    Slot::Free(jj) => {
-                        r[(jj, 0)] += lp.g[j];
+                // the known part of d_j moves to the right-hand side
+                let known = match sl[j] {
+                    Slot::Free(jj, off) => {
+                        r[(jj, 0)] += g_loc[pi][j];
                         for i in 0..lp.nc {
-                            if let Slot::Free(ii) = sl[i] {
+                            if let Slot::Free(ii, _) = sl[i] {
                                 k[(ii, jj)] += lp.s[i + j * lp.nc];
                             }
                         }
+                        off
                     }
-                    Slot::Fixed(v) if v != 0.0 => {
-                        for i in 0..lp.nc {
-                            if let Slot::Free(ii) = sl[i] {
-                                r[(ii, 0)] -= lp.s[i + j * lp.nc] * v;
-                            }
+                    Slot::Fixed(v) => v,
+                };
+                if known != 0.0 {
+                    for i in 0..lp.nc {
+                        if let Slot::Free(ii, _) = sl[i] {
+                            r[(ii, 0)] -= lp.s[i + j * lp.nc] * known;
                         }
                     }
-                    Slot::Fixed(_) => {}
                 }
             }
         }
@@ -224,11 +275,11 @@ impl InterfaceProblem {
             }
             let [(pk, qk), (pl, ql)] = self.at[p];
             for a in 1..nd {
-                if let Slot::Free(i) = slots[pk][qk * nd + a] {
-                    r[(i, 0)] += shear[p][a];
+                if let Slot::Free(i, _) = slots[pk][qk * nd + a] {
+                    r[(i, 0)] += loading.shear[p][a];
                 }
-                if let Slot::Free(i) = slots[pl][ql * nd + a] {
-                    r[(i, 0)] -= shear[p][a];
+                if let Slot::Free(i, _) = slots[pl][ql * nd + a] {
+                    r[(i, 0)] -= loading.shear[p][a];
                 }
             }
         }
@@ -263,14 +314,16 @@ impl InterfaceProblem {
             let d: Vec<f64> = slots[pi]
                 .iter()
                 .map(|s| match *s {
-                    Slot::Free(i) => z[(i, 0)],
+                    Slot::Free(i, off) => z[(i, 0)] + off,
                     Slot::Fixed(v) => v,
                 })
                 .collect();
-            let f: Vec<f64> = (0..lp.nc).map(|i| (0..lp.nc).map(|j| lp.s[i + j * lp.nc] * d[j]).sum::<f64>() - lp.g[i]).collect();
+            let f: Vec<f64> = (0..lp.nc).map(|i| (0..lp.nc).map(|j| lp.s[i + j * lp.nc] * d[j]).sum::<f64>() - g_loc[pi][i]).collect();
             d_loc.push(d);
             f_loc.push(f);
         }
+        let mut forces = Vec::with_capacity(states.len());
+        let mut rels = Vec::with_capacity(states.len());
         let pairs = (0..states.len())
             .map(|p| {
                 let [(pk, qk), (pl, ql)] = self.at[p];
@@ -279,7 +332,10 @@ impl InterfaceProblem {
                 let dk = &d_loc[pk][qk * nd..qk * nd + nd];
                 let dl = &d_loc[pl][ql * nd..ql * nd + nd];
                 let a = self.areas[p];
-                let rel: Vec<f64> = (0..nd).map(|i| dl[i] - dk[i]).collect();
+                let mut rel = [0.0; 3];
+                for i in 0..nd {
+                    rel[i] = dl[i] - dk[i];
+                }
                 // On a supported local axis the node's force is contact plus
                 // support reaction: read the contact force on the side that is
                 // not supported, and where both are, the support carries it all.
@@ -289,12 +345,18 @@ impl InterfaceProblem {
                     (Some(_), None) => -fl[ax],
                     (Some(_), Some(_)) => 0.0,
                 };
+                let mut f = [0.0; 3];
+                for (ax, v) in f.iter_mut().enumerate().take(nd) {
+                    *v = force(ax);
+                }
+                forces.push(f);
+                rels.push(rel);
                 PairResult {
-                    sigma_n: force(0) / a,
-                    tau_t: force(1) / a,
-                    tau_b: if nd == 3 { force(2) / a } else { 0.0 },
+                    sigma_n: f[0] / a,
+                    tau_t: f[1] / a,
+                    tau_b: f[2] / a,
                     gap: rel[0],
-                    slip: rel[1..].iter().map(|v| v * v).sum::<f64>().sqrt(),
+                    slip: rel[1].hypot(rel[2]),
                 }
             })
             .collect();
@@ -313,7 +375,7 @@ impl InterfaceProblem {
                 g
             })
             .collect();
-        Ok(InterfaceSolution { pairs, d_c, residual })
+        Ok(InterfaceSolution { pairs, forces, rel: rels, d_c, residual })
     }
 
     /// Parts that a rigid motion moves which the supports and the pairs tied
@@ -339,7 +401,7 @@ impl InterfaceProblem {
     fn diagnose(&self, states: &[ContactState]) -> SolveFailure {
         let free = self.free(states, true);
         if free.is_empty() {
-            SolveFailure::Singular
+            SolveFailure::Singular(self.free(states, false))
         } else {
             SolveFailure::NotHeld(free)
         }

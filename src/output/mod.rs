@@ -20,10 +20,31 @@ use vtu::{Field, IntField};
 pub fn stage(run: &Run) -> Result<Staged> {
     let mut staged = Staged::new(&run.out);
     let name = &run.scene.name;
-    staged.add(&format!("{name}.vtu"), bodies_vtu(run)?);
+    staged.add(&format!("{name}.vtu"), bodies_vtu(run, &run.u, &run.stresses)?);
     if let Some(c) = &run.contact {
-        staged.add(&format!("{name}_contact.vtu"), contact_vtu(run)?);
+        staged.add(&format!("{name}_contact.vtu"), contact_vtu(run, c)?);
         staged.add("contact.csv", contact_csv(run, c).into_bytes());
+    }
+    if run.steps.len() > 1 {
+        // one file per load step and ParaView collections over them
+        let mut bodies = Vec::new();
+        let mut contacts = Vec::new();
+        for st in &run.steps {
+            let f = format!("{name}_step{:03}.vtu", st.step);
+            let stresses = if st.stresses.is_empty() { crate::recover::nodal_stresses(&run.model, &st.u) } else { Vec::new() };
+            let stresses = if st.stresses.is_empty() { &stresses } else { &st.stresses };
+            staged.add(&f, bodies_vtu(run, &st.u, stresses)?);
+            bodies.push((st.step as f64, f));
+            if let Some(c) = &st.contact {
+                let f = format!("{name}_contact_step{:03}.vtu", st.step);
+                staged.add(&f, contact_vtu(run, c)?);
+                contacts.push((st.step as f64, f));
+            }
+        }
+        staged.add(&format!("{name}.pvd"), vtu::pvd_bytes(&bodies));
+        if !contacts.is_empty() {
+            staged.add(&format!("{name}_contact.pvd"), vtu::pvd_bytes(&contacts));
+        }
     }
     if !run.probes.is_empty() {
         staged.add("probes.csv", probes_csv(run).into_bytes());
@@ -40,7 +61,7 @@ pub fn restage_summary(mut staged: Staged, run: &Run) -> Result<Staged> {
 
 /// Points of the bodies' VTU: each body's nodes, so stresses averaged per
 /// body stay apart where bodies share nodes.
-fn bodies_vtu(run: &Run) -> Result<Vec<u8>> {
+fn bodies_vtu(run: &Run, u: &[f64], stresses: &[crate::recover::BodyStress]) -> Result<Vec<u8>> {
     let model = &run.model;
     let nd = model.nd;
     let mut points = Vec::new();
@@ -50,13 +71,13 @@ fn bodies_vtu(run: &Run) -> Result<Vec<u8>> {
     let mut cells = Vec::new();
     let mut body_id = Vec::new();
     let mut local = vec![usize::MAX; model.n_nodes()];
-    for (b, (body, bs)) in model.bodies.iter().zip(&run.stresses).enumerate() {
+    for (b, (body, bs)) in model.bodies.iter().zip(stresses).enumerate() {
         let base = points.len();
         for (i, (&n, s)) in bs.nodes.iter().zip(&bs.stress).enumerate() {
             local[n] = base + i;
             points.push(model.coords[n]);
             for c in 0..3 {
-                disp.push(if c < nd { run.u[n * nd + c] } else { 0.0 });
+                disp.push(if c < nd { u[n * nd + c] } else { 0.0 });
             }
             stress.extend_from_slice(s);
             vm.push(von_mises(s));
@@ -75,9 +96,8 @@ fn bodies_vtu(run: &Run) -> Result<Vec<u8>> {
 }
 
 /// The interfaces, as body I's facets, with the pair values at their nodes.
-fn contact_vtu(run: &Run) -> Result<Vec<u8>> {
+fn contact_vtu(run: &Run, c: &crate::driver::ContactRun) -> Result<Vec<u8>> {
     let model = &run.model;
-    let c = run.contact.as_ref().expect("contact run");
     let mut pair_of = vec![usize::MAX; model.n_nodes()];
     for (i, p) in model.pairs.iter().enumerate() {
         pair_of[p.k] = i;
@@ -181,9 +201,23 @@ fn summary(run: &Run) -> serde_json::Value {
             "converged": c.converged,
             "cycled": c.cycled,
             "states": { "stick": counts[2], "slip": counts[1], "open": counts[0] },
+            "cycles_broken": c.cycles_broken,
             "history": c.history.iter().map(|h| { let k = state_counts(h); json!({"stick": k[2], "slip": k[1], "open": k[0]}) }).collect::<Vec<_>>(),
         });
     }
+    v["steps"] = json!(run
+        .steps
+        .iter()
+        .map(|st| {
+            let mut j = json!({ "step": st.step, "load_factor": st.load_factor });
+            if let Some(c) = &st.contact {
+                let k = state_counts(&c.states);
+                j["contact"] = json!({ "iterations": c.iterations, "converged": c.converged, "cycled": c.cycled,
+                    "states": { "stick": k[2], "slip": k[1], "open": k[0] } });
+            }
+            j
+        })
+        .collect::<Vec<_>>());
     if let Some(e) = &run.errors {
         v["errors"] = json!({ "displacement_l2": e.displacement_l2, "stress_l2": e.stress_l2, "contact_max": run.contact_error_max });
     }

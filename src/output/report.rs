@@ -124,7 +124,24 @@ pub fn report(run: &Run) -> String {
             let _ = writeln!(s, "| contact sigma_n error (max, relative) | {:.3e} |", c);
         }
     }
+    if run.steps.len() > 1 {
+        let _ = writeln!(s, "\n## Load steps\n\n| step | load factor | iterations | stick / slip / open | converged |\n|---|---|---|---|---|");
+        for st in &run.steps {
+            match &st.contact {
+                Some(c) => {
+                    let k = state_counts(&c.states);
+                    let _ = writeln!(s, "| {} | {:.4} | {} | {} / {} / {} | {} |", st.step, st.load_factor, c.iterations, k[2], k[1], k[0], if c.converged { "yes" } else { "NO" });
+                }
+                None => {
+                    let _ = writeln!(s, "| {} | {:.4} | – | – | – |", st.step, st.load_factor);
+                }
+            }
+        }
+    }
     if let Some(c) = &run.contact {
+        if c.cycles_broken > 0 {
+            let _ = writeln!(s, "\nThe state iteration cycled {} time(s); each cycle was broken by changing only the most violated pair per iteration.", c.cycles_broken);
+        }
         if !c.converged {
             let _ = writeln!(s, "\n## Last two state sets\n");
             let _ = writeln!(s, "| pair | {} |", c.history.iter().rev().take(2).rev().enumerate().map(|(i, _)| format!("iteration {}", c.iterations - 1 + i)).collect::<Vec<_>>().join(" | "));

@@ -14,10 +14,11 @@ use crate::mesh::CellKind;
 use crate::model::{Model, ModelError};
 use crate::scene::LoadKind;
 
-/// Stiffness (lower triangle) and right-hand side of a part.
+/// Stiffness (lower triangle) and right-hand sides of a part, one per load
+/// case (`Model::cases`; prescribed displacements belong to case 0).
 pub struct Assembled {
     pub k: SymMatrix,
-    pub f: Vec<f64>,
+    pub f: Vec<Vec<f64>>,
 }
 
 fn cell_coords(model: &Model, nodes: &[usize]) -> Vec<[f64; 3]> {
@@ -38,7 +39,7 @@ pub fn assemble(model: &Model, bodies: &[usize], dof_of: &[usize], n: usize) -> 
     let nd = model.nd;
     let cells = bodies.iter().flat_map(|&b| model.bodies[b].cells.iter().map(|c| c.nodes.as_slice()));
     let mut k = SymMatrix::pattern(n, nd, dof_of, cells);
-    let mut f = vec![0.0; n];
+    let mut f = vec![vec![0.0; n]; model.cases.len()];
     let mut ke = Vec::new();
     let mut dofs = Vec::new();
     let mut rules: Vec<(CellKind, Vec<quadrature::QuadPoint>)> = Vec::new();
@@ -65,6 +66,8 @@ pub fn assemble(model: &Model, bodies: &[usize], dof_of: &[usize], n: usize) -> 
             let mut fe = vec![0.0; m];
             if has_weight {
                 element::body_force(model.analysis, cell.kind, &xe, weight, model.thickness, &mut fe).map_err(inverted)?;
+                scatter(&dofs, &fe, &mut f[model.gravity_case]);
+                fe.iter_mut().for_each(|v| *v = 0.0);
             }
             // prescribed displacements: f -= K_e[:, j] u_j
             for (j, &node) in cell.nodes.iter().enumerate() {
@@ -82,7 +85,7 @@ pub fn assemble(model: &Model, bodies: &[usize], dof_of: &[usize], n: usize) -> 
                     }
                 }
             }
-            scatter(&dofs, &fe, &mut f);
+            scatter(&dofs, &fe, &mut f[0]);
         }
     }
     // boundary loads on facets of these bodies
@@ -101,7 +104,7 @@ pub fn assemble(model: &Model, bodies: &[usize], dof_of: &[usize], n: usize) -> 
             }
         };
         element::facet_force(model.analysis, load.cell.kind, &xe, load.sign, model.thickness, &traction, &mut fe);
-        scatter(&dofs, &fe, &mut f);
+        scatter(&dofs, &fe, &mut f[load.case]);
     }
     Ok(Assembled { k, f })
 }

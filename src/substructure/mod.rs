@@ -89,12 +89,12 @@ pub struct Condensed {
     pub nc: usize,
     /// The part's factor, interface last (see [`schur`]).
     chol: PartialCholesky,
-    /// The load vector `[F_i; F_c]`.
-    f: Vec<f64>,
+    /// The load vectors `[F_i; F_c]`, one per load case.
+    f: Vec<Vec<f64>>,
     /// Schur complement, column-major nc x nc.
     pub s: Vec<f64>,
-    /// Condensed load.
-    pub g: Vec<f64>,
+    /// Condensed loads, one per load case.
+    pub g: Vec<Vec<f64>>,
     /// Seconds spent assembling (the rest of `condense` is factorising and condensing).
     pub assemble_s: f64,
 }
@@ -157,14 +157,17 @@ pub fn condense(model: &Model, part: Part) -> Result<Condensed, ModelError> {
     let assemble_s = t.elapsed().as_secs_f64();
     let chol = PartialCholesky::factor(&a.k, ni).map_err(|e| not_held(model, &part, e))?;
     let s = chol.schur();
-    // G = F_c + (S + alpha I) x_c with K' [x_i; x_c] = [F_i; 0]
-    let mut x = a.f.clone();
-    x[ni..].iter_mut().for_each(|v| *v = 0.0);
-    chol.solve_many(&mut x, 1);
-    let mut g = a.f[ni..].to_vec();
-    for r in 0..nc {
-        g[r] += chol.alpha() * x[ni + r] + (0..nc).map(|c| s[r + c * nc] * x[ni + c]).sum::<f64>();
-    }
+    // G = F_c + (S + alpha I) x_c with K' [x_i; x_c] = [F_i; 0], per load case
+    let n = ni + nc;
+    let cases = a.f.len();
+    let mut x: Vec<f64> = a.f.iter().flat_map(|f| f[..ni].iter().copied().chain(std::iter::repeat(0.0).take(nc))).collect();
+    chol.solve_many(&mut x, cases);
+    let g = (0..cases)
+        .map(|k| {
+            let xc = &x[k * n + ni..(k + 1) * n];
+            (0..nc).map(|r| a.f[k][ni + r] + chol.alpha() * xc[r] + (0..nc).map(|c| s[r + c * nc] * xc[c]).sum::<f64>()).collect()
+        })
+        .collect();
     for d in dof_of.iter_mut() {
         if *d != NONE && *d >= ni {
             *d = NONE;
@@ -174,16 +177,36 @@ pub fn condense(model: &Model, part: Part) -> Result<Condensed, ModelError> {
 }
 
 impl Condensed {
-    /// Interior displacements from the interface displacements `d_c`, written
-    /// into the model-wide displacement vector `u` (node-major, nd per node),
-    /// together with `d_c` itself and the prescribed values.
-    pub fn recover(&self, model: &Model, d_c: &[f64], u: &mut [f64]) {
+    /// The load vector combined with the load factors `lambda` (one per case).
+    fn combine(v: &[Vec<f64>], lambda: &[f64]) -> Vec<f64> {
+        let mut out = vec![0.0; v.first().map_or(0, |x| x.len())];
+        for (x, &l) in v.iter().zip(lambda) {
+            if l != 0.0 {
+                for (o, xi) in out.iter_mut().zip(x) {
+                    *o += l * xi;
+                }
+            }
+        }
+        out
+    }
+
+    /// The condensed load `G` for the load factors `lambda`.
+    pub fn g_at(&self, lambda: &[f64]) -> Vec<f64> {
+        Self::combine(&self.g, lambda)
+    }
+
+    /// Interior displacements from the interface displacements `d_c` under
+    /// the load factors `lambda`, written into the model-wide displacement
+    /// vector `u` (node-major, nd per node), together with `d_c` itself and
+    /// the prescribed values (scaled by the ramp, case 0).
+    pub fn recover(&self, model: &Model, d_c: &[f64], lambda: &[f64], u: &mut [f64]) {
         let nd = model.nd;
         // K' [d_i; d_c] = [F_i; F_c + f_c + alpha d_c], f_c = S d_c - G
         let (ni, nc) = (self.ni, self.nc);
-        let mut x = self.f.clone();
+        let mut x = Self::combine(&self.f, lambda);
+        let g = self.g_at(lambda);
         for r in 0..nc {
-            let f_c = (0..nc).map(|c| self.s[r + c * nc] * d_c[c]).sum::<f64>() - self.g[r];
+            let f_c = (0..nc).map(|c| self.s[r + c * nc] * d_c[c]).sum::<f64>() - g[r];
             x[ni + r] += f_c + self.chol.alpha() * d_c[r];
         }
         self.chol.solve_many(&mut x, 1);
@@ -192,7 +215,7 @@ impl Condensed {
             if d != NONE {
                 u[i] = d_i[d];
             } else if let Some(v) = model.prescribed[i] {
-                u[i] = v;
+                u[i] = v * lambda[0];
             }
         }
         for (q, &n) in self.part.interface.iter().enumerate() {

@@ -67,7 +67,7 @@ fn two_body_model() -> Model {
     prescribed[iface1[0] * nd + 1] = Some(0.0);
     let right = Cell { kind: CellKind::Line2, nodes: vec![first1 + 1, first1 + 3], tag: 900 };
     let right2 = Cell { kind: CellKind::Line2, nodes: vec![first1 + 3, first1 + 5], tag: 901 };
-    let loads = [right, right2].into_iter().map(|cell| FacetLoad { cell, sign: 1.0, kind: LoadKind::Traction([0.7, -0.3, 0.0]), body: 1 }).collect();
+    let loads = [right, right2].into_iter().map(|cell| FacetLoad { cell, sign: 1.0, kind: LoadKind::Traction([0.7, -0.3, 0.0]), body: 1, case: 0 }).collect();
     let pairs = iface0.iter().zip(&iface1).map(|(&k, &l)| Pair { k, l, contact: 0, normal: [1.0, 0.0, 0.0], area: 0.5 }).collect();
     Model {
         scene: "two_body_model".into(),
@@ -85,6 +85,8 @@ fn two_body_model() -> Model {
         prescribed,
         pairs,
         interfaces: vec![Interface { name: "cut".into(), body_i: 0, body_ii: 1, facets: Vec::new() }],
+        cases: vec![vec![1.0]],
+        gravity_case: 0,
     }
 }
 
@@ -128,7 +130,7 @@ fn dense(model: &Model, bodies: &[usize], interface: &[usize]) -> Dense {
     let nc = interface.len() * nd;
     let a = assembly::assemble(model, bodies, &dof_of, ni + nc).expect("assemble");
     let k = DMatrix::from_fn(ni + nc, ni + nc, |r, c| a.k.get(r, c));
-    let f = DVector::from_vec(a.f);
+    let f = DVector::from_vec(a.f[0].clone());
     let k_ii = k.view((0, 0), (ni, ni)).into_owned();
     let k_ic = k.view((0, ni), (ni, nc)).into_owned();
     let k_cc = k.view((ni, ni), (nc, nc)).into_owned();
@@ -164,7 +166,7 @@ fn condensation_equals_the_dense_schur_complement() {
         assert_eq!(nc, 3 * model.nd, "{name}: every component of the three interface nodes");
         assert_eq!(c.ni, dense.interior.len(), "{name}");
         let es = rel((0..nc * nc).map(|i| c.s[i]), (0..nc * nc).map(|i| dense.s[(i % nc, i / nc)]));
-        let eg = rel(c.g.iter().copied(), dense.g.iter().copied());
+        let eg = rel(c.g[0].iter().copied(), dense.g.iter().copied());
         assert!(es < 1e-12, "{name}: S differs by {es:.3e} (relative)");
         assert!(eg < 1e-12, "{name}: G differs by {eg:.3e} (relative)");
         assert!(dense.g.amax() > 0.0 && dense.s.amax() > 0.0);
@@ -172,7 +174,7 @@ fn condensation_equals_the_dense_schur_complement() {
         // recovery of the interior for an arbitrary interface displacement
         let d_c: Vec<f64> = (0..nc).map(|i| 1e-3 * ((i as f64) * 0.7).sin()).collect();
         let mut u = vec![0.0; model.n_nodes() * model.nd];
-        c.recover(&model, &d_c, &mut u);
+        c.recover(&model, &d_c, &[1.0], &mut u);
         let d_i = dense.k_ii.clone().cholesky().expect("K_ii").solve(&(&dense.f_i - &dense.k_ic * DVector::from_column_slice(&d_c)));
         let eu = rel(dense.interior.iter().map(|&dof| u[dof]), d_i.iter().copied());
         assert!(eu < 1e-12, "{name}: recovered interior differs by {eu:.3e} (relative)");
