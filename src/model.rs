@@ -351,19 +351,34 @@ impl Model {
             copies_of.entry(n).or_default().push(m);
         }
 
-        // 3. Supports hold every copy of a node.
+        // 3. Supports. A point support holds every copy of its node; a
+        // support on a curve or surface holds the copies of the bodies its
+        // facets bound, so a support on one body's face next to a contact
+        // does not drag the other body's copy of the shared corner node
+        // (a symmetry line crossing a contact bounds both bodies: both held).
         let mut prescribed: Vec<Option<f64>> = vec![None; n_model * nd];
         for (i, s) in scene.supports.iter().enumerate() {
             let g = b.group(&format!("supports[{i}].group"), &s.group, &(0..=sd).collect::<Vec<_>>())?;
-            for n in g.nodes() {
-                let all = std::iter::once(n).chain(copies_of.get(&n).into_iter().flatten().copied());
-                for m in all {
-                    for c in 0..nd {
-                        if let Some(v) = s.prescribed[c] {
-                            prescribed[m * nd + c] = Some(v);
-                        } else if s.fix[c] {
-                            prescribed[m * nd + c] = Some(0.0);
-                        }
+            let mut held: Vec<usize> = Vec::new();
+            for cell in &g.cells {
+                let owners = if cell.kind.dim() == 0 { Vec::new() } else { facet_bodies(&nb, cell) };
+                for &n in &cell.nodes {
+                    if owners.is_empty() {
+                        held.push(n);
+                        held.extend(copies_of.get(&n).into_iter().flatten().copied());
+                    } else {
+                        held.extend(owners.iter().map(|&o| copy.get(&(o, n)).copied().unwrap_or(n)));
+                    }
+                }
+            }
+            held.sort_unstable();
+            held.dedup();
+            for m in held {
+                for c in 0..nd {
+                    if let Some(v) = s.prescribed[c] {
+                        prescribed[m * nd + c] = Some(v);
+                    } else if s.fix[c] {
+                        prescribed[m * nd + c] = Some(0.0);
                     }
                 }
             }
