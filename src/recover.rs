@@ -26,6 +26,12 @@ fn coords(model: &Model, nodes: &[usize]) -> Vec<[f64; 3]> {
     nodes.iter().map(|&n| model.coords[n]).collect()
 }
 
+/// The distinct nodes of a body, in order of first use by its cells.
+pub fn body_nodes(body: &crate::model::Body) -> Vec<usize> {
+    let mut seen = std::collections::HashSet::new();
+    body.cells.iter().flat_map(|c| c.nodes.iter().copied()).filter(|n| seen.insert(*n)).collect()
+}
+
 /// Extrapolated, body-averaged nodal stresses.
 pub fn nodal_stresses(model: &Model, u: &[f64]) -> Vec<BodyStress> {
     let mut local = vec![usize::MAX; model.n_nodes()];

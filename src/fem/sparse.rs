@@ -122,6 +122,35 @@ impl SymMatrix {
         y
     }
 
+    /// Normwise backward error of `x` as a solution of `(A + shift) x = b`,
+    /// `||A' x - b|| / (||A'|| ||x|| + ||b||)` in the infinity norm, where
+    /// `shift` adds `alpha` to the diagonal from equation `from` on.
+    pub fn backward_error(&self, x: &[f64], b: &[f64], alpha: f64, from: usize) -> f64 {
+        let mut r = self.mul(x);
+        let mut row_abs = vec![0.0; self.n];
+        for col in 0..self.n {
+            for k in self.col_ptr[col]..self.col_ptr[col + 1] {
+                let (row, v) = (self.row_idx[k], self.values[k].abs());
+                row_abs[row] += v;
+                if row != col {
+                    row_abs[col] += v;
+                }
+            }
+        }
+        for i in from..self.n {
+            r[i] += alpha * x[i];
+            row_abs[i] += alpha;
+        }
+        let inf = |v: &mut dyn Iterator<Item = f64>| v.fold(0.0, |m: f64, a| m.max(a.abs()));
+        let rn = inf(&mut r.iter().zip(b).map(|(a, b)| a - b));
+        let den = inf(&mut row_abs.iter().copied()) * inf(&mut x.iter().copied()) + inf(&mut b.iter().copied());
+        if den > 0.0 {
+            rn / den
+        } else {
+            0.0
+        }
+    }
+
     /// Largest absolute diagonal entry.
     pub fn max_diagonal(&self) -> f64 {
         (0..self.n).map(|c| self.get(c, c).abs()).fold(0.0, f64::max)

@@ -31,9 +31,7 @@ pub fn stage(run: &Run) -> Result<Staged> {
         let mut contacts = Vec::new();
         for st in &run.steps {
             let f = format!("{name}_step{:03}.vtu", st.step);
-            let stresses = if st.stresses.is_empty() { crate::recover::nodal_stresses(&run.model, &st.u) } else { Vec::new() };
-            let stresses = if st.stresses.is_empty() { &stresses } else { &st.stresses };
-            staged.add(&f, bodies_vtu(run, &st.u, stresses)?);
+            staged.add(&f, bodies_vtu(run, &st.u, &st.stresses)?);
             bodies.push((st.step as f64, f));
             if let Some(c) = &st.contact {
                 let f = format!("{name}_contact_step{:03}.vtu", st.step);
@@ -71,27 +69,38 @@ fn bodies_vtu(run: &Run, u: &[f64], stresses: &[crate::recover::BodyStress]) -> 
     let mut cells = Vec::new();
     let mut body_id = Vec::new();
     let mut local = vec![usize::MAX; model.n_nodes()];
-    for (b, (body, bs)) in model.bodies.iter().zip(stresses).enumerate() {
+    for (b, body) in model.bodies.iter().enumerate() {
         let base = points.len();
-        for (i, (&n, s)) in bs.nodes.iter().zip(&bs.stress).enumerate() {
+        // the body's own node list (stresses are averaged per body)
+        let own: Vec<usize> = match stresses.get(b) {
+            Some(bs) => bs.nodes.clone(),
+            None => crate::recover::body_nodes(body),
+        };
+        for (i, &n) in own.iter().enumerate() {
             local[n] = base + i;
             points.push(model.coords[n]);
             for c in 0..3 {
                 disp.push(if c < nd { u[n * nd + c] } else { 0.0 });
             }
-            stress.extend_from_slice(s);
-            vm.push(von_mises(s));
+            if let Some(bs) = stresses.get(b) {
+                let s = &bs.stress[i];
+                stress.extend_from_slice(s);
+                vm.push(von_mises(s));
+            }
         }
         for c in &body.cells {
             cells.push(Cell { kind: c.kind, nodes: c.nodes.iter().map(|&n| local[n]).collect(), tag: c.tag });
             body_id.push(b as i32);
         }
     }
-    let point_data = [
-        Field { name: "displacement", n_comp: 3, values: &disp },
-        Field { name: "stress", n_comp: 6, values: &stress },
-        Field { name: "von_mises", n_comp: 1, values: &vm },
-    ];
+    let mut point_data = Vec::new();
+    if run.scene.output.wants("displacement") {
+        point_data.push(Field { name: "displacement", n_comp: 3, values: &disp });
+    }
+    if !stresses.is_empty() {
+        point_data.push(Field { name: "stress", n_comp: 6, values: &stress });
+        point_data.push(Field { name: "von_mises", n_comp: 1, values: &vm });
+    }
     Ok(vtu::vtu_bytes(&points, &cells, &point_data, &[], &[IntField { name: "body", values: &body_id }])?)
 }
 
@@ -191,7 +200,9 @@ fn summary(run: &Run) -> serde_json::Value {
         "dofs": { "total": run.dofs_total, "interface": run.dofs_interface },
         "parts": { "total": run.parts, "condensed": run.condensed_parts },
         "timings_s": run.timings,
-        "residuals": { "interface": run.residual_interface },
+        "residuals": { "interface": run.residual_interface, "assembled": run.residual_assembled },
+        "counters": run.counters,
+        "fields": run.scene.output.fields,
     });
     if let Some(c) = &run.contact {
         let counts = state_counts(&c.states);
