@@ -15,7 +15,7 @@ use std::collections::HashMap;
 
 use crate::fem::element::{self, dofs_per_node};
 use crate::mesh::{Cell, Mesh};
-use crate::scene::{Analysis, ContactGroups, LoadKind, Scene};
+use crate::scene::{Analysis, ContactGroups, InitialStress, LoadKind, Scene};
 
 /// A body of the model: cells in model node numbering.
 #[derive(Clone, Debug)]
@@ -25,6 +25,8 @@ pub struct Body {
     pub nu: f64,
     pub density: f64,
     pub cells: Vec<Cell>,
+    /// In-situ stress the body carries before any load.
+    pub initial: Option<InitialStress>,
 }
 
 /// A load on one boundary facet of one body.
@@ -84,6 +86,16 @@ pub struct Model {
     pub cases: Vec<Vec<f64>>,
     /// The load case of gravity.
     pub gravity_case: usize,
+    /// The load case of the initial stresses: factor 1 at every step (they
+    /// are there before the first load).
+    pub initial_case: usize,
+}
+
+impl Body {
+    /// The initial stress at x (zero without one).
+    pub fn initial_at(&self, x: [f64; 3], analysis: Analysis, gravity: [f64; 3]) -> [f64; 6] {
+        self.initial.map_or([0.0; 6], |i| i.at(x, analysis, self.density, gravity))
+    }
 }
 
 #[derive(Debug, thiserror::Error)]
@@ -249,7 +261,25 @@ impl Model {
         for (i, body) in scene.bodies.iter().enumerate() {
             let g = b.group(&format!("bodies[{i}].group"), &body.group, &[sd])?;
             let m = scene.material_of(body);
-            bodies.push(Body { name: body.group.clone(), e: m.e, nu: m.nu, density: m.density, cells: g.cells.clone() });
+            if let Some(InitialStress::Geostatic { .. }) = body.initial {
+                if m.density <= 0.0 || scene.gravity.iter().all(|&g| g == 0.0) {
+                    return Err(b.invalid(
+                        format!("bodies[{i}].k0"),
+                        format!(
+                            "a geostatic initial stress needs the weight of body \"{}\": give its material a density > 0 and the scene a gravity = [..]",
+                            body.group
+                        ),
+                    ));
+                }
+            }
+            bodies.push(Body {
+                name: body.group.clone(),
+                e: m.e,
+                nu: m.nu,
+                density: m.density,
+                cells: g.cells.clone(),
+                initial: body.initial,
+            });
         }
         let size = mesh.size();
         if sd == 2 {
@@ -460,6 +490,10 @@ impl Model {
                     cases.push(f.clone());
                     cases.len() - 1
                 }
+            },
+            initial_case: {
+                cases.push(vec![1.0; steps]);
+                cases.len() - 1
             },
             cases,
         };

@@ -26,6 +26,18 @@ fn coords(model: &Model, nodes: &[usize]) -> Vec<[f64; 3]> {
     nodes.iter().map(|&n| model.coords[n]).collect()
 }
 
+/// Total stress at a point of a cell: the initial stress plus `D eps`.
+fn total_stress(model: &Model, body: &crate::model::Body, d: &[f64], p: &element::Point, ue: &[f64]) -> [f64; 6] {
+    let mut s = full_stress(model.analysis, body.e, body.nu, d, &element::strain(model.analysis, p, ue));
+    if body.initial.is_some() {
+        let s0 = body.initial_at(p.x, model.analysis, model.gravity);
+        for (a, b) in s.iter_mut().zip(s0) {
+            *a += b;
+        }
+    }
+    s
+}
+
 /// The distinct nodes of a body, in order of first use by its cells.
 pub fn body_nodes(body: &crate::model::Body) -> Vec<usize> {
     let mut seen = std::collections::HashSet::new();
@@ -64,7 +76,7 @@ pub fn nodal_stresses(model: &Model, u: &[f64]) -> Vec<BodyStress> {
                 let at_points: Vec<[f64; 6]> = rule
                     .iter()
                     .map(|q| match element::point(cell.kind, &xe, q.xi) {
-                        Ok(p) => full_stress(model.analysis, body.e, body.nu, &d, &element::strain(model.analysis, &p, &ue)),
+                        Ok(p) => total_stress(model, body, &d, &p, &ue),
                         Err(_) => [f64::NAN; 6],
                     })
                     .collect();
@@ -110,7 +122,7 @@ pub fn errors(model: &Model, u: &[f64], exact: &dyn Exact) -> Errors {
                     eu += w * (uh - ex[c]).powi(2);
                     nu_ += w * ex[c].powi(2);
                 }
-                let sh = full_stress(model.analysis, body.e, body.nu, &d, &element::strain(model.analysis, &p, &ue));
+                let sh = total_stress(model, body, &d, &p, &ue);
                 let se = exact.stress(p.x);
                 for c in 0..6 {
                     es += w * (sh[c] - se[c]).powi(2);
@@ -157,7 +169,7 @@ pub fn probe(model: &Model, u: &[f64], probe: &Probe) -> Vec<Sample> {
                     for c in 0..nd {
                         disp[c] += (0..cell.kind.n_nodes()).map(|a| p.n[a] * ue[a * nd + c]).sum::<f64>();
                     }
-                    let sh = full_stress(model.analysis, body.e, body.nu, &d, &element::strain(model.analysis, &p, &ue));
+                    let sh = total_stress(model, body, &d, &p, &ue);
                     for c in 0..6 {
                         stress[c] += sh[c];
                     }

@@ -136,6 +136,37 @@ pub struct Body {
     pub group: String,
     /// A key of [`Scene::materials`] (checked).
     pub material: String,
+    /// Stress the body carries before any load (in-situ stress); reported
+    /// stresses are totals. None: the body starts stress-free.
+    pub initial: Option<InitialStress>,
+}
+
+/// `initial_stress = [..]` or `k0` with `surface` on a `[[bodies]]` entry.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum InitialStress {
+    /// A uniform stress `[xx, yy, zz, xy, yz, xz]` (tension positive).
+    Uniform([f64; 6]),
+    /// Geostatic: vertical stress `-density |g| depth` below the level
+    /// `surface` (y in 2D, z in 3D), horizontal stresses `k0` times it.
+    Geostatic { k0: f64, surface: f64 },
+}
+
+impl InitialStress {
+    /// The stress at point x for a body of the given density under gravity g.
+    pub fn at(&self, x: [f64; 3], analysis: Analysis, density: f64, gravity: [f64; 3]) -> [f64; 6] {
+        match *self {
+            InitialStress::Uniform(s) => s,
+            InitialStress::Geostatic { k0, surface } => {
+                let v = if analysis == Analysis::Solid { 2 } else { 1 };
+                let depth = (surface - x[v]).max(0.0);
+                let g = (gravity[0] * gravity[0] + gravity[1] * gravity[1] + gravity[2] * gravity[2]).sqrt();
+                let sv = -density * g * depth;
+                let mut s = [k0 * sv, k0 * sv, k0 * sv, 0.0, 0.0, 0.0];
+                s[v] = sv;
+                s
+            }
+        }
+    }
 }
 
 /// Which physical groups make up a contact interface.
@@ -180,6 +211,9 @@ pub struct Support {
 pub enum LoadKind {
     /// Normal pressure, positive pressing into the body.
     Pressure(f64),
+    /// Hydrostatic pressure `unit_weight * (surface - y)` below the level
+    /// `surface` (y in 2D, z in 3D), zero above it.
+    Hydrostatic { surface: f64, unit_weight: f64 },
     /// Traction vector (x, y, z), per unit area; z = 0 in 2D.
     Traction([f64; 3]),
 }
@@ -465,6 +499,9 @@ struct RawMaterial {
 struct RawBody {
     group: Option<String>,
     material: Option<String>,
+    initial_stress: Option<Vec<f64>>,
+    k0: Option<f64>,
+    surface: Option<f64>,
 }
 
 #[derive(Deserialize)]
@@ -490,11 +527,26 @@ struct RawSupport {
     uz: Option<f64>,
 }
 
+/// `pressure = P` or `pressure = { surface = y0, unit_weight = gamma }`.
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum RawPressure {
+    Value(f64),
+    Hydrostatic(RawHydrostatic),
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawHydrostatic {
+    surface: f64,
+    unit_weight: f64,
+}
+
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawLoad {
     group: Option<String>,
-    pressure: Option<f64>,
+    pressure: Option<RawPressure>,
     traction: Option<Vec<f64>>,
     factors: Option<Vec<f64>>,
 }
@@ -799,7 +851,7 @@ impl Checker<'_> {
 
         let gmsh = self.gmsh(raw.gmsh, &mesh)?;
         let materials = self.materials(raw.materials)?;
-        let bodies = self.bodies(raw.bodies, &materials)?;
+        let bodies = self.bodies(raw.bodies, &materials, analysis)?;
         let contacts = self.contacts(raw.contacts, &bodies)?;
         let supports = raw
             .supports
@@ -1015,7 +1067,7 @@ impl Checker<'_> {
         Ok(out)
     }
 
-    fn bodies(&self, raw: Vec<RawBody>, materials: &BTreeMap<String, Material>) -> R<Vec<Body>> {
+    fn bodies(&self, raw: Vec<RawBody>, materials: &BTreeMap<String, Material>, analysis: Analysis) -> R<Vec<Body>> {
         if raw.is_empty() {
             return Err(self.err(
                 "bodies",
@@ -1055,7 +1107,41 @@ impl Checker<'_> {
                     format!("the group is already bodies[{j}]; each physical group is one body, so list it once."),
                 ));
             }
-            out.push(Body { group, material });
+            let initial = match (b.initial_stress, b.k0, b.surface) {
+                (None, None, None) => None,
+                (Some(v), None, None) => {
+                    let want = if analysis == Analysis::Solid { 6 } else { 4 };
+                    if v.len() != want {
+                        return Err(self.bad(
+                            format!("{k}.initial_stress"),
+                            format!("{v:?}"),
+                            format!("give {want} components: {}.", if want == 6 { "[sxx, syy, szz, sxy, syz, sxz]" } else { "[sxx, syy, szz, sxy]" }),
+                        ));
+                    }
+                    let mut s6 = [0.0; 6];
+                    for (j, x) in v.iter().enumerate() {
+                        s6[j] = self.finite(*x, &format!("{k}.initial_stress[{j}]"))?;
+                    }
+                    Some(InitialStress::Uniform(s6))
+                }
+                (None, Some(k0), Some(surface)) => {
+                    let k0 = self.finite(k0, &format!("{k}.k0"))?;
+                    if k0 < 0.0 {
+                        return Err(self.bad(format!("{k}.k0"), k0, "the earth pressure coefficient must be >= 0."));
+                    }
+                    Some(InitialStress::Geostatic { k0, surface: self.finite(surface, &format!("{k}.surface"))? })
+                }
+                (None, _, _) => {
+                    return Err(self.err(
+                        k,
+                        "a geostatic initial stress needs both k0 (horizontal / vertical stress) and surface (the ground level: y in 2D, z in 3D).",
+                    ))
+                }
+                (Some(_), _, _) => {
+                    return Err(self.err(k, "give either initial_stress = [..] or k0 with surface, not both."));
+                }
+            };
+            out.push(Body { group, material, initial });
         }
         Ok(out)
     }
@@ -1272,7 +1358,14 @@ impl Checker<'_> {
                     format!("the load on {group:?} has no value; add pressure = P (positive presses into the body) or traction = [tx, ty(, tz)]."),
                 ))
             }
-            (Some(p), None) => LoadKind::Pressure(self.finite(p, &format!("{k}.pressure"))?),
+            (Some(RawPressure::Value(p)), None) => LoadKind::Pressure(self.finite(p, &format!("{k}.pressure"))?),
+            (Some(RawPressure::Hydrostatic(h)), None) => {
+                let unit_weight = self.finite(h.unit_weight, &format!("{k}.pressure.unit_weight"))?;
+                if unit_weight < 0.0 {
+                    return Err(self.bad(format!("{k}.pressure.unit_weight"), unit_weight, "the unit weight of the fluid must be >= 0."));
+                }
+                LoadKind::Hydrostatic { surface: self.finite(h.surface, &format!("{k}.pressure.surface"))?, unit_weight }
+            }
             (None, Some(t)) => LoadKind::Traction(self.vec3(&t, &format!("{k}.traction"), analysis)?),
         };
         let factors = match l.factors {
@@ -1556,7 +1649,8 @@ p = 0.1
             s.bodies,
             vec![Body {
                 group: "body_1".into(),
-                material: "rock".into()
+                material: "rock".into(),
+                initial: None,
             }]
         );
         assert_eq!(s.material_of(&s.bodies[0]).e, 2.0e5);

@@ -216,6 +216,40 @@ pub fn body_force(
     Ok(())
 }
 
+/// Consistent nodal forces `-∫ B^T sigma0 dV` of an initial stress field
+/// `sigma0(x)` (six components `[xx, yy, zz, xy, yz, xz]`): the loads that
+/// keep the stress in equilibrium where the body is whole, and release it at
+/// faces the mesh leaves free (excavation).
+pub fn initial_stress_force(
+    analysis: Analysis,
+    kind: CellKind,
+    coords: &[[f64; 3]],
+    sigma0: &dyn Fn([f64; 3]) -> [f64; 6],
+    thickness: f64,
+    rule: &[QuadPoint],
+    fe: &mut [f64],
+) -> Result<(), Inverted> {
+    let nd = dofs_per_node(analysis);
+    let m = kind.n_nodes() * nd;
+    let ns = n_strain(analysis);
+    let mut b = vec![0.0; ns * m];
+    for q in rule {
+        let p = point(kind, coords, q.xi)?;
+        let f = q.w * p.det_j * measure(analysis, thickness, &p.x);
+        let s = sigma0(p.x);
+        let sv: Vec<f64> = match analysis {
+            Analysis::PlaneStrain | Analysis::PlaneStress => vec![s[0], s[1], s[3]],
+            Analysis::Axisymmetric => vec![s[0], s[1], s[2], s[3]],
+            Analysis::Solid => s.to_vec(),
+        };
+        b_matrix(analysis, &p, &mut b);
+        for c in 0..m {
+            fe[c] -= f * (0..ns).map(|i| b[i * m + c] * sv[i]).sum::<f64>();
+        }
+    }
+    Ok(())
+}
+
 /// Unit normal and area element of a boundary facet (a line in a plane
 /// model, a surface in a solid) at reference point `xi`; the normal is
 /// (dx/dxi rotated -90 degrees) in 2D and `a1 x a2` in 3D, to be oriented by

@@ -69,6 +69,13 @@ pub fn assemble(model: &Model, bodies: &[usize], dof_of: &[usize], n: usize) -> 
                 scatter(&dofs, &fe, &mut f[model.gravity_case]);
                 fe.iter_mut().for_each(|v| *v = 0.0);
             }
+            if let Some(init) = body.initial {
+                fe.iter_mut().for_each(|v| *v = 0.0);
+                let sigma0 = |x: [f64; 3]| init.at(x, model.analysis, body.density, model.gravity);
+                element::initial_stress_force(model.analysis, cell.kind, &xe, &sigma0, model.thickness, rule, &mut fe).map_err(inverted)?;
+                scatter(&dofs, &fe, &mut f[model.initial_case]);
+                fe.iter_mut().for_each(|v| *v = 0.0);
+            }
             // prescribed displacements: f -= K_e[:, j] u_j
             for (j, &node) in cell.nodes.iter().enumerate() {
                 for c in 0..nd {
@@ -97,10 +104,16 @@ pub fn assemble(model: &Model, bodies: &[usize], dof_of: &[usize], n: usize) -> 
         let xe = cell_coords(model, &load.cell.nodes);
         let mut fe = vec![0.0; dofs.len()];
         let kind = load.kind.clone();
+        // the level of a hydrostatic pressure is y in 2D, z in 3D
+        let vertical = if model.analysis == crate::scene::Analysis::Solid { 2 } else { 1 };
         let traction = move |_x: [f64; 3], n: [f64; 3]| -> [f64; 3] {
             match kind {
                 LoadKind::Pressure(p) => [-p * n[0], -p * n[1], -p * n[2]],
                 LoadKind::Traction(t) => t,
+                LoadKind::Hydrostatic { surface, unit_weight } => {
+                    let p = unit_weight * (surface - _x[vertical]).max(0.0);
+                    [-p * n[0], -p * n[1], -p * n[2]]
+                }
             }
         };
         element::facet_force(model.analysis, load.cell.kind, &xe, load.sign, model.thickness, &traction, &mut fe);

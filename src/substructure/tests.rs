@@ -78,15 +78,16 @@ fn two_body_model() -> Model {
         mesh_node: (0..n).collect(),
         coords,
         bodies: vec![
-            Body { name: "left".into(), e: 1000.0, nu: 0.3, density: 0.02, cells: quads(0, 2, ny, 1) },
-            Body { name: "right".into(), e: 3000.0, nu: 0.2, density: 0.01, cells: quads(first1, 1, ny, 100) },
+            Body { name: "left".into(), e: 1000.0, nu: 0.3, density: 0.02, cells: quads(0, 2, ny, 1), initial: None },
+            Body { name: "right".into(), e: 3000.0, nu: 0.2, density: 0.01, cells: quads(first1, 1, ny, 100), initial: None },
         ],
         loads,
         prescribed,
         pairs,
         interfaces: vec![Interface { name: "cut".into(), body_i: 0, body_ii: 1, facets: Vec::new() }],
-        cases: vec![vec![1.0]],
+        cases: vec![vec![1.0], vec![1.0]],
         gravity_case: 0,
+        initial_case: 1,
     }
 }
 
