@@ -6,7 +6,7 @@ CARGO   ?= cargo
 BIN     := target/release/subcontact
 PYTHON  ?= python3
 
-.PHONY: all deps build cylinder test bench clean
+.PHONY: all deps build cylinder footing test bench stress clean
 
 all: build
 
@@ -28,10 +28,20 @@ build:
 cylinder: deps build
 	$(BIN) paper geo/cylinder.toml geo/cylinder_paper.toml
 
+# A stiff foundation beam on elastic ground under an eccentric column load
+# (e = B/3): the far edge lifts off; contact pressure and gaps in
+# results/footing/ (footing_contact.vtu, contact.csv, report.md).
+footing: deps build
+	$(BIN) solve geo/footing.toml
+
 # Run time against error on the cylinder, orders 1 and 2, up to ~2.6e6 DOFs:
 # results/cylinder/bench.{csv,md,svg}.
 bench: deps build
 	$(BIN) bench geo/cylinder.toml --orders 1,2 --levels 7 --start 0.4 --max-dofs 3000000
+
+# The numerical stress tests, long cases included: results/stress/stress.md.
+stress: deps
+	$(CARGO) test --release --test stress -- --ignored --nocapture
 
 test: deps
 	$(CARGO) test --release

@@ -96,8 +96,11 @@ pub struct Counters {
 /// One load step.
 pub struct StepResult {
     pub step: usize,
-    /// The ramp factor k / load_steps.
+    /// The ramp factor k / load_steps (loads without `factors`, prescribed
+    /// displacements, gravity without `gravity_factors`).
     pub load_factor: f64,
+    /// The factor of every load case at this step (`Model::cases`).
+    pub case_factors: Vec<f64>,
     pub u: Vec<f64>,
     /// Nodal stresses (empty when `[output] fields` leaves stress out, but
     /// for the last step).
@@ -282,7 +285,7 @@ pub fn run_scene(mut scene: Scene, opts: &RunOptions) -> Result<Run> {
         if opts.verbose && n_steps > 1 {
             progress(opts, &format!("load step {step}/{n_steps} done"));
         }
-        steps.push(StepResult { step, load_factor: lambda[0], u, stresses, contact: contact_step });
+        steps.push(StepResult { step, load_factor: lambda[0], case_factors: lambda.clone(), u, stresses, contact: contact_step });
         if stop {
             break;
         }
@@ -332,6 +335,9 @@ pub fn run_scene(mut scene: Scene, opts: &RunOptions) -> Result<Run> {
     // 7. Output, all at once.
     if opts.skip_output {
         run.timings.total = t0.elapsed().as_secs_f64();
+        if let Some(c) = run.contact.as_ref().filter(|c| !c.converged) {
+            bail!("{}: {}", run.scene.path.display(), not_converged(&run, c));
+        }
         return Ok(run);
     }
     progress(opts, &format!("writing results to {}", run.out.display()));
@@ -342,19 +348,36 @@ pub fn run_scene(mut scene: Scene, opts: &RunOptions) -> Result<Run> {
     run.timings.total = t0.elapsed().as_secs_f64();
     // the summary carries the final timings
     let staged = output::restage_summary(staged, &run)?;
-    staged.commit().with_context(|| format!("writing results to {}", run.out.display()))?;
+    let written = staged.commit().with_context(|| format!("writing results to {}", run.out.display()))?;
+    // files an earlier run of this scene wrote that this one did not (more
+    // load steps, contacts, probes) would mislead: remove them
+    for old in output::stale(&run.out, &run.scene.name, &written) {
+        let _ = std::fs::remove_file(old);
+    }
     if let Some(c) = &run.contact {
         if !c.converged {
             bail!(
-                "{}: the contact iteration did not converge after {} iteration(s){}; the results in {} are those of the last iteration (summary.json contact.converged = false, report.md lists the last two state sets). Try more [solver] max_iterations or load steps",
+                "{}: {}; the results in {} are those of the last iteration (summary.json contact.converged = false, report.md lists the last two state sets). Try more [solver] max_iterations, more load steps, or the default rule = \"robust\"",
                 run.scene.path.display(),
-                c.iterations,
-                if c.cycled { " (the states cycle)" } else { "" },
+                not_converged(&run, c),
                 run.out.display()
             );
         }
     }
     Ok(run)
+}
+
+/// "the contact iteration did not converge [at load step k] after n iteration(s) [(the states cycle)]".
+fn not_converged(run: &Run, c: &ContactRun) -> String {
+    let at = match run.steps.last() {
+        Some(st) if run.scene.solver.load_steps > 1 => format!(" at load step {}", st.step),
+        _ => String::new(),
+    };
+    format!(
+        "the contact iteration did not converge{at} after {} iteration(s){}",
+        c.iterations,
+        if c.cycled { " (the states cycle)" } else { "" }
+    )
 }
 
 /// Max |sigma_n - exact normal traction| over the pairs, relative to the largest exact one.

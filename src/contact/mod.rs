@@ -11,6 +11,8 @@
 //!   settled (`slip = "frictionless"` keeps the paper's zero shear);
 //! - open pairs close again on penetration, slipping pairs stick again when
 //!   they move against their friction, cracked pairs keep f_t = 0 (law.rs);
+//!   a pair closed when the step began that opened in one iteration and
+//!   closes in a later one closes slipping if it has moved along the joint;
 //! - a state set that comes back after others (a cycle) is broken by
 //!   changing only the most violated pair from then on (`rule = "robust"`),
 //!   or reported (`rule = "paper"`, which judges every pair by eq. 15–17
@@ -40,7 +42,7 @@ pub struct PairLaw {
 #[derive(Clone, Debug)]
 pub struct History {
     pub states: Vec<ContactState>,
-    /// Pairs that have ever opened or slipped.
+    /// Pairs that opened or slipped in a converged state (crack memory).
     pub cracked: Vec<bool>,
     /// Relative displacement kept on tied axes (slip accumulated before the
     /// pair stuck again); normal entry 0.
@@ -104,6 +106,14 @@ fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
+/// Whether a pair has lost its tensile strength and cohesion: it opened or
+/// slipped in a converged state of an earlier step, or it is open or
+/// slipping now. A state only passed through during the iteration leaves
+/// no crack.
+fn cracked(h: &History, p: usize) -> bool {
+    h.cracked[p] || h.states[p] != ContactState::Stick
+}
+
 /// The friction force on body I of every slipping Coulomb pair.
 fn friction(problem: &InterfaceProblem, laws: &[PairLaw], h: &History) -> Vec<[f64; 3]> {
     (0..laws.len())
@@ -111,7 +121,7 @@ fn friction(problem: &InterfaceProblem, laws: &[PairLaw], h: &History) -> Vec<[f
             if h.states[p] != ContactState::Slip || laws[p].slip == SlipLaw::Frictionless {
                 return [0.0; 3];
             }
-            let t = laws[p].strength.shear_limit(h.sigma_n[p], h.cracked[p]) * problem.area(p);
+            let t = laws[p].strength.shear_limit(h.sigma_n[p], cracked(h, p)) * problem.area(p);
             [0.0, t * h.dir[p][1], t * h.dir[p][2]]
         })
         .collect()
@@ -128,6 +138,8 @@ pub fn iterate(
     max_iterations: usize,
 ) -> Result<Outcome, Failed> {
     let n = laws.len();
+    // the states the step starts from (those the last step converged to)
+    let start = h.states.clone();
     let mut history: Vec<Vec<ContactState>> = Vec::new();
     let mut iteration = 0;
     let mut one_at_a_time = false;
@@ -142,6 +154,11 @@ pub fn iterate(
         let scale_u = solution.rel.iter().map(|v| norm(*v)).fold(0.0, f64::max);
         let scale_s = r.iter().map(|p| p.sigma_n.abs().max(p.tau())).fold(0.0, f64::max);
         let tol_u = 1e-10 * scale_u;
+        // slip increments below round-off of the interface displacements
+        // (not of the relative ones, which vanish where everything sticks)
+        // are no slip
+        let scale_d = solution.d_c.iter().flatten().fold(0.0, |m: f64, v| m.max(v.abs()));
+        let slip_tol = 1e-9 * scale_d.max(scale_u);
 
         // 1. the next state of every pair, and how far it is from its current one
         let mut next = h.states.clone();
@@ -155,18 +172,29 @@ pub fn iterate(
                 StateRule::Robust => {
                     let k = Kinematics {
                         slip_along: dot(incr, h.dir[p]),
-                        coulomb: laws[p].slip == SlipLaw::Coulomb,
+                        // a pair with no shear strength left slips freely:
+                        // it cannot move against a friction it does not have
+                        coulomb: laws[p].slip == SlipLaw::Coulomb && s.shear_limit(r[p].sigma_n, cracked(h, p)) > 0.0,
                         gap_tol: tol_u,
-                        slip_tol: tol_u,
+                        slip_tol: slip_tol,
                     };
-                    judge(st, &r[p], s, h.cracked[p], &k)
+                    match judge(st, &r[p], s, cracked(h, p), &k) {
+                        // A pair closed when the step began that opened in an
+                        // earlier iteration and closes again has moved along
+                        // the joint since the step began: it closes slipping
+                        // (sticking where that iteration left it would freeze
+                        // a position the pair never had; the slip rule sticks
+                        // it again if it then moves against its friction).
+                        ContactState::Stick if st == ContactState::Open && start[p] != ContactState::Open && norm(incr) > tol_u => ContactState::Slip,
+                        next => next,
+                    }
                 }
             };
             if next[p] != st {
-                let (ft, _) = if h.cracked[p] { (0.0, 0.0) } else { (s.tensile_strength, 0.0) };
+                let (ft, _) = if cracked(h, p) { (0.0, 0.0) } else { (s.tensile_strength, 0.0) };
                 violation[p] = match (st, next[p]) {
                     (_, ContactState::Open) => (r[p].sigma_n - ft) / scale_s.max(f64::MIN_POSITIVE),
-                    (ContactState::Stick, ContactState::Slip) => (r[p].tau() - s.shear_limit(r[p].sigma_n, h.cracked[p])) / scale_s.max(f64::MIN_POSITIVE),
+                    (ContactState::Stick, ContactState::Slip) => (r[p].tau() - s.shear_limit(r[p].sigma_n, cracked(h, p))) / scale_s.max(f64::MIN_POSITIVE),
                     (ContactState::Open, _) => -r[p].gap / scale_u.max(f64::MIN_POSITIVE),
                     _ => -dot(incr, h.dir[p]) / scale_u.max(f64::MIN_POSITIVE),
                 };
@@ -212,7 +240,7 @@ pub fn iterate(
                     let new = [0.0, d[1] / l, d[2] / l];
                     if st == ContactState::Slip && laws[p].slip == SlipLaw::Coulomb {
                         let turn = norm(sub(new, h.dir[p]));
-                        shear_moved = shear_moved.max(turn * laws[p].strength.shear_limit(r[p].sigma_n, h.cracked[p]));
+                        shear_moved = shear_moved.max(turn * laws[p].strength.shear_limit(r[p].sigma_n, cracked(h, p)));
                     }
                     h.dir[p] = new;
                 }
@@ -222,12 +250,9 @@ pub fn iterate(
                 // pair touches where it is
                 h.offset[p] = if st == ContactState::Open { tangential(solution.rel[p]) } else { tangential(h.rel_start[p]) };
             }
-            if nx != ContactState::Stick && rule == StateRule::Robust {
-                h.cracked[p] = true;
-            }
             if nx == ContactState::Slip && st == ContactState::Slip && laws[p].slip == SlipLaw::Coulomb {
-                let old = laws[p].strength.shear_limit(h.sigma_n[p], h.cracked[p]);
-                let new = laws[p].strength.shear_limit(r[p].sigma_n, h.cracked[p]);
+                let old = laws[p].strength.shear_limit(h.sigma_n[p], cracked(h, p));
+                let new = laws[p].strength.shear_limit(r[p].sigma_n, cracked(h, p));
                 shear_moved = shear_moved.max((new - old).abs());
             }
             h.sigma_n[p] = r[p].sigma_n;
@@ -237,6 +262,11 @@ pub fn iterate(
         if converged || cycled || iteration >= max_iterations {
             if converged {
                 h.rel_start = solution.rel.clone();
+                if rule == StateRule::Robust {
+                    for p in 0..n {
+                        h.cracked[p] |= h.states[p] != ContactState::Stick;
+                    }
+                }
             }
             let states = h.states.clone();
             h.states = next;

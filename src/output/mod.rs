@@ -51,6 +51,22 @@ pub fn stage(run: &Run) -> Result<Staged> {
     Ok(staged)
 }
 
+/// Result files of scene `name` in `dir` that are not among `written`: VTU
+/// and PVD files named after the scene, the CSV tables and pictures.
+pub fn stale(dir: &std::path::Path, name: &str, written: &[std::path::PathBuf]) -> Vec<std::path::PathBuf> {
+    let Ok(entries) = std::fs::read_dir(dir) else { return Vec::new() };
+    entries
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.is_file() && !written.contains(p))
+        .filter(|p| {
+            let f = p.file_name().and_then(|f| f.to_str()).unwrap_or("");
+            let ours = f.starts_with(name) && [".vtu", ".pvd", ".png", ".svg"].iter().any(|x| f.ends_with(x));
+            ours || f == "contact.csv" || f == "probes.csv"
+        })
+        .collect()
+}
+
 /// Adds `summary.json`, with the run's final timings.
 pub fn restage_summary(mut staged: Staged, run: &Run) -> Result<Staged> {
     staged.add("summary.json", serde_json::to_vec_pretty(&summary(run))?);
@@ -220,7 +236,7 @@ fn summary(run: &Run) -> serde_json::Value {
         .steps
         .iter()
         .map(|st| {
-            let mut j = json!({ "step": st.step, "load_factor": st.load_factor });
+            let mut j = json!({ "step": st.step, "ramp": st.load_factor, "case_factors": st.case_factors });
             if let Some(c) = &st.contact {
                 let k = state_counts(&c.states);
                 j["contact"] = json!({ "iterations": c.iterations, "converged": c.converged, "cycled": c.cycled,
