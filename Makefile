@@ -6,7 +6,7 @@ CARGO   ?= cargo
 BIN     := target/release/subcontact
 PYTHON  ?= python3
 
-.PHONY: all deps build cylinder footing test bench stress clean
+.PHONY: all deps build cylinder tunnel footing test bench stress clean
 
 all: build
 
@@ -33,6 +33,14 @@ cylinder: deps build
 # results/footing/ (footing_contact.vtu, contact.csv, report.md).
 footing: deps build
 	$(BIN) solve geo/footing.toml
+
+# A tunnel lining in rock against Einstein & Schwartz (1979): no slip and
+# full slip; thrust and moment tables in results/tunnel{,_slip}/report.md.
+tunnel: deps build
+	$(BIN) solve geo/tunnel.toml --quiet
+	$(BIN) solve geo/tunnel_slip.toml --quiet
+	@for r in tunnel tunnel_slip; do echo; echo "results/$$r/report.md:"; \
+	  awk '/^## Lining/{p=1} p{print} p&&/^Largest error/{exit}' results/$$r/report.md; done
 
 # Run time against error on the cylinder, orders 1 and 2, up to ~2.6e6 DOFs:
 # results/cylinder/bench.{csv,md,svg}.

@@ -3,6 +3,7 @@
 //! `probes.csv`, `summary.json`, `report.md`.
 
 pub mod files;
+pub mod picture;
 pub mod plot;
 pub mod report;
 pub mod vtu;
@@ -47,6 +48,10 @@ pub fn stage(run: &Run) -> Result<Staged> {
     if !run.probes.is_empty() {
         staged.add("probes.csv", probes_csv(run).into_bytes());
     }
+    // pictures a person would rather look at than read (embedded in report.md)
+    for (file, bytes) in picture::pictures(run).map_err(|e| anyhow::anyhow!("drawing the pictures: {e}"))? {
+        staged.add(&file, bytes);
+    }
     staged.add("report.md", report::report(run).into_bytes());
     Ok(staged)
 }
@@ -62,7 +67,7 @@ pub fn stale(dir: &std::path::Path, name: &str, written: &[std::path::PathBuf]) 
         .filter(|p| {
             let f = p.file_name().and_then(|f| f.to_str()).unwrap_or("");
             let ours = f.starts_with(name) && [".vtu", ".pvd", ".png", ".svg"].iter().any(|x| f.ends_with(x));
-            ours || f == "contact.csv" || f == "probes.csv"
+            ours || f == "contact.csv" || f == "probes.csv" || f == "interfaces.svg"
         })
         .collect()
 }
@@ -247,6 +252,15 @@ fn summary(run: &Run) -> serde_json::Value {
         .collect::<Vec<_>>());
     if let Some(e) = &run.errors {
         v["errors"] = json!({ "displacement_l2": e.displacement_l2, "stress_l2": e.stress_l2, "contact_max": run.contact_error_max });
+    }
+    if let Some(c) = crate::lining::compare(run) {
+        v["lining"] = json!({
+            "thrust_error": c.thrust_error, "moment_error": c.moment_error,
+            "published_moment_error": c.published_moment_error, "displacement_error": c.displacement_error,
+            "thrust_scale": c.thrust_scale, "moment_scale": c.moment_scale,
+            "rows": c.rows.iter().map(|r| json!({ "theta_deg": r.theta_deg, "thrust": r.thrust, "thrust_theory": r.thrust_theory,
+                "moment": r.moment, "moment_theory": r.moment_theory })).collect::<Vec<_>>(),
+        });
     }
     let probes: serde_json::Map<String, serde_json::Value> =
         run.probes.iter().map(|(name, s)| (name.clone(), serde_json::to_value(s).unwrap_or_default())).collect();

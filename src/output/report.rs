@@ -84,6 +84,7 @@ fn lame(run: &Run) -> Option<crate::analytic::Lame> {
             let b0 = &run.model.bodies[0];
             Some(crate::analytic::Lame { a: *a, b: *b, p: *p, e: b0.e, nu: b0.nu, analysis: run.model.analysis })
         }
+        Analytic::LinedTunnel(_) => None,
     }
 }
 
@@ -125,7 +126,7 @@ pub fn report(run: &Run) -> String {
         }
     }
     if run.steps.len() > 1 {
-        let _ = writeln!(s, "\n## Load steps\n\n| step | load factor | iterations | stick / slip / open | converged |\n|---|---|---|---|---|");
+        let _ = writeln!(s, "\n## Load steps\n\n| step | ramp k/N | iterations | stick / slip / open | converged |\n|---|---|---|---|---|");
         for st in &run.steps {
             match &st.contact {
                 Some(c) => {
@@ -152,9 +153,14 @@ pub fn report(run: &Run) -> String {
             }
         }
     }
+    let _ = writeln!(s, "\n![the deformed shape, contact pairs coloured by state]({})", super::picture::deformed_file(run));
+    if run.contact.is_some() {
+        let _ = writeln!(s, "\n![contact normal and shear stress along each interface](interfaces.svg)");
+    }
     if lame(run).is_some() {
         s += &lame_tables(&[("this run", run)], is_paper_cylinder(run));
     }
+    s += &crate::lining::report_section(run);
     for (name, samples) in &run.probes {
         let _ = writeln!(s, "\n## Probe `{name}`\n");
         let _ = writeln!(s, "| x | y | z | ux | uy | uz | sxx | syy | szz | sxy | von Mises |\n|---|---|---|---|---|---|---|---|---|---|---|");
