@@ -6,7 +6,7 @@ CARGO   ?= cargo
 BIN     := target/release/subcontact
 PYTHON  ?= python3
 
-.PHONY: all deps build cylinder tunnel footing test bench stress clean
+.PHONY: all deps build cylinder tunnel footing dam test bench stress clean
 
 all: build
 
@@ -41,6 +41,11 @@ tunnel: deps build
 	$(BIN) solve geo/tunnel_slip.toml --quiet
 	@for r in tunnel tunnel_slip; do echo; echo "results/$$r/report.md:"; \
 	  awk '/^## Lining/{p=1} p{print} p&&/^Largest error/{exit}' results/$$r/report.md; done
+
+# A gravity dam of three blocks on rock: self-weight, then the reservoir in
+# two steps; the heel opens (results/dam/, dam.pvd for the steps).
+dam: deps build
+	$(BIN) solve geo/dam.toml
 
 # Run time against error on the cylinder, orders 1 and 2, up to ~2.6e6 DOFs:
 # results/cylinder/bench.{csv,md,svg}.

@@ -59,8 +59,11 @@ pub struct Pair {
 #[derive(Clone, Debug)]
 pub struct Interface {
     pub name: String,
+    /// A body of each side (the first listed).
     pub body_i: usize,
     pub body_ii: usize,
+    /// Every body on side I (a shared group may join several bodies to one).
+    pub side_i: Vec<usize>,
     pub facets: Vec<Cell>,
 }
 
@@ -320,25 +323,60 @@ impl Model {
         let mut copy: HashMap<(usize, usize), usize> = HashMap::new();
         let mut raw_pairs: Vec<(usize, usize, usize)> = Vec::new(); // (k, l, contact)
         let mut interfaces = Vec::new();
+        // Junctions: a node where contacts meet is paired only by the
+        // contact it lies inside, not by those that end there (a vertical
+        // joint ending on a dam's base: the two blocks stay joined at that
+        // one node, which pairs with the rock).
+        let mut ceded: std::collections::HashSet<(usize, usize)> = std::collections::HashSet::new();
+        {
+            let shared: Vec<(usize, &crate::mesh::Group)> = scene
+                .contacts
+                .iter()
+                .enumerate()
+                .filter_map(|(ci, c)| match &c.groups {
+                    ContactGroups::Shared(name) => mesh.group(name).map(|g| (ci, g)),
+                    ContactGroups::Pair(..) => None,
+                })
+                .collect();
+            let ends: Vec<Vec<usize>> = shared.iter().map(|(_, g)| curve_ends(&g.cells)).collect();
+            let nodes: Vec<Vec<usize>> = shared.iter().map(|(_, g)| g.nodes()).collect();
+            for (a, (ca, _)) in shared.iter().enumerate() {
+                for &n in &ends[a] {
+                    let inside_other = (0..shared.len()).any(|o| o != a && nodes[o].binary_search(&n).is_ok() && ends[o].binary_search(&n).is_err());
+                    if inside_other {
+                        ceded.insert((*ca, n));
+                    }
+                }
+            }
+        }
         for (ci, contact) in scene.contacts.iter().enumerate() {
             match &contact.groups {
                 ContactGroups::Shared(name) => {
                     let key = format!("contacts[{ci}].group");
                     let g = b.group(&key, name, &[sd - 1])?;
-                    let (bi, bii) = contact_bodies(&b, &key, name, &nb, &bodies, &g.cells, None)?;
+                    let [side_i, side_ii] = contact_sides(&b, &key, name, &nb, &bodies, &g.cells)?;
                     for n in g.nodes() {
+                        if ceded.contains(&(ci, n)) {
+                            continue;
+                        }
                         let l = coords.len();
                         coords.push(mesh.coords[n]);
                         mesh_node.push(n);
-                        if copy.insert((bii, n), l).is_some() {
-                            return Err(b.invalid(
-                                key.clone(),
-                                format!("node at {:?} lies on two contacts of body \"{}\": junctions of contact surfaces are not supported yet", mesh.coords[n], bodies[bii].name),
-                            ));
+                        // side II's bodies at this node share one copy
+                        for &bii in side_ii.iter().filter(|&&x| nb[n].contains(&x)) {
+                            if copy.insert((bii, n), l).is_some() {
+                                return Err(b.invalid(
+                                    key.clone(),
+                                    format!(
+                                        "node at {:?} of body \"{}\" lies inside two contacts: contacts may meet only where one of them ends (a joint ending on a base); crossing contacts are not supported",
+                                        mesh.coords[n], bodies[bii].name
+                                    ),
+                                ));
+                            }
                         }
                         raw_pairs.push((n, l, ci));
                     }
-                    interfaces.push(Interface { name: name.clone(), body_i: bi, body_ii: bii, facets: g.cells.clone() });
+                    interfaces.push(Interface { name: name.clone(), body_i: side_i[0], body_ii: side_ii[0], side_i, facets: g.cells.clone() });
                 }
                 ContactGroups::Pair(na, nb_name) => {
                     let ka = format!("contacts[{ci}].groups[0]");
@@ -361,7 +399,7 @@ impl Model {
                         .map_err(|msg| b.invalid(format!("contacts[{ci}].groups"), format!("pairing the nodes of \"{}\" with those of \"{}\": {msg}", gi.name, gii.name)))?;
                     raw_pairs.extend(pairs.into_iter().map(|(k, l)| (k, l, ci)));
                     let name = format!("{}|{}", gi.name, gii.name);
-                    interfaces.push(Interface { name, body_i: bi, body_ii: bii, facets: gi.cells.clone() });
+                    interfaces.push(Interface { name, body_i: bi, body_ii: bii, side_i: vec![bi], facets: gi.cells.clone() });
                 }
             }
         }
@@ -373,6 +411,23 @@ impl Model {
                     }
                 }
             }
+        }
+        // Side I keeps the mesh node unless another contact copied it for
+        // that body (a base on the far side of a joint's end): facets and
+        // pairs use side I's own node.
+        let side_i_node = |side: &[usize], n: usize| side.iter().filter(|&&bd| nb[n].contains(&bd)).find_map(|&bd| copy.get(&(bd, n)).copied()).unwrap_or(n);
+        for iface in &mut interfaces {
+            for f in &mut iface.facets {
+                let owner = facet_bodies(&nb, f).into_iter().find(|o| iface.side_i.contains(o));
+                for n in &mut f.nodes {
+                    if let Some(o) = owner {
+                        *n = copy.get(&(o, *n)).copied().unwrap_or(*n);
+                    }
+                }
+            }
+        }
+        for (k, _, ci) in &mut raw_pairs {
+            *k = side_i_node(&interfaces[*ci].side_i, *k);
         }
         let n_model = coords.len();
         // every model node of each mesh node
@@ -499,19 +554,41 @@ impl Model {
         };
         let mut normal = vec![[0.0; 3]; n_model];
         let mut area = vec![0.0; n_model];
+        // per contact: a node where contacts meet gets the normal and area
+        // of each contact's own facets
+        let mut normals: Vec<HashMap<usize, ([f64; 3], f64)>> = Vec::with_capacity(model.interfaces.len());
         for iface in &model.interfaces {
-            let body = iface.body_i;
+            let mut acc: HashMap<usize, ([f64; 3], f64)> = HashMap::new();
             for f in &iface.facets {
+                let corners = &f.nodes[..f.kind.n_corners()];
+                let body = iface
+                    .side_i
+                    .iter()
+                    .copied()
+                    .find(|&bd| incidences[bd].containing(&model.bodies[bd].cells, corners).is_some())
+                    .unwrap_or(iface.body_i);
                 let sign = facet_sign(&model.coords, f, &model.bodies[body].cells, &incidences[body]).ok_or_else(|| {
                     b.invalid("contacts".into(), format!("element {} of contact \"{}\" is not a face of body \"{}\"", f.tag, iface.name, model.bodies[body].name))
                 })?;
                 accumulate_facet(&model, f, sign, &mut normal, &mut area);
+                for &n in &f.nodes {
+                    let e = acc.entry(n).or_insert(([0.0; 3], 0.0));
+                    for i in 0..3 {
+                        e.0[i] += normal[n][i];
+                    }
+                    e.1 += area[n];
+                    normal[n] = [0.0; 3];
+                    area[n] = 0.0;
+                }
             }
+            normals.push(acc);
         }
         for (k, l, contact) in raw_pairs {
-            let nrm = element::norm(normal[k]);
-            let n = if nrm > 0.0 { [normal[k][0] / nrm, normal[k][1] / nrm, normal[k][2] / nrm] } else { [0.0; 3] };
-            model.pairs.push(Pair { k, l, contact, normal: n, area: area[k] });
+            let (nk, ak) = normals[contact].get(&k).copied().unwrap_or(([0.0; 3], 0.0));
+            let nrm = element::norm(nk);
+            let n = if nrm > 0.0 { [nk[0] / nrm, nk[1] / nrm, nk[2] / nrm] } else { [0.0; 3] };
+            let area = ak;
+            model.pairs.push(Pair { k, l, contact, normal: n, area });
         }
         Ok(model)
     }
@@ -665,21 +742,16 @@ fn accumulate_facet(model: &Model, f: &Cell, sign: f64, normal: &mut [[f64; 3]],
     }
 }
 
-/// The two bodies on either side of a shared contact group.
-fn contact_bodies(
-    b: &Builder,
-    key: &str,
-    name: &str,
-    nb: &[Vec<usize>],
-    bodies: &[Body],
-    facets: &[Cell],
-    _: Option<()>,
-) -> Result<(usize, usize), ModelError> {
-    let mut found: Option<(usize, usize)> = None;
+/// The bodies on either side of a shared contact group: every facet lies
+/// between two bodies, and the bodies split into two sides (a dam's base
+/// group has the rock on one side and every block on the other). Side I is
+/// the side of the body listed first in `[[bodies]]`.
+fn contact_sides(b: &Builder, key: &str, name: &str, nb: &[Vec<usize>], bodies: &[Body], facets: &[Cell]) -> Result<[Vec<usize>; 2], ModelError> {
+    let mut edges: Vec<(usize, usize)> = Vec::new();
     for f in facets {
         let owners = facet_bodies(nb, f);
-        let pair = match owners.as_slice() {
-            [x, y] => (*x.min(y), *x.max(y)),
+        match owners.as_slice() {
+            [x, y] => edges.push((*x.min(y), *x.max(y))),
             [one] => {
                 return Err(b.invalid(
                     key.to_string(),
@@ -698,22 +770,68 @@ fn contact_bodies(
                     format!("element {} of group \"{name}\" is shared by more than two bodies ({})", f.tag, many.len()),
                 ))
             }
-        };
-        match found {
-            None => found = Some(pair),
-            Some(p) if p != pair => {
-                return Err(b.invalid(
-                    key.to_string(),
-                    format!(
-                        "group \"{name}\" lies between several pairs of bodies (\"{}\"|\"{}\" and \"{}\"|\"{}\"): give each pair of bodies its own contact group",
-                        bodies[p.0].name, bodies[p.1].name, bodies[pair.0].name, bodies[pair.1].name
-                    ),
-                ))
-            }
-            _ => {}
         }
     }
-    found.ok_or_else(|| b.invalid(key.to_string(), format!("group \"{name}\" has no elements")))
+    edges.sort_unstable();
+    edges.dedup();
+    let Some(first) = edges.iter().map(|e| e.0).min() else {
+        return Err(b.invalid(key.to_string(), format!("group \"{name}\" has no elements")));
+    };
+    // two-colour the bodies the group joins, starting from the first one
+    let mut side: HashMap<usize, usize> = HashMap::from([(first, 0)]);
+    loop {
+        let mut changed = false;
+        for &(x, y) in &edges {
+            match (side.get(&x).copied(), side.get(&y).copied()) {
+                (Some(a), None) => {
+                    side.insert(y, 1 - a);
+                    changed = true;
+                }
+                (None, Some(a)) => {
+                    side.insert(x, 1 - a);
+                    changed = true;
+                }
+                (Some(a), Some(c)) if a == c => {
+                    return Err(b.invalid(
+                        key.to_string(),
+                        format!(
+                            "group \"{name}\" joins bodies that cannot be put on two sides of one interface (\"{}\" and \"{}\" are on the same side): give the contacts their own groups",
+                            bodies[x].name, bodies[y].name
+                        ),
+                    ))
+                }
+                _ => {}
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    if edges.iter().any(|(x, _)| !side.contains_key(x)) {
+        return Err(b.invalid(key.to_string(), format!("group \"{name}\" is made of pieces between unrelated bodies: give each piece its own contact group")));
+    }
+    let mut sides = [Vec::new(), Vec::new()];
+    for (&body, &sd) in &side {
+        sides[sd].push(body);
+    }
+    sides[0].sort_unstable();
+    sides[1].sort_unstable();
+    Ok(sides)
+}
+
+/// The end nodes of a group of line facets: corner nodes of one facet only.
+/// (Surfaces have no ends in this sense: junctions of contact surfaces in 3D
+/// are not supported.)
+fn curve_ends(facets: &[Cell]) -> Vec<usize> {
+    let mut count: HashMap<usize, usize> = HashMap::new();
+    for f in facets.iter().filter(|f| f.kind.dim() == 1) {
+        for &n in &f.nodes[..2] {
+            *count.entry(n).or_default() += 1;
+        }
+    }
+    let mut ends: Vec<usize> = count.into_iter().filter(|&(_, c)| c == 1).map(|(n, _)| n).collect();
+    ends.sort_unstable();
+    ends
 }
 
 /// The one body a group (one side of a `groups = [..]` contact) bounds.

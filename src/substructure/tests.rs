@@ -84,7 +84,7 @@ fn two_body_model() -> Model {
         loads,
         prescribed,
         pairs,
-        interfaces: vec![Interface { name: "cut".into(), body_i: 0, body_ii: 1, facets: Vec::new() }],
+        interfaces: vec![Interface { name: "cut".into(), body_i: 0, body_ii: 1, side_i: vec![0], facets: Vec::new() }],
         cases: vec![vec![1.0], vec![1.0]],
         gravity_case: 0,
         initial_case: 1,
