@@ -54,12 +54,12 @@ pub struct Row {
     pub time_recover_s: f64,
 }
 
-pub const CSV_HEADER: &str = "order,level,h,dofs,interface_dofs,iterations,time_s,time_mesh_s,time_solve_s,time_monolithic_s,error_displacement_l2,error_stress_l2,error_contact_max,time_assemble_s,time_condense_s,time_interface_s,time_recover_s";
+pub const CSV_HEADER: &str = "order,level,h,dofs,interface_dofs,iterations,time_s,time_mesh_s,time_solve_s,error_displacement_l2,error_stress_l2,error_contact_max,time_monolithic_s,time_assemble_s,time_condense_s,time_interface_s,time_recover_s";
 
 impl Row {
     pub fn csv(&self) -> String {
         format!(
-            "{},{},{:.6e},{},{},{},{:.4},{:.4},{:.4},{:.4},{:.6e},{:.6e},{:.6e},{:.4},{:.4},{:.4},{:.4}",
+            "{},{},{:.6e},{},{},{},{:.4},{:.4},{:.4},{:.6e},{:.6e},{:.6e},{:.4},{:.4},{:.4},{:.4},{:.4}",
             self.order,
             self.level,
             self.h,
@@ -69,10 +69,10 @@ impl Row {
             self.time_s,
             self.time_mesh_s,
             self.time_solve_s,
-            self.time_monolithic_s,
             self.error_displacement_l2,
             self.error_stress_l2,
             self.error_contact_max,
+            self.time_monolithic_s,
             self.time_assemble_s,
             self.time_condense_s,
             self.time_interface_s,
