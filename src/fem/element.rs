@@ -151,6 +151,19 @@ fn b_matrix(analysis: Analysis, p: &Point, b: &mut [f64]) {
     }
 }
 
+/// The quadrature rule for an element's stiffness in an analysis: the kind's
+/// own stiffness rule, except for triangles in axisymmetry, where the hoop
+/// strain N/r makes the one-point (tri3) and three-point (tri6) rules leave
+/// a spurious zero-energy mode (and integrate curved cells poorly): there a
+/// rule of degree 2 (tri3) or 4 (tri6).
+pub fn stiffness_rule(analysis: Analysis, kind: CellKind) -> Vec<QuadPoint> {
+    match (analysis, kind) {
+        (Analysis::Axisymmetric, CellKind::Tri3) => quadrature::rule(kind, 2),
+        (Analysis::Axisymmetric, CellKind::Tri6) => quadrature::rule(kind, 4),
+        _ => quadrature::stiffness_rule(kind),
+    }
+}
+
 /// Element stiffness, row-major `(nn nd) x (nn nd)`, written into `ke`.
 pub fn stiffness(
     analysis: Analysis,
@@ -344,4 +357,76 @@ pub fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 }
 pub fn norm(a: [f64; 3]) -> f64 {
     dot(a, a).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fem::material::d_matrix;
+    use nalgebra::DMatrix;
+
+    /// A distorted copy of the reference cell: a non-affine map, shifted
+    /// away from the axis (for axisymmetry).
+    fn distorted(kind: CellKind) -> Vec<[f64; 3]> {
+        shape::reference_nodes(kind)
+            .iter()
+            .map(|p| {
+                let [x, y, z] = *p;
+                [2.0 + x + 0.15 * x * y + 0.1 * y, 1.0 + 0.9 * y - 0.1 * x * x + 0.05 * z, z + 0.1 * x * y]
+            })
+            .collect()
+    }
+
+    /// Rigid motions of a node set: translations and rotations.
+    fn rigid_modes(analysis: Analysis, xs: &[[f64; 3]]) -> Vec<Vec<f64>> {
+        let nd = dofs_per_node(analysis);
+        let mode = |f: &dyn Fn([f64; 3]) -> [f64; 3]| xs.iter().flat_map(|&x| f(x)[..nd].to_vec()).collect::<Vec<f64>>();
+        match analysis {
+            Analysis::Axisymmetric => vec![mode(&|_| [0.0, 1.0, 0.0])],
+            Analysis::Solid => vec![
+                mode(&|_| [1.0, 0.0, 0.0]),
+                mode(&|_| [0.0, 1.0, 0.0]),
+                mode(&|_| [0.0, 0.0, 1.0]),
+                mode(&|x| [-x[1], x[0], 0.0]),
+                mode(&|x| [0.0, -x[2], x[1]]),
+                mode(&|x| [x[2], 0.0, -x[0]]),
+            ],
+            _ => vec![mode(&|_| [1.0, 0.0, 0.0]), mode(&|_| [0.0, 1.0, 0.0]), mode(&|x| [-x[1], x[0], 0.0])],
+        }
+    }
+
+    #[test]
+    fn element_stiffness_is_symmetric_with_exactly_the_rigid_modes_in_its_kernel() {
+        use CellKind::*;
+        let cases = [
+            (Analysis::PlaneStrain, vec![Tri3, Tri6, Quad4, Quad8, Quad9]),
+            (Analysis::PlaneStress, vec![Tri3, Tri6, Quad4, Quad8, Quad9]),
+            (Analysis::Axisymmetric, vec![Tri3, Tri6, Quad4, Quad8, Quad9]),
+            (Analysis::Solid, vec![Tet4, Tet10, Hex8, Hex20, Hex27]),
+        ];
+        for (analysis, kinds) in cases {
+            let d = d_matrix(analysis, 1000.0, 0.3);
+            for kind in kinds {
+                let xs = distorted(kind);
+                let mut ke = Vec::new();
+                // the rule assembly uses: no spurious zero-energy modes
+                let rule = stiffness_rule(analysis, kind);
+                stiffness(analysis, kind, &xs, &d, 1.0, &rule, &mut ke).expect("not inverted");
+                let m = (ke.len() as f64).sqrt() as usize;
+                let k = DMatrix::from_row_slice(m, m, &ke);
+                let scale = k.amax();
+                assert!((&k - k.transpose()).amax() < 1e-12 * scale, "{analysis:?} {kind:?} symmetric");
+                for r in rigid_modes(analysis, &xs) {
+                    let kr = &k * nalgebra::DVector::from_vec(r.clone());
+                    let rn = r.iter().map(|v| v * v).sum::<f64>().sqrt();
+                    assert!(kr.amax() < 1e-10 * scale * rn, "{analysis:?} {kind:?}: a rigid motion is in the kernel");
+                }
+                let eig = k.symmetric_eigen().eigenvalues;
+                let zeros = eig.iter().filter(|&&l| l.abs() < 1e-9 * scale).count();
+                let want = rigid_modes(analysis, &xs).len();
+                assert_eq!(zeros, want, "{analysis:?} {kind:?}: {zeros} zero eigenvalues, {want} rigid modes");
+                assert!(eig.iter().all(|&l| l > -1e-9 * scale), "{analysis:?} {kind:?} positive semi-definite");
+            }
+        }
+    }
 }

@@ -53,7 +53,7 @@ pub fn assemble(model: &Model, bodies: &[usize], dof_of: &[usize], n: usize) -> 
             let rule = match rules.iter().find(|(kind, _)| *kind == cell.kind) {
                 Some((_, r)) => r,
                 None => {
-                    rules.push((cell.kind, quadrature::stiffness_rule(cell.kind)));
+                    rules.push((cell.kind, element::stiffness_rule(model.analysis, cell.kind)));
                     &rules.last().expect("just pushed").1
                 }
             };
