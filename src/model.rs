@@ -552,8 +552,6 @@ impl Model {
             },
             cases,
         };
-        let mut normal = vec![[0.0; 3]; n_model];
-        let mut area = vec![0.0; n_model];
         // per contact: a node where contacts meet gets the normal and area
         // of each contact's own facets
         let mut normals: Vec<HashMap<usize, ([f64; 3], f64)>> = Vec::with_capacity(model.interfaces.len());
@@ -570,16 +568,7 @@ impl Model {
                 let sign = facet_sign(&model.coords, f, &model.bodies[body].cells, &incidences[body]).ok_or_else(|| {
                     b.invalid("contacts".into(), format!("element {} of contact \"{}\" is not a face of body \"{}\"", f.tag, iface.name, model.bodies[body].name))
                 })?;
-                accumulate_facet(&model, f, sign, &mut normal, &mut area);
-                for &n in &f.nodes {
-                    let e = acc.entry(n).or_insert(([0.0; 3], 0.0));
-                    for i in 0..3 {
-                        e.0[i] += normal[n][i];
-                    }
-                    e.1 += area[n];
-                    normal[n] = [0.0; 3];
-                    area[n] = 0.0;
-                }
+                accumulate_facet(&model, f, sign, &mut acc);
             }
             normals.push(acc);
         }
@@ -720,23 +709,19 @@ fn facet_sign(coords: &[[f64; 3]], facet: &Cell, cells: &[Cell], inc: &Incidence
 }
 
 /// Adds a facet's area-weighted outward normal and `∫ N_a dA` to its nodes.
-fn accumulate_facet(model: &Model, f: &Cell, sign: f64, normal: &mut [[f64; 3]], area: &mut [f64]) {
+fn accumulate_facet(model: &Model, f: &Cell, sign: f64, acc: &mut HashMap<usize, ([f64; 3], f64)>) {
     let fc: Vec<[f64; 3]> = f.nodes.iter().map(|&n| model.coords[n]).collect();
     let rule = crate::fem::quadrature::rule(f.kind, 2 * f.kind.order() + 2);
     for q in &rule {
         let (n, unit, da, x) = element::facet_point(f.kind, &fc, q.xi);
-        let measure = match model.analysis {
-            Analysis::PlaneStrain | Analysis::PlaneStress => model.thickness,
-            Analysis::Axisymmetric => 2.0 * std::f64::consts::PI * x[0],
-            Analysis::Solid => 1.0,
-        };
+        let measure = element::measure(model.analysis, model.thickness, &x);
         for (a, &node) in f.nodes.iter().enumerate() {
-            let w = q.w * da * measure * n[a];
-            area[node] += w;
+            let e = acc.entry(node).or_insert(([0.0; 3], 0.0));
+            e.1 += q.w * da * measure * n[a];
             // normals weighted by geometry only (N_a >= 0 weights avoid
             // cancelling on serendipity faces)
             for i in 0..3 {
-                normal[node][i] += sign * unit[i] * q.w * da * n[a].abs();
+                e.0[i] += sign * unit[i] * q.w * da * n[a].abs();
             }
         }
     }

@@ -52,14 +52,9 @@ pub fn nodal_stresses(model: &Model, u: &[f64]) -> Vec<BodyStress> {
         .iter()
         .map(|body| {
             let d = d_matrix(model.analysis, body.e, body.nu);
-            let mut nodes = Vec::new();
-            for c in &body.cells {
-                for &n in &c.nodes {
-                    if local[n] == usize::MAX {
-                        local[n] = nodes.len();
-                        nodes.push(n);
-                    }
-                }
+            let nodes = body_nodes(body);
+            for (i, &n) in nodes.iter().enumerate() {
+                local[n] = i;
             }
             let mut sum = vec![[0.0; 6]; nodes.len()];
             let mut count = vec![0u32; nodes.len()];

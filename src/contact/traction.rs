@@ -8,11 +8,10 @@
 //! traction the facets' shape functions contain (e.g. linear along linear
 //! elements).
 
-use crate::fem::element::facet_point;
+use crate::fem::element::{facet_point, measure};
 use crate::fem::quadrature;
 use crate::fem::sparse::{Cholesky, FactorError, SymMatrix, NONE};
 use crate::model::Model;
-use crate::scene::Analysis;
 
 /// The factorised interface mass matrix of all pairs.
 pub struct ConsistentTraction {
@@ -38,13 +37,7 @@ impl ConsistentTraction {
             me.resize(nn * nn, 0.0);
             for q in quadrature::rule(f.kind, 2 * f.kind.order() + 2) {
                 let (nf, _, da, x) = facet_point(f.kind, &xe, q.xi);
-                let w = q.w
-                    * da
-                    * match model.analysis {
-                        Analysis::PlaneStrain | Analysis::PlaneStress => model.thickness,
-                        Analysis::Axisymmetric => 2.0 * std::f64::consts::PI * x[0],
-                        Analysis::Solid => 1.0,
-                    };
+                let w = q.w * da * measure(model.analysis, model.thickness, &x);
                 for a in 0..nn {
                     for b in 0..nn {
                         me[a * nn + b] += w * nf[a] * nf[b];

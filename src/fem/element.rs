@@ -89,7 +89,7 @@ pub fn point(kind: CellKind, coords: &[[f64; 3]], xi: [f64; 3]) -> Result<Point,
 }
 
 /// Volume weight factor at a point: thickness, 2 pi r or 1.
-fn measure(analysis: Analysis, thickness: f64, x: &[f64; 3]) -> f64 {
+pub fn measure(analysis: Analysis, thickness: f64, x: &[f64; 3]) -> f64 {
     match analysis {
         Analysis::PlaneStrain | Analysis::PlaneStress => thickness,
         Analysis::Axisymmetric => 2.0 * std::f64::consts::PI * x[0],

@@ -150,11 +150,6 @@ impl SymMatrix {
             0.0
         }
     }
-
-    /// Largest absolute diagonal entry.
-    pub fn max_diagonal(&self) -> f64 {
-        (0..self.n).map(|c| self.get(c, c).abs()).fold(0.0, f64::max)
-    }
 }
 
 /// Why a factorisation failed.
