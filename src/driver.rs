@@ -253,7 +253,7 @@ pub fn run_scene(mut scene: Scene, opts: &RunOptions) -> Result<Run> {
             counters.interface_solves += iterations;
             let mut pairs = solution.pairs;
             if let Some(tr) = &traction {
-                let t = tr.recover(&solution.forces);
+                let t = tr.recover(&solution.forces, &problem.basis);
                 for (p, pr) in pairs.iter_mut().enumerate() {
                     if scene.contacts[model.pairs[p].contact].traction == TractionRecovery::Consistent {
                         pr.sigma_n = t[p][0];

@@ -709,7 +709,7 @@ fn consistent_recovery_is_exact_for_exact_forces_but_not_closer_on_the_paper_mes
     // why: the recovery of the exact consistent forces is close; the FE forces are not
     let exact = exact_consistent_forces(&lumped, &lame);
     let tr = ConsistentTraction::new(&lumped.model).expect("interface mass matrix");
-    let projected = tr.recover(&exact);
+    let projected = tr.recover(&exact, &subcontact::contact::basis::FaceBasis::nodal(vec![0.0; exact.len()]));
     let c = lumped.contact.as_ref().expect("contact");
     let mut worst_end: f64 = 0.0;
     let mut worst_inner: f64 = 0.0;

@@ -17,10 +17,13 @@
 //! ```
 //!
 //! A pair already open carries no stress, so its stresses cannot judge it:
-//! it stays open while its gap is not negative and closes (sticks) when the
-//! bodies would interpenetrate. A slipping pair stays slipping unless it opens.
+//! it stays open while its gap is not negative and closes when the bodies
+//! would interpenetrate. A slipping pair carries the Coulomb force along its
+//! slip and sticks again when the slip turns back against it ([`judge`]).
 //! A pair that has opened or slipped is cracked: from then on its tensile
-//! strength is zero and its cohesion the residual cohesion.
+//! strength is zero and its cohesion the residual cohesion. The tensile
+//! strength never exceeds the Coulomb apex c / f, where the shear limit
+//! runs out (Mohr–Coulomb with a tension cut-off).
 
 /// State of a contact pair; the number is the `status` code of the outputs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -69,13 +72,30 @@ impl PairResult {
 }
 
 impl Strength {
-    /// Tensile strength and cohesion in force, once cracked or not.
-    fn effective(&self, cracked: bool) -> (f64, f64) {
+    /// Tensile strength and cohesion, once cracked or not.
+    pub fn effective(&self, cracked: bool) -> (f64, f64) {
         if cracked {
             (0.0, self.residual_cohesion)
         } else {
             (self.tensile_strength, self.cohesion)
         }
+    }
+
+    /// The tensile strength the pair can reach: f_t, but no more than the
+    /// Coulomb apex c / f where the shear limit `c - f sigma_n` runs out (a
+    /// joint in tension above c / f has no shear strength left: it opens).
+    pub fn tensile_limit(&self, cracked: bool) -> f64 {
+        let (ft, c) = self.effective(cracked);
+        if self.friction > 0.0 {
+            ft.min(c / self.friction)
+        } else {
+            ft
+        }
+    }
+
+    /// Whether f_t exceeds the Coulomb apex c / f (then the apex limits it).
+    pub fn above_apex(&self) -> bool {
+        self.friction > 0.0 && self.tensile_strength > self.cohesion / self.friction
     }
 
     /// The Mohr–Coulomb shear limit `c - f sigma_n` (never negative).
@@ -98,55 +118,100 @@ pub fn judge_paper(r: &PairResult, s: &Strength) -> ContactState {
     }
 }
 
-/// What the robust rule needs besides the stresses: the slip increment of
-/// this step along the assumed friction direction, and tolerances.
-#[derive(Clone, Copy, Debug)]
-pub struct Kinematics {
-    /// `(slip increment) . (friction direction)`: negative when the pair
-    /// moves against the friction it was given (then it is stuck).
-    pub slip_along: f64,
-    /// Whether the slip law carries friction (Coulomb) or not.
-    pub coulomb: bool,
-    /// Gaps below `-gap_tol` count as closed, slips below `slip_tol` as none.
-    pub gap_tol: f64,
-    pub slip_tol: f64,
+/// The Coulomb bound of a closed pair in force: `b(p) = max(0, A c + f p)`
+/// with p = -λ_n the normal pressure force, and `db/dp` (0 where the bound
+/// is cut off at zero).
+pub fn friction_bound(s: &Strength, cracked: bool, area: f64, p: f64) -> (f64, f64) {
+    let (_, c) = s.effective(cracked);
+    let arg = area * c + s.friction * p;
+    // at arg = 0 (a pair just closing, p = 0) the bound grows with p
+    if arg >= 0.0 && (arg > 0.0 || s.friction > 0.0) {
+        (arg, s.friction)
+    } else {
+        (0.0, 0.0)
+    }
 }
 
-/// The robust rule: the next state of a pair from its current state.
+/// What the robust rule judges a pair by, in its local axes (n, t, b).
+#[derive(Clone, Copy, Debug)]
+pub struct Trial {
+    /// Contact force on body I (tension positive along n).
+    pub force: [f64; 3],
+    /// The area the pair controls (> 0).
+    pub area: f64,
+    /// Slip along the joint since the pair's stick reference (t, b).
+    pub slip: [f64; 3],
+    /// Opening of the pair.
+    pub gap: f64,
+    /// The pair's stiffness, which turns a slip into a force.
+    pub stiffness: f64,
+}
+
+impl Trial {
+    /// `ξ = λ_T + c s`: the friction force the pair would need to stop
+    /// its slip; it sticks while that stays below the Coulomb bound.
+    pub fn xi(&self) -> [f64; 3] {
+        let c = self.stiffness;
+        [0.0, self.force[1] + c * self.slip[1], self.force[2] + c * self.slip[2]]
+    }
+}
+
+/// The robust rule's next state of a pair from its current state (the
+/// active-set update of a semismooth Newton method):
 ///
-/// - stick: eq. 15–17 on its stresses;
-/// - slip: open when `sigma_n >= f_t`; stuck again when, with Coulomb
-///   friction, its slip increment runs against the friction direction;
-/// - open: stuck again when the bodies would interpenetrate (gap < 0),
-///   otherwise open whatever its (zero) stress says.
+/// - closed (stick or slip): open when `sigma_n >= f_t` (f_t capped at the
+///   Coulomb apex c / f, where the shear strength runs out);
+/// - open: closed again when the bodies would interpenetrate (gap below
+///   `-gap_tol`), otherwise open whatever its (zero) stress says; a closing
+///   pair that has moved along the joint since its stick reference closes
+///   slipping that way (it carries no force yet: |ξ| = c |s| >= b(0)),
+///   otherwise it sticks;
+/// - stick: slipping when `|λ_T| >= b(p)` (eq. 16, `tau >= c - f sigma_n`);
+/// - slip: stuck again when `|ξ| < b(p)` with `ξ = λ_T + c s`, or when its
+///   slip runs against the friction force it carried.
 ///
-/// Cracked pairs (ever opened or slipped) have `f_t = 0` and the residual cohesion.
-pub fn judge(current: ContactState, r: &PairResult, s: &Strength, cracked: bool, k: &Kinematics) -> ContactState {
-    let (ft, _) = s.effective(cracked);
+/// Cracked pairs (ever opened or slipped) have `f_t = 0` and the residual
+/// cohesion; `coulomb` is false for frictionless slip, which never sticks
+/// once slipping.
+pub fn judge(current: ContactState, t: &Trial, s: &Strength, cracked: bool, coulomb: bool, gap_tol: f64) -> ContactState {
+    let ft = s.tensile_limit(cracked);
     match current {
+        ContactState::Open if t.gap >= -gap_tol => ContactState::Open,
         ContactState::Open => {
-            if r.gap < -k.gap_tol {
-                ContactState::Stick
-            } else {
-                ContactState::Open
-            }
-        }
-        ContactState::Slip => {
-            if r.sigma_n >= ft {
-                ContactState::Open
-            } else if k.coulomb && k.slip_along < -k.slip_tol {
+            // closing: no force yet; it sticks where it is unless it has
+            // moved along the joint since its stick reference (then it
+            // closes slipping that way, with the friction its pressure brings)
+            let (b, _) = friction_bound(s, cracked, t.area, 0.0);
+            let xi = t.xi();
+            let moved = xi[1].hypot(xi[2]);
+            if moved == 0.0 || moved < b {
                 ContactState::Stick
             } else {
                 ContactState::Slip
             }
         }
+        _ if t.force[0] >= ft * t.area => ContactState::Open,
         ContactState::Stick => {
-            if r.sigma_n >= ft {
-                ContactState::Open
-            } else if r.tau() >= s.shear_limit(r.sigma_n, cracked) {
+            let (b, _) = friction_bound(s, cracked, t.area, -t.force[0]);
+            if t.force[1].hypot(t.force[2]) >= b {
                 ContactState::Slip
             } else {
                 ContactState::Stick
+            }
+        }
+        ContactState::Slip if !coulomb => ContactState::Slip,
+        ContactState::Slip => {
+            let (b, _) = friction_bound(s, cracked, t.area, -t.force[0]);
+            let xi = t.xi();
+            // slip that runs against the friction force it was given: the
+            // pair stuck (a force below round-off has no direction)
+            let lam_t = t.force[1].hypot(t.force[2]);
+            let along = t.force[1] * t.slip[1] + t.force[2] * t.slip[2];
+            let against = lam_t > 1e-9 * t.force[0].abs() && along < -1e-9 * lam_t * t.slip[1].hypot(t.slip[2]);
+            if against || xi[1].hypot(xi[2]) < b {
+                ContactState::Stick
+            } else {
+                ContactState::Slip
             }
         }
     }
@@ -159,17 +224,18 @@ mod tests {
 
     const S: Strength = Strength { friction: 0.5, cohesion: 1.0, tensile_strength: 2.0, residual_cohesion: 0.0 };
 
-    fn r(sigma_n: f64, tau: f64, gap: f64) -> PairResult {
-        PairResult { sigma_n, tau_t: tau, tau_b: 0.0, gap, slip: 0.0 }
+    /// A pair of unit area with stresses (sigma_n, tau along t), slip s along t and gap g.
+    fn t(sigma_n: f64, tau: f64, slip: f64, gap: f64) -> Trial {
+        Trial { force: [sigma_n, tau, 0.0], area: 1.0, slip: [0.0, slip, 0.0], gap, stiffness: 10.0 }
     }
 
-    fn kin(slip_along: f64, tol: f64) -> Kinematics {
-        Kinematics { slip_along, coulomb: true, gap_tol: tol, slip_tol: tol }
+    fn r(sigma_n: f64, tau: f64) -> PairResult {
+        PairResult { sigma_n, tau_t: tau, tau_b: 0.0, gap: 0.0, slip: 0.0 }
     }
 
     #[test]
     fn truth_table_of_the_paper_criteria() {
-        // (sigma_n, tau) -> state, from stick
+        // (sigma_n, tau) -> state, from stick; the robust rule and the paper agree
         let cases = [
             ((2.0, 0.0), Open),   // at the tensile strength
             ((3.0, 5.0), Open),   // above it, whatever the shear
@@ -181,38 +247,59 @@ mod tests {
             ((-4.0, -3.5), Slip), // shear sign does not matter
         ];
         for ((sn, tau), want) in cases {
-            assert_eq!(judge(Stick, &r(sn, tau, 0.0), &S, false, &kin(0.0, 0.0)), want, "sigma_n {sn} tau {tau}");
+            assert_eq!(judge(Stick, &t(sn, tau, 0.0, 0.0), &S, false, true, 0.0), want, "sigma_n {sn} tau {tau}");
+            assert_eq!(judge_paper(&r(sn, tau), &S), want, "paper: sigma_n {sn} tau {tau}");
         }
+        // the shear direction in the joint plane does not matter either
+        let diag = Trial { force: [-4.0, 2.1, 2.1], ..t(0.0, 0.0, 0.0, 0.0) };
+        assert_eq!(judge(Stick, &diag, &S, false, true, 0.0), Stick);
+        let diag = Trial { force: [-4.0, 2.2, 2.2], ..diag };
+        assert_eq!(judge(Stick, &diag, &S, false, true, 0.0), Slip);
     }
 
     #[test]
     fn cracked_pairs_lose_tensile_strength_and_cohesion() {
-        assert_eq!(judge(Stick, &r(0.5, 0.0, 0.0), &S, false, &kin(0.0, 0.0)), Stick);
-        assert_eq!(judge(Stick, &r(0.5, 0.0, 0.0), &S, true, &kin(0.0, 0.0)), Open);
-        assert_eq!(judge(Stick, &r(-1.0, 0.6, 0.0), &S, true, &kin(0.0, 0.0)), Slip);
+        assert_eq!(judge(Stick, &t(0.5, 0.0, 0.0, 0.0), &S, false, true, 0.0), Stick);
+        assert_eq!(judge(Stick, &t(0.5, 0.0, 0.0, 0.0), &S, true, true, 0.0), Open);
+        assert_eq!(judge(Stick, &t(-1.0, 0.6, 0.0, 0.0), &S, true, true, 0.0), Slip);
     }
 
     #[test]
     fn open_pairs_follow_their_gap() {
-        assert_eq!(judge(Open, &r(0.0, 0.0, 1e-3), &S, true, &kin(0.0, 1e-12)), Open);
-        assert_eq!(judge(Open, &r(0.0, 0.0, -1e-3), &S, true, &kin(0.0, 1e-12)), Stick);
-        assert_eq!(judge(Slip, &r(-1.0, 0.0, 0.0), &S, true, &kin(0.0, 1e-12)), Slip);
-        assert_eq!(judge(Slip, &r(0.1, 0.0, 0.0), &S, true, &kin(0.0, 1e-12)), Open);
+        assert_eq!(judge(Open, &t(0.0, 0.0, 0.0, 1e-3), &S, true, true, 1e-12), Open);
+        assert_eq!(judge(Open, &t(0.0, 0.0, 0.0, -1e-3), &S, true, true, 1e-12), Stick, "closes where it is");
+        assert_eq!(judge(Open, &t(0.0, 0.0, 1e-3, -1e-3), &S, true, true, 1e-12), Slip, "closes after moving along the joint");
+        let cohesive = Strength { residual_cohesion: 0.5, ..S };
+        assert_eq!(judge(Open, &t(0.0, 0.0, 1e-3, -1e-3), &cohesive, true, true, 1e-12), Stick, "a cohesive crack holds a small move");
+        assert_eq!(judge(Slip, &t(-1.0, 0.5, 0.0, 0.0), &S, true, true, 1e-12), Slip);
+        assert_eq!(judge(Slip, &t(0.1, 0.0, 0.0, 0.0), &S, true, true, 1e-12), Open);
     }
 
     #[test]
     fn slipping_pairs_stick_again_when_they_move_against_their_friction() {
-        assert_eq!(judge(Slip, &r(-1.0, 0.5, 0.0), &S, true, &kin(1e-3, 1e-12)), Slip);
-        assert_eq!(judge(Slip, &r(-1.0, 0.5, 0.0), &S, true, &kin(-1e-3, 1e-12)), Stick);
-        let frictionless = Kinematics { coulomb: false, ..kin(-1e-3, 1e-12) };
-        assert_eq!(judge(Slip, &r(-1.0, 0.0, 0.0), &S, true, &frictionless), Slip);
+        // carrying the bound 0.5 along +t under sigma_n = -1
+        assert_eq!(judge(Slip, &t(-1.0, 0.5, 1e-3, 0.0), &S, true, true, 1e-12), Slip);
+        assert_eq!(judge(Slip, &t(-1.0, 0.5, -1e-3, 0.0), &S, true, true, 1e-12), Stick);
+        // a large reversed slip makes |ξ| large, but it runs against the friction: stuck
+        assert_eq!(judge(Slip, &t(-1.0, 0.5, -1.0, 0.0), &S, true, true, 1e-12), Stick);
+        assert_eq!(judge(Slip, &t(-1.0, 0.0, -1e-3, 0.0), &S, true, false, 1e-12), Slip, "frictionless slip never sticks");
+    }
+
+    #[test]
+    fn tensile_strength_is_capped_at_the_coulomb_apex() {
+        let s = Strength { friction: 0.5, cohesion: 1.0, tensile_strength: 5.0, residual_cohesion: 0.0 };
+        assert!(s.above_apex());
+        assert_eq!(s.tensile_limit(false), 2.0);
+        assert_eq!(judge(Stick, &t(2.5, 0.0, 0.0, 0.0), &s, false, true, 0.0), Open, "above c/f the joint opens");
+        assert_eq!(judge_paper(&r(2.5, 0.0), &s), Slip, "the paper's rule slips there with no shear strength");
+        assert!(!S.above_apex());
     }
 
     #[test]
     fn paper_rule_judges_open_pairs_by_their_zero_stress() {
-        assert_eq!(judge_paper(&r(0.0, 0.0, 1e-3), &S), Stick);
-        assert_eq!(judge_paper(&r(2.5, 0.0, 0.0), &S), Open);
-        assert_eq!(judge_paper(&r(-4.0, 3.0, 0.0), &S), Slip);
+        assert_eq!(judge_paper(&r(0.0, 0.0), &S), Stick);
+        assert_eq!(judge_paper(&r(2.5, 0.0), &S), Open);
+        assert_eq!(judge_paper(&r(-4.0, 3.0), &S), Slip);
     }
 
     #[test]
@@ -220,5 +307,8 @@ mod tests {
         assert_eq!(S.shear_limit(-4.0, false), 3.0);
         assert_eq!(S.shear_limit(-4.0, true), 2.0);
         assert_eq!(S.shear_limit(3.0, false), 0.0);
+        assert_eq!(friction_bound(&S, false, 2.0, 4.0), (4.0, 0.5));
+        assert_eq!(friction_bound(&S, true, 2.0, -1.0), (0.0, 0.0));
+        assert_eq!(friction_bound(&S, true, 2.0, 0.0), (0.0, 0.5), "a closing pair's bound grows with its pressure");
     }
 }

@@ -1,18 +1,37 @@
-//! The interface system: the condensed parts in the pairs' local frames,
-//! assembled according to the contact states and solved densely.
+//! The interface system: the condensed parts in the pairs' local frames and
+//! in mean / relative coordinates, solved for one set of pair relations.
 //!
-//! Per part, `S' = T S T^T`, `G' = T G` (T block-diagonal, one pair frame per
-//! interface node). For each pair and local axis, the two nodes share one
-//! unknown where the state ties them (stick: all axes; slip: the normal only;
-//! open: none), so the equal and opposite contact forces cancel and
-//! `K_c d_c = R_c` holds no unknown force. After the solve, the contact force
-//! on body I is `f = S'_I d' - G'_I` at k (eq. 13), the stresses `f / A` (eq. 14).
-//! On a local axis where k is supported that force includes the support
-//! reaction, so it is read as `-(S'_II d' - G'_II)` at l instead, and taken as
-//! zero (all carried by the supports) where both nodes are supported.
+//! Per part, `S' = T Q^T S Q T^T`, `G' = T Q^T G` (T block-diagonal, one pair
+//! frame per interface node; Q the face basis of [`super::basis`], the
+//! identity on linear faces). Per pair and local axis the two sides' DOFs
+//! are written as a mean `m` and a relative displacement `r = d'_l - d'_k`:
+//!
+//! ```text
+//! d'_k = m - r/2,  d'_l = m + r/2        (neither side supported)
+//! d'_k = v,        d'_l = v + r          (k held at v; likewise for l)
+//! ```
+//!
+//! i.e. `d' = W y + w0`. The condensed equations `S' d' = G' + f` with the
+//! contact force λ on body I at k and -λ on body II at l become
+//!
+//! ```text
+//! K y - b = [0 on the means; -λ on the relative displacements],
+//! K = W^T S' W,   b = W^T (G' - S' w0)
+//! ```
+//!
+//! so the contact force of every pair is the residual of its `r` rows, and a
+//! set of contact states is a choice, per axis, between a known `r` (tied:
+//! stick on every axis, slip on the normal) and a known relation for λ
+//! (open: λ = 0; slip: the friction law's force, possibly linearised in the
+//! pair's slip and normal force). K is formed once; each state set solves
+//! the rows it leaves free. A supported axis of a pair is a prescribed `d'`;
+//! its force is read on the unsupported side, and is zero where both are
+//! supported (the supports carry it).
 
+use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
 
+use super::basis::{self, FaceBasis};
 use super::frame::{aligned_axis, frame, Frame};
 use super::law::{ContactState, PairResult};
 use super::rigid::{free_parts, RigidModes, Tie};
@@ -20,52 +39,116 @@ use crate::fem::sparse::NONE;
 use crate::model::{Model, ModelError};
 use crate::substructure::Condensed;
 
-/// One part's condensed matrices in local coordinates.
-struct LocalPart {
-    /// Frame of each interface node.
-    t: Vec<Frame>,
-    nc: usize,
-    s: Vec<f64>,
-    /// Condensed loads in local axes, one per load case.
-    g: Vec<Vec<f64>>,
+/// How one local axis of a pair enters the unknowns `y`.
+#[derive(Clone, Copy, Debug)]
+enum Axis {
+    /// Neither side held: `d'_k = m - r/2`, `d'_l = m + r/2`.
+    Free { m: usize, r: usize },
+    /// Side k held at `v` (per unit ramp): `d'_k = v`, `d'_l = v + r`.
+    HeldK { r: usize, v: f64 },
+    /// Side l held at `v`: `d'_l = v`, `d'_k = v - r`.
+    HeldL { r: usize, v: f64 },
+    /// Both sides held.
+    Held { vk: f64, vl: f64 },
+    /// The axis does not exist (the third axis in 2D).
+    Absent,
 }
 
-/// What the interface system is solved for besides the states.
-pub struct Loading<'a> {
-    /// Load factor of each load case (case 0 also scales prescribed values).
-    pub lambda: &'a [f64],
-    /// Known tangential force on body I at each pair (local axes; equal and
-    /// opposite on body II), applied where the tangential axes are not tied.
-    pub shear: &'a [[f64; 3]],
-    /// Relative displacement `d'_l - d'_k` kept on each tied axis (slip
-    /// accumulated before the pair stuck again; the normal entry is 0).
-    pub offset: &'a [[f64; 3]],
+impl Axis {
+    fn r(self) -> Option<usize> {
+        match self {
+            Axis::Free { r, .. } | Axis::HeldK { r, .. } | Axis::HeldL { r, .. } => Some(r),
+            _ => None,
+        }
+    }
+
+    /// `d'` of side `s` (0 = k, 1 = l) as `sum c y + const * ramp`.
+    fn terms(self, s: usize) -> ([(usize, f64); 2], usize, f64) {
+        let none = (NONE, 0.0);
+        match (self, s) {
+            (Axis::Free { m, r }, 0) => ([(m, 1.0), (r, -0.5)], 2, 0.0),
+            (Axis::Free { m, r }, _) => ([(m, 1.0), (r, 0.5)], 2, 0.0),
+            (Axis::HeldK { v, .. }, 0) => ([none, none], 0, v),
+            (Axis::HeldK { r, v }, _) => ([(r, 1.0), none], 1, v),
+            (Axis::HeldL { r, v }, 0) => ([(r, -1.0), none], 1, v),
+            (Axis::HeldL { v, .. }, _) => ([none, none], 0, v),
+            (Axis::Held { vk, .. }, 0) => ([none, none], 0, vk),
+            (Axis::Held { vl, .. }, _) => ([none, none], 0, vl),
+            (Axis::Absent, _) => ([none, none], 0, 0.0),
+        }
+    }
 }
 
-/// The interface problem, set up once; solved for any set of states.
+/// Where a part's interface nodes sit among the pairs.
+struct PartMap {
+    /// (pair, side) of each interface node of the part, in the part's order.
+    nodes: Vec<(usize, usize)>,
+    /// Transformed edges, as positions in `nodes`.
+    edges: Vec<[usize; 3]>,
+}
+
+/// What a pair's unknowns are asked to satisfy in one solve.
+#[derive(Clone, Copy, Debug)]
+pub struct Relation {
+    pub state: ContactState,
+    /// `r` on tied axes: stick ties all axes, slip the normal one (its
+    /// target is 0: the pair touches).
+    pub target: [f64; 3],
+    /// On free tangential axes of slipping pairs, the force on body I is
+    /// `force + coupling * p + spring * r` (local t, b components; p = -λ_n
+    /// the normal pressure force), so that a Newton step can linearise the
+    /// Coulomb law; zero for the paper's fixed friction force.
+    pub force: [f64; 3],
+    pub coupling: [f64; 3],
+    pub spring: [[f64; 3]; 3],
+}
+
+impl Relation {
+    /// Stuck at `target`, open, or slipping with a known tangential force.
+    pub fn simple(state: ContactState, target: [f64; 3], force: [f64; 3]) -> Relation {
+        Relation { state, target, force, coupling: [0.0; 3], spring: [[0.0; 3]; 3] }
+    }
+
+    fn free_axis(&self, a: usize) -> bool {
+        match self.state {
+            ContactState::Stick => false,
+            ContactState::Slip => a > 0,
+            ContactState::Open => true,
+        }
+    }
+}
+
+/// The interface problem, set up once; solved for any set of relations.
 pub struct InterfaceProblem {
     nd: usize,
     pub frames: Vec<Frame>,
-    /// (part, position in that part's interface) of each pair's k and l.
-    at: Vec<[(usize, usize); 2]>,
-    /// Prescribed local values of each pair's k and l, per local axis.
-    fixed: Vec<[[Option<f64>; 3]; 2]>,
-    parts: Vec<LocalPart>,
-    areas: Vec<f64>,
+    pub basis: FaceBasis,
+    axes: Vec<[Axis; 3]>,
+    ny: usize,
+    /// `W^T S' W`, dense, column-major.
+    k: Mat<f64>,
+    /// `W^T G'` per load case, and `-W^T S' w0` for the prescribed values
+    /// at ramp 1.
+    b_cases: Vec<Vec<f64>>,
+    b_fixed: Vec<f64>,
+    parts: Vec<PartMap>,
     /// Rigid motions of each part and the position of each pair, to tell
     /// which parts nothing holds.
     rigid: Vec<RigidModes>,
     positions: Vec<[f64; 3]>,
+    /// (part, position) of each pair's k and l.
+    at: Vec<[(usize, usize); 2]>,
 }
 
 /// Result of one interface solve.
 pub struct InterfaceSolution {
     pub pairs: Vec<PairResult>,
-    /// Contact force on body I at each pair, local axes (n, t, b).
+    /// Contact force on body I at each pair, local axes (n, t, b), in the
+    /// interface basis.
     pub forces: Vec<[f64; 3]>,
     /// Relative displacement `d'_l - d'_k` at each pair, local axes.
     pub rel: Vec<[f64; 3]>,
-    /// Global interface displacements of each part (order of its interface nodes).
+    /// Global nodal interface displacements of each part (order of its interface nodes).
     pub d_c: Vec<Vec<f64>>,
     /// Relative residual of the dense interface solve.
     pub residual: f64,
@@ -80,19 +163,55 @@ pub enum SolveFailure {
     Singular(Vec<usize>),
 }
 
+/// `T A T^T` in place for a dense column-major `nc x nc` matrix whose
+/// node blocks are rotated by `t[node]`.
+fn rotate_matrix(s: &mut [f64], nc: usize, nd: usize, t: &[Frame]) {
+    let mut tmp = [0.0; 3];
+    // columns: S T^T
+    for i in 0..nc {
+        for (q, tq) in t.iter().enumerate() {
+            for a in 0..nd {
+                tmp[a] = (0..nd).map(|c| s[i + (q * nd + c) * nc] * tq[a][c]).sum();
+            }
+            for a in 0..nd {
+                s[i + (q * nd + a) * nc] = tmp[a];
+            }
+        }
+    }
+    // rows: T (S T^T)
+    for j in 0..nc {
+        for (q, tq) in t.iter().enumerate() {
+            for a in 0..nd {
+                tmp[a] = (0..nd).map(|c| tq[a][c] * s[q * nd + c + j * nc]).sum();
+            }
+            for a in 0..nd {
+                s[q * nd + a + j * nc] = tmp[a];
+            }
+        }
+    }
+}
+
+fn rotate_vector(g: &mut [f64], nd: usize, t: &[Frame]) {
+    for (q, tq) in t.iter().enumerate() {
+        let v: Vec<f64> = (0..nd).map(|a| (0..nd).map(|c| tq[a][c] * g[q * nd + c]).sum()).collect();
+        g[q * nd..q * nd + nd].copy_from_slice(&v);
+    }
+}
+
 impl InterfaceProblem {
     pub fn new(model: &Model, parts: &[Condensed]) -> Result<InterfaceProblem, ModelError> {
         let nd = model.nd;
+        let np = model.pairs.len();
+        let basis = FaceBasis::new(model);
         let mut where_is = vec![(NONE, NONE); model.n_nodes()];
         for (pi, p) in parts.iter().enumerate() {
             for (q, &n) in p.part.interface.iter().enumerate() {
                 where_is[n] = (pi, q);
             }
         }
-        let mut frames = Vec::with_capacity(model.pairs.len());
-        let mut at = Vec::with_capacity(model.pairs.len());
-        let mut fixed = Vec::with_capacity(model.pairs.len());
-        let mut node_frame: Vec<Option<Frame>> = vec![None; model.n_nodes()];
+        // frames, and the prescribed local values of each side (nodal basis)
+        let mut frames = Vec::with_capacity(np);
+        let mut fixed: Vec<[[Option<f64>; 3]; 2]> = Vec::with_capacity(np);
         for pair in &model.pairs {
             let mut sup = [false; 3];
             for node in [pair.k, pair.l] {
@@ -106,7 +225,7 @@ impl InterfaceProblem {
                 for c in 0..nd {
                     if let Some(v) = model.prescribed[node * nd + c] {
                         let (a, sign) = aligned_axis(&f, nd, c).ok_or_else(|| ModelError::Invalid {
-                            scene: "model".into(),
+                            scene: model.scene.clone(),
                             key: "supports".into(),
                             msg: format!(
                                 "the contact node at {:?} is supported in direction {} which is not along its contact frame (normal {:?}): support it along the contact normal or tangent",
@@ -118,261 +237,331 @@ impl InterfaceProblem {
                         fx[side][a] = Some(sign * v);
                     }
                 }
-                node_frame[node] = Some(f);
             }
             frames.push(f);
-            at.push([where_is[pair.k], where_is[pair.l]]);
             fixed.push(fx);
         }
-        let local = parts
+        // prescribed values in the face basis (per side, local axis)
+        if !basis.is_nodal() {
+            for side in 0..2 {
+                for a in 0..nd {
+                    let v: Vec<f64> = fixed.iter().map(|fx| fx[side][a].unwrap_or(0.0)).collect();
+                    let mut t = v.clone();
+                    for &[m, c1, c2] in &basis.edges {
+                        t[m] = (v[m] - basis::ALPHA * (v[c1] + v[c2])) / (1.0 - 2.0 * basis::ALPHA);
+                    }
+                    for (p, fx) in fixed.iter_mut().enumerate() {
+                        if fx[side][a].is_some() {
+                            fx[side][a] = Some(t[p]);
+                        }
+                    }
+                }
+            }
+        }
+        // unknowns
+        let mut ny = 0;
+        let mut next = || {
+            ny += 1;
+            ny - 1
+        };
+        let axes: Vec<[Axis; 3]> = fixed
             .iter()
-            .map(|p| {
-                let nc = p.nc;
-                let nodes = p.part.interface.clone();
-                let t: Vec<Frame> = nodes.iter().map(|&n| node_frame[n].unwrap_or([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])).collect();
-                // S T^T: column block r becomes S[:, r] T_r^T
-                let mut st = vec![0.0; nc * nc];
-                for (r, tr) in t.iter().enumerate() {
-                    for a in 0..nd {
-                        for i in 0..nc {
-                            st[i + (r * nd + a) * nc] = (0..nd).map(|c| p.s[i + (r * nd + c) * nc] * tr[a][c]).sum();
-                        }
+            .map(|fx| {
+                std::array::from_fn(|a| {
+                    if a >= nd {
+                        return Axis::Absent;
                     }
-                }
-                let mut s = vec![0.0; nc * nc];
-                for (q, tq) in t.iter().enumerate() {
-                    for a in 0..nd {
-                        for j in 0..nc {
-                            s[q * nd + a + j * nc] = (0..nd).map(|c| tq[a][c] * st[q * nd + c + j * nc]).sum();
+                    match (fx[0][a], fx[1][a]) {
+                        (None, None) => {
+                            let m = next();
+                            Axis::Free { m, r: next() }
                         }
+                        (Some(v), None) => Axis::HeldK { r: next(), v },
+                        (None, Some(v)) => Axis::HeldL { r: next(), v },
+                        (Some(vk), Some(vl)) => Axis::Held { vk, vl },
                     }
-                }
-                let g = p
-                    .g
-                    .iter()
-                    .map(|gc| {
-                        let mut g = vec![0.0; nc];
-                        for (q, tq) in t.iter().enumerate() {
-                            for a in 0..nd {
-                                g[q * nd + a] = (0..nd).map(|c| tq[a][c] * gc[q * nd + c]).sum();
-                            }
-                        }
-                        g
-                    })
-                    .collect();
-                LocalPart { t, nc, s, g }
+                })
             })
             .collect();
-        let areas = model.pairs.iter().map(|p| p.area).collect();
+        let at: Vec<[(usize, usize); 2]> = model.pairs.iter().map(|p| [where_is[p.k], where_is[p.l]]).collect();
+        let maps: Vec<PartMap> = parts
+            .iter()
+            .enumerate()
+            .map(|(pi, p)| {
+                let mut nodes = vec![(NONE, 0); p.part.interface.len()];
+                for (pair, sides) in at.iter().enumerate() {
+                    for (s, &(pp, q)) in sides.iter().enumerate() {
+                        if pp == pi {
+                            nodes[q] = (pair, s);
+                        }
+                    }
+                }
+                let edges = basis::part_edges(&basis, |pair| {
+                    let [(pk, qk), (pl, ql)] = at[pair];
+                    [(pk == pi).then_some(qk), (pl == pi).then_some(ql)]
+                });
+                PartMap { nodes, edges }
+            })
+            .collect();
+        let cases = parts.iter().map(|p| p.g.len()).max().unwrap_or(1);
+        let mut k = Mat::<f64>::zeros(ny, ny);
+        let mut b_cases = vec![vec![0.0; ny]; cases];
+        let mut b_fixed = vec![0.0; ny];
+        for (part, map) in parts.iter().zip(&maps) {
+            let nc = part.nc;
+            if nc == 0 {
+                continue;
+            }
+            let t: Vec<Frame> = map.nodes.iter().map(|&(pair, _)| frames[pair]).collect();
+            let mut s = part.s.clone();
+            basis::transform_matrix(&mut s, nc, nd, &map.edges);
+            rotate_matrix(&mut s, nc, nd, &t);
+            // d'_u = sum_i c_i y_i + w0_u: the terms of every part DOF
+            let terms: Vec<([(usize, f64); 2], usize, f64)> =
+                (0..nc).map(|u| {
+                    let (pair, side) = map.nodes[u / nd];
+                    axes[pair][u % nd].terms(side)
+                }).collect();
+            let w0: Vec<f64> = terms.iter().map(|t| t.2).collect();
+            for v in 0..nc {
+                let (tv, nv, _) = terms[v];
+                for u in 0..nc {
+                    let (tu, nu, _) = terms[u];
+                    let suv = s[u + v * nc];
+                    if suv == 0.0 {
+                        continue;
+                    }
+                    for &(i, ci) in &tu[..nu] {
+                        for &(j, cj) in &tv[..nv] {
+                            k[(i, j)] += ci * cj * suv;
+                        }
+                    }
+                }
+            }
+            for (case, gc) in part.g.iter().enumerate() {
+                let mut g = gc.clone();
+                basis::transform_load(&mut g, nd, &map.edges);
+                rotate_vector(&mut g, nd, &t);
+                for u in 0..nc {
+                    let (tu, nu, _) = terms[u];
+                    for &(i, ci) in &tu[..nu] {
+                        b_cases[case][i] += ci * g[u];
+                    }
+                }
+            }
+            if w0.iter().any(|&v| v != 0.0) {
+                for u in 0..nc {
+                    let sw: f64 = (0..nc).map(|v| s[u + v * nc] * w0[v]).sum();
+                    let (tu, nu, _) = terms[u];
+                    for &(i, ci) in &tu[..nu] {
+                        b_fixed[i] -= ci * sw;
+                    }
+                }
+            }
+        }
         let rigid = parts.iter().map(|p| RigidModes::new(model, &p.part.bodies)).collect();
         let positions = model.pairs.iter().map(|p| model.coords[p.k]).collect();
-        Ok(InterfaceProblem { nd, frames, at, fixed, parts: local, areas, rigid, positions })
+        Ok(InterfaceProblem { nd, frames, basis, axes, ny, k, b_cases, b_fixed, parts: maps, rigid, positions, at })
     }
 
-    /// The area pair `p` controls.
+    /// The area pair `p` controls (in the interface basis), > 0.
     pub fn area(&self, p: usize) -> f64 {
-        self.areas[p]
+        self.basis.areas[p]
     }
 
-    /// Solves the interface system for the given states and loading.
-    pub fn solve(&self, states: &[ContactState], loading: &Loading) -> Result<InterfaceSolution, SolveFailure> {
+    /// Number of pairs.
+    pub fn n_pairs(&self) -> usize {
+        self.axes.len()
+    }
+
+    /// A stiffness of pair `p`'s relative displacement (the mean diagonal
+    /// of its `r` rows): the scale that turns a slip into a force.
+    pub fn stiffness(&self, p: usize) -> f64 {
+        let d: Vec<f64> = self.axes[p].iter().filter_map(|a| a.r()).map(|r| self.k[(r, r)]).collect();
+        if d.is_empty() {
+            1.0
+        } else {
+            d.iter().sum::<f64>() / d.len() as f64
+        }
+    }
+
+    /// Solves the interface system for the relations `rel` of every pair
+    /// under the load factors `lambda` (case 0 also scales prescribed values).
+    pub fn solve(&self, rel: &[Relation], lambda: &[f64]) -> Result<InterfaceSolution, SolveFailure> {
         let nd = self.nd;
-        let ramp = loading.lambda[0];
-        // A part nothing holds makes K_c singular only up to round-off (its
-        // S has rigid-body modes of size eps * |S|), so the factorisation
-        // may well succeed and return huge displacements: decide it from the
-        // states and the supports, before any arithmetic.
-        if let failure @ SolveFailure::NotHeld(_) = self.diagnose(states) {
+        let ramp = lambda[0];
+        let states: Vec<ContactState> = rel.iter().map(|r| r.state).collect();
+        // A part nothing holds makes the system singular only up to
+        // round-off: decide it from the states and the supports first.
+        if let failure @ SolveFailure::NotHeld(_) = self.diagnose(&states) {
             return Err(failure);
         }
-        let sliding = self.free(states, false);
+        let sliding = self.free(&states, false);
         if !sliding.is_empty() {
             return Err(SolveFailure::Singular(sliding));
         }
-        // slot of each (part, interface dof): unknown index or fixed value
-        // an unknown plus an offset, or a fixed value
-        #[derive(Clone, Copy)]
-        enum Slot {
-            Free(usize, f64),
-            Fixed(f64),
-        }
-        let mut slots: Vec<Vec<Slot>> = self.parts.iter().map(|p| vec![Slot::Fixed(0.0); p.nc]).collect();
-        let mut m = 0;
-        let mut new_slot = |fixed: Option<f64>| match fixed {
-            Some(v) => Slot::Fixed(v * ramp),
-            None => {
-                m += 1;
-                Slot::Free(m - 1, 0.0)
+        let ny = self.ny;
+        let mut b = self.b_fixed.iter().map(|v| v * ramp).collect::<Vec<f64>>();
+        for (bc, &l) in self.b_cases.iter().zip(lambda) {
+            if l != 0.0 {
+                for (o, v) in b.iter_mut().zip(bc) {
+                    *o += l * v;
+                }
             }
-        };
-        for (p, st) in states.iter().enumerate() {
-            let [(pk, qk), (pl, ql)] = self.at[p];
+        }
+        // free unknowns, and the known values of tied ones
+        let mut y = vec![0.0; ny];
+        let mut free = vec![true; ny];
+        for (p, r) in rel.iter().enumerate() {
             for a in 0..nd {
-                let shared = match st {
-                    ContactState::Stick => true,
-                    ContactState::Slip => a == 0,
-                    ContactState::Open => false,
-                };
-                let fx = self.fixed[p];
-                if shared {
-                    let s = new_slot(fx[0][a].or(fx[1][a]));
-                    slots[pk][qk * nd + a] = s;
-                    slots[pl][ql * nd + a] = match s {
-                        Slot::Free(i, _) => Slot::Free(i, loading.offset[p][a]),
-                        fixed => fixed,
-                    };
-                } else {
-                    slots[pk][qk * nd + a] = new_slot(fx[0][a]);
-                    slots[pl][ql * nd + a] = new_slot(fx[1][a]);
-                }
-            }
-        }
-        let mut k = Mat::<f64>::zeros(m, m);
-        let mut r = Mat::<f64>::zeros(m, 1);
-        let g_loc: Vec<Vec<f64>> = self
-            .parts
-            .iter()
-            .map(|lp| {
-                let mut g = vec![0.0; lp.nc];
-                for (gc, &l) in lp.g.iter().zip(loading.lambda) {
-                    if l != 0.0 {
-                        for (o, v) in g.iter_mut().zip(gc) {
-                            *o += l * v;
-                        }
-                    }
-                }
-                g
-            })
-            .collect();
-        for (pi, lp) in self.parts.iter().enumerate() {
-            let sl = &slots[pi];
-            for j in 0..lp.nc {
-                // the known part of d_j moves to the right-hand side
-                let known = match sl[j] {
-                    Slot::Free(jj, off) => {
-                        r[(jj, 0)] += g_loc[pi][j];
-                        for i in 0..lp.nc {
-                            if let Slot::Free(ii, _) = sl[i] {
-                                k[(ii, jj)] += lp.s[i + j * lp.nc];
-                            }
-                        }
-                        off
-                    }
-                    Slot::Fixed(v) => v,
-                };
-                if known != 0.0 {
-                    for i in 0..lp.nc {
-                        if let Slot::Free(ii, _) = sl[i] {
-                            r[(ii, 0)] -= lp.s[i + j * lp.nc] * known;
-                        }
+                if let Some(ri) = self.axes[p][a].r() {
+                    if !r.free_axis(a) {
+                        free[ri] = false;
+                        y[ri] = r.target[a];
                     }
                 }
             }
         }
-        for (p, st) in states.iter().enumerate() {
-            if *st == ContactState::Stick {
+        let fidx: Vec<usize> = (0..ny).filter(|&i| free[i]).collect();
+        let mut pos = vec![NONE; ny];
+        for (f, &i) in fidx.iter().enumerate() {
+            pos[i] = f;
+        }
+        let nf = fidx.len();
+        // K y_T: the known part of every row
+        let mut ky_t = vec![0.0; ny];
+        for j in (0..ny).filter(|&j| !free[j] && y[j] != 0.0) {
+            let yj = y[j];
+            for (i, v) in ky_t.iter_mut().enumerate() {
+                *v += self.k[(i, j)] * yj;
+            }
+        }
+        let mut kf = Mat::<f64>::zeros(nf, nf);
+        for (fj, &j) in fidx.iter().enumerate() {
+            for (fi, &i) in fidx.iter().enumerate() {
+                kf[(fi, fj)] = self.k[(i, j)];
+            }
+        }
+        let mut rhs = Mat::<f64>::zeros(nf, 1);
+        for (fi, &i) in fidx.iter().enumerate() {
+            rhs[(fi, 0)] = b[i] - ky_t[i];
+        }
+        // slipping pairs: the friction force on their free tangential rows
+        let mut symmetric = true;
+        for (p, r) in rel.iter().enumerate() {
+            if r.state != ContactState::Slip {
                 continue;
             }
-            let [(pk, qk), (pl, ql)] = self.at[p];
+            let rn = self.axes[p][0].r();
             for a in 1..nd {
-                if let Slot::Free(i, _) = slots[pk][qk * nd + a] {
-                    r[(i, 0)] += loading.shear[p][a];
+                let Some(ra) = self.axes[p][a].r() else { continue };
+                let i = pos[ra];
+                rhs[(i, 0)] -= r.force[a];
+                if let (Some(rn), true) = (rn, r.coupling[a] != 0.0) {
+                    symmetric = false;
+                    let ca = r.coupling[a];
+                    for (fj, &j) in fidx.iter().enumerate() {
+                        kf[(i, fj)] += ca * self.k[(rn, j)];
+                    }
+                    rhs[(i, 0)] += ca * (b[rn] - ky_t[rn]);
                 }
-                if let Slot::Free(i, _) = slots[pl][ql * nd + a] {
-                    r[(i, 0)] -= loading.shear[p][a];
+                for c in 1..nd {
+                    if r.spring[a][c] == 0.0 {
+                        continue;
+                    }
+                    if let Some(rc) = self.axes[p][c].r() {
+                        kf[(i, pos[rc])] += r.spring[a][c];
+                        if r.spring[a][c] != r.spring[c][a] {
+                            symmetric = false;
+                        }
+                    }
                 }
             }
         }
-        let z = if m == 0 {
+        let z = if nf == 0 {
             Mat::<f64>::zeros(0, 1)
+        } else if symmetric {
+            match kf.llt(Side::Lower) {
+                Ok(l) => l.solve(&rhs),
+                Err(_) => return Err(self.diagnose(&states)),
+            }
         } else {
-            let llt = match k.llt(Side::Lower) {
-                Ok(l) => l,
-                Err(_) => return Err(self.diagnose(states)),
-            };
-            use faer::linalg::solvers::Solve;
-            llt.solve(&r)
+            kf.partial_piv_lu().solve(&rhs)
         };
         if z.col(0).iter().any(|v| !v.is_finite()) {
-            return Err(self.diagnose(states));
+            return Err(self.diagnose(&states));
         }
-        let residual = if m == 0 {
+        let residual = if nf == 0 {
             0.0
         } else {
-            let res = &k * &z - &r;
-            res.norm_l2() / r.norm_l2().max(f64::MIN_POSITIVE)
+            let res = &kf * &z - &rhs;
+            res.norm_l2() / rhs.norm_l2().max(f64::MIN_POSITIVE)
         };
         // Singular up to round-off (a body sliding freely on slipping pairs)
         // lets the factorisation pass: its residual is O(1), not O(eps).
         if residual > 1e-6 {
-            return Err(self.diagnose(states));
+            return Err(self.diagnose(&states));
         }
-        // local displacements and forces per part
-        let mut d_loc: Vec<Vec<f64>> = Vec::with_capacity(self.parts.len());
-        let mut f_loc: Vec<Vec<f64>> = Vec::with_capacity(self.parts.len());
-        for (pi, lp) in self.parts.iter().enumerate() {
-            let d: Vec<f64> = slots[pi]
-                .iter()
-                .map(|s| match *s {
-                    Slot::Free(i, off) => z[(i, 0)] + off,
-                    Slot::Fixed(v) => v,
-                })
-                .collect();
-            let f: Vec<f64> = (0..lp.nc).map(|i| (0..lp.nc).map(|j| lp.s[i + j * lp.nc] * d[j]).sum::<f64>() - g_loc[pi][i]).collect();
-            d_loc.push(d);
-            f_loc.push(f);
+        for (f, &i) in fidx.iter().enumerate() {
+            y[i] = z[(f, 0)];
         }
-        let mut forces = Vec::with_capacity(states.len());
-        let mut rels = Vec::with_capacity(states.len());
-        let pairs = (0..states.len())
+        // the contact forces: the residual of the r rows
+        let mut forces = vec![[0.0; 3]; rel.len()];
+        let mut rels = vec![[0.0; 3]; rel.len()];
+        for (p, ax) in self.axes.iter().enumerate() {
+            for a in 0..nd {
+                match ax[a] {
+                    Axis::Held { vk, vl } => rels[p][a] = (vl - vk) * ramp,
+                    Axis::Absent => {}
+                    axis => {
+                        let r = axis.r().expect("an axis with r");
+                        rels[p][a] = y[r];
+                        // the force of a free axis is what its relation
+                        // prescribes (an open pair's is exactly zero, not
+                        // the round-off of its residual)
+                        if !rel[p].free_axis(a) || rel[p].state == ContactState::Slip {
+                            let kr: f64 = (0..ny).map(|j| self.k[(r, j)] * y[j]).sum();
+                            forces[p][a] = -(kr - b[r]);
+                        }
+                    }
+                }
+            }
+            if rel[p].state == ContactState::Slip {
+                let pn = -forces[p][0];
+                let r = &rel[p];
+                for a in 1..nd {
+                    if self.axes[p][a].r().is_some() {
+                        forces[p][a] = r.force[a] + r.coupling[a] * pn + (1..nd).map(|c| r.spring[a][c] * rels[p][c]).sum::<f64>();
+                    }
+                }
+            }
+        }
+        let pairs = (0..rel.len())
             .map(|p| {
-                let [(pk, qk), (pl, ql)] = self.at[p];
-                let fk = &f_loc[pk][qk * nd..qk * nd + nd];
-                let fl = &f_loc[pl][ql * nd..ql * nd + nd];
-                let dk = &d_loc[pk][qk * nd..qk * nd + nd];
-                let dl = &d_loc[pl][ql * nd..ql * nd + nd];
-                let a = self.areas[p];
-                let mut rel = [0.0; 3];
-                for i in 0..nd {
-                    rel[i] = dl[i] - dk[i];
-                }
-                // On a supported local axis the node's force is contact plus
-                // support reaction: read the contact force on the side that is
-                // not supported, and where both are, the support carries it all.
-                let fx = self.fixed[p];
-                let force = |ax: usize| match (fx[0][ax], fx[1][ax]) {
-                    (None, _) => fk[ax],
-                    (Some(_), None) => -fl[ax],
-                    (Some(_), Some(_)) => 0.0,
-                };
-                let mut f = [0.0; 3];
-                for (ax, v) in f.iter_mut().enumerate().take(nd) {
-                    *v = force(ax);
-                }
-                forces.push(f);
-                rels.push(rel);
-                PairResult {
-                    sigma_n: f[0] / a,
-                    tau_t: f[1] / a,
-                    tau_b: f[2] / a,
-                    gap: rel[0],
-                    slip: rel[1].hypot(rel[2]),
-                }
+                let area = self.basis.areas[p];
+                let (f, r) = (forces[p], rels[p]);
+                PairResult { sigma_n: f[0] / area, tau_t: f[1] / area, tau_b: f[2] / area, gap: r[0], slip: r[1].hypot(r[2]) }
             })
             .collect();
-        // back to global axes
+        // interface displacements of every part, global axes, nodal basis
         let d_c = self
             .parts
             .iter()
-            .zip(&d_loc)
-            .map(|(lp, d)| {
-                let mut g = vec![0.0; lp.nc];
-                for (q, t) in lp.t.iter().enumerate() {
+            .map(|map| {
+                let mut d = vec![0.0; map.nodes.len() * nd];
+                for (q, &(pair, side)) in map.nodes.iter().enumerate() {
+                    let mut local = [0.0; 3];
+                    for (a, l) in local.iter_mut().enumerate().take(nd) {
+                        let (t, n, c) = self.axes[pair][a].terms(side);
+                        *l = c * ramp + t[..n].iter().map(|&(i, ci)| ci * y[i]).sum::<f64>();
+                    }
+                    let f = &self.frames[pair];
                     for c in 0..nd {
-                        g[q * nd + c] = (0..nd).map(|a| t[a][c] * d[q * nd + a]).sum();
+                        d[q * nd + c] = (0..nd).map(|a| f[a][c] * local[a]).sum();
                     }
                 }
-                g
+                basis::to_nodal(&mut d, nd, &map.edges);
+                d
             })
             .collect();
         Ok(InterfaceSolution { pairs, forces, rel: rels, d_c, residual })

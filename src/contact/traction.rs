@@ -8,6 +8,7 @@
 //! traction the facets' shape functions contain (e.g. linear along linear
 //! elements).
 
+use super::basis::FaceBasis;
 use crate::fem::element::{facet_point, measure};
 use crate::fem::quadrature;
 use crate::fem::sparse::{Cholesky, FactorError, SymMatrix, NONE};
@@ -51,11 +52,14 @@ impl ConsistentTraction {
         Ok(ConsistentTraction { chol: Cholesky::factor(&m)?, n })
     }
 
-    /// Tractions per pair from forces per pair (each of `nd` local components).
-    pub fn recover(&self, forces: &[[f64; 3]]) -> Vec<[f64; 3]> {
+    /// Tractions per pair from forces per pair (each of `nd` local
+    /// components) in the interface basis `basis` (nodal forces are
+    /// `Q^-T` of them).
+    pub fn recover(&self, forces: &[[f64; 3]], basis: &FaceBasis) -> Vec<[f64; 3]> {
         let mut out = vec![[0.0; 3]; self.n];
         for c in 0..3 {
-            let mut b: Vec<f64> = forces.iter().map(|f| f[c]).collect();
+            let b: Vec<f64> = forces.iter().map(|f| f[c]).collect();
+            let mut b = basis.inverse_transpose_apply(&b);
             if b.iter().all(|&v| v == 0.0) {
                 continue;
             }

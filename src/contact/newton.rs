@@ -1,0 +1,189 @@
+//! The robust state iteration: a semismooth Newton method on the condensed
+//! interface (primal-dual active sets for 3D Coulomb friction, after Hüeber,
+//! Stadler & Wohlmuth, SIAM J. Sci. Comput. 30(2), 2008).
+//!
+//! Per pair, in its local axes: λ the contact force on body I, p = -λ_n the
+//! normal pressure force, s = r_T - r_ref the slip along the joint since the
+//! pair's stick reference, b(p) = max(0, A c + f p) the Coulomb bound and
+//! c_p the pair's stiffness. The law is the fixed point
+//!
+//! ```text
+//! open:   λ = 0, gap >= 0                   closed: gap = 0, sigma_n < f_t
+//! stick:  s = 0, |λ_T| < b(p)               slip:   λ_T = b(p) ξ / |ξ|,  ξ = λ_T + c_p s
+//! ```
+//!
+//! Each iteration solves the interface system with the current sets, the
+//! friction force of every slipping pair linearised at the last iterate
+//! (direction n = ξ/|ξ|, β = b/|ξ| < 1):
+//!
+//! ```text
+//! λ_T = (b + f (p - p_k)) n + k⊥ (I - n n^T) s,     k⊥ = c_p β / (1 - β)
+//! ```
+//!
+//! which at convergence is the exact derivative of `λ_T = b(p) s / |s|`
+//! (k⊥ = b / |s|): the slip direction is free in the joint plane and the
+//! shear follows the normal force, both to second order. Then every pair is
+//! judged by [`judge`] (its active set for the next iteration). The step has
+//! converged when no state changes and every slipping pair's force agrees
+//! with the nonlinear law. A state set that comes back after others (a
+//! cycle the sets alone cannot leave) is broken by changing only the most
+//! violated pair from then on.
+
+use super::law::{friction_bound, judge, ContactState, Trial};
+use super::system::{InterfaceProblem, InterfaceSolution, Relation};
+use super::{commit, cracked, norm, sub, tangential, Failed, History, Outcome, PairLaw};
+use crate::scene::SlipLaw;
+
+/// The largest β = b / |ξ| the linearisation uses: k⊥ stays below 1000 c_p
+/// (a pair that just started slipping is nearly tied across its slip).
+const BETA_MAX: f64 = 0.999;
+
+/// Relative tolerance on the friction force of slipping pairs.
+const FORCE_TOL: f64 = 1e-12;
+
+/// The relation a pair is solved with at this iteration.
+fn relation(h: &History, law: &PairLaw, p: usize, area: f64, c: f64, force: [f64; 3], rel: [f64; 3], reference: [f64; 3]) -> Relation {
+    let state = h.states[p];
+    let target = [0.0, reference[1], reference[2]];
+    if state != ContactState::Slip || law.slip == SlipLaw::Frictionless {
+        return Relation::simple(state, target, [0.0; 3]);
+    }
+    // (a pair that has just closed has p = 0 up to round-off: its bound
+    // grows with the pressure it is about to get)
+    let pk = (-force[0]).max(0.0);
+    let (bk, db) = friction_bound(&law.strength, cracked(h, p), area, pk);
+    let s = sub(tangential(rel), reference);
+    let xi = [0.0, force[1] + c * s[1], force[2] + c * s[2]];
+    let lx = norm(xi);
+    let scale = norm(force) + c * norm(s) + bk;
+    let (n, beta) = if lx > 1e-14 * scale && lx > 0.0 {
+        ([0.0, xi[1] / lx, xi[2] / lx], (bk / lx).min(BETA_MAX))
+    } else if norm(h.dir[p]) > 0.0 {
+        (h.dir[p], 0.0)
+    } else {
+        // no direction yet (a pair that has just closed): no friction this time
+        return Relation::simple(state, target, [0.0; 3]);
+    };
+    let kp = c * beta / (1.0 - beta);
+    let mut spring = [[0.0; 3]; 3];
+    for i in 1..3 {
+        for j in 1..3 {
+            spring[i][j] = kp * (f64::from(u8::from(i == j)) - n[i] * n[j]);
+        }
+    }
+    let mut constant = [0.0; 3];
+    for i in 1..3 {
+        constant[i] = (bk - db * pk) * n[i] - (1..3).map(|j| spring[i][j] * reference[j]).sum::<f64>();
+    }
+    Relation { state, target, force: constant, coupling: [0.0, db * n[1], db * n[2]], spring }
+}
+
+/// How far a slipping pair's force is from the nonlinear law, `|λ_T - b ξ/|ξ||`.
+fn friction_residual(law: &PairLaw, cracked: bool, area: f64, c: f64, force: [f64; 3], slip: [f64; 3]) -> f64 {
+    let lt = tangential(force);
+    if law.slip == SlipLaw::Frictionless {
+        return norm(lt);
+    }
+    let (b, _) = friction_bound(&law.strength, cracked, area, -force[0]);
+    let xi = [0.0, lt[1] + c * slip[1], lt[2] + c * slip[2]];
+    let lx = norm(xi);
+    if lx == 0.0 {
+        return norm(lt);
+    }
+    norm([0.0, lt[1] - b * xi[1] / lx, lt[2] - b * xi[2] / lx])
+}
+
+pub fn iterate(problem: &InterfaceProblem, laws: &[PairLaw], lambda: &[f64], h: &mut History, max_iterations: usize) -> Result<Outcome, Failed> {
+    let n = laws.len();
+    let stiffness: Vec<f64> = (0..n).map(|p| problem.stiffness(p)).collect();
+    // The stick reference along the joint: where the step starts (no slip
+    // in this step); a pair open when the step began carries it along while
+    // it is open (it touches where it is).
+    let mut reference: Vec<[f64; 3]> = h.rel_start.iter().map(|&r| tangential(r)).collect();
+    let start = h.states.clone();
+    let mut force = h.force.clone();
+    let mut rel = h.rel_start.clone();
+    let mut history: Vec<Vec<ContactState>> = Vec::new();
+    let mut iteration = 0;
+    let mut one_at_a_time = false;
+    let mut cycles_broken = 0;
+    loop {
+        iteration += 1;
+        let relations: Vec<Relation> = (0..n).map(|p| relation(h, &laws[p], p, problem.area(p), stiffness[p], force[p], rel[p], reference[p])).collect();
+        let solution: InterfaceSolution = problem.solve(&relations, lambda).map_err(|failure| Failed { failure, states: h.states.clone(), iteration })?;
+        history.push(h.states.clone());
+        force.clone_from(&solution.forces);
+        rel.clone_from(&solution.rel);
+        for p in 0..n {
+            if h.states[p] == ContactState::Open && start[p] == ContactState::Open {
+                reference[p] = tangential(rel[p]);
+            }
+        }
+        let scale_u = rel.iter().map(|v| norm(*v)).fold(0.0, f64::max);
+        let scale_f = force.iter().map(|f| norm(*f)).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
+        let tol_u = 1e-10 * scale_u;
+
+        // 1. the next state of every pair, and how far it is from its current one
+        let mut next = h.states.clone();
+        let mut violation = vec![0.0; n];
+        let mut residual: f64 = 0.0;
+        for p in 0..n {
+            let (st, law) = (h.states[p], &laws[p]);
+            let area = problem.area(p);
+            let cr = cracked(h, p);
+            let slip = sub(tangential(rel[p]), reference[p]);
+            let trial = Trial { force: force[p], area, slip, gap: rel[p][0], stiffness: stiffness[p] };
+            next[p] = judge(st, &trial, &law.strength, cr, law.slip == SlipLaw::Coulomb, tol_u);
+            if st == ContactState::Slip && next[p] == ContactState::Slip {
+                residual = residual.max(friction_residual(law, cr, area, stiffness[p], force[p], slip));
+            }
+            if next[p] != st {
+                let (b, _) = friction_bound(&law.strength, cr, area, -force[p][0]);
+                violation[p] = match (st, next[p]) {
+                    (_, ContactState::Open) => force[p][0] - law.strength.tensile_limit(cr) * area,
+                    (ContactState::Stick, _) => norm(tangential(force[p])) - b,
+                    (ContactState::Open, _) => -rel[p][0] / scale_u.max(f64::MIN_POSITIVE) * scale_f,
+                    _ => b - norm(trial.xi()),
+                } / scale_f;
+            }
+        }
+        // 2. a cycle: from now on change only the most violated pair
+        let changed = next != h.states;
+        if changed && (one_at_a_time || history.iter().any(|old| *old == next)) {
+            if !one_at_a_time {
+                one_at_a_time = true;
+                cycles_broken += 1;
+            }
+            let worst = (0..n).filter(|&p| next[p] != h.states[p]).max_by(|&a, &b| violation[a].total_cmp(&violation[b]).then(b.cmp(&a)));
+            let keep = worst.expect("some pair changes");
+            for p in 0..n {
+                if p != keep {
+                    next[p] = h.states[p];
+                }
+            }
+        }
+        // 3. directions of slipping pairs (a fallback where ξ vanishes)
+        for p in 0..n {
+            if next[p] == ContactState::Slip {
+                let slip = sub(tangential(rel[p]), reference[p]);
+                let xi = [0.0, force[p][1] + stiffness[p] * slip[1], force[p][2] + stiffness[p] * slip[2]];
+                let l = norm(xi);
+                if l > 0.0 {
+                    h.dir[p] = [0.0, xi[1] / l, xi[2] / l];
+                }
+            }
+            h.sigma_n[p] = solution.pairs[p].sigma_n;
+        }
+        let converged = !changed && residual <= FORCE_TOL * scale_f;
+        if converged || iteration >= max_iterations {
+            if converged {
+                commit(h, &solution);
+                h.offset = reference;
+            }
+            let states = h.states.clone();
+            h.states = next;
+            return Ok(Outcome { states, solution, iterations: iteration, converged, cycled: false, cycles_broken, history });
+        }
+        h.states = next;
+    }
+}
