@@ -10,23 +10,17 @@
 
 mod common;
 
-use std::path::Path;
-use std::process::{Command, Output};
-
-use common::{repo_root, Case};
+use common::cli::{clean_failure, gmsh, says};
+use common::{repo_text, scenes, Case};
 
 /// The repository's cylinder scene, coarsened, with `edits` applied (each
 /// `from` must occur; the first occurrence is replaced), written as
 /// `<name>.toml` next to a copy of cylinder.geo. Returns the scene's file name.
 fn cylinder(case: &Case, name: &str, edits: &[(&str, &str)]) -> String {
     case.copy("geo/cylinder.geo");
-    let mut text = std::fs::read_to_string(repo_root().join("geo/cylinder.toml")).expect("geo/cylinder.toml");
-    for (from, to) in [("lc = 0.05", "lc = 0.2")].iter().chain(edits) {
-        assert!(text.contains(from), "geo/cylinder.toml no longer contains {from:?}: update this test");
-        text = text.replacen(from, to, 1);
-    }
+    let edits: Vec<(&str, &str)> = [("lc = 0.05", "lc = 0.2")].iter().chain(edits).copied().collect();
     let file = format!("{name}.toml");
-    case.write(&file, &text);
+    case.write(&file, &scenes::edited("geo/cylinder.toml", &edits));
     file
 }
 
@@ -52,44 +46,7 @@ const BLOCKS_MATERIAL: &str = "mesh = \"blocks.geo\"\nanalysis = \"plane_strain\
 /// Runs `subcontact solve SCENE --out out --quiet` in the case and checks the
 /// failure is clean; returns the message.
 fn solve_fails(case: &Case, scene: &str) -> String {
-    let out = case.cli(&["solve", scene, "--out", "out", "--quiet"]);
-    clean_failure(case, &out, &case.dir.join("out"))
-}
-
-/// Exit status 1, one paragraph starting with `error: ` on stderr, no panic or
-/// backtrace, empty stdout, and nothing but mesh caches (`[<name>/]mesh/*.msh`,
-/// `.msh.key`) in `results`.
-fn clean_failure(case: &Case, out: &Output, results: &Path) -> String {
-    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert_eq!(out.status.code(), Some(1), "expected exit status 1 (a user error), got {:?}; stderr:\n{stderr}", out.status);
-    let msg = stderr.trim().to_string();
-    assert!(msg.starts_with("error: "), "stderr must start with `error: `:\n{stderr}");
-    assert!(!msg.contains("\n\n"), "the message must be one paragraph:\n{stderr}");
-    for bad in ["panicked", "backtrace", "RUST_BACKTRACE", "thread '"] {
-        assert!(!msg.contains(bad), "stderr shows a panic or backtrace ({bad:?}):\n{stderr}");
-    }
-    assert!(stdout.trim().is_empty(), "a failed --quiet run printed on stdout:\n{stdout}");
-    let files = case.files_in(results);
-    let results_written: Vec<&String> = files
-        .iter()
-        .filter(|f| !((f.starts_with("mesh/") || f.contains("/mesh/")) && (f.ends_with(".msh") || f.ends_with(".msh.key"))))
-        .collect();
-    assert!(results_written.is_empty(), "a failed run left files in {}: {results_written:?}\n(stderr: {msg})", results.display());
-    msg
-}
-
-/// Asserts that `msg` contains every one of `needles`.
-fn says(msg: &str, needles: &[&str]) {
-    for n in needles {
-        assert!(msg.contains(n), "the message lacks {n:?}:\n{msg}");
-    }
-}
-
-/// Runs `gmsh ARGS` in the case directory, failing the test if gmsh does.
-fn gmsh(case: &Case, args: &[&str]) {
-    let out = Command::new("gmsh").args(args).current_dir(&case.dir).output().expect("gmsh CLI (apt-get install gmsh)");
-    assert!(out.status.success(), "gmsh {args:?} failed: {}", String::from_utf8_lossy(&out.stderr));
+    common::cli::solve_fails(case, scene, "out")
 }
 
 #[test]
@@ -210,7 +167,7 @@ fn cylinder_without_its_x_symmetry_support_is_reported_not_solved() {
 #[test]
 fn geo_syntax_error_reports_gmsh_errors_and_the_file() {
     let case = Case::new("bad-geo-syntax");
-    let geo = std::fs::read_to_string(repo_root().join("geo/cylinder.geo")).expect("geo/cylinder.geo");
+    let geo = repo_text("geo/cylinder.geo");
     assert!(geo.contains("Line(3) = {5, 4};"), "geo/cylinder.geo changed: update this test");
     case.write("bad_syntax.geo", &geo.replacen("Line(3) = {5, 4};", "Line(3) = {5, 4", 1));
     let scene = cylinder(&case, "bad", &[("mesh = \"cylinder.geo\"", "mesh = \"bad_syntax.geo\"")]);
@@ -230,7 +187,7 @@ fn curve_used_as_body_is_a_wrong_dimension_error() {
 #[test]
 fn empty_physical_group_is_named_as_empty() {
     let case = Case::new("bad-empty-group");
-    let geo = std::fs::read_to_string(repo_root().join("geo/cylinder.geo")).expect("geo/cylinder.geo");
+    let geo = repo_text("geo/cylinder.geo");
     // gmsh 4.8.4 keeps the name in $PhysicalNames, without elements and without a word.
     case.write("ghost.geo", &(geo + "Physical Surface(\"ghost\") = {99};\nPhysical Curve(\"ghost_curve\") = {99};\n"));
     for (edit, key, group) in [(("\"body_2\"", "\"ghost\""), "bodies[1].group", "\"ghost\""), (("\"symmetry_x0\"", "\"ghost_curve\""), "supports[0].group", "\"ghost_curve\"")] {
@@ -245,7 +202,7 @@ fn plane_analysis_on_a_3d_mesh_says_to_use_solid() {
     let case = Case::new("bad-plane-on-3d");
     case.copy("geo/cylinder_paper.geo");
     gmsh(&case, &["cylinder_paper.geo", "-3", "-format", "msh41", "-o", "paper3d.msh"]);
-    let base = std::fs::read_to_string(repo_root().join("geo/cylinder_paper.toml")).expect("geo/cylinder_paper.toml");
+    let base = repo_text("geo/cylinder_paper.toml");
     // the .geo meshed as a plane analysis asks (gmsh -2), and a 3D .msh
     for mesh in ["cylinder_paper.geo", "paper3d.msh"] {
         for from in ["analysis = \"solid\"", "from = [2.956414504, 1.224586984, 0.5]", "to = [4.434621756, 1.836880476, 0.5]", "[[supports]]\ngroup = \"faces_z\"\nfix = [\"z\"]\n"] {

@@ -19,6 +19,9 @@ mod common;
 use std::collections::HashMap;
 use std::path::Path;
 
+use common::cli::{clean_failure, says};
+use common::measure::{body_nodes, diff_to_bonded, max_abs};
+use common::scenes::{self, two_blocks};
 use common::Case;
 use subcontact::analytic::Lame;
 use subcontact::contact::law::ContactState;
@@ -28,26 +31,6 @@ use subcontact::scene::Analysis;
 
 // ---------------------------------------------------------------------------
 // helpers
-
-/// Max |u_contact - u_bonded| over every model node of the contact run (each
-/// split copy against its mesh node in the bonded run), relative to the
-/// largest bonded displacement component.
-fn max_rel_diff_to_bonded(contact: &Run, bonded: &Run) -> f64 {
-    let nd = contact.model.nd;
-    assert_eq!(bonded.model.nd, nd);
-    assert!(bonded.model.pairs.is_empty(), "the bonded run has no pairs");
-    let scale = bonded.u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    assert!(scale > 0.0, "the bonded solution moves");
-    let mut worst = 0.0f64;
-    for m in 0..contact.model.n_nodes() {
-        let b = contact.model.mesh_node[m];
-        assert_eq!(contact.model.coords[m], bonded.model.coords[b], "node {m} sits at its mesh node");
-        for c in 0..nd {
-            worst = worst.max((contact.u[m * nd + c] - bonded.u[b * nd + c]).abs());
-        }
-    }
-    worst / scale
-}
 
 /// Radius of the k node of every pair and its sigma_n.
 fn pair_radii(run: &Run) -> Vec<(f64, f64)> {
@@ -76,22 +59,11 @@ fn used_nodes(run: &Run) -> Vec<usize> {
     v
 }
 
-/// Result files of a scene's results directory (the mesh cache left out).
-fn result_files(case: &Case, scene: &str) -> Vec<String> {
-    case.files_in(&case.out(scene)).into_iter().filter(|f| !f.starts_with("mesh")).collect()
-}
-
-/// Runs the binary on a scene that must be refused: non-zero exit, no
-/// panic, no result files; returns stderr.
+/// Runs the binary on a scene that must be refused (results in the default
+/// `results/<stem>`): a clean failure, see [`clean_failure`]; returns the message.
 fn refused(case: &Case, scene: &str) -> String {
-    let out = case.cli(&["solve", scene, "--quiet"]);
-    let stderr = String::from_utf8_lossy(&out.stderr).to_string();
-    assert!(!out.status.success(), "{scene} must be refused; stdout: {}", String::from_utf8_lossy(&out.stdout));
-    assert!(!stderr.contains("panicked") && !stderr.contains("RUST_BACKTRACE"), "no panic: {stderr}");
-    assert!(stderr.starts_with("error: "), "one error paragraph: {stderr}");
     let stem = Path::new(scene).file_stem().expect("stem").to_string_lossy().to_string();
-    assert_eq!(result_files(case, &stem), Vec::<String>::new(), "no result files for {scene}");
-    stderr
+    clean_failure(case, &case.cli(&["solve", scene, "--quiet"]), &case.out(&stem))
 }
 
 /// The two blocks of contact_stack.geo / contact_stack3d.geo, bottom listed
@@ -100,38 +72,16 @@ fn refused(case: &Case, scene: &str) -> String {
 /// STACK_SUPPORTS_3D (plane strain: z faces, symmetry x = 0) it is held in x
 /// and z but only the contact holds it in y.
 fn stack_scene(geo: &str, analysis: &str, order: usize, setnumber: &str, load: &str, contact: &str, supports: &str) -> String {
-    format!(
+    let head = format!(
         r#"title = "two stacked blocks"
 mesh = "{geo}"
 analysis = "{analysis}"
 
 [gmsh]
 order = {order}
-setnumber = {{ {setnumber} }}
-
-[materials.m]
-E = 1000.0
-nu = 0.25
-
-[[bodies]]
-group = "bottom"
-material = "m"
-
-[[bodies]]
-group = "top"
-material = "m"
-
-[[contacts]]
-group = "joint"
-{contact}
-
-{supports}
-
-[[loads]]
-group = "top_face"
-{load}
-"#
-    )
+setnumber = {{ {setnumber} }}"#
+    );
+    two_blocks(&head, 1000.0, 0.25, contact, &format!("{supports}\n\n[[loads]]\ngroup = \"top_face\"\n{load}\n"))
 }
 
 const STACK_SUPPORTS_2D: &str = "[[supports]]\ngroup = \"base\"\nfix = [\"y\"]\n\n[[supports]]\ngroup = \"corner\"\nfix = [\"x\"]\n";
@@ -150,7 +100,7 @@ fn all_stick_equals_bonded_solve_on_the_2d_cylinder() {
     let bonded = case.run_with(&scene, true).expect("bonded run");
     assert_all(&contact, ContactState::Stick);
     assert_eq!(contact.model.n_nodes(), bonded.model.n_nodes() + contact.model.pairs.len());
-    let d = max_rel_diff_to_bonded(&contact, &bonded);
+    let d = diff_to_bonded(&contact, &bonded);
     eprintln!("2D cylinder ({} pairs): max |u - u_bonded| / max|u| = {d:.2e}", contact.model.pairs.len());
     assert!(d < 1e-10, "{d:.3e}");
 }
@@ -163,7 +113,7 @@ fn all_stick_equals_bonded_solve_on_the_3d_paper_mesh() {
     let contact = case.run(&scene).expect("contact run");
     let bonded = case.run_with(&scene, true).expect("bonded run");
     assert_all(&contact, ContactState::Stick);
-    let d = max_rel_diff_to_bonded(&contact, &bonded);
+    let d = diff_to_bonded(&contact, &bonded);
     eprintln!("3D paper mesh: max |u - u_bonded| / max|u| = {d:.2e}");
     assert!(d < 1e-10, "{d:.3e}");
 }
@@ -185,7 +135,7 @@ fn all_stick_equals_bonded_solve_on_3d_boxes_under_an_inclined_load() {
         let c = contact.contact.as_ref().expect("contact");
         let max_tau = c.pairs.iter().map(|p| p.tau()).fold(0.0, f64::max);
         assert!(max_tau > 0.1, "{name}: the joint carries shear ({max_tau})");
-        let d = max_rel_diff_to_bonded(&contact, &bonded);
+        let d = diff_to_bonded(&contact, &bonded);
         eprintln!("3D boxes {name} ({} pairs): max |u - u_bonded| / max|u| = {d:.2e}", c.pairs.len());
         assert!(d < 1e-10, "{name}: {d:.3e}");
     }
@@ -252,9 +202,11 @@ fn separate_coincident_contact_groups_give_the_shared_curve_answer() {
     let case = Case::new("contact-split");
     case.copy("geo/cylinder.geo");
     case.copy("tests/geo/contact_cylinder_split.geo");
-    let shared_text = std::fs::read_to_string(common::repo_root().join("geo/cylinder.toml")).expect("cylinder.toml");
-    let shared_text = shared_text.replace("lc = 0.05", "lc = 0.1");
-    let split_text = shared_text.replace("cylinder.geo", "contact_cylinder_split.geo").replace("group = \"A-A\"", "groups = [\"a\", \"b\"]");
+    let shared_text = scenes::edited("geo/cylinder.toml", &[("lc = 0.05", "lc = 0.1")]);
+    let split_text = scenes::edited(
+        "geo/cylinder.toml",
+        &[("lc = 0.05", "lc = 0.1"), ("cylinder.geo", "contact_cylinder_split.geo"), ("group = \"A-A\"", "groups = [\"a\", \"b\"]")],
+    );
     assert_ne!(split_text, shared_text);
     let shared = case.run(&case.write("shared.toml", &shared_text)).expect("shared-curve run");
     let split = case.run(&case.write("split.toml", &split_text)).expect("split-curve run");
@@ -271,25 +223,18 @@ fn separate_coincident_contact_groups_give_the_shared_curve_answer() {
 
     // displacements by (body, position)
     fn by_body_and_position(run: &Run) -> Vec<((usize, [i64; 2]), [f64; 2])> {
-        let mut v = Vec::new();
-        let mut seen = std::collections::HashSet::new();
-        for (b, body) in run.model.bodies.iter().enumerate() {
-            for c in &body.cells {
-                for &n in &c.nodes {
-                    if seen.insert((b, n)) {
-                        let x = run.model.coords[n];
-                        let key = (b, [(x[0] * 1e8).round() as i64, (x[1] * 1e8).round() as i64]);
-                        v.push((key, [run.u[2 * n], run.u[2 * n + 1]]));
-                    }
-                }
-            }
-        }
-        v
+        body_nodes(run)
+            .into_iter()
+            .map(|(b, n)| {
+                let x = run.model.coords[n];
+                ((b, [(x[0] * 1e8).round() as i64, (x[1] * 1e8).round() as i64]), [run.u[2 * n], run.u[2 * n + 1]])
+            })
+            .collect()
     }
     let a: HashMap<_, _> = by_body_and_position(&shared).into_iter().collect();
     let b = by_body_and_position(&split);
     assert_eq!(a.len(), b.len());
-    let scale = a.values().flat_map(|u| u.iter()).fold(0.0f64, |m, v| m.max(v.abs()));
+    let scale = max_abs(a.values().flat_map(|u| u.iter().copied()));
     let mut worst = 0.0f64;
     for (key, u) in &b {
         let w = a.get(key).unwrap_or_else(|| panic!("node {key:?} of the split mesh is in the shared mesh"));
@@ -435,9 +380,7 @@ fn frictionless_joint_that_lets_a_block_slide_is_refused_as_singular() {
         case.write(&scene, &stack_scene("contact_stack.geo", "plane_stress", 1, "n = 4, quad = 1", load, frictionless, STACK_SUPPORTS_2D));
         let stderr = refused(&case, &scene);
         eprintln!("slide-off {name}: {}", stderr.trim());
-        for want in [scene.as_str(), "singular", "iteration 2", "(0 stick, 5 slip, 0 open)", "slides or rotates freely"] {
-            assert!(stderr.contains(want), "mentions {want}: {stderr}");
-        }
+        says(&stderr, &[scene.as_str(), "singular", "iteration 2", "(0 stick, 5 slip, 0 open)", "slides or rotates freely"]);
     }
 }
 
@@ -524,7 +467,7 @@ pressure = 0.1
         let run = case.run(&scene).expect("ring run");
         let bonded = case.run_with(&scene, true).expect("bonded ring run");
         assert_all(&run, ContactState::Stick);
-        let d = max_rel_diff_to_bonded(&run, &bonded);
+        let d = diff_to_bonded(&run, &bonded);
         let lame = lame(&run);
         let exact = lame.sigma_r(4.0);
         let worst = pair_radii(&run).iter().map(|(_, s)| ((s - exact) / exact).abs()).fold(0.0, f64::max);
@@ -538,7 +481,7 @@ pressure = 0.1
         let scene = case.write(&format!("ring_{name}_cohesionless.toml"), &ring(order, set, "friction = 0.8\ncohesion = 0.0\ntensile_strength = 0.0"));
         let cohesionless = case.run(&scene).expect("cohesionless ring run");
         assert_all(&cohesionless, ContactState::Stick);
-        let d = max_rel_diff_to_bonded(&cohesionless, &bonded);
+        let d = diff_to_bonded(&cohesionless, &bonded);
         assert!(d < 1e-10, "{name} cohesionless: {d:.3e}");
 
         // frictionless: every pair slips; by symmetry there is no shear to lose
@@ -561,17 +504,14 @@ pressure = 0.1
 fn unpaired_interface_nodes_are_refused_naming_the_groups() {
     let case = Case::new("contact-unpaired");
     case.copy("tests/geo/contact_cylinder_split.geo");
-    let text = std::fs::read_to_string(common::repo_root().join("geo/cylinder.toml"))
-        .expect("cylinder.toml")
-        .replace("cylinder.geo", "contact_cylinder_split.geo")
-        .replace("group = \"A-A\"", "groups = [\"a\", \"b\"]")
-        .replace("lc = 0.05", "lc = 0.5, extra = 1");
+    let text = scenes::edited(
+        "geo/cylinder.toml",
+        &[("cylinder.geo", "contact_cylinder_split.geo"), ("group = \"A-A\"", "groups = [\"a\", \"b\"]"), ("lc = 0.05", "lc = 0.5, extra = 1")],
+    );
     case.write("unpaired.toml", &text);
     let stderr = refused(&case, "unpaired.toml");
     eprintln!("unpaired: {}", stderr.trim());
-    for want in ["unpaired.toml", "contacts[0].groups", "\"a\"", "\"b\"", "no partner"] {
-        assert!(stderr.contains(want), "mentions {want}: {stderr}");
-    }
+    says(&stderr, &["unpaired.toml", "contacts[0].groups", "\"a\"", "\"b\"", "no partner"]);
 }
 
 #[test]
@@ -583,24 +523,19 @@ fn contact_group_on_one_body_is_refused_naming_the_group_and_body() {
     case.write("one_body.toml", &text);
     let stderr = refused(&case, "one_body.toml");
     eprintln!("one body: {}", stderr.trim());
-    for want in ["one_body.toml", "contacts[0].group", "\"top_face\"", "only body \"top\""] {
-        assert!(stderr.contains(want), "mentions {want}: {stderr}");
-    }
+    says(&stderr, &["one_body.toml", "contacts[0].group", "\"top_face\"", "only body \"top\""]);
 }
 
 #[test]
 fn contact_of_a_body_with_itself_is_refused_naming_the_body() {
     let case = Case::new("contact-self");
     case.copy("tests/geo/contact_cylinder_split.geo");
-    let text = std::fs::read_to_string(common::repo_root().join("geo/cylinder.toml"))
-        .expect("cylinder.toml")
-        .replace("cylinder.geo", "contact_cylinder_split.geo")
-        .replace("group = \"A-A\"", "groups = [\"a\", \"symmetry_y0\"]")
-        .replace("lc = 0.05", "lc = 0.5");
+    let text = scenes::edited(
+        "geo/cylinder.toml",
+        &[("cylinder.geo", "contact_cylinder_split.geo"), ("group = \"A-A\"", "groups = [\"a\", \"symmetry_y0\"]"), ("lc = 0.05", "lc = 0.5")],
+    );
     case.write("self.toml", &text);
     let stderr = refused(&case, "self.toml");
     eprintln!("self contact: {}", stderr.trim());
-    for want in ["self.toml", "contacts[0].groups", "\"a\"", "\"symmetry_y0\"", "body \"body_1\"", "itself"] {
-        assert!(stderr.contains(want), "mentions {want}: {stderr}");
-    }
+    says(&stderr, &["self.toml", "contacts[0].groups", "\"a\"", "\"symmetry_y0\"", "body \"body_1\"", "itself"]);
 }

@@ -16,7 +16,8 @@
 
 mod common;
 
-use common::Case;
+use common::measure::{force_on_body_i, max_abs};
+use common::{repo_text, Case};
 use subcontact::contact::law::ContactState;
 use subcontact::driver::Run;
 
@@ -27,7 +28,7 @@ const H: f64 = 50.0;
 
 fn dam(case: &Case, bodies_order: Option<&[&str]>) -> Run {
     case.copy("geo/dam.geo");
-    let mut text = std::fs::read_to_string(common::repo_root().join("geo/dam.toml")).expect("scene");
+    let mut text = repo_text("geo/dam.toml");
     if let Some(order) = bodies_order {
         let start = text.find("[[bodies]]").expect("bodies");
         let end = text.find("[[contacts]]").expect("contacts");
@@ -50,19 +51,13 @@ fn base_pairs(run: &Run) -> Vec<usize> {
 fn force_on_rock(run: &Run, step: usize) -> [f64; 2] {
     let c = run.steps[step].contact.as_ref().expect("contact");
     let rock_is_i = run.model.bodies[run.model.interfaces[0].body_i].name == "rock";
-    let mut f = [0.0; 2];
-    for p in base_pairs(run) {
-        let pair = &run.model.pairs[p];
-        let n = pair.normal;
-        let t = [-n[1], n[0]];
-        let r = &c.pairs[p];
-        for i in 0..2 {
-            // the force on body I; on the rock it is that or its opposite
-            let fi = (r.sigma_n * n[i] + r.tau_t * t[i]) * pair.area;
-            f[i] += if rock_is_i { fi } else { -fi };
-        }
+    // the force on body I; on the rock it is that or its opposite
+    let f = force_on_body_i(run, c, |p| run.model.pairs[p].contact == 0);
+    if rock_is_i {
+        f
+    } else {
+        [-f[0], -f[1]]
     }
-    f
 }
 
 #[test]
@@ -98,7 +93,7 @@ fn heel_is_closed_under_self_weight_and_opens_under_the_full_reservoir() {
     assert!(first_closed >= 2, "more than the heel pair opens");
     assert!(open[first_closed..].iter().all(|o| !o), "the open part of the base is one stretch from the heel");
     let c = run.steps[2].contact.as_ref().expect("contact");
-    let scale = base.iter().map(|&p| c.pairs[p].sigma_n.abs()).fold(0.0, f64::max);
+    let scale = max_abs(base.iter().map(|&p| c.pairs[p].sigma_n));
     for &p in &base[..first_closed] {
         assert!(c.pairs[p].gap > 0.0, "open pairs gap");
         assert!(c.pairs[p].sigma_n.abs() < 1e-9 * scale && c.pairs[p].tau().abs() < 1e-9 * scale, "open pairs carry nothing");
@@ -112,7 +107,7 @@ fn the_answer_does_not_depend_on_the_order_of_the_blocks() {
     let (pa, pb) = (base_pairs(&a), base_pairs(&b));
     assert_eq!(pa.len(), pb.len());
     let (ca, cb) = (a.contact.as_ref().expect("contact"), b.contact.as_ref().expect("contact"));
-    let scale = pa.iter().map(|&p| ca.pairs[p].sigma_n.abs()).fold(0.0, f64::max);
+    let scale = max_abs(pa.iter().map(|&p| ca.pairs[p].sigma_n));
     for (&p, &q) in pa.iter().zip(&pb) {
         let (xa, xb) = (a.model.coords[a.model.pairs[p].k], b.model.coords[b.model.pairs[q].k]);
         assert!((xa[0] - xb[0]).abs() < 1e-9, "same pair positions");

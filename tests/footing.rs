@@ -74,7 +74,8 @@
 
 mod common;
 
-use common::Case;
+use common::measure::count;
+use common::{read, repo_text, Case};
 use subcontact::contact::law::ContactState;
 use subcontact::driver::Run;
 
@@ -91,7 +92,7 @@ const THIN: f64 = 0.1;
 
 /// The repository's footing.toml with the eccentricity and the ground's depth set.
 fn scene_text(e: f64, depth: f64) -> String {
-    let text = std::fs::read_to_string(common::repo_root().join("geo/footing.toml")).expect("geo/footing.toml");
+    let text = repo_text("geo/footing.toml");
     let line = "setnumber = { lc = 0.05, e = 0.6666666666666666, depth = 10.0 }";
     assert!(text.contains(line), "footing.toml has the line {line:?}");
     text.replace(line, &format!("setnumber = {{ lc = {LC:?}, e = {e:?}, depth = {depth:?} }}"))
@@ -154,7 +155,7 @@ fn solve(case: &Case, name: &str, e: f64, depth: f64) -> Footing {
         }
     }
     let length = B / 2.0 - x_min;
-    let (slip, open) = (c.states.iter().filter(|s| **s == ContactState::Slip).count(), c.states.iter().filter(|s| **s == ContactState::Open).count());
+    let (slip, open) = (count(c, ContactState::Slip), count(c, ContactState::Open));
     eprintln!(
         "{name}: depth {depth}, e = {e:.4}: L = {length:.4} m; {} pairs ({slip} slip, {open} open), {} iterations, {} cycles broken; balance {en:.1e} / {ey:.1e} / moment {em:.1e}; {} DOFs ({} interface), {:.2} s",
         c.states.len(),
@@ -263,7 +264,7 @@ fn deep_ground_contact_length_follows_the_rigid_footing_on_a_half_space() {
     case.copy("geo/footing.geo");
     // the committed scene as it is: e = B/3 on the 5 B ground
     let scene = case.copy("geo/footing.toml");
-    assert_eq!(std::fs::read_to_string(&scene).expect("scene"), scene_text(B / 3.0, DEEP), "footing.toml is e = B/3 on the deep ground");
+    assert_eq!(read(&scene), scene_text(B / 3.0, DEEP), "footing.toml is e = B/3 on the deep ground");
     for (name, e) in [("deep_b5", B / 5.0), ("deep_b4", B / 4.0), ("footing", B / 3.0)] {
         let f = solve(&case, name, e, DEEP);
         let l = half_space_length(e);

@@ -8,6 +8,7 @@
 
 mod common;
 
+use common::measure::max_abs;
 use common::Case;
 
 const GEO: &str = r#"
@@ -62,7 +63,7 @@ fn geostatic_stress_balances_gravity_so_nothing_moves() {
     case.write("box.geo", GEO);
     let toml = scene("k0 = 0.6\nsurface = 8.0", "");
     let run = case.run(&case.write("box.toml", &toml)).expect("run");
-    let umax = run.u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let umax = max_abs(run.u.iter().copied());
     let rho_g = 2.0e-3 * 9.81;
     let scale = rho_g * 8.0;
     // the weight alone would move the top by rho g H^2 / (2 M) ~ 6e-3
@@ -89,7 +90,7 @@ fn uniform_initial_stress_with_boundary_tractions_stays_uniform() {
     )
     .replace("gravity = [0.0, -9.81]\n", "");
     let run = case.run(&case.write("box.toml", &toml)).expect("run");
-    let umax = run.u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let umax = max_abs(run.u.iter().copied());
     assert!(umax < 1e-12, "largest displacement {umax:e}");
     for s in &run.probes[0].1 {
         for (c, want) in [(0, -2.0), (1, -1.0), (2, -0.9), (3, 0.0)] {

@@ -51,7 +51,9 @@ mod common;
 
 use std::time::Instant;
 
-use common::{loglog_slope, Case};
+use common::measure::loglog_slope;
+use common::scenes::lame_cylinder;
+use common::Case;
 use subcontact::analytic::Lame;
 use subcontact::driver::Run;
 use subcontact::output::report::table1_values;
@@ -142,52 +144,28 @@ fn quarter_annulus() -> f64 {
     std::f64::consts::PI / 4.0 * (B * B - A * A)
 }
 
-const PLANE_STRAIN: &str = r#"
-title = "Lame cylinder, plane strain, bonded halves"
-mesh = "cylinder.geo"
-analysis = "plane_strain"
+/// `[gmsh]` lines with the placeholders `study` fills in.
+const GMSH: &str = "order = {order}\nsetnumber = { lc = {lc} }";
 
-[gmsh]
-order = {order}
-setnumber = { lc = {lc} }
-
-[materials.concrete]
-E = 2.0e5
-nu = 0.167
-
-[[bodies]]
-group = "body_1"
-material = "concrete"
-
-[[bodies]]
-group = "body_2"
-material = "concrete"
-
-[[supports]]
-group = "symmetry_x0"
-fix = ["x"]
-
-[[supports]]
-group = "symmetry_y0"
-fix = ["y"]
-
-[[loads]]
-group = "inner"
-pressure = 0.1
-
-[analytic]
-kind = "lame_cylinder"
-a = 3.0
-b = 5.0
-p = 0.1
-"#;
+/// geo/cylinder.geo with both halves bonded (no contact).
+fn plane_strain() -> String {
+    lame_cylinder(
+        "Lame cylinder, plane strain, bonded halves",
+        "cylinder.geo",
+        "plane_strain",
+        GMSH,
+        NU,
+        &["body_1", "body_2"],
+        &[("symmetry_x0", "[\"x\"]"), ("symmetry_y0", "[\"y\"]")],
+    )
+}
 
 #[test]
 fn plane_strain_displacement_converges_at_rate_2_for_quad4_and_3_for_quad9() {
     let case = Case::new("lame-plane-strain");
     case.copy("geo/cylinder.geo");
-    let p1 = study(&case, "plane_strain", PLANE_STRAIN, 1, &[0.4, 0.2, 0.1, 0.05], quarter_annulus(), 2);
-    let p2 = study(&case, "plane_strain", PLANE_STRAIN, 2, &[0.4, 0.2, 0.1, 0.05], quarter_annulus(), 2);
+    let p1 = study(&case, "plane_strain", &plane_strain(), 1, &[0.4, 0.2, 0.1, 0.05], quarter_annulus(), 2);
+    let p2 = study(&case, "plane_strain", &plane_strain(), 2, &[0.4, 0.2, 0.1, 0.05], quarter_annulus(), 2);
     let (r1, s1) = rates("plane strain quad4", &p1);
     let (r2, s2) = rates("plane strain quad9", &p2);
     assert_rates("plane strain quad4", 1, r1, s1, &p1);
@@ -199,7 +177,7 @@ fn plane_stress_displacement_converges_at_rate_2_for_quad4_and_3_for_quad9() {
     // the plane stress closed form differs (u_r = k/E ((1 - nu) r + (1 + nu) b^2/r), sigma_z = 0)
     let case = Case::new("lame-plane-stress");
     case.copy("geo/cylinder.geo");
-    let template = PLANE_STRAIN.replace("plane_strain", "plane_stress").replace("plane strain", "plane stress");
+    let template = plane_strain().replace("plane_strain", "plane_stress").replace("plane strain", "plane stress");
     let p1 = study(&case, "plane_stress", &template, 1, &[0.4, 0.2, 0.1], quarter_annulus(), 2);
     let p2 = study(&case, "plane_stress", &template, 2, &[0.4, 0.2, 0.1], quarter_annulus(), 2);
     let (r1, s1) = rates("plane stress quad4", &p1);
@@ -208,57 +186,26 @@ fn plane_stress_displacement_converges_at_rate_2_for_quad4_and_3_for_quad9() {
     assert_rates("plane stress quad9", 2, r2, s2, &p2);
 }
 
-const SLICE: &str = r#"
-title = "Lame cylinder, 3D slice with w = 0 on both faces"
-mesh = "lame_slice.geo"
-analysis = "solid"
-
-[gmsh]
-order = {order}
-setnumber = { lc = {lc} }
-
-[materials.concrete]
-E = 2.0e5
-nu = 0.167
-
-[[bodies]]
-group = "body"
-material = "concrete"
-
-[[supports]]
-group = "x0"
-fix = ["x"]
-
-[[supports]]
-group = "y0"
-fix = ["y"]
-
-[[supports]]
-group = "z0"
-fix = ["z"]
-
-[[supports]]
-group = "z1"
-fix = ["z"]
-
-[[loads]]
-group = "inner"
-pressure = 0.1
-
-[analytic]
-kind = "lame_cylinder"
-a = 3.0
-b = 5.0
-p = 0.1
-"#;
+/// tests/geo/lame_slice.geo, w = 0 on both faces.
+fn slice() -> String {
+    lame_cylinder(
+        "Lame cylinder, 3D slice with w = 0 on both faces",
+        "lame_slice.geo",
+        "solid",
+        GMSH,
+        NU,
+        &["body"],
+        &[("x0", "[\"x\"]"), ("y0", "[\"y\"]"), ("z0", "[\"z\"]"), ("z1", "[\"z\"]")],
+    )
+}
 
 #[test]
 fn solid_slice_displacement_converges_at_rate_2_for_hex8_and_3_for_hex27() {
     let case = Case::new("lame-slice");
     case.copy("tests/geo/lame_slice.geo");
     // one layer of thickness lc: the volume is the area times lc, h the in-plane size
-    let p1 = study(&case, "slice", SLICE, 1, &[0.4, 0.2, 0.1], quarter_annulus(), 2);
-    let p2 = study(&case, "slice", SLICE, 2, &[0.4, 0.2, 0.1], quarter_annulus(), 2);
+    let p1 = study(&case, "slice", &slice(), 1, &[0.4, 0.2, 0.1], quarter_annulus(), 2);
+    let p2 = study(&case, "slice", &slice(), 2, &[0.4, 0.2, 0.1], quarter_annulus(), 2);
     let (r1, s1) = rates("solid slice hex8", &p1);
     let (r2, s2) = rates("solid slice hex27", &p2);
     assert_rates("hex8", 1, r1, s1, &p1);
@@ -268,7 +215,7 @@ fn solid_slice_displacement_converges_at_rate_2_for_hex8_and_3_for_hex27() {
     // must give the plane strain solution, so the same errors.
     case.copy("geo/cylinder.geo");
     for (order, levels) in [(1, &p1), (2, &p2)] {
-        let plane = study(&case, "plane_strain", PLANE_STRAIN, order, &[0.4, 0.2], quarter_annulus(), 2);
+        let plane = study(&case, "plane_strain", &plane_strain(), order, &[0.4, 0.2], quarter_annulus(), 2);
         for (s, q) in levels.iter().zip(&plane) {
             assert_eq!(s.cells, q.cells);
             let du = (s.displacement_l2 - q.displacement_l2).abs() / q.displacement_l2;
@@ -287,48 +234,25 @@ fn solid_slice_displacement_converges_at_rate_2_for_hex8_and_3_for_hex27() {
     }
 }
 
-const AXISYMMETRIC: &str = r#"
-title = "Lame cylinder, axisymmetric, axial displacement held at both ends"
-mesh = "lame_axisym.geo"
-analysis = "axisymmetric"
-
-[gmsh]
-order = {order}
-setnumber = { lc = {lc} }
-
-[materials.concrete]
-E = 2.0e5
-nu = 0.167
-
-[[bodies]]
-group = "body"
-material = "concrete"
-
-[[supports]]
-group = "bottom"
-fix = ["y"]
-
-[[supports]]
-group = "top"
-fix = ["y"]
-
-[[loads]]
-group = "inner"
-pressure = 0.1
-
-[analytic]
-kind = "lame_cylinder"
-a = 3.0
-b = 5.0
-p = 0.1
-"#;
+/// tests/geo/lame_axisym.geo, the axial displacement held at both ends.
+fn axisymmetric() -> String {
+    lame_cylinder(
+        "Lame cylinder, axisymmetric, axial displacement held at both ends",
+        "lame_axisym.geo",
+        "axisymmetric",
+        GMSH,
+        NU,
+        &["body"],
+        &[("bottom", "[\"y\"]"), ("top", "[\"y\"]")],
+    )
+}
 
 #[test]
 fn axisymmetric_displacement_converges_at_rate_2_for_quad4_and_3_for_quad9() {
     let case = Case::new("lame-axisym");
     case.copy("tests/geo/lame_axisym.geo");
-    let p1 = study(&case, "axisym", AXISYMMETRIC, 1, &[0.5, 0.25, 0.125, 0.0625], 2.0, 2);
-    let p2 = study(&case, "axisym", AXISYMMETRIC, 2, &[0.5, 0.25, 0.125, 0.0625], 2.0, 2);
+    let p1 = study(&case, "axisym", &axisymmetric(), 1, &[0.5, 0.25, 0.125, 0.0625], 2.0, 2);
+    let p2 = study(&case, "axisym", &axisymmetric(), 2, &[0.5, 0.25, 0.125, 0.0625], 2.0, 2);
     let (r1, s1) = rates("axisymmetric quad4", &p1);
     let (r2, s2) = rates("axisymmetric quad9", &p2);
     assert_rates("axisymmetric quad4", 1, r1, s1, &p1);

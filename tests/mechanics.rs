@@ -49,9 +49,10 @@
 
 mod common;
 
-use std::path::Path;
-
-use common::Case;
+use common::cli::{says, solve_fails};
+use common::measure::{count, force_on_body_i, tangent};
+use common::scenes::{self, two_blocks};
+use common::{json, read, repo_text, Case};
 use serde_json::Value;
 use subcontact::analytic::Lame;
 use subcontact::contact::law::ContactState;
@@ -67,25 +68,6 @@ use subcontact::scene::{Analysis, ContactGroups};
 /// The contact result of load step `k` (from 1).
 fn step(run: &Run, k: usize) -> &ContactRun {
     run.steps[k - 1].contact.as_ref().expect("a contact step")
-}
-
-/// 2D tangent of a pair: the normal turned +90 degrees about z.
-fn tangent(n: [f64; 3]) -> [f64; 2] {
-    [-n[1], n[0]]
-}
-
-/// Contact force on body I summed over the pairs `which`, global (x, y).
-fn force_on_body_i(run: &Run, c: &ContactRun, which: impl Fn(usize) -> bool) -> [f64; 2] {
-    let mut f = [0.0; 2];
-    for (p, (pair, r)) in run.model.pairs.iter().zip(&c.pairs).enumerate() {
-        if which(p) {
-            let t = tangent(pair.normal);
-            for i in 0..2 {
-                f[i] += (r.sigma_n * pair.normal[i] + r.tau_t * t[i]) * pair.area;
-            }
-        }
-    }
-    f
 }
 
 /// `sum sigma_n A` and `sum tau_t A` over the pairs `which`.
@@ -105,15 +87,6 @@ fn is_body_i(run: &Run, name: &str) -> bool {
     run.model.bodies[run.model.interfaces[0].body_i].name == name
 }
 
-fn count(c: &ContactRun, s: ContactState) -> usize {
-    c.states.iter().filter(|&&x| x == s).count()
-}
-
-/// Result files of a results directory, the mesh cache left out.
-fn result_files(case: &Case, dir: &Path) -> Vec<String> {
-    case.files_in(dir).into_iter().filter(|f| !f.starts_with("mesh")).collect()
-}
-
 /// Runs the binary on a scene of the case (results in `out`): (success, stderr).
 fn solve_cli(case: &Case, scene: &str, out: &str) -> (bool, String) {
     let o = case.cli(&["solve", scene, "--out", out, "--quiet"]);
@@ -122,21 +95,13 @@ fn solve_cli(case: &Case, scene: &str, out: &str) -> (bool, String) {
     (o.status.success(), stderr)
 }
 
-fn json(path: &Path) -> Value {
-    serde_json::from_str(&std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))).expect("JSON")
-}
-
 /// Text replacements (from, to) of a scene, each applied once.
 type Edits<'a> = Vec<(&'a str, &'a str)>;
 
-/// A copy of a repository scene with text edits, written into the case.
+/// A copy of a repository scene with text edits (see [`scenes::edited`]),
+/// written into the case.
 fn edited(case: &Case, repo_toml: &str, name: &str, edits: &[(&str, &str)]) -> std::path::PathBuf {
-    let mut text = std::fs::read_to_string(case.copy(repo_toml)).expect("scene text");
-    for (from, to) in edits {
-        assert!(text.contains(from), "{repo_toml} contains {from:?}");
-        text = text.replacen(from, to, 1);
-    }
-    case.write(name, &text)
+    case.write(name, &scenes::edited(repo_toml, edits))
 }
 
 // ---------------------------------------------------------------------------
@@ -195,7 +160,7 @@ fn pushed_block_slips_at_every_pair_with_coulomb_shear_and_its_normal_forces_car
     let case = Case::new("mech-push");
     case.copy("geo/block_push.geo");
     // triangles: the same geometry without Recombine
-    let geo = std::fs::read_to_string(common::repo_root().join("geo/block_push.geo")).expect("geo");
+    let geo = repo_text("geo/block_push.geo");
     assert!(geo.contains("Recombine Surface{1, 2};"));
     case.write("block_push_tri.geo", &geo.replace("Recombine Surface{1, 2};", ""));
     let variants: [(&str, Edits, f64, f64, &str); 5] = [
@@ -370,14 +335,10 @@ fn cgs4_block_holds_below_and_loses_equilibrium_above_the_slip_limit_within_half
         let above_edits = [&edits[..], &[("0.99, 0.995]", "0.995, 1.005]")][..]].concat();
         let scene = format!("above_{i}.toml");
         edited(&case, "geo/cgs4.toml", &scene, &above_edits);
-        let (ok, stderr) = solve_cli(&case, &scene, &format!("out_above_{i}"));
-        eprintln!("CGS-4 {name}, F/G = 1.005 x limit at step 5: {}", stderr.trim());
-        assert!(!ok, "{name}: 0.5 % above the limit must fail");
-        assert!(stderr.starts_with("error: "), "one error paragraph: {stderr}");
-        for want in [scene.as_str(), "loss of equilibrium", "body \"block\"", "load step 5,"] {
-            assert!(stderr.contains(want), "{name}: mentions {want:?}: {stderr}");
-        }
-        assert_eq!(result_files(&case, &case.dir.join(format!("out_above_{i}"))), Vec::<String>::new(), "{name}: no result files");
+        // 0.5 % above the limit: a clean failure (exit 1, one error paragraph, no result files)
+        let stderr = solve_fails(&case, &scene, &format!("out_above_{i}"));
+        eprintln!("CGS-4 {name}, F/G = 1.005 x limit at step 5: {stderr}");
+        says(&stderr, &[scene.as_str(), "loss of equilibrium", "body \"block\"", "load step 5,"]);
     }
 }
 
@@ -416,44 +377,25 @@ fn patch_scene(order: usize, set: &str, theta: f64, recovery: &str) -> String {
         let t = [sigma[0][0] * n[0] + sigma[0][1] * n[1], sigma[1][0] * n[0] + sigma[1][1] * n[1]];
         loads += &format!("[[loads]]\ngroup = \"{group}\"\ntraction = [{:?}, {:?}]\n\n", t[0], t[1]);
     }
-    format!(
+    let head = format!(
         r#"title = "contact patch test"
 mesh = "mech_blocks.geo"
 analysis = "plane_strain"
 
 [gmsh]
 order = {order}
-setnumber = {{ {set}, theta = {theta:?} }}
-
-[materials.m]
-E = 1000.0
-nu = 0.3
-
-[[bodies]]
-group = "bottom"
-material = "m"
-
-[[bodies]]
-group = "top"
-material = "m"
-
-[[contacts]]
-group = "joint"
-friction = 0.5
-cohesion = 0.0
-tensile_strength = 0.0
-traction = "{recovery}"
-
-[[supports]]
+setnumber = {{ {set}, theta = {theta:?} }}"#
+    );
+    let joint = format!("friction = 0.5\ncohesion = 0.0\ntensile_strength = 0.0\ntraction = \"{recovery}\"");
+    let supports = r#"[[supports]]
 group = "pin"
 fix = ["x", "y"]
 
 [[supports]]
 group = "roller"
 fix = ["y"]
-
-{loads}"#
-    )
+"#;
+    two_blocks(&head, 1000.0, 0.3, &joint, &format!("{supports}\n{loads}"))
 }
 
 /// Every pair sticks and carries sigma_n = n.S.n, tau_t = t.S.n of the
@@ -617,7 +559,7 @@ fn paper_rule_cycles_on_an_opening_joint_and_says_so_while_the_robust_rule_conve
     case.copy("geo/stack.geo");
     case.write("hanging_paper.toml", &hanging_scene("paper"));
     case.write("hanging_robust.toml", &hanging_scene("robust"));
-    let stack = std::fs::read_to_string(case.copy("geo/stack.toml")).expect("stack.toml");
+    let stack = read(&case.copy("geo/stack.toml"));
     assert!(!stack.contains("[solver]"));
     case.write("stack_paper.toml", &format!("{stack}\n[solver]\nrule = \"paper\"\n"));
     case.write("stack_robust.toml", &stack);
@@ -632,7 +574,7 @@ fn paper_rule_cycles_on_an_opening_joint_and_says_so_while_the_robust_rule_conve
         assert_eq!(s["contact"]["converged"], Value::Bool(false), "{name}: summary converged");
         assert_eq!(s["contact"]["cycled"], Value::Bool(true), "{name}: summary cycled");
         let paper_its = s["contact"]["iterations"].as_u64().expect("iterations");
-        let report = std::fs::read_to_string(dir.join("report.md")).expect("report.md");
+        let report = read(&dir.join("report.md"));
         assert!(report.contains("## Last two state sets"), "{name}: report lists the last two state sets");
         assert!(report.contains(&format!("| pair | iteration {} | iteration {paper_its} |", paper_its - 1)), "{name}: the last two iterations: {report}");
 

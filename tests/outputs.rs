@@ -18,7 +18,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
 
-use common::{repo_root, Case};
+use common::{json, read, repo_text, Case};
 use serde_json::Value;
 
 /// What meshio reads from a VTU file.
@@ -99,7 +99,7 @@ fn solve(case_name: &str, stem: &str) -> Results {
     let out = case.cli(&["solve", &format!("{stem}.toml"), "--out", "out", "--quiet"]);
     assert!(out.status.success(), "solve {stem} failed: {}", String::from_utf8_lossy(&out.stderr));
     let dir = case.dir.join("out");
-    let summary: Value = serde_json::from_str(&read(&dir.join("summary.json"))).expect("summary.json is JSON");
+    let summary = json(&dir.join("summary.json"));
     let text = read(&dir.join("contact.csv"));
     let mut lines = text.lines();
     let csv_header = lines.next().expect("contact.csv header").to_string();
@@ -108,10 +108,6 @@ fn solve(case_name: &str, stem: &str) -> Results {
         .map(|l| names.iter().zip(l.split(',')).map(|(k, v)| (k.to_string(), v.parse::<f64>().unwrap_or_else(|_| panic!("contact.csv: {k} = {v:?}")))).collect())
         .collect();
     Results { dir, stdout: String::from_utf8_lossy(&out.stdout).into_owned(), summary, csv, csv_header }
-}
-
-fn read(path: &Path) -> String {
-    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
 /// The default cylinder, solved once for all tests of this file.
@@ -360,13 +356,13 @@ fn paper_mesh_writes_30_hex8_and_12_contact_pairs() {
 fn mesh_is_reused_on_a_second_run_and_remade_when_setnumber_changes() {
     let case = Case::new("outputs-cache");
     case.copy("geo/cylinder.geo");
-    let base = read(&repo_root().join("geo/cylinder.toml"));
+    let base = repo_text("geo/cylinder.toml");
     assert!(base.contains("lc = 0.05"), "geo/cylinder.toml changed: update this test");
     let run = |lc: &str| -> Value {
         case.write("cylinder.toml", &base.replace("lc = 0.05", lc));
         let out = case.cli(&["solve", "cylinder.toml", "--out", "out", "--quiet"]);
         assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-        serde_json::from_str(&read(&case.dir.join("out/summary.json"))).unwrap()
+        json(&case.dir.join("out/summary.json"))
     };
     let msh = case.dir.join("out/mesh/cylinder.msh");
     let first = run("lc = 0.2");

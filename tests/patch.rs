@@ -60,7 +60,7 @@ mod common;
 use std::collections::HashMap;
 use std::path::Path;
 
-use common::Case;
+use common::{read, Case};
 use subcontact::driver::Run;
 use subcontact::fem::{element, material, quadrature};
 use subcontact::mesh::CellKind;
@@ -115,7 +115,7 @@ fn mat_vec(m: &[[f64; 3]; 3], v: Vec3) -> Vec3 {
 
 /// The `Point(k) = {x, y, z, ...}` coordinates of a .geo with literal numbers.
 fn geo_points(geo: &Path) -> HashMap<usize, Vec3> {
-    let text = std::fs::read_to_string(geo).expect("read .geo");
+    let text = read(geo);
     let mut pts = HashMap::new();
     for line in text.lines() {
         let Some(rest) = line.trim().strip_prefix("Point(") else { continue };

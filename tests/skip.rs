@@ -10,17 +10,16 @@
 
 mod common;
 
-use common::Case;
+use common::{read, repo_text, scenes, Case};
 
 fn counters(run: &subcontact::driver::Run) -> &subcontact::driver::Counters {
     &run.counters
 }
 
-/// geo/cylinder.* copied into the case with the scene text edited.
+/// geo/cylinder.* copied into the case, coarsened, with the scene text edited.
 fn cylinder(case: &Case, edit: &dyn Fn(String) -> String) -> std::path::PathBuf {
     case.copy("geo/cylinder.geo");
-    let text = std::fs::read_to_string(common::repo_root().join("geo/cylinder.toml")).expect("scene");
-    let text = text.replace("setnumber = { lc = 0.05 }", "setnumber = { lc = 0.2 }");
+    let text = scenes::edited("geo/cylinder.toml", &[("setnumber = { lc = 0.05 }", "setnumber = { lc = 0.2 }")]);
     case.write("cylinder.toml", &edit(text))
 }
 
@@ -40,14 +39,14 @@ fn no_contacts_means_no_condensation_and_one_solve() {
 fn a_body_without_contact_is_not_condensed() {
     // the block-push scene plus a third, separate body with its own support
     let case = Case::new("skip-third-body");
-    let geo = std::fs::read_to_string(common::repo_root().join("geo/block_push.geo")).expect("geo");
+    let geo = repo_text("geo/block_push.geo");
     let geo = geo
         + "\nPoint(20) = {3, 0, 0};\nPoint(21) = {4, 0, 0};\nPoint(22) = {4, 1, 0};\nPoint(23) = {3, 1, 0};\n\
            Line(20) = {20, 21};\nLine(21) = {21, 22};\nLine(22) = {22, 23};\nLine(23) = {23, 20};\n\
            Curve Loop(20) = {20, 21, 22, 23};\nPlane Surface(20) = {20};\nRecombine Surface{20};\n\
            Physical Surface(\"pier\") = {20};\nPhysical Curve(\"pier_bottom\") = {20};\nPhysical Curve(\"pier_top\") = {22};\n";
     case.write("block_push.geo", &geo);
-    let toml = std::fs::read_to_string(common::repo_root().join("geo/block_push.toml")).expect("scene")
+    let toml = repo_text("geo/block_push.toml")
         + "\n[[bodies]]\ngroup = \"pier\"\nmaterial = \"concrete\"\n\n[[supports]]\ngroup = \"pier_bottom\"\nfix = [\"x\", \"y\"]\n\n\
            [[loads]]\ngroup = \"pier_top\"\npressure = 2.0\n";
     let scene = case.write("block_push.toml", &toml);
@@ -61,7 +60,7 @@ fn a_body_without_contact_is_not_condensed() {
 fn parts_are_factorised_once_for_all_iterations_and_load_steps() {
     let case = Case::new("skip-steps");
     case.copy("geo/block_push.geo");
-    let toml = std::fs::read_to_string(common::repo_root().join("geo/block_push.toml")).expect("scene")
+    let toml = repo_text("geo/block_push.toml")
         + "\n[solver]\nload_steps = 3\n";
     let scene = case.write("block_push.toml", &toml);
     let run = case.run(&scene).expect("run");
@@ -80,7 +79,7 @@ fn stresses_are_not_recovered_when_not_asked_for() {
     let run = case.run(&only_u).expect("run");
     assert_eq!(counters(&run).stress_recoveries, 0);
     assert!(run.stresses.is_empty());
-    let vtu = std::fs::read_to_string(case.out("cylinder").join("cylinder.vtu")).expect("vtu");
+    let vtu = read(&case.out("cylinder").join("cylinder.vtu"));
     assert!(vtu.contains("Name=\"displacement\"") && !vtu.contains("Name=\"stress\"") && !vtu.contains("von_mises"));
 
     // nothing asked for at all (no fields, no probes, no closed form): no interior recovery

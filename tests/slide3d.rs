@@ -13,6 +13,8 @@
 
 mod common;
 
+use common::measure::count;
+use common::scenes::two_blocks;
 use common::Case;
 use subcontact::contact::frame::frame;
 use subcontact::contact::law::ContactState;
@@ -21,33 +23,15 @@ use subcontact::contact::law::ContactState;
 fn friction_in_3d_follows_the_slip_vector_and_has_the_coulomb_magnitude() {
     let case = Case::new("slide3d");
     case.copy("tests/geo/contact_stack3d.geo");
-    let toml = r#"title = "a box slid diagonally across another"
+    let head = r#"title = "a box slid diagonally across another"
 mesh = "contact_stack3d.geo"
 analysis = "solid"
 
 [gmsh]
 order = 2
-setnumber = { n = 3, nz = 2, hex = 1 }
-
-[materials.m]
-E = 1000.0
-nu = 0.25
-
-[[bodies]]
-group = "bottom"
-material = "m"
-
-[[bodies]]
-group = "top"
-material = "m"
-
-[[contacts]]
-group = "joint"
-friction = 0.3
-cohesion = 0.0
-tensile_strength = 0.0
-
-[[supports]]
+setnumber = { n = 3, nz = 2, hex = 1 }"#;
+    // the base clamped; the top face pressed down and moved diagonally
+    let supports = r#"[[supports]]
 group = "base"
 fix = ["x", "y", "z"]
 
@@ -57,13 +41,14 @@ ux = 1.0e-2
 uy = -2.0e-3
 uz = 6.0e-3
 "#;
-    let run = case.run(&case.write("slide.toml", toml)).expect("run");
+    let toml = two_blocks(head, 1000.0, 0.25, "friction = 0.3\ncohesion = 0.0\ntensile_strength = 0.0", supports);
+    let run = case.run(&case.write("slide.toml", &toml)).expect("run");
     let c = run.contact.as_ref().expect("contact");
     assert!(c.converged);
     let nd = run.model.nd;
     let mut worst_mag: f64 = 0.0;
     let mut worst_dir: f64 = 0.0;
-    let slipping = c.states.iter().filter(|s| **s == ContactState::Slip).count();
+    let slipping = count(c, ContactState::Slip);
     assert!(slipping * 10 >= 9 * c.states.len(), "{slipping} of {} pairs slip", c.states.len());
     for (p, pair) in run.model.pairs.iter().enumerate() {
         if c.states[p] != ContactState::Slip {

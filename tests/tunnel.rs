@@ -28,7 +28,8 @@
 
 mod common;
 
-use common::Case;
+use common::measure::max_abs;
+use common::{read, repo_text, Case};
 use subcontact::analytic::TunnelSlip;
 use subcontact::contact::law::ContactState;
 use subcontact::driver::Run;
@@ -39,7 +40,7 @@ use subcontact::scene::{Analytic, Scene};
 /// edited by `edit`.
 fn scene(case: &Case, name: &str, out: &str, edit: impl Fn(String) -> String) -> std::path::PathBuf {
     case.copy("geo/tunnel.geo");
-    let text = std::fs::read_to_string(common::repo_root().join("geo").join(format!("{name}.toml"))).expect("shipped scene");
+    let text = repo_text(&format!("geo/{name}.toml"));
     case.write(out, &edit(text))
 }
 
@@ -103,7 +104,7 @@ fn einstein_schwartz_no_slip() {
     let case = Case::new("tunnel-no-slip");
     let run = case.run(&scene(&case, "tunnel", "tunnel.toml", |s| s)).expect("no-slip run");
     check_variant(&run, ContactState::Stick, TunnelSlip::None);
-    let report = std::fs::read_to_string(case.out("tunnel").join("report.md")).expect("report.md");
+    let report = read(&case.out("tunnel").join("report.md"));
     assert!(report.contains("## Lining: thrust and moment") && report.contains("| 90.0 |"), "{report}");
 }
 
@@ -114,7 +115,7 @@ fn einstein_schwartz_full_slip() {
     check_variant(&run, ContactState::Slip, TunnelSlip::Full);
     // no shear crosses the interface
     let pairs = &run.contact.as_ref().expect("contact").pairs;
-    let sn = pairs.iter().map(|p| p.sigma_n.abs()).fold(0.0, f64::max);
+    let sn = max_abs(pairs.iter().map(|p| p.sigma_n));
     let tau = pairs.iter().map(|p| p.tau_t.hypot(p.tau_b)).fold(0.0, f64::max);
     assert!(sn > 0.3 && tau < 1e-9 * sn, "sigma_n {sn}, tau {tau}");
     assert!(pairs.iter().all(|p| p.sigma_n < 0.0), "the interface stays in compression");
@@ -130,7 +131,7 @@ fn in_situ_szz_does_not_change_the_plane_answer() {
         t
     });
     let b = case.run(&edited).expect("szz = 0");
-    let scale = a.u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let scale = max_abs(a.u.iter().copied());
     let du = a.u.iter().zip(&b.u).fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
     assert!(du <= 1e-12 * scale, "displacements differ by {du}");
     for (x, y) in compare(&a).rows.iter().zip(&compare(&b).rows) {
@@ -178,7 +179,7 @@ fn far_boundary_at_10_radii_is_too_close_for_the_moment() {
 fn lined_tunnel_scene_rules() {
     let case = Case::new("tunnel-rules");
     case.copy("geo/tunnel.geo");
-    let base = std::fs::read_to_string(common::repo_root().join("geo/tunnel.toml")).expect("shipped scene");
+    let base = repo_text("geo/tunnel.toml");
     let parse = |text: &str| Scene::parse(text, &case.dir.join("t.toml"));
     let ok = parse(&base).expect("the shipped scene parses");
     let Some(Analytic::LinedTunnel(tu)) = &ok.analytic else { panic!("lined tunnel") };

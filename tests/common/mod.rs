@@ -1,7 +1,19 @@
-//! Shared helpers of the integration tests: a scratch directory per case,
-//! scenes written into it, runs through the real gmsh CLI and the library's
-//! driver, or through the real binary.
+//! Shared helpers of the integration tests. Here: [`Case`], a scratch
+//! directory per test case, with scenes written or copied into it and solved
+//! there through the library's driver or the real binary; and the reading of
+//! files, the repository's and the results'. By theme, beside it:
+//!
+//! - [`scenes`]: scene texts that several test files write (a repository
+//!   scene with edits, two stacked blocks, Lamé's cylinder);
+//! - [`cli`]: the command line's contract for a failed run (one clean
+//!   `error:` paragraph, no result files), and gmsh runs in a case;
+//! - [`measure`]: what the tests measure on a solved run (rates, largest
+//!   values, state counts, the difference to the bonded solve, contact forces).
 #![allow(dead_code)]
+
+pub mod cli;
+pub mod measure;
+pub mod scenes;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -83,14 +95,17 @@ pub fn repo_root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
-/// Least-squares slope of log(y) against log(x).
-pub fn loglog_slope(x: &[f64], y: &[f64]) -> f64 {
-    let n = x.len() as f64;
-    let lx: Vec<f64> = x.iter().map(|v| v.ln()).collect();
-    let ly: Vec<f64> = y.iter().map(|v| v.ln()).collect();
-    let mx = lx.iter().sum::<f64>() / n;
-    let my = ly.iter().sum::<f64>() / n;
-    let sxy: f64 = lx.iter().zip(&ly).map(|(a, b)| (a - mx) * (b - my)).sum();
-    let sxx: f64 = lx.iter().map(|a| (a - mx).powi(2)).sum();
-    sxy / sxx
+/// The text of a file, or a panic that names it.
+pub fn read(path: &Path) -> String {
+    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// The text of a repository file (e.g. "geo/cylinder.toml").
+pub fn repo_text(repo_path: &str) -> String {
+    read(&repo_root().join(repo_path))
+}
+
+/// A JSON file (summary.json), parsed.
+pub fn json(path: &Path) -> serde_json::Value {
+    serde_json::from_str(&read(path)).unwrap_or_else(|e| panic!("{}: not JSON: {e}", path.display()))
 }

@@ -1,0 +1,236 @@
+//! Reading gmsh MSH 4.1 files (ASCII and binary) into a [`Mesh`].
+//!
+//! The reader is our own small parser of the sections we need —
+//! `$MeshFormat`, `$PhysicalNames`, `$Entities`, `$Nodes`, `$Elements` —
+//! and skips every other section. (mshio 0.4.2 was the first choice, but it
+//! forgets node tags whenever the tags of the whole file are contiguous, with no
+//! way to tell which tag a node had; it does not read `$PhysicalNames`; and it
+//! miscounts the nodes of order-2 prisms, so such files fail as if garbled. The
+//! tests use mshio as an independent check of this reader.)
+//!
+//! Nodes are kept in file order; cells refer to them by 0-based index. Each
+//! physical group becomes one [`Group`]: every element of every entity of the
+//! group's dimension that carries the group's physical tag. An entity with
+//! several physical tags gives its cells to each of those groups. A group named
+//! in `$PhysicalNames` that no entity carries (gmsh 4.8.4 writes one, without a
+//! word, for `Physical Surface("x") = {99};` when surface 99 does not exist) is
+//! kept with no cells. Groups come sorted by dimension, then tag. gmsh saves only
+//! elements of physical groups (when there is at least one), but it saves the
+//! nodes of every entity, so not every node is used by a group.
+//!
+//! Every failure is an [`MshError`] whose message names the file and says what
+//! to do; no byte input makes the reader panic, and no count read from the file
+//! is trusted for an allocation beyond what the file's length can hold.
+//!
+//! Here: [`read_msh`], the section dispatcher and the errors. The cursor that
+//! reads one value in ASCII or binary form is in `reader.rs` (the only place
+//! the two encodings differ: every section is read by the same code in both,
+//! so there is no ASCII reader and binary reader to keep in step), the
+//! sections themselves in `sections.rs`, and the step from tags to indices
+//! and physical groups in `groups.rs`.
+
+mod groups;
+mod reader;
+mod sections;
+#[cfg(test)]
+mod tests;
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+use super::{CellKind, Mesh};
+use groups::build_mesh;
+use reader::Reader;
+use sections::{read_elements, read_entities, read_header, read_nodes, read_physical_names, Block};
+
+/// Why a mesh file could not be read.
+#[derive(Debug, thiserror::Error)]
+pub enum MshError {
+    #[error("mesh file `{}` does not exist: check `mesh =` in the scene", path.display())]
+    NotFound { path: PathBuf },
+
+    #[error("cannot read mesh file `{}`: {source}", path.display())]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+
+    #[error(
+        "`{}` is not a complete MSH 4.1 file (truncated?): {detail}. Mesh the .geo again \
+         with gmsh (-format msh41), or point `mesh =` in the scene at a complete file",
+        path.display()
+    )]
+    Malformed { path: PathBuf, detail: String },
+
+    #[error("`{}` is MSH {version}: re-export it with gmsh -format msh41", path.display())]
+    Version { path: PathBuf, version: String },
+
+    #[error(
+        "`{}` has no physical groups: add Physical Surface/Volume/Curve to the .geo, \
+         gmsh saves only elements of physical groups",
+        path.display()
+    )]
+    NoPhysicalGroups { path: PathBuf },
+
+    #[error(
+        "`{}` is a partitioned mesh: re-export it unpartitioned (gmsh -format msh41, \
+         without -part)",
+        path.display()
+    )]
+    Partitioned { path: PathBuf },
+
+    #[error(
+        "`{}`: physical group `{group}` has elements of gmsh type {code} ({name}), which \
+         subcontact cannot use: mesh with triangles or quadrangles in 2D, tetrahedra or \
+         hexahedra in 3D (supported: {supported})",
+        path.display(),
+        supported = supported_kinds()
+    )]
+    UnsupportedElement {
+        path: PathBuf,
+        code: i32,
+        name: String,
+        group: String,
+    },
+
+    #[error(
+        "`{}`: element {element} of physical group `{group}` uses node {node}, which is not \
+         in the $Nodes section: the file is inconsistent, mesh the .geo again with gmsh",
+        path.display()
+    )]
+    MissingNode {
+        path: PathBuf,
+        element: u64,
+        node: u64,
+        group: String,
+    },
+}
+
+fn supported_kinds() -> String {
+    CellKind::ALL
+        .iter()
+        .map(|k| k.name())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Reads an MSH 4.1 file (ASCII or binary) written by gmsh.
+pub fn read_msh(path: &Path) -> Result<Mesh, MshError> {
+    let bytes = match std::fs::read(path) {
+        Ok(b) => b,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            return Err(MshError::NotFound {
+                path: path.to_path_buf(),
+            })
+        }
+        Err(e) => {
+            return Err(MshError::Io {
+                path: path.to_path_buf(),
+                source: e,
+            })
+        }
+    };
+    parse_msh(path, &bytes)
+}
+
+/// Parses the bytes of an MSH file; `path` is only used in messages.
+fn parse_msh(path: &Path, bytes: &[u8]) -> Result<Mesh, MshError> {
+    let mut r = Reader::new(path, bytes);
+    if bytes.iter().all(|b| b.is_ascii_whitespace()) {
+        return Err(r.malformed("the file is empty"));
+    }
+    read_header(&mut r)?;
+
+    let mut names: Vec<(i32, i32, String)> = Vec::new();
+    // (dim, entity tag) -> physical tags
+    let mut entities: Option<HashMap<(i32, i32), Vec<i32>>> = None;
+    let mut nodes: Option<(Vec<[f64; 3]>, Vec<u64>)> = None;
+    let mut blocks: Option<Vec<Block>> = None;
+
+    loop {
+        r.section = "";
+        r.skip_ws();
+        if r.at_end() {
+            break;
+        }
+        let line = r.line();
+        let name = match line.trim_ascii().strip_prefix(b"$") {
+            Some(n) if !n.is_empty() && !n.starts_with(b"End") => {
+                String::from_utf8_lossy(n).into_owned()
+            }
+            _ => {
+                return Err(r.malformed("expected the start of a section such as `$Nodes`"));
+            }
+        };
+        match name.as_str() {
+            "PhysicalNames" => {
+                r.section = "PhysicalNames";
+                names = read_physical_names(&mut r)?;
+                r.end_section("PhysicalNames")?;
+            }
+            "Entities" => {
+                r.section = "Entities";
+                if entities.is_some() {
+                    return Err(r.malformed("a second $Entities section"));
+                }
+                if blocks.is_some() {
+                    return Err(r.malformed("$Entities after $Elements"));
+                }
+                entities = Some(read_entities(&mut r)?);
+                r.end_section("Entities")?;
+            }
+            "PartitionedEntities" => {
+                return Err(MshError::Partitioned {
+                    path: path.to_path_buf(),
+                });
+            }
+            "Nodes" => {
+                r.section = "Nodes";
+                if nodes.is_some() {
+                    return Err(r.malformed("a second $Nodes section"));
+                }
+                nodes = Some(read_nodes(&mut r)?);
+                r.end_section("Nodes")?;
+            }
+            "Elements" => {
+                r.section = "Elements";
+                if blocks.is_some() {
+                    return Err(r.malformed("a second $Elements section"));
+                }
+                let empty = HashMap::new();
+                let ents = entities.as_ref().unwrap_or(&empty);
+                blocks = Some(read_elements(&mut r, ents, &names)?);
+                r.end_section("Elements")?;
+            }
+            other => {
+                // Skip an unknown section up to its end marker.
+                let marker = format!("$End{other}");
+                match find(&bytes[r.pos..], marker.as_bytes()) {
+                    Some(at) => {
+                        r.pos += at;
+                        r.end_section(other)?;
+                    }
+                    None => return Err(r.malformed(format!("no `{marker}` after `${other}`"))),
+                }
+            }
+        }
+    }
+
+    let Some((coords, node_tags)) = nodes else {
+        return Err(r.malformed("no $Nodes section"));
+    };
+    let Some(blocks) = blocks else {
+        return Err(r.malformed("no $Elements section"));
+    };
+    let entities = entities.unwrap_or_default();
+    build_mesh(path, coords, node_tags, &names, &entities, blocks)
+}
+
+/// Where `needle` first occurs in `haystack`.
+fn find(haystack: &[u8], needle: &[u8]) -> Option<usize> {
+    if needle.is_empty() || haystack.len() < needle.len() {
+        return None;
+    }
+    haystack.windows(needle.len()).position(|w| w == needle)
+}

@@ -1,0 +1,59 @@
+//! Scene texts that several test files write: a repository scene with text
+//! edits, two stacked blocks meeting on a joint, and Lamé's cylinder with its
+//! closed form. Each returns the TOML text; the test writes it into its case.
+
+/// `repo_toml` (e.g. "geo/cylinder.toml") with `edits` (from, to) applied in
+/// turn: each `from` must occur (the test names the scene it relies on), and
+/// its first occurrence is replaced.
+pub fn edited(repo_toml: &str, edits: &[(&str, &str)]) -> String {
+    let mut text = super::repo_text(repo_toml);
+    for (from, to) in edits {
+        assert!(text.contains(from), "{repo_toml} no longer contains {from:?}: update this test");
+        text = text.replacen(from, to, 1);
+    }
+    text
+}
+
+/// Two blocks of one material stacked: "bottom" under "top", bottom listed
+/// first (body I, n = +y), meeting on the contact group "joint" (the groups
+/// of tests/geo/contact_stack*.geo, stress_stack.geo and mech_blocks.geo).
+/// `head` opens the scene (title, mesh, analysis, `[gmsh]`), `contact` holds
+/// the joint's lines and `rest` the supports and loads.
+pub fn two_blocks(head: &str, e: f64, nu: f64, contact: &str, rest: &str) -> String {
+    format!(
+        r#"{head}
+
+[materials.m]
+E = {e:?}
+nu = {nu:?}
+
+[[bodies]]
+group = "bottom"
+material = "m"
+
+[[bodies]]
+group = "top"
+material = "m"
+
+[[contacts]]
+group = "joint"
+{contact}
+
+{rest}"#
+    )
+}
+
+/// Lamé's thick cylinder: a = 3, b = 5, pressure p = 0.1 on the group
+/// "inner", E = 2e5 in every body, and `[analytic] kind = "lame_cylinder"`
+/// so that the run carries its relative L2 errors. `gmsh` holds the lines of
+/// the `[gmsh]` table, `supports` (group, fixed components) pairs.
+pub fn lame_cylinder(title: &str, mesh: &str, analysis: &str, gmsh: &str, nu: f64, bodies: &[&str], supports: &[(&str, &str)]) -> String {
+    let mut s = format!("title = \"{title}\"\nmesh = \"{mesh}\"\nanalysis = \"{analysis}\"\n\n[gmsh]\n{gmsh}\n\n[materials.m]\nE = 2.0e5\nnu = {nu:?}\n");
+    for body in bodies {
+        s += &format!("\n[[bodies]]\ngroup = \"{body}\"\nmaterial = \"m\"\n");
+    }
+    for (group, fix) in supports {
+        s += &format!("\n[[supports]]\ngroup = \"{group}\"\nfix = {fix}\n");
+    }
+    s + "\n[[loads]]\ngroup = \"inner\"\npressure = 0.1\n\n[analytic]\nkind = \"lame_cylinder\"\na = 3.0\nb = 5.0\np = 0.1\n"
+}
