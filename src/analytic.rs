@@ -63,7 +63,8 @@
 //! face to the interface, and it moves as the ring: radially with the ground
 //! at r = R, tangentially with the ground in no slip, past it in full slip.
 
-use crate::scene::{Analysis, Analytic};
+use crate::fem::Analysis;
+use crate::scene::Analytic;
 
 /// Displacement and stress `[xx, yy, zz, xy, yz, xz]` of a closed form at a point.
 pub trait Exact {

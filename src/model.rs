@@ -15,7 +15,8 @@ use std::collections::HashMap;
 
 use crate::fem::element::{self, dofs_per_node};
 use crate::mesh::{Cell, Mesh};
-use crate::scene::{Analysis, ContactGroups, InitialStress, LoadKind, Scene};
+use crate::fem::Analysis;
+use crate::scene::{ContactGroups, InitialStress, LoadKind, Scene};
 
 /// A body of the model: cells in model node numbering.
 #[derive(Clone, Debug)]

@@ -110,7 +110,7 @@ pub fn errors(model: &Model, u: &[f64], exact: &dyn Exact) -> Errors {
             let rule = quadrature::rule(cell.kind, 2 * cell.kind.order() + 2);
             for q in &rule {
                 let Ok(p) = element::point(cell.kind, &xe, q.xi) else { continue };
-                let w = q.w * p.det_j * if model.analysis == crate::scene::Analysis::Axisymmetric { p.x[0] } else { 1.0 };
+                let w = q.w * p.det_j * if model.analysis == crate::fem::Analysis::Axisymmetric { p.x[0] } else { 1.0 };
                 let ex = exact.displacement(p.x);
                 for c in 0..nd {
                     let uh: f64 = (0..cell.kind.n_nodes()).map(|a| p.n[a] * ue[a * nd + c]).sum();

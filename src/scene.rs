@@ -39,46 +39,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-/// Kind of analysis (`analysis = "..."`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Analysis {
-    PlaneStrain,
-    PlaneStress,
-    Axisymmetric,
-    Solid,
-}
-
-impl Analysis {
-    /// Spatial dimension of the mesh and of the displacement field: 2 or 3.
-    pub fn dim(self) -> usize {
-        match self {
-            Analysis::Solid => 3,
-            _ => 2,
-        }
-    }
-
-    /// The scene-file spelling (`"plane_strain"`, ...).
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Analysis::PlaneStrain => "plane_strain",
-            Analysis::PlaneStress => "plane_stress",
-            Analysis::Axisymmetric => "axisymmetric",
-            Analysis::Solid => "solid",
-        }
-    }
-
-    /// True for the analyses that take `thickness` (plane strain and stress).
-    pub fn has_thickness(self) -> bool {
-        matches!(self, Analysis::PlaneStrain | Analysis::PlaneStress)
-    }
-}
-
-impl fmt::Display for Analysis {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.as_str())
-    }
-}
+pub use crate::fem::Analysis;
 
 /// What a slipping contact pair carries in shear (`slip = "..."`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Deserialize)]
