@@ -22,6 +22,7 @@
 
 pub mod frame;
 pub mod law;
+pub mod options;
 pub mod rigid;
 pub mod system;
 pub mod traction;
@@ -29,7 +30,7 @@ pub mod traction;
 use law::{judge, judge_paper, ContactState, Kinematics, Strength};
 use system::{InterfaceProblem, InterfaceSolution, Loading, SolveFailure};
 
-use crate::scene::{SlipLaw, StateRule};
+pub use options::{SlipLaw, StateRule, TractionRecovery};
 
 /// The law of one pair.
 #[derive(Clone, Copy, Debug)]
