@@ -39,6 +39,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
 use std::path::{Path, PathBuf};
 
+pub use crate::analytic::Analytic;
 pub use crate::contact::{SlipLaw, StateRule, TractionRecovery};
 pub use crate::fem::Analysis;
 
@@ -183,33 +184,6 @@ pub struct Probe {
     pub from: [f64; 3],
     pub to: [f64; 3],
     pub points: usize,
-}
-
-/// `[analytic]`: a known solution used for error norms.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Analytic {
-    /// `kind = "lame_cylinder"`: thick-walled cylinder, inner radius `a`,
-    /// outer radius `b`, internal pressure `p`, centred on the z axis.
-    LameCylinder { a: f64, b: f64, p: f64 },
-    /// `kind = "lined_tunnel"`: Einstein & Schwartz's circular lining in
-    /// elastic ground under excavation loading (plane strain, centred on the
-    /// origin, theta from +x):
-    ///
-    /// ```toml
-    /// [analytic]
-    /// kind = "lined_tunnel"
-    /// radius = 5.0        # R: radius of the lining's middle surface
-    /// thickness = 0.125   # t
-    /// p = 0.6             # P: vertical far-field stress, compression positive
-    /// k = 0.5             # K: horizontal / vertical far-field stress
-    /// slip = "none"       # none (bonded, default) | full (frictionless)
-    /// lining = "lining"   # [[bodies]] group of the lining (its material: E_l, nu_l)
-    /// ground = "rock"     # [[bodies]] group of the ground (E, nu)
-    /// ```
-    ///
-    /// The ground's `initial_stress`, when given, must be the far field
-    /// `[-K P, -P, szz, 0]`; the lining starts stress-free.
-    LinedTunnel(crate::analytic::LinedTunnel),
 }
 
 /// The `kind` values `[analytic]` accepts.
@@ -1427,7 +1401,7 @@ impl Checker<'_> {
         }
     }
 
-    /// `[analytic] kind = "lined_tunnel"` (see [`Analytic::LinedTunnel`]).
+    /// `[analytic] kind = "lined_tunnel"` (see [`crate::analytic::Analytic::LinedTunnel`]).
     fn lined_tunnel(&self, a: RawAnalytic, analysis: Analysis, bodies: &[Body], materials: &BTreeMap<String, Material>) -> R<crate::analytic::LinedTunnel> {
         use crate::analytic::{LinedTunnel, TunnelBody, TunnelSlip};
         if analysis != Analysis::PlaneStrain {
