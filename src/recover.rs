@@ -7,7 +7,6 @@ use crate::fem::element::{self, dofs_per_node};
 use crate::fem::material::{d_matrix, full_stress, von_mises};
 use crate::fem::{quadrature, shape};
 use crate::model::Model;
-use crate::scene::Probe;
 
 /// Nodal stresses of one body: `nodes[i]` is a model node, `stress[i]` its
 /// averaged stress.
@@ -127,6 +126,16 @@ pub fn errors(model: &Model, u: &[f64], exact: &dyn Exact) -> Errors {
         }
     }
     Errors { displacement_l2: (eu / nu_).sqrt(), stress_l2: (es / ns).sqrt() }
+}
+
+/// A probe line (`[[probes]]`): sample the solution at `points` equally
+/// spaced points on the segment `from`–`to` (both ends included).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Probe {
+    pub name: String,
+    pub from: [f64; 3],
+    pub to: [f64; 3],
+    pub points: usize,
 }
 
 /// Values at one probe point.

@@ -42,6 +42,7 @@ use std::path::{Path, PathBuf};
 pub use crate::analytic::Analytic;
 pub use crate::contact::{SlipLaw, StateRule, TractionRecovery};
 pub use crate::fem::Analysis;
+pub use crate::recover::Probe;
 
 /// `[materials.NAME]`: linear isotropic elasticity.
 #[derive(Debug, Clone, PartialEq)]
@@ -174,16 +175,6 @@ impl Default for Solver {
             gravity_factors: None,
         }
     }
-}
-
-/// `[[probes]]`: sample the solution at `points` equally spaced points on the
-/// segment `from`–`to` (both ends included).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Probe {
-    pub name: String,
-    pub from: [f64; 3],
-    pub to: [f64; 3],
-    pub points: usize,
 }
 
 /// The `kind` values `[analytic]` accepts.
