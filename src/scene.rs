@@ -39,9 +39,12 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
 use std::path::{Path, PathBuf};
 
+use crate::model::{BodySpec, ContactSpec, LoadSpec, ModelSpec, SupportSpec};
+
 pub use crate::analytic::Analytic;
 pub use crate::contact::{SlipLaw, StateRule, TractionRecovery};
 pub use crate::fem::Analysis;
+pub use crate::model::{ContactGroups, InitialStress, LoadKind};
 pub use crate::recover::Probe;
 
 /// `[materials.NAME]`: linear isotropic elasticity.
@@ -64,43 +67,6 @@ pub struct Body {
     /// Stress the body carries before any load (in-situ stress); reported
     /// stresses are totals. None: the body starts stress-free.
     pub initial: Option<InitialStress>,
-}
-
-/// `initial_stress = [..]` or `k0` with `surface` on a `[[bodies]]` entry.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum InitialStress {
-    /// A uniform stress `[xx, yy, zz, xy, yz, xz]` (tension positive).
-    Uniform([f64; 6]),
-    /// Geostatic: vertical stress `-density |g| depth` below the level
-    /// `surface` (y in 2D, z in 3D), horizontal stresses `k0` times it.
-    Geostatic { k0: f64, surface: f64 },
-}
-
-impl InitialStress {
-    /// The stress at point x for a body of the given density under gravity g.
-    pub fn at(&self, x: [f64; 3], analysis: Analysis, density: f64, gravity: [f64; 3]) -> [f64; 6] {
-        match *self {
-            InitialStress::Uniform(s) => s,
-            InitialStress::Geostatic { k0, surface } => {
-                let v = if analysis == Analysis::Solid { 2 } else { 1 };
-                let depth = (surface - x[v]).max(0.0);
-                let g = (gravity[0] * gravity[0] + gravity[1] * gravity[1] + gravity[2] * gravity[2]).sqrt();
-                let sv = -density * g * depth;
-                let mut s = [k0 * sv, k0 * sv, k0 * sv, 0.0, 0.0, 0.0];
-                s[v] = sv;
-                s
-            }
-        }
-    }
-}
-
-/// Which physical groups make up a contact interface.
-#[derive(Debug, Clone, PartialEq)]
-pub enum ContactGroups {
-    /// `group = "A-A"`: one curve/surface shared by two bodies.
-    Shared(String),
-    /// `groups = ["face_1", "face_2"]`: two groups whose nodes coincide pairwise.
-    Pair(String, String),
 }
 
 /// `[[contacts]]`: an interface and its strength.
@@ -129,18 +95,6 @@ pub struct Support {
     /// Prescribed displacements (`ux`, `uy`, `uz`). A component is never both
     /// in `fix` and prescribed (that is rejected).
     pub prescribed: [Option<f64>; 3],
-}
-
-/// What a load applies.
-#[derive(Debug, Clone, PartialEq)]
-pub enum LoadKind {
-    /// Normal pressure, positive pressing into the body.
-    Pressure(f64),
-    /// Hydrostatic pressure `unit_weight * (surface - y)` below the level
-    /// `surface` (y in 2D, z in 3D), zero above it.
-    Hydrostatic { surface: f64, unit_weight: f64 },
-    /// Traction vector (x, y, z), per unit area; z = 0 in 2D.
-    Traction([f64; 3]),
 }
 
 /// `[[loads]]`: a surface load on a physical group.
@@ -337,6 +291,43 @@ impl Scene {
     /// against this scene (validation guarantees the material exists).
     pub fn material_of(&self, body: &Body) -> &Material {
         &self.materials[&body.material]
+    }
+
+    /// The model's description: the bodies with their materials, contacts,
+    /// supports and loads, each with the key path that defined it (for the
+    /// model builder's messages).
+    pub fn model_spec(&self) -> ModelSpec {
+        ModelSpec {
+            source: self.path.display().to_string(),
+            mesh: self.mesh.path().display().to_string(),
+            analysis: self.analysis,
+            thickness: self.thickness,
+            gravity: self.gravity,
+            bodies: self
+                .bodies
+                .iter()
+                .enumerate()
+                .map(|(i, b)| {
+                    let m = self.material_of(b);
+                    BodySpec { key: format!("bodies[{i}]"), group: b.group.clone(), e: m.e, nu: m.nu, density: m.density, initial: b.initial }
+                })
+                .collect(),
+            contacts: self.contacts.iter().enumerate().map(|(i, c)| ContactSpec { key: format!("contacts[{i}]"), groups: c.groups.clone() }).collect(),
+            supports: self
+                .supports
+                .iter()
+                .enumerate()
+                .map(|(i, s)| SupportSpec { key: format!("supports[{i}]"), group: s.group.clone(), fix: s.fix, prescribed: s.prescribed })
+                .collect(),
+            loads: self
+                .loads
+                .iter()
+                .enumerate()
+                .map(|(i, l)| LoadSpec { key: format!("loads[{i}]"), group: l.group.clone(), kind: l.kind.clone(), factors: l.factors.clone() })
+                .collect(),
+            load_steps: self.solver.load_steps,
+            gravity_factors: self.solver.gravity_factors.clone(),
+        }
     }
 }
 

@@ -1,17 +1,16 @@
-//! [`Model::build`]: the model from a mesh and a scene, in numbered steps.
-//! Each step resolves the physical groups it names (with a message naming
-//! the scene key when a group is missing, empty or of the wrong dimension)
+//! [`Model::build`]: the model from a mesh and a [`ModelSpec`], in numbered
+//! steps. Each step resolves the physical groups it names (with a message
+//! naming the input's key when a group is missing, empty or of the wrong dimension)
 //! and moves what it builds onto the model nodes the contact split made.
 
 use std::collections::HashMap;
 
 use super::contacts::{self, Split};
 use super::held::check_held;
-use super::{Body, FacetLoad, Model, ModelError, Pair};
+use super::{Body, FacetLoad, InitialStress, Model, ModelError, ModelSpec, Pair};
 use crate::fem::element::{self, dofs_per_node};
 use crate::fem::Analysis;
 use crate::mesh::{Cell, Mesh};
-use crate::scene::{InitialStress, Scene};
 
 fn dim_name(d: usize) -> &'static str {
     ["point", "curve", "surface", "volume"][d.min(3)]
@@ -53,20 +52,19 @@ impl Incidence {
     }
 }
 
-/// What every step reads, and the messages that name the scene and the mesh.
+/// What every step reads, and the messages that name the input and the mesh.
 pub(super) struct Builder<'a> {
     pub(super) mesh: &'a Mesh,
-    pub(super) scene: &'a Scene,
-    scene_name: String,
+    pub(super) spec: &'a ModelSpec,
 }
 
 impl<'a> Builder<'a> {
     pub(super) fn group(&self, key: &str, name: &str, dims: &[usize]) -> Result<&'a crate::mesh::Group, ModelError> {
         let g = self.mesh.group(name).ok_or_else(|| ModelError::UnknownGroup {
-            scene: self.scene_name.clone(),
+            scene: self.spec.source.clone(),
             key: key.to_string(),
             group: name.to_string(),
-            mesh: self.scene.mesh.path().display().to_string(),
+            mesh: self.spec.mesh.clone(),
             known: self
                 .mesh
                 .groups
@@ -77,7 +75,7 @@ impl<'a> Builder<'a> {
         })?;
         if !dims.contains(&g.dim) {
             return Err(ModelError::WrongDimension {
-                scene: self.scene_name.clone(),
+                scene: self.spec.source.clone(),
                 key: key.to_string(),
                 group: name.to_string(),
                 found: dim_name(g.dim).to_string(),
@@ -86,18 +84,18 @@ impl<'a> Builder<'a> {
         }
         if g.cells.is_empty() {
             return Err(ModelError::EmptyGroup {
-                scene: self.scene_name.clone(),
+                scene: self.spec.source.clone(),
                 key: key.to_string(),
                 group: name.to_string(),
                 dim: dim_name(g.dim).to_string(),
-                mesh: self.scene.mesh.path().display().to_string(),
+                mesh: self.spec.mesh.clone(),
             });
         }
         Ok(g)
     }
 
     pub(super) fn invalid(&self, key: String, msg: String) -> ModelError {
-        ModelError::Invalid { scene: self.scene_name.clone(), key, msg }
+        ModelError::Invalid { scene: self.spec.source.clone(), key, msg }
     }
 }
 
@@ -131,10 +129,10 @@ pub(super) fn facet_bodies(nb: &[Vec<usize>], facet: &Cell) -> Vec<usize> {
 }
 
 impl Model {
-    pub fn build(mesh: &Mesh, scene: &Scene) -> Result<Model, ModelError> {
-        let b = Builder { mesh, scene, scene_name: scene.path.display().to_string() };
-        let sd = scene.analysis.dim();
-        let nd = dofs_per_node(scene.analysis);
+    pub fn build(mesh: &Mesh, spec: &ModelSpec) -> Result<Model, ModelError> {
+        let b = Builder { mesh, spec };
+        let sd = spec.analysis.dim();
+        let nd = dofs_per_node(spec.analysis);
 
         // 0. The mesh's dimension is the analysis's: a plane analysis of a 3D
         // mesh (or of a 3D .geo meshed in 2D) is a wrong `analysis`, not a
@@ -145,9 +143,9 @@ impl Model {
                 "analysis".into(),
                 format!(
                     "analysis = \"{}\" needs a {sd}D mesh with the bodies as physical {}s, but the mesh `{}` is {mesh_dim}D (it has physical {}s): {}",
-                    scene.analysis,
+                    spec.analysis,
                     dim_name(sd),
-                    scene.mesh.path().display(),
+                    spec.mesh,
                     dim_name(mesh_dim),
                     if mesh_dim == 3 {
                         "use analysis = \"solid\"".to_string()
@@ -160,13 +158,12 @@ impl Model {
 
         // 1. Bodies.
         let mut bodies = Vec::new();
-        for (i, body) in scene.bodies.iter().enumerate() {
-            let g = b.group(&format!("bodies[{i}].group"), &body.group, &[sd])?;
-            let m = scene.material_of(body);
+        for body in &spec.bodies {
+            let g = b.group(&format!("{}.group", body.key), &body.group, &[sd])?;
             if let Some(InitialStress::Geostatic { .. }) = body.initial {
-                if m.density <= 0.0 || scene.gravity.iter().all(|&g| g == 0.0) {
+                if body.density <= 0.0 || spec.gravity.iter().all(|&g| g == 0.0) {
                     return Err(b.invalid(
-                        format!("bodies[{i}].k0"),
+                        format!("{}.k0", body.key),
                         format!(
                             "a geostatic initial stress needs the weight of body \"{}\": give its material a density > 0 and the scene a gravity = [..]",
                             body.group
@@ -176,9 +173,9 @@ impl Model {
             }
             bodies.push(Body {
                 name: body.group.clone(),
-                e: m.e,
-                nu: m.nu,
-                density: m.density,
+                e: body.e,
+                nu: body.nu,
+                density: body.density,
                 cells: g.cells.clone(),
                 initial: body.initial,
             });
@@ -200,7 +197,7 @@ impl Model {
                 ));
             }
         }
-        if scene.analysis == Analysis::Axisymmetric {
+        if spec.analysis == Analysis::Axisymmetric {
             let tol = 1e-9 * size;
             if let Some((body, cell)) = bodies
                 .iter()
@@ -230,8 +227,8 @@ impl Model {
         // does not drag the other body's copy of the shared corner node
         // (a symmetry line crossing a contact bounds both bodies: both held).
         let mut prescribed: Vec<Option<f64>> = vec![None; n_model * nd];
-        for (i, s) in scene.supports.iter().enumerate() {
-            let g = b.group(&format!("supports[{i}].group"), &s.group, &(0..=sd).collect::<Vec<_>>())?;
+        for s in &spec.supports {
+            let g = b.group(&format!("{}.group", s.key), &s.group, &(0..=sd).collect::<Vec<_>>())?;
             let mut held: Vec<usize> = Vec::new();
             for cell in &g.cells {
                 let owners = if cell.kind.dim() == 0 { Vec::new() } else { facet_bodies(&nb, cell) };
@@ -266,9 +263,9 @@ impl Model {
         // 4. Loads, each facet on the copy of the body it bounds.
         let incidences: Vec<Incidence> = bodies.iter().map(|bd| Incidence::new(n_model, &bd.cells)).collect();
         let mut loads = Vec::new();
-        let steps = scene.solver.load_steps;
+        let steps = spec.load_steps;
         let mut cases: Vec<Vec<f64>> = vec![(1..=steps).map(|k| k as f64 / steps as f64).collect()];
-        for (i, load) in scene.loads.iter().enumerate() {
+        for load in &spec.loads {
             let case = match &load.factors {
                 None => 0,
                 Some(f) => {
@@ -276,7 +273,7 @@ impl Model {
                     cases.len() - 1
                 }
             };
-            let key = format!("loads[{i}].group");
+            let key = format!("{}.group", load.key);
             let g = b.group(&key, &load.group, &[sd - 1])?;
             for f in &g.cells {
                 let owners = facet_bodies(&nb, f);
@@ -315,11 +312,11 @@ impl Model {
 
         // 5. Pair normals and areas from body I's facets.
         let mut model = Model {
-            scene: b.scene_name.clone(),
-            analysis: scene.analysis,
+            scene: spec.source.clone(),
+            analysis: spec.analysis,
             nd,
-            thickness: scene.thickness,
-            gravity: scene.gravity,
+            thickness: spec.thickness,
+            gravity: spec.gravity,
             coords,
             bodies,
             loads,
@@ -327,7 +324,7 @@ impl Model {
             pairs: Vec::new(),
             interfaces,
             mesh_node,
-            gravity_case: match &scene.solver.gravity_factors {
+            gravity_case: match &spec.gravity_factors {
                 None => 0,
                 Some(f) => {
                     cases.push(f.clone());

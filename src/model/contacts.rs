@@ -8,10 +8,9 @@
 use std::collections::{HashMap, HashSet};
 
 use super::build::{facet_bodies, Builder};
-use super::{Body, Interface, ModelError};
+use super::{Body, ContactGroups, Interface, ModelError};
 use crate::fem::element;
 use crate::mesh::Cell;
-use crate::scene::ContactGroups;
 
 /// The model nodes after the contact split, and the pairs and interfaces.
 pub(super) struct Split {
@@ -27,12 +26,12 @@ pub(super) struct Split {
     pub interfaces: Vec<Interface>,
 }
 
-/// Splits and pairs every contact of the scene; renumbers the bodies' cells
+/// Splits and pairs every contact of the description; renumbers the bodies' cells
 /// onto their own copies. `nb` lists the bodies of every mesh node, `size`
 /// is the mesh's size (the pairing tolerance is 1e-6 of it).
 pub(super) fn split(b: &Builder, bodies: &mut [Body], nb: &[Vec<usize>], size: f64) -> Result<Split, ModelError> {
-    let (mesh, scene) = (b.mesh, b.scene);
-    let sd = scene.analysis.dim();
+    let (mesh, spec) = (b.mesh, b.spec);
+    let sd = spec.analysis.dim();
     let mut coords = mesh.coords.clone();
     let mut mesh_node: Vec<usize> = (0..coords.len()).collect();
     // (body, mesh node) -> model node, for split nodes only
@@ -45,7 +44,7 @@ pub(super) fn split(b: &Builder, bodies: &mut [Body], nb: &[Vec<usize>], size: f
     // one node, which pairs with the rock).
     let mut ceded: HashSet<(usize, usize)> = HashSet::new();
     {
-        let shared: Vec<(usize, &crate::mesh::Group)> = scene
+        let shared: Vec<(usize, &crate::mesh::Group)> = spec
             .contacts
             .iter()
             .enumerate()
@@ -65,10 +64,10 @@ pub(super) fn split(b: &Builder, bodies: &mut [Body], nb: &[Vec<usize>], size: f
             }
         }
     }
-    for (ci, contact) in scene.contacts.iter().enumerate() {
+    for (ci, contact) in spec.contacts.iter().enumerate() {
         match &contact.groups {
             ContactGroups::Shared(name) => {
-                let key = format!("contacts[{ci}].group");
+                let key = format!("{}.group", contact.key);
                 let g = b.group(&key, name, &[sd - 1])?;
                 let [side_i, side_ii] = contact_sides(b, &key, name, nb, bodies, &g.cells)?;
                 for n in g.nodes() {
@@ -95,15 +94,15 @@ pub(super) fn split(b: &Builder, bodies: &mut [Body], nb: &[Vec<usize>], size: f
                 interfaces.push(Interface { name: name.clone(), body_i: side_i[0], body_ii: side_ii[0], side_i, facets: g.cells.clone() });
             }
             ContactGroups::Pair(na, nb_name) => {
-                let ka = format!("contacts[{ci}].groups[0]");
-                let kb = format!("contacts[{ci}].groups[1]");
+                let ka = format!("{}.groups[0]", contact.key);
+                let kb = format!("{}.groups[1]", contact.key);
                 let ga = b.group(&ka, na, &[sd - 1])?;
                 let gb = b.group(&kb, nb_name, &[sd - 1])?;
                 let ba = single_body(b, &ka, na, nb, bodies, &ga.cells)?;
                 let bb = single_body(b, &kb, nb_name, nb, bodies, &gb.cells)?;
                 if ba == bb {
                     return Err(b.invalid(
-                        format!("contacts[{ci}].groups"),
+                        format!("{}.groups", contact.key),
                         format!(
                             "both \"{na}\" and \"{nb_name}\" bound body \"{}\": a contact between a body and itself is not supported; split the body into two physical groups",
                             bodies[ba].name
@@ -112,7 +111,7 @@ pub(super) fn split(b: &Builder, bodies: &mut [Body], nb: &[Vec<usize>], size: f
                 }
                 let (gi, gii, bi, bii) = if ba < bb { (ga, gb, ba, bb) } else { (gb, ga, bb, ba) };
                 let pairs = pair_by_position(&mesh.coords, &gi.nodes(), &gii.nodes(), 1e-6 * size)
-                    .map_err(|msg| b.invalid(format!("contacts[{ci}].groups"), format!("pairing the nodes of \"{}\" with those of \"{}\": {msg}", gi.name, gii.name)))?;
+                    .map_err(|msg| b.invalid(format!("{}.groups", contact.key), format!("pairing the nodes of \"{}\" with those of \"{}\": {msg}", gi.name, gii.name)))?;
                 raw_pairs.extend(pairs.into_iter().map(|(k, l)| (k, l, ci)));
                 let name = format!("{}|{}", gi.name, gii.name);
                 interfaces.push(Interface { name, body_i: bi, body_ii: bii, side_i: vec![bi], facets: gi.cells.clone() });

@@ -43,7 +43,7 @@ fn rigid_mode(analysis: Analysis, m: usize, a: usize, x: [f64; 3]) -> f64 {
 /// Fails naming the bodies and the motion when some rigid-body motion of a
 /// cluster of bodies is stopped by no prescribed DOF.
 pub(super) fn check_held(b: &Builder, coords: &[[f64; 3]], bodies: &[Body], nb: &[Vec<usize>], interfaces: &[Interface], prescribed: &[Option<f64>]) -> Result<(), ModelError> {
-    let analysis = b.scene.analysis;
+    let analysis = b.spec.analysis;
     let nd = dofs_per_node(analysis);
     let mut parent: Vec<usize> = (0..bodies.len()).collect();
     fn root(parent: &mut [usize], mut i: usize) -> usize {

@@ -1,4 +1,4 @@
-//! The mechanical model built from a mesh and a scene: bodies with their
+//! The mechanical model built from a mesh and its description ([`ModelSpec`]): bodies with their
 //! cells, boundary loads on facets, supports, and contact pairs.
 //!
 //! Contact splitting: a node on a contact group gets one copy per body that
@@ -19,10 +19,12 @@
 mod build;
 mod contacts;
 mod held;
+mod spec;
+
+pub use spec::{BodySpec, ContactGroups, ContactSpec, InitialStress, LoadKind, LoadSpec, ModelSpec, SupportSpec};
 
 use crate::fem::Analysis;
 use crate::mesh::Cell;
-use crate::scene::{InitialStress, LoadKind};
 
 /// A body of the model: cells in model node numbering.
 #[derive(Clone, Debug)]

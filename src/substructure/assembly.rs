@@ -12,7 +12,7 @@ use crate::fem::quadrature;
 use crate::fem::sparse::{SymMatrix, NONE};
 use crate::mesh::CellKind;
 use crate::model::{Model, ModelError};
-use crate::scene::LoadKind;
+use crate::model::LoadKind;
 
 /// Stiffness (lower triangle) and right-hand sides of a part, one per load
 /// case (`Model::cases`; prescribed displacements belong to case 0).
