@@ -63,7 +63,7 @@
 //! face to the interface, and it moves as the ring: radially with the ground
 //! at r = R, tangentially with the ground in no slip, past it in full slip.
 
-use crate::scene::{Analysis, Analytic};
+use crate::fem::Analysis;
 
 /// Displacement and stress `[xx, yy, zz, xy, yz, xz]` of a closed form at a point.
 pub trait Exact {
@@ -125,6 +125,33 @@ impl Exact for Lame {
         let (sr, st) = (self.sigma_r(r), self.sigma_theta(r));
         [sr * c * c + st * s * s, sr * s * s + st * c * c, self.axial(), (sr - st) * s * c, 0.0, 0.0]
     }
+}
+
+/// `[analytic]`: a known solution used for error norms.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Analytic {
+    /// `kind = "lame_cylinder"`: thick-walled cylinder, inner radius `a`,
+    /// outer radius `b`, internal pressure `p`, centred on the z axis.
+    LameCylinder { a: f64, b: f64, p: f64 },
+    /// `kind = "lined_tunnel"`: Einstein & Schwartz's circular lining in
+    /// elastic ground under excavation loading (plane strain, centred on the
+    /// origin, theta from +x):
+    ///
+    /// ```toml
+    /// [analytic]
+    /// kind = "lined_tunnel"
+    /// radius = 5.0        # R: radius of the lining's middle surface
+    /// thickness = 0.125   # t
+    /// p = 0.6             # P: vertical far-field stress, compression positive
+    /// k = 0.5             # K: horizontal / vertical far-field stress
+    /// slip = "none"       # none (bonded, default) | full (frictionless)
+    /// lining = "lining"   # [[bodies]] group of the lining (its material: E_l, nu_l)
+    /// ground = "rock"     # [[bodies]] group of the ground (E, nu)
+    /// ```
+    ///
+    /// The ground's `initial_stress`, when given, must be the far field
+    /// `[-K P, -P, szz, 0]`; the lining starts stress-free.
+    LinedTunnel(LinedTunnel),
 }
 
 /// The closed form a scene's `[analytic]` names, for the material of its

@@ -34,7 +34,7 @@ pub fn check(scene_path: &Path) -> Result<()> {
     let scene = Scene::load(scene_path)?;
     let out = Path::new("results").join(&scene.name);
     let (mesh, msh, _) = driver::load_mesh(&scene, &out)?;
-    let model = Model::build(&mesh, &scene)?;
+    let model = Model::build(&mesh, &scene.model_spec())?;
     let parts = substructure::parts(&model);
     println!("{}: scene and mesh `{}` are consistent", scene_path.display(), msh.display());
     println!("  {} bodies, {} elements, {} model nodes, {} contact pairs, {} part(s)", model.bodies.len(), model.bodies.iter().map(|b| b.cells.len()).sum::<usize>(), model.n_nodes(), model.pairs.len(), parts.len());

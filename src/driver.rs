@@ -174,7 +174,7 @@ pub fn run_scene(mut scene: Scene, opts: &RunOptions) -> Result<Run> {
 
     // 3. Model.
     let t = Instant::now();
-    let model = Model::build(&mesh, &scene)?;
+    let model = Model::build(&mesh, &scene.model_spec())?;
     drop(mesh);
     let parts = substructure::parts(&model);
     let n_parts = parts.len();

@@ -7,7 +7,6 @@ use crate::fem::element::{self, dofs_per_node};
 use crate::fem::material::{d_matrix, full_stress, von_mises};
 use crate::fem::{quadrature, shape};
 use crate::model::Model;
-use crate::scene::Probe;
 
 /// Nodal stresses of one body: `nodes[i]` is a model node, `stress[i]` its
 /// averaged stress.
@@ -110,7 +109,7 @@ pub fn errors(model: &Model, u: &[f64], exact: &dyn Exact) -> Errors {
             let rule = quadrature::rule(cell.kind, 2 * cell.kind.order() + 2);
             for q in &rule {
                 let Ok(p) = element::point(cell.kind, &xe, q.xi) else { continue };
-                let w = q.w * p.det_j * if model.analysis == crate::scene::Analysis::Axisymmetric { p.x[0] } else { 1.0 };
+                let w = q.w * p.det_j * if model.analysis == crate::fem::Analysis::Axisymmetric { p.x[0] } else { 1.0 };
                 let ex = exact.displacement(p.x);
                 for c in 0..nd {
                     let uh: f64 = (0..cell.kind.n_nodes()).map(|a| p.n[a] * ue[a * nd + c]).sum();
@@ -127,6 +126,16 @@ pub fn errors(model: &Model, u: &[f64], exact: &dyn Exact) -> Errors {
         }
     }
     Errors { displacement_l2: (eu / nu_).sqrt(), stress_l2: (es / ns).sqrt() }
+}
+
+/// A probe line (`[[probes]]`): sample the solution at `points` equally
+/// spaced points on the segment `from`–`to` (both ends included).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Probe {
+    pub name: String,
+    pub from: [f64; 3],
+    pub to: [f64; 3],
+    pub points: usize,
 }
 
 /// Values at one probe point.

@@ -29,6 +29,7 @@ pub mod basis;
 pub mod frame;
 pub mod law;
 pub mod newton;
+pub mod options;
 pub mod paper;
 pub mod rigid;
 pub mod system;
@@ -37,7 +38,7 @@ pub mod traction;
 use law::{ContactState, Strength};
 use system::{InterfaceProblem, InterfaceSolution, SolveFailure};
 
-use crate::scene::{SlipLaw, StateRule};
+pub use options::{SlipLaw, StateRule, TractionRecovery};
 
 /// The law of one pair.
 #[derive(Clone, Copy, Debug)]

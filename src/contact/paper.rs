@@ -10,7 +10,7 @@
 use super::law::{judge_paper, ContactState};
 use super::system::{InterfaceProblem, Relation};
 use super::{cracked, norm, sub, tangential, Failed, History, Outcome, PairLaw};
-use crate::scene::SlipLaw;
+use super::options::SlipLaw;
 
 /// The friction force on body I of every slipping Coulomb pair.
 fn friction(problem: &InterfaceProblem, laws: &[PairLaw], h: &History, p: usize) -> [f64; 3] {

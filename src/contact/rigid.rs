@@ -15,7 +15,7 @@
 use nalgebra::DMatrix;
 
 use crate::model::Model;
-use crate::scene::Analysis;
+use crate::fem::Analysis;
 
 /// The rigid motions of one part and what its supports make of them.
 pub struct RigidModes {

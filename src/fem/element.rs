@@ -11,7 +11,7 @@ use super::material::n_strain;
 use super::quadrature::{self, QuadPoint};
 use super::shape;
 use crate::mesh::CellKind;
-use crate::scene::Analysis;
+use super::Analysis;
 
 /// A cell whose Jacobian determinant is not positive somewhere.
 #[derive(Debug, Clone, Copy, PartialEq)]

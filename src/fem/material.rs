@@ -10,7 +10,7 @@
 //! Reported stresses always have six components `[xx, yy, zz, xy, yz, xz]`;
 //! in plane strain `s_zz = lambda (e_xx + e_yy)`, in plane stress `s_zz = 0`.
 
-use crate::scene::Analysis;
+use super::Analysis;
 
 /// Lamé parameters from Young's modulus and Poisson's ratio.
 pub fn lame(e: f64, nu: f64) -> (f64, f64) {

@@ -12,7 +12,7 @@ use crate::fem::quadrature;
 use crate::fem::sparse::{SymMatrix, NONE};
 use crate::mesh::CellKind;
 use crate::model::{Model, ModelError};
-use crate::scene::LoadKind;
+use crate::model::LoadKind;
 
 /// Stiffness (lower triangle) and right-hand sides of a part, one per load
 /// case (`Model::cases`; prescribed displacements belong to case 0).
@@ -105,7 +105,7 @@ pub fn assemble(model: &Model, bodies: &[usize], dof_of: &[usize], n: usize) -> 
         let mut fe = vec![0.0; dofs.len()];
         let kind = load.kind.clone();
         // the level of a hydrostatic pressure is y in 2D, z in 3D
-        let vertical = if model.analysis == crate::scene::Analysis::Solid { 2 } else { 1 };
+        let vertical = if model.analysis == crate::fem::Analysis::Solid { 2 } else { 1 };
         let traction = move |_x: [f64; 3], n: [f64; 3]| -> [f64; 3] {
             match kind {
                 LoadKind::Pressure(p) => [-p * n[0], -p * n[1], -p * n[2]],

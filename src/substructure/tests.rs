@@ -18,9 +18,9 @@ use nalgebra::{DMatrix, DVector};
 
 use super::{assembly, condense, parts};
 use crate::fem::sparse::NONE;
+use crate::fem::Analysis;
 use crate::mesh::{Cell, CellKind};
-use crate::model::{Body, FacetLoad, Interface, Model, Pair};
-use crate::scene::{Analysis, LoadKind};
+use crate::model::{Body, FacetLoad, Interface, LoadKind, Model, Pair};
 
 /// Node `(i, j)` of a grid of `nx + 1` by `ny + 1` nodes starting at `first`.
 fn quads(first: usize, nx: usize, ny: usize, tag0: u64) -> Vec<Cell> {

@@ -1,0 +1,130 @@
+//! What a model is built from ([`ModelSpec`]): the bodies with their
+//! materials and initial stresses, the contact interfaces, supports and loads
+//! by physical group, the load steps and the analysis. The scene file is one
+//! way to write it (`Scene::model_spec`); the model builder knows only this.
+//!
+//! Messages about a group name the input the way its author wrote it:
+//! `source` is the input file, and every entry carries `key`, where the input
+//! defined it (`bodies[0]`, `contacts[2]`). The builder appends the field it
+//! is about (`bodies[0].group`, `contacts[2].groups[1]`).
+
+use crate::fem::Analysis;
+
+/// The model's description, independent of the file format it came from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModelSpec {
+    /// The input file (the scene), first in every message.
+    pub source: String,
+    /// The mesh file, for messages.
+    pub mesh: String,
+    pub analysis: Analysis,
+    /// Out-of-plane thickness (plane analyses; 1 otherwise).
+    pub thickness: f64,
+    /// Acceleration of gravity; z = 0 in 2D.
+    pub gravity: [f64; 3],
+    pub bodies: Vec<BodySpec>,
+    pub contacts: Vec<ContactSpec>,
+    pub supports: Vec<SupportSpec>,
+    pub loads: Vec<LoadSpec>,
+    /// Number of load steps; load case 0 is the ramp k / load_steps.
+    pub load_steps: usize,
+    /// Gravity's factor at each load step; None: the ramp.
+    pub gravity_factors: Option<Vec<f64>>,
+}
+
+/// One body: a physical surface (2D) or volume (3D) of one material.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BodySpec {
+    /// Where the input defined it, e.g. `bodies[0]`.
+    pub key: String,
+    pub group: String,
+    /// Young's modulus.
+    pub e: f64,
+    /// Poisson's ratio.
+    pub nu: f64,
+    /// Mass density (with `gravity`).
+    pub density: f64,
+    /// Stress carried before any load; None: stress-free.
+    pub initial: Option<InitialStress>,
+}
+
+/// One contact interface, by its physical group(s).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactSpec {
+    /// Where the input defined it, e.g. `contacts[0]`.
+    pub key: String,
+    pub groups: ContactGroups,
+}
+
+/// Displacement conditions on a physical group.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SupportSpec {
+    /// Where the input defined it, e.g. `supports[0]`.
+    pub key: String,
+    pub group: String,
+    /// Components (x, y, z) held at zero.
+    pub fix: [bool; 3],
+    /// Prescribed displacements (never together with `fix` on a component).
+    pub prescribed: [Option<f64>; 3],
+}
+
+/// A surface load on a physical group.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadSpec {
+    /// Where the input defined it, e.g. `loads[0]`.
+    pub key: String,
+    pub group: String,
+    pub kind: LoadKind,
+    /// Load factor at each load step; None: the ramp k / load_steps.
+    pub factors: Option<Vec<f64>>,
+}
+
+/// The stress a body carries before any load (in-situ stress; `initial_stress
+/// = [..]` or `k0` with `surface` in the scene).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum InitialStress {
+    /// A uniform stress `[xx, yy, zz, xy, yz, xz]` (tension positive).
+    Uniform([f64; 6]),
+    /// Geostatic: vertical stress `-density |g| depth` below the level
+    /// `surface` (y in 2D, z in 3D), horizontal stresses `k0` times it.
+    Geostatic { k0: f64, surface: f64 },
+}
+
+impl InitialStress {
+    /// The stress at point x for a body of the given density under gravity g.
+    pub fn at(&self, x: [f64; 3], analysis: Analysis, density: f64, gravity: [f64; 3]) -> [f64; 6] {
+        match *self {
+            InitialStress::Uniform(s) => s,
+            InitialStress::Geostatic { k0, surface } => {
+                let v = if analysis == Analysis::Solid { 2 } else { 1 };
+                let depth = (surface - x[v]).max(0.0);
+                let g = (gravity[0] * gravity[0] + gravity[1] * gravity[1] + gravity[2] * gravity[2]).sqrt();
+                let sv = -density * g * depth;
+                let mut s = [k0 * sv, k0 * sv, k0 * sv, 0.0, 0.0, 0.0];
+                s[v] = sv;
+                s
+            }
+        }
+    }
+}
+
+/// Which physical groups make up a contact interface.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ContactGroups {
+    /// `group = "A-A"`: one curve/surface shared by two bodies.
+    Shared(String),
+    /// `groups = ["face_1", "face_2"]`: two groups whose nodes coincide pairwise.
+    Pair(String, String),
+}
+
+/// What a load applies.
+#[derive(Debug, Clone, PartialEq)]
+pub enum LoadKind {
+    /// Normal pressure, positive pressing into the body.
+    Pressure(f64),
+    /// Hydrostatic pressure `unit_weight * (surface - y)` below the level
+    /// `surface` (y in 2D, z in 3D), zero above it.
+    Hydrostatic { surface: f64, unit_weight: f64 },
+    /// Traction vector (x, y, z), per unit area; z = 0 in 2D.
+    Traction([f64; 3]),
+}

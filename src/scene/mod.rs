@@ -1,0 +1,298 @@
+//! The scene file: the TOML that sits next to a `.geo` and says what the mesh's
+//! physical groups are (bodies, contact interfaces, supports, loads), which
+//! materials they are made of, and how to solve. [`Scene::load`] reads, parses
+//! and validates it; every failure is a one-paragraph [`SceneError`] naming the
+//! scene file, the key path (`materials.rock.nu`, `contacts[1].friction`), the
+//! bad value and what to do. Unknown or misspelt keys are errors, never ignored.
+//! A short example (the full key list is in DESIGN.md §4):
+//!
+//! ```toml
+//! mesh     = "cylinder.geo"   # or .msh; relative to this file
+//! analysis = "plane_strain"   # plane_strain | plane_stress | axisymmetric | solid
+//!
+//! [materials.rock]
+//! E  = 2.0e5
+//! nu = 0.167
+//!
+//! [[bodies]]
+//! group = "body_1"
+//! material = "rock"
+//!
+//! [[contacts]]
+//! group = "A-A"
+//! friction = 0.8
+//!
+//! [[supports]]
+//! group = "symmetry_x0"
+//! fix = ["x"]
+//!
+//! [[loads]]
+//! group = "inner_surface"
+//! pressure = 0.1
+//! ```
+//!
+//! Validated values are stored in the public types below with defaults
+//! applied; vectors are always 3 components (z = 0 for the 2D analyses).
+//! The physics owns its vocabulary ([`Analysis`] in fem, [`SlipLaw`] in
+//! contact, [`LoadKind`] in model, ...): the scene maps the TOML onto it and
+//! [`Scene::model_spec`] hands the model builder its description.
+//!
+//! Here: the validated types and [`Scene::load`]. `raw.rs` is the TOML as
+//! written (serde, unknown keys rejected), `errors.rs` the error type and the
+//! mapping of toml's errors onto it, `validate.rs` (with `validate/`) the
+//! checker that turns the raw scene into this one, key by key.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use crate::model::{BodySpec, ContactSpec, LoadSpec, ModelSpec, SupportSpec};
+
+mod errors;
+mod raw;
+mod validate;
+#[cfg(test)]
+mod tests;
+
+pub use errors::SceneError;
+
+pub use crate::analytic::Analytic;
+pub use crate::contact::{SlipLaw, StateRule, TractionRecovery};
+pub use crate::fem::Analysis;
+pub use crate::model::{ContactGroups, InitialStress, LoadKind};
+pub use crate::recover::Probe;
+
+/// `[materials.NAME]`: linear isotropic elasticity.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Material {
+    /// Young's modulus (key `E`), > 0.
+    pub e: f64,
+    /// Poisson's ratio, -1 < nu < 0.5.
+    pub nu: f64,
+    /// Mass density (default 0), used with the top-level `gravity`.
+    pub density: f64,
+}
+
+/// `[[bodies]]`: one substructure, a physical surface (2D) or volume (3D).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Body {
+    pub group: String,
+    /// A key of [`Scene::materials`] (checked).
+    pub material: String,
+    /// Stress the body carries before any load (in-situ stress); reported
+    /// stresses are totals. None: the body starts stress-free.
+    pub initial: Option<InitialStress>,
+}
+
+/// `[[contacts]]`: an interface and its strength.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Contact {
+    pub groups: ContactGroups,
+    /// Friction coefficient f (default 0).
+    pub friction: f64,
+    /// Cohesion c (default 0).
+    pub cohesion: f64,
+    /// Tensile strength f_t (default 0).
+    pub tensile_strength: f64,
+    pub slip: SlipLaw,
+    /// Cohesion kept once the pair has opened (default 0, <= cohesion).
+    pub residual_cohesion: f64,
+    /// Contact stress recovery (default lumped).
+    pub traction: TractionRecovery,
+}
+
+/// `[[supports]]`: displacement conditions on a physical group.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Support {
+    pub group: String,
+    /// Components (x, y, z) held at zero (`fix = ["x", "y"]`).
+    pub fix: [bool; 3],
+    /// Prescribed displacements (`ux`, `uy`, `uz`). A component is never both
+    /// in `fix` and prescribed (that is rejected).
+    pub prescribed: [Option<f64>; 3],
+}
+
+/// `[[loads]]`: a surface load on a physical group.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Load {
+    pub group: String,
+    pub kind: LoadKind,
+    /// Load factor at each load step (`factors = [..]`, one per step);
+    /// None: the ramp k / load_steps.
+    pub factors: Option<Vec<f64>>,
+}
+
+/// `[solver]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Solver {
+    /// Load increments (default 1), >= 1.
+    pub load_steps: usize,
+    /// Contact state iterations per step (default 100), >= 1.
+    pub max_iterations: usize,
+    /// How pair states are updated between iterations (default robust).
+    pub rule: StateRule,
+    /// Factor of the gravity load at each step (default the ramp k / load_steps).
+    pub gravity_factors: Option<Vec<f64>>,
+}
+
+impl Default for Solver {
+    fn default() -> Self {
+        Solver {
+            load_steps: 1,
+            max_iterations: 100,
+            rule: StateRule::Robust,
+            gravity_factors: None,
+        }
+    }
+}
+
+/// `[gmsh]`: options for meshing a `.geo` with the gmsh CLI.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GmshOptions {
+    /// Element order, 1 or 2 (default 1): `gmsh -order`.
+    pub order: usize,
+    /// `gmsh -setnumber NAME VALUE`, sorted by name.
+    pub setnumber: Vec<(String, f64)>,
+    /// `gmsh -clscale`, > 0.
+    pub clscale: Option<f64>,
+}
+
+impl Default for GmshOptions {
+    fn default() -> Self {
+        GmshOptions {
+            order: 1,
+            setnumber: Vec::new(),
+            clscale: None,
+        }
+    }
+}
+
+/// Where the mesh comes from; the path is already resolved against the
+/// scene file's directory (an absolute `mesh` stays as written).
+#[derive(Debug, Clone, PartialEq)]
+pub enum MeshSource {
+    /// A gmsh script, meshed by the gmsh CLI.
+    Geo(PathBuf),
+    /// A ready mesh (MSH 4.1).
+    Msh(PathBuf),
+}
+
+impl MeshSource {
+    pub fn path(&self) -> &Path {
+        match self {
+            MeshSource::Geo(p) | MeshSource::Msh(p) => p,
+        }
+    }
+}
+
+/// The fields `[output] fields` accepts (and its default: all of them).
+pub const OUTPUT_FIELDS: &[&str] = &["displacement", "stress"];
+
+/// `[output]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Output {
+    /// Body fields to compute and write, each one of [`OUTPUT_FIELDS`].
+    pub fields: Vec<String>,
+}
+
+impl Output {
+    /// Whether `field` (e.g. `"stress"`) was asked for.
+    pub fn wants(&self, field: &str) -> bool {
+        self.fields.iter().any(|f| f == field)
+    }
+}
+
+impl Default for Output {
+    fn default() -> Self {
+        Output {
+            fields: OUTPUT_FIELDS.iter().map(|s| s.to_string()).collect(),
+        }
+    }
+}
+
+/// A parsed and validated scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// The scene file as given to [`Scene::load`] / [`Scene::parse`].
+    pub path: PathBuf,
+    /// File stem of `path` (names the results directory).
+    pub name: String,
+    /// `title`, default `name`.
+    pub title: String,
+    pub mesh: MeshSource,
+    pub analysis: Analysis,
+    /// Out-of-plane thickness (plane analyses; default 1.0, and 1.0 otherwise).
+    pub thickness: f64,
+    /// Acceleration of gravity (default 0); z = 0 in 2D.
+    pub gravity: [f64; 3],
+    pub gmsh: GmshOptions,
+    pub materials: BTreeMap<String, Material>,
+    pub bodies: Vec<Body>,
+    pub contacts: Vec<Contact>,
+    pub supports: Vec<Support>,
+    pub loads: Vec<Load>,
+    pub solver: Solver,
+    pub probes: Vec<Probe>,
+    pub analytic: Option<Analytic>,
+    pub output: Output,
+}
+
+impl Scene {
+    /// Read, parse and validate the scene file at `path`.
+    pub fn load(path: &Path) -> Result<Scene, SceneError> {
+        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Scene::parse(&text, path)
+    }
+
+    /// Parse and validate scene text. `path` is used in messages, for the
+    /// scene name, and to resolve `mesh` (which must exist).
+    pub fn parse(text: &str, path: &Path) -> Result<Scene, SceneError> {
+        let raw: raw::RawScene = toml::from_str(text).map_err(|e| errors::toml_error(text, path, &e))?;
+        validate::Checker { path }.scene(raw)
+    }
+
+    /// The material of `body`. Panics only if `body` was not validated
+    /// against this scene (validation guarantees the material exists).
+    pub fn material_of(&self, body: &Body) -> &Material {
+        &self.materials[&body.material]
+    }
+
+    /// The model's description: the bodies with their materials, contacts,
+    /// supports and loads, each with the key path that defined it (for the
+    /// model builder's messages).
+    pub fn model_spec(&self) -> ModelSpec {
+        ModelSpec {
+            source: self.path.display().to_string(),
+            mesh: self.mesh.path().display().to_string(),
+            analysis: self.analysis,
+            thickness: self.thickness,
+            gravity: self.gravity,
+            bodies: self
+                .bodies
+                .iter()
+                .enumerate()
+                .map(|(i, b)| {
+                    let m = self.material_of(b);
+                    BodySpec { key: format!("bodies[{i}]"), group: b.group.clone(), e: m.e, nu: m.nu, density: m.density, initial: b.initial }
+                })
+                .collect(),
+            contacts: self.contacts.iter().enumerate().map(|(i, c)| ContactSpec { key: format!("contacts[{i}]"), groups: c.groups.clone() }).collect(),
+            supports: self
+                .supports
+                .iter()
+                .enumerate()
+                .map(|(i, s)| SupportSpec { key: format!("supports[{i}]"), group: s.group.clone(), fix: s.fix, prescribed: s.prescribed })
+                .collect(),
+            loads: self
+                .loads
+                .iter()
+                .enumerate()
+                .map(|(i, l)| LoadSpec { key: format!("loads[{i}]"), group: l.group.clone(), kind: l.kind.clone(), factors: l.factors.clone() })
+                .collect(),
+            load_steps: self.solver.load_steps,
+            gravity_factors: self.solver.gravity_factors.clone(),
+        }
+    }
+}

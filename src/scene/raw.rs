@@ -1,0 +1,149 @@
+//! The scene as written: serde structures that mirror the TOML. Unknown keys
+//! are rejected (`deny_unknown_fields`); every field is optional so that a
+//! missing key is reported by the checker with its full key path, not by
+//! serde. Enumerated values (`analysis`, `slip`, `rule`, `traction`) are read
+//! straight into the physics' own enums.
+
+use serde::Deserialize;
+use std::collections::BTreeMap;
+
+use super::{Analysis, SlipLaw, StateRule, TractionRecovery};
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawScene {
+    pub(super) title: Option<String>,
+    pub(super) mesh: Option<String>,
+    pub(super) analysis: Option<Analysis>,
+    pub(super) thickness: Option<f64>,
+    pub(super) gravity: Option<Vec<f64>>,
+    pub(super) gmsh: Option<RawGmsh>,
+    #[serde(default)]
+    pub(super) materials: BTreeMap<String, RawMaterial>,
+    #[serde(default)]
+    pub(super) bodies: Vec<RawBody>,
+    #[serde(default)]
+    pub(super) contacts: Vec<RawContact>,
+    #[serde(default)]
+    pub(super) supports: Vec<RawSupport>,
+    #[serde(default)]
+    pub(super) loads: Vec<RawLoad>,
+    pub(super) solver: Option<RawSolver>,
+    #[serde(default)]
+    pub(super) probes: Vec<RawProbe>,
+    pub(super) analytic: Option<RawAnalytic>,
+    pub(super) output: Option<RawOutput>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawGmsh {
+    pub(super) order: Option<i64>,
+    pub(super) setnumber: Option<BTreeMap<String, f64>>,
+    pub(super) clscale: Option<f64>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawMaterial {
+    #[serde(rename = "E")]
+    pub(super) e: Option<f64>,
+    pub(super) nu: Option<f64>,
+    pub(super) density: Option<f64>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawBody {
+    pub(super) group: Option<String>,
+    pub(super) material: Option<String>,
+    pub(super) initial_stress: Option<Vec<f64>>,
+    pub(super) k0: Option<f64>,
+    pub(super) surface: Option<f64>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawContact {
+    pub(super) group: Option<String>,
+    pub(super) groups: Option<Vec<String>>,
+    pub(super) friction: Option<f64>,
+    pub(super) cohesion: Option<f64>,
+    pub(super) tensile_strength: Option<f64>,
+    pub(super) slip: Option<SlipLaw>,
+    pub(super) residual_cohesion: Option<f64>,
+    pub(super) traction: Option<TractionRecovery>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawSupport {
+    pub(super) group: Option<String>,
+    pub(super) fix: Option<Vec<String>>,
+    pub(super) ux: Option<f64>,
+    pub(super) uy: Option<f64>,
+    pub(super) uz: Option<f64>,
+}
+
+/// `pressure = P` or `pressure = { surface = y0, unit_weight = gamma }`.
+#[derive(Deserialize)]
+#[serde(untagged)]
+pub(super) enum RawPressure {
+    Value(f64),
+    Hydrostatic(RawHydrostatic),
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawHydrostatic {
+    pub(super) surface: f64,
+    pub(super) unit_weight: f64,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawLoad {
+    pub(super) group: Option<String>,
+    pub(super) pressure: Option<RawPressure>,
+    pub(super) traction: Option<Vec<f64>>,
+    pub(super) factors: Option<Vec<f64>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawSolver {
+    pub(super) load_steps: Option<i64>,
+    pub(super) max_iterations: Option<i64>,
+    pub(super) rule: Option<StateRule>,
+    pub(super) gravity_factors: Option<Vec<f64>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawProbe {
+    pub(super) name: Option<String>,
+    pub(super) from: Option<Vec<f64>>,
+    pub(super) to: Option<Vec<f64>>,
+    pub(super) points: Option<i64>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawAnalytic {
+    pub(super) kind: Option<String>,
+    pub(super) a: Option<f64>,
+    pub(super) b: Option<f64>,
+    pub(super) p: Option<f64>,
+    pub(super) radius: Option<f64>,
+    pub(super) thickness: Option<f64>,
+    pub(super) k: Option<f64>,
+    pub(super) slip: Option<String>,
+    pub(super) lining: Option<String>,
+    pub(super) ground: Option<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawOutput {
+    pub(super) fields: Option<Vec<String>>,
+}

@@ -1,0 +1,640 @@
+//! Scene unit tests: the full example of DESIGN.md §4 parses, defaults are
+//! applied, and every rule rejects with a one-paragraph message that names
+//! the scene file, the key path and what to do.
+
+use super::*;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// The full example of DESIGN.md §4.
+const EXAMPLE: &str = r#"
+title    = "Thick-walled cylinder, quarter model"
+mesh     = "cylinder.geo"      # .geo (meshed by the gmsh CLI) or .msh; relative to this file
+analysis = "plane_strain"      # plane_strain | plane_stress | axisymmetric | solid
+thickness = 1.0                # plane analyses only
+
+[gmsh]                          # used when mesh is a .geo
+order = 2                       # element order (gmsh -order)
+setnumber = { lc = 0.2 }        # gmsh -setnumber NAME VALUE
+
+[materials.rock]
+E = 2.0e5
+nu = 0.167
+density = 0.0                   # optional, with top-level gravity = [gx, gy, gz]
+
+[[bodies]]                      # one substructure per entry
+group = "body_1"                # physical surface (2D) / volume (3D)
+material = "rock"
+
+[[contacts]]
+group = "A-A"                   # one physical curve/surface shared by two bodies,
+# groups = ["face_1", "face_2"] # or two groups whose nodes coincide pairwise
+friction = 0.8
+cohesion = 2.0e4
+tensile_strength = 3.0e5
+slip = "coulomb"                # coulomb (default) | frictionless (the paper)
+
+[[supports]]
+group = "symmetry_x0"           # a physical point, curve or surface
+fix = ["x"]                     # components held at zero; or prescribe: ux = 0.001 (uy, uz)
+
+[[loads]]
+group = "inner_surface"
+pressure = 0.1                  # positive presses into the body; or traction = [tx, ty(, tz)]
+
+[solver]
+load_steps = 1
+max_iterations = 100
+
+[[probes]]                      # sample the solution along a line
+name = "radial"
+from = [2.7716, 1.1481]
+to   = [4.6194, 1.9134]
+points = 6
+
+[analytic]                      # optional known solution, for error norms
+kind = "lame_cylinder"
+a = 3.0
+b = 5.0
+p = 0.1
+"#;
+
+/// A fresh directory holding `cylinder.geo`, `cylinder.msh` and `cyl.toml`
+/// (the latter with `text`); returns the scene path.
+fn write_scene(text: &str) -> PathBuf {
+    static N: AtomicUsize = AtomicUsize::new(0);
+    let dir = std::env::temp_dir().join(format!(
+        "subcontact_scene_test_{}_{}",
+        std::process::id(),
+        N.fetch_add(1, Ordering::SeqCst)
+    ));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    std::fs::write(dir.join("cylinder.geo"), "// test\n").expect("write geo");
+    std::fs::write(dir.join("cylinder.msh"), "").expect("write msh");
+    let path = dir.join("cyl.toml");
+    std::fs::write(&path, text).expect("write scene");
+    path
+}
+
+/// Remove the directory `write_scene` made for `path`.
+fn clean(path: &Path) {
+    if let Some(dir) = path.parent() {
+        let _ = std::fs::remove_dir_all(dir);
+    }
+}
+
+fn load(text: &str) -> Result<Scene, SceneError> {
+    let path = write_scene(text);
+    let r = Scene::load(&path);
+    clean(&path);
+    r
+}
+
+/// A minimal valid 2D scene plus `extra` appended.
+fn minimal(extra: &str) -> String {
+    format!(
+        "mesh = \"cylinder.geo\"\nanalysis = \"plane_strain\"\n[materials.rock]\nE = 1.0\nnu = 0.2\n[[bodies]]\ngroup = \"b1\"\nmaterial = \"rock\"\n{extra}"
+    )
+}
+
+fn minimal_solid(extra: &str) -> String {
+    minimal(extra).replace("plane_strain", "solid")
+}
+
+/// Expect an error whose message names the scene file and each of `needles`.
+fn rejects(text: &str, needles: &[&str]) -> String {
+    let path = write_scene(text);
+    let result = Scene::load(&path);
+    clean(&path);
+    let msg = match result {
+        Ok(_) => panic!("accepted, expected an error mentioning {needles:?}:\n{text}"),
+        Err(e) => e.to_string(),
+    };
+    assert!(
+        msg.starts_with(&path.display().to_string()),
+        "does not start with the file name: {msg}"
+    );
+    for n in needles {
+        assert!(msg.contains(n), "message lacks {n:?}: {msg}");
+    }
+    assert!(!msg.contains('\n'), "not one paragraph: {msg}");
+    msg
+}
+
+#[test]
+fn design_example_parses() {
+    let path = write_scene(EXAMPLE);
+    let s = Scene::load(&path).expect("example scene");
+    assert_eq!(s.name, "cyl");
+    assert_eq!(s.title, "Thick-walled cylinder, quarter model");
+    assert_eq!(
+        s.mesh,
+        MeshSource::Geo(path.parent().unwrap().join("cylinder.geo"))
+    );
+    assert_eq!(s.analysis, Analysis::PlaneStrain);
+    assert_eq!(s.analysis.dim(), 2);
+    assert_eq!(s.thickness, 1.0);
+    assert_eq!(
+        s.gmsh,
+        GmshOptions {
+            order: 2,
+            setnumber: vec![("lc".into(), 0.2)],
+            clscale: None
+        }
+    );
+    assert_eq!(
+        s.materials["rock"],
+        Material {
+            e: 2.0e5,
+            nu: 0.167,
+            density: 0.0
+        }
+    );
+    assert_eq!(
+        s.bodies,
+        vec![Body {
+            group: "body_1".into(),
+            material: "rock".into(),
+            initial: None,
+        }]
+    );
+    assert_eq!(s.material_of(&s.bodies[0]).e, 2.0e5);
+    assert_eq!(
+        s.contacts,
+        vec![Contact {
+            groups: ContactGroups::Shared("A-A".into()),
+            friction: 0.8,
+            cohesion: 2.0e4,
+            tensile_strength: 3.0e5,
+            slip: SlipLaw::Coulomb,
+            residual_cohesion: 0.0,
+            traction: TractionRecovery::Lumped,
+        }]
+    );
+    assert_eq!(
+        s.supports,
+        vec![Support {
+            group: "symmetry_x0".into(),
+            fix: [true, false, false],
+            prescribed: [None; 3]
+        }]
+    );
+    assert_eq!(
+        s.loads,
+        vec![Load {
+            group: "inner_surface".into(),
+            kind: LoadKind::Pressure(0.1),
+            factors: None,
+        }]
+    );
+    assert_eq!(
+        s.solver,
+        Solver::default()
+    );
+    assert_eq!(
+        s.probes,
+        vec![Probe {
+            name: "radial".into(),
+            from: [2.7716, 1.1481, 0.0],
+            to: [4.6194, 1.9134, 0.0],
+            points: 6
+        }]
+    );
+    assert_eq!(
+        s.analytic,
+        Some(Analytic::LameCylinder {
+            a: 3.0,
+            b: 5.0,
+            p: 0.1
+        })
+    );
+    assert_eq!(s.output, Output::default());
+    // parse() from a string gives the same scene.
+    assert_eq!(Scene::parse(EXAMPLE, &path).expect("parse"), s);
+    clean(&path);
+}
+
+#[test]
+fn defaults_applied() {
+    let s = load(&minimal("[[contacts]]\ngroup = \"i\"\n")).expect("minimal scene");
+    assert_eq!(s.title, "cyl");
+    assert_eq!(s.thickness, 1.0);
+    assert_eq!(s.gravity, [0.0; 3]);
+    assert_eq!(
+        s.gmsh,
+        GmshOptions {
+            order: 1,
+            setnumber: vec![],
+            clscale: None
+        }
+    );
+    assert_eq!(s.materials["rock"].density, 0.0);
+    let c = &s.contacts[0];
+    assert_eq!(
+        (
+            c.friction,
+            c.cohesion,
+            c.tensile_strength,
+            c.residual_cohesion
+        ),
+        (0.0, 0.0, 0.0, 0.0)
+    );
+    assert_eq!(c.slip, SlipLaw::Coulomb);
+    assert_eq!(
+        s.solver,
+        Solver::default()
+    );
+    assert!(s.supports.is_empty() && s.loads.is_empty() && s.probes.is_empty());
+    assert_eq!(s.analytic, None);
+    assert_eq!(
+        s.output.fields,
+        vec!["displacement".to_string(), "stress".to_string()]
+    );
+    assert!(s.output.wants("stress"));
+}
+
+#[test]
+fn other_forms_accepted() {
+    let s = load(&("gravity = [0, 0, -9.81]\n".to_string() + &minimal_solid(
+        "[[contacts]]\ngroups = [\"f1\", \"f2\"]\nslip = \"frictionless\"\ncohesion = 2\nresidual_cohesion = 1\n\
+         [[supports]]\ngroup = \"s\"\nfix = [\"x\", \"z\"]\nuy = -0.001\n[[loads]]\ngroup = \"top\"\ntraction = [0, 0, -1]\n\
+         [gmsh]\nclscale = 0.5\nsetnumber = { n = 4, lc = 0.1 }\n[output]\nfields = [\"stress\"]\n",
+    )))
+    .expect("solid scene");
+    assert_eq!(s.gravity, [0.0, 0.0, -9.81]);
+    assert_eq!(s.analysis.dim(), 3);
+    assert_eq!(
+        s.contacts[0].groups,
+        ContactGroups::Pair("f1".into(), "f2".into())
+    );
+    assert_eq!(s.contacts[0].slip, SlipLaw::Frictionless);
+    assert_eq!(s.supports[0].fix, [true, false, true]);
+    assert_eq!(s.supports[0].prescribed, [None, Some(-0.001), None]);
+    assert_eq!(s.loads[0].kind, LoadKind::Traction([0.0, 0.0, -1.0]));
+    assert_eq!(
+        s.gmsh.setnumber,
+        vec![("lc".into(), 0.1), ("n".into(), 4.0)]
+    );
+    assert_eq!(s.gmsh.clscale, Some(0.5));
+    assert_eq!(s.output.fields, vec!["stress".to_string()]);
+    assert!(!s.output.wants("displacement"));
+
+    let top = "gravity = [0, -9.81]\n".to_string()
+        + &minimal("[[loads]]\ngroup = \"t\"\ntraction = [1, 2, 0]\n");
+    let s = load(&top).expect("2D gravity");
+    assert_eq!(s.gravity, [0.0, -9.81, 0.0]);
+    assert_eq!(s.loads[0].kind, LoadKind::Traction([1.0, 2.0, 0.0]));
+
+    let msh = minimal("").replace("cylinder.geo", "cylinder.msh");
+    assert!(matches!(load(&msh).expect("msh").mesh, MeshSource::Msh(_)));
+}
+
+#[test]
+fn missing_file() {
+    let path = std::env::temp_dir().join("subcontact_no_such_dir/none.toml");
+    let msg = Scene::load(&path).expect_err("missing").to_string();
+    assert!(
+        msg.starts_with(&path.display().to_string()) && msg.contains("cannot read"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn toml_syntax_and_types() {
+    rejects(
+        &minimal("friction = \n"),
+        &["line 9, column 12", "bodies[0]", "invalid string"],
+    );
+    rejects(
+        &minimal("[solver]\nload_steps = \"two\"\n"),
+        &["line 10", "(in solver)", "expected i64"],
+    );
+    rejects(
+        &minimal("").replace("plane_strain", "plane"),
+        &["line 2", "plane_strain", "axisymmetric"],
+    );
+    rejects(
+        &minimal("[[contacts]]\ngroup = \"i\"\nslip = \"stick\"\n"),
+        &["contacts[0]", "coulomb", "frictionless"],
+    );
+}
+
+#[test]
+fn misspelt_key() {
+    let m = rejects(
+        &minimal("[[contacts]]\ngroup = \"a\"\n[[contacts]]\ngroup = \"i\"\nfrction = 0.8\n"),
+        &[
+            "frction",
+            "line 13",
+            "contacts[1]",
+            "friction",
+            "tensile_strength",
+        ],
+    );
+    assert!(m.contains("Unknown keys are errors"), "{m}");
+    rejects(
+        &minimal("").replace("nu = 0.2", "nu = 0.2\ne = 3"),
+        &["materials.rock", "unknown field `e`", "`E`"],
+    );
+    rejects(
+        &("titel = \"x\"\n".to_string() + &minimal("")),
+        &["titel", "line 1", "`title`"],
+    );
+}
+
+#[test]
+fn mesh_rules() {
+    rejects(
+        &minimal("").replace("cylinder.geo", "cylinder.stl"),
+        &["mesh", "cylinder.stl", ".geo", ".msh"],
+    );
+    rejects(
+        &minimal("").replace("cylinder.geo", "other.geo"),
+        &["mesh", "other.geo", "does not exist"],
+    );
+    rejects(
+        &minimal("").replace("mesh = \"cylinder.geo\"\n", ""),
+        &["mesh", "missing"],
+    );
+    rejects(
+        &minimal("").replace("analysis = \"plane_strain\"\n", ""),
+        &["analysis", "missing"],
+    );
+    rejects(
+        &minimal("[gmsh]\norder = 2\n").replace("cylinder.geo", "cylinder.msh"),
+        &["gmsh", ".geo", "cylinder.msh"],
+    );
+}
+
+#[test]
+fn material_rules() {
+    let m = |from: &str, to: &str| minimal("").replace(from, to);
+    rejects(
+        &m("E = 1.0", "E = 0.0"),
+        &["materials.rock.E", "= 0", "> 0"],
+    );
+    rejects(&m("E = 1.0", "E = inf"), &["materials.rock.E", "inf"]);
+    rejects(&m("E = 1.0", "E = -5"), &["materials.rock.E", "-5"]);
+    let msg = rejects(
+        &m("nu = 0.2", "nu = 0.5"),
+        &["materials.rock.nu", "= 0.5", "incompressible", "0.499"],
+    );
+    assert!(msg.contains("-1 < nu < 0.5"), "{msg}");
+    rejects(&m("nu = 0.2", "nu = -1.0"), &["materials.rock.nu", "-1"]);
+    rejects(
+        &m("nu = 0.2", "nu = 0.2\ndensity = -1"),
+        &["materials.rock.density", "-1", ">= 0"],
+    );
+    rejects(&m("nu = 0.2", ""), &["materials.rock.nu", "missing"]);
+    rejects(
+        &m("[materials.rock]", "[materials.\"soft clay\"]")
+            .replace("\"rock\"", "\"soft clay\"")
+            .replace("E = 1.0", "E = 0"),
+        &["materials.\"soft clay\".E"],
+    );
+}
+
+#[test]
+fn plane_and_solid_rules() {
+    rejects(
+        &("thickness = 0\n".to_string() + &minimal("")),
+        &["thickness", "= 0", "> 0"],
+    );
+    rejects(
+        &("thickness = 2\n".to_string() + &minimal_solid("")),
+        &["thickness", "solid", "remove"],
+    );
+    rejects(
+        &("gravity = [1]\n".to_string() + &minimal("")),
+        &["gravity", "[1]", "2 components"],
+    );
+    rejects(
+        &("gravity = [1, 2, 3, 4]\n".to_string() + &minimal("")),
+        &["gravity", "2 components"],
+    );
+    rejects(
+        &("gravity = [0, -9.8]\n".to_string() + &minimal_solid("")),
+        &["gravity", "3 components"],
+    );
+    rejects(
+        &("gravity = [0, -9.8, 1]\n".to_string() + &minimal("")),
+        &["gravity", "z component must be 0"],
+    );
+    rejects(
+        &minimal("[[supports]]\ngroup = \"s\"\nfix = [\"z\"]\n"),
+        &["supports[0].fix", "\"z\"", "solid"],
+    );
+    rejects(
+        &minimal("[[supports]]\ngroup = \"s\"\nuz = 0.1\n"),
+        &["supports[0].uz", "solid"],
+    );
+    rejects(
+        &minimal("[[loads]]\ngroup = \"l\"\ntraction = [0, 0, 1]\n"),
+        &["loads[0].traction", "z component"],
+    );
+    rejects(
+        &minimal_solid("[[loads]]\ngroup = \"l\"\ntraction = [0, 1]\n"),
+        &["loads[0].traction", "3 components"],
+    );
+    let probe = "[[probes]]\nname = \"p\"\nfrom = [0, 0, 1]\nto = [1, 1]\npoints = 3\n";
+    rejects(&minimal(probe), &["probes[0].from", "z component"]);
+    rejects(&minimal_solid(probe), &["probes[0].to", "3 components"]);
+}
+
+#[test]
+fn body_rules() {
+    let no_bodies =
+        "mesh = \"cylinder.geo\"\nanalysis = \"solid\"\n[materials.rock]\nE = 1\nnu = 0.1\n";
+    rejects(no_bodies, &["bodies", "at least one"]);
+    rejects(
+        &minimal("[[bodies]]\ngroup = \"b2\"\nmaterial = \"steel\"\n"),
+        &["bodies[1].material", "\"steel\"", "\"rock\""],
+    );
+    rejects(
+        &minimal("[[bodies]]\ngroup = \"b1\"\nmaterial = \"rock\"\n"),
+        &["bodies[1].group", "\"b1\"", "bodies[0]"],
+    );
+    rejects(
+        &minimal("[[bodies]]\nmaterial = \"rock\"\n"),
+        &["bodies[1].group", "missing"],
+    );
+    rejects(
+        &minimal("[[bodies]]\ngroup = \"\"\nmaterial = \"rock\"\n"),
+        &["bodies[1].group", "empty"],
+    );
+    let no_mat = "mesh = \"cylinder.geo\"\nanalysis = \"solid\"\n[[bodies]]\ngroup = \"b\"\nmaterial = \"rock\"\n";
+    rejects(no_mat, &["bodies[0].material", "none are defined"]);
+}
+
+#[test]
+fn contact_rules() {
+    let c = |body: &str| {
+        minimal(&format!(
+            "[[contacts]]\ngroup = \"ok\"\n[[contacts]]\n{body}\n"
+        ))
+    };
+    rejects(&c("friction = 0.1"), &["contacts[1]", "group", "groups"]);
+    rejects(
+        &c("group = \"a\"\ngroups = [\"b\", \"c\"]"),
+        &["contacts[1]", "both"],
+    );
+    rejects(
+        &c("groups = [\"b\"]"),
+        &["contacts[1].groups", "[\"b\"]", "exactly 2"],
+    );
+    rejects(
+        &c("groups = [\"b\", \"c\", \"d\"]"),
+        &["contacts[1].groups", "exactly 2"],
+    );
+    rejects(
+        &c("groups = [\"b\", \"b\"]"),
+        &["contacts[1].groups", "differ"],
+    );
+    rejects(
+        &c("group = \"b1\""),
+        &["contacts[1].group", "\"b1\"", "bodies[0]"],
+    );
+    rejects(&c("group = \"ok\""), &["contacts[1].group", "contacts[0]"]);
+    rejects(
+        &c("friction = -0.1\ngroup = \"x\""),
+        &["contacts[1].friction", "-0.1", ">= 0"],
+    );
+    rejects(
+        &c("friction = nan\ngroup = \"x\""),
+        &["contacts[1].friction", "NaN", "finite"],
+    );
+    rejects(
+        &c("cohesion = -1\ngroup = \"x\""),
+        &["contacts[1].cohesion", "-1"],
+    );
+    rejects(
+        &c("tensile_strength = -1\ngroup = \"x\""),
+        &["contacts[1].tensile_strength", "-1"],
+    );
+    rejects(
+        &c("residual_cohesion = -1\ngroup = \"x\""),
+        &["contacts[1].residual_cohesion", "-1"],
+    );
+    rejects(
+        &c("cohesion = 1\nresidual_cohesion = 2\ngroup = \"x\""),
+        &["contacts[1].residual_cohesion", "= 2", "cohesion (1)"],
+    );
+}
+
+#[test]
+fn support_rules() {
+    let s = |body: &str| minimal(&format!("[[supports]]\ngroup = \"s\"\n{body}\n"));
+    rejects(&s(""), &["supports[0]", "fix", "ux"]);
+    rejects(&s("fix = []"), &["supports[0]", "holds nothing"]);
+    rejects(
+        &s("fix = [\"w\"]"),
+        &["supports[0].fix", "\"w\"", "\"x\", \"y\""],
+    );
+    rejects(&s("fix = [\"x\", \"x\"]"), &["supports[0].fix", "twice"]);
+    rejects(
+        &s("fix = [\"x\"]\nux = 0.1"),
+        &["supports[0].ux", "0.1", "also in fix"],
+    );
+    rejects(&s("uy = inf"), &["supports[0].uy", "finite"]);
+    rejects(
+        &minimal("[[supports]]\nfix = [\"x\"]\n"),
+        &["supports[0].group", "missing"],
+    );
+    rejects(
+        &s("fix = [\"x\"]\nuz = 1").replace("plane_strain", "axisymmetric"),
+        &["supports[0].uz", "axisymmetric"],
+    );
+}
+
+#[test]
+fn load_rules() {
+    let l = |body: &str| minimal(&format!("[[loads]]\ngroup = \"l\"\n{body}\n"));
+    rejects(&l(""), &["loads[0]", "pressure", "traction"]);
+    rejects(&l("pressure = 1\ntraction = [1, 0]"), &["loads[0]", "both"]);
+    rejects(&l("pressure = nan"), &["loads[0].pressure", "finite"]);
+    rejects(&l("traction = [1, nan]"), &["loads[0].traction", "finite"]);
+}
+
+#[test]
+fn solver_gmsh_probe_rules() {
+    rejects(
+        &minimal("[solver]\nload_steps = 0\n"),
+        &["solver.load_steps", "= 0", "at least 1"],
+    );
+    rejects(
+        &minimal("[solver]\nmax_iterations = -3\n"),
+        &["solver.max_iterations", "-3"],
+    );
+    rejects(
+        &minimal("[gmsh]\norder = 3\n"),
+        &["gmsh.order", "= 3", "1", "2"],
+    );
+    rejects(&minimal("[gmsh]\nclscale = 0\n"), &["gmsh.clscale", "> 0"]);
+    rejects(
+        &minimal("[gmsh]\nsetnumber = { lc = inf }\n"),
+        &["gmsh.setnumber.lc", "finite"],
+    );
+    rejects(
+        &minimal("[gmsh]\nsetnumber = { \"a b\" = 1 }\n"),
+        &["gmsh.setnumber.\"a b\"", "DefineConstant"],
+    );
+    let p = |name: &str, pts: i64| {
+        format!("[[probes]]\nname = \"{name}\"\nfrom = [0, 0]\nto = [1, 1]\npoints = {pts}\n")
+    };
+    rejects(
+        &minimal(&p("a", 1)),
+        &["probes[0].points", "= 1", "at least 2"],
+    );
+    rejects(
+        &minimal(&(p("a", 3) + &p("a", 3))),
+        &["probes[1].name", "\"a\"", "unique"],
+    );
+    rejects(
+        &minimal("[[probes]]\nname = \"a\"\nfrom = [1, 1]\nto = [1, 1]\npoints = 3\n"),
+        &["probes[0].to", "non-zero length"],
+    );
+    rejects(
+        &minimal("[[probes]]\nname = \"a\"\nfrom = [1, 1]\nto = [2, 1]\n"),
+        &["probes[0].points", "missing"],
+    );
+}
+
+#[test]
+fn analytic_and_output_rules() {
+    let a = |body: &str| minimal(&format!("[analytic]\n{body}\n"));
+    rejects(
+        &a("kind = \"lame_cylinder\"\na = 5\nb = 3\np = 1"),
+        &["analytic.b", "= 3", "a = 5"],
+    );
+    rejects(
+        &a("kind = \"lame_cylinder\"\na = 0\nb = 3\np = 1"),
+        &["analytic.a", "= 0", "> 0"],
+    );
+    rejects(
+        &a("kind = \"lame_cylinder\"\na = 1\nb = 3\np = inf"),
+        &["analytic.p", "finite"],
+    );
+    rejects(
+        &a("kind = \"lame_cylinder\"\na = 1\nb = 3"),
+        &["analytic.p", "missing"],
+    );
+    rejects(
+        &a("kind = \"kirsch\""),
+        &["analytic.kind", "\"kirsch\"", "\"lame_cylinder\""],
+    );
+    rejects(
+        &a("kind = \"lame_cylinder\"\na = 1\nb = 3\np = 1\nq = 2"),
+        &["analytic", "unknown field `q`"],
+    );
+    rejects(
+        &minimal("[output]\nfields = [\"strain\"]\n"),
+        &[
+            "output.fields[0]",
+            "\"strain\"",
+            "\"displacement\", \"stress\"",
+        ],
+    );
+    rejects(
+        &minimal("[output]\nfields = [\"stress\", \"stress\"]\n"),
+        &["output.fields[1]", "twice"],
+    );
+}

@@ -1,0 +1,501 @@
+//! The checker: turns the raw scene into a validated [`Scene`], key by key,
+//! applying defaults. Every rule that fails is a [`SceneError::Invalid`]
+//! naming the key path, the value as written and what to do. The checks of
+//! the entries that name the mesh's groups (bodies, contacts, supports,
+//! loads) are in `validate/groups.rs`, those of `[analytic]` in
+//! `validate/analytic.rs`.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::fmt;
+use std::path::Path;
+
+use super::raw::{RawGmsh, RawMaterial, RawOutput, RawProbe, RawScene};
+use super::{Analysis, GmshOptions, Material, MeshSource, Output, Probe, Scene, SceneError, Solver, OUTPUT_FIELDS};
+
+mod analytic;
+mod groups;
+
+/// `name` as it would appear in a key path: bare when it is a bare TOML key,
+/// quoted otherwise.
+fn key_name(name: &str) -> String {
+    if !name.is_empty()
+        && name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+    {
+        name.to_string()
+    } else {
+        format!("{name:?}")
+    }
+}
+
+/// A list of names for messages: `"a", "b"`.
+fn quoted_list<S: AsRef<str>>(items: impl IntoIterator<Item = S>) -> String {
+    items
+        .into_iter()
+        .map(|s| format!("\"{}\"", s.as_ref()))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+fn fmt_vec(v: &[f64]) -> String {
+    format!(
+        "[{}]",
+        v.iter()
+            .map(|x| x.to_string())
+            .collect::<Vec<_>>()
+            .join(", ")
+    )
+}
+
+/// Checks a raw scene against the rules of each key; `path` is the scene
+/// file every error names.
+pub(super) struct Checker<'a> {
+    pub(super) path: &'a Path,
+}
+
+type R<T> = Result<T, SceneError>;
+
+impl Checker<'_> {
+    /// An error about `key` whose value is `value` (already formatted).
+    fn bad(
+        &self,
+        key: impl Into<String>,
+        value: impl fmt::Display,
+        what: impl fmt::Display,
+    ) -> SceneError {
+        SceneError::Invalid {
+            path: self.path.to_path_buf(),
+            key: key.into(),
+            value: Some(value.to_string()),
+            message: what.to_string(),
+        }
+    }
+
+    /// An error about `key` without a value (missing, or about a whole table).
+    fn err(&self, key: impl Into<String>, what: impl fmt::Display) -> SceneError {
+        SceneError::Invalid {
+            path: self.path.to_path_buf(),
+            key: key.into(),
+            value: None,
+            message: what.to_string(),
+        }
+    }
+
+    fn required<T>(&self, v: Option<T>, key: &str, what: &str) -> R<T> {
+        v.ok_or_else(|| {
+            self.err(
+                key,
+                format!(
+                    "missing; add `{}` ({what}).",
+                    key.rsplit('.').next().unwrap_or(key)
+                ),
+            )
+        })
+    }
+
+    fn group(&self, v: Option<String>, key: &str, what: &str) -> R<String> {
+        let g = self.required(v, key, what)?;
+        if g.trim().is_empty() {
+            return Err(self.bad(
+                key,
+                "\"\"",
+                format!("the group name is empty; give the name of {what} as written in the .geo."),
+            ));
+        }
+        Ok(g)
+    }
+
+    fn finite(&self, v: f64, key: &str) -> R<f64> {
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(self.bad(key, v, "must be a finite number."))
+        }
+    }
+
+    fn non_negative(&self, v: Option<f64>, key: &str, what: &str) -> R<f64> {
+        let v = self.finite(v.unwrap_or(0.0), key)?;
+        if v < 0.0 {
+            return Err(self.bad(key, v, format!("{what} must be >= 0 (0 if omitted).")));
+        }
+        Ok(v)
+    }
+
+    fn at_least(
+        &self,
+        v: Option<i64>,
+        default: usize,
+        min: i64,
+        key: &str,
+        what: &str,
+    ) -> R<usize> {
+        match v {
+            None => Ok(default),
+            Some(n) if n >= min => {
+                usize::try_from(n).map_err(|_| self.bad(key, n, format!("{what} is too large.")))
+            }
+            Some(n) => Err(self.bad(key, n, format!("{what} must be at least {min}."))),
+        }
+    }
+
+    /// A 2- or 3-component vector; 3 required for solid, z = 0 for the 2D analyses.
+    fn vec3(&self, v: &[f64], key: &str, analysis: Analysis) -> R<[f64; 3]> {
+        let shown = fmt_vec(v);
+        if analysis == Analysis::Solid && v.len() != 3 {
+            return Err(self.bad(key, shown, "a solid analysis needs 3 components [x, y, z]."));
+        }
+        if v.len() != 2 && v.len() != 3 {
+            return Err(self.bad(
+                key,
+                shown,
+                format!("give 2 components [x, y] (or 3 with z = 0) for a {analysis} analysis."),
+            ));
+        }
+        if v.iter().any(|x| !x.is_finite()) {
+            return Err(self.bad(key, shown, "all components must be finite numbers."));
+        }
+        let z = v.get(2).copied().unwrap_or(0.0);
+        if analysis.dim() == 2 && z != 0.0 {
+            return Err(self.bad(
+                key,
+                shown,
+                format!("a {analysis} analysis lies in the z = 0 plane, so the z component must be 0; drop it or use analysis = \"solid\"."),
+            ));
+        }
+        Ok([v[0], v[1], z])
+    }
+
+    pub(super) fn scene(&self, raw: RawScene) -> R<Scene> {
+        let name = self
+            .path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .filter(|s| !s.is_empty())
+            .unwrap_or_else(|| "scene".to_string());
+        let title = raw.title.unwrap_or_else(|| name.clone());
+
+        let analysis = self.required(
+            raw.analysis,
+            "analysis",
+            "one of \"plane_strain\", \"plane_stress\", \"axisymmetric\", \"solid\"",
+        )?;
+        let mesh = self.mesh(raw.mesh)?;
+
+        let thickness = match raw.thickness {
+            None => 1.0,
+            Some(t) if !analysis.has_thickness() => {
+                return Err(self.bad(
+                    "thickness",
+                    t,
+                    format!("thickness applies only to plane_strain and plane_stress; remove it for a {analysis} analysis."),
+                ))
+            }
+            Some(t) if t.is_finite() && t > 0.0 => t,
+            Some(t) => return Err(self.bad("thickness", t, "the out-of-plane thickness must be a finite number > 0.")),
+        };
+        let gravity = match &raw.gravity {
+            None => [0.0; 3],
+            Some(g) => self.vec3(g, "gravity", analysis)?,
+        };
+
+        let gmsh = self.gmsh(raw.gmsh, &mesh)?;
+        let materials = self.materials(raw.materials)?;
+        let bodies = self.bodies(raw.bodies, &materials, analysis)?;
+        let contacts = self.contacts(raw.contacts, &bodies)?;
+        let supports = raw
+            .supports
+            .into_iter()
+            .enumerate()
+            .map(|(i, s)| self.support(i, s, analysis))
+            .collect::<R<Vec<_>>>()?;
+        let loads = raw
+            .loads
+            .into_iter()
+            .enumerate()
+            .map(|(i, l)| self.load(i, l, analysis))
+            .collect::<R<Vec<_>>>()?;
+        let solver = match raw.solver {
+            None => Solver::default(),
+            Some(s) => Solver {
+                load_steps: self.at_least(
+                    s.load_steps,
+                    1,
+                    1,
+                    "solver.load_steps",
+                    "the number of load steps",
+                )?,
+                max_iterations: self.at_least(
+                    s.max_iterations,
+                    100,
+                    1,
+                    "solver.max_iterations",
+                    "the contact iteration limit",
+                )?,
+                rule: s.rule.unwrap_or_default(),
+                gravity_factors: match s.gravity_factors {
+                    None => None,
+                    Some(f) => Some(
+                        f.iter()
+                            .enumerate()
+                            .map(|(j, &v)| self.finite(v, &format!("solver.gravity_factors[{j}]")))
+                            .collect::<R<Vec<f64>>>()?,
+                    ),
+                },
+            },
+        };
+        // load factor tables have one entry per load step
+        let steps = solver.load_steps;
+        let tables = loads
+            .iter()
+            .enumerate()
+            .filter_map(|(i, l)| l.factors.as_ref().map(|f| (format!("loads[{i}].factors"), f)))
+            .chain(solver.gravity_factors.as_ref().map(|f| ("solver.gravity_factors".to_string(), f)));
+        for (key, f) in tables {
+            if f.len() != steps {
+                return Err(self.err(
+                    key,
+                    format!("has {} value(s) but [solver] load_steps = {steps}: give one load factor per step.", f.len()),
+                ));
+            }
+        }
+        let probes = self.probes(raw.probes, analysis)?;
+        let analytic = raw.analytic.map(|a| self.analytic(a, analysis, &bodies, &materials)).transpose()?;
+        let output = self.output(raw.output)?;
+
+        Ok(Scene {
+            path: self.path.to_path_buf(),
+            name,
+            title,
+            mesh,
+            analysis,
+            thickness,
+            gravity,
+            gmsh,
+            materials,
+            bodies,
+            contacts,
+            supports,
+            loads,
+            solver,
+            probes,
+            analytic,
+            output,
+        })
+    }
+
+    fn mesh(&self, mesh: Option<String>) -> R<MeshSource> {
+        let m = self.required(
+            mesh,
+            "mesh",
+            "the .geo or .msh file, relative to the scene file",
+        )?;
+        let rel = Path::new(&m);
+        let ext = rel
+            .extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase());
+        let dir = self.path.parent().unwrap_or(Path::new(""));
+        let full = dir.join(rel);
+        let source = match ext.as_deref() {
+            Some("geo") => MeshSource::Geo(full.clone()),
+            Some("msh") => MeshSource::Msh(full.clone()),
+            _ => {
+                return Err(self.bad(
+                    "mesh",
+                    format!("{m:?}"),
+                    "the mesh must be a gmsh script ending in .geo (meshed with the gmsh CLI) or a mesh file ending in .msh.",
+                ))
+            }
+        };
+        if !full.is_file() {
+            let shown_dir = if dir.as_os_str().is_empty() {
+                Path::new(".")
+            } else {
+                dir
+            };
+            return Err(self.bad(
+                "mesh",
+                format!("{m:?}"),
+                format!(
+                    "the file {} does not exist (mesh paths are relative to the scene file's directory {}); create it or correct the path.",
+                    full.display(),
+                    shown_dir.display()
+                ),
+            ));
+        }
+        Ok(source)
+    }
+
+    fn gmsh(&self, raw: Option<RawGmsh>, mesh: &MeshSource) -> R<GmshOptions> {
+        let Some(g) = raw else {
+            return Ok(GmshOptions::default());
+        };
+        if let MeshSource::Msh(p) = mesh {
+            return Err(self.err(
+                "gmsh",
+                format!(
+                    "[gmsh] options apply only when mesh is a .geo, but mesh is the ready mesh {}; remove [gmsh] or point mesh at the .geo.",
+                    p.display()
+                ),
+            ));
+        }
+        let order = match g.order {
+            None => 1,
+            Some(o @ (1 | 2)) => o as usize,
+            Some(o) => {
+                return Err(self.bad(
+                    "gmsh.order",
+                    o,
+                    "the element order must be 1 (linear) or 2 (quadratic).",
+                ))
+            }
+        };
+        let mut setnumber = Vec::new();
+        for (name, v) in g.setnumber.unwrap_or_default() {
+            let key = format!("gmsh.setnumber.{}", key_name(&name));
+            let ident = name
+                .chars()
+                .next()
+                .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+                && name
+                    .chars()
+                    .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '.');
+            if !ident {
+                return Err(self.err(
+                    key,
+                    "not a gmsh parameter name; use the name of a DefineConstant in the .geo (letters, digits, _ and .).",
+                ));
+            }
+            setnumber.push((name, self.finite(v, &key)?));
+        }
+        let clscale = match g.clscale {
+            None => None,
+            Some(c) if c.is_finite() && c > 0.0 => Some(c),
+            Some(c) => {
+                return Err(self.bad(
+                    "gmsh.clscale",
+                    c,
+                    "the mesh size factor must be a finite number > 0.",
+                ))
+            }
+        };
+        Ok(GmshOptions {
+            order,
+            setnumber,
+            clscale,
+        })
+    }
+
+    fn materials(&self, raw: BTreeMap<String, RawMaterial>) -> R<BTreeMap<String, Material>> {
+        let mut out = BTreeMap::new();
+        for (name, m) in raw {
+            let k = format!("materials.{}", key_name(&name));
+            let e = self.required(m.e, &format!("{k}.E"), "Young's modulus, > 0")?;
+            if !(e.is_finite() && e > 0.0) {
+                return Err(self.bad(
+                    format!("{k}.E"),
+                    e,
+                    "Young's modulus must be a finite number > 0.",
+                ));
+            }
+            let nu = self.required(m.nu, &format!("{k}.nu"), "Poisson's ratio, -1 < nu < 0.5")?;
+            if !(nu.is_finite() && nu > -1.0 && nu < 0.5) {
+                let why = if nu >= 0.5 && nu.is_finite() {
+                    " nu = 0.5 is incompressible, which this displacement formulation does not support; use 0.499 for a nearly incompressible material."
+                } else {
+                    ""
+                };
+                return Err(self.bad(
+                    format!("{k}.nu"),
+                    nu,
+                    format!("Poisson's ratio must satisfy -1 < nu < 0.5.{why}"),
+                ));
+            }
+            let density = self.non_negative(m.density, &format!("{k}.density"), "the density")?;
+            out.insert(name, Material { e, nu, density });
+        }
+        Ok(out)
+    }
+
+    fn probes(&self, raw: Vec<RawProbe>, analysis: Analysis) -> R<Vec<Probe>> {
+        let mut seen: BTreeMap<String, usize> = BTreeMap::new();
+        let mut out = Vec::new();
+        for (i, p) in raw.into_iter().enumerate() {
+            let k = format!("probes[{i}]");
+            let name =
+                self.required(p.name, &format!("{k}.name"), "a name for the sampled line")?;
+            if name.trim().is_empty() {
+                return Err(self.bad(
+                    format!("{k}.name"),
+                    "\"\"",
+                    "give the probe a non-empty name.",
+                ));
+            }
+            if let Some(j) = seen.insert(name.clone(), i) {
+                return Err(self.bad(
+                    format!("{k}.name"),
+                    format!("{name:?}"),
+                    format!("the name is already used by probes[{j}]; probe names must be unique."),
+                ));
+            }
+            let from =
+                self.required(p.from, &format!("{k}.from"), "the start point [x, y(, z)]")?;
+            let from = self.vec3(&from, &format!("{k}.from"), analysis)?;
+            let to = self.required(p.to, &format!("{k}.to"), "the end point [x, y(, z)]")?;
+            let to = self.vec3(&to, &format!("{k}.to"), analysis)?;
+            if from == to {
+                return Err(self.bad(
+                    format!("{k}.to"),
+                    fmt_vec(&to),
+                    "the end point equals from; give a line of non-zero length.",
+                ));
+            }
+            let points = match self.required(
+                p.points,
+                &format!("{k}.points"),
+                "the number of sample points, >= 2",
+            )? {
+                n if n >= 2 => usize::try_from(n)
+                    .map_err(|_| self.bad(format!("{k}.points"), n, "too many points."))?,
+                n => {
+                    return Err(self.bad(
+                        format!("{k}.points"),
+                        n,
+                        "a probe needs at least 2 points (both ends of the line are sampled).",
+                    ))
+                }
+            };
+            out.push(Probe {
+                name,
+                from,
+                to,
+                points,
+            });
+        }
+        Ok(out)
+    }
+
+    fn output(&self, raw: Option<RawOutput>) -> R<Output> {
+        let Some(fields) = raw.and_then(|o| o.fields) else {
+            return Ok(Output::default());
+        };
+        let mut seen = BTreeSet::new();
+        for (i, f) in fields.iter().enumerate() {
+            let key = format!("output.fields[{i}]");
+            if !OUTPUT_FIELDS.contains(&f.as_str()) {
+                return Err(self.bad(
+                    key,
+                    format!("{f:?}"),
+                    format!(
+                        "unknown field; the allowed ones are {}.",
+                        quoted_list(OUTPUT_FIELDS)
+                    ),
+                ));
+            }
+            if !seen.insert(f.as_str()) {
+                return Err(self.bad(key, format!("{f:?}"), "listed twice; list each field once."));
+            }
+        }
+        Ok(Output { fields })
+    }
+}

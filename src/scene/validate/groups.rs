@@ -1,0 +1,326 @@
+//! Checks of the entries that name the mesh's physical groups:
+//! `[[bodies]]` (material, initial stress), `[[contacts]]` (one shared group
+//! or two coincident ones, strengths), `[[supports]]` (fixed and prescribed
+//! components) and `[[loads]]` (pressure, hydrostatic, traction, factors).
+//! Whether the groups exist in the mesh is the model builder's check.
+
+use std::collections::BTreeMap;
+
+use super::{quoted_list, Checker, R};
+use crate::scene::raw::{RawBody, RawContact, RawLoad, RawPressure, RawSupport};
+use crate::scene::{Analysis, Body, Contact, ContactGroups, InitialStress, Load, LoadKind, Material, Support};
+
+impl Checker<'_> {
+    pub(super) fn bodies(&self, raw: Vec<RawBody>, materials: &BTreeMap<String, Material>, analysis: Analysis) -> R<Vec<Body>> {
+        if raw.is_empty() {
+            return Err(self.err(
+                "bodies",
+                "no [[bodies]] given; add at least one [[bodies]] entry with group = \"<physical surface or volume>\" and material = \"<a name from [materials]>\".",
+            ));
+        }
+        let mut seen: BTreeMap<String, usize> = BTreeMap::new();
+        let mut out = Vec::new();
+        for (i, b) in raw.into_iter().enumerate() {
+            let k = format!("bodies[{i}]");
+            let group = self.group(
+                b.group,
+                &format!("{k}.group"),
+                "the body's physical surface (2D) or volume (3D)",
+            )?;
+            let material = self.required(
+                b.material,
+                &format!("{k}.material"),
+                "a material name from [materials]",
+            )?;
+            if !materials.contains_key(&material) {
+                let defined = if materials.is_empty() {
+                    "none are defined; add a [materials.NAME] table with E and nu".to_string()
+                } else {
+                    format!("the defined ones are {}", quoted_list(materials.keys()))
+                };
+                return Err(self.bad(
+                    format!("{k}.material"),
+                    format!("{material:?}"),
+                    format!("no such material in [materials]; {defined}."),
+                ));
+            }
+            if let Some(j) = seen.insert(group.clone(), i) {
+                return Err(self.bad(
+                    format!("{k}.group"),
+                    format!("{group:?}"),
+                    format!("the group is already bodies[{j}]; each physical group is one body, so list it once."),
+                ));
+            }
+            let initial = match (b.initial_stress, b.k0, b.surface) {
+                (None, None, None) => None,
+                (Some(v), None, None) => {
+                    let want = if analysis == Analysis::Solid { 6 } else { 4 };
+                    if v.len() != want {
+                        return Err(self.bad(
+                            format!("{k}.initial_stress"),
+                            format!("{v:?}"),
+                            format!("give {want} components: {}.", if want == 6 { "[sxx, syy, szz, sxy, syz, sxz]" } else { "[sxx, syy, szz, sxy]" }),
+                        ));
+                    }
+                    let mut s6 = [0.0; 6];
+                    for (j, x) in v.iter().enumerate() {
+                        s6[j] = self.finite(*x, &format!("{k}.initial_stress[{j}]"))?;
+                    }
+                    Some(InitialStress::Uniform(s6))
+                }
+                (None, Some(k0), Some(surface)) => {
+                    let k0 = self.finite(k0, &format!("{k}.k0"))?;
+                    if k0 < 0.0 {
+                        return Err(self.bad(format!("{k}.k0"), k0, "the earth pressure coefficient must be >= 0."));
+                    }
+                    Some(InitialStress::Geostatic { k0, surface: self.finite(surface, &format!("{k}.surface"))? })
+                }
+                (None, _, _) => {
+                    return Err(self.err(
+                        k,
+                        "a geostatic initial stress needs both k0 (horizontal / vertical stress) and surface (the ground level: y in 2D, z in 3D).",
+                    ))
+                }
+                (Some(_), _, _) => {
+                    return Err(self.err(k, "give either initial_stress = [..] or k0 with surface, not both."));
+                }
+            };
+            out.push(Body { group, material, initial });
+        }
+        Ok(out)
+    }
+
+    pub(super) fn contacts(&self, raw: Vec<RawContact>, bodies: &[Body]) -> R<Vec<Contact>> {
+        let mut seen: BTreeMap<Vec<String>, usize> = BTreeMap::new();
+        let mut out = Vec::new();
+        for (i, c) in raw.into_iter().enumerate() {
+            let k = format!("contacts[{i}]");
+            let groups = match (c.group, c.groups) {
+                (Some(_), Some(_)) => {
+                    return Err(self.err(
+                        &k,
+                        "both group and groups are given; use group = \"NAME\" for one curve/surface shared by two bodies, or groups = [\"a\", \"b\"] for two groups whose nodes coincide, not both.",
+                    ))
+                }
+                (None, None) => {
+                    return Err(self.err(
+                        &k,
+                        "no interface given; add group = \"NAME\" (one curve/surface shared by two bodies) or groups = [\"a\", \"b\"] (two groups whose nodes coincide pairwise).",
+                    ))
+                }
+                (Some(g), None) => ContactGroups::Shared(self.group(Some(g), &format!("{k}.group"), "the interface curve/surface")?),
+                (None, Some(gs)) => {
+                    let key = format!("{k}.groups");
+                    let shown = format!("[{}]", quoted_list(&gs));
+                    let n = gs.len();
+                    let Ok([a, b]) = <[String; 2]>::try_from(gs) else {
+                        return Err(self.bad(key, shown, format!("give exactly 2 groups (one face on each body), not {n}.")));
+                    };
+                    if a.trim().is_empty() || b.trim().is_empty() {
+                        return Err(self.bad(key, shown, "a group name is empty."));
+                    }
+                    if a == b {
+                        return Err(self.bad(
+                            key,
+                            shown,
+                            format!("the two groups must differ; for one group shared by both bodies write group = {a:?}."),
+                        ));
+                    }
+                    ContactGroups::Pair(a, b)
+                }
+            };
+            let names: Vec<String> = match &groups {
+                ContactGroups::Shared(g) => vec![g.clone()],
+                ContactGroups::Pair(a, b) => vec![a.clone(), b.clone()],
+            };
+            let gkey = match &groups {
+                ContactGroups::Shared(_) => format!("{k}.group"),
+                ContactGroups::Pair(..) => format!("{k}.groups"),
+            };
+            for n in &names {
+                if let Some(j) = bodies.iter().position(|b| &b.group == n) {
+                    return Err(self.bad(
+                        &gkey,
+                        format!("{n:?}"),
+                        format!("{n:?} is the group of bodies[{j}]; a contact names the interface curve/surface between bodies, not a body."),
+                    ));
+                }
+            }
+            let mut sorted = names.clone();
+            sorted.sort();
+            if let Some(j) = seen.insert(sorted, i) {
+                return Err(self.err(
+                    &gkey,
+                    format!(
+                        "the same interface is already contacts[{j}]; define each interface once."
+                    ),
+                ));
+            }
+            let friction = self.non_negative(
+                c.friction,
+                &format!("{k}.friction"),
+                "the friction coefficient",
+            )?;
+            let cohesion =
+                self.non_negative(c.cohesion, &format!("{k}.cohesion"), "the cohesion")?;
+            let tensile_strength = self.non_negative(
+                c.tensile_strength,
+                &format!("{k}.tensile_strength"),
+                "the tensile strength",
+            )?;
+            let residual_cohesion = self.non_negative(
+                c.residual_cohesion,
+                &format!("{k}.residual_cohesion"),
+                "the residual cohesion",
+            )?;
+            if residual_cohesion > cohesion {
+                return Err(self.bad(
+                    format!("{k}.residual_cohesion"),
+                    residual_cohesion,
+                    format!("the cohesion kept after opening cannot exceed the cohesion ({cohesion}); lower it or raise cohesion."),
+                ));
+            }
+            out.push(Contact {
+                groups,
+                friction,
+                cohesion,
+                tensile_strength,
+                slip: c.slip.unwrap_or_default(),
+                residual_cohesion,
+                traction: c.traction.unwrap_or_default(),
+            });
+        }
+        Ok(out)
+    }
+
+    pub(super) fn support(&self, i: usize, s: RawSupport, analysis: Analysis) -> R<Support> {
+        let k = format!("supports[{i}]");
+        let group = self.group(
+            s.group,
+            &format!("{k}.group"),
+            "a physical point, curve or surface",
+        )?;
+        let mut fix = [false; 3];
+        if let Some(list) = &s.fix {
+            let key = format!("{k}.fix");
+            let shown = format!("[{}]", quoted_list(list));
+            for c in list {
+                let d = match c.as_str() {
+                    "x" => 0,
+                    "y" => 1,
+                    "z" => 2,
+                    _ => {
+                        return Err(self.bad(
+                            key,
+                            shown,
+                            format!(
+                                "{c:?} is not a component; use \"x\", \"y\"{}.",
+                                if analysis == Analysis::Solid {
+                                    " or \"z\""
+                                } else {
+                                    ""
+                                }
+                            ),
+                        ))
+                    }
+                };
+                if d == 2 && analysis != Analysis::Solid {
+                    return Err(self.bad(
+                        key,
+                        shown,
+                        format!("\"z\" exists only in a solid analysis; a {analysis} analysis has components \"x\" and \"y\"."),
+                    ));
+                }
+                if fix[d] {
+                    return Err(self.bad(
+                        key,
+                        shown,
+                        format!("{c:?} is listed twice; list each component once."),
+                    ));
+                }
+                fix[d] = true;
+            }
+        }
+        let mut prescribed = [None; 3];
+        for (d, (name, v)) in [("ux", s.ux), ("uy", s.uy), ("uz", s.uz)]
+            .into_iter()
+            .enumerate()
+        {
+            let Some(v) = v else { continue };
+            let key = format!("{k}.{name}");
+            let v = self.finite(v, &key)?;
+            if d == 2 && analysis != Analysis::Solid {
+                return Err(self.bad(
+                    key,
+                    v,
+                    format!(
+                        "uz exists only in a solid analysis; a {analysis} analysis has ux and uy."
+                    ),
+                ));
+            }
+            if fix[d] {
+                return Err(self.bad(
+                    key,
+                    v,
+                    format!(
+                        "the component is also in fix (which holds it at zero); keep one: remove {:?} from fix to prescribe {v}, or remove {name}.",
+                        ["x", "y", "z"][d]
+                    ),
+                ));
+            }
+            prescribed[d] = Some(v);
+        }
+        if !fix.iter().any(|&f| f) && prescribed.iter().all(Option::is_none) {
+            return Err(self.err(
+                k,
+                format!(
+                    "the support on {group:?} holds nothing; add fix = [\"x\", ...] (components held at zero) or a prescribed displacement ux = ... (uy, uz)."
+                ),
+            ));
+        }
+        Ok(Support {
+            group,
+            fix,
+            prescribed,
+        })
+    }
+
+    pub(super) fn load(&self, i: usize, l: RawLoad, analysis: Analysis) -> R<Load> {
+        let k = format!("loads[{i}]");
+        let group = self.group(
+            l.group,
+            &format!("{k}.group"),
+            "a physical curve (2D) or surface (3D)",
+        )?;
+        let kind = match (l.pressure, l.traction) {
+            (Some(_), Some(_)) => {
+                return Err(self.err(k, "both pressure and traction are given; a load is one or the other: split it into two [[loads]] entries."))
+            }
+            (None, None) => {
+                return Err(self.err(
+                    k,
+                    format!("the load on {group:?} has no value; add pressure = P (positive presses into the body) or traction = [tx, ty(, tz)]."),
+                ))
+            }
+            (Some(RawPressure::Value(p)), None) => LoadKind::Pressure(self.finite(p, &format!("{k}.pressure"))?),
+            (Some(RawPressure::Hydrostatic(h)), None) => {
+                let unit_weight = self.finite(h.unit_weight, &format!("{k}.pressure.unit_weight"))?;
+                if unit_weight < 0.0 {
+                    return Err(self.bad(format!("{k}.pressure.unit_weight"), unit_weight, "the unit weight of the fluid must be >= 0."));
+                }
+                LoadKind::Hydrostatic { surface: self.finite(h.surface, &format!("{k}.pressure.surface"))?, unit_weight }
+            }
+            (None, Some(t)) => LoadKind::Traction(self.vec3(&t, &format!("{k}.traction"), analysis)?),
+        };
+        let factors = match l.factors {
+            None => None,
+            Some(f) => Some(
+                f.iter()
+                    .enumerate()
+                    .map(|(j, &v)| self.finite(v, &format!("{k}.factors[{j}]")))
+                    .collect::<R<Vec<f64>>>()?,
+            ),
+        };
+        Ok(Load { group, kind, factors })
+    }
+}
