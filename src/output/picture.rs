@@ -7,9 +7,8 @@
 //! against gravity, else y for extrusions thin in z, else z) is cut into
 //! sub-triangles through its mid-edge nodes and filled with the nodal field
 //! interpolated linearly (Gouraud); lines are anti-aliased capsules.
-//! plotters only writes the text, in the embedded DejaVu Sans, and the PNG
-//! encoder (fixed-Huffman deflate) is at the end of this file, so no image
-//! library and no external program is needed.
+//! plotters only writes the text, in the embedded DejaVu Sans, and the `png`
+//! crate encodes the image, so no external program is needed.
 //!
 //! Displacements are magnified by `m = 0.05 L / max|u|` (L the model's
 //! largest extent) unless a scale is given; the title states `m`. Colours:
@@ -144,7 +143,7 @@ fn state_colour(s: ContactState) -> [u8; 3] {
 /// largest displacement 5 % of the model's size.
 pub fn deformed_png(run: &Run, field: Field, scale: Option<f64>) -> Result<Vec<u8>, String> {
     let c = deformed_canvas(run, field, scale)?;
-    Ok(png(c.w, c.h, &c.rgb))
+    encode_png(c.w, c.h, &c.rgb)
 }
 
 /// Oblique view of 3D models: the eye's direction, right and up on screen.
@@ -1306,7 +1305,7 @@ fn interface_plot_png(run: &Run) -> Result<Vec<u8>, String> {
     let (w, h) = interface_plot_size(run)?;
     let mut buf = vec![255u8; w as usize * h as usize * 3];
     interface_plot_on(BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area(), run)?;
-    Ok(png(w as usize, h as usize, &buf))
+    encode_png(w as usize, h as usize, &buf)
 }
 
 fn interface_plot_size(run: &Run) -> Result<(u32, u32), String> {
@@ -1464,198 +1463,19 @@ fn interface_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, run: &Run,
 // PNG
 // ---------------------------------------------------------------------------
 
-/// An 8-bit RGB PNG. Each row takes the filter (none, sub, up, Paeth) with
-/// the smallest sum of |bytes|; the zlib stream is one fixed-Huffman deflate
-/// block with greedy LZ77 matches (hash chains, 32 KiB window).
-fn png(w: usize, h: usize, rgb: &[u8]) -> Vec<u8> {
-    let stride = w * 3;
-    let mut raw = Vec::with_capacity(h * (stride + 1));
-    let zero = vec![0u8; stride];
-    let mut best = vec![0u8; stride];
-    let mut cand = vec![0u8; stride];
-    for y in 0..h {
-        let row = &rgb[y * stride..(y + 1) * stride];
-        let up = if y == 0 { &zero[..] } else { &rgb[(y - 1) * stride..y * stride] };
-        let mut best_cost = u64::MAX;
-        let mut best_f = 0u8;
-        for f in [0u8, 1, 2, 4] {
-            let mut cost = 0u64;
-            for i in 0..stride {
-                let a = if i >= 3 { row[i - 3] } else { 0 };
-                let c = if i >= 3 { up[i - 3] } else { 0 };
-                let pred = match f {
-                    0 => 0,
-                    1 => a,
-                    2 => up[i],
-                    _ => paeth(a, up[i], c),
-                };
-                let v = row[i].wrapping_sub(pred);
-                cand[i] = v;
-                cost += (v as i8).unsigned_abs() as u64;
-            }
-            if cost < best_cost {
-                best_cost = cost;
-                best_f = f;
-                best.copy_from_slice(&cand);
-            }
-        }
-        raw.push(best_f);
-        raw.extend_from_slice(&best);
-    }
-    let mut out = vec![0x89, b'P', b'N', b'G', 0x0D, 0x0A, 0x1A, 0x0A];
-    let mut ihdr = Vec::new();
-    ihdr.extend_from_slice(&(w as u32).to_be_bytes());
-    ihdr.extend_from_slice(&(h as u32).to_be_bytes());
-    ihdr.extend_from_slice(&[8, 2, 0, 0, 0]);
-    chunk(&mut out, b"IHDR", &ihdr);
-    chunk(&mut out, b"IDAT", &zlib(&raw));
-    chunk(&mut out, b"IEND", &[]);
-    out
-}
-
-fn paeth(a: u8, b: u8, c: u8) -> u8 {
-    let p = a as i16 + b as i16 - c as i16;
-    let (pa, pb, pc) = ((p - a as i16).abs(), (p - b as i16).abs(), (p - c as i16).abs());
-    if pa <= pb && pa <= pc {
-        a
-    } else if pb <= pc {
-        b
-    } else {
-        c
-    }
-}
-
-fn chunk(out: &mut Vec<u8>, kind: &[u8; 4], data: &[u8]) {
-    out.extend_from_slice(&(data.len() as u32).to_be_bytes());
-    let start = out.len();
-    out.extend_from_slice(kind);
-    out.extend_from_slice(data);
-    let crc = crc32(&out[start..]);
-    out.extend_from_slice(&crc.to_be_bytes());
-}
-
-fn crc32(bytes: &[u8]) -> u32 {
-    static TABLE: std::sync::OnceLock<[u32; 256]> = std::sync::OnceLock::new();
-    let table = TABLE.get_or_init(|| {
-        std::array::from_fn(|n| {
-            let mut c = n as u32;
-            for _ in 0..8 {
-                c = if c & 1 != 0 { 0xEDB8_8320 ^ (c >> 1) } else { c >> 1 };
-            }
-            c
-        })
-    });
-    !bytes.iter().fold(!0u32, |c, &b| table[((c ^ b as u32) & 0xFF) as usize] ^ (c >> 8))
-}
-
-const LEN_BASE: [u16; 29] = [3, 4, 5, 6, 7, 8, 9, 10, 11, 13, 15, 17, 19, 23, 27, 31, 35, 43, 51, 59, 67, 83, 99, 115, 131, 163, 195, 227, 258];
-const LEN_EXTRA: [u8; 29] = [0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3, 4, 4, 4, 4, 5, 5, 5, 5, 0];
-const DIST_BASE: [u16; 30] = [1, 2, 3, 4, 5, 7, 9, 13, 17, 25, 33, 49, 65, 97, 129, 193, 257, 385, 513, 769, 1025, 1537, 2049, 3073, 4097, 6145, 8193, 12289, 16385, 24577];
-const DIST_EXTRA: [u8; 30] = [0, 0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 5, 5, 6, 6, 7, 7, 8, 8, 9, 9, 10, 10, 11, 11, 12, 12, 13, 13];
-
-/// Writes bits least significant first, Huffman codes most significant first.
-struct Bits {
-    out: Vec<u8>,
-    acc: u64,
-    n: u32,
-}
-
-impl Bits {
-    fn put(&mut self, v: u32, len: u32) {
-        self.acc |= (v as u64) << self.n;
-        self.n += len;
-        while self.n >= 8 {
-            self.out.push(self.acc as u8);
-            self.acc >>= 8;
-            self.n -= 8;
-        }
-    }
-    fn code(&mut self, code: u32, len: u32) {
-        self.put(code.reverse_bits() >> (32 - len), len);
-    }
-    /// A literal/length symbol in the fixed code.
-    fn symbol(&mut self, s: u32) {
-        match s {
-            0..=143 => self.code(0x30 + s, 8),
-            144..=255 => self.code(0x190 + s - 144, 9),
-            256..=279 => self.code(s - 256, 7),
-            _ => self.code(0xC0 + s - 280, 8),
-        }
-    }
-}
-
-fn zlib(data: &[u8]) -> Vec<u8> {
-    const WINDOW: usize = 32768;
-    const HASH: usize = 1 << 15;
-    const CHAIN: usize = 24;
-    let mut bits = Bits { out: vec![0x78, 0x01], acc: 0, n: 0 };
-    bits.put(1, 1); // final block
-    bits.put(1, 2); // fixed Huffman codes
-    let mut head = vec![usize::MAX; HASH];
-    let mut prev = vec![usize::MAX; WINDOW];
-    let hash = |i: usize| ((data[i] as usize) << 10 ^ (data[i + 1] as usize) << 5 ^ data[i + 2] as usize) & (HASH - 1);
-    let insert = |i: usize, head: &mut Vec<usize>, prev: &mut Vec<usize>| {
-        if i + 2 < data.len() {
-            let h = hash(i);
-            prev[i % WINDOW] = head[h];
-            head[h] = i;
-        }
-    };
-    let mut i = 0;
-    while i < data.len() {
-        let (mut best_len, mut best_dist) = (0usize, 0usize);
-        if i + 2 < data.len() {
-            let mut cand = head[hash(i)];
-            let max = (data.len() - i).min(258);
-            for _ in 0..CHAIN {
-                if cand == usize::MAX || i - cand > WINDOW - 1 || cand >= i {
-                    break;
-                }
-                let l = (0..max).take_while(|&k| data[cand + k] == data[i + k]).count();
-                if l > best_len {
-                    (best_len, best_dist) = (l, i - cand);
-                    if l == max {
-                        break;
-                    }
-                }
-                let next = prev[cand % WINDOW];
-                if next == usize::MAX || next >= cand {
-                    break;
-                }
-                cand = next;
-            }
-        }
-        if best_len >= 3 {
-            let c = LEN_BASE.partition_point(|&b| b as usize <= best_len) - 1;
-            bits.symbol(257 + c as u32);
-            bits.put((best_len - LEN_BASE[c] as usize) as u32, LEN_EXTRA[c] as u32);
-            let d = DIST_BASE.partition_point(|&b| b as usize <= best_dist) - 1;
-            bits.code(d as u32, 5);
-            bits.put((best_dist - DIST_BASE[d] as usize) as u32, DIST_EXTRA[d] as u32);
-            for k in i..i + best_len {
-                insert(k, &mut head, &mut prev);
-            }
-            i += best_len;
-        } else {
-            bits.symbol(data[i] as u32);
-            insert(i, &mut head, &mut prev);
-            i += 1;
-        }
-    }
-    bits.symbol(256);
-    bits.put(0, 7); // flush to a byte boundary
-    let mut out = bits.out;
-    let (mut a, mut b) = (1u32, 0u32);
-    for chunk in data.chunks(5552) {
-        for &x in chunk {
-            a += x as u32;
-            b += a;
-        }
-        a %= 65521;
-        b %= 65521;
-    }
-    out.extend_from_slice(&((b << 16) | a).to_be_bytes());
-    out
+/// An 8-bit RGB PNG of `rgb` (rows from the top), each row with the filter
+/// the `png` crate's adaptive heuristic picks.
+fn encode_png(w: usize, h: usize, rgb: &[u8]) -> Result<Vec<u8>, String> {
+    let err = |e: png::EncodingError| format!("encoding the PNG: {e}");
+    let mut out = Vec::new();
+    let mut enc = png::Encoder::new(&mut out, w as u32, h as u32);
+    enc.set_color(png::ColorType::Rgb);
+    enc.set_depth(png::BitDepth::Eight);
+    enc.set_adaptive_filter(png::AdaptiveFilterType::Adaptive);
+    let mut writer = enc.write_header().map_err(err)?;
+    writer.write_image_data(rgb).map_err(err)?;
+    writer.finish().map_err(err)?;
+    Ok(out)
 }
 
 #[cfg(test)]
@@ -1665,117 +1485,14 @@ mod tests {
     use crate::scene::Scene;
     use std::path::{Path, PathBuf};
 
-    /// Inflates the fixed-Huffman blocks `zlib` writes (enough to check it).
-    fn inflate_fixed(z: &[u8]) -> Vec<u8> {
-        assert_eq!(&z[..2], &[0x78, 0x01]);
-        let d = &z[2..z.len() - 4];
-        let mut pos = 0usize;
-        let mut bit = |n: u32| -> u32 {
-            let mut v = 0;
-            for k in 0..n {
-                let b = (d[pos / 8] >> (pos % 8)) & 1;
-                v |= (b as u32) << k;
-                pos += 1;
-            }
-            v
-        };
-        let mut out: Vec<u8> = Vec::new();
-        loop {
-            let last = bit(1);
-            assert_eq!(bit(2), 1, "fixed Huffman block");
-            loop {
-                let mut code = 0u32;
-                for _ in 0..7 {
-                    code = code << 1 | bit(1);
-                }
-                let sym = if code <= 23 {
-                    256 + code
-                } else {
-                    code = code << 1 | bit(1);
-                    if (0x30..=0xBF).contains(&code) {
-                        code - 0x30
-                    } else if (0xC0..=0xC7).contains(&code) {
-                        280 + code - 0xC0
-                    } else {
-                        code = code << 1 | bit(1);
-                        144 + code - 0x190
-                    }
-                };
-                match sym {
-                    0..=255 => out.push(sym as u8),
-                    256 => break,
-                    _ => {
-                        let c = (sym - 257) as usize;
-                        let len = LEN_BASE[c] as usize + bit(LEN_EXTRA[c] as u32) as usize;
-                        let mut dc = 0u32;
-                        for _ in 0..5 {
-                            dc = dc << 1 | bit(1);
-                        }
-                        let dist = DIST_BASE[dc as usize] as usize + bit(DIST_EXTRA[dc as usize] as u32) as usize;
-                        for _ in 0..len {
-                            out.push(out[out.len() - dist]);
-                        }
-                    }
-                }
-            }
-            if last == 1 {
-                break;
-            }
-        }
-        out
-    }
-
-    /// Decodes a PNG written by `png` back to (width, height, rgb), checking
-    /// the signature, chunk CRCs and the Adler-32.
-    fn decode(png: &[u8]) -> (usize, usize, Vec<u8>) {
-        assert_eq!(&png[..8], &[0x89, b'P', b'N', b'G', 0x0D, 0x0A, 0x1A, 0x0A], "PNG signature");
-        let mut at = 8;
-        let (mut w, mut h, mut idat) = (0, 0, Vec::new());
-        while at < png.len() {
-            let len = u32::from_be_bytes(png[at..at + 4].try_into().unwrap()) as usize;
-            let kind = &png[at + 4..at + 8];
-            let data = &png[at + 8..at + 8 + len];
-            let crc = u32::from_be_bytes(png[at + 8 + len..at + 12 + len].try_into().unwrap());
-            assert_eq!(crc, crc32(&png[at + 4..at + 8 + len]), "CRC of {:?}", std::str::from_utf8(kind));
-            match kind {
-                b"IHDR" => {
-                    w = u32::from_be_bytes(data[0..4].try_into().unwrap()) as usize;
-                    h = u32::from_be_bytes(data[4..8].try_into().unwrap()) as usize;
-                    assert_eq!(&data[8..], &[8, 2, 0, 0, 0]);
-                }
-                b"IDAT" => idat.extend_from_slice(data),
-                _ => {}
-            }
-            at += 12 + len;
-        }
-        let raw = inflate_fixed(&idat);
-        let (mut a, mut b) = (1u32, 0u32);
-        for &x in &raw {
-            a = (a + x as u32) % 65521;
-            b = (b + a) % 65521;
-        }
-        assert_eq!(u32::from_be_bytes(idat[idat.len() - 4..].try_into().unwrap()), (b << 16) | a, "Adler-32");
-        let stride = w * 3;
-        assert_eq!(raw.len(), h * (stride + 1));
-        let mut rgb = vec![0u8; w * h * 3];
-        for y in 0..h {
-            let f = raw[y * (stride + 1)];
-            for i in 0..stride {
-                let v = raw[y * (stride + 1) + 1 + i];
-                let a = if i >= 3 { rgb[y * stride + i - 3] } else { 0 };
-                let up = if y > 0 { rgb[(y - 1) * stride + i] } else { 0 };
-                let c = if i >= 3 && y > 0 { rgb[(y - 1) * stride + i - 3] } else { 0 };
-                let pred = match f {
-                    0 => 0,
-                    1 => a,
-                    2 => up,
-                    4 => paeth(a, up, c),
-                    _ => panic!("filter {f}"),
-                };
-                rgb[y * stride + i] = v.wrapping_add(pred);
-            }
-        }
-        (w, h, rgb)
+    /// Decodes a PNG to (width, height, rgb) with the `png` crate.
+    fn decode(bytes: &[u8]) -> (usize, usize, Vec<u8>) {
+        let mut reader = png::Decoder::new(bytes).read_info().expect("a PNG header");
+        let mut buf = vec![0; reader.output_buffer_size()];
+        let info = reader.next_frame(&mut buf).expect("the PNG's pixels");
+        assert_eq!((info.color_type, info.bit_depth), (png::ColorType::Rgb, png::BitDepth::Eight));
+        buf.truncate(info.buffer_size());
+        (info.width as usize, info.height as usize, buf)
     }
 
     #[test]
@@ -1785,13 +1502,12 @@ mod tests {
         for y in 0..h {
             for x in 0..w {
                 let i = (y * w + x) * 3;
-                // flat areas, gradients and noise: every filter and match kind
                 rgb[i] = if x < 30 { 10 } else { (x * 2) as u8 };
                 rgb[i + 1] = ((x * y) % 251) as u8;
                 rgb[i + 2] = if y > 40 { ((x * 7919 + y * 104729) % 256) as u8 } else { 200 };
             }
         }
-        let bytes = png(w, h, &rgb);
+        let bytes = encode_png(w, h, &rgb).expect("PNG");
         let (dw, dh, back) = decode(&bytes);
         assert_eq!((dw, dh), (w, h));
         assert!(back == rgb, "pixels survive the round trip");
@@ -1874,7 +1590,7 @@ mod tests {
         for (name, colour) in [("stick", STICK), ("slip", SLIP), ("open", OPEN)] {
             assert!(count(&cv, colour) > 100, "{name}: {} pixels", count(&cv, colour));
         }
-        keep("cylinder_states_displacement.png", &png(cv.w, cv.h, &cv.rgb));
+        keep("cylinder_states_displacement.png", &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
         let svg = interface_plot_svg(&run).expect("interface plot");
         for want in ["A-A", "stick", "slip", "open", "σn", "distance along the interface from (2.121, 2.121)"] {
             assert!(svg.contains(want), "{want}");
@@ -1905,7 +1621,7 @@ mod tests {
         let run = driver::run(Path::new("geo/cylinder_paper.toml"), &RunOptions { out: Some(out_dir("paper")), ..Default::default() }).expect("paper run");
         let cv = deformed_canvas(&run, Field::VonMises, None).expect("canvas");
         assert!(count(&cv, STICK) > 50, "stick dots: {}", count(&cv, STICK));
-        let bytes = png(cv.w, cv.h, &cv.rgb);
+        let bytes = encode_png(cv.w, cv.h, &cv.rgb).expect("PNG");
         assert_eq!(decode(&bytes).0, W);
         keep("paper_von_mises.png", &bytes);
         let svg = interface_plot_svg(&run).expect("plot");
@@ -1964,7 +1680,7 @@ mod tests {
             for (state, colour, n) in [("open", OPEN, counts[0]), ("slip", SLIP, counts[1]), ("stick", STICK, counts[2])] {
                 assert_eq!(count(&cv, colour) > 0, n > 0, "{name}: {state} drawn exactly when present ({n} pairs)");
             }
-            keep(&format!("stack_{name}_von_mises.png"), &png(cv.w, cv.h, &cv.rgb));
+            keep(&format!("stack_{name}_von_mises.png"), &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
             keep(&format!("stack_{name}_syy.png"), &deformed_png(&run, Field::Syy, None).expect("picture"));
             keep(&format!("stack_{name}_interfaces.png"), &interface_plot_png(&run).expect("plot"));
             let svg = interface_plot_svg(&run).expect("plot");
@@ -2006,7 +1722,7 @@ mod tests {
             let t = std::time::Instant::now();
             let cv = deformed_canvas(&run, Field::VonMises, None).expect("canvas");
             let raster = t.elapsed().as_secs_f64();
-            let bytes = png(cv.w, cv.h, &cv.rgb);
+            let bytes = encode_png(cv.w, cv.h, &cv.rgb).expect("PNG");
             let total = t.elapsed().as_secs_f64();
             let t = std::time::Instant::now();
             let svg = interface_plot_svg(&run).expect("plot");
