@@ -5,9 +5,10 @@ use std::path::Path;
 
 use anyhow::{Context, Result};
 
-use crate::driver::{self, state_counts, RunOptions};
+use crate::driver::{self, RunOptions};
 use crate::model::Model;
 use crate::output::report;
+use crate::results::{state_counts, Run};
 use crate::scene::Scene;
 use crate::substructure;
 
@@ -17,7 +18,7 @@ pub fn solve(scene: &Path, opts: &RunOptions) -> Result<()> {
     Ok(())
 }
 
-fn print_summary(run: &driver::Run) {
+fn print_summary(run: &Run) {
     let t = &run.timings;
     println!("{}: {} DOFs ({} interface), {:.2} s", run.scene.name, run.dofs_total, run.dofs_interface, t.total);
     if let Some(c) = &run.contact {

@@ -19,5 +19,6 @@ pub mod mesh;
 pub mod model;
 pub mod output;
 pub mod recover;
+pub mod results;
 pub mod scene;
 pub mod substructure;

@@ -20,7 +20,7 @@
 
 use std::fmt::Write;
 
-use crate::driver::Run;
+use crate::results::Run;
 use crate::fem::element;
 use crate::fem::material::{d_matrix, full_stress};
 use crate::fem::{quadrature, shape};

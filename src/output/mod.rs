@@ -11,7 +11,7 @@ pub mod vtu;
 use anyhow::Result;
 use serde_json::json;
 
-use crate::driver::{state_counts, Run};
+use crate::results::{state_counts, ContactRun, Run};
 use crate::fem::material::von_mises;
 use crate::mesh::Cell;
 use files::Staged;
@@ -126,7 +126,7 @@ fn bodies_vtu(run: &Run, u: &[f64], stresses: &[crate::recover::BodyStress]) -> 
 }
 
 /// The interfaces, as body I's facets, with the pair values at their nodes.
-fn contact_vtu(run: &Run, c: &crate::driver::ContactRun) -> Result<Vec<u8>> {
+fn contact_vtu(run: &Run, c: &ContactRun) -> Result<Vec<u8>> {
     let model = &run.model;
     let mut pair_of = vec![usize::MAX; model.n_nodes()];
     for (i, p) in model.pairs.iter().enumerate() {
@@ -172,7 +172,7 @@ fn contact_vtu(run: &Run, c: &crate::driver::ContactRun) -> Result<Vec<u8>> {
     Ok(vtu::vtu_bytes(&points, &cells, &point_data, &[], &[IntField { name: "interface", values: &iface_id }])?)
 }
 
-fn contact_csv(run: &Run, c: &crate::driver::ContactRun) -> String {
+fn contact_csv(run: &Run, c: &ContactRun) -> String {
     let mut s = String::from("pair,x,y,z,status,sigma_n,tau_t,tau_b,gap,slip\n");
     for (i, (p, r)) in run.model.pairs.iter().zip(&c.pairs).enumerate() {
         let x = run.model.coords[p.k];

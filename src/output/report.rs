@@ -4,7 +4,7 @@
 
 use std::fmt::Write;
 
-use crate::driver::{state_counts, Run};
+use crate::results::{state_counts, Run};
 use crate::scene::{Analysis, Analytic};
 
 /// The paper's Table 1 (r, sigma_r, sigma_theta; units 1e-2 MPa) and Table 2

@@ -11,7 +11,7 @@ use super::legend::{colour_bar, colour_map, legend, lut_colour, triad, Limits};
 use super::raster::{encode_png, label, register_font, Canvas};
 use super::surface::{centred, fill, patches, typical_edge, Patch};
 use super::{cross, dot, norm3, num, sig2, state_colour, sub3, Field, GHOST, INK, NO_PAIR};
-use crate::driver::Run;
+use crate::results::Run;
 use crate::fem::material::von_mises;
 use crate::scene::Analysis;
 

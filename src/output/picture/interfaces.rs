@@ -9,7 +9,7 @@ use plotters::prelude::*;
 use super::raster::{register_font, rgb};
 use super::{dot, num, state_colour, sub3};
 use crate::contact::law::ContactState;
-use crate::driver::Run;
+use crate::results::Run;
 use crate::scene::Analysis;
 #[cfg(test)]
 use super::raster::encode_png;

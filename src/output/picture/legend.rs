@@ -8,7 +8,7 @@ use super::deformed::{state_dot, Frame, View, PANEL_X};
 use super::raster::{label, Canvas, Label};
 use super::{num, state_colour, Field, GHOST, INK};
 use crate::contact::law::ContactState;
-use crate::driver::Run;
+use crate::results::Run;
 
 /// The colour bar's limits `lo..hi` and the field's own range `min..max`.
 pub(super) struct Limits {
@@ -100,7 +100,7 @@ pub(super) fn legend(cv: &mut Canvas, labels: &mut Vec<Label>, run: &Run, frame:
     let mut y = 580.0f32;
     let text = |labels: &mut Vec<Label>, t: String, x: f32, y: f32, size: f64| labels.push(label(t, (x as f64, y as f64), size, (HPos::Left, VPos::Center)));
     if let Some(c) = &run.contact {
-        let counts = crate::driver::state_counts(&c.states);
+        let counts = crate::results::state_counts(&c.states);
         text(labels, "contact pairs".into(), x, y, 16.0);
         for (s, count) in [(ContactState::Stick, counts[2]), (ContactState::Slip, counts[1]), (ContactState::Open, counts[0])] {
             y += 26.0;

@@ -27,7 +27,7 @@ pub use deformed::deformed_png;
 pub use interfaces::interface_plot_svg;
 
 use crate::contact::law::ContactState;
-use crate::driver::Run;
+use crate::results::Run;
 use crate::scene::Analysis;
 
 /// The quantity that colours the deformed picture.

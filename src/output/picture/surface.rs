@@ -5,7 +5,7 @@
 
 use super::raster::Canvas;
 use super::{cross, dot, norm3, sub3};
-use crate::driver::Run;
+use crate::results::Run;
 use crate::fem::shape::{HEX_EDGES, HEX_FACES, TET_EDGES};
 use crate::mesh::CellKind;
 use crate::scene::Analysis;

@@ -10,6 +10,7 @@ use super::raster::{encode_png, register_font, Canvas, FontMetrics};
 use super::*;
 use plotters::style::IntoFont;
 use crate::driver::{self, RunOptions};
+use crate::results::{state_counts, Run};
 use crate::scene::Scene;
 use std::path::{Path, PathBuf};
 
@@ -81,7 +82,7 @@ fn count(cv: &Canvas, c: [u8; 3]) -> usize {
     cv.rgb.chunks_exact(3).enumerate().filter(|(i, p)| (i % cv.w) < PANEL_X as usize - 10 && p == &c).count()
 }
 
-fn cylinder(lc: f64, order: usize) -> driver::Run {
+fn cylinder(lc: f64, order: usize) -> Run {
     let mut scene = Scene::load(Path::new("geo/cylinder.toml")).expect("scene");
     scene.gmsh.setnumber = vec![("lc".into(), lc)];
     scene.gmsh.order = order;
@@ -196,7 +197,7 @@ fn stacked_blocks_pushed_sideways_show_the_states_they_reach() {
         let opts = RunOptions { out: Some(dir.join(name)), skip_output: true, ..Default::default() };
         let run = driver::run(&path, &opts).expect("stack run");
         let c = run.contact.as_ref().expect("contact");
-        let counts = driver::state_counts(&c.states);
+        let counts = state_counts(&c.states);
         eprintln!("{name}: {} stick, {} slip, {} open after {} iterations", counts[2], counts[1], counts[0], c.iterations);
         assert!(c.converged, "{name}");
         if joint == weak {
