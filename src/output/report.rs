@@ -153,7 +153,7 @@ pub fn report(run: &Run) -> String {
             }
         }
     }
-    let _ = writeln!(s, "\n![the deformed shape, contact pairs coloured by state]({})", super::picture::deformed_file(run));
+    let _ = writeln!(s, "\n![the deformed shape, contact pairs coloured by state]({})", super::picture::deformed_file(&run.stresses));
     if run.contact.is_some() {
         let _ = writeln!(s, "\n![contact normal and shear stress along each interface](interfaces.svg)");
     }

@@ -10,8 +10,7 @@ use plotters::style::text_anchor::{HPos, VPos};
 use super::legend::{colour_bar, colour_map, legend, lut_colour, triad, Limits};
 use super::raster::{encode_png, label, register_font, Canvas};
 use super::surface::{centred, fill, patches, typical_edge, Patch};
-use super::{cross, dot, norm3, num, sig2, state_colour, sub3, Field, GHOST, INK, NO_PAIR};
-use crate::results::Run;
+use super::{cross, dot, norm3, num, sig2, state_colour, sub3, Field, Snapshot, GHOST, INK, NO_PAIR};
 use crate::fem::material::von_mises;
 use crate::scene::Analysis;
 
@@ -26,8 +25,8 @@ pub(super) const PANEL_X: f64 = 990.0;
 /// and coloured by `field`, with the contact states on the interfaces.
 /// `scale` is the displacement magnification; None picks one that makes the
 /// largest displacement 5 % of the model's size.
-pub fn deformed_png(run: &Run, field: Field, scale: Option<f64>) -> Result<Vec<u8>, String> {
-    let c = deformed_canvas(run, field, scale)?;
+pub fn deformed_png(snap: &Snapshot, field: Field, scale: Option<f64>) -> Result<Vec<u8>, String> {
+    let c = deformed_canvas(snap, field, scale)?;
     encode_png(c.w, c.h, &c.rgb)
 }
 
@@ -71,23 +70,23 @@ impl View {
     }
 }
 
-pub(super) fn deformed_canvas(run: &Run, field: Field, scale: Option<f64>) -> Result<Canvas, String> {
+pub(super) fn deformed_canvas(snap: &Snapshot, field: Field, scale: Option<f64>) -> Result<Canvas, String> {
     register_font();
-    let model = &run.model;
-    let stresses_ok = run.stresses.len() == model.bodies.len() || (run.stresses.is_empty() && field == Field::Displacement);
-    if run.u.len() != model.n_nodes() * model.nd || !stresses_ok {
+    let model = snap.model;
+    let stresses_ok = snap.stresses.len() == model.bodies.len() || (snap.stresses.is_empty() && field == Field::Displacement);
+    if snap.u.len() != model.n_nodes() * model.nd || !stresses_ok {
         return Err("the run's displacements or stresses do not match its model".into());
     }
-    let frame = Frame::new(run, scale)?;
-    let values = nodal_values(run, field);
+    let frame = Frame::new(snap, scale)?;
+    let values = nodal_values(snap, field);
     let lim = Limits::of(field, &values);
     let lut = colour_map(field, lim.lo, lim.hi);
     let mut cv = Canvas::new(W, H);
-    draw_bodies(&mut cv, run, &frame, &values, &lim, &lut);
-    draw_contacts(&mut cv, run, &frame);
+    draw_bodies(&mut cv, snap, &frame, &values, &lim, &lut);
+    draw_contacts(&mut cv, snap, &frame);
 
     let mut labels = Vec::new();
-    labels.push(label(run.scene.title.clone(), (24.0, 14.0), 24.0, (HPos::Left, VPos::Top)));
+    labels.push(label(snap.title.to_string(), (24.0, 14.0), 24.0, (HPos::Left, VPos::Top)));
     let shape = if frame.mag > 0.0 {
         format!("deformed shape, displacements × {} (largest displacement {})", sig2(frame.mag), num(frame.umax))
     } else {
@@ -95,7 +94,7 @@ pub(super) fn deformed_canvas(run: &Run, field: Field, scale: Option<f64>) -> Re
     };
     labels.push(label(format!("{} on the {shape}", field.label(model.analysis)), (24.0, 48.0), 17.0, (HPos::Left, VPos::Top)));
     colour_bar(&mut cv, &mut labels, &lut, &lim, field.label(model.analysis));
-    legend(&mut cv, &mut labels, run, &frame);
+    legend(&mut cv, &mut labels, snap, &frame);
     if let Some(view) = &frame.view {
         triad(&mut cv, &mut labels, view);
     }
@@ -118,8 +117,8 @@ pub(super) struct Frame {
 }
 
 impl Frame {
-    fn new(run: &Run, scale: Option<f64>) -> Result<Frame, String> {
-        let model = &run.model;
+    fn new(snap: &Snapshot, scale: Option<f64>) -> Result<Frame, String> {
+        let model = snap.model;
         let n = model.n_nodes();
         let mut used = vec![false; n];
         for cell in model.bodies.iter().flat_map(|b| &b.cells) {
@@ -134,7 +133,7 @@ impl Frame {
                 lo[d] = lo[d].min(model.coords[k][d]);
                 hi[d] = hi[d].max(model.coords[k][d]);
             }
-            let u = displacement(run, k);
+            let u = displacement(snap, k);
             umax = umax.max(dot(u, u).sqrt());
         }
         if lo[0] > hi[0] {
@@ -158,7 +157,7 @@ impl Frame {
         let mut depth = vec![0.0f64; n];
         let (mut plo, mut phi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
         for k in (0..n).filter(|&k| used[k]) {
-            let (u, x) = (displacement(run, k), model.coords[k]);
+            let (u, x) = (displacement(snap, k), model.coords[k]);
             let (pd, dd) = place(std::array::from_fn(|d| x[d] + mag * u[d]));
             flat[k] = [pd, place(x).0];
             depth[k] = dd;
@@ -191,40 +190,40 @@ impl Frame {
     }
 }
 
-fn displacement(run: &Run, k: usize) -> [f64; 3] {
-    let nd = run.model.nd;
-    std::array::from_fn(|c| if c < nd { run.u[k * nd + c] } else { 0.0 })
+fn displacement(snap: &Snapshot, k: usize) -> [f64; 3] {
+    let nd = snap.model.nd;
+    std::array::from_fn(|c| if c < nd { snap.u[k * nd + c] } else { 0.0 })
 }
 
 /// The field at every node of every body (each body keeps its own averages
 /// where bodies share nodes); NaN at nodes not in the body.
-fn nodal_values(run: &Run, field: Field) -> Vec<Vec<f32>> {
-    if run.stresses.is_empty() {
+fn nodal_values(snap: &Snapshot, field: Field) -> Vec<Vec<f32>> {
+    if snap.stresses.is_empty() {
         // displacement magnitude without recovered stresses
-        return run
+        return snap
             .model
             .bodies
             .iter()
             .map(|b| {
-                let mut v = vec![f32::NAN; run.model.n_nodes()];
+                let mut v = vec![f32::NAN; snap.model.n_nodes()];
                 for k in crate::recover::body_nodes(b) {
-                    let u = displacement(run, k);
+                    let u = displacement(snap, k);
                     v[k] = dot(u, u).sqrt() as f32;
                 }
                 v
             })
             .collect();
     }
-    run.stresses
+    snap.stresses
         .iter()
         .map(|bs| {
-            let mut v = vec![f32::NAN; run.model.n_nodes()];
+            let mut v = vec![f32::NAN; snap.model.n_nodes()];
             for (&k, s) in bs.nodes.iter().zip(&bs.stress) {
                 v[k] = match field.component() {
                     Some(c) => s[c],
                     None if field == Field::VonMises => von_mises(s),
                     None => {
-                        let u = displacement(run, k);
+                        let u = displacement(snap, k);
                         dot(u, u).sqrt()
                     }
                 } as f32;
@@ -237,9 +236,9 @@ fn nodal_values(run: &Run, field: Field) -> Vec<Vec<f32>> {
 /// The bodies: the undeformed ghost (2D), the patches coloured by the field
 /// (3D: far faces first, shaded), mesh lines on cells big enough to show
 /// them, and the outlines.
-fn draw_bodies(cv: &mut Canvas, run: &Run, frame: &Frame, values: &[Vec<f32>], lim: &Limits, lut: &[[u8; 3]]) {
+fn draw_bodies(cv: &mut Canvas, snap: &Snapshot, frame: &Frame, values: &[Vec<f32>], lim: &Limits, lut: &[[u8; 3]]) {
     let (sd, su) = (&frame.sd, &frame.su);
-    let mut patches = patches(run);
+    let mut patches = patches(snap.model);
     // mesh lines fade in from 6 px cells, full from 14 px
     let mesh_alpha = (((typical_edge(&patches, sd) - 6.0) / 8.0).clamp(0.0, 1.0) * 0.45) as f32;
     let edges = |cv: &mut Canvas, p: &Patch, pos: &[[f32; 2]], pick: &dyn Fn(bool, bool) -> Option<(f32, [u8; 3], f32)>| {
@@ -275,7 +274,7 @@ fn draw_bodies(cv: &mut Canvas, run: &Run, frame: &Frame, values: &[Vec<f32>], l
     let key = |p: &Patch| p.nodes().iter().map(|&k| frame.depth[k]).sum::<f64>() / p.kind.n_nodes() as f64;
     patches.sort_by(|a, b| key(a).total_cmp(&key(b)));
     let light = norm3(std::array::from_fn(|i| 0.3 * view.right[i] + 0.5 * view.up[i] + view.eye[i]));
-    let coords = &run.model.coords;
+    let coords = &snap.model.coords;
     for p in &patches {
         // faces lit from over the viewer's shoulder, either side alike
         let shade = (0.62 + 0.38 * dot(p.normal(coords), light).abs()) as f32;
@@ -291,10 +290,10 @@ fn draw_bodies(cv: &mut Canvas, run: &Run, frame: &Frame, values: &[Vec<f32>], l
 /// The contact interfaces by state, over everything: in 2D both sides of
 /// every facet as a thick line, each node's half of a segment in its pair's
 /// colour; in 3D the pairs as dots (the interfaces are inside the solid).
-fn draw_contacts(cv: &mut Canvas, run: &Run, frame: &Frame) {
-    let model = &run.model;
+fn draw_contacts(cv: &mut Canvas, snap: &Snapshot, frame: &Frame) {
+    let model = snap.model;
     let sd = &frame.sd;
-    let states = run.contact.as_ref().map(|c| &c.states[..]);
+    let states = snap.contact.map(|c| &c.states[..]);
     let mut pair_of = vec![usize::MAX; model.n_nodes()];
     for (i, p) in model.pairs.iter().enumerate() {
         pair_of[p.k] = i;

@@ -9,7 +9,8 @@ use plotters::prelude::*;
 use super::raster::{register_font, rgb};
 use super::{dot, num, state_colour, sub3};
 use crate::contact::law::ContactState;
-use crate::results::Run;
+use crate::model::Model;
+use crate::results::ContactRun;
 use crate::scene::Analysis;
 #[cfg(test)]
 use super::raster::encode_png;
@@ -25,8 +26,7 @@ pub(super) struct Along {
 /// Orders an interface's pairs: in 2D by walking its chain of facets from
 /// the end nearest the model's lower-left corner (arc length), else by the
 /// position along the direction in which the pairs spread most.
-pub(super) fn along(run: &Run, ii: usize) -> Along {
-    let model = &run.model;
+pub(super) fn along(model: &Model, ii: usize) -> Along {
     let iface = &model.interfaces[ii];
     let mut pair_of = std::collections::HashMap::new();
     for (i, p) in model.pairs.iter().enumerate() {
@@ -115,47 +115,45 @@ pub(super) fn along(run: &Run, ii: usize) -> Along {
 /// An SVG with one panel per interface: the normal stress σn (tension
 /// positive) and the shear stress τ against the position along it, the
 /// contact state as background bands (2D) or marker colours (3D).
-pub fn interface_plot_svg(run: &Run) -> Result<String, String> {
-    let (w, h) = interface_plot_size(run)?;
+pub fn interface_plot_svg(model: &Model, contact: &ContactRun) -> Result<String, String> {
+    let (w, h) = interface_plot_size(model)?;
     let mut out = String::new();
-    interface_plot_on(SVGBackend::with_string(&mut out, (w, h)).into_drawing_area(), run)?;
+    interface_plot_on(SVGBackend::with_string(&mut out, (w, h)).into_drawing_area(), model, contact)?;
     Ok(out)
 }
 
 /// The same plot as [`interface_plot_svg`], as a PNG, to look at in tests
 /// (plotters' bitmap text spaces letters unevenly, see `raster::Canvas::text`).
 #[cfg(test)]
-pub(super) fn interface_plot_png(run: &Run) -> Result<Vec<u8>, String> {
-    let (w, h) = interface_plot_size(run)?;
+pub(super) fn interface_plot_png(model: &Model, contact: &ContactRun) -> Result<Vec<u8>, String> {
+    let (w, h) = interface_plot_size(model)?;
     let mut buf = vec![255u8; w as usize * h as usize * 3];
-    interface_plot_on(BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area(), run)?;
+    interface_plot_on(BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area(), model, contact)?;
     encode_png(w as usize, h as usize, &buf)
 }
 
-fn interface_plot_size(run: &Run) -> Result<(u32, u32), String> {
-    if run.contact.is_none() || run.model.interfaces.is_empty() {
-        return Err("the run has no contact interface to plot".into());
+fn interface_plot_size(model: &Model) -> Result<(u32, u32), String> {
+    if model.interfaces.is_empty() {
+        return Err("the model has no contact interface to plot".into());
     }
-    Ok((1000, 420 * run.model.interfaces.len() as u32))
+    Ok((1000, 420 * model.interfaces.len() as u32))
 }
 
-fn interface_plot_on<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, run: &Run) -> Result<(), String> {
+fn interface_plot_on<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, model: &Model, contact: &ContactRun) -> Result<(), String> {
     register_font();
     root.fill(&WHITE).map_err(|e| format!("{e:?}"))?;
-    let n = run.model.interfaces.len();
+    let n = model.interfaces.len();
     for (ii, area) in root.split_evenly((n, 1)).iter().enumerate() {
-        interface_panel(area, run, ii)?;
+        interface_panel(area, model, contact, ii)?;
     }
     root.present().map_err(|e| format!("{e:?}"))
 }
 
-fn interface_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, run: &Run, ii: usize) -> Result<(), String> {
+fn interface_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, model: &Model, c: &ContactRun, ii: usize) -> Result<(), String> {
     let err = |e: &dyn std::fmt::Debug| format!("{e:?}");
-    let c = run.contact.as_ref().ok_or("no contact")?;
-    let model = &run.model;
     let iface = &model.interfaces[ii];
     let solid = model.analysis == Analysis::Solid;
-    let al = along(run, ii);
+    let al = along(model, ii);
     let all = || al.runs.iter().flatten();
     let sn = |p: usize| c.pairs[p].sigma_n;
     // in 2D the shear keeps its sign (along the tangent t)

@@ -6,9 +6,9 @@ use plotters::style::text_anchor::{HPos, VPos};
 
 use super::deformed::{state_dot, Frame, View, PANEL_X};
 use super::raster::{label, Canvas, Label};
-use super::{num, state_colour, Field, GHOST, INK};
+use super::{num, state_colour, Field, Snapshot, GHOST, INK};
 use crate::contact::law::ContactState;
-use crate::results::Run;
+
 
 /// The colour bar's limits `lo..hi` and the field's own range `min..max`.
 pub(super) struct Limits {
@@ -95,11 +95,11 @@ pub(super) fn lut_colour(lut: &[[u8; 3]], t: f32) -> [u8; 3] {
 
 /// Under the colour bar: the contact states with their counts, and the
 /// undeformed shape's swatch.
-pub(super) fn legend(cv: &mut Canvas, labels: &mut Vec<Label>, run: &Run, frame: &Frame) {
+pub(super) fn legend(cv: &mut Canvas, labels: &mut Vec<Label>, snap: &Snapshot, frame: &Frame) {
     let x = PANEL_X as f32;
     let mut y = 580.0f32;
     let text = |labels: &mut Vec<Label>, t: String, x: f32, y: f32, size: f64| labels.push(label(t, (x as f64, y as f64), size, (HPos::Left, VPos::Center)));
-    if let Some(c) = &run.contact {
+    if let Some(c) = snap.contact {
         let counts = crate::results::state_counts(&c.states);
         text(labels, "contact pairs".into(), x, y, 16.0);
         for (s, count) in [(ContactState::Stick, counts[2]), (ContactState::Slip, counts[1]), (ContactState::Open, counts[0])] {

@@ -27,7 +27,9 @@ pub use deformed::deformed_png;
 pub use interfaces::interface_plot_svg;
 
 use crate::contact::law::ContactState;
-use crate::results::Run;
+use crate::model::Model;
+use crate::recover::BodyStress;
+use crate::results::ContactRun;
 use crate::scene::Analysis;
 
 /// The quantity that colours the deformed picture.
@@ -98,19 +100,35 @@ impl Field {
     }
 }
 
-/// The file name of the deformed picture of [`pictures`].
-pub fn deformed_file(run: &Run) -> String {
-    if run.stresses.is_empty() { "deformed_displacement.png" } else { "deformed_von_mises.png" }.to_string()
+/// One state of a model to draw: its displacements, nodal stresses (empty
+/// when they were not recovered) and contact states and stresses.
+pub struct Snapshot<'a> {
+    /// The picture's title.
+    pub title: &'a str,
+    pub model: &'a Model,
+    pub u: &'a [f64],
+    pub stresses: &'a [BodyStress],
+    pub contact: Option<&'a ContactRun>,
 }
 
-/// The pictures of a run under their file names: the deformed model coloured
-/// by von Mises stress, and (with contact) the interface stresses.
-pub fn pictures(run: &Run) -> Result<Vec<(String, Vec<u8>)>, String> {
-    // von Mises when stresses were recovered, else the displacement magnitude
-    let field = if run.stresses.is_empty() { Field::Displacement } else { Field::VonMises };
-    let mut out = vec![(deformed_file(run), deformed_png(run, field, None)?)];
-    if run.contact.is_some() && !run.model.interfaces.is_empty() {
-        out.push(("interfaces.svg".to_string(), interface_plot_svg(run)?.into_bytes()));
+/// The file name of the deformed picture of [`pictures`]: coloured by von
+/// Mises stress when stresses were recovered, else by the displacement.
+pub fn deformed_file(stresses: &[BodyStress]) -> &'static str {
+    if stresses.is_empty() {
+        "deformed_displacement.png"
+    } else {
+        "deformed_von_mises.png"
+    }
+}
+
+/// The pictures of a snapshot under their file names: the deformed model
+/// coloured by von Mises stress (or the displacement magnitude), and with
+/// contact the interface stresses.
+pub fn pictures(snap: &Snapshot) -> Result<Vec<(String, Vec<u8>)>, String> {
+    let field = if snap.stresses.is_empty() { Field::Displacement } else { Field::VonMises };
+    let mut out = vec![(deformed_file(snap.stresses).to_string(), deformed_png(snap, field, None)?)];
+    if let Some(c) = snap.contact.filter(|_| !snap.model.interfaces.is_empty()) {
+        out.push(("interfaces.svg".to_string(), interface_plot_svg(snap.model, c)?.into_bytes()));
     }
     Ok(out)
 }

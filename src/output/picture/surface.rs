@@ -5,7 +5,7 @@
 
 use super::raster::Canvas;
 use super::{cross, dot, norm3, sub3};
-use crate::results::Run;
+use crate::model::Model;
 use crate::fem::shape::{HEX_EDGES, HEX_FACES, TET_EDGES};
 use crate::mesh::CellKind;
 use crate::scene::Analysis;
@@ -113,8 +113,7 @@ fn local_patches(kind: CellKind) -> LocalPatches {
 /// The patches to draw: every 2D cell, or the faces of 3D cells not shared by
 /// two cells of the same body. `outline` marks edges on a body's boundary
 /// (2D) or between faces meeting at more than 30 degrees (3D).
-pub(super) fn patches(run: &Run) -> Vec<Patch> {
-    let model = &run.model;
+pub(super) fn patches(model: &Model) -> Vec<Patch> {
     let solid = model.analysis == Analysis::Solid;
     let mut out = Vec::new();
     for (b, body) in model.bodies.iter().enumerate() {

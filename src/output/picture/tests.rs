@@ -82,6 +82,15 @@ fn count(cv: &Canvas, c: [u8; 3]) -> usize {
     cv.rgb.chunks_exact(3).enumerate().filter(|(i, p)| (i % cv.w) < PANEL_X as usize - 10 && p == &c).count()
 }
 
+/// The last state of a run, to draw.
+fn snap(run: &Run) -> Snapshot<'_> {
+    Snapshot { title: &run.scene.title, model: &run.model, u: &run.u, stresses: &run.stresses, contact: run.contact.as_ref() }
+}
+
+fn contact(run: &Run) -> &crate::results::ContactRun {
+    run.contact.as_ref().expect("a run with contact")
+}
+
 fn cylinder(lc: f64, order: usize) -> Run {
     let mut scene = Scene::load(Path::new("geo/cylinder.toml")).expect("scene");
     scene.gmsh.setnumber = vec![("lc".into(), lc)];
@@ -93,16 +102,16 @@ fn cylinder(lc: f64, order: usize) -> Run {
 #[test]
 fn cylinder_picture_shows_the_field_and_every_contact_state() {
     let mut run = cylinder(0.25, 2);
-    let bytes = deformed_png(&run, Field::VonMises, None).expect("picture");
+    let bytes = deformed_png(&snap(&run), Field::VonMises, None).expect("picture");
     let (w, h, _) = decode(&bytes);
     assert_eq!((w, h), (W, H));
     keep("cylinder_von_mises.png", &bytes);
-    let cv = deformed_canvas(&run, Field::VonMises, None).expect("canvas");
+    let cv = deformed_canvas(&snap(&run), Field::VonMises, None).expect("canvas");
     // the cut sticks everywhere (the paper's data)
     assert!(count(&cv, STICK) > 300, "stick line drawn: {}", count(&cv, STICK));
     assert_eq!(count(&cv, OPEN) + count(&cv, SLIP), 0);
-    keep("cylinder_szz.png", &deformed_png(&run, Field::Szz, None).expect("picture"));
-    keep("cylinder_sxy.png", &deformed_png(&run, Field::Sxy, None).expect("picture"));
+    keep("cylinder_szz.png", &deformed_png(&snap(&run), Field::Szz, None).expect("picture"));
+    keep("cylinder_sxy.png", &deformed_png(&snap(&run), Field::Sxy, None).expect("picture"));
 
     // every state, in thirds along the cut
     let c = run.contact.as_mut().expect("contact");
@@ -115,17 +124,17 @@ fn cylinder_picture_shows_the_field_and_every_contact_state() {
     for (i, &p) in order.iter().enumerate() {
         c.states[p] = [ContactState::Open, ContactState::Slip, ContactState::Stick][3 * i / n];
     }
-    let cv = deformed_canvas(&run, Field::Displacement, Some(2.0e3)).expect("canvas");
+    let cv = deformed_canvas(&snap(&run), Field::Displacement, Some(2.0e3)).expect("canvas");
     for (name, colour) in [("stick", STICK), ("slip", SLIP), ("open", OPEN)] {
         assert!(count(&cv, colour) > 100, "{name}: {} pixels", count(&cv, colour));
     }
     keep("cylinder_states_displacement.png", &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
-    let svg = interface_plot_svg(&run).expect("interface plot");
+    let svg = interface_plot_svg(&run.model, contact(&run)).expect("interface plot");
     for want in ["A-A", "stick", "slip", "open", "σn", "distance along the interface from (2.121, 2.121)"] {
         assert!(svg.contains(want), "{want}");
     }
     keep("cylinder_states_interfaces.svg", svg.as_bytes());
-    let bytes = interface_plot_png(&run).expect("interface plot");
+    let bytes = interface_plot_png(&run.model, contact(&run)).expect("interface plot");
     assert_eq!(decode(&bytes).0, 1000);
     keep("cylinder_states_interfaces.png", &bytes);
 }
@@ -133,7 +142,7 @@ fn cylinder_picture_shows_the_field_and_every_contact_state() {
 #[test]
 fn interface_pairs_are_ordered_by_arc_length_from_the_inner_end() {
     let run = cylinder(0.25, 2);
-    let al = along(&run, 0);
+    let al = along(&run.model, 0);
     assert_eq!(al.runs.len(), 1);
     let r = &al.runs[0];
     assert_eq!(r.len(), run.model.pairs.len());
@@ -142,21 +151,21 @@ fn interface_pairs_are_ordered_by_arc_length_from_the_inner_end() {
         let radius = x[0].hypot(x[1]);
         assert!((s - (radius - 3.0)).abs() < 1e-9, "s = {s} at r = {radius}");
     }
-    keep("cylinder_interfaces.png", &interface_plot_png(&run).expect("plot"));
+    keep("cylinder_interfaces.png", &interface_plot_png(&run.model, contact(&run)).expect("plot"));
 }
 
 #[test]
 fn paper_mesh_picture_in_3d() {
     let run = driver::run(Path::new("geo/cylinder_paper.toml"), &RunOptions { out: Some(out_dir("paper")), ..Default::default() }).expect("paper run");
-    let cv = deformed_canvas(&run, Field::VonMises, None).expect("canvas");
+    let cv = deformed_canvas(&snap(&run), Field::VonMises, None).expect("canvas");
     assert!(count(&cv, STICK) > 50, "stick dots: {}", count(&cv, STICK));
     let bytes = encode_png(cv.w, cv.h, &cv.rgb).expect("PNG");
     assert_eq!(decode(&bytes).0, W);
     keep("paper_von_mises.png", &bytes);
-    let svg = interface_plot_svg(&run).expect("plot");
+    let svg = interface_plot_svg(&run.model, contact(&run)).expect("plot");
     assert!(svg.contains("12 stick"));
     keep("paper_interfaces.svg", svg.as_bytes());
-    keep("paper_interfaces.png", &interface_plot_png(&run).expect("plot"));
+    keep("paper_interfaces.png", &interface_plot_png(&run.model, contact(&run)).expect("plot"));
 }
 
 /// Two blocks stacked on a frictional joint (f = 0.8) without cohesion
@@ -204,15 +213,15 @@ fn stacked_blocks_pushed_sideways_show_the_states_they_reach() {
             assert!(counts[0] > 0 && counts[2] > 0, "{name}: the joint opens at one end and sticks at the other: {counts:?}");
         }
         let t = std::time::Instant::now();
-        let cv = deformed_canvas(&run, Field::VonMises, None).expect("canvas");
+        let cv = deformed_canvas(&snap(&run), Field::VonMises, None).expect("canvas");
         eprintln!("{name}: rendered in {:.3} s", t.elapsed().as_secs_f64());
         for (state, colour, n) in [("open", OPEN, counts[0]), ("slip", SLIP, counts[1]), ("stick", STICK, counts[2])] {
             assert_eq!(count(&cv, colour) > 0, n > 0, "{name}: {state} drawn exactly when present ({n} pairs)");
         }
         keep(&format!("stack_{name}_von_mises.png"), &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
-        keep(&format!("stack_{name}_syy.png"), &deformed_png(&run, Field::Syy, None).expect("picture"));
-        keep(&format!("stack_{name}_interfaces.png"), &interface_plot_png(&run).expect("plot"));
-        let svg = interface_plot_svg(&run).expect("plot");
+        keep(&format!("stack_{name}_syy.png"), &deformed_png(&snap(&run), Field::Syy, None).expect("picture"));
+        keep(&format!("stack_{name}_interfaces.png"), &interface_plot_png(&run.model, contact(&run)).expect("plot"));
+        let svg = interface_plot_svg(&run.model, contact(&run)).expect("plot");
         assert!(svg.contains(&format!("{} stick, {} slip, {} open", counts[2], counts[1], counts[0])));
     }
 }
@@ -249,12 +258,12 @@ fn render_time_of_a_fine_mesh() {
     eprintln!("{} nodes, {} cells", run.model.n_nodes(), run.model.bodies.iter().map(|b| b.cells.len()).sum::<usize>());
     for _ in 0..2 {
         let t = std::time::Instant::now();
-        let cv = deformed_canvas(&run, Field::VonMises, None).expect("canvas");
+        let cv = deformed_canvas(&snap(&run), Field::VonMises, None).expect("canvas");
         let raster = t.elapsed().as_secs_f64();
         let bytes = encode_png(cv.w, cv.h, &cv.rgb).expect("PNG");
         let total = t.elapsed().as_secs_f64();
         let t = std::time::Instant::now();
-        let svg = interface_plot_svg(&run).expect("plot");
+        let svg = interface_plot_svg(&run.model, contact(&run)).expect("plot");
         eprintln!("deformed: raster {raster:.3} s, with PNG {total:.3} s ({} kB); interfaces: {:.3} s", bytes.len() / 1024, t.elapsed().as_secs_f64());
         keep("fine_von_mises.png", &bytes);
         keep("fine_interfaces.svg", svg.as_bytes());
