@@ -250,6 +250,7 @@ pub fn run_scene(mut scene: Scene, opts: &RunOptions) -> Result<Run> {
         residual_interface,
         residual_assembled,
         counters,
+        check: Default::default(),
     };
 
     // 7. Output, all at once.
@@ -262,6 +263,10 @@ pub fn run_scene(mut scene: Scene, opts: &RunOptions) -> Result<Run> {
     }
     progress(opts, &format!("writing results to {}", run.out.display()));
     let t = Instant::now();
+    // what the scene's [analytic] compares beyond the error norms
+    if let Some(a) = &run.scene.analytic {
+        run.check = analytic::check(a, &run.solution());
+    }
     run.timings.total = t0.elapsed().as_secs_f64();
     let staged = output::stage(&run)?;
     run.timings.output = t.elapsed().as_secs_f64();

@@ -14,7 +14,6 @@ pub mod commands;
 pub mod contact;
 pub mod driver;
 pub mod fem;
-pub mod lining;
 pub mod mesh;
 pub mod model;
 pub mod output;

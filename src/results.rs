@@ -1,11 +1,13 @@
 //! What a run computed, for the output writers and the callers of
 //! [`crate::driver::run`]: the model, the displacements, stresses and contact
 //! states of every load step, errors against a closed form, probes, sizes,
-//! residuals, timings and counters. Plain data: the driver fills it, the
-//! writers read it, and this module imports neither.
+//! residuals, timings and counters, and what the scene's `[analytic]` check
+//! adds. Plain data: the driver fills it, the writers read it, and this
+//! module imports neither.
 
 use std::path::PathBuf;
 
+use crate::analytic::{Check, Solution};
 use crate::contact::law::{ContactState, PairResult};
 use crate::model::Model;
 use crate::recover::{BodyStress, Errors, Sample};
@@ -49,6 +51,18 @@ pub struct Run {
     /// Backward error of the parts' sparse solves.
     pub residual_assembled: f64,
     pub counters: Counters,
+    /// What the scene's `[analytic]` check adds to report.md and
+    /// summary.json; computed with the result files (empty when the run
+    /// writes none).
+    pub check: Check,
+}
+
+impl Run {
+    /// What an `[analytic]` check reads of this run: its last load step.
+    pub fn solution(&self) -> Solution<'_> {
+        let probed = self.probes.iter().flat_map(|(_, s)| s).filter(|s| s.found).map(|s| (s.x, s.stress)).collect();
+        Solution { model: &self.model, u: &self.u, probed, pairs: self.contact.as_ref().map(|c| &c.pairs[..]) }
+    }
 }
 
 /// How often the expensive things were done: what a scene does not need is skipped.

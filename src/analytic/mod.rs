@@ -1,14 +1,25 @@
-//! Closed-form solutions the tool checks itself against: Lamé's
-//! thick-walled cylinder ([`lame`]) and Einstein & Schwartz's lined circular
-//! tunnel ([`tunnel`]), each a displacement and stress field ([`Exact`]) for
-//! the error norms of a scene's `[analytic]`.
+//! Closed-form solutions the tool checks itself against, and the checks a
+//! scene's `[analytic]` asks for.
+//!
+//! The closed forms are displacement and stress fields ([`Exact`]) for the
+//! error norms: Lamé's thick-walled cylinder ([`lame`]) and Einstein &
+//! Schwartz's lined circular tunnel ([`tunnel`]). Beyond the norms, each
+//! kind compares what its application is about ([`check`]): the paper's
+//! Tables 1 and 2 for the cylinder ([`paper`]), the lining's thrust and
+//! moment for the tunnel ([`lining`]). A check reads the solved run
+//! ([`Solution`]) and returns report sections and summary entries
+//! ([`Check`]), which the output writers include as they are.
 
 pub mod lame;
+pub mod lining;
+pub mod paper;
 pub mod tunnel;
 
 pub use lame::Lame;
 pub use tunnel::{LinedTunnel, TunnelBody, TunnelCoefficients, TunnelSlip};
 
+use crate::contact::law::PairResult;
+use crate::model::Model;
 use crate::scene::{Analysis, Analytic};
 
 /// Displacement and stress `[xx, yy, zz, xy, yz, xz]` of a closed form at a point.
@@ -23,5 +34,46 @@ pub fn exact(analytic: &Analytic, analysis: Analysis, e: f64, nu: f64) -> Box<dy
     match analytic {
         &Analytic::LameCylinder { a, b, p } => Box::new(Lame { a, b, p, e, nu, analysis }),
         Analytic::LinedTunnel(t) => Box::new(t.clone()),
+    }
+}
+
+/// Lamé's cylinder of a `lame_cylinder` `[analytic]`, in the model's
+/// analysis and with the material of its first body.
+pub fn lame(analytic: &Analytic, model: &Model) -> Option<Lame> {
+    match *analytic {
+        Analytic::LameCylinder { a, b, p } => {
+            let b0 = &model.bodies[0];
+            Some(Lame { a, b, p, e: b0.e, nu: b0.nu, analysis: model.analysis })
+        }
+        Analytic::LinedTunnel(_) => None,
+    }
+}
+
+/// What a check reads of a solved run (its last load step).
+pub struct Solution<'a> {
+    pub model: &'a Model,
+    pub u: &'a [f64],
+    /// The probe points inside the model: position and stress
+    /// `[xx, yy, zz, xy, yz, xz]`, probe after probe.
+    pub probed: Vec<([f64; 3], [f64; 6])>,
+    /// The contact pairs' results (None without contact).
+    pub pairs: Option<&'a [PairResult]>,
+}
+
+/// What a check adds to the results, beyond the error norms.
+#[derive(Clone, Debug, Default)]
+pub struct Check {
+    /// Markdown sections for report.md.
+    pub report: String,
+    /// Entries of summary.json.
+    pub summary: serde_json::Map<String, serde_json::Value>,
+}
+
+/// The check a scene's `[analytic]` asks for: the paper's tables for Lamé's
+/// cylinder, the lining's thrust and moment for the lined tunnel.
+pub fn check(analytic: &Analytic, sol: &Solution) -> Check {
+    match analytic {
+        Analytic::LameCylinder { .. } => lame(analytic, sol.model).map(|l| paper::check(&l, sol)).unwrap_or_default(),
+        Analytic::LinedTunnel(t) => lining::check(t, sol),
     }
 }

@@ -259,14 +259,8 @@ fn summary(run: &Run) -> serde_json::Value {
     if let Some(e) = &run.errors {
         v["errors"] = json!({ "displacement_l2": e.displacement_l2, "stress_l2": e.stress_l2, "contact_max": run.contact_error_max });
     }
-    if let Some(c) = crate::lining::compare(run) {
-        v["lining"] = json!({
-            "thrust_error": c.thrust_error, "moment_error": c.moment_error,
-            "published_moment_error": c.published_moment_error, "displacement_error": c.displacement_error,
-            "thrust_scale": c.thrust_scale, "moment_scale": c.moment_scale,
-            "rows": c.rows.iter().map(|r| json!({ "theta_deg": r.theta_deg, "thrust": r.thrust, "thrust_theory": r.thrust_theory,
-                "moment": r.moment, "moment_theory": r.moment_theory })).collect::<Vec<_>>(),
-        });
+    for (key, value) in &run.check.summary {
+        v[key] = value.clone();
     }
     let probes: serde_json::Map<String, serde_json::Value> =
         run.probes.iter().map(|(name, s)| (name.clone(), serde_json::to_value(s).unwrap_or_default())).collect();
