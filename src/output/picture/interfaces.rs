@@ -20,7 +20,7 @@ pub(super) struct Along {
     /// Runs of pairs (pair index, position s); lines are drawn within a run.
     pub(super) runs: Vec<Vec<(usize, f64)>>,
     /// What s measures, for the axis.
-    axis: String,
+    pub(super) axis: String,
 }
 
 /// Orders an interface's pairs: in 2D by walking its chain of facets from
@@ -47,8 +47,10 @@ pub(super) fn along(model: &Model, ii: usize) -> Along {
     };
     let dist = |a: [f64; 3], b: [f64; 3]| dot(sub3(a, b), sub3(a, b)).sqrt();
     if model.analysis != Analysis::Solid {
-        // links between consecutive nodes of each facet (corner, mid, corner)
-        let mut links: std::collections::HashMap<usize, Vec<usize>> = std::collections::HashMap::new();
+        // links between consecutive nodes of each facet (corner, mid, corner),
+        // in node order: of two ends equally near the corner, the first node
+        // starts the walk, the same in every run
+        let mut links: std::collections::BTreeMap<usize, Vec<usize>> = std::collections::BTreeMap::new();
         for f in &iface.facets {
             let chain: Vec<usize> = if f.nodes.len() == 3 { vec![f.nodes[0], f.nodes[2], f.nodes[1]] } else { f.nodes.clone() };
             for w in chain.windows(2) {

@@ -154,6 +154,24 @@ fn interface_pairs_are_ordered_by_arc_length_from_the_inner_end() {
     keep("cylinder_interfaces.png", &interface_plot_png(&run.model, contact(&run)).expect("plot"));
 }
 
+/// Regression: an interface whose two ends lie equally far from the
+/// model's corner (the quarter tunnel's lining, from (R + t/2, 0) to
+/// (0, R + t/2)) was walked from either end by the hash map's order, so
+/// the plot's axis flipped from run to run.
+#[test]
+fn interface_walk_starts_at_the_same_end_every_time() {
+    let mut scene = Scene::load(Path::new("geo/tunnel_slip.toml")).expect("scene");
+    scene.gmsh.setnumber = vec![("D".into(), 20.0), ("R".into(), 5.0), ("lc".into(), 0.5), ("nl".into(), 1.0), ("nr".into(), 8.0), ("t".into(), 0.125)];
+    let opts = RunOptions { out: Some(out_dir("tunnel_ends")), skip_output: true, ..Default::default() };
+    let run = driver::run_scene(scene, &opts).expect("tunnel run");
+    let first = along(&run.model, 0);
+    for _ in 0..12 {
+        let again = along(&run.model, 0);
+        assert_eq!(again.axis, first.axis);
+        assert_eq!(again.runs, first.runs);
+    }
+}
+
 #[test]
 fn paper_mesh_picture_in_3d() {
     let run = driver::run(Path::new("geo/cylinder_paper.toml"), &RunOptions { out: Some(out_dir("paper")), ..Default::default() }).expect("paper run");
