@@ -7,7 +7,8 @@
 //!    contact interface (parts without contact are solved directly);
 //! 5. iterate the contact states on the interface system;
 //! 6. recover interior displacements and stresses, errors and probes;
-//! 7. write every result file at once (none when anything failed).
+//! 7. run the check the scene's `[analytic]` asks for, then write every
+//!    result file at once (none when anything failed).
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
