@@ -11,7 +11,8 @@ use std::path::PathBuf;
 
 use anyhow::{bail, Result};
 
-use crate::driver::{self, Run, RunOptions};
+use crate::driver::{self, RunOptions};
+use crate::results::Run;
 use crate::output::files::Staged;
 use crate::output::plot::{self, Panel, Series};
 use crate::scene::Scene;

@@ -5,9 +5,10 @@ use std::path::Path;
 
 use anyhow::{Context, Result};
 
-use crate::driver::{self, state_counts, RunOptions};
+use crate::driver::{self, RunOptions};
 use crate::model::Model;
-use crate::output::report;
+use crate::analytic::{self, paper};
+use crate::results::{state_counts, Run};
 use crate::scene::Scene;
 use crate::substructure;
 
@@ -17,7 +18,7 @@ pub fn solve(scene: &Path, opts: &RunOptions) -> Result<()> {
     Ok(())
 }
 
-fn print_summary(run: &driver::Run) {
+fn print_summary(run: &Run) {
     let t = &run.timings;
     println!("{}: {} DOFs ({} interface), {:.2} s", run.scene.name, run.dofs_total, run.dofs_interface, t.total);
     if let Some(c) = &run.contact {
@@ -47,7 +48,9 @@ pub fn paper(fine: &Path, paper: &Path, verbose: bool) -> Result<()> {
     print_summary(&run_paper);
     let run_fine = driver::run(fine, &opts)?;
     print_summary(&run_fine);
-    let tables = report::lame_tables(&[("paper mesh (30 hex8)", &run_paper), ("default mesh", &run_fine)], true);
+    let lame = run_paper.scene.analytic.as_ref().and_then(|a| analytic::lame(a, &run_paper.model));
+    let runs = [("paper mesh (30 hex8)", &run_paper.solution()), ("default mesh", &run_fine.solution())];
+    let tables = lame.map(|l| paper::tables(&l, &runs, true)).unwrap_or_default();
     println!("{tables}");
     let path = run_fine.out.join("report.md");
     let mut text = std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;

@@ -7,7 +7,8 @@
 //!    contact interface (parts without contact are solved directly);
 //! 5. iterate the contact states on the interface system;
 //! 6. recover interior displacements and stresses, errors and probes;
-//! 7. write every result file at once (none when anything failed).
+//! 7. run the check the scene's `[analytic]` asks for, then write every
+//!    result file at once (none when anything failed).
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -15,16 +16,19 @@ use std::time::Instant;
 use anyhow::{bail, Context, Result};
 
 use crate::analytic;
-use crate::contact::law::{ContactState, PairResult, Strength};
+use crate::contact::law::{PairResult, Strength};
 use crate::contact::system::{InterfaceProblem, SolveFailure};
 use crate::contact::traction::ConsistentTraction;
 use crate::contact::{self, History, Outcome, PairLaw};
 use crate::mesh::{gmsh, msh, Mesh};
 use crate::model::Model;
 use crate::output;
-use crate::recover::{self, BodyStress, Errors, Sample};
+use crate::recover;
 use crate::scene::{MeshSource, Scene, TractionRecovery};
 use crate::substructure::{self, Condensed};
+
+// what a run returns, defined in `results` (which the writers read)
+pub use crate::results::{state_counts, ContactRun, Counters, Run, StepResult, Timings};
 
 /// Options of a run beyond the scene.
 #[derive(Clone, Debug, Default)]
@@ -36,89 +40,6 @@ pub struct RunOptions {
     pub verbose: bool,
     /// Compute everything but write no result files (benchmarks).
     pub skip_output: bool,
-}
-
-/// Seconds spent in each stage.
-#[derive(Clone, Debug, Default, serde::Serialize)]
-pub struct Timings {
-    pub mesh: f64,
-    /// Building the model: groups, contact split and pairing, loads.
-    pub model: f64,
-    pub assemble: f64,
-    pub condense: f64,
-    pub interface: f64,
-    pub recover: f64,
-    pub output: f64,
-    pub total: f64,
-}
-
-/// Everything a run computed, for the output writers.
-pub struct Run {
-    pub scene: Scene,
-    pub out: PathBuf,
-    pub msh: PathBuf,
-    pub mesh_cached: bool,
-    pub model: Model,
-    pub u: Vec<f64>,
-    pub stresses: Vec<BodyStress>,
-    pub contact: Option<ContactRun>,
-    /// Every load step (the last one is also `u`, `stresses`, `contact`).
-    pub steps: Vec<StepResult>,
-    pub errors: Option<Errors>,
-    pub contact_error_max: Option<f64>,
-    pub probes: Vec<(String, Vec<Sample>)>,
-    pub timings: Timings,
-    pub dofs_total: usize,
-    pub dofs_interface: usize,
-    pub parts: usize,
-    pub condensed_parts: usize,
-    pub residual_interface: f64,
-    /// Backward error of the parts' sparse solves.
-    pub residual_assembled: f64,
-    pub counters: Counters,
-}
-
-/// How often the expensive things were done: what a scene does not need is skipped.
-#[derive(Clone, Debug, Default, serde::Serialize)]
-pub struct Counters {
-    /// Sparse factorisations (one per part, whatever the iterations and steps).
-    pub factorisations: usize,
-    /// Parts condensed onto an interface (parts without contact are solved directly).
-    pub condensed_parts: usize,
-    /// Dense interface solves (contact iterations over all steps).
-    pub interface_solves: usize,
-    /// Interior displacement recoveries (part solves after the interface).
-    pub interior_recoveries: usize,
-    /// Nodal stress recoveries (only when `[output] fields` has "stress").
-    pub stress_recoveries: usize,
-}
-
-/// One load step.
-pub struct StepResult {
-    pub step: usize,
-    /// The ramp factor k / load_steps (loads without `factors`, prescribed
-    /// displacements, gravity without `gravity_factors`).
-    pub load_factor: f64,
-    /// The factor of every load case at this step (`Model::cases`).
-    pub case_factors: Vec<f64>,
-    pub u: Vec<f64>,
-    /// Nodal stresses (empty when `[output] fields` leaves stress out, but
-    /// for the last step).
-    pub stresses: Vec<BodyStress>,
-    pub contact: Option<ContactRun>,
-}
-
-/// The contact iteration's result.
-#[derive(Clone)]
-pub struct ContactRun {
-    pub states: Vec<ContactState>,
-    pub pairs: Vec<PairResult>,
-    pub iterations: usize,
-    pub converged: bool,
-    pub cycled: bool,
-    /// Cycles broken by changing one pair at a time.
-    pub cycles_broken: usize,
-    pub history: Vec<Vec<ContactState>>,
 }
 
 fn progress(opts: &RunOptions, msg: &str) {
@@ -330,6 +251,7 @@ pub fn run_scene(mut scene: Scene, opts: &RunOptions) -> Result<Run> {
         residual_interface,
         residual_assembled,
         counters,
+        check: Default::default(),
     };
 
     // 7. Output, all at once.
@@ -342,6 +264,10 @@ pub fn run_scene(mut scene: Scene, opts: &RunOptions) -> Result<Run> {
     }
     progress(opts, &format!("writing results to {}", run.out.display()));
     let t = Instant::now();
+    // what the scene's [analytic] compares beyond the error norms
+    if let Some(a) = &run.scene.analytic {
+        run.check = analytic::check(a, &run.solution());
+    }
     run.timings.total = t0.elapsed().as_secs_f64();
     let staged = output::stage(&run)?;
     run.timings.output = t.elapsed().as_secs_f64();
@@ -430,13 +356,4 @@ fn failure_message(model: &Model, parts: &[Condensed], scene: &Scene, step: usiz
             )
         }
     }
-}
-
-/// Counts of open, slip, stick.
-pub fn state_counts(states: &[ContactState]) -> [usize; 3] {
-    let mut c = [0; 3];
-    for s in states {
-        c[s.code() as usize] += 1;
-    }
-    c
 }

@@ -5,7 +5,9 @@
 //! Data flows one way: [`mesh`] → [`fem`] (elements, assembly) →
 //! [`substructure`] (condensation) → [`contact`] (pairs, frames, law,
 //! iteration) → [`recover`] → [`output`]; [`driver`] strings the stages
-//! together, [`scene`] and [`cli`] turn user input into a validated run.
+//! together into a [`results::Run`], which the writers read, and [`scene`]
+//! and [`cli`] turn user input into a validated run. [`analytic`] holds the
+//! closed forms and the checks a scene's `[analytic]` asks for.
 
 pub mod analytic;
 pub mod bench;
@@ -14,10 +16,10 @@ pub mod commands;
 pub mod contact;
 pub mod driver;
 pub mod fem;
-pub mod lining;
 pub mod mesh;
 pub mod model;
 pub mod output;
 pub mod recover;
+pub mod results;
 pub mod scene;
 pub mod substructure;

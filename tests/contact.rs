@@ -26,7 +26,7 @@ use common::Case;
 use subcontact::analytic::Lame;
 use subcontact::contact::law::ContactState;
 use subcontact::driver::Run;
-use subcontact::output::report::{contact_sigma_n_at, TABLE2_R};
+use subcontact::analytic::paper::{contact_sigma_n_at, TABLE2_R};
 use subcontact::scene::Analysis;
 
 // ---------------------------------------------------------------------------
@@ -163,7 +163,7 @@ fn paper_mesh_splits_84_nodes_into_96_with_12_stuck_pairs_and_matches_table2() {
     let lame = lame(&run);
     // interior pairs of Table 2 (the ends are lumped: 5 % off at r = 5, as in the paper)
     for r in &TABLE2_R[1..5] {
-        let s = contact_sigma_n_at(&run, *r).expect("a pair at r");
+        let s = contact_sigma_n_at(&run.solution(), *r).expect("a pair at r");
         let e = (s - lame.sigma_theta(*r)) / lame.sigma_theta(*r);
         eprintln!("paper mesh, r = {r}: sigma_n = {:.4} (1e-2 MPa), theory {:.4}, {:+.3} %", 100.0 * s, 100.0 * lame.sigma_theta(*r), 100.0 * e);
         assert!(e.abs() < 0.01, "r = {r}: {:+.3} %", 100.0 * e);
@@ -186,7 +186,7 @@ fn default_cylinder_mesh_contact_stress_is_lame_sigma_theta_at_every_pair() {
     }
     let mut table = 0.0f64;
     for &r in &TABLE2_R {
-        let s = contact_sigma_n_at(&run, r).expect("a pair at r");
+        let s = contact_sigma_n_at(&run.solution(), r).expect("a pair at r");
         let e = (s - lame.sigma_theta(r)) / lame.sigma_theta(r);
         assert!(e.abs() < 0.005, "Table 2, r = {r}: {:+.3} %", 100.0 * e);
         table = table.max(e.abs());

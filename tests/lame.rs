@@ -56,7 +56,7 @@ use common::scenes::lame_cylinder;
 use common::Case;
 use subcontact::analytic::Lame;
 use subcontact::driver::Run;
-use subcontact::output::report::table1_values;
+use subcontact::analytic::paper::table1_values;
 use subcontact::scene::Analysis;
 
 const A: f64 = 3.0;
@@ -272,7 +272,7 @@ fn default_cylinder_scene_reproduces_paper_table_1_within_half_a_percent() {
     assert!(contact.converged);
     assert!(contact.states.iter().all(|s| s.code() == 2), "every pair of the 45-degree cut stays stuck");
     let lame = Lame { a: A, b: B, p: P, e: E, nu: NU, analysis: Analysis::PlaneStrain };
-    let values = table1_values(&run);
+    let values = table1_values(&run.solution());
     let radii = [3.2, 3.6, 4.0, 4.4, 4.8];
     assert_eq!(values.len(), radii.len());
     eprintln!("Table 1 on geo/cylinder.toml ({:.2} s), units 1e-2 MPa:", seconds);

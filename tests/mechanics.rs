@@ -59,7 +59,7 @@ use subcontact::contact::law::ContactState;
 use subcontact::contact::traction::ConsistentTraction;
 use subcontact::driver::{ContactRun, Run};
 use subcontact::fem::{element::facet_point, quadrature};
-use subcontact::output::report::contact_sigma_n_at;
+use subcontact::analytic::paper::contact_sigma_n_at;
 use subcontact::scene::{Analysis, ContactGroups};
 
 // ---------------------------------------------------------------------------
@@ -641,7 +641,7 @@ fn consistent_recovery_is_exact_for_exact_forces_but_not_closer_on_the_paper_mes
         .expect("consistent run");
     let b = &lumped.model.bodies[0];
     let lame = Lame { a: 3.0, b: 5.0, p: 0.1, e: b.e, nu: b.nu, analysis: Analysis::PlaneStrain };
-    let err = |run: &Run, r: f64| contact_sigma_n_at(run, r).expect("a pair at r") / lame.sigma_theta(r) - 1.0;
+    let err = |run: &Run, r: f64| contact_sigma_n_at(&run.solution(), r).expect("a pair at r") / lame.sigma_theta(r) - 1.0;
     let (l3, l5, c3, c5) = (err(&lumped, 3.0), err(&lumped, 5.0), err(&consistent, 3.0), err(&consistent, 5.0));
     eprintln!("paper mesh, sigma_n / sigma_theta - 1: lumped r = 3: {:+.3} %, r = 5: {:+.3} %; consistent r = 3: {:+.3} %, r = 5: {:+.3} %", 100.0 * l3, 100.0 * l5, 100.0 * c3, 100.0 * c5);
     assert!(c3.abs() > l3.abs() && c5.abs() > l5.abs(), "measured: consistent is not closer on the paper mesh");

@@ -4,7 +4,7 @@
 //! tunnel supports", J. Geotech. Eng. Div. ASCE 105 (GT4), 1979, 499–518:
 //! thrust and moment of a circular lining in elastic ground under excavation
 //! loading, lining and ground bonded (no slip) or sliding (full slip); the
-//! formulas are in `src/analytic.rs`, which re-derives them.
+//! formulas are in `src/analytic/tunnel.rs`, which re-derives them.
 //!
 //! Goal: the substructure method with the lining and the rock as two bodies
 //! in contact reproduces the closed form's thrust and moment within 3 % of
@@ -33,7 +33,7 @@ use common::{read, repo_text, Case};
 use subcontact::analytic::TunnelSlip;
 use subcontact::contact::law::ContactState;
 use subcontact::driver::Run;
-use subcontact::lining::{self, Comparison};
+use subcontact::analytic::lining::{self, Comparison};
 use subcontact::scene::{Analytic, Scene};
 
 /// Copies the shipped scene `name` (and tunnel.geo) into the case as `out`,
@@ -45,7 +45,8 @@ fn scene(case: &Case, name: &str, out: &str, edit: impl Fn(String) -> String) ->
 }
 
 fn compare(run: &Run) -> Comparison {
-    lining::compare(run).expect("a lined-tunnel comparison")
+    let Some(Analytic::LinedTunnel(tu)) = &run.scene.analytic else { panic!("a lined tunnel") };
+    lining::compare(tu, &run.solution()).expect("a lined-tunnel comparison")
 }
 
 /// Least-squares (c0, c2) of c0 + c2 cos 2theta through the rows.

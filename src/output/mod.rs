@@ -11,9 +11,11 @@ pub mod vtu;
 use anyhow::Result;
 use serde_json::json;
 
-use crate::driver::{state_counts, Run};
+use crate::results::{state_counts, ContactRun, Run};
 use crate::fem::material::von_mises;
 use crate::mesh::Cell;
+use crate::model::Model;
+use crate::recover::{BodyStress, Sample};
 use files::Staged;
 use vtu::{Field, IntField};
 
@@ -21,10 +23,12 @@ use vtu::{Field, IntField};
 pub fn stage(run: &Run) -> Result<Staged> {
     let mut staged = Staged::new(&run.out);
     let name = &run.scene.name;
-    staged.add(&format!("{name}.vtu"), bodies_vtu(run, &run.u, &run.stresses)?);
+    let model = &run.model;
+    let displacement = run.scene.output.wants("displacement");
+    staged.add(&format!("{name}.vtu"), bodies_vtu(model, &run.u, &run.stresses, displacement)?);
     if let Some(c) = &run.contact {
-        staged.add(&format!("{name}_contact.vtu"), contact_vtu(run, c)?);
-        staged.add("contact.csv", contact_csv(run, c).into_bytes());
+        staged.add(&format!("{name}_contact.vtu"), contact_vtu(model, c)?);
+        staged.add("contact.csv", contact_csv(model, c).into_bytes());
     }
     if run.steps.len() > 1 {
         // one file per load step and ParaView collections over them
@@ -32,11 +36,11 @@ pub fn stage(run: &Run) -> Result<Staged> {
         let mut contacts = Vec::new();
         for st in &run.steps {
             let f = format!("{name}_step{:03}.vtu", st.step);
-            staged.add(&f, bodies_vtu(run, &st.u, &st.stresses)?);
+            staged.add(&f, bodies_vtu(model, &st.u, &st.stresses, displacement)?);
             bodies.push((st.step as f64, f));
             if let Some(c) = &st.contact {
                 let f = format!("{name}_contact_step{:03}.vtu", st.step);
-                staged.add(&f, contact_vtu(run, c)?);
+                staged.add(&f, contact_vtu(model, c)?);
                 contacts.push((st.step as f64, f));
             }
         }
@@ -46,10 +50,11 @@ pub fn stage(run: &Run) -> Result<Staged> {
         }
     }
     if !run.probes.is_empty() {
-        staged.add("probes.csv", probes_csv(run).into_bytes());
+        staged.add("probes.csv", probes_csv(&run.probes).into_bytes());
     }
     // pictures a person would rather look at than read (embedded in report.md)
-    for (file, bytes) in picture::pictures(run).map_err(|e| anyhow::anyhow!("drawing the pictures: {e}"))? {
+    let snap = picture::Snapshot { title: &run.scene.title, model, u: &run.u, stresses: &run.stresses, contact: run.contact.as_ref() };
+    for (file, bytes) in picture::pictures(&snap).map_err(|e| anyhow::anyhow!("drawing the pictures: {e}"))? {
         staged.add(&file, bytes);
     }
     staged.add("report.md", report::report(run).into_bytes());
@@ -78,10 +83,10 @@ pub fn restage_summary(mut staged: Staged, run: &Run) -> Result<Staged> {
     Ok(staged)
 }
 
-/// Points of the bodies' VTU: each body's nodes, so stresses averaged per
-/// body stay apart where bodies share nodes.
-fn bodies_vtu(run: &Run, u: &[f64], stresses: &[crate::recover::BodyStress]) -> Result<Vec<u8>> {
-    let model = &run.model;
+/// The bodies' VTU: each body's own nodes as points, so stresses averaged
+/// per body stay apart where bodies share nodes; the displacement when
+/// `displacement`, the stresses when there are some.
+fn bodies_vtu(model: &Model, u: &[f64], stresses: &[BodyStress], displacement: bool) -> Result<Vec<u8>> {
     let nd = model.nd;
     let mut points = Vec::new();
     let mut disp = Vec::new();
@@ -115,7 +120,7 @@ fn bodies_vtu(run: &Run, u: &[f64], stresses: &[crate::recover::BodyStress]) -> 
         }
     }
     let mut point_data = Vec::new();
-    if run.scene.output.wants("displacement") {
+    if displacement {
         point_data.push(Field { name: "displacement", n_comp: 3, values: &disp });
     }
     if !stresses.is_empty() {
@@ -126,8 +131,7 @@ fn bodies_vtu(run: &Run, u: &[f64], stresses: &[crate::recover::BodyStress]) -> 
 }
 
 /// The interfaces, as body I's facets, with the pair values at their nodes.
-fn contact_vtu(run: &Run, c: &crate::driver::ContactRun) -> Result<Vec<u8>> {
-    let model = &run.model;
+fn contact_vtu(model: &Model, c: &ContactRun) -> Result<Vec<u8>> {
     let mut pair_of = vec![usize::MAX; model.n_nodes()];
     for (i, p) in model.pairs.iter().enumerate() {
         pair_of[p.k] = i;
@@ -172,10 +176,11 @@ fn contact_vtu(run: &Run, c: &crate::driver::ContactRun) -> Result<Vec<u8>> {
     Ok(vtu::vtu_bytes(&points, &cells, &point_data, &[], &[IntField { name: "interface", values: &iface_id }])?)
 }
 
-fn contact_csv(run: &Run, c: &crate::driver::ContactRun) -> String {
+/// One row per contact pair: position, state and the pair's values.
+fn contact_csv(model: &Model, c: &ContactRun) -> String {
     let mut s = String::from("pair,x,y,z,status,sigma_n,tau_t,tau_b,gap,slip\n");
-    for (i, (p, r)) in run.model.pairs.iter().zip(&c.pairs).enumerate() {
-        let x = run.model.coords[p.k];
+    for (i, (p, r)) in model.pairs.iter().zip(&c.pairs).enumerate() {
+        let x = model.coords[p.k];
         s += &format!(
             "{i},{:.12e},{:.12e},{:.12e},{},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e}\n",
             x[0],
@@ -192,9 +197,10 @@ fn contact_csv(run: &Run, c: &crate::driver::ContactRun) -> String {
     s
 }
 
-fn probes_csv(run: &Run) -> String {
+/// One row per probe point.
+fn probes_csv(probes: &[(String, Vec<Sample>)]) -> String {
     let mut s = String::from("probe,point,x,y,z,ux,uy,uz,sxx,syy,szz,sxy,syz,sxz,von_mises,found\n");
-    for (name, samples) in &run.probes {
+    for (name, samples) in probes {
         for (i, p) in samples.iter().enumerate() {
             let vals: Vec<String> = p
                 .x
@@ -253,14 +259,8 @@ fn summary(run: &Run) -> serde_json::Value {
     if let Some(e) = &run.errors {
         v["errors"] = json!({ "displacement_l2": e.displacement_l2, "stress_l2": e.stress_l2, "contact_max": run.contact_error_max });
     }
-    if let Some(c) = crate::lining::compare(run) {
-        v["lining"] = json!({
-            "thrust_error": c.thrust_error, "moment_error": c.moment_error,
-            "published_moment_error": c.published_moment_error, "displacement_error": c.displacement_error,
-            "thrust_scale": c.thrust_scale, "moment_scale": c.moment_scale,
-            "rows": c.rows.iter().map(|r| json!({ "theta_deg": r.theta_deg, "thrust": r.thrust, "thrust_theory": r.thrust_theory,
-                "moment": r.moment, "moment_theory": r.moment_theory })).collect::<Vec<_>>(),
-        });
+    for (key, value) in &run.check.summary {
+        v[key] = value.clone();
     }
     let probes: serde_json::Map<String, serde_json::Value> =
         run.probes.iter().map(|(name, s)| (name.clone(), serde_json::to_value(s).unwrap_or_default())).collect();

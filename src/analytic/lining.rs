@@ -1,6 +1,7 @@
 //! Thrust and bending moment of a tunnel lining from its finite element
 //! stresses, and their comparison with Einstein & Schwartz's closed form
-//! ([`crate::analytic::LinedTunnel`]) for `report.md`.
+//! ([`super::LinedTunnel`]): the check of `[analytic] kind = "lined_tunnel"`,
+//! a section of report.md and the `lining` entry of summary.json.
 //!
 //! A lining is a ring-shaped body between radii ri and ro about the origin.
 //! On the radial line at angle theta (from +x, the springline, towards +y)
@@ -20,13 +21,13 @@
 
 use std::fmt::Write;
 
-use crate::driver::Run;
+use serde_json::json;
+
+use super::{Check, Exact, LinedTunnel, Solution, TunnelSlip};
 use crate::fem::element;
 use crate::fem::material::{d_matrix, full_stress};
 use crate::fem::{quadrature, shape};
-use crate::analytic::Exact;
 use crate::model::Model;
-use crate::scene::Analytic;
 
 /// Gauss points across the whole thickness (over several elements, whose
 /// stresses jump slightly at their edges): 16 points change T and M by
@@ -139,15 +140,13 @@ pub struct Comparison {
     pub displacement_error: f64,
 }
 
-/// The comparison when the scene's `[analytic]` is a lined tunnel and its
-/// lining body covers some of the table's angles.
-pub fn compare(run: &Run) -> Option<Comparison> {
-    let Some(Analytic::LinedTunnel(tunnel)) = &run.scene.analytic else { return None };
-    let body = run.model.bodies.iter().position(|b| b.name == tunnel.lining.group)?;
+/// The comparison, when the lining body covers some of the table's angles.
+pub fn compare(tunnel: &LinedTunnel, sol: &Solution) -> Option<Comparison> {
+    let body = sol.model.bodies.iter().position(|b| b.name == tunnel.lining.group)?;
     let (ri, ro) = tunnel.lining_radii();
     let n = (360.0 / STEP_DEG).round() as usize;
     let thetas: Vec<f64> = (0..n).map(|i| (i as f64 * STEP_DEG).to_radians()).collect();
-    let rows: Vec<Row> = section_forces(&run.model, &run.u, body, ri, ro, &thetas)
+    let rows: Vec<Row> = section_forces(sol.model, sol.u, body, ri, ro, &thetas)
         .into_iter()
         .flatten()
         .map(|s| {
@@ -179,10 +178,33 @@ pub fn compare(run: &Run) -> Option<Comparison> {
     Some(Comparison { rows, thrust_scale, moment_scale, thrust_error, moment_error, published_moment_error, displacement_error })
 }
 
-/// The report section (empty unless the scene's `[analytic]` is a lined tunnel).
-pub fn report_section(run: &Run) -> String {
+/// The check: the report section, and the comparison in summary.json's
+/// `lining` (when the lining covers some of the angles).
+pub(super) fn check(tunnel: &LinedTunnel, sol: &Solution) -> Check {
+    let c = compare(tunnel, sol);
+    let mut check = Check { report: report_section(tunnel, c.as_ref()), ..Default::default() };
+    if let Some(c) = &c {
+        check.summary.insert("lining".into(), summary(c));
+    }
+    check
+}
+
+/// summary.json's `lining`: the errors, their scales and the rows.
+pub fn summary(c: &Comparison) -> serde_json::Value {
+    json!({
+        "thrust_error": c.thrust_error, "moment_error": c.moment_error,
+        "published_moment_error": c.published_moment_error, "displacement_error": c.displacement_error,
+        "thrust_scale": c.thrust_scale, "moment_scale": c.moment_scale,
+        "rows": c.rows.iter().map(|r| json!({ "theta_deg": r.theta_deg, "thrust": r.thrust, "thrust_theory": r.thrust_theory,
+            "moment": r.moment, "moment_theory": r.moment_theory })).collect::<Vec<_>>(),
+    })
+}
+
+/// The report section: the tunnel's data, its coefficients, and the table of
+/// thrust and moment against theory (`c`, None when the lining covers none
+/// of the angles).
+pub fn report_section(tu: &LinedTunnel, c: Option<&Comparison>) -> String {
     let mut s = String::new();
-    let Some(Analytic::LinedTunnel(tu)) = &run.scene.analytic else { return s };
     let _ = writeln!(s, "\n## Lining: thrust and moment against Einstein & Schwartz (1979)\n");
     let co = tu.coefficients();
     let (ri, ro) = tu.lining_radii();
@@ -202,8 +224,8 @@ pub fn report_section(run: &Run) -> String {
         tu.p,
         tu.k * tu.p,
         match tu.slip {
-            crate::analytic::TunnelSlip::None => "no slip (bonded)",
-            crate::analytic::TunnelSlip::Full => "full slip (no shear)",
+            TunnelSlip::None => "no slip (bonded)",
+            TunnelSlip::Full => "full slip (no shear)",
         }
     );
     let _ = writeln!(
@@ -221,7 +243,7 @@ pub fn report_section(run: &Run) -> String {
         s,
         "\nThrust T (compression positive) and moment M about the middle surface (positive: tension on the outer fibre) per unit length; theta from the springline (+x) towards the crown (+y). FE: the hoop stress integrated through the thickness at {THICKNESS_POINTS} Gauss points. Theory: T as published; M = M0 + M2 cos 2theta, the published M2 = {m2:.5} plus the uniform moment M0 = T0 R I/(A R^2 + I) = {m0:.5} of the same thin ring (its curvature change under the uniform shortening, which the published formula leaves out). Errors relative to the largest |T| and |M| of the theory.\n"
     );
-    let Some(c) = compare(run) else {
+    let Some(c) = c else {
         let _ = writeln!(s, "The lining body `{}` covers none of the angles 0, {STEP_DEG}, ... degrees between r = {ri} and {ro}: check radius and thickness in [analytic].", tu.lining.group);
         return s;
     };

@@ -1,0 +1,207 @@
+//! Pictures of a run, for a person to look at rather than read: the deformed
+//! model coloured by a field, with the contact states drawn on the interfaces
+//! (PNG, [`deformed`]), and the contact stresses along each interface (SVG,
+//! [`interfaces`]). This file chooses which pictures a run gets and holds
+//! what both share: the field names, the state colours, number formats.
+//!
+//! The deformed picture is rasterised by this module itself ([`raster`]:
+//! filled triangles, anti-aliased lines, plotters only for the text in the
+//! embedded DejaVu Sans) and encoded by the `png` crate, so no external
+//! program is needed; [`surface`] cuts the mesh into the patches it fills
+//! and [`legend`] draws the colour bar and the contact legend beside it.
+//!
+//! Displacements are magnified by `m = 0.05 L / max|u|` (L the model's
+//! largest extent) unless a scale is given; the title states `m`. Colours:
+//! viridis for magnitudes, blue (compression) to red (tension) through grey
+//! for stress components; stick green, slip orange, open red.
+
+mod deformed;
+mod interfaces;
+mod legend;
+mod raster;
+mod surface;
+#[cfg(test)]
+mod tests;
+
+pub use deformed::deformed_png;
+pub use interfaces::interface_plot_svg;
+
+use crate::contact::law::ContactState;
+use crate::model::Model;
+use crate::recover::BodyStress;
+use crate::results::ContactRun;
+use crate::fem::Analysis;
+
+/// The quantity that colours the deformed picture.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Field {
+    VonMises,
+    /// Magnitude of the displacement.
+    Displacement,
+    Sxx,
+    Syy,
+    Szz,
+    Sxy,
+    Syz,
+    Sxz,
+}
+
+impl Field {
+    pub const ALL: [Field; 8] = [Field::VonMises, Field::Displacement, Field::Sxx, Field::Syy, Field::Szz, Field::Sxy, Field::Syz, Field::Sxz];
+
+    /// Spelling for file names and command lines (`von_mises`, `sxx`, ...).
+    pub fn key(self) -> &'static str {
+        match self {
+            Field::VonMises => "von_mises",
+            Field::Displacement => "displacement",
+            Field::Sxx => "sxx",
+            Field::Syy => "syy",
+            Field::Szz => "szz",
+            Field::Sxy => "sxy",
+            Field::Syz => "syz",
+            Field::Sxz => "sxz",
+        }
+    }
+
+    pub fn parse(s: &str) -> Option<Field> {
+        Field::ALL.into_iter().find(|f| f.key() == s)
+    }
+
+    /// Name for a reader; axisymmetric models have x = r and y = z (the axis).
+    pub fn label(self, analysis: Analysis) -> &'static str {
+        let axi = analysis == Analysis::Axisymmetric;
+        match self {
+            Field::VonMises => "von Mises stress",
+            Field::Displacement => "displacement |u|",
+            Field::Sxx if axi => "σrr (radial stress)",
+            Field::Syy if axi => "σzz (axial stress)",
+            Field::Szz if axi => "σθθ (hoop stress)",
+            Field::Sxy if axi => "σrz (shear stress)",
+            Field::Sxx => "σxx (normal stress)",
+            Field::Syy => "σyy (normal stress)",
+            Field::Szz => "σzz (normal stress)",
+            Field::Sxy => "σxy (shear stress)",
+            Field::Syz => "σyz (shear stress)",
+            Field::Sxz => "σxz (shear stress)",
+        }
+    }
+
+    /// Index in the stress vector `[xx, yy, zz, xy, yz, xz]`.
+    fn component(self) -> Option<usize> {
+        match self {
+            Field::VonMises | Field::Displacement => None,
+            Field::Sxx => Some(0),
+            Field::Syy => Some(1),
+            Field::Szz => Some(2),
+            Field::Sxy => Some(3),
+            Field::Syz => Some(4),
+            Field::Sxz => Some(5),
+        }
+    }
+}
+
+/// One state of a model to draw: its displacements, nodal stresses (empty
+/// when they were not recovered) and contact states and stresses.
+pub struct Snapshot<'a> {
+    /// The picture's title.
+    pub title: &'a str,
+    pub model: &'a Model,
+    pub u: &'a [f64],
+    pub stresses: &'a [BodyStress],
+    pub contact: Option<&'a ContactRun>,
+}
+
+/// The file name of the deformed picture of [`pictures`]: coloured by von
+/// Mises stress when stresses were recovered, else by the displacement.
+pub fn deformed_file(stresses: &[BodyStress]) -> &'static str {
+    if stresses.is_empty() {
+        "deformed_displacement.png"
+    } else {
+        "deformed_von_mises.png"
+    }
+}
+
+/// The pictures of a snapshot under their file names: the deformed model
+/// coloured by von Mises stress (or the displacement magnitude), and with
+/// contact the interface stresses.
+pub fn pictures(snap: &Snapshot) -> Result<Vec<(String, Vec<u8>)>, String> {
+    let field = if snap.stresses.is_empty() { Field::Displacement } else { Field::VonMises };
+    let mut out = vec![(deformed_file(snap.stresses).to_string(), deformed_png(snap, field, None)?)];
+    if let Some(c) = snap.contact.filter(|_| !snap.model.interfaces.is_empty()) {
+        out.push(("interfaces.svg".to_string(), interface_plot_svg(snap.model, c)?.into_bytes()));
+    }
+    Ok(out)
+}
+
+/// Colours: the contact states, pairs without a state, the undeformed
+/// ghost, text and frames.
+const STICK: [u8; 3] = [20, 170, 60];
+const SLIP: [u8; 3] = [255, 140, 0];
+const OPEN: [u8; 3] = [225, 20, 30];
+const NO_PAIR: [u8; 3] = [120, 120, 120];
+const GHOST: [u8; 3] = [228, 228, 228];
+const INK: [u8; 3] = [40, 40, 40];
+
+/// The colour of a contact state in both pictures.
+fn state_colour(s: ContactState) -> [u8; 3] {
+    match s {
+        ContactState::Stick => STICK,
+        ContactState::Slip => SLIP,
+        ContactState::Open => OPEN,
+    }
+}
+
+/// A number with four significant digits, scientific outside [1e-3, 1e5).
+fn num(v: f64) -> String {
+    if !v.is_finite() {
+        return "n/a".into();
+    }
+    let a = v.abs();
+    if a == 0.0 {
+        return "0".into();
+    }
+    if (1e-3..1e5).contains(&a) {
+        let decimals = (3 - a.log10().floor() as i32).clamp(0, 6) as usize;
+        let s = format!("{v:.decimals$}");
+        if s.contains('.') {
+            return s.trim_end_matches('0').trim_end_matches('.').to_string();
+        }
+        return s;
+    }
+    format!("{v:.2e}")
+}
+
+/// A magnification with two significant digits.
+fn sig2(v: f64) -> String {
+    if (1.0..1e4).contains(&v) {
+        let p = 10f64.powf(v.log10().floor() - 1.0);
+        return format!("{}", (v / p).round() * p);
+    }
+    if (0.01..1.0).contains(&v) {
+        return num((v * 100.0).round() / 100.0);
+    }
+    format!("{v:.1e}")
+}
+
+// Small vector algebra for the views and the interfaces' directions.
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn sub3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+fn norm3(v: [f64; 3]) -> [f64; 3] {
+    let l = dot(v, v).sqrt();
+    if l > 0.0 {
+        v.map(|x| x / l)
+    } else {
+        v
+    }
+}

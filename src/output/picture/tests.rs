@@ -1,0 +1,289 @@
+//! Tests of the pictures: the PNG round trip, number formats, font
+//! metrics, and pictures of real runs (cylinder, the paper's 3D mesh,
+//! stacked blocks in every element kind) checked for the colours they must
+//! show; the pictures are kept in the temporary directory to look at.
+
+use super::deformed::{deformed_canvas, H, PANEL_X, W};
+use super::interfaces::{along, interface_plot_png};
+use super::legend::nice_step;
+use super::raster::{encode_png, register_font, Canvas, FontMetrics};
+use super::*;
+use plotters::style::IntoFont;
+use crate::driver::{self, RunOptions};
+use crate::results::{state_counts, Run};
+use crate::scene::Scene;
+use std::path::{Path, PathBuf};
+
+/// Decodes a PNG to (width, height, rgb) with the `png` crate.
+fn decode(bytes: &[u8]) -> (usize, usize, Vec<u8>) {
+    let mut reader = png::Decoder::new(bytes).read_info().expect("a PNG header");
+    let mut buf = vec![0; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut buf).expect("the PNG's pixels");
+    assert_eq!((info.color_type, info.bit_depth), (png::ColorType::Rgb, png::BitDepth::Eight));
+    buf.truncate(info.buffer_size());
+    (info.width as usize, info.height as usize, buf)
+}
+
+#[test]
+fn png_decodes_to_the_pixels_it_was_given() {
+    let (w, h) = (97, 61);
+    let mut rgb = vec![255u8; w * h * 3];
+    for y in 0..h {
+        for x in 0..w {
+            let i = (y * w + x) * 3;
+            rgb[i] = if x < 30 { 10 } else { (x * 2) as u8 };
+            rgb[i + 1] = ((x * y) % 251) as u8;
+            rgb[i + 2] = if y > 40 { ((x * 7919 + y * 104729) % 256) as u8 } else { 200 };
+        }
+    }
+    let bytes = encode_png(w, h, &rgb).expect("PNG");
+    let (dw, dh, back) = decode(&bytes);
+    assert_eq!((dw, dh), (w, h));
+    assert!(back == rgb, "pixels survive the round trip");
+}
+
+#[test]
+fn numbers_read_well() {
+    assert_eq!(num(0.15000000000000002), "0.15");
+    assert_eq!(num(-2125.0), "-2125");
+    assert_eq!(num(1.2345e-5), "1.23e-5");
+    assert_eq!(sig2(23456.0), "2.3e4");
+    assert_eq!(sig2(234.5), "230");
+    assert_eq!(nice_step(0.037), 0.05);
+    assert_eq!(Field::parse("sxy"), Some(Field::Sxy));
+}
+
+#[test]
+fn font_metrics_give_plotters_string_widths() {
+    register_font();
+    let m = FontMetrics::get().expect("metrics");
+    for text in ["contact pairs", "open (6)", "σθθ (hoop stress) × 2.3e4"] {
+        let ours: f64 = text.chars().map(|c| m.glyph(c).0).sum::<f64>() * 40.0 / m.height;
+        let (w, _) = ("sans-serif", 40.0).into_font().box_size(text).expect("layout");
+        assert!((ours - w as f64).abs() <= 2.0, "{text}: {ours} vs {w}");
+    }
+}
+
+fn out_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("subcontact_picture_{name}"));
+    std::fs::create_dir_all(&d).expect("temp dir");
+    d
+}
+
+/// Where the pictures go for a person to look at.
+fn keep(name: &str, bytes: &[u8]) {
+    let d = std::env::temp_dir().join("subcontact_pictures");
+    std::fs::create_dir_all(&d).expect("picture dir");
+    std::fs::write(d.join(name), bytes).expect("write picture");
+}
+
+/// Pixels of colour `c` where the model is drawn (not in the legend).
+fn count(cv: &Canvas, c: [u8; 3]) -> usize {
+    cv.rgb.chunks_exact(3).enumerate().filter(|(i, p)| (i % cv.w) < PANEL_X as usize - 10 && p == &c).count()
+}
+
+/// The last state of a run, to draw.
+fn snap(run: &Run) -> Snapshot<'_> {
+    Snapshot { title: &run.scene.title, model: &run.model, u: &run.u, stresses: &run.stresses, contact: run.contact.as_ref() }
+}
+
+fn contact(run: &Run) -> &crate::results::ContactRun {
+    run.contact.as_ref().expect("a run with contact")
+}
+
+fn cylinder(lc: f64, order: usize) -> Run {
+    let mut scene = Scene::load(Path::new("geo/cylinder.toml")).expect("scene");
+    scene.gmsh.setnumber = vec![("lc".into(), lc)];
+    scene.gmsh.order = order;
+    let opts = RunOptions { out: Some(out_dir(&format!("cylinder_{lc}_{order}"))), skip_output: true, ..Default::default() };
+    driver::run_scene(scene, &opts).expect("cylinder run")
+}
+
+#[test]
+fn cylinder_picture_shows_the_field_and_every_contact_state() {
+    let mut run = cylinder(0.25, 2);
+    let bytes = deformed_png(&snap(&run), Field::VonMises, None).expect("picture");
+    let (w, h, _) = decode(&bytes);
+    assert_eq!((w, h), (W, H));
+    keep("cylinder_von_mises.png", &bytes);
+    let cv = deformed_canvas(&snap(&run), Field::VonMises, None).expect("canvas");
+    // the cut sticks everywhere (the paper's data)
+    assert!(count(&cv, STICK) > 300, "stick line drawn: {}", count(&cv, STICK));
+    assert_eq!(count(&cv, OPEN) + count(&cv, SLIP), 0);
+    keep("cylinder_szz.png", &deformed_png(&snap(&run), Field::Szz, None).expect("picture"));
+    keep("cylinder_sxy.png", &deformed_png(&snap(&run), Field::Sxy, None).expect("picture"));
+
+    // every state, in thirds along the cut
+    let c = run.contact.as_mut().expect("contact");
+    let n = c.states.len();
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&a, &b| {
+        let r = |p: usize| run.model.coords[run.model.pairs[p].k][0];
+        r(a).total_cmp(&r(b))
+    });
+    for (i, &p) in order.iter().enumerate() {
+        c.states[p] = [ContactState::Open, ContactState::Slip, ContactState::Stick][3 * i / n];
+    }
+    let cv = deformed_canvas(&snap(&run), Field::Displacement, Some(2.0e3)).expect("canvas");
+    for (name, colour) in [("stick", STICK), ("slip", SLIP), ("open", OPEN)] {
+        assert!(count(&cv, colour) > 100, "{name}: {} pixels", count(&cv, colour));
+    }
+    keep("cylinder_states_displacement.png", &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
+    let svg = interface_plot_svg(&run.model, contact(&run)).expect("interface plot");
+    for want in ["A-A", "stick", "slip", "open", "σn", "distance along the interface from (2.121, 2.121)"] {
+        assert!(svg.contains(want), "{want}");
+    }
+    keep("cylinder_states_interfaces.svg", svg.as_bytes());
+    let bytes = interface_plot_png(&run.model, contact(&run)).expect("interface plot");
+    assert_eq!(decode(&bytes).0, 1000);
+    keep("cylinder_states_interfaces.png", &bytes);
+}
+
+#[test]
+fn interface_pairs_are_ordered_by_arc_length_from_the_inner_end() {
+    let run = cylinder(0.25, 2);
+    let al = along(&run.model, 0);
+    assert_eq!(al.runs.len(), 1);
+    let r = &al.runs[0];
+    assert_eq!(r.len(), run.model.pairs.len());
+    for &(p, s) in r {
+        let x = run.model.coords[run.model.pairs[p].k];
+        let radius = x[0].hypot(x[1]);
+        assert!((s - (radius - 3.0)).abs() < 1e-9, "s = {s} at r = {radius}");
+    }
+    keep("cylinder_interfaces.png", &interface_plot_png(&run.model, contact(&run)).expect("plot"));
+}
+
+/// Regression: an interface whose two ends lie equally far from the
+/// model's corner (the quarter tunnel's lining, from (R + t/2, 0) to
+/// (0, R + t/2)) was walked from either end by the hash map's order, so
+/// the plot's axis flipped from run to run.
+#[test]
+fn interface_walk_starts_at_the_same_end_every_time() {
+    let mut scene = Scene::load(Path::new("geo/tunnel_slip.toml")).expect("scene");
+    scene.gmsh.setnumber = vec![("D".into(), 20.0), ("R".into(), 5.0), ("lc".into(), 0.5), ("nl".into(), 1.0), ("nr".into(), 8.0), ("t".into(), 0.125)];
+    let opts = RunOptions { out: Some(out_dir("tunnel_ends")), skip_output: true, ..Default::default() };
+    let run = driver::run_scene(scene, &opts).expect("tunnel run");
+    let first = along(&run.model, 0);
+    for _ in 0..12 {
+        let again = along(&run.model, 0);
+        assert_eq!(again.axis, first.axis);
+        assert_eq!(again.runs, first.runs);
+    }
+}
+
+#[test]
+fn paper_mesh_picture_in_3d() {
+    let run = driver::run(Path::new("geo/cylinder_paper.toml"), &RunOptions { out: Some(out_dir("paper")), ..Default::default() }).expect("paper run");
+    let cv = deformed_canvas(&snap(&run), Field::VonMises, None).expect("canvas");
+    assert!(count(&cv, STICK) > 50, "stick dots: {}", count(&cv, STICK));
+    let bytes = encode_png(cv.w, cv.h, &cv.rgb).expect("PNG");
+    assert_eq!(decode(&bytes).0, W);
+    keep("paper_von_mises.png", &bytes);
+    let svg = interface_plot_svg(&run.model, contact(&run)).expect("plot");
+    assert!(svg.contains("12 stick"));
+    keep("paper_interfaces.svg", svg.as_bytes());
+    keep("paper_interfaces.png", &interface_plot_png(&run.model, contact(&run)).expect("plot"));
+}
+
+/// Two blocks stacked on a frictional joint (f = 0.8) without cohesion
+/// or tensile strength, the top face pushed down and sideways: the push
+/// tips the top block, so the joint opens at one end, slips in the
+/// middle and sticks where it is pressed hardest. Every 2D kind and
+/// hex20 (the boxes clamped at the base and held in z, the top one held
+/// by the joint); tet4 under a joint too strong to give (pushed, the
+/// unstructured tetrahedra make the contact iteration cycle).
+#[test]
+fn stacked_blocks_pushed_sideways_show_the_states_they_reach() {
+    let dir = out_dir("stack");
+    for geo in ["contact_stack.geo", "contact_stack3d.geo"] {
+        std::fs::copy(format!("tests/geo/{geo}"), dir.join(geo)).expect("copy geo");
+    }
+    let weak = "friction = 0.8\ncohesion = 0.0\ntensile_strength = 0.0";
+    let strong = "friction = 0.5\ncohesion = 100.0\ntensile_strength = 100.0";
+    let plane = ("contact_stack.geo", "plane_stress", "[[supports]]\ngroup = \"base\"\nfix = [\"y\"]\n[[supports]]\ngroup = \"corner\"\nfix = [\"x\"]\n", "[0.5, -1.0]", weak);
+    let solid = ("contact_stack3d.geo", "solid", "[[supports]]\ngroup = \"base\"\nfix = [\"x\", \"y\", \"z\"]\n[[supports]]\ngroup = \"z_faces\"\nfix = [\"z\"]\n", "[0.5, -1.0, 0.0]", weak);
+    let cases = [
+        ("tri6", 2, "n = 8, quad = 0", plane),
+        ("tri3", 1, "n = 10, quad = 0", plane),
+        ("quad4", 1, "n = 10, quad = 1", plane),
+        ("quad8", 2, "n = 6, quad = 1, serendipity = 1", plane),
+        ("hex20", 2, "n = 4, nz = 2, hex = 1, serendipity = 1", solid),
+        ("tet4", 1, "n = 6, hex = 0", (solid.0, solid.1, "[[supports]]\ngroup = \"base\"\nfix = [\"x\", \"y\", \"z\"]\n", "[0.3, -1.0, 0.2]", strong)),
+    ];
+    for (name, order, set, (geo, analysis, supports, traction, joint)) in cases {
+        let toml = format!(
+            "title = \"Two blocks, the top one pushed sideways ({name})\"\nmesh = \"{geo}\"\nanalysis = \"{analysis}\"\n\
+             [gmsh]\norder = {order}\nsetnumber = {{ {set} }}\n[materials.m]\nE = 1000.0\nnu = 0.25\n\
+             [[bodies]]\ngroup = \"bottom\"\nmaterial = \"m\"\n[[bodies]]\ngroup = \"top\"\nmaterial = \"m\"\n\
+             [[contacts]]\ngroup = \"joint\"\n{joint}\n\
+             {supports}[[loads]]\ngroup = \"top_face\"\ntraction = {traction}\n"
+        );
+        let path = dir.join(format!("stack_{name}.toml"));
+        std::fs::write(&path, toml).expect("scene");
+        let opts = RunOptions { out: Some(dir.join(name)), skip_output: true, ..Default::default() };
+        let run = driver::run(&path, &opts).expect("stack run");
+        let c = run.contact.as_ref().expect("contact");
+        let counts = state_counts(&c.states);
+        eprintln!("{name}: {} stick, {} slip, {} open after {} iterations", counts[2], counts[1], counts[0], c.iterations);
+        assert!(c.converged, "{name}");
+        if joint == weak {
+            assert!(counts[0] > 0 && counts[2] > 0, "{name}: the joint opens at one end and sticks at the other: {counts:?}");
+        }
+        let t = std::time::Instant::now();
+        let cv = deformed_canvas(&snap(&run), Field::VonMises, None).expect("canvas");
+        eprintln!("{name}: rendered in {:.3} s", t.elapsed().as_secs_f64());
+        for (state, colour, n) in [("open", OPEN, counts[0]), ("slip", SLIP, counts[1]), ("stick", STICK, counts[2])] {
+            assert_eq!(count(&cv, colour) > 0, n > 0, "{name}: {state} drawn exactly when present ({n} pairs)");
+        }
+        keep(&format!("stack_{name}_von_mises.png"), &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
+        keep(&format!("stack_{name}_syy.png"), &deformed_png(&snap(&run), Field::Syy, None).expect("picture"));
+        keep(&format!("stack_{name}_interfaces.png"), &interface_plot_png(&run.model, contact(&run)).expect("plot"));
+        let svg = interface_plot_svg(&run.model, contact(&run)).expect("plot");
+        assert!(svg.contains(&format!("{} stick, {} slip, {} open", counts[2], counts[1], counts[0])));
+    }
+}
+
+/// Regression: thin triangles sharing edges left unpainted pixels
+/// between them (white specks over a fine mesh) when the barycentric
+/// weights were taken in f32 about the image origin.
+#[test]
+fn triangles_sharing_edges_leave_no_gaps() {
+    let mut cv = Canvas::new(400, 300);
+    let n = 60;
+    // a jittered grid over [50, 350] x [40, 260], two triangles per square
+    let pt = |i: usize, j: usize| -> [f32; 2] {
+        let jitter = |k: usize| if i == 0 || j == 0 || i == n || j == n { 0.0 } else { ((k * 7919 % 101) as f32 / 101.0 - 0.5) * 2.0 };
+        [50.0 + 300.0 * i as f32 / n as f32 + jitter(i * 31 + j), 40.0 + 220.0 * j as f32 / n as f32 + jitter(j * 17 + i * 3)]
+    };
+    for i in 0..n {
+        for j in 0..n {
+            let (a, b, c, d) = (pt(i, j), pt(i + 1, j), pt(i + 1, j + 1), pt(i, j + 1));
+            cv.triangle([a, b, c], [0.0; 3], &|_| [0, 0, 0]);
+            cv.triangle([a, c, d], [0.0; 3], &|_| [0, 0, 0]);
+        }
+    }
+    let white = (41..259).flat_map(|y| (51..349).map(move |x| (x, y))).filter(|&(x, y)| cv.rgb[(y * 400 + x) * 3] == 255).count();
+    assert_eq!(white, 0, "unpainted pixels inside the mesh");
+}
+
+/// About 1e5 nodes (quad9, lc = 0.022): prints the render time; run with
+/// `cargo test --release --lib picture -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn render_time_of_a_fine_mesh() {
+    let run = cylinder(0.022, 2);
+    eprintln!("{} nodes, {} cells", run.model.n_nodes(), run.model.bodies.iter().map(|b| b.cells.len()).sum::<usize>());
+    for _ in 0..2 {
+        let t = std::time::Instant::now();
+        let cv = deformed_canvas(&snap(&run), Field::VonMises, None).expect("canvas");
+        let raster = t.elapsed().as_secs_f64();
+        let bytes = encode_png(cv.w, cv.h, &cv.rgb).expect("PNG");
+        let total = t.elapsed().as_secs_f64();
+        let t = std::time::Instant::now();
+        let svg = interface_plot_svg(&run.model, contact(&run)).expect("plot");
+        eprintln!("deformed: raster {raster:.3} s, with PNG {total:.3} s ({} kB); interfaces: {:.3} s", bytes.len() / 1024, t.elapsed().as_secs_f64());
+        keep("fine_von_mises.png", &bytes);
+        keep("fine_interfaces.svg", svg.as_bytes());
+    }
+}

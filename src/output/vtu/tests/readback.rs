@@ -1,0 +1,701 @@
+//! The written files read back: by meshio (and by VTK's own reader, the one
+//! ParaView uses, when `SUBCONTACT_VTK_PYTHON` names a Python with `vtk`)
+//! for every kind and a mixed mesh, large and odd arrays; the compressed
+//! format, errors naming the inconsistent input, and the PVD collection.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use super::super::*;
+use super::{gmsh_reference, vtk_geometry_error};
+use crate::output::files::Staged;
+
+#[test]
+fn tet10_swaps_nodes_8_and_9() {
+    let cell = Cell {
+        kind: CellKind::Tet10,
+        nodes: (0..10).collect(),
+        tag: 1,
+    };
+    let bytes = vtu_bytes(&gmsh_reference(CellKind::Tet10), &[cell], &[], &[], &[]).unwrap();
+    let m = meshio_read_bytes(&bytes, "tet10-order");
+    assert_eq!(
+        m.cells,
+        vec![("tetra10".to_string(), vec![0, 1, 2, 3, 4, 5, 6, 7, 9, 8])]
+    );
+}
+
+#[derive(Debug, Default)]
+struct ReadBack {
+    version: String,
+    points: Vec<[f64; 3]>,
+    /// (meshio type name, connectivity) per cell, in file order.
+    cells: Vec<(String, Vec<usize>)>,
+    /// name -> rows (one per point)
+    point_data: Vec<(String, Vec<Vec<f64>>)>,
+    /// name -> (dtype, rows, one per cell over all blocks)
+    cell_data: Vec<(String, String, Vec<Vec<f64>>)>,
+}
+
+const MESHIO_DUMP: &str = r#"
+import sys
+try:
+    import meshio
+except ImportError:
+    sys.exit("meshio is not installed: pip install meshio")
+m = meshio.read(sys.argv[1])
+out = ["V " + meshio.__version__]
+for p in m.points:
+    out.append("P " + " ".join(repr(float(x)) for x in p))
+for b in m.cells:
+    for c in b.data:
+        out.append("C " + b.type + " " + " ".join(str(int(i)) for i in c))
+for name, a in m.point_data.items():
+    for row in a.reshape(len(a), -1):
+        out.append("PD " + name + " " + " ".join(repr(float(x)) for x in row))
+for name, blocks in m.cell_data.items():
+    for a in blocks:
+        for row in a.reshape(len(a), -1):
+            out.append("CD " + name + " " + str(a.dtype) + " " + " ".join(repr(float(x)) for x in row))
+print("\n".join(out))
+"#;
+
+fn scratch_dir(tag: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("subcontact-vtu-{}-{tag}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+/// The same dump as `MESHIO_DUMP`, made by VTK's own reader (the one
+/// ParaView uses); any message VTK reports is a failure.
+const VTK_DUMP: &str = r#"
+import sys
+from vtkmodules.vtkCommonCore import vtkStringOutputWindow, vtkOutputWindow, vtkVersion
+from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+w = vtkStringOutputWindow()
+vtkOutputWindow.SetInstance(w)
+r = vtkXMLUnstructuredGridReader()
+r.SetFileName(sys.argv[1])
+r.Update()
+if w.GetOutput():
+    sys.exit("VTK reported: " + w.GetOutput())
+g = r.GetOutput()
+names = {1: "vertex", 3: "line", 21: "line3", 5: "triangle", 22: "triangle6", 9: "quad",
+         23: "quad8", 28: "quad9", 10: "tetra", 24: "tetra10", 12: "hexahedron",
+         25: "hexahedron20", 29: "hexahedron27"}
+dtypes = {"double": "float64", "int": "int32"}
+out = ["V vtk-" + vtkVersion.GetVTKVersion()]
+for i in range(g.GetNumberOfPoints()):
+    out.append("P " + " ".join(repr(float(x)) for x in g.GetPoint(i)))
+for c in range(g.GetNumberOfCells()):
+    cell = g.GetCell(c)
+    ids = [cell.GetPointId(k) for k in range(cell.GetNumberOfPoints())]
+    out.append("C " + names[g.GetCellType(c)] + " " + " ".join(str(i) for i in ids))
+for tag, data in (("PD", g.GetPointData()), ("CD", g.GetCellData())):
+    for a in range(data.GetNumberOfArrays()):
+        arr = data.GetAbstractArray(a)
+        head = tag + " " + arr.GetName() + " "
+        if tag == "CD":
+            head += dtypes[arr.GetDataTypeAsString()] + " "
+        for t in range(arr.GetNumberOfTuples()):
+            out.append(head + " ".join(repr(float(x)) for x in arr.GetTuple(t)))
+print("\n".join(out))
+"#;
+
+/// Runs a dump script and parses its output.
+fn dump(python: &str, script: &str, path: &Path) -> ReadBack {
+    let out = Command::new(python)
+        .arg("-c")
+        .arg(script)
+        .arg(path)
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run {python}: {e}"));
+    assert!(
+        out.status.success(),
+        "{python} could not read {}: {}",
+        path.display(),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let mut m = ReadBack::default();
+    let nums = |it: std::str::SplitWhitespace<'_>| -> Vec<f64> {
+        it.map(|x| x.parse().unwrap()).collect()
+    };
+    for line in text.lines() {
+        let mut it = line.split_whitespace();
+        match it.next() {
+            Some("V") => m.version = it.next().unwrap().to_string(),
+            Some("P") => {
+                let v = nums(it);
+                m.points.push([v[0], v[1], v[2]]);
+            }
+            Some("C") => {
+                let ty = it.next().unwrap().to_string();
+                m.cells.push((ty, it.map(|x| x.parse().unwrap()).collect()));
+            }
+            Some("PD") => {
+                let name = it.next().unwrap().to_string();
+                let row = nums(it);
+                match m.point_data.iter_mut().find(|(n, _)| *n == name) {
+                    Some((_, rows)) => rows.push(row),
+                    None => m.point_data.push((name, vec![row])),
+                }
+            }
+            Some("CD") => {
+                let name = it.next().unwrap().to_string();
+                let dtype = it.next().unwrap().to_string();
+                let row = nums(it);
+                match m.cell_data.iter_mut().find(|(n, _, _)| *n == name) {
+                    Some((_, _, rows)) => rows.push(row),
+                    None => m.cell_data.push((name, dtype, vec![row])),
+                }
+            }
+            _ => panic!("unexpected line from {python}: {line}"),
+        }
+    }
+    m
+}
+
+/// VTK's reading of the file, when `SUBCONTACT_VTK_PYTHON` names a Python
+/// with the `vtk` package (an optional cross-check: the tests need only meshio).
+fn vtk_read(path: &Path) -> Option<ReadBack> {
+    let python = std::env::var("SUBCONTACT_VTK_PYTHON")
+        .ok()
+        .filter(|p| !p.is_empty())?;
+    Some(dump(&python, VTK_DUMP, path))
+}
+
+/// meshio's reading of the file (and, if available, the same from VTK).
+fn meshio_read(path: &Path) -> ReadBack {
+    let m = dump("python3", MESHIO_DUMP, path);
+    if let Some(v) = vtk_read(path) {
+        // Compared as text so that NaN equals NaN.
+        assert_eq!(
+            format!("{:?}", (&v.points, &v.cells, &v.point_data, &v.cell_data)),
+            format!("{:?}", (&m.points, &m.cells, &m.point_data, &m.cell_data)),
+            "VTK and meshio read {} differently",
+            path.display()
+        );
+    }
+    m
+}
+
+fn meshio_read_bytes(bytes: &[u8], tag: &str) -> ReadBack {
+    let dir = scratch_dir(tag);
+    let mut staged = Staged::new(&dir);
+    staged.add("mesh.vtu", bytes.to_vec());
+    let paths = staged.commit().unwrap();
+    let m = meshio_read(&paths[0]);
+    std::fs::remove_dir_all(&dir).unwrap();
+    m
+}
+
+fn meshio_name(kind: CellKind) -> &'static str {
+    match kind {
+        CellKind::Point1 => "vertex",
+        CellKind::Line2 => "line",
+        CellKind::Line3 => "line3",
+        CellKind::Tri3 => "triangle",
+        CellKind::Tri6 => "triangle6",
+        CellKind::Quad4 => "quad",
+        CellKind::Quad8 => "quad8",
+        CellKind::Quad9 => "quad9",
+        CellKind::Tet4 => "tetra",
+        CellKind::Tet10 => "tetra10",
+        CellKind::Hex8 => "hexahedron",
+        CellKind::Hex20 => "hexahedron20",
+        CellKind::Hex27 => "hexahedron27",
+    }
+}
+
+/// A mesh of the given kinds, one reference cell each, moved apart, and
+/// its fields: point `displacement` (3), `stress` (6), `von_mises` (1);
+/// cell `stress` (6), `von_mises` (1) and int `body`.
+struct TestMesh {
+    points: Vec<[f64; 3]>,
+    cells: Vec<Cell>,
+    displacement: Vec<f64>,
+    stress: Vec<f64>,
+    von_mises: Vec<f64>,
+    cell_stress: Vec<f64>,
+    cell_von_mises: Vec<f64>,
+    body: Vec<i32>,
+}
+
+impl TestMesh {
+    fn new(kinds: &[CellKind]) -> Self {
+        let mut points = Vec::new();
+        let mut cells = Vec::new();
+        for (c, &kind) in kinds.iter().enumerate() {
+            let first = points.len();
+            for p in gmsh_reference(kind) {
+                points.push([p[0] + 3.0 * c as f64, p[1], p[2]]);
+            }
+            cells.push(Cell {
+                kind,
+                nodes: (first..points.len()).collect(),
+                tag: 100 + c as u64,
+            });
+        }
+        let np = points.len();
+        let nc = cells.len();
+        let displacement = (0..3 * np).map(|i| 1e-3 * i as f64 - 0.1).collect();
+        let stress = (0..6 * np).map(|i| (i as f64).sin() * 1e8).collect();
+        let von_mises = (0..np).map(|i| 1.0 / (i as f64 + 3.0)).collect();
+        let cell_stress = (0..6 * nc)
+            .map(|i| -(i as f64) * 0.5e6 + 1.0 / 3.0)
+            .collect();
+        let cell_von_mises = (0..nc).map(|i| 2.5e7 * (i as f64 + 1.0)).collect();
+        let body = (0..nc as i32).map(|i| i % 2 - 7).collect();
+        TestMesh {
+            points,
+            cells,
+            displacement,
+            stress,
+            von_mises,
+            cell_stress,
+            cell_von_mises,
+            body,
+        }
+    }
+
+    fn bytes(&self) -> Vec<u8> {
+        vtu_bytes(
+            &self.points,
+            &self.cells,
+            &[
+                Field {
+                    name: "displacement",
+                    n_comp: 3,
+                    values: &self.displacement,
+                },
+                Field {
+                    name: "stress",
+                    n_comp: 6,
+                    values: &self.stress,
+                },
+                Field {
+                    name: "von_mises",
+                    n_comp: 1,
+                    values: &self.von_mises,
+                },
+            ],
+            &[
+                Field {
+                    name: "stress",
+                    n_comp: 6,
+                    values: &self.cell_stress,
+                },
+                Field {
+                    name: "von_mises",
+                    n_comp: 1,
+                    values: &self.cell_von_mises,
+                },
+            ],
+            &[IntField {
+                name: "body",
+                values: &self.body,
+            }],
+        )
+        .unwrap()
+    }
+
+    /// Checks what meshio read against what was written.
+    fn check(&self, m: &ReadBack) {
+        assert_eq!(m.points.len(), self.points.len(), "point count");
+        assert_eq!(m.points, self.points, "points");
+        assert_eq!(m.cells.len(), self.cells.len(), "cell count");
+        for (c, (cell, (ty, conn))) in self.cells.iter().zip(&m.cells).enumerate() {
+            assert_eq!(ty, meshio_name(cell.kind), "type of {:?}", cell.kind);
+            // What meshio read, in VTK order, is where VTK wants it
+            // (cell c was moved by 3c along x).
+            let vtk: Vec<[f64; 3]> = conn
+                .iter()
+                .map(|&i| m.points[i])
+                .map(|p| [p[0] - 3.0 * c as f64, p[1], p[2]])
+                .collect();
+            assert_eq!(
+                vtk_geometry_error(cell.kind, &vtk),
+                None,
+                "read back {:?}",
+                cell.kind
+            );
+            // And it is the same set of nodes.
+            let mut a = conn.clone();
+            let mut b = cell.nodes.clone();
+            a.sort_unstable();
+            b.sort_unstable();
+            assert_eq!(a, b);
+        }
+        let rows = |v: &[f64], n: usize| v.chunks(n).map(|r| r.to_vec()).collect::<Vec<_>>();
+        let point = |name: &str| {
+            &m.point_data
+                .iter()
+                .find(|(n, _)| n == name)
+                .unwrap_or_else(|| panic!("no point field {name}"))
+                .1
+        };
+        assert_eq!(m.point_data.len(), 3);
+        assert_eq!(point("displacement"), &rows(&self.displacement, 3));
+        assert_eq!(point("stress"), &rows(&self.stress, 6));
+        assert_eq!(point("von_mises"), &rows(&self.von_mises, 1));
+        let cell = |name: &str| {
+            m.cell_data
+                .iter()
+                .find(|(n, _, _)| n == name)
+                .unwrap_or_else(|| panic!("no cell field {name}"))
+        };
+        assert_eq!(m.cell_data.len(), 3);
+        assert_eq!(cell("stress").1, "float64");
+        assert_eq!(cell("stress").2, rows(&self.cell_stress, 6));
+        assert_eq!(cell("von_mises").2, rows(&self.cell_von_mises, 1));
+        assert_eq!(cell("body").1, "int32");
+        let body: Vec<Vec<f64>> = self.body.iter().map(|&b| vec![b as f64]).collect();
+        assert_eq!(cell("body").2, body);
+    }
+}
+
+const KINDS: [CellKind; 12] = [
+    CellKind::Line2,
+    CellKind::Line3,
+    CellKind::Tri3,
+    CellKind::Tri6,
+    CellKind::Quad4,
+    CellKind::Quad8,
+    CellKind::Quad9,
+    CellKind::Tet4,
+    CellKind::Tet10,
+    CellKind::Hex8,
+    CellKind::Hex20,
+    CellKind::Hex27,
+];
+
+#[test]
+fn each_kind_round_trips_through_meshio() {
+    let dir = scratch_dir("kinds");
+    let mut staged = Staged::new(&dir);
+    let meshes: Vec<(CellKind, TestMesh)> = KINDS
+        .iter()
+        .chain([CellKind::Point1].iter())
+        .map(|&k| (k, TestMesh::new(&[k])))
+        .collect();
+    for (kind, mesh) in &meshes {
+        staged.add(&format!("{}.vtu", kind.name()), mesh.bytes());
+    }
+    let paths = staged.commit().unwrap();
+    let mut version = String::new();
+    for ((kind, mesh), path) in meshes.iter().zip(&paths) {
+        let m = meshio_read(path);
+        mesh.check(&m);
+        assert_eq!(m.cells[0].0, meshio_name(*kind));
+        version = m.version;
+    }
+    assert!(!version.is_empty());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn mixed_mesh_round_trips_through_meshio() {
+    // Every kind in one file, twice, so meshio sees several blocks.
+    let kinds: Vec<CellKind> = KINDS.iter().chain(KINDS.iter().rev()).copied().collect();
+    let mesh = TestMesh::new(&kinds);
+    let m = meshio_read_bytes(&mesh.bytes(), "mixed");
+    mesh.check(&m);
+}
+
+#[test]
+fn large_arrays_round_trip() {
+    // Several ZLib blocks (vtkio's block is 32768 bytes), one array an
+    // exact multiple of the block size (4096 f64), one not.
+    let n = 4096;
+    let points: Vec<[f64; 3]> = (0..n)
+        .map(|i| [i as f64 * 0.1, (i % 7) as f64, (i as f64).sqrt()])
+        .collect();
+    let cells: Vec<Cell> = (0..n - 1)
+        .map(|i| Cell {
+            kind: CellKind::Line2,
+            nodes: vec![i, i + 1],
+            tag: i as u64,
+        })
+        .collect();
+    let scalar: Vec<f64> = (0..n).map(|i| (i as f64).cos()).collect();
+    let body: Vec<i32> = (0..n as i32 - 1).collect();
+    let bytes = vtu_bytes(
+        &points,
+        &cells,
+        &[Field {
+            name: "s",
+            n_comp: 1,
+            values: &scalar,
+        }],
+        &[],
+        &[IntField {
+            name: "body",
+            values: &body,
+        }],
+    )
+    .unwrap();
+    let m = meshio_read_bytes(&bytes, "large");
+    assert_eq!(m.points, points);
+    assert_eq!(m.cells.len(), n - 1);
+    assert!(m
+        .cells
+        .iter()
+        .enumerate()
+        .all(|(i, (t, c))| t == "line" && *c == vec![i, i + 1]));
+    assert_eq!(
+        m.point_data[0].1,
+        scalar.iter().map(|&x| vec![x]).collect::<Vec<_>>()
+    );
+    assert_eq!(
+        m.cell_data[0].2,
+        body.iter().map(|&x| vec![x as f64]).collect::<Vec<_>>()
+    );
+}
+
+#[test]
+fn empty_grid_and_odd_names_are_readable() {
+    // meshio cannot read a grid without cells; VTK can, if it is there.
+    let bytes = vtu_bytes(&[], &[], &[], &[], &[]).unwrap();
+    let text = String::from_utf8(bytes.clone()).unwrap();
+    assert!(
+        text.contains("<Piece NumberOfPoints=\"0\" NumberOfCells=\"0\">"),
+        "{text}"
+    );
+    let pts = [[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]];
+    let no_cells = vtu_bytes(
+        &pts,
+        &[],
+        &[Field {
+            name: "v",
+            n_comp: 1,
+            values: &[7.0, 8.0],
+        }],
+        &[],
+        &[],
+    )
+    .unwrap();
+    let text = String::from_utf8(no_cells.clone()).unwrap();
+    assert!(
+        text.contains("<Piece NumberOfPoints=\"2\" NumberOfCells=\"0\">"),
+        "{text}"
+    );
+    let dir = scratch_dir("empty");
+    let mut staged = Staged::new(&dir);
+    staged.add("empty.vtu", bytes);
+    staged.add("no-cells.vtu", no_cells);
+    let paths = staged.commit().unwrap();
+    if let Some(v) = vtk_read(&paths[0]) {
+        assert!(v.points.is_empty() && v.cells.is_empty());
+    }
+    if let Some(v) = vtk_read(&paths[1]) {
+        assert_eq!(v.points, pts);
+        assert!(v.cells.is_empty());
+        assert_eq!(
+            v.point_data,
+            vec![("v".to_string(), vec![vec![7.0], vec![8.0]])]
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+
+    let mesh = TestMesh::new(&[CellKind::Tri3]);
+    let bytes = vtu_bytes(
+        &mesh.points,
+        &mesh.cells,
+        &[Field {
+            name: "a&b<c>\"d'",
+            n_comp: 2,
+            values: &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0],
+        }],
+        &[],
+        &[],
+    )
+    .unwrap();
+    let m = meshio_read_bytes(&bytes, "names");
+    assert_eq!(m.point_data[0].0, "a&b<c>\"d'");
+    assert_eq!(
+        m.point_data[0].1,
+        vec![vec![1.0, 2.0], vec![3.0, 4.0], vec![5.0, 6.0]]
+    );
+}
+
+#[test]
+fn non_finite_values_are_written_as_they_are() {
+    // A diverged solution must still open, NaNs and all.
+    let mesh = TestMesh::new(&[CellKind::Tri3]);
+    let values = [
+        f64::NAN,
+        1.0,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        -0.0,
+        f64::MIN_POSITIVE,
+    ];
+    let bytes = vtu_bytes(
+        &mesh.points,
+        &mesh.cells,
+        &[Field {
+            name: "u",
+            n_comp: 2,
+            values: &values,
+        }],
+        &[],
+        &[],
+    )
+    .unwrap();
+    let m = meshio_read_bytes(&bytes, "nan");
+    let got: Vec<f64> = m.point_data[0].1.concat();
+    assert_eq!(got.len(), values.len());
+    for (g, v) in got.iter().zip(&values) {
+        assert!(
+            g.to_bits() == v.to_bits() || (g.is_nan() && v.is_nan()),
+            "{g} != {v}"
+        );
+    }
+}
+
+#[test]
+fn file_is_zlib_compressed_vtu() {
+    let bytes = TestMesh::new(&[CellKind::Hex27]).bytes();
+    let text = String::from_utf8(bytes).unwrap();
+    assert!(text.contains("type=\"UnstructuredGrid\""), "{text}");
+    assert!(
+        text.contains("compressor=\"vtkZLibDataCompressor\""),
+        "{text}"
+    );
+    assert!(text.contains("header_type=\"UInt64\""), "{text}");
+    assert!(
+        text.contains("<Piece NumberOfPoints=\"27\" NumberOfCells=\"1\">"),
+        "{text}"
+    );
+}
+
+#[test]
+fn inconsistent_input_is_an_error_naming_it() {
+    let mesh = TestMesh::new(&[CellKind::Quad4]);
+    let short = [0.0; 11];
+    let err = vtu_bytes(
+        &mesh.points,
+        &mesh.cells,
+        &[Field {
+            name: "displacement",
+            n_comp: 3,
+            values: &short,
+        }],
+        &[],
+        &[],
+    )
+    .unwrap_err();
+    let msg = err.to_string();
+    assert!(
+        msg.contains("displacement") && msg.contains("11") && msg.contains("12"),
+        "{msg}"
+    );
+
+    let err = vtu_bytes(
+        &mesh.points,
+        &mesh.cells,
+        &[],
+        &[Field {
+            name: "stress",
+            n_comp: 6,
+            values: &[0.0; 7],
+        }],
+        &[],
+    )
+    .unwrap_err();
+    assert!(err.to_string().contains("stress"), "{err}");
+
+    let err = vtu_bytes(
+        &mesh.points,
+        &mesh.cells,
+        &[],
+        &[],
+        &[IntField {
+            name: "body",
+            values: &[],
+        }],
+    )
+    .unwrap_err();
+    assert!(err.to_string().contains("body"), "{err}");
+
+    let err = vtu_bytes(
+        &mesh.points,
+        &mesh.cells,
+        &[Field {
+            name: "nothing",
+            n_comp: 0,
+            values: &[],
+        }],
+        &[],
+        &[],
+    )
+    .unwrap_err();
+    assert!(err.to_string().contains("nothing"), "{err}");
+
+    let err = vtu_bytes(
+        &mesh.points,
+        &mesh.cells,
+        &[Field {
+            name: "huge",
+            n_comp: usize::MAX,
+            values: &[0.0; 4],
+        }],
+        &[],
+        &[],
+    )
+    .unwrap_err();
+    assert!(err.to_string().contains("huge"), "{err}");
+
+    let mut bad = mesh.cells.clone();
+    bad[0].nodes.pop();
+    let err = vtu_bytes(&mesh.points, &bad, &[], &[], &[]).unwrap_err();
+    assert!(
+        err.to_string().contains("quad4") && err.to_string().contains("100"),
+        "{err}"
+    );
+
+    let mut bad = mesh.cells.clone();
+    bad[0].nodes[2] = 4;
+    let err = vtu_bytes(&mesh.points, &bad, &[], &[], &[]).unwrap_err();
+    assert!(err.to_string().contains("node 4"), "{err}");
+}
+
+#[test]
+fn pvd_lists_the_steps_in_order() {
+    let steps = vec![
+        (0.0, "result_0000.vtu".to_string()),
+        (0.5, "result_0001.vtu".to_string()),
+        (1e-7, "a&b \"c\".vtu".to_string()),
+    ];
+    let dir = scratch_dir("pvd");
+    let mut staged = Staged::new(&dir);
+    staged.add("series.pvd", pvd_bytes(&steps));
+    let path = staged.commit().unwrap().remove(0);
+    let out = Command::new("python3")
+        .arg("-c")
+        .arg(
+            "import sys, xml.etree.ElementTree as ET\n\
+             r = ET.parse(sys.argv[1]).getroot()\n\
+             assert r.tag == 'VTKFile' and r.get('type') == 'Collection'\n\
+             for d in r.find('Collection'): print(d.get('timestep') + '|' + d.get('file'))",
+        )
+        .arg(&path)
+        .output()
+        .unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let got: Vec<(f64, String)> = text
+        .lines()
+        .map(|l| {
+            let (t, f) = l.split_once('|').unwrap();
+            (t.parse().unwrap(), f.to_string())
+        })
+        .collect();
+    assert_eq!(got, steps);
+}
