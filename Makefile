@@ -6,7 +6,7 @@ CARGO   ?= cargo
 BIN     := target/release/subcontact
 PYTHON  ?= python3
 
-.PHONY: all deps build cylinder tunnel footing dam test bench stress clean
+.PHONY: all deps build cylinder tunnel footing dam blocks3d dam3d test bench stress clean
 
 all: build
 
@@ -46,6 +46,17 @@ tunnel: deps build
 # two steps; the heel opens (results/dam/, dam.pvd for the steps).
 dam: deps build
 	$(BIN) solve geo/dam.toml
+
+# A block pressed onto a block and pushed along x, in 3D on tet10: the
+# trailing edge slips (results/blocks3d/: plan views of the joint by state
+# and sigma_n in report.md).
+blocks3d: deps build
+	$(BIN) solve geo/blocks3d.toml
+
+# A gravity-dam slice in 3D: three blocks on rock, joints ending on the base;
+# self-weight, then the reservoir in two steps (results/dam3d/).
+dam3d: deps build
+	$(BIN) solve geo/dam3d.toml
 
 # Run time against error on the cylinder, orders 1 and 2, up to ~2.6e6 DOFs:
 # results/cylinder/bench.{csv,md,svg}.

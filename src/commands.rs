@@ -14,8 +14,19 @@ use crate::substructure;
 
 pub fn solve(scene: &Path, opts: &RunOptions) -> Result<()> {
     let run = driver::run(scene, opts)?;
+    // say what happened: pairs that opened between the Coulomb apex and f_t
+    if run.steps.iter().filter_map(|s| s.contact.as_ref()).any(|c| c.apex_openings > 0) {
+        warn(&run.scene);
+    }
     print_summary(&run);
     Ok(())
+}
+
+/// The scene's warnings on stderr, one paragraph each.
+fn warn(scene: &Scene) {
+    for w in scene.warnings() {
+        eprintln!("warning: {w}");
+    }
 }
 
 fn print_summary(run: &Run) {
@@ -39,6 +50,7 @@ pub fn check(scene_path: &Path) -> Result<()> {
     let parts = substructure::parts(&model);
     println!("{}: scene and mesh `{}` are consistent", scene_path.display(), msh.display());
     println!("  {} bodies, {} elements, {} model nodes, {} contact pairs, {} part(s)", model.bodies.len(), model.bodies.iter().map(|b| b.cells.len()).sum::<usize>(), model.n_nodes(), model.pairs.len(), parts.len());
+    warn(&scene);
     Ok(())
 }
 

@@ -166,7 +166,7 @@ pub fn run_scene(mut scene: Scene, opts: &RunOptions) -> Result<Run> {
         let mut contact_step = None;
         if let Some(problem) = &problem {
             let outcome = contact::iterate(problem, &laws, scene.solver.rule, &lambda, &mut hist, scene.solver.max_iterations);
-            let Outcome { states, solution, iterations, converged, cycled, cycles_broken, history } = match outcome {
+            let Outcome { states, solution, iterations, converged, cycled, cycles_broken, apex_openings, history } = match outcome {
                 Ok(o) => o,
                 Err(f) => bail!(failure_message(&model, &condensed, &scene, step, f)),
             };
@@ -184,7 +184,8 @@ pub fn run_scene(mut scene: Scene, opts: &RunOptions) -> Result<Run> {
                 }
             }
             d_c = solution.d_c;
-            contact_step = Some(ContactRun { states, pairs, iterations, converged, cycled, cycles_broken, history });
+            let areas = (0..pairs.len()).map(|p| problem.area(p)).collect();
+            contact_step = Some(ContactRun { states, pairs, frames: problem.frames.clone(), areas, apex_openings, iterations, converged, cycled, cycles_broken, history });
         }
         interface_s += t.elapsed().as_secs_f64();
         let t = Instant::now();
@@ -329,7 +330,8 @@ fn failure_message(model: &Model, parts: &[Condensed], scene: &Scene, step: usiz
             let bodies: Vec<usize> = ids.iter().flat_map(|&i| parts[i].part.bodies.iter().copied()).collect();
             let one = bodies.len() == 1;
             format!(
-                "{path}: {what} {names} {verb} held by nothing at {at}contact iteration {it} ({stick} stick, {slip} slip, {open} open): {its} contact pairs opened and no support holds {it_them}. Add a support, or check the loads that pull the contact apart",
+                "{path}: {what} {names} {verb} held by nothing at {at}contact iteration {it} ({stick} stick, {slip} slip, {open} open): {its} contact pairs opened and no support holds {it_them}{apex}. Add a support, or check the loads that pull the contact apart",
+                apex = apex_note(scene),
                 path = scene.path.display(),
                 at = at,
                 what = if one { "body" } else { "bodies" },
@@ -355,5 +357,22 @@ fn failure_message(model: &Model, parts: &[Condensed], scene: &Scene, step: usiz
                 if bodies.is_empty() { "a body".to_string() } else { format!("{} {}", if bodies.len() == 1 { "body" } else { "bodies" }, model.body_names(&bodies)) },
             )
         }
+    }
+}
+
+/// Where a contact's f_t exceeds the Coulomb apex c / f, the robust rule
+/// opens its pairs at c / f already: say so where they let a body go.
+fn apex_note(scene: &Scene) -> String {
+    let which: Vec<String> = scene
+        .contacts
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| c.friction > 0.0 && c.tensile_strength > c.cohesion / c.friction)
+        .map(|(i, c)| format!("contacts[{i}] opens at c / f = {} (its tensile_strength {} exceeds that Coulomb apex: no shear strength is left there)", c.cohesion / c.friction, c.tensile_strength))
+        .collect();
+    if which.is_empty() || scene.solver.rule != crate::contact::StateRule::Robust {
+        String::new()
+    } else {
+        format!(" ({})", which.join("; "))
     }
 }

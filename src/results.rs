@@ -100,12 +100,34 @@ pub struct StepResult {
 pub struct ContactRun {
     pub states: Vec<ContactState>,
     pub pairs: Vec<PairResult>,
+    /// Each pair's frame, rows n, t, b (global components): `sigma_n`,
+    /// `tau_t`, `tau_b` are along them.
+    pub frames: Vec<[[f64; 3]; 3]>,
+    /// The area each pair controls (its stresses times it are its forces).
+    pub areas: Vec<f64>,
+    /// Pairs opened in tension between the Coulomb apex c / f and f_t
+    /// (where f_t exceeds the apex).
+    pub apex_openings: usize,
     pub iterations: usize,
     pub converged: bool,
     pub cycled: bool,
     /// Cycles broken by changing one pair at a time.
     pub cycles_broken: usize,
     pub history: Vec<Vec<ContactState>>,
+}
+
+impl ContactRun {
+    /// The shear traction of pair `p` on body I in global axes.
+    pub fn shear(&self, p: usize) -> [f64; 3] {
+        let (f, r) = (&self.frames[p], &self.pairs[p]);
+        std::array::from_fn(|i| r.tau_t * f[1][i] + r.tau_b * f[2][i])
+    }
+
+    /// The contact force of pair `p` on body I in global axes.
+    pub fn force(&self, p: usize) -> [f64; 3] {
+        let (f, r, a) = (&self.frames[p], &self.pairs[p], self.areas[p]);
+        std::array::from_fn(|i| (r.sigma_n * f[0][i] + r.tau_t * f[1][i] + r.tau_b * f[2][i]) * a)
+    }
 }
 
 /// Counts of open, slip, stick.

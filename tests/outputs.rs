@@ -230,7 +230,8 @@ fn vtu_displacement_equals_the_lame_closed_form_at_every_node() {
 #[test]
 fn contact_csv_has_the_promised_header_and_one_row_per_pair() {
     let r = cylinder();
-    assert_eq!(r.csv_header, "pair,x,y,z,status,sigma_n,tau_t,tau_b,gap,slip");
+    // the promised columns first, then the ones added since (area, global shear vector)
+    assert_eq!(r.csv_header, "pair,x,y,z,status,sigma_n,tau_t,tau_b,gap,slip,area,tau_x,tau_y,tau_z");
     let pairs = at(&r.summary, "contact.pairs").as_u64().unwrap() as usize;
     assert_eq!(pairs, 81, "lc = 0.05 puts 81 nodes on A-A");
     assert_eq!(r.csv.len(), pairs, "one row per pair");
@@ -255,7 +256,7 @@ fn contact_vtu_has_the_promised_fields_and_matches_contact_csv() {
     assert_eq!(m.cells[0].1.len(), 40);
     let mut names: Vec<&str> = m.point_data.keys().map(|k| k.as_str()).collect();
     names.sort();
-    assert_eq!(names, ["gap", "sigma_n", "slip", "status", "tau"]);
+    assert_eq!(names, ["area", "gap", "shear", "sigma_n", "slip", "status", "tau"]);
     let (status, sigma_n, tau, gap, slip) = (m.field("status", 1), m.field("sigma_n", 1), m.field("tau", 1), m.field("gap", 1), m.field("slip", 1));
     assert_eq!(m.points.len(), r.csv.len(), "one point per pair");
     let close = |a: f64, b: f64| (a - b).abs() <= 1e-11 * (1.0 + a.abs().max(b.abs()));

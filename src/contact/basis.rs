@@ -52,17 +52,6 @@ pub struct FaceBasis {
     pub areas: Vec<f64>,
 }
 
-/// The corner pairs (positions in the facet) and middle node of each edge of
-/// a quadratic facet, gmsh order.
-fn facet_edges(kind: CellKind) -> &'static [[usize; 3]] {
-    match kind {
-        CellKind::Line3 => &[[2, 0, 1]],
-        CellKind::Tri6 => &[[3, 0, 1], [4, 1, 2], [5, 2, 0]],
-        CellKind::Quad8 | CellKind::Quad9 => &[[4, 0, 1], [5, 1, 2], [6, 2, 3], [7, 3, 0]],
-        _ => &[],
-    }
-}
-
 impl FaceBasis {
     /// The basis of the model's interfaces: transformed edges on tri6 and
     /// quad8 faces, and on line3 / quad9 faces where a corner controls no
@@ -82,7 +71,7 @@ impl FaceBasis {
         for iface in &model.interfaces {
             for f in &iface.facets {
                 let always = matches!(f.kind, CellKind::Tri6 | CellKind::Quad8);
-                for e in facet_edges(f.kind) {
+                for e in f.kind.facet_edges().iter().filter(|e| e[0] != usize::MAX) {
                     let [m, c1, c2] = e.map(|i| pair_of[f.nodes[i]]);
                     if m == NONE || c1 == NONE || c2 == NONE || by_mid.contains_key(&m) {
                         continue;

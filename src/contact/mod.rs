@@ -91,6 +91,8 @@ pub struct Outcome {
     pub cycled: bool,
     /// Cycles broken by changing one pair at a time (robust rule).
     pub cycles_broken: usize,
+    /// Pairs opened in tension between the Coulomb apex c / f and f_t.
+    pub apex_openings: usize,
     /// State sets of every iteration (the ones solved with).
     pub history: Vec<Vec<ContactState>>,
 }

@@ -107,6 +107,7 @@ pub fn iterate(problem: &InterfaceProblem, laws: &[PairLaw], lambda: &[f64], h: 
     let mut iteration = 0;
     let mut one_at_a_time = false;
     let mut cycles_broken = 0;
+    let mut apex_openings = 0;
     loop {
         iteration += 1;
         let relations: Vec<Relation> = (0..n).map(|p| relation(h, &laws[p], p, problem.area(p), stiffness[p], force[p], rel[p], reference[p])).collect();
@@ -162,6 +163,13 @@ pub fn iterate(problem: &InterfaceProblem, laws: &[PairLaw], lambda: &[f64], h: 
                 }
             }
         }
+        for p in (0..n).filter(|&p| next[p] == ContactState::Open && h.states[p] != ContactState::Open) {
+            let s = &laws[p].strength;
+            let (ft, _) = s.effective(cracked(h, p));
+            if force[p][0] < ft * problem.area(p) {
+                apex_openings += 1;
+            }
+        }
         // 3. directions of slipping pairs (a fallback where ξ vanishes)
         for p in 0..n {
             if next[p] == ContactState::Slip {
@@ -182,7 +190,7 @@ pub fn iterate(problem: &InterfaceProblem, laws: &[PairLaw], lambda: &[f64], h: 
             }
             let states = h.states.clone();
             h.states = next;
-            return Ok(Outcome { states, solution, iterations: iteration, converged, cycled: false, cycles_broken, history });
+            return Ok(Outcome { states, solution, iterations: iteration, converged, cycled: false, cycles_broken, apex_openings, history });
         }
         h.states = next;
     }

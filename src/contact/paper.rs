@@ -87,7 +87,7 @@ pub fn iterate(problem: &InterfaceProblem, laws: &[PairLaw], lambda: &[f64], h: 
             }
             let states = h.states.clone();
             h.states = next;
-            return Ok(Outcome { states, solution, iterations: iteration, converged, cycled, cycles_broken: 0, history });
+            return Ok(Outcome { states, solution, iterations: iteration, converged, cycled, cycles_broken: 0, apex_openings: 0, history });
         }
         h.states = next;
     }

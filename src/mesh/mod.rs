@@ -115,6 +115,22 @@ impl CellKind {
         }
     }
 
+    /// The edges of a facet kind (a line or a surface cell), gmsh order:
+    /// `[middle, corner, corner]`, the middle node `usize::MAX` on linear
+    /// kinds. A line is its own one edge.
+    pub fn facet_edges(self) -> &'static [[usize; 3]] {
+        const X: usize = usize::MAX;
+        match self {
+            CellKind::Line2 => &[[X, 0, 1]],
+            CellKind::Line3 => &[[2, 0, 1]],
+            CellKind::Tri3 => &[[X, 0, 1], [X, 1, 2], [X, 2, 0]],
+            CellKind::Tri6 => &[[3, 0, 1], [4, 1, 2], [5, 2, 0]],
+            CellKind::Quad4 => &[[X, 0, 1], [X, 1, 2], [X, 2, 3], [X, 3, 0]],
+            CellKind::Quad8 | CellKind::Quad9 => &[[4, 0, 1], [5, 1, 2], [6, 2, 3], [7, 3, 0]],
+            _ => &[],
+        }
+    }
+
     pub fn name(self) -> &'static str {
         match self {
             CellKind::Point1 => "point1",

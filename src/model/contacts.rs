@@ -53,13 +53,11 @@ pub(super) fn split(b: &Builder, bodies: &mut [Body], nb: &[Vec<usize>], size: f
                 ContactGroups::Pair(..) => None,
             })
             .collect();
-        let ends: Vec<Vec<usize>> = shared.iter().map(|(_, g)| curve_ends(&g.cells)).collect();
-        let nodes: Vec<Vec<usize>> = shared.iter().map(|(_, g)| g.nodes()).collect();
+        let rims: Vec<Rim> = shared.iter().map(|(_, g)| Rim::new(&g.cells)).collect();
         for (a, (ca, _)) in shared.iter().enumerate() {
-            for &n in &ends[a] {
-                let inside_other = (0..shared.len()).any(|o| o != a && nodes[o].binary_search(&n).is_ok() && ends[o].binary_search(&n).is_err());
-                if inside_other {
-                    ceded.insert((*ca, n));
+            for (key, nodes) in &rims[a].rim {
+                if (0..shared.len()).any(|o| o != a && rims[o].inside.contains(key)) {
+                    ceded.extend(nodes.iter().map(|&n| (*ca, n)));
                 }
             }
         }
@@ -224,19 +222,53 @@ fn contact_sides(b: &Builder, key: &str, name: &str, nb: &[Vec<usize>], bodies: 
     Ok(sides)
 }
 
-/// The end nodes of a group of line facets: corner nodes of one facet only.
-/// (Surfaces have no ends in this sense: junctions of contact surfaces in 3D
-/// are not supported.)
-fn curve_ends(facets: &[Cell]) -> Vec<usize> {
-    let mut count: HashMap<usize, usize> = HashMap::new();
-    for f in facets.iter().filter(|f| f.kind.dim() == 1) {
-        for &n in &f.nodes[..2] {
-            *count.entry(n).or_default() += 1;
+/// The rim of a contact group and what lies inside it, as keys: on a curve
+/// its points `(n, n)`, on a surface its edges `(corner, corner)` ascending.
+/// The rim is a curve's two ends, or a surface's edges that only one facet
+/// has; inside is every other point or edge. Where contacts meet, a
+/// contact whose rim lies inside another (a joint ending on a base) cedes
+/// the nodes of that part of its rim: they are paired by the other one.
+struct Rim {
+    /// Each rim key with its nodes (a surface edge's middle node included).
+    rim: Vec<((usize, usize), Vec<usize>)>,
+    inside: HashSet<(usize, usize)>,
+}
+
+impl Rim {
+    fn new(facets: &[Cell]) -> Rim {
+        let mut count: HashMap<(usize, usize), (usize, Vec<usize>)> = HashMap::new();
+        for f in facets {
+            if f.kind.dim() == 1 {
+                // a curve: its corners count their facets, its middle nodes are inside
+                for &n in &f.nodes[..2] {
+                    count.entry((n, n)).or_insert((0, vec![n])).0 += 1;
+                }
+                for &n in &f.nodes[2..] {
+                    count.entry((n, n)).or_insert((0, vec![n])).0 += 2;
+                }
+                continue;
+            }
+            for e in f.kind.facet_edges() {
+                let (a, b) = (f.nodes[e[1]], f.nodes[e[2]]);
+                let mut nodes = vec![a, b];
+                if e[0] != usize::MAX {
+                    nodes.push(f.nodes[e[0]]);
+                }
+                count.entry((a.min(b), a.max(b))).or_insert((0, nodes)).0 += 1;
+            }
         }
+        let mut rim = Vec::new();
+        let mut inside = HashSet::new();
+        for (key, (n, nodes)) in count {
+            if n == 1 {
+                rim.push((key, nodes));
+            } else {
+                inside.insert(key);
+            }
+        }
+        rim.sort_unstable();
+        Rim { rim, inside }
     }
-    let mut ends: Vec<usize> = count.into_iter().filter(|&(_, c)| c == 1).map(|(n, _)| n).collect();
-    ends.sort_unstable();
-    ends
 }
 
 /// The one body a group (one side of a `groups = [..]` contact) bounds.

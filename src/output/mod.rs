@@ -165,6 +165,8 @@ fn contact_vtu(model: &Model, c: &ContactRun) -> Result<Vec<u8>> {
     let tau = get(&|p| c.pairs[p].tau());
     let gap = get(&|p| c.pairs[p].gap);
     let slip = get(&|p| c.pairs[p].slip);
+    let shear: Vec<f64> = pairs.iter().flat_map(|&p| if p == usize::MAX { [0.0; 3] } else { c.shear(p) }).collect();
+    let area = get(&|p| c.areas[p]);
     let status_f: Vec<f64> = status.iter().map(|&s| s as f64).collect();
     let point_data = [
         Field { name: "status", n_comp: 1, values: &status_f },
@@ -172,17 +174,20 @@ fn contact_vtu(model: &Model, c: &ContactRun) -> Result<Vec<u8>> {
         Field { name: "tau", n_comp: 1, values: &tau },
         Field { name: "gap", n_comp: 1, values: &gap },
         Field { name: "slip", n_comp: 1, values: &slip },
+        Field { name: "shear", n_comp: 3, values: &shear },
+        Field { name: "area", n_comp: 1, values: &area },
     ];
     Ok(vtu::vtu_bytes(&points, &cells, &point_data, &[], &[IntField { name: "interface", values: &iface_id }])?)
 }
 
 /// One row per contact pair: position, state and the pair's values.
 fn contact_csv(model: &Model, c: &ContactRun) -> String {
-    let mut s = String::from("pair,x,y,z,status,sigma_n,tau_t,tau_b,gap,slip\n");
+    let mut s = String::from("pair,x,y,z,status,sigma_n,tau_t,tau_b,gap,slip,area,tau_x,tau_y,tau_z\n");
     for (i, (p, r)) in model.pairs.iter().zip(&c.pairs).enumerate() {
         let x = model.coords[p.k];
+        let t = c.shear(i);
         s += &format!(
-            "{i},{:.12e},{:.12e},{:.12e},{},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e}\n",
+            "{i},{:.12e},{:.12e},{:.12e},{},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e}\n",
             x[0],
             x[1],
             x[2],
@@ -191,7 +196,11 @@ fn contact_csv(model: &Model, c: &ContactRun) -> String {
             r.tau_t,
             r.tau_b,
             r.gap,
-            r.slip
+            r.slip,
+            c.areas[i],
+            t[0],
+            t[1],
+            t[2]
         );
     }
     s
@@ -230,6 +239,7 @@ fn summary(run: &Run) -> serde_json::Value {
         "residuals": { "interface": run.residual_interface, "assembled": run.residual_assembled },
         "counters": run.counters,
         "fields": run.scene.output.fields,
+        "warnings": run.scene.warnings(),
     });
     if let Some(c) = &run.contact {
         let counts = state_counts(&c.states);

@@ -12,6 +12,9 @@ pub fn report(run: &Run) -> String {
     let sc = &run.scene;
     let _ = writeln!(s, "# {}\n", sc.title);
     let _ = writeln!(s, "Scene `{}`, analysis {}, mesh `{}`{}.\n", sc.path.display(), sc.analysis, run.msh.display(), if run.mesh_cached { " (cached)" } else { "" });
+    for w in sc.warnings() {
+        let _ = writeln!(s, "**Warning:** {w}.\n");
+    }
     let _ = writeln!(s, "| quantity | value |\n|---|---|");
     let _ = writeln!(s, "| bodies | {} |", run.model.bodies.iter().map(|b| b.name.as_str()).collect::<Vec<_>>().join(", "));
     let _ = writeln!(s, "| elements | {} |", run.model.bodies.iter().map(|b| b.cells.len()).sum::<usize>());

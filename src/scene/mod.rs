@@ -259,6 +259,35 @@ impl Scene {
         &self.materials[&body.material]
     }
 
+    /// What is legal but probably not what the user meant: a tensile
+    /// strength above the Coulomb apex c / f (a joint in tension above c / f
+    /// has no shear strength left, so the robust rule opens it there).
+    pub fn warnings(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        for (i, c) in self.contacts.iter().enumerate() {
+            if c.friction > 0.0 && c.tensile_strength > c.cohesion / c.friction {
+                // six significant digits, no trailing zeros
+                let apex = format!("{:.6}", c.cohesion / c.friction).trim_end_matches('0').trim_end_matches('.').to_string();
+                let name = match &c.groups {
+                    ContactGroups::Shared(g) => g.clone(),
+                    ContactGroups::Pair(a, b) => format!("{a}|{b}"),
+                };
+                let then = match self.solver.rule {
+                    StateRule::Robust => format!("its pairs open there (the run uses f_t = {apex})"),
+                    StateRule::Paper => "the paper's rule keeps f_t, so a pair in tension between c / f and f_t slips with no shear strength and a body held by such pairs slides".to_string(),
+                };
+                out.push(format!(
+                    "{}: contacts[{i}] (\"{name}\"): tensile_strength = {} exceeds the Coulomb apex c / f = {} / {} = {apex}: a joint in tension above c / f has no shear strength left, so {then}. Lower tensile_strength to at most c / f, or raise the cohesion, if that is not what you mean",
+                    self.path.display(),
+                    c.tensile_strength,
+                    c.cohesion,
+                    c.friction,
+                ));
+            }
+        }
+        out
+    }
+
     /// The model's description: the bodies with their materials, contacts,
     /// supports and loads, each with the key path that defined it (for the
     /// model builder's messages).
