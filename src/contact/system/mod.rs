@@ -1,35 +1,25 @@
-//! The interface system: the condensed parts in the pairs' local frames and
-//! in mean / relative coordinates, solved for one set of pair relations.
+//! The interface system: the condensed parts in the pairs' local frames
+//! and in mean / relative coordinates ([`coords`]), reduced once to the
+//! relative displacements ([`reduce`]), and solved for one set of pair
+//! relations.
 //!
-//! Per part, `S' = T Q^T S Q T^T`, `G' = T Q^T G` (T block-diagonal, one pair
-//! frame per interface node; Q the face basis of [`super::basis`], the
-//! identity on linear faces). Per pair and local axis the two sides' DOFs
-//! are written as a mean `m` and a relative displacement `r = d'_l - d'_k`:
-//!
-//! ```text
-//! d'_k = m - r/2,  d'_l = m + r/2        (neither side supported)
-//! d'_k = v,        d'_l = v + r          (k held at v; likewise for l)
-//! ```
-//!
-//! i.e. `d' = W y + w0`. The condensed equations `S' d' = G' + f` with the
-//! contact force λ on body I at k and -λ on body II at l become
-//!
-//! ```text
-//! K y - b = [0 on the means; -λ on the relative displacements],
-//! K = W^T S' W,   b = W^T (G' - S' w0)
-//! ```
-//!
-//! so the contact force of every pair is the residual of its `r` rows, and a
-//! set of contact states is a choice, per axis, between a known `r` (tied:
-//! stick on every axis, slip on the normal) and a known relation for λ
-//! (open: λ = 0; slip: the friction law's force, possibly linearised in the
-//! pair's slip and normal force). K is formed once; each state set solves
-//! the rows it leaves free. A supported axis of a pair is a prescribed `d'`;
-//! its force is read on the unsupported side, and is zero where both are
-//! supported (the supports carry it).
+//! A set of contact states is a choice, per pair axis, between a known
+//! relative displacement `r` (tied: stick on every axis, slip on the normal)
+//! and a known relation for the contact force λ (open: λ = 0; slip: the
+//! friction law's force, possibly linearised in the pair's slip and normal
+//! force). With `W r - c = -λ` (reduce.rs) each state set solves only the
+//! rows of its free relative displacements. A supported axis of a pair is a
+//! prescribed `d'`; its force is read on the unsupported side, and is zero
+//! where both are supported (the supports carry it).
+
+pub mod coords;
+pub mod reduce;
 
 use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
+
+use coords::{Axis, Blocks, Var};
+use reduce::Reduced;
 
 use super::basis::{self, FaceBasis};
 use super::frame::{aligned_axis, frame, Frame};
@@ -38,46 +28,6 @@ use super::rigid::{free_parts, RigidModes, Tie};
 use crate::fem::sparse::NONE;
 use crate::model::{Model, ModelError};
 use crate::substructure::Condensed;
-
-/// How one local axis of a pair enters the unknowns `y`.
-#[derive(Clone, Copy, Debug)]
-enum Axis {
-    /// Neither side held: `d'_k = m - r/2`, `d'_l = m + r/2`.
-    Free { m: usize, r: usize },
-    /// Side k held at `v` (per unit ramp): `d'_k = v`, `d'_l = v + r`.
-    HeldK { r: usize, v: f64 },
-    /// Side l held at `v`: `d'_l = v`, `d'_k = v - r`.
-    HeldL { r: usize, v: f64 },
-    /// Both sides held.
-    Held { vk: f64, vl: f64 },
-    /// The axis does not exist (the third axis in 2D).
-    Absent,
-}
-
-impl Axis {
-    fn r(self) -> Option<usize> {
-        match self {
-            Axis::Free { r, .. } | Axis::HeldK { r, .. } | Axis::HeldL { r, .. } => Some(r),
-            _ => None,
-        }
-    }
-
-    /// `d'` of side `s` (0 = k, 1 = l) as `sum c y + const * ramp`.
-    fn terms(self, s: usize) -> ([(usize, f64); 2], usize, f64) {
-        let none = (NONE, 0.0);
-        match (self, s) {
-            (Axis::Free { m, r }, 0) => ([(m, 1.0), (r, -0.5)], 2, 0.0),
-            (Axis::Free { m, r }, _) => ([(m, 1.0), (r, 0.5)], 2, 0.0),
-            (Axis::HeldK { v, .. }, 0) => ([none, none], 0, v),
-            (Axis::HeldK { r, v }, _) => ([(r, 1.0), none], 1, v),
-            (Axis::HeldL { r, v }, 0) => ([(r, -1.0), none], 1, v),
-            (Axis::HeldL { v, .. }, _) => ([none, none], 0, v),
-            (Axis::Held { vk, .. }, 0) => ([none, none], 0, vk),
-            (Axis::Held { vl, .. }, _) => ([none, none], 0, vl),
-            (Axis::Absent, _) => ([none, none], 0, 0.0),
-        }
-    }
-}
 
 /// Where a part's interface nodes sit among the pairs.
 struct PartMap {
@@ -124,13 +74,8 @@ pub struct InterfaceProblem {
     pub frames: Vec<Frame>,
     pub basis: FaceBasis,
     axes: Vec<[Axis; 3]>,
-    ny: usize,
-    /// `W^T S' W`, dense, column-major.
-    k: Mat<f64>,
-    /// `W^T G'` per load case, and `-W^T S' w0` for the prescribed values
-    /// at ramp 1.
-    b_cases: Vec<Vec<f64>>,
-    b_fixed: Vec<f64>,
+    /// The contact problem in relative displacements.
+    reduced: Reduced,
     parts: Vec<PartMap>,
     /// Rigid motions of each part and the position of each pair, to tell
     /// which parts nothing holds.
@@ -161,41 +106,6 @@ pub enum SolveFailure {
     /// These bodies slide (or rotate) freely on slipping pairs: nothing holds
     /// them tangentially (empty when the cause is not found).
     Singular(Vec<usize>),
-}
-
-/// `T A T^T` in place for a dense column-major `nc x nc` matrix whose
-/// node blocks are rotated by `t[node]`.
-fn rotate_matrix(s: &mut [f64], nc: usize, nd: usize, t: &[Frame]) {
-    let mut tmp = [0.0; 3];
-    // columns: S T^T
-    for i in 0..nc {
-        for (q, tq) in t.iter().enumerate() {
-            for a in 0..nd {
-                tmp[a] = (0..nd).map(|c| s[i + (q * nd + c) * nc] * tq[a][c]).sum();
-            }
-            for a in 0..nd {
-                s[i + (q * nd + a) * nc] = tmp[a];
-            }
-        }
-    }
-    // rows: T (S T^T)
-    for j in 0..nc {
-        for (q, tq) in t.iter().enumerate() {
-            for a in 0..nd {
-                tmp[a] = (0..nd).map(|c| tq[a][c] * s[q * nd + c + j * nc]).sum();
-            }
-            for a in 0..nd {
-                s[q * nd + a + j * nc] = tmp[a];
-            }
-        }
-    }
-}
-
-fn rotate_vector(g: &mut [f64], nd: usize, t: &[Frame]) {
-    for (q, tq) in t.iter().enumerate() {
-        let v: Vec<f64> = (0..nd).map(|a| (0..nd).map(|c| tq[a][c] * g[q * nd + c]).sum()).collect();
-        g[q * nd..q * nd + nd].copy_from_slice(&v);
-    }
 }
 
 impl InterfaceProblem {
@@ -258,31 +168,8 @@ impl InterfaceProblem {
                 }
             }
         }
-        // unknowns
-        let mut ny = 0;
-        let mut next = || {
-            ny += 1;
-            ny - 1
-        };
-        let axes: Vec<[Axis; 3]> = fixed
-            .iter()
-            .map(|fx| {
-                std::array::from_fn(|a| {
-                    if a >= nd {
-                        return Axis::Absent;
-                    }
-                    match (fx[0][a], fx[1][a]) {
-                        (None, None) => {
-                            let m = next();
-                            Axis::Free { m, r: next() }
-                        }
-                        (Some(v), None) => Axis::HeldK { r: next(), v },
-                        (None, Some(v)) => Axis::HeldL { r: next(), v },
-                        (Some(vk), Some(vl)) => Axis::Held { vk, vl },
-                    }
-                })
-            })
-            .collect();
+        // unknowns, and the parts' interface nodes among them
+        let (axes, nm, nr) = coords::number(&fixed, nd);
         let at: Vec<[(usize, usize); 2]> = model.pairs.iter().map(|p| [where_is[p.k], where_is[p.l]]).collect();
         let maps: Vec<PartMap> = parts
             .iter()
@@ -304,64 +191,28 @@ impl InterfaceProblem {
             })
             .collect();
         let cases = parts.iter().map(|p| p.g.len()).max().unwrap_or(1);
-        let mut k = Mat::<f64>::zeros(ny, ny);
-        let mut b_cases = vec![vec![0.0; ny]; cases];
-        let mut b_fixed = vec![0.0; ny];
+        let mut blocks = Blocks::zeros(nm, nr, cases);
         for (part, map) in parts.iter().zip(&maps) {
-            let nc = part.nc;
-            if nc == 0 {
+            if part.nc == 0 {
                 continue;
             }
             let t: Vec<Frame> = map.nodes.iter().map(|&(pair, _)| frames[pair]).collect();
-            let mut s = part.s.clone();
-            basis::transform_matrix(&mut s, nc, nd, &map.edges);
-            rotate_matrix(&mut s, nc, nd, &t);
-            // d'_u = sum_i c_i y_i + w0_u: the terms of every part DOF
-            let terms: Vec<([(usize, f64); 2], usize, f64)> =
-                (0..nc).map(|u| {
+            let terms: Vec<coords::Terms> = (0..part.nc)
+                .map(|u| {
                     let (pair, side) = map.nodes[u / nd];
                     axes[pair][u % nd].terms(side)
-                }).collect();
-            let w0: Vec<f64> = terms.iter().map(|t| t.2).collect();
-            for v in 0..nc {
-                let (tv, nv, _) = terms[v];
-                for u in 0..nc {
-                    let (tu, nu, _) = terms[u];
-                    let suv = s[u + v * nc];
-                    if suv == 0.0 {
-                        continue;
-                    }
-                    for &(i, ci) in &tu[..nu] {
-                        for &(j, cj) in &tv[..nv] {
-                            k[(i, j)] += ci * cj * suv;
-                        }
-                    }
-                }
-            }
-            for (case, gc) in part.g.iter().enumerate() {
-                let mut g = gc.clone();
-                basis::transform_load(&mut g, nd, &map.edges);
-                rotate_vector(&mut g, nd, &t);
-                for u in 0..nc {
-                    let (tu, nu, _) = terms[u];
-                    for &(i, ci) in &tu[..nu] {
-                        b_cases[case][i] += ci * g[u];
-                    }
-                }
-            }
-            if w0.iter().any(|&v| v != 0.0) {
-                for u in 0..nc {
-                    let sw: f64 = (0..nc).map(|v| s[u + v * nc] * w0[v]).sum();
-                    let (tu, nu, _) = terms[u];
-                    for &(i, ci) in &tu[..nu] {
-                        b_fixed[i] -= ci * sw;
-                    }
-                }
-            }
+                })
+                .collect();
+            blocks.add_part(&part.s, &part.g, nd, &terms, &t, &map.edges);
         }
+        let reduced = Reduced::new(blocks).map_err(|_| ModelError::Invalid {
+            scene: model.scene.clone(),
+            key: "supports".into(),
+            msg: "the bodies are not held even with every contact stuck (the bonded interface system is singular): add a support".into(),
+        })?;
         let rigid = parts.iter().map(|p| RigidModes::new(model, &p.part.bodies)).collect();
         let positions = model.pairs.iter().map(|p| model.coords[p.k]).collect();
-        Ok(InterfaceProblem { nd, frames, basis, axes, ny, k, b_cases, b_fixed, parts: maps, rigid, positions, at })
+        Ok(InterfaceProblem { nd, frames, basis, axes, reduced, parts: maps, rigid, positions, at })
     }
 
     /// The area pair `p` controls (in the interface basis), > 0.
@@ -375,9 +226,9 @@ impl InterfaceProblem {
     }
 
     /// A stiffness of pair `p`'s relative displacement (the mean diagonal
-    /// of its `r` rows): the scale that turns a slip into a force.
+    /// of W over its axes): the scale that turns a slip into a force.
     pub fn stiffness(&self, p: usize) -> f64 {
-        let d: Vec<f64> = self.axes[p].iter().filter_map(|a| a.r()).map(|r| self.k[(r, r)]).collect();
+        let d: Vec<f64> = self.axes[p].iter().filter_map(|a| a.r()).map(|r| self.reduced.w[(r, r)]).collect();
         if d.is_empty() {
             1.0
         } else {
@@ -400,78 +251,73 @@ impl InterfaceProblem {
         if !sliding.is_empty() {
             return Err(SolveFailure::Singular(sliding));
         }
-        let ny = self.ny;
-        let mut b = self.b_fixed.iter().map(|v| v * ramp).collect::<Vec<f64>>();
-        for (bc, &l) in self.b_cases.iter().zip(lambda) {
-            if l != 0.0 {
-                for (o, v) in b.iter_mut().zip(bc) {
-                    *o += l * v;
-                }
-            }
-        }
-        // free unknowns, and the known values of tied ones
-        let mut y = vec![0.0; ny];
-        let mut free = vec![true; ny];
-        for (p, r) in rel.iter().enumerate() {
+        let w = &self.reduced.w;
+        let nr = w.nrows();
+        let c = self.reduced.c_at(lambda);
+        // free relative displacements, and the known values of tied ones
+        let mut r = vec![0.0; nr];
+        let mut free = vec![true; nr];
+        for (p, rl) in rel.iter().enumerate() {
             for a in 0..nd {
                 if let Some(ri) = self.axes[p][a].r() {
-                    if !r.free_axis(a) {
+                    if !rl.free_axis(a) {
                         free[ri] = false;
-                        y[ri] = r.target[a];
+                        r[ri] = rl.target[a];
                     }
                 }
             }
         }
-        let fidx: Vec<usize> = (0..ny).filter(|&i| free[i]).collect();
-        let mut pos = vec![NONE; ny];
+        let fidx: Vec<usize> = (0..nr).filter(|&i| free[i]).collect();
+        let mut pos = vec![NONE; nr];
         for (f, &i) in fidx.iter().enumerate() {
             pos[i] = f;
         }
         let nf = fidx.len();
-        // K y_T: the known part of every row
-        let mut ky_t = vec![0.0; ny];
-        for j in (0..ny).filter(|&j| !free[j] && y[j] != 0.0) {
-            let yj = y[j];
-            for (i, v) in ky_t.iter_mut().enumerate() {
-                *v += self.k[(i, j)] * yj;
+        // c - W r_T: the known part of every row
+        let mut known = c.clone();
+        for j in (0..nr).filter(|&j| !free[j] && r[j] != 0.0) {
+            let rj = r[j];
+            for (i, v) in known.iter_mut().enumerate() {
+                *v -= w[(i, j)] * rj;
             }
         }
-        let mut kf = Mat::<f64>::zeros(nf, nf);
+        let mut wf = Mat::<f64>::zeros(nf, nf);
         for (fj, &j) in fidx.iter().enumerate() {
             for (fi, &i) in fidx.iter().enumerate() {
-                kf[(fi, fj)] = self.k[(i, j)];
+                wf[(fi, fj)] = w[(i, j)];
             }
         }
         let mut rhs = Mat::<f64>::zeros(nf, 1);
         for (fi, &i) in fidx.iter().enumerate() {
-            rhs[(fi, 0)] = b[i] - ky_t[i];
+            rhs[(fi, 0)] = known[i];
         }
-        // slipping pairs: the friction force on their free tangential rows
+        // slipping pairs: the friction force on their free tangential rows,
+        // (W r - c)_t + force + coupling (W r - c)_n + spring r = 0
         let mut symmetric = true;
-        for (p, r) in rel.iter().enumerate() {
-            if r.state != ContactState::Slip {
+        for (p, rl) in rel.iter().enumerate() {
+            if rl.state != ContactState::Slip {
                 continue;
             }
             let rn = self.axes[p][0].r();
             for a in 1..nd {
                 let Some(ra) = self.axes[p][a].r() else { continue };
                 let i = pos[ra];
-                rhs[(i, 0)] -= r.force[a];
-                if let (Some(rn), true) = (rn, r.coupling[a] != 0.0) {
+                rhs[(i, 0)] -= rl.force[a];
+                if let (Some(rn), true) = (rn, rl.coupling[a] != 0.0) {
                     symmetric = false;
-                    let ca = r.coupling[a];
+                    let ca = rl.coupling[a];
                     for (fj, &j) in fidx.iter().enumerate() {
-                        kf[(i, fj)] += ca * self.k[(rn, j)];
+                        wf[(i, fj)] += ca * w[(rn, j)];
                     }
-                    rhs[(i, 0)] += ca * (b[rn] - ky_t[rn]);
+                    rhs[(i, 0)] += ca * known[rn];
                 }
-                for c in 1..nd {
-                    if r.spring[a][c] == 0.0 {
+                for cax in 1..nd {
+                    if rl.spring[a][cax] == 0.0 {
                         continue;
                     }
-                    if let Some(rc) = self.axes[p][c].r() {
-                        kf[(i, pos[rc])] += r.spring[a][c];
-                        if r.spring[a][c] != r.spring[c][a] {
+                    if let Some(rc) = self.axes[p][cax].r() {
+                        wf[(i, pos[rc])] += rl.spring[a][cax];
+                        if rl.spring[a][cax] != rl.spring[cax][a] {
                             symmetric = false;
                         }
                     }
@@ -481,12 +327,12 @@ impl InterfaceProblem {
         let z = if nf == 0 {
             Mat::<f64>::zeros(0, 1)
         } else if symmetric {
-            match kf.llt(Side::Lower) {
+            match wf.llt(Side::Lower) {
                 Ok(l) => l.solve(&rhs),
                 Err(_) => return Err(self.diagnose(&states)),
             }
         } else {
-            kf.partial_piv_lu().solve(&rhs)
+            wf.partial_piv_lu().solve(&rhs)
         };
         if z.col(0).iter().any(|v| !v.is_finite()) {
             return Err(self.diagnose(&states));
@@ -494,7 +340,7 @@ impl InterfaceProblem {
         let residual = if nf == 0 {
             0.0
         } else {
-            let res = &kf * &z - &rhs;
+            let res = &wf * &z - &rhs;
             res.norm_l2() / rhs.norm_l2().max(f64::MIN_POSITIVE)
         };
         // Singular up to round-off (a body sliding freely on slipping pairs)
@@ -503,9 +349,11 @@ impl InterfaceProblem {
             return Err(self.diagnose(&states));
         }
         for (f, &i) in fidx.iter().enumerate() {
-            y[i] = z[(f, 0)];
+            r[i] = z[(f, 0)];
         }
-        // the contact forces: the residual of the r rows
+        // the contact forces: -(W r - c); a free axis carries what its
+        // relation prescribes (an open pair exactly zero, not round-off)
+        let wr_c = self.reduced.residual(&r, &c);
         let mut forces = vec![[0.0; 3]; rel.len()];
         let mut rels = vec![[0.0; 3]; rel.len()];
         for (p, ax) in self.axes.iter().enumerate() {
@@ -514,24 +362,20 @@ impl InterfaceProblem {
                     Axis::Held { vk, vl } => rels[p][a] = (vl - vk) * ramp,
                     Axis::Absent => {}
                     axis => {
-                        let r = axis.r().expect("an axis with r");
-                        rels[p][a] = y[r];
-                        // the force of a free axis is what its relation
-                        // prescribes (an open pair's is exactly zero, not
-                        // the round-off of its residual)
+                        let ri = axis.r().expect("an axis with r");
+                        rels[p][a] = r[ri];
                         if !rel[p].free_axis(a) || rel[p].state == ContactState::Slip {
-                            let kr: f64 = (0..ny).map(|j| self.k[(r, j)] * y[j]).sum();
-                            forces[p][a] = -(kr - b[r]);
+                            forces[p][a] = -wr_c[ri];
                         }
                     }
                 }
             }
             if rel[p].state == ContactState::Slip {
                 let pn = -forces[p][0];
-                let r = &rel[p];
+                let rl = &rel[p];
                 for a in 1..nd {
                     if self.axes[p][a].r().is_some() {
-                        forces[p][a] = r.force[a] + r.coupling[a] * pn + (1..nd).map(|c| r.spring[a][c] * rels[p][c]).sum::<f64>();
+                        forces[p][a] = rl.force[a] + rl.coupling[a] * pn + (1..nd).map(|c| rl.spring[a][c] * rels[p][c]).sum::<f64>();
                     }
                 }
             }
@@ -544,6 +388,7 @@ impl InterfaceProblem {
             })
             .collect();
         // interface displacements of every part, global axes, nodal basis
+        let m = self.reduced.means(&r, lambda);
         let d_c = self
             .parts
             .iter()
@@ -552,8 +397,15 @@ impl InterfaceProblem {
                 for (q, &(pair, side)) in map.nodes.iter().enumerate() {
                     let mut local = [0.0; 3];
                     for (a, l) in local.iter_mut().enumerate().take(nd) {
-                        let (t, n, c) = self.axes[pair][a].terms(side);
-                        *l = c * ramp + t[..n].iter().map(|&(i, ci)| ci * y[i]).sum::<f64>();
+                        let t = self.axes[pair][a].terms(side);
+                        *l = t.constant * ramp
+                            + t.vars[..t.n]
+                                .iter()
+                                .map(|&(v, cv)| cv * match v {
+                                    Var::M(i) => m[i],
+                                    Var::R(i) => r[i],
+                                })
+                                .sum::<f64>();
                     }
                     let f = &self.frames[pair];
                     for c in 0..nd {
