@@ -19,6 +19,7 @@ pub mod fem;
 pub mod mesh;
 pub mod model;
 pub mod output;
+pub mod parallel;
 pub mod recover;
 pub mod results;
 pub mod scene;
