@@ -1,6 +1,10 @@
 //! The inverse of the reference map: [`locate`] finds the reference
 //! coordinates of a physical point in a cell by Newton on
-//! `x(xi) = Σ N_a(xi) x_a`, [`map_point`] evaluates the map.
+//! `x(xi) = Σ N_a(xi) x_a`, [`map_point`] evaluates the map. Both work in
+//! coordinates relative to the cell's first node, so that a cell at map
+//! coordinates (x ~ 4e6, h ~ 0.1) keeps the digits of its size: the
+//! residual and the Jacobian are differences of nearby coordinates, which
+//! subtracting the first node makes exact before anything is summed.
 
 use super::{eval, inside_reference, reference_centre};
 use crate::mesh::CellKind;
@@ -16,13 +20,14 @@ pub fn map_point(kind: CellKind, coords: &[[f64; 3]], xi: [f64; 3]) -> [f64; 3] 
     let mut n = [0.0; 27];
     let mut dn = [[0.0; 3]; 27];
     eval(kind, xi, &mut n[..nn], &mut dn[..nn]);
+    let o = coords[0];
     let mut x = [0.0; 3];
     for (na, c) in n[..nn].iter().zip(coords) {
         for i in 0..3 {
-            x[i] += na * c[i];
+            x[i] += na * (c[i] - o[i]);
         }
     }
-    x
+    std::array::from_fn(|i| o[i] + x[i])
 }
 
 /// Inverse map: the reference coordinates of physical point x in the cell whose node
@@ -57,6 +62,13 @@ pub fn locate(kind: CellKind, coords: &[[f64; 3]], x: [f64; 3]) -> Option<[f64; 
 
     let mut n = [0.0; 27];
     let mut dn = [[0.0; 3]; 27];
+    // Everything relative to the first node.
+    let o = coords[0];
+    let mut rel = [[0.0; 3]; 27];
+    for (r, c) in rel.iter_mut().zip(coords) {
+        *r = std::array::from_fn(|i| c[i] - o[i]);
+    }
+    let x: [f64; 3] = std::array::from_fn(|i| x[i] - o[i]);
     // Residual r = x - x(xi) and Jacobian J[i][j] = dx_i/dxi_j at xi.
     let mut residual = |xi: [f64; 3], jac: Option<&mut [[f64; 3]; 3]>| -> [f64; 3] {
         eval(kind, xi, &mut n[..nn], &mut dn[..nn]);
@@ -65,9 +77,9 @@ pub fn locate(kind: CellKind, coords: &[[f64; 3]], x: [f64; 3]) -> Option<[f64; 
         let mut j = [[0.0; 3]; 3];
         for a in 0..nn {
             for i in 0..d {
-                r[i] -= n[a] * coords[a][i];
+                r[i] -= n[a] * rel[a][i];
                 for k in 0..d {
-                    j[i][k] += dn[a][k] * coords[a][i];
+                    j[i][k] += dn[a][k] * rel[a][i];
                 }
             }
         }
