@@ -101,10 +101,11 @@ pub struct Errors {
     pub stress_l2: f64,
 }
 
-pub fn errors(model: &Model, u: &[f64], exact: &dyn Exact) -> Errors {
+/// `exact[b]` is the closed form of body b ([`crate::analytic::exact`]).
+pub fn errors(model: &Model, u: &[f64], exact: &[Box<dyn Exact>]) -> Errors {
     let (mut eu, mut nu_, mut es, mut ns) = (0.0, 0.0, 0.0, 0.0);
     let nd = dofs_per_node(model.analysis);
-    for body in &model.bodies {
+    for (body, exact) in model.bodies.iter().zip(exact) {
         let d = d_matrix(model.analysis, body.e, body.nu);
         for cell in &body.cells {
             let xe = coords(model, &cell.nodes);
