@@ -222,13 +222,11 @@ pub fn run_scene(mut scene: Scene, opts: &RunOptions) -> Result<Run> {
     let u = last.u.clone();
     let stresses = last.stresses.clone();
     let contact_run = last.contact.clone();
-    let exact = scene.analytic.as_ref().map(|a| {
-        let b0 = &model.bodies[0];
-        analytic::exact(a, model.analysis, b0.e, b0.nu)
-    });
-    let errors = exact.as_ref().map(|e| recover::errors(&model, &u, e.as_ref()));
+    // the closed form body by body, each in its own material
+    let exact = scene.analytic.as_ref().map(|a| analytic::exact(a, &model));
+    let errors = exact.as_ref().map(|e| recover::errors(&model, &u, e));
     let contact_error_max = match (&exact, &contact_run) {
-        (Some(e), Some(c)) => Some(contact_error(&model, e.as_ref(), &c.pairs)),
+        (Some(e), Some(c)) => Some(contact_error(&model, e, &c.pairs)),
         _ => None,
     };
     let probes = scene.probes.iter().map(|p| (p.name.clone(), recover::probe(&model, &u, p))).collect();
@@ -310,12 +308,17 @@ fn not_converged(run: &Run, c: &ContactRun) -> String {
     )
 }
 
-/// Max |sigma_n - exact normal traction| over the pairs, relative to the largest exact one.
-fn contact_error(model: &Model, exact: &dyn analytic::Exact, pairs: &[PairResult]) -> f64 {
+/// Max |sigma_n - exact normal traction| over the pairs, relative to the
+/// largest exact one; the closed form of the body of each pair's node k.
+fn contact_error(model: &Model, exact: &[Box<dyn analytic::Exact>], pairs: &[PairResult]) -> f64 {
+    let mut body_of = vec![0; model.n_nodes()];
+    for (b, body) in model.bodies.iter().enumerate() {
+        body.cells.iter().flat_map(|c| &c.nodes).for_each(|&n| body_of[n] = b);
+    }
     let mut worst: f64 = 0.0;
     let mut scale: f64 = 0.0;
     for (p, r) in model.pairs.iter().zip(pairs) {
-        let s = exact.stress(model.coords[p.k]);
+        let s = exact[body_of[p.k]].stress(model.coords[p.k]);
         let n = p.normal;
         let t = [s[0] * n[0] + s[3] * n[1] + s[5] * n[2], s[3] * n[0] + s[1] * n[1] + s[4] * n[2], s[5] * n[0] + s[4] * n[1] + s[2] * n[2]];
         let sn = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];

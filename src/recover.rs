@@ -25,9 +25,11 @@ fn coords(model: &Model, nodes: &[usize]) -> Vec<[f64; 3]> {
     nodes.iter().map(|&n| model.coords[n]).collect()
 }
 
-/// Total stress at a point of a cell: the initial stress plus `D eps`.
-fn total_stress(model: &Model, body: &crate::model::Body, d: &[f64], p: &element::Point, ue: &[f64]) -> [f64; 6] {
-    let mut s = full_stress(model.analysis, body.e, body.nu, d, &element::strain(model.analysis, p, ue));
+/// Total stress at a point of a cell: the initial stress plus `D eps`, the
+/// strain with the cell's mean dilatation where it uses B-bar
+/// ([`element::mean_dilatation`]), as its stiffness did.
+fn total_stress(model: &Model, body: &crate::model::Body, d: &[f64], p: &element::Point, ue: &[f64], mean: Option<f64>) -> [f64; 6] {
+    let mut s = full_stress(model.analysis, body.e, body.nu, d, &element::strain(model.analysis, p, ue, mean));
     if body.initial.is_some() {
         let s0 = body.initial_at(p.x, model.analysis, model.gravity);
         for (a, b) in s.iter_mut().zip(s0) {
@@ -67,10 +69,11 @@ pub fn nodal_stresses(model: &Model, u: &[f64]) -> Vec<BodyStress> {
                 let (_, rule, ex) = cache.iter().find(|(k, _, _)| *k == cell.kind).expect("cached");
                 let xe = coords(model, &cell.nodes);
                 let ue = element_u(model, &cell.nodes, u);
+                let mean = element::mean_dilatation(model.analysis, cell.kind, &xe, &ue);
                 let at_points: Vec<[f64; 6]> = rule
                     .iter()
                     .map(|q| match element::point(cell.kind, &xe, q.xi) {
-                        Ok(p) => total_stress(model, body, &d, &p, &ue),
+                        Ok(p) => total_stress(model, body, &d, &p, &ue, mean),
                         Err(_) => [f64::NAN; 6],
                     })
                     .collect();
@@ -98,14 +101,16 @@ pub struct Errors {
     pub stress_l2: f64,
 }
 
-pub fn errors(model: &Model, u: &[f64], exact: &dyn Exact) -> Errors {
+/// `exact[b]` is the closed form of body b ([`crate::analytic::exact`]).
+pub fn errors(model: &Model, u: &[f64], exact: &[Box<dyn Exact>]) -> Errors {
     let (mut eu, mut nu_, mut es, mut ns) = (0.0, 0.0, 0.0, 0.0);
     let nd = dofs_per_node(model.analysis);
-    for body in &model.bodies {
+    for (body, exact) in model.bodies.iter().zip(exact) {
         let d = d_matrix(model.analysis, body.e, body.nu);
         for cell in &body.cells {
             let xe = coords(model, &cell.nodes);
             let ue = element_u(model, &cell.nodes, u);
+            let mean = element::mean_dilatation(model.analysis, cell.kind, &xe, &ue);
             let rule = quadrature::rule(cell.kind, 2 * cell.kind.order() + 2);
             for q in &rule {
                 let Ok(p) = element::point(cell.kind, &xe, q.xi) else { continue };
@@ -116,7 +121,7 @@ pub fn errors(model: &Model, u: &[f64], exact: &dyn Exact) -> Errors {
                     eu += w * (uh - ex[c]).powi(2);
                     nu_ += w * ex[c].powi(2);
                 }
-                let sh = total_stress(model, body, &d, &p, &ue);
+                let sh = total_stress(model, body, &d, &p, &ue, mean);
                 let se = exact.stress(p.x);
                 for c in 0..6 {
                     es += w * (sh[c] - se[c]).powi(2);
@@ -173,7 +178,7 @@ pub fn probe(model: &Model, u: &[f64], probe: &Probe) -> Vec<Sample> {
                     for c in 0..nd {
                         disp[c] += (0..cell.kind.n_nodes()).map(|a| p.n[a] * ue[a * nd + c]).sum::<f64>();
                     }
-                    let sh = total_stress(model, body, &d, &p, &ue);
+                    let sh = total_stress(model, body, &d, &p, &ue, element::mean_dilatation(model.analysis, cell.kind, &xe, &ue));
                     for c in 0..6 {
                         stress[c] += sh[c];
                     }

@@ -46,6 +46,12 @@
 //! 4. The paper's Table 1 from the default scene geo/cylinder.toml (two
 //!    bodies in contact along the 45-degree cut, quad9, lc = 0.05): every
 //!    pair stuck, sigma_r and sigma_theta at r = 3.2 ... 4.8 within 0.5 %.
+//! 5. The two halves in different materials (E and 2 E), free to slide
+//!    along the cut (f = 0, c = 0; the inner face pulled, so that the cut
+//!    is in compression): each half is Lamé's cylinder of its own material
+//!    (the stresses do not depend on E; u_r jumps at the cut), and
+//!    the error norms, which take each body's own material, are as small as
+//!    with one material.
 
 mod common;
 
@@ -293,4 +299,44 @@ fn default_cylinder_scene_reproduces_paper_table_1_within_half_a_percent() {
         worst = worst.max(dr.abs()).max(dt.abs());
     }
     assert!(worst < 0.005, "Table 1 is {:.3} % off the closed form (0.5 % allowed)", worst * 100.0);
+}
+
+#[test]
+fn halves_of_different_stiffness_sliding_on_the_cut_are_each_lames_cylinder_of_their_own_material() {
+    let case = Case::new("lame-two-materials");
+    // the inner face pulled (p < 0), so that the cut is in compression
+    // (sigma_theta < 0: a slipping pair is cracked and would open in
+    // tension); a frictionless cut lets body_1 slide along x and body_2
+    // along -y together: the point (a, 0) of body_1 is held at Lamé's u_r(a)
+    case.write("cylinder.geo", &(common::repo_text("geo/cylinder.geo") + "Physical Point(\"a0\") = {2};\n"));
+    let p = -P;
+    let lame = Lame { a: A, b: B, p, e: E, nu: NU, analysis: Analysis::PlaneStrain };
+    let ua = lame.u_r(A);
+    let scene = |e2: f64| {
+        format!(
+            "title = \"Lame cylinder, halves E and {e2:e}, sliding on the cut\"\nmesh = \"cylinder.geo\"\nanalysis = \"plane_strain\"\nthickness = 1.0\n\n\
+             [gmsh]\norder = 2\nsetnumber = {{ lc = 0.2 }}\n\n\
+             [materials.soft]\nE = {E:e}\nnu = {NU}\n\n[materials.stiff]\nE = {e2:e}\nnu = {NU}\n\n\
+             [[bodies]]\ngroup = \"body_1\"\nmaterial = \"soft\"\n\n[[bodies]]\ngroup = \"body_2\"\nmaterial = \"stiff\"\n\n\
+             [[contacts]]\ngroup = \"A-A\"\nfriction = 0.0\ncohesion = 0.0\ntensile_strength = 3.0e5\n\n\
+             [[supports]]\ngroup = \"symmetry_x0\"\nfix = [\"x\"]\n\n[[supports]]\ngroup = \"symmetry_y0\"\nfix = [\"y\"]\n\n\
+             [[supports]]\ngroup = \"a0\"\nux = {ua:e}\n\n\
+             [[loads]]\ngroup = \"inner\"\npressure = {p:?}\n\n[analytic]\nkind = \"lame_cylinder\"\na = {A:?}\nb = {B:?}\np = {p:?}\n"
+        )
+    };
+    let errors = |e2: f64| {
+        let path = case.write(&format!("two_{e2:e}.toml"), &scene(e2));
+        let run: Run = case.run(&path).unwrap_or_else(|e| panic!("E2 = {e2:e}: {e:#}"));
+        let e = run.errors.as_ref().expect("[analytic] errors");
+        eprintln!("E2 / E1 = {}: displacement_l2 {:.3e}, stress_l2 {:.3e}, contact {:.3e}", e2 / E, e.displacement_l2, e.stress_l2, run.contact_error_max.unwrap_or(f64::NAN));
+        // the report says how the norms treat two materials
+        assert_eq!(run.check.report.contains("different materials"), e2 != E, "report.md's note on the materials");
+        (e.displacement_l2, e.stress_l2)
+    };
+    let (u1, s1) = errors(E);
+    let (u2, s2) = errors(2.0 * E);
+    // with body 0's material for both halves the stiff half's displacement
+    // would be off by a factor 2: 0.35 (measured), not 4.9e-6
+    assert!(u2 < 3.0 * u1 && u2 < 1e-4, "displacement error {u2:.3e} with two materials, {u1:.3e} with one");
+    assert!(s2 < 3.0 * s1 && s2 < 1e-2, "stress error {s2:.3e} with two materials, {s1:.3e} with one");
 }

@@ -20,7 +20,6 @@ pub use tunnel::{LinedTunnel, TunnelBody, TunnelCoefficients, TunnelSlip};
 
 use crate::contact::law::PairResult;
 use crate::model::Model;
-use crate::fem::Analysis;
 
 /// Displacement and stress `[xx, yy, zz, xy, yz, xz]` of a closed form at a point.
 pub trait Exact {
@@ -55,17 +54,41 @@ pub enum Analytic {
     LinedTunnel(LinedTunnel),
 }
 
-/// The closed form a scene's `[analytic]` names, for the material of its
-/// first body (the lined tunnel carries its own two materials).
-pub fn exact(analytic: &Analytic, analysis: Analysis, e: f64, nu: f64) -> Box<dyn Exact> {
-    match analytic {
-        &Analytic::LameCylinder { a, b, p } => Box::new(Lame { a, b, p, e, nu, analysis }),
-        Analytic::LinedTunnel(t) => Box::new(t.clone()),
-    }
+/// The closed form a scene's `[analytic]` names, body by body (indexed as
+/// `model.bodies`), each in its own material: Lamé's cylinder with the
+/// body's E and nu; the lined tunnel carries its own two materials (lining
+/// and ground, told apart by radius) for every body.
+///
+/// Lamé's formula is for one material. Where the bodies share it, as in
+/// every shipped scene, each body's closed form is the same field. Where
+/// they differ, each body is compared with Lamé's cylinder of its own
+/// material: that is the solution where the bodies do not constrain each
+/// other's radial displacement (sectors free to slide along radial cuts;
+/// the stresses of Lamé's cylinder do not depend on E), not for bodies
+/// bonded across a material change (the compound cylinder): the report
+/// says so ([`materials_differ`]).
+pub fn exact(analytic: &Analytic, model: &Model) -> Vec<Box<dyn Exact>> {
+    model
+        .bodies
+        .iter()
+        .map(|body| -> Box<dyn Exact> {
+            match analytic {
+                &Analytic::LameCylinder { a, b, p } => Box::new(Lame { a, b, p, e: body.e, nu: body.nu, analysis: model.analysis }),
+                Analytic::LinedTunnel(t) => Box::new(t.clone()),
+            }
+        })
+        .collect()
+}
+
+/// Whether the bodies of a model have different elastic constants (E, nu).
+pub fn materials_differ(model: &Model) -> bool {
+    model.bodies.windows(2).any(|w| w[0].e != w[1].e || w[0].nu != w[1].nu)
 }
 
 /// Lamé's cylinder of a `lame_cylinder` `[analytic]`, in the model's
-/// analysis and with the material of its first body.
+/// analysis and with the material of its first body (the tables of
+/// [`paper`] use its stresses, which do not depend on the material but for
+/// the axial one).
 pub fn lame(analytic: &Analytic, model: &Model) -> Option<Lame> {
     match *analytic {
         Analytic::LameCylinder { a, b, p } => {

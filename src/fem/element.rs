@@ -1,13 +1,50 @@
 //! Element kernels: stiffness `K_e = ∫ B^T D B dV`, body forces `∫ N^T b dV`,
 //! boundary tractions `∫ N^T t dA` and stresses at quadrature points.
 //!
-//! Element DOFs are node-major: DOF `a * nd + c` is component `c` of node `a`
-//! (gmsh node order), `nd` = 2 for plane and axisymmetric analyses, 3 for
-//! solids. The volume measure is `t dA` in plane analyses (thickness t),
-//! `2 pi r dA` in axisymmetric ones (whole ring) and `dV` for solids, so
-//! reactions and contact forces are totals in every analysis.
+//! B-bar (Hughes 1980, "Generalization of selective integration procedures
+//! to anisotropic and nonlinear media", IJNME 15): the linear quadrilateral
+//! in plane strain and axisymmetry and the linear hexahedron take the
+//! volumetric part of their strain at the element's mean. With `b_vol` the
+//! sum of the normal rows of B (xx, yy, and zz or the hoop row: the
+//! dilatation),
+//!
+//! ```text
+//! b̄_vol = (1/V) ∫ b_vol dV                    the element's mean dilatation
+//! B̄_i   = B_i + (b̄_vol - b_vol) / 3          i = xx, yy, zz (hoop)
+//! K_e   = ∫ B̄^T D B̄ dV,   eps = B̄ u_e        shear rows unchanged
+//! ```
+//!
+//! so the deviatoric strain is B's, pointwise, and the dilatation one number
+//! per element: lambda multiplies one constraint per element instead of
+//! several (3 for a quad4 in plane strain, 4 in axisymmetry, 7 for a hex8
+//! under the full rule), and nu -> 1/2 no longer locks. The split is the
+//! 3D one in plane strain too (the solid with eps_zz = 0, B_zz = 0), so
+//! B̄ gives an eps_zz and D its zz row there; a hex8 slice held on both
+//! faces is then the plane strain quad4 node for node (tests/lame.rs). A
+//! constant strain is left as it is (its dilatation is its mean), so the
+//! patch test still holds; rigid motions have zero dilatation everywhere,
+//! and the full (2 x 2, 2 x 2 x 2) rule keeps the deviatoric part
+//! rank-sufficient, so no zero-energy mode appears (reduced integration of
+//! the whole stiffness, or of its deviatoric part, would add some). The
+//! stresses recovered use the same B̄ ([`strain`] with
+//! [`mean_dilatation`]). Plane stress has no incompressibility constraint
+//! (eps_zz is free), and the quadratic kinds lock far less (a quad9's
+//! dilatation is a polynomial with room to vanish: its Lamé displacement
+//! error grows x18 from nu = 0.3 to 0.499 where quad4's grew x128), so they
+//! keep the plain B. The initial-stress load `-∫ B^T sigma0 dV` keeps the
+//! plain B as well: it is the consistent nodal force of a given stress
+//! field, which then balances the body force of a geostatic field exactly.
+//!
+//! Map coordinates: the Jacobian and the facet tangents are sums of
+//! `dN_a/dxi (x_a - x_0)`, coordinates relative to the cell's first node.
+//! A model at x ~ 4e6 with cells of 0.1 m would otherwise lose seven of the
+//! sixteen digits of every Jacobian entry before anything is summed; the
+//! differences of nearby doubles are exact. Positions handed out
+//! (`Point::x`, the facet point) stay absolute, so closed forms, initial
+//! stresses, load levels, probes and output all keep reading the model's
+//! own coordinates: nothing downstream has to know about an origin.
 
-use super::material::n_strain;
+use super::material::{n_strain, plane_strain_with_zz};
 use super::quadrature::{self, QuadPoint};
 use super::shape;
 use crate::mesh::CellKind;
@@ -39,19 +76,23 @@ pub fn point(kind: CellKind, coords: &[[f64; 3]], xi: [f64; 3]) -> Result<Point,
     let mut n = vec![0.0; nn];
     let mut dn = vec![[0.0; 3]; nn];
     shape::eval(kind, xi, &mut n, &mut dn);
-    // J[i][j] = dx_i/dxi_j
+    // J[i][j] = dx_i/dxi_j, from coordinates relative to the cell's first
+    // node (see the module doc: map coordinates)
+    let o = coords[0];
     let mut jac = [[0.0; 3]; 3];
     let mut x = [0.0; 3];
     for a in 0..nn {
+        let r = sub(coords[a], o);
         for i in 0..3 {
-            x[i] += n[a] * coords[a][i];
+            x[i] += n[a] * r[i];
         }
         for i in 0..dim {
             for j in 0..dim {
-                jac[i][j] += coords[a][i] * dn[a][j];
+                jac[i][j] += r[i] * dn[a][j];
             }
         }
     }
+    let x = [o[0] + x[0], o[1] + x[1], o[2] + x[2]];
     let (det_j, inv) = if dim == 2 {
         let det = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
         let inv = [[jac[1][1] / det, -jac[0][1] / det, 0.0], [-jac[1][0] / det, jac[0][0] / det, 0.0], [0.0; 3]];
@@ -151,6 +192,92 @@ fn b_matrix(analysis: Analysis, p: &Point, b: &mut [f64]) {
     }
 }
 
+/// Whether an element takes its dilatation at the element's mean (B-bar,
+/// see the module doc): quad4 in plane strain and axisymmetry, hex8.
+pub fn uses_b_bar(analysis: Analysis, kind: CellKind) -> bool {
+    matches!(
+        (analysis, kind),
+        (Analysis::PlaneStrain | Analysis::Axisymmetric, CellKind::Quad4) | (Analysis::Solid, CellKind::Hex8)
+    )
+}
+
+/// Number of normal strain rows of B, the first ones, whose sum is the
+/// dilatation: 2 in plane analyses (in plane strain eps_zz = 0), 3 in
+/// axisymmetry (rr, zz, hoop) and solids.
+fn n_normal(analysis: Analysis) -> usize {
+    match analysis {
+        Analysis::PlaneStrain | Analysis::PlaneStress => 2,
+        Analysis::Axisymmetric | Analysis::Solid => 3,
+    }
+}
+
+/// The element's mean dilatation row `b̄_vol = (1/V) ∫ b_vol dV` over the
+/// points `(Point, weight)` of its rule, weights including the measure;
+/// `b` is scratch space for B.
+fn mean_dilatation_row(analysis: Analysis, points: &[(Point, f64)], b: &mut [f64]) -> Vec<f64> {
+    let k = n_normal(analysis);
+    let m = b.len() / n_strain(analysis);
+    let mut mean = vec![0.0; m];
+    let mut volume = 0.0;
+    for (p, f) in points {
+        b_matrix(analysis, p, b);
+        for c in 0..m {
+            mean[c] += f * (0..k).map(|i| b[i * m + c]).sum::<f64>();
+        }
+        volume += f;
+    }
+    mean.iter_mut().for_each(|v| *v /= volume);
+    mean
+}
+
+/// B̄ at one point from B (`b`, the analysis's rows) into `out`: the
+/// analysis's rows, in plane strain with the out-of-plane normal inserted,
+/// `(xx, yy, zz, xy)`; each of the three normal rows gets
+/// `(b̄_vol - b_vol) / 3`.
+fn b_bar(analysis: Analysis, mean: &[f64], b: &[f64], out: &mut [f64]) {
+    let m = mean.len();
+    let k = n_normal(analysis);
+    if analysis == Analysis::PlaneStrain {
+        // (xx, yy, xy) -> (xx, yy, zz = 0, xy)
+        out[..2 * m].copy_from_slice(&b[..2 * m]);
+        out[2 * m..3 * m].iter_mut().for_each(|v| *v = 0.0);
+        out[3 * m..4 * m].copy_from_slice(&b[2 * m..3 * m]);
+    } else {
+        out.copy_from_slice(b);
+    }
+    for c in 0..m {
+        let shift = (mean[c] - (0..k).map(|i| b[i * m + c]).sum::<f64>()) / 3.0;
+        for i in 0..3 {
+            out[i * m + c] += shift;
+        }
+    }
+}
+
+/// Geometry of a cell at every point of a rule, with the weight
+/// `w det J measure` of each.
+fn rule_points(analysis: Analysis, kind: CellKind, coords: &[[f64; 3]], thickness: f64, rule: &[QuadPoint]) -> Result<Vec<(Point, f64)>, Inverted> {
+    rule.iter()
+        .map(|q| {
+            let p = point(kind, coords, q.xi)?;
+            let f = q.w * p.det_j * measure(analysis, thickness, &p.x);
+            Ok((p, f))
+        })
+        .collect()
+}
+
+/// The element's mean dilatation `b̄_vol u_e` under displacements `ue`, for
+/// [`strain`]: Some for the elements that use B-bar ([`uses_b_bar`]), None
+/// for the others (and for an inverted cell, whose stiffness was refused).
+pub fn mean_dilatation(analysis: Analysis, kind: CellKind, coords: &[[f64; 3]], ue: &[f64]) -> Option<f64> {
+    if !uses_b_bar(analysis, kind) {
+        return None;
+    }
+    let points = rule_points(analysis, kind, coords, 1.0, &stiffness_rule(analysis, kind)).ok()?;
+    let mut b = vec![0.0; n_strain(analysis) * ue.len()];
+    let mean = mean_dilatation_row(analysis, &points, &mut b);
+    Some(mean.iter().zip(ue).map(|(a, u)| a * u).sum())
+}
+
 /// The quadrature rule for an element's stiffness in an analysis: the kind's
 /// own stiffness rule, except for triangles in axisymmetry, where the hoop
 /// strain N/r makes the one-point (tri3) and three-point (tri6) rules leave
@@ -180,11 +307,25 @@ pub fn stiffness(
     ke.clear();
     ke.resize(m * m, 0.0);
     let mut b = vec![0.0; ns * m];
+    let points = rule_points(analysis, kind, coords, thickness, rule)?;
+    let mean = uses_b_bar(analysis, kind).then(|| mean_dilatation_row(analysis, &points, &mut b));
+    // with B-bar in plane strain, eps_zz joins the strain: D gets its row
+    let (ns, d): (usize, std::borrow::Cow<[f64]>) = match (&mean, analysis) {
+        (Some(_), Analysis::PlaneStrain) => (4, plane_strain_with_zz(d).into()),
+        _ => (ns, d.into()),
+    };
+    let mut bb = vec![0.0; ns * m];
     let mut db = vec![0.0; ns * m];
-    for q in rule {
-        let p = point(kind, coords, q.xi)?;
-        let f = q.w * p.det_j * measure(analysis, thickness, &p.x);
-        b_matrix(analysis, &p, &mut b);
+    for (p, f) in &points {
+        let f = *f;
+        b_matrix(analysis, p, &mut b);
+        let b: &[f64] = match &mean {
+            Some(mean) => {
+                b_bar(analysis, mean, &b, &mut bb);
+                &bb
+            }
+            None => &b,
+        };
         for i in 0..ns {
             for c in 0..m {
                 db[i * m + c] = (0..ns).map(|k| d[i * ns + k] * b[k * m + c]).sum::<f64>() * f;
@@ -272,16 +413,19 @@ pub fn facet_point(kind: CellKind, coords: &[[f64; 3]], xi: [f64; 3]) -> (Vec<f6
     let mut n = vec![0.0; nn];
     let mut dn = vec![[0.0; 3]; nn];
     shape::eval(kind, xi, &mut n, &mut dn);
+    let o = coords[0];
     let mut a1 = [0.0; 3];
     let mut a2 = [0.0; 3];
     let mut x = [0.0; 3];
     for a in 0..nn {
+        let r = sub(coords[a], o);
         for i in 0..3 {
-            x[i] += n[a] * coords[a][i];
-            a1[i] += coords[a][i] * dn[a][0];
-            a2[i] += coords[a][i] * dn[a][1];
+            x[i] += n[a] * r[i];
+            a1[i] += r[i] * dn[a][0];
+            a2[i] += r[i] * dn[a][1];
         }
     }
+    let x = [o[0] + x[0], o[1] + x[1], o[2] + x[2]];
     let normal = if kind.dim() == 1 { [a1[1], -a1[0], 0.0] } else { cross(a1, a2) };
     let da = norm(normal);
     let unit = if da > 0.0 { [normal[0] / da, normal[1] / da, normal[2] / da] } else { [0.0; 3] };
@@ -332,8 +476,12 @@ pub fn facet_force(
     }
 }
 
-/// Strain vector (analysis components) at a point from element displacements.
-pub fn strain(analysis: Analysis, p: &Point, ue: &[f64]) -> [f64; 6] {
+/// Strain vector (analysis components) at a point from element
+/// displacements: `B u_e`, or `B̄ u_e` given the element's
+/// [`mean_dilatation`] (its normal components shifted equally so that they
+/// add up to the mean). In plane strain B̄ gives eps_zz != 0: it follows
+/// the three components, in slot 3 (see [`super::material`]).
+pub fn strain(analysis: Analysis, p: &Point, ue: &[f64], mean_dilatation: Option<f64>) -> [f64; 6] {
     let nd = dofs_per_node(analysis);
     let ns = n_strain(analysis);
     let m = p.n.len() * nd;
@@ -342,6 +490,14 @@ pub fn strain(analysis: Analysis, p: &Point, ue: &[f64]) -> [f64; 6] {
     let mut e = [0.0; 6];
     for i in 0..ns {
         e[i] = (0..m).map(|c| b[i * m + c] * ue[c]).sum();
+    }
+    if let Some(mean) = mean_dilatation {
+        let k = n_normal(analysis);
+        let shift = (mean - e[..k].iter().sum::<f64>()) / 3.0;
+        e[..k].iter_mut().for_each(|v| *v += shift);
+        if analysis == Analysis::PlaneStrain {
+            e[3] = shift;
+        }
     }
     e
 }
@@ -362,7 +518,7 @@ pub fn norm(a: [f64; 3]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fem::material::d_matrix;
+    use crate::fem::material::{d_matrix, full_stress};
     use nalgebra::DMatrix;
 
     /// A distorted copy of the reference cell: a non-affine map, shifted
@@ -404,8 +560,10 @@ mod tests {
             (Analysis::Axisymmetric, vec![Tri3, Tri6, Quad4, Quad8, Quad9]),
             (Analysis::Solid, vec![Tet4, Tet10, Hex8, Hex20, Hex27]),
         ];
-        for (analysis, kinds) in cases {
-            let d = d_matrix(analysis, 1000.0, 0.3);
+        // nu near 1/2 too: B-bar (quad4 plane strain / axisymmetric, hex8)
+        // must add no zero-energy mode however large lambda is
+        for (analysis, kinds, nu) in cases.iter().flat_map(|(a, k)| [0.3, 0.4999].map(|nu| (*a, k.clone(), nu))) {
+            let d = d_matrix(analysis, 1000.0, nu);
             for kind in kinds {
                 let xs = distorted(kind);
                 let mut ke = Vec::new();
@@ -426,6 +584,88 @@ mod tests {
                 let want = rigid_modes(analysis, &xs).len();
                 assert_eq!(zeros, want, "{analysis:?} {kind:?}: {zeros} zero eigenvalues, {want} rigid modes");
                 assert!(eig.iter().all(|&l| l > -1e-9 * scale), "{analysis:?} {kind:?} positive semi-definite");
+            }
+        }
+    }
+    /// The elements that use B-bar.
+    fn b_bar_cases() -> Vec<(Analysis, CellKind)> {
+        vec![(Analysis::PlaneStrain, CellKind::Quad4), (Analysis::Axisymmetric, CellKind::Quad4), (Analysis::Solid, CellKind::Hex8)]
+    }
+
+    #[test]
+    fn b_bar_constrains_the_dilatation_once_per_element() {
+        // D = lambda m m^T (mu = 0): K_e = lambda V b̄ b̄^T has rank one
+        // with B-bar; the plain B of the full rule has rank 3 (quad4, plane
+        // strain), 4 (quad4, axisymmetric), 7 (hex8): that many constraints
+        // per element is what locks
+        for (analysis, kind) in b_bar_cases() {
+            assert!(uses_b_bar(analysis, kind));
+            let ns = n_strain(analysis);
+            let k = n_normal(analysis);
+            let mut d = vec![0.0; ns * ns];
+            for i in 0..k {
+                for j in 0..k {
+                    d[i * ns + j] = 1.0;
+                }
+            }
+            let xs = distorted(kind);
+            let mut ke = Vec::new();
+            stiffness(analysis, kind, &xs, &d, 1.0, &stiffness_rule(analysis, kind), &mut ke).expect("not inverted");
+            let m = (ke.len() as f64).sqrt() as usize;
+            let eig = DMatrix::from_row_slice(m, m, &ke).symmetric_eigen().eigenvalues;
+            let top = eig.amax();
+            let rank = eig.iter().filter(|&&l| l.abs() > 1e-10 * top).count();
+            assert_eq!(rank, 1, "{analysis:?} {kind:?}: volumetric stiffness of rank {rank}");
+        }
+    }
+
+    #[test]
+    fn b_bar_strain_is_the_strain_of_the_stiffness_and_leaves_linear_fields_alone() {
+        for (analysis, kind) in b_bar_cases() {
+            let xs = distorted(kind);
+            let nd = dofs_per_node(analysis);
+            let d = d_matrix(analysis, 1000.0, 0.45);
+            let rule = stiffness_rule(analysis, kind);
+            let mut ke = Vec::new();
+            stiffness(analysis, kind, &xs, &d, 1.0, &rule, &mut ke).expect("not inverted");
+            let m = xs.len() * nd;
+            // any displacements: u_e^T K_e u_e = ∫ eps^T D eps dV with the
+            // recovered strain
+            let ue: Vec<f64> = (0..m).map(|i| ((i * 7 + 3) % 11) as f64 / 11.0 - 0.4).collect();
+            let mean = mean_dilatation(analysis, kind, &xs, &ue);
+            assert!(mean.is_some());
+            // sigma : eps with the reported stress (plane strain: e_zz in slot 3)
+            let mut energy = 0.0;
+            for q in &rule {
+                let p = point(kind, &xs, q.xi).unwrap();
+                let f = q.w * p.det_j * measure(analysis, 1.0, &p.x);
+                let e = strain(analysis, &p, &ue, mean);
+                let sigma = full_stress(analysis, 1000.0, 0.45, &d, &e);
+                let eps = match analysis {
+                    Analysis::PlaneStrain => [e[0], e[1], e[3], e[2], 0.0, 0.0],
+                    Analysis::Axisymmetric => [e[0], e[1], e[2], e[3], 0.0, 0.0],
+                    _ => e,
+                };
+                energy += f * (0..6).map(|i| sigma[i] * eps[i]).sum::<f64>();
+            }
+            let kuu: f64 = (0..m).map(|r| ue[r] * (0..m).map(|c| ke[r * m + c] * ue[c]).sum::<f64>()).sum();
+            assert!((kuu - energy).abs() < 1e-12 * kuu.abs(), "{analysis:?} {kind:?}: {kuu} vs {energy}");
+            // a linear field (axisymmetric: u_r = a r, u_z = b z + c) has a
+            // constant strain, which B-bar keeps as it is
+            let lin = |x: [f64; 3]| -> [f64; 3] {
+                match analysis {
+                    Analysis::Axisymmetric => [0.3 * x[0], -0.2 * x[1] + 0.1, 0.0],
+                    // (the distorted plane cells have z != 0 at their nodes)
+                    Analysis::PlaneStrain => [0.3 * x[0] + 0.1 * x[1], 0.2 * x[0] - 0.2 * x[1], 0.0],
+                    _ => [0.3 * x[0] + 0.1 * x[1] - 0.05 * x[2], 0.2 * x[0] - 0.2 * x[1] + 0.4 * x[2], 0.15 * x[0] + 0.25 * x[1] + 0.1 * x[2]],
+                }
+            };
+            let ul: Vec<f64> = xs.iter().flat_map(|&x| lin(x)[..nd].to_vec()).collect();
+            let mean = mean_dilatation(analysis, kind, &xs, &ul);
+            for q in &rule {
+                let p = point(kind, &xs, q.xi).unwrap();
+                let (plain, bar) = (strain(analysis, &p, &ul, None), strain(analysis, &p, &ul, mean));
+                assert!((0..6).all(|i| (plain[i] - bar[i]).abs() < 1e-14), "{analysis:?} {kind:?}: {plain:?} vs {bar:?}");
             }
         }
     }

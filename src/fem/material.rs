@@ -9,6 +9,10 @@
 //!
 //! Reported stresses always have six components `[xx, yy, zz, xy, yz, xz]`;
 //! in plane strain `s_zz = lambda (e_xx + e_yy)`, in plane stress `s_zz = 0`.
+//! A plane strain element under B-bar (`element`) has an out-of-plane
+//! strain e_zz of its own: it follows the three components (slot 3 of the
+//! strain passed to [`full_stress`], zero otherwise), and
+//! [`plane_strain_with_zz`] gives D its row.
 
 use super::Analysis;
 
@@ -53,7 +57,23 @@ pub fn d_matrix(analysis: Analysis, e: f64, nu: f64) -> Vec<f64> {
     d
 }
 
-/// Stress in the six reported components from the analysis' strain vector.
+/// The plane strain D (rows and columns xx, yy, xy) with the out-of-plane
+/// normal restored: rows and columns `(xx, yy, zz, xy)`, the layout of the
+/// axisymmetric D. Isotropic: lambda is D[xx][yy], lambda + 2 mu D[xx][xx].
+pub fn plane_strain_with_zz(d: &[f64]) -> Vec<f64> {
+    let (lambda, normal) = (d[1], d[0]);
+    #[rustfmt::skip]
+    let d4 = vec![
+        d[0], d[1], lambda, d[2],
+        d[3], d[4], lambda, d[5],
+        lambda, lambda, normal, 0.0,
+        d[6], d[7], 0.0, d[8],
+    ];
+    d4
+}
+
+/// Stress in the six reported components from the analysis' strain vector
+/// (in plane strain, slot 3 may carry e_zz: see the module doc).
 pub fn full_stress(analysis: Analysis, e: f64, nu: f64, d: &[f64], strain: &[f64]) -> [f64; 6] {
     let n = n_strain(analysis);
     let mut s = [0.0; 6];
@@ -63,10 +83,11 @@ pub fn full_stress(analysis: Analysis, e: f64, nu: f64, d: &[f64], strain: &[f64
     }
     match analysis {
         Analysis::PlaneStrain => {
-            let (lambda, _) = lame(e, nu);
-            s[0] = sv[0];
-            s[1] = sv[1];
-            s[2] = lambda * (strain[0] + strain[1]);
+            let (lambda, mu) = lame(e, nu);
+            let ezz = strain[3];
+            s[0] = sv[0] + lambda * ezz;
+            s[1] = sv[1] + lambda * ezz;
+            s[2] = lambda * (strain[0] + strain[1] + ezz) + 2.0 * mu * ezz;
             s[3] = sv[2];
         }
         Analysis::PlaneStress => {

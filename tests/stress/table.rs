@@ -40,6 +40,7 @@ impl Suite {
         let case = Case::new(&format!("stress-{name}"));
         case.copy("tests/geo/stress_stack.geo");
         case.copy("tests/geo/stress_annulus.geo");
+        case.copy("tests/geo/lame_slice.geo");
         case.copy("geo/cylinder.geo");
         Suite { name, case, rows: Vec::new(), t0: Instant::now() }
     }
