@@ -69,7 +69,7 @@ pub fn nodal_stresses(model: &Model, u: &[f64]) -> Vec<BodyStress> {
                 let (_, rule, ex) = cache.iter().find(|(k, _, _)| *k == cell.kind).expect("cached");
                 let xe = coords(model, &cell.nodes);
                 let ue = element_u(model, &cell.nodes, u);
-                let mean = element::mean_dilatation(model.analysis, cell.kind, &xe, &ue);
+                let mean = element::mean_dilatation(model.analysis, cell.kind, body.nu, &xe, &ue);
                 let at_points: Vec<[f64; 6]> = rule
                     .iter()
                     .map(|q| match element::point(cell.kind, &xe, q.xi) {
@@ -110,7 +110,7 @@ pub fn errors(model: &Model, u: &[f64], exact: &[Box<dyn Exact>]) -> Errors {
         for cell in &body.cells {
             let xe = coords(model, &cell.nodes);
             let ue = element_u(model, &cell.nodes, u);
-            let mean = element::mean_dilatation(model.analysis, cell.kind, &xe, &ue);
+            let mean = element::mean_dilatation(model.analysis, cell.kind, body.nu, &xe, &ue);
             let rule = quadrature::rule(cell.kind, 2 * cell.kind.order() + 2);
             for q in &rule {
                 let Ok(p) = element::point(cell.kind, &xe, q.xi) else { continue };
@@ -178,7 +178,7 @@ pub fn probe(model: &Model, u: &[f64], probe: &Probe) -> Vec<Sample> {
                     for c in 0..nd {
                         disp[c] += (0..cell.kind.n_nodes()).map(|a| p.n[a] * ue[a * nd + c]).sum::<f64>();
                     }
-                    let sh = total_stress(model, body, &d, &p, &ue, element::mean_dilatation(model.analysis, cell.kind, &xe, &ue));
+                    let sh = total_stress(model, body, &d, &p, &ue, element::mean_dilatation(model.analysis, cell.kind, body.nu, &xe, &ue));
                     for c in 0..6 {
                         stress[c] += sh[c];
                     }

@@ -245,7 +245,7 @@ fn deviation(run: &Run, sigma: &[f64; 6], u_exact: &dyn Fn(Vec3) -> Vec3, probe:
             let xe: Vec<Vec3> = cell.nodes.iter().map(|&n| m.coords[n]).collect();
             let ue: Vec<f64> = cell.nodes.iter().flat_map(|&n| (0..nd).map(move |c| run.u[n * nd + c])).collect();
             // the strain the stiffness used: B-bar's where the cell has it
-            let mean = element::mean_dilatation(m.analysis, cell.kind, &xe, &ue);
+            let mean = element::mean_dilatation(m.analysis, cell.kind, body.nu, &xe, &ue);
             for q in quadrature::stiffness_rule(cell.kind) {
                 let p = element::point(cell.kind, &xe, q.xi).expect("cell not inverted");
                 let s = material::full_stress(m.analysis, body.e, body.nu, &d, &element::strain(m.analysis, &p, &ue, mean));

@@ -71,7 +71,7 @@ fn sample_body(model: &Model, u: &[f64], body: usize, x: [f64; 3]) -> Option<([f
         let Some(xi) = shape::locate(cell.kind, &xe, x) else { continue };
         let Ok(p) = element::point(cell.kind, &xe, xi) else { continue };
         let ue: Vec<f64> = cell.nodes.iter().flat_map(|&n| (0..nd).map(move |c| u[n * nd + c])).collect();
-        let mean = element::mean_dilatation(model.analysis, cell.kind, &xe, &ue);
+        let mean = element::mean_dilatation(model.analysis, cell.kind, b.nu, &xe, &ue);
         let mut s = full_stress(model.analysis, b.e, b.nu, &d, &element::strain(model.analysis, &p, &ue, mean));
         let s0 = b.initial_at(p.x, model.analysis, model.gravity);
         for c in 0..6 {

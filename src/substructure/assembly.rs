@@ -59,7 +59,7 @@ pub fn assemble(model: &Model, bodies: &[usize], dof_of: &[usize], n: usize) -> 
             };
             let xe = cell_coords(model, &cell.nodes);
             let inverted = |e: Inverted| ModelError::Inverted { body: body.name.clone(), tag: cell.tag, det_j: e.det_j };
-            element::stiffness(model.analysis, cell.kind, &xe, &d, model.thickness, rule, &mut ke).map_err(inverted)?;
+            element::stiffness(model.analysis, cell.kind, body.nu, &xe, &d, model.thickness, rule, &mut ke).map_err(inverted)?;
             element_dofs(&cell.nodes, nd, dof_of, &mut dofs);
             k.add(&dofs, &ke);
             let m = dofs.len();
