@@ -9,7 +9,7 @@ use plotters::style::text_anchor::{HPos, VPos};
 
 use super::legend::{colour_bar, colour_map, legend, lut_colour, triad, Limits};
 use super::raster::{encode_png, label, register_font, Canvas};
-use super::surface::{centred, fill, patches, typical_edge, Patch};
+use super::surface::{centred, edges, fill, mesh_alpha, patches, Patch};
 use super::{cross, dot, norm3, num, sig2, state_colour, sub3, Field, Snapshot, GHOST, INK, NO_PAIR};
 use crate::fem::material::von_mises;
 use crate::fem::Analysis;
@@ -79,8 +79,9 @@ pub(super) fn deformed_canvas(snap: &Snapshot, field: Field, scale: Option<f64>)
     }
     let frame = Frame::new(snap, scale)?;
     let values = nodal_values(snap, field);
-    let lim = Limits::of(field, &values);
-    let lut = colour_map(field, lim.lo, lim.hi);
+    let signed = field.component().is_some();
+    let lim = Limits::of(signed, &values);
+    let lut = colour_map(signed, lim.lo, lim.hi);
     let mut cv = Canvas::new(W, H);
     draw_bodies(&mut cv, snap, &frame, &values, &lim, &lut);
     draw_contacts(&mut cv, snap, &frame);
@@ -93,7 +94,7 @@ pub(super) fn deformed_canvas(snap: &Snapshot, field: Field, scale: Option<f64>)
         "undeformed shape (no displacement)".to_string()
     };
     labels.push(label(format!("{} on the {shape}", field.label(model.analysis)), (24.0, 48.0), 17.0, (HPos::Left, VPos::Top)));
-    colour_bar(&mut cv, &mut labels, &lut, &lim, field.label(model.analysis));
+    colour_bar(&mut cv, &mut labels, &lut, &lim, field.label(model.analysis), [PANEL_X, 146.0, 500.0]);
     legend(&mut cv, &mut labels, snap, &frame);
     if let Some(view) = &frame.view {
         triad(&mut cv, &mut labels, view);
@@ -239,16 +240,7 @@ fn nodal_values(snap: &Snapshot, field: Field) -> Vec<Vec<f32>> {
 fn draw_bodies(cv: &mut Canvas, snap: &Snapshot, frame: &Frame, values: &[Vec<f32>], lim: &Limits, lut: &[[u8; 3]]) {
     let (sd, su) = (&frame.sd, &frame.su);
     let mut patches = patches(snap.model);
-    // mesh lines fade in from 6 px cells, full from 14 px
-    let mesh_alpha = (((typical_edge(&patches, sd) - 6.0) / 8.0).clamp(0.0, 1.0) * 0.45) as f32;
-    let edges = |cv: &mut Canvas, p: &Patch, pos: &[[f32; 2]], pick: &dyn Fn(bool, bool) -> Option<(f32, [u8; 3], f32)>| {
-        for i in 0..p.kind.n_corners() {
-            if let Some((w, c, a)) = pick(p.outline & (1 << i) != 0, p.first & (1 << i) != 0) {
-                let (chain, len) = p.edge(i);
-                cv.polyline(chain[..len].iter().map(|&k| pos[k]), w, c, a);
-            }
-        }
-    };
+    let mesh_alpha = mesh_alpha(&patches, sd);
     let Some(view) = &frame.view else {
         if frame.moved() {
             for p in &patches {
