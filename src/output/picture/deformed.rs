@@ -30,6 +30,20 @@ pub fn deformed_png(snap: &Snapshot, field: Field, scale: Option<f64>) -> Result
     encode_png(c.w, c.h, &c.rgb)
 }
 
+/// Which way is up in a 3D model of this extent: against gravity when there
+/// is some; else y, as in the plane pictures, for models thinner in z than
+/// across (extrusions of a plane section); else z.
+pub(super) fn up_of(extent: [f64; 3], gravity: [f64; 3]) -> [f64; 3] {
+    let g = dot(gravity, gravity).sqrt();
+    if g > 0.0 {
+        gravity.map(|x| -x / g)
+    } else if extent[2] < 0.99 * extent[0].min(extent[1]) {
+        [0.0, 1.0, 0.0]
+    } else {
+        [0.0, 0.0, 1.0]
+    }
+}
+
 /// Oblique view of 3D models: the eye's direction, right and up on screen.
 pub(super) struct View {
     eye: [f64; 3],
@@ -38,26 +52,21 @@ pub(super) struct View {
 }
 
 impl View {
-    /// Which way is up: against gravity when there is some; else y, as in
-    /// the plane pictures, for models thinnest in z (extrusions of a plane
-    /// section), seen mostly from +z; else z. The eye is turned 30 degrees
-    /// to the right and raised 25 degrees (20 and 20 for the extrusions, so
-    /// that their section dominates).
+    /// Which way is up: [`up_of`]. The eye is turned 30 degrees to the
+    /// right and raised 25 degrees (20 and 20 for the extrusions seen mostly
+    /// from +z, so that their section dominates).
     fn new(extent: [f64; 3], gravity: [f64; 3]) -> View {
-        let g = dot(gravity, gravity).sqrt();
-        let thin_z = extent[2] <= extent[0].min(extent[1]);
-        let (up, toward, az, el) = if g > 0.0 {
-            let up = gravity.map(|x| -x / g);
+        let up = up_of(extent, gravity);
+        let (toward, az, el) = if dot(gravity, gravity) > 0.0 {
             // the world axis least along up faces the viewer
             let k = (0..3).min_by(|&a, &b| up[a].abs().total_cmp(&up[b].abs())).unwrap_or(0);
             let mut t = [0.0; 3];
             t[k] = if k == 1 { -1.0 } else { 1.0 };
-            let t = norm3(sub3(t, up.map(|x| x * dot(t, up))));
-            (up, t, 30.0f64, 25.0f64)
-        } else if thin_z {
-            ([0.0, 1.0, 0.0], [0.0, 0.0, 1.0], 20.0, 20.0)
+            (norm3(sub3(t, up.map(|x| x * dot(t, up)))), 30.0f64, 25.0f64)
+        } else if up[1] == 1.0 {
+            ([0.0, 0.0, 1.0], 20.0, 20.0)
         } else {
-            ([0.0, 0.0, 1.0], [0.0, -1.0, 0.0], 30.0, 25.0)
+            ([0.0, -1.0, 0.0], 30.0, 25.0)
         };
         let right = cross(up, toward);
         let (sa, ca, se, ce) = (az.to_radians().sin(), az.to_radians().cos(), el.to_radians().sin(), el.to_radians().cos());

@@ -16,7 +16,8 @@
 //!
 //! The plane: its normal is the pairs' mean normal `m = sum_p A_p n_p` (n_p
 //! body I's outward normal, A_p the pair's area), turned to face up (`e . up
-//! >= 0`, up against gravity, else +z); the view is along it when `|m|` is
+//! >= 0`, up as in the deformed picture: against gravity, else y for
+//! extrusions thin in z, else z); the view is along it when `|m|` is
 //! at least 0.3 `sum_p A_p` (otherwise the surface is too curved to have a
 //! mean plane and it is seen from above). The in-plane axes (r, v), with
 //! `r x v = e`: for planes within 60 degrees of horizontal, r is the world's
@@ -26,6 +27,7 @@
 
 use plotters::style::text_anchor::{HPos, VPos};
 
+use super::deformed::up_of;
 use super::legend::{colour_bar, colour_map, lut_colour, nice_step, Limits};
 use super::raster::{encode_png, label, register_font, Canvas, Label};
 use super::surface::{centred, edges, facet_patches, fill, mesh_alpha, pieces, Patch};
@@ -76,8 +78,14 @@ struct Plane {
 
 impl Plane {
     fn new(model: &Model, pairs: &[usize]) -> Plane {
-        let g = model.gravity;
-        let up = if dot(g, g) > 0.0 { norm3(g.map(|x| -x)) } else { [0.0, 0.0, 1.0] };
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for &k in model.bodies.iter().flat_map(|b| &b.cells).flat_map(|c| &c.nodes) {
+            for d in 0..3 {
+                lo[d] = lo[d].min(model.coords[k][d]);
+                hi[d] = hi[d].max(model.coords[k][d]);
+            }
+        }
+        let up = up_of(std::array::from_fn(|d| hi[d] - lo[d]), model.gravity);
         let m = mean_normal(model, pairs);
         let total: f64 = pairs.iter().map(|&p| model.pairs[p].area).sum();
         let mut e = if dot(m, m).sqrt() >= 0.3 * total && total > 0.0 { norm3(m) } else { up };
@@ -121,18 +129,20 @@ struct Layout {
 }
 
 impl Layout {
-    /// Side by side, or one above the other for interfaces much wider than
-    /// tall (when that draws them at least 1.25 times larger).
+    /// Side by side in 560 px squares, or one above the other, sized to the
+    /// interface, for interfaces much wider than tall (when that draws them
+    /// at least 1.25 times larger).
     fn new(extent: [f64; 2]) -> Layout {
-        let fit = |bw: f64, bh: f64| (bw / extent[0].max(1e-300)).min(bh / extent[1].max(1e-300));
-        let side = fit(560.0, 560.0);
-        let stacked = fit(1360.0, 420.0);
-        if stacked <= 1.25 * side {
+        let (ex, ey) = (extent[0].max(1e-300), extent[1].max(1e-300));
+        let side = (532.0 / ex).min(532.0 / ey);
+        let iw = (392.0 * ex / ey).min(1332.0);
+        if iw / ex <= 1.25 * side {
             return Layout { w: 1600, h: 800, boxes: [[80.0, 130.0, 640.0, 690.0], [890.0, 130.0, 1450.0, 690.0]], column: [665.0, 1472.0] };
         }
-        let bh = (1360.0 * extent[1] / extent[0] + 30.0).clamp(240.0, 420.0).round();
+        let (bw, bh) = ((iw + 28.0).max(560.0).round(), (iw * ey / ex + 28.0).max(240.0).round());
         let b2 = 130.0 + bh + 100.0;
-        Layout { w: 1600, h: (b2 + bh + 110.0) as usize, boxes: [[80.0, 130.0, 1440.0, 130.0 + bh], [80.0, b2, 1440.0, b2 + bh]], column: [1465.0, 1465.0] }
+        let column = 80.0 + bw + 25.0;
+        Layout { w: ((column + 175.0) as usize).max(1200), h: (b2 + bh + 110.0) as usize, boxes: [[80.0, 130.0, 80.0 + bw, 130.0 + bh], [80.0, b2, 80.0 + bw, b2 + bh]], column: [column, column] }
     }
 }
 
@@ -261,10 +271,10 @@ pub(super) fn plan_canvas(title: &str, model: &Model, contact: &ContactRun, ii: 
         17.0,
         (HPos::Left, VPos::Top),
     ));
-    let note = if arrows > 0 {
-        format!("Arrows: the direction in which \"{bii}\" slips relative to \"{bi}\" (the shear on \"{bi}\"), on slipping pairs.")
-    } else {
-        "No pair slips.".to_string()
+    let note = match (counts[1], arrows) {
+        (0, _) => "No pair slips.".to_string(),
+        (_, 0) => "The slipping pairs carry no shear (frictionless slip): no slip directions to draw.".to_string(),
+        _ => format!("Arrows: the direction in which \"{bii}\" slips relative to \"{bi}\" (the shear on \"{bi}\"), on slipping pairs."),
     };
     labels.push(label(note, (24.0, layout.h as f64 - 18.0), 14.0, (HPos::Left, VPos::Center)));
     cv.text(&labels)?;

@@ -1,5 +1,6 @@
-//! The raster the deformed picture is drawn on: an RGB buffer with filled,
-//! linearly shaded triangles, anti-aliased lines and dots, text written by
+//! The raster the deformed picture and the plan views are drawn on: an RGB
+//! buffer with filled triangles (linearly shaded, or painted from each
+//! pixel's barycentric weights), anti-aliased lines and dots, text written by
 //! plotters in the embedded DejaVu Sans (placed by the font's own metrics),
 //! and its encoding as a PNG by the `png` crate.
 

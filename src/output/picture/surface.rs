@@ -1,7 +1,8 @@
-//! The surface the deformed picture fills: every 2D cell, or the boundary
-//! faces of 3D cells, as patches in gmsh's 2D node order, with the edges
-//! to outline, cut into sub-triangles through their mid-edge nodes and
-//! filled with the nodal field interpolated linearly (Gouraud).
+//! The surfaces the pictures fill: every 2D cell, or the boundary faces of
+//! 3D cells (the deformed picture), or a contact interface's facets (the
+//! plan view), as patches in gmsh's 2D node order, with the edges to
+//! outline, cut into sub-triangles through their mid-edge nodes and filled
+//! with the nodal field interpolated linearly (Gouraud).
 
 use super::raster::Canvas;
 use super::{cross, dot, norm3, sub3};

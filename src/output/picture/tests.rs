@@ -82,6 +82,11 @@ fn count(cv: &Canvas, c: [u8; 3]) -> usize {
     cv.rgb.chunks_exact(3).enumerate().filter(|(i, p)| (i % cv.w) < PANEL_X as usize - 10 && p == &c).count()
 }
 
+/// The columns of the pixels of colour `c` inside box `b` (x0, y0, x1, y1).
+fn in_box(cv: &Canvas, b: [f64; 4], c: [u8; 3]) -> Vec<usize> {
+    (b[1] as usize..b[3] as usize).flat_map(|y| (b[0] as usize..b[2] as usize).map(move |x| (x, y))).filter(|&(x, y)| cv.rgb[(y * cv.w + x) * 3..][..3] == c).map(|(x, _)| x).collect()
+}
+
 /// The last state of a run, to draw.
 fn snap(run: &Run) -> Snapshot<'_> {
     Snapshot { title: &run.scene.title, model: &run.model, u: &run.u, stresses: &run.stresses, contact: run.contact.as_ref() }
@@ -184,6 +189,11 @@ fn paper_mesh_picture_in_3d() {
     assert!(svg.contains("12 stick"));
     keep("paper_interfaces.svg", svg.as_bytes());
     keep("paper_interfaces.png", &interface_plot_png(&run.model, contact(&run)).expect("plot"));
+    // the 45-degree cut is vertical: seen along its normal, z up
+    let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, contact(&run), 0).expect("plan view");
+    let stick = in_box(&cv, boxes[0], STICK).len();
+    assert!(stick > 20_000, "the cut sticks: {stick} pixels");
+    keep("paper_plan.png", &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
 }
 
 /// Two blocks stacked on a frictional joint (f = 0.8) without cohesion
@@ -237,6 +247,13 @@ fn stacked_blocks_pushed_sideways_show_the_states_they_reach() {
             assert_eq!(count(&cv, colour) > 0, n > 0, "{name}: {state} drawn exactly when present ({n} pairs)");
         }
         keep(&format!("stack_{name}_von_mises.png"), &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
+        if analysis == "solid" {
+            let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, c, 0).expect("plan view");
+            for (state, colour, n) in [("open", OPEN, counts[0]), ("slip", SLIP, counts[1]), ("stick", STICK, counts[2])] {
+                assert_eq!(!in_box(&cv, boxes[0], colour).is_empty(), n > 0, "{name}: {state} in plan exactly when present ({n} pairs)");
+            }
+            keep(&format!("stack_{name}_plan.png"), &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
+        }
         keep(&format!("stack_{name}_syy.png"), &deformed_png(&snap(&run), Field::Syy, None).expect("picture"));
         keep(&format!("stack_{name}_interfaces.png"), &interface_plot_png(&run.model, contact(&run)).expect("plot"));
         let svg = interface_plot_svg(&run.model, contact(&run)).expect("plot");
@@ -306,11 +323,11 @@ fn plan_view_of_a_3d_joint_shows_where_it_slips() {
     assert!(c.converged && counts[1] > 0 && counts[2] > 0 && counts[0] == 0, "partial slip: {counts:?}");
     assert_eq!(plan_files(&run.model), vec![(0, "plan_joint.png".to_string())]);
 
+    let t = std::time::Instant::now();
     let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, c, 0).expect("plan view");
+    eprintln!("plan view drawn in {:.3} s", t.elapsed().as_secs_f64());
     keep("blocks3d_plan_joint.png", &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
-    let pixels = |b: [f64; 4], colour: [u8; 3]| -> Vec<usize> {
-        (b[1] as usize..b[3] as usize).flat_map(|y| (b[0] as usize..b[2] as usize).map(move |x| (x, y))).filter(|&(x, y)| cv.rgb[(y * cv.w + x) * 3..][..3] == colour).map(|(x, _)| x).collect()
-    };
+    let pixels = |b: [f64; 4], colour: [u8; 3]| in_box(&cv, b, colour);
     let (slip, stick) = (pixels(boxes[0], SLIP), pixels(boxes[0], STICK));
     assert!(pixels(boxes[0], OPEN).is_empty(), "no pair opens");
     let area = slip.len() as f64 / (slip.len() + stick.len()) as f64;
