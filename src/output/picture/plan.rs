@@ -8,10 +8,10 @@
 //!   pairs in that state, 0 at the others) is interpolated linearly over
 //!   the facets' sub-triangles and every pixel takes the state whose
 //!   indicator is largest there, so stick, slip and open zones meet half-way
-//!   between pairs in different states. Arrows on slipping pairs (one per
-//!   cell of a coarse grid): the shear on body I, `tau_t t + tau_b b` in the
-//!   pair's frame (n, t, b), which is the direction body II slips relative to
-//!   body I.
+//!   between pairs in different states. Arrows on slipping pairs, thinned to
+//!   an even spacing: the shear on body I, `tau_t t + tau_b b` in the pair's
+//!   frame (n, t, b) ([`ContactRun::shear`]), which is the direction body II
+//!   slips relative to body I.
 //! - (b) sigma_n interpolated over the facets, with its colour bar.
 //!
 //! The plane: its normal is the pairs' mean normal `m = sum_p A_p n_p` (n_p
@@ -169,17 +169,20 @@ impl Fit {
 pub(super) fn plan_canvas(title: &str, model: &Model, contact: &ContactRun, ii: usize) -> Result<(Canvas, [[f64; 4]; 2]), String> {
     register_font();
     let iface = model.interfaces.get(ii).ok_or("no such contact interface")?;
-    if contact.states.len() != model.pairs.len() || contact.pairs.len() != model.pairs.len() {
+    if [contact.states.len(), contact.pairs.len(), contact.frames.len()].iter().any(|&n| n != model.pairs.len()) {
         return Err("the contact results do not match the model's pairs".into());
-    }
-    let mut pair_of = vec![usize::MAX; model.n_nodes()];
-    for (i, p) in model.pairs.iter().enumerate() {
-        pair_of[p.k] = i;
     }
     let mut patches = facet_patches(&iface.facets, &model.coords);
     let mut nodes: Vec<usize> = patches.iter().flat_map(|p| p.nodes().to_vec()).collect();
     nodes.sort_unstable();
     nodes.dedup();
+    // the pair at each facet node: this contact's where contacts meet
+    let mut pair_of = vec![usize::MAX; model.n_nodes()];
+    for (p, pair) in model.pairs.iter().enumerate() {
+        if nodes.binary_search(&pair.k).is_ok() && (pair_of[pair.k] == usize::MAX || pair.contact == ii) {
+            pair_of[pair.k] = p;
+        }
+    }
     let pairs: Vec<usize> = nodes.iter().map(|&k| pair_of[k]).filter(|&p| p != usize::MAX).collect();
     if nodes.is_empty() {
         return Err(format!("contact \"{}\" has no facets to draw", iface.name));
@@ -240,7 +243,8 @@ pub(super) fn plan_canvas(title: &str, model: &Model, contact: &ContactRun, ii: 
     for &p in &pairs {
         counts[contact.states[p].code() as usize] += 1;
     }
-    state_legend(&mut cv, &mut labels, layout.column[0], layout.boxes[0][1], counts, arrows > 0);
+    let unpaired = nodes.iter().any(|&k| pair_of[k] == usize::MAX);
+    state_legend(&mut cv, &mut labels, layout.column[0], layout.boxes[0][1], counts, unpaired, arrows > 0);
 
     // (b) sigma_n
     let sigma: Vec<f32> = pair_of.iter().map(|&p| if p == usize::MAX { f32::NAN } else { contact.pairs[p].sigma_n as f32 }).collect();
@@ -261,12 +265,12 @@ pub(super) fn plan_canvas(title: &str, model: &Model, contact: &ContactRun, ii: 
     let heading = |b: [f64; 4], text: &str| label(text, (b[0], b[1] - 22.0), 17.0, (HPos::Left, VPos::Center));
     labels.push(heading(layout.boxes[0], "(a) contact state: where it sticks, slips and opens"));
     labels.push(heading(layout.boxes[1], "(b) σn, contact normal stress (tension > 0)"));
-    let (bi, bii) = (&model.bodies[iface.body_i].name, &model.bodies[iface.body_ii].name);
-    let viewer = if dot(plane.e, mean_normal(model, &pairs)) >= 0.0 { bii } else { bi };
+    let [bi, bii] = sides(model, ii, &pairs);
+    let viewer = if dot(plane.e, mean_normal(model, &pairs)) >= 0.0 { &bii } else { &bi };
     let above = if dot(plane.e, plane.up) > 0.9 { ", above" } else { "" };
     labels.push(label(title, (24.0, 14.0), 24.0, (HPos::Left, VPos::Top)));
     labels.push(label(
-        format!("plan view of contact \"{}\" between \"{bi}\" and \"{bii}\" ({} pairs), seen from {}{above} (the side of \"{viewer}\")", iface.name, pairs.len(), direction(plane.e, true)),
+        format!("plan view of contact \"{}\" between {} and {} ({} pairs), seen from {}{above} (the side of {})", iface.name, bi.0, bii.0, pairs.len(), direction(plane.e, true), viewer.0),
         (24.0, 50.0),
         17.0,
         (HPos::Left, VPos::Top),
@@ -274,11 +278,35 @@ pub(super) fn plan_canvas(title: &str, model: &Model, contact: &ContactRun, ii: 
     let note = match (counts[1], arrows) {
         (0, _) => "No pair slips.".to_string(),
         (_, 0) => "The slipping pairs carry no shear (frictionless slip): no slip directions to draw.".to_string(),
-        _ => format!("Arrows: the direction in which \"{bii}\" slips relative to \"{bi}\" (the shear on \"{bi}\"), on slipping pairs."),
+        _ => format!("Arrows: the direction in which {} {} relative to {} (the shear on {}), on slipping pairs.", bii.0, if bii.1 > 1 { "slip" } else { "slips" }, bi.0, bi.0),
     };
     labels.push(label(note, (24.0, layout.h as f64 - 18.0), 14.0, (HPos::Left, VPos::Center)));
     cv.text(&labels)?;
     Ok((cv, layout.boxes))
+}
+
+/// The bodies on each side of interface `ii` as `"a", "b" and "c"`, with
+/// their number: side I as the model lists it, side II the bodies that
+/// hold the pairs' second nodes.
+fn sides(model: &Model, ii: usize, pairs: &[usize]) -> [(String, usize); 2] {
+    let iface = &model.interfaces[ii];
+    let mut second = vec![false; model.n_nodes()];
+    for &p in pairs {
+        second[model.pairs[p].l] = true;
+    }
+    let mut side_ii: Vec<usize> = (0..model.bodies.len()).filter(|&b| model.bodies[b].cells.iter().any(|c| c.nodes.iter().any(|&k| second[k]))).collect();
+    if side_ii.is_empty() {
+        side_ii.push(iface.body_ii);
+    }
+    let names = |bodies: &[usize]| -> (String, usize) {
+        let q: Vec<String> = bodies.iter().map(|&b| format!("\"{}\"", model.bodies[b].name)).collect();
+        let text = match q.split_last() {
+            Some((last, rest)) if !rest.is_empty() => format!("{} and {last}", rest.join(", ")),
+            _ => q.concat(),
+        };
+        (text, bodies.len())
+    };
+    [names(&iface.side_i), names(&side_ii)]
 }
 
 /// The unnormalised mean outward normal of body I over the pairs.
@@ -290,22 +318,6 @@ fn mean_normal(model: &Model, pairs: &[usize]) -> [f64; 3] {
         }
     }
     m
-}
-
-/// The shear on body I of pair `p` in global axes: `tau_t t + tau_b b` in
-/// the frame the contact iteration used, rebuilt from the pair's normal and
-/// the supported directions of its two nodes ([`crate::contact::frame`]).
-pub(super) fn shear(model: &Model, contact: &ContactRun, p: usize) -> [f64; 3] {
-    let (pair, nd) = (&model.pairs[p], model.nd);
-    let mut fixed = [false; 3];
-    for node in [pair.k, pair.l] {
-        for (c, f) in fixed.iter_mut().enumerate().take(nd) {
-            *f |= model.prescribed[node * nd + c].is_some();
-        }
-    }
-    let f = crate::contact::frame::frame(nd, pair.normal, fixed);
-    let r = &contact.pairs[p];
-    std::array::from_fn(|c| r.tau_t * f[1][c] + r.tau_b * f[2][c])
 }
 
 /// Arrows along the shear of slipping pairs, no two closer than the
@@ -327,7 +339,7 @@ fn slip_arrows(cv: &mut Canvas, model: &Model, contact: &ContactRun, plane: &Pla
         if near {
             continue;
         }
-        let t = shear(model, contact, p);
+        let t = contact.shear(p);
         let d = [dot(t, plane.r) as f32, -dot(t, plane.v) as f32];
         let len = d[0].hypot(d[1]);
         if !(len > 1e-9 * dot(t, t).sqrt() as f32) || !len.is_finite() {
@@ -355,15 +367,22 @@ fn arrow(cv: &mut Canvas, a: [f32; 2], b: [f32; 2]) {
     cv.triangle(tri, [0.0; 3], &|_| INK);
 }
 
-/// The states with their counts on this interface, and the arrow's meaning.
-fn state_legend(cv: &mut Canvas, labels: &mut Vec<Label>, x: f64, top: f64, counts: [usize; 3], arrows: bool) {
+/// The states with their counts on this interface, facet nodes without a
+/// pair here, and the arrow's meaning.
+fn state_legend(cv: &mut Canvas, labels: &mut Vec<Label>, x: f64, top: f64, counts: [usize; 3], unpaired: bool, arrows: bool) {
     let mut y = top + 10.0;
     labels.push(label("contact pairs", (x, y), 16.0, (HPos::Left, VPos::Center)));
-    for (s, n) in [(ContactState::Stick, counts[2]), (ContactState::Slip, counts[1]), (ContactState::Open, counts[0])] {
+    let mut entries: Vec<([u8; 3], String)> =
+        [(ContactState::Stick, counts[2]), (ContactState::Slip, counts[1]), (ContactState::Open, counts[0])].iter().map(|&(s, n)| (state_colour(s), format!("{} ({n})", s.name()))).collect();
+    if unpaired {
+        // facet nodes that are no pair's first node (where contacts meet)
+        entries.push((NO_PAIR, "no pair here".into()));
+    }
+    for (colour, text) in entries {
         y += 28.0;
-        cv.rect(x + 1.0, y - 8.0, x + 25.0, y + 8.0, state_colour(s));
+        cv.rect(x + 1.0, y - 8.0, x + 25.0, y + 8.0, colour);
         cv.polyline([[x + 1.0, y - 8.0], [x + 25.0, y - 8.0], [x + 25.0, y + 8.0], [x + 1.0, y + 8.0], [x + 1.0, y - 8.0]].map(|p| [p[0] as f32, p[1] as f32]).into_iter(), 1.0, INK, 1.0);
-        labels.push(label(format!("{} ({n})", s.name()), (x + 34.0, y), 15.0, (HPos::Left, VPos::Center)));
+        labels.push(label(text, (x + 34.0, y), 15.0, (HPos::Left, VPos::Center)));
     }
     if arrows {
         y += 30.0;

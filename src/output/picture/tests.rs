@@ -348,7 +348,7 @@ fn plan_view_of_a_3d_joint_shows_where_it_slips() {
     // upper block slips over the lower one (its relative displacement)
     let nd = run.model.nd;
     for (p, pair) in run.model.pairs.iter().enumerate().filter(|&(p, _)| c.states[p] == ContactState::Slip) {
-        let t = super::plan::shear(&run.model, c, p);
+        let t = c.shear(p);
         let rel: [f64; 3] = std::array::from_fn(|d| run.u[pair.l * nd + d] - run.u[pair.k * nd + d]);
         let slip = sub3(rel, pair.normal.map(|x| x * dot(rel, pair.normal)));
         assert!((dot(t, t).sqrt() - c.pairs[p].tau()).abs() <= 1e-9 * c.pairs[p].tau().max(1e-12), "pair {p}: the frame is orthonormal");
