@@ -1,6 +1,6 @@
 //! Result files of a run, staged in memory and written together:
 //! `<name>.vtu` (bodies), `<name>_contact.vtu` (interfaces), `contact.csv`,
-//! `probes.csv`, `summary.json`, `report.md`.
+//! `probes.csv`, `summary.json`, `report.md` and the pictures it embeds.
 
 pub mod files;
 pub mod picture;
@@ -62,7 +62,8 @@ pub fn stage(run: &Run) -> Result<Staged> {
 }
 
 /// Result files of scene `name` in `dir` that are not among `written`: VTU
-/// and PVD files named after the scene, the CSV tables and pictures.
+/// and PVD files named after the scene, the CSV tables and the pictures
+/// (`deformed_*.png`, `interfaces.svg`, `plan_*.png`).
 pub fn stale(dir: &std::path::Path, name: &str, written: &[std::path::PathBuf]) -> Vec<std::path::PathBuf> {
     let Ok(entries) = std::fs::read_dir(dir) else { return Vec::new() };
     entries
@@ -72,7 +73,8 @@ pub fn stale(dir: &std::path::Path, name: &str, written: &[std::path::PathBuf]) 
         .filter(|p| {
             let f = p.file_name().and_then(|f| f.to_str()).unwrap_or("");
             let ours = f.starts_with(name) && [".vtu", ".pvd", ".png", ".svg"].iter().any(|x| f.ends_with(x));
-            ours || f == "contact.csv" || f == "probes.csv" || f == "interfaces.svg"
+            let picture = (f.starts_with("deformed_") || f.starts_with("plan_")) && f.ends_with(".png");
+            ours || picture || f == "contact.csv" || f == "probes.csv" || f == "interfaces.svg"
         })
         .collect()
 }

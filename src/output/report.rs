@@ -73,6 +73,10 @@ pub fn report(run: &Run) -> String {
     let _ = writeln!(s, "\n![the deformed shape, contact pairs coloured by state]({})", super::picture::deformed_file(&run.stresses));
     if run.contact.is_some() {
         let _ = writeln!(s, "\n![contact normal and shear stress along each interface](interfaces.svg)");
+        for (ii, file) in super::picture::plan_files(&run.model) {
+            let name = &run.model.interfaces[ii].name;
+            let _ = writeln!(s, "\n![plan view of {name}: where it sticks, slips and opens; sigma_n]({file})\n\n*Plan view of `{name}`: where it sticks, slips and opens (left); sigma_n (right).*");
+        }
     }
     s += &run.check.report;
     for (name, samples) in &run.probes {

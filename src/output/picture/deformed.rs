@@ -9,7 +9,7 @@ use plotters::style::text_anchor::{HPos, VPos};
 
 use super::legend::{colour_bar, colour_map, legend, lut_colour, triad, Limits};
 use super::raster::{encode_png, label, register_font, Canvas};
-use super::surface::{centred, fill, patches, typical_edge, Patch};
+use super::surface::{centred, edges, fill, mesh_alpha, patches, Patch};
 use super::{cross, dot, norm3, num, sig2, state_colour, sub3, Field, Snapshot, GHOST, INK, NO_PAIR};
 use crate::fem::material::von_mises;
 use crate::fem::Analysis;
@@ -30,6 +30,20 @@ pub fn deformed_png(snap: &Snapshot, field: Field, scale: Option<f64>) -> Result
     encode_png(c.w, c.h, &c.rgb)
 }
 
+/// Which way is up in a 3D model of this extent: against gravity when there
+/// is some; else y, as in the plane pictures, for models thinner in z than
+/// across (extrusions of a plane section); else z.
+pub(super) fn up_of(extent: [f64; 3], gravity: [f64; 3]) -> [f64; 3] {
+    let g = dot(gravity, gravity).sqrt();
+    if g > 0.0 {
+        gravity.map(|x| -x / g)
+    } else if extent[2] < 0.99 * extent[0].min(extent[1]) {
+        [0.0, 1.0, 0.0]
+    } else {
+        [0.0, 0.0, 1.0]
+    }
+}
+
 /// Oblique view of 3D models: the eye's direction, right and up on screen.
 pub(super) struct View {
     eye: [f64; 3],
@@ -38,26 +52,21 @@ pub(super) struct View {
 }
 
 impl View {
-    /// Which way is up: against gravity when there is some; else y, as in
-    /// the plane pictures, for models thinnest in z (extrusions of a plane
-    /// section), seen mostly from +z; else z. The eye is turned 30 degrees
-    /// to the right and raised 25 degrees (20 and 20 for the extrusions, so
-    /// that their section dominates).
+    /// Which way is up: [`up_of`]. The eye is turned 30 degrees to the
+    /// right and raised 25 degrees (20 and 20 for the extrusions seen mostly
+    /// from +z, so that their section dominates).
     fn new(extent: [f64; 3], gravity: [f64; 3]) -> View {
-        let g = dot(gravity, gravity).sqrt();
-        let thin_z = extent[2] <= extent[0].min(extent[1]);
-        let (up, toward, az, el) = if g > 0.0 {
-            let up = gravity.map(|x| -x / g);
+        let up = up_of(extent, gravity);
+        let (toward, az, el) = if dot(gravity, gravity) > 0.0 {
             // the world axis least along up faces the viewer
             let k = (0..3).min_by(|&a, &b| up[a].abs().total_cmp(&up[b].abs())).unwrap_or(0);
             let mut t = [0.0; 3];
             t[k] = if k == 1 { -1.0 } else { 1.0 };
-            let t = norm3(sub3(t, up.map(|x| x * dot(t, up))));
-            (up, t, 30.0f64, 25.0f64)
-        } else if thin_z {
-            ([0.0, 1.0, 0.0], [0.0, 0.0, 1.0], 20.0, 20.0)
+            (norm3(sub3(t, up.map(|x| x * dot(t, up)))), 30.0f64, 25.0f64)
+        } else if up[1] == 1.0 {
+            ([0.0, 0.0, 1.0], 20.0, 20.0)
         } else {
-            ([0.0, 0.0, 1.0], [0.0, -1.0, 0.0], 30.0, 25.0)
+            ([0.0, -1.0, 0.0], 30.0, 25.0)
         };
         let right = cross(up, toward);
         let (sa, ca, se, ce) = (az.to_radians().sin(), az.to_radians().cos(), el.to_radians().sin(), el.to_radians().cos());
@@ -79,8 +88,9 @@ pub(super) fn deformed_canvas(snap: &Snapshot, field: Field, scale: Option<f64>)
     }
     let frame = Frame::new(snap, scale)?;
     let values = nodal_values(snap, field);
-    let lim = Limits::of(field, &values);
-    let lut = colour_map(field, lim.lo, lim.hi);
+    let signed = field.component().is_some();
+    let lim = Limits::of(signed, &values);
+    let lut = colour_map(signed, lim.lo, lim.hi);
     let mut cv = Canvas::new(W, H);
     draw_bodies(&mut cv, snap, &frame, &values, &lim, &lut);
     draw_contacts(&mut cv, snap, &frame);
@@ -93,7 +103,7 @@ pub(super) fn deformed_canvas(snap: &Snapshot, field: Field, scale: Option<f64>)
         "undeformed shape (no displacement)".to_string()
     };
     labels.push(label(format!("{} on the {shape}", field.label(model.analysis)), (24.0, 48.0), 17.0, (HPos::Left, VPos::Top)));
-    colour_bar(&mut cv, &mut labels, &lut, &lim, field.label(model.analysis));
+    colour_bar(&mut cv, &mut labels, &lut, &lim, field.label(model.analysis), [PANEL_X, 146.0, 500.0]);
     legend(&mut cv, &mut labels, snap, &frame);
     if let Some(view) = &frame.view {
         triad(&mut cv, &mut labels, view);
@@ -239,16 +249,7 @@ fn nodal_values(snap: &Snapshot, field: Field) -> Vec<Vec<f32>> {
 fn draw_bodies(cv: &mut Canvas, snap: &Snapshot, frame: &Frame, values: &[Vec<f32>], lim: &Limits, lut: &[[u8; 3]]) {
     let (sd, su) = (&frame.sd, &frame.su);
     let mut patches = patches(snap.model);
-    // mesh lines fade in from 6 px cells, full from 14 px
-    let mesh_alpha = (((typical_edge(&patches, sd) - 6.0) / 8.0).clamp(0.0, 1.0) * 0.45) as f32;
-    let edges = |cv: &mut Canvas, p: &Patch, pos: &[[f32; 2]], pick: &dyn Fn(bool, bool) -> Option<(f32, [u8; 3], f32)>| {
-        for i in 0..p.kind.n_corners() {
-            if let Some((w, c, a)) = pick(p.outline & (1 << i) != 0, p.first & (1 << i) != 0) {
-                let (chain, len) = p.edge(i);
-                cv.polyline(chain[..len].iter().map(|&k| pos[k]), w, c, a);
-            }
-        }
-    };
+    let mesh_alpha = mesh_alpha(&patches, sd);
     let Some(view) = &frame.view else {
         if frame.moved() {
             for p in &patches {

@@ -6,7 +6,7 @@ use plotters::style::text_anchor::{HPos, VPos};
 
 use super::deformed::{state_dot, Frame, View, PANEL_X};
 use super::raster::{label, Canvas, Label};
-use super::{num, state_colour, Field, Snapshot, GHOST, INK};
+use super::{num, state_colour, Snapshot, GHOST, INK};
 use crate::contact::law::ContactState;
 
 
@@ -23,10 +23,11 @@ impl Limits {
     /// outlying nodes (a stress singularity at a corner or a point support)
     /// do not take the whole colour bar: beyond the 0.5 % and 99.5 %
     /// quantiles by more than half their spread, the bar stops at the
-    /// quantile and those nodes take its end colour. Stress components
-    /// spanning zero get limits symmetric about it, so that grey is zero;
-    /// round-off of the other sign (below 1e-3 of the largest value) is zero.
-    pub(super) fn of(field: Field, values: &[Vec<f32>]) -> Limits {
+    /// quantile and those nodes take its end colour. Signed fields (stress
+    /// components) spanning zero get limits symmetric about it, so that grey
+    /// is zero; round-off of the other sign (below 1e-3 of the largest
+    /// value) is zero.
+    pub(super) fn of(signed: bool, values: &[Vec<f32>]) -> Limits {
         let mut all: Vec<f64> = values.iter().flatten().filter(|v| v.is_finite()).map(|&v| v as f64).collect();
         if all.is_empty() {
             all.push(0.0);
@@ -44,7 +45,7 @@ impl Limits {
         let spread = q_hi - q_lo;
         let mut lo = if q_lo - min > 0.5 * spread { q_lo } else { min };
         let mut hi = if max - q_hi > 0.5 * spread { q_hi } else { max };
-        if field.component().is_some() && lo < 0.0 && hi > 0.0 {
+        if signed && lo < 0.0 && hi > 0.0 {
             let m = lo.abs().max(hi);
             (lo, hi) = (-m, m);
         }
@@ -62,16 +63,16 @@ impl Limits {
 }
 
 /// Colour maps as 256-entry tables: viridis for magnitudes; cool-to-warm
-/// (blue compression, grey zero, red tension) for stress components, its
-/// blue or red half alone when the field has one sign.
-pub(super) fn colour_map(field: Field, lo: f64, hi: f64) -> Vec<[u8; 3]> {
+/// (blue compression, grey zero, red tension) for signed fields (stress
+/// components), its blue or red half alone when the values have one sign.
+pub(super) fn colour_map(signed: bool, lo: f64, hi: f64) -> Vec<[u8; 3]> {
     const VIRIDIS: [[u8; 3]; 9] = [[68, 1, 84], [71, 44, 122], [59, 81, 139], [44, 113, 142], [33, 145, 140], [39, 173, 129], [92, 200, 99], [170, 220, 50], [253, 231, 37]];
     const COOL_WARM: [[u8; 3]; 9] = [[59, 76, 192], [98, 130, 234], [141, 176, 254], [184, 208, 249], [221, 221, 221], [245, 196, 173], [244, 154, 123], [222, 96, 77], [180, 4, 38]];
-    let (stops, u0, u1) = match field.component() {
-        None => (&VIRIDIS, 0.0, 1.0),
-        Some(_) if lo < 0.0 && hi > 0.0 => (&COOL_WARM, 0.0, 1.0),
-        Some(_) if hi <= 0.0 => (&COOL_WARM, 0.0, 0.5),
-        Some(_) => (&COOL_WARM, 0.5, 1.0),
+    let (stops, u0, u1) = match signed {
+        false => (&VIRIDIS, 0.0, 1.0),
+        true if lo < 0.0 && hi > 0.0 => (&COOL_WARM, 0.0, 1.0),
+        true if hi <= 0.0 => (&COOL_WARM, 0.0, 0.5),
+        true => (&COOL_WARM, 0.5, 1.0),
     };
     (0..256)
         .map(|i| {
@@ -129,10 +130,12 @@ pub(super) fn legend(cv: &mut Canvas, labels: &mut Vec<Label>, snap: &Snapshot, 
 /// The vertical colour bar with its limits and a few round ticks; an arrow
 /// head at an end whose colour also stands for values beyond it, and the
 /// field's minimum and maximum under the bar when they are not its ends.
-pub(super) fn colour_bar(cv: &mut Canvas, labels: &mut Vec<Label>, lut: &[[u8; 3]], lim: &Limits, name: &str) {
+/// `at`: the bar's left edge, top and bottom in pixels; its name goes 52
+/// pixels above it.
+pub(super) fn colour_bar(cv: &mut Canvas, labels: &mut Vec<Label>, lut: &[[u8; 3]], lim: &Limits, name: &str, at: [f64; 3]) {
     let (lo, hi) = (lim.lo, lim.hi);
-    let (bx0, bx1, by0, by1) = (PANEL_X, PANEL_X + 26.0, 146.0, 500.0);
-    labels.push(label(name, (PANEL_X, 94.0), 16.0, (HPos::Left, VPos::Center)));
+    let (bx0, bx1, by0, by1) = (at[0], at[0] + 26.0, at[1], at[2]);
+    labels.push(label(name, (bx0, by0 - 52.0), 16.0, (HPos::Left, VPos::Center)));
     for y in by0 as usize..by1 as usize {
         let t = 1.0 - (y as f64 - by0) / (by1 - by0 - 1.0);
         let c = lut[(t * 255.0).round() as usize];
@@ -178,7 +181,7 @@ pub(super) fn colour_bar(cv: &mut Canvas, labels: &mut Vec<Label>, lut: &[[u8; 3
         labels.push(label(format!("down to {}", num(lim.min)), (bx1 + 9.0, by1 + 20.0), 13.0, (HPos::Left, VPos::Center)));
     }
     if lim.min > lo + 1e-9 * (hi - lo) || lim.max < hi - 1e-9 * (hi - lo) {
-        labels.push(label(format!("min {}, max {}", num(lim.min), num(lim.max)), (PANEL_X, by1 + 40.0), 13.0, (HPos::Left, VPos::Center)));
+        labels.push(label(format!("min {}, max {}", num(lim.min), num(lim.max)), (bx0, by1 + 40.0), 13.0, (HPos::Left, VPos::Center)));
     }
 }
 

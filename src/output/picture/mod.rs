@@ -1,7 +1,8 @@
 //! Pictures of a run, for a person to look at rather than read: the deformed
 //! model coloured by a field, with the contact states drawn on the interfaces
-//! (PNG, [`deformed`]), and the contact stresses along each interface (SVG,
-//! [`interfaces`]). This file chooses which pictures a run gets and holds
+//! (PNG, [`deformed`]), the contact stresses along each interface (SVG,
+//! [`interfaces`]) and, in 3D, each contact surface in plan coloured by state
+//! and by sigma_n (PNG, [`plan`]). This file chooses which pictures a run gets and holds
 //! what both share: the field names, the state colours, number formats.
 //!
 //! The deformed picture is rasterised by this module itself ([`raster`]:
@@ -18,6 +19,7 @@
 mod deformed;
 mod interfaces;
 mod legend;
+mod plan;
 mod raster;
 mod surface;
 #[cfg(test)]
@@ -25,6 +27,7 @@ mod tests;
 
 pub use deformed::deformed_png;
 pub use interfaces::interface_plot_svg;
+pub use plan::{plan_files, plan_png, plan_pngs};
 
 use crate::contact::law::ContactState;
 use crate::model::Model;
@@ -123,12 +126,14 @@ pub fn deformed_file(stresses: &[BodyStress]) -> &'static str {
 
 /// The pictures of a snapshot under their file names: the deformed model
 /// coloured by von Mises stress (or the displacement magnitude), and with
-/// contact the interface stresses.
+/// contact the interface stresses and, in 3D, each interface in plan
+/// ([`plan_files`]).
 pub fn pictures(snap: &Snapshot) -> Result<Vec<(String, Vec<u8>)>, String> {
     let field = if snap.stresses.is_empty() { Field::Displacement } else { Field::VonMises };
     let mut out = vec![(deformed_file(snap.stresses).to_string(), deformed_png(snap, field, None)?)];
     if let Some(c) = snap.contact.filter(|_| !snap.model.interfaces.is_empty()) {
         out.push(("interfaces.svg".to_string(), interface_plot_svg(snap.model, c)?.into_bytes()));
+        out.extend(plan_pngs(snap.title, snap.model, c)?);
     }
     Ok(out)
 }

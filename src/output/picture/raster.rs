@@ -1,5 +1,6 @@
-//! The raster the deformed picture is drawn on: an RGB buffer with filled,
-//! linearly shaded triangles, anti-aliased lines and dots, text written by
+//! The raster the deformed picture and the plan views are drawn on: an RGB
+//! buffer with filled triangles (linearly shaded, or painted from each
+//! pixel's barycentric weights), anti-aliased lines and dots, text written by
 //! plotters in the embedded DejaVu Sans (placed by the font's own metrics),
 //! and its encoding as a PNG by the `png` crate.
 
@@ -57,9 +58,26 @@ impl Canvas {
     }
 
     /// Fills a triangle, each pixel painted by the linearly interpolated
-    /// value. Barycentric weights in f64 about the first vertex, with a
-    /// small tolerance, leave no pixel out between triangles sharing an edge.
+    /// value.
     pub(super) fn triangle(&mut self, p: [[f32; 2]; 3], t: [f32; 3], paint: &dyn Fn(f32) -> [u8; 3]) {
+        if t[0] == t[1] && t[1] == t[2] {
+            let flat = paint(t[0]);
+            self.scan(p, |_| flat);
+        } else {
+            self.scan(p, |w| paint((w[0] * t[0] as f64 + w[1] * t[1] as f64 + w[2] * t[2] as f64) as f32));
+        }
+    }
+
+    /// Fills a triangle, each pixel painted from its barycentric weights on
+    /// the three vertices.
+    pub(super) fn triangle_weighted(&mut self, p: [[f32; 2]; 3], paint: &dyn Fn([f64; 3]) -> [u8; 3]) {
+        self.scan(p, paint);
+    }
+
+    /// Paints the pixels whose centres lie in a triangle. Barycentric
+    /// weights in f64 about the first vertex, with a small tolerance, leave
+    /// no pixel out between triangles sharing an edge.
+    fn scan(&mut self, p: [[f32; 2]; 3], paint: impl Fn([f64; 3]) -> [u8; 3]) {
         let o = [p[0][0] as f64, p[0][1] as f64];
         let q = p.map(|v| [v[0] as f64 - o[0], v[1] as f64 - o[1]]);
         let area = q[1][0] * q[2][1] - q[1][1] * q[2][0];
@@ -78,8 +96,6 @@ impl Canvas {
         let (a1, b1) = (q[2][1] * inv, -q[2][0] * inv);
         let (a2, b2) = (-q[1][1] * inv, q[1][0] * inv);
         let eps = -1e-9;
-        let uniform = t[0] == t[1] && t[1] == t[2];
-        let flat = paint(t[0]);
         for y in ymin..=ymax as usize {
             let py = y as f64 + 0.5 - o[1];
             for x in xmin..=xmax as usize {
@@ -88,9 +104,8 @@ impl Canvas {
                 let w2 = a2 * px + b2 * py;
                 let w0 = 1.0 - w1 - w2;
                 if w0 >= eps && w1 >= eps && w2 >= eps {
-                    let c = if uniform { flat } else { paint((w0 * t[0] as f64 + w1 * t[1] as f64 + w2 * t[2] as f64) as f32) };
                     let i = (y * self.w + x) * 3;
-                    self.rgb[i..i + 3].copy_from_slice(&c);
+                    self.rgb[i..i + 3].copy_from_slice(&paint([w0, w1, w2]));
                 }
             }
         }

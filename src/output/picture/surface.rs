@@ -1,13 +1,14 @@
-//! The surface the deformed picture fills: every 2D cell, or the boundary
-//! faces of 3D cells, as patches in gmsh's 2D node order, with the edges
-//! to outline, cut into sub-triangles through their mid-edge nodes and
-//! filled with the nodal field interpolated linearly (Gouraud).
+//! The surfaces the pictures fill: every 2D cell, or the boundary faces of
+//! 3D cells (the deformed picture), or a contact interface's facets (the
+//! plan view), as patches in gmsh's 2D node order, with the edges to
+//! outline, cut into sub-triangles through their mid-edge nodes and filled
+//! with the nodal field interpolated linearly (Gouraud).
 
 use super::raster::Canvas;
 use super::{cross, dot, norm3, sub3};
 use crate::model::Model;
 use crate::fem::shape::{HEX_EDGES, HEX_FACES, TET_EDGES};
-use crate::mesh::CellKind;
+use crate::mesh::{Cell, CellKind};
 use crate::fem::Analysis;
 
 /// A cell or face drawn as a surface patch: nodes in gmsh 2D order (Tri3/6,
@@ -156,6 +157,22 @@ pub(super) fn patches(model: &Model) -> Vec<Patch> {
     out
 }
 
+/// The facets of a contact interface (2D cells in gmsh order) as patches,
+/// `outline` marking the interface's boundary.
+pub(super) fn facet_patches(facets: &[Cell], coords: &[[f64; 3]]) -> Vec<Patch> {
+    let mut out: Vec<Patch> = facets
+        .iter()
+        .filter(|f| !sub_triangles(f.kind).is_empty())
+        .map(|f| {
+            let mut p = Patch { kind: f.kind, nodes: [0; 9], body: 0, outline: 0, first: 0 };
+            p.nodes[..f.nodes.len()].copy_from_slice(&f.nodes);
+            p
+        })
+        .collect();
+    mark_outlines(&mut out, coords, false);
+    out
+}
+
 /// Sets the `outline` and `first` bits of the patches of one body.
 fn mark_outlines(patches: &mut [Patch], coords: &[[f64; 3]], solid: bool) {
     let mut edges: Vec<(usize, usize, u32, u8)> = Vec::new();
@@ -194,7 +211,7 @@ pub(super) fn centred(p: &Patch, value: impl Fn(usize) -> f32) -> [f64; 9] {
 }
 
 /// Median screen length of the patches' corner-to-corner edges.
-pub(super) fn typical_edge(patches: &[Patch], sd: &[[f32; 2]]) -> f64 {
+fn typical_edge(patches: &[Patch], sd: &[[f32; 2]]) -> f64 {
     let step = (patches.len() / 4000).max(1);
     let mut l: Vec<f32> = patches
         .iter()
@@ -214,16 +231,38 @@ pub(super) fn typical_edge(patches: &[Patch], sd: &[[f32; 2]]) -> f64 {
     *l.select_nth_unstable_by(mid, |a, b| a.total_cmp(b)).1 as f64
 }
 
-/// Fills a patch through its sub-triangles; `values` gives the patch's
-/// nodal values (index 8 the centre) and `paint` a colour for a value.
-pub(super) fn fill(cv: &mut Canvas, p: &Patch, pos: &[[f32; 2]], values: &dyn Fn(&Patch) -> [f64; 9], paint: &dyn Fn(f32) -> [u8; 3]) {
+/// Opacity of the mesh lines over patches at these positions: they fade in
+/// from 6 px cells and are full (0.45) from 14 px.
+pub(super) fn mesh_alpha(patches: &[Patch], pos: &[[f32; 2]]) -> f32 {
+    (((typical_edge(patches, pos) - 6.0) / 8.0).clamp(0.0, 1.0) * 0.45) as f32
+}
+
+/// Strokes a patch's edges (through their mid-edge nodes): `pick(outline,
+/// first)` gives an edge's width, colour and opacity, or None to leave it.
+pub(super) fn edges(cv: &mut Canvas, p: &Patch, pos: &[[f32; 2]], pick: &dyn Fn(bool, bool) -> Option<(f32, [u8; 3], f32)>) {
+    for i in 0..p.kind.n_corners() {
+        if let Some((w, c, a)) = pick(p.outline & (1 << i) != 0, p.first & (1 << i) != 0) {
+            let (chain, len) = p.edge(i);
+            cv.polyline(chain[..len].iter().map(|&k| pos[k]), w, c, a);
+        }
+    }
+}
+
+/// The sub-triangles of a patch on the screen, each with its vertices'
+/// indices in the patch (8 the centre of a quadrilateral).
+pub(super) fn pieces(p: &Patch, pos: &[[f32; 2]]) -> impl Iterator<Item = ([[f32; 2]; 3], [usize; 3])> {
     let mut xy = [[0.0f64; 9]; 2];
     for d in 0..2 {
         with_centre(p.kind, &mut xy[d], |i| pos[p.nodes[i]][d]);
     }
+    sub_triangles(p.kind).iter().map(move |tri| (tri.map(|i| [xy[0][i] as f32, xy[1][i] as f32]), *tri))
+}
+
+/// Fills a patch through its sub-triangles; `values` gives the patch's
+/// nodal values (index 8 the centre) and `paint` a colour for a value.
+pub(super) fn fill(cv: &mut Canvas, p: &Patch, pos: &[[f32; 2]], values: &dyn Fn(&Patch) -> [f64; 9], paint: &dyn Fn(f32) -> [u8; 3]) {
     let t = values(p);
-    for tri in sub_triangles(p.kind) {
-        let q = tri.map(|i| [xy[0][i] as f32, xy[1][i] as f32]);
+    for (q, tri) in pieces(p, pos) {
         cv.triangle(q, tri.map(|i| t[i] as f32), paint);
     }
 }

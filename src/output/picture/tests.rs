@@ -82,6 +82,11 @@ fn count(cv: &Canvas, c: [u8; 3]) -> usize {
     cv.rgb.chunks_exact(3).enumerate().filter(|(i, p)| (i % cv.w) < PANEL_X as usize - 10 && p == &c).count()
 }
 
+/// The columns of the pixels of colour `c` inside box `b` (x0, y0, x1, y1).
+fn in_box(cv: &Canvas, b: [f64; 4], c: [u8; 3]) -> Vec<usize> {
+    (b[1] as usize..b[3] as usize).flat_map(|y| (b[0] as usize..b[2] as usize).map(move |x| (x, y))).filter(|&(x, y)| cv.rgb[(y * cv.w + x) * 3..][..3] == c).map(|(x, _)| x).collect()
+}
+
 /// The last state of a run, to draw.
 fn snap(run: &Run) -> Snapshot<'_> {
     Snapshot { title: &run.scene.title, model: &run.model, u: &run.u, stresses: &run.stresses, contact: run.contact.as_ref() }
@@ -184,6 +189,11 @@ fn paper_mesh_picture_in_3d() {
     assert!(svg.contains("12 stick"));
     keep("paper_interfaces.svg", svg.as_bytes());
     keep("paper_interfaces.png", &interface_plot_png(&run.model, contact(&run)).expect("plot"));
+    // the 45-degree cut is vertical: seen along its normal, z up
+    let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, contact(&run), 0).expect("plan view");
+    let stick = in_box(&cv, boxes[0], STICK).len();
+    assert!(stick > 20_000, "the cut sticks: {stick} pixels");
+    keep("paper_plan.png", &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
 }
 
 /// Two blocks stacked on a frictional joint (f = 0.8) without cohesion
@@ -237,6 +247,13 @@ fn stacked_blocks_pushed_sideways_show_the_states_they_reach() {
             assert_eq!(count(&cv, colour) > 0, n > 0, "{name}: {state} drawn exactly when present ({n} pairs)");
         }
         keep(&format!("stack_{name}_von_mises.png"), &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
+        if analysis == "solid" {
+            let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, c, 0).expect("plan view");
+            for (state, colour, n) in [("open", OPEN, counts[0]), ("slip", SLIP, counts[1]), ("stick", STICK, counts[2])] {
+                assert_eq!(!in_box(&cv, boxes[0], colour).is_empty(), n > 0, "{name}: {state} in plan exactly when present ({n} pairs)");
+            }
+            keep(&format!("stack_{name}_plan.png"), &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
+        }
         keep(&format!("stack_{name}_syy.png"), &deformed_png(&snap(&run), Field::Syy, None).expect("picture"));
         keep(&format!("stack_{name}_interfaces.png"), &interface_plot_png(&run.model, contact(&run)).expect("plot"));
         let svg = interface_plot_svg(&run.model, contact(&run)).expect("plot");
@@ -286,4 +303,80 @@ fn render_time_of_a_fine_mesh() {
         keep("fine_von_mises.png", &bytes);
         keep("fine_interfaces.svg", svg.as_bytes());
     }
+}
+
+/// The shipped 3D partial-slip scene (`geo/blocks3d.toml`: a tet10 block
+/// pressed onto a block and pushed along +x, f = 0.5), coarser (lc = 0.2):
+/// the plan view of the joint shows the trailing edge (x = 0) slipping and
+/// the leading edge sticking, as regions in proportion to the pairs in each
+/// state, the slip arrows pointing +x, and sigma_n most compressive at the
+/// leading edge.
+#[test]
+fn plan_view_of_a_3d_joint_shows_where_it_slips() {
+    let mut scene = Scene::load(Path::new("geo/blocks3d.toml")).expect("scene");
+    scene.gmsh.setnumber = vec![("lc".into(), 0.2), ("hex".into(), 0.0)];
+    let opts = RunOptions { out: Some(out_dir("plan_blocks3d")), skip_output: true, ..Default::default() };
+    let run = driver::run_scene(scene, &opts).expect("blocks3d run");
+    let c = contact(&run);
+    let counts = state_counts(&c.states);
+    eprintln!("blocks3d, lc = 0.2: {} pairs, {} stick, {} slip, {} open", c.states.len(), counts[2], counts[1], counts[0]);
+    assert!(c.converged && counts[1] > 0 && counts[2] > 0 && counts[0] == 0, "partial slip: {counts:?}");
+    assert_eq!(plan_files(&run.model), vec![(0, "plan_joint.png".to_string())]);
+
+    let t = std::time::Instant::now();
+    let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, c, 0).expect("plan view");
+    eprintln!("plan view drawn in {:.3} s", t.elapsed().as_secs_f64());
+    keep("blocks3d_plan_joint.png", &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
+    let pixels = |b: [f64; 4], colour: [u8; 3]| in_box(&cv, b, colour);
+    let (slip, stick) = (pixels(boxes[0], SLIP), pixels(boxes[0], STICK));
+    assert!(pixels(boxes[0], OPEN).is_empty(), "no pair opens");
+    let area = slip.len() as f64 / (slip.len() + stick.len()) as f64;
+    let pairs = counts[1] as f64 / (counts[1] + counts[2]) as f64;
+    eprintln!("slip: {:.3} of the painted joint, {:.3} of the pairs", area, pairs);
+    assert!(stick.len() > 20_000 && (area - pairs).abs() < 0.1, "slip area {area:.3} against slip pairs {pairs:.3}");
+    let mean = |v: &[usize]| v.iter().sum::<usize>() as f64 / v.len() as f64;
+    assert!(mean(&slip) + 100.0 < mean(&stick), "the trailing edge (left) slips, the leading edge (right) sticks");
+    assert!(pixels(boxes[1], SLIP).is_empty() && pixels(boxes[1], STICK).is_empty(), "sigma_n has no state colours");
+    // sigma_n: the leading edge (right) is pressed hardest, the bluest
+    let b = boxes[1];
+    let mid = (0.5 * (b[1] + b[3])) as usize;
+    let rgb_at = |x: f64| -> [u8; 3] { let i = (mid * cv.w + x as usize) * 3; [cv.rgb[i], cv.rgb[i + 1], cv.rgb[i + 2]] };
+    let (left, right) = (rgb_at(b[0] + 30.0), rgb_at(b[2] - 30.0));
+    assert!(right[0] + 60 < left[0] && right[2] > right[0] + 60, "grey at the trailing edge, blue at the leading one: left {left:?}, right {right:?}");
+
+    // the arrows: the shear on "lower" from "upper" along +x, the way the
+    // upper block slips over the lower one (its relative displacement)
+    let nd = run.model.nd;
+    for (p, pair) in run.model.pairs.iter().enumerate().filter(|&(p, _)| c.states[p] == ContactState::Slip) {
+        let t = c.shear(p);
+        let rel: [f64; 3] = std::array::from_fn(|d| run.u[pair.l * nd + d] - run.u[pair.k * nd + d]);
+        let slip = sub3(rel, pair.normal.map(|x| x * dot(rel, pair.normal)));
+        assert!((dot(t, t).sqrt() - c.pairs[p].tau()).abs() <= 1e-9 * c.pairs[p].tau().max(1e-12), "pair {p}: the frame is orthonormal");
+        assert!(t[0] > 0.9 * dot(t, t).sqrt(), "pair {p}: shear {t:?} along +x");
+        assert!(dot(t, slip) > 0.99 * dot(t, t).sqrt() * dot(slip, slip).sqrt(), "pair {p}: shear {t:?} along the slip {slip:?}");
+    }
+
+    // in report.md, under the contact pictures
+    let report = crate::output::report::report(&run);
+    assert!(report.contains("![plan view of joint: where it sticks, slips and opens; sigma_n](plan_joint.png)"));
+}
+
+/// Plane and axisymmetric runs get no plan view; a stale one is removed.
+#[test]
+fn no_plan_view_in_2d_and_stale_ones_are_removed() {
+    let run = cylinder(0.25, 2);
+    assert!(plan_files(&run.model).is_empty());
+    let files: Vec<String> = pictures(&snap(&run)).expect("pictures").into_iter().map(|(f, _)| f).collect();
+    assert_eq!(files, ["deformed_von_mises.png", "interfaces.svg"]);
+    assert!(!crate::output::report::report(&run).contains("plan_"));
+    let dir = out_dir("stale_plans");
+    for f in ["plan_joint.png", "plan_old_face.png", "deformed_displacement.png", "notes.png", "plan.txt"] {
+        std::fs::write(dir.join(f), b"x").expect("file");
+    }
+    let mut stale: Vec<String> = crate::output::stale(&dir, "cylinder", &[dir.join("plan_joint.png")])
+        .iter()
+        .map(|p| p.file_name().and_then(|f| f.to_str()).unwrap_or("").to_string())
+        .collect();
+    stale.sort();
+    assert_eq!(stale, ["deformed_displacement.png", "plan_old_face.png"]);
 }
