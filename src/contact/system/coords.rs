@@ -38,6 +38,8 @@ pub enum Axis {
     HeldL { r: usize, v: f64 },
     /// Both sides held.
     Held { vk: f64, vl: f64 },
+    /// A node shared by parts (a bonded join): one mean, no relative displacement.
+    Joined { m: usize },
     /// The axis does not exist (the third axis in 2D).
     Absent,
 }
@@ -76,6 +78,7 @@ impl Axis {
             (Axis::HeldL { v, .. }, _) => ([none, none], 0, v),
             (Axis::Held { vk, .. }, 0) => ([none, none], 0, vk),
             (Axis::Held { vl, .. }, _) => ([none, none], 0, vl),
+            (Axis::Joined { m }, _) => ([(Var::M(m), 1.0), none], 1, 0.0),
             (Axis::Absent, _) => ([none, none], 0, 0.0),
         };
         Terms { vars, n, constant }

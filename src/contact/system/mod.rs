@@ -31,11 +31,23 @@ use crate::substructure::Condensed;
 
 /// Where a part's interface nodes sit among the pairs.
 struct PartMap {
-    /// (pair, side) of each interface node of the part, in the part's order.
-    nodes: Vec<(usize, usize)>,
+    /// What each interface node of the part is, in the part's order.
+    nodes: Vec<Slot>,
     /// Transformed edges, as positions in `nodes`.
     edges: Vec<[usize; 3]>,
 }
+
+/// An interface node of a part: one side of a contact pair, or a node the
+/// part shares with other parts of the same body (a bonded join, where a
+/// body is cut into substructures): always tied, its displacement (global
+/// axes) is a mean of the interface.
+#[derive(Clone, Copy, Debug)]
+enum Slot {
+    Pair { pair: usize, side: usize },
+    Join(usize),
+}
+
+const IDENTITY: Frame = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 
 /// What a pair's unknowns are asked to satisfy in one solve.
 #[derive(Clone, Copy, Debug)]
@@ -74,6 +86,10 @@ pub struct InterfaceProblem {
     pub frames: Vec<Frame>,
     pub basis: FaceBasis,
     axes: Vec<[Axis; 3]>,
+    /// The unknowns of each join's components.
+    joins: Vec<[Axis; 3]>,
+    /// Parts that share each join, and where the join is.
+    join_parts: Vec<(Vec<usize>, [f64; 3])>,
     /// The contact problem in relative displacements.
     reduced: Reduced,
     parts: Vec<PartMap>,
@@ -113,10 +129,27 @@ impl InterfaceProblem {
         let nd = model.nd;
         let np = model.pairs.len();
         let basis = FaceBasis::new(model);
+        // the first part holding each node; the parts sharing each other node
         let mut where_is = vec![(NONE, NONE); model.n_nodes()];
+        let mut holders: Vec<Vec<usize>> = vec![Vec::new(); model.n_nodes()];
         for (pi, p) in parts.iter().enumerate() {
             for (q, &n) in p.part.interface.iter().enumerate() {
-                where_is[n] = (pi, q);
+                if where_is[n].0 == NONE {
+                    where_is[n] = (pi, q);
+                }
+                holders[n].push(pi);
+            }
+        }
+        let mut role = vec![None; model.n_nodes()];
+        for (pair, p) in model.pairs.iter().enumerate() {
+            role[p.k] = Some(Slot::Pair { pair, side: 0 });
+            role[p.l] = Some(Slot::Pair { pair, side: 1 });
+        }
+        let mut join_nodes = Vec::new();
+        for n in 0..model.n_nodes() {
+            if role[n].is_none() && holders[n].len() > 1 {
+                role[n] = Some(Slot::Join(join_nodes.len()));
+                join_nodes.push(n);
             }
         }
         // frames, and the prescribed local values of each side (nodal basis)
@@ -169,24 +202,34 @@ impl InterfaceProblem {
             }
         }
         // unknowns, and the parts' interface nodes among them
-        let (axes, nm, nr) = coords::number(&fixed, nd);
+        let (axes, mut nm, nr) = coords::number(&fixed, nd);
+        // joins: a mean per component, or the prescribed value
+        let joins: Vec<[Axis; 3]> = join_nodes
+            .iter()
+            .map(|&n| {
+                std::array::from_fn(|c| match (c < nd, model.prescribed.get(n * nd + c).copied().flatten()) {
+                    (false, _) => Axis::Absent,
+                    (true, Some(v)) => Axis::Held { vk: v, vl: v },
+                    (true, None) => {
+                        nm += 1;
+                        Axis::Joined { m: nm - 1 }
+                    }
+                })
+            })
+            .collect();
+        let join_parts = join_nodes.iter().map(|&n| (holders[n].clone(), model.coords[n])).collect();
         let at: Vec<[(usize, usize); 2]> = model.pairs.iter().map(|p| [where_is[p.k], where_is[p.l]]).collect();
         let maps: Vec<PartMap> = parts
             .iter()
-            .enumerate()
-            .map(|(pi, p)| {
-                let mut nodes = vec![(NONE, 0); p.part.interface.len()];
-                for (pair, sides) in at.iter().enumerate() {
-                    for (s, &(pp, q)) in sides.iter().enumerate() {
-                        if pp == pi {
-                            nodes[q] = (pair, s);
-                        }
+            .map(|p| {
+                let nodes: Vec<Slot> = p.part.interface.iter().map(|&n| role[n].expect("an interface node is in a pair or shared by parts")).collect();
+                let mut pos: std::collections::HashMap<(usize, usize), usize> = std::collections::HashMap::new();
+                for (q, slot) in nodes.iter().enumerate() {
+                    if let Slot::Pair { pair, side } = *slot {
+                        pos.insert((pair, side), q);
                     }
                 }
-                let edges = basis::part_edges(&basis, |pair| {
-                    let [(pk, qk), (pl, ql)] = at[pair];
-                    [(pk == pi).then_some(qk), (pl == pi).then_some(ql)]
-                });
+                let edges = basis::part_edges(&basis, |pair| [pos.get(&(pair, 0)).copied(), pos.get(&(pair, 1)).copied()]);
                 PartMap { nodes, edges }
             })
             .collect();
@@ -196,11 +239,18 @@ impl InterfaceProblem {
             if part.nc == 0 {
                 continue;
             }
-            let t: Vec<Frame> = map.nodes.iter().map(|&(pair, _)| frames[pair]).collect();
+            let t: Vec<Frame> = map
+                .nodes
+                .iter()
+                .map(|slot| match *slot {
+                    Slot::Pair { pair, .. } => frames[pair],
+                    Slot::Join(_) => IDENTITY,
+                })
+                .collect();
             let terms: Vec<coords::Terms> = (0..part.nc)
-                .map(|u| {
-                    let (pair, side) = map.nodes[u / nd];
-                    axes[pair][u % nd].terms(side)
+                .map(|u| match map.nodes[u / nd] {
+                    Slot::Pair { pair, side } => axes[pair][u % nd].terms(side),
+                    Slot::Join(j) => joins[j][u % nd].terms(0),
                 })
                 .collect();
             blocks.add_part(&part.s, &part.g, nd, &terms, &t, &map.edges);
@@ -212,7 +262,7 @@ impl InterfaceProblem {
         })?;
         let rigid = parts.iter().map(|p| RigidModes::new(model, &p.part.bodies)).collect();
         let positions = model.pairs.iter().map(|p| model.coords[p.k]).collect();
-        Ok(InterfaceProblem { nd, frames, basis, axes, reduced, parts: maps, rigid, positions, at })
+        Ok(InterfaceProblem { nd, frames, basis, axes, joins, join_parts, reduced, parts: maps, rigid, positions, at })
     }
 
     /// The area pair `p` controls (in the interface basis), > 0.
@@ -394,10 +444,14 @@ impl InterfaceProblem {
             .iter()
             .map(|map| {
                 let mut d = vec![0.0; map.nodes.len() * nd];
-                for (q, &(pair, side)) in map.nodes.iter().enumerate() {
+                for (q, slot) in map.nodes.iter().enumerate() {
+                    let (axes, side, f) = match *slot {
+                        Slot::Pair { pair, side } => (&self.axes[pair], side, &self.frames[pair]),
+                        Slot::Join(j) => (&self.joins[j], 0, &IDENTITY),
+                    };
                     let mut local = [0.0; 3];
                     for (a, l) in local.iter_mut().enumerate().take(nd) {
-                        let t = self.axes[pair][a].terms(side);
+                        let t = axes[a].terms(side);
                         *l = t.constant * ramp
                             + t.vars[..t.n]
                                 .iter()
@@ -407,7 +461,6 @@ impl InterfaceProblem {
                                 })
                                 .sum::<f64>();
                     }
-                    let f = &self.frames[pair];
                     for c in 0..nd {
                         d[q * nd + c] = (0..nd).map(|a| f[a][c] * local[a]).sum();
                     }
@@ -434,7 +487,11 @@ impl InterfaceProblem {
             let [(pk, _), (pl, _)] = self.at[p];
             (0..axes).map(move |a| Tie { parts: [pk, pl], x: self.positions[p], dir: self.frames[p][a] })
         });
-        free_parts(&self.rigid, ties)
+        // parts of one body cut into substructures are always tied at their joins
+        let joined = self.join_parts.iter().flat_map(|(ps, x)| {
+            ps[1..].iter().flat_map(move |&q| (0..nd).map(move |a| Tie { parts: [ps[0], q], x: *x, dir: IDENTITY[a] }))
+        });
+        free_parts(&self.rigid, ties.chain(joined))
     }
 
     /// Why the interface system is singular: parts held by nothing once
