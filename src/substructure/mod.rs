@@ -17,9 +17,13 @@
 //! solved directly.
 
 pub mod assembly;
+pub mod ordering;
 pub mod schur;
 
 use crate::fem::sparse::{FactorError, NONE};
+use faer::linalg::matmul::matmul;
+use faer::{Accum, MatMut, MatRef, Par};
+use ordering::Ordering;
 use schur::PartialCholesky;
 use crate::model::{Model, ModelError};
 
@@ -117,7 +121,7 @@ pub fn not_held(model: &Model, part: &Part, e: FactorError) -> ModelError {
 }
 
 /// Number the interior free DOFs (0..ni) and the interface DOFs (ni..ni+nc).
-fn numbering(model: &Model, part: &Part) -> (Vec<usize>, usize, usize) {
+pub fn numbering(model: &Model, part: &Part) -> (Vec<usize>, usize, usize) {
     let nd = model.nd;
     let mut dof_of = vec![NONE; model.n_nodes() * nd];
     let mut is_iface = vec![false; model.n_nodes()];
@@ -152,14 +156,34 @@ fn numbering(model: &Model, part: &Part) -> (Vec<usize>, usize, usize) {
     (dof_of, ni, next - ni)
 }
 
+/// The model node of each interior equation `0..ni`.
+fn interior_nodes(dof_of: &[usize], nd: usize, ni: usize) -> Vec<usize> {
+    let mut node_of = vec![0; ni];
+    for (i, &d) in dof_of.iter().enumerate() {
+        if d < ni {
+            node_of[d] = i / nd;
+        }
+    }
+    node_of
+}
+
+/// `y += S x` for the dense symmetric `S` (nc x nc, column-major), by faer's
+/// matrix-vector product.
+fn s_times(s: &[f64], nc: usize, x: &[f64], y: &mut [f64]) {
+    let s = MatRef::from_column_major_slice(s, nc, nc);
+    let x = MatRef::from_column_major_slice(x, nc, 1);
+    matmul(MatMut::from_column_major_slice_mut(y, nc, 1), Accum::Add, s, x, 1.0, Par::Seq);
+}
+
 /// Assembles, factorises and condenses a part.
 pub fn condense(model: &Model, part: Part) -> Result<Condensed, ModelError> {
     let t = std::time::Instant::now();
     let (mut dof_of, ni, nc) = numbering(model, &part);
     let a = assembly::assemble(model, &part.bodies, &dof_of, ni + nc)?;
     let assemble_s = t.elapsed().as_secs_f64();
-    let chol = PartialCholesky::factor(&a.k, ni).map_err(|e| not_held(model, &part, e))?;
-    let s = chol.schur();
+    let node_of = interior_nodes(&dof_of, model.nd, ni);
+    let chol = PartialCholesky::factor(&a.k, ni, &node_of, Ordering::choose(ni, model.nd), Par::Seq).map_err(|e| not_held(model, &part, e))?;
+    let s = chol.schur(Par::Seq);
     // G = F_c + (S + alpha I) x_c with K' [x_i; x_c] = [F_i; 0], per load case
     let n = ni + nc;
     let cases = a.f.len();
@@ -169,10 +193,17 @@ pub fn condense(model: &Model, part: Part) -> Result<Condensed, ModelError> {
     let backward_error = (0..cases)
         .map(|k| a.k.backward_error(&x[k * n..(k + 1) * n], &b[k * n..(k + 1) * n], chol.alpha(), ni))
         .fold(0.0, f64::max);
+    // one product S X_c for all cases (S read once); X_c is the trailing nc rows of x
+    let mut sx = vec![0.0; nc * cases];
+    if cases > 0 {
+        let x_c = MatRef::from_column_major_slice_with_stride(&x[ni..], nc, cases, n);
+        let s_ref = MatRef::from_column_major_slice(&s, nc, nc);
+        matmul(MatMut::from_column_major_slice_mut(&mut sx, nc, cases), Accum::Replace, s_ref, x_c, 1.0, Par::Seq);
+    }
     let g = (0..cases)
         .map(|k| {
             let xc = &x[k * n + ni..(k + 1) * n];
-            (0..nc).map(|r| a.f[k][ni + r] + chol.alpha() * xc[r] + (0..nc).map(|c| s[r + c * nc] * xc[c]).sum::<f64>()).collect()
+            (0..nc).map(|r| a.f[k][ni + r] + chol.alpha() * xc[r] + sx[r + k * nc]).collect()
         })
         .collect();
     for d in dof_of.iter_mut() {
@@ -212,9 +243,10 @@ impl Condensed {
         let (ni, nc) = (self.ni, self.nc);
         let mut x = Self::combine(&self.f, lambda);
         let g = self.g_at(lambda);
+        let mut f_c: Vec<f64> = g.iter().map(|v| -v).collect();
+        s_times(&self.s, nc, d_c, &mut f_c);
         for r in 0..nc {
-            let f_c = (0..nc).map(|c| self.s[r + c * nc] * d_c[c]).sum::<f64>() - g[r];
-            x[ni + r] += f_c + self.chol.alpha() * d_c[r];
+            x[ni + r] += f_c[r] + self.chol.alpha() * d_c[r];
         }
         self.chol.solve_many(&mut x, 1);
         let d_i = &x[..ni];
