@@ -30,7 +30,7 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::linalg::matmul::triangular::{self, BlockStructure};
-use faer::{Accum, Conj, Mat, MatMut, Par, Side, Spec};
+use faer::{Accum, Conj, MatMut, MatRef, Par, Side, Spec};
 
 use super::ordering::{self, Ordering};
 use crate::fem::sparse::{FactorError, SymMatrix};
@@ -131,7 +131,7 @@ impl PartialCholesky {
     pub fn schur(&self, par: Par) -> Vec<f64> {
         let (n, ni) = (self.n, self.ni);
         let nc = n - ni;
-        let mut l = Mat::<f64>::zeros(nc, nc);
+        let mut l = vec![0.0; nc * nc]; // L_cc, column-major
         let SymbolicCholeskyRaw::Supernodal(sym) = self.symbolic.raw() else {
             unreachable!("the factorisation is forced supernodal")
         };
@@ -151,8 +151,7 @@ impl PartialCholesky {
                     continue;
                 }
                 let col = val.col(jc);
-                let dst = l.col_mut(j - ni);
-                let dst = dst.try_as_col_major_mut().expect("a dense column is contiguous").as_slice_mut();
+                let dst = &mut l[(j - ni) * nc..(j - ni + 1) * nc];
                 for p in jc..ncols {
                     dst[start + p - ni] = col[p];
                 }
@@ -162,19 +161,19 @@ impl PartialCholesky {
             }
         }
         // the lower triangle of L L^T, then mirrored
+        let l = MatRef::from_column_major_slice(&l, nc, nc);
         let mut out = vec![0.0; nc * nc];
         triangular::matmul(
             MatMut::from_column_major_slice_mut(&mut out, nc, nc),
             BlockStructure::TriangularLower,
             Accum::Replace,
-            l.as_ref(),
+            l,
             BlockStructure::TriangularLower,
             l.transpose(),
             BlockStructure::TriangularUpper,
             1.0,
             par,
         );
-        drop(l);
         for j in 0..nc {
             out[j + j * nc] -= self.alpha;
             for i in j + 1..nc {
