@@ -20,7 +20,7 @@ use faer::Par;
 
 use super::ordering::Ordering;
 use super::schur::PartialCholesky;
-use super::{assembly, condense, interior_nodes, numbering, parts};
+use super::{assembly, condense, condense_parts, interior_nodes, numbering, parts};
 use crate::fem::sparse::NONE;
 use crate::fem::Analysis;
 use crate::mesh::{Cell, CellKind};
@@ -316,4 +316,28 @@ fn nested_dissection_cuts_3d_fill() {
     let (amd, nd) = (flops(Ordering::Amd), flops(Ordering::NestedDissection));
     eprintln!("10 x 10 x 8 hex8, {ni} interior equations: factor flops AMD {amd:.3e}, nested dissection {nd:.3e}");
     assert!(nd < amd, "nested dissection {nd:.3e} flops against AMD {amd:.3e}");
+}
+
+/// Parts condensed in threads come back in order, equal to one after the
+/// other; a part that cannot be held is the error either way.
+#[test]
+fn parts_condensed_in_threads_equal_one_after_the_other() {
+    let model = stacked_blocks(4, 3);
+    let one = condense_parts(&model, parts(&model), 1).expect("condense");
+    let two = condense_parts(&model, parts(&model), 2).expect("condense");
+    assert_eq!(one.len(), 2);
+    for (a, b) in one.iter().zip(&two) {
+        assert_eq!(a.part.bodies, b.part.bodies);
+        assert_eq!(a.s, b.s);
+        assert_eq!(a.g, b.g);
+    }
+    // with no support and no contact both blocks float: block0, the first,
+    // is the error
+    let mut free = stacked_blocks(4, 3);
+    free.prescribed.iter_mut().for_each(|p| *p = None);
+    free.pairs.clear();
+    for threads in [1, 2] {
+        let e = condense_parts(&free, parts(&free), threads).err().expect("a free part is refused");
+        assert!(e.to_string().contains("block0"), "{e}");
+    }
 }
