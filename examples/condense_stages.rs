@@ -1,8 +1,8 @@
 //! Times the stages of condensing each part of a scene (assemble, order and
-//! factorise, Schur complement) with a given interior ordering and
-//! parallelism, and prints the factor's size and flops:
+//! factorise, Schur complement) with a given interior ordering, and prints the factor's size and flops:
 //! `cargo run --release --example condense_stages -- SCENE.toml OUT_DIR
-//! [amd|nd|auto] [threads]`. OUT_DIR receives the mesh.
+//! [amd|nd|auto] [sequential|concurrent]`; with the last argument it times
+//! `condense_parts` on one thread or two instead. OUT_DIR receives the mesh.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -19,13 +19,12 @@ fn main() -> anyhow::Result<()> {
     let scene = Scene::load(Path::new(&args[1]))?;
     let out = PathBuf::from(&args[2]);
     let which = args.get(3).map_or("auto", |s| s.as_str());
-    let threads: usize = args.get(4).map_or(1, |s| s.parse().expect("threads"));
-    let par = if threads > 1 { Par::rayon(threads) } else { Par::Seq };
+    let par = Par::Seq;
     faer::set_global_parallelism(Par::Seq);
     let (mesh, _, _) = load_mesh(&scene, &out)?;
     let model = Model::build(&mesh, &scene.model_spec())?;
     drop(mesh);
-    if let Some(mode) = args.get(5) {
+    if let Some(mode) = args.get(4) {
         // whole `condense` per part: one after the other ("sequential"), or two threads ("concurrent")
         let t = Instant::now();
         let threads = if mode == "concurrent" { 2 } else { 1 };
@@ -73,7 +72,7 @@ fn main() -> anyhow::Result<()> {
             0.0
         };
         println!(
-            "{ordering:?} par={threads} ni={ni} nc={nc} nnz(K)={} values(L)={:.3e} flops={:.3e} | assemble {t_asm:.3}s order {t_order:.3}s factor {t_fac:.3}s ({:.1} GFLOP/s) schur {t_schur:.3}s ({:.1} GFLOP/s) dense llt {t_llt:.3}s ({:.1} GFLOP/s) | s00={:.9e}",
+            "{ordering:?} ni={ni} nc={nc} nnz(K)={} values(L)={:.3e} flops={:.3e} | assemble {t_asm:.3}s order {t_order:.3}s factor {t_fac:.3}s ({:.1} GFLOP/s) schur {t_schur:.3}s ({:.1} GFLOP/s) dense llt {t_llt:.3}s ({:.1} GFLOP/s) | s00={:.9e}",
             a.k.row_idx.len(),
             st.values as f64,
             st.flops,

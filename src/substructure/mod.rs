@@ -224,11 +224,12 @@ pub fn condense(model: &Model, part: Part) -> Result<Condensed, ModelError> {
     let a = assembly::assemble(model, &part.bodies, &dof_of, ni + nc)?;
     let assemble_s = t.elapsed().as_secs_f64();
     let node_of = interior_nodes(&dof_of, model.nd, ni);
-    // The caller's faer parallelism (the driver's is sequential). Measured on
-    // blocks3d_hex (hex20, 51k interior equations a part) with other builds
-    // running on the 2 cores: Par::rayon(2) factorised in 7.7-8.0 s where
-    // Par::Seq took 4.9-6.5 s, and condensing the two parts in two threads
-    // took 16.6-18.0 s against 15.9-16.9 s one after the other.
+    // The caller's faer parallelism: sequential, as faer is built without its
+    // `rayon` feature (it would add rayon and spindle). Measured on
+    // blocks3d_hex (hex20, 51k interior equations a part), Par::rayon(2)
+    // against Par::Seq: 3.1 s against 3.9 s a part on a quiet machine, 7.7-8.0
+    // s against 4.9-6.5 s with other builds running; [`condense_parts`]'
+    // threads use the two cores better.
     let par = faer::get_global_parallelism();
     let chol = PartialCholesky::factor(&a.k, ni, &node_of, Ordering::choose(ni, model.nd), par).map_err(|e| not_held(model, &part, e))?;
     let s = chol.schur(par);
