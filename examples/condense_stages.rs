@@ -12,7 +12,7 @@ use subcontact::driver::load_mesh;
 use subcontact::model::Model;
 use subcontact::scene::Scene;
 use subcontact::substructure::ordering::Ordering;
-use subcontact::substructure::{assembly, condense_parts, numbering, parts, schur::PartialCholesky};
+use subcontact::substructure::{assembly, condense_parts, interior_nodes, numbering, parts, schur::PartialCholesky};
 
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().collect();
@@ -37,12 +37,7 @@ fn main() -> anyhow::Result<()> {
         let (dof_of, ni, nc) = numbering(&model, &part);
         let a = assembly::assemble(&model, &part.bodies, &dof_of, ni + nc)?;
         let t_asm = t.elapsed().as_secs_f64();
-        let mut node_of = vec![0; ni];
-        for (i, &d) in dof_of.iter().enumerate() {
-            if d < ni {
-                node_of[d] = i / model.nd;
-            }
-        }
+        let node_of = interior_nodes(&dof_of, model.nd, ni);
         let ordering = match which {
             "amd" => Ordering::Amd,
             "nd" => Ordering::NestedDissection,

@@ -157,7 +157,7 @@ pub fn numbering(model: &Model, part: &Part) -> (Vec<usize>, usize, usize) {
 }
 
 /// The model node of each interior equation `0..ni`.
-fn interior_nodes(dof_of: &[usize], nd: usize, ni: usize) -> Vec<usize> {
+pub fn interior_nodes(dof_of: &[usize], nd: usize, ni: usize) -> Vec<usize> {
     let mut node_of = vec![0; ni];
     for (i, &d) in dof_of.iter().enumerate() {
         if d < ni {
