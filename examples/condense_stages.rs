@@ -35,7 +35,7 @@ fn main() -> anyhow::Result<()> {
     for part in parts(&model) {
         let t = Instant::now();
         let (dof_of, ni, nc) = numbering(&model, &part);
-        let a = assembly::assemble(&model, &part.bodies, &dof_of, ni + nc)?;
+        let a = assembly::assemble(&model, &part.cells, &dof_of, ni + nc)?;
         let t_asm = t.elapsed().as_secs_f64();
         let node_of = interior_nodes(&dof_of, model.nd, ni);
         let ordering = match which {

@@ -47,6 +47,14 @@ pub enum Command {
         /// Print no progress.
         #[arg(long, short)]
         quiet: bool,
+        /// Cut every part (bodies joined by shared nodes) into K substructures with METIS,
+        /// joined by bonded interfaces: the answer is the uncut one, but each piece is
+        /// factorised alone (in its own thread or MPI rank). Overrides [solver] substructures.
+        #[arg(long, value_name = "K")]
+        substructures: Option<usize>,
+        /// Parts condensed at once (default: the machine's cores, divided among MPI ranks).
+        #[arg(long, value_name = "N")]
+        threads: Option<usize>,
     },
     /// Run time against error: mesh the scene at successive refinements for each element order,
     /// solve each (with contact, and bonded as the floor of one linear solve), and write

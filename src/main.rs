@@ -10,8 +10,8 @@ use subcontact::{commands, driver::RunOptions};
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Solve { scene, out, bonded, quiet } => {
-            commands::solve(&scene, &RunOptions { out, bonded, verbose: !quiet, ..Default::default() })
+        Command::Solve { scene, out, bonded, quiet, substructures, threads } => {
+            commands::solve(&scene, &RunOptions { out, bonded, verbose: !quiet, substructures, threads, ..Default::default() })
         }
         Command::Check { scene } => commands::check(&scene),
         Command::Bench { scene, levels, orders, ratio, start, max_dofs, no_monolithic, out } => commands::bench(

@@ -27,6 +27,26 @@ pub struct Timings {
     pub total: f64,
 }
 
+/// What one MPI rank (or the one process) did: its parts, its share of the
+/// work, its memory and the bytes it sent.
+#[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
+pub struct RankStats {
+    pub rank: usize,
+    /// The parts it owned (indices in the run's part list).
+    pub parts: Vec<usize>,
+    /// Equations of its parts.
+    pub dofs: usize,
+    /// Seconds it spent assembling, factorising and condensing.
+    pub condense_s: f64,
+    /// Its peak resident memory.
+    pub peak_memory_bytes: u64,
+    /// Bytes it sent in all, per load step (recovery), and per contact
+    /// iteration (nothing: rank 0 holds the interface).
+    pub bytes_sent: u64,
+    pub bytes_sent_per_step: u64,
+    pub bytes_sent_per_contact_iteration: u64,
+}
+
 /// Everything a run computed, for the output writers.
 pub struct Run {
     pub scene: Scene,
@@ -51,6 +71,8 @@ pub struct Run {
     /// Backward error of the parts' sparse solves.
     pub residual_assembled: f64,
     pub counters: Counters,
+    /// Every rank's share (one entry without MPI).
+    pub ranks: Vec<RankStats>,
     /// What the scene's `[analytic]` check adds to report.md and
     /// summary.json; computed with the result files (empty when the run
     /// writes none).

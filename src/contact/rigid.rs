@@ -35,14 +35,11 @@ fn n_modes(analysis: Analysis) -> usize {
 }
 
 impl RigidModes {
-    /// The modes of the part made of `bodies`, with its supports.
-    pub fn new(model: &Model, bodies: &[usize]) -> RigidModes {
+    /// The modes of the part made of the nodes `nodes`, with its supports.
+    pub fn new(model: &Model, nodes: &[usize]) -> RigidModes {
         let nd = model.nd;
-        let mut nodes: Vec<usize> = bodies.iter().flat_map(|&b| model.bodies[b].cells.iter().flat_map(|c| c.nodes.iter().copied())).collect();
-        nodes.sort_unstable();
-        nodes.dedup();
         let mut center = [0.0; 3];
-        for &n in &nodes {
+        for &n in nodes {
             for i in 0..3 {
                 center[i] += model.coords[n][i] / nodes.len().max(1) as f64;
             }
@@ -54,7 +51,7 @@ impl RigidModes {
         let mut modes = RigidModes { analysis: model.analysis, center, scale: if scale > 0.0 { scale } else { 1.0 }, gram: Vec::new() };
         let nm = n_modes(model.analysis);
         let mut gram = vec![0.0; nm * nm];
-        for &n in &nodes {
+        for &n in nodes {
             for c in 0..nd {
                 if model.prescribed[n * nd + c].is_some() {
                     let r = modes.along(model.coords[n], unit(c));

@@ -303,10 +303,10 @@ impl Model {
                         *n = m;
                     }
                 }
-                let sign = facet_sign(&coords, &cell, &bodies[body].cells, &incidences[body]).ok_or_else(|| {
+                let (sign, element) = facet_sign(&coords, &cell, &bodies[body].cells, &incidences[body]).ok_or_else(|| {
                     b.invalid(key.clone(), format!("element {} of group \"{}\" is not a face of an element of body \"{}\"", f.tag, load.group, bodies[body].name))
                 })?;
-                loads.push(FacetLoad { cell, sign, kind: load.kind.clone(), body, case });
+                loads.push(FacetLoad { cell, sign, kind: load.kind.clone(), body, element, case });
             }
         }
 
@@ -350,7 +350,7 @@ impl Model {
                     .copied()
                     .find(|&bd| incidences[bd].containing(&model.bodies[bd].cells, corners).is_some())
                     .unwrap_or(iface.body_i);
-                let sign = facet_sign(&model.coords, f, &model.bodies[body].cells, &incidences[body]).ok_or_else(|| {
+                let (sign, _) = facet_sign(&model.coords, f, &model.bodies[body].cells, &incidences[body]).ok_or_else(|| {
                     b.invalid("contacts".into(), format!("element {} of contact \"{}\" is not a face of body \"{}\"", f.tag, iface.name, model.bodies[body].name))
                 })?;
                 accumulate_facet(&model, f, sign, &mut acc);
@@ -369,11 +369,13 @@ impl Model {
 }
 
 /// Sign making the natural normal of `facet` outward for the body cell that has it as a face.
-fn facet_sign(coords: &[[f64; 3]], facet: &Cell, cells: &[Cell], inc: &Incidence) -> Option<f64> {
+/// The cell of `cells` that has `facet` as a face, and the sign that makes
+/// the facet's natural normal outward for it.
+fn facet_sign(coords: &[[f64; 3]], facet: &Cell, cells: &[Cell], inc: &Incidence) -> Option<(f64, usize)> {
     let ci = inc.containing(cells, &facet.nodes[..facet.kind.n_corners()])?;
     let fc: Vec<[f64; 3]> = facet.nodes.iter().map(|&n| coords[n]).collect();
     let cc: Vec<[f64; 3]> = cells[ci].nodes.iter().map(|&n| coords[n]).collect();
-    Some(element::outward_sign(facet.kind, &fc, cells[ci].kind, &cc))
+    Some((element::outward_sign(facet.kind, &fc, cells[ci].kind, &cc), ci))
 }
 
 /// Adds a facet's area-weighted outward normal and `∫ N_a dA` to its nodes.

@@ -47,6 +47,8 @@ pub struct FacetLoad {
     pub kind: LoadKind,
     /// The body whose boundary the facet is.
     pub body: usize,
+    /// The body's cell (index in its `cells`) the facet is a face of.
+    pub element: usize,
     /// Its load case (index into `Model::cases`).
     pub case: usize,
 }

@@ -240,6 +240,7 @@ fn summary(run: &Run) -> serde_json::Value {
         "timings_s": run.timings,
         "residuals": { "interface": run.residual_interface, "assembled": run.residual_assembled },
         "counters": run.counters,
+        "ranks": run.ranks,
         "fields": run.scene.output.fields,
         "warnings": run.scene.warnings(),
     });

@@ -22,6 +22,13 @@ pub fn report(run: &Run) -> String {
     let _ = writeln!(s, "| DOFs (unknowns) | {} |", run.dofs_total);
     let _ = writeln!(s, "| interface DOFs | {} |", run.dofs_interface);
     let _ = writeln!(s, "| parts (condensed) | {} ({}) |", run.parts, run.condensed_parts);
+    if run.ranks.len() > 1 {
+        let _ = writeln!(
+            s,
+            "| MPI ranks: parts / condense (s) / peak memory (MB) | {} |",
+            run.ranks.iter().map(|r| format!("{} / {:.2} / {:.0}", r.parts.len(), r.condense_s, r.peak_memory_bytes as f64 / 1e6)).collect::<Vec<_>>().join(", ")
+        );
+    }
     if let Some(c) = &run.contact {
         let k = state_counts(&c.states);
         let _ = writeln!(s, "| contact pairs | {} |", c.states.len());

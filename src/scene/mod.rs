@@ -132,6 +132,8 @@ pub struct Solver {
     pub rule: StateRule,
     /// Factor of the gravity load at each step (default the ramp k / load_steps).
     pub gravity_factors: Option<Vec<f64>>,
+    /// Pieces each part is cut into (default 1: bodies stay whole), >= 1.
+    pub substructures: usize,
 }
 
 impl Default for Solver {
@@ -141,6 +143,7 @@ impl Default for Solver {
             max_iterations: 100,
             rule: StateRule::Robust,
             gravity_factors: None,
+            substructures: 1,
         }
     }
 }

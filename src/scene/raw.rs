@@ -116,6 +116,7 @@ pub(super) struct RawSolver {
     pub(super) max_iterations: Option<i64>,
     pub(super) rule: Option<StateRule>,
     pub(super) gravity_factors: Option<Vec<f64>>,
+    pub(super) substructures: Option<i64>,
 }
 
 #[derive(Deserialize)]

@@ -233,6 +233,13 @@ impl Checker<'_> {
                     "the contact iteration limit",
                 )?,
                 rule: s.rule.unwrap_or_default(),
+                substructures: self.at_least(
+                    s.substructures,
+                    1,
+                    1,
+                    "solver.substructures",
+                    "the number of pieces each body is cut into",
+                )?,
                 gravity_factors: match s.gravity_factors {
                     None => None,
                     Some(f) => Some(

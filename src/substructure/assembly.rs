@@ -34,22 +34,24 @@ fn element_dofs(nodes: &[usize], nd: usize, dof_of: &[usize], out: &mut Vec<usiz
     }
 }
 
-/// Assembles the bodies `bodies` of the model into `n` equations.
-pub fn assemble(model: &Model, bodies: &[usize], dof_of: &[usize], n: usize) -> Result<Assembled, ModelError> {
+/// Assembles the cells `cells` ((body, index in its cells)) of the model
+/// into `n` equations, with the loads on their faces.
+pub fn assemble(model: &Model, cells: &[(usize, usize)], dof_of: &[usize], n: usize) -> Result<Assembled, ModelError> {
     let nd = model.nd;
-    let cells = bodies.iter().flat_map(|&b| model.bodies[b].cells.iter().map(|c| c.nodes.as_slice()));
-    let mut k = SymMatrix::pattern(n, nd, dof_of, cells);
+    let cell_nodes = cells.iter().map(|&(b, c)| model.bodies[b].cells[c].nodes.as_slice());
+    let mut k = SymMatrix::pattern(n, nd, dof_of, cell_nodes);
     let mut f = vec![vec![0.0; n]; model.cases.len()];
     let mut ke = Vec::new();
     let mut dofs = Vec::new();
     let mut rules: Vec<(CellKind, Vec<quadrature::QuadPoint>)> = Vec::new();
-    for &b in bodies {
-        let body = &model.bodies[b];
+    // the part's cells body by body (their cells are listed that way)
+    for run in cells.chunk_by(|a, b| a.0 == b.0) {
+        let body = &model.bodies[run[0].0];
         let d = d_matrix(model.analysis, body.e, body.nu);
         let g = model.gravity;
         let weight = [g[0] * body.density, g[1] * body.density, g[2] * body.density];
         let has_weight = weight.iter().any(|&w| w != 0.0);
-        for cell in &body.cells {
+        for cell in run.iter().map(|&(_, c)| &body.cells[c]) {
             let rule = match rules.iter().find(|(kind, _)| *kind == cell.kind) {
                 Some((_, r)) => r,
                 None => {
@@ -97,7 +99,7 @@ pub fn assemble(model: &Model, bodies: &[usize], dof_of: &[usize], n: usize) -> 
     }
     // boundary loads on facets of these bodies
     for load in &model.loads {
-        if !bodies.contains(&load.body) {
+        if cells.binary_search(&(load.body, load.element)).is_err() {
             continue;
         }
         element_dofs(&load.cell.nodes, nd, dof_of, &mut dofs);

@@ -18,7 +18,10 @@
 
 pub mod assembly;
 pub mod ordering;
+pub mod parts;
 pub mod schur;
+
+pub use parts::{cut, parts, Part};
 
 use crate::fem::sparse::{FactorError, NONE};
 use faer::linalg::matmul::matmul;
@@ -27,60 +30,30 @@ use ordering::Ordering;
 use schur::PartialCholesky;
 use crate::model::{Model, ModelError};
 
-/// Bodies that share nodes, and the part's contact nodes.
-#[derive(Clone, Debug)]
-pub struct Part {
-    pub bodies: Vec<usize>,
-    /// Model nodes of this part that are in contact pairs, ascending.
-    pub interface: Vec<usize>,
+/// What the interface needs of a condensed part: its interface nodes, the
+/// Schur complement S (column-major nc x nc) and the condensed loads G, one
+/// per load case. What travels from a part's MPI rank to rank 0.
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
+pub struct Operator {
+    pub part: Part,
+    pub nc: usize,
+    pub s: Vec<f64>,
+    pub g: Vec<Vec<f64>>,
 }
 
-/// Groups bodies into parts by shared model nodes.
-pub fn parts(model: &Model) -> Vec<Part> {
-    let nb = model.bodies.len();
-    let mut parent: Vec<usize> = (0..nb).collect();
-    fn root(p: &mut [usize], mut i: usize) -> usize {
-        while p[i] != i {
-            p[i] = p[p[i]];
-            i = p[i];
-        }
-        i
+/// An [`Operator`] borrowed from a [`Condensed`] part or a received one.
+#[derive(Clone, Copy)]
+pub struct OperatorRef<'a> {
+    pub part: &'a Part,
+    pub nc: usize,
+    pub s: &'a [f64],
+    pub g: &'a [Vec<f64>],
+}
+
+impl Operator {
+    pub fn as_ref(&self) -> OperatorRef<'_> {
+        OperatorRef { part: &self.part, nc: self.nc, s: &self.s, g: &self.g }
     }
-    let mut owner = vec![NONE; model.n_nodes()];
-    for (b, body) in model.bodies.iter().enumerate() {
-        for c in &body.cells {
-            for &n in &c.nodes {
-                if owner[n] == NONE {
-                    owner[n] = b;
-                } else {
-                    let (x, y) = (root(&mut parent, owner[n]), root(&mut parent, b));
-                    parent[x.max(y)] = x.min(y);
-                }
-            }
-        }
-    }
-    let mut in_pair = vec![false; model.n_nodes()];
-    for p in &model.pairs {
-        in_pair[p.k] = true;
-        in_pair[p.l] = true;
-    }
-    let mut parts: Vec<Part> = Vec::new();
-    let mut part_of_root = vec![NONE; nb];
-    for b in 0..nb {
-        let r = root(&mut parent, b);
-        if part_of_root[r] == NONE {
-            part_of_root[r] = parts.len();
-            parts.push(Part { bodies: Vec::new(), interface: Vec::new() });
-        }
-        parts[part_of_root[r]].bodies.push(b);
-    }
-    for (n, &used) in in_pair.iter().enumerate() {
-        if used && owner[n] != NONE {
-            let r = root(&mut parent, owner[n]);
-            parts[part_of_root[r]].interface.push(n);
-        }
-    }
-    parts
 }
 
 /// A factorised part, condensed onto its interface when it has one.
@@ -99,8 +72,9 @@ pub struct Condensed {
     pub s: Vec<f64>,
     /// Condensed loads, one per load case.
     pub g: Vec<Vec<f64>>,
-    /// Seconds spent assembling (the rest of `condense` is factorising and condensing).
+    /// Seconds spent assembling, and factorising and condensing.
     pub assemble_s: f64,
+    pub condense_s: f64,
     /// Normwise backward error of the part's sparse solves (the assembled
     /// system's residual), ~1e-16 for a healthy factorisation.
     pub backward_error: f64,
@@ -108,14 +82,12 @@ pub struct Condensed {
 
 /// Why a part could not be solved.
 pub fn not_held(model: &Model, part: &Part, e: FactorError) -> ModelError {
-    let names = model.body_names(&part.bodies);
     let msg = match e {
         FactorError::NotPositiveDefinite => format!(
-            "{} {} not held: the stiffness matrix is singular. Add a support (or more supports: every rigid-body motion must be stopped) or a contact that stays closed",
-            if part.bodies.len() == 1 { "body" } else { "bodies" },
-            names
+            "{} not held: the stiffness matrix is singular. Add a support (or more supports: every rigid-body motion must be stopped) or a contact that stays closed",
+            part.describe(model)
         ),
-        FactorError::Resource(r) => format!("bodies {names}: {r}"),
+        FactorError::Resource(r) => format!("{}: {r}", part.describe(model)),
     };
     ModelError::Invalid { scene: model.scene.clone(), key: String::from("supports"), msg }
 }
@@ -130,18 +102,16 @@ pub fn numbering(model: &Model, part: &Part) -> (Vec<usize>, usize, usize) {
     }
     let mut seen = vec![false; model.n_nodes()];
     let mut ni = 0;
-    for &b in &part.bodies {
-        for c in &model.bodies[b].cells {
-            for &n in &c.nodes {
-                if seen[n] || is_iface[n] {
-                    continue;
-                }
-                seen[n] = true;
-                for comp in 0..nd {
-                    if model.prescribed[n * nd + comp].is_none() {
-                        dof_of[n * nd + comp] = ni;
-                        ni += 1;
-                    }
+    for &(b, c) in &part.cells {
+        for &n in &model.bodies[b].cells[c].nodes {
+            if seen[n] || is_iface[n] {
+                continue;
+            }
+            seen[n] = true;
+            for comp in 0..nd {
+                if model.prescribed[n * nd + comp].is_none() {
+                    dof_of[n * nd + comp] = ni;
+                    ni += 1;
                 }
             }
         }
@@ -221,7 +191,7 @@ pub fn condense_parts(model: &Model, parts: Vec<Part>, threads: usize) -> Result
 pub fn condense(model: &Model, part: Part) -> Result<Condensed, ModelError> {
     let t = std::time::Instant::now();
     let (mut dof_of, ni, nc) = numbering(model, &part);
-    let a = assembly::assemble(model, &part.bodies, &dof_of, ni + nc)?;
+    let a = assembly::assemble(model, &part.cells, &dof_of, ni + nc)?;
     let assemble_s = t.elapsed().as_secs_f64();
     let node_of = interior_nodes(&dof_of, model.nd, ni);
     // The caller's faer parallelism: sequential, as faer is built without its
@@ -260,10 +230,21 @@ pub fn condense(model: &Model, part: Part) -> Result<Condensed, ModelError> {
             *d = NONE;
         }
     }
-    Ok(Condensed { part, dof_of, ni, nc, chol, f: a.f, s, g, assemble_s, backward_error })
+    let condense_s = t.elapsed().as_secs_f64() - assemble_s;
+    Ok(Condensed { part, dof_of, ni, nc, chol, f: a.f, s, g, assemble_s, condense_s, backward_error })
 }
 
 impl Condensed {
+    /// The part's operator, borrowed.
+    pub fn operator(&self) -> OperatorRef<'_> {
+        OperatorRef { part: &self.part, nc: self.nc, s: &self.s, g: &self.g }
+    }
+
+    /// The part's operator, copied (to send it to another rank).
+    pub fn to_operator(&self) -> Operator {
+        Operator { part: self.part.clone(), nc: self.nc, s: self.s.clone(), g: self.g.clone() }
+    }
+
     /// The load vector combined with the load factors `lambda` (one per case).
     fn combine(v: &[Vec<f64>], lambda: &[f64]) -> Vec<f64> {
         let mut out = vec![0.0; v.first().map_or(0, |x| x.len())];

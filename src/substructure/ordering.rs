@@ -84,6 +84,14 @@ fn amd_order(k: &SymMatrix, ni: usize) -> Result<Vec<usize>, FactorError> {
     Ok(fwd)
 }
 
+/// One METIS call at a time: it swaps the process's SIGABRT/SIGTERM handlers
+/// in and out, which two threads interleaving would leave swapped (its
+/// other state is thread-local). Hold the guard across the call.
+pub(crate) fn metis_lock() -> std::sync::MutexGuard<'static, ()> {
+    static METIS: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    METIS.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
+}
+
 /// METIS nested dissection of the interior node graph, expanded to equations.
 fn nested_dissection(k: &SymMatrix, ni: usize, node_of: &[usize]) -> Result<Vec<usize>, FactorError> {
     use metis_sys::idx_t;
@@ -139,11 +147,7 @@ fn nested_dissection(k: &SymMatrix, ni: usize, node_of: &[usize]) -> Result<Vec<
     let mut perm: Vec<idx_t> = vec![0; nn];
     let mut iperm: Vec<idx_t> = vec![0; nn];
     let mut options = [0 as idx_t; metis_sys::METIS_NOPTIONS as usize];
-    // One METIS call at a time: it swaps the process's SIGABRT/SIGTERM
-    // handlers in and out, which two threads interleaving would leave
-    // swapped (its other state is thread-local).
-    static METIS: std::sync::Mutex<()> = std::sync::Mutex::new(());
-    let _one = METIS.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+    let _one = metis_lock();
     // SAFETY: the arrays have the lengths METIS reads (nvtxs + 1, xadj[nvtxs],
     // nvtxs, METIS_NOPTIONS) and outlive the call; METIS keeps no pointer.
     let status = unsafe {

@@ -71,7 +71,7 @@ fn two_body_model() -> Model {
     prescribed[iface1[0] * nd + 1] = Some(0.0);
     let right = Cell { kind: CellKind::Line2, nodes: vec![first1 + 1, first1 + 3], tag: 900 };
     let right2 = Cell { kind: CellKind::Line2, nodes: vec![first1 + 3, first1 + 5], tag: 901 };
-    let loads = [right, right2].into_iter().map(|cell| FacetLoad { cell, sign: 1.0, kind: LoadKind::Traction([0.7, -0.3, 0.0]), body: 1, case: 0 }).collect();
+    let loads = [right, right2].into_iter().map(|cell| FacetLoad { cell, sign: 1.0, kind: LoadKind::Traction([0.7, -0.3, 0.0]), body: 1, element: 0, case: 0 }).collect();
     let pairs = iface0.iter().zip(&iface1).map(|(&k, &l)| Pair { k, l, contact: 0, normal: [1.0, 0.0, 0.0], area: 0.5 }).collect();
     Model {
         scene: "two_body_model".into(),
@@ -108,11 +108,10 @@ struct Dense {
     interior: Vec<usize>,
 }
 
-fn dense(model: &Model, bodies: &[usize], interface: &[usize]) -> Dense {
+fn dense(model: &Model, part: &super::Part) -> Dense {
     let nd = model.nd;
-    let mut used: Vec<usize> = bodies.iter().flat_map(|&b| model.bodies[b].cells.iter().flat_map(|c| c.nodes.iter().copied())).collect();
-    used.sort_unstable();
-    used.dedup();
+    let interface = &part.interface;
+    let used = part.nodes(model);
     let mut dof_of = vec![NONE; model.n_nodes() * nd];
     let mut interior = Vec::new();
     for &n in used.iter().rev() {
@@ -133,7 +132,7 @@ fn dense(model: &Model, bodies: &[usize], interface: &[usize]) -> Dense {
         }
     }
     let nc = interface.len() * nd;
-    let a = assembly::assemble(model, bodies, &dof_of, ni + nc).expect("assemble");
+    let a = assembly::assemble(model, &part.cells, &dof_of, ni + nc).expect("assemble");
     let k = DMatrix::from_fn(ni + nc, ni + nc, |r, c| a.k.get(r, c));
     let f = DVector::from_vec(a.f[0].clone());
     let k_ii = k.view((0, 0), (ni, ni)).into_owned();
@@ -164,7 +163,7 @@ fn condensation_equals_the_dense_schur_complement() {
     let parts = parts(&model);
     assert_eq!(parts.len(), 2);
     for part in parts {
-        let dense = dense(&model, &part.bodies, &part.interface);
+        let dense = dense(&model, &part);
         let name = model.body_names(&part.bodies);
         let c = condense(&model, part).expect("condense");
         let nc = c.nc;
@@ -285,9 +284,9 @@ fn stacked_blocks(m: usize, h: usize) -> Model {
 fn every_ordering_gives_the_dense_schur_complement() {
     for model in [two_body_model(), stacked_blocks(6, 5)] {
         for part in parts(&model) {
-            let dense = dense(&model, &part.bodies, &part.interface);
+            let dense = dense(&model, &part);
             let (dof_of, ni, nc) = numbering(&model, &part);
-            let a = assembly::assemble(&model, &part.bodies, &dof_of, ni + nc).expect("assemble");
+            let a = assembly::assemble(&model, &part.cells, &dof_of, ni + nc).expect("assemble");
             let node_of = interior_nodes(&dof_of, model.nd, ni);
             for ordering in [Ordering::Amd, Ordering::NestedDissection] {
                 let chol = PartialCholesky::factor(&a.k, ni, &node_of, ordering, Par::Seq).expect("factor");
@@ -308,7 +307,7 @@ fn nested_dissection_cuts_3d_fill() {
     let model = stacked_blocks(10, 8);
     let part = parts(&model).into_iter().find(|p| p.bodies == [0]).expect("the lower block");
     let (dof_of, ni, _) = numbering(&model, &part);
-    let a = assembly::assemble(&model, &part.bodies, &dof_of, dof_of.iter().filter(|&&d| d != NONE).count()).expect("assemble");
+    let a = assembly::assemble(&model, &part.cells, &dof_of, dof_of.iter().filter(|&&d| d != NONE).count()).expect("assemble");
     let node_of = interior_nodes(&dof_of, model.nd, ni);
     let flops = |o| PartialCholesky::factor(&a.k, ni, &node_of, o, Par::Seq).expect("factor").stats().flops;
     let (amd, nd) = (flops(Ordering::Amd), flops(Ordering::NestedDissection));

@@ -27,7 +27,7 @@ use super::law::{ContactState, PairResult};
 use super::rigid::{free_parts, RigidModes, Tie};
 use crate::fem::sparse::NONE;
 use crate::model::{Model, ModelError};
-use crate::substructure::Condensed;
+use crate::substructure::OperatorRef;
 
 /// Where a part's interface nodes sit among the pairs.
 struct PartMap {
@@ -125,7 +125,7 @@ pub enum SolveFailure {
 }
 
 impl InterfaceProblem {
-    pub fn new(model: &Model, parts: &[Condensed]) -> Result<InterfaceProblem, ModelError> {
+    pub fn new(model: &Model, parts: &[OperatorRef]) -> Result<InterfaceProblem, ModelError> {
         let nd = model.nd;
         let np = model.pairs.len();
         let basis = FaceBasis::new(model);
@@ -253,14 +253,14 @@ impl InterfaceProblem {
                     Slot::Join(j) => joins[j][u % nd].terms(0),
                 })
                 .collect();
-            blocks.add_part(&part.s, &part.g, nd, &terms, &t, &map.edges);
+            blocks.add_part(part.s, part.g, nd, &terms, &t, &map.edges);
         }
         let reduced = Reduced::new(blocks).map_err(|_| ModelError::Invalid {
             scene: model.scene.clone(),
             key: "supports".into(),
             msg: "the bodies are not held even with every contact stuck (the bonded interface system is singular): add a support".into(),
         })?;
-        let rigid = parts.iter().map(|p| RigidModes::new(model, &p.part.bodies)).collect();
+        let rigid = parts.iter().map(|p| RigidModes::new(model, &p.part.nodes(model))).collect();
         let positions = model.pairs.iter().map(|p| model.coords[p.k]).collect();
         Ok(InterfaceProblem { nd, frames, basis, axes, joins, join_parts, reduced, parts: maps, rigid, positions, at })
     }
