@@ -6,7 +6,7 @@ CARGO   ?= cargo
 BIN     := target/release/subcontact
 PYTHON  ?= python3
 
-.PHONY: all deps build cylinder tunnel footing dam blocks3d dam3d test bench stress clean
+.PHONY: all deps deps-mpi build cylinder tunnel footing dam blocks3d dam3d test test-mpi bench stress clean
 
 all: build
 
@@ -69,6 +69,21 @@ stress: deps
 
 test: deps
 	$(CARGO) test --release
+
+# MPI: OpenMPI and the clang the mpi crate's bindings need (Debian), then the
+# MPI tests (tests/mpi.rs: 2 and 3 ranks on localhost against the serial
+# run) with the binary built with the cargo feature mpi, in its own target
+# directory so that `make test`'s build stays as it is.
+MPI_TARGET := target/mpi
+
+deps-mpi:
+	@{ command -v mpirun >/dev/null 2>&1 && command -v mpicc >/dev/null 2>&1 && ls /usr/lib/llvm-*/lib/libclang*.so* >/dev/null 2>&1; } || { \
+	  echo "OpenMPI or libclang not found: installing openmpi-bin libopenmpi-dev libclang-dev with apt-get"; \
+	  (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq openmpi-bin libopenmpi-dev libclang-dev >/dev/null) || \
+	  { echo "error: could not install OpenMPI; run 'apt-get install -y openmpi-bin libopenmpi-dev libclang-dev' as root"; exit 1; }; }
+
+test-mpi: deps deps-mpi
+	CARGO_TARGET_DIR=$(MPI_TARGET) $(CARGO) test --release --features mpi --test mpi
 
 clean:
 	rm -rf results/*/ target

@@ -6,14 +6,17 @@ use std::path::Path;
 use anyhow::{Context, Result};
 
 use crate::driver::{self, RunOptions};
+use crate::parallel::Comm;
 use crate::model::Model;
 use crate::analytic::{self, paper};
 use crate::results::{state_counts, Run};
 use crate::scene::Scene;
 use crate::substructure;
 
-pub fn solve(scene: &Path, opts: &RunOptions) -> Result<()> {
-    let run = driver::run(scene, opts)?;
+pub fn solve(scene: &Path, opts: &RunOptions, comm: &dyn Comm) -> Result<()> {
+    let Some(run) = driver::run_on(Scene::load(scene)?, opts, comm)? else {
+        return Ok(()); // not rank 0: rank 0 reports
+    };
     // say what happened: pairs that opened between the Coulomb apex and f_t
     if run.steps.iter().filter_map(|s| s.contact.as_ref()).any(|c| c.apex_openings > 0) {
         warn(&run.scene);

@@ -1,18 +1,34 @@
 //! The `subcontact` binary: parse the command line, run, print the error
-//! chain and exit non-zero on failure.
+//! chain and exit non-zero on failure. Built with the cargo feature `mpi`
+//! and started by `mpirun -np N`, `solve` spreads the parts over the ranks;
+//! rank 0 prints and writes, the other ranks stay silent (also on failure,
+//! which every rank shares).
 
 use std::process::ExitCode;
 
 use clap::Parser;
 use subcontact::cli::{Cli, Command};
+use subcontact::parallel::{Comm, Serial};
 use subcontact::{commands, driver::RunOptions};
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    #[cfg(feature = "mpi")]
+    let mpi = subcontact::parallel::Mpi::init();
+    #[cfg(feature = "mpi")]
+    let comm: &dyn Comm = match &mpi {
+        Some(m) => m,
+        None => &Serial,
+    };
+    #[cfg(not(feature = "mpi"))]
+    let comm: &dyn Comm = &Serial;
+    let root = comm.rank() == 0;
     let result = match cli.command {
         Command::Solve { scene, out, bonded, quiet, substructures, threads } => {
-            commands::solve(&scene, &RunOptions { out, bonded, verbose: !quiet, substructures, threads, ..Default::default() })
+            commands::solve(&scene, &RunOptions { out, bonded, verbose: !quiet, substructures, threads, ..Default::default() }, comm)
         }
+        // the other commands run on rank 0 alone
+        _ if !root => Ok(()),
         Command::Check { scene } => commands::check(&scene),
         Command::Bench { scene, levels, orders, ratio, start, max_dofs, no_monolithic, out } => commands::bench(
             &scene,
@@ -23,7 +39,9 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {}", chain(&e));
+            if root {
+                eprintln!("error: {}", chain(&e));
+            }
             ExitCode::FAILURE
         }
     }

@@ -1,0 +1,113 @@
+//! Parts on MPI ranks (cargo feature `mpi`; `make test-mpi` builds it and
+//! runs these): `mpirun -np N subcontact solve` gives the serial answer to
+//! 1e-10 with 2 and 3 ranks, rank 0 writes the same files, a failure on any
+//! rank ends every rank with one message and no results, and more ranks
+//! than parts are refused with what to do.
+#![cfg(feature = "mpi")]
+
+mod common;
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+use common::Case;
+
+/// `mpirun -np n subcontact args...` in the case's directory.
+fn mpirun(case: &Case, n: usize, args: &[&str]) -> Output {
+    Command::new("mpirun")
+        .args(["--allow-run-as-root", "--oversubscribe", "-np", &n.to_string(), env!("CARGO_BIN_EXE_subcontact")])
+        .args(args)
+        .current_dir(&case.dir)
+        .output()
+        .expect("mpirun (make test-mpi installs openmpi-bin)")
+}
+
+/// The numbers of a CSV file, row by row.
+fn numbers(path: &Path) -> Vec<Vec<f64>> {
+    common::read(path).lines().skip(1).map(|l| l.split(',').filter_map(|v| v.parse().ok()).collect()).collect()
+}
+
+/// Largest difference between two runs' CSV numbers, relative to the largest value.
+fn csv_difference(a: &Path, b: &Path) -> f64 {
+    let (x, y) = (numbers(a), numbers(b));
+    assert_eq!(x.len(), y.len(), "{} and {}: rows", a.display(), b.display());
+    let scale = x.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
+    x.iter().zip(&y).flat_map(|(r, s)| r.iter().zip(s).map(|(p, q)| (p - q).abs())).fold(0.0, f64::max) / scale
+}
+
+fn solve_ok(case: &Case, n: usize, scene: &str, out: &str, extra: &[&str]) {
+    let mut args = vec!["solve", scene, "--out", out, "--quiet"];
+    args.extend_from_slice(extra);
+    let o = if n == 0 { case.cli(&args) } else { mpirun(case, n, &args) };
+    assert!(o.status.success(), "{n} rank(s): {}", String::from_utf8_lossy(&o.stderr));
+}
+
+#[test]
+fn parts_on_two_and_three_ranks_give_the_serial_answer() {
+    let case = Case::new("mpi-same");
+    case.copy("geo/blocks3d.geo");
+    let text = common::scenes::edited("geo/blocks3d.toml", &[("setnumber = { lc = 0.1, hex = 0 }", "setnumber = { lc = 0.2, hex = 0 }")]);
+    case.write("blocks.toml", &text);
+    case.copy("geo/dam.geo");
+    case.copy("geo/dam.toml");
+    for (scene, cut) in [("blocks.toml", "2"), ("dam.toml", "2")] {
+        let stem = scene.trim_end_matches(".toml");
+        solve_ok(&case, 0, scene, &format!("{stem}_serial"), &["--substructures", cut]);
+        for n in [2, 3] {
+            let out = format!("{stem}_np{n}");
+            solve_ok(&case, n, scene, &out, &["--substructures", cut]);
+            let e = csv_difference(&case.dir.join(format!("{stem}_serial/contact.csv")), &case.dir.join(format!("{out}/contact.csv")));
+            eprintln!("{scene}, {n} ranks: contact.csv differs from serial by {e:.1e}");
+            assert!(e < 1e-10, "{scene} on {n} ranks: {e:.2e}");
+            if scene == "blocks.toml" {
+                let e = csv_difference(&case.dir.join(format!("{stem}_serial/probes.csv")), &case.dir.join(format!("{out}/probes.csv")));
+                assert!(e < 1e-10, "{scene} on {n} ranks, probes: {e:.2e}");
+            }
+            let files = |d: &str| {
+                let mut f: Vec<String> = case.files_in(&case.dir.join(d)).into_iter().filter(|f| !f.starts_with("mesh")).collect();
+                f.sort();
+                f
+            };
+            assert_eq!(files(&format!("{stem}_serial")), files(&out), "rank 0 writes the same files");
+            let summary = common::json(&case.dir.join(format!("{out}/summary.json")));
+            let ranks = summary["ranks"].as_array().expect("ranks");
+            assert_eq!(ranks.len(), n, "every rank reports");
+            assert!(ranks.iter().all(|r| !r["parts"].as_array().expect("parts").is_empty()), "every rank has a part");
+            assert!(ranks.iter().all(|r| r["bytes_sent_per_contact_iteration"] == 0), "nothing travels during the iteration");
+        }
+    }
+}
+
+#[test]
+fn more_ranks_than_parts_are_refused_saying_what_to_do() {
+    let case = Case::new("mpi-too-many");
+    case.copy("geo/dam.geo");
+    case.copy("geo/dam.toml");
+    let o = mpirun(&case, 3, &["solve", "dam.toml", "--out", "out", "--quiet"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success());
+    assert_eq!(err.matches("error:").count(), 1, "one message: {err}");
+    for want in ["3 MPI ranks", "2 part(s)", "substructures", "at most 2 rank(s)"] {
+        assert!(err.contains(want), "says {want:?}: {err}");
+    }
+    assert!(case.files_in(&case.dir.join("out")).iter().all(|f| f.starts_with("mesh")), "no results");
+}
+
+#[test]
+fn a_failure_on_any_rank_ends_every_rank_with_one_message_and_no_results() {
+    let case = Case::new("mpi-fail");
+    case.copy("geo/blocks3d.geo");
+    // the upper block pulled off the lower one: held by nothing once the joint opens
+    let text = common::scenes::edited(
+        "geo/blocks3d.toml",
+        &[("setnumber = { lc = 0.1, hex = 0 }", "setnumber = { lc = 0.25, hex = 0 }"), ("traction = [0.3, 0.0, -1.0]", "traction = [0.0, 0.0, 1.0]")],
+    );
+    case.write("pulled.toml", &text);
+    let o = mpirun(&case, 2, &["solve", "pulled.toml", "--out", "out", "--quiet", "--substructures", "2"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success());
+    assert_eq!(err.matches("error:").count(), 1, "one message: {err}");
+    assert!(err.contains("held by nothing"), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(case.files_in(&case.dir.join("out")).iter().all(|f| f.starts_with("mesh")), "no results");
+}
