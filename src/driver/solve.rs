@@ -149,7 +149,7 @@ pub(super) fn solve(scene: &Scene, model: &Model, opts: &RunOptions, comm: &dyn 
     progress(opts, &format!("assembling and factorising {n_parts} part(s){}", if comm.size() > 1 { format!(" on {} ranks", comm.size()) } else if threads > 1 { format!(" in {threads} threads") } else { String::new() }));
     let (index, mine_only): (Vec<usize>, Vec<Part>) = mine_parts.into_iter().unzip();
     let condensed = agree(comm, substructure::condense_parts(model, mine_only, threads).map_err(anyhow::Error::from))?;
-    let mine: Vec<(usize, Condensed)> = index.into_iter().zip(condensed).collect();
+    let mut mine: Vec<(usize, Condensed)> = index.into_iter().zip(condensed).collect();
     // the wall time, split between assembly and condensation as the parts spent it
     let wall = t.elapsed().as_secs_f64();
     let spent: f64 = mine.iter().map(|(_, c)| c.assemble_s + c.condense_s).sum();
@@ -161,7 +161,7 @@ pub(super) fn solve(scene: &Scene, model: &Model, opts: &RunOptions, comm: &dyn 
     // 5. The interface on rank 0.
     let t_problem = Instant::now();
     let received: Vec<(usize, Operator)> = if comm.size() > 1 {
-        let ops: Vec<(usize, Operator)> = mine.iter().map(|(i, c)| (*i, c.to_operator())).collect();
+        let ops: Vec<(usize, Operator)> = mine.iter_mut().map(|(i, c)| (*i, c.take_operator())).collect();
         let mut all: Vec<(usize, Operator)> = comm.gather(&ops).into_iter().flatten().collect();
         all.sort_by_key(|(i, _)| *i);
         all
@@ -188,6 +188,10 @@ pub(super) fn solve(scene: &Scene, model: &Model, opts: &RunOptions, comm: &dyn 
         agree(comm, Ok(None))?
     };
     drop(received);
+    // the interface holds what it needs of every S
+    for (_, c) in mine.iter_mut() {
+        c.drop_schur();
+    }
     let part_refs: Vec<&Part> = all_parts.iter().collect();
     let laws = laws(model, scene);
     let consistent = scene.contacts.iter().any(|c| c.traction == TractionRecovery::Consistent);

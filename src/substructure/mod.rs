@@ -137,14 +137,6 @@ pub fn interior_nodes(dof_of: &[usize], nd: usize, ni: usize) -> Vec<usize> {
     node_of
 }
 
-/// `y += S x` for the dense symmetric `S` (nc x nc, column-major), by faer's
-/// matrix-vector product.
-fn s_times(s: &[f64], nc: usize, x: &[f64], y: &mut [f64]) {
-    let s = MatRef::from_column_major_slice(s, nc, nc);
-    let x = MatRef::from_column_major_slice(x, nc, 1);
-    matmul(MatMut::from_column_major_slice_mut(y, nc, 1), Accum::Add, s, x, 1.0, Par::Seq);
-}
-
 /// Condenses every part, `threads` of them at a time (each thread runs
 /// [`condense`] with the caller's faer parallelism), in the order given.
 /// The first failing part, in that order, is the error.
@@ -240,9 +232,15 @@ impl Condensed {
         OperatorRef { part: &self.part, nc: self.nc, s: &self.s, g: &self.g }
     }
 
-    /// The part's operator, copied (to send it to another rank).
-    pub fn to_operator(&self) -> Operator {
-        Operator { part: self.part.clone(), nc: self.nc, s: self.s.clone(), g: self.g.clone() }
+    /// The part's operator, its S moved out (to send it to another rank;
+    /// the part keeps what recovers its interior).
+    pub fn take_operator(&mut self) -> Operator {
+        Operator { part: self.part.clone(), nc: self.nc, s: std::mem::take(&mut self.s), g: self.g.clone() }
+    }
+
+    /// Frees the dense S once the interface holds what it needs of it.
+    pub fn drop_schur(&mut self) {
+        self.s = Vec::new();
     }
 
     /// The load vector combined with the load factors `lambda` (one per case).
@@ -273,8 +271,11 @@ impl Condensed {
         let (ni, nc) = (self.ni, self.nc);
         let mut x = Self::combine(&self.f, lambda);
         let g = self.g_at(lambda);
-        let mut f_c: Vec<f64> = g.iter().map(|v| -v).collect();
-        s_times(&self.s, nc, d_c, &mut f_c);
+        // S d_c from the factor itself: the dense S may have been handed on
+        let mut f_c = self.chol.apply_schur(d_c);
+        for (f, gi) in f_c.iter_mut().zip(&g) {
+            *f -= gi;
+        }
         for r in 0..nc {
             x[ni + r] += f_c[r] + self.chol.alpha() * d_c[r];
         }

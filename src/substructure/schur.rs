@@ -187,6 +187,59 @@ impl PartialCholesky {
     }
 }
 
+impl PartialCholesky {
+    /// `S x = L_cc L_cc^T x - alpha x`, straight from the factor's trailing
+    /// supernodes (no dense S needed: what recovers a part's interior once
+    /// its S has gone to the interface).
+    pub fn apply_schur(&self, x: &[f64]) -> Vec<f64> {
+        let (n, ni) = (self.n, self.ni);
+        let nc = n - ni;
+        let SymbolicCholeskyRaw::Supernodal(sym) = self.symbolic.raw() else {
+            unreachable!("the factorisation is forced supernodal")
+        };
+        let llt = SupernodalLltRef::new(sym, &self.values);
+        // the trailing supernodes: t = L_cc^T x, then y = L_cc t
+        let trailing: Vec<usize> = (0..sym.n_supernodes()).filter(|&s| {
+            let node = llt.supernode(s);
+            node.start() + node.val().ncols() > ni
+        }).collect();
+        let mut t = vec![0.0; nc];
+        for &s in &trailing {
+            let node = llt.supernode(s);
+            let (start, val, pattern) = (node.start(), node.val(), node.pattern());
+            let ncols = val.ncols();
+            for jc in (0..ncols).filter(|&jc| start + jc >= ni) {
+                let col = val.col(jc);
+                let mut acc = 0.0;
+                for p in jc..ncols {
+                    acc += col[p] * x[start + p - ni];
+                }
+                for (p, &r) in pattern.iter().enumerate() {
+                    acc += col[ncols + p] * x[r - ni];
+                }
+                t[start + jc - ni] = acc;
+            }
+        }
+        let mut y: Vec<f64> = x.iter().map(|v| -self.alpha * v).collect();
+        for &s in &trailing {
+            let node = llt.supernode(s);
+            let (start, val, pattern) = (node.start(), node.val(), node.pattern());
+            let ncols = val.ncols();
+            for jc in (0..ncols).filter(|&jc| start + jc >= ni) {
+                let col = val.col(jc);
+                let tj = t[start + jc - ni];
+                for p in jc..ncols {
+                    y[start + p - ni] += col[p] * tj;
+                }
+                for (p, &r) in pattern.iter().enumerate() {
+                    y[r - ni] += col[ncols + p] * tj;
+                }
+            }
+        }
+        y
+    }
+}
+
 /// Size and cost of a sparse factor.
 #[derive(Clone, Copy, Debug)]
 pub struct FactorStats {

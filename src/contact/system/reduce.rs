@@ -19,7 +19,9 @@
 
 use faer::linalg::matmul::matmul;
 use faer::linalg::triangular_solve::{solve_lower_triangular_in_place, solve_upper_triangular_in_place};
-use faer::{Accum, Mat, Side};
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::llt::factor::{cholesky_in_place, cholesky_in_place_scratch};
+use faer::{Accum, Mat};
 
 use super::coords::Blocks;
 
@@ -53,9 +55,15 @@ impl Reduced {
         let par = faer::get_global_parallelism();
         let Blocks { k_mm, mut k_mr, mut k_rr, b_m, b_r, b_m_fixed, b_r_fixed } = blocks;
         let nm = k_mm.nrows();
-        let l = if nm == 0 { Mat::zeros(0, 0) } else { k_mm.llt(Side::Lower).map_err(|_| NotHeld)?.L().to_owned() };
-        drop(k_mm);
+        // K_mm = L L^T in place (its lower triangle becomes L): no second copy
+        let mut l = k_mm;
         if nm > 0 {
+            let mut buf = MemBuffer::new(cholesky_in_place_scratch::<f64>(nm, par, Default::default()));
+            cholesky_in_place(l.as_mut(), Default::default(), par, MemStack::new(&mut buf), Default::default()).map_err(|_| NotHeld)?;
+        }
+        if nm > 0 {
+            // (the strict upper triangle of `l` still holds K_mm: the
+            // triangular solves read only the lower one)
             solve_lower_triangular_in_place(l.as_ref(), k_mr.as_mut(), par);
             matmul(k_rr.as_mut(), Accum::Add, k_mr.transpose(), k_mr.as_ref(), -1.0, par);
         }
