@@ -35,12 +35,14 @@ import os
 import pathlib
 import shutil
 import sys
+import threading
 import time
 
 import numpy as np
 
 HERE = pathlib.Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
+sys.dont_write_bytecode = True       # no __pycache__ in scripts/ccx
 
 import ccxout  # noqa: E402
 import deck  # noqa: E402
@@ -56,7 +58,8 @@ def parse_args(argv=None):
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--lc", default="0.125,0.0833333333,0.0625",
                    help="element sizes, comma-separated (w / lc divisions per side)")
-    p.add_argument("--threads", default="1,2", help="OMP_NUM_THREADS values for ccx")
+    p.add_argument("--threads", default="1,2",
+                   help="threads for ccx (OMP_NUM_THREADS) and cores for subcontact (taskset)")
     p.add_argument("--variants", default="f2f,f2f_stiff,mortar_stiff",
                    help=f"contact decks among {', '.join(VARIANTS)}")
     p.add_argument("--mortar-max-dofs", type=int, default=60000,
@@ -69,6 +72,9 @@ def parse_args(argv=None):
     p.add_argument("--geo", default="geo/blocks3d.geo")
     p.add_argument("--ccx", default="ccx")
     p.add_argument("--reuse", action="store_true", help="keep runs already recorded")
+    p.add_argument("--rerun-busy", type=float, default=None, metavar="LOAD",
+                   help="with --reuse, run again the records taken while the load average, "
+                        "less the run's own threads, averaged more than LOAD")
     p.add_argument("--max-load", type=float, default=0.7,
                    help="wait until the 1-minute load average is below this before a run")
     p.add_argument("--max-wait", type=float, default=900.0,
@@ -103,14 +109,50 @@ def wait_idle(args) -> float:
     return load
 
 
+class LoadSampler:
+    """The 1-minute load average, sampled every few seconds while a run lasts."""
+
+    def __init__(self, every: float = 5.0):
+        self.samples: list[float] = []
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._loop, args=(every,), daemon=True)
+
+    def _loop(self, every: float) -> None:
+        while not self._stop.wait(every):
+            self.samples.append(os.getloadavg()[0])
+
+    def __enter__(self):
+        self._thread.start()
+        return self
+
+    def __exit__(self, *exc):
+        self._stop.set()
+        self._thread.join()
+
+
+def busy(rec: dict, limit: float) -> bool:
+    """Did other work share the machine during the run? The load average during
+    it, less the run's own threads, above limit (on average)."""
+    own = rec.get("threads", 1)
+    return rec.get("load_during_mean", 0.0) - own > limit
+
+
 def recorded(path: pathlib.Path, args, run):
-    """The record at path if --reuse and it exists; else run() and record it."""
+    """The record at path if --reuse and it exists (and, with --rerun-busy, was
+    not taken on a busy machine); else run() and record it, with the load."""
     if args.reuse and path.exists():
-        return json.loads(path.read_text())
+        rec = json.loads(path.read_text())
+        if args.rerun_busy is None or not busy(rec, args.rerun_busy):
+            return rec
+        print(f"  rerunning {path.stem}: load {rec['load_during_mean']:.2f} during it", flush=True)
     load = wait_idle(args)
-    result = run()
+    with LoadSampler() as sampler:
+        result = run()
     result["load_before"] = load
     result["load_after"] = os.getloadavg()[0]
+    if sampler.samples:
+        result["load_during_mean"] = float(np.mean(sampler.samples))
+        result["load_during_max"] = float(np.max(sampler.samples))
     path.write_text(json.dumps(result, indent=1))
     return result
 
@@ -143,14 +185,15 @@ def run_size(args, lc: float, params: dict) -> dict:
               sum(len(h) for h in mesh.hexes.values()), "mesh_nodes": len(mesh.points),
               "joint_nodes": len(mesh.group_nodes("joint")), "subcontact": {}, "ccx": {}}
 
-    # 2. subcontact, contact and bonded
+    # 2. subcontact, contact and bonded, on one core and on all (args.threads)
     for tag, bonded in (("contact", False), ("bonded", True)):
-        print(f"  subcontact {tag}", flush=True)
-        rec = recorded(work / "runs" / f"subcontact_{tag}.json", args,
-                       lambda: sc.solve(binary, template, msh, work, lc, bonded))
-        vtu = pathlib.Path(rec["out"]) / f"scene_{tag}.vtu"
-        rec["_field"] = sc.nodal_displacements(vtu, joint_z)
-        result["subcontact"][tag] = rec
+        for t in args.threads:
+            print(f"  subcontact {tag} t{t}", flush=True)
+            rec = recorded(work / "runs" / f"subcontact_{tag}_t{t}.json", args,
+                           lambda: sc.solve(binary, template, msh, work, lc, bonded, t))
+            vtu = pathlib.Path(rec["out"]) / f"scene_{tag}.vtu"
+            rec["_field"] = sc.nodal_displacements(vtu, joint_z)
+            result["subcontact"][f"{tag}_t{t}"] = rec
 
     # 3-4. CalculiX decks and runs
     decks = {"bonded": None}
@@ -178,7 +221,8 @@ def run_size(args, lc: float, params: dict) -> dict:
 
     # 5. compare with subcontact
     for job, rec in result["ccx"].items():
-        ref = result["subcontact"]["bonded" if rec["variant"] == "bonded" else "contact"]
+        ref = result["subcontact"][f"{'bonded' if rec['variant'] == 'bonded' else 'contact'}"
+                                   f"_t{args.threads[0]}"]
         if rec.get("top_centre") is None:
             continue
         u, v = np.array(rec["top_centre"]), np.array(ref["top_centre"])

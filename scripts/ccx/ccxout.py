@@ -32,6 +32,7 @@ def run_ccx(job: pathlib.Path, threads: int, ccx: str = "ccx", timeout: float | 
     for var in ("OMP_NUM_THREADS", "CCX_NPROC_EQUATION_SOLVER", "CCX_NPROC_STIFFNESS",
                 "CCX_NPROC_RESULTS"):
         env[var] = str(threads)
+    job = job.resolve()
     log = job.with_suffix(".log")
     timing = job.with_suffix(".time")
     with open(log, "w") as out:

@@ -67,18 +67,26 @@ def make_mesh(binary: pathlib.Path, template: pathlib.Path, geo: pathlib.Path,
 
 
 def solve(binary: pathlib.Path, template: pathlib.Path, msh: pathlib.Path,
-          workdir: pathlib.Path, lc: float, bonded: bool) -> dict:
-    """One `subcontact solve` on the given mesh; wall time, RSS and its summary."""
+          workdir: pathlib.Path, lc: float, bonded: bool, threads: int) -> dict:
+    """One `subcontact solve` on the given mesh; wall time, RSS and its summary.
+    subcontact takes as many threads as the process may use cores (it condenses
+    the parts side by side), so threads = 1 pins it to one core (taskset)."""
     tag = "bonded" if bonded else "contact"
     scene = workdir / f"scene_{tag}.toml"
     write_scene(template, scene, msh, lc)
-    out = workdir / f"subcontact_{tag}"
+    out = workdir / f"subcontact_{tag}_t{threads}"
     cmd = [str(binary.resolve()), "solve", scene.name, "--out", out.name, "--quiet"]
     if bonded:
         cmd.append("--bonded")
-    timing = workdir / f"subcontact_{tag}.time"
-    subprocess.run(["/usr/bin/time", "-v", "-o", str(timing)] + cmd, cwd=workdir, check=True)
+    cores = sorted(os.sched_getaffinity(0))
+    if threads > len(cores):
+        raise SystemExit(f"error: {threads} threads asked for subcontact, {len(cores)} cores here")
+    pin = ["taskset", "-c", ",".join(str(c) for c in cores[:threads])]
+    timing = (workdir / f"subcontact_{tag}_t{threads}.time").resolve()
+    subprocess.run(pin + ["/usr/bin/time", "-v", "-o", str(timing)] + cmd, cwd=workdir,
+                   check=True)
     info = parse_time(timing.read_text())
+    info["threads"] = threads
     summary = json.loads((out / "summary.json").read_text())
     t = summary["timings_s"]
     info.update({
@@ -88,6 +96,7 @@ def solve(binary: pathlib.Path, template: pathlib.Path, msh: pathlib.Path,
         "solve_s": t["condense"] + t["interface"] + t["recover"],
         "top_centre": top_centre(out / "probes.csv"),
         "out": str(out),
+        "commit": git_commit(binary),
     })
     if not bonded:
         c = summary["contact"]
@@ -95,6 +104,16 @@ def solve(binary: pathlib.Path, template: pathlib.Path, msh: pathlib.Path,
                            "states": c["states"], "pairs": c["pairs"]}
         info["slip"] = slip_summary(out / "contact.csv", scene_params(template)["friction"])
     return info
+
+
+def git_commit(binary: pathlib.Path) -> str | None:
+    """The commit of the checkout the binary was built in (as `git describe` says)."""
+    try:
+        return subprocess.run(["git", "describe", "--always", "--dirty"], capture_output=True,
+                              text=True, check=True,
+                              cwd=binary.resolve().parent).stdout.strip() or None
+    except (OSError, subprocess.CalledProcessError):
+        return None
 
 
 def top_centre(probes: pathlib.Path) -> list[float]:
