@@ -127,7 +127,7 @@ def markdown(results: list[dict], params: dict, args) -> str:
     commits = {s.get("commit") or "?" for r in results for s in r["subcontact"].values()}
     L = ["# CalculiX 2.20 against subcontact: block on block, hex20", "",
          f"Written by `make bench-ccx` (scripts/ccx/bench_ccx.py) on "
-         f"{datetime.date.today().isoformat()}; {machine()}; subcontact at "
+         f"{datetime.date.today().isoformat()}; {machine()}; subcontact built from "
          f"{', '.join(sorted(commits))}.", "",
          f"Model: two blocks 1 x 1 x 0.5 (E = {params['young']:g}, nu = {params['poisson']:g}), "
          f"base fixed, top traction {tuple(params['traction'])} per unit area as consistent "

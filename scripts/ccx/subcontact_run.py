@@ -107,11 +107,15 @@ def solve(binary: pathlib.Path, template: pathlib.Path, msh: pathlib.Path,
 
 
 def git_commit(binary: pathlib.Path) -> str | None:
-    """The commit of the checkout the binary was built in (as `git describe` says)."""
+    """The last commit that changed the code the binary was built from (src/,
+    Cargo.*) in the checkout it sits in, with -dirty if src/ has local edits."""
+    def git(*a):
+        return subprocess.run(["git", *a], capture_output=True, text=True, check=True,
+                              cwd=binary.resolve().parent).stdout.strip()
     try:
-        return subprocess.run(["git", "describe", "--always", "--dirty"], capture_output=True,
-                              text=True, check=True,
-                              cwd=binary.resolve().parent).stdout.strip() or None
+        commit = git("log", "-1", "--format=%h", "--", ":/src", ":/Cargo.toml", ":/Cargo.lock")
+        dirty = git("status", "--porcelain", "--", ":/src", ":/Cargo.toml", ":/Cargo.lock")
+        return (commit + ("-dirty" if dirty else "")) or None
     except (OSError, subprocess.CalledProcessError):
         return None
 
