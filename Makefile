@@ -6,7 +6,7 @@ CARGO   ?= cargo
 BIN     := target/release/subcontact
 PYTHON  ?= python3
 
-.PHONY: all deps deps-mpi build cylinder tunnel footing dam blocks3d dam3d test test-mpi bench stress clean
+.PHONY: all deps deps-mpi build cylinder tunnel footing dam blocks3d dam3d test test-mpi bench bench3d bench-ccx stress clean
 
 all: build
 
@@ -62,6 +62,23 @@ dam3d: deps build
 # results/cylinder/bench.{csv,md,svg}.
 bench: deps build
 	$(BIN) bench geo/cylinder.toml --orders 1,2 --levels 7 --start 0.4 --max-dofs 3000000
+
+# CalculiX 2.20 on the same hex20 mesh and loads as subcontact (block on
+# block, bonded and frictional contact, lc = 0.125, 1/12, 0.0625), ccx on 1 and
+# 2 threads: results/bench_ccx/ccx.{md,csv}. Installs calculix-ccx (Debian) if
+# missing; only this target needs it. About an hour on 2 cores: each run waits
+# (up to 10 min) for an idle machine. Options: BENCH_CCX_ARGS="--lc 0.125".
+bench-ccx: deps build
+	@command -v ccx >/dev/null 2>&1 || { \
+	  echo "ccx not found: installing it with apt-get (Debian package calculix-ccx)"; \
+	  if command -v apt-get >/dev/null 2>&1; then \
+	    (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq calculix-ccx >/dev/null) || \
+	    { echo "error: could not install calculix-ccx; run 'apt-get install -y calculix-ccx' as root"; exit 1; }; \
+	  else echo "error: ccx is missing and apt-get is not available: install CalculiX 2.x so that 'ccx' is on PATH"; exit 1; fi; }
+	@test -x /usr/bin/time || { echo "/usr/bin/time not found: installing the Debian package time"; \
+	  (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq time >/dev/null) || \
+	  { echo "error: could not install /usr/bin/time; run 'apt-get install -y time' as root"; exit 1; }; }
+	$(PYTHON) scripts/ccx/bench_ccx.py $(BENCH_CCX_ARGS)
 
 # The numerical stress tests, long cases included: results/stress/stress.md.
 stress: deps
