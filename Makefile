@@ -6,7 +6,7 @@ CARGO   ?= cargo
 BIN     := target/release/subcontact
 PYTHON  ?= python3
 
-.PHONY: all deps deps-mpi build cylinder tunnel footing dam blocks3d dam3d test test-mpi bench bench3d bench-ccx stress clean
+.PHONY: all deps deps-mpi build cylinder tunnel footing dam blocks3d dam3d test test-mpi bench bench3d bench-ccx scaling stress clean
 
 all: build
 
@@ -63,6 +63,15 @@ dam3d: deps build
 bench: deps build
 	$(BIN) bench geo/cylinder.toml --orders 1,2 --levels 7 --start 0.4 --max-dofs 3000000
 
+# Run time against error in 3D (docs/bench3d.md): block on block in partial
+# slip on structured hex8/hex20 (up to 1.1e5 DOFs), on unstructured tet4/tet10
+# (up to 2e5 DOFs) and on the hex27 meshes of issue 10's table:
+# results/bench3d/{hex,tet,hex27}/bench.{csv,md,svg}. About 10 minutes.
+bench3d: deps build
+	$(BIN) bench geo/blocks3d_hex.toml --orders 1,2 --levels 4 --start 0.25 --max-dofs 150000 --out results/bench3d/hex
+	$(BIN) bench geo/blocks3d.toml --orders 1,2 --levels 3 --start 0.2 --max-dofs 250000 --out results/bench3d/tet
+	$(BIN) bench scripts/bench3d/blocks3d_hex27.toml --orders 2 --levels 2 --start 0.125 --out results/bench3d/hex27
+
 # CalculiX 2.20 on the same hex20 mesh and loads as subcontact (block on
 # block, bonded and frictional contact, lc = 0.125, 1/12, 0.0625), ccx on 1 and
 # 2 threads: results/bench_ccx/ccx.{md,csv}. Installs calculix-ccx (Debian) if
@@ -101,6 +110,13 @@ deps-mpi:
 
 test-mpi: deps deps-mpi
 	CARGO_TARGET_DIR=$(MPI_TARGET) $(CARGO) test --release --features mpi --test mpi
+
+# The scaling runs of docs/scaling.md: a 5.7e5-DOF column on a column on 1 and
+# 2 threads, 1 and 2 MPI ranks, 2, 4 and 8 substructures per body:
+# results/scaling/scaling.{md,json}. About 15 minutes on 2 cores.
+scaling: deps deps-mpi build
+	CARGO_TARGET_DIR=$(MPI_TARGET) $(CARGO) build --release --features mpi
+	$(PYTHON) scripts/scaling/scaling.py
 
 clean:
 	rm -rf results/*/ target
