@@ -54,9 +54,12 @@ pub enum TractionRecovery {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum StateRule {
-    /// Open pairs follow their gap, slipping pairs their slip direction,
-    /// cracked pairs keep f_t = 0; a cycle of state sets is broken by
-    /// changing only the most violated pair (default).
+    /// A semismooth Newton method on the interface (primal-dual active sets
+    /// for Coulomb friction, `newton.rs`): stick, slip and open sets and the
+    /// slip directions found together, the friction force linearised in the
+    /// normal force and the slip direction; cracked pairs keep f_t = 0; a
+    /// cycle of state sets is broken by changing only the most violated pair
+    /// (default).
     #[default]
     Robust,
     /// The paper: every pair judged by eq. 15–17 from its stresses alone,
