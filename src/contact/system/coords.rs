@@ -180,55 +180,83 @@ impl Blocks {
     /// its interface DOF u, `frames` the frame of each of its interface
     /// nodes and `edges` its transformed face edges.
     pub fn add_part(&mut self, s: &[f64], g: &[Vec<f64>], nd: usize, terms: &[Terms], frames: &[Frame], edges: &[[usize; 3]]) {
-        let nc = terms.len();
-        let mut s = s.to_vec();
-        basis::transform_matrix(&mut s, nc, nd, edges);
-        rotate_matrix(&mut s, nc, nd, frames);
-        for v in 0..nc {
-            let tv = &terms[v];
-            for u in 0..nc {
-                let suv = s[u + v * nc];
-                if suv == 0.0 {
-                    continue;
-                }
-                let tu = &terms[u];
-                for &(i, ci) in &tu.vars[..tu.n] {
-                    for &(j, cj) in &tv.vars[..tv.n] {
-                        let x = ci * cj * suv;
-                        match (i, j) {
-                            (Var::M(a), Var::M(b)) => self.k_mm[(a, b)] += x,
-                            (Var::M(a), Var::R(b)) => self.k_mr[(a, b)] += x,
-                            (Var::R(a), Var::R(b)) => self.k_rr[(a, b)] += x,
-                            // the (r, m) entries are the (m, r) ones of the symmetric K
-                            (Var::R(_), Var::M(_)) => {}
-                        }
-                    }
-                }
-            }
-        }
-        let add = |bm: &mut [f64], br: &mut [f64], u: usize, x: f64| {
-            let tu = &terms[u];
-            for &(i, ci) in &tu.vars[..tu.n] {
-                match i {
-                    Var::M(a) => bm[a] += ci * x,
-                    Var::R(a) => br[a] += ci * x,
-                }
-            }
+        let (s, g) = localise(s, g, nd, frames, edges);
+        for_each_entry(&s, terms, |i, j, x| match (i, j) {
+            (Var::M(a), Var::M(b)) => self.k_mm[(a, b)] += x,
+            (Var::M(a), Var::R(b)) => self.k_mr[(a, b)] += x,
+            (Var::R(a), Var::R(b)) => self.k_rr[(a, b)] += x,
+            // the (r, m) entries are the (m, r) ones of the symmetric K
+            (Var::R(_), Var::M(_)) => {}
+        });
+        let add = |bm: &mut [f64], br: &mut [f64], i: Var, x: f64| match i {
+            Var::M(a) => bm[a] += x,
+            Var::R(a) => br[a] += x,
         };
         for (case, gc) in g.iter().enumerate() {
+            for_each_load(gc, terms, |i, x| add(&mut self.b_m[case], &mut self.b_r[case], i, x));
+        }
+        fixed_load(&s, terms, |i, x| add(&mut self.b_m_fixed, &mut self.b_r_fixed, i, x));
+    }
+}
+
+/// A part's Schur complement and condensed loads in the interface basis and
+/// the pairs' local axes: `T Q^T S Q T^T` and `T Q^T G`.
+pub fn localise(s: &[f64], g: &[Vec<f64>], nd: usize, frames: &[Frame], edges: &[[usize; 3]]) -> (Vec<f64>, Vec<Vec<f64>>) {
+    let nc = frames.len() * nd;
+    let mut s = s.to_vec();
+    basis::transform_matrix(&mut s, nc, nd, edges);
+    rotate_matrix(&mut s, nc, nd, frames);
+    let g = g
+        .iter()
+        .map(|gc| {
             let mut g = gc.clone();
             basis::transform_load(&mut g, nd, edges);
             rotate_vector(&mut g, nd, frames);
-            for (u, &x) in g.iter().enumerate() {
-                add(&mut self.b_m[case], &mut self.b_r[case], u, x);
+            g
+        })
+        .collect();
+    (s, g)
+}
+
+/// Calls `f(i, j, x)` for every term of `K = W^T S' W` (both triangles;
+/// `s` local, `terms[u]` the unknowns of DOF u).
+pub fn for_each_entry(s: &[f64], terms: &[Terms], mut f: impl FnMut(Var, Var, f64)) {
+    let nc = terms.len();
+    for v in 0..nc {
+        let tv = &terms[v];
+        for u in 0..nc {
+            let suv = s[u + v * nc];
+            if suv == 0.0 {
+                continue;
             }
-        }
-        let w0: Vec<f64> = terms.iter().map(|t| t.constant).collect();
-        if w0.iter().any(|&v| v != 0.0) {
-            for u in 0..nc {
-                let sw: f64 = (0..nc).map(|v| s[u + v * nc] * w0[v]).sum();
-                add(&mut self.b_m_fixed, &mut self.b_r_fixed, u, -sw);
+            let tu = &terms[u];
+            for &(i, ci) in &tu.vars[..tu.n] {
+                for &(j, cj) in &tv.vars[..tv.n] {
+                    f(i, j, ci * cj * suv);
+                }
             }
         }
     }
+}
+
+/// Calls `f(i, x)` for every term of `W^T g`.
+pub fn for_each_load(g: &[f64], terms: &[Terms], mut f: impl FnMut(Var, f64)) {
+    for (u, &x) in g.iter().enumerate() {
+        let tu = &terms[u];
+        for &(i, ci) in &tu.vars[..tu.n] {
+            f(i, ci * x);
+        }
+    }
+}
+
+/// Calls `f(i, x)` for every term of `-W^T S' w0`, the load of the
+/// prescribed values at ramp 1.
+pub fn fixed_load(s: &[f64], terms: &[Terms], f: impl FnMut(Var, f64)) {
+    let nc = terms.len();
+    let w0: Vec<f64> = terms.iter().map(|t| t.constant).collect();
+    if w0.iter().all(|&v| v == 0.0) {
+        return;
+    }
+    let sw: Vec<f64> = (0..nc).map(|u| -(0..nc).map(|v| s[u + v * nc] * w0[v]).sum::<f64>()).collect();
+    for_each_load(&sw, terms, f);
 }

@@ -13,12 +13,14 @@
 //! where both are supported (the supports carry it).
 
 pub mod coords;
+pub mod joins;
 pub mod reduce;
 
 use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
 
 use coords::{Axis, Blocks, Var};
+use joins::{JoinElimination, SparseBlocks};
 use reduce::Reduced;
 
 use super::basis::{self, FaceBasis};
@@ -92,6 +94,8 @@ pub struct InterfaceProblem {
     join_parts: Vec<(Vec<usize>, [f64; 3])>,
     /// The contact problem in relative displacements.
     reduced: Reduced,
+    /// The join means, when they were eliminated sparsely (joins.rs).
+    joined: Option<JoinElimination>,
     parts: Vec<PartMap>,
     /// Rigid motions of each part and the position of each pair, to tell
     /// which parts nothing holds.
@@ -203,6 +207,7 @@ impl InterfaceProblem {
         }
         // unknowns, and the parts' interface nodes among them
         let (axes, mut nm, nr) = coords::number(&fixed, nd);
+        let nm_pairs = nm;
         // joins: a mean per component, or the prescribed value
         let joins: Vec<[Axis; 3]> = join_nodes
             .iter()
@@ -234,35 +239,61 @@ impl InterfaceProblem {
             })
             .collect();
         let cases = parts.iter().map(|p| p.g.len()).max().unwrap_or(1);
-        let mut blocks = Blocks::zeros(nm, nr, cases);
-        for (part, map) in parts.iter().zip(&maps) {
-            if part.nc == 0 {
-                continue;
-            }
-            let t: Vec<Frame> = map
-                .nodes
+        let frames_of = |map: &PartMap| -> Vec<Frame> {
+            map.nodes
                 .iter()
                 .map(|slot| match *slot {
                     Slot::Pair { pair, .. } => frames[pair],
                     Slot::Join(_) => IDENTITY,
                 })
-                .collect();
-            let terms: Vec<coords::Terms> = (0..part.nc)
+                .collect()
+        };
+        let terms_of = |nc: usize, map: &PartMap| -> Vec<coords::Terms> {
+            (0..nc)
                 .map(|u| match map.nodes[u / nd] {
                     Slot::Pair { pair, side } => axes[pair][u % nd].terms(side),
                     Slot::Join(j) => joins[j][u % nd].terms(0),
                 })
-                .collect();
-            blocks.add_part(part.s, part.g, nd, &terms, &t, &map.edges);
-        }
-        let reduced = Reduced::new(blocks).map_err(|_| ModelError::Invalid {
+                .collect()
+        };
+        let not_held = || ModelError::Invalid {
             scene: model.scene.clone(),
             key: "supports".into(),
             msg: "the bodies are not held even with every contact stuck (the bonded interface system is singular): add a support".into(),
-        })?;
+        };
+        let nj = nm - nm_pairs;
+        let (blocks, joined) = if joins::worth_it(nj, nm_pairs, nr) {
+            let cliques: Vec<Vec<coords::Terms>> = parts.iter().zip(&maps).map(|(p, map)| terms_of(p.nc, map)).collect();
+            let mut node_of = vec![0; nj];
+            for (j, axes) in joins.iter().enumerate() {
+                for a in axes {
+                    if let Axis::Joined { m } = *a {
+                        node_of[m - nm_pairs] = j;
+                    }
+                }
+            }
+            let mut sparse = SparseBlocks::new(nm_pairs, nj, nr, cases, &cliques, node_of);
+            for ((part, map), terms) in parts.iter().zip(&maps).zip(&cliques) {
+                if part.nc > 0 {
+                    let (s, g) = coords::localise(part.s, part.g, nd, &frames_of(map), &map.edges);
+                    sparse.add_part(&s, &g, terms);
+                }
+            }
+            let (blocks, joined) = sparse.condense().map_err(|_| not_held())?;
+            (blocks, Some(joined))
+        } else {
+            let mut blocks = Blocks::zeros(nm, nr, cases);
+            for (part, map) in parts.iter().zip(&maps) {
+                if part.nc > 0 {
+                    blocks.add_part(part.s, part.g, nd, &terms_of(part.nc, map), &frames_of(map), &map.edges);
+                }
+            }
+            (blocks, None)
+        };
+        let reduced = Reduced::new(blocks).map_err(|_| not_held())?;
         let rigid = parts.iter().map(|p| RigidModes::new(model, &p.part.nodes(model))).collect();
         let positions = model.pairs.iter().map(|p| model.coords[p.k]).collect();
-        Ok(InterfaceProblem { nd, frames, basis, axes, joins, join_parts, reduced, parts: maps, rigid, positions, at })
+        Ok(InterfaceProblem { nd, frames, basis, axes, joins, join_parts, reduced, joined, parts: maps, rigid, positions, at })
     }
 
     /// The area pair `p` controls (in the interface basis), > 0.
@@ -438,7 +469,11 @@ impl InterfaceProblem {
             })
             .collect();
         // interface displacements of every part, global axes, nodal basis
-        let m = self.reduced.means(&r, lambda);
+        let mut m = self.reduced.means(&r, lambda);
+        if let Some(joined) = &self.joined {
+            let m_j = joined.means(&m, &r, lambda);
+            m.extend(m_j);
+        }
         let d_c = self
             .parts
             .iter()

@@ -84,22 +84,9 @@ impl Reduced {
         Ok(Reduced { l, x, w, u, c, u_fixed, c_fixed })
     }
 
-    fn combine(v: &[Vec<f64>], fixed: &[f64], lambda: &[f64]) -> Vec<f64> {
-        let ramp = lambda.first().copied().unwrap_or(1.0);
-        let mut out: Vec<f64> = fixed.iter().map(|x| x * ramp).collect();
-        for (vc, &l) in v.iter().zip(lambda) {
-            if l != 0.0 {
-                for (o, x) in out.iter_mut().zip(vc) {
-                    *o += l * x;
-                }
-            }
-        }
-        out
-    }
-
     /// `c` under the load factors `lambda` (case 0 also scales prescribed values).
     pub fn c_at(&self, lambda: &[f64]) -> Vec<f64> {
-        Self::combine(&self.c, &self.c_fixed, lambda)
+        combine(&self.c, &self.c_fixed, lambda)
     }
 
     /// `W r - c`: minus the contact forces.
@@ -112,7 +99,7 @@ impl Reduced {
     /// The means `m = L^-T (u - X r)` for the relative displacements `r`.
     pub fn means(&self, r: &[f64], lambda: &[f64]) -> Vec<f64> {
         let par = faer::get_global_parallelism();
-        let mut m = col(&Self::combine(&self.u, &self.u_fixed, lambda));
+        let mut m = col(&combine(&self.u, &self.u_fixed, lambda));
         if self.l.nrows() == 0 {
             return Vec::new();
         }
@@ -120,4 +107,19 @@ impl Reduced {
         solve_upper_triangular_in_place(self.l.transpose(), m.as_mut(), par);
         m.col(0).iter().copied().collect()
     }
+}
+
+/// `fixed * ramp + sum lambda_i v_i`: a vector under the load factors
+/// `lambda` (case 0's factor, the ramp, also scales the prescribed values).
+pub(super) fn combine(v: &[Vec<f64>], fixed: &[f64], lambda: &[f64]) -> Vec<f64> {
+    let ramp = lambda.first().copied().unwrap_or(1.0);
+    let mut out: Vec<f64> = fixed.iter().map(|x| x * ramp).collect();
+    for (vc, &l) in v.iter().zip(lambda) {
+        if l != 0.0 {
+            for (o, x) in out.iter_mut().zip(vc) {
+                *o += l * x;
+            }
+        }
+    }
+    out
 }

@@ -1,0 +1,69 @@
+//! Bodies cut into substructures (`[solver] substructures = K`): METIS cuts
+//! every part into K pieces joined by bonded joins, and the answer must be
+//! the uncut one to 1e-9: the same states, displacements and contact
+//! stresses. Two cases:
+//!
+//! - block on block (geo/blocks3d.geo, tet10), K = 2 and 4: a few joins
+//!   beside many contact unknowns, eliminated densely with the pairs' means;
+//! - column on column (scripts/scaling/column.toml, coarse hex8), K = 4: the
+//!   joins (3 cuts per body) outnumber the contact unknowns, so they are
+//!   eliminated by the sparse factorisation of contact/system/joins.rs.
+
+mod common;
+
+use common::Case;
+use subcontact::driver::{self, RunOptions};
+use subcontact::results::Run;
+
+fn solve(case: &Case, scene: &str, k: usize) -> Run {
+    let out = case.out(&format!("{}-k{k}", scene.trim_end_matches(".toml")));
+    let opts = RunOptions { out: Some(out), substructures: Some(k), ..Default::default() };
+    driver::run(&case.dir.join(scene), &opts).unwrap_or_else(|e| panic!("{scene}, {k} substructures: {e:#}"))
+}
+
+/// Largest differences of displacements and contact stresses, relative to
+/// the largest value of each.
+fn differences(a: &Run, b: &Run) -> (f64, f64) {
+    let rel = |x: Vec<(f64, f64)>| {
+        let scale = x.iter().fold(0.0f64, |m, (p, _)| m.max(p.abs())).max(f64::MIN_POSITIVE);
+        x.iter().fold(0.0f64, |m, (p, q)| m.max((p - q).abs())) / scale
+    };
+    let u = rel(a.u.iter().copied().zip(b.u.iter().copied()).collect());
+    let (ca, cb) = (a.contact.as_ref().expect("contact"), b.contact.as_ref().expect("contact"));
+    assert_eq!(ca.states, cb.states, "the same contact states");
+    let t = rel(ca.pairs.iter().zip(&cb.pairs).flat_map(|(p, q)| [(p.sigma_n, q.sigma_n), (p.tau_t, q.tau_t), (p.tau_b, q.tau_b)]).collect());
+    (u, t)
+}
+
+fn same_answer_when_cut(case: &Case, scene: &str, cuts: &[usize]) {
+    let whole = solve(case, scene, 1);
+    for &k in cuts {
+        let cut = solve(case, scene, k);
+        assert!(cut.parts > whole.parts, "{scene}: {k} substructures cut the parts ({} -> {})", whole.parts, cut.parts);
+        let (u, t) = differences(&whole, &cut);
+        eprintln!("{scene}, {k} substructures: {} parts, {} interface DOFs (uncut {}): displacements {u:.1e}, contact stresses {t:.1e}", cut.parts, cut.dofs_interface, whole.dofs_interface);
+        assert!(u < 1e-9 && t < 1e-9, "{scene}, {k} substructures: displacements differ by {u:.1e}, contact stresses by {t:.1e}");
+    }
+}
+
+#[test]
+fn block_on_block_cut_into_substructures_gives_the_uncut_answer() {
+    let case = Case::new("substructures-blocks");
+    case.copy("geo/blocks3d.geo");
+    let text = common::scenes::edited("geo/blocks3d.toml", &[("setnumber = { lc = 0.1, hex = 0 }", "setnumber = { lc = 0.2, hex = 0 }")]);
+    case.write("blocks.toml", &text);
+    same_answer_when_cut(&case, "blocks.toml", &[2, 4]);
+}
+
+#[test]
+fn a_column_whose_joins_outnumber_its_contact_unknowns_gives_the_uncut_answer() {
+    let case = Case::new("substructures-column");
+    std::fs::create_dir_all(case.dir.join("geo")).expect("geo directory");
+    std::fs::copy(common::repo_root().join("geo/blocks3d.geo"), case.dir.join("geo/blocks3d.geo")).expect("copy the geometry");
+    let text = common::scenes::edited("scripts/scaling/column.toml", &[
+        ("mesh = \"../../geo/blocks3d.geo\"", "mesh = \"geo/blocks3d.geo\""),
+        ("lc = 0.0357142857142857", "lc = 0.125"),
+    ]);
+    case.write("column.toml", &text);
+    same_answer_when_cut(&case, "column.toml", &[4]);
+}
