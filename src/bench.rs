@@ -215,13 +215,19 @@ pub fn loglog_slope(points: &[(f64, f64)]) -> Option<f64> {
     Some(sxy / sxx)
 }
 
+/// An error for the table: "–" where there is none (no closed form, or the
+/// reference level itself; bench.csv keeps NaN).
+fn error(e: f64) -> String {
+    if e.is_nan() { "–".into() } else { format!("{e:.3e}") }
+}
+
 /// The Markdown table and the fitted rates.
 pub fn table(rows: &[Row]) -> String {
     let mut s = String::from("| order | level | h | DOFs | interface DOFs | iterations | total (s) | mesh (s) | solve (s) | monolithic (s) | solve / monolithic | displacement error | stress error | contact error |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for r in rows {
         let _ = writeln!(
             s,
-            "| {} | {} | {:.4} | {} | {} | {} | {:.3} | {:.3} | {:.3} | {:.3} | {:.2} | {:.3e} | {:.3e} | {:.3e} |",
+            "| {} | {} | {:.4} | {} | {} | {} | {:.3} | {:.3} | {:.3} | {:.3} | {:.2} | {} | {} | {} |",
             r.order,
             r.level,
             r.h,
@@ -233,9 +239,9 @@ pub fn table(rows: &[Row]) -> String {
             r.time_solve_s,
             r.time_monolithic_s,
             r.time_solve_s / r.time_monolithic_s,
-            r.error_displacement_l2,
-            r.error_stress_l2,
-            r.error_contact_max
+            error(r.error_displacement_l2),
+            error(r.error_stress_l2),
+            error(r.error_contact_max)
         );
     }
     s += "\nConvergence rates fitted on log(error) against log(h), all levels:\n\n| order | displacement | stress | contact |\n|---|---|---|---|\n";

@@ -1,7 +1,8 @@
 //! The interface system: the condensed parts in the pairs' local frames
 //! and in mean / relative coordinates ([`coords`]), reduced once to the
-//! relative displacements ([`reduce`]), and solved for one set of pair
-//! relations.
+//! relative displacements ([`reduce`]; the bonded joins of substructures
+//! first, by a sparse factorisation, when they outnumber the contact
+//! unknowns: [`joins`]), and solved for one set of pair relations.
 //!
 //! A set of contact states is a choice, per pair axis, between a known
 //! relative displacement `r` (tied: stick on every axis, slip on the normal)
