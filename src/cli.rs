@@ -50,10 +50,10 @@ pub enum Command {
         /// Cut every part (bodies joined by shared nodes) into K substructures with METIS,
         /// joined by bonded interfaces: the answer is the uncut one, but each piece is
         /// factorised alone (in its own thread or MPI rank). Overrides [solver] substructures.
-        #[arg(long, value_name = "K")]
+        #[arg(long, value_name = "K", value_parser = at_least_one)]
         substructures: Option<usize>,
         /// Parts condensed at once (default: the machine's cores, divided among MPI ranks).
-        #[arg(long, value_name = "N")]
+        #[arg(long, value_name = "N", value_parser = at_least_one)]
         threads: Option<usize>,
     },
     /// Run time against error: mesh the scene at successive refinements for each element order,
@@ -97,4 +97,13 @@ pub enum Command {
         #[arg(long, short)]
         quiet: bool,
     },
+}
+
+/// A count of at least 1 (pieces, threads).
+fn at_least_one(s: &str) -> Result<usize, String> {
+    match s.parse::<usize>() {
+        Ok(0) => Err("must be at least 1".into()),
+        Ok(n) => Ok(n),
+        Err(_) => Err(format!("{s:?} is not a whole number")),
+    }
 }

@@ -246,6 +246,21 @@ fn help_lists_solve_check_and_paper() {
 }
 
 #[test]
+fn zero_substructures_or_threads_are_refused_by_the_command_line() {
+    let case = Case::new("bad-counts");
+    case.copy("geo/cylinder.geo");
+    case.copy("geo/cylinder.toml");
+    for (flag, value) in [("--substructures", "0"), ("--threads", "0"), ("--threads", "two")] {
+        let out = case.cli(&["solve", "cylinder.toml", flag, value]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{flag} {value} was accepted");
+        says(&err, &[flag]);
+        assert!(err.contains("at least 1") || err.contains("not a whole number"), "{flag} {value}: {err}");
+        assert!(!case.dir.join("results/cylinder/summary.json").exists(), "{flag} {value} wrote results");
+    }
+}
+
+#[test]
 fn check_passes_on_the_cylinder_and_writes_no_results() {
     let case = Case::new("check-ok");
     case.copy("geo/cylinder.geo");

@@ -131,8 +131,20 @@ pub(super) fn solve(scene: &Scene, model: &Model, opts: &RunOptions, comm: &dyn 
     // 4. Parts, owners, condensation.
     let t = Instant::now();
     let k = opts.substructures.unwrap_or(scene.solver.substructures);
-    let parts = substructure::cut(model, substructure::parts(model), k);
+    let whole = substructure::parts(model);
+    let uncut = whole.len();
+    let parts = substructure::cut(model, whole, k);
     let n_parts = parts.len();
+    if k > 1 && root && n_parts < uncut * k {
+        let kept: Vec<String> = parts
+            .iter()
+            .filter(|p| p.piece.is_none())
+            .map(|p| format!("{} ({} cells)", p.bodies.iter().map(|&b| format!("\"{}\"", model.bodies[b].name)).collect::<Vec<_>>().join(", "), p.cells.len()))
+            .collect();
+        if !kept.is_empty() {
+            progress(opts, &format!("not cut into {k} substructures, too few cells (at least {} per piece): {}", substructure::parts::MIN_CELLS_PER_PIECE, kept.join("; ")));
+        }
+    }
     if comm.size() > n_parts {
         bail!(
             "{}: {} MPI ranks but the model has {n_parts} part(s): every rank needs a part. Cut the bodies into more substructures ([solver] substructures = {} or --substructures {}), or run on at most {n_parts} rank(s)",

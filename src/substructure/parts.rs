@@ -107,7 +107,7 @@ fn set_interfaces(model: &Model, parts: &mut [Part]) {
 }
 
 /// The fewest cells a part needs to be cut into `k` pieces (fewer: kept whole).
-const MIN_CELLS_PER_PIECE: usize = 8;
+pub const MIN_CELLS_PER_PIECE: usize = 8;
 
 /// Cuts every part of at least `k * MIN_CELLS_PER_PIECE` cells into `k`
 /// pieces (METIS, cells joined through their faces); `k <= 1` keeps them.
