@@ -77,6 +77,21 @@ fn owners(model: &Model, parts: &[Part], ranks: usize) -> Vec<usize> {
     owner
 }
 
+/// The share of the machine's memory the parts' factors may keep through
+/// the contact iteration. Above it they are freed once the parts are
+/// condensed and made again to recover the interiors: a strip pair of
+/// 1.09e6 DOFs and a 2.4e4-DOF joint (docs/bench3d.md) ran out of 24 GB
+/// keeping them.
+const FACTOR_SHARE: f64 = 0.3;
+
+/// The machine's memory in bytes (Linux; `u64::MAX` elsewhere: never short).
+fn physical_memory() -> u64 {
+    std::fs::read_to_string("/proc/meminfo")
+        .ok()
+        .and_then(|s| s.lines().find(|l| l.starts_with("MemTotal:")).and_then(|l| l.split_whitespace().nth(1)).and_then(|v| v.parse::<u64>().ok()))
+        .map_or(u64::MAX, |kb| kb * 1024)
+}
+
 /// Peak resident memory of this process in bytes (Linux; 0 elsewhere).
 fn peak_memory() -> u64 {
     std::fs::read_to_string("/proc/self/status")
@@ -169,6 +184,15 @@ pub(super) fn solve(scene: &Scene, model: &Model, opts: &RunOptions, comm: &dyn 
     timings.assemble = mine.iter().map(|(_, c)| c.assemble_s).sum::<f64>() * share;
     timings.condense = wall - timings.assemble;
     let condense_rank = wall;
+    // factors that would crowd the interface out of memory are dropped now
+    // and made again, a part at a time, to recover the interiors
+    let factor_bytes: usize = mine.iter().map(|(_, c)| c.factor_bytes).sum();
+    if factor_bytes as f64 > FACTOR_SHARE * physical_memory() as f64 {
+        for (_, c) in mine.iter_mut() {
+            c.drop_factor();
+        }
+        progress(opts, &format!("the parts' factors ({:.1} GB) are freed for the interface and made again for the recovery", factor_bytes as f64 / 1e9));
+    }
 
     // 5. The interface on rank 0.
     let t_problem = Instant::now();

@@ -64,8 +64,11 @@ pub struct Condensed {
     pub ni: usize,
     /// Number of interface DOFs (`interface.len() * nd`).
     pub nc: usize,
-    /// The part's factor, interface last (see [`schur`]).
-    chol: PartialCholesky,
+    /// The part's factor, interface last (see [`schur`]); `None` once
+    /// dropped to save memory ([`Condensed::drop_factor`]).
+    chol: Option<PartialCholesky>,
+    /// Bytes of the factor's values.
+    pub factor_bytes: usize,
     /// The load vectors `[F_i; F_c]`, one per load case.
     f: Vec<Vec<f64>>,
     /// Schur complement, column-major nc x nc.
@@ -223,7 +226,18 @@ pub fn condense(model: &Model, part: Part) -> Result<Condensed, ModelError> {
         }
     }
     let condense_s = t.elapsed().as_secs_f64() - assemble_s;
-    Ok(Condensed { part, dof_of, ni, nc, chol, f: a.f, s, g, assemble_s, condense_s, backward_error })
+    let factor_bytes = chol.stats().values * std::mem::size_of::<f64>();
+    Ok(Condensed { part, dof_of, ni, nc, chol: Some(chol), factor_bytes, f: a.f, s, g, assemble_s, condense_s, backward_error })
+}
+
+/// The factor of a part again (assembled and factorised as [`condense`]
+/// did, so the same to the last bit): what recovers a part whose factor was
+/// dropped.
+fn refactor(model: &Model, part: &Part) -> PartialCholesky {
+    let (dof_of, ni, nc) = numbering(model, part);
+    let a = assembly::assemble(model, &part.cells, &dof_of, ni + nc).expect("the part was assembled before");
+    let node_of = interior_nodes(&dof_of, model.nd, ni);
+    PartialCholesky::factor(&a.k, ni, &node_of, Ordering::choose(ni, model.nd), faer::get_global_parallelism()).expect("the part was factorised before")
 }
 
 impl Condensed {
@@ -241,6 +255,14 @@ impl Condensed {
     /// Frees the dense S once the interface holds what it needs of it.
     pub fn drop_schur(&mut self) {
         self.s = Vec::new();
+    }
+
+    /// Frees the factor: [`Condensed::recover`] then assembles and
+    /// factorises the part again (twice the factorisations, for a peak of
+    /// one part's factor during recovery instead of all of them throughout
+    /// the contact iteration).
+    pub fn drop_factor(&mut self) {
+        self.chol = None;
     }
 
     /// The load vector combined with the load factors `lambda` (one per case).
@@ -271,15 +293,23 @@ impl Condensed {
         let (ni, nc) = (self.ni, self.nc);
         let mut x = Self::combine(&self.f, lambda);
         let g = self.g_at(lambda);
+        let refactored;
+        let chol = match &self.chol {
+            Some(c) => c,
+            None => {
+                refactored = refactor(model, &self.part);
+                &refactored
+            }
+        };
         // S d_c from the factor itself: the dense S may have been handed on
-        let mut f_c = self.chol.apply_schur(d_c);
+        let mut f_c = chol.apply_schur(d_c);
         for (f, gi) in f_c.iter_mut().zip(&g) {
             *f -= gi;
         }
         for r in 0..nc {
-            x[ni + r] += f_c[r] + self.chol.alpha() * d_c[r];
+            x[ni + r] += f_c[r] + chol.alpha() * d_c[r];
         }
-        self.chol.solve_many(&mut x, 1);
+        chol.solve_many(&mut x, 1);
         let d_i = &x[..ni];
         for (i, &d) in self.dof_of.iter().enumerate() {
             if d != NONE {
