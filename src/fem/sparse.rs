@@ -73,6 +73,43 @@ impl SymMatrix {
         SymMatrix { n, col_ptr, row_idx, values: vec![0.0; nnz] }
     }
 
+    /// The lower triangle of a matrix made of dense cliques (the unknowns
+    /// of each clique coupled to one another, e.g. a substructure's
+    /// interface), every diagonal entry present. Unlike [`Self::pattern`]
+    /// it keeps no adjacency lists: a column's rows are gathered from the
+    /// cliques that hold it.
+    pub fn from_cliques(n: usize, cliques: &[Vec<usize>]) -> SymMatrix {
+        let mut holders: Vec<Vec<u32>> = vec![Vec::new(); n];
+        for (p, c) in cliques.iter().enumerate() {
+            for &v in c {
+                holders[v].push(p as u32);
+            }
+        }
+        let mut mark = vec![usize::MAX; n];
+        let mut col_ptr = Vec::with_capacity(n + 1);
+        col_ptr.push(0);
+        let mut row_idx = Vec::new();
+        let mut rows = Vec::new();
+        for j in 0..n {
+            rows.clear();
+            rows.push(j);
+            mark[j] = j;
+            for &p in &holders[j] {
+                for &v in &cliques[p as usize] {
+                    if v > j && mark[v] != j {
+                        mark[v] = j;
+                        rows.push(v);
+                    }
+                }
+            }
+            rows.sort_unstable();
+            row_idx.extend_from_slice(&rows);
+            col_ptr.push(row_idx.len());
+        }
+        let nnz = row_idx.len();
+        SymMatrix { n, col_ptr, row_idx, values: vec![0.0; nnz] }
+    }
+
     /// Adds an element matrix `ke` (row-major, `dofs.len()` square) at the
     /// equations `dofs` ([`NONE`] entries are skipped).
     pub fn add(&mut self, dofs: &[usize], ke: &[f64]) {
@@ -211,6 +248,13 @@ mod tests {
             a.add(&dofs, &[1.0, -1.0, -1.0, 1.0]);
         }
         a
+    }
+
+    #[test]
+    fn the_pattern_of_two_cliques_is_their_union() {
+        let k = SymMatrix::from_cliques(4, &[vec![0, 2], vec![1, 2, 3]]);
+        let cols: Vec<Vec<usize>> = (0..4).map(|j| k.row_idx[k.col_ptr[j]..k.col_ptr[j + 1]].to_vec()).collect();
+        assert_eq!(cols, vec![vec![0, 2], vec![1, 2, 3], vec![2, 3], vec![3]]);
     }
 
     #[test]

@@ -24,8 +24,6 @@ pub mod schur;
 pub use parts::{cut, parts, Part};
 
 use crate::fem::sparse::{FactorError, NONE};
-use faer::linalg::matmul::matmul;
-use faer::{Accum, MatMut, MatRef, Par};
 use ordering::Ordering;
 use schur::PartialCholesky;
 use crate::model::{Model, ModelError};
@@ -198,28 +196,17 @@ pub fn condense(model: &Model, part: Part) -> Result<Condensed, ModelError> {
     let par = faer::get_global_parallelism();
     let chol = PartialCholesky::factor(&a.k, ni, &node_of, Ordering::choose(ni, model.nd), par).map_err(|e| not_held(model, &part, e))?;
     let s = chol.schur(par);
-    // G = F_c + (S + alpha I) x_c with K' [x_i; x_c] = [F_i; 0], per load case
+    let (g, x) = chol.condensed_loads(&s, &a.f);
     let n = ni + nc;
-    let cases = a.f.len();
-    let b: Vec<f64> = a.f.iter().flat_map(|f| f[..ni].iter().copied().chain(std::iter::repeat(0.0).take(nc))).collect();
-    let mut x = b.clone();
-    chol.solve_many(&mut x, cases);
-    let backward_error = (0..cases)
-        .map(|k| a.k.backward_error(&x[k * n..(k + 1) * n], &b[k * n..(k + 1) * n], chol.alpha(), ni))
-        .fold(0.0, f64::max);
-    // one product S X_c for all cases (S read once); X_c is the trailing nc rows of x
-    let mut sx = vec![0.0; nc * cases];
-    if cases > 0 {
-        let x_c = MatRef::from_column_major_slice_with_stride(&x[ni..], nc, cases, n);
-        let s_ref = MatRef::from_column_major_slice(&s, nc, nc);
-        matmul(MatMut::from_column_major_slice_mut(&mut sx, nc, cases), Accum::Replace, s_ref, x_c, 1.0, Par::Seq);
-    }
-    let g = (0..cases)
-        .map(|k| {
-            let xc = &x[k * n + ni..(k + 1) * n];
-            (0..nc).map(|r| a.f[k][ni + r] + chol.alpha() * xc[r] + sx[r + k * nc]).collect()
+    let backward_error = a
+        .f
+        .iter()
+        .enumerate()
+        .map(|(k, f)| {
+            let b: Vec<f64> = f[..ni].iter().copied().chain(std::iter::repeat(0.0).take(nc)).collect();
+            a.k.backward_error(&x[k * n..(k + 1) * n], &b, chol.alpha(), ni)
         })
-        .collect();
+        .fold(0.0, f64::max);
     for d in dof_of.iter_mut() {
         if *d != NONE && *d >= ni {
             *d = NONE;
@@ -289,10 +276,6 @@ impl Condensed {
     /// the prescribed values (scaled by the ramp, case 0).
     pub fn recover(&self, model: &Model, d_c: &[f64], lambda: &[f64], u: &mut [f64]) {
         let nd = model.nd;
-        // K' [d_i; d_c] = [F_i; F_c + f_c + alpha d_c], f_c = S d_c - G
-        let (ni, nc) = (self.ni, self.nc);
-        let mut x = Self::combine(&self.f, lambda);
-        let g = self.g_at(lambda);
         let refactored;
         let chol = match &self.chol {
             Some(c) => c,
@@ -301,16 +284,7 @@ impl Condensed {
                 &refactored
             }
         };
-        // S d_c from the factor itself: the dense S may have been handed on
-        let mut f_c = chol.apply_schur(d_c);
-        for (f, gi) in f_c.iter_mut().zip(&g) {
-            *f -= gi;
-        }
-        for r in 0..nc {
-            x[ni + r] += f_c[r] + chol.alpha() * d_c[r];
-        }
-        chol.solve_many(&mut x, 1);
-        let d_i = &x[..ni];
+        let d_i = chol.interior(&Self::combine(&self.f, lambda), &self.g_at(lambda), d_c);
         for (i, &d) in self.dof_of.iter().enumerate() {
             if d != NONE {
                 u[i] = d_i[d];

@@ -32,6 +32,7 @@ use faer::sparse::linalg::cholesky::{
 };
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::linalg::matmul::matmul;
 use faer::linalg::matmul::triangular::{self, BlockStructure};
 use faer::{Accum, Conj, MatMut, MatRef, Par, Side, Spec};
 
@@ -135,34 +136,7 @@ impl PartialCholesky {
         let (n, ni) = (self.n, self.ni);
         let nc = n - ni;
         let mut l = vec![0.0; nc * nc]; // L_cc, column-major
-        let SymbolicCholeskyRaw::Supernodal(sym) = self.symbolic.raw() else {
-            unreachable!("the factorisation is forced supernodal")
-        };
-        let llt = SupernodalLltRef::new(sym, &self.values);
-        for s in 0..sym.n_supernodes() {
-            let node = llt.supernode(s);
-            let start = node.start();
-            let val = node.val();
-            let ncols = val.ncols();
-            if start + ncols <= ni {
-                continue;
-            }
-            let pattern = node.pattern();
-            for jc in 0..ncols {
-                let j = start + jc;
-                if j < ni {
-                    continue;
-                }
-                let col = val.col(jc);
-                let dst = &mut l[(j - ni) * nc..(j - ni + 1) * nc];
-                for p in jc..ncols {
-                    dst[start + p - ni] = col[p];
-                }
-                for (p, &r) in pattern.iter().enumerate() {
-                    dst[r - ni] = col[ncols + p];
-                }
-            }
-        }
+        self.for_each_trailing(|j, r, v| l[r + j * nc] = v);
         // the lower triangle of L L^T, then mirrored
         let l = MatRef::from_column_major_slice(&l, nc, nc);
         let mut out = vec![0.0; nc * nc];
@@ -188,55 +162,85 @@ impl PartialCholesky {
 }
 
 impl PartialCholesky {
+    /// The condensed loads `G = F_c - K_ci K_ii^-1 F_i` of the load vectors
+    /// `f` (each `[F_i; F_c]`), with `s` this factor's [`Self::schur`]:
+    /// `K' [x_i; x_c] = [F_i; 0]` gives `G = F_c + (S + alpha I) x_c`, every
+    /// case in one solve and one product. Also the solutions `x`
+    /// (column-major, n per case), for their backward error.
+    pub fn condensed_loads(&self, s: &[f64], f: &[Vec<f64>]) -> (Vec<Vec<f64>>, Vec<f64>) {
+        let (n, ni) = (self.n, self.ni);
+        let nc = n - ni;
+        let cases = f.len();
+        let mut x: Vec<f64> = f.iter().flat_map(|fk| fk[..ni].iter().copied().chain(std::iter::repeat(0.0).take(nc))).collect();
+        self.solve_many(&mut x, cases);
+        // one product S X_c for all cases (S read once); X_c is the trailing nc rows of x
+        let mut sx = vec![0.0; nc * cases];
+        if cases > 0 && nc > 0 {
+            let x_c = MatRef::from_column_major_slice_with_stride(&x[ni..], nc, cases, n);
+            let s_ref = MatRef::from_column_major_slice(s, nc, nc);
+            matmul(MatMut::from_column_major_slice_mut(&mut sx, nc, cases), Accum::Replace, s_ref, x_c, 1.0, Par::Seq);
+        }
+        let g = (0..cases)
+            .map(|k| {
+                let xc = &x[k * n + ni..(k + 1) * n];
+                (0..nc).map(|r| f[k][ni + r] + self.alpha * xc[r] + sx[r + k * nc]).collect()
+            })
+            .collect();
+        (g, x)
+    }
+
+    /// The interior displacements for the interface displacements `d_c`
+    /// under the load `f = [F_i; F_c]` whose condensed load is `g`:
+    /// `K' [d_i; d_c] = [F_i; F_c + (S d_c - G) + alpha d_c]`, with `S d_c`
+    /// from the factor ([`Self::apply_schur`]).
+    pub fn interior(&self, f: &[f64], g: &[f64], d_c: &[f64]) -> Vec<f64> {
+        let ni = self.ni;
+        let s_d = self.apply_schur(d_c);
+        let mut x = f.to_vec();
+        for r in 0..d_c.len() {
+            x[ni + r] += s_d[r] - g[r] + self.alpha * d_c[r];
+        }
+        self.solve_many(&mut x, 1);
+        x.truncate(ni);
+        x
+    }
+
     /// `S x = L_cc L_cc^T x - alpha x`, straight from the factor's trailing
     /// supernodes (no dense S needed: what recovers a part's interior once
     /// its S has gone to the interface).
     pub fn apply_schur(&self, x: &[f64]) -> Vec<f64> {
-        let (n, ni) = (self.n, self.ni);
-        let nc = n - ni;
+        // t = L_cc^T x, then y = L_cc t - alpha x
+        let mut t = vec![0.0; x.len()];
+        self.for_each_trailing(|j, r, v| t[j] += v * x[r]);
+        let mut y: Vec<f64> = x.iter().map(|v| -self.alpha * v).collect();
+        self.for_each_trailing(|j, r, v| y[r] += v * t[j]);
+        y
+    }
+
+    /// Calls `f(j, r, L_cc[r, j])` for every stored entry of `L_cc`, the
+    /// factor's trailing block (`j`, `r` counted from the first interface
+    /// equation), read from the supernodes that hold interface columns.
+    fn for_each_trailing(&self, mut f: impl FnMut(usize, usize, f64)) {
+        let ni = self.ni;
         let SymbolicCholeskyRaw::Supernodal(sym) = self.symbolic.raw() else {
             unreachable!("the factorisation is forced supernodal")
         };
         let llt = SupernodalLltRef::new(sym, &self.values);
-        // the trailing supernodes: t = L_cc^T x, then y = L_cc t
-        let trailing: Vec<usize> = (0..sym.n_supernodes()).filter(|&s| {
-            let node = llt.supernode(s);
-            node.start() + node.val().ncols() > ni
-        }).collect();
-        let mut t = vec![0.0; nc];
-        for &s in &trailing {
+        for s in 0..sym.n_supernodes() {
             let node = llt.supernode(s);
             let (start, val, pattern) = (node.start(), node.val(), node.pattern());
             let ncols = val.ncols();
             for jc in (0..ncols).filter(|&jc| start + jc >= ni) {
                 let col = val.col(jc);
-                let mut acc = 0.0;
+                let j = start + jc - ni;
                 for p in jc..ncols {
-                    acc += col[p] * x[start + p - ni];
+                    f(j, start + p - ni, col[p]);
                 }
                 for (p, &r) in pattern.iter().enumerate() {
-                    acc += col[ncols + p] * x[r - ni];
-                }
-                t[start + jc - ni] = acc;
-            }
-        }
-        let mut y: Vec<f64> = x.iter().map(|v| -self.alpha * v).collect();
-        for &s in &trailing {
-            let node = llt.supernode(s);
-            let (start, val, pattern) = (node.start(), node.val(), node.pattern());
-            let ncols = val.ncols();
-            for jc in (0..ncols).filter(|&jc| start + jc >= ni) {
-                let col = val.col(jc);
-                let tj = t[start + jc - ni];
-                for p in jc..ncols {
-                    y[start + p - ni] += col[p] * tj;
-                }
-                for (p, &r) in pattern.iter().enumerate() {
-                    y[r - ni] += col[ncols + p] * tj;
+                    f(j, r - ni, col[ncols + p]);
                 }
             }
         }
-        y
     }
 }
 

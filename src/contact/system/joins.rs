@@ -68,13 +68,13 @@ pub struct SparseBlocks {
 
 /// What recovers the join means once the pairs' unknowns are known.
 pub struct JoinElimination {
-    nj: usize,
     factor: PartialCholesky,
-    b_j: Vec<Vec<f64>>,
-    b_j_fixed: Vec<f64>,
-    /// `b_c - b'_c` per load case and for the prescribed values.
-    shift: Vec<Vec<f64>>,
-    shift_fixed: Vec<f64>,
+    /// The loads `[b_J; b_c]` and the condensed ones `b'_c`, per load case
+    /// and for the prescribed values at ramp 1.
+    b: Vec<Vec<f64>>,
+    b_fixed: Vec<f64>,
+    g: Vec<Vec<f64>>,
+    g_fixed: Vec<f64>,
 }
 
 /// The factorisation failed: the bonded interface is singular.
@@ -93,7 +93,7 @@ impl SparseBlocks {
             nm,
             nr,
             node_of,
-            k: pattern(n, &vars),
+            k: SymMatrix::from_cliques(n, &vars),
             b: vec![vec![0.0; n]; cases],
             b_fixed: vec![0.0; n],
             local: vec![usize::MAX; n],
@@ -146,22 +146,11 @@ impl SparseBlocks {
         let factor = PartialCholesky::factor(&k, nj, &node_of, Ordering::NestedDissection, par).map_err(|_| Singular)?;
         drop(k);
         let s = factor.schur(par);
-        let alpha = factor.alpha();
-        // b'_c = b_c + (S + alpha I) x_c with K' [x_J; x_c] = [b_J; 0], every case at once
-        let cols: Vec<&Vec<f64>> = b.iter().chain(std::iter::once(&b_fixed)).collect();
-        let mut x = vec![0.0; (nj + nc) * cols.len()];
-        for (q, bq) in cols.iter().enumerate() {
-            x[q * (nj + nc)..q * (nj + nc) + nj].copy_from_slice(&bq[..nj]);
-        }
-        factor.solve_many(&mut x, cols.len());
-        let shifts: Vec<Vec<f64>> = (0..cols.len())
-            .map(|q| {
-                let xc = &x[q * (nj + nc) + nj..(q + 1) * (nj + nc)];
-                // b_c - b'_c = -(S + alpha I) x_c
-                (0..nc).map(|i| -(alpha * xc[i] + (0..nc).map(|j| s[i + j * nc] * xc[j]).sum::<f64>())).collect()
-            })
-            .collect();
-        let mut blocks = Blocks::zeros(nm, nr, b.len());
+        // b'_c for every load case and the prescribed values, in one solve
+        let mut cases = b;
+        cases.push(b_fixed);
+        let (mut g, _) = factor.condensed_loads(&s, &cases);
+        let mut blocks = Blocks::zeros(nm, nr, g.len() - 1);
         for j in 0..nc {
             for i in 0..nc {
                 let v = s[i + j * nc];
@@ -174,25 +163,17 @@ impl SparseBlocks {
             }
         }
         drop(s);
-        let reduced_load = |bq: &[f64], shift: &[f64], bm: &mut Vec<f64>, br: &mut Vec<f64>| {
-            for i in 0..nc {
-                let v = bq[nj + i] - shift[i];
-                if i < nm {
-                    bm[i] = v;
-                } else {
-                    br[i - nm] = v;
-                }
-            }
+        let split = |gq: &[f64], bm: &mut Vec<f64>, br: &mut Vec<f64>| {
+            bm.copy_from_slice(&gq[..nm]);
+            br.copy_from_slice(&gq[nm..]);
         };
-        for (case, bq) in b.iter().enumerate() {
-            reduced_load(bq, &shifts[case], &mut blocks.b_m[case], &mut blocks.b_r[case]);
+        let g_fixed = g.pop().expect("the prescribed values' column");
+        let b_fixed = cases.pop().expect("the prescribed values' column");
+        for (case, gq) in g.iter().enumerate() {
+            split(gq, &mut blocks.b_m[case], &mut blocks.b_r[case]);
         }
-        reduced_load(&b_fixed, &shifts[b.len()], &mut blocks.b_m_fixed, &mut blocks.b_r_fixed);
-        let mut shift = shifts;
-        let shift_fixed = shift.pop().expect("the prescribed values' column");
-        let b_j = b.iter().map(|bq| bq[..nj].to_vec()).collect();
-        let b_j_fixed = b_fixed[..nj].to_vec();
-        Ok((blocks, JoinElimination { nj, factor, b_j, b_j_fixed, shift, shift_fixed }))
+        split(&g_fixed, &mut blocks.b_m_fixed, &mut blocks.b_r_fixed);
+        Ok((blocks, JoinElimination { factor, b: cases, b_fixed, g, g_fixed }))
     }
 }
 
@@ -200,17 +181,10 @@ impl JoinElimination {
     /// The join means for the pairs' means `m` and relative displacements
     /// `r` under the load factors `lambda`.
     pub fn means(&self, m: &[f64], r: &[f64], lambda: &[f64]) -> Vec<f64> {
-        let nj = self.nj;
         let d_c: Vec<f64> = m.iter().chain(r).copied().collect();
-        let nc = d_c.len();
-        let alpha = self.factor.alpha();
-        let shift = combine(&self.shift, &self.shift_fixed, lambda);
-        let s_d = self.factor.apply_schur(&d_c);
-        let mut x = combine(&self.b_j, &self.b_j_fixed, lambda);
-        x.extend((0..nc).map(|i| shift[i] + s_d[i] + alpha * d_c[i]));
-        self.factor.solve_many(&mut x, 1);
-        x.truncate(nj);
-        x
+        let f = combine(&self.b, &self.b_fixed, lambda);
+        let g = combine(&self.g, &self.g_fixed, lambda);
+        self.factor.interior(&f, &g, &d_c)
     }
 }
 
@@ -229,50 +203,4 @@ fn unknowns(terms: &[Terms], nm: usize, nj: usize) -> Vec<usize> {
     v.sort_unstable();
     v.dedup();
     v
-}
-
-/// The lower triangle of a matrix made of dense cliques (each part's
-/// unknowns), every diagonal entry present.
-fn pattern(n: usize, cliques: &[Vec<usize>]) -> SymMatrix {
-    let mut holders: Vec<Vec<u32>> = vec![Vec::new(); n];
-    for (p, c) in cliques.iter().enumerate() {
-        for &v in c {
-            holders[v].push(p as u32);
-        }
-    }
-    let mut mark = vec![usize::MAX; n];
-    let mut col_ptr = Vec::with_capacity(n + 1);
-    col_ptr.push(0);
-    let mut row_idx = Vec::new();
-    let mut rows = Vec::new();
-    for j in 0..n {
-        rows.clear();
-        rows.push(j);
-        mark[j] = j;
-        for &p in &holders[j] {
-            for &v in &cliques[p as usize] {
-                if v > j && mark[v] != j {
-                    mark[v] = j;
-                    rows.push(v);
-                }
-            }
-        }
-        rows.sort_unstable();
-        row_idx.extend_from_slice(&rows);
-        col_ptr.push(row_idx.len());
-    }
-    let nnz = row_idx.len();
-    SymMatrix { n, col_ptr, row_idx, values: vec![0.0; nnz] }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_pattern_of_two_cliques_is_their_union() {
-        let k = pattern(4, &[vec![0, 2], vec![1, 2, 3]]);
-        let cols: Vec<Vec<usize>> = (0..4).map(|j| k.row_idx[k.col_ptr[j]..k.col_ptr[j + 1]].to_vec()).collect();
-        assert_eq!(cols, vec![vec![0, 2], vec![1, 2, 3], vec![2, 3], vec![3]]);
-    }
 }
