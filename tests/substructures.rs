@@ -5,9 +5,11 @@
 //!
 //! - block on block (geo/blocks3d.geo, tet10), K = 2 and 4: a few joins
 //!   beside many contact unknowns, eliminated densely with the pairs' means;
-//! - column on column (scripts/scaling/column.toml, coarse hex8), K = 4: the
-//!   joins (3 cuts per body) outnumber the contact unknowns, so they are
-//!   eliminated by the sparse factorisation of contact/system/joins.rs.
+//! - column on column (scripts/scaling/column.toml, coarse hex8 and hex20),
+//!   K = 4: the joins (3 cuts per body) outnumber the contact unknowns, so
+//!   they are eliminated by the sparse factorisation of contact/system/joins.rs.
+//!
+//! The load is the scenes' oblique traction: part of each joint slips.
 
 mod common;
 
@@ -66,4 +68,11 @@ fn a_column_whose_joins_outnumber_its_contact_unknowns_gives_the_uncut_answer() 
     ]);
     case.write("column.toml", &text);
     same_answer_when_cut(&case, "column.toml", &[4]);
+    let hex20 = common::scenes::edited("scripts/scaling/column.toml", &[
+        ("mesh = \"../../geo/blocks3d.geo\"", "mesh = \"geo/blocks3d.geo\""),
+        ("order = 1", "order = 2"),
+        ("lc = 0.0357142857142857, hex = 1", "lc = 0.25, hex = 1, serendipity = 1"),
+    ]);
+    case.write("column20.toml", &hex20);
+    same_answer_when_cut(&case, "column20.toml", &[4]);
 }
