@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 
 use clap::{Parser, Subcommand};
+use crate::contact::InterfaceSolver;
 
 /// Contact between elastic bodies by the substructure interface method.
 ///
@@ -55,6 +56,11 @@ pub enum Command {
         /// Parts condensed at once (default: the machine's cores, divided among MPI ranks).
         #[arg(long, value_name = "N", value_parser = at_least_one)]
         threads: Option<usize>,
+        /// How the interface system is solved: dense (S formed, factorised), iterative
+        /// (S applied through the parts' interior factors, GMRES; for joints of 1e4 DOFs and
+        /// more) or auto. Overrides [solver] interface.
+        #[arg(long, value_enum)]
+        interface: Option<InterfaceSolver>,
     },
     /// Run time against error: mesh the scene at successive refinements for each element order,
     /// solve each (with contact, and bonded as the floor of one linear solve), and write

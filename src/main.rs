@@ -24,8 +24,8 @@ fn main() -> ExitCode {
     let comm: &dyn Comm = &Serial;
     let root = comm.rank() == 0;
     let result = match cli.command {
-        Command::Solve { scene, out, bonded, quiet, substructures, threads } => {
-            commands::solve(&scene, &RunOptions { out, bonded, verbose: !quiet, substructures, threads, ..Default::default() }, comm)
+        Command::Solve { scene, out, bonded, quiet, substructures, threads, interface } => {
+            commands::solve(&scene, &RunOptions { out, bonded, verbose: !quiet, substructures, threads, interface, ..Default::default() }, comm)
         }
         // the other commands run on rank 0 alone
         _ if !root => Ok(()),

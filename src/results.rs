@@ -94,8 +94,11 @@ pub struct Counters {
     pub factorisations: usize,
     /// Parts condensed onto an interface (parts without contact are solved directly).
     pub condensed_parts: usize,
-    /// Dense interface solves (contact iterations over all steps).
+    /// Interface solves (contact iterations over all steps).
     pub interface_solves: usize,
+    /// Applications of every part's S by the iterative interface (GMRES
+    /// iterations over all its solves; 0 for the dense interface).
+    pub interface_applications: usize,
     /// Interior displacement recoveries (part solves after the interface).
     pub interior_recoveries: usize,
     /// Nodal stress recoveries (only when `[output] fields` has "stress").

@@ -38,7 +38,7 @@ pub mod traction;
 use law::{ContactState, Strength};
 use system::{InterfaceProblem, InterfaceSolution, SolveFailure};
 
-pub use options::{SlipLaw, StateRule, TractionRecovery};
+pub use options::{InterfaceSolver, SlipLaw, StateRule, TractionRecovery};
 
 /// The law of one pair.
 #[derive(Clone, Copy, Debug)]

@@ -66,3 +66,20 @@ pub enum StateRule {
     /// every change at once; a cycle is reported, not resolved.
     Paper,
 }
+
+/// How the interface system is solved (`[solver] interface = "..."`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "snake_case")]
+pub enum InterfaceSolver {
+    /// Dense below [`crate::contact::system::ITERATIVE_FROM`] interface
+    /// DOFs, iterative from there on (default).
+    #[default]
+    Auto,
+    /// Each part condensed to a dense S; the interface system reduced to the
+    /// contact unknowns once and factorised densely at every iteration.
+    Dense,
+    /// No S is formed: each part's interior is factorised alone, and the
+    /// interface system is solved by preconditioned GMRES that applies S
+    /// through those factors, warm-started from the last contact iteration.
+    Iterative,
+}

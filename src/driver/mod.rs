@@ -20,6 +20,7 @@ mod solve;
 
 use crate::analytic;
 use crate::contact::law::PairResult;
+use crate::contact::InterfaceSolver;
 use crate::mesh::{gmsh, msh, Mesh};
 use crate::model::Model;
 use crate::output;
@@ -38,6 +39,8 @@ pub struct RunOptions {
     pub substructures: Option<usize>,
     /// Parts condensed at once on each rank (default: the cores per rank).
     pub threads: Option<usize>,
+    /// How the interface is solved (overrides `[solver] interface`).
+    pub interface: Option<InterfaceSolver>,
     /// Treat every contact as bonded (shared nodes): the monolithic solve.
     pub bonded: bool,
     /// Print stage progress on stderr.

@@ -22,7 +22,8 @@ use anyhow::{anyhow, bail, Result};
 use super::messages::failure_message;
 use super::{progress, RunOptions};
 use crate::contact::law::Strength;
-use crate::contact::system::{InterfaceProblem, InterfaceSolution};
+use crate::contact::system::{InterfaceProblem, InterfaceSolution, ITERATIVE_FROM};
+use crate::contact::InterfaceSolver;
 use crate::contact::traction::ConsistentTraction;
 use crate::contact::{self, History, Outcome, PairLaw};
 use crate::model::Model;
@@ -30,7 +31,7 @@ use crate::parallel::{Comm, CommExt};
 use crate::recover;
 use crate::results::{ContactRun, Counters, RankStats, StepResult, Timings};
 use crate::scene::{Scene, TractionRecovery};
-use crate::substructure::{self, Condensed, Operator, OperatorRef, Part};
+use crate::substructure::{self, Condensation, Condensed, Operator, OperatorRef, Part};
 
 /// What stages 4–6 give rank 0.
 pub(super) struct Solved {
@@ -174,8 +175,21 @@ pub(super) fn solve(scene: &Scene, model: &Model, opts: &RunOptions, comm: &dyn 
     let mine_parts: Vec<(usize, Part)> = parts.into_iter().enumerate().filter(|(i, _)| owner[*i] == comm.rank()).collect();
     let threads = opts.threads.unwrap_or_else(|| (std::thread::available_parallelism().map_or(1, |n| n.get()) / comm.size()).max(1));
     progress(opts, &format!("assembling and factorising {n_parts} part(s){}", if comm.size() > 1 { format!(" on {} ranks", comm.size()) } else if threads > 1 { format!(" in {threads} threads") } else { String::new() }));
+    let iface_dofs: usize = all_parts.iter().map(|p| p.interface.len() * nd).sum();
+    let how = match opts.interface.unwrap_or(scene.solver.interface) {
+        InterfaceSolver::Iterative if comm.size() > 1 => bail!(
+            "{}: the iterative interface applies every part's S at each of its iterations, which MPI ranks do not serve yet: run it on one rank (threads), or use [solver] interface = \"dense\" (or auto) with mpirun",
+            scene.path.display()
+        ),
+        InterfaceSolver::Iterative => Condensation::Applied,
+        InterfaceSolver::Auto if comm.size() == 1 && iface_dofs >= ITERATIVE_FROM => Condensation::Applied,
+        _ => Condensation::Dense,
+    };
+    if how == Condensation::Applied && root {
+        progress(opts, &format!("{iface_dofs} interface DOFs: S applied through the parts' interior factors, interface solved by GMRES"));
+    }
     let (index, mine_only): (Vec<usize>, Vec<Part>) = mine_parts.into_iter().unzip();
-    let condensed = agree(comm, substructure::condense_parts(model, mine_only, threads).map_err(anyhow::Error::from))?;
+    let condensed = agree(comm, substructure::condense_parts(model, mine_only, threads, how).map_err(anyhow::Error::from))?;
     let mut mine: Vec<(usize, Condensed)> = index.into_iter().zip(condensed).collect();
     // the wall time, split between assembly and condensation as the parts spent it
     let wall = t.elapsed().as_secs_f64();
@@ -187,7 +201,7 @@ pub(super) fn solve(scene: &Scene, model: &Model, opts: &RunOptions, comm: &dyn 
     // factors that would crowd the interface out of memory are dropped now
     // and made again, a part at a time, to recover the interiors
     let factor_bytes: usize = mine.iter().map(|(_, c)| c.factor_bytes).sum();
-    if factor_bytes as f64 > FACTOR_SHARE * physical_memory() as f64 {
+    if how == Condensation::Dense && factor_bytes as f64 > FACTOR_SHARE * physical_memory() as f64 {
         for (_, c) in mine.iter_mut() {
             c.drop_factor();
         }
@@ -387,6 +401,7 @@ pub(super) fn solve(scene: &Scene, model: &Model, opts: &RunOptions, comm: &dyn 
     }
     let interface_dofs: usize = shared.iter().map(|&n| if in_pair[n] { nd } else { (0..nd).filter(|&c| model.prescribed[n * nd + c].is_none()).count() }).sum();
     let interior_dofs: usize = stats.iter().map(|s| s.0 - s.1).sum();
+    counters.interface_applications = problem.as_ref().map_or(0, |p| p.applications().iter().sum());
     Ok(Some(Solved {
         steps,
         dofs_total: interior_dofs + interface_dofs,

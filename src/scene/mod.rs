@@ -56,7 +56,7 @@ mod tests;
 pub use errors::SceneError;
 
 pub use crate::analytic::Analytic;
-pub use crate::contact::{SlipLaw, StateRule, TractionRecovery};
+pub use crate::contact::{InterfaceSolver, SlipLaw, StateRule, TractionRecovery};
 pub use crate::fem::Analysis;
 pub use crate::model::{ContactGroups, InitialStress, LoadKind};
 pub use crate::recover::Probe;
@@ -134,6 +134,8 @@ pub struct Solver {
     pub gravity_factors: Option<Vec<f64>>,
     /// Pieces each part is cut into (default 1: bodies stay whole), >= 1.
     pub substructures: usize,
+    /// How the interface system is solved (default auto).
+    pub interface: InterfaceSolver,
 }
 
 impl Default for Solver {
@@ -144,6 +146,7 @@ impl Default for Solver {
             rule: StateRule::Robust,
             gravity_factors: None,
             substructures: 1,
+            interface: InterfaceSolver::Auto,
         }
     }
 }

@@ -7,7 +7,7 @@
 use serde::Deserialize;
 use std::collections::BTreeMap;
 
-use super::{Analysis, SlipLaw, StateRule, TractionRecovery};
+use super::{Analysis, InterfaceSolver, SlipLaw, StateRule, TractionRecovery};
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -117,6 +117,7 @@ pub(super) struct RawSolver {
     pub(super) rule: Option<StateRule>,
     pub(super) gravity_factors: Option<Vec<f64>>,
     pub(super) substructures: Option<i64>,
+    pub(super) interface: Option<InterfaceSolver>,
 }
 
 #[derive(Deserialize)]

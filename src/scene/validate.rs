@@ -233,6 +233,7 @@ impl Checker<'_> {
                     "the contact iteration limit",
                 )?,
                 rule: s.rule.unwrap_or_default(),
+                interface: s.interface.unwrap_or_default(),
                 substructures: self.at_least(
                     s.substructures,
                     1,

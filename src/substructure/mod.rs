@@ -19,11 +19,13 @@
 pub mod assembly;
 pub mod ordering;
 pub mod parts;
+pub mod interior;
 pub mod schur;
 
 pub use parts::{cut, parts, Part};
 
 use crate::fem::sparse::{FactorError, NONE};
+use interior::{InteriorSolve, SharedSolve};
 use ordering::Ordering;
 use schur::PartialCholesky;
 use crate::model::{Model, ModelError};
@@ -40,18 +42,30 @@ pub struct Operator {
 }
 
 /// An [`Operator`] borrowed from a [`Condensed`] part or a received one.
+/// A part condensed for the iterative interface has no `s` but `applied`,
+/// its interior factor that applies S.
 #[derive(Clone, Copy)]
 pub struct OperatorRef<'a> {
     pub part: &'a Part,
     pub nc: usize,
     pub s: &'a [f64],
     pub g: &'a [Vec<f64>],
+    pub applied: Option<&'a SharedSolve>,
 }
 
 impl Operator {
     pub fn as_ref(&self) -> OperatorRef<'_> {
-        OperatorRef { part: &self.part, nc: self.nc, s: &self.s, g: &self.g }
+        OperatorRef { part: &self.part, nc: self.nc, s: &self.s, g: &self.g, applied: None }
     }
+}
+
+/// What condensation makes of a part with an interface.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Condensation {
+    /// The dense Schur complement S (the factor with its interface last).
+    Dense,
+    /// The interior factorised alone, S applied through it ([`interior`]).
+    Applied,
 }
 
 /// A factorised part, condensed onto its interface when it has one.
@@ -65,6 +79,9 @@ pub struct Condensed {
     /// The part's factor, interface last (see [`schur`]); `None` once
     /// dropped to save memory ([`Condensed::drop_factor`]).
     chol: Option<PartialCholesky>,
+    /// The interior factor of a part condensed for the iterative interface
+    /// (then `chol` is None and `s` empty).
+    applied: Option<SharedSolve>,
     /// Bytes of the factor's values.
     pub factor_bytes: usize,
     /// The load vectors `[F_i; F_c]`, one per load case.
@@ -148,10 +165,10 @@ pub fn interior_nodes(dof_of: &[usize], nd: usize, ni: usize) -> Vec<usize> {
 /// where faer's `Par::rayon(2)` inside the factorisation gives 1.25x (3.9 ->
 /// 3.1 s a part). With the other core busy two threads cost 5-7 % more
 /// than one (16.6-18.0 s against 15.9-16.9 s), rayon(2) 20-50 % more.
-pub fn condense_parts(model: &Model, parts: Vec<Part>, threads: usize) -> Result<Vec<Condensed>, ModelError> {
+pub fn condense_parts(model: &Model, parts: Vec<Part>, threads: usize, how: Condensation) -> Result<Vec<Condensed>, ModelError> {
     let threads = threads.clamp(1, parts.len().max(1));
     if threads == 1 {
-        return parts.into_iter().map(|p| condense(model, p)).collect();
+        return parts.into_iter().map(|p| condense(model, p, how)).collect();
     }
     let n = parts.len();
     let queue = std::sync::Mutex::new(parts.into_iter().enumerate());
@@ -167,7 +184,7 @@ pub fn condense_parts(model: &Model, parts: Vec<Part>, threads: usize) -> Result
                             Err(_) => None,
                         };
                         let Some((i, part)) = next else { break };
-                        out.push((i, condense(model, part)));
+                        out.push((i, condense(model, part, how)));
                     }
                     out
                 })
@@ -181,12 +198,38 @@ pub fn condense_parts(model: &Model, parts: Vec<Part>, threads: usize) -> Result
 }
 
 /// Assembles, factorises and condenses a part.
-pub fn condense(model: &Model, part: Part) -> Result<Condensed, ModelError> {
+pub fn condense(model: &Model, part: Part, how: Condensation) -> Result<Condensed, ModelError> {
     let t = std::time::Instant::now();
     let (mut dof_of, ni, nc) = numbering(model, &part);
     let a = assembly::assemble(model, &part.cells, &dof_of, ni + nc)?;
     let assemble_s = t.elapsed().as_secs_f64();
     let node_of = interior_nodes(&dof_of, model.nd, ni);
+    if how == Condensation::Applied && nc > 0 {
+        let solve = InteriorSolve::factor(&a.k, ni, &node_of, Ordering::choose(ni, model.nd), faer::get_global_parallelism())
+            .map_err(|e| not_held(model, &part, e))?;
+        let (g, x) = solve.condensed_loads(&a.f);
+        // K [x_i; 0] = [F_i; K_ci x_i]: the interface rows hold by construction
+        let backward_error = a
+            .f
+            .iter()
+            .enumerate()
+            .map(|(k, f)| {
+                let xk: Vec<f64> = x[k * ni..(k + 1) * ni].iter().copied().chain(std::iter::repeat(0.0).take(nc)).collect();
+                let kx = a.k.mul(&xk);
+                let b: Vec<f64> = f[..ni].iter().chain(&kx[ni..]).copied().collect();
+                a.k.backward_error(&xk, &b, 0.0, ni)
+            })
+            .fold(0.0, f64::max);
+        for d in dof_of.iter_mut() {
+            if *d != NONE && *d >= ni {
+                *d = NONE;
+            }
+        }
+        let factor_bytes = solve.factor_bytes();
+        let condense_s = t.elapsed().as_secs_f64() - assemble_s;
+        let applied = Some(SharedSolve::new(solve));
+        return Ok(Condensed { part, dof_of, ni, nc, chol: None, applied, factor_bytes, f: a.f, s: Vec::new(), g, assemble_s, condense_s, backward_error });
+    }
     // The caller's faer parallelism: sequential, as faer is built without its
     // `rayon` feature (it would add rayon and spindle). Measured on
     // blocks3d_hex (hex20, 51k interior equations a part), Par::rayon(2)
@@ -214,7 +257,7 @@ pub fn condense(model: &Model, part: Part) -> Result<Condensed, ModelError> {
     }
     let condense_s = t.elapsed().as_secs_f64() - assemble_s;
     let factor_bytes = chol.stats().values * std::mem::size_of::<f64>();
-    Ok(Condensed { part, dof_of, ni, nc, chol: Some(chol), factor_bytes, f: a.f, s, g, assemble_s, condense_s, backward_error })
+    Ok(Condensed { part, dof_of, ni, nc, chol: Some(chol), applied: None, factor_bytes, f: a.f, s, g, assemble_s, condense_s, backward_error })
 }
 
 /// The factor of a part again (assembled and factorised as [`condense`]
@@ -230,7 +273,7 @@ fn refactor(model: &Model, part: &Part) -> PartialCholesky {
 impl Condensed {
     /// The part's operator, borrowed.
     pub fn operator(&self) -> OperatorRef<'_> {
-        OperatorRef { part: &self.part, nc: self.nc, s: &self.s, g: &self.g }
+        OperatorRef { part: &self.part, nc: self.nc, s: &self.s, g: &self.g, applied: self.applied.as_ref() }
     }
 
     /// The part's operator, its S moved out (to send it to another rank;
@@ -250,6 +293,11 @@ impl Condensed {
     /// the contact iteration).
     pub fn drop_factor(&mut self) {
         self.chol = None;
+    }
+
+    /// Whether the part was condensed for the iterative interface.
+    pub fn is_applied(&self) -> bool {
+        self.applied.is_some()
     }
 
     /// The load vector combined with the load factors `lambda` (one per case).
@@ -277,14 +325,18 @@ impl Condensed {
     pub fn recover(&self, model: &Model, d_c: &[f64], lambda: &[f64], u: &mut [f64]) {
         let nd = model.nd;
         let refactored;
-        let chol = match &self.chol {
-            Some(c) => c,
-            None => {
-                refactored = refactor(model, &self.part);
-                &refactored
-            }
+        let d_i = if let Some(solve) = &self.applied {
+            solve.interior(&Self::combine(&self.f, lambda), d_c)
+        } else {
+            let chol = match &self.chol {
+                Some(c) => c,
+                None => {
+                    refactored = refactor(model, &self.part);
+                    &refactored
+                }
+            };
+            chol.interior(&Self::combine(&self.f, lambda), &self.g_at(lambda), d_c)
         };
-        let d_i = chol.interior(&Self::combine(&self.f, lambda), &self.g_at(lambda), d_c);
         for (i, &d) in self.dof_of.iter().enumerate() {
             if d != NONE {
                 u[i] = d_i[d];

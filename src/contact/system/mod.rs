@@ -14,6 +14,8 @@
 //! where both are supported (the supports carry it).
 
 pub mod coords;
+pub mod gmres;
+pub mod iterative;
 pub mod joins;
 pub mod reduce;
 
@@ -21,6 +23,7 @@ use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
 
 use coords::{Axis, Blocks, Var};
+use iterative::{AppliedPart, Iterative};
 use joins::{JoinElimination, SparseBlocks};
 use reduce::Reduced;
 
@@ -49,6 +52,10 @@ enum Slot {
     Pair { pair: usize, side: usize },
     Join(usize),
 }
+
+/// Interface DOFs (all parts' interface nodes times the components) from
+/// which `[solver] interface = "auto"` solves the interface iteratively.
+pub const ITERATIVE_FROM: usize = 20_000;
 
 const IDENTITY: Frame = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 
@@ -93,10 +100,8 @@ pub struct InterfaceProblem {
     joins: Vec<[Axis; 3]>,
     /// Parts that share each join, and where the join is.
     join_parts: Vec<(Vec<usize>, [f64; 3])>,
-    /// The contact problem in relative displacements.
-    reduced: Reduced,
-    /// The join means, when they were eliminated sparsely (joins.rs).
-    joined: Option<JoinElimination>,
+    /// How the system is solved.
+    solver: Solver,
     parts: Vec<PartMap>,
     /// Rigid motions of each part and the position of each pair, to tell
     /// which parts nothing holds.
@@ -104,6 +109,15 @@ pub struct InterfaceProblem {
     positions: Vec<[f64; 3]>,
     /// (part, position) of each pair's k and l.
     at: Vec<[(usize, usize); 2]>,
+}
+
+/// The interface system, dense or applied.
+enum Solver {
+    /// Reduced to the relative displacements (reduce.rs); the join means,
+    /// when they were eliminated sparsely (joins.rs).
+    Dense { reduced: Reduced, joined: Option<JoinElimination> },
+    /// Applied through the parts' factors and solved by GMRES (iterative.rs).
+    Iterative(Iterative),
 }
 
 /// Result of one interface solve.
@@ -263,6 +277,35 @@ impl InterfaceProblem {
             msg: "the bodies are not held even with every contact stuck (the bonded interface system is singular): add a support".into(),
         };
         let nj = nm - nm_pairs;
+        let rigid = parts.iter().map(|p| RigidModes::new(model, &p.part.nodes(model))).collect();
+        let positions = model.pairs.iter().map(|p| model.coords[p.k]).collect();
+        if parts.iter().any(|p| p.applied.is_some()) {
+            let applied = parts
+                .iter()
+                .zip(&maps)
+                .filter_map(|(p, map)| {
+                    p.applied.map(|solve| AppliedPart { solve: solve.clone(), terms: terms_of(p.nc, map), frames: frames_of(map), edges: map.edges.clone(), g: p.g.to_vec() })
+                })
+                .collect();
+            let groups = axes
+                .iter()
+                .chain(&joins)
+                .map(|ax| {
+                    let mut vars = Vec::new();
+                    for a in ax {
+                        match *a {
+                            Axis::Free { m, r } => vars.extend([Var::M(m), Var::R(r)]),
+                            Axis::HeldK { r, .. } | Axis::HeldL { r, .. } => vars.push(Var::R(r)),
+                            Axis::Joined { m } => vars.push(Var::M(m)),
+                            Axis::Held { .. } | Axis::Absent => {}
+                        }
+                    }
+                    vars
+                })
+                .collect();
+            let solver = Solver::Iterative(Iterative::new(nd, nm, nr, applied, groups));
+            return Ok(InterfaceProblem { nd, frames, basis, axes, joins, join_parts, solver, parts: maps, rigid, positions, at });
+        }
         let (blocks, joined) = if joins::worth_it(nj, nm_pairs, nr) {
             let cliques: Vec<Vec<coords::Terms>> = parts.iter().zip(&maps).map(|(p, map)| terms_of(p.nc, map)).collect();
             let mut node_of = vec![0; nj];
@@ -292,9 +335,17 @@ impl InterfaceProblem {
             (blocks, None)
         };
         let reduced = Reduced::new(blocks).map_err(|_| not_held())?;
-        let rigid = parts.iter().map(|p| RigidModes::new(model, &p.part.nodes(model))).collect();
-        let positions = model.pairs.iter().map(|p| model.coords[p.k]).collect();
-        Ok(InterfaceProblem { nd, frames, basis, axes, joins, join_parts, reduced, joined, parts: maps, rigid, positions, at })
+        let solver = Solver::Dense { reduced, joined };
+        Ok(InterfaceProblem { nd, frames, basis, axes, joins, join_parts, solver, parts: maps, rigid, positions, at })
+    }
+
+    /// GMRES iterations (applications of the parts' S) of every solve so
+    /// far; empty for the dense interface.
+    pub fn applications(&self) -> Vec<usize> {
+        match &self.solver {
+            Solver::Dense { .. } => Vec::new(),
+            Solver::Iterative(it) => it.iterations.lock().map(|v| v.clone()).unwrap_or_default(),
+        }
     }
 
     /// The area pair `p` controls (in the interface basis), > 0.
@@ -310,7 +361,15 @@ impl InterfaceProblem {
     /// A stiffness of pair `p`'s relative displacement (the mean diagonal
     /// of W over its axes): the scale that turns a slip into a force.
     pub fn stiffness(&self, p: usize) -> f64 {
-        let d: Vec<f64> = self.axes[p].iter().filter_map(|a| a.r()).map(|r| self.reduced.w[(r, r)]).collect();
+        let d: Vec<f64> = self
+            .axes[p]
+            .iter()
+            .filter_map(|a| a.r())
+            .map(|r| match &self.solver {
+                Solver::Dense { reduced, .. } => reduced.w[(r, r)],
+                Solver::Iterative(it) => it.diagonal_r(r),
+            })
+            .collect();
         if d.is_empty() {
             1.0
         } else {
@@ -333,9 +392,91 @@ impl InterfaceProblem {
         if !sliding.is_empty() {
             return Err(SolveFailure::Singular(sliding));
         }
-        let w = &self.reduced.w;
+        let (r, wr_c, m, residual) = match &self.solver {
+            Solver::Dense { reduced, joined } => self.solve_dense(reduced, joined.as_ref(), rel, lambda, &states)?,
+            Solver::Iterative(it) => {
+                let answer = it.solve(&self.axes, rel, lambda).ok_or_else(|| self.diagnose(&states))?;
+                let nm = answer.x.len() - answer.residual_r.len();
+                (answer.x[nm..].to_vec(), answer.residual_r, answer.x[..nm].to_vec(), answer.residual)
+            }
+        };
+        // the contact forces: -(W r - c); a free axis carries what its
+        // relation prescribes (an open pair exactly zero, not round-off)
+        let mut forces = vec![[0.0; 3]; rel.len()];
+        let mut rels = vec![[0.0; 3]; rel.len()];
+        for (p, ax) in self.axes.iter().enumerate() {
+            for a in 0..nd {
+                match ax[a] {
+                    Axis::Held { vk, vl } => rels[p][a] = (vl - vk) * ramp,
+                    Axis::Absent => {}
+                    axis => {
+                        let ri = axis.r().expect("an axis with r");
+                        rels[p][a] = r[ri];
+                        if !rel[p].free_axis(a) || rel[p].state == ContactState::Slip {
+                            forces[p][a] = -wr_c[ri];
+                        }
+                    }
+                }
+            }
+            if rel[p].state == ContactState::Slip {
+                let pn = -forces[p][0];
+                let rl = &rel[p];
+                for a in 1..nd {
+                    if self.axes[p][a].r().is_some() {
+                        forces[p][a] = rl.force[a] + rl.coupling[a] * pn + (1..nd).map(|c| rl.spring[a][c] * rels[p][c]).sum::<f64>();
+                    }
+                }
+            }
+        }
+        let pairs = (0..rel.len())
+            .map(|p| {
+                let area = self.basis.areas[p];
+                let (f, r) = (forces[p], rels[p]);
+                PairResult { sigma_n: f[0] / area, tau_t: f[1] / area, tau_b: f[2] / area, gap: r[0], slip: r[1].hypot(r[2]) }
+            })
+            .collect();
+        // interface displacements of every part, global axes, nodal basis
+        let d_c = self
+            .parts
+            .iter()
+            .map(|map| {
+                let mut d = vec![0.0; map.nodes.len() * nd];
+                for (q, slot) in map.nodes.iter().enumerate() {
+                    let (axes, side, f) = match *slot {
+                        Slot::Pair { pair, side } => (&self.axes[pair], side, &self.frames[pair]),
+                        Slot::Join(j) => (&self.joins[j], 0, &IDENTITY),
+                    };
+                    let mut local = [0.0; 3];
+                    for (a, l) in local.iter_mut().enumerate().take(nd) {
+                        let t = axes[a].terms(side);
+                        *l = t.constant * ramp
+                            + t.vars[..t.n]
+                                .iter()
+                                .map(|&(v, cv)| cv * match v {
+                                    Var::M(i) => m[i],
+                                    Var::R(i) => r[i],
+                                })
+                                .sum::<f64>();
+                    }
+                    for c in 0..nd {
+                        d[q * nd + c] = (0..nd).map(|a| f[a][c] * local[a]).sum();
+                    }
+                }
+                basis::to_nodal(&mut d, nd, &map.edges);
+                d
+            })
+            .collect();
+        Ok(InterfaceSolution { pairs, forces, rel: rels, d_c, residual })
+    }
+
+    /// The relative displacements, `W r - c`, the means and the residual
+    /// of the dense solve of `rel`.
+    #[allow(clippy::type_complexity)]
+    fn solve_dense(&self, reduced: &Reduced, joined: Option<&JoinElimination>, rel: &[Relation], lambda: &[f64], states: &[ContactState]) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>, f64), SolveFailure> {
+        let nd = self.nd;
+        let w = &reduced.w;
         let nr = w.nrows();
-        let c = self.reduced.c_at(lambda);
+        let c = reduced.c_at(lambda);
         // free relative displacements, and the known values of tied ones
         let mut r = vec![0.0; nr];
         let mut free = vec![true; nr];
@@ -411,13 +552,13 @@ impl InterfaceProblem {
         } else if symmetric {
             match wf.llt(Side::Lower) {
                 Ok(l) => l.solve(&rhs),
-                Err(_) => return Err(self.diagnose(&states)),
+                Err(_) => return Err(self.diagnose(states)),
             }
         } else {
             wf.partial_piv_lu().solve(&rhs)
         };
         if z.col(0).iter().any(|v| !v.is_finite()) {
-            return Err(self.diagnose(&states));
+            return Err(self.diagnose(states));
         }
         let residual = if nf == 0 {
             0.0
@@ -428,85 +569,20 @@ impl InterfaceProblem {
         // Singular up to round-off (a body sliding freely on slipping pairs)
         // lets the factorisation pass: its residual is O(1), not O(eps).
         if residual > 1e-6 {
-            return Err(self.diagnose(&states));
+            return Err(self.diagnose(states));
         }
         for (f, &i) in fidx.iter().enumerate() {
             r[i] = z[(f, 0)];
         }
-        // the contact forces: -(W r - c); a free axis carries what its
-        // relation prescribes (an open pair exactly zero, not round-off)
-        let wr_c = self.reduced.residual(&r, &c);
-        let mut forces = vec![[0.0; 3]; rel.len()];
-        let mut rels = vec![[0.0; 3]; rel.len()];
-        for (p, ax) in self.axes.iter().enumerate() {
-            for a in 0..nd {
-                match ax[a] {
-                    Axis::Held { vk, vl } => rels[p][a] = (vl - vk) * ramp,
-                    Axis::Absent => {}
-                    axis => {
-                        let ri = axis.r().expect("an axis with r");
-                        rels[p][a] = r[ri];
-                        if !rel[p].free_axis(a) || rel[p].state == ContactState::Slip {
-                            forces[p][a] = -wr_c[ri];
-                        }
-                    }
-                }
-            }
-            if rel[p].state == ContactState::Slip {
-                let pn = -forces[p][0];
-                let rl = &rel[p];
-                for a in 1..nd {
-                    if self.axes[p][a].r().is_some() {
-                        forces[p][a] = rl.force[a] + rl.coupling[a] * pn + (1..nd).map(|c| rl.spring[a][c] * rels[p][c]).sum::<f64>();
-                    }
-                }
-            }
-        }
-        let pairs = (0..rel.len())
-            .map(|p| {
-                let area = self.basis.areas[p];
-                let (f, r) = (forces[p], rels[p]);
-                PairResult { sigma_n: f[0] / area, tau_t: f[1] / area, tau_b: f[2] / area, gap: r[0], slip: r[1].hypot(r[2]) }
-            })
-            .collect();
-        // interface displacements of every part, global axes, nodal basis
-        let mut m = self.reduced.means(&r, lambda);
-        if let Some(joined) = &self.joined {
+        let wr_c = reduced.residual(&r, &c);
+        let mut m = reduced.means(&r, lambda);
+        if let Some(joined) = joined {
             let m_j = joined.means(&m, &r, lambda);
             m.extend(m_j);
         }
-        let d_c = self
-            .parts
-            .iter()
-            .map(|map| {
-                let mut d = vec![0.0; map.nodes.len() * nd];
-                for (q, slot) in map.nodes.iter().enumerate() {
-                    let (axes, side, f) = match *slot {
-                        Slot::Pair { pair, side } => (&self.axes[pair], side, &self.frames[pair]),
-                        Slot::Join(j) => (&self.joins[j], 0, &IDENTITY),
-                    };
-                    let mut local = [0.0; 3];
-                    for (a, l) in local.iter_mut().enumerate().take(nd) {
-                        let t = axes[a].terms(side);
-                        *l = t.constant * ramp
-                            + t.vars[..t.n]
-                                .iter()
-                                .map(|&(v, cv)| cv * match v {
-                                    Var::M(i) => m[i],
-                                    Var::R(i) => r[i],
-                                })
-                                .sum::<f64>();
-                    }
-                    for c in 0..nd {
-                        d[q * nd + c] = (0..nd).map(|a| f[a][c] * local[a]).sum();
-                    }
-                }
-                basis::to_nodal(&mut d, nd, &map.edges);
-                d
-            })
-            .collect();
-        Ok(InterfaceSolution { pairs, forces, rel: rels, d_c, residual })
+        Ok((r, wr_c, m, residual))
     }
+
 
     /// Parts that a rigid motion moves which the supports and the pairs tied
     /// by `states` do not stop; `slip_holds`: count slipping pairs as stuck
