@@ -40,10 +40,13 @@ pub struct RankStats {
     pub condense_s: f64,
     /// Its peak resident memory.
     pub peak_memory_bytes: u64,
-    /// Bytes it sent in all, per load step (recovery), and per contact
-    /// iteration (nothing: rank 0 holds the interface).
+    /// Bytes it sent in all, per load step, during the contact iterations
+    /// of all steps, and per contact iteration (nothing with the dense
+    /// interface, which rank 0 holds; the parts' `S d` with the iterative
+    /// one).
     pub bytes_sent: u64,
     pub bytes_sent_per_step: u64,
+    pub bytes_sent_interface: u64,
     pub bytes_sent_per_contact_iteration: u64,
 }
 

@@ -2,7 +2,10 @@
 //! runs these): `mpirun -np N subcontact solve` gives the serial answer to
 //! 1e-10 with 2 and 3 ranks, rank 0 writes the same files, a failure on any
 //! rank ends every rank with one message and no results, and more ranks
-//! than parts are refused with what to do.
+//! than parts are refused with what to do. With the iterative interface the
+//! ranks apply their parts' S for rank 0's GMRES: the serial iterative
+//! answer to 1e-8 (the GMRES tolerance is 1e-10 of the load, and the sums
+//! of the parts come in another order).
 #![cfg(feature = "mpi")]
 
 mod common;
@@ -79,6 +82,28 @@ fn parts_on_two_and_three_ranks_give_the_serial_answer() {
 }
 
 #[test]
+fn the_iterative_interface_on_two_and_three_ranks_gives_the_serial_answer() {
+    let case = Case::new("mpi-iterative");
+    case.copy("geo/blocks3d.geo");
+    let text = common::scenes::edited("geo/blocks3d.toml", &[("setnumber = { lc = 0.1, hex = 0 }", "setnumber = { lc = 0.2, hex = 0 }")]);
+    case.write("blocks.toml", &text);
+    let extra = ["--substructures", "2", "--interface", "iterative"];
+    solve_ok(&case, 0, "blocks.toml", "serial", &extra);
+    for n in [2, 3] {
+        let out = format!("np{n}");
+        solve_ok(&case, n, "blocks.toml", &out, &extra);
+        let e = csv_difference(&case.dir.join("serial/contact.csv"), &case.dir.join(format!("{out}/contact.csv")));
+        let summary = common::json(&case.dir.join(format!("{out}/summary.json")));
+        let ranks = summary["ranks"].as_array().expect("ranks");
+        let per_iteration: Vec<u64> = ranks.iter().map(|r| r["bytes_sent_per_contact_iteration"].as_u64().expect("bytes")).collect();
+        eprintln!("iterative interface, {n} ranks: contact.csv differs from serial by {e:.1e}; bytes sent per contact iteration {per_iteration:?}");
+        assert!(e < 1e-8, "{n} ranks: {e:.2e}");
+        assert!(summary["counters"]["interface_applications"].as_u64().expect("applications") > 0);
+        assert!(per_iteration[1..].iter().all(|&b| b > 0), "the other ranks send S d during the iteration: {per_iteration:?}");
+    }
+}
+
+#[test]
 fn more_ranks_than_parts_are_refused_saying_what_to_do() {
     let case = Case::new("mpi-too-many");
     case.copy("geo/dam.geo");
@@ -103,11 +128,13 @@ fn a_failure_on_any_rank_ends_every_rank_with_one_message_and_no_results() {
         &[("setnumber = { lc = 0.1, hex = 0 }", "setnumber = { lc = 0.25, hex = 0 }"), ("traction = [0.3, 0.0, -1.0]", "traction = [0.0, 0.0, 1.0]")],
     );
     case.write("pulled.toml", &text);
-    let o = mpirun(&case, 2, &["solve", "pulled.toml", "--out", "out", "--quiet", "--substructures", "2"]);
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success());
-    assert_eq!(err.matches("error:").count(), 1, "one message: {err}");
-    assert!(err.contains("held by nothing"), "{err}");
-    assert!(!err.contains("panicked"), "{err}");
-    assert!(case.files_in(&case.dir.join("out")).iter().all(|f| f.starts_with("mesh")), "no results");
+    for interface in ["dense", "iterative"] {
+        let o = mpirun(&case, 2, &["solve", "pulled.toml", "--out", "out", "--quiet", "--substructures", "2", "--interface", interface]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{interface}");
+        assert_eq!(err.matches("error:").count(), 1, "{interface}: one message: {err}");
+        assert!(err.contains("held by nothing"), "{interface}: {err}");
+        assert!(!err.contains("panicked"), "{interface}: {err}");
+        assert!(case.files_in(&case.dir.join("out")).iter().all(|f| f.starts_with("mesh")), "{interface}: no results");
+    }
 }

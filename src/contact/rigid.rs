@@ -26,7 +26,7 @@ pub struct RigidModes {
     gram: Vec<f64>,
 }
 
-fn n_modes(analysis: Analysis) -> usize {
+pub fn n_modes(analysis: Analysis) -> usize {
     match analysis {
         Analysis::PlaneStrain | Analysis::PlaneStress => 3,
         Analysis::Axisymmetric => 1,

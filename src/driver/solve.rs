@@ -22,6 +22,7 @@ use anyhow::{anyhow, bail, Result};
 use super::messages::failure_message;
 use super::{progress, RunOptions};
 use crate::contact::law::Strength;
+use crate::contact::system::iterative::Remote;
 use crate::contact::system::{InterfaceProblem, InterfaceSolution, ITERATIVE_FROM};
 use crate::contact::InterfaceSolver;
 use crate::contact::traction::ConsistentTraction;
@@ -125,6 +126,66 @@ enum Order {
     Stop(String),
 }
 
+/// What rank 0 asks of the other ranks while it solves the iterative interface.
+#[derive(serde::Serialize, serde::Deserialize)]
+enum Service {
+    /// Apply the S of these parts (number, columns) to their `k` columns.
+    Apply { k: usize, work: Vec<(usize, Vec<f64>)> },
+    /// The interface stage is over (for this load step).
+    Done,
+}
+
+/// The other ranks' parts as rank 0's iterative interface sees them: each
+/// application of S scatters every part's columns to its owner and gathers
+/// `S d` back (8 nc bytes each way per part and column).
+struct Ranks<'c> {
+    comm: &'c dyn Comm,
+    owner: Vec<usize>,
+}
+
+impl Ranks<'_> {
+    /// Ends the other ranks' [`serve`].
+    fn done(&self) {
+        let per_rank: Vec<Service> = (0..self.comm.size()).map(|_| Service::Done).collect();
+        let _: Service = self.comm.scatter(&per_rank);
+    }
+}
+
+impl Remote for Ranks<'_> {
+    fn send(&self, work: Vec<(usize, Vec<f64>)>, k: usize) {
+        let mut per_rank: Vec<Service> = (0..self.comm.size()).map(|_| Service::Apply { k, work: Vec::new() }).collect();
+        for (i, d) in work {
+            if let Service::Apply { work, .. } = &mut per_rank[self.owner[i]] {
+                work.push((i, d));
+            }
+        }
+        let _: Service = self.comm.scatter(&per_rank);
+    }
+
+    fn receive(&self) -> Vec<(usize, Vec<f64>)> {
+        self.comm.gather(&Vec::<(usize, Vec<f64>)>::new()).into_iter().flatten().collect()
+    }
+}
+
+/// On the ranks other than 0: apply this rank's parts' S for rank 0 until
+/// it says the interface stage is over.
+fn serve(comm: &dyn Comm, mine: &[(usize, Condensed)]) {
+    loop {
+        match comm.scatter::<Service>(&[]) {
+            Service::Done => return,
+            Service::Apply { k, work } => {
+                let out: Vec<(usize, Vec<f64>)> = (work.into_iter())
+                    .map(|(i, d)| {
+                        let (_, part) = mine.iter().find(|(j, _)| *j == i).expect("rank 0 sends a part to its owner");
+                        (i, part.apply(&d, k))
+                    })
+                    .collect();
+                comm.gather(&out);
+            }
+        }
+    }
+}
+
 /// Recovers the interiors of `mine` under `lambda`: the displacements of
 /// their nodes, part by part (node order of `Part::nodes`).
 fn recover_parts(model: &Model, mine: &[(usize, Condensed)], d_c: &[(usize, Vec<f64>)], lambda: &[f64]) -> Vec<(usize, Vec<f64>)> {
@@ -177,16 +238,14 @@ pub(super) fn solve(scene: &Scene, model: &Model, opts: &RunOptions, comm: &dyn 
     progress(opts, &format!("assembling and factorising {n_parts} part(s){}", if comm.size() > 1 { format!(" on {} ranks", comm.size()) } else if threads > 1 { format!(" in {threads} threads") } else { String::new() }));
     let iface_dofs: usize = all_parts.iter().map(|p| p.interface.len() * nd).sum();
     let how = match opts.interface.unwrap_or(scene.solver.interface) {
-        InterfaceSolver::Iterative if comm.size() > 1 => bail!(
-            "{}: the iterative interface applies every part's S at each of its iterations, which MPI ranks do not serve yet: run it on one rank (threads), or use [solver] interface = \"dense\" (or auto) with mpirun",
-            scene.path.display()
-        ),
         InterfaceSolver::Iterative => Condensation::Applied,
-        InterfaceSolver::Auto if comm.size() == 1 && iface_dofs >= ITERATIVE_FROM => Condensation::Applied,
+        InterfaceSolver::Auto if iface_dofs >= ITERATIVE_FROM => Condensation::Applied,
         _ => Condensation::Dense,
     };
+    // the other ranks apply their parts' S while rank 0 solves the interface
+    let service = how == Condensation::Applied && comm.size() > 1;
     if how == Condensation::Applied && root {
-        progress(opts, &format!("{iface_dofs} interface DOFs: S applied through the parts' interior factors, interface solved by GMRES"));
+        progress(opts, &format!("{iface_dofs} interface DOFs over the parts: no S formed, the interface solved by GMRES through the parts' interior factors"));
     }
     let (index, mine_only): (Vec<usize>, Vec<Part>) = mine_parts.into_iter().unzip();
     let condensed = agree(comm, substructure::condense_parts(model, mine_only, threads, how).map_err(anyhow::Error::from))?;
@@ -225,16 +284,35 @@ pub(super) fn solve(scene: &Scene, model: &Model, opts: &RunOptions, comm: &dyn 
         mine.iter().map(|(_, c)| c.backward_error).fold(0.0, f64::max),
     );
     let stats: Vec<(usize, usize, usize, f64)> = comm.gather(&stats_local);
+    let ranks = Ranks { comm, owner: owner.clone() };
+    let remote: Option<&dyn Remote> = if service { Some(&ranks) } else { None };
     let interface = |ops: &[OperatorRef]| -> Result<Option<InterfaceProblem>> {
         if ops.iter().all(|o| o.nc == 0) {
             return Ok(None);
         }
-        Ok(Some(InterfaceProblem::new(model, ops)?))
+        Ok(Some(InterfaceProblem::new(model, ops, remote)?))
     };
     let problem = if root {
-        let ops: Vec<OperatorRef> = if comm.size() > 1 { received.iter().map(|(_, o)| o.as_ref()).collect() } else { mine.iter().map(|(_, c)| c.operator()).collect() };
-        agree(comm, interface(&ops))?
+        let ops: Vec<OperatorRef> = if comm.size() > 1 {
+            // this rank's own parts apply their S here
+            (received.iter())
+                .map(|(i, o)| match mine.iter().find(|(j, _)| j == i) {
+                    Some((_, c)) if c.is_applied() => c.operator(),
+                    _ => o.as_ref(),
+                })
+                .collect()
+        } else {
+            mine.iter().map(|(_, c)| c.operator()).collect()
+        };
+        let built = interface(&ops);
+        if service {
+            ranks.done();
+        }
+        agree(comm, built)?
     } else {
+        if service {
+            serve(comm, &mine);
+        }
         agree(comm, Ok(None))?
     };
     drop(received);
@@ -264,10 +342,13 @@ pub(super) fn solve(scene: &Scene, model: &Model, opts: &RunOptions, comm: &dyn 
         progress(opts, &format!("contact iteration on {} pairs, {} load step(s)", model.pairs.len(), n_steps));
     }
     let bytes_before_steps = comm.bytes_sent();
+    // bytes this rank sends while rank 0 iterates (the S d of the iterative interface)
+    let mut bytes_interface = 0;
     for step in 1..=n_steps {
         let lambda: Vec<f64> = model.cases.iter().map(|c| c[step - 1]).collect();
         // 5. the contact iteration (rank 0)
         let t = Instant::now();
+        let bytes_before = comm.bytes_sent();
         let mut contact_step = None;
         let mut d_c: Vec<Vec<f64>> = all_parts.iter().map(|p| vec![0.0; p.interface.len() * nd]).collect();
         let mut failed = None;
@@ -307,6 +388,14 @@ pub(super) fn solve(scene: &Scene, model: &Model, opts: &RunOptions, comm: &dyn 
                 None => {}
             }
         }
+        if service {
+            if root {
+                ranks.done();
+            } else {
+                serve(comm, &mine);
+            }
+        }
+        bytes_interface += comm.bytes_sent() - bytes_before;
         interface_s += t.elapsed().as_secs_f64();
         // 6. recovery of the parts on their owners
         let t = Instant::now();
@@ -382,9 +471,14 @@ pub(super) fn solve(scene: &Scene, model: &Model, opts: &RunOptions, comm: &dyn 
         peak_memory_bytes: peak_memory(),
         bytes_sent: comm.bytes_sent(),
         bytes_sent_per_step: bytes_per_step,
+        bytes_sent_interface: bytes_interface,
         bytes_sent_per_contact_iteration: 0,
     };
-    let ranks: Vec<RankStats> = comm.gather(&rank_stats);
+    let mut ranks: Vec<RankStats> = comm.gather(&rank_stats);
+    // rank 0 knows how many contact iterations there were
+    for r in ranks.iter_mut() {
+        r.bytes_sent_per_contact_iteration = r.bytes_sent_interface / counters.interface_solves.max(1) as u64;
+    }
     drop(mine);
     if !root {
         return Ok(None);

@@ -32,35 +32,41 @@ use crate::model::{Model, ModelError};
 
 /// What the interface needs of a condensed part: its interface nodes, the
 /// Schur complement S (column-major nc x nc) and the condensed loads G, one
-/// per load case. What travels from a part's MPI rank to rank 0.
+/// per load case. What travels from a part's MPI rank to rank 0. A part
+/// condensed for the iterative interface sends no S but the diagonal blocks
+/// of its K_cc (nc x nd), and its S is applied on its own rank.
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct Operator {
     pub part: Part,
     pub nc: usize,
     pub s: Vec<f64>,
     pub g: Vec<Vec<f64>>,
+    pub how: Condensation,
+    pub diag: Vec<f64>,
 }
 
 /// An [`Operator`] borrowed from a [`Condensed`] part or a received one.
-/// A part condensed for the iterative interface has no `s` but `applied`,
-/// its interior factor that applies S.
+/// A part condensed for the iterative interface has no `s`; `applied` is
+/// its interior factor that applies S, when the part is on this rank.
 #[derive(Clone, Copy)]
 pub struct OperatorRef<'a> {
     pub part: &'a Part,
     pub nc: usize,
     pub s: &'a [f64],
     pub g: &'a [Vec<f64>],
+    pub how: Condensation,
+    pub diag: &'a [f64],
     pub applied: Option<&'a SharedSolve>,
 }
 
 impl Operator {
     pub fn as_ref(&self) -> OperatorRef<'_> {
-        OperatorRef { part: &self.part, nc: self.nc, s: &self.s, g: &self.g, applied: None }
+        OperatorRef { part: &self.part, nc: self.nc, s: &self.s, g: &self.g, how: self.how, diag: &self.diag, applied: None }
     }
 }
 
 /// What condensation makes of a part with an interface.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Condensation {
     /// The dense Schur complement S (the factor with its interface last).
     Dense,
@@ -80,8 +86,9 @@ pub struct Condensed {
     /// dropped to save memory ([`Condensed::drop_factor`]).
     chol: Option<PartialCholesky>,
     /// The interior factor of a part condensed for the iterative interface
-    /// (then `chol` is None and `s` empty).
+    /// (then `chol` is None and `s` empty), and its K_cc's diagonal blocks.
     applied: Option<SharedSolve>,
+    diag: Vec<f64>,
     /// Bytes of the factor's values.
     pub factor_bytes: usize,
     /// The load vectors `[F_i; F_c]`, one per load case.
@@ -227,8 +234,9 @@ pub fn condense(model: &Model, part: Part, how: Condensation) -> Result<Condense
         }
         let factor_bytes = solve.factor_bytes();
         let condense_s = t.elapsed().as_secs_f64() - assemble_s;
+        let diag = solve.diagonal_blocks(model.nd);
         let applied = Some(SharedSolve::new(solve));
-        return Ok(Condensed { part, dof_of, ni, nc, chol: None, applied, factor_bytes, f: a.f, s: Vec::new(), g, assemble_s, condense_s, backward_error });
+        return Ok(Condensed { part, dof_of, ni, nc, chol: None, applied, diag, factor_bytes, f: a.f, s: Vec::new(), g, assemble_s, condense_s, backward_error });
     }
     // The caller's faer parallelism: sequential, as faer is built without its
     // `rayon` feature (it would add rayon and spindle). Measured on
@@ -257,7 +265,7 @@ pub fn condense(model: &Model, part: Part, how: Condensation) -> Result<Condense
     }
     let condense_s = t.elapsed().as_secs_f64() - assemble_s;
     let factor_bytes = chol.stats().values * std::mem::size_of::<f64>();
-    Ok(Condensed { part, dof_of, ni, nc, chol: Some(chol), applied: None, factor_bytes, f: a.f, s, g, assemble_s, condense_s, backward_error })
+    Ok(Condensed { part, dof_of, ni, nc, chol: Some(chol), applied: None, diag: Vec::new(), factor_bytes, f: a.f, s, g, assemble_s, condense_s, backward_error })
 }
 
 /// The factor of a part again (assembled and factorised as [`condense`]
@@ -273,13 +281,27 @@ fn refactor(model: &Model, part: &Part) -> PartialCholesky {
 impl Condensed {
     /// The part's operator, borrowed.
     pub fn operator(&self) -> OperatorRef<'_> {
-        OperatorRef { part: &self.part, nc: self.nc, s: &self.s, g: &self.g, applied: self.applied.as_ref() }
+        OperatorRef { part: &self.part, nc: self.nc, s: &self.s, g: &self.g, how: self.how(), diag: &self.diag, applied: self.applied.as_ref() }
+    }
+
+    /// How the part was condensed.
+    pub fn how(&self) -> Condensation {
+        if self.applied.is_some() {
+            Condensation::Applied
+        } else {
+            Condensation::Dense
+        }
+    }
+
+    /// `S d` for the `k` columns of `d` (a part condensed for the iterative interface).
+    pub fn apply(&self, d: &[f64], k: usize) -> Vec<f64> {
+        self.applied.as_ref().expect("a part condensed for the iterative interface").apply(d, k)
     }
 
     /// The part's operator, its S moved out (to send it to another rank;
     /// the part keeps what recovers its interior).
     pub fn take_operator(&mut self) -> Operator {
-        Operator { part: self.part.clone(), nc: self.nc, s: std::mem::take(&mut self.s), g: self.g.clone() }
+        Operator { part: self.part.clone(), nc: self.nc, s: std::mem::take(&mut self.s), g: self.g.clone(), how: self.how(), diag: self.diag.clone() }
     }
 
     /// Frees the dense S once the interface holds what it needs of it.

@@ -14,10 +14,25 @@
 //! factorisation. Each solve starts from the last one's answer, so a
 //! contact iteration that changes few pairs costs few GMRES iterations.
 //!
-//! The preconditioner is block Jacobi: per pair (its means and relative
-//! displacements) and per join node, the diagonal blocks of the parts'
-//! K_cc in the same coordinates (the face basis of quadratic faces left
-//! out), with the friction law's linearisation on the pair's slipping rows.
+//! The preconditioner has two levels. The fine one is block Jacobi: per
+//! pair (its means and relative displacements) and per join node, the
+//! diagonal blocks of the parts' K_cc in the same coordinates (the face
+//! basis of quadratic faces left out), with the friction law's
+//! linearisation on the pair's slipping rows. Alone, its iteration count
+//! grows with the number of pieces in a row (a column cut into 8 slices
+//! bends through 7 joins). The coarse level is the parts' rigid motions
+//! (6 per part in 3D) on the interface means, weighted by the number of
+//! parts sharing each node, as balancing Neumann-Neumann and FETI coarse
+//! spaces are: `Φ`, orthonormalised, with `K Φ` applied once, in one
+//! batch of columns; each solve then factorises `Φ^T J Φ` (J the system
+//! with the solve's relations) and preconditions by
+//!
+//! ```text
+//! c = (Φ^T J Φ)^-1 Φ^T v,     z = Φ c + D^-1 (v - J Φ c)
+//! ```
+//!
+//! Φ holds means only, which are unknowns under every relation, so `J Φ`
+//! comes from the stored `K Φ` without applying S again.
 
 use std::sync::Mutex;
 
@@ -38,9 +53,28 @@ pub const TOLERANCE: f64 = 1e-10;
 const RESTART: usize = 200;
 const MAX_ITERATIONS: usize = 5_000;
 
+/// Where a part's S is applied.
+pub enum Source {
+    /// On this rank, through this factor.
+    Local(SharedSolve),
+    /// On the part's own MPI rank: part number `i`, through [`Remote`].
+    Remote(usize),
+}
+
+/// The parts of other MPI ranks: their S applied where their factors are.
+/// `send` gives each remote part its columns and returns at once; `receive`
+/// waits for `S d` of every part sent, in any order. Every call of one is
+/// followed by one of the other.
+pub trait Remote {
+    fn send(&self, work: Vec<(usize, Vec<f64>)>, k: usize);
+    fn receive(&self) -> Vec<(usize, Vec<f64>)>;
+}
+
 /// A part as the interface sees it.
 pub struct AppliedPart {
-    pub solve: SharedSolve,
+    pub source: Source,
+    /// The diagonal blocks of its K_cc (row-major nd x nd per interface node).
+    pub diag: Vec<f64>,
     /// The unknowns of each interface DOF, in local axes and the face basis.
     pub terms: Vec<Terms>,
     /// Frame of each interface node.
@@ -51,6 +85,17 @@ pub struct AppliedPart {
     pub g: Vec<Vec<f64>>,
 }
 
+/// A slipping pair's free tangential row `i`, whose equation is the friction
+/// law's (see [`Relation`]):
+/// `(K x - b)_i + force + coupling (K x - b)_n + sum_c spring_c x_c = 0`.
+struct SlipRow {
+    row: usize,
+    normal: Option<usize>,
+    coupling: f64,
+    springs: Vec<(usize, f64)>,
+    force: f64,
+}
+
 /// Which block of the preconditioner an unknown is in, and where.
 #[derive(Clone, Copy)]
 struct Place {
@@ -59,11 +104,12 @@ struct Place {
 }
 
 /// The interface system, applied; see the module header.
-pub struct Iterative {
+pub struct Iterative<'a> {
     nd: usize,
     nm: usize,
     nr: usize,
     parts: Vec<AppliedPart>,
+    remote: Option<&'a dyn Remote>,
     /// Right-hand sides over `[m; r]` per case, and of the prescribed values at ramp 1.
     b: Vec<Vec<f64>>,
     b_fixed: Vec<f64>,
@@ -71,6 +117,10 @@ pub struct Iterative {
     blocks: Vec<(Vec<usize>, Vec<f64>)>,
     place: Vec<Place>,
     threads: usize,
+    /// The coarse space: `Φ` (orthonormal columns over `[m; r]`, zero on
+    /// r) and `K Φ`.
+    phi: Vec<Vec<f64>>,
+    k_phi: Vec<Vec<f64>>,
     /// The last solution, where the next solve starts.
     last: Mutex<Option<Vec<f64>>>,
     /// GMRES iterations of every solve so far.
@@ -87,11 +137,13 @@ pub struct Answer {
     pub residual: f64,
 }
 
-impl Iterative {
+impl<'a> Iterative<'a> {
     /// Sets up the right-hand sides (one application of S per part, for
     /// the prescribed values) and the preconditioner's blocks; `groups`
     /// lists the unknowns of each pair and join node.
-    pub fn new(nd: usize, nm: usize, nr: usize, parts: Vec<AppliedPart>, groups: Vec<Vec<Var>>) -> Iterative {
+    /// `coarse`: the coarse space's columns over `[m; r]` (nonzero on means only).
+    /// `remote` applies the parts of other MPI ranks.
+    pub fn new(nd: usize, nm: usize, nr: usize, parts: Vec<AppliedPart>, groups: Vec<Vec<Var>>, coarse: Vec<Vec<f64>>, remote: Option<&'a dyn Remote>) -> Iterative<'a> {
         let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
         let n = nm + nr;
         let idx = |v: Var| match v {
@@ -111,11 +163,14 @@ impl Iterative {
             nm,
             nr,
             parts,
+            remote,
             b,
             b_fixed: vec![0.0; n],
             blocks: Vec::new(),
             place: vec![Place { block: usize::MAX, at: 0 }; n],
             threads,
+            phi: orthonormal(coarse),
+            k_phi: Vec::new(),
             last: Mutex::new(None),
             iterations: Mutex::new(Vec::new()),
         };
@@ -123,6 +178,10 @@ impl Iterative {
         if it.parts.iter().any(|p| p.terms.iter().any(|t| t.constant != 0.0)) {
             let kw0 = it.apply_with(&vec![0.0; n], 1.0);
             it.b_fixed = kw0.iter().map(|v| -v).collect();
+        }
+        if !it.phi.is_empty() {
+            let cols: Vec<&[f64]> = it.phi.iter().map(|c| c.as_slice()).collect();
+            it.k_phi = it.apply_many(&cols, 0.0);
         }
         // the preconditioner's blocks
         for (bi, vars) in groups.iter().enumerate() {
@@ -134,9 +193,8 @@ impl Iterative {
             it.blocks.push((members, vec![0.0; k * k]));
         }
         for part in &it.parts {
-            let diag = part.solve.diagonal_blocks(nd);
             for (q, f) in part.frames.iter().enumerate() {
-                let d = &diag[q * nd * nd..(q + 1) * nd * nd];
+                let d = &part.diag[q * nd * nd..(q + 1) * nd * nd];
                 // F D F^T
                 let mut local = [[0.0; 3]; 3];
                 for a in 0..nd {
@@ -177,34 +235,77 @@ impl Iterative {
         self.apply_with(x, 0.0)
     }
 
-    /// `K (x + ramp w0)`: the parts side by side in the machine's threads.
+    /// `K (x + ramp w0)`.
     fn apply_with(&self, x: &[f64], ramp: f64) -> Vec<f64> {
+        self.apply_many(&[x], ramp).pop().expect("one column")
+    }
+
+    /// `K (x + ramp w0)` for every column `x` of `xs`, each part's S
+    /// applied to all of them at once; the parts side by side in the
+    /// machine's threads.
+    fn apply_many(&self, xs: &[&[f64]], ramp: f64) -> Vec<Vec<f64>> {
         let n = self.nm + self.nr;
-        let nm = self.nm;
-        let one = |part: &AppliedPart| -> Vec<f64> {
-            let d = part.from_unknowns(x, ramp, nm, self.nd);
-            let y = part.to_unknowns(part.solve.apply(&d, 1));
-            let mut out = vec![0.0; n];
-            for_each_load(&y, &part.terms, |v, val| match v {
-                Var::M(i) => out[i] += val,
-                Var::R(i) => out[nm + i] += val,
+        let (nm, nd, k) = (self.nm, self.nd, xs.len());
+        let columns = |part: &AppliedPart| -> Vec<f64> { xs.iter().flat_map(|x| part.from_unknowns(x, ramp, nm, nd)).collect() };
+        // `K` of S d, column by column
+        let gather = |part: &AppliedPart, sd: &[f64]| -> Vec<Vec<f64>> {
+            let nc = part.terms.len();
+            (0..k)
+                .map(|c| {
+                    let y = part.to_unknowns(sd[c * nc..(c + 1) * nc].to_vec());
+                    let mut out = vec![0.0; n];
+                    for_each_load(&y, &part.terms, |v, val| match v {
+                        Var::M(i) => out[i] += val,
+                        Var::R(i) => out[nm + i] += val,
+                    });
+                    out
+                })
+                .collect()
+        };
+        // the other ranks' parts work while this rank does its own
+        let remote_parts: Vec<(usize, usize)> = (self.parts.iter().enumerate())
+            .filter_map(|(at, p)| match p.source {
+                Source::Remote(i) => Some((i, at)),
+                Source::Local(_) => None,
+            })
+            .collect();
+        if let (Some(remote), false) = (self.remote, remote_parts.is_empty()) {
+            remote.send(remote_parts.iter().map(|&(i, at)| (i, columns(&self.parts[at]))).collect(), k);
+        }
+        let local: Vec<(&AppliedPart, &SharedSolve)> = (self.parts.iter())
+            .filter_map(|p| match &p.source {
+                Source::Local(solve) => Some((p, solve)),
+                Source::Remote(_) => None,
+            })
+            .collect();
+        // each thread sums its parts' contributions
+        let sum = |ps: &[(&AppliedPart, &SharedSolve)]| -> Vec<Vec<f64>> {
+            let mut acc = vec![vec![0.0; n]; k];
+            for (part, solve) in ps {
+                add_columns(&mut acc, gather(part, &solve.apply(&columns(part), k)));
+            }
+            acc
+        };
+        let threads = self.threads.min(local.len()).max(1);
+        let mut out = if threads == 1 {
+            sum(&local)
+        } else {
+            // the parts in one run per thread
+            let chunk = local.len().div_ceil(threads);
+            let partials: Vec<Vec<Vec<f64>>> = std::thread::scope(|scope| {
+                let handles: Vec<_> = local.chunks(chunk).map(|ps| scope.spawn(move || sum(ps))).collect();
+                handles.into_iter().map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e))).collect()
             });
+            let mut out = vec![vec![0.0; n]; k];
+            for p in partials {
+                add_columns(&mut out, p);
+            }
             out
         };
-        let threads = self.threads.min(self.parts.len()).max(1);
-        let partials: Vec<Vec<f64>> = if threads == 1 {
-            self.parts.iter().map(one).collect()
-        } else {
-            let chunk = self.parts.len().div_ceil(threads);
-            std::thread::scope(|scope| {
-                let handles: Vec<_> = self.parts.chunks(chunk).map(|ps| scope.spawn(move || ps.iter().map(one).collect::<Vec<_>>())).collect();
-                handles.into_iter().flat_map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e))).collect()
-            })
-        };
-        let mut out = vec![0.0; n];
-        for p in partials {
-            for (o, v) in out.iter_mut().zip(p) {
-                *o += v;
+        if let (Some(remote), false) = (self.remote, remote_parts.is_empty()) {
+            for (i, sd) in remote.receive() {
+                let at = remote_parts.iter().find(|r| r.0 == i).expect("a part that was sent").1;
+                add_columns(&mut out, gather(&self.parts[at], &sd));
             }
         }
         out
@@ -220,8 +321,7 @@ impl Iterative {
         // the start: the last answer, with the tied relative displacements set
         let mut x0 = self.last.lock().ok().and_then(|l| l.clone()).filter(|l| l.len() == n).unwrap_or_else(|| vec![0.0; n]);
         let mut free = vec![true; n];
-        // slipping rows: (row, normal row, coupling, [(column, spring)])
-        let mut slip_rows: Vec<(usize, Option<usize>, f64, Vec<(usize, f64)>, f64)> = Vec::new();
+        let mut slip_rows: Vec<SlipRow> = Vec::new();
         for (p, rl) in rel.iter().enumerate() {
             for a in 0..nd {
                 if let Some(ri) = axes[p][a].r() {
@@ -236,20 +336,20 @@ impl Iterative {
                 for a in 1..nd {
                     let Some(ra) = axes[p][a].r() else { continue };
                     let springs = (1..nd).filter_map(|c| axes[p][c].r().map(|rc| (nm + rc, rl.spring[a][c]))).filter(|s| s.1 != 0.0).collect();
-                    slip_rows.push((nm + ra, rn, rl.coupling[a], springs, rl.force[a]));
+                    slip_rows.push(SlipRow { row: nm + ra, normal: rn, coupling: rl.coupling[a], springs, force: rl.force[a] });
                 }
             }
         }
         let unknowns: Vec<usize> = (0..n).filter(|&i| free[i]).collect();
         // rows of J x (full = K x): the slipping rows take in their normal row and springs
         let rows = |full: &mut Vec<f64>, x: &[f64]| {
-            for (i, rn, ca, springs, _) in &slip_rows {
-                let mut v = full[*i];
-                if let Some(rn) = rn {
-                    v += ca * full[*rn];
+            for s in &slip_rows {
+                let mut v = full[s.row];
+                if let Some(rn) = s.normal {
+                    v += s.coupling * full[rn];
                 }
-                v += springs.iter().map(|&(c, s)| s * x[c]).sum::<f64>();
-                full[*i] = v;
+                v += s.springs.iter().map(|&(c, k)| k * x[c]).sum::<f64>();
+                full[s.row] = v;
             }
         };
         let mut e0 = self.apply(&x0);
@@ -257,8 +357,8 @@ impl Iterative {
             *e -= bi;
         }
         rows(&mut e0, &x0);
-        for (i, _, _, _, force) in &slip_rows {
-            e0[*i] += force;
+        for s in &slip_rows {
+            e0[s.row] += s.force;
         }
         let rhs: Vec<f64> = unknowns.iter().map(|&i| -e0[i]).collect();
         let expand = |v: &[f64]| -> Vec<f64> {
@@ -274,16 +374,48 @@ impl Iterative {
             rows(&mut full, &dx);
             unknowns.iter().map(|&i| full[i]).collect()
         };
-        let precondition = self.preconditioner(&free, &slip_rows.iter().map(|s| (s.0, s.1, s.2, s.3.clone())).collect::<Vec<_>>());
+        let precondition = self.preconditioner(&free, &slip_rows);
+        let restrict = |full: &[f64]| -> Vec<f64> { unknowns.iter().map(|&i| full[i]).collect() };
+        // the coarse level: Φ and J Φ on the unknowns, Φ^T J Φ factorised
+        let phi = Mat::<f64>::from_fn(unknowns.len(), self.phi.len(), |i, c| self.phi[c][unknowns[i]]);
+        let j_phi = {
+            let cols: Vec<Vec<f64>> = self
+                .k_phi
+                .iter()
+                .zip(&self.phi)
+                .map(|(kp, p)| {
+                    let mut full = kp.clone();
+                    rows(&mut full, p);
+                    restrict(&full)
+                })
+                .collect();
+            Mat::<f64>::from_fn(unknowns.len(), cols.len(), |i, c| cols[c][i])
+        };
+        let coarse = (!self.phi.is_empty()).then(|| (phi.transpose() * &j_phi).partial_piv_lu());
         let m = |v: &[f64]| -> Vec<f64> {
-            let full = expand(v);
-            let out = precondition(&full);
-            unknowns.iter().map(|&i| out[i]).collect()
+            let (mut r1, y) = match &coarse {
+                Some(a0) => {
+                    let vm = Mat::<f64>::from_fn(v.len(), 1, |i, _| v[i]);
+                    let c = a0.solve(phi.transpose() * &vm);
+                    let jc = &j_phi * &c;
+                    let y = &phi * &c;
+                    ((0..v.len()).map(|i| v[i] - jc[(i, 0)]).collect::<Vec<f64>>(), Some(y))
+                }
+                None => (v.to_vec(), None),
+            };
+            let out = precondition(&expand(&r1));
+            r1 = restrict(&out);
+            if let Some(y) = y {
+                for (i, z) in r1.iter_mut().enumerate() {
+                    *z += y[(i, 0)];
+                }
+            }
+            r1
         };
         let scale = b.iter().map(|v| v * v).sum::<f64>().sqrt().max(rhs.iter().map(|v| v * v).sum::<f64>().sqrt()).max(f64::MIN_POSITIVE);
         let (dx, conv) = gmres::solve(j, m, &rhs, TOLERANCE * scale, RESTART, MAX_ITERATIONS);
         if let Ok(mut its) = self.iterations.lock() {
-            its.push(conv.iterations);
+            its.push(conv.iterations + 2); // and the applications for e0 and the forces
         }
         let residual = conv.residual / scale;
         if !conv.converged && !(residual <= 1e-6) {
@@ -303,10 +435,10 @@ impl Iterative {
 
     /// `M^-1`: each block restricted to its free unknowns, with the
     /// slipping rows as in [`Self::solve`], factorised once per solve.
-    fn preconditioner(&self, free: &[bool], slip_rows: &[(usize, Option<usize>, f64, Vec<(usize, f64)>)]) -> impl Fn(&[f64]) -> Vec<f64> + '_ {
+    fn preconditioner(&self, free: &[bool], slip_rows: &[SlipRow]) -> impl Fn(&[f64]) -> Vec<f64> + '_ {
         let mut slip_of = std::collections::HashMap::new();
         for (k, s) in slip_rows.iter().enumerate() {
-            slip_of.insert(s.0, k);
+            slip_of.insert(s.row, k);
         }
         let factors: Vec<(Vec<usize>, Option<faer::linalg::solvers::PartialPivLu<f64>>)> = self
             .blocks
@@ -317,13 +449,13 @@ impl Iterative {
                 let mut local = Mat::<f64>::from_fn(at.len(), at.len(), |i, j| m[at[i] * k + at[j]]);
                 for (li, &a) in at.iter().enumerate() {
                     let Some(&s) = slip_of.get(&members[a]) else { continue };
-                    let (_, rn, ca, springs) = &slip_rows[s];
-                    if let Some(pn) = rn.and_then(|rn| members.iter().position(|&u| u == rn)) {
+                    let s = &slip_rows[s];
+                    if let Some(pn) = s.normal.and_then(|rn| members.iter().position(|&u| u == rn)) {
                         for (lj, &b) in at.iter().enumerate() {
-                            local[(li, lj)] += ca * m[pn * k + b];
+                            local[(li, lj)] += s.coupling * m[pn * k + b];
                         }
                     }
-                    for &(c, sp) in springs {
+                    for &(c, sp) in &s.springs {
                         if let Some(lj) = at.iter().position(|&b| members[b] == c) {
                             local[(li, lj)] += sp;
                         }
@@ -383,5 +515,40 @@ impl AppliedPart {
         basis::transform_load(&mut y, nd, &self.edges);
         coords::rotate_vector(&mut y, nd, &self.frames);
         y
+    }
+}
+
+/// The columns of `cols`, orthonormalised by modified Gram-Schmidt (twice,
+/// for orthogonality to round-off); a column that depends on the earlier
+/// ones (to 1e-8 of its length) is dropped.
+fn orthonormal(cols: Vec<Vec<f64>>) -> Vec<Vec<f64>> {
+    let mut out: Vec<Vec<f64>> = Vec::with_capacity(cols.len());
+    for mut c in cols {
+        let before = c.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if before == 0.0 {
+            continue;
+        }
+        for _ in 0..2 {
+            for q in &out {
+                let d: f64 = q.iter().zip(&c).map(|(a, b)| a * b).sum();
+                for (x, qi) in c.iter_mut().zip(q) {
+                    *x -= d * qi;
+                }
+            }
+        }
+        let after = c.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if after > 1e-8 * before {
+            out.push(c.iter().map(|x| x / after).collect());
+        }
+    }
+    out
+}
+
+/// `acc[c] += cols[c]` for every column.
+fn add_columns(acc: &mut [Vec<f64>], cols: Vec<Vec<f64>>) {
+    for (a, y) in acc.iter_mut().zip(cols) {
+        for (o, v) in a.iter_mut().zip(y) {
+            *o += v;
+        }
     }
 }

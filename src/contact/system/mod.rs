@@ -23,17 +23,17 @@ use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
 
 use coords::{Axis, Blocks, Var};
-use iterative::{AppliedPart, Iterative};
+use iterative::{AppliedPart, Iterative, Remote, Source};
 use joins::{JoinElimination, SparseBlocks};
 use reduce::Reduced;
 
 use super::basis::{self, FaceBasis};
 use super::frame::{aligned_axis, frame, Frame};
 use super::law::{ContactState, PairResult};
-use super::rigid::{free_parts, RigidModes, Tie};
+use super::rigid::{self, free_parts, RigidModes, Tie};
 use crate::fem::sparse::NONE;
 use crate::model::{Model, ModelError};
-use crate::substructure::OperatorRef;
+use crate::substructure::{Condensation, OperatorRef};
 
 /// Where a part's interface nodes sit among the pairs.
 struct PartMap {
@@ -53,8 +53,13 @@ enum Slot {
     Join(usize),
 }
 
-/// Interface DOFs (all parts' interface nodes times the components) from
-/// which `[solver] interface = "auto"` solves the interface iteratively.
+/// Interface DOFs summed over the parts (a joint counted once per side)
+/// from which `[solver] interface = "auto"` solves the interface
+/// iteratively. Measured (docs/bench3d.md, 2 threads): below it the dense
+/// interface is 2.7-3.5 times faster (6,534 interface DOFs: 9.8 s against
+/// 34 s; 11,790: 34 s against 91 s); at 24,426 the iterative one takes 243 s
+/// and 15.0 GB against 553 s and 21.5 GB, and a column cut into 8 pieces
+/// (94,905) runs in 3.2 GB where the dense interface ran out of 24 GB.
 pub const ITERATIVE_FROM: usize = 20_000;
 
 const IDENTITY: Frame = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
@@ -91,7 +96,7 @@ impl Relation {
 }
 
 /// The interface problem, set up once; solved for any set of relations.
-pub struct InterfaceProblem {
+pub struct InterfaceProblem<'a> {
     nd: usize,
     pub frames: Vec<Frame>,
     pub basis: FaceBasis,
@@ -101,7 +106,7 @@ pub struct InterfaceProblem {
     /// Parts that share each join, and where the join is.
     join_parts: Vec<(Vec<usize>, [f64; 3])>,
     /// How the system is solved.
-    solver: Solver,
+    solver: Solver<'a>,
     parts: Vec<PartMap>,
     /// Rigid motions of each part and the position of each pair, to tell
     /// which parts nothing holds.
@@ -112,12 +117,12 @@ pub struct InterfaceProblem {
 }
 
 /// The interface system, dense or applied.
-enum Solver {
+enum Solver<'a> {
     /// Reduced to the relative displacements (reduce.rs); the join means,
     /// when they were eliminated sparsely (joins.rs).
     Dense { reduced: Reduced, joined: Option<JoinElimination> },
     /// Applied through the parts' factors and solved by GMRES (iterative.rs).
-    Iterative(Iterative),
+    Iterative(Iterative<'a>),
 }
 
 /// Result of one interface solve.
@@ -143,8 +148,11 @@ pub enum SolveFailure {
     Singular(Vec<usize>),
 }
 
-impl InterfaceProblem {
-    pub fn new(model: &Model, parts: &[OperatorRef]) -> Result<InterfaceProblem, ModelError> {
+impl<'a> InterfaceProblem<'a> {
+    /// The interface of the condensed `parts` (every part of the model, in
+    /// order); `remote` applies the S of parts condensed for the iterative
+    /// interface on other MPI ranks.
+    pub fn new(model: &Model, parts: &[OperatorRef], remote: Option<&'a dyn Remote>) -> Result<InterfaceProblem<'a>, ModelError> {
         let nd = model.nd;
         let np = model.pairs.len();
         let basis = FaceBasis::new(model);
@@ -237,7 +245,7 @@ impl InterfaceProblem {
                 })
             })
             .collect();
-        let join_parts = join_nodes.iter().map(|&n| (holders[n].clone(), model.coords[n])).collect();
+        let join_parts: Vec<(Vec<usize>, [f64; 3])> = join_nodes.iter().map(|&n| (holders[n].clone(), model.coords[n])).collect();
         let at: Vec<[(usize, usize); 2]> = model.pairs.iter().map(|p| [where_is[p.k], where_is[p.l]]).collect();
         let maps: Vec<PartMap> = parts
             .iter()
@@ -277,14 +285,18 @@ impl InterfaceProblem {
             msg: "the bodies are not held even with every contact stuck (the bonded interface system is singular): add a support".into(),
         };
         let nj = nm - nm_pairs;
-        let rigid = parts.iter().map(|p| RigidModes::new(model, &p.part.nodes(model))).collect();
+        let rigid: Vec<RigidModes> = parts.iter().map(|p| RigidModes::new(model, &p.part.nodes(model))).collect();
         let positions = model.pairs.iter().map(|p| model.coords[p.k]).collect();
-        if parts.iter().any(|p| p.applied.is_some()) {
-            let applied = parts
-                .iter()
-                .zip(&maps)
-                .filter_map(|(p, map)| {
-                    p.applied.map(|solve| AppliedPart { solve: solve.clone(), terms: terms_of(p.nc, map), frames: frames_of(map), edges: map.edges.clone(), g: p.g.to_vec() })
+        let is_applied = |p: &OperatorRef| p.how == Condensation::Applied && p.nc > 0;
+        if parts.iter().any(is_applied) {
+            let applied = (parts.iter().enumerate().zip(&maps))
+                .filter(|((_, p), _)| is_applied(p))
+                .map(|((i, p), map)| {
+                    let source = match p.applied {
+                        Some(solve) => Source::Local(solve.clone()),
+                        None => Source::Remote(i),
+                    };
+                    AppliedPart { source, diag: p.diag.to_vec(), terms: terms_of(p.nc, map), frames: frames_of(map), edges: map.edges.clone(), g: p.g.to_vec() }
                 })
                 .collect();
             let groups = axes
@@ -303,7 +315,39 @@ impl InterfaceProblem {
                     vars
                 })
                 .collect();
-            let solver = Solver::Iterative(Iterative::new(nd, nm, nr, applied, groups));
+            // the coarse space: each part's rigid motions on the means,
+            // shared between the parts that hold a node
+            let mut coarse = Vec::new();
+            for ((p, map), modes) in parts.iter().zip(&maps).zip(&rigid) {
+                if !is_applied(p) {
+                    continue;
+                }
+                for k in 0..rigid::n_modes(model.analysis) {
+                    let mut col = vec![0.0; nm + nr];
+                    for (&node, slot) in p.part.interface.iter().zip(&map.nodes) {
+                        let x = model.coords[node];
+                        match *slot {
+                            Slot::Join(j) => {
+                                let w = 1.0 / join_parts[j].0.len() as f64;
+                                for (a, axis) in joins[j].iter().enumerate().take(nd) {
+                                    if let Axis::Joined { m } = *axis {
+                                        col[m] += w * modes.along(x, IDENTITY[a])[k];
+                                    }
+                                }
+                            }
+                            Slot::Pair { pair, .. } => {
+                                for (a, axis) in axes[pair].iter().enumerate().take(nd) {
+                                    if let Axis::Free { m, .. } = *axis {
+                                        col[m] += 0.5 * modes.along(x, frames[pair][a])[k];
+                                    }
+                                }
+                            }
+                        }
+                    }
+                    coarse.push(col);
+                }
+            }
+            let solver = Solver::Iterative(Iterative::new(nd, nm, nr, applied, groups, coarse, remote));
             return Ok(InterfaceProblem { nd, frames, basis, axes, joins, join_parts, solver, parts: maps, rigid, positions, at });
         }
         let (blocks, joined) = if joins::worth_it(nj, nm_pairs, nr) {
