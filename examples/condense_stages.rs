@@ -12,7 +12,7 @@ use subcontact::driver::load_mesh;
 use subcontact::model::Model;
 use subcontact::scene::Scene;
 use subcontact::substructure::ordering::Ordering;
-use subcontact::substructure::{assembly, condense_parts, interior_nodes, numbering, parts, schur::PartialCholesky};
+use subcontact::substructure::{assembly, condense_parts, interior_nodes, numbering, parts, schur::PartialCholesky, Condensation};
 
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().collect();
@@ -28,7 +28,7 @@ fn main() -> anyhow::Result<()> {
         // whole `condense` per part: one after the other ("sequential"), or two threads ("concurrent")
         let t = Instant::now();
         let threads = if mode == "concurrent" { 2 } else { 1 };
-        let done: Vec<usize> = condense_parts(&model, parts(&model), threads)?.iter().map(|c| c.nc).collect();
+        let done: Vec<usize> = condense_parts(&model, parts(&model), threads, Condensation::Dense)?.iter().map(|c| c.nc).collect();
         println!("{mode}: condense of {} parts (nc {done:?}) {:.3}s", done.len(), t.elapsed().as_secs_f64());
         return Ok(());
     }

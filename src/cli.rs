@@ -56,9 +56,9 @@ pub enum Command {
         /// Parts condensed at once (default: the machine's cores, divided among MPI ranks).
         #[arg(long, value_name = "N", value_parser = at_least_one)]
         threads: Option<usize>,
-        /// How the interface system is solved: dense (S formed, factorised), iterative
-        /// (S applied through the parts' interior factors, GMRES; for joints of 1e4 DOFs and
-        /// more) or auto. Overrides [solver] interface.
+        /// How the interface system is solved: dense (S formed and factorised), iterative
+        /// (S applied through the parts' interior factors, GMRES) or auto (dense below 20,000
+        /// interface DOFs). Overrides [solver] interface.
         #[arg(long, value_enum)]
         interface: Option<InterfaceSolver>,
     },

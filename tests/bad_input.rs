@@ -82,6 +82,14 @@ fn misspelt_key_frction_is_named_with_its_line_and_the_expected_keys() {
 }
 
 #[test]
+fn misspelt_interface_solver_is_named_with_the_choices() {
+    let case = Case::new("bad-interface");
+    let scene = cylinder(&case, "bad", &[("friction = 0.8", "friction = 0.8\n[solver]\ninterface = \"iterativ\"")]);
+    let msg = solve_fails(&case, &scene);
+    says(&msg, &["bad.toml", "solver", "iterativ", "`auto`", "`dense`", "`iterative`"]);
+}
+
+#[test]
 fn poisson_ratio_of_one_half_is_rejected_suggesting_0_499() {
     let case = Case::new("bad-nu");
     let scene = cylinder(&case, "bad", &[("nu = 0.167", "nu = 0.5")]);

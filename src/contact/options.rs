@@ -71,15 +71,18 @@ pub enum StateRule {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Deserialize, clap::ValueEnum)]
 #[serde(rename_all = "snake_case")]
 pub enum InterfaceSolver {
-    /// Dense below [`crate::contact::system::ITERATIVE_FROM`] interface
-    /// DOFs, iterative from there on (default).
+    /// Dense below 20,000 interface DOFs (summed over the parts, a joint
+    /// counted once per side), iterative from there on (default).
     #[default]
     Auto,
     /// Each part condensed to a dense S; the interface system reduced to the
-    /// contact unknowns once and factorised densely at every iteration.
+    /// contact unknowns once and factorised densely at every iteration:
+    /// fastest while S fits in memory.
     Dense,
     /// No S is formed: each part's interior is factorised alone, and the
     /// interface system is solved by preconditioned GMRES that applies S
-    /// through those factors, warm-started from the last contact iteration.
+    /// through those factors, warm-started from the last contact iteration:
+    /// memory is the factors alone, for joints and cuts of 2e4 DOFs and
+    /// more. With MPI each rank applies its own parts' S.
     Iterative,
 }

@@ -20,7 +20,7 @@ use faer::Par;
 
 use super::ordering::Ordering;
 use super::schur::PartialCholesky;
-use super::{assembly, condense, condense_parts, interior_nodes, numbering, parts};
+use super::{assembly, condense, condense_parts, interior_nodes, numbering, parts, Condensation};
 use crate::fem::sparse::NONE;
 use crate::fem::Analysis;
 use crate::mesh::{Cell, CellKind};
@@ -165,7 +165,7 @@ fn condensation_equals_the_dense_schur_complement() {
     for part in parts {
         let dense = dense(&model, &part);
         let name = model.body_names(&part.bodies);
-        let c = condense(&model, part).expect("condense");
+        let c = condense(&model, part, Condensation::Dense).expect("condense");
         let nc = c.nc;
         assert_eq!(nc, 3 * model.nd, "{name}: every component of the three interface nodes");
         assert_eq!(c.ni, dense.interior.len(), "{name}");
@@ -183,6 +183,21 @@ fn condensation_equals_the_dense_schur_complement() {
         let eu = rel(dense.interior.iter().map(|&dof| u[dof]), d_i.iter().copied());
         assert!(eu < 1e-12, "{name}: recovered interior differs by {eu:.3e} (relative)");
         eprintln!("{name}: S {es:.1e}, G {eg:.1e}, d_i {eu:.1e} (max relative difference to dense)");
+        // condensed for the iterative interface: no S, but S applied, the
+        // same G and the same recovery
+        let applied = condense(&model, c.part.clone(), Condensation::Applied).expect("condense");
+        assert!(applied.s.is_empty() && applied.is_applied());
+        let cols = 2;
+        let x: Vec<f64> = (0..nc * cols).map(|i| ((i as f64) * 1.3).cos()).collect();
+        let sx = applied.apply(&x, cols);
+        let want: Vec<f64> = (0..cols).flat_map(|k| (&dense.s * DVector::from_column_slice(&x[k * nc..(k + 1) * nc])).iter().copied().collect::<Vec<_>>()).collect();
+        let ea = rel(sx.iter().copied(), want.iter().copied());
+        let eg = rel(applied.g[0].iter().copied(), dense.g.iter().copied());
+        let mut ua = vec![0.0; u.len()];
+        applied.recover(&model, &d_c, &[1.0], &mut ua);
+        let eu = rel(dense.interior.iter().map(|&dof| ua[dof]), d_i.iter().copied());
+        eprintln!("{name}, applied: S x {ea:.1e}, G {eg:.1e}, d_i {eu:.1e}");
+        assert!(ea < 1e-12 && eg < 1e-12 && eu < 1e-12, "{name}, applied: S x {ea:.1e}, G {eg:.1e}, d_i {eu:.1e}");
         // a part whose factor was freed is factorised again to recover: the same numbers
         let mut c = c;
         c.drop_factor();
@@ -203,7 +218,7 @@ fn condensation_equals_the_dense_schur_complement() {
 fn condensed_floating_body_keeps_its_rigid_body_modes() {
     let model = two_body_model();
     let part = parts(&model).into_iter().find(|p| p.bodies == [1]).expect("the right body");
-    let c = condense(&model, part).expect("condense");
+    let c = condense(&model, part, Condensation::Dense).expect("condense");
     let nc = c.nc;
     let s = DMatrix::from_column_slice(nc, nc, &c.s);
     let nodes = &c.part.interface;
@@ -326,8 +341,8 @@ fn nested_dissection_cuts_3d_fill() {
 #[test]
 fn parts_condensed_in_threads_equal_one_after_the_other() {
     let model = stacked_blocks(4, 3);
-    let one = condense_parts(&model, parts(&model), 1).expect("condense");
-    let two = condense_parts(&model, parts(&model), 2).expect("condense");
+    let one = condense_parts(&model, parts(&model), 1, Condensation::Dense).expect("condense");
+    let two = condense_parts(&model, parts(&model), 2, Condensation::Dense).expect("condense");
     assert_eq!(one.len(), 2);
     for (a, b) in one.iter().zip(&two) {
         assert_eq!(a.part.bodies, b.part.bodies);
@@ -340,7 +355,7 @@ fn parts_condensed_in_threads_equal_one_after_the_other() {
     free.prescribed.iter_mut().for_each(|p| *p = None);
     free.pairs.clear();
     for threads in [1, 2] {
-        let e = condense_parts(&free, parts(&free), threads).err().expect("a free part is refused");
+        let e = condense_parts(&free, parts(&free), threads, Condensation::Dense).err().expect("a free part is refused");
         assert!(e.to_string().contains("block0"), "{e}");
     }
 }

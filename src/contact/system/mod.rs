@@ -55,11 +55,13 @@ enum Slot {
 
 /// Interface DOFs summed over the parts (a joint counted once per side)
 /// from which `[solver] interface = "auto"` solves the interface
-/// iteratively. Measured (docs/bench3d.md, 2 threads): below it the dense
-/// interface is 2.7-3.5 times faster (6,534 interface DOFs: 9.8 s against
-/// 34 s; 11,790: 34 s against 91 s); at 24,426 the iterative one takes 243 s
-/// and 15.0 GB against 553 s and 21.5 GB, and a column cut into 8 pieces
-/// (94,905) runs in 3.2 GB where the dense interface ran out of 24 GB.
+/// iteratively (the `--help` of `InterfaceSolver::Auto` says the number
+/// too). Measured (docs/bench3d.md, 2 threads): below it the dense
+/// interface is 2-2.7 times faster (6,534 interface DOFs: 9.8 s against
+/// 26.8 s; 11,790: 33.9 s against 66.9 s, but 4.0 GB against 1.5 GB); at
+/// 24,426 the iterative one takes 205 s and 15.1 GB against 553 s and 21.5
+/// GB, and a column cut into 8 pieces (94,905 summed) runs in 154 s and 3.2
+/// GB where the dense interface ran out of 24 GB.
 pub const ITERATIVE_FROM: usize = 20_000;
 
 const IDENTITY: Frame = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
