@@ -100,8 +100,10 @@ pub struct Counters {
     /// Interface solves (contact iterations over all steps).
     pub interface_solves: usize,
     /// Applications of every part's S by the iterative interface (GMRES
-    /// iterations over all its solves; 0 for the dense interface).
+    /// iterations over all its solves; 0 for the dense interface), and per
+    /// solve (contact iteration) in order.
     pub interface_applications: usize,
+    pub interface_applications_per_solve: Vec<usize>,
     /// Interior displacement recoveries (part solves after the interface).
     pub interior_recoveries: usize,
     /// Nodal stress recoveries (only when `[output] fields` has "stress").

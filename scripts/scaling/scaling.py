@@ -124,7 +124,7 @@ def markdown(table, skipped) -> str:
         "",
         "Written by `make scaling` (scripts/scaling/scaling.py). Times in seconds (wall clock of the whole command; stages from summary.json), memory = peak resident set per rank (GB), bytes = sent by each rank (to rank 0: condensed operators and loads; from rank 0 at recovery: interface displacements; with the iterative interface, each application of S: the pieces' interface displacements out, S d back), applications = of every piece's S by the iterative interface (0: dense).",
         "",
-        "| run | DOFs | interface DOFs | iterations | applications | wall | assemble | condense | interface | recover | peak memory per rank (GB) | bytes sent per rank (MB) | per contact iteration |",
+        "| run | DOFs | interface DOFs | iterations | applications | wall | assemble | condense | interface | recover | peak memory per rank (GB) | bytes sent per rank (MB) | per contact iteration (MB) |",
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for r in table:
@@ -132,7 +132,7 @@ def markdown(table, skipped) -> str:
         ranks = r["ranks"]
         mem = " / ".join(gb(x["peak_memory_bytes"]) for x in ranks)
         sent = " / ".join(f"{x['bytes_sent'] / 1e6:.1f}" for x in ranks)
-        per_it = " / ".join(str(x["bytes_sent_per_contact_iteration"]) for x in ranks)
+        per_it = " / ".join(f"{x['bytes_sent_per_contact_iteration'] / 1e6:.1f}" for x in ranks)
         lines.append(
             f"| {r['run']} | {r['dofs']:,} | {r['interface_dofs']:,} | {r['iterations']} | {r.get('applications', 0)} | {r['wall_s']:.1f} | "
             f"{t.get('assemble', 0):.1f} | {t.get('condense', 0):.1f} | {t.get('interface', 0):.1f} | {t.get('recover', 0):.1f} | {mem} | {sent} | {per_it} |"

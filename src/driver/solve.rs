@@ -495,7 +495,8 @@ pub(super) fn solve(scene: &Scene, model: &Model, opts: &RunOptions, comm: &dyn 
     }
     let interface_dofs: usize = shared.iter().map(|&n| if in_pair[n] { nd } else { (0..nd).filter(|&c| model.prescribed[n * nd + c].is_none()).count() }).sum();
     let interior_dofs: usize = stats.iter().map(|s| s.0 - s.1).sum();
-    counters.interface_applications = problem.as_ref().map_or(0, |p| p.applications().iter().sum());
+    counters.interface_applications_per_solve = problem.as_ref().map_or_else(Vec::new, |p| p.applications());
+    counters.interface_applications = counters.interface_applications_per_solve.iter().sum();
     Ok(Some(Solved {
         steps,
         dofs_total: interior_dofs + interface_dofs,

@@ -74,8 +74,25 @@ impl InteriorSolve {
         self.chol.solve_many(b, k);
     }
 
-    /// `S x` for the `k` columns of `x` (column-major, nc rows each).
+    /// `S x` for the `k` columns of `x` (column-major, nc rows each). Zero
+    /// columns are not solved for (a coarse space's columns are zero on
+    /// most parts).
     pub fn apply(&self, x: &[f64], k: usize) -> Vec<f64> {
+        let nc = self.nc;
+        let nonzero: Vec<usize> = (0..k).filter(|&c| x[c * nc..(c + 1) * nc].iter().any(|&v| v != 0.0)).collect();
+        if nonzero.len() == k {
+            return self.apply_dense(x, k);
+        }
+        let packed: Vec<f64> = nonzero.iter().flat_map(|&c| x[c * nc..(c + 1) * nc].iter().copied()).collect();
+        let sx = self.apply_dense(&packed, nonzero.len());
+        let mut y = vec![0.0; nc * k];
+        for (j, &c) in nonzero.iter().enumerate() {
+            y[c * nc..(c + 1) * nc].copy_from_slice(&sx[j * nc..(j + 1) * nc]);
+        }
+        y
+    }
+
+    fn apply_dense(&self, x: &[f64], k: usize) -> Vec<f64> {
         let (ni, nc) = (self.ni, self.nc);
         let mut z = vec![0.0; ni * k];
         for &(r, j, v) in &self.k_ci {
