@@ -16,6 +16,7 @@ use std::time::Instant;
 use anyhow::{bail, Context, Result};
 
 mod messages;
+mod remote;
 mod solve;
 
 use crate::analytic;

@@ -20,6 +20,7 @@ use std::time::Instant;
 use anyhow::{anyhow, bail, Result};
 
 use super::messages::failure_message;
+use super::remote::{serve, Ranks};
 use super::{progress, RunOptions};
 use crate::contact::law::Strength;
 use crate::contact::system::iterative::Remote;
@@ -126,66 +127,6 @@ enum Order {
     Stop(String),
 }
 
-/// What rank 0 asks of the other ranks while it solves the iterative interface.
-#[derive(serde::Serialize, serde::Deserialize)]
-enum Service {
-    /// Apply the S of these parts (number, columns) to their `k` columns.
-    Apply { k: usize, work: Vec<(usize, Vec<f64>)> },
-    /// The interface stage is over (for this load step).
-    Done,
-}
-
-/// The other ranks' parts as rank 0's iterative interface sees them: each
-/// application of S scatters every part's columns to its owner and gathers
-/// `S d` back (8 nc bytes each way per part and column).
-struct Ranks<'c> {
-    comm: &'c dyn Comm,
-    owner: Vec<usize>,
-}
-
-impl Ranks<'_> {
-    /// Ends the other ranks' [`serve`].
-    fn done(&self) {
-        let per_rank: Vec<Service> = (0..self.comm.size()).map(|_| Service::Done).collect();
-        let _: Service = self.comm.scatter(&per_rank);
-    }
-}
-
-impl Remote for Ranks<'_> {
-    fn send(&self, work: Vec<(usize, Vec<f64>)>, k: usize) {
-        let mut per_rank: Vec<Service> = (0..self.comm.size()).map(|_| Service::Apply { k, work: Vec::new() }).collect();
-        for (i, d) in work {
-            if let Service::Apply { work, .. } = &mut per_rank[self.owner[i]] {
-                work.push((i, d));
-            }
-        }
-        let _: Service = self.comm.scatter(&per_rank);
-    }
-
-    fn receive(&self) -> Vec<(usize, Vec<f64>)> {
-        self.comm.gather(&Vec::<(usize, Vec<f64>)>::new()).into_iter().flatten().collect()
-    }
-}
-
-/// On the ranks other than 0: apply this rank's parts' S for rank 0 until
-/// it says the interface stage is over.
-fn serve(comm: &dyn Comm, mine: &[(usize, Condensed)]) {
-    loop {
-        match comm.scatter::<Service>(&[]) {
-            Service::Done => return,
-            Service::Apply { k, work } => {
-                let out: Vec<(usize, Vec<f64>)> = (work.into_iter())
-                    .map(|(i, d)| {
-                        let (_, part) = mine.iter().find(|(j, _)| *j == i).expect("rank 0 sends a part to its owner");
-                        (i, part.apply(&d, k))
-                    })
-                    .collect();
-                comm.gather(&out);
-            }
-        }
-    }
-}
-
 /// Recovers the interiors of `mine` under `lambda`: the displacements of
 /// their nodes, part by part (node order of `Part::nodes`).
 fn recover_parts(model: &Model, mine: &[(usize, Condensed)], d_c: &[(usize, Vec<f64>)], lambda: &[f64]) -> Vec<(usize, Vec<f64>)> {
@@ -284,8 +225,8 @@ pub(super) fn solve(scene: &Scene, model: &Model, opts: &RunOptions, comm: &dyn 
         mine.iter().map(|(_, c)| c.backward_error).fold(0.0, f64::max),
     );
     let stats: Vec<(usize, usize, usize, f64)> = comm.gather(&stats_local);
-    let ranks = Ranks { comm, owner: owner.clone() };
-    let remote: Option<&dyn Remote> = if service { Some(&ranks) } else { None };
+    let other_ranks = Ranks { comm, owner: owner.clone() };
+    let remote: Option<&dyn Remote> = if service { Some(&other_ranks) } else { None };
     let interface = |ops: &[OperatorRef]| -> Result<Option<InterfaceProblem>> {
         if ops.iter().all(|o| o.nc == 0) {
             return Ok(None);
@@ -306,7 +247,7 @@ pub(super) fn solve(scene: &Scene, model: &Model, opts: &RunOptions, comm: &dyn 
         };
         let built = interface(&ops);
         if service {
-            ranks.done();
+            other_ranks.done();
         }
         agree(comm, built)?
     } else {
@@ -390,7 +331,7 @@ pub(super) fn solve(scene: &Scene, model: &Model, opts: &RunOptions, comm: &dyn 
         }
         if service {
             if root {
-                ranks.done();
+                other_ranks.done();
             } else {
                 serve(comm, &mine);
             }

@@ -260,3 +260,23 @@ pub fn fixed_load(s: &[f64], terms: &[Terms], f: impl FnMut(Var, f64)) {
     let sw: Vec<f64> = (0..nc).map(|u| -(0..nc).map(|v| s[u + v * nc] * w0[v]).sum::<f64>()).collect();
     for_each_load(&sw, terms, f);
 }
+
+/// A part's interface displacements (global axes, nodal basis) from the
+/// unknowns: `Q T^T (W x + ramp w0)`, with `terms[u]` the unknowns of its
+/// interface DOF u, `frames` the frame of each of its interface nodes,
+/// `edges` its transformed face edges and `value` the unknowns' values.
+pub fn part_displacements(terms: &[Terms], frames: &[Frame], edges: &[[usize; 3]], nd: usize, ramp: f64, value: impl Fn(Var) -> f64) -> Vec<f64> {
+    let mut d = vec![0.0; terms.len()];
+    for (q, f) in frames.iter().enumerate() {
+        let mut local = [0.0; 3];
+        for (a, l) in local.iter_mut().enumerate().take(nd) {
+            let t = &terms[q * nd + a];
+            *l = t.constant * ramp + t.vars[..t.n].iter().map(|&(v, c)| c * value(v)).sum::<f64>();
+        }
+        for c in 0..nd {
+            d[q * nd + c] = (0..nd).map(|a| f[a][c] * local[a]).sum();
+        }
+    }
+    basis::to_nodal(&mut d, nd, edges);
+    d
+}

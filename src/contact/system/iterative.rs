@@ -40,11 +40,11 @@ use faer::linalg::solvers::Solve;
 use faer::Mat;
 
 use super::coords::{for_each_load, Axis, Terms, Var};
-use crate::contact::frame::Frame;
 use super::gmres;
 use super::reduce::combine;
 use super::{coords, Relation};
 use crate::contact::basis;
+use crate::contact::frame::Frame;
 use crate::contact::law::ContactState;
 use crate::substructure::interior::SharedSolve;
 
@@ -486,26 +486,10 @@ impl AppliedPart {
     /// The part's interface displacements (global axes, nodal basis) for
     /// the unknowns `x` and the prescribed values at `ramp`.
     fn from_unknowns(&self, x: &[f64], ramp: f64, nm: usize, nd: usize) -> Vec<f64> {
-        let mut d = vec![0.0; self.terms.len()];
-        for (q, f) in self.frames.iter().enumerate() {
-            let mut local = [0.0; 3];
-            for (a, l) in local.iter_mut().enumerate().take(nd) {
-                let t = &self.terms[q * nd + a];
-                *l = t.constant * ramp
-                    + t.vars[..t.n]
-                        .iter()
-                        .map(|&(v, c)| c * match v {
-                            Var::M(i) => x[i],
-                            Var::R(i) => x[nm + i],
-                        })
-                        .sum::<f64>();
-            }
-            for c in 0..nd {
-                d[q * nd + c] = (0..nd).map(|a| f[a][c] * local[a]).sum();
-            }
-        }
-        basis::to_nodal(&mut d, nd, &self.edges);
-        d
+        coords::part_displacements(&self.terms, &self.frames, &self.edges, nd, ramp, |v| match v {
+            Var::M(i) => x[i],
+            Var::R(i) => x[nm + i],
+        })
     }
 
     /// A force on the part's interface (global axes, nodal basis) in the

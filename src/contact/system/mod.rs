@@ -486,30 +486,19 @@ impl<'a> InterfaceProblem<'a> {
             .parts
             .iter()
             .map(|map| {
-                let mut d = vec![0.0; map.nodes.len() * nd];
-                for (q, slot) in map.nodes.iter().enumerate() {
+                let (mut terms, mut frames) = (Vec::with_capacity(map.nodes.len() * nd), Vec::with_capacity(map.nodes.len()));
+                for slot in &map.nodes {
                     let (axes, side, f) = match *slot {
-                        Slot::Pair { pair, side } => (&self.axes[pair], side, &self.frames[pair]),
-                        Slot::Join(j) => (&self.joins[j], 0, &IDENTITY),
+                        Slot::Pair { pair, side } => (&self.axes[pair], side, self.frames[pair]),
+                        Slot::Join(j) => (&self.joins[j], 0, IDENTITY),
                     };
-                    let mut local = [0.0; 3];
-                    for (a, l) in local.iter_mut().enumerate().take(nd) {
-                        let t = axes[a].terms(side);
-                        *l = t.constant * ramp
-                            + t.vars[..t.n]
-                                .iter()
-                                .map(|&(v, cv)| cv * match v {
-                                    Var::M(i) => m[i],
-                                    Var::R(i) => r[i],
-                                })
-                                .sum::<f64>();
-                    }
-                    for c in 0..nd {
-                        d[q * nd + c] = (0..nd).map(|a| f[a][c] * local[a]).sum();
-                    }
+                    terms.extend((0..nd).map(|a| axes[a].terms(side)));
+                    frames.push(f);
                 }
-                basis::to_nodal(&mut d, nd, &map.edges);
-                d
+                coords::part_displacements(&terms, &frames, &map.edges, nd, ramp, |v| match v {
+                    Var::M(i) => m[i],
+                    Var::R(i) => r[i],
+                })
             })
             .collect();
         Ok(InterfaceSolution { pairs, forces, rel: rels, d_c, residual })
