@@ -182,7 +182,9 @@ pub fn iterate(problem: &InterfaceProblem, laws: &[PairLaw], lambda: &[f64], h: 
             }
             h.sigma_n[p] = solution.pairs[p].sigma_n;
         }
-        let converged = !changed && residual <= FORCE_TOL * scale_f;
+        // (a loose interface solve is never the answer: the next, with the
+        // same states, is solved tightly)
+        let converged = !changed && residual <= FORCE_TOL * scale_f && !solution.loose;
         if converged || iteration >= max_iterations {
             if converged {
                 commit(h, &solution);

@@ -79,7 +79,9 @@ pub fn iterate(problem: &InterfaceProblem, laws: &[PairLaw], lambda: &[f64], h: 
             h.sigma_n[p] = r[p].sigma_n;
         }
         let settled = shear_moved <= 1e-12 * scale_s.max(f64::MIN_POSITIVE);
-        let converged = !changed && settled;
+        // (a loose interface solve is never the answer: the next, with the
+        // same states, is solved tightly)
+        let converged = !changed && settled && !solution.loose;
         if converged || cycled || iteration >= max_iterations {
             if converged {
                 h.rel_start = solution.rel.clone();

@@ -50,6 +50,10 @@ use crate::substructure::interior::SharedSolve;
 
 /// Relative tolerance of each interface solve, against the load.
 pub const TOLERANCE: f64 = 1e-10;
+/// The tolerance of a solve whose state set differs from the last one's:
+/// its answer only decides the next states (the contact iteration then
+/// solves the same states again at [`TOLERANCE`] before accepting it).
+pub const LOOSE_TOLERANCE: f64 = 1e-6;
 const RESTART: usize = 200;
 const MAX_ITERATIONS: usize = 5_000;
 
@@ -121,6 +125,8 @@ pub struct Iterative<'a> {
     /// r) and `K Φ`.
     phi: Vec<Vec<f64>>,
     k_phi: Vec<Vec<f64>>,
+    /// The state set of the last solve.
+    last_states: Mutex<Option<Vec<ContactState>>>,
     /// The last solution, where the next solve starts.
     last: Mutex<Option<Vec<f64>>>,
     /// GMRES iterations of every solve so far.
@@ -135,6 +141,8 @@ pub struct Answer {
     pub residual_r: Vec<f64>,
     /// `||J dx - rhs|| / ||b||` of the GMRES solve.
     pub residual: f64,
+    /// Solved to [`LOOSE_TOLERANCE`].
+    pub loose: bool,
 }
 
 impl<'a> Iterative<'a> {
@@ -171,6 +179,7 @@ impl<'a> Iterative<'a> {
             threads,
             phi: orthonormal(coarse),
             k_phi: Vec::new(),
+            last_states: Mutex::new(None),
             last: Mutex::new(None),
             iterations: Mutex::new(Vec::new()),
         };
@@ -318,6 +327,17 @@ impl<'a> Iterative<'a> {
         let (nd, nm, nr) = (self.nd, self.nm, self.nr);
         let n = nm + nr;
         let b = combine(&self.b, &self.b_fixed, lambda);
+        // loose while the states change: the same states as last time (or
+        // none to judge: bonded joins alone) are solved tightly
+        let states: Vec<ContactState> = rel.iter().map(|r| r.state).collect();
+        let loose = match self.last_states.lock() {
+            Ok(mut last) => {
+                let same = last.as_ref() == Some(&states);
+                *last = Some(states);
+                !same && !rel.is_empty()
+            }
+            Err(_) => false,
+        };
         // the start: the last answer, with the tied relative displacements set
         let mut x0 = self.last.lock().ok().and_then(|l| l.clone()).filter(|l| l.len() == n).unwrap_or_else(|| vec![0.0; n]);
         let mut free = vec![true; n];
@@ -413,7 +433,8 @@ impl<'a> Iterative<'a> {
             r1
         };
         let scale = b.iter().map(|v| v * v).sum::<f64>().sqrt().max(rhs.iter().map(|v| v * v).sum::<f64>().sqrt()).max(f64::MIN_POSITIVE);
-        let (dx, conv) = gmres::solve(j, m, &rhs, TOLERANCE * scale, RESTART, MAX_ITERATIONS);
+        let tolerance = if loose { LOOSE_TOLERANCE } else { TOLERANCE };
+        let (dx, conv) = gmres::solve(j, m, &rhs, tolerance * scale, RESTART, MAX_ITERATIONS);
         if let Ok(mut its) = self.iterations.lock() {
             its.push(conv.iterations + 2); // and the applications for e0 and the forces
         }
@@ -430,7 +451,7 @@ impl<'a> Iterative<'a> {
         if let Ok(mut last) = self.last.lock() {
             *last = Some(x.clone());
         }
-        Some(Answer { x, residual_r, residual })
+        Some(Answer { x, residual_r, residual, loose })
     }
 
     /// `M^-1`: each block restricted to its free unknowns, with the

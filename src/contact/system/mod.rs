@@ -137,8 +137,12 @@ pub struct InterfaceSolution {
     pub rel: Vec<[f64; 3]>,
     /// Global nodal interface displacements of each part (order of its interface nodes).
     pub d_c: Vec<Vec<f64>>,
-    /// Relative residual of the dense interface solve.
+    /// Relative residual of the interface solve.
     pub residual: f64,
+    /// Solved to the iterative interface's loose tolerance (its state set
+    /// differed from the last solve's): good for judging the states, not
+    /// as the answer.
+    pub loose: bool,
 }
 
 /// Why an interface solve failed.
@@ -438,12 +442,15 @@ impl<'a> InterfaceProblem<'a> {
         if !sliding.is_empty() {
             return Err(SolveFailure::Singular(sliding));
         }
-        let (r, wr_c, m, residual) = match &self.solver {
-            Solver::Dense { reduced, joined } => self.solve_dense(reduced, joined.as_ref(), rel, lambda, &states)?,
+        let (r, wr_c, m, residual, loose) = match &self.solver {
+            Solver::Dense { reduced, joined } => {
+                let (r, wr_c, m, residual) = self.solve_dense(reduced, joined.as_ref(), rel, lambda, &states)?;
+                (r, wr_c, m, residual, false)
+            }
             Solver::Iterative(it) => {
                 let answer = it.solve(&self.axes, rel, lambda).ok_or_else(|| self.diagnose(&states))?;
                 let nm = answer.x.len() - answer.residual_r.len();
-                (answer.x[nm..].to_vec(), answer.residual_r, answer.x[..nm].to_vec(), answer.residual)
+                (answer.x[nm..].to_vec(), answer.residual_r, answer.x[..nm].to_vec(), answer.residual, answer.loose)
             }
         };
         // the contact forces: -(W r - c); a free axis carries what its
@@ -501,7 +508,7 @@ impl<'a> InterfaceProblem<'a> {
                 })
             })
             .collect();
-        Ok(InterfaceSolution { pairs, forces, rel: rels, d_c, residual })
+        Ok(InterfaceSolution { pairs, forces, rel: rels, d_c, residual, loose })
     }
 
     /// The relative displacements, `W r - c`, the means and the residual
