@@ -11,8 +11,12 @@
 //! right-hand side. Nothing of size nc^2 exists: memory is the parts'
 //! interior factors plus a few vectors per GMRES iteration, and a contact
 //! iteration costs a number of sparse sweeps instead of a dense
-//! factorisation. Each solve starts from the last one's answer, so a
-//! contact iteration that changes few pairs costs few GMRES iterations.
+//! factorisation. Each solve starts from the last one's answer. A solve
+//! whose state set differs from the last one's only decides the next
+//! states, so it stops at [`LOOSE_TOLERANCE`]; the contact iteration
+//! accepts only a solve at [`TOLERANCE`], made once the states repeat
+//! (blocks3d_tet10: 345 applications of S in 9 contact iterations instead
+//! of 581 in 8, the answer within 1.4e-10 of the dense interface's).
 //!
 //! The preconditioner has two levels. The fine one is block Jacobi: per
 //! pair (its means and relative displacements) and per join node, the

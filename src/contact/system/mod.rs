@@ -57,11 +57,12 @@ enum Slot {
 /// from which `[solver] interface = "auto"` solves the interface
 /// iteratively (the `--help` of `InterfaceSolver::Auto` says the number
 /// too). Measured (docs/bench3d.md, 2 threads): below it the dense
-/// interface is 2-2.7 times faster (6,534 interface DOFs: 9.8 s against
-/// 26.8 s; 11,790: 33.9 s against 66.9 s, but 4.0 GB against 1.5 GB); at
-/// 24,426 the iterative one takes 205 s and 15.1 GB against 553 s and 21.5
-/// GB, and a column cut into 8 pieces (94,905 summed) runs in 154 s and 3.2
-/// GB where the dense interface ran out of 24 GB.
+/// interface is 1.2-2.4 times faster (6,534 interface DOFs: 8.0 s against
+/// 18.6 s; 11,790: 32.1 s against 39.3 s, but 4.1 GB against 1.5 GB); at
+/// 24,426 the iterative one takes 229 s and 15.5 GB against 552 s and 21.9
+/// GB; a column cut into 4 pieces (41,550 summed) 98 s and 4.7 GB against
+/// 115 s and 16.5 GB, into 8 pieces (94,905) 94 s and 3.2 GB where the
+/// dense interface ran out of 24 GB.
 pub const ITERATIVE_FROM: usize = 20_000;
 
 const IDENTITY: Frame = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
