@@ -231,7 +231,7 @@ pub(super) fn solve(scene: &Scene, model: &Model, opts: &RunOptions, comm: &dyn 
         if ops.iter().all(|o| o.nc == 0) {
             return Ok(None);
         }
-        Ok(Some(InterfaceProblem::new(model, ops, remote)?))
+        Ok(Some(InterfaceProblem::new(model, ops, remote, threads)?))
     };
     let problem = if root {
         let ops: Vec<OperatorRef> = if comm.size() > 1 {

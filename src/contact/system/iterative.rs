@@ -154,9 +154,10 @@ impl<'a> Iterative<'a> {
     /// the prescribed values) and the preconditioner's blocks; `groups`
     /// lists the unknowns of each pair and join node.
     /// `coarse`: the coarse space's columns over `[m; r]` (nonzero on means only).
-    /// `remote` applies the parts of other MPI ranks.
-    pub fn new(nd: usize, nm: usize, nr: usize, parts: Vec<AppliedPart>, groups: Vec<Vec<Var>>, coarse: Vec<Vec<f64>>, remote: Option<&'a dyn Remote>) -> Iterative<'a> {
-        let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    /// `remote` applies the parts of other MPI ranks; `threads` apply this
+    /// rank's parts side by side.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(nd: usize, nm: usize, nr: usize, parts: Vec<AppliedPart>, groups: Vec<Vec<Var>>, coarse: Vec<Vec<f64>>, remote: Option<&'a dyn Remote>, threads: usize) -> Iterative<'a> {
         let n = nm + nr;
         let idx = |v: Var| match v {
             Var::M(i) => i,

@@ -158,8 +158,8 @@ pub enum SolveFailure {
 impl<'a> InterfaceProblem<'a> {
     /// The interface of the condensed `parts` (every part of the model, in
     /// order); `remote` applies the S of parts condensed for the iterative
-    /// interface on other MPI ranks.
-    pub fn new(model: &Model, parts: &[OperatorRef], remote: Option<&'a dyn Remote>) -> Result<InterfaceProblem<'a>, ModelError> {
+    /// interface on other MPI ranks, `threads` this rank's ones.
+    pub fn new(model: &Model, parts: &[OperatorRef], remote: Option<&'a dyn Remote>, threads: usize) -> Result<InterfaceProblem<'a>, ModelError> {
         let nd = model.nd;
         let np = model.pairs.len();
         let basis = FaceBasis::new(model);
@@ -354,7 +354,7 @@ impl<'a> InterfaceProblem<'a> {
                     coarse.push(col);
                 }
             }
-            let solver = Solver::Iterative(Iterative::new(nd, nm, nr, applied, groups, coarse, remote));
+            let solver = Solver::Iterative(Iterative::new(nd, nm, nr, applied, groups, coarse, remote, threads));
             return Ok(InterfaceProblem { nd, frames, basis, axes, joins, join_parts, solver, parts: maps, rigid, positions, at });
         }
         let (blocks, joined) = if joins::worth_it(nj, nm_pairs, nr) {
