@@ -15,6 +15,11 @@
 //! global axes, supported or not: supports of interface nodes are applied in
 //! the interface system. A part without contact has no interface and is
 //! solved directly.
+//!
+//! Two condensations ([`Condensation`]): the dense S, from one factorisation
+//! with the interface ordered last ([`schur`]), or no S at all, the interior
+//! factorised alone and S applied through it ([`interior`], for the
+//! iterative interface of large joints and many substructures).
 
 pub mod assembly;
 pub mod ordering;
