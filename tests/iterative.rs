@@ -75,10 +75,8 @@ fn same_answer(case: &Case, scene: &str, dense_k: usize, iterative_k: usize, lat
 #[test]
 fn block_on_block_tet10_in_partial_slip_solved_iteratively_is_the_dense_answer() {
     let case = Case::new("iterative-blocks");
-    case.copy("geo/blocks3d.geo");
-    let text = common::scenes::edited("geo/blocks3d.toml", &[("setnumber = { lc = 0.1, hex = 0 }", "setnumber = { lc = 0.2, hex = 0 }")]);
-    case.write("blocks.toml", &text);
-    same_answer(&case, "blocks.toml", 1, 1, 1e-8);
+    let scene = common::scenes::coarse_blocks(&case);
+    same_answer(&case, scene, 1, 1, 1e-8);
 }
 
 #[test]
@@ -92,12 +90,6 @@ fn the_dam_slice_over_three_load_steps_solved_iteratively_is_the_dense_answer() 
 #[test]
 fn a_column_cut_into_substructures_solved_iteratively_is_the_uncut_dense_answer() {
     let case = Case::new("iterative-column");
-    std::fs::create_dir_all(case.dir.join("geo")).expect("geo directory");
-    std::fs::copy(common::repo_root().join("geo/blocks3d.geo"), case.dir.join("geo/blocks3d.geo")).expect("copy the geometry");
-    let text = common::scenes::edited("scripts/scaling/column.toml", &[
-        ("mesh = \"../../geo/blocks3d.geo\"", "mesh = \"geo/blocks3d.geo\""),
-        ("lc = 0.0357142857142857", "lc = 0.125"),
-    ]);
-    case.write("column.toml", &text);
+    common::scenes::column(&case, "column.toml", &[("lc = 0.0357142857142857", "lc = 0.125")]);
     same_answer(&case, "column.toml", 1, 4, 1e-8);
 }

@@ -48,9 +48,7 @@ fn solve_ok(case: &Case, n: usize, scene: &str, out: &str, extra: &[&str]) {
 #[test]
 fn parts_on_two_and_three_ranks_give_the_serial_answer() {
     let case = Case::new("mpi-same");
-    case.copy("geo/blocks3d.geo");
-    let text = common::scenes::edited("geo/blocks3d.toml", &[("setnumber = { lc = 0.1, hex = 0 }", "setnumber = { lc = 0.2, hex = 0 }")]);
-    case.write("blocks.toml", &text);
+    common::scenes::coarse_blocks(&case);
     case.copy("geo/dam.geo");
     case.copy("geo/dam.toml");
     for (scene, cut) in [("blocks.toml", "2"), ("dam.toml", "2")] {
@@ -84,14 +82,12 @@ fn parts_on_two_and_three_ranks_give_the_serial_answer() {
 #[test]
 fn the_iterative_interface_on_two_and_three_ranks_gives_the_serial_answer() {
     let case = Case::new("mpi-iterative");
-    case.copy("geo/blocks3d.geo");
-    let text = common::scenes::edited("geo/blocks3d.toml", &[("setnumber = { lc = 0.1, hex = 0 }", "setnumber = { lc = 0.2, hex = 0 }")]);
-    case.write("blocks.toml", &text);
+    let scene = common::scenes::coarse_blocks(&case);
     let extra = ["--substructures", "2", "--interface", "iterative"];
-    solve_ok(&case, 0, "blocks.toml", "serial", &extra);
+    solve_ok(&case, 0, scene, "serial", &extra);
     for n in [2, 3] {
         let out = format!("np{n}");
-        solve_ok(&case, n, "blocks.toml", &out, &extra);
+        solve_ok(&case, n, scene, &out, &extra);
         let e = csv_difference(&case.dir.join("serial/contact.csv"), &case.dir.join(format!("{out}/contact.csv")));
         let summary = common::json(&case.dir.join(format!("{out}/summary.json")));
         let ranks = summary["ranks"].as_array().expect("ranks");

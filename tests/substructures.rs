@@ -51,28 +51,15 @@ fn same_answer_when_cut(case: &Case, scene: &str, cuts: &[usize]) {
 #[test]
 fn block_on_block_cut_into_substructures_gives_the_uncut_answer() {
     let case = Case::new("substructures-blocks");
-    case.copy("geo/blocks3d.geo");
-    let text = common::scenes::edited("geo/blocks3d.toml", &[("setnumber = { lc = 0.1, hex = 0 }", "setnumber = { lc = 0.2, hex = 0 }")]);
-    case.write("blocks.toml", &text);
-    same_answer_when_cut(&case, "blocks.toml", &[2, 4]);
+    let scene = common::scenes::coarse_blocks(&case);
+    same_answer_when_cut(&case, scene, &[2, 4]);
 }
 
 #[test]
 fn a_column_whose_joins_outnumber_its_contact_unknowns_gives_the_uncut_answer() {
     let case = Case::new("substructures-column");
-    std::fs::create_dir_all(case.dir.join("geo")).expect("geo directory");
-    std::fs::copy(common::repo_root().join("geo/blocks3d.geo"), case.dir.join("geo/blocks3d.geo")).expect("copy the geometry");
-    let text = common::scenes::edited("scripts/scaling/column.toml", &[
-        ("mesh = \"../../geo/blocks3d.geo\"", "mesh = \"geo/blocks3d.geo\""),
-        ("lc = 0.0357142857142857", "lc = 0.125"),
-    ]);
-    case.write("column.toml", &text);
+    common::scenes::column(&case, "column.toml", &[("lc = 0.0357142857142857", "lc = 0.125")]);
     same_answer_when_cut(&case, "column.toml", &[4]);
-    let hex20 = common::scenes::edited("scripts/scaling/column.toml", &[
-        ("mesh = \"../../geo/blocks3d.geo\"", "mesh = \"geo/blocks3d.geo\""),
-        ("order = 1", "order = 2"),
-        ("lc = 0.0357142857142857, hex = 1", "lc = 0.25, hex = 1, serendipity = 1"),
-    ]);
-    case.write("column20.toml", &hex20);
+    common::scenes::column(&case, "column20.toml", &[("order = 1", "order = 2"), ("lc = 0.0357142857142857, hex = 1", "lc = 0.25, hex = 1, serendipity = 1")]);
     same_answer_when_cut(&case, "column20.toml", &[4]);
 }

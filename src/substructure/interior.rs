@@ -69,11 +69,6 @@ impl InteriorSolve {
         self.chol.stats().values * std::mem::size_of::<f64>()
     }
 
-    /// `K_ii^-1 b` in place, for the `k` columns of `b` (column-major).
-    fn solve_many(&self, b: &mut [f64], k: usize) {
-        self.chol.solve_many(b, k);
-    }
-
     /// `S x` for the `k` columns of `x` (column-major, nc rows each). Zero
     /// columns are not solved for (a coarse space's columns are zero on
     /// most parts).
@@ -100,7 +95,7 @@ impl InteriorSolve {
                 z[j as usize + c * ni] += v * x[r as usize + c * nc];
             }
         }
-        self.solve_many(&mut z, k);
+        self.chol.solve_many(&mut z, k);
         let mut y = vec![0.0; nc * k];
         for c in 0..k {
             let (x, y) = (&x[c * nc..(c + 1) * nc], &mut y[c * nc..(c + 1) * nc]);
@@ -126,7 +121,7 @@ impl InteriorSolve {
     pub fn condensed_loads(&self, f: &[Vec<f64>]) -> (Vec<Vec<f64>>, Vec<f64>) {
         let ni = self.ni;
         let mut x: Vec<f64> = f.iter().flat_map(|fk| fk[..ni].iter().copied()).collect();
-        self.solve_many(&mut x, f.len());
+        self.chol.solve_many(&mut x, f.len());
         let g = f
             .iter()
             .enumerate()
@@ -148,7 +143,7 @@ impl InteriorSolve {
         for &(r, j, v) in &self.k_ci {
             x[j as usize] -= v * d_c[r as usize];
         }
-        self.solve_many(&mut x, 1);
+        self.chol.solve_many(&mut x, 1);
         x
     }
 

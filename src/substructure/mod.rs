@@ -216,33 +216,7 @@ pub fn condense(model: &Model, part: Part, how: Condensation) -> Result<Condense
     let a = assembly::assemble(model, &part.cells, &dof_of, ni + nc)?;
     let assemble_s = t.elapsed().as_secs_f64();
     let node_of = interior_nodes(&dof_of, model.nd, ni);
-    if how == Condensation::Applied && nc > 0 {
-        let solve = InteriorSolve::factor(&a.k, ni, &node_of, Ordering::choose(ni, model.nd), faer::get_global_parallelism())
-            .map_err(|e| not_held(model, &part, e))?;
-        let (g, x) = solve.condensed_loads(&a.f);
-        // K [x_i; 0] = [F_i; K_ci x_i]: the interface rows hold by construction
-        let backward_error = a
-            .f
-            .iter()
-            .enumerate()
-            .map(|(k, f)| {
-                let xk: Vec<f64> = x[k * ni..(k + 1) * ni].iter().copied().chain(std::iter::repeat(0.0).take(nc)).collect();
-                let kx = a.k.mul(&xk);
-                let b: Vec<f64> = f[..ni].iter().chain(&kx[ni..]).copied().collect();
-                a.k.backward_error(&xk, &b, 0.0, ni)
-            })
-            .fold(0.0, f64::max);
-        for d in dof_of.iter_mut() {
-            if *d != NONE && *d >= ni {
-                *d = NONE;
-            }
-        }
-        let factor_bytes = solve.factor_bytes();
-        let condense_s = t.elapsed().as_secs_f64() - assemble_s;
-        let diag = solve.diagonal_blocks(model.nd);
-        let applied = Some(SharedSolve::new(solve));
-        return Ok(Condensed { part, dof_of, ni, nc, chol: None, applied, diag, factor_bytes, f: a.f, s: Vec::new(), g, assemble_s, condense_s, backward_error });
-    }
+    let ordering = Ordering::choose(ni, model.nd);
     // The caller's faer parallelism: sequential, as faer is built without its
     // `rayon` feature (it would add rayon and spindle). Measured on
     // blocks3d_hex (hex20, 51k interior equations a part), Par::rayon(2)
@@ -250,27 +224,39 @@ pub fn condense(model: &Model, part: Part, how: Condensation) -> Result<Condense
     // s against 4.9-6.5 s with other builds running; [`condense_parts`]'
     // threads use the two cores better.
     let par = faer::get_global_parallelism();
-    let chol = PartialCholesky::factor(&a.k, ni, &node_of, Ordering::choose(ni, model.nd), par).map_err(|e| not_held(model, &part, e))?;
-    let s = chol.schur(par);
-    let (g, x) = chol.condensed_loads(&s, &a.f);
+    // each case's solution (n values) and the right-hand side it solved, for the backward error
     let n = ni + nc;
-    let backward_error = a
-        .f
-        .iter()
-        .enumerate()
-        .map(|(k, f)| {
-            let b: Vec<f64> = f[..ni].iter().copied().chain(std::iter::repeat(0.0).take(nc)).collect();
-            a.k.backward_error(&x[k * n..(k + 1) * n], &b, chol.alpha(), ni)
-        })
-        .fold(0.0, f64::max);
+    let (chol, applied, diag, s, g, factor_bytes, solved) = if how == Condensation::Applied && nc > 0 {
+        let solve = InteriorSolve::factor(&a.k, ni, &node_of, ordering, par).map_err(|e| not_held(model, &part, e))?;
+        let (g, x) = solve.condensed_loads(&a.f);
+        // K [x_i; 0] = [F_i; K_ci x_i]: the interface rows hold by construction
+        let solved: Vec<(Vec<f64>, Vec<f64>, f64)> = (a.f.iter().enumerate())
+            .map(|(k, f)| {
+                let xk: Vec<f64> = x[k * ni..(k + 1) * ni].iter().copied().chain(std::iter::repeat(0.0).take(nc)).collect();
+                let b: Vec<f64> = f[..ni].iter().chain(&a.k.mul(&xk)[ni..]).copied().collect();
+                (xk, b, 0.0)
+            })
+            .collect();
+        let (diag, bytes) = (solve.diagonal_blocks(model.nd), solve.factor_bytes());
+        (None, Some(SharedSolve::new(solve)), diag, Vec::new(), g, bytes, solved)
+    } else {
+        let chol = PartialCholesky::factor(&a.k, ni, &node_of, ordering, par).map_err(|e| not_held(model, &part, e))?;
+        let s = chol.schur(par);
+        let (g, x) = chol.condensed_loads(&s, &a.f);
+        let solved = (a.f.iter().enumerate())
+            .map(|(k, f)| (x[k * n..(k + 1) * n].to_vec(), f[..ni].iter().copied().chain(std::iter::repeat(0.0).take(nc)).collect(), chol.alpha()))
+            .collect();
+        let bytes = chol.stats().values * std::mem::size_of::<f64>();
+        (Some(chol), None, Vec::new(), s, g, bytes, solved)
+    };
+    let backward_error = solved.iter().map(|(x, b, alpha)| a.k.backward_error(x, b, *alpha, ni)).fold(0.0, f64::max);
     for d in dof_of.iter_mut() {
         if *d != NONE && *d >= ni {
             *d = NONE;
         }
     }
     let condense_s = t.elapsed().as_secs_f64() - assemble_s;
-    let factor_bytes = chol.stats().values * std::mem::size_of::<f64>();
-    Ok(Condensed { part, dof_of, ni, nc, chol: Some(chol), applied: None, diag: Vec::new(), factor_bytes, f: a.f, s, g, assemble_s, condense_s, backward_error })
+    Ok(Condensed { part, dof_of, ni, nc, chol, applied, diag, factor_bytes, f: a.f, s, g, assemble_s, condense_s, backward_error })
 }
 
 /// The factor of a part again (assembled and factorised as [`condense`]

@@ -2,6 +2,25 @@
 //! edits, two stacked blocks meeting on a joint, and Lamé's cylinder with its
 //! closed form. Each returns the TOML text; the test writes it into its case.
 
+/// geo/blocks3d.toml on its coarse tet10 mesh (lc = 0.2: 918 interface
+/// DOFs, partial slip under the oblique push), written with its geometry
+/// into the case as "blocks.toml"; returns that name.
+pub fn coarse_blocks(case: &super::Case) -> &'static str {
+    case.copy("geo/blocks3d.geo");
+    case.write("blocks.toml", &edited("geo/blocks3d.toml", &[("setnumber = { lc = 0.1, hex = 0 }", "setnumber = { lc = 0.2, hex = 0 }")]));
+    "blocks.toml"
+}
+
+/// scripts/scaling/column.toml with `edits` after its mesh path, written as
+/// `name` into the case with geo/blocks3d.geo where the scene finds it.
+pub fn column(case: &super::Case, name: &str, edits: &[(&str, &str)]) {
+    std::fs::create_dir_all(case.dir.join("geo")).expect("geo directory");
+    std::fs::copy(super::repo_root().join("geo/blocks3d.geo"), case.dir.join("geo/blocks3d.geo")).expect("copy the geometry");
+    let mut all = vec![("mesh = \"../../geo/blocks3d.geo\"", "mesh = \"geo/blocks3d.geo\"")];
+    all.extend_from_slice(edits);
+    case.write(name, &edited("scripts/scaling/column.toml", &all));
+}
+
 /// `repo_toml` (e.g. "geo/cylinder.toml") with `edits` (from, to) applied in
 /// turn: each `from` must occur (the test names the scene it relies on), and
 /// its first occurrence is replaced.

@@ -139,8 +139,9 @@ pub struct Iterative<'a> {
 
 /// What a solve gives the interface problem.
 pub struct Answer {
-    /// `[m; r]`.
-    pub x: Vec<f64>,
+    /// The means and the relative displacements.
+    pub m: Vec<f64>,
+    pub r: Vec<f64>,
     /// `K x - b` on the relative rows: `-λ`.
     pub residual_r: Vec<f64>,
     /// `||J dx - rhs|| / ||b||` of the GMRES solve.
@@ -453,10 +454,11 @@ impl<'a> Iterative<'a> {
         }
         let kx = self.apply(&x);
         let residual_r = (0..nr).map(|r| kx[nm + r] - b[nm + r]).collect();
+        let (m, r) = (x[..nm].to_vec(), x[nm..].to_vec());
         if let Ok(mut last) = self.last.lock() {
-            *last = Some(x.clone());
+            *last = Some(x);
         }
-        Some(Answer { x, residual_r, residual, loose })
+        Some(Answer { m, r, residual_r, residual, loose })
     }
 
     /// `M^-1`: each block restricted to its free unknowns, with the

@@ -332,22 +332,14 @@ impl<'a> InterfaceProblem<'a> {
                 for k in 0..rigid::n_modes(model.analysis) {
                     let mut col = vec![0.0; nm + nr];
                     for (&node, slot) in p.part.interface.iter().zip(&map.nodes) {
-                        let x = model.coords[node];
-                        match *slot {
-                            Slot::Join(j) => {
-                                let w = 1.0 / join_parts[j].0.len() as f64;
-                                for (a, axis) in joins[j].iter().enumerate().take(nd) {
-                                    if let Axis::Joined { m } = *axis {
-                                        col[m] += w * modes.along(x, IDENTITY[a])[k];
-                                    }
-                                }
-                            }
-                            Slot::Pair { pair, .. } => {
-                                for (a, axis) in axes[pair].iter().enumerate().take(nd) {
-                                    if let Axis::Free { m, .. } = *axis {
-                                        col[m] += 0.5 * modes.along(x, frames[pair][a])[k];
-                                    }
-                                }
+                        // a mean is shared by the two sides of a pair, or by the parts at a join
+                        let (node_axes, frame, w) = match *slot {
+                            Slot::Join(j) => (&joins[j], IDENTITY, 1.0 / join_parts[j].0.len() as f64),
+                            Slot::Pair { pair, .. } => (&axes[pair], frames[pair], 0.5),
+                        };
+                        for (a, axis) in node_axes.iter().enumerate().take(nd) {
+                            if let Axis::Free { m, .. } | Axis::Joined { m } = *axis {
+                                col[m] += w * modes.along(model.coords[node], frame[a])[k];
                             }
                         }
                     }
@@ -449,9 +441,8 @@ impl<'a> InterfaceProblem<'a> {
                 (r, wr_c, m, residual, false)
             }
             Solver::Iterative(it) => {
-                let answer = it.solve(&self.axes, rel, lambda).ok_or_else(|| self.diagnose(&states))?;
-                let nm = answer.x.len() - answer.residual_r.len();
-                (answer.x[nm..].to_vec(), answer.residual_r, answer.x[..nm].to_vec(), answer.residual, answer.loose)
+                let a = it.solve(&self.axes, rel, lambda).ok_or_else(|| self.diagnose(&states))?;
+                (a.r, a.residual_r, a.m, a.residual, a.loose)
             }
         };
         // the contact forces: -(W r - c); a free axis carries what its
