@@ -18,7 +18,8 @@
 //!   oblique load: stick and slip, the friction law linearised;
 //! - the dam slice, three load steps: joints ending on a supported base
 //!   (held contact axes), gravity and water, pairs that open;
-//! - a column cut into 4 substructures: bonded joins beside the contact.
+//! - a column cut into 4 substructures, hex8 and hex20 (quad8 faces),
+//!   pressed and pushed: bonded joins beside the contact.
 
 mod common;
 
@@ -92,4 +93,7 @@ fn a_column_cut_into_substructures_solved_iteratively_is_the_uncut_dense_answer(
     let case = Case::new("iterative-column");
     common::scenes::column(&case, "column.toml", &[("lc = 0.0357142857142857", "lc = 0.125")]);
     same_answer(&case, "column.toml", 1, 4, 1e-8);
+    // hex20: serendipity quad8 faces in the transformed contact basis
+    common::scenes::column(&case, "column20.toml", &[("order = 1", "order = 2"), ("lc = 0.0357142857142857, hex = 1", "lc = 0.25, hex = 1, serendipity = 1")]);
+    same_answer(&case, "column20.toml", 1, 4, 1e-8);
 }
