@@ -1,35 +1,52 @@
 //! The mechanical model built from a mesh and its description ([`ModelSpec`]): bodies with their
 //! cells, boundary loads on facets, supports, and contact pairs.
 //!
-//! Contact splitting: a node on a contact group gets one copy per body that
-//! uses it (the first body keeps the mesh node, the others get new model
-//! nodes at the same place), so the two sides of a contact can move apart.
-//! With `groups = [a, b]` the two sides already have their own nodes, which
-//! are paired by position. Pairs are ordered (k on body I, l on body II),
-//! body I being the one listed first in `[[bodies]]`.
+//! Blocks: a body group may hold many volumes, and the contact groups'
+//! facets cut it into blocks (connected pieces between contact facets).
+//! Every block is a [`Body`] of the model, and a part of its own for the
+//! condensation: a rock mass of 500 blocks is one `[[bodies]]` entry.
+//!
+//! Contact splitting: a node of a contact facet gets one copy per fan of
+//! cells around it (the first keeps the mesh node, the others get new model
+//! nodes at the same place), so the sides of a contact can move apart, and
+//! where contacts cross every block keeps its own copy. Pairs follow the
+//! facets, so one copy can be in several pairs. With `groups = [a, b]` the
+//! two sides already have their own nodes, which are paired by position.
+//! Which side is I is written once, in contacts.rs.
 //!
 //! Everything else (loads, supports) refers to mesh nodes; loads are moved to
-//! the copy of the body the loaded facet bounds, supports hold every copy.
+//! the copy of the cell the loaded facet bounds, supports hold the copies of
+//! the cells their facets bound (a point support every copy).
 //!
-//! [`Model::build`] (build.rs) takes the steps in order: bodies, contacts,
-//! supports, the rigid-motion check, loads, pair normals and areas. The
-//! contact split, the node pairing and the junctions of contacts are in
-//! contacts.rs; the check that every rigid-body motion is held in held.rs.
+//! [`Model::build`] (build.rs) takes the steps in order: bodies, contacts
+//! (topology.rs: blocks and fans; contacts.rs: the split and the pairs),
+//! supports, the rigid-motion check (held.rs), loads, pair normals and
+//! areas. builder.rs holds what every step reads and its messages.
 
 mod build;
+mod builder;
 mod contacts;
 mod held;
 mod spec;
+mod topology;
+
+pub use contacts::CREASE_ANGLE;
 
 pub use spec::{BodySpec, ContactGroups, ContactSpec, InitialStress, LoadKind, LoadSpec, ModelSpec, SupportSpec};
 
 use crate::fem::Analysis;
 use crate::mesh::Cell;
 
-/// A body of the model: cells in model node numbering.
+/// A body of the model (a block of a `[[bodies]]` entry): cells in model
+/// node numbering.
 #[derive(Clone, Debug)]
 pub struct Body {
+    /// The body group's name.
     pub name: String,
+    /// Its `[[bodies]]` entry, and (block, blocks) when the group's contact
+    /// facets cut it into several blocks.
+    pub group: usize,
+    pub block: Option<(usize, usize)>,
     pub e: f64,
     pub nu: f64,
     pub density: f64,
@@ -66,16 +83,19 @@ pub struct Pair {
     pub area: f64,
 }
 
-/// One contact surface: the two bodies and the facets on body I's side.
+/// One contact group: its facets, each between two bodies (blocks).
 #[derive(Clone, Debug)]
 pub struct Interface {
     pub name: String,
-    /// A body of each side (the first listed).
+    /// The bodies of the first facet's two sides.
     pub body_i: usize,
     pub body_ii: usize,
-    /// Every body on side I (a shared group may join several bodies to one).
+    /// Every body on side I of some facet, ascending.
     pub side_i: Vec<usize>,
+    /// The facets, in side I's model nodes.
     pub facets: Vec<Cell>,
+    /// (body I, body II) of each facet.
+    pub sides: Vec<[usize; 2]>,
 }
 
 #[derive(Clone, Debug)]
@@ -106,6 +126,14 @@ pub struct Model {
 }
 
 impl Body {
+    /// `"rock"`, or `"rock" block 3 of 8` for a block of a group cut into several.
+    pub fn label(&self) -> String {
+        match self.block {
+            None => format!("\"{}\"", self.name),
+            Some((b, n)) => format!("\"{}\" block {} of {n}", self.name, b + 1),
+        }
+    }
+
     /// The initial stress at x (zero without one).
     pub fn initial_at(&self, x: [f64; 3], analysis: Analysis, gravity: [f64; 3]) -> [f64; 6] {
         self.initial.map_or([0.0; 6], |i| i.at(x, analysis, self.density, gravity))
@@ -133,6 +161,6 @@ impl Model {
 
     /// Names of the bodies, for messages.
     pub fn body_names(&self, ids: &[usize]) -> String {
-        ids.iter().map(|&b| format!("\"{}\"", self.bodies[b].name)).collect::<Vec<_>>().join(", ")
+        ids.iter().map(|&b| self.bodies[b].label()).collect::<Vec<_>>().join(", ")
     }
 }

@@ -82,13 +82,13 @@ fn two_body_model() -> Model {
         mesh_node: (0..n).collect(),
         coords,
         bodies: vec![
-            Body { name: "left".into(), e: 1000.0, nu: 0.3, density: 0.02, cells: quads(0, 2, ny, 1), initial: None },
-            Body { name: "right".into(), e: 3000.0, nu: 0.2, density: 0.01, cells: quads(first1, 1, ny, 100), initial: None },
+            Body { name: "left".into(), group: 0, block: None, e: 1000.0, nu: 0.3, density: 0.02, cells: quads(0, 2, ny, 1), initial: None },
+            Body { name: "right".into(), group: 0, block: None, e: 3000.0, nu: 0.2, density: 0.01, cells: quads(first1, 1, ny, 100), initial: None },
         ],
         loads,
         prescribed,
         pairs,
-        interfaces: vec![Interface { name: "cut".into(), body_i: 0, body_ii: 1, side_i: vec![0], facets: Vec::new() }],
+        interfaces: vec![Interface { name: "cut".into(), body_i: 0, body_ii: 1, side_i: vec![0], facets: Vec::new(), sides: Vec::new() }],
         cases: vec![vec![1.0], vec![1.0]],
         gravity_case: 0,
         initial_case: 1,
@@ -267,7 +267,7 @@ fn stacked_blocks(m: usize, h: usize) -> Model {
                 }
             }
         }
-        bodies.push(Body { name: format!("block{b}"), e: 1000.0 * (b + 1) as f64, nu: 0.25, density: 0.01, cells, initial: None });
+        bodies.push(Body { name: format!("block{b}"), group: b, block: None, e: 1000.0 * (b + 1) as f64, nu: 0.25, density: 0.01, cells, initial: None });
     }
     let n = coords.len();
     let per = nx * nx * nz;
@@ -290,7 +290,7 @@ fn stacked_blocks(m: usize, h: usize) -> Model {
         loads: Vec::new(),
         prescribed,
         pairs,
-        interfaces: vec![Interface { name: "joint".into(), body_i: 0, body_ii: 1, side_i: vec![0], facets: Vec::new() }],
+        interfaces: vec![Interface { name: "joint".into(), body_i: 0, body_ii: 1, side_i: vec![0], facets: Vec::new(), sides: Vec::new() }],
         cases: vec![vec![1.0], vec![1.0]],
         gravity_case: 0,
         initial_case: 1,
