@@ -75,7 +75,7 @@ fn relation(h: &History, law: &PairLaw, p: usize, area: f64, c: f64, force: [f64
     for i in 1..3 {
         constant[i] = (bk - db * pk) * n[i] - (1..3).map(|j| spring[i][j] * reference[j]).sum::<f64>();
     }
-    Relation { state, target, force: constant, coupling: [0.0, db * n[1], db * n[2]], spring }
+    Relation { state, target, force: constant, coupling: [0.0, db * n[1], db * n[2]], spring, pressure: pk }
 }
 
 /// How far a slipping pair's force is from the nonlinear law, `|λ_T - b ξ/|ξ||`.

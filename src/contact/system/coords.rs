@@ -52,6 +52,7 @@ pub enum Var {
 }
 
 /// `d'` of one side as `sum c var + const * ramp` (at most two terms).
+#[derive(Clone, Debug)]
 pub struct Terms {
     pub vars: [(Var, f64); 2],
     pub n: usize,

@@ -17,6 +17,7 @@ pub mod coords;
 pub mod gmres;
 pub mod iterative;
 pub mod joins;
+pub mod junction;
 pub mod reduce;
 
 use faer::linalg::solvers::Solve;
@@ -81,15 +82,19 @@ pub struct Relation {
     pub force: [f64; 3],
     pub coupling: [f64; 3],
     pub spring: [[f64; 3]; 3],
+    /// The normal pressure force p the relation was linearised at: a pair
+    /// at a junction, whose normal force is known only after the solve,
+    /// takes `force + coupling * pressure` (see [`junction`]).
+    pub pressure: f64,
 }
 
 impl Relation {
     /// Stuck at `target`, open, or slipping with a known tangential force.
     pub fn simple(state: ContactState, target: [f64; 3], force: [f64; 3]) -> Relation {
-        Relation { state, target, force, coupling: [0.0; 3], spring: [[0.0; 3]; 3] }
+        Relation { state, target, force, coupling: [0.0; 3], spring: [[0.0; 3]; 3], pressure: 0.0 }
     }
 
-    fn free_axis(&self, a: usize) -> bool {
+    pub fn free_axis(&self, a: usize) -> bool {
         match self.state {
             ContactState::Stick => false,
             ContactState::Slip => a > 0,
