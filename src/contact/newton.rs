@@ -134,7 +134,14 @@ pub fn iterate(problem: &InterfaceProblem, laws: &[PairLaw], lambda: &[f64], h: 
             let cr = cracked(h, p);
             let slip = sub(tangential(rel[p]), reference[p]);
             let trial = Trial { force: force[p], area, slip, gap: rel[p][0], stiffness: stiffness[p] };
-            next[p] = judge(st, &trial, &law.strength, cr, law.slip == SlipLaw::Coulomb, tol_u);
+            next[p] = match solution.as_tied[p] {
+                // an open junction pair its loop keeps shut: it closes (as
+                // a closing pair does, where it is) unless the force it would
+                // carry closed is tension beyond its strength
+                Some(f) if f[0] >= law.strength.tensile_limit(cr) * area => ContactState::Open,
+                Some(_) => judge(st, &Trial { gap: f64::NEG_INFINITY, ..trial }, &law.strength, cr, law.slip == SlipLaw::Coulomb, tol_u),
+                None => judge(st, &trial, &law.strength, cr, law.slip == SlipLaw::Coulomb, tol_u),
+            };
             if st == ContactState::Slip && next[p] == ContactState::Slip {
                 residual = residual.max(friction_residual(law, cr, area, stiffness[p], force[p], slip));
             }

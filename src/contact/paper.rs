@@ -7,7 +7,7 @@
 //! until that shear has settled. A state set that comes back after others is
 //! a cycle: it is reported, not resolved (the robust rule resolves it).
 
-use super::law::{judge_paper, ContactState};
+use super::law::{judge_paper, ContactState, PairResult};
 use super::system::{InterfaceProblem, Relation};
 use super::{cracked, norm, sub, tangential, Failed, History, Outcome, PairLaw};
 use super::options::SlipLaw;
@@ -35,7 +35,15 @@ pub fn iterate(problem: &InterfaceProblem, laws: &[PairLaw], lambda: &[f64], h: 
         let scale_s = r.iter().map(|p| p.sigma_n.abs().max(p.tau())).fold(0.0, f64::max);
         let tol_u = 1e-10 * scale_u;
 
-        let next: Vec<ContactState> = (0..n).map(|p| judge_paper(&r[p], &laws[p].strength)).collect();
+        // a junction pair its loop locks is judged by the forces it would carry tied
+        let judged = |p: usize| match solution.as_tied[p] {
+            Some(f) => {
+                let a = problem.area(p);
+                PairResult { sigma_n: f[0] / a, tau_t: f[1] / a, tau_b: f[2] / a, ..r[p] }
+            }
+            None => r[p],
+        };
+        let next: Vec<ContactState> = (0..n).map(|p| judge_paper(&judged(p), &laws[p].strength)).collect();
         let changed = next != h.states;
         let cycled = changed && history.iter().any(|old| *old == next);
 

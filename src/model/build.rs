@@ -212,7 +212,7 @@ impl Model {
             }
             let nrm = element::norm(nk);
             let normal = if nrm > 0.0 { [nk[0] / nrm, nk[1] / nrm, nk[2] / nrm] } else { [0.0; 3] };
-            pairs.push(Pair { k: p.k, l: p.l, contact: p.contact, normal, area });
+            pairs.push(Pair { k: p.k, l: p.l, contact: p.contact, normal, area, shares: p.shares.iter().map(|s| (s.facet, s.node)).collect() });
         }
         model.pairs = pairs;
         Ok(model)

@@ -81,6 +81,9 @@ pub struct Pair {
     /// Area the pair controls, `∫ N_k dA` over the facets of body I (with
     /// thickness or 2 pi r as for every other integral).
     pub area: f64,
+    /// The facets it takes its normal and area from: (index in its
+    /// interface's `facets`, position of k in that facet).
+    pub shares: Vec<(usize, usize)>,
 }
 
 /// One contact group: its facets, each between two bodies (blocks).
@@ -157,6 +160,31 @@ pub enum ModelError {
 impl Model {
     pub fn n_nodes(&self) -> usize {
         self.coords.len()
+    }
+
+    /// The pair at every node of every interface facet (`[interface][facet][node]`),
+    /// `usize::MAX` where the node is in no pair (the tip of a joint ending
+    /// inside a body).
+    pub fn facet_pairs(&self) -> Vec<Vec<Vec<usize>>> {
+        let mut out: Vec<Vec<Vec<usize>>> = self.interfaces.iter().map(|i| i.facets.iter().map(|f| vec![usize::MAX; f.nodes.len()]).collect()).collect();
+        for (p, pair) in self.pairs.iter().enumerate() {
+            for &(f, a) in &pair.shares {
+                out[pair.contact][f][a] = p;
+            }
+        }
+        out
+    }
+
+    /// The body of every model node (the first that has it; `usize::MAX`
+    /// for a node of no body).
+    pub fn body_of_node(&self) -> Vec<usize> {
+        let mut out = vec![usize::MAX; self.n_nodes()];
+        for (b, body) in self.bodies.iter().enumerate().rev() {
+            for &n in body.cells.iter().flat_map(|c| &c.nodes) {
+                out[n] = b;
+            }
+        }
+        out
     }
 
     /// Names of the bodies, for messages.

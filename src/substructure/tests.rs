@@ -72,7 +72,7 @@ fn two_body_model() -> Model {
     let right = Cell { kind: CellKind::Line2, nodes: vec![first1 + 1, first1 + 3], tag: 900 };
     let right2 = Cell { kind: CellKind::Line2, nodes: vec![first1 + 3, first1 + 5], tag: 901 };
     let loads = [right, right2].into_iter().map(|cell| FacetLoad { cell, sign: 1.0, kind: LoadKind::Traction([0.7, -0.3, 0.0]), body: 1, element: 0, case: 0 }).collect();
-    let pairs = iface0.iter().zip(&iface1).map(|(&k, &l)| Pair { k, l, contact: 0, normal: [1.0, 0.0, 0.0], area: 0.5 }).collect();
+    let pairs = iface0.iter().zip(&iface1).map(|(&k, &l)| Pair { k, l, contact: 0, normal: [1.0, 0.0, 0.0], area: 0.5, shares: Vec::new() }).collect();
     Model {
         scene: "two_body_model".into(),
         analysis: Analysis::PlaneStrain,
@@ -277,7 +277,7 @@ fn stacked_blocks(m: usize, h: usize) -> Model {
             prescribed[q * 3 + c] = Some(0.0); // the lower base
         }
     }
-    let pairs = (0..nx * nx).map(|q| Pair { k: h * nx * nx + q, l: per + q, contact: 0, normal: [0.0, 0.0, 1.0], area: 1.0 }).collect();
+    let pairs = (0..nx * nx).map(|q| Pair { k: h * nx * nx + q, l: per + q, contact: 0, normal: [0.0, 0.0, 1.0], area: 1.0, shares: Vec::new() }).collect();
     Model {
         scene: "stacked_blocks".into(),
         analysis: Analysis::Solid,

@@ -43,10 +43,10 @@ use std::sync::Mutex;
 use faer::linalg::solvers::Solve;
 use faer::Mat;
 
-use super::coords::{for_each_load, Axis, Terms, Var};
+use super::coords::{for_each_load, Terms, Var};
 use super::gmres;
 use super::reduce::combine;
-use super::{coords, Relation};
+use super::{coords, Freedom};
 use crate::contact::basis;
 use crate::contact::frame::Frame;
 use crate::contact::law::ContactState;
@@ -91,17 +91,6 @@ pub struct AppliedPart {
     pub edges: Vec<[usize; 3]>,
     /// Condensed loads, one per case (global axes, nodal basis).
     pub g: Vec<Vec<f64>>,
-}
-
-/// A slipping pair's free tangential row `i`, whose equation is the friction
-/// law's (see [`Relation`]):
-/// `(K x - b)_i + force + coupling (K x - b)_n + sum_c spring_c x_c = 0`.
-struct SlipRow {
-    row: usize,
-    normal: Option<usize>,
-    coupling: f64,
-    springs: Vec<(usize, f64)>,
-    force: f64,
 }
 
 /// Which block of the preconditioner an unknown is in, and where.
@@ -326,56 +315,75 @@ impl<'a> Iterative<'a> {
         out
     }
 
-    /// Solves the pairs' relations `rel` (pair `p`'s local axes numbered by
-    /// `axes[p]`) under the load factors `lambda`; `None` when GMRES does
-    /// not get below 1e-6 (a singular system: a body sliding freely).
-    pub fn solve(&self, axes: &[[Axis; 3]], rel: &[Relation], lambda: &[f64]) -> Option<Answer> {
-        let (nd, nm, nr) = (self.nd, self.nm, self.nr);
+    /// Solves one set of relations, given by the free directions `fr` of
+    /// the relative displacements (and `states`, to tell whether they
+    /// changed since the last solve), under the load factors `lambda`;
+    /// `None` when GMRES does not get below 1e-6 (a singular system: a
+    /// body sliding freely).
+    pub fn solve(&self, fr: &Freedom, states: &[ContactState], lambda: &[f64]) -> Option<Answer> {
+        let (nm, nr) = (self.nm, self.nr);
         let n = nm + nr;
+        let nu = nm + fr.cols.len();
         let b = combine(&self.b, &self.b_fixed, lambda);
         // loose while the states change: the same states as last time (or
         // none to judge: bonded joins alone) are solved tightly
-        let states: Vec<ContactState> = rel.iter().map(|r| r.state).collect();
         let loose = match self.last_states.lock() {
             Ok(mut last) => {
-                let same = last.as_ref() == Some(&states);
-                *last = Some(states);
-                !same && !rel.is_empty()
+                let same = last.as_deref() == Some(states);
+                *last = Some(states.to_vec());
+                !same && !states.is_empty()
             }
             Err(_) => false,
         };
-        // the start: the last answer, with the tied relative displacements set
-        let mut x0 = self.last.lock().ok().and_then(|l| l.clone()).filter(|l| l.len() == n).unwrap_or_else(|| vec![0.0; n]);
-        let mut free = vec![true; n];
-        let mut slip_rows: Vec<SlipRow> = Vec::new();
-        for (p, rl) in rel.iter().enumerate() {
-            for a in 0..nd {
-                if let Some(ri) = axes[p][a].r() {
-                    if !rl.free_axis(a) {
-                        free[nm + ri] = false;
-                        x0[nm + ri] = rl.target[a];
-                    }
+        // the unknowns: every mean, then the free columns of r
+        let expand = |v: &[f64]| -> Vec<f64> {
+            let mut full = vec![0.0; n];
+            full[..nm].copy_from_slice(&v[..nm]);
+            for (a, col) in fr.cols.iter().enumerate() {
+                for &(i, zi) in col {
+                    full[nm + i] += zi * v[nm + a];
                 }
             }
-            if rl.state == ContactState::Slip {
-                let rn = axes[p][0].r().map(|r| nm + r);
-                for a in 1..nd {
-                    let Some(ra) = axes[p][a].r() else { continue };
-                    let springs = (1..nd).filter_map(|c| axes[p][c].r().map(|rc| (nm + rc, rl.spring[a][c]))).filter(|s| s.1 != 0.0).collect();
-                    slip_rows.push(SlipRow { row: nm + ra, normal: rn, coupling: rl.coupling[a], springs, force: rl.force[a] });
-                }
+            full
+        };
+        let restrict = |full: &[f64]| -> Vec<f64> {
+            let mut v = full[..nm].to_vec();
+            v.extend(fr.cols.iter().map(|col| col.iter().map(|&(i, zi)| zi * full[nm + i]).sum::<f64>()));
+            v
+        };
+        // the start: the last answer, its r moved onto r0 + span(cols)
+        let last = self.last.lock().ok().and_then(|l| l.clone()).filter(|l| l.len() == n).unwrap_or_else(|| vec![0.0; n]);
+        let mut x0 = last.clone();
+        for (i, &v) in fr.r0.iter().enumerate() {
+            x0[nm + i] = v;
+        }
+        let mut shifted = vec![0.0; n];
+        for i in 0..nr {
+            shifted[nm + i] = last[nm + i] - fr.r0[i];
+        }
+        let y0 = restrict(&shifted);
+        for (a, col) in fr.cols.iter().enumerate() {
+            for &(i, zi) in col {
+                x0[nm + i] += zi * y0[nm + a];
             }
         }
-        let unknowns: Vec<usize> = (0..n).filter(|&i| free[i]).collect();
-        // rows of J x (full = K x): the slipping rows take in their normal row and springs
+        // rows of J x (full = K x): the lone slipping rows take in their
+        // normal row and springs; the junctions their springs (restricted)
         let rows = |full: &mut Vec<f64>, x: &[f64]| {
-            for s in &slip_rows {
-                let mut v = full[s.row];
+            for s in &fr.slips {
+                let mut v = full[nm + s.row];
                 if let Some(rn) = s.normal {
-                    v += s.coupling * full[rn];
+                    v += s.coupling * full[nm + rn];
                 }
-                v += s.springs.iter().map(|&(c, k)| k * x[c]).sum::<f64>();
-                full[s.row] = v;
+                v += s.springs.iter().map(|&(c, k)| k * x[nm + c]).sum::<f64>();
+                full[nm + s.row] = v;
+            }
+        };
+        let springs = |out: &mut [f64], v: &[f64]| {
+            for jb in &fr.junctions {
+                for (a, fa) in jb.cols.clone().enumerate() {
+                    out[nm + fa] += jb.cols.clone().enumerate().map(|(c, fc)| jb.kz[(a, c)] * v[nm + fc]).sum::<f64>();
+                }
             }
         };
         let mut e0 = self.apply(&x0);
@@ -383,27 +391,32 @@ impl<'a> Iterative<'a> {
             *e -= bi;
         }
         rows(&mut e0, &x0);
-        for s in &slip_rows {
-            e0[s.row] += s.force;
+        for s in &fr.slips {
+            e0[nm + s.row] += s.force;
         }
-        let rhs: Vec<f64> = unknowns.iter().map(|&i| -e0[i]).collect();
-        let expand = |v: &[f64]| -> Vec<f64> {
-            let mut full = vec![0.0; n];
-            for (&i, &x) in unknowns.iter().zip(v) {
-                full[i] = x;
+        let mut e0 = restrict(&e0);
+        springs(&mut e0, &restrict(&{
+            let mut y = vec![0.0; n];
+            y[nm..].copy_from_slice(&shifted[nm..]);
+            y
+        }));
+        for jb in &fr.junctions {
+            for (a, fa) in jb.cols.clone().enumerate() {
+                e0[nm + fa] += jb.fz[a];
             }
-            full
-        };
+        }
+        let rhs: Vec<f64> = e0.iter().map(|v| -v).collect();
         let j = |v: &[f64]| -> Vec<f64> {
             let dx = expand(v);
             let mut full = self.apply(&dx);
             rows(&mut full, &dx);
-            unknowns.iter().map(|&i| full[i]).collect()
+            let mut out = restrict(&full);
+            springs(&mut out, v);
+            out
         };
-        let precondition = self.preconditioner(&free, &slip_rows);
-        let restrict = |full: &[f64]| -> Vec<f64> { unknowns.iter().map(|&i| full[i]).collect() };
-        // the coarse level: Φ and J Φ on the unknowns, Φ^T J Φ factorised
-        let phi = Mat::<f64>::from_fn(unknowns.len(), self.phi.len(), |i, c| self.phi[c][unknowns[i]]);
+        let precondition = self.preconditioner(fr);
+        // the coarse level: Φ and J Φ on the unknowns (Φ is zero on r), Φ^T J Φ factorised
+        let phi = Mat::<f64>::from_fn(nu, self.phi.len(), |i, c| if i < nm { self.phi[c][i] } else { 0.0 });
         let j_phi = {
             let cols: Vec<Vec<f64>> = self
                 .k_phi
@@ -415,11 +428,11 @@ impl<'a> Iterative<'a> {
                     restrict(&full)
                 })
                 .collect();
-            Mat::<f64>::from_fn(unknowns.len(), cols.len(), |i, c| cols[c][i])
+            Mat::<f64>::from_fn(nu, cols.len(), |i, c| cols[c][i])
         };
         let coarse = (!self.phi.is_empty()).then(|| (phi.transpose() * &j_phi).partial_piv_lu());
         let m = |v: &[f64]| -> Vec<f64> {
-            let (mut r1, y) = match &coarse {
+            let (r1, y) = match &coarse {
                 Some(a0) => {
                     let vm = Mat::<f64>::from_fn(v.len(), 1, |i, _| v[i]);
                     let c = a0.solve(phi.transpose() * &vm);
@@ -429,14 +442,13 @@ impl<'a> Iterative<'a> {
                 }
                 None => (v.to_vec(), None),
             };
-            let out = precondition(&expand(&r1));
-            r1 = restrict(&out);
+            let mut out = precondition(&r1);
             if let Some(y) = y {
-                for (i, z) in r1.iter_mut().enumerate() {
+                for (i, z) in out.iter_mut().enumerate() {
                     *z += y[(i, 0)];
                 }
             }
-            r1
+            out
         };
         let scale = b.iter().map(|v| v * v).sum::<f64>().sqrt().max(rhs.iter().map(|v| v * v).sum::<f64>().sqrt()).max(f64::MIN_POSITIVE);
         let tolerance = if loose { LOOSE_TOLERANCE } else { TOLERANCE };
@@ -449,8 +461,8 @@ impl<'a> Iterative<'a> {
             return None;
         }
         let mut x = x0;
-        for (&i, d) in unknowns.iter().zip(&dx) {
-            x[i] += d;
+        for (xi, d) in x.iter_mut().zip(expand(&dx)) {
+            *xi += d;
         }
         let kx = self.apply(&x);
         let residual_r = (0..nr).map(|r| kx[nm + r] - b[nm + r]).collect();
@@ -461,46 +473,84 @@ impl<'a> Iterative<'a> {
         Some(Answer { m, r, residual_r, residual, loose })
     }
 
-    /// `M^-1`: each block restricted to its free unknowns, with the
-    /// slipping rows as in [`Self::solve`], factorised once per solve.
-    fn preconditioner(&self, free: &[bool], slip_rows: &[SlipRow]) -> impl Fn(&[f64]) -> Vec<f64> + '_ {
+    /// `M^-1` on the unknowns of a solve (every mean, then the free columns
+    /// `fr.cols`): each block `P^T B P` over the unknowns it touches, with
+    /// the slipping rows as in [`Self::solve`], factorised once per solve.
+    fn preconditioner(&self, fr: &Freedom) -> impl Fn(&[f64]) -> Vec<f64> + '_ {
+        let nm = self.nm;
+        // the unknowns of each block, with their entries over its members
+        let mut touching: Vec<Vec<(usize, Vec<(usize, f64)>)>> = vec![Vec::new(); self.blocks.len()];
+        for i in 0..nm {
+            let p = self.place[i];
+            if p.block != usize::MAX {
+                touching[p.block].push((i, vec![(p.at, 1.0)]));
+            }
+        }
+        for (a, col) in fr.cols.iter().enumerate() {
+            let p = self.place[nm + col[0].0];
+            touching[p.block].push((nm + a, col.iter().map(|&(i, zi)| (self.place[nm + i].at, zi)).collect()));
+        }
+        let mut unknown_of_row = std::collections::HashMap::new();
+        for (a, col) in fr.cols.iter().enumerate() {
+            if let [(i, _)] = col.as_slice() {
+                unknown_of_row.insert(*i, nm + a);
+            }
+        }
         let mut slip_of = std::collections::HashMap::new();
-        for (k, s) in slip_rows.iter().enumerate() {
-            slip_of.insert(s.row, k);
+        for s in &fr.slips {
+            slip_of.insert(nm + fr.pos[s.row], s);
+        }
+        let mut junction_of = std::collections::HashMap::new();
+        for jb in &fr.junctions {
+            for (a, fa) in jb.cols.clone().enumerate() {
+                junction_of.insert(nm + fa, (jb, a));
+            }
         }
         let factors: Vec<(Vec<usize>, Option<faer::linalg::solvers::PartialPivLu<f64>>)> = self
             .blocks
             .iter()
-            .map(|(members, m)| {
+            .zip(&touching)
+            .map(|((members, m), us)| {
                 let k = members.len();
-                let at: Vec<usize> = (0..k).filter(|&a| free[members[a]]).collect();
-                let mut local = Mat::<f64>::from_fn(at.len(), at.len(), |i, j| m[at[i] * k + at[j]]);
-                for (li, &a) in at.iter().enumerate() {
-                    let Some(&s) = slip_of.get(&members[a]) else { continue };
-                    let s = &slip_rows[s];
-                    if let Some(pn) = s.normal.and_then(|rn| members.iter().position(|&u| u == rn)) {
-                        for (lj, &b) in at.iter().enumerate() {
-                            local[(li, lj)] += s.coupling * m[pn * k + b];
+                // B P: the block times each unknown's entries
+                let bp: Vec<Vec<f64>> = us.iter().map(|(_, e)| (0..k).map(|row| e.iter().map(|&(at, z)| m[row * k + at] * z).sum()).collect()).collect();
+                let mut local = Mat::<f64>::from_fn(us.len(), us.len(), |i, j| us[i].1.iter().map(|&(at, z)| z * bp[j][at]).sum());
+                for (li, (u, _)) in us.iter().enumerate() {
+                    if let Some(s) = slip_of.get(u) {
+                        if let Some(pn) = s.normal.and_then(|rn| members.iter().position(|&x| x == nm + rn)) {
+                            for (lj, bpj) in bp.iter().enumerate() {
+                                local[(li, lj)] += s.coupling * bpj[pn];
+                            }
+                        }
+                        for &(c, sp) in &s.springs {
+                            let uc = unknown_of_row.get(&c);
+                            if let Some(lj) = us.iter().position(|(v, _)| Some(v) == uc) {
+                                local[(li, lj)] += sp;
+                            }
                         }
                     }
-                    for &(c, sp) in &s.springs {
-                        if let Some(lj) = at.iter().position(|&b| members[b] == c) {
-                            local[(li, lj)] += sp;
+                    if let Some((jb, a)) = junction_of.get(u) {
+                        for (lj, (v, _)) in us.iter().enumerate() {
+                            if let Some((jb2, c)) = junction_of.get(v) {
+                                if std::ptr::eq(*jb, *jb2) {
+                                    local[(li, lj)] += jb.kz[(*a, *c)];
+                                }
+                            }
                         }
                     }
                 }
-                let members: Vec<usize> = at.iter().map(|&a| members[a]).collect();
-                let lu = (!members.is_empty()).then(|| local.partial_piv_lu());
-                (members, lu)
+                let unknowns: Vec<usize> = us.iter().map(|(u, _)| *u).collect();
+                let lu = (!unknowns.is_empty()).then(|| local.partial_piv_lu());
+                (unknowns, lu)
             })
             .collect();
         move |v: &[f64]| {
             let mut out = v.to_vec();
-            for (members, lu) in &factors {
+            for (unknowns, lu) in &factors {
                 let Some(lu) = lu else { continue };
-                let rhs = Mat::<f64>::from_fn(members.len(), 1, |i, _| v[members[i]]);
+                let rhs = Mat::<f64>::from_fn(unknowns.len(), 1, |i, _| v[unknowns[i]]);
                 let z = lu.solve(&rhs);
-                for (i, &u) in members.iter().enumerate() {
+                for (i, &u) in unknowns.iter().enumerate() {
                     let zi = z[(i, 0)];
                     out[u] = if zi.is_finite() { zi } else { v[u] };
                 }

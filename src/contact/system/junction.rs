@@ -125,6 +125,23 @@ pub struct Tied {
     /// must carry (over r) to their least-norm forces.
     rows: Vec<(usize, usize)>,
     carry: DMatrix<f64>,
+    /// The area of each of the junction's pairs.
+    areas: Vec<f64>,
+}
+
+/// The map from the force `g` the tied `rows` must carry (over r) to their
+/// forces of least `sum λ_i^2 / A_i` with `C_T^T λ = g`: `λ = D pinv(C_T^T D) g`,
+/// `D = diag(sqrt(A))`.
+fn carry(all: &[[Vec<f64>; 3]], rows: &[(usize, usize)], areas: &[f64], n_r: usize) -> DMatrix<f64> {
+    let m_t = rows.len();
+    if m_t == 0 || n_r == 0 {
+        return DMatrix::zeros(m_t, n_r);
+    }
+    let d: Vec<f64> = rows.iter().map(|&(j, _)| areas[j].max(f64::MIN_POSITIVE).sqrt()).collect();
+    let ctd = DMatrix::<f64>::from_fn(n_r, m_t, |c, i| all[rows[i].0][rows[i].1][c] * d[i]);
+    let eps = RANK_TOLERANCE * ctd.norm();
+    let pinv = ctd.pseudo_inverse(eps).expect("a non-negative tolerance");
+    DMatrix::from_fn(m_t, n_r, |i, c| d[i] * pinv[(i, c)])
 }
 
 impl Junction {
@@ -269,23 +286,25 @@ impl Junction {
                 f += &row_a * fa;
             }
         }
-        // least sum λ^2 / A over the tied rows with C_T^T λ = g: λ = D pinv(C_T^T D) g
-        let d: Vec<f64> = rows.iter().map(|&(j, _)| area(self.pairs[j]).max(f64::MIN_POSITIVE).sqrt()).collect();
-        let ctd = DMatrix::<f64>::from_fn(n_r, m_t, |c, i| self.rows[rows[i].0][rows[i].1][c] * d[i]);
-        let carry = if m_t == 0 || n_r == 0 {
-            DMatrix::zeros(m_t, n_r)
-        } else {
-            let eps = RANK_TOLERANCE * ctd.norm();
-            let pinv = ctd.pseudo_inverse(eps).expect("a non-negative tolerance");
-            DMatrix::from_fn(m_t, n_r, |i, c| d[i] * pinv[(i, c)])
-        };
-        Tied { z, r0, k, f, rows, carry }
+        let areas: Vec<f64> = self.pairs.iter().map(|&p| area(p)).collect();
+        let carry = carry(&self.rows, &rows, &areas, n_r);
+        Tied { z, r0, k, f, rows, carry, areas }
     }
 
     /// The contact force on body I of each of the junction's pairs (local
-    /// axes) and its relative displacement, from the junction's r and
-    /// `g = -(W r - c)` on it (the force the pairs must carry, over r).
-    pub fn forces(&self, tied: &Tied, rel: &[Relation], r: &DVector<f64>, g: &DVector<f64>, ramp: f64) -> Vec<([f64; 3], [f64; 3])> {
+    /// axes), its relative displacement, and its force as if tied where it
+    /// is locked, from the junction's r and `g = -(W r - c)` on it (the
+    /// force the pairs must carry, over r).
+    ///
+    /// An open pair's normal is locked when the tied rows fix it (its row
+    /// has no part along the free directions Z): the loop's other ties keep
+    /// its copies together, its gap is zero whatever it carries. Closing it
+    /// would change no displacement, only the forces, so its gap cannot
+    /// tell whether it should close: the least-norm forces with every locked
+    /// normal tied can (None where nothing is locked). A slipping pair the
+    /// loop keeps from slipping needs no such care: its slip is what the
+    /// loop allows, and the friction law judges it as any other.
+    pub fn forces(&self, tied: &Tied, rel: &[Relation], r: &DVector<f64>, g: &DVector<f64>, ramp: f64) -> Vec<([f64; 3], [f64; 3], Option<[f64; 3]>)> {
         let nd = self.nd;
         let rels: Vec<[f64; 3]> = (0..self.pairs.len())
             .map(|j| std::array::from_fn(|a| if a < nd { DVector::from_column_slice(&self.rows[j][a]).dot(r) + self.consts[j][a] * ramp } else { 0.0 }))
@@ -293,7 +312,7 @@ impl Junction {
         // what the tied rows carry: g less the slipping pairs' friction
         let carried = g - (&tied.k * r + &tied.f);
         let lambda = &tied.carry * carried;
-        let mut out: Vec<([f64; 3], [f64; 3])> = rels.iter().map(|&x| ([0.0; 3], x)).collect();
+        let mut out: Vec<([f64; 3], [f64; 3], Option<[f64; 3]>)> = rels.iter().map(|&x| ([0.0; 3], x, None)).collect();
         for (i, &(j, a)) in tied.rows.iter().enumerate() {
             out[j].0[a] = lambda[i];
         }
@@ -305,6 +324,39 @@ impl Junction {
             for a in 1..nd {
                 out[j].0[a] = rl.force[a] + rl.coupling[a] * rl.pressure + (1..nd).map(|c| rl.spring[a][c] * rels[j][c]).sum::<f64>();
             }
+        }
+        // open pairs whose normal the ties lock: no part along Z
+        let mut locked: Vec<(usize, usize)> = Vec::new();
+        for (j, &p) in self.pairs.iter().enumerate() {
+            if rel[p].state == ContactState::Open {
+                let row = DVector::from_column_slice(&self.rows[j][0]);
+                let along = if tied.z.ncols() == 0 { 0.0 } else { (tied.z.transpose() * &row).norm() };
+                if along <= 1e-9 * row.norm() {
+                    locked.push((j, 0));
+                }
+            }
+        }
+        if locked.is_empty() {
+            return out;
+        }
+        // the least-norm forces with the locked axes tied too; the other
+        // free axes keep what their relations give them
+        let rows: Vec<(usize, usize)> = tied.rows.iter().chain(&locked).copied().collect();
+        let mut carried = g.clone();
+        for (j, f) in out.iter().enumerate() {
+            for a in 0..nd {
+                if !rows.contains(&(j, a)) {
+                    carried -= DVector::from_column_slice(&self.rows[j][a]) * f.0[a];
+                }
+            }
+        }
+        let lambda = carry(&self.rows, &rows, &tied.areas, g.len()) * carried;
+        let mut as_tied: Vec<[f64; 3]> = out.iter().map(|o| o.0).collect();
+        for (i, &(j, a)) in rows.iter().enumerate() {
+            as_tied[j][a] = lambda[i];
+        }
+        for &(j, _) in &locked {
+            out[j].2 = Some(as_tied[j]);
         }
         out
     }

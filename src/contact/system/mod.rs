@@ -14,44 +14,38 @@
 //! where both are supported (the supports carry it).
 
 pub mod coords;
+mod dense;
 pub mod gmres;
 pub mod iterative;
 pub mod joins;
 pub mod junction;
 pub mod reduce;
+pub mod unknowns;
 
-use faer::linalg::solvers::Solve;
-use faer::{Mat, Side};
 
-use coords::{Axis, Blocks, Var};
+use coords::{Axis, Blocks, Terms, Var};
 use iterative::{AppliedPart, Iterative, Remote, Source};
 use joins::{JoinElimination, SparseBlocks};
+use junction::Tied;
 use reduce::Reduced;
+use unknowns::{Unknowns, IDENTITY};
 
 use super::basis::{self, FaceBasis};
-use super::frame::{aligned_axis, frame, Frame};
+use super::frame::Frame;
 use super::law::{ContactState, PairResult};
 use super::rigid::{self, free_parts, RigidModes, Tie};
 use crate::fem::sparse::NONE;
 use crate::model::{Model, ModelError};
 use crate::substructure::{Condensation, OperatorRef};
 
-/// Where a part's interface nodes sit among the pairs.
+/// How a part's interface nodes are written in the unknowns.
 struct PartMap {
-    /// What each interface node of the part is, in the part's order.
-    nodes: Vec<Slot>,
-    /// Transformed edges, as positions in `nodes`.
+    /// The frame of each interface node of the part, in the part's order.
+    frames: Vec<Frame>,
+    /// The unknowns of each interface DOF (local axes, face basis).
+    terms: Vec<Terms>,
+    /// Transformed edges, as positions in the part's interface nodes.
     edges: Vec<[usize; 3]>,
-}
-
-/// An interface node of a part: one side of a contact pair, or a node the
-/// part shares with other parts of the same body (a bonded join, where a
-/// body is cut into substructures): always tied, its displacement (global
-/// axes) is a mean of the interface.
-#[derive(Clone, Copy, Debug)]
-enum Slot {
-    Pair { pair: usize, side: usize },
-    Join(usize),
 }
 
 /// Interface DOFs summed over the parts (a joint counted once per side)
@@ -65,8 +59,6 @@ enum Slot {
 /// 115 s and 16.5 GB, into 8 pieces (94,905) 94 s and 3.2 GB where the
 /// dense interface ran out of 24 GB.
 pub const ITERATIVE_FROM: usize = 20_000;
-
-const IDENTITY: Frame = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 
 /// What a pair's unknowns are asked to satisfy in one solve.
 #[derive(Clone, Copy, Debug)]
@@ -103,14 +95,49 @@ impl Relation {
     }
 }
 
+/// The free directions of the relative displacements r under one set of
+/// relations: `r = r0 + sum_a y_a col_a`. A lone pair's free axis is a
+/// column of one entry; a junction's free directions are the columns of its
+/// null space (see [`junction`]).
+pub struct Freedom {
+    /// r where every y is 0: the tied axes' targets, the junctions' r0.
+    pub r0: Vec<f64>,
+    /// The columns, orthonormal, each over r.
+    pub cols: Vec<Vec<(usize, f64)>>,
+    /// The column of each lone pair's free r (NONE where tied or in a junction).
+    pub pos: Vec<usize>,
+    pub junctions: Vec<JunctionBlock>,
+    /// The lone slipping pairs' free tangential rows.
+    pub slips: Vec<SlipRow>,
+}
+
+/// A junction's part of a solve: its columns, and what its slipping pairs
+/// add on them (`Z^T k Z`, `Z^T (f + k r0)`).
+pub struct JunctionBlock {
+    pub cols: std::ops::Range<usize>,
+    pub kz: nalgebra::DMatrix<f64>,
+    pub fz: nalgebra::DVector<f64>,
+    pub tied: Tied,
+}
+
+/// A lone slipping pair's free tangential row (r index), whose equation is
+/// the friction law's (see [`Relation`]):
+/// `(W r - c)_row + force + coupling (W r - c)_normal + sum_c spring_c r_c = 0`.
+pub struct SlipRow {
+    pub row: usize,
+    pub normal: Option<usize>,
+    pub coupling: f64,
+    pub springs: Vec<(usize, f64)>,
+    pub force: f64,
+}
+
 /// The interface problem, set up once; solved for any set of relations.
 pub struct InterfaceProblem<'a> {
     nd: usize,
     pub frames: Vec<Frame>,
     pub basis: FaceBasis,
-    axes: Vec<[Axis; 3]>,
-    /// The unknowns of each join's components.
-    joins: Vec<[Axis; 3]>,
+    /// The unknowns: lone pairs' axes, junctions, joins.
+    unknowns: Unknowns,
     /// Parts that share each join, and where the join is.
     join_parts: Vec<(Vec<usize>, [f64; 3])>,
     /// How the system is solved.
@@ -149,6 +176,10 @@ pub struct InterfaceSolution {
     /// differed from the last solve's): good for judging the states, not
     /// as the answer.
     pub loose: bool,
+    /// A junction pair with axes its loop's ties lock (see
+    /// [`junction::Junction::forces`]): its force as if those were tied,
+    /// which is what it is judged by.
+    pub as_tied: Vec<Option<[f64; 3]>>,
 }
 
 /// Why an interface solve failed.
@@ -166,7 +197,6 @@ impl<'a> InterfaceProblem<'a> {
     /// interface on other MPI ranks, `threads` this rank's ones.
     pub fn new(model: &Model, parts: &[OperatorRef], remote: Option<&'a dyn Remote>, threads: usize) -> Result<InterfaceProblem<'a>, ModelError> {
         let nd = model.nd;
-        let np = model.pairs.len();
         let basis = FaceBasis::new(model);
         // the first part holding each node; the parts sharing each other node
         let mut where_is = vec![(NONE, NONE); model.n_nodes()];
@@ -179,118 +209,30 @@ impl<'a> InterfaceProblem<'a> {
                 holders[n].push(pi);
             }
         }
-        let mut role = vec![None; model.n_nodes()];
-        for (pair, p) in model.pairs.iter().enumerate() {
-            role[p.k] = Some(Slot::Pair { pair, side: 0 });
-            role[p.l] = Some(Slot::Pair { pair, side: 1 });
+        let mut paired = vec![false; model.n_nodes()];
+        for p in &model.pairs {
+            paired[p.k] = true;
+            paired[p.l] = true;
         }
-        let mut join_nodes = Vec::new();
-        for n in 0..model.n_nodes() {
-            if role[n].is_none() && holders[n].len() > 1 {
-                role[n] = Some(Slot::Join(join_nodes.len()));
-                join_nodes.push(n);
-            }
-        }
-        // frames, and the prescribed local values of each side (nodal basis)
-        let mut frames = Vec::with_capacity(np);
-        let mut fixed: Vec<[[Option<f64>; 3]; 2]> = Vec::with_capacity(np);
-        for pair in &model.pairs {
-            let mut sup = [false; 3];
-            for node in [pair.k, pair.l] {
-                for c in 0..nd {
-                    sup[c] |= model.prescribed[node * nd + c].is_some();
-                }
-            }
-            let f = frame(nd, pair.normal, sup);
-            let mut fx = [[None; 3]; 2];
-            for (side, node) in [pair.k, pair.l].into_iter().enumerate() {
-                for c in 0..nd {
-                    if let Some(v) = model.prescribed[node * nd + c] {
-                        let (a, sign) = aligned_axis(&f, nd, c).ok_or_else(|| ModelError::Invalid {
-                            scene: model.scene.clone(),
-                            key: "supports".into(),
-                            msg: format!(
-                                "the contact node at {:?} is supported in direction {} which is not along its contact frame (normal {:?}): support it along the contact normal or tangent",
-                                model.coords[node],
-                                ["x", "y", "z"][c],
-                                pair.normal
-                            ),
-                        })?;
-                        fx[side][a] = Some(sign * v);
-                    }
-                }
-            }
-            frames.push(f);
-            fixed.push(fx);
-        }
-        // prescribed values in the face basis (per side, local axis)
-        if !basis.is_nodal() {
-            for side in 0..2 {
-                for a in 0..nd {
-                    let v: Vec<f64> = fixed.iter().map(|fx| fx[side][a].unwrap_or(0.0)).collect();
-                    let mut t = v.clone();
-                    for &[m, c1, c2] in &basis.edges {
-                        t[m] = (v[m] - basis::ALPHA * (v[c1] + v[c2])) / (1.0 - 2.0 * basis::ALPHA);
-                    }
-                    for (p, fx) in fixed.iter_mut().enumerate() {
-                        if fx[side][a].is_some() {
-                            fx[side][a] = Some(t[p]);
-                        }
-                    }
-                }
-            }
-        }
-        // unknowns, and the parts' interface nodes among them
-        let (axes, mut nm, nr) = coords::number(&fixed, nd);
-        let nm_pairs = nm;
-        // joins: a mean per component, or the prescribed value
-        let joins: Vec<[Axis; 3]> = join_nodes
-            .iter()
-            .map(|&n| {
-                std::array::from_fn(|c| match (c < nd, model.prescribed.get(n * nd + c).copied().flatten()) {
-                    (false, _) => Axis::Absent,
-                    (true, Some(v)) => Axis::Held { vk: v, vl: v },
-                    (true, None) => {
-                        nm += 1;
-                        Axis::Joined { m: nm - 1 }
-                    }
-                })
-            })
-            .collect();
+        let join_nodes: Vec<usize> = (0..model.n_nodes()).filter(|&n| !paired[n] && holders[n].len() > 1).collect();
+        let sharing: Vec<usize> = join_nodes.iter().map(|&n| holders[n].len()).collect();
+        let unknowns = Unknowns::new(model, &basis, &join_nodes, &sharing);
+        let (nm, nm_pairs, nr) = (unknowns.nm, unknowns.nm_pairs, unknowns.nr);
+        let frames = unknowns.frames.clone();
         let join_parts: Vec<(Vec<usize>, [f64; 3])> = join_nodes.iter().map(|&n| (holders[n].clone(), model.coords[n])).collect();
         let at: Vec<[(usize, usize); 2]> = model.pairs.iter().map(|p| [where_is[p.k], where_is[p.l]]).collect();
         let maps: Vec<PartMap> = parts
             .iter()
             .map(|p| {
-                let nodes: Vec<Slot> = p.part.interface.iter().map(|&n| role[n].expect("an interface node is in a pair or shared by parts")).collect();
-                let mut pos: std::collections::HashMap<(usize, usize), usize> = std::collections::HashMap::new();
-                for (q, slot) in nodes.iter().enumerate() {
-                    if let Slot::Pair { pair, side } = *slot {
-                        pos.insert((pair, side), q);
-                    }
-                }
-                let edges = basis::part_edges(&basis, |pair| [pos.get(&(pair, 0)).copied(), pos.get(&(pair, 1)).copied()]);
-                PartMap { nodes, edges }
+                let nodes = &p.part.interface;
+                let pos: std::collections::HashMap<usize, usize> = nodes.iter().enumerate().map(|(q, &n)| (n, q)).collect();
+                let frames = nodes.iter().map(|&n| unknowns.of(n).frame).collect();
+                let terms = nodes.iter().flat_map(|&n| unknowns.of(n).terms[..nd].to_vec()).collect();
+                let edges = basis::part_edges(&basis, |n| pos.get(&n).copied());
+                PartMap { frames, terms, edges }
             })
             .collect();
         let cases = parts.iter().map(|p| p.g.len()).max().unwrap_or(1);
-        let frames_of = |map: &PartMap| -> Vec<Frame> {
-            map.nodes
-                .iter()
-                .map(|slot| match *slot {
-                    Slot::Pair { pair, .. } => frames[pair],
-                    Slot::Join(_) => IDENTITY,
-                })
-                .collect()
-        };
-        let terms_of = |nc: usize, map: &PartMap| -> Vec<coords::Terms> {
-            (0..nc)
-                .map(|u| match map.nodes[u / nd] {
-                    Slot::Pair { pair, side } => axes[pair][u % nd].terms(side),
-                    Slot::Join(j) => joins[j][u % nd].terms(0),
-                })
-                .collect()
-        };
         let not_held = || ModelError::Invalid {
             scene: model.scene.clone(),
             key: "supports".into(),
@@ -308,27 +250,30 @@ impl<'a> InterfaceProblem<'a> {
                         Some(solve) => Source::Local(solve.clone()),
                         None => Source::Remote(i),
                     };
-                    AppliedPart { source, diag: p.diag.to_vec(), terms: terms_of(p.nc, map), frames: frames_of(map), edges: map.edges.clone(), g: p.g.to_vec() }
+                    AppliedPart { source, diag: p.diag.to_vec(), terms: map.terms.clone(), frames: map.frames.clone(), edges: map.edges.clone(), g: p.g.to_vec() }
                 })
                 .collect();
-            let groups = axes
-                .iter()
-                .chain(&joins)
-                .map(|ax| {
-                    let mut vars = Vec::new();
-                    for a in ax {
-                        match *a {
-                            Axis::Free { m, r } => vars.extend([Var::M(m), Var::R(r)]),
-                            Axis::HeldK { r, .. } | Axis::HeldL { r, .. } => vars.push(Var::R(r)),
-                            Axis::Joined { m } => vars.push(Var::M(m)),
-                            Axis::Held { .. } | Axis::Absent => {}
-                        }
+            // the preconditioner's blocks: per lone pair, junction and join node
+            let vars_of = |ax: &[Axis; 3]| -> Vec<Var> {
+                let mut vars = Vec::new();
+                for a in ax {
+                    match *a {
+                        Axis::Free { m, r } => vars.extend([Var::M(m), Var::R(r)]),
+                        Axis::HeldK { r, .. } | Axis::HeldL { r, .. } => vars.push(Var::R(r)),
+                        Axis::Joined { m } => vars.push(Var::M(m)),
+                        Axis::Held { .. } | Axis::Absent => {}
                     }
-                    vars
-                })
+                }
+                vars
+            };
+            let groups = (unknowns.axes.iter().zip(&unknowns.in_junction))
+                .filter(|(_, j)| j.is_none())
+                .map(|(ax, _)| vars_of(ax))
+                .chain(unknowns.junctions.iter().map(|j| j.m.iter().map(|&m| Var::M(m)).chain(j.r.iter().map(|&r| Var::R(r))).collect()))
+                .chain(unknowns.joins.iter().map(vars_of))
                 .collect();
             // the coarse space: each part's rigid motions on the means,
-            // shared between the parts that hold a node
+            // shared between the nodes that have them
             let mut coarse = Vec::new();
             for ((p, map), modes) in parts.iter().zip(&maps).zip(&rigid) {
                 if !is_applied(p) {
@@ -336,15 +281,14 @@ impl<'a> InterfaceProblem<'a> {
                 }
                 for k in 0..rigid::n_modes(model.analysis) {
                     let mut col = vec![0.0; nm + nr];
-                    for (&node, slot) in p.part.interface.iter().zip(&map.nodes) {
-                        // a mean is shared by the two sides of a pair, or by the parts at a join
-                        let (node_axes, frame, w) = match *slot {
-                            Slot::Join(j) => (&joins[j], IDENTITY, 1.0 / join_parts[j].0.len() as f64),
-                            Slot::Pair { pair, .. } => (&axes[pair], frames[pair], 0.5),
-                        };
-                        for (a, axis) in node_axes.iter().enumerate().take(nd) {
-                            if let Axis::Free { m, .. } | Axis::Joined { m } = *axis {
-                                col[m] += w * modes.along(model.coords[node], frame[a])[k];
+                    for (q, &node) in p.part.interface.iter().enumerate() {
+                        let w = unknowns.of(node).share;
+                        for a in 0..nd {
+                            let t = &map.terms[q * nd + a];
+                            for &(v, coef) in &t.vars[..t.n] {
+                                if let Var::M(i) = v {
+                                    col[i] += coef * w * modes.along(model.coords[node], map.frames[q][a])[k];
+                                }
                             }
                         }
                     }
@@ -352,12 +296,12 @@ impl<'a> InterfaceProblem<'a> {
                 }
             }
             let solver = Solver::Iterative(Iterative::new(nd, nm, nr, applied, groups, coarse, remote, threads));
-            return Ok(InterfaceProblem { nd, frames, basis, axes, joins, join_parts, solver, parts: maps, rigid, positions, at });
+            return Ok(InterfaceProblem { nd, frames, basis, unknowns, join_parts, solver, parts: maps, rigid, positions, at });
         }
         let (blocks, joined) = if joins::worth_it(nj, nm_pairs, nr) {
-            let cliques: Vec<Vec<coords::Terms>> = parts.iter().zip(&maps).map(|(p, map)| terms_of(p.nc, map)).collect();
+            let cliques: Vec<Vec<Terms>> = maps.iter().map(|map| map.terms.clone()).collect();
             let mut node_of = vec![0; nj];
-            for (j, axes) in joins.iter().enumerate() {
+            for (j, axes) in unknowns.joins.iter().enumerate() {
                 for a in axes {
                     if let Axis::Joined { m } = *a {
                         node_of[m - nm_pairs] = j;
@@ -367,7 +311,7 @@ impl<'a> InterfaceProblem<'a> {
             let mut sparse = SparseBlocks::new(nm_pairs, nj, nr, cases, &cliques, node_of);
             for ((part, map), terms) in parts.iter().zip(&maps).zip(&cliques) {
                 if part.nc > 0 {
-                    let (s, g) = coords::localise(part.s, part.g, nd, &frames_of(map), &map.edges);
+                    let (s, g) = coords::localise(part.s, part.g, nd, &map.frames, &map.edges);
                     sparse.add_part(&s, &g, terms);
                 }
             }
@@ -377,14 +321,14 @@ impl<'a> InterfaceProblem<'a> {
             let mut blocks = Blocks::zeros(nm, nr, cases);
             for (part, map) in parts.iter().zip(&maps) {
                 if part.nc > 0 {
-                    blocks.add_part(part.s, part.g, nd, &terms_of(part.nc, map), &frames_of(map), &map.edges);
+                    blocks.add_part(part.s, part.g, nd, &map.terms, &map.frames, &map.edges);
                 }
             }
             (blocks, None)
         };
         let reduced = Reduced::new(blocks).map_err(|_| not_held())?;
         let solver = Solver::Dense { reduced, joined };
-        Ok(InterfaceProblem { nd, frames, basis, axes, joins, join_parts, solver, parts: maps, rigid, positions, at })
+        Ok(InterfaceProblem { nd, frames, basis, unknowns, join_parts, solver, parts: maps, rigid, positions, at })
     }
 
     /// GMRES iterations (applications of the parts' S) of every solve so
@@ -403,26 +347,95 @@ impl<'a> InterfaceProblem<'a> {
 
     /// Number of pairs.
     pub fn n_pairs(&self) -> usize {
-        self.axes.len()
+        self.unknowns.axes.len()
     }
 
     /// A stiffness of pair `p`'s relative displacement (the mean diagonal
     /// of W over its axes): the scale that turns a slip into a force.
     pub fn stiffness(&self, p: usize) -> f64 {
-        let d: Vec<f64> = self
-            .axes[p]
-            .iter()
-            .filter_map(|a| a.r())
-            .map(|r| match &self.solver {
-                Solver::Dense { reduced, .. } => reduced.w[(r, r)],
-                Solver::Iterative(it) => it.diagonal_r(r),
-            })
-            .collect();
+        let diag = |r: usize| match &self.solver {
+            Solver::Dense { reduced, .. } => reduced.w[(r, r)],
+            Solver::Iterative(it) => it.diagonal_r(r),
+        };
+        let d: Vec<f64> = match self.unknowns.in_junction[p] {
+            // a junction pair's axis is a row of its junction's r: rowᵀ W row
+            // (the iterative interface: its diagonal only)
+            Some((j, i)) => {
+                let jn = &self.unknowns.junctions[j];
+                (0..self.nd)
+                    .map(|a| {
+                        let row = &jn.rows[i][a];
+                        match &self.solver {
+                            Solver::Dense { reduced, .. } => (0..row.len())
+                                .flat_map(|x| (0..row.len()).map(move |y| (x, y)))
+                                .map(|(x, y)| row[x] * row[y] * reduced.w[(jn.r[x], jn.r[y])])
+                                .sum(),
+                            Solver::Iterative(_) => (0..row.len()).map(|x| row[x] * row[x] * diag(jn.r[x])).sum(),
+                        }
+                    })
+                    .filter(|&v: &f64| v > 0.0)
+                    .collect()
+            }
+            None => self.unknowns.axes[p].iter().filter_map(|a| a.r()).map(diag).collect(),
+        };
         if d.is_empty() {
             1.0
         } else {
             d.iter().sum::<f64>() / d.len() as f64
         }
+    }
+
+    /// The free directions of the relative displacements under `rel`.
+    fn freedom(&self, rel: &[Relation], ramp: f64) -> Freedom {
+        let nd = self.nd;
+        let u = &self.unknowns;
+        let mut r0 = vec![0.0; u.nr];
+        let mut cols: Vec<Vec<(usize, f64)>> = Vec::new();
+        let mut pos = vec![NONE; u.nr];
+        for (p, rl) in rel.iter().enumerate() {
+            if u.in_junction[p].is_some() {
+                continue;
+            }
+            for a in 0..nd {
+                if let Some(ri) = u.axes[p][a].r() {
+                    if rl.free_axis(a) {
+                        pos[ri] = cols.len();
+                        cols.push(vec![(ri, 1.0)]);
+                    } else {
+                        r0[ri] = rl.target[a];
+                    }
+                }
+            }
+        }
+        let mut junctions = Vec::with_capacity(u.junctions.len());
+        for jn in &u.junctions {
+            let tied = jn.tie(rel, ramp, |p| self.basis.areas[p]);
+            for (x, &ri) in jn.r.iter().enumerate() {
+                r0[ri] = tied.r0[x];
+            }
+            let first = cols.len();
+            for c in 0..tied.z.ncols() {
+                cols.push(jn.r.iter().enumerate().map(|(x, &ri)| (ri, tied.z[(x, c)])).collect());
+            }
+            // the slipping pairs' springs and forces on the free directions
+            let kz = tied.z.transpose() * &tied.k * &tied.z;
+            let fz = tied.z.transpose() * (&tied.f + &tied.k * &tied.r0);
+            junctions.push(JunctionBlock { cols: first..cols.len(), kz, fz, tied });
+        }
+        // the lone slipping pairs' rows
+        let mut slips = Vec::new();
+        for (p, rl) in rel.iter().enumerate() {
+            if rl.state != ContactState::Slip || u.in_junction[p].is_some() {
+                continue;
+            }
+            let ax = &u.axes[p];
+            for a in 1..nd {
+                let Some(ra) = ax[a].r() else { continue };
+                let springs = (1..nd).filter_map(|c| ax[c].r().map(|rc| (rc, rl.spring[a][c]))).filter(|s| s.1 != 0.0).collect();
+                slips.push(SlipRow { row: ra, normal: ax[0].r(), coupling: rl.coupling[a], springs, force: rl.force[a] });
+            }
+        }
+        Freedom { r0, cols, pos, junctions, slips }
     }
 
     /// Solves the interface system for the relations `rel` of every pair
@@ -440,13 +453,14 @@ impl<'a> InterfaceProblem<'a> {
         if !sliding.is_empty() {
             return Err(SolveFailure::Singular(sliding));
         }
+        let freedom = self.freedom(rel, ramp);
         let (r, wr_c, m, residual, loose) = match &self.solver {
             Solver::Dense { reduced, joined } => {
-                let (r, wr_c, m, residual) = self.solve_dense(reduced, joined.as_ref(), rel, lambda, &states)?;
+                let (r, wr_c, m, residual) = dense::solve(reduced, joined.as_ref(), &freedom, lambda).ok_or_else(|| self.diagnose(&states))?;
                 (r, wr_c, m, residual, false)
             }
             Solver::Iterative(it) => {
-                let a = it.solve(&self.axes, rel, lambda).ok_or_else(|| self.diagnose(&states))?;
+                let a = it.solve(&freedom, &states, lambda).ok_or_else(|| self.diagnose(&states))?;
                 (a.r, a.residual_r, a.m, a.residual, a.loose)
             }
         };
@@ -454,7 +468,10 @@ impl<'a> InterfaceProblem<'a> {
         // relation prescribes (an open pair exactly zero, not round-off)
         let mut forces = vec![[0.0; 3]; rel.len()];
         let mut rels = vec![[0.0; 3]; rel.len()];
-        for (p, ax) in self.axes.iter().enumerate() {
+        for (p, ax) in self.unknowns.axes.iter().enumerate() {
+            if self.unknowns.in_junction[p].is_some() {
+                continue;
+            }
             for a in 0..nd {
                 match ax[a] {
                     Axis::Held { vk, vl } => rels[p][a] = (vl - vk) * ramp,
@@ -472,10 +489,21 @@ impl<'a> InterfaceProblem<'a> {
                 let pn = -forces[p][0];
                 let rl = &rel[p];
                 for a in 1..nd {
-                    if self.axes[p][a].r().is_some() {
+                    if ax[a].r().is_some() {
                         forces[p][a] = rl.force[a] + rl.coupling[a] * pn + (1..nd).map(|c| rl.spring[a][c] * rels[p][c]).sum::<f64>();
                     }
                 }
+            }
+        }
+        // a junction's pairs: the least-norm split of what its ties carry
+        let mut as_tied = vec![None; rel.len()];
+        for (jn, block) in self.unknowns.junctions.iter().zip(&freedom.junctions) {
+            let rj = nalgebra::DVector::from_iterator(jn.r.len(), jn.r.iter().map(|&i| r[i]));
+            let g = nalgebra::DVector::from_iterator(jn.r.len(), jn.r.iter().map(|&i| -wr_c[i]));
+            for (&p, (f, x, t)) in jn.pairs.iter().zip(jn.forces(&block.tied, rel, &rj, &g, ramp)) {
+                forces[p] = f;
+                rels[p] = x;
+                as_tied[p] = t;
             }
         }
         let pairs = (0..rel.len())
@@ -490,138 +518,14 @@ impl<'a> InterfaceProblem<'a> {
             .parts
             .iter()
             .map(|map| {
-                let (mut terms, mut frames) = (Vec::with_capacity(map.nodes.len() * nd), Vec::with_capacity(map.nodes.len()));
-                for slot in &map.nodes {
-                    let (axes, side, f) = match *slot {
-                        Slot::Pair { pair, side } => (&self.axes[pair], side, self.frames[pair]),
-                        Slot::Join(j) => (&self.joins[j], 0, IDENTITY),
-                    };
-                    terms.extend((0..nd).map(|a| axes[a].terms(side)));
-                    frames.push(f);
-                }
-                coords::part_displacements(&terms, &frames, &map.edges, nd, ramp, |v| match v {
+                coords::part_displacements(&map.terms, &map.frames, &map.edges, nd, ramp, |v| match v {
                     Var::M(i) => m[i],
                     Var::R(i) => r[i],
                 })
             })
             .collect();
-        Ok(InterfaceSolution { pairs, forces, rel: rels, d_c, residual, loose })
+        Ok(InterfaceSolution { pairs, forces, rel: rels, d_c, residual, loose, as_tied })
     }
-
-    /// The relative displacements, `W r - c`, the means and the residual
-    /// of the dense solve of `rel`.
-    #[allow(clippy::type_complexity)]
-    fn solve_dense(&self, reduced: &Reduced, joined: Option<&JoinElimination>, rel: &[Relation], lambda: &[f64], states: &[ContactState]) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>, f64), SolveFailure> {
-        let nd = self.nd;
-        let w = &reduced.w;
-        let nr = w.nrows();
-        let c = reduced.c_at(lambda);
-        // free relative displacements, and the known values of tied ones
-        let mut r = vec![0.0; nr];
-        let mut free = vec![true; nr];
-        for (p, rl) in rel.iter().enumerate() {
-            for a in 0..nd {
-                if let Some(ri) = self.axes[p][a].r() {
-                    if !rl.free_axis(a) {
-                        free[ri] = false;
-                        r[ri] = rl.target[a];
-                    }
-                }
-            }
-        }
-        let fidx: Vec<usize> = (0..nr).filter(|&i| free[i]).collect();
-        let mut pos = vec![NONE; nr];
-        for (f, &i) in fidx.iter().enumerate() {
-            pos[i] = f;
-        }
-        let nf = fidx.len();
-        // c - W r_T: the known part of every row
-        let mut known = c.clone();
-        for j in (0..nr).filter(|&j| !free[j] && r[j] != 0.0) {
-            let rj = r[j];
-            for (i, v) in known.iter_mut().enumerate() {
-                *v -= w[(i, j)] * rj;
-            }
-        }
-        let mut wf = Mat::<f64>::zeros(nf, nf);
-        for (fj, &j) in fidx.iter().enumerate() {
-            for (fi, &i) in fidx.iter().enumerate() {
-                wf[(fi, fj)] = w[(i, j)];
-            }
-        }
-        let mut rhs = Mat::<f64>::zeros(nf, 1);
-        for (fi, &i) in fidx.iter().enumerate() {
-            rhs[(fi, 0)] = known[i];
-        }
-        // slipping pairs: the friction force on their free tangential rows,
-        // (W r - c)_t + force + coupling (W r - c)_n + spring r = 0
-        let mut symmetric = true;
-        for (p, rl) in rel.iter().enumerate() {
-            if rl.state != ContactState::Slip {
-                continue;
-            }
-            let rn = self.axes[p][0].r();
-            for a in 1..nd {
-                let Some(ra) = self.axes[p][a].r() else { continue };
-                let i = pos[ra];
-                rhs[(i, 0)] -= rl.force[a];
-                if let (Some(rn), true) = (rn, rl.coupling[a] != 0.0) {
-                    symmetric = false;
-                    let ca = rl.coupling[a];
-                    for (fj, &j) in fidx.iter().enumerate() {
-                        wf[(i, fj)] += ca * w[(rn, j)];
-                    }
-                    rhs[(i, 0)] += ca * known[rn];
-                }
-                for cax in 1..nd {
-                    if rl.spring[a][cax] == 0.0 {
-                        continue;
-                    }
-                    if let Some(rc) = self.axes[p][cax].r() {
-                        wf[(i, pos[rc])] += rl.spring[a][cax];
-                        if rl.spring[a][cax] != rl.spring[cax][a] {
-                            symmetric = false;
-                        }
-                    }
-                }
-            }
-        }
-        let z = if nf == 0 {
-            Mat::<f64>::zeros(0, 1)
-        } else if symmetric {
-            match wf.llt(Side::Lower) {
-                Ok(l) => l.solve(&rhs),
-                Err(_) => return Err(self.diagnose(states)),
-            }
-        } else {
-            wf.partial_piv_lu().solve(&rhs)
-        };
-        if z.col(0).iter().any(|v| !v.is_finite()) {
-            return Err(self.diagnose(states));
-        }
-        let residual = if nf == 0 {
-            0.0
-        } else {
-            let res = &wf * &z - &rhs;
-            res.norm_l2() / rhs.norm_l2().max(f64::MIN_POSITIVE)
-        };
-        // Singular up to round-off (a body sliding freely on slipping pairs)
-        // lets the factorisation pass: its residual is O(1), not O(eps).
-        if residual > 1e-6 {
-            return Err(self.diagnose(states));
-        }
-        for (f, &i) in fidx.iter().enumerate() {
-            r[i] = z[(f, 0)];
-        }
-        let wr_c = reduced.residual(&r, &c);
-        let mut m = reduced.means(&r, lambda);
-        if let Some(joined) = joined {
-            let m_j = joined.means(&m, &r, lambda);
-            m.extend(m_j);
-        }
-        Ok((r, wr_c, m, residual))
-    }
-
 
     /// Parts that a rigid motion moves which the supports and the pairs tied
     /// by `states` do not stop; `slip_holds`: count slipping pairs as stuck
