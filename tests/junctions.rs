@@ -153,3 +153,228 @@ fn crossing_patch_3d_hex20() {
     let run = cross3d(&case, "order = 2\nsetnumber = { hex = 1, n = 2, serendipity = 1 }", &S3);
     assert_patch(&run, &S3, "3D hex20");
 }
+
+// ---- invariance: block order, body groups, rotation ----------------------
+
+/// A 3 x 3 rotation.
+type Rot = [[f64; 3]; 3];
+
+fn rotate(r: &Rot, x: [f64; 3]) -> [f64; 3] {
+    std::array::from_fn(|i| dot(r[i], x))
+}
+
+fn rotate_back(r: &Rot, x: [f64; 3]) -> [f64; 3] {
+    std::array::from_fn(|i| (0..3).map(|k| r[k][i] * x[k]).sum())
+}
+
+/// Rotation by `deg` degrees about the unit axis `a` (Rodrigues).
+fn rotation(a: [f64; 3], deg: f64) -> Rot {
+    let l = dot(a, a).sqrt();
+    let a = [a[0] / l, a[1] / l, a[2] / l];
+    let (s, c) = deg.to_radians().sin_cos();
+    std::array::from_fn(|i| std::array::from_fn(|j| c * f64::from(u8::from(i == j)) + (1.0 - c) * a[i] * a[j] - s * [[0.0, a[2], -a[1]], [-a[2], 0.0, a[0]], [a[1], -a[0], 0.0]][i][j]))
+}
+
+/// Writes `out` as the MSH 4.1 (ASCII) file `src` with every node turned by `r`.
+fn rotate_msh(src: &std::path::Path, out: &std::path::Path, r: &Rot) {
+    let text = common::read(src);
+    let mut lines = text.lines();
+    let mut w = String::new();
+    while let Some(l) = lines.next() {
+        w += l;
+        w.push('\n');
+        if l != "$Nodes" {
+            continue;
+        }
+        let head = lines.next().expect("nodes header");
+        w += head;
+        w.push('\n');
+        let blocks: usize = head.split_whitespace().next().expect("block count").parse().expect("a count");
+        for _ in 0..blocks {
+            let b = lines.next().expect("block header");
+            w += b;
+            w.push('\n');
+            let f: Vec<usize> = b.split_whitespace().map(|x| x.parse().expect("an integer")).collect();
+            assert_eq!(f[2], 0, "parametric nodes are not rotated here");
+            for _ in 0..f[3] {
+                w += lines.next().expect("tag");
+                w.push('\n');
+            }
+            for _ in 0..f[3] {
+                let x: Vec<f64> = lines.next().expect("coordinates").split_whitespace().map(|v| v.parse().expect("a number")).collect();
+                let y = rotate(r, [x[0], x[1], x[2]]);
+                w += &format!("{:.17e} {:.17e} {:.17e}\n", y[0], y[1], y[2]);
+            }
+        }
+    }
+    std::fs::write(out, w).expect("write the rotated mesh");
+}
+
+/// A pair as the model's geometry sees it, turned back by `r`: its
+/// position, its normal (either sign) and the centres of its two blocks,
+/// rounded, so that two runs' pairs can be matched.
+fn pair_keys(run: &Run, r: &Rot) -> Vec<(Vec<i64>, usize)> {
+    let m = &run.model;
+    let body = m.body_of_node();
+    let centres: Vec<[f64; 3]> = m
+        .bodies
+        .iter()
+        .map(|b| {
+            let nodes: Vec<usize> = b.cells.iter().flat_map(|c| c.nodes.iter().copied()).collect();
+            let x = nodes.iter().fold([0.0; 3], |a, &n| { let y = rotate_back(r, m.coords[n]); [a[0] + y[0], a[1] + y[1], a[2] + y[2]] });
+            x.map(|v| v / nodes.len() as f64)
+        })
+        .collect();
+    let round = |v: f64| (v * 1e6).round() as i64;
+    let mut keys: Vec<(Vec<i64>, usize)> = (0..m.pairs.len())
+        .map(|p| {
+            let pair = &m.pairs[p];
+            let x = rotate_back(r, m.coords[pair.k]);
+            let mut n = rotate_back(r, pair.normal);
+            let d = (0..3).fold(0, |b, i| if n[i].abs() > n[b].abs() + 1e-9 { i } else { b });
+            if n[d] < 0.0 {
+                n = n.map(|v| -v);
+            }
+            let mut blocks = [centres[body[pair.k]], centres[body[pair.l]]];
+            blocks.sort_by(|a, b| a.partial_cmp(b).expect("finite"));
+            let key: Vec<i64> = x.iter().chain(&n).chain(blocks.iter().flatten()).map(|&v| round(v)).collect();
+            (key, p)
+        })
+        .collect();
+    keys.sort();
+    keys
+}
+
+/// The two runs have the same pairs in the same states with the same
+/// stresses and relative displacements (b turned by `r` against a).
+fn assert_same(a: &Run, b: &Run, r: &Rot, what: &str) {
+    let (ka, kb) = (pair_keys(a, &[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]), pair_keys(b, r));
+    assert_eq!(ka.len(), kb.len(), "{what}: as many pairs");
+    let (ca, cb) = (a.contact.as_ref().expect("contact"), b.contact.as_ref().expect("contact"));
+    let stress = ca.pairs.iter().fold(0.0f64, |m, p| m.max(p.sigma_n.abs()).max(p.tau()));
+    let moved = ca.pairs.iter().fold(0.0f64, |m, p| m.max(p.gap.abs()).max(p.slip));
+    let mut counts = [0; 3];
+    let (mut ds, mut du): (f64, f64) = (0.0, 0.0);
+    for ((x, p), (y, q)) in ka.iter().zip(&kb) {
+        assert_eq!(x, y, "{what}: the same pairs");
+        assert_eq!(ca.states[*p], cb.states[*q], "{what}: the state of the pair at {:?}", a.model.coords[a.model.pairs[*p].k]);
+        counts[ca.states[*p].code() as usize] += 1;
+        let (u, v) = (&ca.pairs[*p], &cb.pairs[*q]);
+        ds = ds.max((u.sigma_n - v.sigma_n).abs()).max((u.tau() - v.tau()).abs());
+        du = du.max((u.gap - v.gap).abs()).max((u.slip - v.slip).abs());
+    }
+    eprintln!("{what}: {} pairs ({} stick, {} slip, {} open): stresses within {:.1e}, gaps and slips within {:.1e}", ka.len(), counts[2], counts[1], counts[0], ds / stress, du / moved.max(f64::MIN_POSITIVE));
+    assert!(counts[1] > 0 && counts[2] > 0, "{what}: the loading makes some pairs slip and some stick ({counts:?})");
+    assert!(ds < 1e-8 * stress && du < 1e-8 * moved.max(f64::MIN_POSITIVE), "{what}: stresses differ by {ds:.1e}, relative displacements by {du:.1e}");
+}
+
+/// A scene over `mesh` with the body groups `bodies` (in that order, all of
+/// one material) and the crossing's joints, held by a fixed `base`, loaded by
+/// tractions (turned by `r`); friction 0.6.
+fn scene(mesh: &str, analysis: &str, gmsh: &str, bodies: &[&str], joints: &[&str], base: &str, loads: &[(&str, [f64; 3])], r: &Rot, strength: &str) -> String {
+    let nd = if analysis == "solid" { 3 } else { 2 };
+    let mut t = format!("title = \"crossing\"\nmesh = \"{mesh}\"\nanalysis = \"{analysis}\"\n\n{gmsh}\n[materials.rock]\nE = {E}\nnu = {NU}\n\n");
+    for b in bodies {
+        t += &format!("[[bodies]]\ngroup = \"{b}\"\nmaterial = \"rock\"\n\n");
+    }
+    for j in joints {
+        t += &format!("[[contacts]]\ngroup = \"{j}\"\nfriction = 0.6\n{strength}\n");
+    }
+    let fix = if nd == 3 { "[\"x\", \"y\", \"z\"]" } else { "[\"x\", \"y\"]" };
+    t += &format!("[[supports]]\ngroup = \"{base}\"\nfix = {fix}\n\n");
+    for (g, v) in loads {
+        let v = rotate(r, *v);
+        let comps: Vec<String> = v[..nd].iter().map(|x| format!("{x}")).collect();
+        t += &format!("[[loads]]\ngroup = \"{g}\"\ntraction = [{}]\n\n", comps.join(", "));
+    }
+    t
+}
+
+const ID: Rot = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+const LOADS_2D: [(&str, [f64; 3]); 2] = [("top", [-0.45, -1.0, 0.0]), ("right", [-0.1, 0.0, 0.0])];
+const LOADS_3D: [(&str, [f64; 3]); 2] = [("z1", [-0.3, 0.15, -1.0]), ("x1", [-0.1, 0.0, 0.0])];
+
+#[test]
+fn the_answer_does_not_depend_on_block_order_groups_or_rotation_2d() {
+    let case = Case::new("cross-order-2d");
+    case.copy("tests/geo/cross2d.geo");
+    common::cli::gmsh(&case, &["-2", "-order", "2", "-setnumber", "lc", "0.25", "cross2d.geo", "-o", "cross2d.msh"]);
+    let r = rotation([0.0, 0.0, 1.0], 30.0);
+    rotate_msh(&case.dir.join("cross2d.msh"), &case.dir.join("turned.msh"), &r);
+    let j = ["jx", "jy"];
+    let one = scene("cross2d.msh", "plane_strain", "", &["rock"], &j, "bottom", &LOADS_2D, &ID, "");
+    let four = scene("cross2d.msh", "plane_strain", "", &["d", "b", "c", "a"], &["jy", "jx"], "bottom", &LOADS_2D, &ID, "");
+    let turned = scene("turned.msh", "plane_strain", "", &["rock"], &j, "bottom", &LOADS_2D, &r, "");
+    let run = |name: &str, text: &str| case.run(&case.write(name, text)).unwrap_or_else(|e| panic!("{name}: {e:#}"));
+    let (a, b, c) = (run("one.toml", &one), run("four.toml", &four), run("turned.toml", &turned));
+    assert_same(&a, &b, &ID, "2D, four groups in another order");
+    assert_same(&a, &c, &r, "2D, turned by 30 degrees");
+}
+
+#[test]
+fn the_answer_does_not_depend_on_block_order_groups_or_rotation_3d() {
+    let case = Case::new("cross-order-3d");
+    case.copy("tests/geo/cross3d.geo");
+    common::cli::gmsh(&case, &["-3", "-order", "2", "-setnumber", "lc", "0.6", "cross3d.geo", "-o", "cross3d.msh"]);
+    let r = rotation([1.0, 2.0, 3.0], 40.0);
+    rotate_msh(&case.dir.join("cross3d.msh"), &case.dir.join("turned.msh"), &r);
+    let j = ["jx", "jy", "jz"];
+    let one = scene("cross3d.msh", "solid", "", &["rock"], &j, "z0", &LOADS_3D, &ID, "");
+    let eight = scene("cross3d.msh", "solid", "", &["b6", "b3", "b0", "b7", "b1", "b4", "b2", "b5"], &["jz", "jx", "jy"], "z0", &LOADS_3D, &ID, "");
+    let turned = scene("turned.msh", "solid", "", &["rock"], &j, "z0", &LOADS_3D, &r, "");
+    let run = |name: &str, text: &str| case.run(&case.write(name, text)).unwrap_or_else(|e| panic!("{name}: {e:#}"));
+    let (a, b, c) = (run("one.toml", &one), run("eight.toml", &eight), run("turned.toml", &turned));
+    assert_same(&a, &b, &ID, "3D, eight groups in another order");
+    assert_same(&a, &c, &r, "3D, turned about (1, 2, 3) by 40 degrees");
+}
+
+#[test]
+fn a_large_cohesion_gives_the_bonded_answer() {
+    let case = Case::new("cross-bonded");
+    case.copy("tests/geo/cross3d.geo");
+    let text = scene("cross3d.geo", "solid", "[gmsh]\norder = 2\nsetnumber = { lc = 0.6 }\n", &["rock"], &["jx", "jy", "jz"], "z0", &LOADS_3D, &ID, "cohesion = 1e6\ntensile_strength = 1e6\n");
+    let path = case.write("strong.toml", &text);
+    let joints = case.run_with(&path, false).expect("the jointed cube");
+    let bonded = case.run_with(&path, true).expect("the bonded cube");
+    let c = joints.contact.as_ref().expect("contact");
+    assert!(c.states.iter().all(|&s| s == ContactState::Stick), "every pair sticks");
+    let d = common::measure::diff_to_bonded(&joints, &bonded);
+    eprintln!("cohesion 1e6: {} pairs all stuck, displacements within {d:.1e} of the bonded solve", c.states.len());
+    assert!(d < 1e-8, "the jointed cube differs from the bonded one by {d:.1e}");
+}
+
+// ---- a jointed column under gravity ----------------------------------------
+
+/// The eight blocks of the cube under gravity, held at the base, pushed
+/// along x on top: the joint plane z = 1 carries the weight of the four
+/// blocks above it and the whole push; the vertical joints carry no net
+/// force across (their two halves balance the blocks on either side).
+#[test]
+fn a_jointed_column_carries_its_weight_and_push_on_every_joint_plane() {
+    let case = Case::new("cross-column");
+    case.copy("tests/geo/cross3d.geo");
+    let (rho, g, push) = (2.5e-3, 9.81, 0.005);
+    let mut text = scene("cross3d.geo", "solid", "[gmsh]\norder = 2\nsetnumber = { hex = 1, n = 2, serendipity = 1 }\n", &["rock"], &["jx", "jy", "jz"], "z0", &[("z1", [push, 0.0, 0.0])], &ID, "");
+    text = text.replace("nu = 0.25\n", &format!("nu = 0.25\ndensity = {rho}\n"));
+    text = text.replacen("analysis = \"solid\"\n", "analysis = \"solid\"\ngravity = [0.0, 0.0, -9.81]\n", 1);
+    let run = case.run(&case.write("column.toml", &text)).unwrap_or_else(|e| panic!("column: {e:#}"));
+    let c = run.contact.as_ref().expect("contact");
+    let m = &run.model;
+    let jz = m.interfaces.iter().position(|i| i.name == "jz").expect("jz");
+    let mut f = [0.0; 3];
+    for p in (0..m.pairs.len()).filter(|&p| m.pairs[p].contact == jz) {
+        assert!(m.pairs[p].normal[2] > 0.99, "side I of jz is the block below: n = +z");
+        let fp = c.force(p);
+        for i in 0..3 {
+            f[i] += fp[i];
+        }
+    }
+    // on the four blocks below, from the four above: their weight and the push
+    let weight = rho * g * 4.0;
+    let want = [push * 4.0, 0.0, -weight];
+    let scale = weight.hypot(push * 4.0);
+    let err = (0..3).map(|i| (f[i] - want[i]).abs()).fold(0.0, f64::max) / scale;
+    let k = [0, 1, 2].map(|s| c.states.iter().filter(|x| x.code() == s).count());
+    eprintln!("column: joint z = 1 carries {f:?} against {want:?} ({err:.1e}); {} stick, {} slip, {} open", k[2], k[1], k[0]);
+    assert!(err < 1e-8, "the joint z = 1 carries {f:?}, not {want:?}");
+}

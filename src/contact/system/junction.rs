@@ -236,6 +236,11 @@ impl Junction {
             }
         }
         let m_t = rows.len();
+        if n_r == 0 {
+            // every copy held in every component: nothing to solve for
+            let zero = DMatrix::zeros(0, 0);
+            return Tied { z: zero.clone(), r0: DVector::zeros(0), k: zero, f: DVector::zeros(0), carry: DMatrix::zeros(m_t, 0), rows, areas: self.pairs.iter().map(|&p| area(p)).collect() };
+        }
         let c_t = DMatrix::<f64>::from_fn(m_t.max(n_r), n_r, |i, c| if i < m_t { self.rows[rows[i].0][rows[i].1][c] } else { 0.0 });
         let t = DVector::<f64>::from_fn(m_t.max(n_r), |i, _| {
             if i < m_t {
