@@ -30,8 +30,8 @@
 //! violated pair from then on.
 
 use super::law::{friction_bound, judge, ContactState, Trial};
-use super::system::{InterfaceProblem, InterfaceSolution, Relation};
-use super::{commit, cracked, norm, sub, tangential, Failed, History, Outcome, PairLaw};
+use super::system::{InterfaceProblem, InterfaceSolution, Limit, Relation};
+use super::{commit, cracked, limit, norm, sub, tangential, Failed, History, Outcome, PairLaw};
 use super::options::SlipLaw;
 
 /// The largest β = b / |ξ| the linearisation uses: k⊥ stays below 1000 c_p
@@ -75,7 +75,7 @@ fn relation(h: &History, law: &PairLaw, p: usize, area: f64, c: f64, force: [f64
     for i in 1..3 {
         constant[i] = (bk - db * pk) * n[i] - (1..3).map(|j| spring[i][j] * reference[j]).sum::<f64>();
     }
-    Relation { state, target, force: constant, coupling: [0.0, db * n[1], db * n[2]], spring, pressure: pk }
+    Relation { state, target, force: constant, coupling: [0.0, db * n[1], db * n[2]], spring, pressure: pk, limit: Limit::NONE }
 }
 
 /// How far a slipping pair's force is from the nonlinear law, `|λ_T - b ξ/|ξ||`.
@@ -110,7 +110,8 @@ pub fn iterate(problem: &InterfaceProblem, laws: &[PairLaw], lambda: &[f64], h: 
     let mut apex_openings = 0;
     loop {
         iteration += 1;
-        let relations: Vec<Relation> = (0..n).map(|p| relation(h, &laws[p], p, problem.area(p), stiffness[p], force[p], rel[p], reference[p])).collect();
+        let relations: Vec<Relation> =
+            (0..n).map(|p| relation(h, &laws[p], p, problem.area(p), stiffness[p], force[p], rel[p], reference[p]).within(limit(&laws[p], cracked(h, p), problem.area(p)))).collect();
         let solution: InterfaceSolution = problem.solve(&relations, lambda).map_err(|failure| Failed { failure, states: h.states.clone(), iteration })?;
         history.push(h.states.clone());
         force.clone_from(&solution.forces);
@@ -134,13 +135,16 @@ pub fn iterate(problem: &InterfaceProblem, laws: &[PairLaw], lambda: &[f64], h: 
             let cr = cracked(h, p);
             let slip = sub(tangential(rel[p]), reference[p]);
             let trial = Trial { force: force[p], area, slip, gap: rel[p][0], stiffness: stiffness[p] };
-            next[p] = match solution.as_tied[p] {
+            next[p] = match (solution.as_tied[p], st) {
                 // an open junction pair its loop keeps shut: it closes (as
                 // a closing pair does, where it is) unless the force it would
                 // carry closed is tension beyond its strength
-                Some(f) if f[0] >= law.strength.tensile_limit(cr) * area => ContactState::Open,
-                Some(_) => judge(st, &Trial { gap: f64::NEG_INFINITY, ..trial }, &law.strength, cr, law.slip == SlipLaw::Coulomb, tol_u),
-                None => judge(st, &trial, &law.strength, cr, law.slip == SlipLaw::Coulomb, tol_u),
+                (Some(f), ContactState::Open) if f[0] >= law.strength.tensile_limit(cr) * area => ContactState::Open,
+                (Some(_), ContactState::Open) => judge(st, &Trial { gap: f64::NEG_INFINITY, ..trial }, &law.strength, cr, law.slip == SlipLaw::Coulomb, tol_u),
+                // a slipping one it keeps from slipping: stuck if the loop
+                // can carry its shear within every pair's bound
+                (Some(f), _) => judge(ContactState::Stick, &Trial { force: f, ..trial }, &law.strength, cr, law.slip == SlipLaw::Coulomb, tol_u),
+                (None, _) => judge(st, &trial, &law.strength, cr, law.slip == SlipLaw::Coulomb, tol_u),
             };
             if st == ContactState::Slip && next[p] == ContactState::Slip {
                 residual = residual.max(friction_residual(law, cr, area, stiffness[p], force[p], slip));
@@ -157,6 +161,15 @@ pub fn iterate(problem: &InterfaceProblem, laws: &[PairLaw], lambda: &[f64], h: 
         }
         // 2. a cycle: from now on change only the most violated pair
         let changed = next != h.states;
+        if std::env::var("SUBCONTACT_DEBUG").is_ok() {
+            let ch: Vec<String> = (0..n).filter(|&p| next[p] != h.states[p]).map(|p| format!("{p}{}:{:?}->{:?}", if solution.as_tied[p].is_some() {"*"} else {""}, h.states[p], next[p])).collect();
+            eprintln!("it {iteration}: {} changes residual {residual:.2e} {}", ch.len(), ch.iter().take(12).cloned().collect::<Vec<_>>().join(" "));
+            if let Ok(list) = std::env::var("SUBCONTACT_WATCH") {
+                for p in list.split(',').filter_map(|x| x.parse::<usize>().ok()) {
+                    eprintln!("   {p}: {:?}->{:?} f={:?} tied={:?} rel={:?}", h.states[p], next[p], force[p], solution.as_tied[p].map(|f| f.map(|v| (v * 1e4).round() / 1e4)), rel[p]);
+                }
+            }
+        }
         if changed && (one_at_a_time || history.iter().any(|old| *old == next)) {
             if !one_at_a_time {
                 one_at_a_time = true;

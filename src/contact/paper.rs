@@ -9,7 +9,7 @@
 
 use super::law::{judge_paper, ContactState, PairResult};
 use super::system::{InterfaceProblem, Relation};
-use super::{cracked, norm, sub, tangential, Failed, History, Outcome, PairLaw};
+use super::{cracked, limit, norm, sub, tangential, Failed, History, Outcome, PairLaw};
 use super::options::SlipLaw;
 
 /// The friction force on body I of every slipping Coulomb pair.
@@ -27,7 +27,8 @@ pub fn iterate(problem: &InterfaceProblem, laws: &[PairLaw], lambda: &[f64], h: 
     let mut iteration = 0;
     loop {
         iteration += 1;
-        let relations: Vec<Relation> = (0..n).map(|p| Relation::simple(h.states[p], h.offset[p], friction(problem, laws, h, p))).collect();
+        let relations: Vec<Relation> =
+            (0..n).map(|p| Relation::simple(h.states[p], h.offset[p], friction(problem, laws, h, p)).within(limit(&laws[p], cracked(h, p), problem.area(p)))).collect();
         let solution = problem.solve(&relations, lambda).map_err(|failure| Failed { failure, states: h.states.clone(), iteration })?;
         history.push(h.states.clone());
         let r = &solution.pairs;

@@ -10,7 +10,7 @@ use super::builder::{dim_name, Builder};
 use super::contacts::{self, Split};
 use super::held::check_held;
 use super::topology::Topology;
-use super::{Body, FacetLoad, InitialStress, Model, ModelError, ModelSpec, Pair};
+use super::{Block, Body, FacetLoad, InitialStress, Model, ModelError, ModelSpec, Pair};
 use crate::fem::element::{self, dofs_per_node};
 use crate::fem::Analysis;
 use crate::mesh::{Cell, Mesh};
@@ -68,7 +68,7 @@ impl Model {
         let topo = Topology::new(mesh.coords.len(), sd, &groups);
         let Split { coords, mesh_node, cells, block, pairs: raw_pairs, interfaces, signs } = contacts::split(&b, &topo, size)?;
         let n_model = coords.len();
-        let bodies = blocks(spec, &topo, &block, &cells);
+        let bodies = blocks(spec, &topo, &block, &cells, &coords);
         // where each cell went: (body, index in its cells)
         let mut placed = vec![(0, 0); cells.len()];
         let mut count = vec![0; bodies.len()];
@@ -249,7 +249,7 @@ fn check_plane(b: &Builder, groups: &[&[Cell]], size: f64) -> Result<(), ModelEr
 
 /// The model's bodies: one per block, in block order, each with the
 /// material of its body group.
-fn blocks(spec: &ModelSpec, topo: &Topology, block: &[usize], cells: &[Cell]) -> Vec<Body> {
+fn blocks(spec: &ModelSpec, topo: &Topology, block: &[usize], cells: &[Cell], coords: &[[f64; 3]]) -> Vec<Body> {
     let n = block.iter().map(|&b| b + 1).max().unwrap_or(0);
     let mut group_of = vec![0; n];
     let mut members: Vec<Vec<Cell>> = vec![Vec::new(); n];
@@ -265,7 +265,11 @@ fn blocks(spec: &ModelSpec, topo: &Topology, block: &[usize], cells: &[Cell]) ->
         .map(|(bl, cells)| {
             let g = group_of[bl];
             let body = &spec.bodies[g];
-            let block = (per_group[g] > 1).then_some((seen[g], per_group[g]));
+            let block = (per_group[g] > 1).then(|| {
+                let nodes: Vec<usize> = cells.iter().flat_map(|c| c.nodes.iter().copied()).collect();
+                let centre = std::array::from_fn(|d| nodes.iter().map(|&n| coords[n][d]).sum::<f64>() / nodes.len().max(1) as f64);
+                Block { index: seen[g], of: per_group[g], centre }
+            });
             seen[g] += 1;
             Body { name: body.group.clone(), group: g, block, e: body.e, nu: body.nu, density: body.density, cells, initial: body.initial }
         })

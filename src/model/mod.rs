@@ -43,16 +43,25 @@ use crate::mesh::Cell;
 pub struct Body {
     /// The body group's name.
     pub name: String,
-    /// Its `[[bodies]]` entry, and (block, blocks) when the group's contact
-    /// facets cut it into several blocks.
+    /// Its `[[bodies]]` entry, and when the group's contact facets cut it
+    /// into several blocks: which, of how many, and where (the mean of its
+    /// cells' nodes), to name it in messages.
     pub group: usize,
-    pub block: Option<(usize, usize)>,
+    pub block: Option<Block>,
     pub e: f64,
     pub nu: f64,
     pub density: f64,
     pub cells: Vec<Cell>,
     /// In-situ stress the body carries before any load.
     pub initial: Option<InitialStress>,
+}
+
+/// Where a block sits in its body group.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Block {
+    pub index: usize,
+    pub of: usize,
+    pub centre: [f64; 3],
 }
 
 /// A load on one boundary facet of one body.
@@ -133,7 +142,10 @@ impl Body {
     pub fn label(&self) -> String {
         match self.block {
             None => format!("\"{}\"", self.name),
-            Some((b, n)) => format!("\"{}\" block {} of {n}", self.name, b + 1),
+            Some(b) => {
+                let c = b.centre;
+                format!("\"{}\" block {} of {} (centre at ({:.4}, {:.4}, {:.4}))", self.name, b.index + 1, b.of, c[0], c[1], c[2])
+            }
         }
     }
 

@@ -50,7 +50,7 @@
 use nalgebra::{DMatrix, DVector};
 
 use super::coords::{Terms, Var};
-use super::Relation;
+use super::{Limit, Relation};
 use crate::contact::frame::Frame;
 use crate::contact::law::ContactState;
 
@@ -124,24 +124,161 @@ pub struct Tied {
     /// The tied rows (junction pair, axis), and the map from the force they
     /// must carry (over r) to their least-norm forces.
     rows: Vec<(usize, usize)>,
-    carry: DMatrix<f64>,
+    split: Split,
     /// The area of each of the junction's pairs.
     areas: Vec<f64>,
 }
 
-/// The map from the force `g` the tied `rows` must carry (over r) to their
-/// forces of least `sum λ_i^2 / A_i` with `C_T^T λ = g`: `λ = D pinv(C_T^T D) g`,
-/// `D = diag(sqrt(A))`.
-fn carry(all: &[[Vec<f64>; 3]], rows: &[(usize, usize)], areas: &[f64], n_r: usize) -> DMatrix<f64> {
-    let m_t = rows.len();
-    if m_t == 0 || n_r == 0 {
-        return DMatrix::zeros(m_t, n_r);
+/// How the tied `rows` (pair, axis) share the force `g` they must carry
+/// (over r): `C_T^T λ = g`. With `ν = λ / sqrt(A)` the least-norm share is
+/// `ν0 = pinv(C_T^T D) g`, and every other share is `ν0 + N s` (N the null
+/// space of `C_T^T D`: the loops' self-equilibrated forces).
+#[derive(Clone, Debug)]
+struct Split {
+    rows: Vec<(usize, usize)>,
+    d: Vec<f64>,
+    pinv: DMatrix<f64>,
+    null: DMatrix<f64>,
+}
+
+impl Split {
+    fn new(all: &[[Vec<f64>; 3]], rows: &[(usize, usize)], areas: &[f64], n_r: usize) -> Split {
+        let m_t = rows.len();
+        let d: Vec<f64> = rows.iter().map(|&(j, _)| areas[j].max(f64::MIN_POSITIVE).sqrt()).collect();
+        if m_t == 0 || n_r == 0 {
+            return Split { rows: rows.to_vec(), d, pinv: DMatrix::zeros(m_t, n_r), null: DMatrix::identity(m_t, m_t) };
+        }
+        // (C_T^T D)^T = D C_T, padded to square: its U spans the range of
+        // D C_T and, past the rank, the null space of C_T^T D
+        let n = m_t.max(n_r);
+        let dc = DMatrix::<f64>::from_fn(m_t, n, |i, c| if c < n_r { all[rows[i].0][rows[i].1][c] * d[i] } else { 0.0 });
+        let svd = dc.svd(true, true);
+        let (u, v_t) = (svd.u.expect("U"), svd.v_t.expect("V^T"));
+        let sv = &svd.singular_values;
+        let smax = sv.iter().copied().fold(0.0, f64::max);
+        let rank: Vec<usize> = (0..sv.len()).filter(|&i| sv[i] > RANK_TOLERANCE * smax.max(f64::MIN_POSITIVE)).collect();
+        // pinv(C_T^T D) = pinv((D C_T)^T) = U S^-1 V^T restricted to r's columns
+        let pinv = DMatrix::<f64>::from_fn(m_t, n_r, |i, c| rank.iter().map(|&k| u[(i, k)] * v_t[(k, c)] / sv[k]).sum());
+        let free: Vec<usize> = (0..m_t).filter(|k| !rank.contains(k)).collect();
+        let null = DMatrix::<f64>::from_fn(m_t, free.len(), |i, c| u[(i, free[c])]);
+        Split { rows: rows.to_vec(), d, pinv, null }
     }
-    let d: Vec<f64> = rows.iter().map(|&(j, _)| areas[j].max(f64::MIN_POSITIVE).sqrt()).collect();
-    let ctd = DMatrix::<f64>::from_fn(n_r, m_t, |c, i| all[rows[i].0][rows[i].1][c] * d[i]);
-    let eps = RANK_TOLERANCE * ctd.norm();
-    let pinv = ctd.pseudo_inverse(eps).expect("a non-negative tolerance");
-    DMatrix::from_fn(m_t, n_r, |i, c| d[i] * pinv[(i, c)])
+
+    /// The forces of the rows: the least-norm share of `g`, or where that
+    /// breaks a pair's limit (tension beyond its strength, shear beyond its
+    /// Coulomb bound for a stuck pair), the least-norm share within every
+    /// limit, when the loops leave one.
+    fn forces(&self, g: &DVector<f64>, limits: &[Limit]) -> DVector<f64> {
+        let nu0 = &self.pinv * g;
+        let lambda = |s: &DVector<f64>| DVector::from_fn(self.rows.len(), |i, _| self.d[i] * (nu0[i] + (self.null.row(i) * s)[0]));
+        let zero = DVector::zeros(self.null.ncols());
+        let plain = lambda(&zero);
+        if self.null.ncols() == 0 || self.violations(&plain, limits).is_empty() {
+            return plain;
+        }
+        // cuts: a row combination of λ with its bound, `a . λ <= b`
+        let mut cuts: Vec<(Vec<(usize, f64)>, f64)> = Vec::new();
+        let mut s = zero;
+        for _ in 0..12 {
+            let lam = lambda(&s);
+            let new = self.violations(&lam, limits);
+            if new.is_empty() {
+                return lam;
+            }
+            cuts.extend(new);
+            // in s: a . D (nu0 + N s) <= b
+            let g_rows: Vec<DVector<f64>> = cuts.iter().map(|(a, _)| a.iter().fold(DVector::zeros(self.null.ncols()), |acc, &(i, c)| acc + self.null.row(i).transpose() * (c * self.d[i]))).collect();
+            let h: Vec<f64> = cuts.iter().map(|(a, b)| b - a.iter().map(|&(i, c)| c * self.d[i] * nu0[i]).sum::<f64>()).collect();
+            match least_norm_point(&g_rows, &h) {
+                Some(x) => s = x,
+                // no share within every limit: the loop cannot carry g so
+                None => return plain,
+            }
+        }
+        let lam = lambda(&s);
+        if self.violations(&lam, limits).is_empty() {
+            lam
+        } else {
+            plain
+        }
+    }
+
+    /// The limits `λ` breaks, as cuts: the tension of every tied normal,
+    /// and the Coulomb bound of every stuck pair along its shear's
+    /// direction (in 2D, both signs).
+    fn violations(&self, lam: &DVector<f64>, limits: &[Limit]) -> Vec<(Vec<(usize, f64)>, f64)> {
+        let scale = lam.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
+        let tol = 1e-10 * scale;
+        let mut out = Vec::new();
+        let mut j0 = 0;
+        while j0 < self.rows.len() {
+            let j = self.rows[j0].0;
+            let at: Vec<usize> = (j0..self.rows.len()).take_while(|&i| self.rows[i].0 == j).collect();
+            j0 += at.len();
+            let lim = limits[j];
+            let Some(&n) = at.iter().find(|&&i| self.rows[i].1 == 0) else { continue };
+            if lam[n] > lim.tension + tol {
+                out.push((vec![(n, 1.0)], lim.tension));
+            }
+            let t: Vec<usize> = at.iter().copied().filter(|&i| self.rows[i].1 > 0).collect();
+            if t.is_empty() || !lim.cohesion.is_finite() {
+                continue;
+            }
+            // |λ_T| <= c - f λ_n  as  d . λ_T + f λ_n <= c
+            let lt = t.iter().map(|&i| lam[i] * lam[i]).sum::<f64>().sqrt();
+            let bound = lim.cohesion - lim.friction * lam[n];
+            if lt > bound + tol {
+                if t.len() == 1 {
+                    let sign = lam[t[0]].signum();
+                    out.push((vec![(t[0], sign), (n, lim.friction)], lim.cohesion));
+                } else {
+                    let mut a: Vec<(usize, f64)> = t.iter().map(|&i| (i, lam[i] / lt)).collect();
+                    a.push((n, lim.friction));
+                    out.push((a, lim.cohesion));
+                }
+            }
+        }
+        out
+    }
+}
+
+/// The point of least norm with `g_i . x <= h_i` for every i (a primal-dual
+/// active-set method; the problems are a few dozen unknowns); None when the
+/// constraints leave no point.
+fn least_norm_point(g: &[DVector<f64>], h: &[f64]) -> Option<DVector<f64>> {
+    let k = g.first().map_or(0, |v| v.len());
+    let scale = h.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(g.iter().map(|v| v.norm()).fold(0.0, f64::max)).max(f64::MIN_POSITIVE);
+    let tol = 1e-12 * scale;
+    let mut active: Vec<usize> = Vec::new();
+    for _ in 0..(4 * g.len() + 20) {
+        // the least-norm x on the active constraints: x = -G_W^T y, G_W G_W^T y = -h_W
+        let m = active.len();
+        let gw = DMatrix::<f64>::from_fn(m, k, |i, c| g[active[i]][c]);
+        let y = if m == 0 {
+            DVector::zeros(0)
+        } else {
+            let gram = &gw * gw.transpose();
+            let rhs = DVector::from_fn(m, |i, _| -h[active[i]]);
+            let eps = 1e-12 * gram.norm();
+            gram.pseudo_inverse(eps).ok()? * rhs
+        };
+        let x = if m == 0 { DVector::zeros(k) } else { -(gw.transpose() * &y) };
+        // the active constraints must hold as equalities: else none can
+        if active.iter().any(|&i| (g[i].dot(&x) - h[i]).abs() > 1e-8 * scale) {
+            return None;
+        }
+        let worst = (0..g.len()).filter(|i| !active.contains(i)).map(|i| (i, g[i].dot(&x) - h[i])).max_by(|a, b| a.1.total_cmp(&b.1));
+        match worst {
+            Some((i, v)) if v > tol => active.push(i),
+            _ => match (0..m).min_by(|&a, &b| y[a].total_cmp(&y[b])) {
+                Some(a) if y[a] < -tol => {
+                    active.remove(a);
+                }
+                _ => return Some(x),
+            },
+        }
+    }
+    None
 }
 
 impl Junction {
@@ -239,7 +376,9 @@ impl Junction {
         if n_r == 0 {
             // every copy held in every component: nothing to solve for
             let zero = DMatrix::zeros(0, 0);
-            return Tied { z: zero.clone(), r0: DVector::zeros(0), k: zero, f: DVector::zeros(0), carry: DMatrix::zeros(m_t, 0), rows, areas: self.pairs.iter().map(|&p| area(p)).collect() };
+            let areas: Vec<f64> = self.pairs.iter().map(|&p| area(p)).collect();
+            let split = Split::new(&self.rows, &rows, &areas, 0);
+            return Tied { z: zero.clone(), r0: DVector::zeros(0), k: zero, f: DVector::zeros(0), split, rows, areas };
         }
         let c_t = DMatrix::<f64>::from_fn(m_t.max(n_r), n_r, |i, c| if i < m_t { self.rows[rows[i].0][rows[i].1][c] } else { 0.0 });
         let t = DVector::<f64>::from_fn(m_t.max(n_r), |i, _| {
@@ -292,8 +431,8 @@ impl Junction {
             }
         }
         let areas: Vec<f64> = self.pairs.iter().map(|&p| area(p)).collect();
-        let carry = carry(&self.rows, &rows, &areas, n_r);
-        Tied { z, r0, k, f, rows, carry, areas }
+        let split = Split::new(&self.rows, &rows, &areas, n_r);
+        Tied { z, r0, k, f, rows, split, areas }
     }
 
     /// The contact force on body I of each of the junction's pairs (local
@@ -301,14 +440,14 @@ impl Junction {
     /// is locked, from the junction's r and `g = -(W r - c)` on it (the
     /// force the pairs must carry, over r).
     ///
-    /// An open pair's normal is locked when the tied rows fix it (its row
-    /// has no part along the free directions Z): the loop's other ties keep
-    /// its copies together, its gap is zero whatever it carries. Closing it
-    /// would change no displacement, only the forces, so its gap cannot
-    /// tell whether it should close: the least-norm forces with every locked
-    /// normal tied can (None where nothing is locked). A slipping pair the
-    /// loop keeps from slipping needs no such care: its slip is what the
-    /// loop allows, and the friction law judges it as any other.
+    /// A free axis is locked when the tied rows fix it (its row has no part
+    /// along the free directions Z): an open pair whose copies the loop's
+    /// other ties keep together has a zero gap whatever it carries; a
+    /// slipping pair they keep from slipping has no slip. Tying it would
+    /// change no displacement, only the forces, so its gap or slip cannot
+    /// tell its state: the forces with every locked axis tied can, the
+    /// least-norm ones within every pair's limit (None where nothing is
+    /// locked).
     pub fn forces(&self, tied: &Tied, rel: &[Relation], r: &DVector<f64>, g: &DVector<f64>, ramp: f64) -> Vec<([f64; 3], [f64; 3], Option<[f64; 3]>)> {
         let nd = self.nd;
         let rels: Vec<[f64; 3]> = (0..self.pairs.len())
@@ -316,7 +455,8 @@ impl Junction {
             .collect();
         // what the tied rows carry: g less the slipping pairs' friction
         let carried = g - (&tied.k * r + &tied.f);
-        let lambda = &tied.carry * carried;
+        let limits: Vec<Limit> = self.pairs.iter().map(|&p| rel[p].limit).collect();
+        let lambda = tied.split.forces(&carried, &limits);
         let mut out: Vec<([f64; 3], [f64; 3], Option<[f64; 3]>)> = rels.iter().map(|&x| ([0.0; 3], x, None)).collect();
         for (i, &(j, a)) in tied.rows.iter().enumerate() {
             out[j].0[a] = lambda[i];
@@ -330,15 +470,27 @@ impl Junction {
                 out[j].0[a] = rl.force[a] + rl.coupling[a] * rl.pressure + (1..nd).map(|c| rl.spring[a][c] * rels[j][c]).sum::<f64>();
             }
         }
-        // open pairs whose normal the ties lock: no part along Z
+        // free rows the ties lock (no part along Z): open pairs' normals,
+        // and slipping pairs' shear where they have not slipped (a slip the
+        // loop had locked elsewhere could not be tied back: their shear is
+        // judged by their slip, as any other pair's)
+        let is_locked = |j: usize, a: usize| {
+            let row = DVector::from_column_slice(&self.rows[j][a]);
+            tied.z.ncols() == 0 || (tied.z.transpose() * &row).norm() <= 1e-9 * row.norm()
+        };
+        let scale = rels.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
         let mut locked: Vec<(usize, usize)> = Vec::new();
         for (j, &p) in self.pairs.iter().enumerate() {
-            if rel[p].state == ContactState::Open {
-                let row = DVector::from_column_slice(&self.rows[j][0]);
-                let along = if tied.z.ncols() == 0 { 0.0 } else { (tied.z.transpose() * &row).norm() };
-                if along <= 1e-9 * row.norm() {
-                    locked.push((j, 0));
+            match rel[p].state {
+                ContactState::Open if is_locked(j, 0) => locked.push((j, 0)),
+                ContactState::Slip => {
+                    let shear: Vec<usize> = (1..nd).collect();
+                    let unmoved = shear.iter().all(|&a| (rels[j][a] - rel[p].target[a]).abs() <= 1e-10 * scale);
+                    if unmoved && shear.iter().all(|&a| is_locked(j, a)) {
+                        locked.extend(shear.iter().map(|&a| (j, a)));
+                    }
                 }
+                _ => {}
             }
         }
         if locked.is_empty() {
@@ -346,7 +498,8 @@ impl Junction {
         }
         // the least-norm forces with the locked axes tied too; the other
         // free axes keep what their relations give them
-        let rows: Vec<(usize, usize)> = tied.rows.iter().chain(&locked).copied().collect();
+        let mut rows: Vec<(usize, usize)> = tied.rows.iter().chain(&locked).copied().collect();
+        rows.sort_unstable();
         let mut carried = g.clone();
         for (j, f) in out.iter().enumerate() {
             for a in 0..nd {
@@ -355,7 +508,7 @@ impl Junction {
                 }
             }
         }
-        let lambda = carry(&self.rows, &rows, &tied.areas, g.len()) * carried;
+        let lambda = Split::new(&self.rows, &rows, &tied.areas, g.len()).forces(&carried, &limits);
         let mut as_tied: Vec<[f64; 3]> = out.iter().map(|o| o.0).collect();
         for (i, &(j, a)) in rows.iter().enumerate() {
             as_tied[j][a] = lambda[i];
@@ -435,7 +588,7 @@ mod tests {
     fn a_slipping_pair_in_a_stuck_loop_is_locked_and_carries_its_friction() {
         let (_, j) = crossing();
         let mut rel = stuck(4);
-        rel[0] = Relation { state: ContactState::Slip, target: [0.0; 3], force: [0.0, 0.25, 0.0], coupling: [0.0; 3], spring: [[0.0; 3]; 3], pressure: 0.0 };
+        rel[0] = Relation { state: ContactState::Slip, target: [0.0; 3], force: [0.0, 0.25, 0.0], coupling: [0.0; 3], spring: [[0.0; 3]; 3], pressure: 0.0, limit: Limit::NONE };
         let tied = j.tie(&rel, 1.0, |_| 1.0);
         assert_eq!(tied.z.ncols(), 0);
         let out = j.forces(&tied, &rel, &DVector::zeros(6), &DVector::zeros(6), 1.0);

@@ -78,12 +78,35 @@ pub struct Relation {
     /// at a junction, whose normal force is known only after the solve,
     /// takes `force + coupling * pressure` (see [`junction`]).
     pub pressure: f64,
+    /// What the pair can carry, for a junction choosing its tied forces.
+    pub limit: Limit,
+}
+
+/// What a pair can carry in force, `λ_n <= tension` and `|λ_T| <= cohesion
+/// - friction λ_n` (λ on body I, tension positive; cohesion and tension are
+/// strengths times the pair's area): where a junction's tied forces are not
+/// unique, it takes the least-norm ones within these (see [`junction`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Limit {
+    pub tension: f64,
+    pub cohesion: f64,
+    pub friction: f64,
+}
+
+impl Limit {
+    /// No limit.
+    pub const NONE: Limit = Limit { tension: f64::INFINITY, cohesion: f64::INFINITY, friction: 0.0 };
 }
 
 impl Relation {
     /// Stuck at `target`, open, or slipping with a known tangential force.
     pub fn simple(state: ContactState, target: [f64; 3], force: [f64; 3]) -> Relation {
-        Relation { state, target, force, coupling: [0.0; 3], spring: [[0.0; 3]; 3], pressure: 0.0 }
+        Relation { state, target, force, coupling: [0.0; 3], spring: [[0.0; 3]; 3], pressure: 0.0, limit: Limit::NONE }
+    }
+
+    /// The same relation with what the pair can carry.
+    pub fn within(self, limit: Limit) -> Relation {
+        Relation { limit, ..self }
     }
 
     pub fn free_axis(&self, a: usize) -> bool {
