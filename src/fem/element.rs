@@ -570,7 +570,7 @@ mod tests {
             (Analysis::PlaneStrain, vec![Tri3, Tri6, Quad4, Quad8, Quad9]),
             (Analysis::PlaneStress, vec![Tri3, Tri6, Quad4, Quad8, Quad9]),
             (Analysis::Axisymmetric, vec![Tri3, Tri6, Quad4, Quad8, Quad9]),
-            (Analysis::Solid, vec![Tet4, Tet10, Hex8, Hex20, Hex27]),
+            (Analysis::Solid, vec![Tet4, Tet10, Hex8, Hex20, Hex27, Prism6, Prism15, Prism18, Pyramid5, Pyramid13, Pyramid14]),
         ];
         // nu near 1/2 too: B-bar (quad4 plane strain / axisymmetric, hex8)
         // must add no zero-energy mode however large lambda is
