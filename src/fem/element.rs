@@ -3,7 +3,7 @@
 //!
 //! B-bar (Hughes 1980, "Generalization of selective integration procedures
 //! to anisotropic and nonlinear media", IJNME 15): the linear quadrilateral
-//! in plane strain and axisymmetry and the linear hexahedron take the
+//! in plane strain and axisymmetry, the linear hexahedron and prism take the
 //! volumetric part of their strain at the element's mean. With `b_vol` the
 //! sum of the normal rows of B (xx, yy, and zz or the hoop row: the
 //! dilatation),
@@ -17,7 +17,7 @@
 //! so the deviatoric strain is B's, pointwise, and the dilatation one number
 //! per element: lambda multiplies one constraint per element instead of
 //! several (3 for a quad4 in plane strain, 4 in axisymmetry, 7 for a hex8
-//! under the full rule), and nu -> 1/2 no longer locks. The split is the
+//! and 4 for a prism6 under the full rule), and nu -> 1/2 no longer locks. The split is the
 //! 3D one in plane strain too (the solid with eps_zz = 0, B_zz = 0), so
 //! B̄ gives an eps_zz and D its zz row there; a hex8 slice held on both
 //! faces is then the plane strain quad4 node for node (tests/lame.rs). A
@@ -202,13 +202,16 @@ fn b_matrix(analysis: Analysis, p: &Point, b: &mut [f64]) {
 pub const B_BAR_FROM_NU: f64 = 0.4;
 
 /// Whether an element takes its dilatation at the element's mean (B-bar,
-/// see the module doc): quad4 in plane strain and axisymmetry, hex8, in a
-/// material of nu >= [`B_BAR_FROM_NU`].
+/// see the module doc): quad4 in plane strain and axisymmetry, hex8 and
+/// prism6, in a material of nu >= [`B_BAR_FROM_NU`]. (Prism6, Lamé's
+/// cylinder as a quarter turn of prisms, lc 0.2, nu = 0.499: displacement
+/// error 7.7e-2 and stress error 6.3 with the plain B, 3.1e-3 and 0.31
+/// with B-bar, against 8.2e-4 and 4.1e-2 at nu = 0.3.)
 pub fn uses_b_bar(analysis: Analysis, kind: CellKind, nu: f64) -> bool {
     nu >= B_BAR_FROM_NU
         && matches!(
             (analysis, kind),
-            (Analysis::PlaneStrain | Analysis::Axisymmetric, CellKind::Quad4) | (Analysis::Solid, CellKind::Hex8)
+            (Analysis::PlaneStrain | Analysis::Axisymmetric, CellKind::Quad4) | (Analysis::Solid, CellKind::Hex8 | CellKind::Prism6)
         )
 }
 
@@ -601,14 +604,14 @@ mod tests {
     }
     /// The elements that use B-bar.
     fn b_bar_cases() -> Vec<(Analysis, CellKind)> {
-        vec![(Analysis::PlaneStrain, CellKind::Quad4), (Analysis::Axisymmetric, CellKind::Quad4), (Analysis::Solid, CellKind::Hex8)]
+        vec![(Analysis::PlaneStrain, CellKind::Quad4), (Analysis::Axisymmetric, CellKind::Quad4), (Analysis::Solid, CellKind::Hex8), (Analysis::Solid, CellKind::Prism6)]
     }
 
     #[test]
     fn b_bar_constrains_the_dilatation_once_per_element() {
         // D = lambda m m^T (mu = 0): K_e = lambda V b̄ b̄^T has rank one
         // with B-bar; the plain B of the full rule has rank 3 (quad4, plane
-        // strain), 4 (quad4, axisymmetric), 7 (hex8): that many constraints
+        // strain), 4 (quad4, axisymmetric), 7 (hex8), 4 (prism6): that many constraints
         // per element is what locks
         for (analysis, kind) in b_bar_cases() {
             assert!(uses_b_bar(analysis, kind, 0.49));
