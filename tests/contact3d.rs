@@ -20,7 +20,10 @@
 //!    contact_wedges.geo: blocks extruded from a triangulated plan, as
 //!    layered ground is made): two layers pressed together across their
 //!    triangles (tri3, tri6 faces), and two blocks side by side across
-//!    their quadrangles (quad4, quad8, quad9), prism6, prism15, prism18.
+//!    their quadrangles (quad4, quad8, quad9), prism6, prism15, prism18;
+//!    and the upper layer's self-weight on the lower one (sides on
+//!    rollers): sigma_n = -rho g h at every pair, and the joint carries
+//!    the weight to round-off.
 
 mod common;
 
@@ -368,5 +371,43 @@ fn uniform_stress_crosses_joints_of_wedges_exactly() {
             // judged open after the first solve (tensile strength 0)
             assert_eq!(c.iterations, if stacked == 1 { 1 } else { 2 }, "{name}: iterations");
         }
+    }
+}
+
+/// Self-weight across a joint of wedges: the layers of contact_wedges.geo
+/// (stacked) on rollers (x0, x1 held in x, y0, y1 in y, the base in z),
+/// gravity down; the joint carries the upper layer's weight. The stress is
+/// -rho g (2h - z) vertically (the lateral ones K0 times it), linear in z:
+/// prism15 and prism18 represent it; prism6 does not (its stress is
+/// constant through each cell), but the upper layer's own equilibrium gives
+/// the joint the consistent weight of each column, uniform over the plan.
+/// Every pair's sigma_n is -rho g h to round-off (measured 4e-16 to 3e-15).
+#[test]
+fn self_weight_crosses_a_joint_of_wedges_exactly() {
+    let case = Case::new("contact3d-wedges-weight");
+    case.copy("tests/geo/contact_wedges.geo");
+    let (rho, g, h, area) = (2.0e-2, 9.81, 0.6, 1.0 * 0.8);
+    let supports = "[[supports]]\ngroup = \"x0\"\nfix = [\"x\"]\n\n[[supports]]\ngroup = \"x1\"\nfix = [\"x\"]\n\n\
+                    [[supports]]\ngroup = \"y0\"\nfix = [\"y\"]\n\n[[supports]]\ngroup = \"y1\"\nfix = [\"y\"]\n";
+    for (name, order, ser) in [("prism6", 1, 0), ("prism18", 2, 0), ("prism15", 2, 1)] {
+        let text = scene((name, order, 0, ser), 0.4, "contact_wedges.geo", supports)
+            .replace(", hex = 0,", ", stacked = 1,")
+            .replace("fix = [\"x\", \"y\", \"z\"]", "fix = [\"z\"]")
+            .replace("analysis = \"solid\"\n", &format!("analysis = \"solid\"\ngravity = [0.0, 0.0, {:?}]\n", -g))
+            .replace("nu = 0.25\n", &format!("nu = 0.25\ndensity = {rho:?}\n"));
+        let run = solve(&case, &format!("{name}-weight"), &text);
+        let c = contact(&run);
+        let want = -rho * g * h;
+        let (mut worst, mut weight) = (0.0f64, 0.0);
+        for p in 0..c.states.len() {
+            assert_eq!(c.states[p], ContactState::Stick, "{name}: pair {p} sticks");
+            worst = worst.max((c.pairs[p].sigma_n - want).abs()).max(c.shear(p).iter().fold(0.0f64, |m, t| m.max(t.abs())));
+            weight += c.force(p)[2];
+        }
+        // the lower layer is body I (n = +z): the joint pushes it down by the weight
+        let upper = rho * g * h * area;
+        eprintln!("{name}: {} pairs, sigma_n within {worst:.1e} of -rho g h = {want}, joint force {weight:.12} against the weight {upper:.12}", c.states.len());
+        assert!((weight + upper).abs() < 1e-10 * upper, "{name}: the joint carries the weight ({weight} vs {upper})");
+        assert!(worst < 1e-8 * want.abs(), "{name}: sigma_n = -rho g h at every pair ({worst:.2e})");
     }
 }

@@ -602,6 +602,35 @@ mod tests {
             }
         }
     }
+    /// Body forces: the consistent nodal forces of a uniform g add up to g
+    /// times the volume, on an affine image of every 3D reference cell
+    /// (the volume is |det A| times the reference volume) and on a distorted
+    /// one (against a high-order rule's volume).
+    #[test]
+    fn body_forces_add_up_to_the_weight_on_every_3d_kind() {
+        let a = [[1.2, 0.3, -0.1], [0.1, 0.9, 0.2], [-0.2, 0.1, 1.4]];
+        let det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0])
+            + a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+        let g = [0.5, -2.0, -9.81];
+        for kind in CellKind::ALL.into_iter().filter(|k| k.dim() == 3) {
+            let affine: Vec<[f64; 3]> =
+                shape::reference_nodes(kind).iter().map(|p| std::array::from_fn(|i| 2.0 + (0..3).map(|j| a[i][j] * p[j]).sum::<f64>())).collect();
+            for (xs, volume) in [(affine, det * quadrature::reference_volume(kind)), (distorted(kind), f64::NAN)] {
+                let volume = if volume.is_nan() {
+                    quadrature::rule(kind, 10).iter().map(|q| q.w * point(kind, &xs, q.xi).unwrap().det_j).sum()
+                } else {
+                    volume
+                };
+                let mut fe = vec![0.0; 3 * kind.n_nodes()];
+                body_force(Analysis::Solid, kind, &xs, g, 1.0, &mut fe).expect("not inverted");
+                for c in 0..3 {
+                    let total: f64 = fe.iter().skip(c).step_by(3).sum();
+                    assert!((total - g[c] * volume).abs() < 1e-12 * 9.81 * volume, "{kind:?}: {total} vs {}", g[c] * volume);
+                }
+            }
+        }
+    }
+
     /// The elements that use B-bar.
     fn b_bar_cases() -> Vec<(Analysis, CellKind)> {
         vec![(Analysis::PlaneStrain, CellKind::Quad4), (Analysis::Axisymmetric, CellKind::Quad4), (Analysis::Solid, CellKind::Hex8), (Analysis::Solid, CellKind::Prism6)]
