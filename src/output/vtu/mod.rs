@@ -8,6 +8,9 @@
 //! accepts as valid (outward faces) and gmsh 4.8.4's own VTK export writes:
 //! VTK's linear wedge turns the other way round from gmsh's prism6 (its
 //! triangle (0,1,2) faces away from (3,4,5)), its quadratic wedges do not.
+//! (VTK is not consistent there: its Cell Size and Integrate Variables
+//! filters give a quadratic wedge (type 26) so oriented a negative volume,
+//! and a biquadratic one (32) a sixth of its volume, whichever way round.)
 //! A pyramid14 is written as VTK's quadratic pyramid (type 27, its first 13
 //! nodes): VTK's triquadratic pyramid (type 37) needs 19 nodes, which
 //! neither vtkio 0.7 nor meshio know; the base centre stays a point of the
