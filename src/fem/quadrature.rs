@@ -533,8 +533,9 @@ mod tests {
         for a in 0..=r(0) {
             for b in 0..=r(1) {
                 for c in 0..=r(2) {
-                    let total = (is_simplex(kind) || is_pyramid(kind)) && a + b + c > degree;
-                    if !total && !(is_prism(kind) && a + b > degree) {
+                    // simplices and pyramids: total degree; prisms: (ξ, η) and ζ apart
+                    let beyond = ((is_simplex(kind) || is_pyramid(kind)) && a + b + c > degree) || (is_prism(kind) && a + b > degree);
+                    if !beyond {
                         out.push([a, b, c]);
                     }
                 }

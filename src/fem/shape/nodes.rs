@@ -383,7 +383,8 @@ pub fn faces(kind: CellKind) -> Vec<Face> {
     let hex: Vec<&[usize]> = HEX_FACES.iter().map(|f| &f[..]).collect();
     // corner lists, the cell's edge table, its first mid-edge node, and the
     // centre node of each face (None where the cell has none)
-    let (corners, edges, first_mid, centres): (&[&[usize]], &[[usize; 2]], usize, &[Option<usize>]) = match kind {
+    type Table<'a> = (&'a [&'a [usize]], &'a [[usize; 2]], usize, &'a [Option<usize>]);
+    let (corners, edges, first_mid, centres): Table = match kind {
         CellKind::Tet4 | CellKind::Tet10 => (&TET, &TET_EDGES, 4, &[None; 4]),
         CellKind::Hex8 | CellKind::Hex20 => (&hex, &HEX_EDGES, 8, &[None; 6]),
         CellKind::Hex27 => (&hex, &HEX_EDGES, 8, &[Some(20), Some(21), Some(22), Some(23), Some(24), Some(25)]),
