@@ -6,7 +6,7 @@ CARGO   ?= cargo
 BIN     := target/release/subcontact
 PYTHON  ?= python3
 
-.PHONY: all deps deps-mpi build cylinder tunnel footing dam blocks3d dam3d test test-mpi bench bench3d bench-ccx bench-interface scaling stress clean
+.PHONY: all deps deps-mpi build cylinder tunnel footing footing-layers dam blocks3d dam3d test test-mpi bench bench3d bench-ccx bench-interface scaling stress clean
 
 all: build
 
@@ -33,6 +33,12 @@ cylinder: deps build
 # results/footing/ (footing_contact.vtu, contact.csv, report.md).
 footing: deps build
 	$(BIN) solve geo/footing.toml
+
+# A square footing on two soil layers of prisms (a triangulated plan
+# extruded in layers), loaded near one corner: the opposite corner lifts
+# (results/footing_layers/: plan_base.png by state and sigma_n, contact.csv).
+footing-layers: deps build
+	$(BIN) solve geo/footing_layers.toml
 
 # A tunnel lining in rock against Einstein & Schwartz (1979): no slip and
 # full slip; thrust and moment tables in results/tunnel{,_slip}/report.md.

@@ -7,12 +7,14 @@
 //!   scene with edits, two stacked blocks, Lamé's cylinder);
 //! - [`cli`]: the command line's contract for a failed run (one clean
 //!   `error:` paragraph, no result files), and gmsh runs in a case;
+//! - [`msh`]: an MSH 4.1 writer for meshes gmsh does not make;
 //! - [`measure`]: what the tests measure on a solved run (rates, largest
 //!   values, state counts, the difference to the bonded solve, contact forces).
 #![allow(dead_code)]
 
 pub mod cli;
 pub mod measure;
+pub mod msh;
 pub mod scenes;
 
 use std::path::{Path, PathBuf};

@@ -22,12 +22,6 @@ fn gmsh_type(code: i32) -> Option<(&'static str, usize)> {
         return Some((k.name(), k.n_nodes()));
     }
     Some(match code {
-        6 => ("prism6", 6),
-        7 => ("pyramid5", 5),
-        13 => ("prism18", 18),
-        14 => ("pyramid14", 14),
-        18 => ("prism15", 15),
-        19 => ("pyramid13", 13),
         20 => ("tri9", 9),
         21 => ("tri10", 10),
         22 => ("tri12", 12),
@@ -43,8 +37,10 @@ fn gmsh_type(code: i32) -> Option<(&'static str, usize)> {
         36 => ("quad16", 16),
         37 => ("quad25", 25),
         38 => ("quad36", 36),
+        90 => ("prism40", 40),
         92 => ("hex64", 64),
         93 => ("hex125", 125),
+        118 => ("pyramid30", 30),
         _ => return None,
     })
 }

@@ -107,6 +107,8 @@ fn local_patches(kind: CellKind) -> LocalPatches {
             .enumerate()
             .map(|(i, f)| faces(f, &HEX_EDGES, 8, (kind == CellKind::Hex27).then_some(20 + i)))
             .collect(),
+        // prisms and pyramids: their faces as fem::shape lists them
+        _ if kind.dim() == 3 => crate::fem::shape::faces(kind).into_iter().map(|f| (f.kind, f.nodes)).collect(),
         _ => Vec::new(),
     }
 }
