@@ -1,6 +1,7 @@
 //! Result files of a run, staged in memory and written together:
 //! `<name>.vtu` (bodies), `<name>_contact.vtu` (interfaces), `contact.csv`,
-//! `probes.csv`, `summary.json`, `report.md` and the pictures it embeds.
+//! `probes.csv`, the pictures, then (once the output stage is timed)
+//! `summary.json` and `report.md`, which embeds the pictures.
 
 pub mod files;
 pub mod picture;
@@ -8,7 +9,7 @@ pub mod plot;
 pub mod report;
 pub mod vtu;
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use serde_json::json;
 
 use crate::results::{state_counts, ContactRun, Run};
@@ -19,7 +20,8 @@ use crate::recover::{BodyStress, Sample};
 use files::Staged;
 use vtu::{Field, IntField};
 
-/// Stages every result file of a run except `summary.json`.
+/// Stages every result file of a run except `summary.json` and `report.md`
+/// ([`restage_summary`] adds them with the final timings).
 pub fn stage(run: &Run) -> Result<Staged> {
     let mut staged = Staged::new(&run.out);
     let name = &run.scene.name;
@@ -53,17 +55,16 @@ pub fn stage(run: &Run) -> Result<Staged> {
         staged.add("probes.csv", probes_csv(&run.probes).into_bytes());
     }
     // pictures a person would rather look at than read (embedded in report.md)
-    let snap = picture::Snapshot { title: &run.scene.title, model, u: &run.u, stresses: &run.stresses, contact: run.contact.as_ref() };
-    for (file, bytes) in picture::pictures(&snap).map_err(|e| anyhow::anyhow!("drawing the pictures: {e}"))? {
+    let snap = picture::Snapshot { title: &run.scene.title, model, u: &run.u, stresses: &run.stresses, contact: run.contact.as_ref(), region: run.scene.output.frame.as_ref() };
+    for (file, bytes) in picture::pictures(&snap).context("drawing the pictures")? {
         staged.add(&file, bytes);
     }
-    staged.add("report.md", report::report(run).into_bytes());
     Ok(staged)
 }
 
 /// Result files of scene `name` in `dir` that are not among `written`: VTU
 /// and PVD files named after the scene, the CSV tables and the pictures
-/// (`deformed_*.png`, `interfaces.svg`, `plan_*.png`).
+/// (`deformed_*.png`, `interfaces.svg`, `plan_*.png`, `joints.png`).
 pub fn stale(dir: &std::path::Path, name: &str, written: &[std::path::PathBuf]) -> Vec<std::path::PathBuf> {
     let Ok(entries) = std::fs::read_dir(dir) else { return Vec::new() };
     entries
@@ -74,15 +75,26 @@ pub fn stale(dir: &std::path::Path, name: &str, written: &[std::path::PathBuf]) 
             let f = p.file_name().and_then(|f| f.to_str()).unwrap_or("");
             let ours = f.starts_with(name) && [".vtu", ".pvd", ".png", ".svg"].iter().any(|x| f.ends_with(x));
             let picture = (f.starts_with("deformed_") || f.starts_with("plan_")) && f.ends_with(".png");
-            ours || picture || f == "contact.csv" || f == "probes.csv" || f == "interfaces.svg"
+            ours || picture || ["contact.csv", "probes.csv", "interfaces.svg", "joints.png"].contains(&f)
         })
         .collect()
 }
 
-/// Adds `summary.json`, with the run's final timings.
+/// Adds `summary.json` and `report.md`, both with the run's final timings
+/// (the output stage's own included), so that the two files agree.
 pub fn restage_summary(mut staged: Staged, run: &Run) -> Result<Staged> {
     staged.add("summary.json", serde_json::to_vec_pretty(&summary(run))?);
+    staged.add("report.md", report::report(run).into_bytes());
     Ok(staged)
+}
+
+/// What is legal but probably not meant, one paragraph each: the scene's
+/// ([`crate::scene::Scene::warnings`]) and the model's (bodies bonded by
+/// shared nodes, [`crate::model::warnings`]).
+pub fn warnings(run: &Run) -> Vec<String> {
+    let mut w = run.scene.warnings();
+    w.extend(crate::model::warnings::warnings(&run.model));
+    w
 }
 
 /// The bodies' VTU: each body's own nodes as points, so stresses averaged
@@ -242,7 +254,7 @@ fn summary(run: &Run) -> serde_json::Value {
         "counters": run.counters,
         "ranks": run.ranks,
         "fields": run.scene.output.fields,
-        "warnings": run.scene.warnings(),
+        "warnings": warnings(run),
     });
     if let Some(c) = &run.contact {
         let counts = state_counts(&c.states);

@@ -3,7 +3,8 @@
 //! stacked blocks in every element kind) checked for the colours they must
 //! show; the pictures are kept in the temporary directory to look at.
 
-use super::deformed::{deformed_canvas, H, PANEL_X, W};
+use super::deformed::{deformed_canvas, H, W};
+use super::legend::PANEL_X;
 use super::interfaces::{along, interface_plot_png};
 use super::legend::nice_step;
 use super::raster::{encode_png, register_font, Canvas, FontMetrics};
@@ -89,7 +90,7 @@ fn in_box(cv: &Canvas, b: [f64; 4], c: [u8; 3]) -> Vec<usize> {
 
 /// The last state of a run, to draw.
 fn snap(run: &Run) -> Snapshot<'_> {
-    Snapshot { title: &run.scene.title, model: &run.model, u: &run.u, stresses: &run.stresses, contact: run.contact.as_ref() }
+    Snapshot { title: &run.scene.title, model: &run.model, u: &run.u, stresses: &run.stresses, contact: run.contact.as_ref(), region: run.scene.output.frame.as_ref() }
 }
 
 fn contact(run: &Run) -> &crate::results::ContactRun {
@@ -190,7 +191,7 @@ fn paper_mesh_picture_in_3d() {
     keep("paper_interfaces.svg", svg.as_bytes());
     keep("paper_interfaces.png", &interface_plot_png(&run.model, contact(&run)).expect("plot"));
     // the 45-degree cut is vertical: seen along its normal, z up
-    let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, contact(&run), 0).expect("plan view");
+    let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, contact(&run), &plan_files(&run.model)[0]).expect("plan view");
     let stick = in_box(&cv, boxes[0], STICK).len();
     assert!(stick > 20_000, "the cut sticks: {stick} pixels");
     keep("paper_plan.png", &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
@@ -248,7 +249,7 @@ fn stacked_blocks_pushed_sideways_show_the_states_they_reach() {
         }
         keep(&format!("stack_{name}_von_mises.png"), &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
         if analysis == "solid" {
-            let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, c, 0).expect("plan view");
+            let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, c, &plan_files(&run.model)[0]).expect("plan view");
             for (state, colour, n) in [("open", OPEN, counts[0]), ("slip", SLIP, counts[1]), ("stick", STICK, counts[2])] {
                 assert_eq!(!in_box(&cv, boxes[0], colour).is_empty(), n > 0, "{name}: {state} in plan exactly when present ({n} pairs)");
             }
@@ -321,10 +322,11 @@ fn plan_view_of_a_3d_joint_shows_where_it_slips() {
     let counts = state_counts(&c.states);
     eprintln!("blocks3d, lc = 0.2: {} pairs, {} stick, {} slip, {} open", c.states.len(), counts[2], counts[1], counts[0]);
     assert!(c.converged && counts[1] > 0 && counts[2] > 0 && counts[0] == 0, "partial slip: {counts:?}");
-    assert_eq!(plan_files(&run.model), vec![(0, "plan_joint.png".to_string())]);
+    let plans: Vec<(usize, String)> = plan_files(&run.model).into_iter().map(|p| (p.interface, p.file)).collect();
+    assert_eq!(plans, vec![(0, "plan_joint.png".to_string())]);
 
     let t = std::time::Instant::now();
-    let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, c, 0).expect("plan view");
+    let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, c, &plan_files(&run.model)[0]).expect("plan view");
     eprintln!("plan view drawn in {:.3} s", t.elapsed().as_secs_f64());
     keep("blocks3d_plan_joint.png", &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
     let pixels = |b: [f64; 4], colour: [u8; 3]| in_box(&cv, b, colour);
