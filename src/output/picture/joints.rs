@@ -71,7 +71,9 @@ pub fn joints_png(title: &str, model: &Model, contact: &ContactRun, plans: &[Pla
     }
     let px = hi;
     let (corners, used) = pack(&sizes, px);
-    let mut cv = Canvas::new(WIDTH as usize, (used + 40.0).round() as usize);
+    // as wide as the tiles and the legend need
+    let right = corners.iter().zip(&sizes).map(|(c, s)| c[0] + (s[0] * px).max(210.0)).fold(900.0, f64::max);
+    let mut cv = Canvas::new((right + MARGIN).min(WIDTH).round() as usize, (used + 40.0).round() as usize);
     let mut labels = Vec::new();
     let mut totals = [0usize; 3];
     for ((plan, flat), at) in plans.iter().zip(&flats).zip(&corners) {

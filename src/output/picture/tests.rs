@@ -382,3 +382,188 @@ fn no_plan_view_in_2d_and_stale_ones_are_removed() {
     stale.sort();
     assert_eq!(stale, ["deformed_displacement.png", "plan_old_face.png"]);
 }
+
+/// A scene next to a copy of `tests/geo/<geo>`, run without result files.
+fn run_geo(name: &str, geo: &str, toml: &str) -> Run {
+    let dir = out_dir(name);
+    std::fs::copy(format!("tests/geo/{geo}"), dir.join(geo)).expect("copy geo");
+    let path = dir.join(format!("{name}.toml"));
+    std::fs::write(&path, toml).expect("scene");
+    driver::run(&path, &RunOptions { out: Some(dir.join("out")), skip_output: true, ..Default::default() }).expect("run")
+}
+
+/// The lining of `tests/geo/tunnel3d.geo` (R = 5, t = 0.4, a 2 m slice of
+/// a 50 m block; the axis along y, z up) in rock with an in-situ stress
+/// (sigma_v = 1, K = 0.5), friction 0.4: slip between crown and springline.
+fn tunnel3d(full: bool, output: &str) -> Run {
+    let toml = format!(
+        "title = \"Lining in rock, 3D\"\nmesh = \"tunnel3d.geo\"\nanalysis = \"solid\"\n[gmsh]\norder = 1\nsetnumber = {{ full = {}, lc = 0.8 }}\n\
+         [materials.rock]\nE = 2000.0\nnu = 0.3\n[materials.concrete]\nE = 25000.0\nnu = 0.15\n\
+         [[bodies]]\ngroup = \"lining\"\nmaterial = \"concrete\"\n[[bodies]]\ngroup = \"rock\"\nmaterial = \"rock\"\ninitial_stress = [-0.5, -0.45, -1.0, 0.0, 0.0, 0.0]\n\
+         [[contacts]]\ngroup = \"interface\"\nfriction = 0.4\n\
+         [[supports]]\ngroup = \"ends\"\nfix = [\"y\"]\n[[supports]]\ngroup = \"far_x\"\nfix = [\"x\"]\n[[supports]]\ngroup = \"far_z\"\nfix = [\"z\"]\n{output}",
+        full as u8
+    );
+    run_geo(if full { "tunnel3d_full" } else { "tunnel3d_quarter" }, "tunnel3d.geo", &toml)
+}
+
+#[test]
+fn angle_ticks_name_the_crown_springlines_and_invert() {
+    use super::plan::angle_ticks;
+    let (zero, side) = ([0.0, 0.0, 1.0], [1.0, 0.0, 0.0]);
+    let pi = std::f64::consts::PI;
+    // a ring on 1300 px: every 15 degrees, the quarter turns named
+    let ring = angle_ticks(-pi, pi, 1300.0, true, zero, side);
+    let named: Vec<(f64, String)> = ring.iter().filter_map(|(d, n)| n.clone().map(|n| (*d, n))).collect();
+    assert_eq!(named, [(-180.0, "invert".to_string()), (-90.0, "springline (−x)".into()), (0.0, "crown".into()), (90.0, "springline (+x)".into()), (180.0, "invert".into())]);
+    assert_eq!(ring.len(), 25);
+    // a quarter on 200 px: every 30 degrees (15 would be 33 px apart)
+    let quarter: Vec<f64> = angle_ticks(0.0, pi / 2.0, 200.0, true, zero, side).into_iter().map(|t| t.0).collect();
+    assert_eq!(quarter, [0.0, 30.0, 60.0, 90.0]);
+    // a shaft (vertical axis): directions, not tunnel words
+    let shaft = angle_ticks(0.0, pi, 800.0, false, [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+    let names: Vec<String> = shaft.into_iter().filter_map(|t| t.1).collect();
+    assert_eq!(names, ["+x", "+y", "−x"]);
+}
+
+/// Issue 19: the 3D lining's plan was a flat projection (a ring drew its
+/// front and back on top of each other, nothing named the crown). It is
+/// unrolled: the angle from the crown across (crown, springline, invert
+/// named), the axis up, each pair once.
+#[test]
+fn a_3d_lining_is_unrolled_from_the_crown() {
+    for full in [false, true] {
+        let run = tunnel3d(full, "");
+        let c = contact(&run);
+        let counts = state_counts(&c.states);
+        assert!(c.converged && counts[1] > 0 && counts[2] > 0, "slip and stick: {counts:?}");
+        let plans = plan_files(&run.model);
+        assert_eq!(plans.len(), 1);
+        assert_eq!(plans[0].file, "plan_interface.png");
+        let super::sheets::Shape::Cylinder { a, radius, crown, ring, .. } = plans[0].sheet.shape else { panic!("unrolled") };
+        assert!(crown && ring == full && a == [0.0, 1.0, 0.0] && (radius - 5.2).abs() < 0.05, "axis {a:?}, r = {radius}");
+        let flat = plans[0].sheet.flat(&run.model);
+        let deg = |x: f64| (x / radius).to_degrees();
+        let (lo, hi) = (deg(flat.lo[0]), deg(flat.hi[0]));
+        if full {
+            assert_eq!((lo.round(), hi.round()), (-180.0, 180.0));
+        } else {
+            assert!(lo.abs() < 0.5 && (hi - 90.0).abs() < 0.5, "the quarter from the crown to the springline: {lo} .. {hi}");
+        }
+        let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, c, &plans[0]).expect("plan");
+        for (state, colour, n) in [("open", OPEN, counts[0]), ("slip", SLIP, counts[1]), ("stick", STICK, counts[2])] {
+            assert_eq!(!in_box(&cv, boxes[0], colour).is_empty(), n > 0, "{state} drawn exactly when present");
+        }
+        keep(&format!("tunnel3d_{}_plan.png", if full { "ring" } else { "quarter" }), &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
+        // interfaces.svg: sigma_n varies round the ring, not along the axis
+        let al = super::interfaces::Along::of_sheet(&run.model, &plans[0].sheet, c);
+        assert_eq!(al.axis, "angle about the axis from the crown (degrees)");
+        keep(&format!("tunnel3d_{}_interfaces.png", if full { "ring" } else { "quarter" }), &interface_plot_png(&run.model, c).expect("plot"));
+    }
+}
+
+/// Issue 19: the tunnel's deformed picture was the 50 m block with the
+/// lining a small arc in one corner, coloured by the lining's stresses. It
+/// frames the contacts, cut to a box with its sections, and gives the
+/// lining and the rock a colour scale each; `[output] frame` names another
+/// region.
+#[test]
+fn a_3d_tunnel_is_framed_on_its_lining_with_a_scale_per_body() {
+    let run = tunnel3d(true, "");
+    let s = snap(&run);
+    let focus = super::framing::focus(&run.model, None);
+    let cut = focus.cut.expect("framed");
+    assert!(focus.note.as_deref().is_some_and(|n| n.starts_with("Framed on the contacts")), "{:?}", focus.note);
+    // the contacts' box (r = 5.2) grown by half its size on each side, the slice whole
+    assert!((cut.hi[0] - 10.4).abs() < 0.1 && (cut.lo[2] + 10.4).abs() < 0.1 && cut.lo[1] == 0.0 && cut.hi[1] == 2.0, "{cut:?}");
+    let values: Vec<Vec<f32>> = run.stresses.iter().map(|bs| {
+        let mut v = vec![f32::NAN; run.model.n_nodes()];
+        for (&k, st) in bs.nodes.iter().zip(&bs.stress) {
+            v[k] = crate::fem::material::von_mises(st) as f32;
+        }
+        v
+    }).collect();
+    let scales = super::deformed::scales(Field::VonMises, &values);
+    assert_eq!(scales.iter().map(|s| s.bodies.clone()).collect::<Vec<_>>(), vec![vec![0], vec![1]], "the lining's scale first, then the rock's");
+    assert!(scales[0].lim.hi > 3.0 * scales[1].lim.hi);
+    let cv = deformed_canvas(&s, Field::VonMises, None).expect("picture");
+    keep("tunnel3d_ring_von_mises.png", &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
+    // the lining's colours and the rock's
+    let viridis_end = cv.rgb.chunks_exact(3).any(|p| p[2] > 100 && p[0] < 90 && p[1] < 60);
+    assert!(viridis_end, "the lining's dark purple shows");
+    assert!(count(&cv, SLIP) > 0 && count(&cv, STICK) > 0);
+
+    // the scene names the lining: its box and a quarter of its size round it
+    let run = tunnel3d(true, "[output]\nframe = { bodies = [\"lining\"] }\n");
+    let focus = super::framing::focus(&run.model, run.scene.output.frame.as_ref());
+    assert!(focus.note.as_deref().is_some_and(|n| n.starts_with("Framed on \"lining\" ([output] frame)")), "{:?}", focus.note);
+    let cut = focus.cut.expect("framed");
+    assert!((cut.hi[0] - 7.8).abs() < 0.1, "{cut:?}");
+    keep("tunnel3d_ring_lining_von_mises.png", &deformed_png(&snap(&run), Field::VonMises, None).expect("picture"));
+}
+
+/// The colour bar stops at a quantile when a few nodes stand far out (a
+/// singular corner), and bodies get a scale each when their stresses are
+/// far apart, one when they are alike; the displacement keeps one.
+#[test]
+fn colour_scales_leave_out_hot_spots_and_part_bodies_far_apart() {
+    let mut v: Vec<f32> = (0..2000).map(|i| i as f32 / 2000.0).collect();
+    v.push(100.0);
+    let lim = super::legend::Limits::of(false, &[v.clone()]);
+    assert!(lim.hi < 1.01 && lim.max == 100.0, "the bar ends at {}, max {}", lim.hi, lim.max);
+    let lim = super::legend::Limits::of(false, &[v[..2000].to_vec()]);
+    assert!((lim.hi - 0.9995).abs() < 1e-3, "no outlier, no cut: {}", lim.hi);
+    let body = |scale: f32| (0..500).map(|i| scale * (1.0 + i as f32 / 500.0)).collect::<Vec<f32>>();
+    let groups = |vals: &[Vec<f32>], field| super::deformed::scales(field, vals).into_iter().map(|s| s.bodies).collect::<Vec<_>>();
+    assert_eq!(groups(&[body(1.0), body(20.0), body(3.0)], Field::VonMises), vec![vec![1], vec![0, 2]]);
+    assert_eq!(groups(&[body(1.0), body(4.0)], Field::VonMises), vec![vec![0, 1]]);
+    assert_eq!(groups(&[body(1.0), body(20.0), body(400.0), body(8000.0)], Field::Sxx), vec![vec![3], vec![2], vec![0, 1]], "at most three");
+    assert_eq!(groups(&[body(1.0), body(20.0)], Field::Displacement), vec![vec![0, 1]]);
+}
+
+/// One contact group on two planes (a wedge in a V-groove): a plan view per
+/// face, the overview of both, a panel per face in interfaces.svg.
+#[test]
+fn a_contact_on_two_planes_gets_a_plan_per_plane_and_an_overview() {
+    let toml = "title = \"A wedge in a V-groove\"\nmesh = \"vgroove.geo\"\nanalysis = \"solid\"\n[gmsh]\norder = 1\nsetnumber = { lc = 0.25 }\n\
+                [materials.rock]\nE = 1000.0\nnu = 0.25\n[[bodies]]\ngroup = \"rock\"\nmaterial = \"rock\"\n[[bodies]]\ngroup = \"wedge\"\nmaterial = \"rock\"\n\
+                [[contacts]]\ngroup = \"groove\"\nfriction = 0.6\n[[supports]]\ngroup = \"bottom\"\nfix = [\"x\", \"y\", \"z\"]\n[[supports]]\ngroup = \"ends\"\nfix = [\"y\"]\n\
+                [[loads]]\ngroup = \"top\"\ntraction = [0.15, 0.0, -1.0]\n";
+    let run = run_geo("vgroove", "vgroove.geo", toml);
+    let plans = plan_files(&run.model);
+    let files: Vec<&str> = plans.iter().map(|p| p.file.as_str()).collect();
+    assert_eq!(files, ["plan_groove_1.png", "plan_groove_2.png"]);
+    for p in &plans {
+        assert!(p.describe(&run.model).contains("dip 45°"), "{}", p.describe(&run.model));
+    }
+    let pics: Vec<(String, Vec<u8>)> = pictures(&snap(&run)).expect("pictures");
+    let names: Vec<&str> = pics.iter().map(|p| p.0.as_str()).collect();
+    assert_eq!(names, ["deformed_von_mises.png", "interfaces.svg", "plan_groove_1.png", "plan_groove_2.png", "joints.png"]);
+    for (f, bytes) in &pics {
+        keep(&format!("vgroove_{f}"), bytes);
+    }
+    let svg = String::from_utf8(pics[1].1.clone()).expect("svg");
+    assert!(svg.contains("groove 1 of 2, dip 45°/090°") && svg.contains("groove 2 of 2, dip 45°/270°"), "one panel per face");
+    keep("vgroove_interfaces.png", &interface_plot_png(&run.model, contact(&run)).expect("plot"));
+    let report = crate::output::report::report(&run);
+    assert!(report.contains("![every contact surface by state](joints.png)") && report.contains("(plan_groove_2.png)"));
+}
+
+/// Issue 19: a wall's base plotted against the direction along the wall
+/// (the pairs' longest spread) made columns of dots. The block on block of
+/// geo/blocks3d.toml stretched to 6 along y and pushed along x: the
+/// stresses vary along x, and the plot is against x.
+#[test]
+fn a_wall_is_plotted_across_its_length() {
+    let mut scene = Scene::load(Path::new("geo/blocks3d.toml")).expect("scene");
+    scene.gmsh.setnumber = vec![("b".into(), 6.0), ("hex".into(), 1.0), ("lc".into(), 0.25)];
+    scene.gmsh.order = 1;
+    let opts = RunOptions { out: Some(out_dir("wall")), skip_output: true, ..Default::default() };
+    let run = driver::run_scene(scene, &opts).expect("wall run");
+    let plans = plan_files(&run.model);
+    assert_eq!(plans.len(), 1);
+    let al = super::interfaces::Along::of_sheet(&run.model, &plans[0].sheet, contact(&run));
+    assert_eq!(al.axis, "x");
+    assert!(al.left < 0.05, "x explains the stresses: {} left", al.left);
+    keep("wall_interfaces.png", &interface_plot_png(&run.model, contact(&run)).expect("plot"));
+}
