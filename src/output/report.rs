@@ -1,6 +1,10 @@
-//! `report.md`: what a person reads first. The scene, the model's size, the
-//! contact iteration, timings, errors against the closed form, the pictures,
-//! what the scene's `[analytic]` check adds (`Run::check`), and the probes.
+//! `report.md`: what a person reads first. The scene, its warnings (the
+//! scene's and the model's: bodies bonded without a contact), the model's
+//! size, the contact iteration, timings (the same as summary.json's: both
+//! are staged once the output stage is timed), the load steps with the
+//! factor each load had at each step, errors against the closed form, the
+//! pictures, what the scene's `[analytic]` check adds (`Run::check`), and
+//! the probes.
 
 use std::fmt::Write;
 
