@@ -27,7 +27,7 @@ pub fn joints_file(plans: &[PlanFile]) -> Option<&'static str> {
 /// its heading, and the top of the first row.
 const WIDTH: f64 = 1600.0;
 const MOST_HEIGHT: f64 = 2400.0;
-const MOST_SIDE: f64 = 640.0;
+const MOST_SIDE: f64 = 400.0;
 const MARGIN: f64 = 40.0;
 const GAP: f64 = 28.0;
 const HEADING: f64 = 44.0;

@@ -131,13 +131,23 @@ impl Fit {
     }
 }
 
-/// The pair at each node of a sheet (this interface's where contacts
-/// meet), and the sheet's pairs.
+/// The pair at each node of a sheet, and the sheet's pairs. Where pairs
+/// share a node (contacts that meet, joints that cross) it is this
+/// interface's pair, and on a plane the one whose normal is most along the
+/// plane's.
 pub(super) fn sheet_pairs(model: &Model, sheet: &Sheet) -> (Vec<usize>, Vec<usize>) {
     let nodes = sheet.nodes(model);
+    let normal = match &sheet.shape {
+        Shape::Plane { n, .. } => Some(*n),
+        _ => None,
+    };
+    let rank = |p: usize| -> (bool, f64) {
+        let pair = &model.pairs[p];
+        (pair.contact == sheet.interface, normal.map_or(0.0, |n| dot(n, pair.normal).abs()))
+    };
     let mut pair_of = vec![usize::MAX; model.n_nodes()];
     for (p, pair) in model.pairs.iter().enumerate() {
-        if nodes.binary_search(&pair.k).is_ok() && (pair_of[pair.k] == usize::MAX || pair.contact == sheet.interface) {
+        if nodes.binary_search(&pair.k).is_ok() && (pair_of[pair.k] == usize::MAX || rank(p) > rank(pair_of[pair.k])) {
             pair_of[pair.k] = p;
         }
     }

@@ -567,3 +567,72 @@ fn a_wall_is_plotted_across_its_length() {
     assert!(al.left < 0.05, "x explains the stresses: {} left", al.left);
     keep("wall_interfaces.png", &interface_plot_png(&run.model, contact(&run)).expect("plot"));
 }
+
+/// A joint set as the lead's contact groups will hold it (issue 17): one
+/// interface whose facets lie on five horizontal planes and two vertical
+/// ones crossing them, pairs on every facet node, states set by position
+/// (open where x < 1, slip where 1 <= x < 2, else stick). One plan per
+/// plane, each showing exactly its states; joints.png with all seven;
+/// interfaces.svg with a panel per plane. Built from the model's facets and
+/// pairs alone.
+#[test]
+fn a_joint_set_of_many_planes_gets_a_plan_per_plane_and_one_overview() {
+    use super::sheets::tests::{grid, model_of};
+    use crate::contact::law::PairResult;
+    let (mut coords, mut quads) = (Vec::new(), Vec::new());
+    for z in 0..5 {
+        grid(&mut coords, &mut quads, [6, 3], |s, t| [3.0 * s, 2.0 * t, z as f64]);
+    }
+    for x in [0.5, 2.5] {
+        grid(&mut coords, &mut quads, [3, 8], |s, t| [x, 2.0 * s, 4.0 * t]);
+    }
+    let mut model = model_of(coords, quads);
+    let n = model.n_nodes();
+    model.pairs = (0..n).map(|k| crate::model::Pair { k, l: k, contact: 0, normal: if k < 5 * 28 { [0.0, 0.0, 1.0] } else { [1.0, 0.0, 0.0] }, area: 0.1 }).collect();
+    let states: Vec<ContactState> = (0..n).map(|k| match model.coords[k][0] {
+        x if x < 1.0 => ContactState::Open,
+        x if x < 2.0 => ContactState::Slip,
+        _ => ContactState::Stick,
+    }).collect();
+    let c = crate::results::ContactRun {
+        pairs: (0..n).map(|k| PairResult { sigma_n: -1.0 - model.coords[k][2], tau_t: 0.1 * model.coords[k][0], tau_b: 0.0, gap: 0.0, slip: 0.0 }).collect(),
+        frames: vec![[[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]; n],
+        areas: vec![0.1; n],
+        states,
+        apex_openings: 0,
+        iterations: 1,
+        converged: true,
+        cycled: false,
+        cycles_broken: 0,
+        history: Vec::new(),
+    };
+    let plans = plan_files(&model);
+    let files: Vec<&str> = plans.iter().map(|p| p.file.as_str()).collect();
+    assert_eq!(files, (1..=7).map(|k| format!("plan_joints_{k}.png")).collect::<Vec<_>>());
+    let described: Vec<String> = plans.iter().map(|p| p.describe(&model)).collect();
+    assert_eq!(described[..5], ["the plane z = 0", "the plane z = 1", "the plane z = 2", "the plane z = 3", "the plane z = 4"]);
+    assert_eq!(described[5..], ["the plane x = 0.5", "the plane x = 2.5"]);
+    for (i, p) in plans.iter().enumerate() {
+        let (cv, boxes) = super::plan::plan_canvas("a joint set", &model, &c, p).expect("plan");
+        let (open, slip, stick) = (in_box(&cv, boxes[0], OPEN).len(), in_box(&cv, boxes[0], SLIP).len(), in_box(&cv, boxes[0], STICK).len());
+        match i {
+            // a horizontal plane has all three, in x order
+            0..=4 => assert!(open > 0 && slip > 0 && stick > 0, "plane {i}: {open} {slip} {stick}"),
+            // x = 0.5 opens, x = 2.5 sticks
+            5 => assert!(open > 0 && slip + stick == 0, "x = 0.5: {open} {slip} {stick}"),
+            _ => assert!(stick > 0 && open + slip == 0, "x = 2.5: {open} {slip} {stick}"),
+        }
+        if i == 0 || i == 6 {
+            keep(&format!("jointset_{}", p.file), &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
+        }
+    }
+    assert_eq!(joints_file(&plans), Some("joints.png"));
+    let png = joints_png("a joint set", &model, &c, &plans).expect("overview");
+    let (w, h, rgb) = decode(&png);
+    let has = |c: [u8; 3]| rgb.chunks_exact(3).any(|p| p == c);
+    assert!(w <= 1600 && h <= 2500 && has(OPEN) && has(SLIP) && has(STICK));
+    keep("jointset_joints.png", &png);
+    let svg = interface_plot_svg(&model, &c).expect("plot");
+    assert!(svg.contains("joints 1 of 7, z = 0") && svg.contains("joints 7 of 7, x = 2.5"));
+    keep("jointset_interfaces.png", &interface_plot_png(&model, &c).expect("plot"));
+}
