@@ -118,6 +118,6 @@ mod tests {
         let mut m = model(true);
         m.bodies[2].cells.push(Cell { kind: CellKind::Tri3, nodes: vec![5, 2, 6], tag: 0 });
         assert!(!bonded(&m).iter().any(|b| b.bodies == [1, 2]));
-        assert!(bonded(&model(false)).iter().any(|b| b.bodies == [1, 2]) == false, "no shared node, no pair: nothing joins b and c");
+        assert!(!bonded(&model(false)).iter().any(|b| b.bodies == [1, 2]), "no shared node, no pair: nothing joins b and c");
     }
 }

@@ -430,7 +430,7 @@ fn draw_bodies(cv: &mut Canvas, snap: &Snapshot, frame: &Frame, values: &[Vec<f3
         }
     };
     patches.sort_by(|a, b| depth_of(&Piece::Whole(a)).total_cmp(&depth_of(&Piece::Whole(b))));
-    let mut order: Vec<(f64, Piece)> = patches.iter().map(|p| Piece::Whole(p)).chain(clipped.iter().chain(&sections).map(Piece::Cut)).map(|p| (depth_of(&p), p)).collect();
+    let mut order: Vec<(f64, Piece)> = patches.iter().map(Piece::Whole).chain(clipped.iter().chain(&sections).map(Piece::Cut)).map(|p| (depth_of(&p), p)).collect();
     order.sort_by(|a, b| a.0.total_cmp(&b.0));
     let light = norm3(std::array::from_fn(|i| 0.3 * view.right[i] + 0.5 * view.up[i] + view.eye[i]));
     for (_, piece) in &order {
