@@ -19,15 +19,16 @@ pub fn solve(scene: &Path, opts: &RunOptions, comm: &dyn Comm) -> Result<()> {
     };
     // say what happened: pairs that opened between the Coulomb apex and f_t
     if run.steps.iter().filter_map(|s| s.contact.as_ref()).any(|c| c.apex_openings > 0) {
-        warn(&run.scene);
+        warn(&run.scene.warnings());
     }
+    warn(&crate::model::warnings::warnings(&run.model));
     print_summary(&run);
     Ok(())
 }
 
-/// The scene's warnings on stderr, one paragraph each.
-fn warn(scene: &Scene) {
-    for w in scene.warnings() {
+/// Warnings on stderr, one paragraph each.
+fn warn(warnings: &[String]) {
+    for w in warnings {
         eprintln!("warning: {w}");
     }
 }
@@ -50,10 +51,13 @@ pub fn check(scene_path: &Path) -> Result<()> {
     let out = Path::new("results").join(&scene.name);
     let (mesh, msh, _) = driver::load_mesh(&scene, &out)?;
     let model = Model::build(&mesh, &scene.model_spec())?;
-    let parts = substructure::parts(&model);
+    let parts = substructure::cut(&model, substructure::parts(&model), scene.solver.substructures);
+    let dofs = substructure::parts::dof_counts(&model, &parts);
     println!("{}: scene and mesh `{}` are consistent", scene_path.display(), msh.display());
     println!("  {} bodies, {} elements, {} model nodes, {} contact pairs, {} part(s)", model.bodies.len(), model.bodies.iter().map(|b| b.cells.len()).sum::<usize>(), model.n_nodes(), model.pairs.len(), parts.len());
-    warn(&scene);
+    println!("  {} DOFs ({} interface)", dofs.total, dofs.interface);
+    warn(&scene.warnings());
+    warn(&crate::model::warnings::warnings(&model));
     Ok(())
 }
 

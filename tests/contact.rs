@@ -381,6 +381,10 @@ fn frictionless_joint_that_lets_a_block_slide_is_refused_as_singular() {
         let stderr = refused(&case, &scene);
         eprintln!("slide-off {name}: {}", stderr.trim());
         says(&stderr, &[scene.as_str(), "singular", "iteration 2", "(0 stick, 5 slip, 0 open)", "slides or rotates freely"]);
+        // issue 19 item 4: no shear at all, so no load "exceeds" anything; the
+        // advice is finished
+        says(&stderr, &["its contacts carry no shear (contacts[0] \"joint\": friction and cohesion 0)", "give the contacts friction or cohesion"]);
+        assert!(!stderr.contains("exceeds") && !stderr.trim_end().ends_with("or friction"), "{stderr}");
     }
 }
 

@@ -38,8 +38,14 @@ pub(super) fn failure_message(model: &Model, parts: &[&Part], scene: &Scene, ste
             let mut bodies: Vec<usize> = ids.iter().flat_map(|&i| parts[i].bodies.iter().copied()).collect();
             bodies.sort_unstable();
             bodies.dedup();
+            // issue 19 item 4: finish the sentence, and claim no excess load
+            // where the contacts carry no shear at all
+            let why = match shear_free(model, scene, &bodies) {
+                Some(which) => format!("its contacts carry no shear ({which}), so nothing holds it along them, whatever the load. Add a support that holds it tangentially, or give the contacts friction or cohesion"),
+                None => "the load along the contact exceeds what friction and cohesion can carry. Reduce the load, add a support that holds it tangentially, or raise the contacts' friction or cohesion".to_string(),
+            };
             format!(
-                "{}: the interface system is singular at {at}contact iteration {} ({} stick, {} slip, {} open): {} slides or rotates freely on its contacts — loss of equilibrium: the load along the contact exceeds what friction and cohesion can carry. Reduce the load, or add a support that holds it tangentially, or friction",
+                "{}: the interface system is singular at {at}contact iteration {} ({} stick, {} slip, {} open): {} slides or rotates freely on its contacts — loss of equilibrium: {why}",
                 scene.path.display(),
                 f.iteration,
                 counts[2],
@@ -49,6 +55,32 @@ pub(super) fn failure_message(model: &Model, parts: &[&Part], scene: &Scene, ste
             )
         }
     }
+}
+
+/// When every contact of `bodies` carries no shear (friction and cohesion
+/// 0, or frictionless slip), which contacts those are, for the message.
+fn shear_free(model: &Model, scene: &Scene, bodies: &[usize]) -> Option<String> {
+    let mut mine = vec![false; model.n_nodes()];
+    for &k in bodies.iter().flat_map(|&b| &model.bodies[b].cells).flat_map(|c| &c.nodes) {
+        mine[k] = true;
+    }
+    let mut contacts: Vec<usize> = model.pairs.iter().filter(|p| mine[p.k] || mine[p.l]).map(|p| p.contact).collect();
+    contacts.sort_unstable();
+    contacts.dedup();
+    let free = |c: &crate::scene::Contact| c.slip == crate::contact::SlipLaw::Frictionless || (c.friction == 0.0 && c.cohesion == 0.0);
+    let listed: Vec<(usize, &crate::scene::Contact)> = contacts.iter().filter_map(|&i| scene.contacts.get(i).map(|c| (i, c))).collect();
+    if listed.is_empty() || !listed.iter().all(|(_, c)| free(c)) {
+        return None;
+    }
+    let says = |(i, c): &(usize, &crate::scene::Contact)| {
+        let name = match &c.groups {
+            crate::model::ContactGroups::Shared(g) => g.clone(),
+            crate::model::ContactGroups::Pair(a, b) => format!("{a}|{b}"),
+        };
+        let law = if c.friction == 0.0 && c.cohesion == 0.0 { "friction and cohesion 0" } else { "slip = \"frictionless\"" };
+        format!("contacts[{i}] \"{name}\": {law}")
+    };
+    Some(listed.iter().map(says).collect::<Vec<_>>().join("; "))
 }
 
 /// Where a contact's f_t exceeds the Coulomb apex c / f, the robust rule

@@ -15,11 +15,14 @@
 //! supports, the rigid-motion check, loads, pair normals and areas. The
 //! contact split, the node pairing and the junctions of contacts are in
 //! contacts.rs; the check that every rigid-body motion is held in held.rs.
+//! What the built model makes legal but a user may not mean (bodies bonded
+//! by shared nodes without a contact) is in warnings.rs.
 
 mod build;
 mod contacts;
 mod held;
 mod spec;
+pub mod warnings;
 
 pub use spec::{BodySpec, ContactGroups, ContactSpec, InitialStress, LoadKind, LoadSpec, ModelSpec, SupportSpec};
 

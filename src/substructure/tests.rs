@@ -359,3 +359,23 @@ fn parts_condensed_in_threads_equal_one_after_the_other() {
         assert!(e.to_string().contains("block0"), "{e}");
     }
 }
+
+/// `subcontact check` counts the DOFs without numbering the parts: the
+/// same interior and interface counts as `numbering` part by part (the
+/// two-body model with prescribed and supported nodes, and the stacked
+/// blocks cut into pieces that share bonded joins).
+#[test]
+fn dof_counts_equal_the_numbering_of_the_parts() {
+    for (model, k) in [(two_body_model(), 1), (stacked_blocks(4, 3), 1), (stacked_blocks(4, 3), 3)] {
+        let cut = super::cut(&model, parts(&model), k);
+        let counts = super::parts::dof_counts(&model, &cut);
+        let interior: usize = cut.iter().map(|p| numbering(&model, p).1).sum();
+        let mut shared: Vec<usize> = cut.iter().flat_map(|p| p.interface.iter().copied()).collect();
+        shared.sort_unstable();
+        shared.dedup();
+        let in_pair = |n: usize| model.pairs.iter().any(|p| p.k == n || p.l == n);
+        let iface: usize = shared.iter().map(|&n| if in_pair(n) { model.nd } else { (0..model.nd).filter(|&c| model.prescribed[n * model.nd + c].is_none()).count() }).sum();
+        assert!(iface > 0, "the model has an interface");
+        assert_eq!(counts, super::parts::DofCounts { total: interior + iface, interface: iface }, "{} pieces", cut.len());
+    }
+}
