@@ -120,16 +120,9 @@ pub fn iterate(
     }
 }
 
+/// The tangential part of a vector in a pair's local axes (n, t, b).
 pub(crate) fn tangential(v: [f64; 3]) -> [f64; 3] {
     [0.0, v[1], v[2]]
-}
-
-pub(crate) fn norm(v: [f64; 3]) -> f64 {
-    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
-}
-
-pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
 /// Whether a pair has lost its tensile strength and cohesion: it opened or

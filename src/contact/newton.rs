@@ -31,8 +31,9 @@
 
 use super::law::{friction_bound, judge, ContactState, Trial};
 use super::system::{InterfaceProblem, InterfaceSolution, Relation};
-use super::{commit, cracked, norm, sub, tangential, Failed, History, Outcome, PairLaw};
+use super::{commit, cracked, tangential, Failed, History, Outcome, PairLaw};
 use super::options::SlipLaw;
+use crate::fem::vec3::{norm, sub};
 
 /// The largest β = b / |ξ| the linearisation uses: k⊥ stays below 1000 c_p
 /// (a pair that just started slipping is nearly tied across its slip).

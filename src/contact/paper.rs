@@ -9,8 +9,9 @@
 
 use super::law::{judge_paper, ContactState};
 use super::system::{InterfaceProblem, Relation};
-use super::{cracked, norm, sub, tangential, Failed, History, Outcome, PairLaw};
+use super::{cracked, tangential, Failed, History, Outcome, PairLaw};
 use super::options::SlipLaw;
+use crate::fem::vec3::{norm, sub};
 
 /// The friction force on body I of every slipping Coulomb pair.
 fn friction(problem: &InterfaceProblem, laws: &[PairLaw], h: &History, p: usize) -> [f64; 3] {

@@ -30,7 +30,8 @@ use reduce::Reduced;
 use super::basis::{self, FaceBasis};
 use super::frame::{aligned_axis, frame, Frame};
 use super::law::{ContactState, PairResult};
-use super::rigid::{self, free_parts, RigidModes, Tie};
+use super::rigid::{free_parts, PartModes, Tie};
+use crate::fem::rigid::n_modes;
 use crate::fem::sparse::NONE;
 use crate::model::{Model, ModelError};
 use crate::substructure::{Condensation, OperatorRef};
@@ -113,7 +114,7 @@ pub struct InterfaceProblem<'a> {
     parts: Vec<PartMap>,
     /// Rigid motions of each part and the position of each pair, to tell
     /// which parts nothing holds.
-    rigid: Vec<RigidModes>,
+    rigid: Vec<PartModes>,
     positions: Vec<[f64; 3]>,
     /// (part, position) of each pair's k and l.
     at: Vec<[(usize, usize); 2]>,
@@ -292,7 +293,7 @@ impl<'a> InterfaceProblem<'a> {
             msg: "the bodies are not held even with every contact stuck (the bonded interface system is singular): add a support".into(),
         };
         let nj = nm - nm_pairs;
-        let rigid: Vec<RigidModes> = parts.iter().map(|p| RigidModes::new(model, &p.part.nodes(model))).collect();
+        let rigid: Vec<PartModes> = parts.iter().map(|p| PartModes::new(model, &p.part.nodes(model))).collect();
         let positions = model.pairs.iter().map(|p| model.coords[p.k]).collect();
         let is_applied = |p: &OperatorRef| p.how == Condensation::Applied && p.nc > 0;
         if parts.iter().any(is_applied) {
@@ -329,7 +330,7 @@ impl<'a> InterfaceProblem<'a> {
                 if !is_applied(p) {
                     continue;
                 }
-                for k in 0..rigid::n_modes(model.analysis) {
+                for k in 0..n_modes(model.analysis) {
                     let mut col = vec![0.0; nm + nr];
                     for (&node, slot) in p.part.interface.iter().zip(&map.nodes) {
                         // a mean is shared by the two sides of a pair, or by the parts at a join
@@ -339,7 +340,7 @@ impl<'a> InterfaceProblem<'a> {
                         };
                         for (a, axis) in node_axes.iter().enumerate().take(nd) {
                             if let Axis::Free { m, .. } | Axis::Joined { m } = *axis {
-                                col[m] += w * modes.along(model.coords[node], frame[a])[k];
+                                col[m] += w * modes.modes.along(model.coords[node], frame[a])[k];
                             }
                         }
                     }
