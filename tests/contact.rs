@@ -539,3 +539,94 @@ fn contact_of_a_body_with_itself_is_refused_naming_the_body() {
     eprintln!("self contact: {}", stderr.trim());
     says(&stderr, &["self.toml", "contacts[0].groups", "\"a\"", "\"symmetry_y0\"", "body \"body_1\"", "itself"]);
 }
+
+// ---------------------------------------------------------------------------
+// crack memory across load steps, both rules
+
+/// A joint without friction or cohesion but with a tensile strength of 0.3:
+/// the bottom block carries the only weight (density 1, height 1, g = 1)
+/// and the top block is clamped at its top face, so the joint is pressed
+/// (about -0.25) when gravity points up and pulled (about +0.1) at 0.4 of
+/// it pointing down. Step 1 presses: every pair slips (no shear strength),
+/// so the joint cracks. Step 2 pulls below f_t: an intact joint would hold
+/// it, the cracked one (f_t = 0) opens. Both rules keep the memory. With
+/// the paper's rule the same pull as a scene's only step opens nothing (it
+/// judges a pair cracked from the steps before; the robust rule also from
+/// its slip within the step, so there the pull alone opens the joint too).
+#[test]
+fn a_joint_that_slipped_in_one_load_step_opens_under_a_small_pull_in_the_next_with_both_rules() {
+    let case = Case::new("contact-crack-memory");
+    case.copy("tests/geo/contact_stack.geo");
+    let scene = |rule: &str, factors: &str| {
+        format!(
+            r#"title = "crack memory"
+mesh = "contact_stack.geo"
+analysis = "plane_stress"
+gravity = [0.0, -1.0]
+
+[gmsh]
+order = 1
+setnumber = {{ n = 4, quad = 1 }}
+
+[materials.heavy]
+E = 1000.0
+nu = 0.25
+density = 1.0
+
+[materials.light]
+E = 1000.0
+nu = 0.25
+
+[[bodies]]
+group = "bottom"
+material = "heavy"
+
+[[bodies]]
+group = "top"
+material = "light"
+
+[[contacts]]
+group = "joint"
+friction = 0.0
+cohesion = 0.0
+tensile_strength = 0.3
+
+[[supports]]
+group = "base"
+fix = ["y"]
+
+[[supports]]
+group = "corner"
+fix = ["x"]
+
+[[supports]]
+group = "top_face"
+fix = ["x", "y"]
+
+[solver]
+rule = "{rule}"
+load_steps = {steps}
+gravity_factors = [{factors}]
+"#,
+            steps = factors.split(',').count()
+        )
+    };
+    for rule in ["paper", "robust"] {
+        let run = case.run(&case.write(&format!("memory_{rule}.toml"), &scene(rule, "-1.0, 0.4"))).expect("two load steps");
+        let [first, second] = [&run.steps[0], &run.steps[1]].map(|s| s.contact.as_ref().expect("contact"));
+        assert!(first.converged && second.converged, "{rule}: both steps converge");
+        assert!(first.pairs.iter().all(|p| p.sigma_n < -0.1), "{rule}: step 1 presses the joint");
+        assert!(first.states.iter().all(|&s| s == ContactState::Slip), "{rule}: step 1 slips everywhere: {:?}", first.states);
+        assert!(second.states.iter().all(|&s| s == ContactState::Open), "{rule}: step 2 opens the cracked joint: {:?}", second.states);
+        eprintln!("crack memory, {rule}: step 1 {} slip, step 2 {} open", first.states.len(), second.states.len());
+        if rule != "paper" {
+            continue;
+        }
+        let once = case.run(&case.write(&format!("fresh_{rule}.toml"), &scene(rule, "0.4"))).expect("one load step");
+        let c = once.contact.as_ref().expect("contact");
+        assert!(c.converged && c.states.iter().all(|&s| s != ContactState::Open), "{rule}: the intact joint holds the pull: {:?}", c.states);
+        let pull = c.pairs.iter().map(|p| p.sigma_n).fold(f64::INFINITY, f64::min);
+        assert!(pull > 0.0 && c.pairs.iter().all(|p| p.sigma_n < 0.3), "{rule}: a pull below f_t everywhere (smallest {pull})");
+        eprintln!("the pull alone, {rule}: sigma_n from {pull:.3}, nothing opens");
+    }
+}

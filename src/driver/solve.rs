@@ -299,7 +299,8 @@ pub(super) fn solve(scene: &Scene, model: &Model, opts: &RunOptions, comm: &dyn 
                 problem.solve(&[], &lambda).ok()
             } else {
                 match contact::iterate(problem, &laws, scene.solver.rule, &lambda, &mut hist, scene.solver.max_iterations) {
-                    Ok(Outcome { states, solution, iterations, converged, cycled, cycles_broken, apex_openings, history }) => {
+                    Ok(Outcome { states, solution, summary }) => {
+                        let contact::Summary { iterations, converged, cycled, cycles_broken, apex_openings, history } = summary;
                         residual_interface = residual_interface.max(solution.residual);
                         counters.interface_solves += iterations;
                         let mut pairs = solution.pairs.clone();

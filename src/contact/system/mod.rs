@@ -148,6 +148,7 @@ pub struct InterfaceSolution {
 }
 
 /// Why an interface solve failed.
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub enum SolveFailure {
     /// These bodies are held by nothing.
     NotHeld(Vec<usize>),
