@@ -34,7 +34,7 @@ pub(super) fn failure_message(model: &Model, parts: &[&Part], scene: &Scene, ste
                 it_them = if one { "it" } else { "them" },
             )
         }
-        SolveFailure::Singular(ids) => {
+        SolveFailure::Sliding(ids) => {
             let mut bodies: Vec<usize> = ids.iter().flat_map(|&i| parts[i].bodies.iter().copied()).collect();
             bodies.sort_unstable();
             bodies.dedup();

@@ -305,7 +305,7 @@ pub(super) fn solve(scene: &Scene, model: &Model, opts: &RunOptions, comm: &dyn 
                         counters.interface_solves += iterations;
                         let mut pairs = solution.pairs.clone();
                         if let Some(tr) = &traction {
-                            let t = tr.recover(&solution.forces, &problem.basis);
+                            let t = tr.recover(&solution.forces, problem.basis());
                             for (p, pr) in pairs.iter_mut().enumerate() {
                                 if scene.contacts[model.pairs[p].contact].traction == TractionRecovery::Consistent {
                                     pr.sigma_n = t[p][0];
@@ -315,7 +315,7 @@ pub(super) fn solve(scene: &Scene, model: &Model, opts: &RunOptions, comm: &dyn 
                             }
                         }
                         let areas = (0..pairs.len()).map(|p| problem.area(p)).collect();
-                        contact_step = Some(ContactRun { states, pairs, frames: problem.frames.clone(), areas, apex_openings, iterations, converged, cycled, cycles_broken, history });
+                        contact_step = Some(ContactRun { states, pairs, frames: problem.frames().to_vec(), areas, apex_openings, iterations, converged, cycled, cycles_broken, history });
                         Some(solution)
                     }
                     Err(f) => {

@@ -45,12 +45,17 @@ use faer::Mat;
 
 use super::coords::{for_each_load, Axis, Terms, Var};
 use super::gmres;
+use super::layout::{Layout, Slot};
 use super::reduce::combine;
-use super::{coords, Relation};
+use super::{coords, Answer, Relation, Solver, IDENTITY};
 use crate::contact::basis;
 use crate::contact::frame::Frame;
 use crate::contact::law::ContactState;
+use crate::contact::rigid::PartModes;
+use crate::fem::rigid::n_modes;
+use crate::model::Model;
 use crate::substructure::interior::SharedSolve;
+use crate::substructure::{OperatorRef, SchurRef};
 
 /// Relative tolerance of each interface solve, against the load.
 pub const TOLERANCE: f64 = 1e-10;
@@ -134,23 +139,33 @@ pub struct Iterative<'a> {
     /// The last solution, where the next solve starts.
     last: Mutex<Option<Vec<f64>>>,
     /// GMRES iterations of every solve so far.
-    pub iterations: Mutex<Vec<usize>>,
-}
-
-/// What a solve gives the interface problem.
-pub struct Answer {
-    /// The means and the relative displacements.
-    pub m: Vec<f64>,
-    pub r: Vec<f64>,
-    /// `K x - b` on the relative rows: `-λ`.
-    pub residual_r: Vec<f64>,
-    /// `||J dx - rhs|| / ||b||` of the GMRES solve.
-    pub residual: f64,
-    /// Solved to [`LOOSE_TOLERANCE`].
-    pub loose: bool,
+    iterations: Mutex<Vec<usize>>,
 }
 
 impl<'a> Iterative<'a> {
+    /// The iterative interface of the `parts` laid out by `layout`: the
+    /// parts condensed for it (their S applied here through `solve`, or on
+    /// their own rank through `remote`), the preconditioner's groups (each
+    /// pair and join node) and the coarse space of the parts' rigid motions
+    /// `rigid`.
+    pub(super) fn build(model: &Model, layout: &Layout, parts: &[OperatorRef], rigid: &[PartModes], remote: Option<&'a dyn Remote>, threads: usize) -> Iterative<'a> {
+        let applied = (parts.iter().enumerate().zip(&layout.parts))
+            .filter_map(|((i, p), map)| {
+                let SchurRef::Applied { diag, solve } = p.s else { return None };
+                (p.nc > 0).then(|| AppliedPart {
+                    source: solve.map_or(Source::Remote(i), |s| Source::Local(s.clone())),
+                    diag: diag.to_vec(),
+                    terms: layout.terms_of(p.nc, map),
+                    frames: layout.frames_of(map),
+                    edges: map.edges.clone(),
+                    g: p.g.to_vec(),
+                })
+            })
+            .collect();
+        let coarse = coarse_space(model, layout, parts, rigid);
+        Iterative::new(model.nd, layout.nm, layout.nr, applied, layout.groups(), coarse, remote, threads)
+    }
+
     /// Sets up the right-hand sides (one application of S per part, for
     /// the prescribed values) and the preconditioner's blocks; `groups`
     /// lists the unknowns of each pair and join node.
@@ -238,13 +253,6 @@ impl<'a> Iterative<'a> {
         it
     }
 
-    /// The diagonal of the preconditioner's block at relative displacement `r`.
-    pub fn diagonal_r(&self, r: usize) -> f64 {
-        let p = self.place[self.nm + r];
-        let (members, m) = &self.blocks[p.block];
-        m[p.at * members.len() + p.at]
-    }
-
     /// `K x`.
     fn apply(&self, x: &[f64]) -> Vec<f64> {
         self.apply_with(x, 0.0)
@@ -329,7 +337,7 @@ impl<'a> Iterative<'a> {
     /// Solves the pairs' relations `rel` (pair `p`'s local axes numbered by
     /// `axes[p]`) under the load factors `lambda`; `None` when GMRES does
     /// not get below 1e-6 (a singular system: a body sliding freely).
-    pub fn solve(&self, axes: &[[Axis; 3]], rel: &[Relation], lambda: &[f64]) -> Option<Answer> {
+    fn solve_gmres(&self, axes: &[[Axis; 3]], rel: &[Relation], lambda: &[f64]) -> Option<Answer> {
         let (nd, nm, nr) = (self.nd, self.nm, self.nr);
         let n = nm + nr;
         let b = combine(&self.b, &self.b_fixed, lambda);
@@ -508,6 +516,52 @@ impl<'a> Iterative<'a> {
             out
         }
     }
+}
+
+impl Solver for Iterative<'_> {
+    fn solve(&self, axes: &[[Axis; 3]], rel: &[Relation], lambda: &[f64]) -> Option<Answer> {
+        self.solve_gmres(axes, rel, lambda)
+    }
+
+    /// The diagonal of the preconditioner's block at relative displacement `r`.
+    fn diagonal(&self, r: usize) -> f64 {
+        let p = self.place[self.nm + r];
+        let (members, m) = &self.blocks[p.block];
+        m[p.at * members.len() + p.at]
+    }
+
+    fn counts(&self) -> Vec<usize> {
+        self.iterations.lock().map(|v| v.clone()).unwrap_or_default()
+    }
+}
+
+/// The coarse space: each applied part's rigid motions on the means,
+/// shared between the parts that hold a node (half each on a pair, evenly
+/// at a join), one column per part and motion over `[m; r]`.
+fn coarse_space(model: &Model, layout: &Layout, parts: &[OperatorRef], rigid: &[PartModes]) -> Vec<Vec<f64>> {
+    let (nd, n) = (model.nd, layout.nm + layout.nr);
+    let mut coarse = Vec::new();
+    for ((p, map), modes) in parts.iter().zip(&layout.parts).zip(rigid) {
+        if !(matches!(p.s, SchurRef::Applied { .. }) && p.nc > 0) {
+            continue;
+        }
+        for k in 0..n_modes(model.analysis) {
+            let mut col = vec![0.0; n];
+            for (&node, &slot) in p.part.interface.iter().zip(&map.nodes) {
+                let (node_axes, frame, w) = match slot {
+                    Slot::Join(j) => (&layout.joins[j], IDENTITY, 1.0 / layout.join_parts[j].0.len() as f64),
+                    Slot::Pair { pair, .. } => (&layout.axes[pair], layout.frames[pair], 0.5),
+                };
+                for (a, axis) in node_axes.iter().enumerate().take(nd) {
+                    if let Axis::Free { m, .. } | Axis::Joined { m } = *axis {
+                        col[m] += w * modes.modes.along(model.coords[node], frame[a])[k];
+                    }
+                }
+            }
+            coarse.push(col);
+        }
+    }
+    coarse
 }
 
 impl AppliedPart {
