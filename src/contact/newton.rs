@@ -154,7 +154,7 @@ impl<'p> Newton<'p> {
     /// pair (2. of the iteration); true when this iteration met the cycle.
     fn break_cycle(&mut self, h: &History, judged: &mut Judged, seen: &[Vec<ContactState>]) -> bool {
         let changed = judged.next != h.states;
-        if !changed || !(self.one_at_a_time || seen.iter().any(|old| *old == judged.next)) {
+        if !changed || !(self.one_at_a_time || seen.contains(&judged.next)) {
             return false;
         }
         let first = !self.one_at_a_time;

@@ -50,7 +50,7 @@ impl Rule for Paper<'_> {
         let tol_u = 1e-10 * scale_u;
 
         let next: Vec<ContactState> = (0..n).map(|p| judge_paper(&r[p], &self.laws[p].strength, h.cracked[p])).collect();
-        summary.cycled = next != h.states && summary.history.iter().any(|old| *old == next);
+        summary.cycled = next != h.states && summary.history.contains(&next);
 
         // carry the new states: friction directions, offsets; and how far
         // the Coulomb shear of slipping pairs still moves

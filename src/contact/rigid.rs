@@ -28,8 +28,8 @@ impl PartModes {
         let nd = model.nd;
         let mut center = [0.0; 3];
         for &n in nodes {
-            for i in 0..3 {
-                center[i] += model.coords[n][i] / nodes.len().max(1) as f64;
+            for (c, x) in center.iter_mut().zip(model.coords[n]) {
+                *c += x / nodes.len().max(1) as f64;
             }
         }
         let scale = nodes

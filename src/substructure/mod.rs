@@ -97,7 +97,7 @@ pub enum Condensation {
 enum Factor {
     /// The part's factor with its interface ordered last ([`schur`]), and
     /// the S read off it.
-    Schur { chol: PartialCholesky, s: Vec<f64> },
+    Schur { chol: Box<PartialCholesky>, s: Vec<f64> },
     /// The same with the factor freed to save memory
     /// ([`Condensed::drop_factor`]): made again to recover the interior.
     Freed { s: Vec<f64> },
@@ -278,12 +278,12 @@ fn schur_factor(a: &assembly::Assembled, ni: usize, node_of: &[usize], ordering:
     let alpha = chol.alpha();
     let backward_error = (a.f.iter().enumerate())
         .map(|(k, f)| {
-            let b: Vec<f64> = f[..ni].iter().copied().chain(std::iter::repeat(0.0).take(nc)).collect();
+            let b: Vec<f64> = f[..ni].iter().copied().chain(std::iter::repeat_n(0.0, nc)).collect();
             a.k.backward_error(&x[k * n..(k + 1) * n], &b, alpha, ni)
         })
         .fold(0.0, f64::max);
     let factor_bytes = chol.stats().values * std::mem::size_of::<f64>();
-    Ok(Factored { factor: Factor::Schur { chol, s }, g, factor_bytes, backward_error })
+    Ok(Factored { factor: Factor::Schur { chol: Box::new(chol), s }, g, factor_bytes, backward_error })
 }
 
 /// The part's interior factorised alone (S applied through it) and the
@@ -295,7 +295,7 @@ fn interior_factor(a: &assembly::Assembled, ni: usize, node_of: &[usize], orderi
     // K [x_i; 0] = [F_i; K_ci x_i]: the interface rows hold by construction
     let backward_error = (a.f.iter().enumerate())
         .map(|(k, f)| {
-            let xk: Vec<f64> = x[k * ni..(k + 1) * ni].iter().copied().chain(std::iter::repeat(0.0).take(nc)).collect();
+            let xk: Vec<f64> = x[k * ni..(k + 1) * ni].iter().copied().chain(std::iter::repeat_n(0.0, nc)).collect();
             let b: Vec<f64> = f[..ni].iter().chain(&a.k.mul(&xk)[ni..]).copied().collect();
             a.k.backward_error(&xk, &b, 0.0, ni)
         })

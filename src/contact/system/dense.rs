@@ -170,11 +170,11 @@ fn free_system(reduced: &Reduced, axes: &[[Axis; 3]], rel: &[Relation], c: &[f64
                 }
                 rhs[(i, 0)] += ca * known[rn];
             }
-            for cax in 1..3 {
+            for (cax, axis) in axes[p].iter().enumerate().skip(1) {
                 if rl.spring[a][cax] == 0.0 {
                     continue;
                 }
-                if let Some(rc) = axes[p][cax].r() {
+                if let Some(rc) = axis.r() {
                     wf[(i, pos[rc])] += rl.spring[a][cax];
                     if rl.spring[a][cax] != rl.spring[cax][a] {
                         symmetric = false;

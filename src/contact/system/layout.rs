@@ -159,8 +159,8 @@ fn frames_and_fixed(model: &Model) -> Result<(Vec<Frame>, Vec<[[Option<f64>; 3];
     for pair in &model.pairs {
         let mut sup = [false; 3];
         for node in [pair.k, pair.l] {
-            for c in 0..nd {
-                sup[c] |= model.prescribed[node * nd + c].is_some();
+            for (c, s) in sup.iter_mut().enumerate().take(nd) {
+                *s |= model.prescribed[node * nd + c].is_some();
             }
         }
         let f = frame(nd, pair.normal, sup);

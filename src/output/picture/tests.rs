@@ -89,11 +89,11 @@ fn in_box(cv: &Canvas, b: [f64; 4], c: [u8; 3]) -> Vec<usize> {
 
 /// The last state of a run, to draw.
 fn snap(run: &Run) -> Snapshot<'_> {
-    Snapshot { title: &run.scene.title, model: &run.model, u: &run.u, stresses: &run.stresses, contact: run.contact.as_ref() }
+    Snapshot { title: &run.scene.title, model: &run.model, u: &run.last().u, stresses: &run.last().stresses, contact: run.contact() }
 }
 
 fn contact(run: &Run) -> &crate::results::ContactRun {
-    run.contact.as_ref().expect("a run with contact")
+    run.contact().expect("a run with contact")
 }
 
 fn cylinder(lc: f64, order: usize) -> Run {
@@ -119,7 +119,7 @@ fn cylinder_picture_shows_the_field_and_every_contact_state() {
     keep("cylinder_sxy.png", &deformed_png(&snap(&run), Field::Sxy, None).expect("picture"));
 
     // every state, in thirds along the cut
-    let c = run.contact.as_mut().expect("contact");
+    let c = run.steps.last_mut().and_then(|s| s.contact.as_mut()).expect("contact");
     let n = c.states.len();
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by(|&a, &b| {
@@ -233,10 +233,10 @@ fn stacked_blocks_pushed_sideways_show_the_states_they_reach() {
         std::fs::write(&path, toml).expect("scene");
         let opts = RunOptions { out: Some(dir.join(name)), skip_output: true, ..Default::default() };
         let run = driver::run(&path, &opts).expect("stack run");
-        let c = run.contact.as_ref().expect("contact");
+        let c = run.contact().expect("contact");
         let counts = state_counts(&c.states);
-        eprintln!("{name}: {} stick, {} slip, {} open after {} iterations", counts[2], counts[1], counts[0], c.iterations);
-        assert!(c.converged, "{name}");
+        eprintln!("{name}: {} stick, {} slip, {} open after {} iterations", counts[2], counts[1], counts[0], c.summary.iterations);
+        assert!(c.summary.converged, "{name}");
         if joint == weak {
             assert!(counts[0] > 0 && counts[2] > 0, "{name}: the joint opens at one end and sticks at the other: {counts:?}");
         }
@@ -320,7 +320,7 @@ fn plan_view_of_a_3d_joint_shows_where_it_slips() {
     let c = contact(&run);
     let counts = state_counts(&c.states);
     eprintln!("blocks3d, lc = 0.2: {} pairs, {} stick, {} slip, {} open", c.states.len(), counts[2], counts[1], counts[0]);
-    assert!(c.converged && counts[1] > 0 && counts[2] > 0 && counts[0] == 0, "partial slip: {counts:?}");
+    assert!(c.summary.converged && counts[1] > 0 && counts[2] > 0 && counts[0] == 0, "partial slip: {counts:?}");
     assert_eq!(plan_files(&run.model), vec![(0, "plan_joint.png".to_string())]);
 
     let t = std::time::Instant::now();
@@ -349,7 +349,8 @@ fn plan_view_of_a_3d_joint_shows_where_it_slips() {
     let nd = run.model.nd;
     for (p, pair) in run.model.pairs.iter().enumerate().filter(|&(p, _)| c.states[p] == ContactState::Slip) {
         let t = c.shear(p);
-        let rel: [f64; 3] = std::array::from_fn(|d| run.u[pair.l * nd + d] - run.u[pair.k * nd + d]);
+        let u = &run.last().u;
+        let rel: [f64; 3] = std::array::from_fn(|d| u[pair.l * nd + d] - u[pair.k * nd + d]);
         let slip = sub3(rel, pair.normal.map(|x| x * dot(rel, pair.normal)));
         assert!((dot(t, t).sqrt() - c.pairs[p].tau()).abs() <= 1e-9 * c.pairs[p].tau().max(1e-12), "pair {p}: the frame is orthonormal");
         assert!(t[0] > 0.9 * dot(t, t).sqrt(), "pair {p}: shear {t:?} along +x");
