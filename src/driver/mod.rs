@@ -45,6 +45,7 @@ use crate::scene::{MeshSource, Scene};
 
 // what a run returns, defined in `results` (which the writers read)
 pub use crate::results::{state_counts, Checks, ContactRun, Counters, RankStats, Run, Stats, StepResult, Timings};
+use crate::substructure::Condensation;
 
 /// Options of a run beyond the scene.
 #[derive(Clone, Debug, Default)]
@@ -137,27 +138,14 @@ pub fn run_on(mut scene: Scene, opts: &RunOptions, comm: &dyn Comm) -> Result<Op
 
     // 4. Parts, owners, condensation, the interface.
     let plan = plan::plan(&scene, &model, opts, comm.size())?;
-    let ranks = ranks::Ranks::new(comm, plan.owner.clone(), plan.how == crate::substructure::Condensation::Applied);
+    let ranks = ranks::Ranks::new(comm, plan.owner.clone(), plan.how == Condensation::Applied);
     let parts = condense::condense(&model, &plan, opts, &ranks)?;
 
     // 5.–6. The load steps: contact iteration, recovery.
     let done = steps::run(&scene, &model, &plan, &parts, opts, &ranks)?;
-    timings.assemble = parts.assemble_s;
-    timings.condense = parts.condense_s;
-    timings.interface = parts.interface_s + done.interface_s;
-    timings.recover = done.recover_s;
-    let rank = RankStats {
-        rank: ranks.rank(),
-        parts: parts.mine.iter().map(|(i, _)| *i).collect(),
-        dofs: parts.local.interior + parts.local.interface,
-        condense_s: parts.wall_s,
-        peak_memory_bytes: stats::peak_memory(),
-        bytes_sent: ranks.bytes_sent(),
-        bytes_sent_per_step: done.bytes / done.done.max(1) as u64,
-        bytes_sent_interface: done.bytes_interface,
-        bytes_sent_per_contact_iteration: 0,
-    };
-    let (all, gathered) = (parts.all, ranks.gather(&rank));
+    let gathered = ranks.gather(&stats::rank(&ranks, &parts, &done));
+    stats::add_timings(&mut timings, &parts, &done);
+    let all = parts.all;
     // the factors go before the results are written
     drop(parts);
     let Some(rank_stats) = gathered else { return Ok(None) };

@@ -5,6 +5,9 @@
 
 use std::path::PathBuf;
 
+use super::condense::Parts;
+use super::ranks::Ranks;
+use super::steps::LoadSteps;
 use crate::model::Model;
 use crate::results::{Counters, Dofs, PartCounts, RankStats, Residuals, Stats, Timings};
 use crate::substructure::{Condensed, Part};
@@ -56,6 +59,30 @@ pub(super) fn interface_dofs(model: &Model, parts: &[Part]) -> usize {
         in_pair[p.l] = true;
     }
     shared.iter().map(|&n| if in_pair[n] { nd } else { (0..nd).filter(|&c| model.prescribed[n * nd + c].is_none()).count() }).sum()
+}
+
+/// What this rank did: its parts, its condensation's wall time, its memory
+/// and the bytes it sent.
+pub(super) fn rank(ranks: &Ranks, parts: &Parts, done: &LoadSteps) -> RankStats {
+    RankStats {
+        rank: ranks.rank(),
+        parts: parts.mine.iter().map(|(i, _)| *i).collect(),
+        dofs: parts.local.interior + parts.local.interface,
+        condense_s: parts.wall_s,
+        peak_memory_bytes: peak_memory(),
+        bytes_sent: ranks.bytes_sent(),
+        bytes_sent_per_step: done.bytes / done.done.max(1) as u64,
+        bytes_sent_interface: done.bytes_interface,
+        bytes_sent_per_contact_iteration: 0,
+    }
+}
+
+/// The seconds of stages 4 to 6.
+pub(super) fn add_timings(t: &mut Timings, parts: &Parts, done: &LoadSteps) {
+    t.assemble = parts.assemble_s;
+    t.condense = parts.condense_s;
+    t.interface = parts.interface_s + done.interface_s;
+    t.recover = done.recover_s;
 }
 
 /// What the steps measured, for [`stats`].
