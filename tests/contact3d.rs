@@ -82,7 +82,7 @@ fn solve(case: &Case, name: &str, text: &str) -> Run {
 }
 
 fn contact(run: &Run) -> &ContactRun {
-    run.contact.as_ref().expect("a contact run")
+    run.contact().expect("a contact run")
 }
 
 #[test]
@@ -110,9 +110,9 @@ fn uniform_stress_with_shear_crosses_the_joint_exactly_on_every_3d_kind() {
             // body I is the lower block: n = +z, the traction on it is (sxz, syz, szz)
             worst = worst.max((r.sigma_n - szz).abs()).max((t[0] - sxz).abs()).max((t[1] - syz).abs()).max(t[2].abs());
         }
-        eprintln!("{name} ({face} faces): {} pairs, {} iteration(s), max traction error {worst:.1e}", c.states.len(), c.iterations);
+        eprintln!("{name} ({face} faces): {} pairs, {} iteration(s), max traction error {worst:.1e}", c.states.len(), c.summary.iterations);
         assert!(worst < 1e-8, "{name}: the uniform traction crosses the joint exactly ({worst:.2e})");
-        assert_eq!(c.iterations, 1, "{name}: stuck from the start");
+        assert_eq!(c.summary.iterations, 1, "{name}: stuck from the start");
     }
 }
 
@@ -120,7 +120,7 @@ fn uniform_stress_with_shear_crosses_the_joint_exactly_on_every_3d_kind() {
 /// tensile strength, friction f), and the joint's resultant against the
 /// load `total` on the upper block. Returns (pairs stick, slip, open).
 fn check_coulomb(name: &str, c: &ContactRun, f: f64, total: [f64; 3]) -> [usize; 3] {
-    assert!(c.converged, "{name}: converged");
+    assert!(c.summary.converged, "{name}: converged");
     let scale = c.pairs.iter().map(|r| r.sigma_n.abs()).fold(0.0, f64::max);
     let tol = 1e-8 * scale;
     let mut n = [0; 3];
@@ -167,8 +167,8 @@ fn partial_slip_converges_in_a_bounded_number_of_iterations_on_every_kind_and_me
             let [open, slip, stick] = check_coulomb(&name, c, 0.5, push);
             assert!(slip > 0 && stick > 0, "{name}: partial slip ({stick} stick, {slip} slip)");
             assert!(open * 20 < c.states.len(), "{name}: the joint stays closed but at the trailing corner ({open} open)");
-            rows.push(format!("{name}: {} pairs, {stick} stick / {slip} slip / {open} open, {} iterations", c.states.len(), c.iterations));
-            its.push(c.iterations);
+            rows.push(format!("{name}: {} pairs, {stick} stick / {slip} slip / {open} open, {} iterations", c.states.len(), c.summary.iterations));
+            its.push(c.summary.iterations);
         }
         assert!(its.iter().all(|&k| k <= 15), "{}: bounded iterations {its:?}", kind.0);
         assert!(its[1] <= its[0] + 4, "{}: the count does not grow with the mesh {its:?}", kind.0);
@@ -186,9 +186,9 @@ fn an_oblique_push_that_lifts_a_corner_converges_with_slip_in_its_direction() {
         let run = solve(&case, &name, &scene(kind, lc, "blocks3d.geo", &traction("top", push)));
         let c = contact(&run);
         let [open, slip, stick] = check_coulomb(&name, c, 0.5, push);
-        eprintln!("{name}: {} pairs, {stick} stick / {slip} slip / {open} open, {} iterations", c.states.len(), c.iterations);
+        eprintln!("{name}: {} pairs, {stick} stick / {slip} slip / {open} open, {} iterations", c.states.len(), c.summary.iterations);
         assert!(open > 0 && slip > 0 && stick > 0, "{name}: a lifted corner, slip and stick");
-        assert!(c.iterations <= 15, "{name}: {} iterations", c.iterations);
+        assert!(c.summary.iterations <= 15, "{name}: {} iterations", c.summary.iterations);
         // the trailing corner (x = 0, y = 0) lifts
         let corner = (0..c.states.len()).find(|&p| {
             let x = run.model.coords[run.model.pairs[p].k];
@@ -365,11 +365,11 @@ fn uniform_stress_crosses_joints_of_wedges_exactly() {
                     worst = worst.max((shear[i] - (t[i] - sn * n[i])).abs());
                 }
             }
-            eprintln!("{name} ({face} faces): {} pairs ({on_base} on the base), {} iteration(s), max traction error {worst:.1e}", c.states.len(), c.iterations);
+            eprintln!("{name} ({face} faces): {} pairs ({on_base} on the base), {} iteration(s), max traction error {worst:.1e}", c.states.len(), c.summary.iterations);
             assert!(worst < 1e-8, "{name}: the uniform traction crosses the joint exactly ({worst:.2e})");
             // stuck from the start; the base's pairs, carrying nothing, are
             // judged open after the first solve (tensile strength 0)
-            assert_eq!(c.iterations, if stacked == 1 { 1 } else { 2 }, "{name}: iterations");
+            assert_eq!(c.summary.iterations, if stacked == 1 { 1 } else { 2 }, "{name}: iterations");
         }
     }
 }

@@ -72,7 +72,7 @@ fn base_forces_balance_self_weight_and_water_thrust_at_every_step() {
         let scale = weight.hypot(thrust);
         assert!((f[0] - thrust).abs() < 1e-8 * scale, "step {}: horizontal {} against {}", step + 1, f[0], thrust);
         assert!((f[1] + weight).abs() < 1e-8 * scale, "step {}: vertical {} against {}", step + 1, f[1], -weight);
-        assert!(run.steps[step].contact.as_ref().expect("contact").converged);
+        assert!(run.steps[step].contact.as_ref().expect("contact").summary.converged);
     }
 }
 
@@ -106,7 +106,7 @@ fn the_answer_does_not_depend_on_the_order_of_the_blocks() {
     let b = dam(&Case::new("dam-order-b"), Some(&["block_3", "block_1", "rock", "block_2"]));
     let (pa, pb) = (base_pairs(&a), base_pairs(&b));
     assert_eq!(pa.len(), pb.len());
-    let (ca, cb) = (a.contact.as_ref().expect("contact"), b.contact.as_ref().expect("contact"));
+    let (ca, cb) = (a.contact().expect("contact"), b.contact().expect("contact"));
     let scale = max_abs(pa.iter().map(|&p| ca.pairs[p].sigma_n));
     for (&p, &q) in pa.iter().zip(&pb) {
         let (xa, xb) = (a.model.coords[a.model.pairs[p].k], b.model.coords[b.model.pairs[q].k]);

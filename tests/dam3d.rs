@@ -46,8 +46,8 @@ fn joints_end_on_the_base_and_the_base_carries_the_weight_and_the_water() {
     let weight = RHO_G * VOLUME;
     for (step, water) in [(0, 0.0), (1, 0.5), (2, 1.0)] {
         let c = run.steps[step].contact.as_ref().expect("contact");
-        assert!(c.converged, "step {}: converged", step + 1);
-        assert!(c.iterations <= 30, "step {}: {} iterations", step + 1, c.iterations);
+        assert!(c.summary.converged, "step {}: converged", step + 1);
+        assert!(c.summary.iterations <= 30, "step {}: {} iterations", step + 1, c.summary.iterations);
         let mut f = [0.0; 3];
         for p in (0..m.pairs.len()).filter(|&p| m.pairs[p].contact == base) {
             let fp = c.force(p); // on the rock (body I)
@@ -61,7 +61,7 @@ fn joints_end_on_the_base_and_the_base_carries_the_weight_and_the_water() {
             k[s.code() as usize] += 1;
             k
         });
-        eprintln!("step {}: {} iterations, {} stick / {} slip / {} open; base force {f:?} (thrust {thrust:.3}, weight {weight:.3})", step + 1, c.iterations, k[2], k[1], k[0]);
+        eprintln!("step {}: {} iterations, {} stick / {} slip / {} open; base force {f:?} (thrust {thrust:.3}, weight {weight:.3})", step + 1, c.summary.iterations, k[2], k[1], k[0]);
         assert!((f[0] - thrust).abs() < 1e-8 * scale, "step {}: horizontal {} against {thrust}", step + 1, f[0]);
         // (across the slice the blocks' own side rollers take a share: no check on f[1])
         assert!((f[2] + weight).abs() < 1e-8 * scale, "step {}: vertical {} against {}", step + 1, f[2], -weight);

@@ -116,9 +116,9 @@ struct Footing {
 fn solve(case: &Case, name: &str, e: f64, depth: f64) -> Footing {
     let scene = case.write(&format!("{name}.toml"), &scene_text(e, depth));
     let run = case.run(&scene).unwrap_or_else(|err| panic!("{name}: {err:#}"));
-    let c = run.contact.as_ref().expect("a contact run");
-    assert!(c.converged && !c.cycled, "{name}: converged without cycling");
-    assert!(run.residual_interface < 1e-8, "{name}: interface residual {:.2e}", run.residual_interface);
+    let c = run.contact().expect("a contact run");
+    assert!(c.summary.converged && !c.summary.cycled, "{name}: converged without cycling");
+    assert!(run.stats.residuals.interface < 1e-8, "{name}: interface residual {:.2e}", run.stats.residuals.interface);
 
     // 1. Force and moment balance: the ground (body I, n = +y) takes V down at x = e.
     let (mut fn_sum, mut fx, mut fy, mut m) = (0.0, 0.0, 0.0, 0.0);
@@ -159,11 +159,11 @@ fn solve(case: &Case, name: &str, e: f64, depth: f64) -> Footing {
     eprintln!(
         "{name}: depth {depth}, e = {e:.4}: L = {length:.4} m; {} pairs ({slip} slip, {open} open), {} iterations, {} cycles broken; balance {en:.1e} / {ey:.1e} / moment {em:.1e}; {} DOFs ({} interface), {:.2} s",
         c.states.len(),
-        c.iterations,
-        c.cycles_broken,
-        run.dofs_total,
-        run.dofs_interface,
-        run.timings.total
+        c.summary.iterations,
+        c.summary.cycles_broken,
+        run.stats.dofs.total,
+        run.stats.dofs.interface,
+        run.stats.timings.total
     );
     Footing { e, depth, run, length, pairs }
 }
@@ -178,7 +178,7 @@ impl Footing {
 
     /// Every pair closed.
     fn assert_full_contact(&self) {
-        let c = self.run.contact.as_ref().expect("contact");
+        let c = self.run.contact().expect("contact");
         for (p, s) in c.states.iter().enumerate() {
             assert_ne!(*s, ContactState::Open, "depth {}, e = {}: pair at x = {} must stay closed", self.depth, self.e, self.run.model.coords[self.run.model.pairs[p].k][0]);
         }
@@ -343,7 +343,7 @@ fn square_footing_on_layers_of_prisms_lifts_its_far_corner_and_carries_the_load(
         resultant[0].abs() < 1e-8 * v && resultant[1].abs() < 1e-8 * v && (resultant[2] - v).abs() < 1e-8 * v,
         "the base carries the load: {resultant:?}"
     );
-    // meshio (as ParaView) reads the results: wedge18 cells, tri6 facets
+    // meshio (as ParaView) reads the results: wedge18 cells, tri6 facets and the pairs
     let types = |file: &str| -> String {
         let script = "import sys, meshio\nm = meshio.read(sys.argv[1])\nprint(' '.join(sorted({c.type for c in m.cells})))";
         let out = std::process::Command::new("python3").args(["-c", script]).arg(res.join(file)).output().expect("python3 (make deps)");
@@ -351,5 +351,6 @@ fn square_footing_on_layers_of_prisms_lifts_its_far_corner_and_carries_the_load(
         String::from_utf8_lossy(&out.stdout).trim().to_string()
     };
     assert_eq!(types("footing_layers.vtu"), "wedge18");
-    assert_eq!(types("footing_layers_contact.vtu"), "triangle6");
+    // the facets, then a vertex cell per pair (its categorical pair_status)
+    assert_eq!(types("footing_layers_contact.vtu"), "triangle6 vertex");
 }

@@ -103,7 +103,7 @@ fn study(case: &Case, name: &str, template: &str, order: usize, lcs: &[f64], are
             for body in &run.model.bodies {
                 assert!(body.cells.iter().all(|c| c.kind.order() == order), "{name}: cells of order {order} expected");
             }
-            let errors = run.errors.as_ref().expect("[analytic] gives errors");
+            let errors = run.checks.errors.as_ref().expect("[analytic] gives errors");
             Level {
                 lc,
                 cells,
@@ -377,7 +377,7 @@ fn slice_of_pyramids_converges_at_rate_2_for_pyramid5_and_3_for_pyramid13_and_py
                 let cells: usize = run.model.bodies.iter().map(|b| b.cells.len()).sum();
                 assert_eq!(cells, 6 * grid);
                 assert!(run.model.bodies[0].cells.iter().all(|c| c.kind == kind));
-                let errors = run.errors.as_ref().expect("[analytic] gives errors");
+                let errors = run.checks.errors.as_ref().expect("[analytic] gives errors");
                 // h: the size of the grid's cells, each six pyramids
                 Level { lc, cells, h: (quarter_annulus() / grid as f64).sqrt(), displacement_l2: errors.displacement_l2, stress_l2: errors.stress_l2, seconds }
             })
@@ -421,8 +421,8 @@ fn default_cylinder_scene_reproduces_paper_table_1_within_half_a_percent() {
     let run: Run = case.run(&scene).unwrap_or_else(|e| panic!("geo/cylinder.toml: {e:#}"));
     let seconds = t.elapsed().as_secs_f64();
     // the paper: every pair stays stuck
-    let contact = run.contact.as_ref().expect("the default scene has a contact");
-    assert!(contact.converged);
+    let contact = run.contact().expect("the default scene has a contact");
+    assert!(contact.summary.converged);
     assert!(contact.states.iter().all(|s| s.code() == 2), "every pair of the 45-degree cut stays stuck");
     let lame = Lame { a: A, b: B, p: P, e: E, nu: NU, analysis: Analysis::PlaneStrain };
     let values = table1_values(&run.solution());
@@ -474,10 +474,10 @@ fn halves_of_different_stiffness_sliding_on_the_cut_are_each_lames_cylinder_of_t
     let errors = |e2: f64| {
         let path = case.write(&format!("two_{e2:e}.toml"), &scene(e2));
         let run: Run = case.run(&path).unwrap_or_else(|e| panic!("E2 = {e2:e}: {e:#}"));
-        let e = run.errors.as_ref().expect("[analytic] errors");
-        eprintln!("E2 / E1 = {}: displacement_l2 {:.3e}, stress_l2 {:.3e}, contact {:.3e}", e2 / E, e.displacement_l2, e.stress_l2, run.contact_error_max.unwrap_or(f64::NAN));
+        let e = run.checks.errors.as_ref().expect("[analytic] errors");
+        eprintln!("E2 / E1 = {}: displacement_l2 {:.3e}, stress_l2 {:.3e}, contact {:.3e}", e2 / E, e.displacement_l2, e.stress_l2, run.checks.contact_error_max.unwrap_or(f64::NAN));
         // the report says how the norms treat two materials
-        assert_eq!(run.check.report.contains("different materials"), e2 != E, "report.md's note on the materials");
+        assert_eq!(run.checks.analytic.report.contains("different materials"), e2 != E, "report.md's note on the materials");
         (e.displacement_l2, e.stress_l2)
     };
     let (u1, s1) = errors(E);

@@ -259,7 +259,7 @@ fn deviation(run: &Run, sigma: &[f64; 6], u_exact: &dyn Fn(Vec3) -> Vec3, probe:
         let d = material::d_matrix(m.analysis, body.e, body.nu);
         for cell in &body.cells {
             let xe: Vec<Vec3> = cell.nodes.iter().map(|&n| m.coords[n]).collect();
-            let ue: Vec<f64> = cell.nodes.iter().flat_map(|&n| (0..nd).map(move |c| run.u[n * nd + c])).collect();
+            let ue: Vec<f64> = cell.nodes.iter().flat_map(|&n| (0..nd).map(move |c| run.last().u[n * nd + c])).collect();
             // the strain the stiffness used: B-bar's where the cell has it
             let mean = element::mean_dilatation(m.analysis, cell.kind, body.nu, &xe, &ue);
             for q in quadrature::stiffness_rule(cell.kind) {
@@ -272,7 +272,7 @@ fn deviation(run: &Run, sigma: &[f64; 6], u_exact: &dyn Fn(Vec3) -> Vec3, probe:
     }
     assert!(n_points > 0);
     // every node of the output
-    for bs in &run.stresses {
+    for bs in &run.last().stresses {
         assert!(!bs.nodes.is_empty());
         for s in &bs.stress {
             dev.nodal = worst(dev.nodal, stress_dev(s, sigma, scale));
@@ -280,7 +280,7 @@ fn deviation(run: &Run, sigma: &[f64; 6], u_exact: &dyn Fn(Vec3) -> Vec3, probe:
     }
     // probed points, evaluated in the element that contains them
     let pr = Probe { name: "across".into(), from: probe.0, to: probe.1, points: 11 };
-    for s in recover::probe(m, &run.u, &pr) {
+    for s in recover::probe(m, &run.last().u, &pr) {
         assert!(s.found, "probe point {:?} outside the model", s.x);
         dev.probe = worst(dev.probe, stress_dev(&s.stress, sigma, scale));
         let ue = u_exact(s.x);
@@ -294,7 +294,7 @@ fn deviation(run: &Run, sigma: &[f64; 6], u_exact: &dyn Fn(Vec3) -> Vec3, probe:
             for &n in &cell.nodes {
                 let ue = u_exact(m.coords[n]);
                 for c in 0..nd {
-                    dev.displacement = worst(dev.displacement, (run.u[n * nd + c] - ue[c]).abs());
+                    dev.displacement = worst(dev.displacement, (run.last().u[n * nd + c] - ue[c]).abs());
                     u_max = u_max.max(ue[c].abs());
                 }
             }

@@ -49,6 +49,8 @@ use super::quadrature::{self, QuadPoint};
 use super::shape;
 use crate::mesh::CellKind;
 use super::Analysis;
+// the 3-vector helpers, where callers of the element kernels found them
+pub use super::vec3::{cross, dot, norm, sub};
 
 /// A cell whose Jacobian determinant is not positive somewhere.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -515,19 +517,6 @@ pub fn strain(analysis: Analysis, p: &Point, ue: &[f64], mean_dilatation: Option
         }
     }
     e
-}
-
-pub fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-pub fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-pub fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-pub fn norm(a: [f64; 3]) -> f64 {
-    dot(a, a).sqrt()
 }
 
 #[cfg(test)]

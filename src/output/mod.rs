@@ -21,14 +21,16 @@ use files::Staged;
 use vtu::{Field, IntField};
 
 /// Stages every result file of a run except `summary.json` and `report.md`
-/// ([`restage_summary`] adds them with the final timings).
-pub fn stage(run: &Run) -> Result<Staged> {
-    let mut staged = Staged::new(&run.out);
+/// ([`restage_summary`] adds them with the final timings), for the
+/// directory `out`.
+pub fn stage(run: &Run, out: &std::path::Path) -> Result<Staged> {
+    let mut staged = Staged::new(out);
     let name = &run.scene.name;
     let model = &run.model;
+    let last = run.last();
     let displacement = run.scene.output.wants("displacement");
-    staged.add(&format!("{name}.vtu"), bodies_vtu(model, &run.u, &run.stresses, displacement)?);
-    if let Some(c) = &run.contact {
+    staged.add(&format!("{name}.vtu"), bodies_vtu(model, &last.u, &last.stresses, displacement)?);
+    if let Some(c) = &last.contact {
         staged.add(&format!("{name}_contact.vtu"), contact_vtu(model, c)?);
         staged.add("contact.csv", contact_csv(model, c).into_bytes());
     }
@@ -54,11 +56,11 @@ pub fn stage(run: &Run) -> Result<Staged> {
             staged.add(&format!("{name}_contact.pvd"), vtu::pvd_bytes(&contacts));
         }
     }
-    if !run.probes.is_empty() {
-        staged.add("probes.csv", probes_csv(&run.probes).into_bytes());
+    if !run.checks.probes.is_empty() {
+        staged.add("probes.csv", probes_csv(&run.checks.probes).into_bytes());
     }
     // pictures a person would rather look at than read (embedded in report.md)
-    let snap = picture::Snapshot { title: &run.scene.title, model, u: &run.u, stresses: &run.stresses, contact: run.contact.as_ref(), region: run.scene.output.frame.as_ref() };
+    let snap = picture::Snapshot { title: &run.scene.title, model, u: &last.u, stresses: &last.stresses, contact: last.contact.as_ref(), region: run.scene.output.frame.as_ref() };
     for (file, bytes) in picture::pictures(&snap).context("drawing the pictures")? {
         staged.add(&file, bytes);
     }
@@ -274,32 +276,34 @@ fn probes_csv(probes: &[(String, Vec<Sample>)]) -> String {
 }
 
 fn summary(run: &Run) -> serde_json::Value {
+    let st = &run.stats;
     let mut v = json!({
         "scene": run.scene.path.display().to_string(),
         "title": run.scene.title,
         "analysis": run.scene.analysis.as_str(),
-        "mesh": { "file": run.msh.display().to_string(), "cached": run.mesh_cached, "nodes": run.model.n_nodes(),
+        "mesh": { "file": st.msh.display().to_string(), "cached": st.mesh_cached, "nodes": run.model.n_nodes(),
                   "elements": run.model.bodies.iter().map(|b| b.cells.len()).sum::<usize>() },
         "bodies": run.model.bodies.iter().map(|b| b.name.clone()).collect::<Vec<_>>(),
-        "dofs": { "total": run.dofs_total, "interface": run.dofs_interface },
-        "parts": { "total": run.parts, "condensed": run.condensed_parts },
-        "timings_s": run.timings,
-        "residuals": { "interface": run.residual_interface, "assembled": run.residual_assembled },
-        "counters": run.counters,
-        "ranks": run.ranks,
+        "dofs": st.dofs,
+        "parts": st.parts,
+        "timings_s": st.timings,
+        "residuals": st.residuals,
+        "counters": st.counters,
+        "ranks": st.ranks,
         "fields": run.scene.output.fields,
         "warnings": warnings(run),
     });
-    if let Some(c) = &run.contact {
+    if let Some(c) = run.contact() {
         let counts = state_counts(&c.states);
+        let it = &c.summary;
         v["contact"] = json!({
             "pairs": c.states.len(),
-            "iterations": c.iterations,
-            "converged": c.converged,
-            "cycled": c.cycled,
+            "iterations": it.iterations,
+            "converged": it.converged,
+            "cycled": it.cycled,
             "states": { "stick": counts[2], "slip": counts[1], "open": counts[0] },
-            "cycles_broken": c.cycles_broken,
-            "history": c.history.iter().map(|h| { let k = state_counts(h); json!({"stick": k[2], "slip": k[1], "open": k[0]}) }).collect::<Vec<_>>(),
+            "cycles_broken": it.cycles_broken,
+            "history": it.history.iter().map(|h| { let k = state_counts(h); json!({"stick": k[2], "slip": k[1], "open": k[0]}) }).collect::<Vec<_>>(),
         });
     }
     v["steps"] = json!(run
@@ -309,20 +313,21 @@ fn summary(run: &Run) -> serde_json::Value {
             let mut j = json!({ "step": st.step, "ramp": st.load_factor, "case_factors": st.case_factors });
             if let Some(c) = &st.contact {
                 let k = state_counts(&c.states);
-                j["contact"] = json!({ "iterations": c.iterations, "converged": c.converged, "cycled": c.cycled,
+                j["contact"] = json!({ "iterations": c.summary.iterations, "converged": c.summary.converged, "cycled": c.summary.cycled,
                     "states": { "stick": k[2], "slip": k[1], "open": k[0] } });
             }
             j
         })
         .collect::<Vec<_>>());
-    if let Some(e) = &run.errors {
-        v["errors"] = json!({ "displacement_l2": e.displacement_l2, "stress_l2": e.stress_l2, "contact_max": run.contact_error_max });
+    let checks = &run.checks;
+    if let Some(e) = &checks.errors {
+        v["errors"] = json!({ "displacement_l2": e.displacement_l2, "stress_l2": e.stress_l2, "contact_max": checks.contact_error_max });
     }
-    for (key, value) in &run.check.summary {
+    for (key, value) in &checks.analytic.summary {
         v[key] = value.clone();
     }
     let probes: serde_json::Map<String, serde_json::Value> =
-        run.probes.iter().map(|(name, s)| (name.clone(), serde_json::to_value(s).unwrap_or_default())).collect();
+        checks.probes.iter().map(|(name, s)| (name.clone(), serde_json::to_value(s).unwrap_or_default())).collect();
     v["probes"] = serde_json::Value::Object(probes);
     v
 }

@@ -3,7 +3,7 @@
 //! size, the contact iteration, timings (the same as summary.json's: both
 //! are staged once the output stage is timed), the load steps with the
 //! factor each load had at each step, errors against the closed form, the
-//! pictures, what the scene's `[analytic]` check adds (`Run::check`), and
+//! pictures, what the scene's `[analytic]` check adds (`Checks::analytic`), and
 //! the probes.
 
 use std::fmt::Write;
@@ -18,7 +18,8 @@ pub fn report(run: &Run) -> String {
     let mut s = String::new();
     let sc = &run.scene;
     let _ = writeln!(s, "# {}\n", sc.title);
-    let _ = writeln!(s, "Scene `{}`, analysis {}, mesh `{}`{}.\n", sc.path.display(), sc.analysis, run.msh.display(), if run.mesh_cached { " (cached)" } else { "" });
+    let st = &run.stats;
+    let _ = writeln!(s, "Scene `{}`, analysis {}, mesh `{}`{}.\n", sc.path.display(), sc.analysis, st.msh.display(), if st.mesh_cached { " (cached)" } else { "" });
     for w in super::warnings(run) {
         let _ = writeln!(s, "**Warning:** {w}.\n");
     }
@@ -26,55 +27,56 @@ pub fn report(run: &Run) -> String {
     let _ = writeln!(s, "| bodies | {} |", run.model.bodies.iter().map(|b| b.name.as_str()).collect::<Vec<_>>().join(", "));
     let _ = writeln!(s, "| elements | {} |", run.model.bodies.iter().map(|b| b.cells.len()).sum::<usize>());
     let _ = writeln!(s, "| model nodes (after contact split) | {} |", run.model.n_nodes());
-    let _ = writeln!(s, "| DOFs (unknowns) | {} |", run.dofs_total);
-    let _ = writeln!(s, "| interface DOFs | {} |", run.dofs_interface);
-    let _ = writeln!(s, "| parts (condensed) | {} ({}) |", run.parts, run.condensed_parts);
-    if run.ranks.len() > 1 {
+    let _ = writeln!(s, "| DOFs (unknowns) | {} |", st.dofs.total);
+    let _ = writeln!(s, "| interface DOFs | {} |", st.dofs.interface);
+    let _ = writeln!(s, "| parts (condensed) | {} ({}) |", st.parts.total, st.parts.condensed);
+    if st.ranks.len() > 1 {
         let _ = writeln!(
             s,
             "| MPI ranks: parts / condense (s) / peak memory (MB) | {} |",
-            run.ranks.iter().map(|r| format!("{} / {:.2} / {:.0}", r.parts.len(), r.condense_s, r.peak_memory_bytes as f64 / 1e6)).collect::<Vec<_>>().join(", ")
+            st.ranks.iter().map(|r| format!("{} / {:.2} / {:.0}", r.parts.len(), r.condense_s, r.peak_memory_bytes as f64 / 1e6)).collect::<Vec<_>>().join(", ")
         );
     }
-    if let Some(c) = &run.contact {
-        let k = state_counts(&c.states);
+    if let Some(c) = run.contact() {
+        let (k, it) = (state_counts(&c.states), &c.summary);
         let _ = writeln!(s, "| contact pairs | {} |", c.states.len());
-        let _ = writeln!(s, "| contact iterations | {} ({}) |", c.iterations, if c.converged { "converged" } else if c.cycled { "NOT converged: the states cycle" } else { "NOT converged" });
+        let _ = writeln!(s, "| contact iterations | {} ({}) |", it.iterations, if it.converged { "converged" } else if it.cycled { "NOT converged: the states cycle" } else { "NOT converged" });
         let _ = writeln!(s, "| states stick / slip / open | {} / {} / {} |", k[2], k[1], k[0]);
-        let _ = writeln!(s, "| interface residual | {:.2e} |", run.residual_interface);
+        let _ = writeln!(s, "| interface residual | {:.2e} |", st.residuals.interface);
     }
-    let t = &run.timings;
+    let t = &st.timings;
     let _ = writeln!(
         s,
         "| time mesh / model / assemble / condense / interface / recover / output / total (s) | {:.3} / {:.3} / {:.3} / {:.3} / {:.3} / {:.3} / {:.3} / {:.3} |",
         t.mesh, t.model, t.assemble, t.condense, t.interface, t.recover, t.output, t.total
     );
-    if let Some(e) = &run.errors {
+    if let Some(e) = &run.checks.errors {
         let _ = writeln!(s, "| displacement error (relative L2) | {:.3e} |", e.displacement_l2);
         let _ = writeln!(s, "| stress error (relative L2) | {:.3e} |", e.stress_l2);
-        if let Some(c) = run.contact_error_max {
+        if let Some(c) = run.checks.contact_error_max {
             let _ = writeln!(s, "| contact sigma_n error (max, relative) | {:.3e} |", c);
         }
     }
     if run.steps.len() > 1 {
         load_steps(&mut s, run);
     }
-    if let Some(c) = &run.contact {
-        if c.cycles_broken > 0 {
-            let _ = writeln!(s, "\nThe state iteration cycled {} time(s); each cycle was broken by changing only the most violated pair per iteration.", c.cycles_broken);
+    if let Some(c) = run.contact() {
+        let it = &c.summary;
+        if it.cycles_broken > 0 {
+            let _ = writeln!(s, "\nThe state iteration cycled {} time(s); each cycle was broken by changing only the most violated pair per iteration.", it.cycles_broken);
         }
-        if !c.converged {
+        if !it.converged {
             let _ = writeln!(s, "\n## Last two state sets\n");
-            let _ = writeln!(s, "| pair | {} |", c.history.iter().rev().take(2).rev().enumerate().map(|(i, _)| format!("iteration {}", c.iterations - 1 + i)).collect::<Vec<_>>().join(" | "));
+            let _ = writeln!(s, "| pair | {} |", it.history.iter().rev().take(2).rev().enumerate().map(|(i, _)| format!("iteration {}", it.iterations - 1 + i)).collect::<Vec<_>>().join(" | "));
             let _ = writeln!(s, "|---|---|---|");
             for p in 0..c.states.len() {
-                let cols: Vec<&str> = c.history.iter().rev().take(2).rev().map(|h| h[p].name()).collect();
+                let cols: Vec<&str> = it.history.iter().rev().take(2).rev().map(|h| h[p].name()).collect();
                 let _ = writeln!(s, "| {p} | {} |", cols.join(" | "));
             }
         }
     }
-    let _ = writeln!(s, "\n![the deformed shape, contact pairs coloured by state]({})", super::picture::deformed_file(&run.stresses));
-    if run.contact.is_some() {
+    let _ = writeln!(s, "\n![the deformed shape, contact pairs coloured by state]({})", super::picture::deformed_file(&run.last().stresses));
+    if run.contact().is_some() {
         let _ = writeln!(s, "\n![contact normal and shear stress along each interface](interfaces.svg)");
         let plans = super::picture::plan_files(&run.model);
         if let Some(f) = super::picture::joints_file(&plans) {
@@ -94,8 +96,8 @@ pub fn report(run: &Run) -> String {
             }
         }
     }
-    s += &run.check.report;
-    for (name, samples) in &run.probes {
+    s += &run.checks.analytic.report;
+    for (name, samples) in &run.checks.probes {
         let _ = writeln!(s, "\n## Probe `{name}`\n");
         let _ = writeln!(s, "| x | y | z | ux | uy | uz | sxx | syy | szz | sxy | von Mises |\n|---|---|---|---|---|---|---|---|---|---|---|");
         for p in samples {
@@ -110,7 +112,7 @@ pub fn report(run: &Run) -> String {
             );
         }
     }
-    let _ = writeln!(s, "\nOpen `{}.vtu`{} in ParaView (File > Open), colour by `von_mises` or `displacement`; `Warp By Vector` on `displacement` shows the deformed shape.", sc.name, if run.contact.is_some() { format!(" and `{}_contact.vtu`", sc.name) } else { String::new() });
+    let _ = writeln!(s, "\nOpen `{}.vtu`{} in ParaView (File > Open), colour by `von_mises` or `displacement`; `Warp By Vector` on `displacement` shows the deformed shape.", sc.name, if run.contact().is_some() { format!(" and `{}_contact.vtu`", sc.name) } else { String::new() });
     s
 }
 
@@ -127,7 +129,7 @@ fn load_steps(s: &mut String, run: &Run) {
         match &st.contact {
             Some(c) => {
                 let k = state_counts(&c.states);
-                let _ = writeln!(s, "| {} | {factors}{} | {} / {} / {} | {} |", st.step, c.iterations, k[2], k[1], k[0], if c.converged { "yes" } else { "NO" });
+                let _ = writeln!(s, "| {} | {factors}{} | {} / {} / {} | {} |", st.step, c.summary.iterations, k[2], k[1], k[0], if c.summary.converged { "yes" } else { "NO" });
             }
             None => {
                 let _ = writeln!(s, "| {} | {factors}– | – | – |", st.step);

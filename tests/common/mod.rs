@@ -20,7 +20,7 @@ pub mod scenes;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use subcontact::driver::{self, Run, RunOptions};
+use subcontact::driver::{self, ContactError, Run, RunOptions};
 
 /// A scratch directory for one test case (recreated empty).
 pub struct Case {
@@ -65,6 +65,13 @@ impl Case {
         let stem = scene.file_stem().expect("stem").to_string_lossy().to_string();
         let out = self.out(&format!("{stem}{}", if bonded { "-bonded" } else { "" }));
         driver::run(scene, &RunOptions { out: Some(out), bonded, ..Default::default() })
+    }
+
+    /// Solves a scene file of this case with the library driver, which must
+    /// fail in the contact iteration: the typed error.
+    pub fn contact_error(&self, scene: &Path) -> ContactError {
+        let err = self.run(scene).err().unwrap_or_else(|| panic!("{}: the run must fail", scene.display()));
+        err.downcast_ref::<ContactError>().unwrap_or_else(|| panic!("{}: a contact error, not: {err:#}", scene.display())).clone()
     }
 
     /// Runs the real binary in this case's directory.

@@ -45,12 +45,17 @@ use faer::Mat;
 
 use super::coords::{for_each_load, Axis, Terms, Var};
 use super::gmres;
+use super::layout::{Layout, Slot};
 use super::reduce::combine;
-use super::{coords, Relation};
+use super::{coords, Answer, Relation, Solver, IDENTITY};
 use crate::contact::basis;
 use crate::contact::frame::Frame;
 use crate::contact::law::ContactState;
+use crate::contact::rigid::PartModes;
+use crate::fem::rigid::n_modes;
+use crate::model::Model;
 use crate::substructure::interior::SharedSolve;
+use crate::substructure::{OperatorRef, SchurRef};
 
 /// Relative tolerance of each interface solve, against the load.
 pub const TOLERANCE: f64 = 1e-10;
@@ -104,6 +109,39 @@ struct SlipRow {
     force: f64,
 }
 
+/// `J x` from `K x` (`full`): each slipping row takes in its normal row
+/// and its springs.
+fn slip_rows_of(slip_rows: &[SlipRow], full: &mut [f64], x: &[f64]) {
+    for s in slip_rows {
+        let mut v = full[s.row];
+        if let Some(rn) = s.normal {
+            v += s.coupling * full[rn];
+        }
+        v += s.springs.iter().map(|&(c, k)| k * x[c]).sum::<f64>();
+        full[s.row] = v;
+    }
+}
+
+/// The coarse level of one solve: `Φ` and `J Φ` on its unknowns, and
+/// `Φ^T J Φ` factorised.
+struct Coarse {
+    phi: Mat<f64>,
+    j_phi: Mat<f64>,
+    lu: faer::linalg::solvers::PartialPivLu<f64>,
+}
+
+impl Coarse {
+    /// `c = (Φ^T J Φ)^-1 Φ^T v`: the residual `v - J Φ c` left for the
+    /// fine level, and the coarse correction `Φ c`.
+    fn correct(&self, v: &[f64]) -> (Vec<f64>, Mat<f64>) {
+        let vm = Mat::<f64>::from_fn(v.len(), 1, |i, _| v[i]);
+        let c = self.lu.solve(self.phi.transpose() * &vm);
+        let jc = &self.j_phi * &c;
+        let y = &self.phi * &c;
+        ((0..v.len()).map(|i| v[i] - jc[(i, 0)]).collect(), y)
+    }
+}
+
 /// Which block of the preconditioner an unknown is in, and where.
 #[derive(Clone, Copy)]
 struct Place {
@@ -134,23 +172,33 @@ pub struct Iterative<'a> {
     /// The last solution, where the next solve starts.
     last: Mutex<Option<Vec<f64>>>,
     /// GMRES iterations of every solve so far.
-    pub iterations: Mutex<Vec<usize>>,
-}
-
-/// What a solve gives the interface problem.
-pub struct Answer {
-    /// The means and the relative displacements.
-    pub m: Vec<f64>,
-    pub r: Vec<f64>,
-    /// `K x - b` on the relative rows: `-λ`.
-    pub residual_r: Vec<f64>,
-    /// `||J dx - rhs|| / ||b||` of the GMRES solve.
-    pub residual: f64,
-    /// Solved to [`LOOSE_TOLERANCE`].
-    pub loose: bool,
+    iterations: Mutex<Vec<usize>>,
 }
 
 impl<'a> Iterative<'a> {
+    /// The iterative interface of the `parts` laid out by `layout`: the
+    /// parts condensed for it (their S applied here through `solve`, or on
+    /// their own rank through `remote`), the preconditioner's groups (each
+    /// pair and join node) and the coarse space of the parts' rigid motions
+    /// `rigid`.
+    pub(super) fn build(model: &Model, layout: &Layout, parts: &[OperatorRef], rigid: &[PartModes], remote: Option<&'a dyn Remote>, threads: usize) -> Iterative<'a> {
+        let applied = (parts.iter().enumerate().zip(&layout.parts))
+            .filter_map(|((i, p), map)| {
+                let SchurRef::Applied { diag, solve } = p.s else { return None };
+                (p.nc > 0).then(|| AppliedPart {
+                    source: solve.map_or(Source::Remote(i), |s| Source::Local(s.clone())),
+                    diag: diag.to_vec(),
+                    terms: layout.terms_of(p.nc, map),
+                    frames: layout.frames_of(map),
+                    edges: map.edges.clone(),
+                    g: p.g.to_vec(),
+                })
+            })
+            .collect();
+        let coarse = coarse_space(model, layout, parts, rigid);
+        Iterative::new(model.nd, layout.nm, layout.nr, applied, layout.groups(), coarse, remote, threads)
+    }
+
     /// Sets up the right-hand sides (one application of S per part, for
     /// the prescribed values) and the preconditioner's blocks; `groups`
     /// lists the unknowns of each pair and join node.
@@ -238,13 +286,6 @@ impl<'a> Iterative<'a> {
         it
     }
 
-    /// The diagonal of the preconditioner's block at relative displacement `r`.
-    pub fn diagonal_r(&self, r: usize) -> f64 {
-        let p = self.place[self.nm + r];
-        let (members, m) = &self.blocks[p.block];
-        m[p.at * members.len() + p.at]
-    }
-
     /// `K x`.
     fn apply(&self, x: &[f64]) -> Vec<f64> {
         self.apply_with(x, 0.0)
@@ -329,60 +370,18 @@ impl<'a> Iterative<'a> {
     /// Solves the pairs' relations `rel` (pair `p`'s local axes numbered by
     /// `axes[p]`) under the load factors `lambda`; `None` when GMRES does
     /// not get below 1e-6 (a singular system: a body sliding freely).
-    pub fn solve(&self, axes: &[[Axis; 3]], rel: &[Relation], lambda: &[f64]) -> Option<Answer> {
-        let (nd, nm, nr) = (self.nd, self.nm, self.nr);
+    fn solve_gmres(&self, axes: &[[Axis; 3]], rel: &[Relation], lambda: &[f64]) -> Option<Answer> {
+        let (nm, nr) = (self.nm, self.nr);
         let n = nm + nr;
         let b = combine(&self.b, &self.b_fixed, lambda);
-        // loose while the states change: the same states as last time (or
-        // none to judge: bonded joins alone) are solved tightly
-        let states: Vec<ContactState> = rel.iter().map(|r| r.state).collect();
-        let loose = match self.last_states.lock() {
-            Ok(mut last) => {
-                let same = last.as_ref() == Some(&states);
-                *last = Some(states);
-                !same && !rel.is_empty()
-            }
-            Err(_) => false,
-        };
-        // the start: the last answer, with the tied relative displacements set
-        let mut x0 = self.last.lock().ok().and_then(|l| l.clone()).filter(|l| l.len() == n).unwrap_or_else(|| vec![0.0; n]);
-        let mut free = vec![true; n];
-        let mut slip_rows: Vec<SlipRow> = Vec::new();
-        for (p, rl) in rel.iter().enumerate() {
-            for a in 0..nd {
-                if let Some(ri) = axes[p][a].r() {
-                    if !rl.free_axis(a) {
-                        free[nm + ri] = false;
-                        x0[nm + ri] = rl.target[a];
-                    }
-                }
-            }
-            if rl.state == ContactState::Slip {
-                let rn = axes[p][0].r().map(|r| nm + r);
-                for a in 1..nd {
-                    let Some(ra) = axes[p][a].r() else { continue };
-                    let springs = (1..nd).filter_map(|c| axes[p][c].r().map(|rc| (nm + rc, rl.spring[a][c]))).filter(|s| s.1 != 0.0).collect();
-                    slip_rows.push(SlipRow { row: nm + ra, normal: rn, coupling: rl.coupling[a], springs, force: rl.force[a] });
-                }
-            }
-        }
+        let loose = self.loose(rel);
+        let (x0, free, slip_rows) = self.start(axes, rel);
         let unknowns: Vec<usize> = (0..n).filter(|&i| free[i]).collect();
-        // rows of J x (full = K x): the slipping rows take in their normal row and springs
-        let rows = |full: &mut Vec<f64>, x: &[f64]| {
-            for s in &slip_rows {
-                let mut v = full[s.row];
-                if let Some(rn) = s.normal {
-                    v += s.coupling * full[rn];
-                }
-                v += s.springs.iter().map(|&(c, k)| k * x[c]).sum::<f64>();
-                full[s.row] = v;
-            }
-        };
         let mut e0 = self.apply(&x0);
         for (e, bi) in e0.iter_mut().zip(&b) {
             *e -= bi;
         }
-        rows(&mut e0, &x0);
+        slip_rows_of(&slip_rows, &mut e0, &x0);
         for s in &slip_rows {
             e0[s.row] += s.force;
         }
@@ -394,38 +393,20 @@ impl<'a> Iterative<'a> {
             }
             full
         };
+        let restrict = |full: &[f64]| -> Vec<f64> { unknowns.iter().map(|&i| full[i]).collect() };
         let j = |v: &[f64]| -> Vec<f64> {
             let dx = expand(v);
             let mut full = self.apply(&dx);
-            rows(&mut full, &dx);
-            unknowns.iter().map(|&i| full[i]).collect()
+            slip_rows_of(&slip_rows, &mut full, &dx);
+            restrict(&full)
         };
         let precondition = self.preconditioner(&free, &slip_rows);
-        let restrict = |full: &[f64]| -> Vec<f64> { unknowns.iter().map(|&i| full[i]).collect() };
-        // the coarse level: Φ and J Φ on the unknowns, Φ^T J Φ factorised
-        let phi = Mat::<f64>::from_fn(unknowns.len(), self.phi.len(), |i, c| self.phi[c][unknowns[i]]);
-        let j_phi = {
-            let cols: Vec<Vec<f64>> = self
-                .k_phi
-                .iter()
-                .zip(&self.phi)
-                .map(|(kp, p)| {
-                    let mut full = kp.clone();
-                    rows(&mut full, p);
-                    restrict(&full)
-                })
-                .collect();
-            Mat::<f64>::from_fn(unknowns.len(), cols.len(), |i, c| cols[c][i])
-        };
-        let coarse = (!self.phi.is_empty()).then(|| (phi.transpose() * &j_phi).partial_piv_lu());
+        let coarse = self.coarse(&unknowns, &slip_rows);
         let m = |v: &[f64]| -> Vec<f64> {
             let (mut r1, y) = match &coarse {
-                Some(a0) => {
-                    let vm = Mat::<f64>::from_fn(v.len(), 1, |i, _| v[i]);
-                    let c = a0.solve(phi.transpose() * &vm);
-                    let jc = &j_phi * &c;
-                    let y = &phi * &c;
-                    ((0..v.len()).map(|i| v[i] - jc[(i, 0)]).collect::<Vec<f64>>(), Some(y))
+                Some(c) => {
+                    let (r1, y) = c.correct(v);
+                    (r1, Some(y))
                 }
                 None => (v.to_vec(), None),
             };
@@ -461,8 +442,71 @@ impl<'a> Iterative<'a> {
         Some(Answer { m, r, residual_r, residual, loose })
     }
 
+    /// Whether this solve may stop at [`LOOSE_TOLERANCE`]: loose while the
+    /// states change; the same states as last time (or none to judge:
+    /// bonded joins alone) are solved tightly.
+    fn loose(&self, rel: &[Relation]) -> bool {
+        let states: Vec<ContactState> = rel.iter().map(|r| r.state).collect();
+        match self.last_states.lock() {
+            Ok(mut last) => {
+                let same = last.as_ref() == Some(&states);
+                *last = Some(states);
+                !same && !rel.is_empty()
+            }
+            Err(_) => false,
+        }
+    }
+
+    /// Where GMRES starts (the last answer, with the tied relative
+    /// displacements set), which unknowns are free, and the slipping rows.
+    fn start(&self, axes: &[[Axis; 3]], rel: &[Relation]) -> (Vec<f64>, Vec<bool>, Vec<SlipRow>) {
+        let (nd, nm) = (self.nd, self.nm);
+        let n = nm + self.nr;
+        let mut x0 = self.last.lock().ok().and_then(|l| l.clone()).filter(|l| l.len() == n).unwrap_or_else(|| vec![0.0; n]);
+        let mut free = vec![true; n];
+        let mut slip_rows: Vec<SlipRow> = Vec::new();
+        for (p, rl) in rel.iter().enumerate() {
+            for a in 0..nd {
+                if let Some(ri) = axes[p][a].r() {
+                    if !rl.free_axis(a) {
+                        free[nm + ri] = false;
+                        x0[nm + ri] = rl.target[a];
+                    }
+                }
+            }
+            if rl.state == ContactState::Slip {
+                let rn = axes[p][0].r().map(|r| nm + r);
+                for a in 1..nd {
+                    let Some(ra) = axes[p][a].r() else { continue };
+                    let springs = (1..nd).filter_map(|c| axes[p][c].r().map(|rc| (nm + rc, rl.spring[a][c]))).filter(|s| s.1 != 0.0).collect();
+                    slip_rows.push(SlipRow { row: nm + ra, normal: rn, coupling: rl.coupling[a], springs, force: rl.force[a] });
+                }
+            }
+        }
+        (x0, free, slip_rows)
+    }
+
+    /// The coarse level on the `unknowns`: Φ and J Φ, Φ^T J Φ factorised
+    /// (none without a coarse space).
+    fn coarse(&self, unknowns: &[usize], slip_rows: &[SlipRow]) -> Option<Coarse> {
+        if self.phi.is_empty() {
+            return None;
+        }
+        let phi = Mat::<f64>::from_fn(unknowns.len(), self.phi.len(), |i, c| self.phi[c][unknowns[i]]);
+        let cols: Vec<Vec<f64>> = (self.k_phi.iter().zip(&self.phi))
+            .map(|(kp, p)| {
+                let mut full = kp.clone();
+                slip_rows_of(slip_rows, &mut full, p);
+                unknowns.iter().map(|&i| full[i]).collect()
+            })
+            .collect();
+        let j_phi = Mat::<f64>::from_fn(unknowns.len(), cols.len(), |i, c| cols[c][i]);
+        let lu = (phi.transpose() * &j_phi).partial_piv_lu();
+        Some(Coarse { phi, j_phi, lu })
+    }
+
     /// `M^-1`: each block restricted to its free unknowns, with the
-    /// slipping rows as in [`Self::solve`], factorised once per solve.
+    /// slipping rows as in [`Self::solve_gmres`], factorised once per solve.
     fn preconditioner(&self, free: &[bool], slip_rows: &[SlipRow]) -> impl Fn(&[f64]) -> Vec<f64> + '_ {
         let mut slip_of = std::collections::HashMap::new();
         for (k, s) in slip_rows.iter().enumerate() {
@@ -508,6 +552,52 @@ impl<'a> Iterative<'a> {
             out
         }
     }
+}
+
+impl Solver for Iterative<'_> {
+    fn solve(&self, axes: &[[Axis; 3]], rel: &[Relation], lambda: &[f64]) -> Option<Answer> {
+        self.solve_gmres(axes, rel, lambda)
+    }
+
+    /// The diagonal of the preconditioner's block at relative displacement `r`.
+    fn diagonal(&self, r: usize) -> f64 {
+        let p = self.place[self.nm + r];
+        let (members, m) = &self.blocks[p.block];
+        m[p.at * members.len() + p.at]
+    }
+
+    fn counts(&self) -> Vec<usize> {
+        self.iterations.lock().map(|v| v.clone()).unwrap_or_default()
+    }
+}
+
+/// The coarse space: each applied part's rigid motions on the means,
+/// shared between the parts that hold a node (half each on a pair, evenly
+/// at a join), one column per part and motion over `[m; r]`.
+fn coarse_space(model: &Model, layout: &Layout, parts: &[OperatorRef], rigid: &[PartModes]) -> Vec<Vec<f64>> {
+    let (nd, n) = (model.nd, layout.nm + layout.nr);
+    let mut coarse = Vec::new();
+    for ((p, map), modes) in parts.iter().zip(&layout.parts).zip(rigid) {
+        if !(matches!(p.s, SchurRef::Applied { .. }) && p.nc > 0) {
+            continue;
+        }
+        for k in 0..n_modes(model.analysis) {
+            let mut col = vec![0.0; n];
+            for (&node, &slot) in p.part.interface.iter().zip(&map.nodes) {
+                let (node_axes, frame, w) = match slot {
+                    Slot::Join(j) => (&layout.joins[j], IDENTITY, 1.0 / layout.join_parts[j].0.len() as f64),
+                    Slot::Pair { pair, .. } => (&layout.axes[pair], layout.frames[pair], 0.5),
+                };
+                for (a, axis) in node_axes.iter().enumerate().take(nd) {
+                    if let Axis::Free { m, .. } | Axis::Joined { m } = *axis {
+                        col[m] += w * modes.modes.along(model.coords[node], frame[a])[k];
+                    }
+                }
+            }
+            coarse.push(col);
+        }
+    }
+    coarse
 }
 
 impl AppliedPart {

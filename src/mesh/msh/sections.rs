@@ -10,10 +10,18 @@
 
 use std::collections::HashMap;
 
-use super::groups::group_name;
 use super::reader::Reader;
 use super::MshError;
 use crate::mesh::CellKind;
+
+/// A group's name from `$PhysicalNames`, or its tag when it has none.
+pub(super) fn group_name(names: &[(i32, i32, String)], dim: i32, tag: i32) -> String {
+    names
+        .iter()
+        .find(|(d, t, _)| *d == dim && *t == tag)
+        .map(|(_, _, n)| n.clone())
+        .unwrap_or_else(|| tag.to_string())
+}
 
 /// Name and node count of gmsh element types (codes of the MSH format), for
 /// messages and for skipping blocks that belong to no physical group.

@@ -90,11 +90,11 @@ fn in_box(cv: &Canvas, b: [f64; 4], c: [u8; 3]) -> Vec<usize> {
 
 /// The last state of a run, to draw.
 fn snap(run: &Run) -> Snapshot<'_> {
-    Snapshot { title: &run.scene.title, model: &run.model, u: &run.u, stresses: &run.stresses, contact: run.contact.as_ref(), region: run.scene.output.frame.as_ref() }
+    Snapshot { title: &run.scene.title, model: &run.model, u: &run.last().u, stresses: &run.last().stresses, contact: run.contact(), region: run.scene.output.frame.as_ref() }
 }
 
 fn contact(run: &Run) -> &crate::results::ContactRun {
-    run.contact.as_ref().expect("a run with contact")
+    run.contact().expect("a run with contact")
 }
 
 fn cylinder(lc: f64, order: usize) -> Run {
@@ -120,7 +120,7 @@ fn cylinder_picture_shows_the_field_and_every_contact_state() {
     keep("cylinder_sxy.png", &deformed_png(&snap(&run), Field::Sxy, None).expect("picture"));
 
     // every state, in thirds along the cut
-    let c = run.contact.as_mut().expect("contact");
+    let c = run.steps.last_mut().and_then(|s| s.contact.as_mut()).expect("contact");
     let n = c.states.len();
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by(|&a, &b| {
@@ -234,10 +234,10 @@ fn stacked_blocks_pushed_sideways_show_the_states_they_reach() {
         std::fs::write(&path, toml).expect("scene");
         let opts = RunOptions { out: Some(dir.join(name)), skip_output: true, ..Default::default() };
         let run = driver::run(&path, &opts).expect("stack run");
-        let c = run.contact.as_ref().expect("contact");
+        let c = run.contact().expect("contact");
         let counts = state_counts(&c.states);
-        eprintln!("{name}: {} stick, {} slip, {} open after {} iterations", counts[2], counts[1], counts[0], c.iterations);
-        assert!(c.converged, "{name}");
+        eprintln!("{name}: {} stick, {} slip, {} open after {} iterations", counts[2], counts[1], counts[0], c.summary.iterations);
+        assert!(c.summary.converged, "{name}");
         if joint == weak {
             assert!(counts[0] > 0 && counts[2] > 0, "{name}: the joint opens at one end and sticks at the other: {counts:?}");
         }
@@ -321,7 +321,7 @@ fn plan_view_of_a_3d_joint_shows_where_it_slips() {
     let c = contact(&run);
     let counts = state_counts(&c.states);
     eprintln!("blocks3d, lc = 0.2: {} pairs, {} stick, {} slip, {} open", c.states.len(), counts[2], counts[1], counts[0]);
-    assert!(c.converged && counts[1] > 0 && counts[2] > 0 && counts[0] == 0, "partial slip: {counts:?}");
+    assert!(c.summary.converged && counts[1] > 0 && counts[2] > 0 && counts[0] == 0, "partial slip: {counts:?}");
     let plans: Vec<(usize, String)> = plan_files(&run.model).into_iter().map(|p| (p.interface, p.file)).collect();
     assert_eq!(plans, vec![(0, "plan_joint.png".to_string())]);
 
@@ -351,7 +351,8 @@ fn plan_view_of_a_3d_joint_shows_where_it_slips() {
     let nd = run.model.nd;
     for (p, pair) in run.model.pairs.iter().enumerate().filter(|&(p, _)| c.states[p] == ContactState::Slip) {
         let t = c.shear(p);
-        let rel: [f64; 3] = std::array::from_fn(|d| run.u[pair.l * nd + d] - run.u[pair.k * nd + d]);
+        let u = &run.last().u;
+        let rel: [f64; 3] = std::array::from_fn(|d| u[pair.l * nd + d] - u[pair.k * nd + d]);
         let slip = sub3(rel, pair.normal.map(|x| x * dot(rel, pair.normal)));
         assert!((dot(t, t).sqrt() - c.pairs[p].tau()).abs() <= 1e-9 * c.pairs[p].tau().max(1e-12), "pair {p}: the frame is orthonormal");
         assert!(t[0] > 0.9 * dot(t, t).sqrt(), "pair {p}: shear {t:?} along +x");
@@ -436,7 +437,7 @@ fn a_3d_lining_is_unrolled_from_the_crown() {
         let run = tunnel3d(full, "");
         let c = contact(&run);
         let counts = state_counts(&c.states);
-        assert!(c.converged && counts[1] > 0 && counts[2] > 0, "slip and stick: {counts:?}");
+        assert!(c.summary.converged && counts[1] > 0 && counts[2] > 0, "slip and stick: {counts:?}");
         let plans = plan_files(&run.model);
         assert_eq!(plans.len(), 1);
         assert_eq!(plans[0].file, "plan_interface.png");
@@ -476,7 +477,7 @@ fn a_3d_tunnel_is_framed_on_its_lining_with_a_scale_per_body() {
     assert!(focus.note.as_deref().is_some_and(|n| n.starts_with("Framed on the contacts")), "{:?}", focus.note);
     // the contacts' box (r = 5.2) grown by half its size on each side, the slice whole
     assert!((cut.hi[0] - 10.4).abs() < 0.1 && (cut.lo[2] + 10.4).abs() < 0.1 && cut.lo[1] == 0.0 && cut.hi[1] == 2.0, "{cut:?}");
-    let values: Vec<Vec<f32>> = run.stresses.iter().map(|bs| {
+    let values: Vec<Vec<f32>> = run.last().stresses.iter().map(|bs| {
         let mut v = vec![f32::NAN; run.model.n_nodes()];
         for (&k, st) in bs.nodes.iter().zip(&bs.stress) {
             v[k] = crate::fem::material::von_mises(st) as f32;
@@ -599,12 +600,7 @@ fn a_joint_set_of_many_planes_gets_a_plan_per_plane_and_one_overview() {
         frames: vec![[[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]; n],
         areas: vec![0.1; n],
         states,
-        apex_openings: 0,
-        iterations: 1,
-        converged: true,
-        cycled: false,
-        cycles_broken: 0,
-        history: Vec::new(),
+        summary: crate::contact::Summary { iterations: 1, converged: true, cycled: false, cycles_broken: 0, apex_openings: 0, history: Vec::new() },
     };
     let plans = plan_files(&model);
     let files: Vec<&str> = plans.iter().map(|p| p.file.as_str()).collect();
