@@ -6,7 +6,7 @@ CARGO   ?= cargo
 BIN     := target/release/subcontact
 PYTHON  ?= python3
 
-.PHONY: all deps deps-mpi build cylinder tunnel footing dam blocks3d dam3d test test-mpi bench bench3d bench-ccx bench-interface scaling stress clean
+.PHONY: all deps deps-mpi build cylinder tunnel footing footing-layers dam blocks3d dam3d test test-mpi bench bench3d bench-ccx bench-interface scaling stress clean
 
 all: build
 
@@ -33,6 +33,12 @@ cylinder: deps build
 # results/footing/ (footing_contact.vtu, contact.csv, report.md).
 footing: deps build
 	$(BIN) solve geo/footing.toml
+
+# A square footing on two soil layers of prisms (a triangulated plan
+# extruded in layers), loaded near one corner: the opposite corner lifts
+# (results/footing_layers/: plan_base.png by state and sigma_n, contact.csv).
+footing-layers: deps build
+	$(BIN) solve geo/footing_layers.toml
 
 # A tunnel lining in rock against Einstein & Schwartz (1979): no slip and
 # full slip; thrust and moment tables in results/tunnel{,_slip}/report.md.
@@ -96,15 +102,17 @@ stress: deps
 test: deps
 	$(CARGO) test --release
 
-# MPI: OpenMPI and the clang the mpi crate's bindings need (Debian), then the
-# MPI tests (tests/mpi.rs: 2 and 3 ranks on localhost against the serial
-# run) with the binary built with the cargo feature mpi, in its own target
-# directory so that `make test`'s build stays as it is.
+# MPI: OpenMPI with its headers and the clang the mpi crate's bindings need
+# (Debian), then the MPI tests (tests/mpi.rs: 2 and 3 ranks on localhost
+# against the serial run) with the binary built with the cargo feature mpi,
+# in its own target directory so that `make test`'s build stays as it is.
+# `mpicc` alone is not enough: Debian's ParaView brings openmpi-bin (mpirun,
+# mpicc) without libopenmpi-dev, so the check compiles `#include <mpi.h>`.
 MPI_TARGET := target/mpi
 
 deps-mpi:
-	@{ command -v mpirun >/dev/null 2>&1 && command -v mpicc >/dev/null 2>&1 && ls /usr/lib/llvm-*/lib/libclang*.so* >/dev/null 2>&1; } || { \
-	  echo "OpenMPI or libclang not found: installing openmpi-bin libopenmpi-dev libclang-dev with apt-get"; \
+	@{ command -v mpirun >/dev/null 2>&1 && printf '#include <mpi.h>\n' | mpicc -E -x c - >/dev/null 2>&1 && ls /usr/lib/llvm-*/lib/libclang*.so* >/dev/null 2>&1; } || { \
+	  echo "OpenMPI (mpirun, mpicc and the header mpi.h) or libclang not found: installing openmpi-bin libopenmpi-dev libclang-dev with apt-get"; \
 	  (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq openmpi-bin libopenmpi-dev libclang-dev >/dev/null) || \
 	  { echo "error: could not install OpenMPI; run 'apt-get install -y openmpi-bin libopenmpi-dev libclang-dev' as root"; exit 1; }; }
 

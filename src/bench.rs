@@ -88,7 +88,7 @@ impl Row {
 }
 
 fn solve_time(run: &Run) -> f64 {
-    let t = &run.timings;
+    let t = &run.stats.timings;
     t.assemble + t.condense + t.interface + t.recover
 }
 
@@ -139,26 +139,26 @@ pub fn bench(scene_path: &std::path::Path, opts: &BenchOptions, progress: &mut d
             } else {
                 f64::NAN
             };
-            let e = run.errors.as_ref();
+            let (e, t) = (run.checks.errors.as_ref(), &run.stats.timings);
             let row = Row {
                 order,
                 level,
                 h,
-                dofs: run.dofs_total,
-                interface_dofs: run.dofs_interface,
-                iterations: run.contact.as_ref().map_or(0, |c| c.iterations),
-                time_s: run.timings.total,
-                time_mesh_s: run.timings.mesh,
+                dofs: run.stats.dofs.total,
+                interface_dofs: run.stats.dofs.interface,
+                iterations: run.contact().map_or(0, |c| c.summary.iterations),
+                time_s: t.total,
+                time_mesh_s: t.mesh,
                 time_solve_s: solve_time(&run),
                 time_monolithic_s: mono,
                 error_displacement_l2: e.map_or(f64::NAN, |e| e.displacement_l2),
                 error_stress_l2: e.map_or(f64::NAN, |e| e.stress_l2),
-                error_contact_max: run.contact_error_max.unwrap_or(f64::NAN),
-                time_assemble_s: run.timings.assemble,
-                time_condense_s: run.timings.condense,
-                time_interface_s: run.timings.interface,
-                time_recover_s: run.timings.recover,
-                probes: run.probes.iter().flat_map(|(_, p)| p.iter().cloned()).collect(),
+                error_contact_max: run.checks.contact_error_max.unwrap_or(f64::NAN),
+                time_assemble_s: t.assemble,
+                time_condense_s: t.condense,
+                time_interface_s: t.interface,
+                time_recover_s: t.recover,
+                probes: run.checks.probes.iter().flat_map(|(_, p)| p.iter().cloned()).collect(),
             };
             last_dofs = row.dofs;
             done += 1;

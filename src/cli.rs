@@ -1,4 +1,4 @@
-//! Command line: `subcontact solve | check | paper`.
+//! Command line: `subcontact solve | bench | check | paper`.
 
 use std::path::PathBuf;
 

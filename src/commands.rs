@@ -18,31 +18,32 @@ pub fn solve(scene: &Path, opts: &RunOptions, comm: &dyn Comm) -> Result<()> {
         return Ok(()); // not rank 0: rank 0 reports
     };
     // say what happened: pairs that opened between the Coulomb apex and f_t
-    if run.steps.iter().filter_map(|s| s.contact.as_ref()).any(|c| c.apex_openings > 0) {
-        warn(&run.scene);
+    if run.steps.iter().filter_map(|s| s.contact.as_ref()).any(|c| c.summary.apex_openings > 0) {
+        warn(&run.scene.warnings());
     }
-    print_summary(&run);
+    warn(&crate::model::warnings::warnings(&run.model));
+    print_summary(&run, &opts.out_dir(&run.scene));
     Ok(())
 }
 
-/// The scene's warnings on stderr, one paragraph each.
-fn warn(scene: &Scene) {
-    for w in scene.warnings() {
+/// Warnings on stderr, one paragraph each.
+fn warn(warnings: &[String]) {
+    for w in warnings {
         eprintln!("warning: {w}");
     }
 }
 
-fn print_summary(run: &Run) {
-    let t = &run.timings;
-    println!("{}: {} DOFs ({} interface), {:.2} s", run.scene.name, run.dofs_total, run.dofs_interface, t.total);
-    if let Some(c) = &run.contact {
+fn print_summary(run: &Run, out: &Path) {
+    let st = &run.stats;
+    println!("{}: {} DOFs ({} interface), {:.2} s", run.scene.name, st.dofs.total, st.dofs.interface, st.timings.total);
+    if let Some(c) = run.contact() {
         let k = state_counts(&c.states);
-        println!("  contact: {} pairs, {} iteration(s), {} stick / {} slip / {} open", c.states.len(), c.iterations, k[2], k[1], k[0]);
+        println!("  contact: {} pairs, {} iteration(s), {} stick / {} slip / {} open", c.states.len(), c.summary.iterations, k[2], k[1], k[0]);
     }
-    if let Some(e) = &run.errors {
+    if let Some(e) = &run.checks.errors {
         println!("  error vs closed form: displacement {:.3e}, stress {:.3e} (relative L2)", e.displacement_l2, e.stress_l2);
     }
-    println!("  results in {}", run.out.display());
+    println!("  results in {}", out.display());
 }
 
 pub fn check(scene_path: &Path) -> Result<()> {
@@ -50,28 +51,32 @@ pub fn check(scene_path: &Path) -> Result<()> {
     let out = Path::new("results").join(&scene.name);
     let (mesh, msh, _) = driver::load_mesh(&scene, &out)?;
     let model = Model::build(&mesh, &scene.model_spec())?;
-    let parts = substructure::parts(&model);
+    let parts = substructure::cut(&model, substructure::parts(&model), scene.solver.substructures);
+    let dofs = substructure::parts::dof_counts(&model, &parts);
     println!("{}: scene and mesh `{}` are consistent", scene_path.display(), msh.display());
     println!("  {} bodies, {} elements, {} model nodes, {} contact pairs, {} part(s)", model.bodies.len(), model.bodies.iter().map(|b| b.cells.len()).sum::<usize>(), model.n_nodes(), model.pairs.len(), parts.len());
-    warn(&scene);
+    println!("  {} DOFs ({} interface)", dofs.total, dofs.interface);
+    warn(&scene.warnings());
+    warn(&crate::model::warnings::warnings(&model));
     Ok(())
 }
 
 pub fn paper(fine: &Path, paper: &Path, verbose: bool) -> Result<()> {
     let opts = RunOptions { verbose, ..Default::default() };
     let run_paper = driver::run(paper, &opts)?;
-    print_summary(&run_paper);
+    print_summary(&run_paper, &opts.out_dir(&run_paper.scene));
     let run_fine = driver::run(fine, &opts)?;
-    print_summary(&run_fine);
+    let fine_out = opts.out_dir(&run_fine.scene);
+    print_summary(&run_fine, &fine_out);
     let lame = run_paper.scene.analytic.as_ref().and_then(|a| analytic::lame(a, &run_paper.model));
     let runs = [("paper mesh (30 hex8)", &run_paper.solution()), ("default mesh", &run_fine.solution())];
     let tables = lame.map(|l| paper::tables(&l, &runs, true)).unwrap_or_default();
     println!("{tables}");
-    let path = run_fine.out.join("report.md");
+    let path = fine_out.join("report.md");
     let mut text = std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
     text += "\n# The paper's tables: theory, the paper, this tool on the paper's mesh and on the default mesh\n";
     text += &tables;
-    let tmp = run_fine.out.join(".report.md.tmp");
+    let tmp = fine_out.join(".report.md.tmp");
     std::fs::write(&tmp, text).with_context(|| format!("writing {}", tmp.display()))?;
     std::fs::rename(&tmp, &path).with_context(|| format!("writing {}", path.display()))?;
     println!("tables written to {}", path.display());

@@ -1,14 +1,18 @@
 //! What a run computed, for the output writers and the callers of
-//! [`crate::driver::run`]: the model, the displacements, stresses and contact
-//! states of every load step, errors against a closed form, probes, sizes,
-//! residuals, timings and counters, and what the scene's `[analytic]` check
-//! adds. Plain data: the driver fills it, the writers read it, and this
-//! module imports neither.
+//! [`crate::driver::run`], in one shape: [`Run`] is the scene and the model,
+//! the displacements, stresses and contact states of every load step
+//! ([`Run::last`] is the answer), the run's [`Stats`] (sizes, residuals,
+//! timings, counters, ranks) and its [`Checks`] (errors against a closed
+//! form, probes, what the scene's `[analytic]` check adds). A step's
+//! [`ContactRun`] keeps the contact iteration's own [`Summary`]. Plain data:
+//! the driver fills it, the writers read it, and this module imports
+//! neither.
 
 use std::path::PathBuf;
 
 use crate::analytic::{Check, Solution};
 use crate::contact::law::{ContactState, PairResult};
+use crate::contact::Summary;
 use crate::model::Model;
 use crate::recover::{BodyStress, Errors, Sample};
 use crate::scene::Scene;
@@ -50,44 +54,86 @@ pub struct RankStats {
     pub bytes_sent_per_contact_iteration: u64,
 }
 
-/// Everything a run computed, for the output writers.
+/// Everything a run computed, for the output writers: the scene and the
+/// model it ran, every load step, what the run cost and what it is checked
+/// against.
 pub struct Run {
     pub scene: Scene,
-    pub out: PathBuf,
-    pub msh: PathBuf,
-    pub mesh_cached: bool,
     pub model: Model,
-    pub u: Vec<f64>,
-    pub stresses: Vec<BodyStress>,
-    pub contact: Option<ContactRun>,
-    /// Every load step (the last one is also `u`, `stresses`, `contact`).
+    /// Every load step, in order (at least one; the last one is the answer).
     pub steps: Vec<StepResult>,
-    pub errors: Option<Errors>,
-    pub contact_error_max: Option<f64>,
-    pub probes: Vec<(String, Vec<Sample>)>,
-    pub timings: Timings,
-    pub dofs_total: usize,
-    pub dofs_interface: usize,
-    pub parts: usize,
-    pub condensed_parts: usize,
-    pub residual_interface: f64,
-    /// Backward error of the parts' sparse solves.
-    pub residual_assembled: f64,
-    pub counters: Counters,
-    /// Every rank's share (one entry without MPI).
-    pub ranks: Vec<RankStats>,
-    /// What the scene's `[analytic]` check adds to report.md and
-    /// summary.json; computed with the result files (empty when the run
-    /// writes none).
-    pub check: Check,
+    pub stats: Stats,
+    pub checks: Checks,
 }
 
 impl Run {
+    /// The last load step: the run's answer.
+    pub fn last(&self) -> &StepResult {
+        self.steps.last().expect("a run has at least one load step")
+    }
+
+    /// The contact result of the last load step.
+    pub fn contact(&self) -> Option<&ContactRun> {
+        self.last().contact.as_ref()
+    }
+
     /// What an `[analytic]` check reads of this run: its last load step.
     pub fn solution(&self) -> Solution<'_> {
-        let probed = self.probes.iter().flat_map(|(_, s)| s).filter(|s| s.found).map(|s| (s.x, s.stress)).collect();
-        Solution { model: &self.model, u: &self.u, probed, pairs: self.contact.as_ref().map(|c| &c.pairs[..]) }
+        let probed = self.checks.probes.iter().flat_map(|(_, s)| s).filter(|s| s.found).map(|s| (s.x, s.stress)).collect();
+        Solution { model: &self.model, u: &self.last().u, probed, pairs: self.contact().map(|c| &c.pairs[..]) }
     }
+}
+
+/// What a run cost and how well its solves went: the mesh file, sizes,
+/// residuals, timings, counters and every rank's share.
+#[derive(Clone, Debug, Default)]
+pub struct Stats {
+    /// The mesh read, and whether gmsh's output was reused.
+    pub msh: PathBuf,
+    pub mesh_cached: bool,
+    pub dofs: Dofs,
+    pub parts: PartCounts,
+    pub residuals: Residuals,
+    pub timings: Timings,
+    pub counters: Counters,
+    /// Every rank's share (one entry without MPI).
+    pub ranks: Vec<RankStats>,
+}
+
+/// Unknowns of the whole model, and of the interface (a node shared by
+/// several parts counted once).
+#[derive(Clone, Copy, Debug, Default, serde::Serialize)]
+pub struct Dofs {
+    pub total: usize,
+    pub interface: usize,
+}
+
+/// Parts, and those condensed onto an interface.
+#[derive(Clone, Copy, Debug, Default, serde::Serialize)]
+pub struct PartCounts {
+    pub total: usize,
+    pub condensed: usize,
+}
+
+/// The largest relative residual of the interface solves, and the largest
+/// backward error of the parts' sparse solves.
+#[derive(Clone, Copy, Debug, Default, serde::Serialize)]
+pub struct Residuals {
+    pub interface: f64,
+    pub assembled: f64,
+}
+
+/// What the last load step is measured by: errors against the scene's
+/// closed form, the probes, and what its `[analytic]` check adds to
+/// report.md and summary.json (computed with the result files: empty when
+/// the run writes none).
+#[derive(Default)]
+pub struct Checks {
+    pub errors: Option<Errors>,
+    /// Max |sigma_n - exact| over the pairs, relative to the largest exact value.
+    pub contact_error_max: Option<f64>,
+    pub probes: Vec<(String, Vec<Sample>)>,
+    pub analytic: Check,
 }
 
 /// How often the expensive things were done: what a scene does not need is skipped.
@@ -119,13 +165,13 @@ pub struct StepResult {
     /// The factor of every load case at this step (`Model::cases`).
     pub case_factors: Vec<f64>,
     pub u: Vec<f64>,
-    /// Nodal stresses (empty when `[output] fields` leaves stress out, but
-    /// for the last step).
+    /// Nodal stresses (empty when `[output] fields` leaves stress out).
     pub stresses: Vec<BodyStress>,
     pub contact: Option<ContactRun>,
 }
 
-/// The contact iteration's result.
+/// The contact result of a load step: each pair's state, stresses, frame
+/// and area, and how the iteration went.
 #[derive(Clone)]
 pub struct ContactRun {
     pub states: Vec<ContactState>,
@@ -135,15 +181,7 @@ pub struct ContactRun {
     pub frames: Vec<[[f64; 3]; 3]>,
     /// The area each pair controls (its stresses times it are its forces).
     pub areas: Vec<f64>,
-    /// Pairs opened in tension between the Coulomb apex c / f and f_t
-    /// (where f_t exceeds the apex).
-    pub apex_openings: usize,
-    pub iterations: usize,
-    pub converged: bool,
-    pub cycled: bool,
-    /// Cycles broken by changing one pair at a time.
-    pub cycles_broken: usize,
-    pub history: Vec<Vec<ContactState>>,
+    pub summary: Summary,
 }
 
 impl ContactRun {

@@ -25,7 +25,7 @@ use common::scenes::{self, two_blocks};
 use common::Case;
 use subcontact::analytic::Lame;
 use subcontact::contact::law::ContactState;
-use subcontact::driver::Run;
+use subcontact::driver::{At, ContactError, Run};
 use subcontact::analytic::paper::{contact_sigma_n_at, TABLE2_R};
 use subcontact::scene::Analysis;
 
@@ -34,13 +34,13 @@ use subcontact::scene::Analysis;
 
 /// Radius of the k node of every pair and its sigma_n.
 fn pair_radii(run: &Run) -> Vec<(f64, f64)> {
-    let c = run.contact.as_ref().expect("a contact run");
+    let c = run.contact().expect("a contact run");
     run.model.pairs.iter().zip(&c.pairs).map(|(p, r)| (run.model.coords[p.k][0].hypot(run.model.coords[p.k][1]), r.sigma_n)).collect()
 }
 
 fn assert_all(run: &Run, state: ContactState) {
-    let c = run.contact.as_ref().expect("a contact run");
-    assert!(c.converged, "contact iteration converged");
+    let c = run.contact().expect("a contact run");
+    assert!(c.summary.converged, "contact iteration converged");
     for (i, s) in c.states.iter().enumerate() {
         assert_eq!(*s, state, "pair {i} at {:?}", run.model.coords[run.model.pairs[i].k]);
     }
@@ -132,7 +132,7 @@ fn all_stick_equals_bonded_solve_on_3d_boxes_under_an_inclined_load() {
         let contact = case.run(&scene).expect("contact run");
         let bonded = case.run_with(&scene, true).expect("bonded run");
         assert_all(&contact, ContactState::Stick);
-        let c = contact.contact.as_ref().expect("contact");
+        let c = contact.contact().expect("contact");
         let max_tau = c.pairs.iter().map(|p| p.tau()).fold(0.0, f64::max);
         assert!(max_tau > 0.1, "{name}: the joint carries shear ({max_tau})");
         let d = diff_to_bonded(&contact, &bonded);
@@ -150,7 +150,7 @@ fn paper_mesh_splits_84_nodes_into_96_with_12_stuck_pairs_and_matches_table2() {
     case.copy("geo/cylinder_paper.geo");
     let scene = case.copy("geo/cylinder_paper.toml");
     let run = case.run(&scene).expect("paper mesh run");
-    let mesh = subcontact::mesh::msh::read_msh(&run.msh).expect("read the paper mesh");
+    let mesh = subcontact::mesh::msh::read_msh(&run.stats.msh).expect("read the paper mesh");
     assert_eq!(mesh.coords.len(), 84, "mesh nodes");
     let used = used_nodes(&run);
     assert_eq!(used.len(), 96, "model nodes after the split");
@@ -215,8 +215,8 @@ fn separate_coincident_contact_groups_give_the_shared_curve_answer() {
     let n_pairs = split.model.pairs.len();
     assert_eq!(n_pairs, shared.model.pairs.len());
     assert_eq!(n_pairs, 41, "2 (b - a) / lc + 1 nodes on the cut of quad9");
-    let split_mesh = subcontact::mesh::msh::read_msh(&split.msh).expect("split mesh");
-    let shared_mesh = subcontact::mesh::msh::read_msh(&shared.msh).expect("shared mesh");
+    let split_mesh = subcontact::mesh::msh::read_msh(&split.stats.msh).expect("split mesh");
+    let shared_mesh = subcontact::mesh::msh::read_msh(&shared.stats.msh).expect("shared mesh");
     assert_eq!(split_mesh.coords.len(), shared_mesh.coords.len() + n_pairs);
     assert_eq!(split.model.n_nodes(), shared.model.n_nodes());
     assert_all(&split, ContactState::Stick);
@@ -227,7 +227,7 @@ fn separate_coincident_contact_groups_give_the_shared_curve_answer() {
             .into_iter()
             .map(|(b, n)| {
                 let x = run.model.coords[n];
-                ((b, [(x[0] * 1e8).round() as i64, (x[1] * 1e8).round() as i64]), [run.u[2 * n], run.u[2 * n + 1]])
+                ((b, [(x[0] * 1e8).round() as i64, (x[1] * 1e8).round() as i64]), [run.last().u[2 * n], run.last().u[2 * n + 1]])
             })
             .collect()
     }
@@ -254,7 +254,7 @@ fn separate_coincident_contact_groups_give_the_shared_curve_answer() {
 }
 
 fn pair_keyed(run: &Run) -> HashMap<[i64; 2], f64> {
-    let c = run.contact.as_ref().expect("contact");
+    let c = run.contact().expect("contact");
     run.model
         .pairs
         .iter()
@@ -282,7 +282,7 @@ fn patch_test_2d(kinds: &[(&str, usize, &str)]) {
         let kind = run.model.bodies[0].cells[0].kind.name();
         assert_eq!(&kind, name, "element kind");
         assert_all(&run, ContactState::Stick);
-        let c = run.contact.as_ref().expect("contact");
+        let c = run.contact().expect("contact");
         assert!(c.pairs.len() >= 5);
         let mut worst = 0.0f64;
         for (p, r) in run.model.pairs.iter().zip(&c.pairs) {
@@ -335,6 +335,10 @@ fn tension_above_tensile_strength_opens_every_pair_and_names_the_free_body() {
         assert!(!stderr.contains("\"bottom\""), "not the supported one: {stderr}");
         assert!(stderr.contains(&format!("(0 stick, 0 slip, {pairs} open)")), "gives the states: {stderr}");
         assert!(stderr.contains("iteration 2"), "after the first (all stuck) solve: {stderr}");
+        match case.contact_error(&case.dir.join(&scene)) {
+            ContactError::NotHeld { bodies, at, .. } => assert_eq!((bodies, at.iteration, at.states), (vec!["top".to_string()], 2, [pairs, 0, 0]), "{name}"),
+            other => panic!("{name}: not held, not {other:?}"),
+        }
     }
 }
 
@@ -354,7 +358,7 @@ fn contact_patch_test_in_compression_is_exact_in_axisymmetry() {
         let run = case.run(&case.write(&format!("axi_{name}.toml"), &text)).expect("axisymmetric patch test run");
         assert_eq!(run.model.bodies[0].cells[0].kind.name(), name);
         assert_all(&run, ContactState::Stick);
-        let c = run.contact.as_ref().expect("contact");
+        let c = run.contact().expect("contact");
         let mut worst = 0.0f64;
         for (pr, r) in run.model.pairs.iter().zip(&c.pairs) {
             let e = (r.sigma_n + p).abs().max(r.tau()) / p;
@@ -380,7 +384,17 @@ fn frictionless_joint_that_lets_a_block_slide_is_refused_as_singular() {
         case.write(&scene, &stack_scene("contact_stack.geo", "plane_stress", 1, "n = 4, quad = 1", load, frictionless, STACK_SUPPORTS_2D));
         let stderr = refused(&case, &scene);
         eprintln!("slide-off {name}: {}", stderr.trim());
-        says(&stderr, &[scene.as_str(), "singular", "iteration 2", "(0 stick, 5 slip, 0 open)", "slides or rotates freely"]);
+        says(&stderr, &[scene.as_str(), "singular", "iteration 2", "(0 stick, 5 slip, 0 open)", "slides or rotates freely", "carry no shear", "give the contacts friction or cohesion"]);
+        // nothing along the joint is to blame when the joint carries no shear at all
+        assert!(!stderr.contains("exceeds"), "no load exceeds a shear strength of zero: {stderr}");
+        match case.contact_error(&case.dir.join(&scene)) {
+            ContactError::Sliding { bodies, no_shear, at, .. } => {
+                assert_eq!(bodies, ["top"], "{name}");
+                assert!(no_shear, "{name}: the joint carries no shear");
+                assert_eq!(at, At { step: None, iteration: 2, states: [0, 5, 0] }, "{name}");
+            }
+            other => panic!("{name}: sliding, not {other:?}"),
+        }
     }
 }
 
@@ -407,7 +421,7 @@ fn contact_patch_test_in_3d_with_supports_on_interface_nodes() {
         let supported = run.model.pairs.iter().filter(|pr| run.model.prescribed[pr.k * 3 + 2].is_some()).count();
         assert!(supported > 0, "{name}: interface nodes on the z faces are supported");
         assert_all(&run, ContactState::Stick);
-        let c = run.contact.as_ref().expect("contact");
+        let c = run.contact().expect("contact");
         let mut worst = 0.0f64;
         for (pr, r) in run.model.pairs.iter().zip(&c.pairs) {
             let e = (r.sigma_n + p).abs().max(r.tau()) / p;
@@ -488,7 +502,7 @@ pressure = 0.1
         let scene = case.write(&format!("ring_{name}_slip.toml"), &ring(order, set, frictionless));
         let slip = case.run(&scene).expect("frictionless ring run");
         assert_all(&slip, ContactState::Slip);
-        let c = slip.contact.as_ref().expect("contact");
+        let c = slip.contact().expect("contact");
         let worst_slip = pair_radii(&slip).iter().map(|(_, s)| ((s - exact) / exact).abs()).fold(0.0, f64::max);
         let max_tau = c.pairs.iter().map(|r| r.tau()).fold(0.0, f64::max);
         eprintln!("ring {name} frictionless: max |sigma_n / sigma_r(4) - 1| = {worst_slip:.2e}, max tau = {max_tau:.2e}");
@@ -538,4 +552,95 @@ fn contact_of_a_body_with_itself_is_refused_naming_the_body() {
     let stderr = refused(&case, "self.toml");
     eprintln!("self contact: {}", stderr.trim());
     says(&stderr, &["self.toml", "contacts[0].groups", "\"a\"", "\"symmetry_y0\"", "body \"body_1\"", "itself"]);
+}
+
+// ---------------------------------------------------------------------------
+// crack memory across load steps, both rules
+
+/// A joint without friction or cohesion but with a tensile strength of 0.3:
+/// the bottom block carries the only weight (density 1, height 1, g = 1)
+/// and the top block is clamped at its top face, so the joint is pressed
+/// (about -0.25) when gravity points up and pulled (about +0.1) at 0.4 of
+/// it pointing down. Step 1 presses: every pair slips (no shear strength),
+/// so the joint cracks. Step 2 pulls below f_t: an intact joint would hold
+/// it, the cracked one (f_t = 0) opens. Both rules keep the memory. With
+/// the paper's rule the same pull as a scene's only step opens nothing (it
+/// judges a pair cracked from the steps before; the robust rule also from
+/// its slip within the step, so there the pull alone opens the joint too).
+#[test]
+fn a_joint_that_slipped_in_one_load_step_opens_under_a_small_pull_in_the_next_with_both_rules() {
+    let case = Case::new("contact-crack-memory");
+    case.copy("tests/geo/contact_stack.geo");
+    let scene = |rule: &str, factors: &str| {
+        format!(
+            r#"title = "crack memory"
+mesh = "contact_stack.geo"
+analysis = "plane_stress"
+gravity = [0.0, -1.0]
+
+[gmsh]
+order = 1
+setnumber = {{ n = 4, quad = 1 }}
+
+[materials.heavy]
+E = 1000.0
+nu = 0.25
+density = 1.0
+
+[materials.light]
+E = 1000.0
+nu = 0.25
+
+[[bodies]]
+group = "bottom"
+material = "heavy"
+
+[[bodies]]
+group = "top"
+material = "light"
+
+[[contacts]]
+group = "joint"
+friction = 0.0
+cohesion = 0.0
+tensile_strength = 0.3
+
+[[supports]]
+group = "base"
+fix = ["y"]
+
+[[supports]]
+group = "corner"
+fix = ["x"]
+
+[[supports]]
+group = "top_face"
+fix = ["x", "y"]
+
+[solver]
+rule = "{rule}"
+load_steps = {steps}
+gravity_factors = [{factors}]
+"#,
+            steps = factors.split(',').count()
+        )
+    };
+    for rule in ["paper", "robust"] {
+        let run = case.run(&case.write(&format!("memory_{rule}.toml"), &scene(rule, "-1.0, 0.4"))).expect("two load steps");
+        let [first, second] = [&run.steps[0], &run.steps[1]].map(|s| s.contact.as_ref().expect("contact"));
+        assert!(first.summary.converged && second.summary.converged, "{rule}: both steps converge");
+        assert!(first.pairs.iter().all(|p| p.sigma_n < -0.1), "{rule}: step 1 presses the joint");
+        assert!(first.states.iter().all(|&s| s == ContactState::Slip), "{rule}: step 1 slips everywhere: {:?}", first.states);
+        assert!(second.states.iter().all(|&s| s == ContactState::Open), "{rule}: step 2 opens the cracked joint: {:?}", second.states);
+        eprintln!("crack memory, {rule}: step 1 {} slip, step 2 {} open", first.states.len(), second.states.len());
+        if rule != "paper" {
+            continue;
+        }
+        let once = case.run(&case.write(&format!("fresh_{rule}.toml"), &scene(rule, "0.4"))).expect("one load step");
+        let c = once.contact().expect("contact");
+        assert!(c.summary.converged && c.states.iter().all(|&s| s != ContactState::Open), "{rule}: the intact joint holds the pull: {:?}", c.states);
+        let pull = c.pairs.iter().map(|p| p.sigma_n).fold(f64::INFINITY, f64::min);
+        assert!(pull > 0.0 && c.pairs.iter().all(|p| p.sigma_n < 0.3), "{rule}: a pull below f_t everywhere (smallest {pull})");
+        eprintln!("the pull alone, {rule}: sigma_n from {pull:.3}, nothing opens");
+    }
 }

@@ -16,6 +16,14 @@
 //!    not grow with the mesh, the Coulomb conditions hold at every pair, and
 //!    the joint carries exactly the load.
 //! 3. The same states and stresses when the model is turned in space.
+//! 4. The contact patch test across joints of wedges (tests/geo/
+//!    contact_wedges.geo: blocks extruded from a triangulated plan, as
+//!    layered ground is made): two layers pressed together across their
+//!    triangles (tri3, tri6 faces), and two blocks side by side across
+//!    their quadrangles (quad4, quad8, quad9), prism6, prism15, prism18;
+//!    and the upper layer's self-weight on the lower one (sides on
+//!    rollers): sigma_n = -rho g h at every pair, and the joint carries
+//!    the weight to round-off.
 
 mod common;
 
@@ -74,7 +82,7 @@ fn solve(case: &Case, name: &str, text: &str) -> Run {
 }
 
 fn contact(run: &Run) -> &ContactRun {
-    run.contact.as_ref().expect("a contact run")
+    run.contact().expect("a contact run")
 }
 
 #[test]
@@ -102,9 +110,9 @@ fn uniform_stress_with_shear_crosses_the_joint_exactly_on_every_3d_kind() {
             // body I is the lower block: n = +z, the traction on it is (sxz, syz, szz)
             worst = worst.max((r.sigma_n - szz).abs()).max((t[0] - sxz).abs()).max((t[1] - syz).abs()).max(t[2].abs());
         }
-        eprintln!("{name} ({face} faces): {} pairs, {} iteration(s), max traction error {worst:.1e}", c.states.len(), c.iterations);
+        eprintln!("{name} ({face} faces): {} pairs, {} iteration(s), max traction error {worst:.1e}", c.states.len(), c.summary.iterations);
         assert!(worst < 1e-8, "{name}: the uniform traction crosses the joint exactly ({worst:.2e})");
-        assert_eq!(c.iterations, 1, "{name}: stuck from the start");
+        assert_eq!(c.summary.iterations, 1, "{name}: stuck from the start");
     }
 }
 
@@ -112,7 +120,7 @@ fn uniform_stress_with_shear_crosses_the_joint_exactly_on_every_3d_kind() {
 /// tensile strength, friction f), and the joint's resultant against the
 /// load `total` on the upper block. Returns (pairs stick, slip, open).
 fn check_coulomb(name: &str, c: &ContactRun, f: f64, total: [f64; 3]) -> [usize; 3] {
-    assert!(c.converged, "{name}: converged");
+    assert!(c.summary.converged, "{name}: converged");
     let scale = c.pairs.iter().map(|r| r.sigma_n.abs()).fold(0.0, f64::max);
     let tol = 1e-8 * scale;
     let mut n = [0; 3];
@@ -159,8 +167,8 @@ fn partial_slip_converges_in_a_bounded_number_of_iterations_on_every_kind_and_me
             let [open, slip, stick] = check_coulomb(&name, c, 0.5, push);
             assert!(slip > 0 && stick > 0, "{name}: partial slip ({stick} stick, {slip} slip)");
             assert!(open * 20 < c.states.len(), "{name}: the joint stays closed but at the trailing corner ({open} open)");
-            rows.push(format!("{name}: {} pairs, {stick} stick / {slip} slip / {open} open, {} iterations", c.states.len(), c.iterations));
-            its.push(c.iterations);
+            rows.push(format!("{name}: {} pairs, {stick} stick / {slip} slip / {open} open, {} iterations", c.states.len(), c.summary.iterations));
+            its.push(c.summary.iterations);
         }
         assert!(its.iter().all(|&k| k <= 15), "{}: bounded iterations {its:?}", kind.0);
         assert!(its[1] <= its[0] + 4, "{}: the count does not grow with the mesh {its:?}", kind.0);
@@ -178,9 +186,9 @@ fn an_oblique_push_that_lifts_a_corner_converges_with_slip_in_its_direction() {
         let run = solve(&case, &name, &scene(kind, lc, "blocks3d.geo", &traction("top", push)));
         let c = contact(&run);
         let [open, slip, stick] = check_coulomb(&name, c, 0.5, push);
-        eprintln!("{name}: {} pairs, {stick} stick / {slip} slip / {open} open, {} iterations", c.states.len(), c.iterations);
+        eprintln!("{name}: {} pairs, {stick} stick / {slip} slip / {open} open, {} iterations", c.states.len(), c.summary.iterations);
         assert!(open > 0 && slip > 0 && stick > 0, "{name}: a lifted corner, slip and stick");
-        assert!(c.iterations <= 15, "{name}: {} iterations", c.iterations);
+        assert!(c.summary.iterations <= 15, "{name}: {} iterations", c.summary.iterations);
         // the trailing corner (x = 0, y = 0) lifts
         let corner = (0..c.states.len()).find(|&p| {
             let x = run.model.coords[run.model.pairs[p].k];
@@ -304,4 +312,102 @@ fn a_tensile_strength_above_the_coulomb_apex_is_reported_and_the_joint_opens_abo
     assert!((mean - 0.4).abs() < 1e-9, "the joint carries the pull in tension ({mean})");
     let summary = common::json(&case.out("below").join("summary.json"));
     assert_eq!(summary["warnings"].as_array().map(|a| a.len()), Some(1), "summary.json lists the warning");
+}
+
+/// The contact patch test across joints of wedges: the base held, the
+/// other faces loaded by the uniform stress of test 1 (sigma_zz = -1,
+/// sigma_xz = 0.2, sigma_yz = -0.1, sigma_xx = sigma_yy = -1/3); friction
+/// 0.8, so that the vertical joint (sigma_n = -1/3, tau = 0.2) sticks too.
+/// Every pair sticks and carries the traction sigma n exactly.
+#[test]
+fn uniform_stress_crosses_joints_of_wedges_exactly() {
+    let case = Case::new("contact3d-wedges");
+    case.copy("tests/geo/contact_wedges.geo");
+    let (sxx, szz, sxz, syz) = (-1.0 / 3.0, -1.0, 0.2, -0.1);
+    let sigma = [[sxx, 0.0, sxz], [0.0, sxx, syz], [sxz, syz, szz]];
+    let loads = [
+        traction("top", [sxz, syz, szz]),
+        traction("x1", [sxx, 0.0, sxz]),
+        traction("x0", [-sxx, 0.0, -sxz]),
+        traction("y1", [0.0, sxx, syz]),
+        traction("y0", [0.0, -sxx, -syz]),
+    ]
+    .concat();
+    for stacked in [1, 0] {
+        for (name, order, ser) in [("prism6", 1, 0), ("prism18", 2, 0), ("prism15", 2, 1)] {
+            let text = scene((name, order, 0, ser), 0.4, "contact_wedges.geo", &loads)
+                .replace("friction = 0.5", "friction = 0.8")
+                .replace(", hex = 0,", &format!(", stacked = {stacked},"));
+            let name = format!("{name}-{}", if stacked == 1 { "stacked" } else { "side-by-side" });
+            let run = solve(&case, &name, &text);
+            assert!(run.model.bodies.iter().flat_map(|b| &b.cells).all(|c| c.kind.name() == name.split('-').next().unwrap()), "{name}: wedges only");
+            let c = contact(&run);
+            let face = run.model.interfaces[0].facets[0].kind.name();
+            let mut worst: f64 = 0.0;
+            let mut on_base = 0;
+            for p in 0..c.states.len() {
+                // the vertical joint ends on the held base: there both sides
+                // are held in every direction, the supports carry the force
+                // and the pair reports none
+                if run.model.coords[run.model.pairs[p].k][2] == 0.0 {
+                    on_base += 1;
+                    assert!(c.pairs[p].sigma_n == 0.0 && stacked == 0, "{name}: pair {p} on the base");
+                    continue;
+                }
+                assert_eq!(c.states[p], ContactState::Stick, "{name}: pair {p} sticks");
+                // body I is the lower (left) block: sigma n is the traction on it
+                let n = c.frames[p][0];
+                let t: [f64; 3] = std::array::from_fn(|i| (0..3).map(|j| sigma[i][j] * n[j]).sum());
+                let sn: f64 = (0..3).map(|i| t[i] * n[i]).sum();
+                let shear = c.shear(p);
+                worst = worst.max((c.pairs[p].sigma_n - sn).abs());
+                for i in 0..3 {
+                    worst = worst.max((shear[i] - (t[i] - sn * n[i])).abs());
+                }
+            }
+            eprintln!("{name} ({face} faces): {} pairs ({on_base} on the base), {} iteration(s), max traction error {worst:.1e}", c.states.len(), c.summary.iterations);
+            assert!(worst < 1e-8, "{name}: the uniform traction crosses the joint exactly ({worst:.2e})");
+            // stuck from the start; the base's pairs, carrying nothing, are
+            // judged open after the first solve (tensile strength 0)
+            assert_eq!(c.summary.iterations, if stacked == 1 { 1 } else { 2 }, "{name}: iterations");
+        }
+    }
+}
+
+/// Self-weight across a joint of wedges: the layers of contact_wedges.geo
+/// (stacked) on rollers (x0, x1 held in x, y0, y1 in y, the base in z),
+/// gravity down; the joint carries the upper layer's weight. The stress is
+/// -rho g (2h - z) vertically (the lateral ones K0 times it), linear in z:
+/// prism15 and prism18 represent it; prism6 does not (its stress is
+/// constant through each cell), but the upper layer's own equilibrium gives
+/// the joint the consistent weight of each column, uniform over the plan.
+/// Every pair's sigma_n is -rho g h to round-off (measured 4e-16 to 3e-15).
+#[test]
+fn self_weight_crosses_a_joint_of_wedges_exactly() {
+    let case = Case::new("contact3d-wedges-weight");
+    case.copy("tests/geo/contact_wedges.geo");
+    let (rho, g, h, area) = (2.0e-2, 9.81, 0.6, 1.0 * 0.8);
+    let supports = "[[supports]]\ngroup = \"x0\"\nfix = [\"x\"]\n\n[[supports]]\ngroup = \"x1\"\nfix = [\"x\"]\n\n\
+                    [[supports]]\ngroup = \"y0\"\nfix = [\"y\"]\n\n[[supports]]\ngroup = \"y1\"\nfix = [\"y\"]\n";
+    for (name, order, ser) in [("prism6", 1, 0), ("prism18", 2, 0), ("prism15", 2, 1)] {
+        let text = scene((name, order, 0, ser), 0.4, "contact_wedges.geo", supports)
+            .replace(", hex = 0,", ", stacked = 1,")
+            .replace("fix = [\"x\", \"y\", \"z\"]", "fix = [\"z\"]")
+            .replace("analysis = \"solid\"\n", &format!("analysis = \"solid\"\ngravity = [0.0, 0.0, {:?}]\n", -g))
+            .replace("nu = 0.25\n", &format!("nu = 0.25\ndensity = {rho:?}\n"));
+        let run = solve(&case, &format!("{name}-weight"), &text);
+        let c = contact(&run);
+        let want = -rho * g * h;
+        let (mut worst, mut weight) = (0.0f64, 0.0);
+        for p in 0..c.states.len() {
+            assert_eq!(c.states[p], ContactState::Stick, "{name}: pair {p} sticks");
+            worst = worst.max((c.pairs[p].sigma_n - want).abs()).max(c.shear(p).iter().fold(0.0f64, |m, t| m.max(t.abs())));
+            weight += c.force(p)[2];
+        }
+        // the lower layer is body I (n = +z): the joint pushes it down by the weight
+        let upper = rho * g * h * area;
+        eprintln!("{name}: {} pairs, sigma_n within {worst:.1e} of -rho g h = {want}, joint force {weight:.12} against the weight {upper:.12}", c.states.len());
+        assert!((weight + upper).abs() < 1e-10 * upper, "{name}: the joint carries the weight ({weight} vs {upper})");
+        assert!(worst < 1e-8 * want.abs(), "{name}: sigma_n = -rho g h at every pair ({worst:.2e})");
+    }
 }

@@ -72,7 +72,7 @@ fn base_forces_balance_self_weight_and_water_thrust_at_every_step() {
         let scale = weight.hypot(thrust);
         assert!((f[0] - thrust).abs() < 1e-8 * scale, "step {}: horizontal {} against {}", step + 1, f[0], thrust);
         assert!((f[1] + weight).abs() < 1e-8 * scale, "step {}: vertical {} against {}", step + 1, f[1], -weight);
-        assert!(run.steps[step].contact.as_ref().expect("contact").converged);
+        assert!(run.steps[step].contact.as_ref().expect("contact").summary.converged);
     }
 }
 
@@ -122,7 +122,7 @@ fn the_answer_does_not_depend_on_the_order_of_the_blocks() {
     let (pa, pb) = (keyed(&a), keyed(&b));
     assert_eq!(pa.len(), pb.len());
     assert!(pa.windows(2).any(|w| w[0].0 == w[1].0), "a joint's end has a base pair for each of its two blocks");
-    let (ca, cb) = (a.contact.as_ref().expect("contact"), b.contact.as_ref().expect("contact"));
+    let (ca, cb) = (a.contact().expect("contact"), b.contact().expect("contact"));
     let scale = max_abs(pa.iter().map(|&(_, _, p)| ca.pairs[p].sigma_n));
     for ((xa, ba, p), (xb, bb, q)) in pa.iter().zip(&pb) {
         let (p, q) = (*p, *q);

@@ -116,9 +116,9 @@ struct Footing {
 fn solve(case: &Case, name: &str, e: f64, depth: f64) -> Footing {
     let scene = case.write(&format!("{name}.toml"), &scene_text(e, depth));
     let run = case.run(&scene).unwrap_or_else(|err| panic!("{name}: {err:#}"));
-    let c = run.contact.as_ref().expect("a contact run");
-    assert!(c.converged && !c.cycled, "{name}: converged without cycling");
-    assert!(run.residual_interface < 1e-8, "{name}: interface residual {:.2e}", run.residual_interface);
+    let c = run.contact().expect("a contact run");
+    assert!(c.summary.converged && !c.summary.cycled, "{name}: converged without cycling");
+    assert!(run.stats.residuals.interface < 1e-8, "{name}: interface residual {:.2e}", run.stats.residuals.interface);
 
     // 1. Force and moment balance: the ground (body I, n = +y) takes V down at x = e.
     let (mut fn_sum, mut fx, mut fy, mut m) = (0.0, 0.0, 0.0, 0.0);
@@ -159,11 +159,11 @@ fn solve(case: &Case, name: &str, e: f64, depth: f64) -> Footing {
     eprintln!(
         "{name}: depth {depth}, e = {e:.4}: L = {length:.4} m; {} pairs ({slip} slip, {open} open), {} iterations, {} cycles broken; balance {en:.1e} / {ey:.1e} / moment {em:.1e}; {} DOFs ({} interface), {:.2} s",
         c.states.len(),
-        c.iterations,
-        c.cycles_broken,
-        run.dofs_total,
-        run.dofs_interface,
-        run.timings.total
+        c.summary.iterations,
+        c.summary.cycles_broken,
+        run.stats.dofs.total,
+        run.stats.dofs.interface,
+        run.stats.timings.total
     );
     Footing { e, depth, run, length, pairs }
 }
@@ -178,7 +178,7 @@ impl Footing {
 
     /// Every pair closed.
     fn assert_full_contact(&self) {
-        let c = self.run.contact.as_ref().expect("contact");
+        let c = self.run.contact().expect("contact");
         for (p, s) in c.states.iter().enumerate() {
             assert_ne!(*s, ContactState::Open, "depth {}, e = {}: pair at x = {} must stay closed", self.depth, self.e, self.run.model.coords[self.run.model.pairs[p].k][0]);
         }
@@ -296,4 +296,61 @@ fn full_contact_inside_the_middle_third() {
         f.assert_full_contact();
         f.assert_length(B, "B");
     }
+}
+
+/// geo/footing_layers.{geo,toml} through the real gmsh CLI and the real
+/// binary, on a coarser plan (lc 0.4 under the footing, 2 at the ground's
+/// edge): a square footing on two layers of prisms extruded from a
+/// triangulated plan, the load at (0.6, 0.6) m from its centre. The far
+/// corner lifts, the loaded one stays closed, the base carries the load
+/// V = 0.9 MN exactly (the footing's underside is flat, its outward normal
+/// -z, so each pair's force on it is area (tau - sigma_n e_z)), and meshio
+/// reads both VTU files (prism18 bodies, tri6 contact facets).
+#[test]
+fn square_footing_on_layers_of_prisms_lifts_its_far_corner_and_carries_the_load() {
+    let case = Case::new("footing-layers");
+    case.copy("geo/footing_layers.geo");
+    let text = common::scenes::edited("geo/footing_layers.toml", &[("setnumber = { lc = 0.25, e = 0.6 }", "setnumber = { lc = 0.4, lc_far = 2.0, e = 0.6 }")]);
+    case.write("footing_layers.toml", &text);
+    let out = case.cli(&["solve", "footing_layers.toml", "--out", "res", "--quiet"]);
+    assert!(out.status.success(), "subcontact solve failed: {}", String::from_utf8_lossy(&out.stderr));
+    let res = case.dir.join("res");
+    let csv = read(&res.join("contact.csv"));
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().expect("header").split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap_or_else(|| panic!("contact.csv has no column {name}"));
+    let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|v| v.parse().expect("number")).collect()).collect();
+    let at = |x: f64, y: f64| rows.iter().find(|r| (r[col("x")] - x).abs() < 1e-9 && (r[col("y")] - y).abs() < 1e-9).expect("a pair at the corner");
+    let (far, loaded) = (at(-1.0, -1.0), at(1.0, 1.0));
+    eprintln!(
+        "footing on layers: {} pairs; far corner status {} gap {:.4e} m; loaded corner status {} sigma_n {:.3}",
+        rows.len(),
+        far[col("status")],
+        far[col("gap")],
+        loaded[col("status")],
+        loaded[col("sigma_n")]
+    );
+    assert_eq!(far[col("status")], 0.0, "the far corner opens");
+    assert!(far[col("gap")] > 1e-3, "the far corner lifts: gap {}", far[col("gap")]);
+    assert!(loaded[col("status")] > 0.0 && loaded[col("sigma_n")] < 0.0, "the loaded corner stays pressed");
+    let resultant: [f64; 3] = std::array::from_fn(|i| {
+        let tau = [col("tau_x"), col("tau_y"), col("tau_z")][i];
+        rows.iter().map(|r| r[col("area")] * (r[tau] - if i == 2 { r[col("sigma_n")] } else { 0.0 })).sum()
+    });
+    eprintln!("    contact resultant on the footing {resultant:?} (the load: 0.9 MN down)");
+    let v = 10.0 * 0.3 * 0.3;
+    assert!(
+        resultant[0].abs() < 1e-8 * v && resultant[1].abs() < 1e-8 * v && (resultant[2] - v).abs() < 1e-8 * v,
+        "the base carries the load: {resultant:?}"
+    );
+    // meshio (as ParaView) reads the results: wedge18 cells, tri6 facets and the pairs
+    let types = |file: &str| -> String {
+        let script = "import sys, meshio\nm = meshio.read(sys.argv[1])\nprint(' '.join(sorted({c.type for c in m.cells})))";
+        let out = std::process::Command::new("python3").args(["-c", script]).arg(res.join(file)).output().expect("python3 (make deps)");
+        assert!(out.status.success(), "meshio cannot read {file}: {}", String::from_utf8_lossy(&out.stderr));
+        String::from_utf8_lossy(&out.stdout).trim().to_string()
+    };
+    assert_eq!(types("footing_layers.vtu"), "wedge18");
+    // the facets, then a vertex cell per pair (its categorical pair_status)
+    assert_eq!(types("footing_layers_contact.vtu"), "triangle6 vertex");
 }

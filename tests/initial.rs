@@ -63,12 +63,12 @@ fn geostatic_stress_balances_gravity_so_nothing_moves() {
     case.write("box.geo", GEO);
     let toml = scene("k0 = 0.6\nsurface = 8.0", "");
     let run = case.run(&case.write("box.toml", &toml)).expect("run");
-    let umax = max_abs(run.u.iter().copied());
+    let umax = max_abs(run.last().u.iter().copied());
     let rho_g = 2.0e-3 * 9.81;
     let scale = rho_g * 8.0;
     // the weight alone would move the top by rho g H^2 / (2 M) ~ 6e-3
     assert!(umax < 1e-12, "largest displacement {umax:e}");
-    for s in &run.probes[0].1 {
+    for s in &run.checks.probes[0].1 {
         let depth = 8.0 - s.x[1];
         let sv = -rho_g * depth;
         assert!((s.stress[1] - sv).abs() < 1e-10 * scale, "sigma_yy at depth {depth}: {} against {sv}", s.stress[1]);
@@ -90,9 +90,9 @@ fn uniform_initial_stress_with_boundary_tractions_stays_uniform() {
     )
     .replace("gravity = [0.0, -9.81]\n", "");
     let run = case.run(&case.write("box.toml", &toml)).expect("run");
-    let umax = max_abs(run.u.iter().copied());
+    let umax = max_abs(run.last().u.iter().copied());
     assert!(umax < 1e-12, "largest displacement {umax:e}");
-    for s in &run.probes[0].1 {
+    for s in &run.checks.probes[0].1 {
         for (c, want) in [(0, -2.0), (1, -1.0), (2, -0.9), (3, 0.0)] {
             assert!((s.stress[c] - want).abs() < 1e-10, "component {c}: {} against {want}", s.stress[c]);
         }
@@ -102,7 +102,7 @@ fn uniform_initial_stress_with_boundary_tractions_stays_uniform() {
     case.write("box.geo", GEO);
     let toml = scene("initial_stress = [-2.0, -1.0, -0.9, 0.0]", "").replace("gravity = [0.0, -9.81]\n", "");
     let run = case.run(&case.write("box.toml", &toml)).expect("run");
-    for s in &run.probes[0].1 {
+    for s in &run.checks.probes[0].1 {
         // a confined column relieved of its vertical stress: sigma_yy = 0,
         // sigma_xx = -2 + nu/(1-nu) * 1 (plane strain, rollers at the sides)
         assert!(s.stress[1].abs() < 1e-9, "sigma_yy {}", s.stress[1]);

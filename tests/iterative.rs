@@ -42,7 +42,7 @@ fn differences(a: &Run, b: &Run) -> (f64, f64, f64) {
         let scale = x.iter().fold(0.0f64, |m, (p, _)| m.max(p.abs())).max(f64::MIN_POSITIVE);
         x.iter().fold(0.0f64, |m, (p, q)| m.max((p - q).abs())) / scale
     };
-    let u = rel(a.u.iter().copied().zip(b.u.iter().copied()).collect());
+    let u = rel(a.last().u.iter().copied().zip(b.last().u.iter().copied()).collect());
     assert_eq!(a.steps.len(), b.steps.len());
     let mut pairs = Vec::new();
     let mut first = f64::NAN;
@@ -62,13 +62,13 @@ fn differences(a: &Run, b: &Run) -> (f64, f64, f64) {
 fn same_answer(case: &Case, scene: &str, dense_k: usize, iterative_k: usize, later: f64) {
     let dense = solve(case, scene, InterfaceSolver::Dense, dense_k);
     let iterative = solve(case, scene, InterfaceSolver::Iterative, iterative_k);
-    assert_eq!(dense.counters.interface_applications, 0);
-    assert!(iterative.counters.interface_applications > 0, "{scene}: the iterative run applied no S");
+    assert_eq!(dense.stats.counters.interface_applications, 0);
+    assert!(iterative.stats.counters.interface_applications > 0, "{scene}: the iterative run applied no S");
     let (u, t, first) = differences(&dense, &iterative);
-    let its: Vec<usize> = iterative.steps.iter().filter_map(|s| s.contact.as_ref().map(|c| c.iterations)).collect();
+    let its: Vec<usize> = iterative.steps.iter().filter_map(|s| s.contact.as_ref().map(|c| c.summary.iterations)).collect();
     eprintln!(
         "{scene}: {} interface DOFs, contact iterations {its:?}, {} applications of S: displacements {u:.1e}, contact stresses {t:.1e} ({first:.1e} at step 1)",
-        iterative.dofs_interface, iterative.counters.interface_applications
+        iterative.stats.dofs.interface, iterative.stats.counters.interface_applications
     );
     assert!(u < 1e-8 && first < 1e-8 && t < later, "{scene}: iterative against dense: displacements differ by {u:.1e}, contact stresses by {t:.1e} ({first:.1e} at step 1)");
 }

@@ -53,9 +53,9 @@ fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
 
 /// Every pair carries σ n of its plane and sticks.
 fn assert_patch(run: &Run, s: &Stress, what: &str) {
-    let c = run.contact.as_ref().expect("contact");
+    let c = run.contact().expect("contact");
     let scale = s.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    assert!(c.converged, "{what}: converged");
+    assert!(c.summary.converged, "{what}: converged");
     let mut worst: f64 = 0.0;
     for (p, pair) in run.model.pairs.iter().enumerate() {
         assert_eq!(c.states[p], ContactState::Stick, "{what}: pair {p} at {:?} sticks", run.model.coords[pair.k]);
@@ -250,7 +250,7 @@ fn pair_keys(run: &Run, r: &Rot) -> Vec<(Vec<i64>, usize)> {
 fn assert_same(a: &Run, b: &Run, r: &Rot, what: &str) {
     let (ka, kb) = (pair_keys(a, &[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]), pair_keys(b, r));
     assert_eq!(ka.len(), kb.len(), "{what}: as many pairs");
-    let (ca, cb) = (a.contact.as_ref().expect("contact"), b.contact.as_ref().expect("contact"));
+    let (ca, cb) = (a.contact().expect("contact"), b.contact().expect("contact"));
     let stress = ca.pairs.iter().fold(0.0f64, |m, p| m.max(p.sigma_n.abs()).max(p.tau()));
     let moved = ca.pairs.iter().fold(0.0f64, |m, p| m.max(p.gap.abs()).max(p.slip));
     let mut counts = [0; 3];
@@ -336,7 +336,7 @@ fn a_large_cohesion_gives_the_bonded_answer() {
     let path = case.write("strong.toml", &text);
     let joints = case.run_with(&path, false).expect("the jointed cube");
     let bonded = case.run_with(&path, true).expect("the bonded cube");
-    let c = joints.contact.as_ref().expect("contact");
+    let c = joints.contact().expect("contact");
     assert!(c.states.iter().all(|&s| s == ContactState::Stick), "every pair sticks");
     let d = common::measure::diff_to_bonded(&joints, &bonded);
     eprintln!("cohesion 1e6: {} pairs all stuck, displacements within {d:.1e} of the bonded solve", c.states.len());
@@ -358,7 +358,7 @@ fn a_jointed_column_carries_its_weight_and_push_on_every_joint_plane() {
     text = text.replace("nu = 0.25\n", &format!("nu = 0.25\ndensity = {rho}\n"));
     text = text.replacen("analysis = \"solid\"\n", "analysis = \"solid\"\ngravity = [0.0, 0.0, -9.81]\n", 1);
     let run = case.run(&case.write("column.toml", &text)).unwrap_or_else(|e| panic!("column: {e:#}"));
-    let c = run.contact.as_ref().expect("contact");
+    let c = run.contact().expect("contact");
     let m = &run.model;
     let jz = m.interfaces.iter().position(|i| i.name == "jz").expect("jz");
     let mut f = [0.0; 3];

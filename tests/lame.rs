@@ -41,6 +41,13 @@
 //!    hexahedra as thick as they are wide, w = 0 on both faces): hex8 rate
 //!    2, hex27 rate 3; where its plan view is the plane strain mesh, the
 //!    errors equal the plane strain ones to round-off.
+//!    A quarter turn of prisms (tests/geo/lame_revolved.geo: a meridian
+//!    strip of triangles revolved in layers, so that the field varies along
+//!    all three reference directions of each prism): prism6 rate 2, prism15
+//!    and prism18 rate 3. And the slice of pyramids (each hexahedron
+//!    of the slice cut into six about its centre, the mesh written by the
+//!    test with its nodes on the exact arcs): pyramid5 rate 2, pyramid13
+//!    and pyramid14 rate 3.
 //! 3. Axisymmetric meridian section (tests/geo/lame_axisym.geo, u_axial = 0
 //!    at both ends): quad4 rate 2, quad9 rate 3.
 //! 4. The paper's Table 1 from the default scene geo/cylinder.toml (two
@@ -63,6 +70,7 @@ use common::Case;
 use subcontact::analytic::Lame;
 use subcontact::driver::Run;
 use subcontact::analytic::paper::table1_values;
+use subcontact::mesh::CellKind;
 use subcontact::scene::Analysis;
 
 const A: f64 = 3.0;
@@ -95,7 +103,7 @@ fn study(case: &Case, name: &str, template: &str, order: usize, lcs: &[f64], are
             for body in &run.model.bodies {
                 assert!(body.cells.iter().all(|c| c.kind.order() == order), "{name}: cells of order {order} expected");
             }
-            let errors = run.errors.as_ref().expect("[analytic] gives errors");
+            let errors = run.checks.errors.as_ref().expect("[analytic] gives errors");
             Level {
                 lc,
                 cells,
@@ -240,6 +248,145 @@ fn solid_slice_displacement_converges_at_rate_2_for_hex8_and_3_for_hex27() {
     }
 }
 
+/// tests/geo/lame_revolved.geo, w = 0 on both faces.
+fn revolved() -> String {
+    lame_cylinder(
+        "Lame cylinder, quarter turn of prisms with w = 0 on both faces",
+        "lame_revolved.geo",
+        "solid",
+        "order = {order}\nsetnumber = { lc = {lc}, serendipity = {serendipity} }",
+        NU,
+        &["body"],
+        &[("x0", "[\"x\"]"), ("y0", "[\"y\"]"), ("z0", "[\"z\"]"), ("z1", "[\"z\"]")],
+    )
+}
+
+#[test]
+fn revolved_prisms_converge_at_rate_2_for_prism6_and_3_for_prism15_and_prism18() {
+    let case = Case::new("lame-revolved-prisms");
+    case.copy("tests/geo/lame_revolved.geo");
+    // one row of triangle pairs in z: two prisms per cell of the (r, t)
+    // grid, whose size is h
+    let plan = 2.0 * quarter_annulus();
+    for (order, serendipity, kind) in [(1, 0, "prism6"), (2, 0, "prism18"), (2, 1, "prism15")] {
+        let template = revolved().replace("{serendipity}", &serendipity.to_string());
+        let levels = study(&case, kind, &template, order, &[0.4, 0.2, 0.1], plan, 2);
+        let (r, s) = rates(&format!("revolved {kind}"), &levels);
+        assert_rates(kind, order, r, s, &levels);
+    }
+}
+
+/// The quarter-annulus slice of thickness `lc` cut into pyramids: a grid
+/// of (r, t, z) cells of size ~lc (one layer), each cut into six pyramids
+/// about its centre, every node placed on the exact geometry (r cos t,
+/// r sin t, z), so that order-2 pyramids follow the arcs. `kind` is
+/// Pyramid5, Pyramid13 or Pyramid14; the groups are those of
+/// tests/geo/lame_slice.geo (body, inner, x0, y0, z0, z1), the facets
+/// quad4 / quad8 / quad9. Returns the number of grid cells.
+fn pyramid_slice(path: &std::path::Path, kind: CellKind, lc: f64) -> usize {
+    use common::msh::{write_msh41, MshGroup};
+    use std::collections::HashMap;
+    use subcontact::fem::shape::HEX_FACES;
+    let (nr, nt) = (((B - A) / lc).ceil() as usize, (std::f64::consts::FRAC_PI_2 * (A + B) / 2.0 / lc).ceil() as usize);
+    // nodes by their position on a grid of quarter cells
+    let mut nodes: Vec<[f64; 3]> = Vec::new();
+    let mut index: HashMap<[usize; 3], usize> = HashMap::new();
+    let mut node = |q: [usize; 3]| -> usize {
+        *index.entry(q).or_insert_with(|| {
+            let r = A + (B - A) * q[0] as f64 / (4 * nr) as f64;
+            let t = std::f64::consts::FRAC_PI_2 * q[1] as f64 / (4 * nt) as f64;
+            nodes.push([r * t.cos(), r * t.sin(), lc * q[2] as f64 / 4.0]);
+            nodes.len() - 1
+        })
+    };
+    // the hexahedron's corners in gmsh order, in quarter cells
+    const CORNER: [[usize; 3]; 8] = [[0, 0, 0], [4, 0, 0], [4, 4, 0], [0, 4, 0], [0, 0, 4], [4, 0, 4], [4, 4, 4], [0, 4, 4]];
+    let mid = |p: [usize; 3], q: [usize; 3]| -> [usize; 3] { std::array::from_fn(|i| (p[i] + q[i]) / 2) };
+    let (mut cells, mut facets): (Vec<Vec<usize>>, Vec<Vec<Vec<usize>>>) = (Vec::new(), vec![Vec::new(); 5]);
+    for i in 0..nr {
+        for j in 0..nt {
+            let at = |c: [usize; 3]| [4 * i + c[0], 4 * j + c[1], c[2]];
+            let centre = at([2, 2, 2]);
+            for (f, face) in HEX_FACES.iter().enumerate() {
+                // the base turned inwards (towards the apex), as gmsh's pyramid
+                let base: Vec<[usize; 3]> = [face[0], face[3], face[2], face[1]].iter().map(|&c| at(CORNER[c])).collect();
+                let mut q = base.clone();
+                q.push(centre);
+                if kind != CellKind::Pyramid5 {
+                    // gmsh's edges (0,1) (0,3) (0,4) (1,2) (1,4) (2,3) (2,4) (3,4)
+                    for [a, b] in [[0, 1], [0, 3], [0, 4], [1, 2], [1, 4], [2, 3], [2, 4], [3, 4]] {
+                        q.push(mid(q[a], q[b]));
+                    }
+                }
+                if kind == CellKind::Pyramid14 {
+                    q.push(mid(base[0], base[2]));
+                }
+                let cell: Vec<usize> = q.iter().map(|&p| node(p)).collect();
+                // boundary facets: the base as a quadrangle (corners, then
+                // the base's mid-edge nodes 5, 8, 10, 6, then its centre)
+                let side = match f {
+                    2 if i == 0 => Some(0),          // r = a: inner
+                    1 if j == 0 => Some(1),          // t = 0: y0
+                    4 if j == nt - 1 => Some(2),     // t = 90 degrees: x0
+                    0 => Some(3),                    // z0
+                    5 => Some(4),                    // z1
+                    _ => None,
+                };
+                if let Some(side) = side {
+                    let mut quad = cell[..4].to_vec();
+                    if kind != CellKind::Pyramid5 {
+                        quad.extend([5, 8, 10, 6].map(|k| cell[k]));
+                    }
+                    if kind == CellKind::Pyramid14 {
+                        quad.push(cell[13]);
+                    }
+                    facets[side].push(quad);
+                }
+                cells.push(cell);
+            }
+        }
+    }
+    let quad = match kind {
+        CellKind::Pyramid5 => CellKind::Quad4,
+        CellKind::Pyramid13 => CellKind::Quad8,
+        _ => CellKind::Quad9,
+    };
+    let mut groups = vec![MshGroup { name: "body".into(), dim: 3, gmsh_type: kind.gmsh_code(), cells }];
+    for (name, cells) in ["inner", "y0", "x0", "z0", "z1"].iter().zip(facets) {
+        groups.push(MshGroup { name: name.to_string(), dim: 2, gmsh_type: quad.gmsh_code(), cells });
+    }
+    write_msh41(path, &nodes, &groups);
+    nr * nt
+}
+
+#[test]
+fn slice_of_pyramids_converges_at_rate_2_for_pyramid5_and_3_for_pyramid13_and_pyramid14() {
+    let case = Case::new("lame-slice-pyramids");
+    let template = slice().replace("\n[gmsh]\n", "\n").replace(GMSH, "");
+    // the quadratic ones one level coarser (their finest mesh costs most)
+    for (kind, order, lcs) in [(CellKind::Pyramid5, 1, [0.4, 0.2, 0.1]), (CellKind::Pyramid13, 2, [0.5, 0.25, 0.125]), (CellKind::Pyramid14, 2, [0.5, 0.25, 0.125])] {
+        let levels: Vec<Level> = lcs
+            .iter()
+            .map(|&lc| {
+                let name = format!("{}_lc{lc}", kind.name());
+                let grid = pyramid_slice(&case.dir.join(format!("{name}.msh")), kind, lc);
+                let path = case.write(&format!("{name}.toml"), &template.replace("lame_slice.geo", &format!("{name}.msh")));
+                let t = Instant::now();
+                let run = case.run(&path).unwrap_or_else(|e| panic!("{name}: {e:#}"));
+                let seconds = t.elapsed().as_secs_f64();
+                let cells: usize = run.model.bodies.iter().map(|b| b.cells.len()).sum();
+                assert_eq!(cells, 6 * grid);
+                assert!(run.model.bodies[0].cells.iter().all(|c| c.kind == kind));
+                let errors = run.checks.errors.as_ref().expect("[analytic] gives errors");
+                // h: the size of the grid's cells, each six pyramids
+                Level { lc, cells, h: (quarter_annulus() / grid as f64).sqrt(), displacement_l2: errors.displacement_l2, stress_l2: errors.stress_l2, seconds }
+            })
+            .collect();
+        let (r, s) = rates(&format!("slice of {}", kind.name()), &levels);
+        assert_rates(kind.name(), order, r, s, &levels);
+    }
+}
+
 /// tests/geo/lame_axisym.geo, the axial displacement held at both ends.
 fn axisymmetric() -> String {
     lame_cylinder(
@@ -274,8 +421,8 @@ fn default_cylinder_scene_reproduces_paper_table_1_within_half_a_percent() {
     let run: Run = case.run(&scene).unwrap_or_else(|e| panic!("geo/cylinder.toml: {e:#}"));
     let seconds = t.elapsed().as_secs_f64();
     // the paper: every pair stays stuck
-    let contact = run.contact.as_ref().expect("the default scene has a contact");
-    assert!(contact.converged);
+    let contact = run.contact().expect("the default scene has a contact");
+    assert!(contact.summary.converged);
     assert!(contact.states.iter().all(|s| s.code() == 2), "every pair of the 45-degree cut stays stuck");
     let lame = Lame { a: A, b: B, p: P, e: E, nu: NU, analysis: Analysis::PlaneStrain };
     let values = table1_values(&run.solution());
@@ -327,10 +474,10 @@ fn halves_of_different_stiffness_sliding_on_the_cut_are_each_lames_cylinder_of_t
     let errors = |e2: f64| {
         let path = case.write(&format!("two_{e2:e}.toml"), &scene(e2));
         let run: Run = case.run(&path).unwrap_or_else(|e| panic!("E2 = {e2:e}: {e:#}"));
-        let e = run.errors.as_ref().expect("[analytic] errors");
-        eprintln!("E2 / E1 = {}: displacement_l2 {:.3e}, stress_l2 {:.3e}, contact {:.3e}", e2 / E, e.displacement_l2, e.stress_l2, run.contact_error_max.unwrap_or(f64::NAN));
+        let e = run.checks.errors.as_ref().expect("[analytic] errors");
+        eprintln!("E2 / E1 = {}: displacement_l2 {:.3e}, stress_l2 {:.3e}, contact {:.3e}", e2 / E, e.displacement_l2, e.stress_l2, run.checks.contact_error_max.unwrap_or(f64::NAN));
         // the report says how the norms treat two materials
-        assert_eq!(run.check.report.contains("different materials"), e2 != E, "report.md's note on the materials");
+        assert_eq!(run.checks.analytic.report.contains("different materials"), e2 != E, "report.md's note on the materials");
         (e.displacement_l2, e.stress_l2)
     };
     let (u1, s1) = errors(E);

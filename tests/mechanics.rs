@@ -57,7 +57,7 @@ use serde_json::Value;
 use subcontact::analytic::Lame;
 use subcontact::contact::law::ContactState;
 use subcontact::contact::traction::ConsistentTraction;
-use subcontact::driver::{ContactRun, Run};
+use subcontact::driver::{ContactError, ContactRun, Run};
 use subcontact::fem::{element::facet_point, quadrature};
 use subcontact::analytic::paper::contact_sigma_n_at;
 use subcontact::scene::{Analysis, ContactGroups};
@@ -118,7 +118,7 @@ fn check_pushed_block(name: &str, run: &Run, f: f64, p: f64) {
     let base_is_i = is_body_i(run, "base");
     for (k, s) in run.steps.iter().enumerate() {
         let c = s.contact.as_ref().expect("contact");
-        assert!(c.converged, "{name} step {}: converged", k + 1);
+        assert!(c.summary.converged, "{name} step {}: converged", k + 1);
         let mut worst: f64 = 0.0;
         for (i, (pair, r)) in run.model.pairs.iter().zip(&c.pairs).enumerate() {
             let at = run.model.coords[pair.k];
@@ -142,7 +142,7 @@ fn check_pushed_block(name: &str, run: &Run, f: f64, p: f64) {
             "{name} step {}: {} pairs slip, {} iteration(s); max | |tau| / f|sigma_n| - 1 | = {worst:.1e}; sum sigma_n A = {sn:.12} (p w = {}, {e_n:.1e}); friction {:.9} (f p w = {}, {e_x:.1e})",
             k + 1,
             c.pairs.len(),
-            c.iterations,
+            c.summary.iterations,
             p * w,
             on_base[0],
             f * p * w
@@ -204,8 +204,8 @@ fn frictionless_slip_carries_no_shear_and_the_pushed_block_still_carries_the_pre
             &[("friction = 0.3", &format!("friction = {f:?}\nslip = \"frictionless\""))],
         );
         let run = case.run(&scene).unwrap_or_else(|e| panic!("{name}: {e:#}"));
-        let c = run.contact.as_ref().expect("contact");
-        assert!(c.converged);
+        let c = run.contact().expect("contact");
+        assert!(c.summary.converged);
         let w = PUSH_WIDTH * run.model.thickness;
         for (i, (pair, r)) in run.model.pairs.iter().zip(&c.pairs).enumerate() {
             let at = run.model.coords[pair.k];
@@ -214,7 +214,7 @@ fn frictionless_slip_carries_no_shear_and_the_pushed_block_still_carries_the_pre
             assert!(r.tau() < 1e-9 * p, "{name}: slipping pair at {at:?} carries no shear ({:.3e})", r.tau());
         }
         let (sn, st) = resultants(&run, c, |_| true);
-        eprintln!("frictionless slip, {name}: {} pairs slip, {} iterations; sum sigma_n A = {sn:.12} (p w = {}); sum tau_t A = {st:.1e}", c.pairs.len(), c.iterations, p * w);
+        eprintln!("frictionless slip, {name}: {} pairs slip, {} iterations; sum sigma_n A = {sn:.12} (p w = {}); sum tau_t A = {st:.1e}", c.pairs.len(), c.summary.iterations, p * w);
         assert!((sn + p * w).abs() < 1e-9 * p * w, "{name}: normal forces balance the pressure: {sn}");
     }
 }
@@ -237,12 +237,12 @@ fn pairs_opened_only_by_an_iteration_close_again_slipping_not_stuck_where_that_i
     ];
     for (name, edits) in variants {
         let run = case.run(&edited(&case, "geo/block_push.toml", &format!("{name}.toml"), edits)).unwrap_or_else(|e| panic!("{name}: {e:#}"));
-        let c = run.contact.as_ref().expect("contact");
-        assert!(c.converged, "{name}: converged");
-        let opened = c.history.iter().map(|h| h.iter().filter(|&&s| s == ContactState::Open).count()).max().unwrap_or(0);
+        let c = run.contact().expect("contact");
+        assert!(c.summary.converged, "{name}: converged");
+        let opened = c.summary.history.iter().map(|h| h.iter().filter(|&&s| s == ContactState::Open).count()).max().unwrap_or(0);
         assert!(opened > 0, "{name}: pairs open during the iteration (the case exercises re-closure)");
         assert_eq!(count(c, ContactState::Slip), c.pairs.len(), "{name}: every pair slips in the end: {:?}", c.states);
-        eprintln!("{name}: up to {opened} pairs open during the iteration, all {} slip after {} iterations", c.pairs.len(), c.iterations);
+        eprintln!("{name}: up to {opened} pairs open during the iteration, all {} slip after {} iterations", c.pairs.len(), c.summary.iterations);
     }
 }
 
@@ -268,7 +268,7 @@ fn check_cgs4_holds(name: &str, run: &Run) {
     let base_is_i = is_body_i(run, "base");
     for (k, &factor) in CGS4_FACTORS.iter().enumerate() {
         let c = step(run, k + 1);
-        assert!(c.converged, "{name} step {}: converged", k + 1);
+        assert!(c.summary.converged, "{name} step {}: converged", k + 1);
         let f_push = factor * CGS4_LIMIT * CGS4_G;
         for (i, (pair, r)) in run.model.pairs.iter().zip(&c.pairs).enumerate() {
             let at = run.model.coords[pair.k];
@@ -294,7 +294,7 @@ fn check_cgs4_holds(name: &str, run: &Run) {
             f_push / CGS4_G,
             stuck,
             count(c, ContactState::Slip),
-            c.iterations,
+            c.summary.iterations,
             t / (CGS4_FRICTION * n)
         );
         assert!(e < 1e-9, "{name} step {}: the joint carries the block's loads: sum sigma_n A {sn} = -N {n}, sum tau_t A {st} = -T {t}", k + 1);
@@ -338,7 +338,14 @@ fn cgs4_block_holds_below_and_loses_equilibrium_above_the_slip_limit_within_half
         // 0.5 % above the limit: a clean failure (exit 1, one error paragraph, no result files)
         let stderr = solve_fails(&case, &scene, &format!("out_above_{i}"));
         eprintln!("CGS-4 {name}, F/G = 1.005 x limit at step 5: {stderr}");
-        says(&stderr, &[scene.as_str(), "loss of equilibrium", "body \"block\"", "load step 5,"]);
+        says(&stderr, &[scene.as_str(), "loss of equilibrium", "body \"block\"", "load step 5,", "or raise the friction or cohesion of its contacts"]);
+        match case.contact_error(&case.dir.join(&scene)) {
+            ContactError::Sliding { bodies, no_shear, at, .. } => {
+                assert_eq!((bodies, at.step), (vec!["block".to_string()], Some(5)), "{name}");
+                assert!(!no_shear, "{name}: the joint has friction: the load is to blame");
+            }
+            other => panic!("{name}: sliding, not {other:?}"),
+        }
     }
 }
 
@@ -409,8 +416,8 @@ fn contact_patch_test(kinds: &[(&str, usize, &str)]) {
             let name = format!("{kind}_{theta}_{recovery}");
             let run = case.run(&case.write(&format!("patch_{name}.toml"), &patch_scene(order, set, theta, recovery))).unwrap_or_else(|e| panic!("{name}: {e:#}"));
             assert_eq!(run.model.bodies[0].cells[0].kind.name(), kind, "{name}: element kind");
-            let c = run.contact.as_ref().expect("contact");
-            assert!(c.converged);
+            let c = run.contact().expect("contact");
+            assert!(c.summary.converged);
             assert!(c.pairs.len() >= 5, "{name}: {} pairs", c.pairs.len());
             let sigma = patch_stress(theta);
             let across = turn(theta, [0.0, 1.0]);
@@ -520,7 +527,7 @@ fn joint_pulled_open_in_one_step_closes_again_when_the_load_reverses() {
     let run = case.run(&case.write("hanging.toml", &hanging_scene("robust"))).unwrap_or_else(|e| panic!("{e:#}"));
     assert_eq!(run.steps.len(), 2);
     let (open, closed) = (step(&run, 1), step(&run, 2));
-    assert!(open.converged && closed.converged);
+    assert!(open.summary.converged && closed.summary.converged);
     let mut max_gap: f64 = 0.0;
     for (i, (pair, r)) in run.model.pairs.iter().zip(&open.pairs).enumerate() {
         let at = run.model.coords[pair.k];
@@ -540,10 +547,10 @@ fn joint_pulled_open_in_one_step_closes_again_when_the_load_reverses() {
     eprintln!(
         "closing gap (robust): step 1 {} open in {} iteration(s), gaps up to {max_gap:.4e}; step 2 {} stick / {} slip in {} iteration(s)",
         count(open, ContactState::Open),
-        open.iterations,
+        open.summary.iterations,
         count(closed, ContactState::Stick),
         count(closed, ContactState::Slip),
-        closed.iterations
+        closed.summary.iterations
     );
 }
 
@@ -568,6 +575,10 @@ fn paper_rule_cycles_on_an_opening_joint_and_says_so_while_the_robust_rule_conve
         assert!(!ok, "{name}: the paper's rule does not converge");
         for want in [format!("{name}_paper.toml"), "did not converge".into(), "the states cycle".into()] {
             assert!(stderr.contains(&want), "{name}: mentions {want:?}: {stderr}");
+        }
+        match case.contact_error(&case.dir.join(format!("{name}_paper.toml"))) {
+            ContactError::NotConverged { cycled, results, .. } => assert!(cycled && results.is_some(), "{name}: cycled, results written"),
+            other => panic!("{name}: not converged, not {other:?}"),
         }
         let dir = case.dir.join(format!("out_{name}_paper"));
         let s = json(&dir.join("summary.json"));
@@ -652,7 +663,7 @@ fn consistent_recovery_is_exact_for_exact_forces_but_not_closer_on_the_paper_mes
     let exact = exact_consistent_forces(&lumped, &lame);
     let tr = ConsistentTraction::new(&lumped.model).expect("interface mass matrix");
     let projected = tr.recover(&exact, &subcontact::contact::basis::FaceBasis::nodal(vec![0.0; exact.len()]));
-    let c = lumped.contact.as_ref().expect("contact");
+    let c = lumped.contact().expect("contact");
     let mut worst_end: f64 = 0.0;
     let mut worst_inner: f64 = 0.0;
     for (i, pair) in lumped.model.pairs.iter().enumerate() {
@@ -700,8 +711,8 @@ fn stack_scene_opens_its_upper_joint_and_the_lower_joint_sticks_carrying_the_mid
     let case = Case::new("mech-stack");
     case.copy("geo/stack.geo");
     let run = case.run(&case.copy("geo/stack.toml")).unwrap_or_else(|e| panic!("{e:#}"));
-    let c = run.contact.as_ref().expect("contact");
-    assert!(c.converged);
+    let c = run.contact().expect("contact");
+    assert!(c.summary.converged);
     let lower = run.scene.contacts.iter().position(|k| matches!(&k.groups, ContactGroups::Shared(g) if g == "lower_joint")).expect("lower joint");
     let upper = 1 - lower;
     let pull = 100.0;
@@ -727,7 +738,7 @@ fn stack_scene_opens_its_upper_joint_and_the_lower_joint_sticks_carrying_the_mid
     let (sn, st) = resultants(&run, c, |p| run.model.pairs[p].contact == lower);
     eprintln!(
         "stack: {n_upper} upper pairs open, {n_lower} lower pairs stick, {} iteration(s); lower joint sum sigma_n A = {sn:.9} (weight {weight:.9}), sum tau_t A = {st:.2e}",
-        c.iterations
+        c.summary.iterations
     );
     assert!((sn + weight).abs() < 1e-9 * weight, "lower joint carries the middle block's weight: {sn} vs {weight}");
     assert!(st.abs() < 1e-9 * weight, "and no net shear: {st}");

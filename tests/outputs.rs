@@ -251,9 +251,11 @@ fn contact_csv_has_the_promised_header_and_one_row_per_pair() {
 fn contact_vtu_has_the_promised_fields_and_matches_contact_csv() {
     let r = cylinder();
     let m = meshio(&r.dir.join("cylinder_contact.vtu"));
-    assert_eq!(m.cells.len(), 1);
+    assert_eq!(m.cells.len(), 2, "the facets, then a vertex cell per pair");
     assert_eq!(m.cells[0].0, "line3", "the quadratic interface stays quadratic");
     assert_eq!(m.cells[0].1.len(), 40);
+    assert_eq!(m.cells[1].0, "vertex");
+    assert_eq!(m.cells[1].1.len(), r.csv.len());
     let mut names: Vec<&str> = m.point_data.keys().map(|k| k.as_str()).collect();
     names.sort();
     assert_eq!(names, ["area", "gap", "shear", "sigma_n", "slip", "status", "tau"]);
@@ -345,6 +347,7 @@ fn paper_mesh_writes_30_hex8_and_12_contact_pairs() {
     let c = meshio(&r.dir.join("cylinder_paper_contact.vtu"));
     assert_eq!(c.cells[0].0, "quad");
     assert_eq!(c.cells[0].1.len(), 5, "5 radial facets on A-A");
+    assert_eq!((c.cells[1].0.as_str(), c.cells[1].1.len()), ("vertex", 12), "a vertex cell per pair");
     assert_eq!(r.csv.len(), 12, "the paper's 12 contact node pairs");
     assert_eq!(c.points.len(), 12);
     assert_eq!(at(&r.summary, "dofs.interface").as_u64().unwrap(), 2 * 3 * 12);
@@ -378,4 +381,98 @@ fn mesh_is_reused_on_a_second_run_and_remade_when_setnumber_changes() {
     assert!(at(&third, "mesh.nodes").as_u64().unwrap() < at(&first, "mesh.nodes").as_u64().unwrap(), "lc = 0.25 is coarser than 0.2");
     let report = read(&case.dir.join("out/report.md"));
     assert!(!report.contains("(cached)"), "report.md of the remeshed run says cached");
+}
+
+
+/// Issue 19: ParaView blends point data `status` between 0, 1 and 2; a
+/// vertex cell per pair carries it as cell data `pair_status`, which
+/// ParaView colours as categories (-1 on the facets). Read back through
+/// meshio for every pair of the default cylinder, against contact.csv.
+#[test]
+fn contact_vtu_has_a_categorical_status_on_a_vertex_cell_per_pair() {
+    let r = cylinder();
+    let m = meshio(&r.dir.join("cylinder_contact.vtu"));
+    let status = m.cell_data.get("pair_status").expect("cell data pair_status");
+    let facets = m.cells[0].1.len();
+    assert_eq!(status.len(), facets + r.csv.len());
+    assert!(status[..facets].iter().all(|&s| s == -1.0), "-1 on the facets");
+    for (cell, &s) in m.cells[1].1.iter().zip(&status[facets..]) {
+        let x = m.points[cell[0]];
+        let row = r.csv.iter().find(|row| (row["x"] - x[0]).abs() < 1e-9 && (row["y"] - x[1]).abs() < 1e-9).expect("a pair of contact.csv");
+        assert_eq!(s, row["status"], "pair at {x:?}");
+    }
+    let interface = m.cell_data.get("interface").expect("cell data interface");
+    assert!(interface.iter().all(|&i| i == 0.0), "one contact");
+}
+
+/// Issue 19 on the 2D dam (self-weight, then the reservoir in two steps):
+/// the `.pvd` times are the load factors (the reservoir's 0, 0.5, 1), the
+/// load-step table of report.md shows the factors applied per load, its
+/// timings are summary.json's, and `check` counts the DOFs the run solved.
+#[test]
+fn dam_steps_report_their_factors_and_the_report_the_summarys_timings() {
+    let case = Case::new("outputs-dam");
+    case.copy("geo/dam.geo");
+    case.copy("geo/dam.toml");
+    let out = case.cli(&["solve", "dam.toml", "--out", "out", "--quiet"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let dir = case.dir.join("out");
+    for pvd in ["dam.pvd", "dam_contact.pvd"] {
+        let text = read(&dir.join(pvd));
+        let times: Vec<&str> = text.split("timestep=\"").skip(1).map(|t| t.split('"').next().unwrap_or("")).collect();
+        assert_eq!(times, ["0.0", "0.5", "1.0"], "{pvd}:\n{text}");
+    }
+    // each step's contact file carries the states as categories
+    let m = meshio(&dir.join("dam_contact_step001.vtu"));
+    assert!(m.cell_data["pair_status"].iter().any(|&s| s == 2.0));
+
+    let report = read(&dir.join("report.md"));
+    for row in ["| step | gravity | \"upstream_face\", \"reservoir_floor\" | iterations | stick / slip / open | converged |", "| 1 | 1 | 0 | ", "| 2 | 1 | 0.5 | ", "| 3 | 1 | 1 | "] {
+        assert!(report.contains(row), "report.md lacks {row:?}:\n{report}");
+    }
+    assert!(!report.contains("ramp k/N"));
+    let summary = json(&dir.join("summary.json"));
+    let steps = summary["steps"].as_array().expect("steps");
+    assert_eq!(steps[1]["case_factors"].as_array().map(|a| a.len()), Some(5), "ramp, two loads, gravity, initial stress");
+    // the timings row of report.md, to its three decimals, is summary.json's
+    let t = &summary["timings_s"];
+    let want: Vec<String> = ["mesh", "model", "assemble", "condense", "interface", "recover", "output", "total"].iter().map(|k| format!("{:.3}", t[k].as_f64().expect("a timing"))).collect();
+    let row = format!("| time mesh / model / assemble / condense / interface / recover / output / total (s) | {} |", want.join(" / "));
+    assert!(report.contains(&row), "report.md lacks {row:?}:\n{report}");
+    assert!(t["output"].as_f64().unwrap() > 0.0, "the output stage is timed");
+
+    let check = case.cli(&["check", "dam.toml"]);
+    let stdout = String::from_utf8_lossy(&check.stdout);
+    assert!(check.status.success(), "{}", String::from_utf8_lossy(&check.stderr));
+    let dofs = format!("  {} DOFs ({} interface)", summary["dofs"]["total"], summary["dofs"]["interface"]);
+    assert!(stdout.contains(&dofs), "check prints {dofs:?}:\n{stdout}");
+}
+
+/// Issue 19: two bodies that share nodes with no contact between them are
+/// bonded, and the user hears of it: summary.json `warnings`, report.md,
+/// stderr of solve and check. The two blocks of tests/geo/contact_stack.geo
+/// without their [[contacts]] entry.
+#[test]
+fn bodies_bonded_without_a_contact_are_warned_of() {
+    let case = Case::new("outputs-bonded");
+    case.copy("tests/geo/contact_stack.geo");
+    case.write(
+        "glued.toml",
+        "mesh = \"contact_stack.geo\"\nanalysis = \"plane_stress\"\n[materials.m]\nE = 1000.0\nnu = 0.25\n\
+         [[bodies]]\ngroup = \"bottom\"\nmaterial = \"m\"\n[[bodies]]\ngroup = \"top\"\nmaterial = \"m\"\n\
+         [[supports]]\ngroup = \"base\"\nfix = [\"y\"]\n[[supports]]\ngroup = \"corner\"\nfix = [\"x\"]\n\
+         [[loads]]\ngroup = \"top_face\"\ntraction = [0.0, -1.0]\n",
+    );
+    let out = case.cli(&["solve", "glued.toml", "--out", "out", "--quiet"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let says = "bodies \"bottom\" and \"top\" share";
+    assert!(stderr.contains(&format!("warning: glued.toml: {says}")) && stderr.contains("so they are bonded there"), "{stderr}");
+    let summary = json(&case.dir.join("out/summary.json"));
+    let warnings: Vec<&str> = summary["warnings"].as_array().expect("warnings").iter().filter_map(|w| w.as_str()).collect();
+    assert!(warnings.len() == 1 && warnings[0].contains(says) && warnings[0].contains("add a [[contacts]] entry"), "{warnings:?}");
+    let report = read(&case.dir.join("out/report.md"));
+    assert!(report.contains(&format!("**Warning:** glued.toml: {says}")), "{report}");
+    let check = case.cli(&["check", "glued.toml"]);
+    assert!(String::from_utf8_lossy(&check.stderr).contains(says));
 }

@@ -33,6 +33,16 @@
 //! tetrahedra unstructured. Second order by `gmsh -order 2` (tri6, quad9,
 //! tet10, hex27) and with `Mesh.SecondOrderIncomplete = 1` (quad8, hex20).
 //!
+//! Prisms and pyramids (tests/geo/patch_shell.geo, the same hexahedron's
+//! outer shell cut in two blocks): transfinite blocks with triangulated caps
+//! (prism6, prism18, prism15: the caps are not parallel, so no prism is
+//! affine); transfinite quadrangles on the outer faces around unstructured
+//! tetrahedra (a pyramid on each: pyramid5, pyramid14, pyramid13, none with
+//! a parallelogram base); and a block of hexahedra against a block of
+//! prisms. patch_hex.geo with `mixed = 1` gives a hexahedral core in
+//! tetrahedra with pyramids between them (hex8/tet4/pyramid5,
+//! hex27/tet10/pyramid14, hex20/tet10/pyramid13).
+//!
 //! Parameters: E = 1000, nu = 0.3; plane states sigma_xx = 3, sigma_yy = -2,
 //! sigma_xy = 1.5 (plane strain adds sigma_zz = nu (sigma_xx + sigma_yy));
 //! axisymmetric sigma_rr = sigma_tt = 2, sigma_zz = -1.5, sigma_rz = 0
@@ -50,8 +60,9 @@
 //! side, in plane strain, axisymmetry and 3D. The exact linear field lies in
 //! the span of isoparametric quadratic elements even where they are curved,
 //! and their stiffness rules integrate a curved cell's `∫ B^T sigma dV`
-//! exactly for tri6, quad8, quad9 (plane), quad8, quad9 (axisymmetric) and
-//! hex20, hex27. Not for tet10 (degree-2 rule, the integrand is cubic on a
+//! exactly for tri6, quad8, quad9 (plane), quad8, quad9 (axisymmetric),
+//! hex20, hex27 and the prisms extruded from the sector's triangulated plan
+//! (prism15, prism18). Not for tet10 (degree-2 rule, the integrand is cubic on a
 //! curved cell: 2.6e-5 off, measured) nor for curved tri6 in axisymmetry
 //! (the weight r raises the degree: 1.5e-3 off); those two are left out.
 
@@ -183,10 +194,15 @@ fn kinds_3d() -> Vec<Kind> {
 
 /// The scene of one patch run.
 fn scene(geo: &str, analysis: &str, k: &Kind, switch: &str, loads: &[(String, String)], supports: &[(&str, &str)]) -> String {
+    let set = format!("{switch} = {}, serendipity = {}", k.structured as u8, k.serendipity as u8);
+    scene_with(geo, analysis, k.order, &set, loads, supports)
+}
+
+/// The scene of one patch run, with the `setnumber` entries `set`.
+fn scene_with(geo: &str, analysis: &str, order: usize, set: &str, loads: &[(String, String)], supports: &[(&str, &str)]) -> String {
     let mut s = format!(
-        "mesh = \"{geo}\"\nanalysis = \"{analysis}\"\n\n[gmsh]\norder = {}\nsetnumber = {{ {switch} = {}, serendipity = {} }}\n\n\
-         [materials.m]\nE = {E}\nnu = {NU}\n\n[[bodies]]\ngroup = \"body\"\nmaterial = \"m\"\n",
-        k.order, k.structured as u8, k.serendipity as u8
+        "mesh = \"{geo}\"\nanalysis = \"{analysis}\"\n\n[gmsh]\norder = {order}\nsetnumber = {{ {set} }}\n\n\
+         [materials.m]\nE = {E}\nnu = {NU}\n\n[[bodies]]\ngroup = \"body\"\nmaterial = \"m\"\n"
     );
     for (group, load) in loads {
         s += &format!("\n[[loads]]\ngroup = \"{group}\"\n{load}\n");
@@ -243,7 +259,7 @@ fn deviation(run: &Run, sigma: &[f64; 6], u_exact: &dyn Fn(Vec3) -> Vec3, probe:
         let d = material::d_matrix(m.analysis, body.e, body.nu);
         for cell in &body.cells {
             let xe: Vec<Vec3> = cell.nodes.iter().map(|&n| m.coords[n]).collect();
-            let ue: Vec<f64> = cell.nodes.iter().flat_map(|&n| (0..nd).map(move |c| run.u[n * nd + c])).collect();
+            let ue: Vec<f64> = cell.nodes.iter().flat_map(|&n| (0..nd).map(move |c| run.last().u[n * nd + c])).collect();
             // the strain the stiffness used: B-bar's where the cell has it
             let mean = element::mean_dilatation(m.analysis, cell.kind, body.nu, &xe, &ue);
             for q in quadrature::stiffness_rule(cell.kind) {
@@ -256,7 +272,7 @@ fn deviation(run: &Run, sigma: &[f64; 6], u_exact: &dyn Fn(Vec3) -> Vec3, probe:
     }
     assert!(n_points > 0);
     // every node of the output
-    for bs in &run.stresses {
+    for bs in &run.last().stresses {
         assert!(!bs.nodes.is_empty());
         for s in &bs.stress {
             dev.nodal = worst(dev.nodal, stress_dev(s, sigma, scale));
@@ -264,7 +280,7 @@ fn deviation(run: &Run, sigma: &[f64; 6], u_exact: &dyn Fn(Vec3) -> Vec3, probe:
     }
     // probed points, evaluated in the element that contains them
     let pr = Probe { name: "across".into(), from: probe.0, to: probe.1, points: 11 };
-    for s in recover::probe(m, &run.u, &pr) {
+    for s in recover::probe(m, &run.last().u, &pr) {
         assert!(s.found, "probe point {:?} outside the model", s.x);
         dev.probe = worst(dev.probe, stress_dev(&s.stress, sigma, scale));
         let ue = u_exact(s.x);
@@ -278,7 +294,7 @@ fn deviation(run: &Run, sigma: &[f64; 6], u_exact: &dyn Fn(Vec3) -> Vec3, probe:
             for &n in &cell.nodes {
                 let ue = u_exact(m.coords[n]);
                 for c in 0..nd {
-                    dev.displacement = worst(dev.displacement, (run.u[n * nd + c] - ue[c]).abs());
+                    dev.displacement = worst(dev.displacement, (run.last().u[n * nd + c] - ue[c]).abs());
                     u_max = u_max.max(ue[c].abs());
                 }
             }
@@ -294,6 +310,18 @@ fn deviation(run: &Run, sigma: &[f64; 6], u_exact: &dyn Fn(Vec3) -> Vec3, probe:
 fn non_affinity(kind: CellKind, corners: &[Vec3]) -> f64 {
     if matches!(kind, CellKind::Tri3 | CellKind::Tri6 | CellKind::Tet4 | CellKind::Tet10) {
         return 0.0;
+    }
+    let size = corners.iter().flat_map(|x| corners.iter().map(move |y| dot(sub(*x, *y), sub(*x, *y)).sqrt())).fold(0.0, f64::max);
+    let len = |v: Vec3| dot(v, v).sqrt();
+    match kind.n_corners() {
+        // a prism is affine when its top triangle is its bottom one translated
+        6 => {
+            let (d0, d1, d2) = (sub(corners[3], corners[0]), sub(corners[4], corners[1]), sub(corners[5], corners[2]));
+            return len(sub(d1, d0)).max(len(sub(d2, d0))) / size;
+        }
+        // a pyramid is affine when its base is a parallelogram
+        5 => return len(sub(sub(corners[0], corners[1]), sub(corners[3], corners[2]))) / size,
+        _ => {}
     }
     let refs = &subcontact::fem::shape::reference_nodes(kind)[..corners.len()];
     // corners of [-1,1]^d: zero mean, orthogonal coordinates, so the least-
@@ -325,6 +353,25 @@ fn check_mesh(run: &Run, kind: CellKind) -> f64 {
             least = least.min(non_affinity(kind, &corners));
         }
     }
+    least
+}
+
+/// Checks the cells are of the wanted kinds, each of them present, and
+/// returns the smallest non-affinity over the cells of kind `special`.
+fn check_kinds(run: &Run, kinds: &[CellKind], special: CellKind) -> f64 {
+    let mut least = f64::INFINITY;
+    let mut seen = Vec::new();
+    for cell in run.model.bodies.iter().flat_map(|b| &b.cells) {
+        assert!(kinds.contains(&cell.kind), "gmsh made {} (expected {:?})", cell.kind.name(), kinds);
+        if !seen.contains(&cell.kind) {
+            seen.push(cell.kind);
+        }
+        if cell.kind == special {
+            let corners: Vec<Vec3> = cell.nodes[..special.n_corners()].iter().map(|&n| run.model.coords[n]).collect();
+            least = least.min(non_affinity(special, &corners));
+        }
+    }
+    assert_eq!(seen.len(), kinds.len(), "gmsh made only {seen:?} of {kinds:?}");
     least
 }
 
@@ -484,10 +531,24 @@ fn rotation_321(eps: &[[f64; 3]; 3], db: Vec3, dc: Vec3) -> Vec3 {
     })
 }
 
-#[test]
-fn uniform_stress_is_exact_in_solids_on_distorted_tet4_tet10_hex8_hex20_hex27() {
-    let case = Case::new("patch-solid");
-    let geo = case.copy("tests/geo/patch_hex.geo");
+/// One mesh of a 3D patch: its name, the `setnumber` entries, the gmsh
+/// order, the kinds it must hold, and the kind whose distortion is measured
+/// (None: simplices, unstructured by nature).
+struct SolidRun {
+    name: String,
+    set: String,
+    order: usize,
+    kinds: Vec<CellKind>,
+    distorted: Option<CellKind>,
+}
+
+/// The 3D patch on a copy of the repository's `geo` (whose Points 1..8 are
+/// the corners of MacNeal and Harder's hexahedron, its faces the physical
+/// surfaces face_IJKL): every run of `runs` reproduces the uniform state.
+fn solid_patch(case_name: &str, geo: &str, runs: &[SolidRun]) {
+    let case = Case::new(case_name);
+    let geo = case.copy(geo);
+    let geo_name = geo.file_name().unwrap().to_string_lossy().to_string();
     let pts = geo_points(&geo);
     let all: Vec<Vec3> = (1..=8).map(|i| pts[&i]).collect();
     let c = centroid(&all);
@@ -524,30 +585,104 @@ fn uniform_stress_is_exact_in_solids_on_distorted_tet4_tet10_hex8_hex20_hex27() 
     let from: Vec3 = std::array::from_fn(|i| 0.8 * pts[&1][i] + 0.2 * c[i]);
     let to: Vec3 = std::array::from_fn(|i| 0.8 * pts[&7][i] + 0.2 * c[i]);
     let mut failures = Vec::new();
-    for k in kinds_3d() {
-        let name = k.kind.name().to_string();
-        let text = scene("patch_hex.geo", "solid", &k, "hexes", &loads, &supports);
-        let path = case.write(&format!("{name}.toml"), &text);
-        let run = case.run(&path).unwrap_or_else(|e| panic!("{name}: {e:#}"));
-        let distortion = check_mesh(&run, k.kind);
-        if k.structured {
-            assert!(distortion > 0.02, "{name}: the hexahedra are nearly parallelepipeds ({distortion:.3})");
+    for r in runs {
+        let text = scene_with(&geo_name, "solid", r.order, &r.set, &loads, &supports);
+        let path = case.write(&format!("{}.toml", r.name), &text);
+        let run = case.run(&path).unwrap_or_else(|e| panic!("{}: {e:#}", r.name));
+        let distortion = check_kinds(&run, &r.kinds, r.distorted.unwrap_or(r.kinds[0]));
+        if r.distorted.is_some() {
+            assert!(distortion > 0.02, "{}: the cells are nearly affine ({distortion:.3})", r.name);
         }
         let dev = deviation(&run, &sigma.0, &u_exact, (from, to));
         eprintln!(
-            "{name:>24}: {} cells, least non-affinity {:.3}; max deviation gauss {:.1e} nodal {:.1e} probe {:.1e} displacement {:.1e}",
+            "{:>24}: {} cells, least non-affinity {:.3}; max deviation gauss {:.1e} nodal {:.1e} probe {:.1e} displacement {:.1e}",
+            r.name,
             run.model.bodies[0].cells.len(),
-            if k.structured { distortion } else { f64::NAN },
+            if r.distorted.is_some() { distortion } else { f64::NAN },
             dev.gauss,
             dev.nodal,
             dev.probe,
             dev.displacement
         );
         if !(dev.max() < TOL) {
-            failures.push(format!("{name}: {dev:?}"));
+            failures.push(format!("{}: {dev:?}", r.name));
         }
     }
     assert!(failures.is_empty(), "patch test failed:\n{}", failures.join("\n"));
+}
+
+#[test]
+fn uniform_stress_is_exact_in_solids_on_distorted_tet4_tet10_hex8_hex20_hex27() {
+    let runs: Vec<SolidRun> = kinds_3d()
+        .into_iter()
+        .map(|k| SolidRun {
+            name: k.kind.name().to_string(),
+            set: format!("hexes = {}, serendipity = {}", k.structured as u8, k.serendipity as u8),
+            order: k.order,
+            kinds: vec![k.kind],
+            distorted: k.structured.then_some(k.kind),
+        })
+        .collect();
+    solid_patch("patch-solid", "tests/geo/patch_hex.geo", &runs);
+}
+
+/// tests/geo/patch_shell.geo's runs: `cells` (1 prisms, 2 pyramids among
+/// tetrahedra, 3 hexahedra and prisms) at orders 1, 2 and 2 incomplete.
+fn shell_runs(cells: usize, kinds: [[CellKind; 2]; 3], distorted: [CellKind; 3]) -> Vec<SolidRun> {
+    (0..3)
+        .map(|i| {
+            let (order, serendipity) = [(1, 0), (2, 0), (2, 1)][i];
+            let mut kinds = kinds[i].to_vec();
+            kinds.dedup();
+            SolidRun {
+                name: kinds.iter().map(|k| k.name()).collect::<Vec<_>>().join("+"),
+                // one quadrangle per block face for the pyramids: the
+                // subdivided ones come close to parallelograms
+                set: format!("cells = {cells}, serendipity = {serendipity}, n = {}", if cells == 2 { 1 } else { 2 }),
+                order,
+                kinds,
+                distorted: Some(distorted[i]),
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn uniform_stress_is_exact_on_distorted_prism6_prism15_prism18() {
+    use CellKind::*;
+    // the shell's caps are not parallel: no prism has parallel triangles
+    let runs = shell_runs(1, [[Prism6; 2], [Prism18; 2], [Prism15; 2]], [Prism6, Prism18, Prism15]);
+    solid_patch("patch-prism", "tests/geo/patch_shell.geo", &runs);
+}
+
+#[test]
+fn uniform_stress_is_exact_on_distorted_pyramid5_pyramid13_pyramid14_among_tetrahedra() {
+    use CellKind::*;
+    // a pyramid on each quadrangle of the faces, none of them a parallelogram
+    let runs = shell_runs(2, [[Tet4, Pyramid5], [Tet10, Pyramid14], [Tet10, Pyramid13]], [Pyramid5, Pyramid14, Pyramid13]);
+    solid_patch("patch-pyramid", "tests/geo/patch_shell.geo", &runs);
+}
+
+/// Mixed meshes: prisms against hexahedra (tests/geo/patch_shell.geo,
+/// cells = 3), and a hexahedral core in tetrahedra with pyramids between
+/// them (tests/geo/patch_hex.geo, mixed = 1: hex-dominant meshes of the
+/// kind gmsh makes when a recombined volume meets an unstructured one).
+#[test]
+fn uniform_stress_is_exact_on_mixed_hexahedra_prisms_pyramids_and_tetrahedra() {
+    use CellKind::*;
+    let runs = shell_runs(3, [[Hex8, Prism6], [Hex27, Prism18], [Hex20, Prism15]], [Prism6, Prism18, Prism15]);
+    solid_patch("patch-hex-prism", "tests/geo/patch_shell.geo", &runs);
+    let runs: Vec<SolidRun> = [(1, 0, [Hex8, Tet4, Pyramid5]), (2, 0, [Hex27, Tet10, Pyramid14]), (2, 1, [Hex20, Tet10, Pyramid13])]
+        .into_iter()
+        .map(|(order, serendipity, kinds)| SolidRun {
+            name: kinds.iter().map(|k| k.name()).collect::<Vec<_>>().join("+"),
+            set: format!("mixed = 1, n = 2, serendipity = {serendipity}"),
+            order,
+            kinds: kinds.to_vec(),
+            distorted: Some(kinds[2]),
+        })
+        .collect();
+    solid_patch("patch-hex-pyramid-tet", "tests/geo/patch_hex.geo", &runs);
 }
 
 /// The largest distance of a second-order node from where the straight-
@@ -582,6 +717,7 @@ fn hydrostatic(
     case: &Case,
     geo: &str,
     analysis: &str,
+    switch: &str,
     kinds: &[Kind],
     supports: &[(&str, &str)],
     u_exact: &dyn Fn(Vec3) -> Vec3,
@@ -591,7 +727,6 @@ fn hydrostatic(
     let mut failures = Vec::new();
     for k in kinds {
         let name = format!("curved_{}_{analysis}", k.kind.name());
-        let switch = if analysis == "solid" { "hexes" } else { "quads" };
         let loads = [("boundary".to_string(), format!("pressure = {P}"))];
         let text = scene(geo, analysis, k, switch, &loads, supports);
         let path = case.write(&format!("{name}.toml"), &text);
@@ -644,14 +779,14 @@ fn hydrostatic_stress_is_exact_on_curved_tri6_quad8_quad9_in_plane_strain_and_qu
     let kinds: Vec<Kind> = kinds_2d().into_iter().filter(|k| k.order == 2).collect();
     let supports = [("A", "[\"x\", \"y\"]"), ("B", "[\"y\"]")];
     let probe = (polar(2.1, 20.0), polar(3.9, 70.0));
-    let mut failures = hydrostatic(&case, "patch_curved.geo", "plane_strain", &kinds, &supports, &u_exact, sigma.0, probe);
+    let mut failures = hydrostatic(&case, "patch_curved.geo", "plane_strain", "quads", &kinds, &supports, &u_exact, sigma.0, probe);
 
     // axisymmetric: sigma_rr = sigma_zz = sigma_tt = -p, u_r = eps r, u_z = eps (z - z_A)
     let sigma = Uniform([-P, -P, -P, 0.0, 0.0, 0.0]);
     let eps = sigma.strain()[0][0];
     let u_exact = move |x: Vec3| -> Vec3 { [eps * x[0], eps * (x[1] - a[1]), 0.0] };
     let kinds: Vec<Kind> = kinds_2d().into_iter().filter(|k| k.order == 2 && k.structured).collect();
-    failures.extend(hydrostatic(&case, "patch_curved.geo", "axisymmetric", &kinds, &[("A", "[\"y\"]")], &u_exact, sigma.0, probe));
+    failures.extend(hydrostatic(&case, "patch_curved.geo", "axisymmetric", "quads", &kinds, &[("A", "[\"y\"]")], &u_exact, sigma.0, probe));
     assert!(failures.is_empty(), "patch test failed:\n{}", failures.join("\n"));
 }
 
@@ -676,11 +811,41 @@ fn hydrostatic_stress_is_exact_on_curved_hex20_hex27() {
         &case,
         "patch_curved_3d.geo",
         "solid",
+        "hexes",
         &kinds,
         &supports,
         &u_exact,
         sigma.0,
         ([from[0], from[1], 0.1], [to[0], to[1], 1.4]),
     );
+    assert!(failures.is_empty(), "patch test failed:\n{}", failures.join("\n"));
+}
+
+/// The hydrostatic patch on curved prisms: the sector's triangulated plan
+/// extruded in layers (prism15, prism18 with arcs along the cylindrical
+/// faces). Their stiffness rule integrates a curved prism's `∫ B^T sigma dV`
+/// exactly: the map is quadratic in (ξ, η) and linear in ζ.
+#[test]
+fn hydrostatic_stress_is_exact_on_curved_prism15_prism18() {
+    let case = Case::new("patch-curved-prism");
+    case.copy("tests/geo/patch_curved_3d.geo");
+    let sigma = Uniform([-P, -P, -P, 0.0, 0.0, 0.0]);
+    let eps = sigma.strain();
+    let a = polar(2.0, 15.0);
+    let w = rotation_321(&eps, sub(polar(4.0, 15.0), a), sub(polar(2.0, 75.0), a));
+    let u_exact = move |x: Vec3| -> Vec3 {
+        let d = sub(x, a);
+        let u = mat_vec(&eps, d);
+        let r = cross(w, d);
+        [u[0] + r[0], u[1] + r[1], u[2] + r[2]]
+    };
+    let kinds = [
+        Kind { kind: CellKind::Prism18, order: 2, structured: true, serendipity: false },
+        Kind { kind: CellKind::Prism15, order: 2, structured: true, serendipity: true },
+    ];
+    let supports = [("A", "[\"x\", \"y\", \"z\"]"), ("B", "[\"y\", \"z\"]"), ("C", "[\"z\"]")];
+    let (from, to) = (polar(2.1, 20.0), polar(3.9, 70.0));
+    let probe = ([from[0], from[1], 0.1], [to[0], to[1], 1.4]);
+    let failures = hydrostatic(&case, "patch_curved_3d.geo", "solid", "prisms", &kinds, &supports, &u_exact, sigma.0, probe);
     assert!(failures.is_empty(), "patch test failed:\n{}", failures.join("\n"));
 }

@@ -13,7 +13,7 @@ mod common;
 use common::{read, repo_text, scenes, Case};
 
 fn counters(run: &subcontact::driver::Run) -> &subcontact::driver::Counters {
-    &run.counters
+    &run.stats.counters
 }
 
 /// geo/cylinder.* copied into the case, coarsened, with the scene text edited.
@@ -28,11 +28,11 @@ fn no_contacts_means_no_condensation_and_one_solve() {
     let case = Case::new("skip-bonded");
     let scene = cylinder(&case, &|t| t);
     let run = case.run_with(&scene, true).expect("bonded run");
-    assert_eq!(run.dofs_interface, 0);
+    assert_eq!(run.stats.dofs.interface, 0);
     assert_eq!(counters(&run).condensed_parts, 0);
     assert_eq!(counters(&run).factorisations, 1, "the two bodies share nodes: one part, one factorisation");
     assert_eq!(counters(&run).interface_solves, 0);
-    assert!(run.contact.is_none());
+    assert!(run.contact().is_none());
 }
 
 #[test]
@@ -51,7 +51,7 @@ fn a_body_without_contact_is_not_condensed() {
            [[loads]]\ngroup = \"pier_top\"\npressure = 2.0\n";
     let scene = case.write("block_push.toml", &toml);
     let run = case.run(&scene).expect("run");
-    assert_eq!(run.parts, 3);
+    assert_eq!(run.stats.parts.total, 3);
     assert_eq!(counters(&run).factorisations, 3);
     assert_eq!(counters(&run).condensed_parts, 2, "only the base and the block have a contact interface");
 }
@@ -66,7 +66,7 @@ fn parts_are_factorised_once_for_all_iterations_and_load_steps() {
     let run = case.run(&scene).expect("run");
     let c = counters(&run);
     assert_eq!(run.steps.len(), 3);
-    let iterations: usize = run.steps.iter().map(|s| s.contact.as_ref().expect("contact").iterations).sum();
+    let iterations: usize = run.steps.iter().map(|s| s.contact.as_ref().expect("contact").summary.iterations).sum();
     assert!(iterations > 3, "the friction needs several iterations per step ({iterations})");
     assert_eq!(c.interface_solves, iterations);
     assert_eq!(c.factorisations, 2, "two parts, each factorised once for {iterations} interface solves in 3 steps");
@@ -78,7 +78,7 @@ fn stresses_are_not_recovered_when_not_asked_for() {
     let only_u = cylinder(&case, &|t| t.replace("[analytic]", "[output]\nfields = [\"displacement\"]\n\n[analytic]"));
     let run = case.run(&only_u).expect("run");
     assert_eq!(counters(&run).stress_recoveries, 0);
-    assert!(run.stresses.is_empty());
+    assert!(run.last().stresses.is_empty());
     let vtu = read(&case.out("cylinder").join("cylinder.vtu"));
     assert!(vtu.contains("Name=\"displacement\"") && !vtu.contains("Name=\"stress\"") && !vtu.contains("von_mises"));
 
@@ -91,7 +91,7 @@ fn stresses_are_not_recovered_when_not_asked_for() {
     let run = case.run(&nothing).expect("run");
     assert_eq!(counters(&run).interior_recoveries, 0);
     assert_eq!(counters(&run).stress_recoveries, 0);
-    assert!(run.contact.as_ref().expect("contact").converged);
+    assert!(run.contact().expect("contact").summary.converged);
 }
 
 #[test]
@@ -100,5 +100,5 @@ fn plane_scenes_have_two_unknowns_per_node() {
     let scene = cylinder(&case, &|t| t);
     let run = case.run_with(&scene, true).expect("run");
     assert_eq!(run.model.nd, 2);
-    assert_eq!(run.u.len(), 2 * run.model.n_nodes());
+    assert_eq!(run.last().u.len(), 2 * run.model.n_nodes());
 }

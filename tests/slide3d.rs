@@ -43,8 +43,8 @@ uz = 6.0e-3
 "#;
     let toml = two_blocks(head, 1000.0, 0.25, "friction = 0.3\ncohesion = 0.0\ntensile_strength = 0.0", supports);
     let run = case.run(&case.write("slide.toml", &toml)).expect("run");
-    let c = run.contact.as_ref().expect("contact");
-    assert!(c.converged);
+    let c = run.contact().expect("contact");
+    assert!(c.summary.converged);
     let nd = run.model.nd;
     let mut worst_mag: f64 = 0.0;
     let mut worst_dir: f64 = 0.0;
@@ -60,7 +60,7 @@ uz = 6.0e-3
         // the shear traction in global axes, and the relative slip of l
         let f = frame(3, pair.normal, [false; 3]);
         let tau: Vec<f64> = (0..3).map(|i| r.tau_t * f[1][i] + r.tau_b * f[2][i]).collect();
-        let rel: Vec<f64> = (0..3).map(|i| run.u[pair.l * nd + i] - run.u[pair.k * nd + i]).collect();
+        let rel: Vec<f64> = (0..3).map(|i| run.last().u[pair.l * nd + i] - run.last().u[pair.k * nd + i]).collect();
         let rn = (0..3).map(|i| rel[i] * pair.normal[i]).sum::<f64>();
         let slip: Vec<f64> = (0..3).map(|i| rel[i] - rn * pair.normal[i]).collect();
         let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
@@ -72,6 +72,6 @@ uz = 6.0e-3
     // and the slip is diagonal, not along one axis: both x and z components
     let p = run.model.pairs.len() / 2;
     let pair = &run.model.pairs[p];
-    let (dx, dz) = (run.u[pair.l * nd] - run.u[pair.k * nd], run.u[pair.l * nd + 2] - run.u[pair.k * nd + 2]);
+    let (dx, dz) = (run.last().u[pair.l * nd] - run.last().u[pair.k * nd], run.last().u[pair.l * nd + 2] - run.last().u[pair.k * nd + 2]);
     assert!(dx.abs() > 1e-5 && dz.abs() > 1e-5, "diagonal slip ({dx:e}, {dz:e})");
 }

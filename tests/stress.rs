@@ -102,20 +102,20 @@ fn solve(case: &Case, name: &str, text: &str, bonded: bool) -> Run {
 
 /// The converged contact iteration of a run (panics otherwise).
 fn converged(run: &Run) -> &ContactRun {
-    let c = run.contact.as_ref().unwrap_or_else(|| panic!("{}: no contact solve", run.scene.name));
-    assert!(c.converged, "{}: the contact iteration did not converge ({} iterations, cycled {})", run.scene.name, c.iterations, c.cycled);
+    let c = run.contact().unwrap_or_else(|| panic!("{}: no contact solve", run.scene.name));
+    assert!(c.summary.converged, "{}: the contact iteration did not converge ({} iterations, cycled {})", run.scene.name, c.summary.iterations, c.summary.cycled);
     c
 }
 
 /// The pairs' states and the iterations, for a row's notes.
 fn states_note(c: &ContactRun) -> String {
-    format!("{} stick / {} slip / {} open, {} it.", count(c, ContactState::Stick), count(c, ContactState::Slip), count(c, ContactState::Open), c.iterations)
+    format!("{} stick / {} slip / {} open, {} it.", count(c, ContactState::Stick), count(c, ContactState::Slip), count(c, ContactState::Open), c.summary.iterations)
 }
 
 /// Nodal (body-averaged) stress of model node `n` in body `b`.
 fn nodal_stress(run: &Run) -> HashMap<(usize, usize), [f64; 6]> {
     let mut m = HashMap::new();
-    for (b, bs) in run.stresses.iter().enumerate() {
+    for (b, bs) in run.last().stresses.iter().enumerate() {
         for (n, s) in bs.nodes.iter().zip(&bs.stress) {
             m.insert((b, *n), *s);
         }

@@ -66,9 +66,9 @@ fn modes(c: &Comparison, value: impl Fn(&lining::Row) -> f64) -> (f64, f64) {
 }
 
 fn check_variant(run: &Run, state: ContactState, slip: TunnelSlip) -> Comparison {
-    let contact = run.contact.as_ref().expect("a contact run");
-    assert!(contact.converged, "contact iteration converged");
-    assert!(contact.iterations <= 3, "{} iterations", contact.iterations);
+    let contact = run.contact().expect("a contact run");
+    assert!(contact.summary.converged, "contact iteration converged");
+    assert!(contact.summary.iterations <= 3, "{} iterations", contact.summary.iterations);
     assert!(contact.states.iter().all(|s| *s == state), "every pair {state:?}");
     let Some(Analytic::LinedTunnel(tu)) = &run.scene.analytic else { panic!("a lined tunnel") };
     assert_eq!(tu.slip, slip);
@@ -94,8 +94,8 @@ fn check_variant(run: &Run, state: ContactState, slip: TunnelSlip) -> Comparison
         c.moment_scale,
         100.0 * c.published_moment_error,
         100.0 * c.displacement_error,
-        run.dofs_total,
-        run.timings.total
+        run.stats.dofs.total,
+        run.stats.timings.total
     );
     c
 }
@@ -115,7 +115,7 @@ fn einstein_schwartz_full_slip() {
     let run = case.run(&scene(&case, "tunnel_slip", "tunnel_slip.toml", |s| s)).expect("full-slip run");
     check_variant(&run, ContactState::Slip, TunnelSlip::Full);
     // no shear crosses the interface
-    let pairs = &run.contact.as_ref().expect("contact").pairs;
+    let pairs = &run.contact().expect("contact").pairs;
     let sn = max_abs(pairs.iter().map(|p| p.sigma_n));
     let tau = pairs.iter().map(|p| p.tau_t.hypot(p.tau_b)).fold(0.0, f64::max);
     assert!(sn > 0.3 && tau < 1e-9 * sn, "sigma_n {sn}, tau {tau}");
@@ -132,8 +132,8 @@ fn in_situ_szz_does_not_change_the_plane_answer() {
         t
     });
     let b = case.run(&edited).expect("szz = 0");
-    let scale = max_abs(a.u.iter().copied());
-    let du = a.u.iter().zip(&b.u).fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+    let scale = max_abs(a.last().u.iter().copied());
+    let du = a.last().u.iter().zip(&b.last().u).fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
     assert!(du <= 1e-12 * scale, "displacements differ by {du}");
     for (x, y) in compare(&a).rows.iter().zip(&compare(&b).rows) {
         assert!((x.thrust - y.thrust).abs() < 1e-12 && (x.moment - y.moment).abs() < 1e-12);

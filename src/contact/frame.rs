@@ -12,7 +12,7 @@
 //! when the interface lies in a symmetry plane), and in 3D b is taken along a
 //! supported direction perpendicular to n.
 
-use crate::fem::element::{cross, norm};
+use crate::fem::vec3::{cross, norm};
 
 pub type Frame = [[f64; 3]; 3];
 
@@ -64,7 +64,7 @@ pub fn aligned_axis(frame: &Frame, nd: usize, c: usize) -> Option<(usize, f64)> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fem::element::dot;
+    use crate::fem::vec3::dot;
 
     fn orthonormal(f: &Frame) {
         for i in 0..3 {

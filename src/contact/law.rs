@@ -107,11 +107,14 @@ impl Strength {
 
 /// The paper's rule: every pair judged by eq. 15–17 from its stresses
 /// alone, whatever its state (an open pair carries no stress, so it is
-/// judged stuck again: this rule cycles on opening problems).
-pub fn judge_paper(r: &PairResult, s: &Strength) -> ContactState {
-    if r.sigma_n >= s.tensile_strength {
+/// judged stuck again: this rule cycles on opening problems). A `cracked`
+/// pair (opened or slipped in an earlier step) has `f_t = 0` and the
+/// residual cohesion.
+pub fn judge_paper(r: &PairResult, s: &Strength, cracked: bool) -> ContactState {
+    let (ft, c) = s.effective(cracked);
+    if r.sigma_n >= ft {
         ContactState::Open
-    } else if r.tau() >= s.cohesion - s.friction * r.sigma_n {
+    } else if r.tau() >= c - s.friction * r.sigma_n {
         ContactState::Slip
     } else {
         ContactState::Stick
@@ -248,7 +251,7 @@ mod tests {
         ];
         for ((sn, tau), want) in cases {
             assert_eq!(judge(Stick, &t(sn, tau, 0.0, 0.0), &S, false, true, 0.0), want, "sigma_n {sn} tau {tau}");
-            assert_eq!(judge_paper(&r(sn, tau), &S), want, "paper: sigma_n {sn} tau {tau}");
+            assert_eq!(judge_paper(&r(sn, tau), &S, false), want, "paper: sigma_n {sn} tau {tau}");
         }
         // the shear direction in the joint plane does not matter either
         let diag = Trial { force: [-4.0, 2.1, 2.1], ..t(0.0, 0.0, 0.0, 0.0) };
@@ -262,6 +265,10 @@ mod tests {
         assert_eq!(judge(Stick, &t(0.5, 0.0, 0.0, 0.0), &S, false, true, 0.0), Stick);
         assert_eq!(judge(Stick, &t(0.5, 0.0, 0.0, 0.0), &S, true, true, 0.0), Open);
         assert_eq!(judge(Stick, &t(-1.0, 0.6, 0.0, 0.0), &S, true, true, 0.0), Slip);
+        // the paper's rule too
+        assert_eq!(judge_paper(&r(0.5, 0.0), &S, false), Stick);
+        assert_eq!(judge_paper(&r(0.5, 0.0), &S, true), Open);
+        assert_eq!(judge_paper(&r(-1.0, 0.6), &S, true), Slip);
     }
 
     #[test]
@@ -291,15 +298,16 @@ mod tests {
         assert!(s.above_apex());
         assert_eq!(s.tensile_limit(false), 2.0);
         assert_eq!(judge(Stick, &t(2.5, 0.0, 0.0, 0.0), &s, false, true, 0.0), Open, "above c/f the joint opens");
-        assert_eq!(judge_paper(&r(2.5, 0.0), &s), Slip, "the paper's rule slips there with no shear strength");
+        assert_eq!(judge_paper(&r(2.5, 0.0), &s, false), Slip, "the paper's rule slips there with no shear strength");
         assert!(!S.above_apex());
     }
 
     #[test]
     fn paper_rule_judges_open_pairs_by_their_zero_stress() {
-        assert_eq!(judge_paper(&r(0.0, 0.0), &S), Stick);
-        assert_eq!(judge_paper(&r(2.5, 0.0), &S), Open);
-        assert_eq!(judge_paper(&r(-4.0, 3.0), &S), Slip);
+        assert_eq!(judge_paper(&r(0.0, 0.0), &S, false), Stick);
+        assert_eq!(judge_paper(&r(0.0, 0.0), &S, true), Open, "a cracked pair has f_t = 0: its zero stress keeps it open");
+        assert_eq!(judge_paper(&r(2.5, 0.0), &S, false), Open);
+        assert_eq!(judge_paper(&r(-4.0, 3.0), &S, false), Slip);
     }
 
     #[test]

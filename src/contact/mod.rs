@@ -19,7 +19,9 @@
 //!   shear of the last iteration along its last slip direction (zero with
 //!   `slip = "frictionless"`); cycles are reported, not resolved.
 //!
-//! Both keep the paper's law with its extensions: Coulomb with cohesion,
+//! Both run one skeleton ([`iteration`]: solve, judge, stop) and commit a
+//! converged step in one place ([`commit`]). Both keep the paper's law with
+//! its extensions: Coulomb with cohesion,
 //! tension cut-off, crack memory (a pair that opened or slipped in a
 //! converged state keeps `f_t = 0` and the residual cohesion), re-closure of
 //! open pairs, and states, cracks and slip that carry over from load step
@@ -27,6 +29,7 @@
 
 pub mod basis;
 pub mod frame;
+mod iteration;
 pub mod law;
 pub mod newton;
 pub mod options;
@@ -81,13 +84,13 @@ impl History {
     }
 }
 
-/// How the state iteration of one step ended.
-pub struct Outcome {
-    pub states: Vec<ContactState>,
-    pub solution: InterfaceSolution,
+/// How the state iteration of one step went.
+#[derive(Clone, Debug, Default)]
+pub struct Summary {
     pub iterations: usize,
     pub converged: bool,
-    /// A state set came back after other ones in between.
+    /// A state set came back after other ones in between (paper rule: the
+    /// iteration stops there).
     pub cycled: bool,
     /// Cycles broken by changing one pair at a time (robust rule).
     pub cycles_broken: usize,
@@ -97,7 +100,16 @@ pub struct Outcome {
     pub history: Vec<Vec<ContactState>>,
 }
 
+/// How the state iteration of one step ended: the states it ended with,
+/// the last solve, and how it went.
+pub struct Outcome {
+    pub states: Vec<ContactState>,
+    pub solution: InterfaceSolution,
+    pub summary: Summary,
+}
+
 /// A failed iteration: the failure and the states it happened with.
+#[derive(Clone, Debug)]
 pub struct Failed {
     pub failure: SolveFailure,
     pub states: Vec<ContactState>,
@@ -115,21 +127,14 @@ pub fn iterate(
     max_iterations: usize,
 ) -> Result<Outcome, Failed> {
     match rule {
-        StateRule::Robust => newton::iterate(problem, laws, lambda, h, max_iterations),
-        StateRule::Paper => paper::iterate(problem, laws, lambda, h, max_iterations),
+        StateRule::Robust => iteration::run(newton::Newton::new(problem, laws, h), problem, lambda, h, max_iterations),
+        StateRule::Paper => iteration::run(paper::Paper::new(problem, laws), problem, lambda, h, max_iterations),
     }
 }
 
+/// The tangential part of a vector in a pair's local axes (n, t, b).
 pub(crate) fn tangential(v: [f64; 3]) -> [f64; 3] {
     [0.0, v[1], v[2]]
-}
-
-pub(crate) fn norm(v: [f64; 3]) -> f64 {
-    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
-}
-
-pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
 /// Whether a pair has lost its tensile strength and cohesion: it opened or

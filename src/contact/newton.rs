@@ -29,10 +29,12 @@
 //! cycle the sets alone cannot leave) is broken by changing only the most
 //! violated pair from then on.
 
+use super::iteration::{Rule, Verdict};
 use super::law::{friction_bound, judge, ContactState, Trial};
-use super::system::{InterfaceProblem, InterfaceSolution, Limit, Relation};
-use super::{commit, cracked, limit, norm, sub, tangential, Failed, History, Outcome, PairLaw};
 use super::options::SlipLaw;
+use super::system::{InterfaceProblem, InterfaceSolution, Limit, Relation};
+use super::{cracked, limit, tangential, History, PairLaw, Summary};
+use crate::fem::vec3::{norm, sub};
 
 /// The largest β = b / |ξ| the linearisation uses: k⊥ stays below 1000 c_p
 /// (a pair that just started slipping is nearly tied across its slip).
@@ -41,42 +43,202 @@ const BETA_MAX: f64 = 0.999;
 /// Relative tolerance on the friction force of slipping pairs.
 const FORCE_TOL: f64 = 1e-12;
 
-/// The relation a pair is solved with at this iteration.
-fn relation(h: &History, law: &PairLaw, p: usize, area: f64, c: f64, force: [f64; 3], rel: [f64; 3], reference: [f64; 3]) -> Relation {
-    let state = h.states[p];
-    let target = [0.0, reference[1], reference[2]];
-    if state != ContactState::Slip || law.slip == SlipLaw::Frictionless {
-        return Relation::simple(state, target, [0.0; 3]);
-    }
-    // (a pair that has just closed has p = 0 up to round-off: its bound
-    // grows with the pressure it is about to get)
-    let pk = (-force[0]).max(0.0);
-    let (bk, db) = friction_bound(&law.strength, cracked(h, p), area, pk);
-    let s = sub(tangential(rel), reference);
-    let xi = [0.0, force[1] + c * s[1], force[2] + c * s[2]];
-    let lx = norm(xi);
-    let scale = norm(force) + c * norm(s) + bk;
-    let (n, beta) = if lx > 1e-14 * scale && lx > 0.0 {
-        ([0.0, xi[1] / lx, xi[2] / lx], (bk / lx).min(BETA_MAX))
-    } else if norm(h.dir[p]) > 0.0 {
-        (h.dir[p], 0.0)
-    } else {
-        // no direction yet (a pair that has just closed): no friction this time
-        return Relation::simple(state, target, [0.0; 3]);
-    };
-    let kp = c * beta / (1.0 - beta);
-    let mut spring = [[0.0; 3]; 3];
-    for i in 1..3 {
-        for j in 1..3 {
-            spring[i][j] = kp * (f64::from(u8::from(i == j)) - n[i] * n[j]);
-        }
-    }
-    let mut constant = [0.0; 3];
-    for i in 1..3 {
-        constant[i] = (bk - db * pk) * n[i] - (1..3).map(|j| spring[i][j] * reference[j]).sum::<f64>();
-    }
-    Relation { state, target, force: constant, coupling: [0.0, db * n[1], db * n[2]], spring, pressure: pk, limit: Limit::NONE }
+/// The robust rule through one load step: what it carries from solve to solve.
+pub(super) struct Newton<'p> {
+    problem: &'p InterfaceProblem<'p>,
+    laws: &'p [PairLaw],
+    stiffness: Vec<f64>,
+    /// The stick reference along the joint: where the step starts (no slip
+    /// in this step); a pair open when the step began carries it along
+    /// while it is open (it touches where it is).
+    reference: Vec<[f64; 3]>,
+    start: Vec<ContactState>,
+    /// The last solve's forces and relative displacements (where the
+    /// friction law is linearised).
+    force: Vec<[f64; 3]>,
+    rel: Vec<[f64; 3]>,
+    /// A cycle was met: from then on only the most violated pair changes.
+    one_at_a_time: bool,
+    /// The last solve's forces of junction pairs as if their locked axes
+    /// were tied (what they are judged by: see `InterfaceSolution::as_tied`).
+    as_tied: Vec<Option<[f64; 3]>>,
 }
+
+/// Every pair's next state, and how far each changing pair is from its
+/// current state (relative to the largest force).
+struct Judged {
+    next: Vec<ContactState>,
+    violation: Vec<f64>,
+    /// The largest friction residual of pairs that keep slipping.
+    residual: f64,
+    scale_f: f64,
+}
+
+impl<'p> Newton<'p> {
+    pub fn new(problem: &'p InterfaceProblem<'p>, laws: &'p [PairLaw], h: &History) -> Newton<'p> {
+        let stiffness = (0..laws.len()).map(|p| problem.stiffness(p)).collect();
+        let reference = h.rel_start.iter().map(|&r| tangential(r)).collect();
+        Newton { problem, laws, stiffness, reference, start: h.states.clone(), force: h.force.clone(), rel: h.rel_start.clone(), one_at_a_time: false, as_tied: vec![None; laws.len()] }
+    }
+
+    /// The relation pair `p` is solved with at this iteration.
+    fn relation(&self, h: &History, p: usize) -> Relation {
+        let (law, area, c) = (&self.laws[p], self.problem.area(p), self.stiffness[p]);
+        let (force, rel, reference) = (self.force[p], self.rel[p], self.reference[p]);
+        let state = h.states[p];
+        let target = [0.0, reference[1], reference[2]];
+        if state != ContactState::Slip || law.slip == SlipLaw::Frictionless {
+            return Relation::simple(state, target, [0.0; 3]);
+        }
+        // (a pair that has just closed has p = 0 up to round-off: its bound
+        // grows with the pressure it is about to get)
+        let pk = (-force[0]).max(0.0);
+        let (bk, db) = friction_bound(&law.strength, cracked(h, p), area, pk);
+        let s = sub(tangential(rel), reference);
+        let xi = [0.0, force[1] + c * s[1], force[2] + c * s[2]];
+        let lx = norm(xi);
+        let scale = norm(force) + c * norm(s) + bk;
+        let (n, beta) = if lx > 1e-14 * scale && lx > 0.0 {
+            ([0.0, xi[1] / lx, xi[2] / lx], (bk / lx).min(BETA_MAX))
+        } else if norm(h.dir[p]) > 0.0 {
+            (h.dir[p], 0.0)
+        } else {
+            // no direction yet (a pair that has just closed): no friction this time
+            return Relation::simple(state, target, [0.0; 3]);
+        };
+        let kp = c * beta / (1.0 - beta);
+        let mut spring = [[0.0; 3]; 3];
+        for i in 1..3 {
+            for j in 1..3 {
+                spring[i][j] = kp * (f64::from(u8::from(i == j)) - n[i] * n[j]);
+            }
+        }
+        let mut constant = [0.0; 3];
+        for i in 1..3 {
+            constant[i] = (bk - db * pk) * n[i] - (1..3).map(|j| spring[i][j] * reference[j]).sum::<f64>();
+        }
+        Relation { state, target, force: constant, coupling: [0.0, db * n[1], db * n[2]], spring, pressure: pk, limit: Limit::NONE }
+    }
+
+    /// Judges every pair (1. of the iteration).
+    fn next_states(&self, h: &History) -> Judged {
+        let n = self.laws.len();
+        let (force, rel) = (&self.force, &self.rel);
+        let scale_u = rel.iter().map(|v| norm(*v)).fold(0.0, f64::max);
+        let scale_f = force.iter().map(|f| norm(*f)).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
+        let tol_u = 1e-10 * scale_u;
+        let mut next = h.states.clone();
+        let mut violation = vec![0.0; n];
+        let mut residual: f64 = 0.0;
+        for p in 0..n {
+            let (st, law) = (h.states[p], &self.laws[p]);
+            let area = self.problem.area(p);
+            let cr = cracked(h, p);
+            let slip = sub(tangential(rel[p]), self.reference[p]);
+            let trial = Trial { force: force[p], area, slip, gap: rel[p][0], stiffness: self.stiffness[p] };
+            let coulomb = law.slip == SlipLaw::Coulomb;
+            next[p] = match (self.as_tied[p], st) {
+                // an open junction pair its loop keeps shut: it closes (as
+                // a closing pair does, where it is) unless the force it would
+                // carry closed is tension beyond its strength
+                (Some(f), ContactState::Open) if f[0] >= law.strength.tensile_limit(cr) * area => ContactState::Open,
+                (Some(_), ContactState::Open) => judge(st, &Trial { gap: f64::NEG_INFINITY, ..trial }, &law.strength, cr, coulomb, tol_u),
+                // a slipping one it keeps from slipping: stuck if the loop
+                // can carry its shear within every pair's bound
+                (Some(f), _) => judge(ContactState::Stick, &Trial { force: f, ..trial }, &law.strength, cr, coulomb, tol_u),
+                (None, _) => judge(st, &trial, &law.strength, cr, coulomb, tol_u),
+            };
+            if st == ContactState::Slip && next[p] == ContactState::Slip {
+                residual = residual.max(friction_residual(law, cr, area, self.stiffness[p], force[p], slip));
+            }
+            if next[p] != st {
+                let (b, _) = friction_bound(&law.strength, cr, area, -force[p][0]);
+                violation[p] = match (st, next[p]) {
+                    (_, ContactState::Open) => force[p][0] - law.strength.tensile_limit(cr) * area,
+                    (ContactState::Stick, _) => norm(tangential(force[p])) - b,
+                    (ContactState::Open, _) => -rel[p][0] / scale_u.max(f64::MIN_POSITIVE) * scale_f,
+                    _ => b - norm(trial.xi()),
+                } / scale_f;
+            }
+        }
+        Judged { next, violation, residual, scale_f }
+    }
+
+    /// A state set met before: from now on change only the most violated
+    /// pair (2. of the iteration); true when this iteration met the cycle.
+    fn break_cycle(&mut self, h: &History, judged: &mut Judged, seen: &[Vec<ContactState>]) -> bool {
+        let changed = judged.next != h.states;
+        if !changed || !(self.one_at_a_time || seen.contains(&judged.next)) {
+            return false;
+        }
+        let first = !self.one_at_a_time;
+        self.one_at_a_time = true;
+        let v = &judged.violation;
+        let worst = (0..v.len()).filter(|&p| judged.next[p] != h.states[p]).max_by(|&a, &b| v[a].total_cmp(&v[b]).then(b.cmp(&a)));
+        let keep = worst.expect("some pair changes");
+        for p in 0..v.len() {
+            if p != keep {
+                judged.next[p] = h.states[p];
+            }
+        }
+        first
+    }
+
+    /// Pairs that open in tension below their f_t: the Coulomb apex c / f
+    /// opened them.
+    fn apex_openings(&self, h: &History, next: &[ContactState]) -> usize {
+        (0..next.len())
+            .filter(|&p| next[p] == ContactState::Open && h.states[p] != ContactState::Open)
+            .filter(|&p| {
+                let (ft, _) = self.laws[p].strength.effective(cracked(h, p));
+                self.force[p][0] < ft * self.problem.area(p)
+            })
+            .count()
+    }
+}
+
+impl Rule for Newton<'_> {
+    fn relations(&self, h: &History) -> Vec<Relation> {
+        (0..self.laws.len()).map(|p| self.relation(h, p).within(limit(&self.laws[p], cracked(h, p), self.problem.area(p)))).collect()
+    }
+
+    fn judge(&mut self, h: &mut History, solution: &InterfaceSolution, summary: &mut Summary) -> Verdict {
+        self.force.clone_from(&solution.forces);
+        self.rel.clone_from(&solution.rel);
+        self.as_tied.clone_from(&solution.as_tied);
+        for p in 0..self.laws.len() {
+            if h.states[p] == ContactState::Open && self.start[p] == ContactState::Open {
+                self.reference[p] = tangential(self.rel[p]);
+            }
+        }
+        // 1. the next state of every pair; 2. a cycle broken
+        let mut judged = self.next_states(h);
+        if self.break_cycle(h, &mut judged, &summary.history) {
+            summary.cycles_broken += 1;
+        }
+        summary.apex_openings += self.apex_openings(h, &judged.next);
+        // 3. directions of slipping pairs (a fallback where ξ vanishes)
+        for p in 0..self.laws.len() {
+            if judged.next[p] == ContactState::Slip {
+                let slip = sub(tangential(self.rel[p]), self.reference[p]);
+                let c = self.stiffness[p];
+                let xi = [0.0, self.force[p][1] + c * slip[1], self.force[p][2] + c * slip[2]];
+                let l = norm(xi);
+                if l > 0.0 {
+                    h.dir[p] = [0.0, xi[1] / l, xi[2] / l];
+                }
+            }
+            h.sigma_n[p] = solution.pairs[p].sigma_n;
+        }
+        Verdict { settled: judged.residual <= FORCE_TOL * judged.scale_f, next: judged.next }
+    }
+
+    /// The stick references of this step are where its pairs are tied from now on.
+    fn commit(self, h: &mut History) {
+        h.offset = self.reference;
+    }
+}
+
 
 /// How far a slipping pair's force is from the nonlinear law, `|λ_T - b ξ/|ξ||`.
 fn friction_residual(law: &PairLaw, cracked: bool, area: f64, c: f64, force: [f64; 3], slip: [f64; 3]) -> f64 {
@@ -93,127 +255,3 @@ fn friction_residual(law: &PairLaw, cracked: bool, area: f64, c: f64, force: [f6
     norm([0.0, lt[1] - b * xi[1] / lx, lt[2] - b * xi[2] / lx])
 }
 
-pub fn iterate(problem: &InterfaceProblem, laws: &[PairLaw], lambda: &[f64], h: &mut History, max_iterations: usize) -> Result<Outcome, Failed> {
-    let n = laws.len();
-    let stiffness: Vec<f64> = (0..n).map(|p| problem.stiffness(p)).collect();
-    // The stick reference along the joint: where the step starts (no slip
-    // in this step); a pair open when the step began carries it along while
-    // it is open (it touches where it is).
-    let mut reference: Vec<[f64; 3]> = h.rel_start.iter().map(|&r| tangential(r)).collect();
-    let start = h.states.clone();
-    let mut force = h.force.clone();
-    let mut rel = h.rel_start.clone();
-    let mut history: Vec<Vec<ContactState>> = Vec::new();
-    let mut iteration = 0;
-    let mut one_at_a_time = false;
-    let mut cycles_broken = 0;
-    let mut apex_openings = 0;
-    loop {
-        iteration += 1;
-        let relations: Vec<Relation> =
-            (0..n).map(|p| relation(h, &laws[p], p, problem.area(p), stiffness[p], force[p], rel[p], reference[p]).within(limit(&laws[p], cracked(h, p), problem.area(p)))).collect();
-        let solution: InterfaceSolution = problem.solve(&relations, lambda).map_err(|failure| Failed { failure, states: h.states.clone(), iteration })?;
-        history.push(h.states.clone());
-        force.clone_from(&solution.forces);
-        rel.clone_from(&solution.rel);
-        for p in 0..n {
-            if h.states[p] == ContactState::Open && start[p] == ContactState::Open {
-                reference[p] = tangential(rel[p]);
-            }
-        }
-        let scale_u = rel.iter().map(|v| norm(*v)).fold(0.0, f64::max);
-        let scale_f = force.iter().map(|f| norm(*f)).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
-        let tol_u = 1e-10 * scale_u;
-
-        // 1. the next state of every pair, and how far it is from its current one
-        let mut next = h.states.clone();
-        let mut violation = vec![0.0; n];
-        let mut residual: f64 = 0.0;
-        for p in 0..n {
-            let (st, law) = (h.states[p], &laws[p]);
-            let area = problem.area(p);
-            let cr = cracked(h, p);
-            let slip = sub(tangential(rel[p]), reference[p]);
-            let trial = Trial { force: force[p], area, slip, gap: rel[p][0], stiffness: stiffness[p] };
-            next[p] = match (solution.as_tied[p], st) {
-                // an open junction pair its loop keeps shut: it closes (as
-                // a closing pair does, where it is) unless the force it would
-                // carry closed is tension beyond its strength
-                (Some(f), ContactState::Open) if f[0] >= law.strength.tensile_limit(cr) * area => ContactState::Open,
-                (Some(_), ContactState::Open) => judge(st, &Trial { gap: f64::NEG_INFINITY, ..trial }, &law.strength, cr, law.slip == SlipLaw::Coulomb, tol_u),
-                // a slipping one it keeps from slipping: stuck if the loop
-                // can carry its shear within every pair's bound
-                (Some(f), _) => judge(ContactState::Stick, &Trial { force: f, ..trial }, &law.strength, cr, law.slip == SlipLaw::Coulomb, tol_u),
-                (None, _) => judge(st, &trial, &law.strength, cr, law.slip == SlipLaw::Coulomb, tol_u),
-            };
-            if st == ContactState::Slip && next[p] == ContactState::Slip {
-                residual = residual.max(friction_residual(law, cr, area, stiffness[p], force[p], slip));
-            }
-            if next[p] != st {
-                let (b, _) = friction_bound(&law.strength, cr, area, -force[p][0]);
-                violation[p] = match (st, next[p]) {
-                    (_, ContactState::Open) => force[p][0] - law.strength.tensile_limit(cr) * area,
-                    (ContactState::Stick, _) => norm(tangential(force[p])) - b,
-                    (ContactState::Open, _) => -rel[p][0] / scale_u.max(f64::MIN_POSITIVE) * scale_f,
-                    _ => b - norm(trial.xi()),
-                } / scale_f;
-            }
-        }
-        // 2. a cycle: from now on change only the most violated pair
-        let changed = next != h.states;
-        if std::env::var("SUBCONTACT_DEBUG").is_ok() {
-            let ch: Vec<String> = (0..n).filter(|&p| next[p] != h.states[p]).map(|p| format!("{p}{}:{:?}->{:?}", if solution.as_tied[p].is_some() {"*"} else {""}, h.states[p], next[p])).collect();
-            eprintln!("it {iteration}: {} changes residual {residual:.2e} {}", ch.len(), ch.iter().take(12).cloned().collect::<Vec<_>>().join(" "));
-            if let Ok(list) = std::env::var("SUBCONTACT_WATCH") {
-                for p in list.split(',').filter_map(|x| x.parse::<usize>().ok()) {
-                    eprintln!("   {p}: {:?}->{:?} f={:?} tied={:?} rel={:?}", h.states[p], next[p], force[p], solution.as_tied[p].map(|f| f.map(|v| (v * 1e4).round() / 1e4)), rel[p]);
-                }
-            }
-        }
-        if changed && (one_at_a_time || history.iter().any(|old| *old == next)) {
-            if !one_at_a_time {
-                one_at_a_time = true;
-                cycles_broken += 1;
-            }
-            let worst = (0..n).filter(|&p| next[p] != h.states[p]).max_by(|&a, &b| violation[a].total_cmp(&violation[b]).then(b.cmp(&a)));
-            let keep = worst.expect("some pair changes");
-            for p in 0..n {
-                if p != keep {
-                    next[p] = h.states[p];
-                }
-            }
-        }
-        for p in (0..n).filter(|&p| next[p] == ContactState::Open && h.states[p] != ContactState::Open) {
-            let s = &laws[p].strength;
-            let (ft, _) = s.effective(cracked(h, p));
-            if force[p][0] < ft * problem.area(p) {
-                apex_openings += 1;
-            }
-        }
-        // 3. directions of slipping pairs (a fallback where ξ vanishes)
-        for p in 0..n {
-            if next[p] == ContactState::Slip {
-                let slip = sub(tangential(rel[p]), reference[p]);
-                let xi = [0.0, force[p][1] + stiffness[p] * slip[1], force[p][2] + stiffness[p] * slip[2]];
-                let l = norm(xi);
-                if l > 0.0 {
-                    h.dir[p] = [0.0, xi[1] / l, xi[2] / l];
-                }
-            }
-            h.sigma_n[p] = solution.pairs[p].sigma_n;
-        }
-        // (a loose interface solve is never the answer: the next, with the
-        // same states, is solved tightly)
-        let converged = !changed && residual <= FORCE_TOL * scale_f && !solution.loose;
-        if converged || iteration >= max_iterations {
-            if converged {
-                commit(h, &solution);
-                h.offset = reference;
-            }
-            let states = h.states.clone();
-            h.states = next;
-            return Ok(Outcome { states, solution, iterations: iteration, converged, cycled: false, cycles_broken, apex_openings, history });
-        }
-        h.states = next;
-    }
-}

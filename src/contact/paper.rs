@@ -6,31 +6,44 @@
 //! `slip = "frictionless"`, the paper's own slip), so the iteration also runs
 //! until that shear has settled. A state set that comes back after others is
 //! a cycle: it is reported, not resolved (the robust rule resolves it).
+//! Pairs that opened or slipped in a converged step are judged cracked in
+//! the steps after it (f_t = 0, the residual cohesion), as by the robust rule.
 
+use super::iteration::{Rule, Verdict};
 use super::law::{judge_paper, ContactState, PairResult};
-use super::system::{InterfaceProblem, Relation};
-use super::{cracked, limit, norm, sub, tangential, Failed, History, Outcome, PairLaw};
 use super::options::SlipLaw;
+use super::system::{InterfaceProblem, InterfaceSolution, Relation};
+use super::{cracked, limit, tangential, History, PairLaw, Summary};
+use crate::fem::vec3::{norm, sub};
 
-/// The friction force on body I of every slipping Coulomb pair.
-fn friction(problem: &InterfaceProblem, laws: &[PairLaw], h: &History, p: usize) -> [f64; 3] {
-    if h.states[p] != ContactState::Slip || laws[p].slip == SlipLaw::Frictionless {
-        return [0.0; 3];
-    }
-    let t = laws[p].strength.shear_limit(h.sigma_n[p], cracked(h, p)) * problem.area(p);
-    [0.0, t * h.dir[p][1], t * h.dir[p][2]]
+/// The paper's rule through one load step.
+pub(super) struct Paper<'p> {
+    problem: &'p InterfaceProblem<'p>,
+    laws: &'p [PairLaw],
 }
 
-pub fn iterate(problem: &InterfaceProblem, laws: &[PairLaw], lambda: &[f64], h: &mut History, max_iterations: usize) -> Result<Outcome, Failed> {
-    let n = laws.len();
-    let mut history: Vec<Vec<ContactState>> = Vec::new();
-    let mut iteration = 0;
-    loop {
-        iteration += 1;
-        let relations: Vec<Relation> =
-            (0..n).map(|p| Relation::simple(h.states[p], h.offset[p], friction(problem, laws, h, p)).within(limit(&laws[p], cracked(h, p), problem.area(p)))).collect();
-        let solution = problem.solve(&relations, lambda).map_err(|failure| Failed { failure, states: h.states.clone(), iteration })?;
-        history.push(h.states.clone());
+impl<'p> Paper<'p> {
+    pub fn new(problem: &'p InterfaceProblem<'p>, laws: &'p [PairLaw]) -> Paper<'p> {
+        Paper { problem, laws }
+    }
+
+    /// The friction force on body I of a slipping Coulomb pair.
+    fn friction(&self, h: &History, p: usize) -> [f64; 3] {
+        if h.states[p] != ContactState::Slip || self.laws[p].slip == SlipLaw::Frictionless {
+            return [0.0; 3];
+        }
+        let t = self.laws[p].strength.shear_limit(h.sigma_n[p], cracked(h, p)) * self.problem.area(p);
+        [0.0, t * h.dir[p][1], t * h.dir[p][2]]
+    }
+}
+
+impl Rule for Paper<'_> {
+    fn relations(&self, h: &History) -> Vec<Relation> {
+        (0..self.laws.len()).map(|p| Relation::simple(h.states[p], h.offset[p], self.friction(h, p)).within(limit(&self.laws[p], cracked(h, p), self.problem.area(p)))).collect()
+    }
+
+    fn judge(&mut self, h: &mut History, solution: &InterfaceSolution, summary: &mut Summary) -> Verdict {
+        let n = self.laws.len();
         let r = &solution.pairs;
         let scale_u = solution.rel.iter().map(|v| norm(*v)).fold(0.0, f64::max);
         let scale_s = r.iter().map(|p| p.sigma_n.abs().max(p.tau())).fold(0.0, f64::max);
@@ -39,14 +52,13 @@ pub fn iterate(problem: &InterfaceProblem, laws: &[PairLaw], lambda: &[f64], h: 
         // a junction pair its loop locks is judged by the forces it would carry tied
         let judged = |p: usize| match solution.as_tied[p] {
             Some(f) => {
-                let a = problem.area(p);
+                let a = self.problem.area(p);
                 PairResult { sigma_n: f[0] / a, tau_t: f[1] / a, tau_b: f[2] / a, ..r[p] }
             }
             None => r[p],
         };
-        let next: Vec<ContactState> = (0..n).map(|p| judge_paper(&judged(p), &laws[p].strength)).collect();
-        let changed = next != h.states;
-        let cycled = changed && history.iter().any(|old| *old == next);
+        let next: Vec<ContactState> = (0..n).map(|p| judge_paper(&judged(p), &self.laws[p].strength, h.cracked[p])).collect();
+        summary.cycled = next != h.states && summary.history.contains(&next);
 
         // carry the new states: friction directions, offsets; and how far
         // the Coulomb shear of slipping pairs still moves
@@ -55,7 +67,8 @@ pub fn iterate(problem: &InterfaceProblem, laws: &[PairLaw], lambda: &[f64], h: 
             let (st, nx) = (h.states[p], next[p]);
             let incr = tangential(sub(solution.rel[p], h.rel_start[p]));
             let cr = cracked(h, p);
-            let limit = |sigma_n: f64| laws[p].strength.shear_limit(sigma_n, cr);
+            let coulomb = st == ContactState::Slip && self.laws[p].slip == SlipLaw::Coulomb;
+            let limit = |sigma_n: f64| self.laws[p].strength.shear_limit(sigma_n, cr);
             if nx == ContactState::Slip {
                 // entering slip: friction keeps the direction of the stick shear
                 let d = if st == ContactState::Stick || norm(incr) <= tol_u {
@@ -71,12 +84,12 @@ pub fn iterate(problem: &InterfaceProblem, laws: &[PairLaw], lambda: &[f64], h: 
                 let l = norm(d);
                 if l > 0.0 {
                     let new = [0.0, d[1] / l, d[2] / l];
-                    if st == ContactState::Slip && laws[p].slip == SlipLaw::Coulomb {
+                    if coulomb {
                         shear_moved = shear_moved.max(norm(sub(new, h.dir[p])) * limit(r[p].sigma_n));
                     }
                     h.dir[p] = new;
                 }
-                if st == ContactState::Slip && laws[p].slip == SlipLaw::Coulomb {
+                if coulomb {
                     shear_moved = shear_moved.max((limit(r[p].sigma_n) - limit(h.sigma_n[p])).abs());
                 }
             }
@@ -87,19 +100,6 @@ pub fn iterate(problem: &InterfaceProblem, laws: &[PairLaw], lambda: &[f64], h: 
             }
             h.sigma_n[p] = r[p].sigma_n;
         }
-        let settled = shear_moved <= 1e-12 * scale_s.max(f64::MIN_POSITIVE);
-        // (a loose interface solve is never the answer: the next, with the
-        // same states, is solved tightly)
-        let converged = !changed && settled && !solution.loose;
-        if converged || cycled || iteration >= max_iterations {
-            if converged {
-                h.rel_start = solution.rel.clone();
-                h.force = solution.forces.clone();
-            }
-            let states = h.states.clone();
-            h.states = next;
-            return Ok(Outcome { states, solution, iterations: iteration, converged, cycled, cycles_broken: 0, apex_openings: 0, history });
-        }
-        h.states = next;
+        Verdict { next, settled: shear_moved <= 1e-12 * scale_s.max(f64::MIN_POSITIVE) }
     }
 }

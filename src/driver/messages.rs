@@ -1,69 +1,206 @@
-//! The messages of a failed contact iteration: which bodies nothing holds,
-//! or which slide freely, at which load step and iteration, and what to do.
+//! The driver's typed errors and the one paragraph each becomes: a failed
+//! contact iteration ([`ContactError`]: bodies nothing holds, bodies that
+//! slide freely, a step that did not converge, ...) and a plan the MPI ranks
+//! cannot follow ([`PlanError`]). Tests match the variants; a person reads
+//! the paragraph, which names the scene, the load step and iteration, and
+//! says what to do.
 
-use crate::contact::{self, system::SolveFailure};
+use std::fmt;
+use std::path::PathBuf;
+
+use crate::contact::law::ContactState;
+use crate::contact::system::SolveFailure;
+use crate::contact::{Failed, SlipLaw, StateRule};
 use crate::model::Model;
 use crate::results::state_counts;
 use crate::scene::Scene;
 use crate::substructure::Part;
 
-/// The one-paragraph message of a failed contact iteration; `parts` are the
-/// parts in the interface's order.
-pub(super) fn failure_message(model: &Model, parts: &[&Part], scene: &Scene, step: usize, f: contact::Failed) -> String {
-    let at = if scene.solver.load_steps > 1 { format!("load step {step}, ") } else { String::new() };
-    let counts = state_counts(&f.states);
-    match f.failure {
-        SolveFailure::NotHeld(ids) => {
+/// Where in a run a contact iteration failed.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct At {
+    /// The load step, when the scene has several.
+    pub step: Option<usize>,
+    pub iteration: usize,
+    /// How many pairs were open, slipping and stuck then.
+    pub states: [usize; 3],
+}
+
+/// A contact whose tensile strength exceeds its Coulomb apex c / f: the
+/// robust rule opens its pairs at c / f already.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Apex {
+    /// Its index in the scene's `[[contacts]]`.
+    pub contact: usize,
+    /// c / f, and the tensile strength the scene gives.
+    pub opens_at: f64,
+    pub tensile_strength: f64,
+}
+
+/// Why the contact iteration of a run failed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ContactError {
+    /// Bodies held by nothing once their contact pairs opened.
+    NotHeld { scene: PathBuf, at: At, bodies: Vec<String>, apex: Vec<Apex> },
+    /// Bodies that slide or rotate freely on their slipping pairs (none
+    /// named when the cause was not found). `no_shear`: their slipping
+    /// contacts carry no shear at all (no friction and no cohesion, or
+    /// frictionless slip), so no load along the joint is to blame.
+    Sliding { scene: PathBuf, at: At, bodies: Vec<String>, no_shear: bool },
+    /// A load step's iteration did not converge after `iterations`
+    /// (`cycled`: its states cycle); `results`: where the last iteration's
+    /// results were written.
+    NotConverged { scene: PathBuf, step: Option<usize>, iterations: usize, cycled: bool, results: Option<PathBuf> },
+    /// Substructures joined by bonded interfaces alone, and that system singular.
+    BondedNotHeld { scene: PathBuf },
+    /// The interface mass matrix of the consistent traction recovery could
+    /// not be factorised.
+    Traction { scene: PathBuf, reason: String },
+}
+
+/// Why the parts cannot be spread over the MPI ranks.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum PlanError {
+    /// More ranks than parts; `substructures`: the cut the scene asked for.
+    TooManyRanks { scene: PathBuf, ranks: usize, parts: usize, substructures: usize },
+}
+
+impl std::error::Error for ContactError {}
+impl std::error::Error for PlanError {}
+
+impl ContactError {
+    /// The error of a failed iteration at load step `step`; `parts` are the
+    /// parts in the interface's order.
+    pub(super) fn failed(model: &Model, parts: &[Part], scene: &Scene, step: usize, f: Failed) -> ContactError {
+        let at = At { step: (scene.solver.load_steps > 1).then_some(step), iteration: f.iteration, states: state_counts(&f.states) };
+        let names = |ids: &[usize]| -> Vec<String> {
             let mut bodies: Vec<usize> = ids.iter().flat_map(|&i| parts[i].bodies.iter().copied()).collect();
             bodies.sort_unstable();
             bodies.dedup();
-            let one = bodies.len() == 1;
-            format!(
-                "{path}: {what} {names} {verb} held by nothing at {at}contact iteration {it} ({stick} stick, {slip} slip, {open} open): {its} contact pairs opened and no support holds {it_them}{apex}. Add a support, or check the loads that pull the contact apart",
-                apex = apex_note(scene),
-                path = scene.path.display(),
-                at = at,
-                what = if one { "body" } else { "bodies" },
-                names = model.body_names(&bodies),
-                verb = if one { "is" } else { "are" },
-                it = f.iteration,
-                stick = counts[2],
-                slip = counts[1],
-                open = counts[0],
-                its = if one { "its" } else { "their" },
-                it_them = if one { "it" } else { "them" },
-            )
-        }
-        SolveFailure::Singular(ids) => {
-            let mut bodies: Vec<usize> = ids.iter().flat_map(|&i| parts[i].bodies.iter().copied()).collect();
-            bodies.sort_unstable();
-            bodies.dedup();
-            format!(
-                "{}: the interface system is singular at {at}contact iteration {} ({} stick, {} slip, {} open): {} slides or rotates freely on its contacts — loss of equilibrium: the load along the contact exceeds what friction and cohesion can carry. Reduce the load, or add a support that holds it tangentially, or friction",
-                scene.path.display(),
-                f.iteration,
-                counts[2],
-                counts[1],
-                counts[0],
-                if bodies.is_empty() { "a body".to_string() } else { format!("{} {}", if bodies.len() == 1 { "body" } else { "bodies" }, model.body_names(&bodies)) },
-            )
+            bodies.iter().map(|&b| model.bodies[b].name.clone()).collect()
+        };
+        let scene_path = scene.path.clone();
+        match f.failure {
+            SolveFailure::NotHeld(ids) => ContactError::NotHeld { scene: scene_path, at, bodies: names(&ids), apex: apex(scene) },
+            SolveFailure::Sliding(ids) => {
+                let bodies = names(&ids);
+                let no_shear = no_shear(model, scene, &f.states, &bodies);
+                ContactError::Sliding { scene: scene_path, at, bodies, no_shear }
+            }
         }
     }
 }
 
 /// Where a contact's f_t exceeds the Coulomb apex c / f, the robust rule
-/// opens its pairs at c / f already: say so where they let a body go.
-fn apex_note(scene: &Scene) -> String {
-    let which: Vec<String> = scene
-        .contacts
-        .iter()
-        .enumerate()
+/// opens its pairs at c / f already: worth saying where they let a body go.
+fn apex(scene: &Scene) -> Vec<Apex> {
+    if scene.solver.rule != StateRule::Robust {
+        return Vec::new();
+    }
+    (scene.contacts.iter().enumerate())
         .filter(|(_, c)| c.friction > 0.0 && c.tensile_strength > c.cohesion / c.friction)
-        .map(|(i, c)| format!("contacts[{i}] opens at c / f = {} (its tensile_strength {} exceeds that Coulomb apex: no shear strength is left there)", c.cohesion / c.friction, c.tensile_strength))
-        .collect();
-    if which.is_empty() || scene.solver.rule != crate::contact::StateRule::Robust {
-        String::new()
-    } else {
-        format!(" ({})", which.join("; "))
+        .map(|(i, c)| Apex { contact: i, opens_at: c.cohesion / c.friction, tensile_strength: c.tensile_strength })
+        .collect()
+}
+
+/// Whether every slipping pair on the named bodies (all of them when none
+/// is named) belongs to a contact that carries no shear once slipping: no
+/// friction and no residual cohesion, or frictionless slip.
+fn no_shear(model: &Model, scene: &Scene, states: &[ContactState], bodies: &[String]) -> bool {
+    let mut body_of = vec![usize::MAX; model.n_nodes()];
+    for (b, body) in model.bodies.iter().enumerate() {
+        body.cells.iter().flat_map(|c| &c.nodes).for_each(|&n| body_of[n] = b);
+    }
+    let named = |n: usize| bodies.is_empty() || model.bodies.get(body_of[n]).is_some_and(|b| bodies.contains(&b.name));
+    let mut slipping = (model.pairs.iter().zip(states)).filter(|(p, &s)| s == ContactState::Slip && (named(p.k) || named(p.l))).peekable();
+    slipping.peek().is_some()
+        && slipping.all(|(p, _)| {
+            let c = &scene.contacts[p.contact];
+            c.slip == SlipLaw::Frictionless || (c.friction == 0.0 && c.residual_cohesion == 0.0)
+        })
+}
+
+/// "body \"a\"" or "bodies \"a\", \"b\"".
+fn bodies_named(bodies: &[String]) -> String {
+    let names = bodies.iter().map(|b| format!("\"{b}\"")).collect::<Vec<_>>().join(", ");
+    format!("{} {names}", if bodies.len() == 1 { "body" } else { "bodies" })
+}
+
+impl fmt::Display for At {
+    /// "[load step k, ]contact iteration i (s stick, l slip, o open)".
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if let Some(k) = self.step {
+            write!(f, "load step {k}, ")?;
+        }
+        write!(f, "contact iteration {} ({} stick, {} slip, {} open)", self.iteration, self.states[2], self.states[1], self.states[0])
+    }
+}
+
+impl fmt::Display for ContactError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ContactError::NotHeld { scene, at, bodies, apex } => {
+                let one = bodies.len() == 1;
+                let apex = if apex.is_empty() {
+                    String::new()
+                } else {
+                    let each: Vec<String> = apex
+                        .iter()
+                        .map(|a| format!("contacts[{}] opens at c / f = {} (its tensile_strength {} exceeds that Coulomb apex: no shear strength is left there)", a.contact, a.opens_at, a.tensile_strength))
+                        .collect();
+                    format!(" ({})", each.join("; "))
+                };
+                write!(
+                    f,
+                    "{}: {} {} held by nothing at {at}: {} contact pairs opened and no support holds {}{apex}. Add a support, or check the loads that pull the contact apart",
+                    scene.display(),
+                    bodies_named(bodies),
+                    if one { "is" } else { "are" },
+                    if one { "its" } else { "their" },
+                    if one { "it" } else { "them" },
+                )
+            }
+            ContactError::Sliding { scene, at, bodies, no_shear } => {
+                let (who, moves, its) = match bodies.len() {
+                    0 => ("a body".to_string(), "slides or rotates", "its"),
+                    1 => (bodies_named(bodies), "slides or rotates", "its"),
+                    _ => (bodies_named(bodies), "slide or rotate", "their"),
+                };
+                write!(f, "{}: the interface system is singular at {at}: {who} {moves} freely on {its} contacts", scene.display())?;
+                if *no_shear {
+                    write!(f, ", which carry no shear (no friction and no cohesion, or slip = \"frictionless\"): nothing holds {} along them, whatever the load. Add a support that holds {} tangentially, or give the contacts friction or cohesion", if bodies.len() > 1 { "them" } else { "it" }, if bodies.len() > 1 { "them" } else { "it" })
+                } else {
+                    write!(f, " — loss of equilibrium: the load along the contact exceeds what friction and cohesion can carry. Reduce the load, add a support that holds {} tangentially, or raise the friction or cohesion of {its} contacts", if bodies.len() > 1 { "them" } else { "it" })
+                }
+            }
+            ContactError::NotConverged { scene, step, iterations, cycled, results } => {
+                write!(f, "{}: the contact iteration did not converge", scene.display())?;
+                if let Some(k) = step {
+                    write!(f, " at load step {k}")?;
+                }
+                write!(f, " after {iterations} iteration(s){}", if *cycled { " (the states cycle)" } else { "" })?;
+                if let Some(out) = results {
+                    write!(f, "; the results in {} are those of the last iteration (summary.json contact.converged = false, report.md lists the last two state sets). Try more [solver] max_iterations, more load steps, or the default rule = \"robust\"", out.display())?;
+                }
+                Ok(())
+            }
+            ContactError::BondedNotHeld { scene } => write!(f, "{}: the bonded interface system of the substructures is singular: a body is not held", scene.display()),
+            ContactError::Traction { scene, reason } => write!(f, "{}: consistent contact traction: the interface mass matrix: {reason}", scene.display()),
+        }
+    }
+}
+
+impl fmt::Display for PlanError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            PlanError::TooManyRanks { scene, ranks, parts, substructures } => {
+                let more = ranks.div_ceil((*parts).max(1)) * (*substructures).max(1);
+                write!(
+                    f,
+                    "{}: {ranks} MPI ranks but the model has {parts} part(s): every rank needs a part. Cut the bodies into more substructures ([solver] substructures = {more} or --substructures {more}), or run on at most {parts} rank(s)",
+                    scene.display()
+                )
+            }
+        }
     }
 }

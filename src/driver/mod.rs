@@ -1,23 +1,37 @@
-//! The pipeline of one run, in the order data flows:
+//! The pipeline of one run, in the order data flows, on one process or
+//! spread over MPI ranks ([`ranks`]: the only code that knows rank 0 from
+//! the others):
 //!
 //! 1. read and validate the scene;
 //! 2. mesh the .geo with the gmsh CLI (cached) or read the .msh;
 //! 3. build the model: bodies, loads, supports, contact pairs;
-//! 4. assemble and factorise every part once, condensing it onto its
-//!    contact interface (parts without contact are solved directly);
-//! 5. iterate the contact states on the interface system;
-//! 6. recover interior displacements and stresses, errors and probes;
-//! 7. run the check the scene's `[analytic]` asks for, then write every
-//!    result file at once (none when anything failed).
+//! 4. [`plan`] the parts (bodies joined by shared nodes, cut into
+//!    substructures), their owner ranks and how they are condensed;
+//!    [`condense`] them, each rank its own (parts without contact are
+//!    solved directly), and set up the interface on rank 0;
+//! 5. and 6. the load [`steps`]: iterate the contact states on the
+//!    interface, recover interior displacements and stresses;
+//! 7. errors and probes of the last step, the check the scene's
+//!    `[analytic]` asks for, then every result file at once (none when
+//!    anything failed).
+//!
+//! Each stage returns plain data; [`stats`] turns what they measured into
+//! the run's statistics and [`messages`] turns their failures into one
+//! paragraph each.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use anyhow::{bail, Context, Result};
+use anyhow::{Context, Result};
 
+mod condense;
 mod messages;
-mod remote;
-mod solve;
+mod plan;
+mod ranks;
+mod stats;
+mod steps;
+
+pub use messages::{Apex, At, ContactError, PlanError};
 
 use crate::analytic;
 use crate::contact::law::PairResult;
@@ -25,12 +39,13 @@ use crate::contact::InterfaceSolver;
 use crate::mesh::{gmsh, msh, Mesh};
 use crate::model::Model;
 use crate::output;
-use crate::parallel::{Comm, CommExt, Serial};
+use crate::parallel::{Comm, Serial};
 use crate::recover;
 use crate::scene::{MeshSource, Scene};
 
 // what a run returns, defined in `results` (which the writers read)
-pub use crate::results::{state_counts, ContactRun, Counters, RankStats, Run, StepResult, Timings};
+pub use crate::results::{state_counts, Checks, ContactRun, Counters, RankStats, Run, Stats, StepResult, Timings};
+use crate::substructure::Condensation;
 
 /// Options of a run beyond the scene.
 #[derive(Clone, Debug, Default)]
@@ -48,6 +63,13 @@ pub struct RunOptions {
     pub verbose: bool,
     /// Compute everything but write no result files (benchmarks).
     pub skip_output: bool,
+}
+
+impl RunOptions {
+    /// Where the results of `scene` go: `out`, or `results/<scene name>`.
+    pub fn out_dir(&self, scene: &Scene) -> PathBuf {
+        self.out.clone().unwrap_or_else(|| PathBuf::from("results").join(&scene.name))
+    }
 }
 
 fn progress(opts: &RunOptions, msg: &str) {
@@ -87,44 +109,26 @@ pub fn run_scene(scene: Scene, opts: &RunOptions) -> Result<Run> {
     Ok(run_on(scene, opts, &Serial)?.expect("one process is rank 0"))
 }
 
-/// The path of the mesh a scene reads (the gmsh output for a .geo).
-fn mesh_path(scene: &Scene, out: &Path) -> PathBuf {
-    match &scene.mesh {
-        MeshSource::Msh(p) => p.clone(),
-        MeshSource::Geo(_) => out.join("mesh").join(format!("{}.msh", scene.name)),
-    }
-}
-
 /// Runs a validated scene on the ranks of `comm`: every rank builds the
 /// model and condenses its parts; rank 0 meshes, iterates, recovers the
 /// stresses, writes the results and gets the [`Run`] (the others `None`).
 pub fn run_on(mut scene: Scene, opts: &RunOptions, comm: &dyn Comm) -> Result<Option<Run>> {
     let t0 = Instant::now();
-    let mut timings = Timings::default();
     // sparse work is sequential: parts run side by side instead (threads, ranks)
     faer::set_global_parallelism(faer::Par::Seq);
-    let root = comm.is_root();
-    let opts = &RunOptions { verbose: opts.verbose && root, ..opts.clone() };
+    let opts = &ranks::options(comm, opts);
 
     // 1. Scene.
     if opts.bonded {
         scene.contacts.clear();
     }
-    let out = opts.out.clone().unwrap_or_else(|| PathBuf::from("results").join(&scene.name));
+    let out = opts.out_dir(&scene);
 
     // 2. Mesh: rank 0 runs gmsh, then every rank reads the file.
     progress(opts, "meshing");
     let t = Instant::now();
-    let meshed = if root { load_mesh(&scene, &out).map(Some) } else { Ok(None) };
-    let meshed = solve::agree(comm, meshed)?;
-    let (mesh, msh_path, mesh_cached) = match meshed {
-        Some(m) => m,
-        None => {
-            let p = mesh_path(&scene, &out);
-            (msh::read_msh(&p)?, p, true)
-        }
-    };
-    timings.mesh = t.elapsed().as_secs_f64();
+    let (mesh, msh, mesh_cached) = ranks::mesh(comm, &scene, &out)?;
+    let mut timings = Timings { mesh: t.elapsed().as_secs_f64(), ..Default::default() };
 
     // 3. Model.
     let t = Instant::now();
@@ -132,101 +136,85 @@ pub fn run_on(mut scene: Scene, opts: &RunOptions, comm: &dyn Comm) -> Result<Op
     drop(mesh);
     timings.model = t.elapsed().as_secs_f64();
 
-    // 4.–6. Parts, condensation, contact iteration, recovery.
-    let Some(solved) = solve::solve(&scene, &model, opts, comm, &mut timings)? else {
-        return Ok(None);
-    };
-    let steps = solved.steps;
+    // 4. Parts, owners, condensation, the interface.
+    let plan = plan::plan(&scene, &model, opts, comm.size())?;
+    let ranks = ranks::Ranks::new(comm, plan.owner.clone(), plan.how == Condensation::Applied);
+    let parts = condense::condense(&model, &plan, opts, &ranks)?;
+
+    // 5.–6. The load steps: contact iteration, recovery.
+    let done = steps::run(&scene, &model, &plan, &parts, opts, &ranks)?;
+    let gathered = ranks.gather(&stats::rank(&ranks, &parts, &done));
+    stats::add_timings(&mut timings, &parts, &done);
+    let all = parts.all;
+    // the factors go before the results are written
+    drop(parts);
+    let Some(rank_stats) = gathered else { return Ok(None) };
+    let measured = stats::Measured { msh, mesh_cached, timings, counters: done.counters, residual_interface: done.residual_interface, ranks: rank_stats };
+    let stats = stats::stats(&model, &plan.parts, all, measured);
+    let mut run = Run { scene, model, steps: done.steps, stats, checks: Checks::default() };
+
+    // 7. What the last step is checked against, then the output, all at once.
     let t = Instant::now();
-    let last = steps.last().expect("at least one step");
-    let u = last.u.clone();
-    let stresses = last.stresses.clone();
-    let contact_run = last.contact.clone();
-    // the closed form body by body, each in its own material
-    let exact = scene.analytic.as_ref().map(|a| analytic::exact(a, &model));
-    let errors = exact.as_ref().map(|e| recover::errors(&model, &u, e));
-    let contact_error_max = match (&exact, &contact_run) {
-        (Some(e), Some(c)) => Some(contact_error(&model, e, &c.pairs)),
+    run.checks = checks(&run);
+    run.stats.timings.recover += t.elapsed().as_secs_f64();
+    write(run, opts, &out, t0).map(Some)
+}
+
+/// Errors against the scene's closed form (body by body, each in its own
+/// material) and the probes, on the last load step.
+fn checks(run: &Run) -> Checks {
+    let (model, last) = (&run.model, run.last());
+    let exact = run.scene.analytic.as_ref().map(|a| analytic::exact(a, model));
+    let errors = exact.as_ref().map(|e| recover::errors(model, &last.u, e));
+    let contact_error_max = match (&exact, &last.contact) {
+        (Some(e), Some(c)) => Some(contact_error(model, e, &c.pairs)),
         _ => None,
     };
-    let probes = scene.probes.iter().map(|p| (p.name.clone(), recover::probe(&model, &u, p))).collect();
-    timings.recover += t.elapsed().as_secs_f64();
+    let probes = run.scene.probes.iter().map(|p| (p.name.clone(), recover::probe(model, &last.u, p))).collect();
+    Checks { errors, contact_error_max, probes, analytic: Default::default() }
+}
 
-    let mut run = Run {
-        scene,
-        out,
-        msh: msh_path,
-        mesh_cached,
-        model,
-        u,
-        stresses,
-        contact: contact_run,
-        steps,
-        errors,
-        contact_error_max,
-        probes,
-        timings,
-        dofs_total: solved.dofs_total,
-        dofs_interface: solved.dofs_interface,
-        parts: solved.parts,
-        condensed_parts: solved.condensed_parts,
-        residual_interface: solved.residual_interface,
-        residual_assembled: solved.residual_assembled,
-        counters: solved.counters,
-        ranks: solved.ranks,
-        check: Default::default(),
-    };
-
-    // 7. Output, all at once.
+/// Writes every result file of `run` to `out` at once (with the scene's
+/// `[analytic]` check), or none with `skip_output`; a last step that did
+/// not converge is an error after its results are written.
+fn write(mut run: Run, opts: &RunOptions, out: &Path, t0: Instant) -> Result<Run> {
     if opts.skip_output {
-        run.timings.total = t0.elapsed().as_secs_f64();
-        if let Some(c) = run.contact.as_ref().filter(|c| !c.converged) {
-            bail!("{}: {}", run.scene.path.display(), not_converged(&run, c));
-        }
-        return Ok(Some(run));
+        run.stats.timings.total = t0.elapsed().as_secs_f64();
+        return match not_converged(&run, None) {
+            Some(e) => Err(e.into()),
+            None => Ok(run),
+        };
     }
-    progress(opts, &format!("writing results to {}", run.out.display()));
+    progress(opts, &format!("writing results to {}", out.display()));
     let t = Instant::now();
     // what the scene's [analytic] compares beyond the error norms
     if let Some(a) = &run.scene.analytic {
-        run.check = analytic::check(a, &run.solution());
+        run.checks.analytic = analytic::check(a, &run.solution());
     }
-    run.timings.total = t0.elapsed().as_secs_f64();
-    let staged = output::stage(&run)?;
-    run.timings.output = t.elapsed().as_secs_f64();
-    run.timings.total = t0.elapsed().as_secs_f64();
+    run.stats.timings.total = t0.elapsed().as_secs_f64();
+    let staged = output::stage(&run, out)?;
+    run.stats.timings.output = t.elapsed().as_secs_f64();
+    run.stats.timings.total = t0.elapsed().as_secs_f64();
     // the summary carries the final timings
     let staged = output::restage_summary(staged, &run)?;
-    let written = staged.commit().with_context(|| format!("writing results to {}", run.out.display()))?;
+    let written = staged.commit().with_context(|| format!("writing results to {}", out.display()))?;
     // files an earlier run of this scene wrote that this one did not (more
     // load steps, contacts, probes) would mislead: remove them
-    for old in output::stale(&run.out, &run.scene.name, &written) {
+    for old in output::stale(out, &run.scene.name, &written) {
         let _ = std::fs::remove_file(old);
     }
-    if let Some(c) = &run.contact {
-        if !c.converged {
-            bail!(
-                "{}: {}; the results in {} are those of the last iteration (summary.json contact.converged = false, report.md lists the last two state sets). Try more [solver] max_iterations, more load steps, or the default rule = \"robust\"",
-                run.scene.path.display(),
-                not_converged(&run, c),
-                run.out.display()
-            );
-        }
+    match not_converged(&run, Some(out.to_path_buf())) {
+        Some(e) => Err(e.into()),
+        None => Ok(run),
     }
-    Ok(Some(run))
 }
 
-/// "the contact iteration did not converge [at load step k] after n iteration(s) [(the states cycle)]".
-fn not_converged(run: &Run, c: &ContactRun) -> String {
-    let at = match run.steps.last() {
-        Some(st) if run.scene.solver.load_steps > 1 => format!(" at load step {}", st.step),
-        _ => String::new(),
-    };
-    format!(
-        "the contact iteration did not converge{at} after {} iteration(s){}",
-        c.iterations,
-        if c.cycled { " (the states cycle)" } else { "" }
-    )
+/// The error of a run whose last step did not converge; `results`: where
+/// its results were written.
+fn not_converged(run: &Run, results: Option<PathBuf>) -> Option<ContactError> {
+    let c = run.contact().filter(|c| !c.summary.converged)?;
+    let step = (run.scene.solver.load_steps > 1).then(|| run.last().step);
+    Some(ContactError::NotConverged { scene: run.scene.path.clone(), step, iterations: c.summary.iterations, cycled: c.summary.cycled, results })
 }
 
 /// Max |sigma_n - exact normal traction| over the pairs, relative to the
@@ -248,4 +236,3 @@ fn contact_error(model: &Model, exact: &[Box<dyn analytic::Exact>], pairs: &[Pai
     }
     worst / scale.max(f64::MIN_POSITIVE)
 }
-

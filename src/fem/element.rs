@@ -3,7 +3,7 @@
 //!
 //! B-bar (Hughes 1980, "Generalization of selective integration procedures
 //! to anisotropic and nonlinear media", IJNME 15): the linear quadrilateral
-//! in plane strain and axisymmetry and the linear hexahedron take the
+//! in plane strain and axisymmetry, the linear hexahedron and prism take the
 //! volumetric part of their strain at the element's mean. With `b_vol` the
 //! sum of the normal rows of B (xx, yy, and zz or the hoop row: the
 //! dilatation),
@@ -17,7 +17,7 @@
 //! so the deviatoric strain is B's, pointwise, and the dilatation one number
 //! per element: lambda multiplies one constraint per element instead of
 //! several (3 for a quad4 in plane strain, 4 in axisymmetry, 7 for a hex8
-//! under the full rule), and nu -> 1/2 no longer locks. The split is the
+//! and 4 for a prism6 under the full rule), and nu -> 1/2 no longer locks. The split is the
 //! 3D one in plane strain too (the solid with eps_zz = 0, B_zz = 0), so
 //! B̄ gives an eps_zz and D its zz row there; a hex8 slice held on both
 //! faces is then the plane strain quad4 node for node (tests/lame.rs). A
@@ -49,6 +49,8 @@ use super::quadrature::{self, QuadPoint};
 use super::shape;
 use crate::mesh::CellKind;
 use super::Analysis;
+// the 3-vector helpers, where callers of the element kernels found them
+pub use super::vec3::{cross, dot, norm, sub};
 
 /// A cell whose Jacobian determinant is not positive somewhere.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -202,13 +204,16 @@ fn b_matrix(analysis: Analysis, p: &Point, b: &mut [f64]) {
 pub const B_BAR_FROM_NU: f64 = 0.4;
 
 /// Whether an element takes its dilatation at the element's mean (B-bar,
-/// see the module doc): quad4 in plane strain and axisymmetry, hex8, in a
-/// material of nu >= [`B_BAR_FROM_NU`].
+/// see the module doc): quad4 in plane strain and axisymmetry, hex8 and
+/// prism6, in a material of nu >= [`B_BAR_FROM_NU`]. (Prism6, Lamé's
+/// cylinder as a quarter turn of prisms, lc 0.2, nu = 0.499: displacement
+/// error 7.7e-2 and stress error 6.3 with the plain B, 3.1e-3 and 0.31
+/// with B-bar, against 8.2e-4 and 4.1e-2 at nu = 0.3.)
 pub fn uses_b_bar(analysis: Analysis, kind: CellKind, nu: f64) -> bool {
     nu >= B_BAR_FROM_NU
         && matches!(
             (analysis, kind),
-            (Analysis::PlaneStrain | Analysis::Axisymmetric, CellKind::Quad4) | (Analysis::Solid, CellKind::Hex8)
+            (Analysis::PlaneStrain | Analysis::Axisymmetric, CellKind::Quad4) | (Analysis::Solid, CellKind::Hex8 | CellKind::Prism6)
         )
 }
 
@@ -514,19 +519,6 @@ pub fn strain(analysis: Analysis, p: &Point, ue: &[f64], mean_dilatation: Option
     e
 }
 
-pub fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-pub fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-pub fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-pub fn norm(a: [f64; 3]) -> f64 {
-    dot(a, a).sqrt()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -570,7 +562,7 @@ mod tests {
             (Analysis::PlaneStrain, vec![Tri3, Tri6, Quad4, Quad8, Quad9]),
             (Analysis::PlaneStress, vec![Tri3, Tri6, Quad4, Quad8, Quad9]),
             (Analysis::Axisymmetric, vec![Tri3, Tri6, Quad4, Quad8, Quad9]),
-            (Analysis::Solid, vec![Tet4, Tet10, Hex8, Hex20, Hex27]),
+            (Analysis::Solid, vec![Tet4, Tet10, Hex8, Hex20, Hex27, Prism6, Prism15, Prism18, Pyramid5, Pyramid13, Pyramid14]),
         ];
         // nu near 1/2 too: B-bar (quad4 plane strain / axisymmetric, hex8)
         // must add no zero-energy mode however large lambda is
@@ -599,16 +591,45 @@ mod tests {
             }
         }
     }
+    /// Body forces: the consistent nodal forces of a uniform g add up to g
+    /// times the volume, on an affine image of every 3D reference cell
+    /// (the volume is |det A| times the reference volume) and on a distorted
+    /// one (against a high-order rule's volume).
+    #[test]
+    fn body_forces_add_up_to_the_weight_on_every_3d_kind() {
+        let a = [[1.2, 0.3, -0.1], [0.1, 0.9, 0.2], [-0.2, 0.1, 1.4]];
+        let det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0])
+            + a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+        let g = [0.5, -2.0, -9.81];
+        for kind in CellKind::ALL.into_iter().filter(|k| k.dim() == 3) {
+            let affine: Vec<[f64; 3]> =
+                shape::reference_nodes(kind).iter().map(|p| std::array::from_fn(|i| 2.0 + (0..3).map(|j| a[i][j] * p[j]).sum::<f64>())).collect();
+            for (xs, volume) in [(affine, det * quadrature::reference_volume(kind)), (distorted(kind), f64::NAN)] {
+                let volume = if volume.is_nan() {
+                    quadrature::rule(kind, 10).iter().map(|q| q.w * point(kind, &xs, q.xi).unwrap().det_j).sum()
+                } else {
+                    volume
+                };
+                let mut fe = vec![0.0; 3 * kind.n_nodes()];
+                body_force(Analysis::Solid, kind, &xs, g, 1.0, &mut fe).expect("not inverted");
+                for c in 0..3 {
+                    let total: f64 = fe.iter().skip(c).step_by(3).sum();
+                    assert!((total - g[c] * volume).abs() < 1e-12 * 9.81 * volume, "{kind:?}: {total} vs {}", g[c] * volume);
+                }
+            }
+        }
+    }
+
     /// The elements that use B-bar.
     fn b_bar_cases() -> Vec<(Analysis, CellKind)> {
-        vec![(Analysis::PlaneStrain, CellKind::Quad4), (Analysis::Axisymmetric, CellKind::Quad4), (Analysis::Solid, CellKind::Hex8)]
+        vec![(Analysis::PlaneStrain, CellKind::Quad4), (Analysis::Axisymmetric, CellKind::Quad4), (Analysis::Solid, CellKind::Hex8), (Analysis::Solid, CellKind::Prism6)]
     }
 
     #[test]
     fn b_bar_constrains_the_dilatation_once_per_element() {
         // D = lambda m m^T (mu = 0): K_e = lambda V b̄ b̄^T has rank one
         // with B-bar; the plain B of the full rule has rank 3 (quad4, plane
-        // strain), 4 (quad4, axisymmetric), 7 (hex8): that many constraints
+        // strain), 4 (quad4, axisymmetric), 7 (hex8), 4 (prism6): that many constraints
         // per element is what locks
         for (analysis, kind) in b_bar_cases() {
             assert!(uses_b_bar(analysis, kind, 0.49));

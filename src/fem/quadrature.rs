@@ -10,9 +10,21 @@
 //!   values polished to double precision on the monomial moment equations.
 //!   Above those degrees, collapsed (Duffy) Gauss–Legendre product rules of
 //!   any degree, still with positive weights and interior points.
+//! * Prism: the triangle's rule times Gauss–Legendre along ζ.
+//! * Pyramid: a collapsed hexahedron. `ξ = a (1 - ζ)`, `η = b (1 - ζ)` maps
+//!   the cube (a, b) ∈ [-1, 1]², ζ ∈ [0, 1] onto the pyramid with Jacobian
+//!   `(1 - ζ)²`; Gauss–Legendre in a, b and ζ. Chosen over the rules built
+//!   for the rational bases (which integrate their own space and little
+//!   else) because the pull-back makes the pyramids' spaces polynomial: q =
+//!   ξη/(1 - ζ) is `a b (1 - ζ)` and its gradient `(b, a, a b)`, so the
+//!   stiffness integrand of an affine pyramid5 (pyramid13/14) is a
+//!   polynomial of degree 2 (4) in a and b and, with the Jacobian, 2 (4) in
+//!   ζ: 2 x 2 x 2 (3 x 3 x 3) points integrate it exactly, and the same
+//!   construction gives rules of any degree, with positive weights and no
+//!   point at the apex (where the rational gradients have no limit).
 //!
 //! Weights are for the reference cell itself: they add up to its volume
-//! (Line 2, Tri 1/2, Quad 4, Tet 1/6, Hex 8; Point1 1).
+//! (Line 2, Tri 1/2, Quad 4, Tet 1/6, Hex 8, Prism 1, Pyramid 4/3; Point1 1).
 
 use crate::fem::shape;
 use crate::mesh::CellKind;
@@ -33,6 +45,8 @@ pub fn reference_volume(kind: CellKind) -> f64 {
             CellKind::Tri3 | CellKind::Tri6 => 0.5,
             CellKind::Tet4 | CellKind::Tet10 => 1.0 / 6.0,
             CellKind::Quad4 | CellKind::Quad8 | CellKind::Quad9 => 4.0,
+            CellKind::Prism6 | CellKind::Prism15 | CellKind::Prism18 => 1.0,
+            CellKind::Pyramid5 | CellKind::Pyramid13 | CellKind::Pyramid14 => 4.0 / 3.0,
             _ => 8.0,
         },
     }
@@ -42,6 +56,14 @@ fn is_simplex(kind: CellKind) -> bool {
     matches!(kind, CellKind::Tri3 | CellKind::Tri6 | CellKind::Tet4 | CellKind::Tet10)
 }
 
+fn is_prism(kind: CellKind) -> bool {
+    matches!(kind, CellKind::Prism6 | CellKind::Prism15 | CellKind::Prism18)
+}
+
+fn is_pyramid(kind: CellKind) -> bool {
+    matches!(kind, CellKind::Pyramid5 | CellKind::Pyramid13 | CellKind::Pyramid14)
+}
+
 /// A rule on the reference cell of `kind` exact for polynomials of total degree <= degree on
 /// simplices (Tri up to at least degree 8, Tet up to at least degree 6; above that return the highest
 /// you have) and of degree <= degree in each variable on Line/Quad/Hex (Gauss–Legendre, any degree).
@@ -49,10 +71,23 @@ fn is_simplex(kind: CellKind) -> bool {
 ///
 /// Here simplices have rules of any degree: symmetric tables up to degree 8
 /// (Tri) and 6 (Tet), collapsed Gauss–Legendre product rules above.
+///
+/// Prisms: exact for ξ^i η^j ζ^k with i + j <= degree and k <= degree (the
+/// triangle's rule of that degree times Gauss–Legendre). Pyramids: exact
+/// for every polynomial of total degree <= degree, and for the rational
+/// functions whose pull-back to the cube `a^i b^j (1 - ζ)^m ζ^k` (with the
+/// Jacobian) has i, j <= degree and m + k <= degree + 2, which includes the
+/// products of the pyramids' basis functions (see the module doc).
 pub fn rule(kind: CellKind, degree: usize) -> Vec<QuadPoint> {
     let d = kind.dim();
     if d == 0 {
         return vec![QuadPoint { xi: [0.0; 3], w: 1.0 }];
+    }
+    if is_prism(kind) {
+        return prism_rule(degree, degree / 2 + 1);
+    }
+    if is_pyramid(kind) {
+        return pyramid_rule(degree / 2 + 1, degree / 2 + 2);
     }
     if is_simplex(kind) {
         let table = if d == 2 { tri_table(degree) } else { tet_table(degree) };
@@ -70,8 +105,17 @@ pub fn rule(kind: CellKind, degree: usize) -> Vec<QuadPoint> {
 /// Lines (not used for stiffness, but given for completeness and for
 /// extrapolation) follow the Quad pattern: Line2 2 points, Line3 3 points;
 /// Point1 its single point.
+///
+/// Prisms: Prism6 the triangle's degree-2 rule times 2 Gauss points (6
+/// points: B^T D B is of degree 2 in (ξ, η) and in ζ), Prism15/Prism18 its
+/// degree-4 rule times 3 (18 points: degree 4 and 4). Pyramids, collapsed
+/// (see the module doc): Pyramid5 2 x 2 x 2, Pyramid13/Pyramid14 3 x 3 x 3.
 pub fn stiffness_rule(kind: CellKind) -> Vec<QuadPoint> {
     match kind {
+        CellKind::Prism6 => prism_rule(2, 2),
+        CellKind::Prism15 | CellKind::Prism18 => prism_rule(4, 3),
+        CellKind::Pyramid5 => pyramid_rule(2, 2),
+        CellKind::Pyramid13 | CellKind::Pyramid14 => pyramid_rule(3, 3),
         CellKind::Point1 | CellKind::Tri3 | CellKind::Tet4 => rule(kind, 0),
         CellKind::Tri6 | CellKind::Tet10 => rule(kind, 2),
         CellKind::Line2 | CellKind::Quad4 | CellKind::Hex8 => tensor_gauss(kind.dim(), 2),
@@ -226,6 +270,38 @@ fn tensor_gauss(d: usize, n: usize) -> Vec<QuadPoint> {
                     w *= g[k].1;
                 }
                 out.push(QuadPoint { xi, w });
+            }
+        }
+    }
+    out
+}
+
+/// The prism's rule: the triangle's rule of total degree `tri_degree`
+/// times `n` Gauss–Legendre points along ζ.
+fn prism_rule(tri_degree: usize, n: usize) -> Vec<QuadPoint> {
+    let tri = rule(CellKind::Tri3, tri_degree);
+    let line = gauss_legendre(n);
+    let mut out = Vec::with_capacity(tri.len() * n);
+    for &(z, wz) in &line {
+        for t in &tri {
+            out.push(QuadPoint { xi: [t.xi[0], t.xi[1], z], w: t.w * wz });
+        }
+    }
+    out
+}
+
+/// The pyramid's collapsed rule: `n_ab` Gauss–Legendre points in each of
+/// a, b ∈ [-1, 1] and `n_z` in ζ ∈ [0, 1]; the point (a (1 - ζ), b (1 - ζ),
+/// ζ) with weight `w_a w_b w_ζ (1 - ζ)²`.
+fn pyramid_rule(n_ab: usize, n_z: usize) -> Vec<QuadPoint> {
+    let g = gauss_legendre(n_ab);
+    let gz: Vec<(f64, f64)> = gauss_legendre(n_z).into_iter().map(|(t, w)| (0.5 * (t + 1.0), 0.5 * w)).collect();
+    let mut out = Vec::with_capacity(n_ab * n_ab * n_z);
+    for &(z, wz) in &gz {
+        let r = 1.0 - z;
+        for &(b, wb) in &g {
+            for &(a, wa) in &g {
+                out.push(QuadPoint { xi: [a * r, b * r, z], w: wa * wb * wz * r * r });
             }
         }
     }
@@ -412,9 +488,31 @@ mod tests {
         (1..=n).map(|i| i as f64).product()
     }
 
+    /// ∫ t^k over [-1, 1].
+    fn line_moment(k: usize) -> f64 {
+        if k % 2 == 1 {
+            0.0
+        } else {
+            2.0 / (k as f64 + 1.0)
+        }
+    }
+
+    /// ∫_0^1 z^k (1 - z)^m dz = k! m! / (k + m + 1)!.
+    fn beta(k: usize, m: usize) -> f64 {
+        factorial(k) * factorial(m) / factorial(k + m + 1)
+    }
+
     /// Exact integral of xi^e[0] eta^e[1] zeta^e[2] over the reference cell.
     fn exact_monomial(kind: CellKind, e: [usize; 3]) -> f64 {
         let d = kind.dim();
+        if is_prism(kind) {
+            // the triangle's moment times the line's
+            return factorial(e[0]) * factorial(e[1]) / factorial(e[0] + e[1] + 2) * line_moment(e[2]);
+        }
+        if is_pyramid(kind) {
+            // ξ = a (1 - ζ), η = b (1 - ζ), dV = (1 - ζ)² da db dζ
+            return line_moment(e[0]) * line_moment(e[1]) * beta(e[2], e[0] + e[1] + 2);
+        }
         if is_simplex(kind) {
             // ∫ x^a y^b z^c over the unit simplex = a! b! c! / (a + b + c + d)!
             factorial(e[0]) * factorial(e[1]) * factorial(e[2]) / factorial(e[0] + e[1] + e[2] + d)
@@ -435,7 +533,9 @@ mod tests {
         for a in 0..=r(0) {
             for b in 0..=r(1) {
                 for c in 0..=r(2) {
-                    if !is_simplex(kind) || a + b + c <= degree {
+                    // simplices and pyramids: total degree; prisms: (ξ, η) and ζ apart
+                    let beyond = ((is_simplex(kind) || is_pyramid(kind)) && a + b + c > degree) || (is_prism(kind) && a + b > degree);
+                    if !beyond {
                         out.push([a, b, c]);
                     }
                 }
@@ -445,7 +545,8 @@ mod tests {
     }
 
     /// One representative per reference cell.
-    const CELLS: [CellKind; 5] = [CellKind::Line2, CellKind::Tri3, CellKind::Quad4, CellKind::Tet4, CellKind::Hex8];
+    const CELLS: [CellKind; 7] =
+        [CellKind::Line2, CellKind::Tri3, CellKind::Quad4, CellKind::Tet4, CellKind::Hex8, CellKind::Prism6, CellKind::Pyramid5];
 
     fn max_degree(kind: CellKind) -> usize {
         match kind.dim() {
@@ -511,6 +612,50 @@ mod tests {
             let r = rule(kind, 1);
             let e = [2, 0, 0];
             assert!((integrate(&r, e) - exact_monomial(kind, e)).abs() > 1e-3, "{}", kind.name());
+        }
+    }
+
+    /// The pyramid rules integrate the rational functions of the pyramids'
+    /// spaces: `q^m ξ^i η^j ζ^k` with q = ξη / (1 - ζ) pulls back to
+    /// `a^(m+i) b^(m+j) (1 - ζ)^(m+i+j+2) ζ^k`.
+    #[test]
+    fn pyramid_rules_integrate_the_rational_functions_of_their_degree() {
+        for degree in 0..=8 {
+            let r = rule(CellKind::Pyramid5, degree);
+            for m in 1..=2usize {
+                for i in 0..=degree.saturating_sub(m) {
+                    for k in 0..=degree {
+                        // within the promise: degree m + i in a, and m + i + 2 + k
+                        // in ζ with the Jacobian, at most degree + 2
+                        if m + i + k > degree {
+                            continue;
+                        }
+                        let got: f64 = r
+                            .iter()
+                            .map(|p| {
+                                let [x, y, z] = p.xi;
+                                let q = x * y / (1.0 - z);
+                                p.w * q.powi(m as i32) * x.powi(i as i32) * z.powi(k as i32)
+                            })
+                            .sum();
+                        let want = line_moment(m + i) * line_moment(m) * beta(k, m + i + 2);
+                        assert!((got - want).abs() < 1e-14, "degree {degree}: q^{m} x^{i} z^{k}: {got} vs {want}");
+                    }
+                }
+            }
+            // no point at the apex, positive weights, all inside
+            for p in &r {
+                assert!(p.w > 0.0 && p.xi[2] < 1.0 && shape::inside_reference(CellKind::Pyramid5, p.xi, 0.0));
+            }
+        }
+    }
+
+    #[test]
+    fn prism_rules_have_positive_weights_and_interior_points() {
+        for degree in 0..=10 {
+            for p in rule(CellKind::Prism6, degree) {
+                assert!(p.w > 0.0 && shape::inside_reference(CellKind::Prism6, p.xi, 0.0), "degree {degree}: {:?}", p.xi);
+            }
         }
     }
 
@@ -587,7 +732,14 @@ mod tests {
             (CellKind::Hex8, 8),
             (CellKind::Hex20, 27),
             (CellKind::Hex27, 27),
+            (CellKind::Prism6, 6),
+            (CellKind::Prism15, 18),
+            (CellKind::Prism18, 18),
+            (CellKind::Pyramid5, 8),
+            (CellKind::Pyramid13, 27),
+            (CellKind::Pyramid14, 27),
         ];
+        assert_eq!(want.len(), CellKind::ALL.len());
         for (kind, n) in want {
             assert_eq!(stiffness_rule(kind).len(), n, "{}", kind.name());
         }

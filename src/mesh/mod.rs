@@ -8,7 +8,8 @@
 pub mod gmsh;
 pub mod msh;
 
-/// Cell kinds, named and numbered as in gmsh (`gmsh_code`).
+/// Cell kinds, named and numbered as in gmsh (`gmsh_code`). The reference
+/// cells, node diagrams and node orders are in `fem/shape/nodes.rs`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum CellKind {
     Point1,
@@ -24,10 +25,16 @@ pub enum CellKind {
     Hex8,
     Hex20,
     Hex27,
+    Prism6,
+    Prism15,
+    Prism18,
+    Pyramid5,
+    Pyramid13,
+    Pyramid14,
 }
 
 impl CellKind {
-    pub const ALL: [CellKind; 13] = [
+    pub const ALL: [CellKind; 19] = [
         CellKind::Point1,
         CellKind::Line2,
         CellKind::Line3,
@@ -41,6 +48,12 @@ impl CellKind {
         CellKind::Hex8,
         CellKind::Hex20,
         CellKind::Hex27,
+        CellKind::Prism6,
+        CellKind::Prism15,
+        CellKind::Prism18,
+        CellKind::Pyramid5,
+        CellKind::Pyramid13,
+        CellKind::Pyramid14,
     ];
 
     /// gmsh element type number (MSH format).
@@ -59,6 +72,12 @@ impl CellKind {
             CellKind::Hex8 => 5,
             CellKind::Hex20 => 17,
             CellKind::Hex27 => 12,
+            CellKind::Prism6 => 6,
+            CellKind::Prism15 => 18,
+            CellKind::Prism18 => 13,
+            CellKind::Pyramid5 => 7,
+            CellKind::Pyramid13 => 19,
+            CellKind::Pyramid14 => 14,
         }
     }
 
@@ -81,6 +100,12 @@ impl CellKind {
             CellKind::Hex8 => 8,
             CellKind::Hex20 => 20,
             CellKind::Hex27 => 27,
+            CellKind::Prism6 => 6,
+            CellKind::Prism15 => 15,
+            CellKind::Prism18 => 18,
+            CellKind::Pyramid5 => 5,
+            CellKind::Pyramid13 => 13,
+            CellKind::Pyramid14 => 14,
         }
     }
 
@@ -93,6 +118,8 @@ impl CellKind {
             CellKind::Quad4 | CellKind::Quad8 | CellKind::Quad9 => 4,
             CellKind::Tet4 | CellKind::Tet10 => 4,
             CellKind::Hex8 | CellKind::Hex20 | CellKind::Hex27 => 8,
+            CellKind::Prism6 | CellKind::Prism15 | CellKind::Prism18 => 6,
+            CellKind::Pyramid5 | CellKind::Pyramid13 | CellKind::Pyramid14 => 5,
         }
     }
 
@@ -146,6 +173,12 @@ impl CellKind {
             CellKind::Hex8 => "hex8",
             CellKind::Hex20 => "hex20",
             CellKind::Hex27 => "hex27",
+            CellKind::Prism6 => "prism6",
+            CellKind::Prism15 => "prism15",
+            CellKind::Prism18 => "prism18",
+            CellKind::Pyramid5 => "pyramid5",
+            CellKind::Pyramid13 => "pyramid13",
+            CellKind::Pyramid14 => "pyramid14",
         }
     }
 }

@@ -9,37 +9,7 @@ use super::builder::Builder;
 use super::topology::UnionFind;
 use super::{Body, ModelError};
 use crate::fem::element::dofs_per_node;
-use crate::fem::Analysis;
-
-/// Value of rigid-body mode `m` at displacement component `a` of a point at
-/// `x` (relative to the cluster's centre): translations, then rotations.
-fn rigid_mode(analysis: Analysis, m: usize, a: usize, x: [f64; 3]) -> f64 {
-    match analysis {
-        Analysis::PlaneStrain | Analysis::PlaneStress => match (m, a) {
-            (0, 0) | (1, 1) => 1.0,
-            (2, 0) => -x[1],
-            (2, 1) => x[0],
-            _ => 0.0,
-        },
-        // only the axial translation is rigid: a radial one strains the hoop
-        Analysis::Axisymmetric => f64::from(u8::from(m == 0 && a == 1)),
-        Analysis::Solid => {
-            if m < 3 {
-                return f64::from(u8::from(m == a));
-            }
-            // omega x x with omega the unit vector of axis m - 3
-            let w = m - 3;
-            let (i, j) = ((w + 1) % 3, (w + 2) % 3);
-            if a == i {
-                -x[j]
-            } else if a == j {
-                x[i]
-            } else {
-                0.0
-            }
-        }
-    }
-}
+use crate::fem::rigid::{self, RigidModes};
 
 /// Fails naming the bodies and the motion when some rigid-body motion of a
 /// cluster of bodies is stopped by no prescribed DOF. Bodies sharing a
@@ -63,12 +33,7 @@ pub(super) fn check_held(b: &Builder, coords: &[[f64; 3]], bodies: &[Body], link
             sets.join(body_of[k], body_of[l]);
         }
     }
-    let names: &[&str] = match analysis {
-        Analysis::PlaneStrain | Analysis::PlaneStress => &["translation in x", "translation in y", "rotation about z"],
-        Analysis::Axisymmetric => &["translation along the axis (y)"],
-        Analysis::Solid => &["translation in x", "translation in y", "translation in z", "rotation about x", "rotation about y", "rotation about z"],
-    };
-    let nm = names.len();
+    let names = rigid::names(analysis);
     for r in 0..bodies.len() {
         let members: Vec<usize> = (0..bodies.len()).filter(|&i| sets.root(i) == r).collect();
         if members.is_empty() {
@@ -88,22 +53,10 @@ pub(super) fn check_held(b: &Builder, coords: &[[f64; 3]], bodies: &[Body], link
         let size = (0..3).map(|d| (hi[d] - lo[d]).powi(2)).sum::<f64>().sqrt().max(f64::MIN_POSITIVE);
         // Gram matrix of the rigid modes over the prescribed DOFs: singular
         // exactly when some combination of them moves no prescribed DOF
-        let mut g = nalgebra::DMatrix::<f64>::zeros(nm, nm);
-        for &n in &nodes {
-            let x: [f64; 3] = std::array::from_fn(|d| (coords[n][d] - centre[d]) / size);
-            for a in 0..nd {
-                if prescribed[n * nd + a].is_some() {
-                    let phi: Vec<f64> = (0..nm).map(|m| rigid_mode(analysis, m, a, x)).collect();
-                    for i in 0..nm {
-                        for j in 0..nm {
-                            g[(i, j)] += phi[i] * phi[j];
-                        }
-                    }
-                }
-            }
-        }
+        let supported = nodes.iter().flat_map(|&n| (0..nd).filter(move |&a| prescribed[n * nd + a].is_some()).map(move |a| (n, a)));
+        let g = RigidModes::new(analysis, centre, size).gram_of_supports(coords, supported);
         let eig = nalgebra::SymmetricEigen::new(g);
-        let mut free: Vec<&str> = (0..nm).filter(|&k| eig.eigenvalues[k] < 1e-9).map(|k| names[eig.eigenvectors.column(k).iamax()]).collect();
+        let mut free: Vec<&str> = (0..names.len()).filter(|&k| eig.eigenvalues[k] < 1e-9).map(|k| names[eig.eigenvectors.column(k).iamax()]).collect();
         free.sort_unstable();
         free.dedup();
         if !free.is_empty() {

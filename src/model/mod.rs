@@ -22,6 +22,8 @@
 //! (topology.rs: blocks and fans; contacts.rs: the split and the pairs),
 //! supports, the rigid-motion check (held.rs), loads, pair normals and
 //! areas. builder.rs holds what every step reads and its messages.
+//! What the built model makes legal but a user may not mean (bodies bonded
+//! by shared nodes without a contact) is in warnings.rs.
 
 mod build;
 mod builder;
@@ -31,6 +33,7 @@ mod spec;
 mod topology;
 
 pub use contacts::CREASE_ANGLE;
+pub mod warnings;
 
 pub use spec::{BodySpec, ContactGroups, ContactSpec, InitialStress, LoadKind, LoadSpec, ModelSpec, SupportSpec};
 

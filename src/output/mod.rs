@@ -1,6 +1,7 @@
 //! Result files of a run, staged in memory and written together:
 //! `<name>.vtu` (bodies), `<name>_contact.vtu` (interfaces), `contact.csv`,
-//! `probes.csv`, `summary.json`, `report.md` and the pictures it embeds.
+//! `probes.csv`, the pictures, then (once the output stage is timed)
+//! `summary.json` and `report.md`, which embeds the pictures.
 
 pub mod files;
 pub mod picture;
@@ -8,7 +9,7 @@ pub mod plot;
 pub mod report;
 pub mod vtu;
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use serde_json::json;
 
 use crate::results::{state_counts, ContactRun, Run};
@@ -19,29 +20,35 @@ use crate::recover::{BodyStress, Sample};
 use files::Staged;
 use vtu::{Field, IntField};
 
-/// Stages every result file of a run except `summary.json`.
-pub fn stage(run: &Run) -> Result<Staged> {
-    let mut staged = Staged::new(&run.out);
+/// Stages every result file of a run except `summary.json` and `report.md`
+/// ([`restage_summary`] adds them with the final timings), for the
+/// directory `out`.
+pub fn stage(run: &Run, out: &std::path::Path) -> Result<Staged> {
+    let mut staged = Staged::new(out);
     let name = &run.scene.name;
     let model = &run.model;
+    let last = run.last();
     let displacement = run.scene.output.wants("displacement");
-    staged.add(&format!("{name}.vtu"), bodies_vtu(model, &run.u, &run.stresses, displacement)?);
-    if let Some(c) = &run.contact {
+    staged.add(&format!("{name}.vtu"), bodies_vtu(model, &last.u, &last.stresses, displacement)?);
+    if let Some(c) = &last.contact {
         staged.add(&format!("{name}_contact.vtu"), contact_vtu(model, c)?);
         staged.add("contact.csv", contact_csv(model, c).into_bytes());
     }
     if run.steps.len() > 1 {
-        // one file per load step and ParaView collections over them
+        // one file per load step and ParaView collections over them, the
+        // time of a step its load factor
         let mut bodies = Vec::new();
         let mut contacts = Vec::new();
+        let times = step_times(&run.scene);
         for st in &run.steps {
+            let time = times.get(st.step.wrapping_sub(1)).copied().unwrap_or(st.step as f64);
             let f = format!("{name}_step{:03}.vtu", st.step);
             staged.add(&f, bodies_vtu(model, &st.u, &st.stresses, displacement)?);
-            bodies.push((st.step as f64, f));
+            bodies.push((time, f));
             if let Some(c) = &st.contact {
                 let f = format!("{name}_contact_step{:03}.vtu", st.step);
                 staged.add(&f, contact_vtu(model, c)?);
-                contacts.push((st.step as f64, f));
+                contacts.push((time, f));
             }
         }
         staged.add(&format!("{name}.pvd"), vtu::pvd_bytes(&bodies));
@@ -49,21 +56,34 @@ pub fn stage(run: &Run) -> Result<Staged> {
             staged.add(&format!("{name}_contact.pvd"), vtu::pvd_bytes(&contacts));
         }
     }
-    if !run.probes.is_empty() {
-        staged.add("probes.csv", probes_csv(&run.probes).into_bytes());
+    if !run.checks.probes.is_empty() {
+        staged.add("probes.csv", probes_csv(&run.checks.probes).into_bytes());
     }
     // pictures a person would rather look at than read (embedded in report.md)
-    let snap = picture::Snapshot { title: &run.scene.title, model, u: &run.u, stresses: &run.stresses, contact: run.contact.as_ref() };
-    for (file, bytes) in picture::pictures(&snap).map_err(|e| anyhow::anyhow!("drawing the pictures: {e}"))? {
+    let snap = picture::Snapshot { title: &run.scene.title, model, u: &last.u, stresses: &last.stresses, contact: last.contact.as_ref(), region: run.scene.output.frame.as_ref() };
+    for (file, bytes) in picture::pictures(&snap).context("drawing the pictures")? {
         staged.add(&file, bytes);
     }
-    staged.add("report.md", report::report(run).into_bytes());
     Ok(staged)
+}
+
+/// The time of each load step in the `.pvd` collections: its load factor.
+/// That is the factor of the one load (or loads sharing factors) that
+/// changes from step to step when it grows at every step (a reservoir
+/// filled in steps under constant self-weight: 0, 0.5, 1), else the ramp
+/// k / load_steps, which always grows (ParaView orders the steps by time).
+pub fn step_times(scene: &crate::scene::Scene) -> Vec<f64> {
+    let n = scene.solver.load_steps;
+    let varying: Vec<Vec<f64>> = report::applied(scene).into_iter().map(|c| c.factors).filter(|f| f.windows(2).any(|w| w[0] != w[1])).collect();
+    match varying.as_slice() {
+        [one] if one.len() == n && one.windows(2).all(|w| w[1] > w[0]) => one.clone(),
+        _ => (1..=n).map(|k| k as f64 / n as f64).collect(),
+    }
 }
 
 /// Result files of scene `name` in `dir` that are not among `written`: VTU
 /// and PVD files named after the scene, the CSV tables and the pictures
-/// (`deformed_*.png`, `interfaces.svg`, `plan_*.png`).
+/// (`deformed_*.png`, `interfaces.svg`, `plan_*.png`, `joints.png`).
 pub fn stale(dir: &std::path::Path, name: &str, written: &[std::path::PathBuf]) -> Vec<std::path::PathBuf> {
     let Ok(entries) = std::fs::read_dir(dir) else { return Vec::new() };
     entries
@@ -74,15 +94,26 @@ pub fn stale(dir: &std::path::Path, name: &str, written: &[std::path::PathBuf]) 
             let f = p.file_name().and_then(|f| f.to_str()).unwrap_or("");
             let ours = f.starts_with(name) && [".vtu", ".pvd", ".png", ".svg"].iter().any(|x| f.ends_with(x));
             let picture = (f.starts_with("deformed_") || f.starts_with("plan_")) && f.ends_with(".png");
-            ours || picture || f == "contact.csv" || f == "probes.csv" || f == "interfaces.svg"
+            ours || picture || ["contact.csv", "probes.csv", "interfaces.svg", "joints.png"].contains(&f)
         })
         .collect()
 }
 
-/// Adds `summary.json`, with the run's final timings.
+/// Adds `summary.json` and `report.md`, both with the run's final timings
+/// (the output stage's own included), so that the two files agree.
 pub fn restage_summary(mut staged: Staged, run: &Run) -> Result<Staged> {
     staged.add("summary.json", serde_json::to_vec_pretty(&summary(run))?);
+    staged.add("report.md", report::report(run).into_bytes());
     Ok(staged)
+}
+
+/// What is legal but probably not meant, one paragraph each: the scene's
+/// ([`crate::scene::Scene::warnings`]) and the model's (bodies bonded by
+/// shared nodes, [`crate::model::warnings`]).
+pub fn warnings(run: &Run) -> Vec<String> {
+    let mut w = run.scene.warnings();
+    w.extend(crate::model::warnings::warnings(&run.model));
+    w
 }
 
 /// The bodies' VTU: each body's own nodes as points, so stresses averaged
@@ -132,7 +163,10 @@ fn bodies_vtu(model: &Model, u: &[f64], stresses: &[BodyStress], displacement: b
     Ok(vtu::vtu_bytes(&points, &cells, &point_data, &[], &[IntField { name: "body", values: &body_id }])?)
 }
 
-/// The interfaces, as body I's facets, with the pair values at their nodes.
+/// The interfaces, as body I's facets, with the pair values at their
+/// nodes, then one vertex cell per pair (at its node k) whose cell data
+/// `pair_status` is its state (0 open, 1 slip, 2 stick; -1 on the facets);
+/// cell data `interface` is the contact of every cell.
 fn contact_vtu(model: &Model, c: &ContactRun) -> Result<Vec<u8>> {
     let mut pair_of = vec![usize::MAX; model.n_nodes()];
     for (i, p) in model.pairs.iter().enumerate() {
@@ -143,6 +177,7 @@ fn contact_vtu(model: &Model, c: &ContactRun) -> Result<Vec<u8>> {
     let mut pairs = Vec::new();
     let mut cells = Vec::new();
     let mut iface_id = Vec::new();
+    let mut pair_status = Vec::new();
     for (ii, iface) in model.interfaces.iter().enumerate() {
         for f in &iface.facets {
             let nodes = f
@@ -159,7 +194,20 @@ fn contact_vtu(model: &Model, c: &ContactRun) -> Result<Vec<u8>> {
                 .collect();
             cells.push(Cell { kind: f.kind, nodes, tag: f.tag });
             iface_id.push(ii as i32);
+            pair_status.push(-1);
         }
+    }
+    // a vertex cell per pair with its state as cell data, which ParaView
+    // colours as categories (point data blends between 0, 1 and 2)
+    for (i, p) in model.pairs.iter().enumerate() {
+        if local[p.k] == usize::MAX {
+            local[p.k] = points.len();
+            points.push(model.coords[p.k]);
+            pairs.push(i);
+        }
+        cells.push(Cell { kind: crate::mesh::CellKind::Point1, nodes: vec![local[p.k]], tag: 0 });
+        iface_id.push(p.contact as i32);
+        pair_status.push(c.states[i].code());
     }
     let get = |f: &dyn Fn(usize) -> f64| -> Vec<f64> { pairs.iter().map(|&p| if p == usize::MAX { 0.0 } else { f(p) }).collect() };
     let status: Vec<i32> = pairs.iter().map(|&p| if p == usize::MAX { -1 } else { c.states[p].code() }).collect();
@@ -179,7 +227,7 @@ fn contact_vtu(model: &Model, c: &ContactRun) -> Result<Vec<u8>> {
         Field { name: "shear", n_comp: 3, values: &shear },
         Field { name: "area", n_comp: 1, values: &area },
     ];
-    Ok(vtu::vtu_bytes(&points, &cells, &point_data, &[], &[IntField { name: "interface", values: &iface_id }])?)
+    Ok(vtu::vtu_bytes(&points, &cells, &point_data, &[], &[IntField { name: "interface", values: &iface_id }, IntField { name: "pair_status", values: &pair_status }])?)
 }
 
 /// One row per contact pair: position, state and the pair's values.
@@ -228,32 +276,34 @@ fn probes_csv(probes: &[(String, Vec<Sample>)]) -> String {
 }
 
 fn summary(run: &Run) -> serde_json::Value {
+    let st = &run.stats;
     let mut v = json!({
         "scene": run.scene.path.display().to_string(),
         "title": run.scene.title,
         "analysis": run.scene.analysis.as_str(),
-        "mesh": { "file": run.msh.display().to_string(), "cached": run.mesh_cached, "nodes": run.model.n_nodes(),
+        "mesh": { "file": st.msh.display().to_string(), "cached": st.mesh_cached, "nodes": run.model.n_nodes(),
                   "elements": run.model.bodies.iter().map(|b| b.cells.len()).sum::<usize>() },
         "bodies": run.model.bodies.iter().map(|b| b.name.clone()).collect::<Vec<_>>(),
-        "dofs": { "total": run.dofs_total, "interface": run.dofs_interface },
-        "parts": { "total": run.parts, "condensed": run.condensed_parts },
-        "timings_s": run.timings,
-        "residuals": { "interface": run.residual_interface, "assembled": run.residual_assembled },
-        "counters": run.counters,
-        "ranks": run.ranks,
+        "dofs": st.dofs,
+        "parts": st.parts,
+        "timings_s": st.timings,
+        "residuals": st.residuals,
+        "counters": st.counters,
+        "ranks": st.ranks,
         "fields": run.scene.output.fields,
-        "warnings": run.scene.warnings(),
+        "warnings": warnings(run),
     });
-    if let Some(c) = &run.contact {
+    if let Some(c) = run.contact() {
         let counts = state_counts(&c.states);
+        let it = &c.summary;
         v["contact"] = json!({
             "pairs": c.states.len(),
-            "iterations": c.iterations,
-            "converged": c.converged,
-            "cycled": c.cycled,
+            "iterations": it.iterations,
+            "converged": it.converged,
+            "cycled": it.cycled,
             "states": { "stick": counts[2], "slip": counts[1], "open": counts[0] },
-            "cycles_broken": c.cycles_broken,
-            "history": c.history.iter().map(|h| { let k = state_counts(h); json!({"stick": k[2], "slip": k[1], "open": k[0]}) }).collect::<Vec<_>>(),
+            "cycles_broken": it.cycles_broken,
+            "history": it.history.iter().map(|h| { let k = state_counts(h); json!({"stick": k[2], "slip": k[1], "open": k[0]}) }).collect::<Vec<_>>(),
         });
     }
     v["steps"] = json!(run
@@ -263,20 +313,21 @@ fn summary(run: &Run) -> serde_json::Value {
             let mut j = json!({ "step": st.step, "ramp": st.load_factor, "case_factors": st.case_factors });
             if let Some(c) = &st.contact {
                 let k = state_counts(&c.states);
-                j["contact"] = json!({ "iterations": c.iterations, "converged": c.converged, "cycled": c.cycled,
+                j["contact"] = json!({ "iterations": c.summary.iterations, "converged": c.summary.converged, "cycled": c.summary.cycled,
                     "states": { "stick": k[2], "slip": k[1], "open": k[0] } });
             }
             j
         })
         .collect::<Vec<_>>());
-    if let Some(e) = &run.errors {
-        v["errors"] = json!({ "displacement_l2": e.displacement_l2, "stress_l2": e.stress_l2, "contact_max": run.contact_error_max });
+    let checks = &run.checks;
+    if let Some(e) = &checks.errors {
+        v["errors"] = json!({ "displacement_l2": e.displacement_l2, "stress_l2": e.stress_l2, "contact_max": checks.contact_error_max });
     }
-    for (key, value) in &run.check.summary {
+    for (key, value) in &checks.analytic.summary {
         v[key] = value.clone();
     }
     let probes: serde_json::Map<String, serde_json::Value> =
-        run.probes.iter().map(|(name, s)| (name.clone(), serde_json::to_value(s).unwrap_or_default())).collect();
+        checks.probes.iter().map(|(name, s)| (name.clone(), serde_json::to_value(s).unwrap_or_default())).collect();
     v["probes"] = serde_json::Value::Object(probes);
     v
 }

@@ -1,92 +1,103 @@
-//! `report.md`: what a person reads first. The scene, the model's size, the
-//! contact iteration, timings, errors against the closed form, the pictures,
-//! what the scene's `[analytic]` check adds (`Run::check`), and the probes.
+//! `report.md`: what a person reads first. The scene, its warnings (the
+//! scene's and the model's: bodies bonded without a contact), the model's
+//! size, the contact iteration, timings (the same as summary.json's: both
+//! are staged once the output stage is timed), the load steps with the
+//! factor each load had at each step, errors against the closed form, the
+//! pictures, what the scene's `[analytic]` check adds (`Checks::analytic`), and
+//! the probes.
 
 use std::fmt::Write;
 
 use crate::results::{state_counts, Run};
+
+/// Plan views embedded in report.md; beyond, they are listed.
+const MOST_EMBEDDED: usize = 6;
 
 /// The report of one run.
 pub fn report(run: &Run) -> String {
     let mut s = String::new();
     let sc = &run.scene;
     let _ = writeln!(s, "# {}\n", sc.title);
-    let _ = writeln!(s, "Scene `{}`, analysis {}, mesh `{}`{}.\n", sc.path.display(), sc.analysis, run.msh.display(), if run.mesh_cached { " (cached)" } else { "" });
-    for w in sc.warnings() {
+    let st = &run.stats;
+    let _ = writeln!(s, "Scene `{}`, analysis {}, mesh `{}`{}.\n", sc.path.display(), sc.analysis, st.msh.display(), if st.mesh_cached { " (cached)" } else { "" });
+    for w in super::warnings(run) {
         let _ = writeln!(s, "**Warning:** {w}.\n");
     }
     let _ = writeln!(s, "| quantity | value |\n|---|---|");
     let _ = writeln!(s, "| bodies | {} |", run.model.bodies.iter().map(|b| b.name.as_str()).collect::<Vec<_>>().join(", "));
     let _ = writeln!(s, "| elements | {} |", run.model.bodies.iter().map(|b| b.cells.len()).sum::<usize>());
     let _ = writeln!(s, "| model nodes (after contact split) | {} |", run.model.n_nodes());
-    let _ = writeln!(s, "| DOFs (unknowns) | {} |", run.dofs_total);
-    let _ = writeln!(s, "| interface DOFs | {} |", run.dofs_interface);
-    let _ = writeln!(s, "| parts (condensed) | {} ({}) |", run.parts, run.condensed_parts);
-    if run.ranks.len() > 1 {
+    let _ = writeln!(s, "| DOFs (unknowns) | {} |", st.dofs.total);
+    let _ = writeln!(s, "| interface DOFs | {} |", st.dofs.interface);
+    let _ = writeln!(s, "| parts (condensed) | {} ({}) |", st.parts.total, st.parts.condensed);
+    if st.ranks.len() > 1 {
         let _ = writeln!(
             s,
             "| MPI ranks: parts / condense (s) / peak memory (MB) | {} |",
-            run.ranks.iter().map(|r| format!("{} / {:.2} / {:.0}", r.parts.len(), r.condense_s, r.peak_memory_bytes as f64 / 1e6)).collect::<Vec<_>>().join(", ")
+            st.ranks.iter().map(|r| format!("{} / {:.2} / {:.0}", r.parts.len(), r.condense_s, r.peak_memory_bytes as f64 / 1e6)).collect::<Vec<_>>().join(", ")
         );
     }
-    if let Some(c) = &run.contact {
-        let k = state_counts(&c.states);
+    if let Some(c) = run.contact() {
+        let (k, it) = (state_counts(&c.states), &c.summary);
         let _ = writeln!(s, "| contact pairs | {} |", c.states.len());
-        let _ = writeln!(s, "| contact iterations | {} ({}) |", c.iterations, if c.converged { "converged" } else if c.cycled { "NOT converged: the states cycle" } else { "NOT converged" });
+        let _ = writeln!(s, "| contact iterations | {} ({}) |", it.iterations, if it.converged { "converged" } else if it.cycled { "NOT converged: the states cycle" } else { "NOT converged" });
         let _ = writeln!(s, "| states stick / slip / open | {} / {} / {} |", k[2], k[1], k[0]);
-        let _ = writeln!(s, "| interface residual | {:.2e} |", run.residual_interface);
+        let _ = writeln!(s, "| interface residual | {:.2e} |", st.residuals.interface);
     }
-    let t = &run.timings;
+    let t = &st.timings;
     let _ = writeln!(
         s,
-        "| time mesh / assemble / condense / interface / recover / output / total (s) | {:.3} / {:.3} / {:.3} / {:.3} / {:.3} / {:.3} / {:.3} |",
-        t.mesh, t.assemble, t.condense, t.interface, t.recover, t.output, t.total
+        "| time mesh / model / assemble / condense / interface / recover / output / total (s) | {:.3} / {:.3} / {:.3} / {:.3} / {:.3} / {:.3} / {:.3} / {:.3} |",
+        t.mesh, t.model, t.assemble, t.condense, t.interface, t.recover, t.output, t.total
     );
-    if let Some(e) = &run.errors {
+    if let Some(e) = &run.checks.errors {
         let _ = writeln!(s, "| displacement error (relative L2) | {:.3e} |", e.displacement_l2);
         let _ = writeln!(s, "| stress error (relative L2) | {:.3e} |", e.stress_l2);
-        if let Some(c) = run.contact_error_max {
+        if let Some(c) = run.checks.contact_error_max {
             let _ = writeln!(s, "| contact sigma_n error (max, relative) | {:.3e} |", c);
         }
     }
     if run.steps.len() > 1 {
-        let _ = writeln!(s, "\n## Load steps\n\n| step | ramp k/N | iterations | stick / slip / open | converged |\n|---|---|---|---|---|");
-        for st in &run.steps {
-            match &st.contact {
-                Some(c) => {
-                    let k = state_counts(&c.states);
-                    let _ = writeln!(s, "| {} | {:.4} | {} | {} / {} / {} | {} |", st.step, st.load_factor, c.iterations, k[2], k[1], k[0], if c.converged { "yes" } else { "NO" });
-                }
-                None => {
-                    let _ = writeln!(s, "| {} | {:.4} | – | – | – |", st.step, st.load_factor);
-                }
-            }
-        }
+        load_steps(&mut s, run);
     }
-    if let Some(c) = &run.contact {
-        if c.cycles_broken > 0 {
-            let _ = writeln!(s, "\nThe state iteration cycled {} time(s); each cycle was broken by changing only the most violated pair per iteration.", c.cycles_broken);
+    if let Some(c) = run.contact() {
+        let it = &c.summary;
+        if it.cycles_broken > 0 {
+            let _ = writeln!(s, "\nThe state iteration cycled {} time(s); each cycle was broken by changing only the most violated pair per iteration.", it.cycles_broken);
         }
-        if !c.converged {
+        if !it.converged {
             let _ = writeln!(s, "\n## Last two state sets\n");
-            let _ = writeln!(s, "| pair | {} |", c.history.iter().rev().take(2).rev().enumerate().map(|(i, _)| format!("iteration {}", c.iterations - 1 + i)).collect::<Vec<_>>().join(" | "));
+            let _ = writeln!(s, "| pair | {} |", it.history.iter().rev().take(2).rev().enumerate().map(|(i, _)| format!("iteration {}", it.iterations - 1 + i)).collect::<Vec<_>>().join(" | "));
             let _ = writeln!(s, "|---|---|---|");
             for p in 0..c.states.len() {
-                let cols: Vec<&str> = c.history.iter().rev().take(2).rev().map(|h| h[p].name()).collect();
+                let cols: Vec<&str> = it.history.iter().rev().take(2).rev().map(|h| h[p].name()).collect();
                 let _ = writeln!(s, "| {p} | {} |", cols.join(" | "));
             }
         }
     }
-    let _ = writeln!(s, "\n![the deformed shape, contact pairs coloured by state]({})", super::picture::deformed_file(&run.stresses));
-    if run.contact.is_some() {
+    let _ = writeln!(s, "\n![the deformed shape, contact pairs coloured by state]({})", super::picture::deformed_file(&run.last().stresses));
+    if run.contact().is_some() {
         let _ = writeln!(s, "\n![contact normal and shear stress along each interface](interfaces.svg)");
-        for (ii, file) in super::picture::plan_files(&run.model) {
-            let name = &run.model.interfaces[ii].name;
-            let _ = writeln!(s, "\n![plan view of {name}: where it sticks, slips and opens; sigma_n]({file})\n\n*Plan view of `{name}`: where it sticks, slips and opens (left); sigma_n (right).*");
+        let plans = super::picture::plan_files(&run.model);
+        if let Some(f) = super::picture::joints_file(&plans) {
+            let _ = writeln!(s, "\n![every contact surface by state]({f})\n\n*Every contact surface laid flat, by state: {} sheets (planes and unrolled surfaces).*", plans.len());
+        }
+        if plans.len() > MOST_EMBEDDED {
+            // a joint set of many planes: a list, not a wall of pictures
+            let _ = writeln!(s, "\nThe plan views, one per sheet: where it sticks, slips and opens; sigma_n.\n\n| file | contact | sheet |\n|---|---|---|");
+            for p in &plans {
+                let _ = writeln!(s, "| [{}]({}) | {} | {} |", p.file, p.file, run.model.interfaces[p.interface].name, p.describe(&run.model));
+            }
+        } else {
+            for p in &plans {
+                let name = &run.model.interfaces[p.interface].name;
+                let (what, which) = if p.of > 1 { (format!("{name} ({})", p.describe(&run.model)), format!(", {}", p.describe(&run.model))) } else { (name.clone(), String::new()) };
+                let _ = writeln!(s, "\n![plan view of {what}: where it sticks, slips and opens; sigma_n]({})\n\n*Plan view of `{name}`{which}: where it sticks, slips and opens (left); sigma_n (right).*", p.file);
+            }
         }
     }
-    s += &run.check.report;
-    for (name, samples) in &run.probes {
+    s += &run.checks.analytic.report;
+    for (name, samples) in &run.checks.probes {
         let _ = writeln!(s, "\n## Probe `{name}`\n");
         let _ = writeln!(s, "| x | y | z | ux | uy | uz | sxx | syy | szz | sxy | von Mises |\n|---|---|---|---|---|---|---|---|---|---|---|");
         for p in samples {
@@ -101,6 +112,82 @@ pub fn report(run: &Run) -> String {
             );
         }
     }
-    let _ = writeln!(s, "\nOpen `{}.vtu`{} in ParaView (File > Open), colour by `von_mises` or `displacement`; `Warp By Vector` on `displacement` shows the deformed shape.", sc.name, if run.contact.is_some() { format!(" and `{}_contact.vtu`", sc.name) } else { String::new() });
+    let _ = writeln!(s, "\nOpen `{}.vtu`{} in ParaView (File > Open), colour by `von_mises` or `displacement`; `Warp By Vector` on `displacement` shows the deformed shape.", sc.name, if run.contact().is_some() { format!(" and `{}_contact.vtu`", sc.name) } else { String::new() });
     s
+}
+
+/// The load-step table: the factor each load actually had at each step
+/// ([`applied`]), then the contact iteration of the step.
+fn load_steps(s: &mut String, run: &Run) {
+    let columns = applied(&run.scene);
+    let head: Vec<String> = columns.iter().map(|c| format!("{} | ", c.name)).collect();
+    let _ = writeln!(s, "\n## Load steps\n\nThe factor that multiplies each load at each step (as given by `factors`, `gravity_factors`, or the ramp k / load_steps).\n");
+    let _ = writeln!(s, "| step | {}iterations | stick / slip / open | converged |", head.concat());
+    let _ = writeln!(s, "|---|{}---|---|---|", "---|".repeat(columns.len()));
+    for st in &run.steps {
+        let factors: String = columns.iter().map(|c| format!("{} | ", factor(c.factors.get(st.step.wrapping_sub(1)).copied()))).collect();
+        match &st.contact {
+            Some(c) => {
+                let k = state_counts(&c.states);
+                let _ = writeln!(s, "| {} | {factors}{} | {} / {} / {} | {} |", st.step, c.summary.iterations, k[2], k[1], k[0], if c.summary.converged { "yes" } else { "NO" });
+            }
+            None => {
+                let _ = writeln!(s, "| {} | {factors}– | – | – |", st.step);
+            }
+        }
+    }
+}
+
+/// A load factor as the user would write it: up to 4 decimals, no trailing
+/// zeros.
+fn factor(f: Option<f64>) -> String {
+    match f {
+        Some(v) if v.is_finite() => {
+            let t = format!("{v:.4}");
+            let t = t.trim_end_matches('0').trim_end_matches('.');
+            if t == "-0" { "0".into() } else { t.to_string() }
+        }
+        _ => "–".into(),
+    }
+}
+
+/// One column of the load-step table: the loads that share a sequence of
+/// factors, and that sequence (one per step).
+#[derive(Debug, PartialEq)]
+pub(crate) struct Applied {
+    pub(crate) name: String,
+    pub(crate) factors: Vec<f64>,
+}
+
+/// The factors the scene applies at each step, read from the scene as the
+/// user wrote it: gravity (when a material has a density) by
+/// `[solver] gravity_factors`, each `[[loads]]` entry by its `factors`,
+/// prescribed displacements, and everything without factors by the ramp
+/// k / load_steps. Loads with the same factors share a column, named by
+/// their groups.
+pub(crate) fn applied(scene: &crate::scene::Scene) -> Vec<Applied> {
+    let n = scene.solver.load_steps;
+    let ramp: Vec<f64> = (1..=n).map(|k| k as f64 / n as f64).collect();
+    let mut named: Vec<(String, Vec<f64>)> = Vec::new();
+    let weighs = scene.gravity.iter().any(|&g| g != 0.0) && scene.materials.values().any(|m| m.density > 0.0);
+    if weighs {
+        named.push(("gravity".into(), scene.solver.gravity_factors.clone().unwrap_or_else(|| ramp.clone())));
+    }
+    for l in &scene.loads {
+        named.push((format!("\"{}\"", l.group), l.factors.clone().unwrap_or_else(|| ramp.clone())));
+    }
+    if scene.supports.iter().any(|sp| sp.prescribed.iter().flatten().any(|&u| u != 0.0)) {
+        named.push(("prescribed u".into(), ramp.clone()));
+    }
+    let mut columns: Vec<Applied> = Vec::new();
+    for (name, factors) in named {
+        match columns.iter_mut().find(|c| c.factors == factors) {
+            Some(c) => {
+                c.name.push_str(", ");
+                c.name.push_str(&name);
+            }
+            None => columns.push(Applied { name, factors }),
+        }
+    }
+    columns
 }

@@ -59,6 +59,7 @@ pub use crate::analytic::Analytic;
 pub use crate::contact::{InterfaceSolver, SlipLaw, StateRule, TractionRecovery};
 pub use crate::fem::Analysis;
 pub use crate::model::{ContactGroups, InitialStress, LoadKind};
+pub use crate::output::picture::Region;
 pub use crate::recover::Probe;
 
 /// `[materials.NAME]`: linear isotropic elasticity.
@@ -198,6 +199,10 @@ pub const OUTPUT_FIELDS: &[&str] = &["displacement", "stress"];
 pub struct Output {
     /// Body fields to compute and write, each one of [`OUTPUT_FIELDS`].
     pub fields: Vec<String>,
+    /// What the deformed picture frames (`frame = { from, to }` or
+    /// `frame = { bodies }`); None: the contacts, when they are a small part
+    /// of the model.
+    pub frame: Option<Region>,
 }
 
 impl Output {
@@ -211,6 +216,7 @@ impl Default for Output {
     fn default() -> Self {
         Output {
             fields: OUTPUT_FIELDS.iter().map(|s| s.to_string()).collect(),
+            frame: None,
         }
     }
 }

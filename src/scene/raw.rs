@@ -148,4 +148,14 @@ pub(super) struct RawAnalytic {
 #[serde(deny_unknown_fields)]
 pub(super) struct RawOutput {
     pub(super) fields: Option<Vec<String>>,
+    pub(super) frame: Option<RawFrame>,
+}
+
+/// `frame = { from = [..], to = [..] }` or `frame = { bodies = [..] }`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawFrame {
+    pub(super) from: Option<Vec<f64>>,
+    pub(super) to: Option<Vec<f64>>,
+    pub(super) bodies: Option<Vec<String>>,
 }

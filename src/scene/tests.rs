@@ -638,3 +638,25 @@ fn analytic_and_output_rules() {
         &["output.fields[1]", "twice"],
     );
 }
+
+/// `[output] frame`: a box in the analysis's coordinates or bodies of the
+/// scene, what the deformed picture frames (issue 19).
+#[test]
+fn output_frame_is_a_box_or_bodies() {
+    let s = load(&minimal("[output]\nframe = { from = [-1, -2], to = [3, 4] }\n")).expect("a 2D box");
+    assert_eq!(s.output.frame, Some(Region::Box { from: [-1.0, -2.0, 0.0], to: [3.0, 4.0, 0.0] }));
+    assert_eq!(s.output.fields, Output::default().fields, "the fields keep their default");
+    let s = load(&minimal_solid("[output]\nframe = { from = [0, 0, 0], to = [1, 1, 1] }\nfields = [\"stress\"]\n")).expect("a 3D box");
+    assert_eq!(s.output.frame, Some(Region::Box { from: [0.0; 3], to: [1.0; 3] }));
+    let s = load(&minimal("[output]\nframe = { bodies = [\"b1\"] }\n")).expect("bodies");
+    assert_eq!(s.output.frame, Some(Region::Bodies(vec!["b1".into()])));
+    assert_eq!(load(&minimal("")).expect("no frame").output.frame, None);
+
+    rejects(&minimal("[output]\nframe = { from = [0, 5], to = [1, 4] }\n"), &["output.frame.to", "[1, 4]", "its y must exceed from's (5)"]);
+    rejects(&minimal_solid("[output]\nframe = { from = [0, 0], to = [1, 1] }\n"), &["output.frame.from", "3 components"]);
+    rejects(&minimal("[output]\nframe = { bodies = [\"lining\"] }\n"), &["output.frame.bodies[0]", "\"lining\"", "\"b1\""]);
+    rejects(&minimal("[output]\nframe = { bodies = [] }\n"), &["output.frame.bodies", "at least one body"]);
+    rejects(&minimal("[output]\nframe = { from = [0, 0] }\n"), &["output.frame", "either the box", "or the bodies"]);
+    rejects(&minimal("[output]\nframe = { from = [0, 0], to = [1, 1], bodies = [\"b1\"] }\n"), &["output.frame", "either"]);
+    rejects(&minimal("[output]\nframe = { centre = [0, 0] }\n"), &["unknown field `centre`"]);
+}

@@ -9,8 +9,8 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
 use std::path::Path;
 
-use super::raw::{RawGmsh, RawMaterial, RawOutput, RawProbe, RawScene};
-use super::{Analysis, GmshOptions, Material, MeshSource, Output, Probe, Scene, SceneError, Solver, OUTPUT_FIELDS};
+use super::raw::{RawFrame, RawGmsh, RawMaterial, RawOutput, RawProbe, RawScene};
+use super::{Analysis, Body, GmshOptions, Material, MeshSource, Output, Probe, Region, Scene, SceneError, Solver, OUTPUT_FIELDS};
 
 mod analytic;
 mod groups;
@@ -269,7 +269,7 @@ impl Checker<'_> {
         }
         let probes = self.probes(raw.probes, analysis)?;
         let analytic = raw.analytic.map(|a| self.analytic(a, analysis, &bodies, &materials)).transpose()?;
-        let output = self.output(raw.output)?;
+        let output = self.output(raw.output, analysis, &bodies)?;
 
         Ok(Scene {
             path: self.path.to_path_buf(),
@@ -483,9 +483,13 @@ impl Checker<'_> {
         Ok(out)
     }
 
-    fn output(&self, raw: Option<RawOutput>) -> R<Output> {
-        let Some(fields) = raw.and_then(|o| o.fields) else {
+    fn output(&self, raw: Option<RawOutput>, analysis: Analysis, bodies: &[Body]) -> R<Output> {
+        let Some(raw) = raw else {
             return Ok(Output::default());
+        };
+        let frame = raw.frame.map(|f| self.frame(f, analysis, bodies)).transpose()?;
+        let Some(fields) = raw.fields else {
+            return Ok(Output { frame, ..Output::default() });
         };
         let mut seen = BTreeSet::new();
         for (i, f) in fields.iter().enumerate() {
@@ -504,6 +508,43 @@ impl Checker<'_> {
                 return Err(self.bad(key, format!("{f:?}"), "listed twice; list each field once."));
             }
         }
-        Ok(Output { fields })
+        Ok(Output { fields, frame })
+    }
+
+    /// `[output] frame`: a box (`from`, `to`: the analysis's coordinates,
+    /// `from` below `to` in each) or bodies (groups of `[[bodies]]`).
+    fn frame(&self, raw: RawFrame, analysis: Analysis, bodies: &[Body]) -> R<Region> {
+        let k = "output.frame";
+        match (raw.from, raw.to, raw.bodies) {
+            (Some(from), Some(to), None) => {
+                let from = self.vec3(&from, &format!("{k}.from"), analysis)?;
+                let to = self.vec3(&to, &format!("{k}.to"), analysis)?;
+                let dim = if analysis == Analysis::Solid { 3 } else { 2 };
+                if let Some(d) = (0..dim).find(|&d| from[d] >= to[d]) {
+                    return Err(self.bad(
+                        format!("{k}.to"),
+                        fmt_vec(&to[..dim]),
+                        format!("its {} must exceed from's ({}): the box runs from its lowest corner to its highest.", ["x", "y", "z"][d], from[d]),
+                    ));
+                }
+                Ok(Region::Box { from, to })
+            }
+            (None, None, Some(names)) => {
+                if names.is_empty() {
+                    return Err(self.bad(format!("{k}.bodies"), "[]", "name at least one body (a group of [[bodies]])."));
+                }
+                for (i, n) in names.iter().enumerate() {
+                    if !bodies.iter().any(|b| &b.group == n) {
+                        let known: Vec<String> = bodies.iter().map(|b| format!("{:?}", b.group)).collect();
+                        return Err(self.bad(format!("{k}.bodies[{i}]"), format!("{n:?}"), format!("no [[bodies]] entry has this group; the bodies are {}.", known.join(", "))));
+                    }
+                }
+                Ok(Region::Bodies(names))
+            }
+            _ => Err(self.err(
+                k,
+                "give either the box `frame = { from = [x0, y0(, z0)], to = [x1, y1(, z1)] }` or the bodies `frame = { bodies = [\"lining\"] }` that the deformed picture frames.",
+            )),
+        }
     }
 }

@@ -35,48 +35,75 @@ use ordering::Ordering;
 use schur::PartialCholesky;
 use crate::model::{Model, ModelError};
 
-/// What the interface needs of a condensed part: its interface nodes, the
-/// Schur complement S (column-major nc x nc) and the condensed loads G, one
-/// per load case. What travels from a part's MPI rank to rank 0. A part
-/// condensed for the iterative interface sends no S but the diagonal blocks
-/// of its K_cc (nc x nd), and its S is applied on its own rank.
+/// What the interface needs of a condensed part: its interface nodes, its
+/// Schur complement ([`Schur`]) and the condensed loads G, one per load
+/// case. What travels from a part's MPI rank to rank 0.
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct Operator {
     pub part: Part,
     pub nc: usize,
-    pub s: Vec<f64>,
     pub g: Vec<Vec<f64>>,
-    pub how: Condensation,
-    pub diag: Vec<f64>,
+    pub s: Schur,
+}
+
+/// A part's Schur complement as the interface gets it, by condensation.
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
+pub enum Schur {
+    /// S itself, column-major nc x nc (empty once taken or freed).
+    Dense(Vec<f64>),
+    /// S applied on the part's own rank, through its interior factor; the
+    /// interface gets the diagonal blocks of K_cc (nd x nd per interface
+    /// node, row-major) for its preconditioner.
+    Applied { diag: Vec<f64> },
 }
 
 /// An [`Operator`] borrowed from a [`Condensed`] part or a received one.
-/// A part condensed for the iterative interface has no `s`; `applied` is
-/// its interior factor that applies S, when the part is on this rank.
 #[derive(Clone, Copy)]
 pub struct OperatorRef<'a> {
     pub part: &'a Part,
     pub nc: usize,
-    pub s: &'a [f64],
     pub g: &'a [Vec<f64>],
-    pub how: Condensation,
-    pub diag: &'a [f64],
-    pub applied: Option<&'a SharedSolve>,
+    pub s: SchurRef<'a>,
+}
+
+/// A [`Schur`] borrowed; an applied one with its interior factor when the
+/// part is on this rank.
+#[derive(Clone, Copy)]
+pub enum SchurRef<'a> {
+    Dense(&'a [f64]),
+    Applied { diag: &'a [f64], solve: Option<&'a SharedSolve> },
 }
 
 impl Operator {
     pub fn as_ref(&self) -> OperatorRef<'_> {
-        OperatorRef { part: &self.part, nc: self.nc, s: &self.s, g: &self.g, how: self.how, diag: &self.diag, applied: None }
+        let s = match &self.s {
+            Schur::Dense(s) => SchurRef::Dense(s),
+            Schur::Applied { diag } => SchurRef::Applied { diag, solve: None },
+        };
+        OperatorRef { part: &self.part, nc: self.nc, g: &self.g, s }
     }
 }
 
-/// What condensation makes of a part with an interface.
+/// How to condense a part with an interface.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Condensation {
     /// The dense Schur complement S (the factor with its interface last).
     Dense,
     /// The interior factorised alone, S applied through it ([`interior`]).
     Applied,
+}
+
+/// A condensed part's factor and what the interface gets of it.
+enum Factor {
+    /// The part's factor with its interface ordered last ([`schur`]), and
+    /// the S read off it.
+    Schur { chol: Box<PartialCholesky>, s: Vec<f64> },
+    /// The same with the factor freed to save memory
+    /// ([`Condensed::drop_factor`]): made again to recover the interior.
+    Freed { s: Vec<f64> },
+    /// The interior factorised alone, which applies S ([`interior`]), and
+    /// the diagonal blocks of K_cc.
+    Interior { solve: SharedSolve, diag: Vec<f64> },
 }
 
 /// A factorised part, condensed onto its interface when it has one.
@@ -87,19 +114,11 @@ pub struct Condensed {
     pub ni: usize,
     /// Number of interface DOFs (`interface.len() * nd`).
     pub nc: usize,
-    /// The part's factor, interface last (see [`schur`]); `None` once
-    /// dropped to save memory ([`Condensed::drop_factor`]).
-    chol: Option<PartialCholesky>,
-    /// The interior factor of a part condensed for the iterative interface
-    /// (then `chol` is None and `s` empty), and its K_cc's diagonal blocks.
-    applied: Option<SharedSolve>,
-    diag: Vec<f64>,
+    factor: Factor,
     /// Bytes of the factor's values.
     pub factor_bytes: usize,
     /// The load vectors `[F_i; F_c]`, one per load case.
     f: Vec<Vec<f64>>,
-    /// Schur complement, column-major nc x nc.
-    pub s: Vec<f64>,
     /// Condensed loads, one per load case.
     pub g: Vec<Vec<f64>>,
     /// Seconds spent assembling, and factorising and condensing.
@@ -108,6 +127,14 @@ pub struct Condensed {
     /// Normwise backward error of the part's sparse solves (the assembled
     /// system's residual), ~1e-16 for a healthy factorisation.
     pub backward_error: f64,
+}
+
+/// What factorising a part gives [`Condensed`].
+struct Factored {
+    factor: Factor,
+    g: Vec<Vec<f64>>,
+    factor_bytes: usize,
+    backward_error: f64,
 }
 
 /// Why a part could not be solved.
@@ -224,39 +251,57 @@ pub fn condense(model: &Model, part: Part, how: Condensation) -> Result<Condense
     // s against 4.9-6.5 s with other builds running; [`condense_parts`]'
     // threads use the two cores better.
     let par = faer::get_global_parallelism();
-    // each case's solution (n values) and the right-hand side it solved, for the backward error
-    let n = ni + nc;
-    let (chol, applied, diag, s, g, factor_bytes, solved) = if how == Condensation::Applied && nc > 0 {
-        let solve = InteriorSolve::factor(&a.k, ni, &node_of, ordering, par).map_err(|e| not_held(model, &part, e))?;
-        let (g, x) = solve.condensed_loads(&a.f);
-        // K [x_i; 0] = [F_i; K_ci x_i]: the interface rows hold by construction
-        let solved: Vec<(Vec<f64>, Vec<f64>, f64)> = (a.f.iter().enumerate())
-            .map(|(k, f)| {
-                let xk: Vec<f64> = x[k * ni..(k + 1) * ni].iter().copied().chain(std::iter::repeat(0.0).take(nc)).collect();
-                let b: Vec<f64> = f[..ni].iter().chain(&a.k.mul(&xk)[ni..]).copied().collect();
-                (xk, b, 0.0)
-            })
-            .collect();
-        let (diag, bytes) = (solve.diagonal_blocks(model.nd), solve.factor_bytes());
-        (None, Some(SharedSolve::new(solve)), diag, Vec::new(), g, bytes, solved)
+    let factored = if how == Condensation::Applied && nc > 0 {
+        interior_factor(&a, ni, &node_of, ordering, par, model.nd)
     } else {
-        let chol = PartialCholesky::factor(&a.k, ni, &node_of, ordering, par).map_err(|e| not_held(model, &part, e))?;
-        let s = chol.schur(par);
-        let (g, x) = chol.condensed_loads(&s, &a.f);
-        let solved = (a.f.iter().enumerate())
-            .map(|(k, f)| (x[k * n..(k + 1) * n].to_vec(), f[..ni].iter().copied().chain(std::iter::repeat(0.0).take(nc)).collect(), chol.alpha()))
-            .collect();
-        let bytes = chol.stats().values * std::mem::size_of::<f64>();
-        (Some(chol), None, Vec::new(), s, g, bytes, solved)
-    };
-    let backward_error = solved.iter().map(|(x, b, alpha)| a.k.backward_error(x, b, *alpha, ni)).fold(0.0, f64::max);
+        schur_factor(&a, ni, &node_of, ordering, par)
+    }
+    .map_err(|e| not_held(model, &part, e))?;
     for d in dof_of.iter_mut() {
         if *d != NONE && *d >= ni {
             *d = NONE;
         }
     }
     let condense_s = t.elapsed().as_secs_f64() - assemble_s;
-    Ok(Condensed { part, dof_of, ni, nc, chol, applied, diag, factor_bytes, f: a.f, s, g, assemble_s, condense_s, backward_error })
+    let Factored { factor, g, factor_bytes, backward_error } = factored;
+    Ok(Condensed { part, dof_of, ni, nc, factor, factor_bytes, f: a.f, g, assemble_s, condense_s, backward_error })
+}
+
+/// The part's factor with the interface last and S read off it; the
+/// backward error of its solves of each load case.
+fn schur_factor(a: &assembly::Assembled, ni: usize, node_of: &[usize], ordering: Ordering, par: faer::Par) -> Result<Factored, FactorError> {
+    let n = a.k.n;
+    let nc = n - ni;
+    let chol = PartialCholesky::factor(&a.k, ni, node_of, ordering, par)?;
+    let s = chol.schur(par);
+    let (g, x) = chol.condensed_loads(&s, &a.f);
+    let alpha = chol.alpha();
+    let backward_error = (a.f.iter().enumerate())
+        .map(|(k, f)| {
+            let b: Vec<f64> = f[..ni].iter().copied().chain(std::iter::repeat_n(0.0, nc)).collect();
+            a.k.backward_error(&x[k * n..(k + 1) * n], &b, alpha, ni)
+        })
+        .fold(0.0, f64::max);
+    let factor_bytes = chol.stats().values * std::mem::size_of::<f64>();
+    Ok(Factored { factor: Factor::Schur { chol: Box::new(chol), s }, g, factor_bytes, backward_error })
+}
+
+/// The part's interior factorised alone (S applied through it) and the
+/// diagonal blocks of K_cc; the backward error of its interior solves.
+fn interior_factor(a: &assembly::Assembled, ni: usize, node_of: &[usize], ordering: Ordering, par: faer::Par, nd: usize) -> Result<Factored, FactorError> {
+    let nc = a.k.n - ni;
+    let solve = InteriorSolve::factor(&a.k, ni, node_of, ordering, par)?;
+    let (g, x) = solve.condensed_loads(&a.f);
+    // K [x_i; 0] = [F_i; K_ci x_i]: the interface rows hold by construction
+    let backward_error = (a.f.iter().enumerate())
+        .map(|(k, f)| {
+            let xk: Vec<f64> = x[k * ni..(k + 1) * ni].iter().copied().chain(std::iter::repeat_n(0.0, nc)).collect();
+            let b: Vec<f64> = f[..ni].iter().chain(&a.k.mul(&xk)[ni..]).copied().collect();
+            a.k.backward_error(&xk, &b, 0.0, ni)
+        })
+        .fold(0.0, f64::max);
+    let (diag, factor_bytes) = (solve.diagonal_blocks(nd), solve.factor_bytes());
+    Ok(Factored { factor: Factor::Interior { solve: SharedSolve::new(solve), diag }, g, factor_bytes, backward_error })
 }
 
 /// The factor of a part again (assembled and factorised as [`condense`]
@@ -272,45 +317,69 @@ fn refactor(model: &Model, part: &Part) -> PartialCholesky {
 impl Condensed {
     /// The part's operator, borrowed.
     pub fn operator(&self) -> OperatorRef<'_> {
-        OperatorRef { part: &self.part, nc: self.nc, s: &self.s, g: &self.g, how: self.how(), diag: &self.diag, applied: self.applied.as_ref() }
+        let s = match &self.factor {
+            Factor::Schur { s, .. } | Factor::Freed { s } => SchurRef::Dense(s),
+            Factor::Interior { solve, diag } => SchurRef::Applied { diag, solve: Some(solve) },
+        };
+        OperatorRef { part: &self.part, nc: self.nc, g: &self.g, s }
     }
 
     /// How the part was condensed.
     pub fn how(&self) -> Condensation {
-        if self.applied.is_some() {
-            Condensation::Applied
-        } else {
-            Condensation::Dense
+        match self.factor {
+            Factor::Schur { .. } | Factor::Freed { .. } => Condensation::Dense,
+            Factor::Interior { .. } => Condensation::Applied,
+        }
+    }
+
+    /// Whether the part was condensed for the iterative interface.
+    pub fn is_applied(&self) -> bool {
+        self.how() == Condensation::Applied
+    }
+
+    /// The dense S (empty for a part condensed for the iterative interface,
+    /// or once taken or freed).
+    pub fn s(&self) -> &[f64] {
+        match &self.factor {
+            Factor::Schur { s, .. } | Factor::Freed { s } => s,
+            Factor::Interior { .. } => &[],
         }
     }
 
     /// `S d` for the `k` columns of `d` (a part condensed for the iterative interface).
     pub fn apply(&self, d: &[f64], k: usize) -> Vec<f64> {
-        self.applied.as_ref().expect("a part condensed for the iterative interface").apply(d, k)
+        match &self.factor {
+            Factor::Interior { solve, .. } => solve.apply(d, k),
+            _ => panic!("S applied of a part condensed densely"),
+        }
     }
 
     /// The part's operator, its S moved out (to send it to another rank;
     /// the part keeps what recovers its interior).
     pub fn take_operator(&mut self) -> Operator {
-        Operator { part: self.part.clone(), nc: self.nc, s: std::mem::take(&mut self.s), g: self.g.clone(), how: self.how(), diag: self.diag.clone() }
+        let s = match &mut self.factor {
+            Factor::Schur { s, .. } | Factor::Freed { s } => Schur::Dense(std::mem::take(s)),
+            Factor::Interior { diag, .. } => Schur::Applied { diag: diag.clone() },
+        };
+        Operator { part: self.part.clone(), nc: self.nc, g: self.g.clone(), s }
     }
 
     /// Frees the dense S once the interface holds what it needs of it.
     pub fn drop_schur(&mut self) {
-        self.s = Vec::new();
+        if let Factor::Schur { s, .. } | Factor::Freed { s } = &mut self.factor {
+            *s = Vec::new();
+        }
     }
 
-    /// Frees the factor: [`Condensed::recover`] then assembles and
-    /// factorises the part again (twice the factorisations, for a peak of
-    /// one part's factor during recovery instead of all of them throughout
-    /// the contact iteration).
+    /// Frees the factor of a densely condensed part: [`Condensed::recover`]
+    /// then assembles and factorises the part again (twice the
+    /// factorisations, for a peak of one part's factor during recovery
+    /// instead of all of them throughout the contact iteration).
     pub fn drop_factor(&mut self) {
-        self.chol = None;
-    }
-
-    /// Whether the part was condensed for the iterative interface.
-    pub fn is_applied(&self) -> bool {
-        self.applied.is_some()
+        if let Factor::Schur { s, .. } = &mut self.factor {
+            let s = std::mem::take(s);
+            self.factor = Factor::Freed { s };
+        }
     }
 
     /// The load vector combined with the load factors `lambda` (one per case).
@@ -337,18 +406,11 @@ impl Condensed {
     /// the prescribed values (scaled by the ramp, case 0).
     pub fn recover(&self, model: &Model, d_c: &[f64], lambda: &[f64], u: &mut [f64]) {
         let nd = model.nd;
-        let refactored;
-        let d_i = if let Some(solve) = &self.applied {
-            solve.interior(&Self::combine(&self.f, lambda), d_c)
-        } else {
-            let chol = match &self.chol {
-                Some(c) => c,
-                None => {
-                    refactored = refactor(model, &self.part);
-                    &refactored
-                }
-            };
-            chol.interior(&Self::combine(&self.f, lambda), &self.g_at(lambda), d_c)
+        let f = Self::combine(&self.f, lambda);
+        let d_i = match &self.factor {
+            Factor::Interior { solve, .. } => solve.interior(&f, d_c),
+            Factor::Schur { chol, .. } => chol.interior(&f, &self.g_at(lambda), d_c),
+            Factor::Freed { .. } => refactor(model, &self.part).interior(&f, &self.g_at(lambda), d_c),
         };
         for (i, &d) in self.dof_of.iter().enumerate() {
             if d != NONE {

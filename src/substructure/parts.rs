@@ -106,6 +106,40 @@ fn set_interfaces(model: &Model, parts: &mut [Part]) {
     }
 }
 
+/// The unknowns of a model cut into `parts`, as a run counts them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DofCounts {
+    /// Interior free DOFs of every part plus the interface DOFs.
+    pub total: usize,
+    /// DOFs of the nodes the parts share: a pair node with all its
+    /// components, a join between pieces with its free ones; each node once.
+    pub interface: usize,
+}
+
+/// The DOFs of `parts` without assembling them (`subcontact check`): the
+/// same numbers as [`super::numbering`] gives part by part.
+pub fn dof_counts(model: &Model, parts: &[Part]) -> DofCounts {
+    let nd = model.nd;
+    let free = |n: usize| (0..nd).filter(|&c| model.prescribed[n * nd + c].is_none()).count();
+    let mut in_pair = vec![false; model.n_nodes()];
+    for p in &model.pairs {
+        in_pair[p.k] = true;
+        in_pair[p.l] = true;
+    }
+    let mut shared = vec![false; model.n_nodes()];
+    for &n in parts.iter().flat_map(|p| &p.interface) {
+        shared[n] = true;
+    }
+    let interface: usize = (0..model.n_nodes()).filter(|&n| shared[n]).map(|n| if in_pair[n] { nd } else { free(n) }).sum();
+    // a node that is not shared belongs to one part
+    let mut used = vec![false; model.n_nodes()];
+    for &k in model.bodies.iter().flat_map(|b| &b.cells).flat_map(|c| &c.nodes) {
+        used[k] = true;
+    }
+    let interior: usize = (0..model.n_nodes()).filter(|&n| used[n] && !shared[n]).map(free).sum();
+    DofCounts { total: interior + interface, interface }
+}
+
 /// The fewest cells a part needs to be cut into `k` pieces (fewer: kept whole).
 pub const MIN_CELLS_PER_PIECE: usize = 8;
 

@@ -169,7 +169,7 @@ fn condensation_equals_the_dense_schur_complement() {
         let nc = c.nc;
         assert_eq!(nc, 3 * model.nd, "{name}: every component of the three interface nodes");
         assert_eq!(c.ni, dense.interior.len(), "{name}");
-        let es = rel((0..nc * nc).map(|i| c.s[i]), (0..nc * nc).map(|i| dense.s[(i % nc, i / nc)]));
+        let es = rel((0..nc * nc).map(|i| c.s()[i]), (0..nc * nc).map(|i| dense.s[(i % nc, i / nc)]));
         let eg = rel(c.g[0].iter().copied(), dense.g.iter().copied());
         assert!(es < 1e-12, "{name}: S differs by {es:.3e} (relative)");
         assert!(eg < 1e-12, "{name}: G differs by {eg:.3e} (relative)");
@@ -186,7 +186,7 @@ fn condensation_equals_the_dense_schur_complement() {
         // condensed for the iterative interface: no S, but S applied, the
         // same G and the same recovery
         let applied = condense(&model, c.part.clone(), Condensation::Applied).expect("condense");
-        assert!(applied.s.is_empty() && applied.is_applied());
+        assert!(applied.s().is_empty() && applied.is_applied());
         let cols = 2;
         let x: Vec<f64> = (0..nc * cols).map(|i| ((i as f64) * 1.3).cos()).collect();
         let sx = applied.apply(&x, cols);
@@ -220,7 +220,7 @@ fn condensed_floating_body_keeps_its_rigid_body_modes() {
     let part = parts(&model).into_iter().find(|p| p.bodies == [1]).expect("the right body");
     let c = condense(&model, part, Condensation::Dense).expect("condense");
     let nc = c.nc;
-    let s = DMatrix::from_column_slice(nc, nc, &c.s);
+    let s = DMatrix::from_column_slice(nc, nc, c.s());
     let nodes = &c.part.interface;
     let modes = [
         DVector::from_fn(nc, |i, _| if i % 2 == 0 { 1.0 } else { 0.0 }),
@@ -346,7 +346,7 @@ fn parts_condensed_in_threads_equal_one_after_the_other() {
     assert_eq!(one.len(), 2);
     for (a, b) in one.iter().zip(&two) {
         assert_eq!(a.part.bodies, b.part.bodies);
-        assert_eq!(a.s, b.s);
+        assert_eq!(a.s(), b.s());
         assert_eq!(a.g, b.g);
     }
     // with no support and no contact both blocks float: block0, the first,
@@ -357,5 +357,25 @@ fn parts_condensed_in_threads_equal_one_after_the_other() {
     for threads in [1, 2] {
         let e = condense_parts(&free, parts(&free), threads, Condensation::Dense).err().expect("a free part is refused");
         assert!(e.to_string().contains("block0"), "{e}");
+    }
+}
+
+/// `subcontact check` counts the DOFs without numbering the parts: the
+/// same interior and interface counts as `numbering` part by part (the
+/// two-body model with prescribed and supported nodes, and the stacked
+/// blocks cut into pieces that share bonded joins).
+#[test]
+fn dof_counts_equal_the_numbering_of_the_parts() {
+    for (model, k) in [(two_body_model(), 1), (stacked_blocks(4, 3), 1), (stacked_blocks(4, 3), 3)] {
+        let cut = super::cut(&model, parts(&model), k);
+        let counts = super::parts::dof_counts(&model, &cut);
+        let interior: usize = cut.iter().map(|p| numbering(&model, p).1).sum();
+        let mut shared: Vec<usize> = cut.iter().flat_map(|p| p.interface.iter().copied()).collect();
+        shared.sort_unstable();
+        shared.dedup();
+        let in_pair = |n: usize| model.pairs.iter().any(|p| p.k == n || p.l == n);
+        let iface: usize = shared.iter().map(|&n| if in_pair(n) { model.nd } else { (0..model.nd).filter(|&c| model.prescribed[n * model.nd + c].is_none()).count() }).sum();
+        assert!(iface > 0, "the model has an interface");
+        assert_eq!(counts, super::parts::DofCounts { total: interior + iface, interface: iface }, "{} pieces", cut.len());
     }
 }

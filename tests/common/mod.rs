@@ -7,18 +7,20 @@
 //!   scene with edits, two stacked blocks, Lamé's cylinder);
 //! - [`cli`]: the command line's contract for a failed run (one clean
 //!   `error:` paragraph, no result files), and gmsh runs in a case;
+//! - [`msh`]: an MSH 4.1 writer for meshes gmsh does not make;
 //! - [`measure`]: what the tests measure on a solved run (rates, largest
 //!   values, state counts, the difference to the bonded solve, contact forces).
 #![allow(dead_code)]
 
 pub mod cli;
 pub mod measure;
+pub mod msh;
 pub mod scenes;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use subcontact::driver::{self, Run, RunOptions};
+use subcontact::driver::{self, ContactError, Run, RunOptions};
 
 /// A scratch directory for one test case (recreated empty).
 pub struct Case {
@@ -63,6 +65,13 @@ impl Case {
         let stem = scene.file_stem().expect("stem").to_string_lossy().to_string();
         let out = self.out(&format!("{stem}{}", if bonded { "-bonded" } else { "" }));
         driver::run(scene, &RunOptions { out: Some(out), bonded, ..Default::default() })
+    }
+
+    /// Solves a scene file of this case with the library driver, which must
+    /// fail in the contact iteration: the typed error.
+    pub fn contact_error(&self, scene: &Path) -> ContactError {
+        let err = self.run(scene).err().unwrap_or_else(|| panic!("{}: the run must fail", scene.display()));
+        err.downcast_ref::<ContactError>().unwrap_or_else(|| panic!("{}: a contact error, not: {err:#}", scene.display())).clone()
     }
 
     /// Runs the real binary in this case's directory.

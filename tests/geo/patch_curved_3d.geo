@@ -4,7 +4,8 @@
 // along the two cylindrical faces are curved.
 //
 // hexes = 0: unstructured tetrahedra of size lc;
-// hexes = 1: hexahedra, n radially (graded) x 2 n around x 2 layers.
+// hexes = 1: hexahedra, n radially (graded) x 2 n around x 2 layers;
+// prisms = 1: the plan triangulated (size lc), extruded in 2 layers: prisms.
 // serendipity = 1 makes `gmsh -order 2` write hex20 instead of hex27.
 //
 // boundary: all six faces (pressure); A, B, C = points 1, 2, 4 on z = 0
@@ -14,6 +15,7 @@ DefineConstant[ hexes = {0, Name "Parameters/hexahedra"} ];
 DefineConstant[ serendipity = {0, Name "Parameters/serendipity"} ];
 DefineConstant[ lc = {0.7, Name "Parameters/tetrahedron size"} ];
 DefineConstant[ n = {2, Name "Parameters/hexahedra radially"} ];
+DefineConstant[ prisms = {0, Name "Parameters/prisms"} ];
 
 r1 = 2.0;
 r2 = 4.0;
@@ -38,6 +40,8 @@ If (hexes)
   Transfinite Curve{2, 4} = 2 * n + 1;
   Transfinite Surface{1};
   Recombine Surface{1};
+  ex[] = Extrude {0, 0, 1.5} { Surface{1}; Layers{2}; Recombine; };
+ElseIf (prisms)
   ex[] = Extrude {0, 0, 1.5} { Surface{1}; Layers{2}; Recombine; };
 Else
   ex[] = Extrude {0, 0, 1.5} { Surface{1}; };

@@ -16,6 +16,10 @@
 // hexes = 0: unstructured tetrahedra of size lc (irregular by nature);
 // hexes = 1: every block a transfinite n x n x n grid of hexahedra (n = 1 is
 //            MacNeal and Harder's seven-element patch), none a parallelepiped.
+// mixed = 1: the inner block a transfinite n x n x n grid of hexahedra, the
+//            six around it tetrahedra, with a pyramid on each quadrangle of
+//            the inner block's faces (a hex-dominant core glued to a
+//            tetrahedral region).
 // serendipity = 1 makes `gmsh -order 2` write hex20 instead of hex27.
 // Second-order nodes sit at mid-edge (Mesh.SecondOrderLinear): every
 // element has straight edges.
@@ -29,6 +33,7 @@ DefineConstant[ hexes = {0, Name "Parameters/hexahedra"} ];
 DefineConstant[ serendipity = {0, Name "Parameters/serendipity"} ];
 DefineConstant[ lc = {0.9, Name "Parameters/tetrahedron size"} ];
 DefineConstant[ n = {1, Name "Parameters/hexahedra per block edge"} ];
+DefineConstant[ mixed = {0, Name "Parameters/hexahedral core in tetrahedra"} ];
 
 Point(1) = {0.0, 0.0, 0.0, lc};
 Point(2) = {4.0, 0.3, 0.0, lc};
@@ -153,6 +158,11 @@ If (hexes)
   Transfinite Surface{1:24};
   Recombine Surface{1:24};
   Transfinite Volume{1:7};
+ElseIf (mixed)
+  Transfinite Curve{13:24} = n + 1;
+  Transfinite Surface{7:12};
+  Recombine Surface{7:12};
+  Transfinite Volume{1};
 EndIf
 Mesh.SecondOrderIncomplete = serendipity;
 // the inner faces are bilinear (warped) patches: keep the second-order

@@ -64,8 +64,8 @@ fn aspect_row(s: &mut Suite, run: &Run, st: &Stack, kind: &str, cond: &str, tol:
     let (eu, es, ec) = uniform_errors(run, st, 1.0);
     let inf_unless = |ok: bool, v: f64| if ok { v } else { f64::INFINITY };
     let label = format!("aspect {kind} {}x{}", st.nx, st.ny);
-    let res = Some(run.residual_interface);
-    let note = format!("u {eu:.1e}, sigma {es:.1e}; {}; {} x {} blocks; {} DOFs", states_note(c), st.w, st.h, run.dofs_total);
+    let res = Some(run.stats.residuals.interface);
+    let note = format!("u {eu:.1e}, sigma {es:.1e}; {}; {} x {} blocks; {} DOFs", states_note(c), st.w, st.h, run.stats.dofs.total);
     let rows = [
         ("uniform compression: nodal u and sigma vs exact", inf_unless(all_stick, eu.max(es)), tol.map(|t| t.0), note),
         ("uniform compression: contact sigma_n = -p, tau = 0", inf_unless(all_stick, ec), tol.map(|t| t.1), String::new()),

@@ -188,7 +188,7 @@ points = 10
 /// max u_r, contact sigma_n / p, max tau / p).
 fn compound_errors(run: &Run, exact: &Compound) -> (f64, f64, f64, f64) {
     let p = exact.p;
-    let samples = &run.probes.iter().find(|(n, _)| n == "radial").expect("probe").1;
+    let samples = &run.checks.probes.iter().find(|(n, _)| n == "radial").expect("probe").1;
     let mut es = 0.0f64;
     for smp in samples {
         assert!(smp.found, "probe point {:?} in the model", smp.x);
@@ -204,7 +204,7 @@ fn compound_errors(run: &Run, exact: &Compound) -> (f64, f64, f64, f64) {
         let r = x[0].hypot(x[1]);
         let ur = exact.u_r(r.clamp(exact.a, exact.b));
         let ex = [ur * x[0] / r, ur * x[1] / r];
-        eu = eu.max((run.u[2 * n] - ex[0]).abs()).max((run.u[2 * n + 1] - ex[1]).abs());
+        eu = eu.max((run.last().u[2 * n] - ex[0]).abs()).max((run.last().u[2 * n + 1] - ex[1]).abs());
     }
     let c = converged(run);
     let sc = exact.stress(exact.c).0;
@@ -236,7 +236,7 @@ pub fn contrast_case(s: &mut Suite, m: Ring, ratios: &[f64], tol: [f64; 3]) {
             let db = diff_to_bonded(&run, &bonded);
             let cond = format!("E2/E1 = {}", fmt_e(e2 / e1));
             let label = format!("contrast {} {} lc {}", m.kind, cond, m.lc);
-            let res = Some(run.residual_interface);
+            let res = Some(run.stats.residuals.interface);
             let note = format!("{} pairs, {}; sigma_r(c) = {:.4} p", c.pairs.len(), states_note(c), exact.stress(exact.c).0);
             s.boolean(&label, "every pair stuck", all_stick, res, &cond, secs, &note);
             s.check(&label, "stresses at 10 probe points vs closed form (/p)", es, tol[0], res, &cond, 0.0, "sigma_r, sigma_theta, sigma_z at r = 3.1 ... 4.9");
@@ -277,7 +277,7 @@ pub fn contrast_swapped_case(s: &mut Suite, m: Ring) {
         "n = +e_r (inner ring is body I) / -e_r (outer ring is body I) at every pair: max |n.e_r -+ 1|",
         dev,
         1e-3,
-        Some(a.residual_interface.max(b.residual_interface)),
+        Some(a.stats.residuals.interface.max(b.stats.residuals.interface)),
         cond,
         secs,
         "",
@@ -290,7 +290,7 @@ pub fn contrast_swapped_case(s: &mut Suite, m: Ring) {
         "sigma_n = sigma_r(c) < 0 with either ring as body I (/p)",
         ea.max(eb),
         5e-3,
-        Some(a.residual_interface.max(b.residual_interface)),
+        Some(a.stats.residuals.interface.max(b.stats.residuals.interface)),
         cond,
         0.0,
         &format!("sigma_r(c) = {sc:.4} p; mean sigma_n {:.4} / {:.4}", ca.pairs.iter().map(|r| r.sigma_n).sum::<f64>() / ca.pairs.len() as f64, cb.pairs.iter().map(|r| r.sigma_n).sum::<f64>() / cb.pairs.len() as f64),

@@ -31,7 +31,7 @@ pub fn held_by_contact_case(s: &mut Suite) {
             "top block without supports, joint in tension and shear, stuck: u = bonded solve",
             if all_stick && tension { d } else { f64::INFINITY },
             1e-10,
-            Some(run.residual_interface),
+            Some(run.stats.residuals.interface),
             "no support on the top body",
             secs,
             &states_note(c),

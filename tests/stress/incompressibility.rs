@@ -68,11 +68,11 @@ pub fn locking_case(s: &mut Suite, lc: f64, kinds: &[&str], tol_u: f64) {
             let run = solve(&s.case, &name, &lame_scene(geo, order, lc, extra, nu), false);
             let secs = t.elapsed().as_secs_f64();
             assert_eq!(run.model.bodies[0].cells[0].kind.name(), kind, "element kind of {name}");
-            let e = run.errors.as_ref().expect("[analytic] errors");
+            let e = run.checks.errors.as_ref().expect("[analytic] errors");
             let cond = format!("nu = {nu}, lambda/mu = {:.0}", 2.0 * nu / (1.0 - 2.0 * nu));
             let label = format!("locking {kind} lc {lc}");
             let cells: usize = run.model.bodies.iter().map(|b| b.cells.len()).sum();
-            let note = format!("{cells} cells, {} DOFs; stress_l2 {:.2e}", run.dofs_total, e.stress_l2);
+            let note = format!("{cells} cells, {} DOFs; stress_l2 {:.2e}", run.stats.dofs.total, e.stress_l2);
             match behaviour {
                 Kind::Quadratic => {
                     s.check(&label, "displacement L2 error vs Lamé", e.displacement_l2, tol_u, None, &cond, secs, &note);

@@ -46,16 +46,16 @@ pub fn compare_moved(a: &Run, b: &Run, x0: f64, y0: f64, angle_deg: f64, scale_b
     type ByPosition = HashMap<(usize, [i64; 2]), ([f64; 2], [f64; 6])>;
     let mut ua: ByPosition = HashMap::new();
     for (body, n) in body_nodes(a) {
-        ua.insert((body, key(a.model.coords[n], false)), ([a.u[2 * n], a.u[2 * n + 1]], sa[&(body, n)]));
+        ua.insert((body, key(a.model.coords[n], false)), ([a.last().u[2 * n], a.last().u[2 * n + 1]], sa[&(body, n)]));
     }
-    let umax = max_abs(a.u.iter().copied());
+    let umax = max_abs(a.last().u.iter().copied());
     let smax = max_abs(sa.values().flat_map(|s| s.iter().copied()));
     let (mut du, mut ds) = (0.0f64, 0.0f64);
     let nb = body_nodes(b);
     assert_eq!(nb.len(), ua.len(), "the same nodes");
     for (body, n) in nb {
         let (u, s) = ua.get(&(body, key(b.model.coords[n], true))).unwrap_or_else(|| panic!("node {:?} of the moved model has no match", b.model.coords[n]));
-        let (gx, gy) = (b.u[2 * n], b.u[2 * n + 1]);
+        let (gx, gy) = (b.last().u[2 * n], b.last().u[2 * n + 1]);
         let ul = [c * gx + sn * gy, -sn * gx + c * gy];
         du = du.max((ul[0] - u[0]).abs()).max((ul[1] - u[1]).abs());
         let g = sb[&(body, n)].map(|v| v / scale_b);
@@ -232,7 +232,7 @@ pub fn map_case(s: &mut Suite, kind: &str, nx: usize, ny: usize) {
             &format!("{what}, mesh moved exactly: max of u (rotated back), nodal sigma, contact sigma_n/tau_t differences; same states"),
             if same { du.max(ds).max(dc) } else { f64::INFINITY },
             1e-8,
-            Some(a.residual_interface.max(b.residual_interface)),
+            Some(a.stats.residuals.interface.max(b.stats.residuals.interface)),
             &cond,
             secs,
             &format!("u {du:.1e}, sigma {ds:.1e}, contact {dc:.1e}; nodes {dev:.1e} m off the moved model; {}", states_note(converged(&b))),
@@ -252,7 +252,7 @@ pub fn map_case(s: &mut Suite, kind: &str, nx: usize, ny: usize) {
             &label,
             &format!("{what}, meshed by gmsh at the moved place: the same differences"),
             if same { du.max(ds).max(dc) } else { f64::INFINITY },
-            Some(b.residual_interface),
+            Some(b.stats.residuals.interface),
             &cond,
             secs,
             &format!("u {du:.1e}, sigma {ds:.1e}, contact {dc:.1e}; gmsh put the nodes up to {dev:.1e} m off the moved model ({:.0e} of an element)", dev / (20.0 / nx as f64)),

@@ -99,10 +99,10 @@ pub fn uniform_errors(run: &Run, st: &Stack, p: f64) -> (f64, f64, f64) {
     let mut eu = 0.0f64;
     for (_, n) in body_nodes(run) {
         let e = ex(run.model.coords[n]);
-        eu = eu.max((run.u[2 * n] - e[0]).abs()).max((run.u[2 * n + 1] - e[1]).abs());
+        eu = eu.max((run.last().u[2 * n] - e[0]).abs()).max((run.last().u[2 * n + 1] - e[1]).abs());
     }
     let mut es = 0.0f64;
-    for bs in &run.stresses {
+    for bs in &run.last().stresses {
         for s in &bs.stress {
             let want = [0.0, -p, 0.0, 0.0, 0.0, 0.0];
             for c in 0..6 {

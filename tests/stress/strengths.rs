@@ -34,7 +34,7 @@ pub fn strengths_case(s: &mut Suite) {
                 "compression, no shear: all stick or all slip; u, sigma, sigma_n = -p, tau = 0 exact",
                 if uniform { eu.max(es).max(ec) } else { f64::INFINITY },
                 1e-9,
-                Some(run.residual_interface),
+                Some(run.stats.residuals.interface),
                 "f = c = f_t = 0",
                 secs,
                 &states_note(c),
@@ -59,7 +59,7 @@ pub fn strengths_case(s: &mut Suite) {
             "c = f_t huge under bending and shear: every pair sticks; u = bonded solve",
             if all_stick { d } else { f64::INFINITY },
             1e-10,
-            Some(run.residual_interface),
+            Some(run.stats.residuals.interface),
             &format!("c = f_t = {coh:.0e}"),
             secs,
             &states_note(c),
@@ -98,7 +98,7 @@ pub fn strengths_case(s: &mut Suite) {
             "bending: tension side opens; open pairs carry 0 and gap >= 0, closed ones sigma_n <= 0; contact forces balance the load",
             if ok { viol.max(eq) } else { f64::INFINITY },
             1e-9,
-            Some(run.residual_interface),
+            Some(run.stats.residuals.interface),
             "f_t = 0",
             secs,
             &format!("complementarity {viol:.1e}, equilibrium {eq:.1e}; {}", states_note(c)),
@@ -116,12 +116,12 @@ pub fn f0_compound_case(s: &mut Suite, lc: f64, ratios: &[f64]) {
         let stuck = solve(&s.case, &format!("f0c0_compound_{lc}_{ratio:e}_stuck"), &compound_scene(m, E_SOFT, E_SOFT * ratio, STUCK_JOINT, false), false);
         let free = solve(&s.case, &format!("f0c0_compound_{lc}_{ratio:e}"), &compound_scene(m, E_SOFT, E_SOFT * ratio, "friction = 0.0\ncohesion = 0.0\ntensile_strength = 0.0", false), false);
         let secs = t.elapsed().as_secs_f64();
-        let c = free.contact.as_ref().expect("a contact run");
+        let c = free.contact().expect("a contact run");
         let note = format!("{} pairs, {}", c.pairs.len(), states_note(c));
         let label = format!("f = 0, c = 0 compound quad9 lc {lc}");
         let cond = format!("E2/E1 = {}", fmt_e(ratio));
-        s.boolean(&label, "the contact iteration converges (max_iterations = 100)", c.converged, Some(free.residual_interface), &cond, secs, &note);
-        if !c.converged {
+        s.boolean(&label, "the contact iteration converges (max_iterations = 100)", c.summary.converged, Some(free.stats.residuals.interface), &cond, secs, &note);
+        if !c.summary.converged {
             continue;
         }
         let uniform = count(c, ContactState::Stick) == c.states.len() || count(c, ContactState::Slip) == c.states.len();
@@ -132,7 +132,7 @@ pub fn f0_compound_case(s: &mut Suite, lc: f64, ratios: &[f64]) {
             "curved joint in compression (Coulomb law): all stick or all slip, tau = 0, the stuck answer",
             if uniform { du.max(dc).max(tau) } else { f64::INFINITY },
             1e-9,
-            Some(free.residual_interface),
+            Some(free.stats.residuals.interface),
             &cond,
             0.0,
             &format!("u {du:.1e}, contact {dc:.1e}, tau {tau:.1e}"),

@@ -28,10 +28,10 @@ pub fn units_case(s: &mut Suite, kind: &str, nx: usize, ny: usize) {
         "MPa vs Pa: u equal, sigma and contact stresses / 1e6 equal, same states",
         if same { du.max(ds).max(dc) } else { f64::INFINITY },
         1e-10,
-        Some(a.residual_interface.max(b.residual_interface)),
+        Some(a.stats.residuals.interface.max(b.stats.residuals.interface)),
         "E = 2e4 MPa / 2e10 Pa",
         secs,
-        &format!("u {du:.1e}, sigma {ds:.1e}, contact {dc:.1e}; {}; residual Pa {:.1e}", states_note(converged(&b)), b.residual_interface),
+        &format!("u {du:.1e}, sigma {ds:.1e}, contact {dc:.1e}; {}; residual Pa {:.1e}", states_note(converged(&b)), b.stats.residuals.interface),
     );
 }
 
@@ -50,7 +50,7 @@ pub fn units_compound_case(s: &mut Suite) {
         "MPa vs Pa on the curved joint (E2/E1 = 1e3): u equal, stresses / 1e6 equal",
         if same { du.max(ds).max(dc) } else { f64::INFINITY },
         1e-10,
-        Some(a.residual_interface.max(b.residual_interface)),
+        Some(a.stats.residuals.interface.max(b.stats.residuals.interface)),
         "E2 = 2e7 MPa / 2e13 Pa",
         secs,
         &format!("u {du:.1e}, sigma {ds:.1e}, contact {dc:.1e}"),

@@ -45,12 +45,17 @@ use faer::Mat;
 
 use super::coords::{for_each_load, Terms, Var};
 use super::gmres;
+use super::layout::Layout;
 use super::reduce::combine;
-use super::{coords, Freedom};
+use super::{coords, Answer, Freedom, Solver};
 use crate::contact::basis;
 use crate::contact::frame::Frame;
 use crate::contact::law::ContactState;
+use crate::contact::rigid::PartModes;
+use crate::fem::rigid::n_modes;
+use crate::model::Model;
 use crate::substructure::interior::SharedSolve;
+use crate::substructure::{OperatorRef, SchurRef};
 
 /// Relative tolerance of each interface solve, against the load.
 pub const TOLERANCE: f64 = 1e-10;
@@ -93,6 +98,50 @@ pub struct AppliedPart {
     pub g: Vec<Vec<f64>>,
 }
 
+/// A slipping pair's free tangential row `i`, whose equation is the friction
+/// law's (see [`Relation`]):
+/// `(K x - b)_i + force + coupling (K x - b)_n + sum_c spring_c x_c = 0`.
+struct SlipRow {
+    row: usize,
+    normal: Option<usize>,
+    coupling: f64,
+    springs: Vec<(usize, f64)>,
+    force: f64,
+}
+
+/// `J x` from `K x` (`full`): each slipping row takes in its normal row
+/// and its springs.
+fn slip_rows_of(slip_rows: &[SlipRow], full: &mut [f64], x: &[f64]) {
+    for s in slip_rows {
+        let mut v = full[s.row];
+        if let Some(rn) = s.normal {
+            v += s.coupling * full[rn];
+        }
+        v += s.springs.iter().map(|&(c, k)| k * x[c]).sum::<f64>();
+        full[s.row] = v;
+    }
+}
+
+/// The coarse level of one solve: `Φ` and `J Φ` on its unknowns, and
+/// `Φ^T J Φ` factorised.
+struct Coarse {
+    phi: Mat<f64>,
+    j_phi: Mat<f64>,
+    lu: faer::linalg::solvers::PartialPivLu<f64>,
+}
+
+impl Coarse {
+    /// `c = (Φ^T J Φ)^-1 Φ^T v`: the residual `v - J Φ c` left for the
+    /// fine level, and the coarse correction `Φ c`.
+    fn correct(&self, v: &[f64]) -> (Vec<f64>, Mat<f64>) {
+        let vm = Mat::<f64>::from_fn(v.len(), 1, |i, _| v[i]);
+        let c = self.lu.solve(self.phi.transpose() * &vm);
+        let jc = &self.j_phi * &c;
+        let y = &self.phi * &c;
+        ((0..v.len()).map(|i| v[i] - jc[(i, 0)]).collect(), y)
+    }
+}
+
 /// Which block of the preconditioner an unknown is in, and where.
 #[derive(Clone, Copy)]
 struct Place {
@@ -123,23 +172,33 @@ pub struct Iterative<'a> {
     /// The last solution, where the next solve starts.
     last: Mutex<Option<Vec<f64>>>,
     /// GMRES iterations of every solve so far.
-    pub iterations: Mutex<Vec<usize>>,
-}
-
-/// What a solve gives the interface problem.
-pub struct Answer {
-    /// The means and the relative displacements.
-    pub m: Vec<f64>,
-    pub r: Vec<f64>,
-    /// `K x - b` on the relative rows: `-λ`.
-    pub residual_r: Vec<f64>,
-    /// `||J dx - rhs|| / ||b||` of the GMRES solve.
-    pub residual: f64,
-    /// Solved to [`LOOSE_TOLERANCE`].
-    pub loose: bool,
+    iterations: Mutex<Vec<usize>>,
 }
 
 impl<'a> Iterative<'a> {
+    /// The iterative interface of the `parts` laid out by `layout`: the
+    /// parts condensed for it (their S applied here through `solve`, or on
+    /// their own rank through `remote`), the preconditioner's groups (each
+    /// pair and join node) and the coarse space of the parts' rigid motions
+    /// `rigid`.
+    pub(super) fn build(model: &Model, layout: &Layout, parts: &[OperatorRef], rigid: &[PartModes], remote: Option<&'a dyn Remote>, threads: usize) -> Iterative<'a> {
+        let applied = (parts.iter().enumerate().zip(&layout.parts))
+            .filter_map(|((i, p), map)| {
+                let SchurRef::Applied { diag, solve } = p.s else { return None };
+                (p.nc > 0).then(|| AppliedPart {
+                    source: solve.map_or(Source::Remote(i), |s| Source::Local(s.clone())),
+                    diag: diag.to_vec(),
+                    terms: layout.terms_of(map),
+                    frames: layout.frames_of(map),
+                    edges: map.edges.clone(),
+                    g: p.g.to_vec(),
+                })
+            })
+            .collect();
+        let coarse = coarse_space(model, layout, parts, rigid);
+        Iterative::new(model.nd, layout.nm, layout.nr, applied, layout.groups(), coarse, remote, threads)
+    }
+
     /// Sets up the right-hand sides (one application of S per part, for
     /// the prescribed values) and the preconditioner's blocks; `groups`
     /// lists the unknowns of each pair and join node.
@@ -227,13 +286,6 @@ impl<'a> Iterative<'a> {
         it
     }
 
-    /// The diagonal of the preconditioner's block at relative displacement `r`.
-    pub fn diagonal_r(&self, r: usize) -> f64 {
-        let p = self.place[self.nm + r];
-        let (members, m) = &self.blocks[p.block];
-        m[p.at * members.len() + p.at]
-    }
-
     /// `K x`.
     fn apply(&self, x: &[f64]) -> Vec<f64> {
         self.apply_with(x, 0.0)
@@ -316,26 +368,14 @@ impl<'a> Iterative<'a> {
     }
 
     /// Solves one set of relations, given by the free directions `fr` of
-    /// the relative displacements (and `states`, to tell whether they
-    /// changed since the last solve), under the load factors `lambda`;
-    /// `None` when GMRES does not get below 1e-6 (a singular system: a
-    /// body sliding freely).
-    pub fn solve(&self, fr: &Freedom, states: &[ContactState], lambda: &[f64]) -> Option<Answer> {
+    /// the relative displacements, under the load factors `lambda`; `None`
+    /// when GMRES does not get below 1e-6 (a singular system: a body
+    /// sliding freely). The unknowns are every mean, then the free columns.
+    fn solve_gmres(&self, fr: &Freedom, states: &[ContactState], lambda: &[f64]) -> Option<Answer> {
         let (nm, nr) = (self.nm, self.nr);
         let n = nm + nr;
-        let nu = nm + fr.cols.len();
         let b = combine(&self.b, &self.b_fixed, lambda);
-        // loose while the states change: the same states as last time (or
-        // none to judge: bonded joins alone) are solved tightly
-        let loose = match self.last_states.lock() {
-            Ok(mut last) => {
-                let same = last.as_deref() == Some(states);
-                *last = Some(states.to_vec());
-                !same && !states.is_empty()
-            }
-            Err(_) => false,
-        };
-        // the unknowns: every mean, then the free columns of r
+        let loose = self.loose(states);
         let expand = |v: &[f64]| -> Vec<f64> {
             let mut full = vec![0.0; n];
             full[..nm].copy_from_slice(&v[..nm]);
@@ -351,34 +391,7 @@ impl<'a> Iterative<'a> {
             v.extend(fr.cols.iter().map(|col| col.iter().map(|&(i, zi)| zi * full[nm + i]).sum::<f64>()));
             v
         };
-        // the start: the last answer, its r moved onto r0 + span(cols)
-        let last = self.last.lock().ok().and_then(|l| l.clone()).filter(|l| l.len() == n).unwrap_or_else(|| vec![0.0; n]);
-        let mut x0 = last.clone();
-        for (i, &v) in fr.r0.iter().enumerate() {
-            x0[nm + i] = v;
-        }
-        let mut shifted = vec![0.0; n];
-        for i in 0..nr {
-            shifted[nm + i] = last[nm + i] - fr.r0[i];
-        }
-        let y0 = restrict(&shifted);
-        for (a, col) in fr.cols.iter().enumerate() {
-            for &(i, zi) in col {
-                x0[nm + i] += zi * y0[nm + a];
-            }
-        }
-        // rows of J x (full = K x): the lone slipping rows take in their
-        // normal row and springs; the junctions their springs (restricted)
-        let rows = |full: &mut Vec<f64>, x: &[f64]| {
-            for s in &fr.slips {
-                let mut v = full[nm + s.row];
-                if let Some(rn) = s.normal {
-                    v += s.coupling * full[nm + rn];
-                }
-                v += s.springs.iter().map(|&(c, k)| k * x[nm + c]).sum::<f64>();
-                full[nm + s.row] = v;
-            }
-        };
+        // the junctions' springs, on the restricted unknowns
         let springs = |out: &mut [f64], v: &[f64]| {
             for jb in &fr.junctions {
                 for (a, fa) in jb.cols.clone().enumerate() {
@@ -386,20 +399,18 @@ impl<'a> Iterative<'a> {
                 }
             }
         };
+        let slip_rows: Vec<SlipRow> = fr.slips.iter().map(|s| SlipRow { row: nm + s.row, normal: s.normal.map(|r| nm + r), coupling: s.coupling, springs: s.springs.iter().map(|&(c, k)| (nm + c, k)).collect(), force: s.force }).collect();
+        let (x0, y0) = self.start(fr, &restrict);
         let mut e0 = self.apply(&x0);
         for (e, bi) in e0.iter_mut().zip(&b) {
             *e -= bi;
         }
-        rows(&mut e0, &x0);
-        for s in &fr.slips {
-            e0[nm + s.row] += s.force;
+        slip_rows_of(&slip_rows, &mut e0, &x0);
+        for s in &slip_rows {
+            e0[s.row] += s.force;
         }
         let mut e0 = restrict(&e0);
-        springs(&mut e0, &restrict(&{
-            let mut y = vec![0.0; n];
-            y[nm..].copy_from_slice(&shifted[nm..]);
-            y
-        }));
+        springs(&mut e0, &y0);
         for jb in &fr.junctions {
             for (a, fa) in jb.cols.clone().enumerate() {
                 e0[nm + fa] += jb.fz[a];
@@ -409,36 +420,18 @@ impl<'a> Iterative<'a> {
         let j = |v: &[f64]| -> Vec<f64> {
             let dx = expand(v);
             let mut full = self.apply(&dx);
-            rows(&mut full, &dx);
+            slip_rows_of(&slip_rows, &mut full, &dx);
             let mut out = restrict(&full);
             springs(&mut out, v);
             out
         };
         let precondition = self.preconditioner(fr);
-        // the coarse level: Φ and J Φ on the unknowns (Φ is zero on r), Φ^T J Φ factorised
-        let phi = Mat::<f64>::from_fn(nu, self.phi.len(), |i, c| if i < nm { self.phi[c][i] } else { 0.0 });
-        let j_phi = {
-            let cols: Vec<Vec<f64>> = self
-                .k_phi
-                .iter()
-                .zip(&self.phi)
-                .map(|(kp, p)| {
-                    let mut full = kp.clone();
-                    rows(&mut full, p);
-                    restrict(&full)
-                })
-                .collect();
-            Mat::<f64>::from_fn(nu, cols.len(), |i, c| cols[c][i])
-        };
-        let coarse = (!self.phi.is_empty()).then(|| (phi.transpose() * &j_phi).partial_piv_lu());
+        let coarse = self.coarse(nm + fr.cols.len(), &slip_rows, &restrict);
         let m = |v: &[f64]| -> Vec<f64> {
             let (r1, y) = match &coarse {
-                Some(a0) => {
-                    let vm = Mat::<f64>::from_fn(v.len(), 1, |i, _| v[i]);
-                    let c = a0.solve(phi.transpose() * &vm);
-                    let jc = &j_phi * &c;
-                    let y = &phi * &c;
-                    ((0..v.len()).map(|i| v[i] - jc[(i, 0)]).collect::<Vec<f64>>(), Some(y))
+                Some(c) => {
+                    let (r1, y) = c.correct(v);
+                    (r1, Some(y))
                 }
                 None => (v.to_vec(), None),
             };
@@ -473,9 +466,65 @@ impl<'a> Iterative<'a> {
         Some(Answer { m, r, residual_r, residual, loose })
     }
 
+    /// Whether this solve may stop at [`LOOSE_TOLERANCE`]: loose while the
+    /// states change; the same states as last time (or none to judge:
+    /// bonded joins alone) are solved tightly.
+    fn loose(&self, states: &[ContactState]) -> bool {
+        match self.last_states.lock() {
+            Ok(mut last) => {
+                let same = last.as_deref() == Some(states);
+                *last = Some(states.to_vec());
+                !same && !states.is_empty()
+            }
+            Err(_) => false,
+        }
+    }
+
+    /// Where GMRES starts: the last answer, its relative displacements
+    /// moved onto `r0 + span(cols)`; and the free columns' coordinates there.
+    fn start(&self, fr: &Freedom, restrict: impl Fn(&[f64]) -> Vec<f64>) -> (Vec<f64>, Vec<f64>) {
+        let (nm, nr) = (self.nm, self.nr);
+        let n = nm + nr;
+        let last = self.last.lock().ok().and_then(|l| l.clone()).filter(|l| l.len() == n).unwrap_or_else(|| vec![0.0; n]);
+        let mut shifted = vec![0.0; n];
+        for i in 0..nr {
+            shifted[nm + i] = last[nm + i] - fr.r0[i];
+        }
+        let y0 = restrict(&shifted);
+        let mut x0 = last;
+        x0[nm..].copy_from_slice(&fr.r0);
+        for (a, col) in fr.cols.iter().enumerate() {
+            for &(i, zi) in col {
+                x0[nm + i] += zi * y0[nm + a];
+            }
+        }
+        (x0, y0)
+    }
+
+    /// The coarse level on the `nu` unknowns (Φ is zero on r: its rows are
+    /// the means'): Φ and J Φ, Φ^T J Φ factorised (none without a coarse space).
+    fn coarse(&self, nu: usize, slip_rows: &[SlipRow], restrict: impl Fn(&[f64]) -> Vec<f64>) -> Option<Coarse> {
+        if self.phi.is_empty() {
+            return None;
+        }
+        let nm = self.nm;
+        let phi = Mat::<f64>::from_fn(nu, self.phi.len(), |i, c| if i < nm { self.phi[c][i] } else { 0.0 });
+        let cols: Vec<Vec<f64>> = (self.k_phi.iter().zip(&self.phi))
+            .map(|(kp, p)| {
+                let mut full = kp.clone();
+                slip_rows_of(slip_rows, &mut full, p);
+                restrict(&full)
+            })
+            .collect();
+        let j_phi = Mat::<f64>::from_fn(nu, cols.len(), |i, c| cols[c][i]);
+        let lu = (phi.transpose() * &j_phi).partial_piv_lu();
+        Some(Coarse { phi, j_phi, lu })
+    }
+
     /// `M^-1` on the unknowns of a solve (every mean, then the free columns
     /// `fr.cols`): each block `P^T B P` over the unknowns it touches, with
-    /// the slipping rows as in [`Self::solve`], factorised once per solve.
+    /// the slipping rows as in [`Self::solve_gmres`] and the junctions'
+    /// springs, factorised once per solve.
     fn preconditioner(&self, fr: &Freedom) -> impl Fn(&[f64]) -> Vec<f64> + '_ {
         let nm = self.nm;
         // the unknowns of each block, with their entries over its members
@@ -490,20 +539,15 @@ impl<'a> Iterative<'a> {
             let p = self.place[nm + col[0].0];
             touching[p.block].push((nm + a, col.iter().map(|&(i, zi)| (self.place[nm + i].at, zi)).collect()));
         }
-        let mut unknown_of_row = std::collections::HashMap::new();
-        for (a, col) in fr.cols.iter().enumerate() {
-            if let [(i, _)] = col.as_slice() {
-                unknown_of_row.insert(*i, nm + a);
-            }
-        }
-        let mut slip_of = std::collections::HashMap::new();
-        for s in &fr.slips {
-            slip_of.insert(nm + fr.pos[s.row], s);
-        }
+        let unknown_of_row: std::collections::HashMap<usize, usize> = (fr.cols.iter().enumerate()).filter_map(|(a, col)| match col.as_slice() {
+            [(i, _)] => Some((*i, nm + a)),
+            _ => None,
+        }).collect();
+        let slip_of: std::collections::HashMap<usize, &super::SlipRow> = fr.slips.iter().map(|s| (nm + fr.pos[s.row], s)).collect();
         let mut junction_of = std::collections::HashMap::new();
-        for jb in &fr.junctions {
+        for (bi, jb) in fr.junctions.iter().enumerate() {
             for (a, fa) in jb.cols.clone().enumerate() {
-                junction_of.insert(nm + fa, (jb, a));
+                junction_of.insert(nm + fa, (bi, a));
             }
         }
         let factors: Vec<(Vec<usize>, Option<faer::linalg::solvers::PartialPivLu<f64>>)> = self
@@ -529,11 +573,11 @@ impl<'a> Iterative<'a> {
                             }
                         }
                     }
-                    if let Some((jb, a)) = junction_of.get(u) {
+                    if let Some(&(bi, a)) = junction_of.get(u) {
                         for (lj, (v, _)) in us.iter().enumerate() {
-                            if let Some((jb2, c)) = junction_of.get(v) {
-                                if std::ptr::eq(*jb, *jb2) {
-                                    local[(li, lj)] += jb.kz[(*a, *c)];
+                            if let Some(&(bj, c)) = junction_of.get(v) {
+                                if bi == bj {
+                                    local[(li, lj)] += fr.junctions[bi].kz[(a, c)];
                                 }
                             }
                         }
@@ -558,6 +602,52 @@ impl<'a> Iterative<'a> {
             out
         }
     }
+}
+
+impl Solver for Iterative<'_> {
+    fn solve(&self, fr: &Freedom, states: &[ContactState], lambda: &[f64]) -> Option<Answer> {
+        self.solve_gmres(fr, states, lambda)
+    }
+
+    /// The diagonal of the preconditioner's block at relative displacement `r`.
+    fn diagonal(&self, r: usize) -> f64 {
+        let p = self.place[self.nm + r];
+        let (members, m) = &self.blocks[p.block];
+        m[p.at * members.len() + p.at]
+    }
+
+    fn counts(&self) -> Vec<usize> {
+        self.iterations.lock().map(|v| v.clone()).unwrap_or_default()
+    }
+}
+
+/// The coarse space: each applied part's rigid motions on the means,
+/// shared between the interface nodes that have them (half each on a lone
+/// pair, evenly at a junction or a join), one column per part and motion
+/// over `[m; r]`.
+fn coarse_space(model: &Model, layout: &Layout, parts: &[OperatorRef], rigid: &[PartModes]) -> Vec<Vec<f64>> {
+    let (nd, n) = (model.nd, layout.nm + layout.nr);
+    let mut coarse = Vec::new();
+    for ((p, map), modes) in parts.iter().zip(&layout.parts).zip(rigid) {
+        if !(matches!(p.s, SchurRef::Applied { .. }) && p.nc > 0) {
+            continue;
+        }
+        for k in 0..n_modes(model.analysis) {
+            let mut col = vec![0.0; n];
+            for (q, &node) in p.part.interface.iter().enumerate() {
+                for a in 0..nd {
+                    let t = &map.terms[q * nd + a];
+                    for &(v, coef) in &t.vars[..t.n] {
+                        if let Var::M(i) = v {
+                            col[i] += coef * map.shares[q] * modes.modes.along(model.coords[node], map.frames[q][a])[k];
+                        }
+                    }
+                }
+            }
+            coarse.push(col);
+        }
+    }
+    coarse
 }
 
 impl AppliedPart {

@@ -205,10 +205,13 @@ impl Split {
 
     /// The limits `λ` breaks, as cuts: the tension of every tied normal,
     /// and the Coulomb bound of every stuck pair along its shear's
-    /// direction (in 2D, both signs).
+    /// direction (in 2D, both signs). The cuts stay a hair (1e-9 of the
+    /// largest force) inside the limits: a share the loops can choose is
+    /// chosen strictly within them, so that judging the pairs by it, with
+    /// the law's own `>=`, does not find them on the limit and let go.
     fn violations(&self, lam: &DVector<f64>, limits: &[Limit]) -> Vec<(Vec<(usize, f64)>, f64)> {
         let scale = lam.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
-        let tol = 1e-10 * scale;
+        let (margin, tol) = (1e-9 * scale, 1e-12 * scale);
         let mut out = Vec::new();
         let mut j0 = 0;
         while j0 < self.rows.len() {
@@ -217,8 +220,8 @@ impl Split {
             j0 += at.len();
             let lim = limits[j];
             let Some(&n) = at.iter().find(|&&i| self.rows[i].1 == 0) else { continue };
-            if lam[n] > lim.tension + tol {
-                out.push((vec![(n, 1.0)], lim.tension));
+            if lam[n] > lim.tension - margin + tol {
+                out.push((vec![(n, 1.0)], lim.tension - margin));
             }
             let t: Vec<usize> = at.iter().copied().filter(|&i| self.rows[i].1 > 0).collect();
             if t.is_empty() || !lim.cohesion.is_finite() {
@@ -226,15 +229,16 @@ impl Split {
             }
             // |λ_T| <= c - f λ_n  as  d . λ_T + f λ_n <= c
             let lt = t.iter().map(|&i| lam[i] * lam[i]).sum::<f64>().sqrt();
-            let bound = lim.cohesion - lim.friction * lam[n];
+            let bound = lim.cohesion - lim.friction * lam[n] - margin;
             if lt > bound + tol {
+                let c = lim.cohesion - margin;
                 if t.len() == 1 {
                     let sign = lam[t[0]].signum();
-                    out.push((vec![(t[0], sign), (n, lim.friction)], lim.cohesion));
+                    out.push((vec![(t[0], sign), (n, lim.friction)], c));
                 } else {
                     let mut a: Vec<(usize, f64)> = t.iter().map(|&i| (i, lam[i] / lt)).collect();
                     a.push((n, lim.friction));
-                    out.push((a, lim.cohesion));
+                    out.push((a, c));
                 }
             }
         }

@@ -1,8 +1,17 @@
 //! The interface system: the condensed parts in the pairs' local frames
-//! and in mean / relative coordinates ([`coords`]), reduced once to the
-//! relative displacements ([`reduce`]; the bonded joins of substructures
-//! first, by a sparse factorisation, when they outnumber the contact
-//! unknowns: [`joins`]), and solved for one set of pair relations.
+//! and in mean / relative coordinates ([`coords`], laid out once by
+//! [`layout`]), solved for one set of pair relations by an interface
+//! [`Solver`]: [`dense`] (S formed, reduced once to the relative
+//! displacements, [`reduce`]; the bonded joins of substructures first, by a
+//! sparse factorisation, when they outnumber the contact unknowns:
+//! [`joins`]) or [`iterative`] (S applied through the parts' interior
+//! factors, GMRES). A new way of solving the interface is one more
+//! implementation of [`Solver`], chosen in [`InterfaceProblem::new`].
+//!
+//! Where joints cross, copies of one node are in several pairs whose ties
+//! close loops: those pairs are solved as junctions ([`junction`]), on the
+//! null space of their tied rows, their tied forces the least-norm ones
+//! within every pair's limit.
 //!
 //! A set of contact states is a choice, per pair axis, between a known
 //! relative displacement `r` (tied: stick on every axis, slip on the normal)
@@ -14,39 +23,26 @@
 //! where both are supported (the supports carry it).
 
 pub mod coords;
-mod dense;
+pub mod dense;
 pub mod gmres;
 pub mod iterative;
 pub mod joins;
 pub mod junction;
+mod layout;
 pub mod reduce;
-pub mod unknowns;
 
-
-use coords::{Axis, Blocks, Terms, Var};
-use iterative::{AppliedPart, Iterative, Remote, Source};
-use joins::{JoinElimination, SparseBlocks};
+use coords::{Axis, Var};
+use dense::Dense;
+use iterative::{Iterative, Remote};
 use junction::Tied;
-use reduce::Reduced;
-use unknowns::{Unknowns, IDENTITY};
+use layout::Layout;
 
-use super::basis::{self, FaceBasis};
+use super::basis::FaceBasis;
 use super::frame::Frame;
 use super::law::{ContactState, PairResult};
-use super::rigid::{self, free_parts, RigidModes, Tie};
-use crate::fem::sparse::NONE;
+use super::rigid::{free_parts, PartModes, Tie};
 use crate::model::{Model, ModelError};
-use crate::substructure::{Condensation, OperatorRef};
-
-/// How a part's interface nodes are written in the unknowns.
-struct PartMap {
-    /// The frame of each interface node of the part, in the part's order.
-    frames: Vec<Frame>,
-    /// The unknowns of each interface DOF (local axes, face basis).
-    terms: Vec<Terms>,
-    /// Transformed edges, as positions in the part's interface nodes.
-    edges: Vec<[usize; 3]>,
-}
+use crate::substructure::{OperatorRef, SchurRef};
 
 /// Interface DOFs summed over the parts (a joint counted once per side)
 /// from which `[solver] interface = "auto"` solves the interface
@@ -59,6 +55,8 @@ struct PartMap {
 /// 115 s and 16.5 GB, into 8 pieces (94,905) 94 s and 3.2 GB where the
 /// dense interface ran out of 24 GB.
 pub const ITERATIVE_FROM: usize = 20_000;
+
+const IDENTITY: Frame = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 
 /// What a pair's unknowns are asked to satisfy in one solve.
 #[derive(Clone, Copy, Debug)]
@@ -154,33 +152,44 @@ pub struct SlipRow {
     pub force: f64,
 }
 
-/// The interface problem, set up once; solved for any set of relations.
-pub struct InterfaceProblem<'a> {
-    nd: usize,
-    pub frames: Vec<Frame>,
-    pub basis: FaceBasis,
-    /// The unknowns: lone pairs' axes, junctions, joins.
-    unknowns: Unknowns,
-    /// Parts that share each join, and where the join is.
-    join_parts: Vec<(Vec<usize>, [f64; 3])>,
-    /// How the system is solved.
-    solver: Solver<'a>,
-    parts: Vec<PartMap>,
-    /// Rigid motions of each part and the position of each pair, to tell
-    /// which parts nothing holds.
-    rigid: Vec<RigidModes>,
-    positions: Vec<[f64; 3]>,
-    /// (part, position) of each pair's k and l.
-    at: Vec<[(usize, usize); 2]>,
+/// A way of solving the interface system: the seam between
+/// [`InterfaceProblem`] and its solvers ([`Dense`], [`Iterative`]).
+pub trait Solver {
+    /// Solves one set of relations, given by the free directions `fr` of
+    /// the relative displacements (`states`: the state set, to tell whether
+    /// it changed since the last solve), under the load factors `lambda`;
+    /// `None` when the system is singular (the problem then finds out why).
+    fn solve(&self, fr: &Freedom, states: &[ContactState], lambda: &[f64]) -> Option<Answer>;
+    /// The system's diagonal at relative displacement `r` (the scale that
+    /// turns a pair's slip into a force).
+    fn diagonal(&self, r: usize) -> f64;
+    /// Applications of the parts' S by each solve so far (empty for a
+    /// solver that formed S).
+    fn counts(&self) -> Vec<usize>;
 }
 
-/// The interface system, dense or applied.
-enum Solver<'a> {
-    /// Reduced to the relative displacements (reduce.rs); the join means,
-    /// when they were eliminated sparsely (joins.rs).
-    Dense { reduced: Reduced, joined: Option<JoinElimination> },
-    /// Applied through the parts' factors and solved by GMRES (iterative.rs).
-    Iterative(Iterative<'a>),
+/// What a [`Solver`] gives the interface problem.
+pub struct Answer {
+    /// The means and the relative displacements.
+    pub m: Vec<f64>,
+    pub r: Vec<f64>,
+    /// `W r - c` (`K x - b` on the relative rows): `-λ`.
+    pub residual_r: Vec<f64>,
+    /// Relative residual of the solve.
+    pub residual: f64,
+    /// Solved to a loose tolerance (see [`InterfaceSolution::loose`]).
+    pub loose: bool,
+}
+
+/// The interface problem, set up once; solved for any set of relations.
+pub struct InterfaceProblem<'a> {
+    layout: Layout,
+    basis: FaceBasis,
+    solver: Box<dyn Solver + 'a>,
+    /// Rigid motions of each part and the position of each pair, to tell
+    /// which parts nothing holds.
+    rigid: Vec<PartModes>,
+    positions: Vec<[f64; 3]>,
 }
 
 /// Result of one interface solve.
@@ -206,12 +215,13 @@ pub struct InterfaceSolution {
 }
 
 /// Why an interface solve failed.
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub enum SolveFailure {
-    /// These bodies are held by nothing.
+    /// These parts are held by nothing.
     NotHeld(Vec<usize>),
-    /// These bodies slide (or rotate) freely on slipping pairs: nothing holds
-    /// them tangentially (empty when the cause is not found).
-    Singular(Vec<usize>),
+    /// These parts slide (or rotate) freely on slipping pairs: nothing
+    /// holds them tangentially (empty when the cause is not found).
+    Sliding(Vec<usize>),
 }
 
 impl<'a> InterfaceProblem<'a> {
@@ -219,148 +229,36 @@ impl<'a> InterfaceProblem<'a> {
     /// order); `remote` applies the S of parts condensed for the iterative
     /// interface on other MPI ranks, `threads` this rank's ones.
     pub fn new(model: &Model, parts: &[OperatorRef], remote: Option<&'a dyn Remote>, threads: usize) -> Result<InterfaceProblem<'a>, ModelError> {
-        let nd = model.nd;
         let basis = FaceBasis::new(model);
-        // the first part holding each node; the parts sharing each other node
-        let mut where_is = vec![(NONE, NONE); model.n_nodes()];
-        let mut holders: Vec<Vec<usize>> = vec![Vec::new(); model.n_nodes()];
-        for (pi, p) in parts.iter().enumerate() {
-            for (q, &n) in p.part.interface.iter().enumerate() {
-                if where_is[n].0 == NONE {
-                    where_is[n] = (pi, q);
-                }
-                holders[n].push(pi);
-            }
-        }
-        let mut paired = vec![false; model.n_nodes()];
-        for p in &model.pairs {
-            paired[p.k] = true;
-            paired[p.l] = true;
-        }
-        let join_nodes: Vec<usize> = (0..model.n_nodes()).filter(|&n| !paired[n] && holders[n].len() > 1).collect();
-        let sharing: Vec<usize> = join_nodes.iter().map(|&n| holders[n].len()).collect();
-        let unknowns = Unknowns::new(model, &basis, &join_nodes, &sharing);
-        let (nm, nm_pairs, nr) = (unknowns.nm, unknowns.nm_pairs, unknowns.nr);
-        let frames = unknowns.frames.clone();
-        let join_parts: Vec<(Vec<usize>, [f64; 3])> = join_nodes.iter().map(|&n| (holders[n].clone(), model.coords[n])).collect();
-        let at: Vec<[(usize, usize); 2]> = model.pairs.iter().map(|p| [where_is[p.k], where_is[p.l]]).collect();
-        let maps: Vec<PartMap> = parts
-            .iter()
-            .map(|p| {
-                let nodes = &p.part.interface;
-                let pos: std::collections::HashMap<usize, usize> = nodes.iter().enumerate().map(|(q, &n)| (n, q)).collect();
-                let frames = nodes.iter().map(|&n| unknowns.of(n).frame).collect();
-                let terms = nodes.iter().flat_map(|&n| unknowns.of(n).terms[..nd].to_vec()).collect();
-                let edges = basis::part_edges(&basis, |n| pos.get(&n).copied());
-                PartMap { frames, terms, edges }
-            })
-            .collect();
-        let cases = parts.iter().map(|p| p.g.len()).max().unwrap_or(1);
-        let not_held = || ModelError::Invalid {
-            scene: model.scene.clone(),
-            key: "supports".into(),
-            msg: "the bodies are not held even with every contact stuck (the bonded interface system is singular): add a support".into(),
-        };
-        let nj = nm - nm_pairs;
-        let rigid: Vec<RigidModes> = parts.iter().map(|p| RigidModes::new(model, &p.part.nodes(model))).collect();
+        let layout = Layout::new(model, parts, &basis);
+        let rigid: Vec<PartModes> = parts.iter().map(|p| PartModes::new(model, &p.part.nodes(model))).collect();
         let positions = model.pairs.iter().map(|p| model.coords[p.k]).collect();
-        let is_applied = |p: &OperatorRef| p.how == Condensation::Applied && p.nc > 0;
-        if parts.iter().any(is_applied) {
-            let applied = (parts.iter().enumerate().zip(&maps))
-                .filter(|((_, p), _)| is_applied(p))
-                .map(|((i, p), map)| {
-                    let source = match p.applied {
-                        Some(solve) => Source::Local(solve.clone()),
-                        None => Source::Remote(i),
-                    };
-                    AppliedPart { source, diag: p.diag.to_vec(), terms: map.terms.clone(), frames: map.frames.clone(), edges: map.edges.clone(), g: p.g.to_vec() }
-                })
-                .collect();
-            // the preconditioner's blocks: per lone pair, junction and join node
-            let vars_of = |ax: &[Axis; 3]| -> Vec<Var> {
-                let mut vars = Vec::new();
-                for a in ax {
-                    match *a {
-                        Axis::Free { m, r } => vars.extend([Var::M(m), Var::R(r)]),
-                        Axis::HeldK { r, .. } | Axis::HeldL { r, .. } => vars.push(Var::R(r)),
-                        Axis::Joined { m } => vars.push(Var::M(m)),
-                        Axis::Held { .. } | Axis::Absent => {}
-                    }
-                }
-                vars
-            };
-            let groups = (unknowns.axes.iter().zip(&unknowns.in_junction))
-                .filter(|(_, j)| j.is_none())
-                .map(|(ax, _)| vars_of(ax))
-                .chain(unknowns.junctions.iter().map(|j| j.m.iter().map(|&m| Var::M(m)).chain(j.r.iter().map(|&r| Var::R(r))).collect()))
-                .chain(unknowns.joins.iter().map(vars_of))
-                .collect();
-            // the coarse space: each part's rigid motions on the means,
-            // shared between the nodes that have them
-            let mut coarse = Vec::new();
-            for ((p, map), modes) in parts.iter().zip(&maps).zip(&rigid) {
-                if !is_applied(p) {
-                    continue;
-                }
-                for k in 0..rigid::n_modes(model.analysis) {
-                    let mut col = vec![0.0; nm + nr];
-                    for (q, &node) in p.part.interface.iter().enumerate() {
-                        let w = unknowns.of(node).share;
-                        for a in 0..nd {
-                            let t = &map.terms[q * nd + a];
-                            for &(v, coef) in &t.vars[..t.n] {
-                                if let Var::M(i) = v {
-                                    col[i] += coef * w * modes.along(model.coords[node], map.frames[q][a])[k];
-                                }
-                            }
-                        }
-                    }
-                    coarse.push(col);
-                }
-            }
-            let solver = Solver::Iterative(Iterative::new(nd, nm, nr, applied, groups, coarse, remote, threads));
-            return Ok(InterfaceProblem { nd, frames, basis, unknowns, join_parts, solver, parts: maps, rigid, positions, at });
-        }
-        let (blocks, joined) = if joins::worth_it(nj, nm_pairs, nr) {
-            let cliques: Vec<Vec<Terms>> = maps.iter().map(|map| map.terms.clone()).collect();
-            let mut node_of = vec![0; nj];
-            for (j, axes) in unknowns.joins.iter().enumerate() {
-                for a in axes {
-                    if let Axis::Joined { m } = *a {
-                        node_of[m - nm_pairs] = j;
-                    }
-                }
-            }
-            let mut sparse = SparseBlocks::new(nm_pairs, nj, nr, cases, &cliques, node_of);
-            for ((part, map), terms) in parts.iter().zip(&maps).zip(&cliques) {
-                if part.nc > 0 {
-                    let (s, g) = coords::localise(part.s, part.g, nd, &map.frames, &map.edges);
-                    sparse.add_part(&s, &g, terms);
-                }
-            }
-            let (blocks, joined) = sparse.condense().map_err(|_| not_held())?;
-            (blocks, Some(joined))
+        let solver: Box<dyn Solver + 'a> = if parts.iter().any(|p| matches!(p.s, SchurRef::Applied { .. }) && p.nc > 0) {
+            Box::new(Iterative::build(model, &layout, parts, &rigid, remote, threads))
         } else {
-            let mut blocks = Blocks::zeros(nm, nr, cases);
-            for (part, map) in parts.iter().zip(&maps) {
-                if part.nc > 0 {
-                    blocks.add_part(part.s, part.g, nd, &map.terms, &map.frames, &map.edges);
-                }
-            }
-            (blocks, None)
+            Box::new(Dense::new(&layout, parts).map_err(|_| ModelError::Invalid {
+                scene: model.scene.clone(),
+                key: "supports".into(),
+                msg: "the bodies are not held even with every contact stuck (the bonded interface system is singular): add a support".into(),
+            })?)
         };
-        let reduced = Reduced::new(blocks).map_err(|_| not_held())?;
-        let solver = Solver::Dense { reduced, joined };
-        Ok(InterfaceProblem { nd, frames, basis, unknowns, join_parts, solver, parts: maps, rigid, positions, at })
+        Ok(InterfaceProblem { layout, basis, solver, rigid, positions })
     }
 
-    /// GMRES iterations (applications of the parts' S) of every solve so
-    /// far; empty for the dense interface.
+    /// Each pair's frame, rows n, t, b (global components).
+    pub fn frames(&self) -> &[Frame] {
+        &self.layout.frames
+    }
+
+    /// The basis the interface's forces are in (nodal, or the face basis of quadratic faces).
+    pub fn basis(&self) -> &FaceBasis {
+        &self.basis
+    }
+
+    /// Applications of the parts' S by every solve so far; empty when S
+    /// was formed.
     pub fn applications(&self) -> Vec<usize> {
-        match &self.solver {
-            Solver::Dense { .. } => Vec::new(),
-            Solver::Iterative(it) => it.iterations.lock().map(|v| v.clone()).unwrap_or_default(),
-        }
+        self.solver.counts()
     }
 
     /// The area pair `p` controls (in the interface basis), > 0.
@@ -370,36 +268,23 @@ impl<'a> InterfaceProblem<'a> {
 
     /// Number of pairs.
     pub fn n_pairs(&self) -> usize {
-        self.unknowns.axes.len()
+        self.layout.axes.len()
     }
 
     /// A stiffness of pair `p`'s relative displacement (the mean diagonal
-    /// of W over its axes): the scale that turns a slip into a force.
+    /// of W over its axes): the scale that turns a slip into a force. A
+    /// junction pair's axis is a row of its junction's r: the diagonal's
+    /// quadratic form on it.
     pub fn stiffness(&self, p: usize) -> f64 {
-        let diag = |r: usize| match &self.solver {
-            Solver::Dense { reduced, .. } => reduced.w[(r, r)],
-            Solver::Iterative(it) => it.diagonal_r(r),
-        };
-        let d: Vec<f64> = match self.unknowns.in_junction[p] {
-            // a junction pair's axis is a row of its junction's r: rowᵀ W row
-            // (the iterative interface: its diagonal only)
+        let d: Vec<f64> = match self.layout.in_junction[p] {
             Some((j, i)) => {
-                let jn = &self.unknowns.junctions[j];
-                (0..self.nd)
-                    .map(|a| {
-                        let row = &jn.rows[i][a];
-                        match &self.solver {
-                            Solver::Dense { reduced, .. } => (0..row.len())
-                                .flat_map(|x| (0..row.len()).map(move |y| (x, y)))
-                                .map(|(x, y)| row[x] * row[y] * reduced.w[(jn.r[x], jn.r[y])])
-                                .sum(),
-                            Solver::Iterative(_) => (0..row.len()).map(|x| row[x] * row[x] * diag(jn.r[x])).sum(),
-                        }
-                    })
-                    .filter(|&v: &f64| v > 0.0)
+                let jn = &self.layout.junctions[j];
+                (0..self.layout.nd)
+                    .map(|a| jn.rows[i][a].iter().zip(&jn.r).map(|(x, &r)| x * x * self.solver.diagonal(r)).sum::<f64>())
+                    .filter(|&v| v > 0.0)
                     .collect()
             }
-            None => self.unknowns.axes[p].iter().filter_map(|a| a.r()).map(diag).collect(),
+            None => self.layout.axes[p].iter().filter_map(|a| a.r()).map(|r| self.solver.diagonal(r)).collect(),
         };
         if d.is_empty() {
             1.0
@@ -410,17 +295,16 @@ impl<'a> InterfaceProblem<'a> {
 
     /// The free directions of the relative displacements under `rel`.
     fn freedom(&self, rel: &[Relation], ramp: f64) -> Freedom {
-        let nd = self.nd;
-        let u = &self.unknowns;
-        let mut r0 = vec![0.0; u.nr];
+        let (nd, layout) = (self.layout.nd, &self.layout);
+        let mut r0 = vec![0.0; layout.nr];
         let mut cols: Vec<Vec<(usize, f64)>> = Vec::new();
-        let mut pos = vec![NONE; u.nr];
+        let mut pos = vec![crate::fem::sparse::NONE; layout.nr];
         for (p, rl) in rel.iter().enumerate() {
-            if u.in_junction[p].is_some() {
+            if layout.in_junction[p].is_some() {
                 continue;
             }
             for a in 0..nd {
-                if let Some(ri) = u.axes[p][a].r() {
+                if let Some(ri) = layout.axes[p][a].r() {
                     if rl.free_axis(a) {
                         pos[ri] = cols.len();
                         cols.push(vec![(ri, 1.0)]);
@@ -430,8 +314,8 @@ impl<'a> InterfaceProblem<'a> {
                 }
             }
         }
-        let mut junctions = Vec::with_capacity(u.junctions.len());
-        for jn in &u.junctions {
+        let mut junctions = Vec::with_capacity(layout.junctions.len());
+        for jn in &layout.junctions {
             let tied = jn.tie(rel, ramp, |p| self.basis.areas[p]);
             for (x, &ri) in jn.r.iter().enumerate() {
                 r0[ri] = tied.r0[x];
@@ -448,10 +332,10 @@ impl<'a> InterfaceProblem<'a> {
         // the lone slipping pairs' rows
         let mut slips = Vec::new();
         for (p, rl) in rel.iter().enumerate() {
-            if rl.state != ContactState::Slip || u.in_junction[p].is_some() {
+            if rl.state != ContactState::Slip || layout.in_junction[p].is_some() {
                 continue;
             }
-            let ax = &u.axes[p];
+            let ax = &layout.axes[p];
             for a in 1..nd {
                 let Some(ra) = ax[a].r() else { continue };
                 let springs = (1..nd).filter_map(|c| ax[c].r().map(|rc| (rc, rl.spring[a][c]))).filter(|s| s.1 != 0.0).collect();
@@ -464,8 +348,6 @@ impl<'a> InterfaceProblem<'a> {
     /// Solves the interface system for the relations `rel` of every pair
     /// under the load factors `lambda` (case 0 also scales prescribed values).
     pub fn solve(&self, rel: &[Relation], lambda: &[f64]) -> Result<InterfaceSolution, SolveFailure> {
-        let nd = self.nd;
-        let ramp = lambda[0];
         let states: Vec<ContactState> = rel.iter().map(|r| r.state).collect();
         // A part nothing holds makes the system singular only up to
         // round-off: decide it from the states and the supports first.
@@ -474,25 +356,36 @@ impl<'a> InterfaceProblem<'a> {
         }
         let sliding = self.free(&states, false);
         if !sliding.is_empty() {
-            return Err(SolveFailure::Singular(sliding));
+            return Err(SolveFailure::Sliding(sliding));
         }
-        let freedom = self.freedom(rel, ramp);
-        let (r, wr_c, m, residual, loose) = match &self.solver {
-            Solver::Dense { reduced, joined } => {
-                let (r, wr_c, m, residual) = dense::solve(reduced, joined.as_ref(), &freedom, lambda).ok_or_else(|| self.diagnose(&states))?;
-                (r, wr_c, m, residual, false)
-            }
-            Solver::Iterative(it) => {
-                let a = it.solve(&freedom, &states, lambda).ok_or_else(|| self.diagnose(&states))?;
-                (a.r, a.residual_r, a.m, a.residual, a.loose)
-            }
-        };
-        // the contact forces: -(W r - c); a free axis carries what its
-        // relation prescribes (an open pair exactly zero, not round-off)
+        let freedom = self.freedom(rel, lambda[0]);
+        let answer = self.solver.solve(&freedom, &states, lambda).ok_or_else(|| self.diagnose(&states))?;
+        let (forces, rels, as_tied) = self.forces(rel, &answer, &freedom, lambda[0]);
+        let pairs = (0..rel.len())
+            .map(|p| {
+                let area = self.basis.areas[p];
+                let (f, r) = (forces[p], rels[p]);
+                PairResult { sigma_n: f[0] / area, tau_t: f[1] / area, tau_b: f[2] / area, gap: r[0], slip: r[1].hypot(r[2]) }
+            })
+            .collect();
+        let d_c = self.displacements(&answer, lambda[0]);
+        Ok(InterfaceSolution { pairs, forces, rel: rels, d_c, residual: answer.residual, loose: answer.loose, as_tied })
+    }
+
+    /// The contact forces, `-(W r - c)`, and the relative displacements of
+    /// every pair; a free axis carries what its relation prescribes (an
+    /// open pair exactly zero, not round-off). A junction's pairs share
+    /// what its ties carry, the least-norm way within their limits, and
+    /// the forces its locked pairs would carry tied (`as_tied`).
+    #[allow(clippy::type_complexity)]
+    fn forces(&self, rel: &[Relation], answer: &Answer, fr: &Freedom, ramp: f64) -> (Vec<[f64; 3]>, Vec<[f64; 3]>, Vec<Option<[f64; 3]>>) {
+        let nd = self.layout.nd;
+        let (r, wr_c) = (&answer.r, &answer.residual_r);
         let mut forces = vec![[0.0; 3]; rel.len()];
         let mut rels = vec![[0.0; 3]; rel.len()];
-        for (p, ax) in self.unknowns.axes.iter().enumerate() {
-            if self.unknowns.in_junction[p].is_some() {
+        let mut as_tied = vec![None; rel.len()];
+        for (p, ax) in self.layout.axes.iter().enumerate() {
+            if self.layout.in_junction[p].is_some() {
                 continue;
             }
             for a in 0..nd {
@@ -518,9 +411,7 @@ impl<'a> InterfaceProblem<'a> {
                 }
             }
         }
-        // a junction's pairs: the least-norm split of what its ties carry
-        let mut as_tied = vec![None; rel.len()];
-        for (jn, block) in self.unknowns.junctions.iter().zip(&freedom.junctions) {
+        for (jn, block) in self.layout.junctions.iter().zip(&fr.junctions) {
             let rj = nalgebra::DVector::from_iterator(jn.r.len(), jn.r.iter().map(|&i| r[i]));
             let g = nalgebra::DVector::from_iterator(jn.r.len(), jn.r.iter().map(|&i| -wr_c[i]));
             for (&p, (f, x, t)) in jn.pairs.iter().zip(jn.forces(&block.tied, rel, &rj, &g, ramp)) {
@@ -529,32 +420,27 @@ impl<'a> InterfaceProblem<'a> {
                 as_tied[p] = t;
             }
         }
-        let pairs = (0..rel.len())
-            .map(|p| {
-                let area = self.basis.areas[p];
-                let (f, r) = (forces[p], rels[p]);
-                PairResult { sigma_n: f[0] / area, tau_t: f[1] / area, tau_b: f[2] / area, gap: r[0], slip: r[1].hypot(r[2]) }
-            })
-            .collect();
-        // interface displacements of every part, global axes, nodal basis
-        let d_c = self
-            .parts
-            .iter()
+        (forces, rels, as_tied)
+    }
+
+    /// The interface displacements of every part, global axes, nodal basis.
+    fn displacements(&self, answer: &Answer, ramp: f64) -> Vec<Vec<f64>> {
+        let nd = self.layout.nd;
+        (self.layout.parts.iter())
             .map(|map| {
                 coords::part_displacements(&map.terms, &map.frames, &map.edges, nd, ramp, |v| match v {
-                    Var::M(i) => m[i],
-                    Var::R(i) => r[i],
+                    Var::M(i) => answer.m[i],
+                    Var::R(i) => answer.r[i],
                 })
             })
-            .collect();
-        Ok(InterfaceSolution { pairs, forces, rel: rels, d_c, residual, loose, as_tied })
+            .collect()
     }
 
     /// Parts that a rigid motion moves which the supports and the pairs tied
     /// by `states` do not stop; `slip_holds`: count slipping pairs as stuck
     /// (then only open pairs release anything).
     fn free(&self, states: &[ContactState], slip_holds: bool) -> Vec<usize> {
-        let nd = self.nd;
+        let (nd, layout) = (self.layout.nd, &self.layout);
         let ties = states.iter().enumerate().flat_map(|(p, st)| {
             let axes = match st {
                 ContactState::Stick => nd,
@@ -562,11 +448,11 @@ impl<'a> InterfaceProblem<'a> {
                 ContactState::Slip => 1,
                 ContactState::Open => 0,
             };
-            let [(pk, _), (pl, _)] = self.at[p];
-            (0..axes).map(move |a| Tie { parts: [pk, pl], x: self.positions[p], dir: self.frames[p][a] })
+            let [(pk, _), (pl, _)] = layout.at[p];
+            (0..axes).map(move |a| Tie { parts: [pk, pl], x: self.positions[p], dir: layout.frames[p][a] })
         });
         // parts of one body cut into substructures are always tied at their joins
-        let joined = self.join_parts.iter().flat_map(|(ps, x)| {
+        let joined = layout.join_parts.iter().flat_map(|(ps, x)| {
             ps[1..].iter().flat_map(move |&q| (0..nd).map(move |a| Tie { parts: [ps[0], q], x: *x, dir: IDENTITY[a] }))
         });
         free_parts(&self.rigid, ties.chain(joined))
@@ -577,7 +463,7 @@ impl<'a> InterfaceProblem<'a> {
     fn diagnose(&self, states: &[ContactState]) -> SolveFailure {
         let free = self.free(states, true);
         if free.is_empty() {
-            SolveFailure::Singular(self.free(states, false))
+            SolveFailure::Sliding(self.free(states, false))
         } else {
             SolveFailure::NotHeld(free)
         }

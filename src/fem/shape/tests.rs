@@ -12,6 +12,8 @@ fn kinds() -> impl Iterator<Item = CellKind> {
 fn sample_points(kind: CellKind) -> Vec<[f64; 3]> {
     let d = kind.dim();
     let simplex = matches!(kind, CellKind::Tri3 | CellKind::Tri6 | CellKind::Tet4 | CellKind::Tet10);
+    let prism = matches!(kind, CellKind::Prism6 | CellKind::Prism15 | CellKind::Prism18);
+    let pyramid = matches!(kind, CellKind::Pyramid5 | CellKind::Pyramid13 | CellKind::Pyramid14);
     let raw: [[f64; 3]; 5] = [
         [0.1, 0.2, 0.3],
         [0.37, 0.11, 0.05],
@@ -24,6 +26,17 @@ fn sample_points(kind: CellKind) -> Vec<[f64; 3]> {
             let mut q = [0.0; 3];
             for j in 0..d {
                 q[j] = if simplex { p[j] } else { 2.0 * p[j] - 0.9 + 0.3 * j as f64 };
+            }
+            if prism {
+                // the triangle's coordinates, ζ as on the cube
+                q[0] = p[0];
+                q[1] = p[1];
+            }
+            if pyramid {
+                // ζ in [0, 0.8], (ξ, η) on the cube's pattern scaled by 1 - ζ
+                q[2] = p[2] * 2.6;
+                q[0] *= 1.0 - q[2];
+                q[1] *= 1.0 - q[2];
             }
             q
         })
@@ -137,6 +150,10 @@ fn higher_order_nodes_are_on_gmsh_edges_and_faces() {
     check(CellKind::Tet10, 4, &TET_EDGES);
     check(CellKind::Hex20, 8, &HEX_EDGES);
     check(CellKind::Hex27, 8, &HEX_EDGES);
+    check(CellKind::Prism15, 6, &PRISM_EDGES);
+    check(CellKind::Prism18, 6, &PRISM_EDGES);
+    check(CellKind::Pyramid13, 5, &PYRAMID_EDGES);
+    check(CellKind::Pyramid14, 5, &PYRAMID_EDGES);
     let q9 = reference_nodes(CellKind::Quad9);
     assert_eq!(q9[8], midpoint(q9, &[0, 1, 2, 3]));
     let h27 = reference_nodes(CellKind::Hex27);
@@ -179,6 +196,15 @@ fn documented_node_positions() {
     assert_eq!(reference_nodes(CellKind::Hex27)[22], [-1.0, 0.0, 0.0]);
     assert_eq!(reference_nodes(CellKind::Hex27)[24], [0.0, 1.0, 0.0]);
     assert_eq!(reference_nodes(CellKind::Hex27)[25], [0.0, 0.0, 1.0]);
+    // prisms and pyramids, as gmsh 4.8.4 writes them (see nodes.rs)
+    assert_eq!(reference_nodes(CellKind::Prism15)[7], [0.0, 0.5, -1.0]); // edge 0-2
+    assert_eq!(reference_nodes(CellKind::Prism15)[8], [0.0, 0.0, 0.0]); // edge 0-3
+    assert_eq!(reference_nodes(CellKind::Prism15)[9], [0.5, 0.5, -1.0]); // edge 1-2
+    assert_eq!(reference_nodes(CellKind::Prism18)[16], [0.0, 0.5, 0.0]); // face 0-2-5-3
+    assert_eq!(reference_nodes(CellKind::Prism18)[17], [0.5, 0.5, 0.0]); // face 1-2-5-4
+    assert_eq!(reference_nodes(CellKind::Pyramid13)[6], [-1.0, 0.0, 0.0]); // edge 0-3
+    assert_eq!(reference_nodes(CellKind::Pyramid13)[7], [-0.5, -0.5, 0.5]); // edge 0-4
+    assert_eq!(reference_nodes(CellKind::Pyramid14)[13], [0.0, 0.0, 0.0]);
 }
 
 #[test]
@@ -277,6 +303,12 @@ fn locate_inverts_the_map_on_distorted_cells() {
             ],
         ),
     ];
+    // prisms and pyramids under a smooth non-affine map
+    let bend = |p: &[f64; 3]| [p[0] + 0.1 * p[1] * p[2], p[1] - 0.05 * p[0] * p[0], 0.8 * p[2] + 0.1 * p[0] * p[1]];
+    let mut cases = cases;
+    for kind in [CellKind::Prism6, CellKind::Prism15, CellKind::Prism18, CellKind::Pyramid5, CellKind::Pyramid13, CellKind::Pyramid14] {
+        cases.push((kind, reference_nodes(kind).iter().map(bend).collect()));
+    }
     for (kind, coords) in cases {
         let mut targets = sample_points(kind);
         // Boundary points: two of the nodes.
@@ -327,4 +359,76 @@ fn locate_ignores_z_for_plane_cells_and_handles_lines() {
     assert!(got[0].abs() < 1e-12);
     assert_eq!(locate(CellKind::Line3, &l, [3.1, 0.0, 0.0]), None);
     assert_eq!(locate(CellKind::Point1, &[[0.0; 3]], [0.0; 3]), None);
+}
+
+/// Conformity: on every face of a 3D cell, the functions of the nodes off
+/// the face vanish, and those on it are the face kind's own functions (so
+/// a pyramid13's base matches a hex20's quad8 face, a pyramid14's a
+/// hex27's quad9, every triangle a tetrahedron's tri3 / tri6, a prism15's
+/// sides quad8). The faces are outward and their nodes where their kind
+/// puts them.
+#[test]
+fn faces_are_conforming_outward_and_where_their_kind_puts_their_nodes() {
+    let face_points: &[[f64; 3]] = &[[0.2, 0.3, 0.0], [0.6, 0.1, 0.0], [0.05, 0.05, 0.0], [-0.7, 0.4, 0.0]];
+    for kind in CellKind::ALL.into_iter().filter(|k| k.dim() == 3) {
+        let nodes = reference_nodes(kind);
+        let fs = faces(kind);
+        assert_eq!(fs.len(), match kind.n_corners() { 4 => 4, 8 => 6, _ => 5 }, "{}", kind.name());
+        // every node of the cell but its interior ones is on some face
+        let mut on_faces: Vec<usize> = fs.iter().flat_map(|f| f.nodes.iter().copied()).collect();
+        on_faces.sort_unstable();
+        on_faces.dedup();
+        let interior = usize::from(kind == CellKind::Hex27);
+        assert_eq!(on_faces.len() + interior, kind.n_nodes(), "{}", kind.name());
+        let centre = reference_centre(kind);
+        for f in &fs {
+            assert_eq!(f.nodes.len(), f.kind.n_nodes());
+            assert_eq!(f.kind.order(), kind.order(), "{}", kind.name());
+            let x: Vec<[f64; 3]> = f.nodes.iter().map(|&a| nodes[a]).collect();
+            // the face's own nodes where its linear map puts its reference nodes
+            let lin = linear_sibling(f.kind);
+            let map = |s: [f64; 3]| -> [f64; 3] {
+                let (n, _) = eval_vec(lin, s);
+                std::array::from_fn(|i| (0..lin.n_nodes()).map(|b| n[b] * x[b][i]).sum())
+            };
+            for (b, s) in reference_nodes(f.kind).iter().enumerate() {
+                assert_eq!(map(*s), x[b], "{} face {:?} node {b}", kind.name(), f.nodes);
+            }
+            // outward: (x1 - x0) x (x_last - x0) points away from the centre
+            let u: [f64; 3] = std::array::from_fn(|i| x[1][i] - x[0][i]);
+            let v: [f64; 3] = std::array::from_fn(|i| x[lin.n_nodes() - 1][i] - x[0][i]);
+            let n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+            let m = midpoint(&x, &(0..lin.n_nodes()).collect::<Vec<_>>());
+            assert!((0..3).map(|i| n[i] * (m[i] - centre[i])).sum::<f64>() > 0.0, "{} face {:?} is not outward", kind.name(), f.nodes);
+            // the trace of the cell's functions is the face's
+            for s in face_points.iter().filter(|s| inside_reference(f.kind, **s, 0.0)) {
+                let (nf, _) = eval_vec(f.kind, *s);
+                let (nc, _) = eval_vec(kind, map(*s));
+                for a in 0..kind.n_nodes() {
+                    let want = f.nodes.iter().position(|&b| b == a).map_or(0.0, |b| nf[b]);
+                    assert!((nc[a] - want).abs() < 1e-14, "{} face {:?} at {s:?}: N_{a} = {}, the face's {want}", kind.name(), f.nodes, nc[a]);
+                }
+            }
+        }
+    }
+    assert!(faces(CellKind::Quad9).is_empty());
+}
+
+/// The pyramids' functions stay bounded up to the apex, and at the apex
+/// itself are the apex node's Kronecker delta with finite gradients.
+#[test]
+fn pyramid_functions_are_continuous_at_the_apex() {
+    for kind in [CellKind::Pyramid5, CellKind::Pyramid13, CellKind::Pyramid14] {
+        let (n, dn) = eval_vec(kind, [0.0, 0.0, 1.0]);
+        for a in 0..kind.n_nodes() {
+            assert!((n[a] - if a == 4 { 1.0 } else { 0.0 }).abs() < 1e-15, "{}", kind.name());
+            assert!(dn[a].iter().all(|g| g.is_finite()));
+        }
+        // approaching the apex along a side's diagonal
+        for t in [1e-3, 1e-6, 1e-9] {
+            let (n, dn) = eval_vec(kind, [t, -t, 1.0 - t]);
+            assert!((n[4] - 1.0).abs() < 10.0 * t, "{} at 1 - {t}: N_apex = {}", kind.name(), n[4]);
+            assert!(dn.iter().flatten().all(|g| g.abs() < 20.0), "{}: gradients grow near the apex", kind.name());
+        }
+    }
 }

@@ -9,18 +9,9 @@
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
-use super::sections::Block;
+use super::sections::{group_name, Block};
 use super::MshError;
 use crate::mesh::{Cell, Group, Mesh};
-
-/// A group's name from `$PhysicalNames`, or its tag when it has none.
-pub(super) fn group_name(names: &[(i32, i32, String)], dim: i32, tag: i32) -> String {
-    names
-        .iter()
-        .find(|(d, t, _)| *d == dim && *t == tag)
-        .map(|(_, _, n)| n.clone())
-        .unwrap_or_else(|| tag.to_string())
-}
 
 /// Node tag -> index: a table when the tags are compact (gmsh numbers nodes
 /// 1..n), a hash map otherwise.

@@ -82,8 +82,9 @@ pub enum MshError {
 
     #[error(
         "`{}`: physical group `{group}` has elements of gmsh type {code} ({name}), which \
-         subcontact cannot use: mesh with triangles or quadrangles in 2D, tetrahedra or \
-         hexahedra in 3D (supported: {supported})",
+         subcontact cannot use: mesh with elements of order 1 or 2 (`[gmsh] order = 1` or 2): \
+         triangles or quadrangles in 2D; tetrahedra, hexahedra, prisms or pyramids in 3D \
+         (supported: {supported})",
         path.display(),
         supported = supported_kinds()
     )]

@@ -10,10 +10,18 @@
 
 use std::collections::HashMap;
 
-use super::groups::group_name;
 use super::reader::Reader;
 use super::MshError;
 use crate::mesh::CellKind;
+
+/// A group's name from `$PhysicalNames`, or its tag when it has none.
+pub(super) fn group_name(names: &[(i32, i32, String)], dim: i32, tag: i32) -> String {
+    names
+        .iter()
+        .find(|(d, t, _)| *d == dim && *t == tag)
+        .map(|(_, _, n)| n.clone())
+        .unwrap_or_else(|| tag.to_string())
+}
 
 /// Name and node count of gmsh element types (codes of the MSH format), for
 /// messages and for skipping blocks that belong to no physical group.
@@ -22,12 +30,6 @@ fn gmsh_type(code: i32) -> Option<(&'static str, usize)> {
         return Some((k.name(), k.n_nodes()));
     }
     Some(match code {
-        6 => ("prism6", 6),
-        7 => ("pyramid5", 5),
-        13 => ("prism18", 18),
-        14 => ("pyramid14", 14),
-        18 => ("prism15", 15),
-        19 => ("pyramid13", 13),
         20 => ("tri9", 9),
         21 => ("tri10", 10),
         22 => ("tri12", 12),
@@ -43,8 +45,10 @@ fn gmsh_type(code: i32) -> Option<(&'static str, usize)> {
         36 => ("quad16", 16),
         37 => ("quad25", 25),
         38 => ("quad36", 36),
+        90 => ("prism40", 40),
         92 => ("hex64", 64),
         93 => ("hex125", 125),
+        118 => ("pyramid30", 30),
         _ => return None,
     })
 }

@@ -600,43 +600,107 @@ const PRISM_GEO: &str = r#"
 Point(1) = {0, 0, 0, 0.5}; Point(2) = {1, 0, 0, 0.5}; Point(3) = {0, 1, 0, 0.5};
 Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 1};
 Curve Loop(1) = {1, 2, 3}; Plane Surface(1) = {1};
-out[] = Extrude {0, 0, 1} { Surface{1}; Layers{2}; Recombine; };
+out[] = Extrude {0.1, 0.2, 1} { Surface{1}; Layers{2}; Recombine; };
 Physical Volume("wedge") = {out[1]};
 Physical Surface("base") = {1};
+Physical Surface("side") = {out[2]};
 "#;
+
+/// A hexahedral block glued to a tetrahedral one: gmsh puts pyramids on the
+/// quadrangles between them.
+const PYRAMID_GEO: &str = r#"
+SetFactory("OpenCASCADE");
+Box(1) = {0, 0, 0, 1, 1, 1};
+Box(2) = {1, 0, 0, 1, 1, 1};
+BooleanFragments{ Volume{1, 2}; Delete; }{}
+Transfinite Curve{:} = 3;
+Transfinite Surface{:};
+Recombine Surface{:};
+Transfinite Volume{1};
+Physical Volume("hexes") = {1};
+Physical Volume("tets") = {2};
+"#;
+
+/// Every node of every cell sits where the cell's corners put its
+/// reference node (straight-sided meshes): checks the node tables against
+/// the order gmsh writes.
+fn check_nodes_on_reference_positions(mesh: &Mesh, kind: CellKind) -> usize {
+    use crate::fem::shape;
+    let lin = shape::linear_sibling(kind);
+    let mut n = vec![0.0; lin.n_nodes()];
+    let mut dn = vec![[0.0; 3]; lin.n_nodes()];
+    let mut count = 0;
+    for c in mesh.groups.iter().flat_map(|g| &g.cells).filter(|c| c.kind == kind) {
+        for (a, xi) in shape::reference_nodes(kind).iter().enumerate() {
+            shape::eval(lin, *xi, &mut n, &mut dn);
+            let want: [f64; 3] = std::array::from_fn(|i| (0..lin.n_nodes()).map(|b| n[b] * mesh.coords[c.nodes[b]][i]).sum());
+            let got = mesh.coords[c.nodes[a]];
+            // gmsh places the nodes to ~1e-12 of the unit cells' size
+            assert!((0..3).all(|i| (got[i] - want[i]).abs() < 1e-9), "{} {}: node {a} at {got:?}, expected {want:?}", kind.name(), c.tag);
+        }
+        count += 1;
+    }
+    count
+}
+
+#[test]
+fn prisms_and_pyramids_of_order_1_and_2_are_read_in_gmsh_order() {
+    let dir = TestDir::new("prism");
+    let incomplete: Set = &[("Mesh.SecondOrderIncomplete", 1.0)];
+    let cases: [(&str, usize, Set, &[CellKind]); 6] = [
+        (PRISM_GEO, 1, &[], &[CellKind::Prism6]),
+        (PRISM_GEO, 2, &[], &[CellKind::Prism18]),
+        (PRISM_GEO, 2, incomplete, &[CellKind::Prism15]),
+        (PYRAMID_GEO, 1, &[], &[CellKind::Tet4, CellKind::Hex8, CellKind::Pyramid5]),
+        (PYRAMID_GEO, 2, &[], &[CellKind::Tet10, CellKind::Hex27, CellKind::Pyramid14]),
+        (PYRAMID_GEO, 2, incomplete, &[CellKind::Tet10, CellKind::Hex20, CellKind::Pyramid13]),
+    ];
+    for (i, (geo, order, set, want)) in cases.into_iter().enumerate() {
+        for binary in [true, false] {
+            let path = gmsh(&dir, geo, &format!("case{i}-{binary}"), 3, order, binary, set);
+            let mesh = read_msh(&path).unwrap_or_else(|e| panic!("case {i}: {e}"));
+            let mut found: Vec<CellKind> = mesh.groups.iter().filter(|g| g.dim == 3).flat_map(kinds).collect();
+            found.sort();
+            let mut want = want.to_vec();
+            want.sort();
+            assert_eq!(found, want, "case {i}");
+            let special = want.iter().copied().find(|k| k.name().starts_with('p')).unwrap();
+            assert!(check_nodes_on_reference_positions(&mesh, special) > 0, "case {i}");
+            // mshio reads the first-order files (it miscounts order-2 prisms)
+            if order == 1 {
+                check_against_mshio(&path, &mesh);
+            }
+        }
+    }
+}
 
 #[test]
 fn unsupported_elements_name_type_and_group() {
-    let dir = TestDir::new("prism");
-    for (order, code, name) in [(1, 6, "prism6"), (2, 13, "prism18")] {
-        for binary in [true, false] {
-            let path = gmsh(
-                &dir,
-                PRISM_GEO,
-                &format!("prism{order}{binary}"),
-                3,
-                order,
-                binary,
-                &[],
-            );
-            let e = read_msh(&path).unwrap_err();
-            assert!(
-                matches!(&e, MshError::UnsupportedElement { code: c, .. } if *c == code),
-                "{e:?}"
-            );
-            let msg = e.to_string();
-            assert!(msg.contains(&format!("gmsh type {code} ({name})")), "{msg}");
-            assert!(
-                msg.contains("`wedge`") && msg.contains(&path.display().to_string()),
-                "{msg}"
-            );
+    let dir = TestDir::new("order3");
+    for binary in [true, false] {
+        let mut args = vec!["-3", "-order", "3", "-format", "msh41"];
+        if binary {
+            args.push("-bin");
         }
+        let path = gmsh_raw(&dir, PRISM_GEO, &format!("order3{binary}"), &args);
+        let e = read_msh(&path).unwrap_err();
+        // the first block of a physical group met: the base's order-3 triangles
+        assert!(matches!(&e, MshError::UnsupportedElement { code: 21, .. }), "{e:?}");
+        let msg = e.to_string();
+        assert!(msg.contains("gmsh type 21 (tri10)"), "{msg}");
+        assert!(msg.contains("order 1 or 2") && msg.contains("prisms or pyramids"), "{msg}");
+        assert!(msg.contains("`base`") && msg.contains(&path.display().to_string()), "{msg}");
+        // the volume alone: its order-3 prisms
+        let volume_only = PRISM_GEO.replace("Physical Surface(\"base\") = {1};", "").replace("Physical Surface(\"side\") = {out[2]};", "");
+        let path = gmsh_raw(&dir, &volume_only, &format!("order3v{binary}"), &args);
+        let msg = read_msh(&path).unwrap_err().to_string();
+        assert!(msg.contains("gmsh type 90 (prism40)") && msg.contains("`wedge`"), "{msg}");
     }
     // Unsupported elements outside any physical group are skipped.
     let text = HAND
         .replace(
             "$Elements\n2 3 1 3\n",
-            "$Elements\n3 4 1 4\n2 2 6 1\n4 1 2 3 4 1 2\n",
+            "$Elements\n3 4 1 4\n2 2 21 1\n4 1 2 3 4 1 2 3 4 1 2\n",
         )
         .replace("0 1 1 0\n", "0 1 2 0\n")
         .replace("$EndEntities", "2 0 0 0 1 1 0 0 0\n$EndEntities");

@@ -1,98 +1,65 @@
 //! The deformed picture (PNG, 1200 x 800): the model moved by its
 //! magnified displacements and coloured by a field, the undeformed shape as
 //! a grey ghost behind it (2D), and the contact states on the interfaces.
-//! 3D models are drawn in an oblique view (up against gravity, else y for
-//! extrusions thin in z, else z), boundary faces far to near (painter's
-//! algorithm), lit from over the viewer's shoulder.
+//! 3D models are drawn in an oblique view ([`View`]), boundary faces far to
+//! near (painter's algorithm), lit from over the viewer's shoulder.
+//!
+//! The picture frames the contacts, or the region the scene names
+//! ([`super::framing`]); the magnification and the colours come from what
+//! is drawn. Bodies whose stresses differ by more than a factor of 5 (a
+//! concrete lining in soft rock) get a colour scale each, with its own
+//! colour map and bar ([`scales`]), so that the stiff body does not leave
+//! the soft one a single colour; within a scale, a few outlying nodes do
+//! not take the whole bar ([`Limits::of`]).
 
 use plotters::style::text_anchor::{HPos, VPos};
 
-use super::legend::{colour_bar, colour_map, legend, lut_colour, triad, Limits};
+use super::cutaway::{Cut, Place, Vertex};
+use super::framing::{focus, Focus};
+use super::legend::{colour_bar, colour_map_of, legend, lut_colour, triad, LegendOf, Limits, PANEL_X};
 use super::raster::{encode_png, label, register_font, Canvas};
-use super::surface::{centred, edges, fill, mesh_alpha, patches, Patch};
-use super::{cross, dot, norm3, num, sig2, state_colour, sub3, Field, Snapshot, GHOST, INK, NO_PAIR};
+use super::surface::{centred, edges, fill, mesh_alpha, patches, sub_triangles, with_centre, Patch};
+use super::view::View;
+use super::{dot, norm3, num, sig2, state_colour, Field, PictureError, Snapshot, GHOST, INK, NO_PAIR};
 use crate::fem::material::von_mises;
 use crate::fem::Analysis;
 
 pub(super) const W: usize = 1200;
 pub(super) const H: usize = 800;
 /// Where the model goes: x0, y0, x1, y1 in pixels.
-const PLOT: [f64; 4] = [24.0, 84.0, 960.0, 780.0];
-/// The right-hand panel: colour bar, then the legend.
-pub(super) const PANEL_X: f64 = 990.0;
+const PLOT: [f64; 4] = [24.0, 96.0, 960.0, 780.0];
 
 /// A PNG (1200 x 800) of the model deformed by the magnified displacements
 /// and coloured by `field`, with the contact states on the interfaces.
 /// `scale` is the displacement magnification; None picks one that makes the
-/// largest displacement 5 % of the model's size.
-pub fn deformed_png(snap: &Snapshot, field: Field, scale: Option<f64>) -> Result<Vec<u8>, String> {
+/// largest displacement 5 % of the drawn region's size.
+pub fn deformed_png(snap: &Snapshot, field: Field, scale: Option<f64>) -> Result<Vec<u8>, PictureError> {
     let c = deformed_canvas(snap, field, scale)?;
     encode_png(c.w, c.h, &c.rgb)
 }
 
-/// Which way is up in a 3D model of this extent: against gravity when there
-/// is some; else y, as in the plane pictures, for models thinner in z than
-/// across (extrusions of a plane section); else z.
-pub(super) fn up_of(extent: [f64; 3], gravity: [f64; 3]) -> [f64; 3] {
-    let g = dot(gravity, gravity).sqrt();
-    if g > 0.0 {
-        gravity.map(|x| -x / g)
-    } else if extent[2] < 0.99 * extent[0].min(extent[1]) {
-        [0.0, 1.0, 0.0]
-    } else {
-        [0.0, 0.0, 1.0]
-    }
-}
-
-/// Oblique view of 3D models: the eye's direction, right and up on screen.
-pub(super) struct View {
-    eye: [f64; 3],
-    pub(super) right: [f64; 3],
-    pub(super) up: [f64; 3],
-}
-
-impl View {
-    /// Which way is up: [`up_of`]. The eye is turned 30 degrees to the
-    /// right and raised 25 degrees (20 and 20 for the extrusions seen mostly
-    /// from +z, so that their section dominates).
-    fn new(extent: [f64; 3], gravity: [f64; 3]) -> View {
-        let up = up_of(extent, gravity);
-        let (toward, az, el) = if dot(gravity, gravity) > 0.0 {
-            // the world axis least along up faces the viewer
-            let k = (0..3).min_by(|&a, &b| up[a].abs().total_cmp(&up[b].abs())).unwrap_or(0);
-            let mut t = [0.0; 3];
-            t[k] = if k == 1 { -1.0 } else { 1.0 };
-            (norm3(sub3(t, up.map(|x| x * dot(t, up)))), 30.0f64, 25.0f64)
-        } else if up[1] == 1.0 {
-            ([0.0, 0.0, 1.0], 20.0, 20.0)
-        } else {
-            ([0.0, -1.0, 0.0], 30.0, 25.0)
-        };
-        let right = cross(up, toward);
-        let (sa, ca, se, ce) = (az.to_radians().sin(), az.to_radians().cos(), el.to_radians().sin(), el.to_radians().cos());
-        let eye: [f64; 3] = std::array::from_fn(|i| ce * (ca * toward[i] + sa * right[i]) + se * up[i]);
-        let r: [f64; 3] = std::array::from_fn(|i| ca * right[i] - sa * toward[i]);
-        View { eye, right: r, up: cross(eye, r) }
-    }
-    pub(super) fn project(&self, x: [f64; 3]) -> ([f64; 2], f64) {
-        ([dot(x, self.right), dot(x, self.up)], dot(x, self.eye))
-    }
-}
-
-pub(super) fn deformed_canvas(snap: &Snapshot, field: Field, scale: Option<f64>) -> Result<Canvas, String> {
+pub(super) fn deformed_canvas(snap: &Snapshot, field: Field, scale: Option<f64>) -> Result<Canvas, PictureError> {
     register_font();
     let model = snap.model;
     let stresses_ok = snap.stresses.len() == model.bodies.len() || (snap.stresses.is_empty() && field == Field::Displacement);
     if snap.u.len() != model.n_nodes() * model.nd || !stresses_ok {
-        return Err("the run's displacements or stresses do not match its model".into());
+        return Err(PictureError::Mismatch { what: "displacements or stresses" });
     }
-    let frame = Frame::new(snap, scale)?;
+    let focus = focus(model, snap.region);
+    let frame = Frame::new(snap, &focus, scale)?;
     let values = nodal_values(snap, field);
-    let signed = field.component().is_some();
-    let lim = Limits::of(signed, &values);
-    let lut = colour_map(signed, lim.lo, lim.hi);
+    // the colours come from what is drawn
+    let mut shown = values.clone();
+    for v in shown.iter_mut() {
+        for (k, x) in v.iter_mut().enumerate() {
+            if !frame.drawn(k) {
+                *x = f32::NAN;
+            }
+        }
+    }
+    let scales = scales(field, &shown);
     let mut cv = Canvas::new(W, H);
-    draw_bodies(&mut cv, snap, &frame, &values, &lim, &lut);
+    draw_bodies(&mut cv, snap, &frame, &values, &scales);
     draw_contacts(&mut cv, snap, &frame);
 
     let mut labels = Vec::new();
@@ -103,8 +70,22 @@ pub(super) fn deformed_canvas(snap: &Snapshot, field: Field, scale: Option<f64>)
         "undeformed shape (no displacement)".to_string()
     };
     labels.push(label(format!("{} on the {shape}", field.label(model.analysis)), (24.0, 48.0), 17.0, (HPos::Left, VPos::Top)));
-    colour_bar(&mut cv, &mut labels, &lut, &lim, field.label(model.analysis), [PANEL_X, 146.0, 500.0]);
-    legend(&mut cv, &mut labels, snap, &frame);
+    if let Some(note) = &focus.note {
+        labels.push(label(note.clone(), (24.0, 72.0), 14.0, (HPos::Left, VPos::Top)));
+    }
+    // the bars one under the other, each with its bodies when there are several
+    let n = scales.len().max(1) as f64;
+    let slot = 460.0 / n;
+    for (i, s) in scales.iter().enumerate() {
+        let mut title = vec![field.label(model.analysis).to_string()];
+        if scales.len() > 1 {
+            title.push(format!("in {}", super::plan::body_list(model, &s.bodies, 3).0));
+        }
+        let (top, bottom) = if scales.len() == 1 { (146.0, 500.0) } else { (100.0 + i as f64 * slot + 70.0, 100.0 + (i + 1) as f64 * slot - 50.0) };
+        colour_bar(&mut cv, &mut labels, &s.lut, &s.lim, &title, [PANEL_X, top, bottom]);
+    }
+    let of = LegendOf { counts: snap.contact.map(|c| crate::results::state_counts(&c.states)), solid: frame.view.is_some(), ghost: frame.moved() && frame.view.is_none() };
+    legend(&mut cv, &mut labels, &of, 580.0);
     if let Some(view) = &frame.view {
         triad(&mut cv, &mut labels, view);
     }
@@ -112,29 +93,90 @@ pub(super) fn deformed_canvas(snap: &Snapshot, field: Field, scale: Option<f64>)
     Ok(cv)
 }
 
+/// One colour scale: the bodies it colours, its limits and colour map.
+pub(super) struct Scale {
+    pub(super) bodies: Vec<usize>,
+    pub(super) lim: Limits,
+    pub(super) lut: Vec<[u8; 3]>,
+}
+
+/// How far apart (a factor) two bodies' stresses must be to get a colour
+/// scale each, and the most scales a picture shows.
+const APART: f64 = 5.0;
+const MOST_SCALES: usize = 3;
+
+/// The colour scales of a picture: one for every drawn body, except that
+/// for stresses, bodies whose typical magnitudes (the 99.5 % quantile of
+/// |value|) differ by more than [`APART`] get a scale each, largest first,
+/// at most [`MOST_SCALES`] (the smallest ones share the last). The
+/// displacement is continuous across bodies and keeps one scale.
+pub(super) fn scales(field: Field, values: &[Vec<f32>]) -> Vec<Scale> {
+    let signed = field.component().is_some();
+    let drawn: Vec<usize> = (0..values.len()).filter(|&b| values[b].iter().any(|v| v.is_finite())).collect();
+    let mut groups: Vec<Vec<usize>> = Vec::new();
+    if field == Field::Displacement || drawn.len() < 2 {
+        groups.push(drawn);
+    } else {
+        let typical = |b: usize| -> f64 {
+            let mut a: Vec<f32> = values[b].iter().filter(|v| v.is_finite()).map(|v| v.abs()).collect();
+            let n = a.len();
+            let i = ((n - 1) as f64 * 0.995).round() as usize;
+            *a.select_nth_unstable_by(i, |x, y| x.total_cmp(y)).1 as f64
+        };
+        let mut by: Vec<(usize, f64)> = drawn.iter().map(|&b| (b, typical(b))).collect();
+        by.sort_by(|x, y| y.1.total_cmp(&x.1).then(x.0.cmp(&y.0)));
+        let mut top = f64::NAN;
+        for (b, t) in by {
+            if groups.is_empty() || (t * APART < top && groups.len() < MOST_SCALES) {
+                groups.push(Vec::new());
+                top = t;
+            }
+            if let Some(g) = groups.last_mut() {
+                g.push(b);
+            }
+        }
+        for g in &mut groups {
+            g.sort_unstable();
+        }
+    }
+    groups
+        .into_iter()
+        .enumerate()
+        .map(|(k, bodies)| {
+            let vals: Vec<Vec<f32>> = bodies.iter().map(|&b| values[b].clone()).collect();
+            let lim = Limits::of(signed, &vals);
+            let lut = colour_map_of(k, signed, lim.lo, lim.hi);
+            Scale { bodies, lim, lut }
+        })
+        .collect()
+}
+
 /// Where every node lands in the picture, deformed (`sd`) and undeformed
 /// (`su`), with its depth in 3D (larger is nearer).
 pub(super) struct Frame {
     mag: f64,
     umax: f64,
-    /// Pixels per model length.
+    /// Pixels per model length, and the model point at the picture's centre.
     px: f64,
+    centre: [f64; 2],
     sd: Vec<[f32; 2]>,
     su: Vec<[f32; 2]>,
     depth: Vec<f64>,
+    /// Whether each node is drawn (a node of a cell, inside the cut).
+    used: Vec<bool>,
+    /// The box the model is cut to.
+    cut: Option<Cut>,
     /// The 3D view; None in 2D (x right, y up).
     pub(super) view: Option<View>,
 }
 
 impl Frame {
-    fn new(snap: &Snapshot, scale: Option<f64>) -> Result<Frame, String> {
+    fn new(snap: &Snapshot, focus: &Focus, scale: Option<f64>) -> Result<Frame, PictureError> {
         let model = snap.model;
         let n = model.n_nodes();
         let mut used = vec![false; n];
-        for cell in model.bodies.iter().flat_map(|b| &b.cells) {
-            for &k in &cell.nodes {
-                used[k] = true;
-            }
+        for &k in model.bodies.iter().flat_map(|b| &b.cells).flat_map(|c| &c.nodes) {
+            used[k] = focus.cut.is_none_or(|c| c.contains(model.coords[k]));
         }
         let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
         let mut umax: f64 = 0.0;
@@ -146,8 +188,19 @@ impl Frame {
             let u = displacement(snap, k);
             umax = umax.max(dot(u, u).sqrt());
         }
+        // a cut's corners frame the picture too (a box round a hole)
+        let corners: Vec<[f64; 3]> = match &focus.cut {
+            Some(c) => (0..8).map(|m| std::array::from_fn(|d| if d < c.dim { if m >> d & 1 == 0 { c.lo[d] } else { c.hi[d] } } else { lo[d] })).collect(),
+            None => Vec::new(),
+        };
+        for x in &corners {
+            for d in 0..3 {
+                lo[d] = lo[d].min(x[d]);
+                hi[d] = hi[d].max(x[d]);
+            }
+        }
         if lo[0] > hi[0] {
-            return Err("the model has no cells to draw".into());
+            return Err(PictureError::Empty("the model has no cells to draw".into()));
         }
         let extent: [f64; 3] = std::array::from_fn(|d| hi[d] - lo[d]);
         let size = extent.iter().copied().fold(0.0, f64::max);
@@ -156,47 +209,69 @@ impl Frame {
             None if umax > 0.0 && umax.is_finite() => 0.05 * size / umax,
             None => 0.0,
         };
-        let view = (model.analysis == Analysis::Solid).then(|| View::new(extent, model.gravity));
-        let place = |x: [f64; 3]| -> ([f64; 2], f64) {
-            match &view {
-                Some(v) => v.project(x),
-                None => ([x[0], x[1]], 0.0),
+        // the view of the whole model, so that a framed picture keeps its orientation
+        let (mlo, mhi) = super::view::model_box(model);
+        let view = (model.analysis == Analysis::Solid).then(|| View::new(std::array::from_fn(|d| mhi[d] - mlo[d]), model.gravity));
+        let mut frame = Frame { mag, umax, px: 1.0, centre: [0.0; 2], sd: Vec::new(), su: Vec::new(), depth: vec![0.0; n], used, cut: focus.cut, view };
+        let mut flat = vec![[[0.0f64; 2]; 2]; n];
+        let (mut plo, mut phi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        let mut widen = |p: [f64; 2]| {
+            for d in 0..2 {
+                plo[d] = plo[d].min(p[d]);
+                phi[d] = phi[d].max(p[d]);
             }
         };
-        let mut flat = vec![[[0.0f64; 2]; 2]; n];
-        let mut depth = vec![0.0f64; n];
-        let (mut plo, mut phi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for k in (0..n).filter(|&k| used[k]) {
+        for k in 0..n {
             let (u, x) = (displacement(snap, k), model.coords[k]);
-            let (pd, dd) = place(std::array::from_fn(|d| x[d] + mag * u[d]));
-            flat[k] = [pd, place(x).0];
-            depth[k] = dd;
-            for p in flat[k] {
-                for d in 0..2 {
-                    plo[d] = plo[d].min(p[d]);
-                    phi[d] = phi[d].max(p[d]);
-                }
+            let (pd, dd) = frame.place(std::array::from_fn(|d| x[d] + mag * u[d]));
+            flat[k] = [pd, frame.place(x).0];
+            frame.depth[k] = dd;
+            if frame.used[k] {
+                widen(pd);
+                widen(flat[k][1]);
             }
+        }
+        for x in &corners {
+            widen(frame.place(*x).0);
         }
         let [x0, y0, x1, y1] = PLOT;
         let px = ((x1 - x0) / (phi[0] - plo[0])).min((y1 - y0) / (phi[1] - plo[1]));
-        let px = if px.is_finite() && px > 0.0 { px } else { 1.0 };
-        let (cx, cy) = (0.5 * (plo[0] + phi[0]), 0.5 * (plo[1] + phi[1]));
-        let screen = |p: [f64; 2]| -> [f32; 2] { [(0.5 * (x0 + x1) + (p[0] - cx) * px) as f32, (0.5 * (y0 + y1) - (p[1] - cy) * px) as f32] };
-        Ok(Frame {
-            mag,
-            umax,
-            px,
-            sd: flat.iter().map(|p| screen(p[0])).collect(),
-            su: flat.iter().map(|p| screen(p[1])).collect(),
-            depth,
-            view,
-        })
+        frame.px = if px.is_finite() && px > 0.0 { px } else { 1.0 };
+        frame.centre = [0.5 * (plo[0] + phi[0]), 0.5 * (plo[1] + phi[1])];
+        frame.sd = flat.iter().map(|p| frame.screen(p[0])).collect();
+        frame.su = flat.iter().map(|p| frame.screen(p[1])).collect();
+        Ok(frame)
+    }
+
+    /// A model point on the picture's plane, and its depth.
+    fn place(&self, x: [f64; 3]) -> ([f64; 2], f64) {
+        match &self.view {
+            Some(v) => v.project(x),
+            None => ([x[0], x[1]], 0.0),
+        }
+    }
+
+    /// A point of the picture's plane in pixels.
+    fn screen(&self, p: [f64; 2]) -> [f32; 2] {
+        let [x0, y0, x1, y1] = PLOT;
+        [(0.5 * (x0 + x1) + (p[0] - self.centre[0]) * self.px) as f32, (0.5 * (y0 + y1) - (p[1] - self.centre[1]) * self.px) as f32]
+    }
+
+    /// Where a clipped piece's vertex lands, deformed or not, and its depth.
+    fn vertex(&self, v: &Vertex, deformed: bool) -> ([f32; 2], f64) {
+        let m = if deformed { self.mag } else { 0.0 };
+        let (p, depth) = self.place(std::array::from_fn(|d| v.x[d] + m * v.u[d]));
+        (self.screen(p), depth)
     }
 
     /// Whether the magnified displacements show (more than a pixel and a half).
     pub(super) fn moved(&self) -> bool {
         self.mag * self.umax * self.px > 1.5
+    }
+
+    /// Whether node k is drawn (a node of a cell, inside the cut).
+    fn drawn(&self, k: usize) -> bool {
+        self.used[k]
     }
 }
 
@@ -243,17 +318,81 @@ fn nodal_values(snap: &Snapshot, field: Field) -> Vec<Vec<f32>> {
         .collect()
 }
 
+/// A patch's sub-triangles as vertices in the model (position,
+/// displacement, field), for clipping to the cut.
+fn patch_triangles(p: &Patch, vert: &dyn Fn(usize) -> Vertex) -> Vec<Vec<Vertex>> {
+    let n = p.kind.n_nodes();
+    let mut comps = [[0.0f64; 9]; 7];
+    for (c, row) in comps.iter_mut().enumerate() {
+        with_centre(p.kind, row, |i| {
+            let v = vert(p.nodes[i]);
+            match c {
+                0..=2 => v.x[c],
+                3..=5 => v.u[c - 3],
+                _ => v.v as f64,
+            }
+        });
+    }
+    let at = |i: usize| -> Vertex {
+        if i < n {
+            return vert(p.nodes[i]);
+        }
+        Vertex { x: std::array::from_fn(|d| comps[d][i]), u: std::array::from_fn(|d| comps[3 + d][i]), v: comps[6][i] as f32 }
+    };
+    sub_triangles(p.kind).iter().map(|t| t.iter().map(|&i| at(i)).collect()).collect()
+}
+
+/// A clipped polygon filled on the screen (a fan from its first vertex),
+/// each pixel coloured from the field interpolated linearly.
+fn fill_polygon(cv: &mut Canvas, frame: &Frame, poly: &[Vertex], deformed: bool, paint: &dyn Fn(f32) -> [u8; 3], norm: &dyn Fn(f32) -> f32) {
+    let pts: Vec<[f32; 2]> = poly.iter().map(|v| frame.vertex(v, deformed).0).collect();
+    for i in 1..poly.len().saturating_sub(1) {
+        cv.triangle([pts[0], pts[i], pts[i + 1]], [norm(poly[0].v), norm(poly[i].v), norm(poly[i + 1].v)], paint);
+    }
+}
+
 /// The bodies: the undeformed ghost (2D), the patches coloured by the field
-/// (3D: far faces first, shaded), mesh lines on cells big enough to show
-/// them, and the outlines.
-fn draw_bodies(cv: &mut Canvas, snap: &Snapshot, frame: &Frame, values: &[Vec<f32>], lim: &Limits, lut: &[[u8; 3]]) {
+/// on their body's scale (3D: far faces first, shaded, and the sections of
+/// a cut), mesh lines on cells big enough to show them, and the outlines.
+/// Patches across a cut are clipped to it (without their mesh lines).
+fn draw_bodies(cv: &mut Canvas, snap: &Snapshot, frame: &Frame, values: &[Vec<f32>], scales: &[Scale]) {
+    let model = snap.model;
     let (sd, su) = (&frame.sd, &frame.su);
-    let mut patches = patches(snap.model);
+    let coords = &model.coords;
+    let all = patches(model, None);
+    let place = |p: &Patch| frame.cut.map_or(Place::Inside, |c| c.classify(p, coords));
+    let mut patches: Vec<Patch> = all.iter().copied().filter(|p| place(p) == Place::Inside).collect();
+    let across: Vec<Patch> = all.iter().copied().filter(|p| place(p) == Place::Across).collect();
     let mesh_alpha = mesh_alpha(&patches, sd);
+    let mut scale_of = vec![0; model.bodies.len()];
+    for (i, s) in scales.iter().enumerate() {
+        for &b in &s.bodies {
+            scale_of[b] = i;
+        }
+    }
+    let colour = |body: usize, t: f32| lut_colour(&scales[scale_of[body]].lut, t);
+    let norm = |body: usize, v: f32| scales.get(scale_of[body]).map_or(f32::NAN, |s| s.lim.norm(v));
+    let vert = |body: usize| move |k: usize| Vertex { x: coords[k], u: displacement(snap, k), v: values[body][k] };
+    // the pieces of the patches across the cut
+    let clipped: Vec<(usize, Vec<Vertex>, [f64; 3])> = match frame.cut {
+        Some(cut) => across
+            .iter()
+            .flat_map(|p| {
+                let normal = p.normal(coords);
+                let body = p.body;
+                patch_triangles(p, &vert(body)).into_iter().map(move |t| (body, cut.clip(t), normal))
+            })
+            .filter(|(_, poly, _)| !poly.is_empty())
+            .collect(),
+        None => Vec::new(),
+    };
     let Some(view) = &frame.view else {
         if frame.moved() {
             for p in &patches {
                 fill(cv, p, su, &|_| [0.0; 9], &|_| GHOST);
+            }
+            for (_, poly, _) in &clipped {
+                fill_polygon(cv, frame, poly, false, &|_| GHOST, &|_| 0.0);
             }
             for p in &patches {
                 edges(cv, p, su, &|outline, _| outline.then_some((1.0, [175, 175, 175], 1.0)));
@@ -261,7 +400,10 @@ fn draw_bodies(cv: &mut Canvas, snap: &Snapshot, frame: &Frame, values: &[Vec<f3
         }
         for p in &patches {
             let v = &values[p.body];
-            fill(cv, p, sd, &|p| centred(p, |k| lim.norm(v[k])), &|t| lut_colour(lut, t));
+            fill(cv, p, sd, &|p| centred(p, |k| norm(p.body, v[k])), &|t| colour(p.body, t));
+        }
+        for (b, poly, _) in &clipped {
+            fill_polygon(cv, frame, poly, true, &|t| colour(*b, t), &|v| norm(*b, v));
         }
         // each mesh line once (from the first cell that has it), outlines over them
         for p in &patches {
@@ -272,25 +414,53 @@ fn draw_bodies(cv: &mut Canvas, snap: &Snapshot, frame: &Frame, values: &[Vec<f3
         }
         return;
     };
-    let key = |p: &Patch| p.nodes().iter().map(|&k| frame.depth[k]).sum::<f64>() / p.kind.n_nodes() as f64;
-    patches.sort_by(|a, b| key(a).total_cmp(&key(b)));
+    // 3D: whole patches, clipped pieces and sections far to near
+    let sections = match frame.cut {
+        Some(cut) => cut.sections(model, &|k| displacement(snap, k), &|b, k| values[b][k]),
+        None => Vec::new(),
+    };
+    enum Piece<'a> {
+        Whole(&'a Patch),
+        Cut(&'a (usize, Vec<Vertex>, [f64; 3])),
+    }
+    let depth_of = |piece: &Piece| -> f64 {
+        match piece {
+            Piece::Whole(p) => p.nodes().iter().map(|&k| frame.depth[k]).sum::<f64>() / p.kind.n_nodes() as f64,
+            Piece::Cut((_, poly, _)) => poly.iter().map(|v| frame.vertex(v, true).1).sum::<f64>() / poly.len() as f64,
+        }
+    };
+    patches.sort_by(|a, b| depth_of(&Piece::Whole(a)).total_cmp(&depth_of(&Piece::Whole(b))));
+    let mut order: Vec<(f64, Piece)> = patches.iter().map(Piece::Whole).chain(clipped.iter().chain(&sections).map(Piece::Cut)).map(|p| (depth_of(&p), p)).collect();
+    order.sort_by(|a, b| a.0.total_cmp(&b.0));
     let light = norm3(std::array::from_fn(|i| 0.3 * view.right[i] + 0.5 * view.up[i] + view.eye[i]));
-    let coords = &snap.model.coords;
-    for p in &patches {
-        // faces lit from over the viewer's shoulder, either side alike
-        let shade = (0.62 + 0.38 * dot(p.normal(coords), light).abs()) as f32;
-        let v = &values[p.body];
-        fill(cv, p, sd, &|p| centred(p, |k| lim.norm(v[k])), &|t| lut_colour(lut, t).map(|c| (c as f32 * shade) as u8));
-        edges(cv, p, sd, &|outline, _| match outline {
-            true => Some((1.2, [0, 0, 0], 0.85)),
-            false => (mesh_alpha > 0.0).then_some((0.8, [0, 0, 0], mesh_alpha)),
-        });
+    for (_, piece) in &order {
+        match piece {
+            Piece::Whole(p) => {
+                // faces lit from over the viewer's shoulder, either side alike
+                let shade = (0.62 + 0.38 * dot(p.normal(coords), light).abs()) as f32;
+                let v = &values[p.body];
+                fill(cv, p, sd, &|p| centred(p, |k| norm(p.body, v[k])), &|t| colour(p.body, t).map(|c| (c as f32 * shade) as u8));
+                edges(cv, p, sd, &|outline, _| match outline {
+                    true => Some((1.2, [0, 0, 0], 0.85)),
+                    false => (mesh_alpha > 0.0).then_some((0.8, [0, 0, 0], mesh_alpha)),
+                });
+            }
+            Piece::Cut((b, poly, normal)) => {
+                let shade = (0.62 + 0.38 * dot(*normal, light).abs()) as f32;
+                fill_polygon(cv, frame, poly, true, &|t| colour(*b, t).map(|c| (c as f32 * shade) as u8), &|v| norm(*b, v));
+            }
+        }
     }
 }
 
+/// The least distance between two contact dots of a 3D picture, pixels.
+const SPACING: f32 = 12.0;
+
 /// The contact interfaces by state, over everything: in 2D both sides of
 /// every facet as a thick line, each node's half of a segment in its pair's
-/// colour; in 3D the pairs as dots (the interfaces are inside the solid).
+/// colour; in 3D the pairs as dots (the interfaces are inside the solid),
+/// thinned to [`SPACING`] (the plan views show every pair). Only what lies
+/// in the drawn region.
 fn draw_contacts(cv: &mut Canvas, snap: &Snapshot, frame: &Frame) {
     let model = snap.model;
     let sd = &frame.sd;
@@ -304,8 +474,16 @@ fn draw_contacts(cv: &mut Canvas, snap: &Snapshot, frame: &Frame) {
         _ => NO_PAIR,
     };
     if frame.view.is_some() {
-        for p in &model.pairs {
-            state_dot(cv, sd[p.k], colour_of(p.k));
+        // no two dots closer than SPACING, so that the field shows between them
+        let mut kept: std::collections::HashMap<(i32, i32), Vec<[f32; 2]>> = std::collections::HashMap::new();
+        for p in model.pairs.iter().filter(|p| frame.drawn(p.k)) {
+            let q = sd[p.k];
+            let cell = ((q[0] / SPACING).floor() as i32, (q[1] / SPACING).floor() as i32);
+            let near = (cell.0 - 1..=cell.0 + 1).flat_map(|a| (cell.1 - 1..=cell.1 + 1).map(move |b| (a, b))).any(|c| kept.get(&c).is_some_and(|v| v.iter().any(|o| (o[0] - q[0]).hypot(o[1] - q[1]) < SPACING)));
+            if !near {
+                cv.state_dot(q, colour_of(p.k));
+                kept.entry(cell).or_default().push(q);
+            }
         }
         return;
     }
@@ -313,6 +491,9 @@ fn draw_contacts(cv: &mut Canvas, snap: &Snapshot, frame: &Frame) {
     for casing in [true, false] {
         for f in model.interfaces.iter().flat_map(|i| &i.facets) {
             let chain: Vec<usize> = if f.nodes.len() == 3 { vec![f.nodes[0], f.nodes[2], f.nodes[1]] } else { f.nodes.clone() };
+            if !chain.iter().all(|&k| frame.drawn(k) && frame.drawn(other(k))) {
+                continue;
+            }
             for side in [&other as &dyn Fn(usize) -> usize, &|k| k] {
                 for w in chain.windows(2) {
                     let (a, b) = (sd[side(w[0])], sd[side(w[1])]);
@@ -327,9 +508,4 @@ fn draw_contacts(cv: &mut Canvas, snap: &Snapshot, frame: &Frame) {
             }
         }
     }
-}
-
-pub(super) fn state_dot(cv: &mut Canvas, at: [f32; 2], c: [u8; 3]) {
-    cv.dot(at, 4.6, [0, 0, 0]);
-    cv.dot(at, 3.4, c);
 }

@@ -1,13 +1,28 @@
-//! The interface plot (SVG): one panel per contact interface, the normal
+//! The interface plot (SVG): one panel per contact interface (in 3D, per
+//! sheet of it: a plane of a joint set, an unrolled lining), the normal
 //! stress sigma_n (tension positive) and the shear stress tau against the
 //! position along the interface, the contact state as background bands (2D)
 //! or marker colours (3D). plotters draws it, in the embedded font.
+//!
+//! In 2D the position is the arc length along the interface's chain of
+//! facets. A 3D sheet is a surface, so one position leaves out the other
+//! direction: the plot uses the direction in which the stresses vary
+//! ([`Along::of_sheet`]): every direction of the sheet's plane in 5-degree
+//! steps (an unrolled surface: its angle or its axis) is scored by how much
+//! of the stresses' variance is left within bins of the position along it,
+//! and the best one is taken (a world axis, or the angle, when it does
+//! within 0.02 as well). A wall's base, pressed harder at the toe than at
+//! the heel all along the wall, is plotted across the wall, not along it.
+//! When a quarter of the variance or more is left, the panel says so and
+//! points to the sheet's plan view, which maps both directions.
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
+use super::plan::{plan_files, sheet_pairs, sides, PlanFile};
 use super::raster::{register_font, rgb};
-use super::{dot, num, state_colour, sub3};
+use super::sheets::{direction, Shape, Sheet};
+use super::{dot, num, state_colour, sub3, PictureError};
 use crate::contact::law::ContactState;
 use crate::model::Model;
 use crate::results::ContactRun;
@@ -15,12 +30,98 @@ use crate::fem::Analysis;
 #[cfg(test)]
 use super::raster::encode_png;
 
+/// The most panels an interface plot shows (a joint set of many planes
+/// leaves the rest to `joints.png` and the plan views).
+const MOST_PANELS: usize = 24;
+
 /// The pairs of one interface in order along it.
 pub(super) struct Along {
     /// Runs of pairs (pair index, position s); lines are drawn within a run.
     pub(super) runs: Vec<Vec<(usize, f64)>>,
     /// What s measures, for the axis.
     pub(super) axis: String,
+    /// The share of the stresses' variance that the position leaves
+    /// unexplained (3D; 0 in 2D).
+    pub(super) left: f64,
+}
+
+impl Along {
+    /// A 3D sheet's pairs against the direction in which their stresses
+    /// vary (see the module header).
+    pub(super) fn of_sheet(model: &Model, sheet: &Sheet, c: &ContactRun) -> Along {
+        let (_, pairs) = sheet_pairs(model, sheet);
+        let uv: Vec<[f64; 2]> = pairs.iter().map(|&p| sheet.at(model.coords[model.pairs[p].k])).collect();
+        let values: Vec<[f64; 2]> = pairs.iter().map(|&p| [c.pairs[p].sigma_n, c.pairs[p].tau()]).collect();
+        let cylinder = matches!(sheet.shape, Shape::Cylinder { .. });
+        let angles: Vec<f64> = if cylinder { vec![0.0, 90.0] } else { (0..36).map(|i| 5.0 * i as f64).collect() };
+        let s_of = |phi: f64, q: [f64; 2]| phi.to_radians().cos() * q[0] + phi.to_radians().sin() * q[1];
+        let score = |phi: f64| -> f64 { unexplained(&uv.iter().map(|&q| s_of(phi, q)).collect::<Vec<_>>(), &values) };
+        let scores: Vec<(f64, f64)> = angles.iter().map(|&a| (a, score(a))).collect();
+        let best = scores.iter().copied().fold((0.0, f64::INFINITY), |b, x| if x.1 < b.1 { x } else { b });
+        // a world axis or the angle when it explains nearly as much
+        let plain = |phi: f64| -> bool {
+            if cylinder {
+                return phi == 0.0;
+            }
+            let (r, v) = sheet.directions([0.0; 3]);
+            let d: [f64; 3] = std::array::from_fn(|i| phi.to_radians().cos() * r[i] + phi.to_radians().sin() * v[i]);
+            d.iter().any(|x| (x.abs() - 1.0).abs() < 1e-6)
+        };
+        let (phi, left) = scores.iter().copied().filter(|&(a, sc)| plain(a) && sc <= best.1 + 0.02).fold(best, |b, x| if plain(b.0) && b.1 <= x.1 { b } else { x });
+        let (mut pts, axis): (Vec<(usize, f64)>, String) = match &sheet.shape {
+            Shape::Cylinder { radius, a, crown, zero, .. } if phi == 0.0 => {
+                let from = if *crown { "the crown".to_string() } else { direction(*zero, true) };
+                let _ = a;
+                (pairs.iter().zip(&uv).map(|(&p, q)| (p, (q[0] / radius).to_degrees())).collect(), format!("angle about the axis from {from} (degrees)"))
+            }
+            _ => {
+                let (r, v) = sheet.directions(uv.first().map_or([0.0; 3], |_| model.coords[model.pairs[pairs[0]].k]));
+                let mut d: [f64; 3] = std::array::from_fn(|i| phi.to_radians().cos() * r[i] + phi.to_radians().sin() * v[i]);
+                let mut sign = 1.0;
+                if d.iter().any(|x| (x + 1.0).abs() < 1e-6) {
+                    d = d.map(|x| -x);
+                    sign = -1.0;
+                }
+                let name = if cylinder { format!("position along {}", direction(d, false)) } else { match (0..3).find(|&i| (d[i] - 1.0).abs() < 1e-6) {
+                    Some(i) => ["x", "y", "z"][i].to_string(),
+                    None => format!("position along {}", direction(d, false)),
+                } };
+                (pairs.iter().zip(&uv).map(|(&p, &q)| (p, sign * s_of(phi, q))).collect(), name)
+            }
+        };
+        pts.sort_by(|a, b| a.1.total_cmp(&b.1));
+        Along { runs: vec![pts], axis, left: if left.is_finite() { left } else { 0.0 } }
+    }
+}
+
+/// The share of the variance of `values` (sigma_n and tau together) left
+/// within bins of the positions `s` (about the square root of their number,
+/// 4 to 40 bins of equal width); 0 when the values do not vary.
+fn unexplained(s: &[f64], values: &[[f64; 2]]) -> f64 {
+    let n = s.len();
+    if n < 2 {
+        return 0.0;
+    }
+    let mean: [f64; 2] = std::array::from_fn(|j| values.iter().map(|v| v[j]).sum::<f64>() / n as f64);
+    let total: f64 = values.iter().map(|v| (v[0] - mean[0]).powi(2) + (v[1] - mean[1]).powi(2)).sum();
+    let scale = values.iter().map(|v| v[0].abs().max(v[1].abs())).fold(0.0, f64::max);
+    if total <= 1e-20 * scale * scale * n as f64 || total == 0.0 {
+        return 0.0;
+    }
+    let (lo, hi) = s.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
+    let bins = ((n as f64).sqrt().round() as usize).clamp(4, 40);
+    let width = (hi - lo).max(1e-300) / bins as f64;
+    let mut acc = vec![(0usize, [0.0f64; 2], [0.0f64; 2]); bins];
+    for (x, v) in s.iter().zip(values) {
+        let b = (((x - lo) / width) as usize).min(bins - 1);
+        acc[b].0 += 1;
+        for j in 0..2 {
+            acc[b].1[j] += v[j];
+            acc[b].2[j] += v[j] * v[j];
+        }
+    }
+    let within: f64 = acc.iter().filter(|a| a.0 > 0).map(|(k, sum, sq)| (0..2).map(|j| sq[j] - sum[j] * sum[j] / *k as f64).sum::<f64>()).sum();
+    (within / total).clamp(0.0, 1.0)
 }
 
 /// Orders an interface's pairs: in 2D by walking its chain of facets from
@@ -84,7 +185,7 @@ pub(super) fn along(model: &Model, ii: usize) -> Along {
                 runs.push(run_pairs);
             }
             let o = origin.map(x).unwrap_or_default();
-            return Along { runs, axis: format!("distance along the interface from ({}, {})", num(o[0]), num(o[1])) };
+            return Along { runs, axis: format!("distance along the interface from ({}, {})", num(o[0]), num(o[1])), left: 0.0 };
         }
     }
     // the principal direction of the pairs' positions
@@ -111,51 +212,83 @@ pub(super) fn along(model: &Model, ii: usize) -> Along {
         p.1 -= smin;
     }
     pts.sort_by(|a, b| a.1.total_cmp(&b.1));
-    Along { runs: vec![pts], axis: format!("position along the direction ({}, {}, {})", num(dir[0]), num(dir[1]), num(dir[2])) }
+    Along { runs: vec![pts], axis: format!("position along the direction ({}, {}, {})", num(dir[0]), num(dir[1]), num(dir[2])), left: 0.0 }
 }
 
-/// An SVG with one panel per interface: the normal stress σn (tension
-/// positive) and the shear stress τ against the position along it, the
-/// contact state as background bands (2D) or marker colours (3D).
-pub fn interface_plot_svg(model: &Model, contact: &ContactRun) -> Result<String, String> {
-    let (w, h) = interface_plot_size(model)?;
+/// An SVG with one panel per interface (per sheet in 3D, at most
+/// [`MOST_PANELS`]): the normal stress σn (tension positive) and the shear
+/// stress τ against the position along it, the contact state as background
+/// bands (2D) or marker colours (3D).
+pub fn interface_plot_svg(model: &Model, contact: &ContactRun) -> Result<String, PictureError> {
+    let panels = panels(model)?;
+    let (w, h) = size(&panels);
     let mut out = String::new();
-    interface_plot_on(SVGBackend::with_string(&mut out, (w, h)).into_drawing_area(), model, contact)?;
+    interface_plot_on(SVGBackend::with_string(&mut out, (w, h)).into_drawing_area(), model, contact, &panels)?;
     Ok(out)
 }
 
 /// The same plot as [`interface_plot_svg`], as a PNG, to look at in tests
 /// (plotters' bitmap text spaces letters unevenly, see `raster::Canvas::text`).
 #[cfg(test)]
-pub(super) fn interface_plot_png(model: &Model, contact: &ContactRun) -> Result<Vec<u8>, String> {
-    let (w, h) = interface_plot_size(model)?;
+pub(super) fn interface_plot_png(model: &Model, contact: &ContactRun) -> Result<Vec<u8>, PictureError> {
+    let panels = panels(model)?;
+    let (w, h) = size(&panels);
     let mut buf = vec![255u8; w as usize * h as usize * 3];
-    interface_plot_on(BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area(), model, contact)?;
+    interface_plot_on(BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area(), model, contact, &panels)?;
     encode_png(w as usize, h as usize, &buf)
 }
 
-fn interface_plot_size(model: &Model) -> Result<(u32, u32), String> {
+/// What the plot shows: the panels (an interface, and in 3D its sheet) and
+/// how many sheets are left out.
+struct Panels {
+    list: Vec<(usize, Option<PlanFile>)>,
+    left_out: usize,
+}
+
+fn panels(model: &Model) -> Result<Panels, PictureError> {
     if model.interfaces.is_empty() {
-        return Err("the model has no contact interface to plot".into());
+        return Err(PictureError::Empty("the model has no contact interface to plot".into()));
     }
-    Ok((1000, 420 * model.interfaces.len() as u32))
+    if model.analysis != Analysis::Solid {
+        return Ok(Panels { list: (0..model.interfaces.len()).map(|ii| (ii, None)).collect(), left_out: 0 });
+    }
+    let mut all = plan_files(model);
+    let left_out = all.len().saturating_sub(MOST_PANELS);
+    all.truncate(MOST_PANELS);
+    Ok(Panels { list: all.into_iter().map(|p| (p.interface, Some(p))).collect(), left_out })
 }
 
-fn interface_plot_on<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, model: &Model, contact: &ContactRun) -> Result<(), String> {
+fn size(p: &Panels) -> (u32, u32) {
+    (1000, 420 * p.list.len().max(1) as u32 + if p.left_out > 0 { 40 } else { 0 })
+}
+
+fn plot_err(e: &dyn std::fmt::Debug) -> PictureError {
+    PictureError::Plot(format!("{e:?}"))
+}
+
+fn interface_plot_on<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, model: &Model, contact: &ContactRun, panels: &Panels) -> Result<(), PictureError> {
     register_font();
-    root.fill(&WHITE).map_err(|e| format!("{e:?}"))?;
-    let n = model.interfaces.len();
-    for (ii, area) in root.split_evenly((n, 1)).iter().enumerate() {
-        interface_panel(area, model, contact, ii)?;
+    root.fill(&WHITE).map_err(|e| plot_err(&e))?;
+    let n = panels.list.len();
+    let (plots, note) = if panels.left_out > 0 { root.split_vertically(420 * n as u32) } else { (root.clone(), root.clone()) };
+    for ((ii, plan), area) in panels.list.iter().zip(plots.split_evenly((n, 1)).iter()) {
+        interface_panel(area, model, contact, *ii, plan.as_ref())?;
     }
-    root.present().map_err(|e| format!("{e:?}"))
+    if panels.left_out > 0 {
+        let text = format!("{} more surfaces are not plotted here: joints.png shows every one by state, and each has its plan view.", panels.left_out);
+        note.draw_text(&text, &("sans-serif", 15).into_font().color(&BLACK), (20, 12)).map_err(|e| plot_err(&e))?;
+    }
+    root.present().map_err(|e| plot_err(&e))
 }
 
-fn interface_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, model: &Model, c: &ContactRun, ii: usize) -> Result<(), String> {
-    let err = |e: &dyn std::fmt::Debug| format!("{e:?}");
+fn interface_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, model: &Model, c: &ContactRun, ii: usize, plan: Option<&PlanFile>) -> Result<(), PictureError> {
+    let err = |e: &dyn std::fmt::Debug| plot_err(e);
     let iface = &model.interfaces[ii];
     let solid = model.analysis == Analysis::Solid;
-    let al = along(model, ii);
+    let al = match plan {
+        Some(p) => Along::of_sheet(model, &p.sheet, c),
+        None => along(model, ii),
+    };
     let all = || al.runs.iter().flatten();
     let sn = |p: usize| c.pairs[p].sigma_n;
     // in 2D the shear keeps its sign (along the tangent t)
@@ -164,7 +297,10 @@ fn interface_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, model: &Mo
     for &(p, _) in all() {
         counts[c.states[p].code() as usize] += 1;
     }
-    let smax = all().map(|q| q.1).fold(0.0, f64::max).max(1e-300);
+    let smin = all().map(|q| q.1).fold(f64::INFINITY, f64::min);
+    let smax = all().map(|q| q.1).fold(f64::NEG_INFINITY, f64::max);
+    let (smin, smax) = if smin <= smax { (smin, smax) } else { (0.0, 1.0) };
+    let span = (smax - smin).max(1e-300);
     let (mut ylo, mut yhi) = (0.0f64, 0.0f64);
     for &(p, _) in all() {
         for v in [sn(p), tau(p)].into_iter().filter(|v| v.is_finite()) {
@@ -174,17 +310,18 @@ fn interface_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, model: &Mo
     }
     let pad = 0.08 * (yhi - ylo).max(1e-30);
     let (ylo, yhi) = (ylo - pad, yhi + pad);
-    let (xlo, xhi) = (-0.02 * smax, 1.02 * smax);
-    let caption = format!(
-        "{}: \"{}\" | \"{}\", {} pairs: {} stick, {} slip, {} open",
-        iface.name,
-        model.bodies[iface.body_i].name,
-        model.bodies[iface.body_ii].name,
-        counts.iter().sum::<usize>(),
-        counts[2],
-        counts[1],
-        counts[0]
-    );
+    let (xlo, xhi) = (smin - 0.02 * span, smax + 0.02 * span);
+    let pairs: Vec<usize> = all().map(|q| q.0).collect();
+    let [bi, bii] = sides(model, &pairs);
+    let which = match plan {
+        Some(p) if p.of > 1 => format!(" {} of {}, {}", p.index + 1, p.of, p.sheet.short(model)),
+        _ => String::new(),
+    };
+    let caption = format!("{}{which}: {} | {}, {} pairs: {} stick, {} slip, {} open", iface.name, bi.0, bii.0, counts.iter().sum::<usize>(), counts[2], counts[1], counts[0]);
+    let axis = match plan {
+        Some(p) if al.left >= 0.25 => format!("{}; σn and τ also vary across it: see {}", al.axis, p.file),
+        _ => al.axis.clone(),
+    };
     let mut chart = ChartBuilder::on(area)
         .caption(caption, ("sans-serif", 18))
         .margin(14)
@@ -194,7 +331,7 @@ fn interface_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, model: &Mo
         .map_err(|e| err(&e))?;
     chart
         .configure_mesh()
-        .x_desc(al.axis.as_str())
+        .x_desc(axis.as_str())
         .y_desc("contact stress")
         .label_style(("sans-serif", 13))
         .axis_desc_style(("sans-serif", 15))

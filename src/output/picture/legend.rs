@@ -4,11 +4,14 @@
 
 use plotters::style::text_anchor::{HPos, VPos};
 
-use super::deformed::{state_dot, Frame, View, PANEL_X};
 use super::raster::{label, Canvas, Label};
-use super::{num, state_colour, Snapshot, GHOST, INK};
+use super::view::View;
+use super::{num, state_colour, GHOST, INK};
 use crate::contact::law::ContactState;
 
+/// The left edge of the right-hand panel of the deformed picture: colour
+/// bars, then the legend.
+pub(super) const PANEL_X: f64 = 990.0;
 
 /// The colour bar's limits `lo..hi` and the field's own range `min..max`.
 pub(super) struct Limits {
@@ -66,13 +69,30 @@ impl Limits {
 /// (blue compression, grey zero, red tension) for signed fields (stress
 /// components), its blue or red half alone when the values have one sign.
 pub(super) fn colour_map(signed: bool, lo: f64, hi: f64) -> Vec<[u8; 3]> {
+    colour_map_of(0, signed, lo, hi)
+}
+
+/// Colour map number `k` of a picture with several colour scales (bodies
+/// whose stresses differ by orders of magnitude): 0 as [`colour_map`], 1
+/// yellow–orange–red (signed: purple–green), 2 light to dark purple
+/// (signed: brown–teal); beyond, as 2.
+pub(super) fn colour_map_of(k: usize, signed: bool, lo: f64, hi: f64) -> Vec<[u8; 3]> {
     const VIRIDIS: [[u8; 3]; 9] = [[68, 1, 84], [71, 44, 122], [59, 81, 139], [44, 113, 142], [33, 145, 140], [39, 173, 129], [92, 200, 99], [170, 220, 50], [253, 231, 37]];
     const COOL_WARM: [[u8; 3]; 9] = [[59, 76, 192], [98, 130, 234], [141, 176, 254], [184, 208, 249], [221, 221, 221], [245, 196, 173], [244, 154, 123], [222, 96, 77], [180, 4, 38]];
+    const YL_OR_RD: [[u8; 3]; 9] = [[255, 255, 204], [255, 237, 160], [254, 217, 118], [254, 178, 76], [253, 141, 60], [252, 78, 42], [227, 26, 28], [189, 0, 38], [128, 0, 38]];
+    const PURPLES: [[u8; 3]; 9] = [[252, 251, 253], [239, 237, 245], [218, 218, 235], [188, 189, 220], [158, 154, 200], [128, 125, 186], [106, 81, 163], [84, 39, 143], [63, 0, 125]];
+    const PR_GN: [[u8; 3]; 9] = [[118, 42, 131], [153, 112, 171], [194, 165, 207], [231, 212, 232], [247, 247, 247], [217, 240, 211], [166, 219, 160], [90, 174, 97], [27, 120, 55]];
+    const BR_BG: [[u8; 3]; 9] = [[140, 81, 10], [191, 129, 45], [223, 194, 125], [246, 232, 195], [245, 245, 245], [199, 234, 229], [128, 205, 193], [53, 151, 143], [1, 102, 94]];
+    let (magnitude, diverging) = match k {
+        0 => (&VIRIDIS, &COOL_WARM),
+        1 => (&YL_OR_RD, &PR_GN),
+        _ => (&PURPLES, &BR_BG),
+    };
     let (stops, u0, u1) = match signed {
-        false => (&VIRIDIS, 0.0, 1.0),
-        true if lo < 0.0 && hi > 0.0 => (&COOL_WARM, 0.0, 1.0),
-        true if hi <= 0.0 => (&COOL_WARM, 0.0, 0.5),
-        true => (&COOL_WARM, 0.5, 1.0),
+        false => (magnitude, 0.0, 1.0),
+        true if lo < 0.0 && hi > 0.0 => (diverging, 0.0, 1.0),
+        true if hi <= 0.0 => (diverging, 0.0, 0.5),
+        true => (diverging, 0.5, 1.0),
     };
     (0..256)
         .map(|i| {
@@ -94,32 +114,42 @@ pub(super) fn lut_colour(lut: &[[u8; 3]], t: f32) -> [u8; 3] {
     }
 }
 
-/// Under the colour bar: the contact states with their counts, and the
-/// undeformed shape's swatch.
-pub(super) fn legend(cv: &mut Canvas, labels: &mut Vec<Label>, snap: &Snapshot, frame: &Frame) {
+/// What the legend under the colour bars says: the contact states' counts
+/// (None without contact), whether the model is drawn in a 3D view (the
+/// pairs as dots) and whether the undeformed ghost shows (2D).
+pub(super) struct LegendOf {
+    pub(super) counts: Option<[usize; 3]>,
+    pub(super) solid: bool,
+    pub(super) ghost: bool,
+}
+
+/// Under the colour bars, from `top`: the contact states with their
+/// counts, and the undeformed shape's swatch.
+pub(super) fn legend(cv: &mut Canvas, labels: &mut Vec<Label>, of: &LegendOf, top: f64) {
     let x = PANEL_X as f32;
-    let mut y = 580.0f32;
+    let mut y = top as f32;
     let text = |labels: &mut Vec<Label>, t: String, x: f32, y: f32, size: f64| labels.push(label(t, (x as f64, y as f64), size, (HPos::Left, VPos::Center)));
-    if let Some(c) = snap.contact {
-        let counts = crate::results::state_counts(&c.states);
+    if let Some(counts) = of.counts {
         text(labels, "contact pairs".into(), x, y, 16.0);
         for (s, count) in [(ContactState::Stick, counts[2]), (ContactState::Slip, counts[1]), (ContactState::Open, counts[0])] {
             y += 26.0;
-            if frame.view.is_some() {
-                state_dot(cv, [x + 12.0, y], state_colour(s));
+            if of.solid {
+                cv.state_dot([x + 12.0, y], state_colour(s));
             } else {
                 cv.segment([x + 2.0, y], [x + 24.0, y], 7.0, [0, 0, 0], 1.0, true);
                 cv.segment([x + 2.0, y], [x + 24.0, y], 4.2, state_colour(s), 1.0, true);
             }
             text(labels, format!("{} ({count})", s.name()), x + 36.0, y, 15.0);
         }
-        if frame.view.is_some() {
+        if of.solid {
             y += 22.0;
-            text(labels, "(seen through the solid)".into(), x, y, 12.0);
+            text(labels, "(seen through the solid, thinned;".into(), x, y, 12.0);
+            y += 16.0;
+            text(labels, "every pair in plan_*.png)".into(), x, y, 12.0);
         }
         y += 34.0;
     }
-    if frame.moved() && frame.view.is_none() {
+    if of.ghost {
         cv.rect(x as f64 + 2.0, y as f64 - 7.0, x as f64 + 24.0, y as f64 + 7.0, GHOST);
         let frame = [[x + 2.0, y - 7.0], [x + 24.0, y - 7.0], [x + 24.0, y + 7.0], [x + 2.0, y + 7.0], [x + 2.0, y - 7.0]];
         cv.polyline(frame.into_iter(), 1.0, [175, 175, 175], 1.0);
@@ -130,12 +160,15 @@ pub(super) fn legend(cv: &mut Canvas, labels: &mut Vec<Label>, snap: &Snapshot, 
 /// The vertical colour bar with its limits and a few round ticks; an arrow
 /// head at an end whose colour also stands for values beyond it, and the
 /// field's minimum and maximum under the bar when they are not its ends.
-/// `at`: the bar's left edge, top and bottom in pixels; its name goes 52
-/// pixels above it.
-pub(super) fn colour_bar(cv: &mut Canvas, labels: &mut Vec<Label>, lut: &[[u8; 3]], lim: &Limits, name: &str, at: [f64; 3]) {
+/// `at`: the bar's left edge, top and bottom in pixels; its title goes
+/// above it, the last line 52 pixels above, each earlier one 19 higher.
+pub(super) fn colour_bar(cv: &mut Canvas, labels: &mut Vec<Label>, lut: &[[u8; 3]], lim: &Limits, title: &[String], at: [f64; 3]) {
     let (lo, hi) = (lim.lo, lim.hi);
     let (bx0, bx1, by0, by1) = (at[0], at[0] + 26.0, at[1], at[2]);
-    labels.push(label(name, (bx0, by0 - 52.0), 16.0, (HPos::Left, VPos::Center)));
+    for (i, line) in title.iter().enumerate() {
+        let y = by0 - 52.0 - 19.0 * (title.len() - 1 - i) as f64;
+        labels.push(label(line.clone(), (bx0, y), if i == 0 { 16.0 } else { 14.0 }, (HPos::Left, VPos::Center)));
+    }
     for y in by0 as usize..by1 as usize {
         let t = 1.0 - (y as f64 - by0) / (by1 - by0 - 1.0);
         let c = lut[(t * 255.0).round() as usize];

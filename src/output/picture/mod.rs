@@ -1,39 +1,81 @@
 //! Pictures of a run, for a person to look at rather than read: the deformed
 //! model coloured by a field, with the contact states drawn on the interfaces
 //! (PNG, [`deformed`]), the contact stresses along each interface (SVG,
-//! [`interfaces`]) and, in 3D, each contact surface in plan coloured by state
-//! and by sigma_n (PNG, [`plan`]). This file chooses which pictures a run gets and holds
-//! what both share: the field names, the state colours, number formats.
+//! [`interfaces`]) and, in 3D, each contact surface laid flat (PNG, one per
+//! plane or unrolled surface, [`plan`]) and all of them together by state
+//! (PNG, [`joints`]). This file chooses which pictures a run gets and holds
+//! what they share: the field names, the state colours, number formats and
+//! the error type.
 //!
-//! The deformed picture is rasterised by this module itself ([`raster`]:
-//! filled triangles, anti-aliased lines, plotters only for the text in the
+//! The pictures are rasterised by this module itself ([`raster`]: filled
+//! triangles, anti-aliased lines, plotters only for the text in the
 //! embedded DejaVu Sans) and encoded by the `png` crate, so no external
-//! program is needed; [`surface`] cuts the mesh into the patches it fills
-//! and [`legend`] draws the colour bar and the contact legend beside it.
+//! program is needed. [`surface`] cuts the mesh into the patches it fills,
+//! [`sheets`] cuts a 3D interface into planes and unrolled surfaces,
+//! [`framing`] chooses the region the deformed picture frames, [`view`] the
+//! oblique view of 3D models, and [`legend`] draws the colour bars and the
+//! contact legend beside it.
 //!
-//! Displacements are magnified by `m = 0.05 L / max|u|` (L the model's
-//! largest extent) unless a scale is given; the title states `m`. Colours:
-//! viridis for magnitudes, blue (compression) to red (tension) through grey
-//! for stress components; stick green, slip orange, open red.
+//! Displacements are magnified by `m = 0.05 L / max|u|` (L the drawn
+//! region's largest extent) unless a scale is given; the title states `m`.
+//! Colours: viridis for magnitudes, blue (compression) to red (tension)
+//! through grey for stress components; stick green, slip orange, open red.
 
+mod cutaway;
 mod deformed;
+mod framing;
 mod interfaces;
+mod joints;
 mod legend;
 mod plan;
 mod raster;
+mod sheets;
 mod surface;
 #[cfg(test)]
 mod tests;
+mod view;
 
 pub use deformed::deformed_png;
 pub use interfaces::interface_plot_svg;
-pub use plan::{plan_files, plan_png, plan_pngs};
+pub use joints::{joints_file, joints_png};
+pub use plan::{plan_files, plan_png, plan_pngs, PlanFile};
 
 use crate::contact::law::ContactState;
 use crate::model::Model;
 use crate::recover::BodyStress;
 use crate::results::ContactRun;
 use crate::fem::Analysis;
+
+/// Why a picture could not be drawn.
+#[derive(Debug, thiserror::Error)]
+pub enum PictureError {
+    /// The results handed over do not belong to the model (a caller's bug).
+    #[error("the run's {what} do not match its model")]
+    Mismatch { what: &'static str },
+    /// Nothing to draw.
+    #[error("{0}")]
+    Empty(String),
+    #[error("the embedded font has no readable metrics")]
+    Font,
+    #[error("writing \"{text}\" on the picture: {reason}")]
+    Text { text: String, reason: String },
+    #[error("encoding the PNG: {0}")]
+    Png(#[from] png::EncodingError),
+    #[error("drawing the interface plot: {0}")]
+    Plot(String),
+}
+
+/// What the deformed picture frames instead of the contacts
+/// (`[output] frame` in the scene).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Region {
+    /// The cells whose centre lies in the box `from`..`to` (z is ignored in
+    /// 2D).
+    Box { from: [f64; 3], to: [f64; 3] },
+    /// The named bodies (their groups) and the cells around them, within a
+    /// quarter of their size.
+    Bodies(Vec<String>),
+}
 
 /// The quantity that colours the deformed picture.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -104,7 +146,8 @@ impl Field {
 }
 
 /// One state of a model to draw: its displacements, nodal stresses (empty
-/// when they were not recovered) and contact states and stresses.
+/// when they were not recovered) and contact states and stresses, and the
+/// region the scene asks the deformed picture to frame.
 pub struct Snapshot<'a> {
     /// The picture's title.
     pub title: &'a str,
@@ -112,6 +155,7 @@ pub struct Snapshot<'a> {
     pub u: &'a [f64],
     pub stresses: &'a [BodyStress],
     pub contact: Option<&'a ContactRun>,
+    pub region: Option<&'a Region>,
 }
 
 /// The file name of the deformed picture of [`pictures`]: coloured by von
@@ -126,14 +170,21 @@ pub fn deformed_file(stresses: &[BodyStress]) -> &'static str {
 
 /// The pictures of a snapshot under their file names: the deformed model
 /// coloured by von Mises stress (or the displacement magnitude), and with
-/// contact the interface stresses and, in 3D, each interface in plan
-/// ([`plan_files`]).
-pub fn pictures(snap: &Snapshot) -> Result<Vec<(String, Vec<u8>)>, String> {
+/// contact the interface stresses and, in 3D, each sheet of each interface
+/// laid flat ([`plan_files`]) and, when there are several, all of them by
+/// state ([`joints_file`]).
+pub fn pictures(snap: &Snapshot) -> Result<Vec<(String, Vec<u8>)>, PictureError> {
     let field = if snap.stresses.is_empty() { Field::Displacement } else { Field::VonMises };
     let mut out = vec![(deformed_file(snap.stresses).to_string(), deformed_png(snap, field, None)?)];
     if let Some(c) = snap.contact.filter(|_| !snap.model.interfaces.is_empty()) {
         out.push(("interfaces.svg".to_string(), interface_plot_svg(snap.model, c)?.into_bytes()));
-        out.extend(plan_pngs(snap.title, snap.model, c)?);
+        let plans = plan_files(snap.model);
+        for p in &plans {
+            out.push((p.file.clone(), plan_png(snap.title, snap.model, c, p)?));
+        }
+        if let Some(f) = joints_file(&plans) {
+            out.push((f.to_string(), joints_png(snap.title, snap.model, c, &plans)?));
+        }
     }
     Ok(out)
 }
@@ -188,7 +239,7 @@ fn sig2(v: f64) -> String {
     format!("{v:.1e}")
 }
 
-// Small vector algebra for the views and the interfaces' directions.
+// Small vector algebra for the views, the sheets and the interfaces' directions.
 
 fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]

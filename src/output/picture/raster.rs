@@ -7,7 +7,7 @@
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use super::INK;
+use super::{PictureError, INK};
 
 /// Text to write once the raster is done.
 pub(super) struct Label {
@@ -33,15 +33,35 @@ pub(super) struct Canvas {
     pub(super) w: usize,
     pub(super) h: usize,
     pub(super) rgb: Vec<u8>,
+    /// The pixels drawing may touch: x0, y0, x1, y1 (x1, y1 excluded).
+    clip: [usize; 4],
 }
 
 impl Canvas {
     pub(super) fn new(w: usize, h: usize) -> Canvas {
-        Canvas { w, h, rgb: vec![255; w * h * 3] }
+        Canvas { w, h, rgb: vec![255; w * h * 3], clip: [0, 0, w, h] }
+    }
+
+    /// Keeps drawing inside the box x0, y0, x1, y1 (pixels), or anywhere
+    /// with None (an unrolled surface's facets repeated across its seam
+    /// stop at the panel's edge).
+    pub(super) fn clip(&mut self, b: Option<[f64; 4]>) {
+        self.clip = match b {
+            Some(b) => [b[0].max(0.0) as usize, b[1].max(0.0) as usize, (b[2].max(0.0) as usize).min(self.w), (b[3].max(0.0) as usize).min(self.h)],
+            None => [0, 0, self.w, self.h],
+        };
+    }
+
+    #[inline]
+    fn inside(&self, x: usize, y: usize) -> bool {
+        x >= self.clip[0] && x < self.clip[2] && y >= self.clip[1] && y < self.clip[3]
     }
 
     #[inline]
     fn blend(&mut self, x: usize, y: usize, c: [u8; 3], a: f32) {
+        if !self.inside(x, y) {
+            return;
+        }
         let i = (y * self.w + x) * 3;
         for (k, &ck) in c.iter().enumerate() {
             let o = self.rgb[i + k] as f32;
@@ -50,8 +70,8 @@ impl Canvas {
     }
 
     pub(super) fn rect(&mut self, x0: f64, y0: f64, x1: f64, y1: f64, c: [u8; 3]) {
-        for y in (y0.max(0.0) as usize)..(y1.min(self.h as f64) as usize) {
-            for x in (x0.max(0.0) as usize)..(x1.min(self.w as f64) as usize) {
+        for y in (y0.max(self.clip[1] as f64) as usize)..(y1.min(self.clip[3] as f64) as usize) {
+            for x in (x0.max(self.clip[0] as f64) as usize)..(x1.min(self.clip[2] as f64) as usize) {
                 self.blend(x, y, c, 1.0);
             }
         }
@@ -84,11 +104,11 @@ impl Canvas {
         if area.is_nan() || area.abs() <= 1e-12 {
             return;
         }
-        let xmin = p.iter().map(|v| v[0]).fold(f32::INFINITY, f32::min).floor().max(0.0) as usize;
-        let ymin = p.iter().map(|v| v[1]).fold(f32::INFINITY, f32::min).floor().max(0.0) as usize;
-        let xmax = (p.iter().map(|v| v[0]).fold(f32::NEG_INFINITY, f32::max).ceil() as isize).min(self.w as isize - 1);
-        let ymax = (p.iter().map(|v| v[1]).fold(f32::NEG_INFINITY, f32::max).ceil() as isize).min(self.h as isize - 1);
-        if xmax < 0 || ymax < 0 {
+        let xmin = p.iter().map(|v| v[0]).fold(f32::INFINITY, f32::min).floor().max(self.clip[0] as f32) as usize;
+        let ymin = p.iter().map(|v| v[1]).fold(f32::INFINITY, f32::min).floor().max(self.clip[1] as f32) as usize;
+        let xmax = (p.iter().map(|v| v[0]).fold(f32::NEG_INFINITY, f32::max).ceil() as isize).min(self.clip[2] as isize - 1);
+        let ymax = (p.iter().map(|v| v[1]).fold(f32::NEG_INFINITY, f32::max).ceil() as isize).min(self.clip[3] as isize - 1);
+        if xmax < xmin as isize || ymax < ymin as isize {
             return;
         }
         let inv = 1.0 / area;
@@ -163,6 +183,12 @@ impl Canvas {
         }
     }
 
+    /// A contact pair's mark: a dot in its state's colour, ringed in black.
+    pub(super) fn state_dot(&mut self, at: [f32; 2], c: [u8; 3]) {
+        self.dot(at, 4.6, [0, 0, 0]);
+        self.dot(at, 3.4, c);
+    }
+
     pub(super) fn dot(&mut self, p: [f32; 2], r: f32, c: [u8; 3]) {
         let (x0, x1) = ((p[0] - r - 1.0).floor().max(0.0) as isize, ((p[0] + r + 1.0).ceil() as isize).min(self.w as isize - 1));
         let (y0, y1) = ((p[1] - r - 1.0).floor().max(0.0) as isize, ((p[1] + r + 1.0).ceil() as isize).min(self.h as isize - 1));
@@ -182,9 +208,9 @@ impl Canvas {
     /// by its whole-pixel left side bearing, which jumbles letter spacing
     /// ("op en") in bitmaps; placing them from the font's own metrics
     /// restores it.
-    pub(super) fn text(&mut self, labels: &[Label]) -> Result<(), String> {
+    pub(super) fn text(&mut self, labels: &[Label]) -> Result<(), PictureError> {
         let (w, h) = (self.w as u32, self.h as u32);
-        let metrics = FontMetrics::get().ok_or("the embedded font has no readable metrics")?;
+        let metrics = FontMetrics::get().ok_or(PictureError::Font)?;
         let root = BitMapBackend::with_buffer(&mut self.rgb, (w, h)).into_drawing_area();
         for l in labels {
             let colour = rgb(INK);
@@ -201,12 +227,12 @@ impl Canvas {
                 let (advance, lsb) = metrics.glyph(c);
                 if !c.is_whitespace() {
                     let x = pen.round() as i32 + (lsb * k).floor() as i32;
-                    root.draw_text(c.encode_utf8(&mut buf), &style, (x, l.at.1.round() as i32)).map_err(|e| format!("writing \"{}\" on the picture: {e:?}", l.text))?;
+                    root.draw_text(c.encode_utf8(&mut buf), &style, (x, l.at.1.round() as i32)).map_err(|e| PictureError::Text { text: l.text.clone(), reason: format!("{e:?}") })?;
                 }
                 pen += advance * k;
             }
         }
-        root.present().map_err(|e| format!("{e:?}"))?;
+        root.present().map_err(|e| PictureError::Text { text: String::new(), reason: format!("{e:?}") })?;
         Ok(())
     }
 }
@@ -296,8 +322,8 @@ pub(super) fn rgb(c: [u8; 3]) -> RGBColor {
 
 /// An 8-bit RGB PNG of `rgb` (rows from the top), each row with the filter
 /// the `png` crate's adaptive heuristic picks.
-pub(super) fn encode_png(w: usize, h: usize, rgb: &[u8]) -> Result<Vec<u8>, String> {
-    let err = |e: png::EncodingError| format!("encoding the PNG: {e}");
+pub(super) fn encode_png(w: usize, h: usize, rgb: &[u8]) -> Result<Vec<u8>, PictureError> {
+    let err = PictureError::Png;
     let mut out = Vec::new();
     let mut enc = png::Encoder::new(&mut out, w as u32, h as u32);
     enc.set_color(png::ColorType::Rgb);

@@ -46,7 +46,7 @@ impl Patch {
 }
 
 /// Sub-triangles of a patch over its nodes plus a centre at index 8 (Quad).
-fn sub_triangles(kind: CellKind) -> &'static [[usize; 3]] {
+pub(super) fn sub_triangles(kind: CellKind) -> &'static [[usize; 3]] {
     const QUAD_LIN: [[usize; 3]; 4] = [[0, 1, 8], [1, 2, 8], [2, 3, 8], [3, 0, 8]];
     const QUAD_QUAD: [[usize; 3]; 8] = [[0, 4, 8], [4, 1, 8], [1, 5, 8], [5, 2, 8], [2, 6, 8], [6, 3, 8], [3, 7, 8], [7, 0, 8]];
     match kind {
@@ -59,7 +59,7 @@ fn sub_triangles(kind: CellKind) -> &'static [[usize; 3]] {
 }
 
 /// Values at a patch's nodes and centre (index 8) from values at its nodes.
-fn with_centre<T: Copy + Into<f64>>(kind: CellKind, v: &mut [f64; 9], node: impl Fn(usize) -> T) {
+pub(super) fn with_centre<T: Copy + Into<f64>>(kind: CellKind, v: &mut [f64; 9], node: impl Fn(usize) -> T) {
     for (i, x) in v.iter_mut().enumerate().take(kind.n_nodes()) {
         *x = node(i).into();
     }
@@ -107,21 +107,27 @@ fn local_patches(kind: CellKind) -> LocalPatches {
             .enumerate()
             .map(|(i, f)| faces(f, &HEX_EDGES, 8, (kind == CellKind::Hex27).then_some(20 + i)))
             .collect(),
+        // prisms and pyramids: their faces as fem::shape lists them
+        _ if kind.dim() == 3 => crate::fem::shape::faces(kind).into_iter().map(|f| (f.kind, f.nodes)).collect(),
         _ => Vec::new(),
     }
 }
 
 /// The patches to draw: every 2D cell, or the faces of 3D cells not shared by
-/// two cells of the same body. `outline` marks edges on a body's boundary
-/// (2D) or between faces meeting at more than 30 degrees (3D).
-pub(super) fn patches(model: &Model) -> Vec<Patch> {
+/// two cells of the same body; only the cells `keep` marks (per body, per
+/// cell), or all. `outline` marks edges on a body's boundary (2D) or
+/// between faces meeting at more than 30 degrees (3D).
+pub(super) fn patches(model: &Model, keep: Option<&[Vec<bool>]>) -> Vec<Patch> {
     let solid = model.analysis == Analysis::Solid;
     let mut out = Vec::new();
     for (b, body) in model.bodies.iter().enumerate() {
         let first = out.len();
         let mut keyed: Vec<([usize; 4], Patch)> = Vec::new();
         let mut cache: Vec<(CellKind, LocalPatches)> = Vec::new();
-        for cell in &body.cells {
+        for (ci, cell) in body.cells.iter().enumerate() {
+            if keep.is_some_and(|k| !k[b][ci]) {
+                continue;
+            }
             if !cache.iter().any(|(k, _)| *k == cell.kind) {
                 cache.push((cell.kind, local_patches(cell.kind)));
             }

@@ -3,7 +3,8 @@
 //! stacked blocks in every element kind) checked for the colours they must
 //! show; the pictures are kept in the temporary directory to look at.
 
-use super::deformed::{deformed_canvas, H, PANEL_X, W};
+use super::deformed::{deformed_canvas, H, W};
+use super::legend::PANEL_X;
 use super::interfaces::{along, interface_plot_png};
 use super::legend::nice_step;
 use super::raster::{encode_png, register_font, Canvas, FontMetrics};
@@ -89,11 +90,11 @@ fn in_box(cv: &Canvas, b: [f64; 4], c: [u8; 3]) -> Vec<usize> {
 
 /// The last state of a run, to draw.
 fn snap(run: &Run) -> Snapshot<'_> {
-    Snapshot { title: &run.scene.title, model: &run.model, u: &run.u, stresses: &run.stresses, contact: run.contact.as_ref() }
+    Snapshot { title: &run.scene.title, model: &run.model, u: &run.last().u, stresses: &run.last().stresses, contact: run.contact(), region: run.scene.output.frame.as_ref() }
 }
 
 fn contact(run: &Run) -> &crate::results::ContactRun {
-    run.contact.as_ref().expect("a run with contact")
+    run.contact().expect("a run with contact")
 }
 
 fn cylinder(lc: f64, order: usize) -> Run {
@@ -119,7 +120,7 @@ fn cylinder_picture_shows_the_field_and_every_contact_state() {
     keep("cylinder_sxy.png", &deformed_png(&snap(&run), Field::Sxy, None).expect("picture"));
 
     // every state, in thirds along the cut
-    let c = run.contact.as_mut().expect("contact");
+    let c = run.steps.last_mut().and_then(|s| s.contact.as_mut()).expect("contact");
     let n = c.states.len();
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by(|&a, &b| {
@@ -190,7 +191,7 @@ fn paper_mesh_picture_in_3d() {
     keep("paper_interfaces.svg", svg.as_bytes());
     keep("paper_interfaces.png", &interface_plot_png(&run.model, contact(&run)).expect("plot"));
     // the 45-degree cut is vertical: seen along its normal, z up
-    let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, contact(&run), 0).expect("plan view");
+    let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, contact(&run), &plan_files(&run.model)[0]).expect("plan view");
     let stick = in_box(&cv, boxes[0], STICK).len();
     assert!(stick > 20_000, "the cut sticks: {stick} pixels");
     keep("paper_plan.png", &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
@@ -233,10 +234,10 @@ fn stacked_blocks_pushed_sideways_show_the_states_they_reach() {
         std::fs::write(&path, toml).expect("scene");
         let opts = RunOptions { out: Some(dir.join(name)), skip_output: true, ..Default::default() };
         let run = driver::run(&path, &opts).expect("stack run");
-        let c = run.contact.as_ref().expect("contact");
+        let c = run.contact().expect("contact");
         let counts = state_counts(&c.states);
-        eprintln!("{name}: {} stick, {} slip, {} open after {} iterations", counts[2], counts[1], counts[0], c.iterations);
-        assert!(c.converged, "{name}");
+        eprintln!("{name}: {} stick, {} slip, {} open after {} iterations", counts[2], counts[1], counts[0], c.summary.iterations);
+        assert!(c.summary.converged, "{name}");
         if joint == weak {
             assert!(counts[0] > 0 && counts[2] > 0, "{name}: the joint opens at one end and sticks at the other: {counts:?}");
         }
@@ -248,7 +249,7 @@ fn stacked_blocks_pushed_sideways_show_the_states_they_reach() {
         }
         keep(&format!("stack_{name}_von_mises.png"), &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
         if analysis == "solid" {
-            let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, c, 0).expect("plan view");
+            let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, c, &plan_files(&run.model)[0]).expect("plan view");
             for (state, colour, n) in [("open", OPEN, counts[0]), ("slip", SLIP, counts[1]), ("stick", STICK, counts[2])] {
                 assert_eq!(!in_box(&cv, boxes[0], colour).is_empty(), n > 0, "{name}: {state} in plan exactly when present ({n} pairs)");
             }
@@ -320,11 +321,12 @@ fn plan_view_of_a_3d_joint_shows_where_it_slips() {
     let c = contact(&run);
     let counts = state_counts(&c.states);
     eprintln!("blocks3d, lc = 0.2: {} pairs, {} stick, {} slip, {} open", c.states.len(), counts[2], counts[1], counts[0]);
-    assert!(c.converged && counts[1] > 0 && counts[2] > 0 && counts[0] == 0, "partial slip: {counts:?}");
-    assert_eq!(plan_files(&run.model), vec![(0, "plan_joint.png".to_string())]);
+    assert!(c.summary.converged && counts[1] > 0 && counts[2] > 0 && counts[0] == 0, "partial slip: {counts:?}");
+    let plans: Vec<(usize, String)> = plan_files(&run.model).into_iter().map(|p| (p.interface, p.file)).collect();
+    assert_eq!(plans, vec![(0, "plan_joint.png".to_string())]);
 
     let t = std::time::Instant::now();
-    let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, c, 0).expect("plan view");
+    let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, c, &plan_files(&run.model)[0]).expect("plan view");
     eprintln!("plan view drawn in {:.3} s", t.elapsed().as_secs_f64());
     keep("blocks3d_plan_joint.png", &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
     let pixels = |b: [f64; 4], colour: [u8; 3]| in_box(&cv, b, colour);
@@ -349,7 +351,8 @@ fn plan_view_of_a_3d_joint_shows_where_it_slips() {
     let nd = run.model.nd;
     for (p, pair) in run.model.pairs.iter().enumerate().filter(|&(p, _)| c.states[p] == ContactState::Slip) {
         let t = c.shear(p);
-        let rel: [f64; 3] = std::array::from_fn(|d| run.u[pair.l * nd + d] - run.u[pair.k * nd + d]);
+        let u = &run.last().u;
+        let rel: [f64; 3] = std::array::from_fn(|d| u[pair.l * nd + d] - u[pair.k * nd + d]);
         let slip = sub3(rel, pair.normal.map(|x| x * dot(rel, pair.normal)));
         assert!((dot(t, t).sqrt() - c.pairs[p].tau()).abs() <= 1e-9 * c.pairs[p].tau().max(1e-12), "pair {p}: the frame is orthonormal");
         assert!(t[0] > 0.9 * dot(t, t).sqrt(), "pair {p}: shear {t:?} along +x");
@@ -379,4 +382,253 @@ fn no_plan_view_in_2d_and_stale_ones_are_removed() {
         .collect();
     stale.sort();
     assert_eq!(stale, ["deformed_displacement.png", "plan_old_face.png"]);
+}
+
+/// A scene next to a copy of `tests/geo/<geo>`, run without result files.
+fn run_geo(name: &str, geo: &str, toml: &str) -> Run {
+    let dir = out_dir(name);
+    std::fs::copy(format!("tests/geo/{geo}"), dir.join(geo)).expect("copy geo");
+    let path = dir.join(format!("{name}.toml"));
+    std::fs::write(&path, toml).expect("scene");
+    driver::run(&path, &RunOptions { out: Some(dir.join("out")), skip_output: true, ..Default::default() }).expect("run")
+}
+
+/// The lining of `tests/geo/tunnel3d.geo` (R = 5, t = 0.4, a 2 m slice of
+/// a 50 m block; the axis along y, z up) in rock with an in-situ stress
+/// (sigma_v = 1, K = 0.5), friction 0.4: slip between crown and springline.
+fn tunnel3d(full: bool, output: &str) -> Run {
+    let toml = format!(
+        "title = \"Lining in rock, 3D\"\nmesh = \"tunnel3d.geo\"\nanalysis = \"solid\"\n[gmsh]\norder = 1\nsetnumber = {{ full = {}, lc = 0.8 }}\n\
+         [materials.rock]\nE = 2000.0\nnu = 0.3\n[materials.concrete]\nE = 25000.0\nnu = 0.15\n\
+         [[bodies]]\ngroup = \"lining\"\nmaterial = \"concrete\"\n[[bodies]]\ngroup = \"rock\"\nmaterial = \"rock\"\ninitial_stress = [-0.5, -0.45, -1.0, 0.0, 0.0, 0.0]\n\
+         [[contacts]]\ngroup = \"interface\"\nfriction = 0.4\n\
+         [[supports]]\ngroup = \"ends\"\nfix = [\"y\"]\n[[supports]]\ngroup = \"far_x\"\nfix = [\"x\"]\n[[supports]]\ngroup = \"far_z\"\nfix = [\"z\"]\n{output}",
+        full as u8
+    );
+    run_geo(if full { "tunnel3d_full" } else { "tunnel3d_quarter" }, "tunnel3d.geo", &toml)
+}
+
+#[test]
+fn angle_ticks_name_the_crown_springlines_and_invert() {
+    use super::plan::angle_ticks;
+    let (zero, side) = ([0.0, 0.0, 1.0], [1.0, 0.0, 0.0]);
+    let pi = std::f64::consts::PI;
+    // a ring on 1300 px: every 15 degrees, the quarter turns named
+    let ring = angle_ticks(-pi, pi, 1300.0, true, zero, side);
+    let named: Vec<(f64, String)> = ring.iter().filter_map(|(d, n)| n.clone().map(|n| (*d, n))).collect();
+    assert_eq!(named, [(-180.0, "invert".to_string()), (-90.0, "springline (−x)".into()), (0.0, "crown".into()), (90.0, "springline (+x)".into()), (180.0, "invert".into())]);
+    assert_eq!(ring.len(), 25);
+    // a quarter on 200 px: every 30 degrees (15 would be 33 px apart)
+    let quarter: Vec<f64> = angle_ticks(0.0, pi / 2.0, 200.0, true, zero, side).into_iter().map(|t| t.0).collect();
+    assert_eq!(quarter, [0.0, 30.0, 60.0, 90.0]);
+    // a shaft (vertical axis): directions, not tunnel words
+    let shaft = angle_ticks(0.0, pi, 800.0, false, [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+    let names: Vec<String> = shaft.into_iter().filter_map(|t| t.1).collect();
+    assert_eq!(names, ["+x", "+y", "−x"]);
+}
+
+/// Issue 19: the 3D lining's plan was a flat projection (a ring drew its
+/// front and back on top of each other, nothing named the crown). It is
+/// unrolled: the angle from the crown across (crown, springline, invert
+/// named), the axis up, each pair once.
+#[test]
+fn a_3d_lining_is_unrolled_from_the_crown() {
+    for full in [false, true] {
+        let run = tunnel3d(full, "");
+        let c = contact(&run);
+        let counts = state_counts(&c.states);
+        assert!(c.summary.converged && counts[1] > 0 && counts[2] > 0, "slip and stick: {counts:?}");
+        let plans = plan_files(&run.model);
+        assert_eq!(plans.len(), 1);
+        assert_eq!(plans[0].file, "plan_interface.png");
+        let super::sheets::Shape::Cylinder { a, radius, crown, ring, .. } = plans[0].sheet.shape else { panic!("unrolled") };
+        assert!(crown && ring == full && a == [0.0, 1.0, 0.0] && (radius - 5.2).abs() < 0.05, "axis {a:?}, r = {radius}");
+        let flat = plans[0].sheet.flat(&run.model);
+        let deg = |x: f64| (x / radius).to_degrees();
+        let (lo, hi) = (deg(flat.lo[0]), deg(flat.hi[0]));
+        if full {
+            assert_eq!((lo.round(), hi.round()), (-180.0, 180.0));
+        } else {
+            assert!(lo.abs() < 0.5 && (hi - 90.0).abs() < 0.5, "the quarter from the crown to the springline: {lo} .. {hi}");
+        }
+        let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, c, &plans[0]).expect("plan");
+        for (state, colour, n) in [("open", OPEN, counts[0]), ("slip", SLIP, counts[1]), ("stick", STICK, counts[2])] {
+            assert_eq!(!in_box(&cv, boxes[0], colour).is_empty(), n > 0, "{state} drawn exactly when present");
+        }
+        keep(&format!("tunnel3d_{}_plan.png", if full { "ring" } else { "quarter" }), &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
+        // interfaces.svg: sigma_n varies round the ring, not along the axis
+        let al = super::interfaces::Along::of_sheet(&run.model, &plans[0].sheet, c);
+        assert_eq!(al.axis, "angle about the axis from the crown (degrees)");
+        keep(&format!("tunnel3d_{}_interfaces.png", if full { "ring" } else { "quarter" }), &interface_plot_png(&run.model, c).expect("plot"));
+    }
+}
+
+/// Issue 19: the tunnel's deformed picture was the 50 m block with the
+/// lining a small arc in one corner, coloured by the lining's stresses. It
+/// frames the contacts, cut to a box with its sections, and gives the
+/// lining and the rock a colour scale each; `[output] frame` names another
+/// region.
+#[test]
+fn a_3d_tunnel_is_framed_on_its_lining_with_a_scale_per_body() {
+    let run = tunnel3d(true, "");
+    let s = snap(&run);
+    let focus = super::framing::focus(&run.model, None);
+    let cut = focus.cut.expect("framed");
+    assert!(focus.note.as_deref().is_some_and(|n| n.starts_with("Framed on the contacts")), "{:?}", focus.note);
+    // the contacts' box (r = 5.2) grown by half its size on each side, the slice whole
+    assert!((cut.hi[0] - 10.4).abs() < 0.1 && (cut.lo[2] + 10.4).abs() < 0.1 && cut.lo[1] == 0.0 && cut.hi[1] == 2.0, "{cut:?}");
+    let values: Vec<Vec<f32>> = run.last().stresses.iter().map(|bs| {
+        let mut v = vec![f32::NAN; run.model.n_nodes()];
+        for (&k, st) in bs.nodes.iter().zip(&bs.stress) {
+            v[k] = crate::fem::material::von_mises(st) as f32;
+        }
+        v
+    }).collect();
+    let scales = super::deformed::scales(Field::VonMises, &values);
+    assert_eq!(scales.iter().map(|s| s.bodies.clone()).collect::<Vec<_>>(), vec![vec![0], vec![1]], "the lining's scale first, then the rock's");
+    assert!(scales[0].lim.hi > 3.0 * scales[1].lim.hi);
+    let cv = deformed_canvas(&s, Field::VonMises, None).expect("picture");
+    keep("tunnel3d_ring_von_mises.png", &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
+    // the lining's colours and the rock's
+    let viridis_end = cv.rgb.chunks_exact(3).any(|p| p[2] > 100 && p[0] < 90 && p[1] < 60);
+    assert!(viridis_end, "the lining's dark purple shows");
+    assert!(count(&cv, SLIP) > 0 && count(&cv, STICK) > 0);
+
+    // the scene names the lining: its box and a quarter of its size round it
+    let run = tunnel3d(true, "[output]\nframe = { bodies = [\"lining\"] }\n");
+    let focus = super::framing::focus(&run.model, run.scene.output.frame.as_ref());
+    assert!(focus.note.as_deref().is_some_and(|n| n.starts_with("Framed on \"lining\" ([output] frame)")), "{:?}", focus.note);
+    let cut = focus.cut.expect("framed");
+    assert!((cut.hi[0] - 7.8).abs() < 0.1, "{cut:?}");
+    keep("tunnel3d_ring_lining_von_mises.png", &deformed_png(&snap(&run), Field::VonMises, None).expect("picture"));
+}
+
+/// The colour bar stops at a quantile when a few nodes stand far out (a
+/// singular corner), and bodies get a scale each when their stresses are
+/// far apart, one when they are alike; the displacement keeps one.
+#[test]
+fn colour_scales_leave_out_hot_spots_and_part_bodies_far_apart() {
+    let mut v: Vec<f32> = (0..2000).map(|i| i as f32 / 2000.0).collect();
+    v.push(100.0);
+    let lim = super::legend::Limits::of(false, &[v.clone()]);
+    assert!(lim.hi < 1.01 && lim.max == 100.0, "the bar ends at {}, max {}", lim.hi, lim.max);
+    let lim = super::legend::Limits::of(false, &[v[..2000].to_vec()]);
+    assert!((lim.hi - 0.9995).abs() < 1e-3, "no outlier, no cut: {}", lim.hi);
+    let body = |scale: f32| (0..500).map(|i| scale * (1.0 + i as f32 / 500.0)).collect::<Vec<f32>>();
+    let groups = |vals: &[Vec<f32>], field| super::deformed::scales(field, vals).into_iter().map(|s| s.bodies).collect::<Vec<_>>();
+    assert_eq!(groups(&[body(1.0), body(20.0), body(3.0)], Field::VonMises), vec![vec![1], vec![0, 2]]);
+    assert_eq!(groups(&[body(1.0), body(4.0)], Field::VonMises), vec![vec![0, 1]]);
+    assert_eq!(groups(&[body(1.0), body(20.0), body(400.0), body(8000.0)], Field::Sxx), vec![vec![3], vec![2], vec![0, 1]], "at most three");
+    assert_eq!(groups(&[body(1.0), body(20.0)], Field::Displacement), vec![vec![0, 1]]);
+}
+
+/// One contact group on two planes (a wedge in a V-groove): a plan view per
+/// face, the overview of both, a panel per face in interfaces.svg.
+#[test]
+fn a_contact_on_two_planes_gets_a_plan_per_plane_and_an_overview() {
+    let toml = "title = \"A wedge in a V-groove\"\nmesh = \"vgroove.geo\"\nanalysis = \"solid\"\n[gmsh]\norder = 1\nsetnumber = { lc = 0.25 }\n\
+                [materials.rock]\nE = 1000.0\nnu = 0.25\n[[bodies]]\ngroup = \"rock\"\nmaterial = \"rock\"\n[[bodies]]\ngroup = \"wedge\"\nmaterial = \"rock\"\n\
+                [[contacts]]\ngroup = \"groove\"\nfriction = 0.6\n[[supports]]\ngroup = \"bottom\"\nfix = [\"x\", \"y\", \"z\"]\n[[supports]]\ngroup = \"ends\"\nfix = [\"y\"]\n\
+                [[loads]]\ngroup = \"top\"\ntraction = [0.15, 0.0, -1.0]\n";
+    let run = run_geo("vgroove", "vgroove.geo", toml);
+    let plans = plan_files(&run.model);
+    let files: Vec<&str> = plans.iter().map(|p| p.file.as_str()).collect();
+    assert_eq!(files, ["plan_groove_1.png", "plan_groove_2.png"]);
+    for p in &plans {
+        assert!(p.describe(&run.model).contains("dip 45°"), "{}", p.describe(&run.model));
+    }
+    let pics: Vec<(String, Vec<u8>)> = pictures(&snap(&run)).expect("pictures");
+    let names: Vec<&str> = pics.iter().map(|p| p.0.as_str()).collect();
+    assert_eq!(names, ["deformed_von_mises.png", "interfaces.svg", "plan_groove_1.png", "plan_groove_2.png", "joints.png"]);
+    for (f, bytes) in &pics {
+        keep(&format!("vgroove_{f}"), bytes);
+    }
+    let svg = String::from_utf8(pics[1].1.clone()).expect("svg");
+    assert!(svg.contains("groove 1 of 2, dip 45°/090°") && svg.contains("groove 2 of 2, dip 45°/270°"), "one panel per face");
+    keep("vgroove_interfaces.png", &interface_plot_png(&run.model, contact(&run)).expect("plot"));
+    let report = crate::output::report::report(&run);
+    assert!(report.contains("![every contact surface by state](joints.png)") && report.contains("(plan_groove_2.png)"));
+}
+
+/// Issue 19: a wall's base plotted against the direction along the wall
+/// (the pairs' longest spread) made columns of dots. The block on block of
+/// geo/blocks3d.toml stretched to 6 along y and pushed along x: the
+/// stresses vary along x, and the plot is against x.
+#[test]
+fn a_wall_is_plotted_across_its_length() {
+    let mut scene = Scene::load(Path::new("geo/blocks3d.toml")).expect("scene");
+    scene.gmsh.setnumber = vec![("b".into(), 6.0), ("hex".into(), 1.0), ("lc".into(), 0.25)];
+    scene.gmsh.order = 1;
+    let opts = RunOptions { out: Some(out_dir("wall")), skip_output: true, ..Default::default() };
+    let run = driver::run_scene(scene, &opts).expect("wall run");
+    let plans = plan_files(&run.model);
+    assert_eq!(plans.len(), 1);
+    let al = super::interfaces::Along::of_sheet(&run.model, &plans[0].sheet, contact(&run));
+    assert_eq!(al.axis, "x");
+    assert!(al.left < 0.05, "x explains the stresses: {} left", al.left);
+    keep("wall_interfaces.png", &interface_plot_png(&run.model, contact(&run)).expect("plot"));
+}
+
+/// A joint set as the lead's contact groups will hold it (issue 17): one
+/// interface whose facets lie on five horizontal planes and two vertical
+/// ones crossing them, pairs on every facet node, states set by position
+/// (open where x < 1, slip where 1 <= x < 2, else stick). One plan per
+/// plane, each showing exactly its states; joints.png with all seven;
+/// interfaces.svg with a panel per plane. Built from the model's facets and
+/// pairs alone.
+#[test]
+fn a_joint_set_of_many_planes_gets_a_plan_per_plane_and_one_overview() {
+    use super::sheets::tests::{grid, model_of};
+    use crate::contact::law::PairResult;
+    let (mut coords, mut quads) = (Vec::new(), Vec::new());
+    for z in 0..5 {
+        grid(&mut coords, &mut quads, [6, 3], |s, t| [3.0 * s, 2.0 * t, z as f64]);
+    }
+    for x in [0.5, 2.5] {
+        grid(&mut coords, &mut quads, [3, 8], |s, t| [x, 2.0 * s, 4.0 * t]);
+    }
+    let mut model = model_of(coords, quads);
+    let n = model.n_nodes();
+    model.pairs = (0..n).map(|k| crate::model::Pair { k, l: k, contact: 0, normal: if k < 5 * 28 { [0.0, 0.0, 1.0] } else { [1.0, 0.0, 0.0] }, area: 0.1, shares: Vec::new() }).collect();
+    let states: Vec<ContactState> = (0..n).map(|k| match model.coords[k][0] {
+        x if x < 1.0 => ContactState::Open,
+        x if x < 2.0 => ContactState::Slip,
+        _ => ContactState::Stick,
+    }).collect();
+    let c = crate::results::ContactRun {
+        pairs: (0..n).map(|k| PairResult { sigma_n: -1.0 - model.coords[k][2], tau_t: 0.1 * model.coords[k][0], tau_b: 0.0, gap: 0.0, slip: 0.0 }).collect(),
+        frames: vec![[[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]; n],
+        areas: vec![0.1; n],
+        states,
+        summary: crate::contact::Summary { iterations: 1, converged: true, cycled: false, cycles_broken: 0, apex_openings: 0, history: Vec::new() },
+    };
+    let plans = plan_files(&model);
+    let files: Vec<&str> = plans.iter().map(|p| p.file.as_str()).collect();
+    assert_eq!(files, (1..=7).map(|k| format!("plan_joints_{k}.png")).collect::<Vec<_>>());
+    let described: Vec<String> = plans.iter().map(|p| p.describe(&model)).collect();
+    assert_eq!(described[..5], ["the plane z = 0", "the plane z = 1", "the plane z = 2", "the plane z = 3", "the plane z = 4"]);
+    assert_eq!(described[5..], ["the plane x = 0.5", "the plane x = 2.5"]);
+    for (i, p) in plans.iter().enumerate() {
+        let (cv, boxes) = super::plan::plan_canvas("a joint set", &model, &c, p).expect("plan");
+        let (open, slip, stick) = (in_box(&cv, boxes[0], OPEN).len(), in_box(&cv, boxes[0], SLIP).len(), in_box(&cv, boxes[0], STICK).len());
+        match i {
+            // a horizontal plane has all three, in x order
+            0..=4 => assert!(open > 0 && slip > 0 && stick > 0, "plane {i}: {open} {slip} {stick}"),
+            // x = 0.5 opens, x = 2.5 sticks
+            5 => assert!(open > 0 && slip + stick == 0, "x = 0.5: {open} {slip} {stick}"),
+            _ => assert!(stick > 0 && open + slip == 0, "x = 2.5: {open} {slip} {stick}"),
+        }
+        if i == 0 || i == 6 {
+            keep(&format!("jointset_{}", p.file), &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
+        }
+    }
+    assert_eq!(joints_file(&plans), Some("joints.png"));
+    let png = joints_png("a joint set", &model, &c, &plans).expect("overview");
+    let (w, h, rgb) = decode(&png);
+    let has = |c: [u8; 3]| rgb.chunks_exact(3).any(|p| p == c);
+    assert!(w <= 1600 && h <= 2500 && has(OPEN) && has(SLIP) && has(STICK));
+    keep("jointset_joints.png", &png);
+    let svg = interface_plot_svg(&model, &c).expect("plot");
+    assert!(svg.contains("joints 1 of 7, z = 0") && svg.contains("joints 7 of 7, x = 2.5"));
+    keep("jointset_interfaces.png", &interface_plot_png(&model, &c).expect("plot"));
 }

@@ -2,8 +2,19 @@
 //! collection (`.pvd`) that makes a series of them a time series.
 //!
 //! The rest of the program keeps cells in gmsh's node order; this module is
-//! the only place that reorders gmsh→VTK node order (tet10, hex20 and hex27
-//! differ, every other kind is the same in both programs). Data arrays are
+//! the only place that reorders gmsh→VTK node order (tet10, hex20, hex27,
+//! the prisms and pyramid13/14 differ, every other kind is the same in both
+//! programs). The prisms' orders are those VTK 9.2's `vtkCellValidator`
+//! accepts as valid (outward faces) and gmsh 4.8.4's own VTK export writes:
+//! VTK's linear wedge turns the other way round from gmsh's prism6 (its
+//! triangle (0,1,2) faces away from (3,4,5)), its quadratic wedges do not.
+//! (VTK is not consistent there: its Cell Size and Integrate Variables
+//! filters give a quadratic wedge (type 26) so oriented a negative volume,
+//! and a biquadratic one (32) a sixth of its volume, whichever way round.)
+//! A pyramid14 is written as VTK's quadratic pyramid (type 27, its first 13
+//! nodes): VTK's triquadratic pyramid (type 37) needs 19 nodes, which
+//! neither vtkio 0.7 nor meshio know; the base centre stays a point of the
+//! file with its values, only no cell interpolates through it. Data arrays are
 //! written as ZLib-compressed (level 1) base64 inline binary, the way vtkio
 //! 0.7 writes them, which ParaView and meshio both read. Building the bytes
 //! never touches the file system; `super::files::Staged` writes them.
@@ -56,6 +67,11 @@ fn vtkio_cell_type(kind: CellKind) -> CellType {
         CellKind::Hex8 => CellType::Hexahedron,
         CellKind::Hex20 => CellType::QuadraticHexahedron,
         CellKind::Hex27 => CellType::TriquadraticHexahedron,
+        CellKind::Prism6 => CellType::Wedge,
+        CellKind::Prism15 => CellType::QuadraticWedge,
+        CellKind::Prism18 => CellType::BiquadraticQuadraticWedge,
+        CellKind::Pyramid5 => CellType::Pyramid,
+        CellKind::Pyramid13 | CellKind::Pyramid14 => CellType::QuadraticPyramid,
     }
 }
 
@@ -80,15 +96,43 @@ const HEX27_VTK_FROM_GMSH: [usize; 27] = [
     22, 23, 21, 24, 20, 25, 26,
 ];
 
+/// vtkWedge: the triangle (0,1,2) turned the other way, so that its
+/// right-hand normal points away from (3,4,5).
+const PRISM6_VTK_FROM_GMSH: [usize; 6] = [0, 2, 1, 3, 5, 4];
+
+/// vtkQuadraticWedge: corners as gmsh's, mid-edge nodes on (0,1) (1,2)
+/// (2,0) (3,4) (4,5) (5,3) (0,3) (1,4) (2,5), which gmsh numbers 6 9 7 12 14
+/// 13 8 10 11.
+const PRISM15_VTK_FROM_GMSH: [usize; 15] = [0, 1, 2, 3, 4, 5, 6, 9, 7, 12, 14, 13, 8, 10, 11];
+
+/// vtkBiQuadraticQuadraticWedge: as prism15, then the centres of the faces
+/// (0,1,4,3) (1,2,5,4) (2,0,3,5), gmsh's 15 17 16.
+const PRISM18_VTK_FROM_GMSH: [usize; 18] = [0, 1, 2, 3, 4, 5, 6, 9, 7, 12, 14, 13, 8, 10, 11, 15, 17, 16];
+
+/// vtkQuadraticPyramid: mid-edge nodes on (0,1) (1,2) (2,3) (3,0) (0,4)
+/// (1,4) (2,4) (3,4), gmsh's 5 8 10 6 7 9 11 12. Also pyramid14's first 13
+/// (its base centre 13 has no place in a VTK type vtkio writes).
+const PYRAMID13_VTK_FROM_GMSH: [usize; 13] = [0, 1, 2, 3, 4, 5, 8, 10, 6, 7, 9, 11, 12];
+
 /// For kinds whose node order differs: entry `i` is the gmsh position of
-/// VTK node `i`. `None` means both programs use the same order.
+/// VTK node `i`. `None` means both programs use the same order. For
+/// pyramid14 the list has 13 entries: the VTK cell leaves out the base centre.
 pub(crate) fn vtk_from_gmsh(kind: CellKind) -> Option<&'static [usize]> {
     match kind {
         CellKind::Tet10 => Some(&TET10_VTK_FROM_GMSH),
         CellKind::Hex20 => Some(&HEX20_VTK_FROM_GMSH),
         CellKind::Hex27 => Some(&HEX27_VTK_FROM_GMSH),
+        CellKind::Prism6 => Some(&PRISM6_VTK_FROM_GMSH),
+        CellKind::Prism15 => Some(&PRISM15_VTK_FROM_GMSH),
+        CellKind::Prism18 => Some(&PRISM18_VTK_FROM_GMSH),
+        CellKind::Pyramid13 | CellKind::Pyramid14 => Some(&PYRAMID13_VTK_FROM_GMSH),
         _ => None,
     }
+}
+
+/// Number of nodes of a cell kind in the VTK file (pyramid14: 13).
+pub fn vtk_n_nodes(kind: CellKind) -> usize {
+    vtk_from_gmsh(kind).map_or(kind.n_nodes(), |p| p.len())
 }
 
 /// Checks that a field has `n_comp * count` values.

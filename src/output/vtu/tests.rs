@@ -37,6 +37,20 @@ const GMSH_HEX_FACES: [[usize; 4]; 6] = [
     [4, 5, 6, 7],
 ];
 
+/// gmsh's edges of the prism, in gmsh's mid-edge node order (6..14).
+const GMSH_PRISM_EDGES: [[usize; 2]; 9] = [[0, 1], [0, 2], [0, 3], [1, 2], [1, 4], [2, 5], [3, 4], [3, 5], [4, 5]];
+/// gmsh's quadrangular faces of the prism, in prism18's face order (15..17).
+const GMSH_PRISM_FACES: [[usize; 4]; 3] = [[0, 1, 4, 3], [0, 2, 5, 3], [1, 2, 5, 4]];
+/// gmsh's edges of the pyramid, in gmsh's mid-edge node order (5..12).
+const GMSH_PYRAMID_EDGES: [[usize; 2]; 8] = [[0, 1], [0, 3], [0, 4], [1, 2], [1, 4], [2, 3], [2, 4], [3, 4]];
+
+/// VTK's edges of the wedge (vtkQuadraticWedge, nodes 6..14).
+const VTK_WEDGE_EDGES: [[usize; 2]; 9] = [[0, 1], [1, 2], [2, 0], [3, 4], [4, 5], [5, 3], [0, 3], [1, 4], [2, 5]];
+/// VTK's quadrangle centres of vtkBiQuadraticQuadraticWedge (nodes 15..17).
+const VTK_WEDGE_FACES: [[usize; 4]; 3] = [[0, 1, 4, 3], [1, 2, 5, 4], [2, 0, 3, 5]];
+/// VTK's edges of the pyramid (vtkQuadraticPyramid, nodes 5..12).
+const VTK_PYRAMID_EDGES: [[usize; 2]; 8] = [[0, 1], [1, 2], [2, 3], [3, 0], [0, 4], [1, 4], [2, 4], [3, 4]];
+
 /// VTK's edges of the tetrahedron (vtkQuadraticTetra, nodes 4..9).
 const VTK_TET_EDGES: [[usize; 2]; 6] = [[0, 1], [1, 2], [2, 0], [0, 3], [1, 3], [2, 3]];
 /// VTK's edges of the hexahedron (vtkQuadraticHexahedron, nodes 8..19).
@@ -107,8 +121,40 @@ fn gmsh_reference(kind: CellKind) -> Vec<[f64; 3]> {
         }
         p
     };
+    let prism = vec![
+        [0.0, 0.0, -1.0],
+        [1.0, 0.0, -1.0],
+        [0.0, 1.0, -1.0],
+        [0.0, 0.0, 1.0],
+        [1.0, 0.0, 1.0],
+        [0.0, 1.0, 1.0],
+    ];
+    let pyramid = vec![
+        [-1.0, -1.0, 0.0],
+        [1.0, -1.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [-1.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0],
+    ];
     let ring = |n: usize| (0..n).map(|i| [i, (i + 1) % n]).collect::<Vec<_>>();
     match kind {
+        CellKind::Prism6 => prism,
+        CellKind::Prism15 => with_edges(prism, &GMSH_PRISM_EDGES),
+        CellKind::Prism18 => {
+            let mut p = with_edges(prism, &GMSH_PRISM_EDGES);
+            for f in &GMSH_PRISM_FACES {
+                let m = mean(&p, f);
+                p.push(m);
+            }
+            p
+        }
+        CellKind::Pyramid5 => pyramid,
+        CellKind::Pyramid13 => with_edges(pyramid, &GMSH_PYRAMID_EDGES),
+        CellKind::Pyramid14 => {
+            let mut p = with_edges(pyramid, &GMSH_PYRAMID_EDGES);
+            p.push([0.0, 0.0, 0.0]);
+            p
+        }
         CellKind::Point1 => vec![[0.0, 0.0, 0.0]],
         CellKind::Line2 => vec![[-1.0, 0.0, 0.0], [1.0, 0.0, 0.0]],
         CellKind::Line3 => vec![[-1.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 0.0]],
@@ -141,10 +187,25 @@ fn close(a: [f64; 3], b: [f64; 3]) -> bool {
     (0..3).all(|d| (a[d] - b[d]).abs() < 1e-12)
 }
 
+/// Where VTK wants the corners of a kind, as positions of gmsh's reference
+/// corners. All as gmsh's, except the linear wedge: VTK 9.2's
+/// vtkCellValidator accepts a vtkWedge only when the right-hand normal of
+/// (0,1,2) points away from (3,4,5) (and gmsh's own VTK export writes its
+/// prism6 so), but accepts its quadratic wedges only in gmsh's orientation
+/// (measured with ParaView 5.11's VTK 9.2.20230111, both orientations of
+/// each wedge type).
+fn vtk_corners(kind: CellKind) -> Vec<usize> {
+    match kind {
+        CellKind::Prism6 => vec![0, 2, 1, 3, 5, 4],
+        _ => (0..kind.n_corners()).collect(),
+    }
+}
+
 /// Checks VTK-ordered coordinates against VTK's definition of the kind:
-/// corners where the reference puts them, every mid-edge node at the
+/// corners where VTK puts them ([`vtk_corners`]), every mid-edge node at the
 /// midpoint of the corners VTK expects, face centres at the mean of their
-/// corners, the centre at the mean of all, no two nodes together.
+/// corners, the centre at the mean of all, no two nodes together. A
+/// pyramid14 is written as VTK's 13-node quadratic pyramid.
 fn vtk_geometry_error(kind: CellKind, vtk: &[[f64; 3]]) -> Option<String> {
     let (edges, faces): (Vec<[usize; 2]>, &[[usize; 4]]) = match kind {
         CellKind::Line3 => (vec![[0, 1]], &[]),
@@ -153,18 +214,23 @@ fn vtk_geometry_error(kind: CellKind, vtk: &[[f64; 3]]) -> Option<String> {
         CellKind::Tet10 => (VTK_TET_EDGES.to_vec(), &[]),
         CellKind::Hex20 => (VTK_HEX_EDGES.to_vec(), &[]),
         CellKind::Hex27 => (VTK_HEX_EDGES.to_vec(), &VTK_HEX_FACES),
+        CellKind::Prism15 => (VTK_WEDGE_EDGES.to_vec(), &[]),
+        CellKind::Prism18 => (VTK_WEDGE_EDGES.to_vec(), &VTK_WEDGE_FACES),
+        CellKind::Pyramid13 | CellKind::Pyramid14 => (VTK_PYRAMID_EDGES.to_vec(), &[]),
         _ => (vec![], &[]),
     };
-    if vtk.len() != kind.n_nodes() {
-        return Some(format!("{} nodes, expected {}", vtk.len(), kind.n_nodes()));
+    let n_vtk = if kind == CellKind::Pyramid14 { 13 } else { kind.n_nodes() };
+    if vtk.len() != n_vtk {
+        return Some(format!("{} nodes, expected {}", vtk.len(), n_vtk));
     }
     let nc = kind.n_corners();
     let gmsh = gmsh_reference(kind);
+    let corners = vtk_corners(kind);
     for i in 0..nc {
-        if !close(vtk[i], gmsh[i]) {
+        if !close(vtk[i], gmsh[corners[i]]) {
             return Some(format!(
                 "corner {i} at {:?}, expected {:?}",
-                vtk[i], gmsh[i]
+                vtk[i], gmsh[corners[i]]
             ));
         }
     }
@@ -187,9 +253,9 @@ fn vtk_geometry_error(kind: CellKind, vtk: &[[f64; 3]]) -> Option<String> {
         }
     }
     let n_known = nc + edges.len() + faces.len();
-    if kind.n_nodes() > n_known {
+    if n_vtk > n_known {
         let corners: Vec<usize> = (0..nc).collect();
-        if kind.n_nodes() != n_known + 1 || !close(vtk[n_known], mean(vtk, &corners)) {
+        if n_vtk != n_known + 1 || !close(vtk[n_known], mean(vtk, &corners)) {
             return Some(format!("VTK node {n_known} is not the centre"));
         }
     }
@@ -219,6 +285,12 @@ fn cell_type_numbers() {
         (CellKind::Hex8, 12),
         (CellKind::Hex20, 25),
         (CellKind::Hex27, 29),
+        (CellKind::Prism6, 13),
+        (CellKind::Prism15, 26),
+        (CellKind::Prism18, 32),
+        (CellKind::Pyramid5, 14),
+        (CellKind::Pyramid13, 27),
+        (CellKind::Pyramid14, 27),
     ];
     assert_eq!(expected.len(), CellKind::ALL.len());
     for (kind, code) in expected {
@@ -233,18 +305,18 @@ fn permutations_put_nodes_where_vtk_expects_them() {
         assert_eq!(gmsh.len(), kind.n_nodes(), "{kind:?}");
         let vtk: Vec<[f64; 3]> = match vtk_from_gmsh(kind) {
             Some(perm) => {
-                // A permutation of 0..n.
+                // A permutation of 0..n (pyramid14: of its first 13 nodes).
                 let mut sorted = perm.to_vec();
                 sorted.sort_unstable();
-                assert_eq!(sorted, (0..kind.n_nodes()).collect::<Vec<_>>(), "{kind:?}");
+                assert_eq!(sorted, (0..vtk_n_nodes(kind)).collect::<Vec<_>>(), "{kind:?}");
                 perm.iter().map(|&g| gmsh[g]).collect()
             }
             None => gmsh.clone(),
         };
         assert_eq!(vtk_geometry_error(kind, &vtk), None, "{kind:?}");
     }
-    // The check has teeth: in gmsh order these three kinds fail it.
-    for kind in [CellKind::Tet10, CellKind::Hex20, CellKind::Hex27] {
+    // The check has teeth: in gmsh order these kinds fail it.
+    for kind in [CellKind::Tet10, CellKind::Hex20, CellKind::Hex27, CellKind::Prism6, CellKind::Prism15, CellKind::Prism18, CellKind::Pyramid13] {
         assert!(
             vtk_geometry_error(kind, &gmsh_reference(kind)).is_some(),
             "{kind:?}"

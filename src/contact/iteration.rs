@@ -1,0 +1,59 @@
+//! The state iteration of one load step, common to both rules ([`Rule`]),
+//! as deal.II's step-41 reads: solve the interface with the current
+//! relations, judge every pair from the result, stop when the states no
+//! longer change (and the rule's forces have settled), when they cycle (a
+//! rule that reports cycles) or after `max_iterations`. A converged step is
+//! committed once, by [`super::commit`]: where it ended, and the cracks it made.
+
+use super::law::ContactState;
+use super::system::{InterfaceProblem, InterfaceSolution, Relation};
+use super::{commit, Failed, History, Outcome, Summary};
+
+/// A state rule: the relations each iteration solves with, and the verdict
+/// on what came out.
+pub(super) trait Rule {
+    /// The relation of every pair for the next solve.
+    fn relations(&self, h: &History) -> Vec<Relation>;
+    /// Judges a solution: every pair's next state (updating what the rule
+    /// carries in `h`), and whether the friction forces have settled. A
+    /// rule may count into `summary` (cycles broken, apex openings) and
+    /// mark it `cycled` to stop the iteration there.
+    fn judge(&mut self, h: &mut History, solution: &InterfaceSolution, summary: &mut Summary) -> Verdict;
+    /// What the rule keeps of a converged step beyond [`commit`].
+    fn commit(self, _h: &mut History)
+    where
+        Self: Sized,
+    {
+    }
+}
+
+/// A rule's judgement of one solve.
+pub(super) struct Verdict {
+    pub next: Vec<ContactState>,
+    /// The slipping pairs' forces agree with the law.
+    pub settled: bool,
+}
+
+/// Runs `rule` under the load factors `lambda` from the states in `h`.
+pub(super) fn run(mut rule: impl Rule, problem: &InterfaceProblem, lambda: &[f64], h: &mut History, max_iterations: usize) -> Result<Outcome, Failed> {
+    let mut summary = Summary::default();
+    loop {
+        summary.iterations += 1;
+        let relations = rule.relations(h);
+        let solution = problem.solve(&relations, lambda).map_err(|failure| Failed { failure, states: h.states.clone(), iteration: summary.iterations })?;
+        summary.history.push(h.states.clone());
+        let Verdict { next, settled } = rule.judge(h, &solution, &mut summary);
+        // (a loose interface solve is never the answer: the next, with the
+        // same states, is solved tightly)
+        summary.converged = next == h.states && settled && !solution.loose;
+        if summary.converged || summary.cycled || summary.iterations >= max_iterations {
+            if summary.converged {
+                commit(h, &solution);
+                rule.commit(h);
+            }
+            let states = std::mem::replace(&mut h.states, next);
+            return Ok(Outcome { states, solution, summary });
+        }
+        h.states = next;
+    }
+}

@@ -1,0 +1,79 @@
+//! Stage 4's plan, the same on every rank: the parts (bodies joined by
+//! shared nodes, each cut into `substructures` pieces), the rank that owns
+//! each, the threads a rank condenses its parts in, and how they are
+//! condensed, which decides how the interface is solved (the one place that
+//! turns `[solver] interface` into a condensation).
+
+use super::messages::PlanError;
+use super::{progress, RunOptions};
+use crate::contact::system::ITERATIVE_FROM;
+use crate::contact::InterfaceSolver;
+use crate::model::Model;
+use crate::scene::Scene;
+use crate::substructure::{self, Condensation, Part};
+
+/// What stage 4 does, part by part.
+pub(super) struct Plan {
+    pub parts: Vec<Part>,
+    /// The rank of each part.
+    pub owner: Vec<usize>,
+    /// Parts a rank condenses at once.
+    pub threads: usize,
+    /// Dense S for the dense interface, or applied S for the iterative one.
+    pub how: Condensation,
+    /// Interface DOFs summed over the parts (what decides `how` by default).
+    pub interface_dofs: usize,
+}
+
+/// The plan of a run on `ranks` MPI ranks (1 without MPI).
+pub(super) fn plan(scene: &Scene, model: &Model, opts: &RunOptions, ranks: usize) -> Result<Plan, PlanError> {
+    let k = opts.substructures.unwrap_or(scene.solver.substructures);
+    let parts = cut(model, k, opts);
+    if ranks > parts.len() {
+        return Err(PlanError::TooManyRanks { scene: scene.path.clone(), ranks, parts: parts.len(), substructures: k });
+    }
+    let owner = owners(model, &parts, ranks);
+    let threads = opts.threads.unwrap_or_else(|| (std::thread::available_parallelism().map_or(1, |n| n.get()) / ranks).max(1));
+    let nd = model.nd;
+    let interface_dofs: usize = parts.iter().map(|p| p.interface.len() * nd).sum();
+    let how = match opts.interface.unwrap_or(scene.solver.interface) {
+        InterfaceSolver::Iterative => Condensation::Applied,
+        InterfaceSolver::Auto if interface_dofs >= ITERATIVE_FROM => Condensation::Applied,
+        _ => Condensation::Dense,
+    };
+    Ok(Plan { parts, owner, threads, how, interface_dofs })
+}
+
+/// The model's parts, each cut into `k` pieces where it has the cells for
+/// them (and a note of the parts left whole).
+fn cut(model: &Model, k: usize, opts: &RunOptions) -> Vec<Part> {
+    let whole = substructure::parts(model);
+    let uncut = whole.len();
+    let parts = substructure::cut(model, whole, k);
+    if k > 1 && parts.len() < uncut * k {
+        let kept: Vec<String> = (parts.iter().filter(|p| p.piece.is_none()))
+            .map(|p| format!("{} ({} cells)", p.bodies.iter().map(|&b| format!("\"{}\"", model.bodies[b].name)).collect::<Vec<_>>().join(", "), p.cells.len()))
+            .collect();
+        if !kept.is_empty() {
+            progress(opts, &format!("not cut into {k} substructures, too few cells (at least {} per piece): {}", substructure::parts::MIN_CELLS_PER_PIECE, kept.join("; ")));
+        }
+    }
+    parts
+}
+
+/// The owner rank of every part: largest parts first, each to the rank with
+/// the least work so far (work ~ nodes^1.5, the sparse factorisation's
+/// growth in 3D).
+fn owners(model: &Model, parts: &[Part], ranks: usize) -> Vec<usize> {
+    let work: Vec<f64> = parts.iter().map(|p| (p.nodes(model).len() as f64).powf(1.5)).collect();
+    let mut order: Vec<usize> = (0..parts.len()).collect();
+    order.sort_by(|&a, &b| work[b].total_cmp(&work[a]).then(a.cmp(&b)));
+    let mut load = vec![0.0f64; ranks];
+    let mut owner = vec![0; parts.len()];
+    for p in order {
+        let r = (0..ranks).min_by(|&a, &b| load[a].total_cmp(&load[b]).then(a.cmp(&b))).expect("a rank");
+        owner[p] = r;
+        load[r] += work[p];
+    }
+    owner
+}

@@ -1,0 +1,292 @@
+//! The MPI ranks of a run, and the only code that knows rank 0 from the
+//! others. Rank 0 meshes, solves the interface, recovers the stresses and
+//! writes; every rank condenses and recovers its own parts. Each function
+//! here is one such meeting, the same call on every rank, returning rank
+//! 0's share as `Some` there and `None` elsewhere:
+//!
+//! - [`agree`]: a stage's result; the first failure ends every rank;
+//! - [`mesh`]: rank 0 runs gmsh, the others read what it wrote;
+//! - [`Ranks::interface`]: the parts' operators gathered on rank 0, which
+//!   sets up the interface;
+//! - [`Ranks::on_root`]: rank 0 works (the contact iteration) while the
+//!   others apply their parts' S for its iterative interface ([`Remote`]:
+//!   each application sends a part's interface displacements to the part's
+//!   rank, which sends `S d` back; nothing else travels then);
+//! - [`Ranks::recover`]: rank 0 sends each part's interface displacements
+//!   (or its failure) to the owner, which recovers the part's interior;
+//! - [`Ranks::stop`], [`Ranks::gather`].
+//!
+//! Serial runs take the same path with [`Serial`](crate::parallel::Serial),
+//! which moves nothing.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{anyhow, Result};
+
+use super::{load_mesh, RunOptions};
+use crate::contact::system::iterative::Remote;
+use crate::contact::system::InterfaceProblem;
+use crate::mesh::{msh, Mesh};
+use crate::model::Model;
+use crate::parallel::{Comm, CommExt};
+use crate::scene::{MeshSource, Scene};
+use crate::substructure::{Condensed, Operator, OperatorRef, Part};
+
+/// The options as each rank runs them: progress on rank 0 only.
+pub(super) fn options(comm: &dyn Comm, opts: &RunOptions) -> RunOptions {
+    RunOptions { verbose: opts.verbose && comm.is_root(), ..opts.clone() }
+}
+
+/// Every rank's result of a stage; the first failure, in rank order, ends
+/// every rank with its message (rank 0 keeps its own error as it was).
+pub(super) fn agree<T>(comm: &dyn Comm, r: Result<T>) -> Result<T> {
+    if comm.size() == 1 {
+        return r;
+    }
+    let mine: Option<String> = r.as_ref().err().map(|e| format!("{e:#}"));
+    let first: Option<String> = comm.broadcast(&comm.gather(&mine).into_iter().flatten().next());
+    match (r, first) {
+        (Ok(v), None) => Ok(v),
+        (Err(e), Some(msg)) if comm.is_root() && mine.as_deref() == Some(msg.as_str()) => Err(e),
+        (_, Some(msg)) => Err(anyhow!(msg)),
+        (Err(e), None) => Err(e),
+    }
+}
+
+/// The mesh of a scene, on every rank: rank 0 runs gmsh for a .geo (or
+/// reads the .msh); the others read the file it wrote. The mesh, its file,
+/// and whether gmsh's earlier output was reused.
+pub(super) fn mesh(comm: &dyn Comm, scene: &Scene, out: &Path) -> Result<(Mesh, PathBuf, bool)> {
+    let meshed = if comm.is_root() { load_mesh(scene, out).map(Some) } else { Ok(None) };
+    match agree(comm, meshed)? {
+        Some(m) => Ok(m),
+        None => {
+            let p = match &scene.mesh {
+                MeshSource::Msh(p) => p.clone(),
+                MeshSource::Geo(_) => out.join("mesh").join(format!("{}.msh", scene.name)),
+            };
+            Ok((msh::read_msh(&p)?, p, true))
+        }
+    }
+}
+
+/// The ranks once every part has its owner.
+pub(super) struct Ranks<'c> {
+    comm: &'c dyn Comm,
+    /// The rank of each part.
+    owner: Vec<usize>,
+    /// The other ranks apply their parts' S while rank 0 solves the
+    /// (iterative) interface.
+    serve: bool,
+}
+
+/// What rank 0 asks of the other ranks while it solves the iterative interface.
+#[derive(serde::Serialize, serde::Deserialize)]
+enum Service {
+    /// Apply the S of these parts (number, columns) to their `k` columns.
+    Apply { k: usize, work: Vec<(usize, Vec<f64>)> },
+    /// The interface stage is over (for this load step).
+    Done,
+}
+
+/// What rank 0 sends every rank at each load step.
+#[derive(serde::Serialize, serde::Deserialize)]
+enum Order {
+    /// Recover these parts (index, interface displacements) under these load factors.
+    Recover { lambda: Vec<f64>, parts: Vec<(usize, Vec<f64>)> },
+    /// The run failed on rank 0 with this message.
+    Stop(String),
+}
+
+impl<'c> Ranks<'c> {
+    /// `applied`: the parts are condensed for the iterative interface.
+    pub fn new(comm: &'c dyn Comm, owner: Vec<usize>, applied: bool) -> Ranks<'c> {
+        Ranks { comm, owner, serve: applied && comm.size() > 1 }
+    }
+
+    pub fn comm(&self) -> &'c dyn Comm {
+        self.comm
+    }
+
+    pub fn rank(&self) -> usize {
+        self.comm.rank()
+    }
+
+    pub fn size(&self) -> usize {
+        self.comm.size()
+    }
+
+    pub fn bytes_sent(&self) -> u64 {
+        self.comm.bytes_sent()
+    }
+
+    /// Every rank's `value`, on rank 0.
+    pub fn gather<T: serde::Serialize + serde::de::DeserializeOwned>(&self, value: &T) -> Option<Vec<T>> {
+        let all = self.comm.gather(value);
+        self.comm.is_root().then_some(all)
+    }
+
+    /// Whether every rank stops here, as rank 0 says.
+    pub fn stop(&self, stop: bool) -> bool {
+        self.comm.broadcast(&stop)
+    }
+
+    /// `f()` on rank 0, while the other ranks apply their parts' S (of
+    /// `mine`) for its iterative interface.
+    pub fn on_root<T>(&self, mine: &[(usize, Condensed)], f: impl FnOnce() -> T) -> Option<T> {
+        if self.comm.is_root() {
+            let v = f();
+            if self.serve {
+                self.done();
+            }
+            Some(v)
+        } else {
+            if self.serve {
+                serve(self.comm, mine);
+            }
+            None
+        }
+    }
+
+    /// The interface on rank 0, set up by `build` from every part's
+    /// operator (received from its owner; this rank's own applied parts
+    /// keep their factor) and the other ranks as its [`Remote`]; `None`
+    /// elsewhere, or when `build` finds no interface.
+    pub fn interface<'r>(
+        &'r self,
+        mine: &mut [(usize, Condensed)],
+        build: impl FnOnce(&[OperatorRef<'_>], Option<&'r dyn Remote>) -> Result<Option<InterfaceProblem<'r>>>,
+    ) -> Result<Option<InterfaceProblem<'r>>> {
+        let received: Vec<(usize, Operator)> = if self.comm.size() > 1 {
+            let ops: Vec<(usize, Operator)> = mine.iter_mut().map(|(i, c)| (*i, c.take_operator())).collect();
+            let mut all: Vec<(usize, Operator)> = self.comm.gather(&ops).into_iter().flatten().collect();
+            all.sort_by_key(|(i, _)| *i);
+            all
+        } else {
+            Vec::new()
+        };
+        let remote: Option<&'r dyn Remote> = if self.serve { Some(self) } else { None };
+        let mine: &[(usize, Condensed)] = mine;
+        let built = self.on_root(mine, || {
+            let ops: Vec<OperatorRef> = if self.comm.size() > 1 {
+                (received.iter())
+                    .map(|(i, o)| match mine.iter().find(|(j, _)| j == i) {
+                        Some((_, c)) if c.is_applied() => c.operator(),
+                        _ => o.as_ref(),
+                    })
+                    .collect()
+            } else {
+                mine.iter().map(|(_, c)| c.operator()).collect()
+            };
+            build(&ops, remote)
+        });
+        agree(self.comm, built.unwrap_or(Ok(None)))
+    }
+
+    /// The displacements of every part's nodes under the load factors
+    /// `lambda`, on rank 0: rank 0's `answer` (each part's interface
+    /// displacements, or why it has none) goes to the owners of `parts`, which
+    /// recover their interiors (only when `need_u`) and send them back. A
+    /// failure on rank 0 ends every rank, rank 0 with its own error.
+    pub fn recover(&self, model: &Model, parts: &[Part], mine: &[(usize, Condensed)], answer: Option<Result<Vec<Vec<f64>>>>, lambda: &[f64], need_u: bool) -> Result<Option<Vec<f64>>> {
+        let nd = model.nd;
+        let values: Vec<(usize, Vec<f64>)> = if self.comm.size() == 1 {
+            let mut d_c = answer.expect("one process is rank 0")?;
+            if !need_u {
+                Vec::new()
+            } else {
+                let d: Vec<(usize, Vec<f64>)> = mine.iter().map(|(i, _)| (*i, std::mem::take(&mut d_c[*i]))).collect();
+                recover_parts(model, mine, &d, lambda)
+            }
+        } else {
+            let (orders, failure) = self.orders(answer, lambda, need_u);
+            match self.comm.scatter(&orders) {
+                Order::Stop(msg) => return Err(failure.unwrap_or_else(|| anyhow!(msg))),
+                Order::Recover { lambda, parts } => {
+                    let local = if need_u { recover_parts(model, mine, &parts, &lambda) } else { Vec::new() };
+                    self.comm.gather(&local).into_iter().flatten().collect()
+                }
+            }
+        };
+        if !self.comm.is_root() {
+            return Ok(None);
+        }
+        let mut u = vec![0.0; model.n_nodes() * nd];
+        for (i, vals) in &values {
+            for (q, &n) in parts[*i].nodes(model).iter().enumerate() {
+                u[n * nd..n * nd + nd].copy_from_slice(&vals[q * nd..q * nd + nd]);
+            }
+        }
+        Ok(Some(u))
+    }
+
+    /// Rank 0's orders to every rank (empty elsewhere), and its own failure.
+    fn orders(&self, answer: Option<Result<Vec<Vec<f64>>>>, lambda: &[f64], need_u: bool) -> (Vec<Order>, Option<anyhow::Error>) {
+        let size = self.comm.size();
+        match answer {
+            None => (Vec::new(), None),
+            Some(Err(e)) => ((0..size).map(|_| Order::Stop(format!("{e:#}"))).collect(), Some(e)),
+            Some(Ok(d_c)) => {
+                let parts = |r: usize| if need_u { (0..d_c.len()).filter(|&i| self.owner[i] == r).map(|i| (i, d_c[i].clone())).collect() } else { Vec::new() };
+                ((0..size).map(|r| Order::Recover { lambda: lambda.to_vec(), parts: parts(r) }).collect(), None)
+            }
+        }
+    }
+
+    /// Ends the other ranks' [`serve`].
+    fn done(&self) {
+        let per_rank: Vec<Service> = (0..self.comm.size()).map(|_| Service::Done).collect();
+        let _: Service = self.comm.scatter(&per_rank);
+    }
+}
+
+impl Remote for Ranks<'_> {
+    fn send(&self, work: Vec<(usize, Vec<f64>)>, k: usize) {
+        let mut per_rank: Vec<Service> = (0..self.comm.size()).map(|_| Service::Apply { k, work: Vec::new() }).collect();
+        for (i, d) in work {
+            if let Service::Apply { work, .. } = &mut per_rank[self.owner[i]] {
+                work.push((i, d));
+            }
+        }
+        let _: Service = self.comm.scatter(&per_rank);
+    }
+
+    fn receive(&self) -> Vec<(usize, Vec<f64>)> {
+        self.comm.gather(&Vec::<(usize, Vec<f64>)>::new()).into_iter().flatten().collect()
+    }
+}
+
+/// On the ranks other than 0: apply this rank's parts' S for rank 0 until
+/// it says the interface stage is over.
+fn serve(comm: &dyn Comm, mine: &[(usize, Condensed)]) {
+    loop {
+        match comm.scatter::<Service>(&[]) {
+            Service::Done => return,
+            Service::Apply { k, work } => {
+                let out: Vec<(usize, Vec<f64>)> = (work.into_iter())
+                    .map(|(i, d)| {
+                        let (_, part) = mine.iter().find(|(j, _)| *j == i).expect("rank 0 sends a part to its owner");
+                        (i, part.apply(&d, k))
+                    })
+                    .collect();
+                comm.gather(&out);
+            }
+        }
+    }
+}
+
+/// Recovers the interiors of `mine` under `lambda`: the displacements of
+/// their nodes, part by part (node order of `Part::nodes`).
+fn recover_parts(model: &Model, mine: &[(usize, Condensed)], d_c: &[(usize, Vec<f64>)], lambda: &[f64]) -> Vec<(usize, Vec<f64>)> {
+    let nd = model.nd;
+    let mut u = vec![0.0; model.n_nodes() * nd];
+    mine.iter()
+        .zip(d_c)
+        .map(|((i, c), (j, d))| {
+            debug_assert_eq!(i, j);
+            c.recover(model, d, lambda, &mut u);
+            let values = c.part.nodes(model).iter().flat_map(|&n| u[n * nd..n * nd + nd].to_vec()).collect();
+            (*i, values)
+        })
+        .collect()
+}

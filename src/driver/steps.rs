@@ -1,0 +1,182 @@
+//! Stages 5 and 6, load step by load step, as deal.II's step-41 runs its
+//! loop: at each step rank 0 iterates the contact states on the interface
+//! ([`contact::iterate`]), the parts' owners recover their interiors, rank 0
+//! recovers the stresses and records the step, and a step that did not
+//! converge stops the run. States, cracks and slip carry over from step to
+//! step ([`History`]).
+
+use std::time::Instant;
+
+use anyhow::Result;
+
+use super::condense::Parts;
+use super::messages::ContactError;
+use super::plan::Plan;
+use super::ranks::{agree, Ranks};
+use super::{progress, RunOptions};
+use crate::contact::law::Strength;
+use crate::contact::system::InterfaceProblem;
+use crate::contact::traction::ConsistentTraction;
+use crate::contact::{self, History, Outcome, PairLaw};
+use crate::model::Model;
+use crate::recover;
+use crate::results::{ContactRun, Counters, StepResult};
+use crate::scene::{Scene, TractionRecovery};
+
+/// What the load steps did: the steps (on rank 0), and what they cost.
+#[derive(Default)]
+pub(super) struct LoadSteps {
+    pub steps: Vec<StepResult>,
+    /// Steps run (on every rank).
+    pub done: usize,
+    pub counters: Counters,
+    /// The largest relative residual of the contact iterations' last solves.
+    pub residual_interface: f64,
+    pub interface_s: f64,
+    pub recover_s: f64,
+    /// Bytes this rank sent in all steps, and during the contact
+    /// iterations (the S d of the iterative interface).
+    pub bytes: u64,
+    pub bytes_interface: u64,
+}
+
+/// One step's interface answer on rank 0.
+struct Answer {
+    /// Each part's interface displacements.
+    d_c: Vec<Vec<f64>>,
+    contact: Option<ContactRun>,
+}
+
+/// What every step reads.
+struct Step<'a> {
+    scene: &'a Scene,
+    model: &'a Model,
+    plan: &'a Plan,
+    problem: Option<&'a InterfaceProblem<'a>>,
+    laws: Vec<PairLaw>,
+    traction: Option<ConsistentTraction>,
+}
+
+/// Runs every load step of the scene.
+pub(super) fn run(scene: &Scene, model: &Model, plan: &Plan, parts: &Parts, opts: &RunOptions, ranks: &Ranks) -> Result<LoadSteps> {
+    let traction = agree(ranks.comm(), traction(scene, model, parts.problem.as_ref()).map_err(anyhow::Error::from))?;
+    let this = Step { scene, model, plan, problem: parts.problem.as_ref(), laws: laws(model, scene), traction };
+    // skip what the scene does not ask for: interior displacements only for
+    // fields, probes or errors; stresses only when asked
+    let need_stress = scene.output.wants("stress");
+    let need_u = need_stress || scene.output.wants("displacement") || !scene.probes.is_empty() || scene.analytic.is_some();
+    let n_steps = scene.solver.load_steps;
+    if !model.pairs.is_empty() {
+        progress(opts, &format!("contact iteration on {} pairs, {} load step(s)", model.pairs.len(), n_steps));
+    }
+    let mut out = LoadSteps::default();
+    let mut history = History::new(model.pairs.len());
+    let bytes_before = ranks.bytes_sent();
+    for step in 1..=n_steps {
+        let lambda: Vec<f64> = model.cases.iter().map(|c| c[step - 1]).collect();
+        // 5. iterate: the contact states, on rank 0 (the others apply their S)
+        let (t, bytes) = (Instant::now(), ranks.bytes_sent());
+        let answer = ranks.on_root(&parts.mine, || this.iterate(step, &lambda, &mut history, &mut out));
+        out.bytes_interface += ranks.bytes_sent() - bytes;
+        out.interface_s += t.elapsed().as_secs_f64();
+        // 6. recover: the interiors on their owners, the stresses on rank 0
+        let t = Instant::now();
+        let (d_c, contact) = match answer {
+            Some(Ok(a)) => (Some(Ok(a.d_c)), a.contact),
+            Some(Err(e)) => (Some(Err(e.into())), None),
+            None => (None, None),
+        };
+        let u = ranks.recover(model, &plan.parts, &parts.mine, d_c, &lambda, need_u)?;
+        if need_u {
+            out.counters.interior_recoveries += plan.parts.len();
+        }
+        out.done += 1;
+        // record the step; one that did not converge ends the run
+        let stop = contact.as_ref().is_some_and(|c| !c.summary.converged);
+        if let Some(u) = u {
+            let stresses = if need_stress {
+                out.counters.stress_recoveries += 1;
+                recover::nodal_stresses(model, &u)
+            } else {
+                Vec::new()
+            };
+            out.steps.push(StepResult { step, load_factor: lambda[0], case_factors: lambda.clone(), u, stresses, contact });
+        }
+        out.recover_s += t.elapsed().as_secs_f64();
+        if n_steps > 1 {
+            progress(opts, &format!("load step {step}/{n_steps} done"));
+        }
+        if ranks.stop(stop) {
+            break;
+        }
+    }
+    out.bytes = ranks.bytes_sent() - bytes_before;
+    out.counters.interface_applications_per_solve = parts.problem.as_ref().map_or_else(Vec::new, |p| p.applications());
+    Ok(out)
+}
+
+impl Step<'_> {
+    /// The interface displacements of every part at load step `step` under
+    /// `lambda`, and the contact result: the state iteration, or one solve
+    /// when the parts are joined by bonded interfaces alone.
+    fn iterate(&self, step: usize, lambda: &[f64], history: &mut History, out: &mut LoadSteps) -> Result<Answer, ContactError> {
+        let nd = self.model.nd;
+        let Some(problem) = self.problem else {
+            // nothing condensed: every part was solved directly
+            return Ok(Answer { d_c: self.plan.parts.iter().map(|p| vec![0.0; p.interface.len() * nd]).collect(), contact: None });
+        };
+        if self.model.pairs.is_empty() {
+            let solution = problem.solve(&[], lambda).map_err(|_| ContactError::BondedNotHeld { scene: self.scene.path.clone() })?;
+            return Ok(Answer { d_c: solution.d_c, contact: None });
+        }
+        let solver = &self.scene.solver;
+        let outcome = contact::iterate(problem, &self.laws, solver.rule, lambda, history, solver.max_iterations)
+            .map_err(|f| ContactError::failed(self.model, &self.plan.parts, self.scene, step, f))?;
+        out.residual_interface = out.residual_interface.max(outcome.solution.residual);
+        out.counters.interface_solves += outcome.summary.iterations;
+        let (contact, d_c) = self.contact_run(problem, outcome);
+        Ok(Answer { d_c, contact: Some(contact) })
+    }
+
+    /// A step's contact result from the iteration's outcome (the stresses
+    /// of contacts with `traction = "consistent"` recovered from the pair
+    /// forces), and the parts' interface displacements.
+    fn contact_run(&self, problem: &InterfaceProblem, outcome: Outcome) -> (ContactRun, Vec<Vec<f64>>) {
+        let Outcome { states, solution, summary } = outcome;
+        let mut pairs = solution.pairs;
+        if let Some(tr) = &self.traction {
+            let t = tr.recover(&solution.forces, problem.basis());
+            for (p, pr) in pairs.iter_mut().enumerate() {
+                if self.scene.contacts[self.model.pairs[p].contact].traction == TractionRecovery::Consistent {
+                    pr.sigma_n = t[p][0];
+                    pr.tau_t = t[p][1];
+                    pr.tau_b = t[p][2];
+                }
+            }
+        }
+        let areas = (0..pairs.len()).map(|p| problem.area(p)).collect();
+        (ContactRun { states, pairs, frames: problem.frames().to_vec(), areas, summary }, solution.d_c)
+    }
+}
+
+/// The pair laws of the model's pairs, from the scene's contacts.
+fn laws(model: &Model, scene: &Scene) -> Vec<PairLaw> {
+    (model.pairs.iter())
+        .map(|p| {
+            let c = &scene.contacts[p.contact];
+            PairLaw {
+                strength: Strength { friction: c.friction, cohesion: c.cohesion, tensile_strength: c.tensile_strength, residual_cohesion: c.residual_cohesion },
+                slip: c.slip,
+            }
+        })
+        .collect()
+}
+
+/// The consistent traction recovery, on rank 0 when some contact asks for it.
+fn traction(scene: &Scene, model: &Model, problem: Option<&InterfaceProblem>) -> Result<Option<ConsistentTraction>, ContactError> {
+    let consistent = scene.contacts.iter().any(|c| c.traction == TractionRecovery::Consistent);
+    if problem.is_none() || !consistent || model.pairs.is_empty() {
+        return Ok(None);
+    }
+    ConsistentTraction::new(model).map(Some).map_err(|e| ContactError::Traction { scene: scene.path.clone(), reason: e.to_string() })
+}
