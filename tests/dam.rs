@@ -104,13 +104,30 @@ fn heel_is_closed_under_self_weight_and_opens_under_the_full_reservoir() {
 fn the_answer_does_not_depend_on_the_order_of_the_blocks() {
     let a = dam(&Case::new("dam-order-a"), None);
     let b = dam(&Case::new("dam-order-b"), Some(&["block_3", "block_1", "rock", "block_2"]));
-    let (pa, pb) = (base_pairs(&a), base_pairs(&b));
+    // each base pair by its position and the block it joins to the rock
+    // (where a joint meets the base, each of its two blocks has its pair)
+    let keyed = |run: &Run| -> Vec<(f64, String, usize)> {
+        let body = run.model.body_of_node();
+        let mut v: Vec<(f64, String, usize)> = base_pairs(run)
+            .into_iter()
+            .map(|p| {
+                let pair = &run.model.pairs[p];
+                let block = [pair.k, pair.l].iter().map(|&n| &run.model.bodies[body[n]].name).find(|n| *n != "rock").expect("a block").clone();
+                (run.model.coords[pair.k][0], block, p)
+            })
+            .collect();
+        v.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+        v
+    };
+    let (pa, pb) = (keyed(&a), keyed(&b));
     assert_eq!(pa.len(), pb.len());
+    assert!(pa.windows(2).any(|w| w[0].0 == w[1].0), "a joint's end has a base pair for each of its two blocks");
     let (ca, cb) = (a.contact().expect("contact"), b.contact().expect("contact"));
-    let scale = max_abs(pa.iter().map(|&p| ca.pairs[p].sigma_n));
-    for (&p, &q) in pa.iter().zip(&pb) {
-        let (xa, xb) = (a.model.coords[a.model.pairs[p].k], b.model.coords[b.model.pairs[q].k]);
-        assert!((xa[0] - xb[0]).abs() < 1e-9, "same pair positions");
+    let scale = max_abs(pa.iter().map(|&(_, _, p)| ca.pairs[p].sigma_n));
+    for ((xa, ba, p), (xb, bb, q)) in pa.iter().zip(&pb) {
+        let (p, q) = (*p, *q);
+        let xa = [*xa];
+        assert!((xa[0] - xb).abs() < 1e-9 && ba == bb, "same pair positions");
         assert_eq!(ca.states[p], cb.states[q], "state at x = {}", xa[0]);
         assert!((ca.pairs[p].sigma_n - cb.pairs[q].sigma_n).abs() < 1e-9 * scale, "sigma_n at x = {}", xa[0]);
         assert!((ca.pairs[p].tau_t - cb.pairs[q].tau_t).abs() < 1e-9 * scale, "tau at x = {}", xa[0]);

@@ -34,14 +34,22 @@ fn joints_end_on_the_base_and_the_base_carries_the_weight_and_the_water() {
     let m = &run.model;
     let contact_of = |name: &str| m.interfaces.iter().position(|i| i.name == name).expect("contact");
     let (base, j12) = (contact_of("base"), contact_of("joint_12"));
-    // along the line x = 9, z = 0 the joint cedes its nodes to the base
+    // along the line x = 9, z = 0, where joint_12 ends on the base, every
+    // block keeps its copy: each node has a base pair for each of the two
+    // blocks and a joint pair between them
     let on_line = |x: [f64; 3]| (x[0] - 9.0).abs() < 1e-9 && x[2].abs() < 1e-9;
-    let line_pairs: Vec<usize> = (0..m.pairs.len()).filter(|&p| on_line(m.coords[m.pairs[p].k])).collect();
-    assert!(line_pairs.len() >= 3, "the junction line has pairs ({})", line_pairs.len());
-    for &p in &line_pairs {
-        assert_eq!(m.pairs[p].contact, base, "a node where joint_12 ends on the base pairs with the rock");
-        assert_eq!(m.bodies[m.interfaces[base].body_i].name, "rock");
+    let mut at: std::collections::BTreeMap<usize, Vec<usize>> = Default::default();
+    for pair in m.pairs.iter().filter(|pair| on_line(m.coords[pair.k])) {
+        at.entry(m.mesh_node[pair.k]).or_default().push(pair.contact);
     }
+    assert!(at.len() >= 3, "the junction line has nodes ({})", at.len());
+    for contacts in at.values_mut() {
+        contacts.sort_unstable();
+        let mut want = vec![base, base, j12];
+        want.sort_unstable();
+        assert_eq!(*contacts, want, "a node where joint_12 ends on the base: two base pairs and one joint pair");
+    }
+    assert_eq!(m.bodies[m.interfaces[base].body_i].name, "rock");
     assert!(m.pairs.iter().any(|p| p.contact == j12), "joint_12 has pairs of its own");
     let weight = RHO_G * VOLUME;
     for (step, water) in [(0, 0.0), (1, 0.5), (2, 1.0)] {

@@ -319,7 +319,8 @@ fn square_footing_on_layers_of_prisms_lifts_its_far_corner_and_carries_the_load(
     let mut lines = csv.lines();
     let header: Vec<&str> = lines.next().expect("header").split(',').collect();
     let col = |name: &str| header.iter().position(|h| *h == name).unwrap_or_else(|| panic!("contact.csv has no column {name}"));
-    let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|v| v.parse().expect("number")).collect()).collect();
+    // every column a number but the contact's name (NaN here)
+    let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|v| v.parse().unwrap_or(f64::NAN)).collect()).collect();
     let at = |x: f64, y: f64| rows.iter().find(|r| (r[col("x")] - x).abs() < 1e-9 && (r[col("y")] - y).abs() < 1e-9).expect("a pair at the corner");
     let (far, loaded) = (at(-1.0, -1.0), at(1.0, 1.0));
     eprintln!(

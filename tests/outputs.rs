@@ -104,8 +104,14 @@ fn solve(case_name: &str, stem: &str) -> Results {
     let mut lines = text.lines();
     let csv_header = lines.next().expect("contact.csv header").to_string();
     let names: Vec<&str> = csv_header.split(',').collect();
+    // every column a number but the contact's name
     let csv = lines
-        .map(|l| names.iter().zip(l.split(',')).map(|(k, v)| (k.to_string(), v.parse::<f64>().unwrap_or_else(|_| panic!("contact.csv: {k} = {v:?}")))).collect())
+        .map(|l| {
+            (names.iter().zip(l.split(',')))
+                .filter(|(k, _)| **k != "contact")
+                .map(|(k, v)| (k.to_string(), v.parse::<f64>().unwrap_or_else(|_| panic!("contact.csv: {k} = {v:?}"))))
+                .collect()
+        })
         .collect();
     Results { dir, stdout: String::from_utf8_lossy(&out.stdout).into_owned(), summary, csv, csv_header }
 }
@@ -230,8 +236,11 @@ fn vtu_displacement_equals_the_lame_closed_form_at_every_node() {
 #[test]
 fn contact_csv_has_the_promised_header_and_one_row_per_pair() {
     let r = cylinder();
-    // the promised columns first, then the ones added since (area, global shear vector)
-    assert_eq!(r.csv_header, "pair,x,y,z,status,sigma_n,tau_t,tau_b,gap,slip,area,tau_x,tau_y,tau_z");
+    // the promised columns first, then the ones added since (area, global
+    // shear vector; the pair's normal, its contact group and its two blocks)
+    assert_eq!(r.csv_header, "pair,x,y,z,status,sigma_n,tau_t,tau_b,gap,slip,area,tau_x,tau_y,tau_z,n_x,n_y,n_z,contact,block_i,block_ii");
+    let text = std::fs::read_to_string(r.dir.join("contact.csv")).expect("contact.csv");
+    assert!(text.lines().skip(1).all(|l| l.split(',').nth(17) == Some("A-A")), "every pair is on contact A-A");
     let pairs = at(&r.summary, "contact.pairs").as_u64().unwrap() as usize;
     assert_eq!(pairs, 81, "lc = 0.05 puts 81 nodes on A-A");
     assert_eq!(r.csv.len(), pairs, "one row per pair");
@@ -240,6 +249,10 @@ fn contact_csv_has_the_promised_header_and_one_row_per_pair() {
         let rr = row["x"].hypot(row["y"]);
         assert!((row["x"] - row["y"]).abs() < 1e-9 && (A - 1e-9..=B + 1e-9).contains(&rr), "pair {i} is not on the 45-degree cut: {row:?}");
         assert_eq!(row["status"], 2.0, "all pairs stick");
+        // the outward normal of body I (the first listed, below the cut): (-1, 1) / sqrt 2
+        let h = 0.5f64.sqrt();
+        assert!((row["n_x"] + h).abs() < 1e-9 && (row["n_y"] - h).abs() < 1e-9 && row["n_z"] == 0.0, "pair {i}: normal {row:?}");
+        assert_eq!((row["block_i"], row["block_ii"]), (0.0, 1.0), "pair {i}: body I is the first listed");
         // tension positive: the cut carries sigma_theta > 0
         let th = lame_sigma_theta(rr);
         assert!((row["sigma_n"] - th).abs() < 1e-3 * th, "pair {i} at r = {rr}: sigma_n {} vs Lamé {th}", row["sigma_n"]);

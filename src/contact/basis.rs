@@ -43,11 +43,16 @@ use crate::model::Model;
 /// The coefficient of the middle node in the corners' transformed functions.
 pub const ALPHA: f64 = 0.2;
 
-/// The transformed edges of all interfaces, by pair.
+/// The transformed edges of all interfaces, by pair and by node.
 #[derive(Clone, Debug, Default)]
 pub struct FaceBasis {
-    /// `[middle pair, corner pair, corner pair]` of every transformed edge.
+    /// `[middle pair, corner pair, corner pair]` of every transformed edge
+    /// of a face (a junction's copies have one per face they are on).
     pub edges: Vec<[usize; 3]>,
+    /// `[middle, corner, corner]` model nodes of every transformed edge of
+    /// every side, once per middle node: what transforms a part's
+    /// displacement coefficients.
+    pub nodes: Vec<[usize; 3]>,
     /// Area each pair controls in this basis (`Q^T A`), positive.
     pub areas: Vec<f64>,
 }
@@ -55,29 +60,26 @@ pub struct FaceBasis {
 impl FaceBasis {
     /// The basis of the model's interfaces: transformed edges on tri6 and
     /// quad8 faces, and on line3 / quad9 faces where a corner controls no
-    /// positive area.
+    /// positive area. An edge is transformed on every face and every copy
+    /// that has it or on none (the copies of a junction edge are tied
+    /// across several faces).
     pub fn new(model: &Model) -> FaceBasis {
         let n = model.pairs.len();
         let nodal: Vec<f64> = model.pairs.iter().map(|p| p.area).collect();
-        let mut pair_of = vec![NONE; model.n_nodes()];
-        for (i, p) in model.pairs.iter().enumerate() {
-            pair_of[p.k] = i;
-        }
+        let at = model.facet_pairs();
         let mean = nodal.iter().map(|a| a.abs()).sum::<f64>() / n.max(1) as f64;
         let nd = model.nd;
         // prescribed components of a node, as a bit set
         let held = |node: usize| (0..nd).filter(|&c| model.prescribed[node * nd + c].is_some()).fold(0u8, |m, c| m | (1 << c));
+        // every face edge's pair triple, and per middle mesh node: needed, supports allow it
         let mut by_mid: HashMap<usize, [usize; 3]> = HashMap::new();
-        for iface in &model.interfaces {
-            for f in &iface.facets {
+        let mut decide: HashMap<usize, (bool, bool)> = HashMap::new();
+        for (ii, iface) in model.interfaces.iter().enumerate() {
+            for (fi, f) in iface.facets.iter().enumerate() {
                 let always = matches!(f.kind, CellKind::Tri6 | CellKind::Quad8);
                 for e in f.kind.facet_edges().iter().filter(|e| e[0] != usize::MAX) {
-                    let [m, c1, c2] = e.map(|i| pair_of[f.nodes[i]]);
+                    let [m, c1, c2] = e.map(|i| at[ii][fi][i]);
                     if m == NONE || c1 == NONE || c2 == NONE || by_mid.contains_key(&m) {
-                        continue;
-                    }
-                    let same = [m, c1, c2].iter().all(|&q| model.pairs[q].contact == model.pairs[m].contact);
-                    if !same {
                         continue;
                     }
                     let needed = always || nodal[c1] <= 1e-9 * mean || nodal[c2] <= 1e-9 * mean;
@@ -86,22 +88,36 @@ impl FaceBasis {
                         let hm = held(side(&model.pairs[m]));
                         hm & held(side(&model.pairs[c1])) == hm && hm & held(side(&model.pairs[c2])) == hm
                     });
-                    if needed && supported_ok {
-                        by_mid.insert(m, [m, c1, c2]);
-                    }
+                    by_mid.insert(m, [m, c1, c2]);
+                    let d = decide.entry(model.mesh_node[model.pairs[m].k]).or_insert((false, true));
+                    d.0 |= needed;
+                    d.1 &= supported_ok;
                 }
             }
         }
-        let mut edges: Vec<[usize; 3]> = by_mid.into_values().collect();
+        let mut edges: Vec<[usize; 3]> = by_mid
+            .into_values()
+            .filter(|t| decide.get(&model.mesh_node[model.pairs[t[0]].k]).is_some_and(|&(needed, ok)| needed && ok))
+            .collect();
         edges.sort_unstable();
-        let mut basis = FaceBasis { edges, areas: nodal };
+        let mut nodes: Vec<[usize; 3]> = Vec::new();
+        let mut seen = std::collections::HashSet::new();
+        for &[m, c1, c2] in &edges {
+            let (pm, p1, p2) = (&model.pairs[m], &model.pairs[c1], &model.pairs[c2]);
+            for side in [[pm.k, p1.k, p2.k], [pm.l, p1.l, p2.l]] {
+                if seen.insert(side[0]) {
+                    nodes.push(side);
+                }
+            }
+        }
+        let mut basis = FaceBasis { edges, nodes, areas: nodal };
         basis.areas = basis.transpose_apply(&basis.areas);
         basis
     }
 
     /// The nodal basis everywhere (no transformed edge).
     pub fn nodal(areas: Vec<f64>) -> FaceBasis {
-        FaceBasis { edges: Vec::new(), areas }
+        FaceBasis { edges: Vec::new(), nodes: Vec::new(), areas }
     }
 
     /// `Q^T v` for a per-pair scalar (areas, or one component of forces).
@@ -135,15 +151,23 @@ impl FaceBasis {
 }
 
 /// The transformation restricted to one part's interface nodes: for each
-/// transformed edge whose nodes the part holds (on one side of the pairs),
-/// the positions `[middle, corner, corner]` of those nodes in the part's
-/// interface list.
-pub fn part_edges(basis: &FaceBasis, side_of: impl Fn(usize) -> [Option<usize>; 2]) -> Vec<[usize; 3]> {
-    let mut out = Vec::new();
-    for &[m, c1, c2] in &basis.edges {
-        for side in 0..2 {
-            if let (Some(qm), Some(q1), Some(q2)) = (side_of(m)[side], side_of(c1)[side], side_of(c2)[side]) {
-                out.push([qm, q1, q2]);
+/// transformed edge whose nodes the part holds, the positions `[middle,
+/// corner, corner]` of those nodes in the part's interface list (`position`
+/// of a model node).
+pub fn part_edges(basis: &FaceBasis, position: impl Fn(usize) -> Option<usize>) -> Vec<[usize; 3]> {
+    basis.nodes.iter().filter_map(|e| Some([position(e[0])?, position(e[1])?, position(e[2])?])).collect()
+}
+
+/// Prescribed values per unit ramp of every model DOF in the face basis:
+/// `ũ = Q^-1 u` along the transformed edges (global components; an edge
+/// is transformed only where its middle node's held components are its
+/// corners' too, so every value it needs is known).
+pub fn prescribed(basis: &FaceBasis, prescribed: &[Option<f64>], nd: usize) -> Vec<Option<f64>> {
+    let mut out = prescribed.to_vec();
+    for &[m, c1, c2] in &basis.nodes {
+        for c in 0..nd {
+            if let (Some(vm), Some(v1), Some(v2)) = (prescribed[m * nd + c], prescribed[c1 * nd + c], prescribed[c2 * nd + c]) {
+                out[m * nd + c] = Some((vm - ALPHA * (v1 + v2)) / (1.0 - 2.0 * ALPHA));
             }
         }
     }
@@ -254,13 +278,13 @@ mod tests {
     #[test]
     fn tri6_and_quad8_corners_get_positive_areas() {
         // one flat facet of area 1: nodal lumped areas, then Q^T A
-        let tri6 = FaceBasis { edges: vec![[3, 0, 1], [4, 1, 2], [5, 2, 0]], areas: vec![] };
+        let tri6 = FaceBasis { edges: vec![[3, 0, 1], [4, 1, 2], [5, 2, 0]], nodes: vec![], areas: vec![] };
         let a = tri6.transpose_apply(&[0.0, 0.0, 0.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0]);
         for c in 0..3 {
             assert!((a[c] - 2.0 / 15.0).abs() < 1e-15);
             assert!((a[3 + c] - 0.2).abs() < 1e-15);
         }
-        let quad8 = FaceBasis { edges: vec![[4, 0, 1], [5, 1, 2], [6, 2, 3], [7, 3, 0]], areas: vec![] };
+        let quad8 = FaceBasis { edges: vec![[4, 0, 1], [5, 1, 2], [6, 2, 3], [7, 3, 0]], nodes: vec![], areas: vec![] };
         let a = quad8.transpose_apply(&[-1.0 / 12.0, -1.0 / 12.0, -1.0 / 12.0, -1.0 / 12.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0]);
         for c in 0..4 {
             assert!((a[c] - 0.05).abs() < 1e-15, "{}", a[c]);

@@ -32,8 +32,8 @@
 use super::iteration::{Rule, Verdict};
 use super::law::{friction_bound, judge, ContactState, Trial};
 use super::options::SlipLaw;
-use super::system::{InterfaceProblem, InterfaceSolution, Relation};
-use super::{cracked, tangential, History, PairLaw, Summary};
+use super::system::{InterfaceProblem, InterfaceSolution, Limit, Relation};
+use super::{cracked, limit, tangential, History, PairLaw, Summary};
 use crate::fem::vec3::{norm, sub};
 
 /// The largest β = b / |ξ| the linearisation uses: k⊥ stays below 1000 c_p
@@ -59,6 +59,9 @@ pub(super) struct Newton<'p> {
     rel: Vec<[f64; 3]>,
     /// A cycle was met: from then on only the most violated pair changes.
     one_at_a_time: bool,
+    /// The last solve's forces of junction pairs as if their locked axes
+    /// were tied (what they are judged by: see `InterfaceSolution::as_tied`).
+    as_tied: Vec<Option<[f64; 3]>>,
 }
 
 /// Every pair's next state, and how far each changing pair is from its
@@ -75,7 +78,7 @@ impl<'p> Newton<'p> {
     pub fn new(problem: &'p InterfaceProblem<'p>, laws: &'p [PairLaw], h: &History) -> Newton<'p> {
         let stiffness = (0..laws.len()).map(|p| problem.stiffness(p)).collect();
         let reference = h.rel_start.iter().map(|&r| tangential(r)).collect();
-        Newton { problem, laws, stiffness, reference, start: h.states.clone(), force: h.force.clone(), rel: h.rel_start.clone(), one_at_a_time: false }
+        Newton { problem, laws, stiffness, reference, start: h.states.clone(), force: h.force.clone(), rel: h.rel_start.clone(), one_at_a_time: false, as_tied: vec![None; laws.len()] }
     }
 
     /// The relation pair `p` is solved with at this iteration.
@@ -114,7 +117,7 @@ impl<'p> Newton<'p> {
         for i in 1..3 {
             constant[i] = (bk - db * pk) * n[i] - (1..3).map(|j| spring[i][j] * reference[j]).sum::<f64>();
         }
-        Relation { state, target, force: constant, coupling: [0.0, db * n[1], db * n[2]], spring }
+        Relation { state, target, force: constant, coupling: [0.0, db * n[1], db * n[2]], spring, pressure: pk, limit: Limit::NONE }
     }
 
     /// Judges every pair (1. of the iteration).
@@ -133,7 +136,18 @@ impl<'p> Newton<'p> {
             let cr = cracked(h, p);
             let slip = sub(tangential(rel[p]), self.reference[p]);
             let trial = Trial { force: force[p], area, slip, gap: rel[p][0], stiffness: self.stiffness[p] };
-            next[p] = judge(st, &trial, &law.strength, cr, law.slip == SlipLaw::Coulomb, tol_u);
+            let coulomb = law.slip == SlipLaw::Coulomb;
+            next[p] = match (self.as_tied[p], st) {
+                // an open junction pair its loop keeps shut: it closes (as
+                // a closing pair does, where it is) unless the force it would
+                // carry closed is tension beyond its strength
+                (Some(f), ContactState::Open) if f[0] >= law.strength.tensile_limit(cr) * area => ContactState::Open,
+                (Some(_), ContactState::Open) => judge(st, &Trial { gap: f64::NEG_INFINITY, ..trial }, &law.strength, cr, coulomb, tol_u),
+                // a slipping one it keeps from slipping: stuck if the loop
+                // can carry its shear within every pair's bound
+                (Some(f), _) => judge(ContactState::Stick, &Trial { force: f, ..trial }, &law.strength, cr, coulomb, tol_u),
+                (None, _) => judge(st, &trial, &law.strength, cr, coulomb, tol_u),
+            };
             if st == ContactState::Slip && next[p] == ContactState::Slip {
                 residual = residual.max(friction_residual(law, cr, area, self.stiffness[p], force[p], slip));
             }
@@ -185,12 +199,13 @@ impl<'p> Newton<'p> {
 
 impl Rule for Newton<'_> {
     fn relations(&self, h: &History) -> Vec<Relation> {
-        (0..self.laws.len()).map(|p| self.relation(h, p)).collect()
+        (0..self.laws.len()).map(|p| self.relation(h, p).within(limit(&self.laws[p], cracked(h, p), self.problem.area(p)))).collect()
     }
 
     fn judge(&mut self, h: &mut History, solution: &InterfaceSolution, summary: &mut Summary) -> Verdict {
         self.force.clone_from(&solution.forces);
         self.rel.clone_from(&solution.rel);
+        self.as_tied.clone_from(&solution.as_tied);
         for p in 0..self.laws.len() {
             if h.states[p] == ContactState::Open && self.start[p] == ContactState::Open {
                 self.reference[p] = tangential(self.rel[p]);

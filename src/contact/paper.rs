@@ -10,10 +10,10 @@
 //! the steps after it (f_t = 0, the residual cohesion), as by the robust rule.
 
 use super::iteration::{Rule, Verdict};
-use super::law::{judge_paper, ContactState};
+use super::law::{judge_paper, ContactState, PairResult};
 use super::options::SlipLaw;
 use super::system::{InterfaceProblem, InterfaceSolution, Relation};
-use super::{cracked, tangential, History, PairLaw, Summary};
+use super::{cracked, limit, tangential, History, PairLaw, Summary};
 use crate::fem::vec3::{norm, sub};
 
 /// The paper's rule through one load step.
@@ -39,7 +39,7 @@ impl<'p> Paper<'p> {
 
 impl Rule for Paper<'_> {
     fn relations(&self, h: &History) -> Vec<Relation> {
-        (0..self.laws.len()).map(|p| Relation::simple(h.states[p], h.offset[p], self.friction(h, p))).collect()
+        (0..self.laws.len()).map(|p| Relation::simple(h.states[p], h.offset[p], self.friction(h, p)).within(limit(&self.laws[p], cracked(h, p), self.problem.area(p)))).collect()
     }
 
     fn judge(&mut self, h: &mut History, solution: &InterfaceSolution, summary: &mut Summary) -> Verdict {
@@ -49,7 +49,15 @@ impl Rule for Paper<'_> {
         let scale_s = r.iter().map(|p| p.sigma_n.abs().max(p.tau())).fold(0.0, f64::max);
         let tol_u = 1e-10 * scale_u;
 
-        let next: Vec<ContactState> = (0..n).map(|p| judge_paper(&r[p], &self.laws[p].strength, h.cracked[p])).collect();
+        // a junction pair its loop locks is judged by the forces it would carry tied
+        let judged = |p: usize| match solution.as_tied[p] {
+            Some(f) => {
+                let a = self.problem.area(p);
+                PairResult { sigma_n: f[0] / a, tau_t: f[1] / a, tau_b: f[2] / a, ..r[p] }
+            }
+            None => r[p],
+        };
+        let next: Vec<ContactState> = (0..n).map(|p| judge_paper(&judged(p), &self.laws[p].strength, h.cracked[p])).collect();
         summary.cycled = next != h.states && summary.history.contains(&next);
 
         // carry the new states: friction directions, offsets; and how far

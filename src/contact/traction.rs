@@ -23,15 +23,15 @@ pub struct ConsistentTraction {
 impl ConsistentTraction {
     pub fn new(model: &Model) -> Result<ConsistentTraction, FactorError> {
         let n = model.pairs.len();
-        let mut row = vec![NONE; model.n_nodes()];
-        for (i, p) in model.pairs.iter().enumerate() {
-            row[p.k] = i;
-        }
-        let facets: Vec<&crate::mesh::Cell> = model.interfaces.iter().flat_map(|i| i.facets.iter()).collect();
-        let mut m = SymMatrix::pattern(n, 1, &row, facets.iter().map(|f| f.nodes.as_slice()));
+        // the pair of every facet node (a junction's copy has one per face)
+        let at = model.facet_pairs();
+        let facets: Vec<(&crate::mesh::Cell, &[usize])> =
+            model.interfaces.iter().zip(&at).flat_map(|(i, a)| i.facets.iter().zip(a.iter().map(|v| v.as_slice()))).collect();
+        let paired: Vec<Vec<usize>> = facets.iter().map(|(_, p)| p.iter().copied().filter(|&x| x != NONE).collect()).collect();
+        let identity: Vec<usize> = (0..n).collect();
+        let mut m = SymMatrix::pattern(n, 1, &identity, paired.iter().map(|p| p.as_slice()));
         let mut me = Vec::new();
-        let mut dofs = Vec::new();
-        for f in &facets {
+        for (f, pairs) in &facets {
             let nn = f.nodes.len();
             let xe: Vec<[f64; 3]> = f.nodes.iter().map(|&k| model.coords[k]).collect();
             me.clear();
@@ -45,9 +45,7 @@ impl ConsistentTraction {
                     }
                 }
             }
-            dofs.clear();
-            dofs.extend(f.nodes.iter().map(|&k| row[k]));
-            m.add(&dofs, &me);
+            m.add(pairs, &me);
         }
         Ok(ConsistentTraction { chol: Cholesky::factor(&m)?, n })
     }

@@ -1,132 +1,19 @@
 //! [`Model::build`]: the model from a mesh and a [`ModelSpec`], in numbered
 //! steps. Each step resolves the physical groups it names (with a message
-//! naming the input's key when a group is missing, empty or of the wrong dimension)
-//! and moves what it builds onto the model nodes the contact split made.
+//! naming the input's key when a group is missing, empty or of the wrong
+//! dimension) and moves what it builds onto the model nodes the contact
+//! split made.
 
 use std::collections::HashMap;
 
+use super::builder::{dim_name, Builder};
 use super::contacts::{self, Split};
 use super::held::check_held;
-use super::{Body, FacetLoad, InitialStress, Model, ModelError, ModelSpec, Pair};
+use super::topology::Topology;
+use super::{Block, Body, FacetLoad, InitialStress, Model, ModelError, ModelSpec, Pair};
 use crate::fem::element::{self, dofs_per_node};
 use crate::fem::Analysis;
 use crate::mesh::{Cell, Mesh};
-
-fn dim_name(d: usize) -> &'static str {
-    ["point", "curve", "surface", "volume"][d.min(3)]
-}
-
-/// Node → cells incidence (CSR) of one body's cells.
-struct Incidence {
-    start: Vec<usize>,
-    cells: Vec<usize>,
-}
-
-impl Incidence {
-    fn new(n_nodes: usize, cells: &[Cell]) -> Incidence {
-        let mut count = vec![0usize; n_nodes + 1];
-        for c in cells {
-            for &n in &c.nodes {
-                count[n + 1] += 1;
-            }
-        }
-        for i in 0..n_nodes {
-            count[i + 1] += count[i];
-        }
-        let mut fill = count.clone();
-        let mut list = vec![0; count[n_nodes]];
-        for (ci, c) in cells.iter().enumerate() {
-            for &n in &c.nodes {
-                list[fill[n]] = ci;
-                fill[n] += 1;
-            }
-        }
-        Incidence { start: count, cells: list }
-    }
-    fn of(&self, node: usize) -> &[usize] {
-        &self.cells[self.start[node]..self.start[node + 1]]
-    }
-    /// A cell containing every node of `nodes`.
-    fn containing(&self, cells: &[Cell], nodes: &[usize]) -> Option<usize> {
-        self.of(nodes[0]).iter().copied().find(|&ci| nodes.iter().all(|n| cells[ci].nodes.contains(n)))
-    }
-}
-
-/// What every step reads, and the messages that name the input and the mesh.
-pub(super) struct Builder<'a> {
-    pub(super) mesh: &'a Mesh,
-    pub(super) spec: &'a ModelSpec,
-}
-
-impl<'a> Builder<'a> {
-    pub(super) fn group(&self, key: &str, name: &str, dims: &[usize]) -> Result<&'a crate::mesh::Group, ModelError> {
-        let g = self.mesh.group(name).ok_or_else(|| ModelError::UnknownGroup {
-            scene: self.spec.source.clone(),
-            key: key.to_string(),
-            group: name.to_string(),
-            mesh: self.spec.mesh.clone(),
-            known: self
-                .mesh
-                .groups
-                .iter()
-                .map(|g| format!("\"{}\" ({})", g.name, dim_name(g.dim)))
-                .collect::<Vec<_>>()
-                .join(", "),
-        })?;
-        if !dims.contains(&g.dim) {
-            return Err(ModelError::WrongDimension {
-                scene: self.spec.source.clone(),
-                key: key.to_string(),
-                group: name.to_string(),
-                found: dim_name(g.dim).to_string(),
-                wanted: dims.iter().map(|&d| dim_name(d)).collect::<Vec<_>>().join(" or "),
-            });
-        }
-        if g.cells.is_empty() {
-            return Err(ModelError::EmptyGroup {
-                scene: self.spec.source.clone(),
-                key: key.to_string(),
-                group: name.to_string(),
-                dim: dim_name(g.dim).to_string(),
-                mesh: self.spec.mesh.clone(),
-            });
-        }
-        Ok(g)
-    }
-
-    pub(super) fn invalid(&self, key: String, msg: String) -> ModelError {
-        ModelError::Invalid { scene: self.spec.source.clone(), key, msg }
-    }
-}
-
-/// Which bodies use each mesh node.
-fn node_bodies(n_nodes: usize, bodies: &[Body]) -> Vec<Vec<usize>> {
-    let mut nb: Vec<Vec<usize>> = vec![Vec::new(); n_nodes];
-    for (b, body) in bodies.iter().enumerate() {
-        for c in &body.cells {
-            for &n in &c.nodes {
-                if nb[n].last() != Some(&b) {
-                    nb[n].push(b);
-                }
-            }
-        }
-    }
-    for v in &mut nb {
-        v.sort_unstable();
-        v.dedup();
-    }
-    nb
-}
-
-/// Bodies containing every node of a facet (via their corner nodes).
-pub(super) fn facet_bodies(nb: &[Vec<usize>], facet: &Cell) -> Vec<usize> {
-    let corners = &facet.nodes[..facet.kind.n_corners()];
-    let mut set = nb[corners[0]].clone();
-    for n in &corners[1..] {
-        set.retain(|b| nb[*n].contains(b));
-    }
-    set
-}
 
 impl Model {
     pub fn build(mesh: &Mesh, spec: &ModelSpec) -> Result<Model, ModelError> {
@@ -156,8 +43,8 @@ impl Model {
             ));
         }
 
-        // 1. Bodies.
-        let mut bodies = Vec::new();
+        // 1. Bodies: the cells of every body group.
+        let mut groups: Vec<&[Cell]> = Vec::with_capacity(spec.bodies.len());
         for body in &spec.bodies {
             let g = b.group(&format!("{}.group", body.key), &body.group, &[sd])?;
             if let Some(InitialStress::Geostatic { .. }) = body.initial {
@@ -171,58 +58,36 @@ impl Model {
                     ));
                 }
             }
-            bodies.push(Body {
-                name: body.group.clone(),
-                e: body.e,
-                nu: body.nu,
-                density: body.density,
-                cells: g.cells.clone(),
-                initial: body.initial,
-            });
+            groups.push(&g.cells);
         }
         let size = mesh.size();
-        if sd == 2 {
-            let tol = 1e-9 * size.max(1.0);
-            if let Some((body, cell)) = bodies
-                .iter()
-                .flat_map(|bd| bd.cells.iter().map(move |c| (bd, c)))
-                .find(|(_, c)| c.nodes.iter().any(|&n| mesh.coords[n][2].abs() > tol))
-            {
-                return Err(b.invalid(
-                    "analysis".into(),
-                    format!(
-                        "plane and axisymmetric analyses need a mesh in the plane z = 0, but element {} of body \"{}\" is not; use analysis = \"solid\" for a 3D mesh",
-                        cell.tag, body.name
-                    ),
-                ));
-            }
-        }
-        if spec.analysis == Analysis::Axisymmetric {
-            let tol = 1e-9 * size;
-            if let Some((body, cell)) = bodies
-                .iter()
-                .flat_map(|bd| bd.cells.iter().map(move |c| (bd, c)))
-                .find(|(_, c)| c.nodes.iter().any(|&n| mesh.coords[n][0] < -tol))
-            {
-                return Err(b.invalid(
-                    "analysis".into(),
-                    format!("axisymmetric models lie in x = r >= 0, but element {} of body \"{}\" has x < 0", cell.tag, body.name),
-                ));
-            }
-        }
-        let nb = node_bodies(mesh.coords.len(), &bodies);
+        check_plane(&b, &groups, size)?;
 
-        // 2. Contacts: split shared nodes, pair coincident ones.
-        let Split { coords, mesh_node, copy, pairs: raw_pairs, interfaces } = contacts::split(&b, &mut bodies, &nb, size)?;
+        // 2. Contacts: the blocks, one node per fan along the contact
+        // facets, and the pairs.
+        let topo = Topology::new(mesh.coords.len(), sd, &groups);
+        let Split { coords, mesh_node, cells, block, pairs: raw_pairs, interfaces, signs } = contacts::split(&b, &topo, size)?;
         let n_model = coords.len();
-        // every model node of each mesh node
-        let mut copies_of: HashMap<usize, Vec<usize>> = HashMap::new();
-        for (&(_, n), &m) in &copy {
-            copies_of.entry(n).or_default().push(m);
+        let bodies = blocks(spec, &topo, &block, &cells, &coords);
+        // where each cell went: (body, index in its cells)
+        let mut placed = vec![(0, 0); cells.len()];
+        let mut count = vec![0; bodies.len()];
+        for (c, &bl) in block.iter().enumerate() {
+            placed[c] = (bl, count[bl]);
+            count[bl] += 1;
+        }
+        // the model node of mesh node n in cell c
+        let node_in = |c: usize, n: usize| -> usize {
+            let at = topo.cells[c].nodes.iter().position(|&x| x == n).expect("the node is in the cell");
+            cells[c].nodes[at]
+        };
+        let mut copies_of: Vec<Vec<usize>> = vec![Vec::new(); mesh.coords.len()];
+        for (m, &n) in mesh_node.iter().enumerate() {
+            copies_of[n].push(m);
         }
 
         // 3. Supports. A point support holds every copy of its node; a
-        // support on a curve or surface holds the copies of the bodies its
+        // support on a curve or surface holds the copies of the cells its
         // facets bound, so a support on one body's face next to a contact
         // does not drag the other body's copy of the shared corner node
         // (a symmetry line crossing a contact bounds both bodies: both held).
@@ -231,13 +96,12 @@ impl Model {
             let g = b.group(&format!("{}.group", s.key), &s.group, &(0..=sd).collect::<Vec<_>>())?;
             let mut held: Vec<usize> = Vec::new();
             for cell in &g.cells {
-                let owners = if cell.kind.dim() == 0 { Vec::new() } else { facet_bodies(&nb, cell) };
+                let owners = if cell.kind.dim() == 0 { Vec::new() } else { topo.bounding(cell) };
                 for &n in &cell.nodes {
                     if owners.is_empty() {
-                        held.push(n);
-                        held.extend(copies_of.get(&n).into_iter().flatten().copied());
+                        held.extend(copies_of[n].iter().copied());
                     } else {
-                        held.extend(owners.iter().map(|&o| copy.get(&(o, n)).copied().unwrap_or(n)));
+                        held.extend(owners.iter().map(|&c| node_in(c, n)));
                     }
                 }
             }
@@ -258,10 +122,10 @@ impl Model {
         // shared nodes or contacts, contacts counted as closed) must be
         // stopped by a support: a free one makes the stiffness singular only
         // up to round-off, which the Cholesky factorisation may not notice.
-        check_held(&b, &coords, &bodies, &nb, &interfaces, &prescribed)?;
+        let links: Vec<(usize, usize)> = raw_pairs.iter().map(|p| (p.k, p.l)).collect();
+        check_held(&b, &coords, &bodies, &links, &prescribed)?;
 
-        // 4. Loads, each facet on the copy of the body it bounds.
-        let incidences: Vec<Incidence> = bodies.iter().map(|bd| Incidence::new(n_model, &bd.cells)).collect();
+        // 4. Loads, each facet on the copy of the cell it bounds.
         let mut loads = Vec::new();
         let steps = spec.load_steps;
         let mut cases: Vec<Vec<f64>> = vec![(1..=steps).map(|k| k as f64 / steps as f64).collect()];
@@ -276,8 +140,7 @@ impl Model {
             let key = format!("{}.group", load.key);
             let g = b.group(&key, &load.group, &[sd - 1])?;
             for f in &g.cells {
-                let owners = facet_bodies(&nb, f);
-                let body = match owners.as_slice() {
+                let c = match topo.bounding(f).as_slice() {
                     [one] => *one,
                     [] => {
                         return Err(b.invalid(
@@ -285,32 +148,25 @@ impl Model {
                             format!("element {} of group \"{}\" is not on the boundary of any body", f.tag, load.group),
                         ))
                     }
-                    _ => {
+                    owners => {
+                        let names: Vec<String> = owners.iter().map(|&c| bodies[block[c]].label()).collect();
                         return Err(b.invalid(
                             key.clone(),
-                            format!(
-                                "element {} of group \"{}\" lies between bodies {}: loads go on outer boundaries",
-                                f.tag,
-                                load.group,
-                                owners.iter().map(|&o| format!("\"{}\"", bodies[o].name)).collect::<Vec<_>>().join(" and ")
-                            ),
-                        ))
+                            format!("element {} of group \"{}\" lies between bodies {}: loads go on outer boundaries", f.tag, load.group, names.join(" and ")),
+                        ));
                     }
                 };
                 let mut cell = f.clone();
                 for n in &mut cell.nodes {
-                    if let Some(&m) = copy.get(&(body, *n)) {
-                        *n = m;
-                    }
+                    *n = node_in(c, *n);
                 }
-                let (sign, element) = facet_sign(&coords, &cell, &bodies[body].cells, &incidences[body]).ok_or_else(|| {
-                    b.invalid(key.clone(), format!("element {} of group \"{}\" is not a face of an element of body \"{}\"", f.tag, load.group, bodies[body].name))
-                })?;
+                let (body, element) = placed[c];
+                let sign = facet_sign(&coords, &cell, &cells[c]);
                 loads.push(FacetLoad { cell, sign, kind: load.kind.clone(), body, element, case });
             }
         }
 
-        // 5. Pair normals and areas from body I's facets.
+        // 5. Pair normals and areas from their facets on side I.
         let mut model = Model {
             scene: spec.source.clone(),
             analysis: spec.analysis,
@@ -337,79 +193,116 @@ impl Model {
             },
             cases,
         };
-        // per contact: a node where contacts meet gets the normal and area
-        // of each contact's own facets
-        let mut normals: Vec<HashMap<usize, ([f64; 3], f64)>> = Vec::with_capacity(model.interfaces.len());
-        for iface in &model.interfaces {
-            let mut acc: HashMap<usize, ([f64; 3], f64)> = HashMap::new();
-            for f in &iface.facets {
-                let corners = &f.nodes[..f.kind.n_corners()];
-                let body = iface
-                    .side_i
-                    .iter()
-                    .copied()
-                    .find(|&bd| incidences[bd].containing(&model.bodies[bd].cells, corners).is_some())
-                    .unwrap_or(iface.body_i);
-                let (sign, _) = facet_sign(&model.coords, f, &model.bodies[body].cells, &incidences[body]).ok_or_else(|| {
-                    b.invalid("contacts".into(), format!("element {} of contact \"{}\" is not a face of body \"{}\"", f.tag, iface.name, model.bodies[body].name))
-                })?;
-                accumulate_facet(&model, f, sign, &mut acc);
+        let mut points: HashMap<(usize, usize), Vec<FacetPoint>> = HashMap::new();
+        let mut pairs = Vec::with_capacity(raw_pairs.len());
+        for p in &raw_pairs {
+            let (mut nk, mut area) = ([0.0; 3], 0.0);
+            for s in &p.shares {
+                let pts = points.entry((p.contact, s.facet)).or_insert_with(|| facet_points(&model, &model.interfaces[p.contact].facets[s.facet]));
+                let sign = signs[p.contact][s.facet];
+                for q in pts.iter() {
+                    let a = s.node;
+                    area += q.w * q.da * q.measure * q.n[a];
+                    // normals weighted by geometry only (N_a >= 0 weights
+                    // avoid cancelling on serendipity faces)
+                    for i in 0..3 {
+                        nk[i] += sign * q.unit[i] * q.w * q.da * q.n[a].abs();
+                    }
+                }
             }
-            normals.push(acc);
-        }
-        for (k, l, contact) in raw_pairs {
-            let (nk, ak) = normals[contact].get(&k).copied().unwrap_or(([0.0; 3], 0.0));
             let nrm = element::norm(nk);
-            let n = if nrm > 0.0 { [nk[0] / nrm, nk[1] / nrm, nk[2] / nrm] } else { [0.0; 3] };
-            let area = ak;
-            model.pairs.push(Pair { k, l, contact, normal: n, area });
+            let normal = if nrm > 0.0 { [nk[0] / nrm, nk[1] / nrm, nk[2] / nrm] } else { [0.0; 3] };
+            pairs.push(Pair { k: p.k, l: p.l, contact: p.contact, normal, area, shares: p.shares.iter().map(|s| (s.facet, s.node)).collect() });
         }
+        model.pairs = pairs;
         Ok(model)
     }
 }
 
-/// Sign making the natural normal of `facet` outward for the body cell that has it as a face.
-/// The cell of `cells` that has `facet` as a face, and the sign that makes
-/// the facet's natural normal outward for it.
-fn facet_sign(coords: &[[f64; 3]], facet: &Cell, cells: &[Cell], inc: &Incidence) -> Option<(f64, usize)> {
-    let ci = inc.containing(cells, &facet.nodes[..facet.kind.n_corners()])?;
-    let fc: Vec<[f64; 3]> = facet.nodes.iter().map(|&n| coords[n]).collect();
-    let cc: Vec<[f64; 3]> = cells[ci].nodes.iter().map(|&n| coords[n]).collect();
-    Some((element::outward_sign(facet.kind, &fc, cells[ci].kind, &cc), ci))
-}
-
-/// Adds a facet's area-weighted outward normal and `∫ N_a dA` to its nodes.
-fn accumulate_facet(model: &Model, f: &Cell, sign: f64, acc: &mut HashMap<usize, ([f64; 3], f64)>) {
-    let fc: Vec<[f64; 3]> = f.nodes.iter().map(|&n| model.coords[n]).collect();
-    let rule = crate::fem::quadrature::rule(f.kind, 2 * f.kind.order() + 2);
-    for q in &rule {
-        let (n, unit, da, x) = element::facet_point(f.kind, &fc, q.xi);
-        let measure = element::measure(model.analysis, model.thickness, &x);
-        for (a, &node) in f.nodes.iter().enumerate() {
-            let e = acc.entry(node).or_insert(([0.0; 3], 0.0));
-            e.1 += q.w * da * measure * n[a];
-            // normals weighted by geometry only (N_a >= 0 weights avoid
-            // cancelling on serendipity faces)
-            for i in 0..3 {
-                e.0[i] += sign * unit[i] * q.w * da * n[a].abs();
-            }
+/// Plane models lie in z = 0, axisymmetric ones in x = r >= 0.
+fn check_plane(b: &Builder, groups: &[&[Cell]], size: f64) -> Result<(), ModelError> {
+    let (mesh, spec) = (b.mesh, b.spec);
+    let cells = || groups.iter().enumerate().flat_map(|(i, cs)| cs.iter().map(move |c| (i, c)));
+    if spec.analysis.dim() == 2 {
+        let tol = 1e-9 * size.max(1.0);
+        if let Some((body, cell)) = cells().find(|(_, c)| c.nodes.iter().any(|&n| mesh.coords[n][2].abs() > tol)) {
+            return Err(b.invalid(
+                "analysis".into(),
+                format!(
+                    "plane and axisymmetric analyses need a mesh in the plane z = 0, but element {} of body \"{}\" is not; use analysis = \"solid\" for a 3D mesh",
+                    cell.tag, spec.bodies[body].group
+                ),
+            ));
         }
     }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::mesh::CellKind;
-
-    #[test]
-    fn incidence_finds_the_cell_of_a_facet() {
-        let cells = vec![
-            Cell { kind: CellKind::Tri3, nodes: vec![0, 1, 2], tag: 1 },
-            Cell { kind: CellKind::Tri3, nodes: vec![1, 3, 2], tag: 2 },
-        ];
-        let inc = Incidence::new(4, &cells);
-        assert_eq!(inc.containing(&cells, &[3, 1]), Some(1));
-        assert_eq!(inc.containing(&cells, &[0, 3]), None);
+    if spec.analysis == Analysis::Axisymmetric {
+        let tol = 1e-9 * size;
+        if let Some((body, cell)) = cells().find(|(_, c)| c.nodes.iter().any(|&n| mesh.coords[n][0] < -tol)) {
+            return Err(b.invalid(
+                "analysis".into(),
+                format!("axisymmetric models lie in x = r >= 0, but element {} of body \"{}\" has x < 0", cell.tag, spec.bodies[body].group),
+            ));
+        }
     }
+    Ok(())
 }
+
+/// The model's bodies: one per block, in block order, each with the
+/// material of its body group.
+fn blocks(spec: &ModelSpec, topo: &Topology, block: &[usize], cells: &[Cell], coords: &[[f64; 3]]) -> Vec<Body> {
+    let n = block.iter().map(|&b| b + 1).max().unwrap_or(0);
+    let mut group_of = vec![0; n];
+    let mut members: Vec<Vec<Cell>> = vec![Vec::new(); n];
+    for (c, &bl) in block.iter().enumerate() {
+        group_of[bl] = topo.body[c];
+        members[bl].push(cells[c].clone());
+    }
+    let per_group: Vec<usize> = (0..spec.bodies.len()).map(|g| group_of.iter().filter(|&&x| x == g).count()).collect();
+    let mut seen = vec![0; spec.bodies.len()];
+    members
+        .into_iter()
+        .enumerate()
+        .map(|(bl, cells)| {
+            let g = group_of[bl];
+            let body = &spec.bodies[g];
+            let block = (per_group[g] > 1).then(|| {
+                let nodes: Vec<usize> = cells.iter().flat_map(|c| c.nodes.iter().copied()).collect();
+                let centre = std::array::from_fn(|d| nodes.iter().map(|&n| coords[n][d]).sum::<f64>() / nodes.len().max(1) as f64);
+                Block { index: seen[g], of: per_group[g], centre }
+            });
+            seen[g] += 1;
+            Body { name: body.group.clone(), group: g, block, e: body.e, nu: body.nu, density: body.density, cells, initial: body.initial }
+        })
+        .collect()
+}
+
+/// The sign making `facet`'s natural normal outward for `cell` (model nodes).
+fn facet_sign(coords: &[[f64; 3]], facet: &Cell, cell: &Cell) -> f64 {
+    let fc: Vec<[f64; 3]> = facet.nodes.iter().map(|&n| coords[n]).collect();
+    let cc: Vec<[f64; 3]> = cell.nodes.iter().map(|&n| coords[n]).collect();
+    element::outward_sign(facet.kind, &fc, cell.kind, &cc)
+}
+
+/// A quadrature point of a facet: weight, shape values, natural unit
+/// normal, area element and the analysis's measure (thickness, 2 pi r).
+struct FacetPoint {
+    w: f64,
+    n: Vec<f64>,
+    unit: [f64; 3],
+    da: f64,
+    measure: f64,
+}
+
+/// The points that integrate `∫ N_a dA` and the normal over a facet.
+fn facet_points(model: &Model, f: &Cell) -> Vec<FacetPoint> {
+    let fc: Vec<[f64; 3]> = f.nodes.iter().map(|&n| model.coords[n]).collect();
+    crate::fem::quadrature::rule(f.kind, 2 * f.kind.order() + 2)
+        .iter()
+        .map(|q| {
+            let (n, unit, da, x) = element::facet_point(f.kind, &fc, q.xi);
+            let measure = element::measure(model.analysis, model.thickness, &x);
+            FacetPoint { w: q.w, n, unit, da, measure }
+        })
+        .collect()
+}
+

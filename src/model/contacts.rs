@@ -1,297 +1,439 @@
-//! Contacts in the model: the split of a shared contact group's nodes (one
-//! copy per body beyond the first, so the two sides can move apart), the
-//! pairing of two coincident groups by position, and junctions where
-//! contacts meet (a node is paired only by the contact it lies inside).
-//! Side I of a shared group is the side of the body listed first; pairs are
-//! (k on side I, l on side II).
+//! Contacts in the model: the node split along contact facets, the blocks,
+//! and the pairs, which follow the facets.
+//!
+//! A contact group (`group = ".."`) is a set of facets, each between two
+//! cells: of two bodies, or of one body that the group's facets cut into
+//! blocks (a rock mass cut by a joint set). Every node of such a facet gets
+//! one model node per fan of cells around it ([`super::topology`]): the
+//! first fan keeps the mesh node, the others get copies. Where joints cross,
+//! every block keeps its own copy: four at a point in 2D, four along a line
+//! and eight at a point in 3D.
+//!
+//! Pairs follow the facets: a facet between cells a (side I) and b (side
+//! II) pairs, at each of its nodes, a's copy k with b's copy l. One node can
+//! so take part in several pairs (a copy at a crossing pairs with each
+//! block it faces), and the pairs around a junction form closed loops;
+//! [`crate::contact::system`] solves them. The facets of one pair are those
+//! of its contact between the same two copies, split where their normals
+//! turn by more than [`CREASE_ANGLE`] degrees: a node on a crease (a wedge in
+//! a V-groove) gets one pair per face, each with its face's normal and area.
+//!
+//! Side I, written once: between two bodies, side I is the body listed
+//! first in `[[bodies]]`; between two blocks of one body, it is the block on
+//! the low side: the pair's normal n (outward of side I, summed over the
+//! facets the two blocks share in this contact) points along +x, +y or +z,
+//! whichever of the three it is closest to. A horizontal joint has the block
+//! below it on side I and n = +z. The normal goes into contact.csv.
+//!
+//! With `groups = [a, b]` the two sides have their own nodes, which are
+//! paired by position; side I is the body (block) listed first.
 
 use std::collections::{HashMap, HashSet};
 
-use super::build::{facet_bodies, Builder};
-use super::{Body, ContactGroups, Interface, ModelError};
-use crate::fem::element;
+use super::builder::Builder;
+use super::topology::{corner_key, FaceKey, Topology};
+use super::{ContactGroups, Interface, ModelError};
+use crate::fem::{element, shape};
 use crate::mesh::Cell;
 
-/// The model nodes after the contact split, and the pairs and interfaces.
+/// Facets of one pair whose normals differ by more than this many degrees
+/// are on two faces of a crease: the node gets one pair per face. A curved
+/// joint meshed with at least 9 facets per right angle stays one pair per
+/// node (gmsh's own feature angle for surface classification is 40 too).
+pub const CREASE_ANGLE: f64 = 40.0;
+
+/// One facet's part in a pair: the facet (index in its interface's
+/// `facets`) and the position of the pair's node in it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Share {
+    pub facet: usize,
+    pub node: usize,
+}
+
+/// A pair before its normal and area: k on side I, l on side II, its
+/// contact and the facets it takes its normal and area from.
+pub(super) struct RawPair {
+    pub k: usize,
+    pub l: usize,
+    pub contact: usize,
+    pub shares: Vec<Share>,
+}
+
+/// The model nodes after the split, the blocks, the pairs and the interfaces.
 pub(super) struct Split {
     /// Coordinates of every model node: the mesh's, then the copies.
     pub coords: Vec<[f64; 3]>,
     /// Mesh node of every model node.
     pub mesh_node: Vec<usize>,
-    /// (body, mesh node) -> model node, for split nodes only.
-    pub copy: HashMap<(usize, usize), usize>,
-    /// (k, l, contact) of every pair, in model nodes.
-    pub pairs: Vec<(usize, usize, usize)>,
-    /// One interface per contact, its facets in side I's model nodes.
+    /// Every cell of the topology, in model nodes.
+    pub cells: Vec<Cell>,
+    /// The block of every cell: blocks numbered in order of their first
+    /// cell, so in the order of the bodies.
+    pub block: Vec<usize>,
+    pub pairs: Vec<RawPair>,
+    /// One interface per contact, its facets in side I's model nodes, sides as blocks.
     pub interfaces: Vec<Interface>,
+    /// Per interface, the sign that makes each facet's natural normal outward for side I.
+    pub signs: Vec<Vec<f64>>,
 }
 
-/// Splits and pairs every contact of the description; renumbers the bodies' cells
-/// onto their own copies. `nb` lists the bodies of every mesh node, `size`
-/// is the mesh's size (the pairing tolerance is 1e-6 of it).
-pub(super) fn split(b: &Builder, bodies: &mut [Body], nb: &[Vec<usize>], size: f64) -> Result<Split, ModelError> {
+/// Splits every contact of the description, numbers the blocks and makes
+/// the pairs. `size` is the mesh's size (the pairing tolerance of
+/// `groups = [..]` is 1e-6 of it).
+pub(super) fn split(b: &Builder, topo: &Topology, size: f64) -> Result<Split, ModelError> {
     let (mesh, spec) = (b.mesh, b.spec);
     let sd = spec.analysis.dim();
-    let mut coords = mesh.coords.clone();
-    let mut mesh_node: Vec<usize> = (0..coords.len()).collect();
-    // (body, mesh node) -> model node, for split nodes only
-    let mut copy: HashMap<(usize, usize), usize> = HashMap::new();
-    let mut raw_pairs: Vec<(usize, usize, usize)> = Vec::new(); // (k, l, contact)
-    let mut interfaces = Vec::new();
-    // Junctions: a node where contacts meet is paired only by the
-    // contact it lies inside, not by those that end there (a vertical
-    // joint ending on a dam's base: the two blocks stay joined at that
-    // one node, which pairs with the rock).
-    let mut ceded: HashSet<(usize, usize)> = HashSet::new();
-    {
-        let shared: Vec<(usize, &crate::mesh::Group)> = spec
-            .contacts
-            .iter()
-            .enumerate()
-            .filter_map(|(ci, c)| match &c.groups {
-                ContactGroups::Shared(name) => mesh.group(name).map(|g| (ci, g)),
-                ContactGroups::Pair(..) => None,
-            })
-            .collect();
-        let rims: Vec<Rim> = shared.iter().map(|(_, g)| Rim::new(&g.cells)).collect();
-        for (a, (ca, _)) in shared.iter().enumerate() {
-            for (key, nodes) in &rims[a].rim {
-                if (0..shared.len()).any(|o| o != a && rims[o].inside.contains(key)) {
-                    ceded.extend(nodes.iter().map(|&n| (*ca, n)));
-                }
-            }
-        }
-    }
-    for (ci, contact) in spec.contacts.iter().enumerate() {
-        match &contact.groups {
-            ContactGroups::Shared(name) => {
-                let key = format!("{}.group", contact.key);
-                let g = b.group(&key, name, &[sd - 1])?;
-                let [side_i, side_ii] = contact_sides(b, &key, name, nb, bodies, &g.cells)?;
-                for n in g.nodes() {
-                    if ceded.contains(&(ci, n)) {
-                        continue;
-                    }
-                    let l = coords.len();
-                    coords.push(mesh.coords[n]);
-                    mesh_node.push(n);
-                    // side II's bodies at this node share one copy
-                    for &bii in side_ii.iter().filter(|&&x| nb[n].contains(&x)) {
-                        if copy.insert((bii, n), l).is_some() {
-                            return Err(b.invalid(
-                                key.clone(),
-                                format!(
-                                    "node at {:?} of body \"{}\" lies inside two contacts: contacts may meet only where one of them ends (a joint ending on a base); crossing contacts are not supported",
-                                    mesh.coords[n], bodies[bii].name
-                                ),
-                            ));
-                        }
-                    }
-                    raw_pairs.push((n, l, ci));
-                }
-                interfaces.push(Interface { name: name.clone(), body_i: side_i[0], body_ii: side_ii[0], side_i, facets: g.cells.clone() });
-            }
-            ContactGroups::Pair(na, nb_name) => {
-                let ka = format!("{}.groups[0]", contact.key);
-                let kb = format!("{}.groups[1]", contact.key);
-                let ga = b.group(&ka, na, &[sd - 1])?;
-                let gb = b.group(&kb, nb_name, &[sd - 1])?;
-                let ba = single_body(b, &ka, na, nb, bodies, &ga.cells)?;
-                let bb = single_body(b, &kb, nb_name, nb, bodies, &gb.cells)?;
-                if ba == bb {
+
+    // 1. The facets of shared contact groups cut the bodies.
+    let mut cut: HashMap<FaceKey, usize> = HashMap::new();
+    let mut shared: Vec<(usize, &Cell)> = Vec::new();
+    for (ci, c) in spec.contacts.iter().enumerate() {
+        let ContactGroups::Shared(name) = &c.groups else { continue };
+        let key = format!("{}.group", c.key);
+        let g = b.group(&key, name, &[sd - 1])?;
+        for f in &g.cells {
+            let fk = corner_key(f);
+            match cut.get(&fk) {
+                Some(&other) if shared[other].0 == ci => continue,
+                Some(&other) => {
+                    let (oc, of) = shared[other];
                     return Err(b.invalid(
-                        format!("{}.groups", contact.key),
+                        key,
                         format!(
-                            "both \"{na}\" and \"{nb_name}\" bound body \"{}\": a contact between a body and itself is not supported; split the body into two physical groups",
-                            bodies[ba].name
+                            "element {} of group \"{name}\" is also element {} of contacts[{oc}]'s group: a face can be in one contact only; remove it from one of the two Physical groups",
+                            f.tag, of.tag
                         ),
                     ));
                 }
-                let (gi, gii, bi, bii) = if ba < bb { (ga, gb, ba, bb) } else { (gb, ga, bb, ba) };
-                let pairs = pair_by_position(&mesh.coords, &gi.nodes(), &gii.nodes(), 1e-6 * size)
-                    .map_err(|msg| b.invalid(format!("{}.groups", contact.key), format!("pairing the nodes of \"{}\" with those of \"{}\": {msg}", gi.name, gii.name)))?;
-                raw_pairs.extend(pairs.into_iter().map(|(k, l)| (k, l, ci)));
-                let name = format!("{}|{}", gi.name, gii.name);
-                interfaces.push(Interface { name, body_i: bi, body_ii: bii, side_i: vec![bi], facets: gi.cells.clone() });
-            }
-        }
-    }
-    for (bi, body) in bodies.iter_mut().enumerate() {
-        for c in &mut body.cells {
-            for n in &mut c.nodes {
-                if let Some(&m) = copy.get(&(bi, *n)) {
-                    *n = m;
+                None => {
+                    cut.insert(fk, shared.len());
+                    shared.push((ci, f));
                 }
             }
         }
     }
-    // Side I keeps the mesh node unless another contact copied it for
-    // that body (a base on the far side of a joint's end): facets and
-    // pairs use side I's own node.
-    let side_i_node = |side: &[usize], n: usize| side.iter().filter(|&&bd| nb[n].contains(&bd)).find_map(|&bd| copy.get(&(bd, n)).copied()).unwrap_or(n);
-    for iface in &mut interfaces {
-        for f in &mut iface.facets {
-            let owner = facet_bodies(nb, f).into_iter().find(|o| iface.side_i.contains(o));
-            for n in &mut f.nodes {
-                if let Some(o) = owner {
-                    *n = copy.get(&(o, *n)).copied().unwrap_or(*n);
-                }
-            }
-        }
-    }
-    for (k, _, ci) in &mut raw_pairs {
-        *k = side_i_node(&interfaces[*ci].side_i, *k);
-    }
-    Ok(Split { coords, mesh_node, copy, pairs: raw_pairs, interfaces })
-}
 
-/// The bodies on either side of a shared contact group: every facet lies
-/// between two bodies, and the bodies split into two sides (a dam's base
-/// group has the rock on one side and every block on the other). Side I is
-/// the side of the body listed first in `[[bodies]]`.
-fn contact_sides(b: &Builder, key: &str, name: &str, nb: &[Vec<usize>], bodies: &[Body], facets: &[Cell]) -> Result<[Vec<usize>; 2], ModelError> {
-    let mut edges: Vec<(usize, usize)> = Vec::new();
-    for f in facets {
-        let owners = facet_bodies(nb, f);
-        match owners.as_slice() {
-            [x, y] => edges.push((*x.min(y), *x.max(y))),
-            [one] => {
-                return Err(b.invalid(
-                    key.to_string(),
-                    format!(
-                        "group \"{name}\" touches only body \"{}\" (element {}): a contact needs a body on each side sharing the {} (group = ..), or two coincident groups (groups = [..]); a contact between a body and itself is not supported, split the body into two physical groups",
-                        bodies[*one].name,
-                        f.tag,
-                        if f.kind.dim() == 1 { "curve" } else { "surface" }
-                    ),
-                ))
-            }
-            [] => return Err(b.invalid(key.to_string(), format!("element {} of group \"{name}\" touches no body", f.tag))),
-            many => {
-                return Err(b.invalid(
-                    key.to_string(),
-                    format!("element {} of group \"{name}\" is shared by more than two bodies ({})", f.tag, many.len()),
-                ))
-            }
+    // 2. The two cells of every facet.
+    let mut cells_of: Vec<[usize; 2]> = Vec::with_capacity(shared.len());
+    for &(ci, f) in &shared {
+        let key = format!("{}.group", spec.contacts[ci].key);
+        let name = group_name(spec, ci);
+        match topo.bounding(f).as_slice() {
+            [x, y] => cells_of.push([*x, *y]),
+            [one] => return Err(touches_one(b, topo, &key, name, f, *one)),
+            [] => return Err(b.invalid(key, format!("element {} of group \"{name}\" touches no body: it is not a face of any element of the [[bodies]] groups", f.tag))),
+            many => return Err(b.invalid(key, format!("element {} of group \"{name}\" is a face of {} elements; a face separates two", f.tag, many.len()))),
         }
     }
-    edges.sort_unstable();
-    edges.dedup();
-    let Some(first) = edges.iter().map(|e| e.0).min() else {
-        return Err(b.invalid(key.to_string(), format!("group \"{name}\" has no elements")));
-    };
-    // two-colour the bodies the group joins, starting from the first one
-    let mut side: HashMap<usize, usize> = HashMap::from([(first, 0)]);
-    loop {
-        let mut changed = false;
-        for &(x, y) in &edges {
-            match (side.get(&x).copied(), side.get(&y).copied()) {
-                (Some(a), None) => {
-                    side.insert(y, 1 - a);
-                    changed = true;
-                }
-                (None, Some(a)) => {
-                    side.insert(x, 1 - a);
-                    changed = true;
-                }
-                (Some(a), Some(c)) if a == c => {
-                    return Err(b.invalid(
-                        key.to_string(),
-                        format!(
-                            "group \"{name}\" joins bodies that cannot be put on two sides of one interface (\"{}\" and \"{}\" are on the same side): give the contacts their own groups",
-                            bodies[x].name, bodies[y].name
-                        ),
-                    ))
-                }
-                _ => {}
-            }
-        }
-        if !changed {
-            break;
-        }
-    }
-    if edges.iter().any(|(x, _)| !side.contains_key(x)) {
-        return Err(b.invalid(key.to_string(), format!("group \"{name}\" is made of pieces between unrelated bodies: give each piece its own contact group")));
-    }
-    let mut sides = [Vec::new(), Vec::new()];
-    for (&body, &sd) in &side {
-        sides[sd].push(body);
-    }
-    sides[0].sort_unstable();
-    sides[1].sort_unstable();
-    Ok(sides)
-}
 
-/// The rim of a contact group and what lies inside it, as keys: on a curve
-/// its points `(n, n)`, on a surface its edges `(corner, corner)` ascending.
-/// The rim is a curve's two ends, or a surface's edges that only one facet
-/// has; inside is every other point or edge. Where contacts meet, a
-/// contact whose rim lies inside another (a joint ending on a base) cedes
-/// the nodes of that part of its rim: they are paired by the other one.
-struct Rim {
-    /// Each rim key with its nodes (a surface edge's middle node included).
-    rim: Vec<((usize, usize), Vec<usize>)>,
-    inside: HashSet<(usize, usize)>,
-}
-
-impl Rim {
-    fn new(facets: &[Cell]) -> Rim {
-        let mut count: HashMap<(usize, usize), (usize, Vec<usize>)> = HashMap::new();
-        for f in facets {
-            if f.kind.dim() == 1 {
-                // a curve: its corners count their facets, its middle nodes are inside
-                for &n in &f.nodes[..2] {
-                    count.entry((n, n)).or_insert((0, vec![n])).0 += 1;
-                }
-                for &n in &f.nodes[2..] {
-                    count.entry((n, n)).or_insert((0, vec![n])).0 += 2;
-                }
+    // 3. Blocks, and one model node per fan at every node of a cut.
+    let block = topo.blocks(&cut);
+    let mut coords = mesh.coords.clone();
+    let mut mesh_node: Vec<usize> = (0..coords.len()).collect();
+    let mut cells: Vec<Cell> = topo.cells.iter().map(|c| (*c).clone()).collect();
+    let mut done: HashSet<usize> = HashSet::new();
+    for ci in 0..spec.contacts.len() {
+        let mut nodes: Vec<usize> = shared.iter().filter(|s| s.0 == ci).flat_map(|s| s.1.nodes.iter().copied()).collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        for n in nodes {
+            if !done.insert(n) {
                 continue;
             }
-            for e in f.kind.facet_edges() {
-                let (a, b) = (f.nodes[e[1]], f.nodes[e[2]]);
-                let mut nodes = vec![a, b];
-                if e[0] != usize::MAX {
-                    nodes.push(f.nodes[e[0]]);
+            for fan in topo.fans(n, &cut).iter().skip(1) {
+                let m = coords.len();
+                coords.push(mesh.coords[n]);
+                mesh_node.push(n);
+                for &c in fan {
+                    for x in cells[c].nodes.iter_mut().filter(|x| **x == n) {
+                        *x = m;
+                    }
                 }
-                count.entry((a.min(b), a.max(b))).or_insert((0, nodes)).0 += 1;
             }
         }
-        let mut rim = Vec::new();
-        let mut inside = HashSet::new();
-        for (key, (n, nodes)) in count {
-            if n == 1 {
-                rim.push((key, nodes));
-            } else {
-                inside.insert(key);
+    }
+    let node_in = |c: usize, n: usize| -> usize {
+        let at = topo.cells[c].nodes.iter().position(|&x| x == n).expect("the node is in the cell");
+        cells[c].nodes[at]
+    };
+
+    // 4. Side I of every facet.
+    let normal_of = |f: &Cell, c: usize| -> ([f64; 3], f64) {
+        let fc: Vec<[f64; 3]> = f.nodes.iter().map(|&n| mesh.coords[n]).collect();
+        let cc: Vec<[f64; 3]> = topo.cells[c].nodes.iter().map(|&n| mesh.coords[n]).collect();
+        let sign = element::outward_sign(f.kind, &fc, topo.cells[c].kind, &cc);
+        let (_, n, da, _) = element::facet_point(f.kind, &fc, shape::reference_centre(f.kind));
+        ([sign * n[0], sign * n[1], sign * n[2]], da)
+    };
+    // within a body: the normals the two blocks share in a contact, outward of the lower block
+    let mut between: HashMap<(usize, usize, usize), ([f64; 3], f64)> = HashMap::new();
+    for (i, &(ci, f)) in shared.iter().enumerate() {
+        let [x, y] = cells_of[i];
+        if topo.body[x] == topo.body[y] && block[x] != block[y] {
+            let low = if block[x] < block[y] { x } else { y };
+            let (n, da) = normal_of(f, low);
+            let e = between.entry((ci, block[x].min(block[y]), block[x].max(block[y]))).or_insert(([0.0; 3], 0.0));
+            for d in 0..3 {
+                e.0[d] += n[d] * da;
+            }
+            e.1 += da;
+        }
+    }
+    let side_i = |i: usize| -> [usize; 2] {
+        let (ci, f) = shared[i];
+        let [x, y] = cells_of[i];
+        if topo.body[x] != topo.body[y] {
+            return if topo.body[x] < topo.body[y] { [x, y] } else { [y, x] };
+        }
+        let (low, high) = if block[x] <= block[y] { (x, y) } else { (y, x) };
+        let n = match between.get(&(ci, block[low], block[high])) {
+            Some(&(n, area)) if element::norm(n) > 1e-6 * area => n,
+            // one block on both sides (a joint that ends inside it), or two
+            // blocks whose shared facets close around: this facet's own normal
+            _ => normal_of(f, low).0,
+        };
+        if points_up(n) {
+            [low, high]
+        } else {
+            [high, low]
+        }
+    };
+
+    // 5. Interfaces and the facets' shares of pairs (k, l) at each node.
+    let mut interfaces: Vec<Interface> = Vec::with_capacity(spec.contacts.len());
+    let mut signs: Vec<Vec<f64>> = Vec::with_capacity(spec.contacts.len());
+    let mut shares: Vec<((usize, usize, usize), Vec<(Share, [f64; 3])>)> = Vec::new();
+    let mut share_of: HashMap<(usize, usize, usize), usize> = HashMap::new();
+    let mut add_share = |key: (usize, usize, usize), share: Share, n: [f64; 3]| {
+        let at = *share_of.entry(key).or_insert_with(|| {
+            shares.push((key, Vec::new()));
+            shares.len() - 1
+        });
+        shares[at].1.push((share, n));
+    };
+    for (ci, c) in spec.contacts.iter().enumerate() {
+        let mut iface = Interface { name: String::new(), body_i: 0, body_ii: 0, side_i: Vec::new(), facets: Vec::new(), sides: Vec::new() };
+        let mut sg = Vec::new();
+        match &c.groups {
+            ContactGroups::Shared(name) => {
+                iface.name = name.clone();
+                for (i, &(fci, f)) in shared.iter().enumerate() {
+                    if fci != ci {
+                        continue;
+                    }
+                    let [ca, cb] = side_i(i);
+                    let (n, _) = normal_of(f, ca);
+                    let fid = iface.facets.len();
+                    let mut fi = f.clone();
+                    for (j, x) in fi.nodes.iter_mut().enumerate() {
+                        let (k, l) = (node_in(ca, f.nodes[j]), node_in(cb, f.nodes[j]));
+                        *x = k;
+                        if k != l {
+                            add_share((ci, k, l), Share { facet: fid, node: j }, n);
+                        }
+                    }
+                    iface.facets.push(fi);
+                    iface.sides.push([block[ca], block[cb]]);
+                    sg.push(facet_sign(&coords, &iface.facets[fid], &cells[ca]));
+                }
+            }
+            ContactGroups::Pair(na, nb) => {
+                let ka = format!("{}.groups[0]", c.key);
+                let kb = format!("{}.groups[1]", c.key);
+                let ga = b.group(&ka, na, &[sd - 1])?;
+                let gb = b.group(&kb, nb, &[sd - 1])?;
+                let sa = one_side(b, topo, &block, &ka, na, &ga.cells)?;
+                let sb = one_side(b, topo, &block, &kb, nb, &gb.cells)?;
+                if block[sa[0]] == block[sb[0]] {
+                    return Err(b.invalid(
+                        format!("{}.groups", c.key),
+                        format!(
+                            "both \"{na}\" and \"{nb}\" bound {}: a contact between a body and itself is not supported; split the body into two physical groups",
+                            describe_cell(b, topo, &block, sa[0])
+                        ),
+                    ));
+                }
+                let ((gi, ci_cells), (gii, cii_cells)) = if block[sa[0]] < block[sb[0]] { ((ga, sa), (gb, sb)) } else { ((gb, sb), (ga, sa)) };
+                // each side's mesh nodes in its own cells' model nodes
+                let side_map = |facets: &[Cell], owners: &[usize]| -> HashMap<usize, usize> {
+                    let mut map = HashMap::new();
+                    for (f, &c) in facets.iter().zip(owners) {
+                        for &n in &f.nodes {
+                            map.entry(n).or_insert_with(|| node_in(c, n));
+                        }
+                    }
+                    map
+                };
+                let (map_i, map_ii) = (side_map(&gi.cells, &ci_cells), side_map(&gii.cells, &cii_cells));
+                let pairs = pair_by_position(&mesh.coords, &gi.nodes(), &gii.nodes(), 1e-6 * size)
+                    .map_err(|msg| b.invalid(format!("{}.groups", c.key), format!("pairing the nodes of \"{}\" with those of \"{}\": {msg}", gi.name, gii.name)))?;
+                let partner: HashMap<usize, usize> = pairs.into_iter().collect();
+                iface.name = format!("{}|{}", gi.name, gii.name);
+                for (f, &ca) in gi.cells.iter().zip(&ci_cells) {
+                    let fid = iface.facets.len();
+                    let (n, _) = normal_of(f, ca);
+                    let mut fi = f.clone();
+                    for (j, x) in fi.nodes.iter_mut().enumerate() {
+                        let m = f.nodes[j];
+                        *x = map_i[&m];
+                        add_share((ci, map_i[&m], map_ii[&partner[&m]]), Share { facet: fid, node: j }, n);
+                    }
+                    sg.push(facet_sign(&coords, &fi, &cells[ca]));
+                    iface.facets.push(fi);
+                    iface.sides.push([block[ca], block[cii_cells[0]]]);
+                }
             }
         }
-        rim.sort_unstable();
-        Rim { rim, inside }
+        iface.body_i = iface.sides.first().map_or(0, |s| s[0]);
+        iface.body_ii = iface.sides.first().map_or(0, |s| s[1]);
+        iface.side_i = iface.sides.iter().map(|s| s[0]).collect();
+        iface.side_i.sort_unstable();
+        iface.side_i.dedup();
+        interfaces.push(iface);
+        signs.push(sg);
+    }
+
+    // 6. Pairs: the shares of each (contact, k, l), split at creases.
+    shares.sort_by_key(|((ci, k, l), _)| (*ci, mesh_node[*k], *k, *l));
+    let cos_crease = CREASE_ANGLE.to_radians().cos();
+    let mut pairs = Vec::new();
+    for ((ci, k, l), list) in shares {
+        let mut faces: Vec<([f64; 3], Vec<Share>)> = Vec::new();
+        for (share, n) in list {
+            match faces.iter_mut().find(|(sum, _)| element::dot(*sum, n) >= cos_crease * element::norm(*sum)) {
+                Some((sum, members)) => {
+                    for d in 0..3 {
+                        sum[d] += n[d];
+                    }
+                    members.push(share);
+                }
+                None => faces.push((n, vec![share])),
+            }
+        }
+        pairs.extend(faces.into_iter().map(|(_, shares)| RawPair { k, l, contact: ci, shares }));
+    }
+    Ok(Split { coords, mesh_node, cells, block, pairs, interfaces, signs })
+}
+
+/// Whether the normal n points along +x, +y or +z, whichever of the three
+/// axes it is closest to (ties to the first).
+fn points_up(n: [f64; 3]) -> bool {
+    let d = (0..3).fold(0, |best, d| if n[d].abs() > n[best].abs() { d } else { best });
+    n[d] > 0.0
+}
+
+/// The sign making `facet`'s natural normal outward for `cell` (model nodes).
+fn facet_sign(coords: &[[f64; 3]], facet: &Cell, cell: &Cell) -> f64 {
+    let fc: Vec<[f64; 3]> = facet.nodes.iter().map(|&n| coords[n]).collect();
+    let cc: Vec<[f64; 3]> = cell.nodes.iter().map(|&n| coords[n]).collect();
+    element::outward_sign(facet.kind, &fc, cell.kind, &cc)
+}
+
+/// The group name of contact `ci` (shared groups).
+fn group_name(spec: &super::ModelSpec, ci: usize) -> &str {
+    match &spec.contacts[ci].groups {
+        ContactGroups::Shared(n) => n,
+        ContactGroups::Pair(a, _) => a,
     }
 }
 
-/// The one body a group (one side of a `groups = [..]` contact) bounds.
-fn single_body(b: &Builder, key: &str, name: &str, nb: &[Vec<usize>], bodies: &[Body], facets: &[Cell]) -> Result<usize, ModelError> {
-    let mut found = None;
+/// "body "rock"", or "block 3 of body "rock" (centre at (x, y, z))" when
+/// the body is cut into blocks.
+fn describe_cell(b: &Builder, topo: &Topology, block: &[usize], c: usize) -> String {
+    let body = topo.body[c];
+    let name = &b.spec.bodies[body].group;
+    let of_body: Vec<usize> = (0..block.len()).filter(|&x| topo.body[x] == body).collect();
+    let first = of_body.iter().map(|&x| block[x]).min().unwrap_or(0);
+    if of_body.iter().all(|&x| block[x] == first) {
+        return format!("body \"{name}\"");
+    }
+    let nodes: Vec<usize> = of_body.iter().filter(|&&x| block[x] == block[c]).flat_map(|&x| topo.cells[x].nodes.iter().copied()).collect();
+    let centre: [f64; 3] = std::array::from_fn(|d| nodes.iter().map(|&n| b.mesh.coords[n][d]).sum::<f64>() / nodes.len().max(1) as f64);
+    format!("block {} of body \"{name}\" (centre at ({:.4}, {:.4}, {:.4}))", block[c] - first + 1, centre[0], centre[1], centre[2])
+}
+
+/// The message for a contact facet that bounds one cell: it names the body
+/// it bounds and the body nearest its other side, and when that body does
+/// not share its nodes, how to make the mesh conformal.
+fn touches_one(b: &Builder, topo: &Topology, key: &str, name: &str, f: &Cell, cell: usize) -> ModelError {
+    let mesh = b.mesh;
+    let body = topo.body[cell];
+    let nc = f.kind.n_corners();
+    let centre: [f64; 3] = std::array::from_fn(|d| f.nodes[..nc].iter().map(|&n| mesh.coords[n][d]).sum::<f64>() / nc as f64);
+    // the nearest node of another body
+    let mut nearest: Option<(f64, usize)> = None;
+    for (c, cl) in topo.cells.iter().enumerate() {
+        if topo.body[c] == body {
+            continue;
+        }
+        for &n in &cl.nodes {
+            let dist = element::norm(element::sub(mesh.coords[n], centre));
+            if nearest.is_none_or(|(best, _)| dist < best) {
+                nearest = Some((dist, topo.body[c]));
+            }
+        }
+    }
+    let own = &b.spec.bodies[body].group;
+    let hint = match nearest {
+        Some((dist, other)) => {
+            let size = f.nodes[..nc].iter().map(|&n| element::norm(element::sub(mesh.coords[n], centre))).fold(0.0, f64::max);
+            let other = &b.spec.bodies[other].group;
+            if dist < 2.0 * size {
+                format!(
+                    "; its other side lies against body \"{other}\" ({dist:.3e} away), which does not share its nodes: the two volumes were meshed apart. Make the mesh conformal (OpenCASCADE: BooleanFragments{{ Volume{{..}}; Delete; }}{{ Volume{{..}}; Delete; }}, or Coherence), or give each side its own group and pair them with groups = [..]"
+                )
+            } else {
+                format!("; the nearest other body is \"{other}\", {dist:.3e} away")
+            }
+        }
+        None => String::new(),
+    };
+    b.invalid(
+        key.to_string(),
+        format!(
+            "group \"{name}\" touches only body \"{own}\" (element {}){hint}. A contact needs a body on each side sharing the {} (group = ..), or two coincident groups (groups = [..])",
+            f.tag,
+            if f.kind.dim() == 1 { "curve" } else { "surface" }
+        ),
+    )
+}
+
+/// The one cell each facet of a `groups = [..]` side bounds; all in one block.
+fn one_side(b: &Builder, topo: &Topology, block: &[usize], key: &str, name: &str, facets: &[Cell]) -> Result<Vec<usize>, ModelError> {
+    let mut out = Vec::with_capacity(facets.len());
     for f in facets {
-        let owners = facet_bodies(nb, f);
-        match (owners.as_slice(), found) {
-            ([one], None) => found = Some(*one),
-            ([one], Some(prev)) if *one == prev => {}
-            _ => {
+        let cells = topo.bounding(f);
+        match cells.as_slice() {
+            [one] => {
+                if let Some(&first) = out.first() {
+                    if block[first] != block[*one] {
+                        return Err(b.invalid(
+                            key.to_string(),
+                            format!(
+                                "group \"{name}\" bounds {} and {}: with groups = [..] each group is the face of one body (or block)",
+                                describe_cell(b, topo, block, first),
+                                describe_cell(b, topo, block, *one)
+                            ),
+                        ));
+                    }
+                }
+                out.push(*one);
+            }
+            [] => return Err(b.invalid(key.to_string(), format!("element {} of group \"{name}\" is not a face of any element of the [[bodies]] groups", f.tag))),
+            [x, y, ..] => {
                 return Err(b.invalid(
                     key.to_string(),
                     format!(
-                        "element {} of group \"{name}\" must bound exactly one body (it bounds {}); with groups = [..] each group is the face of one body",
+                        "element {} of group \"{name}\" lies between {} and {}, which share its nodes: with groups = [..] each group is the face of one body. For a surface the two bodies share, use group = \"{name}\" instead",
                         f.tag,
-                        if owners.is_empty() { "none".to_string() } else { owners.iter().map(|&o| format!("\"{}\"", bodies[o].name)).collect::<Vec<_>>().join(", ") }
+                        describe_cell(b, topo, block, *x),
+                        describe_cell(b, topo, block, *y)
                     ),
                 ))
             }
         }
     }
-    found.ok_or_else(|| b.invalid(key.to_string(), format!("group \"{name}\" has no elements")))
+    Ok(out)
 }
 
 /// Pairs every node of `a` with the one node of `b` within `tol`; error when
@@ -354,5 +496,13 @@ mod tests {
         coords[5][0] += 0.05;
         let err = pair_by_position(&coords, &[0, 1, 2, 3, 4], &[5, 6, 7, 8, 9], 1e-6 * 2.0).unwrap_err();
         assert!(err.contains("no partner"), "{err}");
+    }
+
+    #[test]
+    fn side_i_is_the_low_side() {
+        assert!(points_up([0.0, 0.0, 1.0]));
+        assert!(!points_up([0.1, 0.0, -1.0]));
+        assert!(points_up([0.7, -0.69, 0.0]));
+        assert!(!points_up([-0.7, 0.69, 0.0]));
     }
 }

@@ -5,32 +5,37 @@
 //! may not notice, so it is caught here with a message naming the bodies and
 //! the motion.
 
-use super::build::Builder;
-use super::{Body, Interface, ModelError};
+use super::builder::Builder;
+use super::topology::UnionFind;
+use super::{Body, ModelError};
 use crate::fem::element::dofs_per_node;
 use crate::fem::rigid::{self, RigidModes};
 
 /// Fails naming the bodies and the motion when some rigid-body motion of a
-/// cluster of bodies is stopped by no prescribed DOF.
-pub(super) fn check_held(b: &Builder, coords: &[[f64; 3]], bodies: &[Body], nb: &[Vec<usize>], interfaces: &[Interface], prescribed: &[Option<f64>]) -> Result<(), ModelError> {
+/// cluster of bodies is stopped by no prescribed DOF. Bodies sharing a
+/// model node, or joined by a contact pair `links` (k, l), are one cluster.
+pub(super) fn check_held(b: &Builder, coords: &[[f64; 3]], bodies: &[Body], links: &[(usize, usize)], prescribed: &[Option<f64>]) -> Result<(), ModelError> {
     let analysis = b.spec.analysis;
     let nd = dofs_per_node(analysis);
-    let mut parent: Vec<usize> = (0..bodies.len()).collect();
-    fn root(parent: &mut [usize], mut i: usize) -> usize {
-        while parent[i] != i {
-            parent[i] = parent[parent[i]];
-            i = parent[i];
+    let mut body_of = vec![usize::MAX; coords.len()];
+    let mut sets = UnionFind::new(bodies.len());
+    for (i, body) in bodies.iter().enumerate() {
+        for &n in body.cells.iter().flat_map(|c| &c.nodes) {
+            if body_of[n] == usize::MAX {
+                body_of[n] = i;
+            } else {
+                sets.join(body_of[n], i);
+            }
         }
-        i
     }
-    let links = nb.iter().flat_map(|v| v.windows(2).map(|w| (w[0], w[1]))).chain(interfaces.iter().map(|i| (i.body_i, i.body_ii)));
-    for (p, q) in links.collect::<Vec<_>>() {
-        let (rp, rq) = (root(&mut parent, p), root(&mut parent, q));
-        parent[rp] = rq;
+    for &(k, l) in links {
+        if body_of[k] != usize::MAX && body_of[l] != usize::MAX {
+            sets.join(body_of[k], body_of[l]);
+        }
     }
     let names = rigid::names(analysis);
     for r in 0..bodies.len() {
-        let members: Vec<usize> = (0..bodies.len()).filter(|&i| root(&mut parent, i) == r).collect();
+        let members: Vec<usize> = (0..bodies.len()).filter(|&i| sets.root(i) == r).collect();
         if members.is_empty() {
             continue;
         }
@@ -61,7 +66,7 @@ pub(super) fn check_held(b: &Builder, coords: &[[f64; 3]], bodies: &[Body], nb: 
                 format!(
                     "{} {} not held: no support stops {} {} (contacts counted as closed), so the stiffness matrix is singular. Add a support that stops it (fix = [..] on a physical point, curve or surface)",
                     if one { "body" } else { "bodies" },
-                    members.iter().map(|&i| format!("\"{}\"", bodies[i].name)).collect::<Vec<_>>().join(", "),
+                    members.iter().map(|&i| bodies[i].label()).collect::<Vec<_>>().join(", "),
                     if one { "its" } else { "their" },
                     free.join(", ")
                 ),

@@ -1,27 +1,38 @@
 //! The mechanical model built from a mesh and its description ([`ModelSpec`]): bodies with their
 //! cells, boundary loads on facets, supports, and contact pairs.
 //!
-//! Contact splitting: a node on a contact group gets one copy per body that
-//! uses it (the first body keeps the mesh node, the others get new model
-//! nodes at the same place), so the two sides of a contact can move apart.
-//! With `groups = [a, b]` the two sides already have their own nodes, which
-//! are paired by position. Pairs are ordered (k on body I, l on body II),
-//! body I being the one listed first in `[[bodies]]`.
+//! Blocks: a body group may hold many volumes, and the contact groups'
+//! facets cut it into blocks (connected pieces between contact facets).
+//! Every block is a [`Body`] of the model, and a part of its own for the
+//! condensation: a rock mass of 500 blocks is one `[[bodies]]` entry.
+//!
+//! Contact splitting: a node of a contact facet gets one copy per fan of
+//! cells around it (the first keeps the mesh node, the others get new model
+//! nodes at the same place), so the sides of a contact can move apart, and
+//! where contacts cross every block keeps its own copy. Pairs follow the
+//! facets, so one copy can be in several pairs. With `groups = [a, b]` the
+//! two sides already have their own nodes, which are paired by position.
+//! Which side is I is written once, in contacts.rs.
 //!
 //! Everything else (loads, supports) refers to mesh nodes; loads are moved to
-//! the copy of the body the loaded facet bounds, supports hold every copy.
+//! the copy of the cell the loaded facet bounds, supports hold the copies of
+//! the cells their facets bound (a point support every copy).
 //!
-//! [`Model::build`] (build.rs) takes the steps in order: bodies, contacts,
-//! supports, the rigid-motion check, loads, pair normals and areas. The
-//! contact split, the node pairing and the junctions of contacts are in
-//! contacts.rs; the check that every rigid-body motion is held in held.rs.
+//! [`Model::build`] (build.rs) takes the steps in order: bodies, contacts
+//! (topology.rs: blocks and fans; contacts.rs: the split and the pairs),
+//! supports, the rigid-motion check (held.rs), loads, pair normals and
+//! areas. builder.rs holds what every step reads and its messages.
 //! What the built model makes legal but a user may not mean (bodies bonded
 //! by shared nodes without a contact) is in warnings.rs.
 
 mod build;
+mod builder;
 mod contacts;
 mod held;
 mod spec;
+mod topology;
+
+pub use contacts::CREASE_ANGLE;
 pub mod warnings;
 
 pub use spec::{BodySpec, ContactGroups, ContactSpec, InitialStress, LoadKind, LoadSpec, ModelSpec, SupportSpec};
@@ -29,16 +40,31 @@ pub use spec::{BodySpec, ContactGroups, ContactSpec, InitialStress, LoadKind, Lo
 use crate::fem::Analysis;
 use crate::mesh::Cell;
 
-/// A body of the model: cells in model node numbering.
+/// A body of the model (a block of a `[[bodies]]` entry): cells in model
+/// node numbering.
 #[derive(Clone, Debug)]
 pub struct Body {
+    /// The body group's name.
     pub name: String,
+    /// Its `[[bodies]]` entry, and when the group's contact facets cut it
+    /// into several blocks: which, of how many, and where (the mean of its
+    /// cells' nodes), to name it in messages.
+    pub group: usize,
+    pub block: Option<Block>,
     pub e: f64,
     pub nu: f64,
     pub density: f64,
     pub cells: Vec<Cell>,
     /// In-situ stress the body carries before any load.
     pub initial: Option<InitialStress>,
+}
+
+/// Where a block sits in its body group.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Block {
+    pub index: usize,
+    pub of: usize,
+    pub centre: [f64; 3],
 }
 
 /// A load on one boundary facet of one body.
@@ -67,18 +93,24 @@ pub struct Pair {
     /// Area the pair controls, `∫ N_k dA` over the facets of body I (with
     /// thickness or 2 pi r as for every other integral).
     pub area: f64,
+    /// The facets it takes its normal and area from: (index in its
+    /// interface's `facets`, position of k in that facet).
+    pub shares: Vec<(usize, usize)>,
 }
 
-/// One contact surface: the two bodies and the facets on body I's side.
+/// One contact group: its facets, each between two bodies (blocks).
 #[derive(Clone, Debug)]
 pub struct Interface {
     pub name: String,
-    /// A body of each side (the first listed).
+    /// The bodies of the first facet's two sides.
     pub body_i: usize,
     pub body_ii: usize,
-    /// Every body on side I (a shared group may join several bodies to one).
+    /// Every body on side I of some facet, ascending.
     pub side_i: Vec<usize>,
+    /// The facets, in side I's model nodes.
     pub facets: Vec<Cell>,
+    /// (body I, body II) of each facet.
+    pub sides: Vec<[usize; 2]>,
 }
 
 #[derive(Clone, Debug)]
@@ -109,6 +141,17 @@ pub struct Model {
 }
 
 impl Body {
+    /// `"rock"`, or `"rock" block 3 of 8` for a block of a group cut into several.
+    pub fn label(&self) -> String {
+        match self.block {
+            None => format!("\"{}\"", self.name),
+            Some(b) => {
+                let c = b.centre;
+                format!("\"{}\" block {} of {} (centre at ({:.4}, {:.4}, {:.4}))", self.name, b.index + 1, b.of, c[0], c[1], c[2])
+            }
+        }
+    }
+
     /// The initial stress at x (zero without one).
     pub fn initial_at(&self, x: [f64; 3], analysis: Analysis, gravity: [f64; 3]) -> [f64; 6] {
         self.initial.map_or([0.0; 6], |i| i.at(x, analysis, self.density, gravity))
@@ -134,8 +177,33 @@ impl Model {
         self.coords.len()
     }
 
+    /// The pair at every node of every interface facet (`[interface][facet][node]`),
+    /// `usize::MAX` where the node is in no pair (the tip of a joint ending
+    /// inside a body).
+    pub fn facet_pairs(&self) -> Vec<Vec<Vec<usize>>> {
+        let mut out: Vec<Vec<Vec<usize>>> = self.interfaces.iter().map(|i| i.facets.iter().map(|f| vec![usize::MAX; f.nodes.len()]).collect()).collect();
+        for (p, pair) in self.pairs.iter().enumerate() {
+            for &(f, a) in &pair.shares {
+                out[pair.contact][f][a] = p;
+            }
+        }
+        out
+    }
+
+    /// The body of every model node (the first that has it; `usize::MAX`
+    /// for a node of no body).
+    pub fn body_of_node(&self) -> Vec<usize> {
+        let mut out = vec![usize::MAX; self.n_nodes()];
+        for (b, body) in self.bodies.iter().enumerate().rev() {
+            for &n in body.cells.iter().flat_map(|c| &c.nodes) {
+                out[n] = b;
+            }
+        }
+        out
+    }
+
     /// Names of the bodies, for messages.
     pub fn body_names(&self, ids: &[usize]) -> String {
-        ids.iter().map(|&b| format!("\"{}\"", self.bodies[b].name)).collect::<Vec<_>>().join(", ")
+        ids.iter().map(|&b| self.bodies[b].label()).collect::<Vec<_>>().join(", ")
     }
 }

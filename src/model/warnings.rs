@@ -73,14 +73,14 @@ mod tests {
     use crate::model::{Body, Pair};
 
     fn body(name: &str, cells: &[[usize; 3]]) -> Body {
-        Body { name: name.into(), e: 1.0, nu: 0.2, density: 0.0, cells: cells.iter().map(|n| Cell { kind: CellKind::Tri3, nodes: n.to_vec(), tag: 0 }).collect(), initial: None }
+        Body { name: name.into(), group: 0, block: None, e: 1.0, nu: 0.2, density: 0.0, cells: cells.iter().map(|n| Cell { kind: CellKind::Tri3, nodes: n.to_vec(), tag: 0 }).collect(), initial: None }
     }
 
     /// Three triangles in a row: a and b share the edge 1-2, b and c the
     /// edge 3-4 (nodes 3, 4 copied to 5, 6 for c) with a pair on each of its
     /// nodes.
     fn model(pairs: bool) -> Model {
-        let pair = |k, l| Pair { k, l, contact: 0, normal: [1.0, 0.0, 0.0], area: 1.0 };
+        let pair = |k, l| Pair { k, l, contact: 0, normal: [1.0, 0.0, 0.0], area: 1.0, shares: Vec::new() };
         Model {
             scene: "row.toml".into(),
             analysis: Analysis::PlaneStrain,

@@ -127,6 +127,7 @@ fn bodies_vtu(model: &Model, u: &[f64], stresses: &[BodyStress], displacement: b
     let mut vm = Vec::new();
     let mut cells = Vec::new();
     let mut body_id = Vec::new();
+    let mut block_id = Vec::new();
     let mut local = vec![usize::MAX; model.n_nodes()];
     for (b, body) in model.bodies.iter().enumerate() {
         let base = points.len();
@@ -149,7 +150,8 @@ fn bodies_vtu(model: &Model, u: &[f64], stresses: &[BodyStress], displacement: b
         }
         for c in &body.cells {
             cells.push(Cell { kind: c.kind, nodes: c.nodes.iter().map(|&n| local[n]).collect(), tag: c.tag });
-            body_id.push(b as i32);
+            body_id.push(body.group as i32);
+            block_id.push(b as i32);
         }
     }
     let mut point_data = Vec::new();
@@ -160,7 +162,7 @@ fn bodies_vtu(model: &Model, u: &[f64], stresses: &[BodyStress], displacement: b
         point_data.push(Field { name: "stress", n_comp: 6, values: &stress });
         point_data.push(Field { name: "von_mises", n_comp: 1, values: &vm });
     }
-    Ok(vtu::vtu_bytes(&points, &cells, &point_data, &[], &[IntField { name: "body", values: &body_id }])?)
+    Ok(vtu::vtu_bytes(&points, &cells, &point_data, &[], &[IntField { name: "body", values: &body_id }, IntField { name: "block", values: &block_id }])?)
 }
 
 /// The interfaces, as body I's facets, with the pair values at their
@@ -232,12 +234,14 @@ fn contact_vtu(model: &Model, c: &ContactRun) -> Result<Vec<u8>> {
 
 /// One row per contact pair: position, state and the pair's values.
 fn contact_csv(model: &Model, c: &ContactRun) -> String {
-    let mut s = String::from("pair,x,y,z,status,sigma_n,tau_t,tau_b,gap,slip,area,tau_x,tau_y,tau_z\n");
+    let body = model.body_of_node();
+    let mut s = String::from("pair,x,y,z,status,sigma_n,tau_t,tau_b,gap,slip,area,tau_x,tau_y,tau_z,n_x,n_y,n_z,contact,block_i,block_ii\n");
     for (i, (p, r)) in model.pairs.iter().zip(&c.pairs).enumerate() {
         let x = model.coords[p.k];
         let t = c.shear(i);
+        let n = c.frames[i][0];
         s += &format!(
-            "{i},{:.12e},{:.12e},{:.12e},{},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e}\n",
+            "{i},{:.12e},{:.12e},{:.12e},{},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{},{},{}\n",
             x[0],
             x[1],
             x[2],
@@ -250,10 +254,25 @@ fn contact_csv(model: &Model, c: &ContactRun) -> String {
             c.areas[i],
             t[0],
             t[1],
-            t[2]
+            t[2],
+            n[0],
+            n[1],
+            n[2],
+            csv_field(&model.interfaces[p.contact].name),
+            body[p.k],
+            body[p.l]
         );
     }
     s
+}
+
+/// A CSV field: quoted when it holds a comma or a quote.
+fn csv_field(v: &str) -> String {
+    if v.contains([',', '"', '\n']) {
+        format!("\"{}\"", v.replace('"', "\"\""))
+    } else {
+        v.to_string()
+    }
 }
 
 /// One row per probe point.

@@ -57,6 +57,10 @@ impl Ordering {
 /// equation `e` (any ids below `node_of.len()`): nested dissection orders
 /// the nodes and keeps each node's equations together.
 pub fn interior(k: &SymMatrix, ni: usize, node_of: &[usize], ordering: Ordering) -> Result<Vec<usize>, FactorError> {
+    if ni == 0 {
+        // a block whose every node is on its interface (one element between joints)
+        return Ok(Vec::new());
+    }
     match ordering {
         Ordering::Amd => amd_order(k, ni),
         Ordering::NestedDissection => nested_dissection(k, ni, node_of),

@@ -55,9 +55,6 @@ impl PartialCholesky {
     /// parallelism of the numeric factorisation.
     pub fn factor(k: &SymMatrix, ni: usize, node_of: &[usize], ordering: Ordering, par: Par) -> Result<PartialCholesky, FactorError> {
         let n = k.n;
-        if ni == 0 {
-            return Err(FactorError::NotPositiveDefinite);
-        }
         let resource = |e: &dyn std::fmt::Debug| FactorError::Resource(format!("{e:?}"));
         let mut fwd = ordering::interior(k, ni, node_of, ordering)?;
         fwd.extend(ni..n);

@@ -72,7 +72,7 @@ fn two_body_model() -> Model {
     let right = Cell { kind: CellKind::Line2, nodes: vec![first1 + 1, first1 + 3], tag: 900 };
     let right2 = Cell { kind: CellKind::Line2, nodes: vec![first1 + 3, first1 + 5], tag: 901 };
     let loads = [right, right2].into_iter().map(|cell| FacetLoad { cell, sign: 1.0, kind: LoadKind::Traction([0.7, -0.3, 0.0]), body: 1, element: 0, case: 0 }).collect();
-    let pairs = iface0.iter().zip(&iface1).map(|(&k, &l)| Pair { k, l, contact: 0, normal: [1.0, 0.0, 0.0], area: 0.5 }).collect();
+    let pairs = iface0.iter().zip(&iface1).map(|(&k, &l)| Pair { k, l, contact: 0, normal: [1.0, 0.0, 0.0], area: 0.5, shares: Vec::new() }).collect();
     Model {
         scene: "two_body_model".into(),
         analysis: Analysis::PlaneStrain,
@@ -82,13 +82,13 @@ fn two_body_model() -> Model {
         mesh_node: (0..n).collect(),
         coords,
         bodies: vec![
-            Body { name: "left".into(), e: 1000.0, nu: 0.3, density: 0.02, cells: quads(0, 2, ny, 1), initial: None },
-            Body { name: "right".into(), e: 3000.0, nu: 0.2, density: 0.01, cells: quads(first1, 1, ny, 100), initial: None },
+            Body { name: "left".into(), group: 0, block: None, e: 1000.0, nu: 0.3, density: 0.02, cells: quads(0, 2, ny, 1), initial: None },
+            Body { name: "right".into(), group: 0, block: None, e: 3000.0, nu: 0.2, density: 0.01, cells: quads(first1, 1, ny, 100), initial: None },
         ],
         loads,
         prescribed,
         pairs,
-        interfaces: vec![Interface { name: "cut".into(), body_i: 0, body_ii: 1, side_i: vec![0], facets: Vec::new() }],
+        interfaces: vec![Interface { name: "cut".into(), body_i: 0, body_ii: 1, side_i: vec![0], facets: Vec::new(), sides: Vec::new() }],
         cases: vec![vec![1.0], vec![1.0]],
         gravity_case: 0,
         initial_case: 1,
@@ -267,7 +267,7 @@ fn stacked_blocks(m: usize, h: usize) -> Model {
                 }
             }
         }
-        bodies.push(Body { name: format!("block{b}"), e: 1000.0 * (b + 1) as f64, nu: 0.25, density: 0.01, cells, initial: None });
+        bodies.push(Body { name: format!("block{b}"), group: b, block: None, e: 1000.0 * (b + 1) as f64, nu: 0.25, density: 0.01, cells, initial: None });
     }
     let n = coords.len();
     let per = nx * nx * nz;
@@ -277,7 +277,7 @@ fn stacked_blocks(m: usize, h: usize) -> Model {
             prescribed[q * 3 + c] = Some(0.0); // the lower base
         }
     }
-    let pairs = (0..nx * nx).map(|q| Pair { k: h * nx * nx + q, l: per + q, contact: 0, normal: [0.0, 0.0, 1.0], area: 1.0 }).collect();
+    let pairs = (0..nx * nx).map(|q| Pair { k: h * nx * nx + q, l: per + q, contact: 0, normal: [0.0, 0.0, 1.0], area: 1.0, shares: Vec::new() }).collect();
     Model {
         scene: "stacked_blocks".into(),
         analysis: Analysis::Solid,
@@ -290,7 +290,7 @@ fn stacked_blocks(m: usize, h: usize) -> Model {
         loads: Vec::new(),
         prescribed,
         pairs,
-        interfaces: vec![Interface { name: "joint".into(), body_i: 0, body_ii: 1, side_i: vec![0], facets: Vec::new() }],
+        interfaces: vec![Interface { name: "joint".into(), body_i: 0, body_ii: 1, side_i: vec![0], facets: Vec::new(), sides: Vec::new() }],
         cases: vec![vec![1.0], vec![1.0]],
         gravity_case: 0,
         initial_case: 1,

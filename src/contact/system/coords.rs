@@ -52,6 +52,7 @@ pub enum Var {
 }
 
 /// `d'` of one side as `sum c var + const * ramp` (at most two terms).
+#[derive(Clone, Debug)]
 pub struct Terms {
     pub vars: [(Var, f64); 2],
     pub n: usize,
@@ -85,35 +86,28 @@ impl Axis {
     }
 }
 
-/// Numbers the unknowns of every pair axis from the prescribed local values
-/// of its two sides; returns the axes and the counts of means and relative
-/// displacements.
-pub fn number(fixed: &[[[Option<f64>; 3]; 2]], nd: usize) -> (Vec<[Axis; 3]>, usize, usize) {
-    let (mut nm, mut nr) = (0, 0);
-    let axes = fixed
-        .iter()
-        .map(|fx| {
-            std::array::from_fn(|a| {
-                if a >= nd {
-                    return Axis::Absent;
-                }
-                let mut r = || {
-                    nr += 1;
-                    nr - 1
-                };
-                match (fx[0][a], fx[1][a]) {
-                    (None, None) => {
-                        nm += 1;
-                        Axis::Free { m: nm - 1, r: r() }
-                    }
-                    (Some(v), None) => Axis::HeldK { r: r(), v },
-                    (None, Some(v)) => Axis::HeldL { r: r(), v },
-                    (Some(vk), Some(vl)) => Axis::Held { vk, vl },
-                }
-            })
-        })
-        .collect();
-    (axes, nm, nr)
+/// Numbers the unknowns of one pair's axes from the prescribed local
+/// values of its two sides (per unit ramp), counting on from `nm` means and
+/// `nr` relative displacements.
+pub fn number_pair(fx: &[[Option<f64>; 3]; 2], nd: usize, nm: &mut usize, nr: &mut usize) -> [Axis; 3] {
+    std::array::from_fn(|a| {
+        if a >= nd {
+            return Axis::Absent;
+        }
+        let mut r = || {
+            *nr += 1;
+            *nr - 1
+        };
+        match (fx[0][a], fx[1][a]) {
+            (None, None) => {
+                *nm += 1;
+                Axis::Free { m: *nm - 1, r: r() }
+            }
+            (Some(v), None) => Axis::HeldK { r: r(), v },
+            (None, Some(v)) => Axis::HeldL { r: r(), v },
+            (Some(vk), Some(vl)) => Axis::Held { vk, vl },
+        }
+    })
 }
 
 /// `T A T^T` in place for a dense column-major `nc x nc` matrix whose

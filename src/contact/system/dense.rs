@@ -2,10 +2,12 @@
 //! relative displacements ([`super::reduce`]: `W r - c = -λ`; the bonded
 //! joins of substructures eliminated first by a sparse factorisation when
 //! they outnumber the contact unknowns, [`super::joins`]), and each set of
-//! pair relations solved densely in its free relative displacements: a
-//! Cholesky factorisation of `W_ff` when every relation is symmetric, LU
-//! where the friction law's linearisation couples a slipping row to the
-//! pair's normal force.
+//! pair relations solved densely in its free directions ([`super::Freedom`]:
+//! a lone pair's free axis, a junction's null space), `r = r0 + Z y`,
+//! `Z^T (W r - c + friction) = 0`: a Cholesky factorisation when every
+//! relation is symmetric, LU where the friction law's linearisation couples
+//! a slipping row to the pair's normal force. Without junctions `Z^T W Z`
+//! is the rows of W the state set leaves free, as in the paper.
 
 use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
@@ -14,9 +16,8 @@ use super::coords::{self, Axis, Blocks};
 use super::joins::{self, JoinElimination, SparseBlocks};
 use super::layout::Layout;
 use super::reduce::{NotHeld, Reduced};
-use super::{Answer, Relation, Solver};
+use super::{Answer, Freedom, Solver};
 use crate::contact::law::ContactState;
-use crate::fem::sparse::NONE;
 use crate::substructure::{OperatorRef, SchurRef};
 
 /// The interface reduced to the relative displacements; see the module header.
@@ -34,7 +35,7 @@ impl Dense {
         let nj = nm - nm_pairs;
         let cases = parts.iter().map(|p| p.g.len()).max().unwrap_or(1);
         let (blocks, joined) = if joins::worth_it(nj, nm_pairs, nr) {
-            let cliques: Vec<Vec<coords::Terms>> = parts.iter().zip(&layout.parts).map(|(p, map)| layout.terms_of(p.nc, map)).collect();
+            let cliques: Vec<Vec<coords::Terms>> = layout.parts.iter().map(|map| layout.terms_of(map)).collect();
             let mut node_of = vec![0; nj];
             for (j, axes) in layout.joins.iter().enumerate() {
                 for a in axes {
@@ -56,7 +57,7 @@ impl Dense {
             let mut blocks = Blocks::zeros(nm, nr, cases);
             for (part, map) in parts.iter().zip(&layout.parts) {
                 if let Some(s) = dense_s(part) {
-                    blocks.add_part(s, part.g, nd, &layout.terms_of(part.nc, map), &layout.frames_of(map), &map.edges);
+                    blocks.add_part(s, part.g, nd, &layout.terms_of(map), &layout.frames_of(map), &map.edges);
                 }
             }
             (blocks, None)
@@ -66,12 +67,11 @@ impl Dense {
 }
 
 impl Solver for Dense {
-    fn solve(&self, axes: &[[Axis; 3]], rel: &[Relation], lambda: &[f64]) -> Option<Answer> {
+    fn solve(&self, fr: &Freedom, _states: &[ContactState], lambda: &[f64]) -> Option<Answer> {
         let reduced = &self.reduced;
         let c = reduced.c_at(lambda);
-        let (mut r, free) = tied(axes, rel, reduced.w.nrows());
-        let (wf, rhs, fidx, symmetric) = free_system(reduced, axes, rel, &c, &r, &free);
-        let nf = fidx.len();
+        let (wf, rhs, symmetric) = free_system(reduced, fr, &c);
+        let nf = fr.cols.len();
         let z = if nf == 0 {
             Mat::<f64>::zeros(0, 1)
         } else if symmetric {
@@ -93,8 +93,11 @@ impl Solver for Dense {
         if residual > 1e-6 {
             return None;
         }
-        for (f, &i) in fidx.iter().enumerate() {
-            r[i] = z[(f, 0)];
+        let mut r = fr.r0.clone();
+        for (f, col) in fr.cols.iter().enumerate() {
+            for &(i, zi) in col {
+                r[i] += zi * z[(f, 0)];
+            }
         }
         let residual_r = reduced.residual(&r, &c);
         let mut m = reduced.means(&r, lambda);
@@ -114,76 +117,68 @@ impl Solver for Dense {
     }
 }
 
-/// The relative displacements tied by the relations (their values) and
-/// which ones are free.
-fn tied(axes: &[[Axis; 3]], rel: &[Relation], nr: usize) -> (Vec<f64>, Vec<bool>) {
-    let mut r = vec![0.0; nr];
-    let mut free = vec![true; nr];
-    for (p, rl) in rel.iter().enumerate() {
-        for (a, axis) in axes[p].iter().enumerate() {
-            if let Some(ri) = axis.r() {
-                if !rl.free_axis(a) {
-                    free[ri] = false;
-                    r[ri] = rl.target[a];
-                }
-            }
-        }
-    }
-    (r, free)
-}
-
-/// The system of the free relative displacements: `W_ff`, `c - W r_T` on
-/// the free rows, with the slipping pairs' friction law on their free
-/// tangential rows, `(W r - c)_t + force + coupling (W r - c)_n + spring r
-/// = 0`; the free rows' indices, and whether the matrix is symmetric.
-fn free_system(reduced: &Reduced, axes: &[[Axis; 3]], rel: &[Relation], c: &[f64], r: &[f64], free: &[bool]) -> (Mat<f64>, Mat<f64>, Vec<usize>, bool) {
+/// The system of the free directions: `Z^T W Z` and `Z^T (c - W r0)`
+/// (a lone pair's free axis is a column of one entry: a row of W), with the
+/// lone slipping pairs' friction law on their free tangential rows,
+/// `(W r - c)_t + force + coupling (W r - c)_n + spring r = 0`, and the
+/// junctions' springs and forces on their own columns; and whether the
+/// matrix is symmetric.
+fn free_system(reduced: &Reduced, fr: &Freedom, c: &[f64]) -> (Mat<f64>, Mat<f64>, bool) {
     let w = &reduced.w;
     let nr = w.nrows();
-    let fidx: Vec<usize> = (0..nr).filter(|&i| free[i]).collect();
-    let mut pos = vec![NONE; nr];
-    for (f, &i) in fidx.iter().enumerate() {
-        pos[i] = f;
-    }
-    let nf = fidx.len();
-    // c - W r_T: the known part of every row
+    let nf = fr.cols.len();
+    // c - W r0: the known part of every row
     let mut known = c.to_vec();
-    for j in (0..nr).filter(|&j| !free[j] && r[j] != 0.0) {
-        let rj = r[j];
+    for j in (0..nr).filter(|&j| fr.r0[j] != 0.0) {
+        let rj = fr.r0[j];
         for (i, v) in known.iter_mut().enumerate() {
             *v -= w[(i, j)] * rj;
         }
     }
-    let mut wf = Mat::<f64>::from_fn(nf, nf, |fi, fj| w[(fidx[fi], fidx[fj])]);
-    let mut rhs = Mat::<f64>::from_fn(nf, 1, |fi, _| known[fidx[fi]]);
+    let entry = |a: &[(usize, f64)], b: &[(usize, f64)]| -> f64 {
+        match (a, b) {
+            ([(i, _)], [(j, _)]) => w[(*i, *j)],
+            _ => a.iter().map(|&(i, zi)| b.iter().map(|&(j, zj)| zi * zj * w[(i, j)]).sum::<f64>()).sum(),
+        }
+    };
+    let mut wf = Mat::<f64>::zeros(nf, nf);
+    for (fj, cj) in fr.cols.iter().enumerate() {
+        for (fi, ci) in fr.cols.iter().enumerate() {
+            wf[(fi, fj)] = entry(ci, cj);
+        }
+    }
+    let mut rhs = Mat::<f64>::zeros(nf, 1);
+    for (fi, ci) in fr.cols.iter().enumerate() {
+        rhs[(fi, 0)] = match ci.as_slice() {
+            [(i, _)] => known[*i],
+            _ => ci.iter().map(|&(i, zi)| zi * known[i]).sum(),
+        };
+    }
     let mut symmetric = true;
-    for (p, rl) in rel.iter().enumerate().filter(|(_, rl)| rl.state == ContactState::Slip) {
-        let rn = axes[p][0].r();
-        for a in 1..3 {
-            let Some(ra) = axes[p][a].r() else { continue };
-            let i = pos[ra];
-            rhs[(i, 0)] -= rl.force[a];
-            if let (Some(rn), true) = (rn, rl.coupling[a] != 0.0) {
-                symmetric = false;
-                let ca = rl.coupling[a];
-                for (fj, &j) in fidx.iter().enumerate() {
-                    wf[(i, fj)] += ca * w[(rn, j)];
-                }
-                rhs[(i, 0)] += ca * known[rn];
+    for s in &fr.slips {
+        let i = fr.pos[s.row];
+        rhs[(i, 0)] -= s.force;
+        if let (Some(rn), true) = (s.normal, s.coupling != 0.0) {
+            symmetric = false;
+            for (fj, cj) in fr.cols.iter().enumerate() {
+                wf[(i, fj)] += s.coupling * entry(&[(rn, 1.0)], cj);
             }
-            for (cax, axis) in axes[p].iter().enumerate().skip(1) {
-                if rl.spring[a][cax] == 0.0 {
-                    continue;
-                }
-                if let Some(rc) = axis.r() {
-                    wf[(i, pos[rc])] += rl.spring[a][cax];
-                    if rl.spring[a][cax] != rl.spring[cax][a] {
-                        symmetric = false;
-                    }
-                }
+            rhs[(i, 0)] += s.coupling * known[rn];
+        }
+        // (the springs of one pair are symmetric: k (I - n n^T))
+        for &(rc, k) in &s.springs {
+            wf[(i, fr.pos[rc])] += k;
+        }
+    }
+    for jb in &fr.junctions {
+        for (a, fa) in jb.cols.clone().enumerate() {
+            rhs[(fa, 0)] -= jb.fz[a];
+            for (b, fb) in jb.cols.clone().enumerate() {
+                wf[(fa, fb)] += jb.kz[(a, b)];
             }
         }
     }
-    (wf, rhs, fidx, symmetric)
+    (wf, rhs, symmetric)
 }
 
 /// The S of a densely condensed part with an interface.

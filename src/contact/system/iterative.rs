@@ -43,11 +43,11 @@ use std::sync::Mutex;
 use faer::linalg::solvers::Solve;
 use faer::Mat;
 
-use super::coords::{for_each_load, Axis, Terms, Var};
+use super::coords::{for_each_load, Terms, Var};
 use super::gmres;
-use super::layout::{Layout, Slot};
+use super::layout::Layout;
 use super::reduce::combine;
-use super::{coords, Answer, Relation, Solver, IDENTITY};
+use super::{coords, Answer, Freedom, Solver};
 use crate::contact::basis;
 use crate::contact::frame::Frame;
 use crate::contact::law::ContactState;
@@ -188,7 +188,7 @@ impl<'a> Iterative<'a> {
                 (p.nc > 0).then(|| AppliedPart {
                     source: solve.map_or(Source::Remote(i), |s| Source::Local(s.clone())),
                     diag: diag.to_vec(),
-                    terms: layout.terms_of(p.nc, map),
+                    terms: layout.terms_of(map),
                     frames: layout.frames_of(map),
                     edges: map.edges.clone(),
                     g: p.g.to_vec(),
@@ -367,16 +367,40 @@ impl<'a> Iterative<'a> {
         out
     }
 
-    /// Solves the pairs' relations `rel` (pair `p`'s local axes numbered by
-    /// `axes[p]`) under the load factors `lambda`; `None` when GMRES does
-    /// not get below 1e-6 (a singular system: a body sliding freely).
-    fn solve_gmres(&self, axes: &[[Axis; 3]], rel: &[Relation], lambda: &[f64]) -> Option<Answer> {
+    /// Solves one set of relations, given by the free directions `fr` of
+    /// the relative displacements, under the load factors `lambda`; `None`
+    /// when GMRES does not get below 1e-6 (a singular system: a body
+    /// sliding freely). The unknowns are every mean, then the free columns.
+    fn solve_gmres(&self, fr: &Freedom, states: &[ContactState], lambda: &[f64]) -> Option<Answer> {
         let (nm, nr) = (self.nm, self.nr);
         let n = nm + nr;
         let b = combine(&self.b, &self.b_fixed, lambda);
-        let loose = self.loose(rel);
-        let (x0, free, slip_rows) = self.start(axes, rel);
-        let unknowns: Vec<usize> = (0..n).filter(|&i| free[i]).collect();
+        let loose = self.loose(states);
+        let expand = |v: &[f64]| -> Vec<f64> {
+            let mut full = vec![0.0; n];
+            full[..nm].copy_from_slice(&v[..nm]);
+            for (a, col) in fr.cols.iter().enumerate() {
+                for &(i, zi) in col {
+                    full[nm + i] += zi * v[nm + a];
+                }
+            }
+            full
+        };
+        let restrict = |full: &[f64]| -> Vec<f64> {
+            let mut v = full[..nm].to_vec();
+            v.extend(fr.cols.iter().map(|col| col.iter().map(|&(i, zi)| zi * full[nm + i]).sum::<f64>()));
+            v
+        };
+        // the junctions' springs, on the restricted unknowns
+        let springs = |out: &mut [f64], v: &[f64]| {
+            for jb in &fr.junctions {
+                for (a, fa) in jb.cols.clone().enumerate() {
+                    out[nm + fa] += jb.cols.clone().enumerate().map(|(c, fc)| jb.kz[(a, c)] * v[nm + fc]).sum::<f64>();
+                }
+            }
+        };
+        let slip_rows: Vec<SlipRow> = fr.slips.iter().map(|s| SlipRow { row: nm + s.row, normal: s.normal.map(|r| nm + r), coupling: s.coupling, springs: s.springs.iter().map(|&(c, k)| (nm + c, k)).collect(), force: s.force }).collect();
+        let (x0, y0) = self.start(fr, &restrict);
         let mut e0 = self.apply(&x0);
         for (e, bi) in e0.iter_mut().zip(&b) {
             *e -= bi;
@@ -385,39 +409,39 @@ impl<'a> Iterative<'a> {
         for s in &slip_rows {
             e0[s.row] += s.force;
         }
-        let rhs: Vec<f64> = unknowns.iter().map(|&i| -e0[i]).collect();
-        let expand = |v: &[f64]| -> Vec<f64> {
-            let mut full = vec![0.0; n];
-            for (&i, &x) in unknowns.iter().zip(v) {
-                full[i] = x;
+        let mut e0 = restrict(&e0);
+        springs(&mut e0, &y0);
+        for jb in &fr.junctions {
+            for (a, fa) in jb.cols.clone().enumerate() {
+                e0[nm + fa] += jb.fz[a];
             }
-            full
-        };
-        let restrict = |full: &[f64]| -> Vec<f64> { unknowns.iter().map(|&i| full[i]).collect() };
+        }
+        let rhs: Vec<f64> = e0.iter().map(|v| -v).collect();
         let j = |v: &[f64]| -> Vec<f64> {
             let dx = expand(v);
             let mut full = self.apply(&dx);
             slip_rows_of(&slip_rows, &mut full, &dx);
-            restrict(&full)
+            let mut out = restrict(&full);
+            springs(&mut out, v);
+            out
         };
-        let precondition = self.preconditioner(&free, &slip_rows);
-        let coarse = self.coarse(&unknowns, &slip_rows);
+        let precondition = self.preconditioner(fr);
+        let coarse = self.coarse(nm + fr.cols.len(), &slip_rows, &restrict);
         let m = |v: &[f64]| -> Vec<f64> {
-            let (mut r1, y) = match &coarse {
+            let (r1, y) = match &coarse {
                 Some(c) => {
                     let (r1, y) = c.correct(v);
                     (r1, Some(y))
                 }
                 None => (v.to_vec(), None),
             };
-            let out = precondition(&expand(&r1));
-            r1 = restrict(&out);
+            let mut out = precondition(&r1);
             if let Some(y) = y {
-                for (i, z) in r1.iter_mut().enumerate() {
+                for (i, z) in out.iter_mut().enumerate() {
                     *z += y[(i, 0)];
                 }
             }
-            r1
+            out
         };
         let scale = b.iter().map(|v| v * v).sum::<f64>().sqrt().max(rhs.iter().map(|v| v * v).sum::<f64>().sqrt()).max(f64::MIN_POSITIVE);
         let tolerance = if loose { LOOSE_TOLERANCE } else { TOLERANCE };
@@ -430,8 +454,8 @@ impl<'a> Iterative<'a> {
             return None;
         }
         let mut x = x0;
-        for (&i, d) in unknowns.iter().zip(&dx) {
-            x[i] += d;
+        for (xi, d) in x.iter_mut().zip(expand(&dx)) {
+            *xi += d;
         }
         let kx = self.apply(&x);
         let residual_r = (0..nr).map(|r| kx[nm + r] - b[nm + r]).collect();
@@ -445,106 +469,132 @@ impl<'a> Iterative<'a> {
     /// Whether this solve may stop at [`LOOSE_TOLERANCE`]: loose while the
     /// states change; the same states as last time (or none to judge:
     /// bonded joins alone) are solved tightly.
-    fn loose(&self, rel: &[Relation]) -> bool {
-        let states: Vec<ContactState> = rel.iter().map(|r| r.state).collect();
+    fn loose(&self, states: &[ContactState]) -> bool {
         match self.last_states.lock() {
             Ok(mut last) => {
-                let same = last.as_ref() == Some(&states);
-                *last = Some(states);
-                !same && !rel.is_empty()
+                let same = last.as_deref() == Some(states);
+                *last = Some(states.to_vec());
+                !same && !states.is_empty()
             }
             Err(_) => false,
         }
     }
 
-    /// Where GMRES starts (the last answer, with the tied relative
-    /// displacements set), which unknowns are free, and the slipping rows.
-    fn start(&self, axes: &[[Axis; 3]], rel: &[Relation]) -> (Vec<f64>, Vec<bool>, Vec<SlipRow>) {
-        let (nd, nm) = (self.nd, self.nm);
-        let n = nm + self.nr;
-        let mut x0 = self.last.lock().ok().and_then(|l| l.clone()).filter(|l| l.len() == n).unwrap_or_else(|| vec![0.0; n]);
-        let mut free = vec![true; n];
-        let mut slip_rows: Vec<SlipRow> = Vec::new();
-        for (p, rl) in rel.iter().enumerate() {
-            for a in 0..nd {
-                if let Some(ri) = axes[p][a].r() {
-                    if !rl.free_axis(a) {
-                        free[nm + ri] = false;
-                        x0[nm + ri] = rl.target[a];
-                    }
-                }
-            }
-            if rl.state == ContactState::Slip {
-                let rn = axes[p][0].r().map(|r| nm + r);
-                for a in 1..nd {
-                    let Some(ra) = axes[p][a].r() else { continue };
-                    let springs = (1..nd).filter_map(|c| axes[p][c].r().map(|rc| (nm + rc, rl.spring[a][c]))).filter(|s| s.1 != 0.0).collect();
-                    slip_rows.push(SlipRow { row: nm + ra, normal: rn, coupling: rl.coupling[a], springs, force: rl.force[a] });
-                }
+    /// Where GMRES starts: the last answer, its relative displacements
+    /// moved onto `r0 + span(cols)`; and the free columns' coordinates there.
+    fn start(&self, fr: &Freedom, restrict: impl Fn(&[f64]) -> Vec<f64>) -> (Vec<f64>, Vec<f64>) {
+        let (nm, nr) = (self.nm, self.nr);
+        let n = nm + nr;
+        let last = self.last.lock().ok().and_then(|l| l.clone()).filter(|l| l.len() == n).unwrap_or_else(|| vec![0.0; n]);
+        let mut shifted = vec![0.0; n];
+        for i in 0..nr {
+            shifted[nm + i] = last[nm + i] - fr.r0[i];
+        }
+        let y0 = restrict(&shifted);
+        let mut x0 = last;
+        x0[nm..].copy_from_slice(&fr.r0);
+        for (a, col) in fr.cols.iter().enumerate() {
+            for &(i, zi) in col {
+                x0[nm + i] += zi * y0[nm + a];
             }
         }
-        (x0, free, slip_rows)
+        (x0, y0)
     }
 
-    /// The coarse level on the `unknowns`: Φ and J Φ, Φ^T J Φ factorised
-    /// (none without a coarse space).
-    fn coarse(&self, unknowns: &[usize], slip_rows: &[SlipRow]) -> Option<Coarse> {
+    /// The coarse level on the `nu` unknowns (Φ is zero on r: its rows are
+    /// the means'): Φ and J Φ, Φ^T J Φ factorised (none without a coarse space).
+    fn coarse(&self, nu: usize, slip_rows: &[SlipRow], restrict: impl Fn(&[f64]) -> Vec<f64>) -> Option<Coarse> {
         if self.phi.is_empty() {
             return None;
         }
-        let phi = Mat::<f64>::from_fn(unknowns.len(), self.phi.len(), |i, c| self.phi[c][unknowns[i]]);
+        let nm = self.nm;
+        let phi = Mat::<f64>::from_fn(nu, self.phi.len(), |i, c| if i < nm { self.phi[c][i] } else { 0.0 });
         let cols: Vec<Vec<f64>> = (self.k_phi.iter().zip(&self.phi))
             .map(|(kp, p)| {
                 let mut full = kp.clone();
                 slip_rows_of(slip_rows, &mut full, p);
-                unknowns.iter().map(|&i| full[i]).collect()
+                restrict(&full)
             })
             .collect();
-        let j_phi = Mat::<f64>::from_fn(unknowns.len(), cols.len(), |i, c| cols[c][i]);
+        let j_phi = Mat::<f64>::from_fn(nu, cols.len(), |i, c| cols[c][i]);
         let lu = (phi.transpose() * &j_phi).partial_piv_lu();
         Some(Coarse { phi, j_phi, lu })
     }
 
-    /// `M^-1`: each block restricted to its free unknowns, with the
-    /// slipping rows as in [`Self::solve_gmres`], factorised once per solve.
-    fn preconditioner(&self, free: &[bool], slip_rows: &[SlipRow]) -> impl Fn(&[f64]) -> Vec<f64> + '_ {
-        let mut slip_of = std::collections::HashMap::new();
-        for (k, s) in slip_rows.iter().enumerate() {
-            slip_of.insert(s.row, k);
+    /// `M^-1` on the unknowns of a solve (every mean, then the free columns
+    /// `fr.cols`): each block `P^T B P` over the unknowns it touches, with
+    /// the slipping rows as in [`Self::solve_gmres`] and the junctions'
+    /// springs, factorised once per solve.
+    fn preconditioner(&self, fr: &Freedom) -> impl Fn(&[f64]) -> Vec<f64> + '_ {
+        let nm = self.nm;
+        // the unknowns of each block, with their entries over its members
+        let mut touching: Vec<Vec<(usize, Vec<(usize, f64)>)>> = vec![Vec::new(); self.blocks.len()];
+        for i in 0..nm {
+            let p = self.place[i];
+            if p.block != usize::MAX {
+                touching[p.block].push((i, vec![(p.at, 1.0)]));
+            }
+        }
+        for (a, col) in fr.cols.iter().enumerate() {
+            let p = self.place[nm + col[0].0];
+            touching[p.block].push((nm + a, col.iter().map(|&(i, zi)| (self.place[nm + i].at, zi)).collect()));
+        }
+        let unknown_of_row: std::collections::HashMap<usize, usize> = (fr.cols.iter().enumerate()).filter_map(|(a, col)| match col.as_slice() {
+            [(i, _)] => Some((*i, nm + a)),
+            _ => None,
+        }).collect();
+        let slip_of: std::collections::HashMap<usize, &super::SlipRow> = fr.slips.iter().map(|s| (nm + fr.pos[s.row], s)).collect();
+        let mut junction_of = std::collections::HashMap::new();
+        for (bi, jb) in fr.junctions.iter().enumerate() {
+            for (a, fa) in jb.cols.clone().enumerate() {
+                junction_of.insert(nm + fa, (bi, a));
+            }
         }
         let factors: Vec<(Vec<usize>, Option<faer::linalg::solvers::PartialPivLu<f64>>)> = self
             .blocks
             .iter()
-            .map(|(members, m)| {
+            .zip(&touching)
+            .map(|((members, m), us)| {
                 let k = members.len();
-                let at: Vec<usize> = (0..k).filter(|&a| free[members[a]]).collect();
-                let mut local = Mat::<f64>::from_fn(at.len(), at.len(), |i, j| m[at[i] * k + at[j]]);
-                for (li, &a) in at.iter().enumerate() {
-                    let Some(&s) = slip_of.get(&members[a]) else { continue };
-                    let s = &slip_rows[s];
-                    if let Some(pn) = s.normal.and_then(|rn| members.iter().position(|&u| u == rn)) {
-                        for (lj, &b) in at.iter().enumerate() {
-                            local[(li, lj)] += s.coupling * m[pn * k + b];
+                // B P: the block times each unknown's entries
+                let bp: Vec<Vec<f64>> = us.iter().map(|(_, e)| (0..k).map(|row| e.iter().map(|&(at, z)| m[row * k + at] * z).sum()).collect()).collect();
+                let mut local = Mat::<f64>::from_fn(us.len(), us.len(), |i, j| us[i].1.iter().map(|&(at, z)| z * bp[j][at]).sum());
+                for (li, (u, _)) in us.iter().enumerate() {
+                    if let Some(s) = slip_of.get(u) {
+                        if let Some(pn) = s.normal.and_then(|rn| members.iter().position(|&x| x == nm + rn)) {
+                            for (lj, bpj) in bp.iter().enumerate() {
+                                local[(li, lj)] += s.coupling * bpj[pn];
+                            }
+                        }
+                        for &(c, sp) in &s.springs {
+                            let uc = unknown_of_row.get(&c);
+                            if let Some(lj) = us.iter().position(|(v, _)| Some(v) == uc) {
+                                local[(li, lj)] += sp;
+                            }
                         }
                     }
-                    for &(c, sp) in &s.springs {
-                        if let Some(lj) = at.iter().position(|&b| members[b] == c) {
-                            local[(li, lj)] += sp;
+                    if let Some(&(bi, a)) = junction_of.get(u) {
+                        for (lj, (v, _)) in us.iter().enumerate() {
+                            if let Some(&(bj, c)) = junction_of.get(v) {
+                                if bi == bj {
+                                    local[(li, lj)] += fr.junctions[bi].kz[(a, c)];
+                                }
+                            }
                         }
                     }
                 }
-                let members: Vec<usize> = at.iter().map(|&a| members[a]).collect();
-                let lu = (!members.is_empty()).then(|| local.partial_piv_lu());
-                (members, lu)
+                let unknowns: Vec<usize> = us.iter().map(|(u, _)| *u).collect();
+                let lu = (!unknowns.is_empty()).then(|| local.partial_piv_lu());
+                (unknowns, lu)
             })
             .collect();
         move |v: &[f64]| {
             let mut out = v.to_vec();
-            for (members, lu) in &factors {
+            for (unknowns, lu) in &factors {
                 let Some(lu) = lu else { continue };
-                let rhs = Mat::<f64>::from_fn(members.len(), 1, |i, _| v[members[i]]);
+                let rhs = Mat::<f64>::from_fn(unknowns.len(), 1, |i, _| v[unknowns[i]]);
                 let z = lu.solve(&rhs);
-                for (i, &u) in members.iter().enumerate() {
+                for (i, &u) in unknowns.iter().enumerate() {
                     let zi = z[(i, 0)];
                     out[u] = if zi.is_finite() { zi } else { v[u] };
                 }
@@ -555,8 +605,8 @@ impl<'a> Iterative<'a> {
 }
 
 impl Solver for Iterative<'_> {
-    fn solve(&self, axes: &[[Axis; 3]], rel: &[Relation], lambda: &[f64]) -> Option<Answer> {
-        self.solve_gmres(axes, rel, lambda)
+    fn solve(&self, fr: &Freedom, states: &[ContactState], lambda: &[f64]) -> Option<Answer> {
+        self.solve_gmres(fr, states, lambda)
     }
 
     /// The diagonal of the preconditioner's block at relative displacement `r`.
@@ -572,8 +622,9 @@ impl Solver for Iterative<'_> {
 }
 
 /// The coarse space: each applied part's rigid motions on the means,
-/// shared between the parts that hold a node (half each on a pair, evenly
-/// at a join), one column per part and motion over `[m; r]`.
+/// shared between the interface nodes that have them (half each on a lone
+/// pair, evenly at a junction or a join), one column per part and motion
+/// over `[m; r]`.
 fn coarse_space(model: &Model, layout: &Layout, parts: &[OperatorRef], rigid: &[PartModes]) -> Vec<Vec<f64>> {
     let (nd, n) = (model.nd, layout.nm + layout.nr);
     let mut coarse = Vec::new();
@@ -583,14 +634,13 @@ fn coarse_space(model: &Model, layout: &Layout, parts: &[OperatorRef], rigid: &[
         }
         for k in 0..n_modes(model.analysis) {
             let mut col = vec![0.0; n];
-            for (&node, &slot) in p.part.interface.iter().zip(&map.nodes) {
-                let (node_axes, frame, w) = match slot {
-                    Slot::Join(j) => (&layout.joins[j], IDENTITY, 1.0 / layout.join_parts[j].0.len() as f64),
-                    Slot::Pair { pair, .. } => (&layout.axes[pair], layout.frames[pair], 0.5),
-                };
-                for (a, axis) in node_axes.iter().enumerate().take(nd) {
-                    if let Axis::Free { m, .. } | Axis::Joined { m } = *axis {
-                        col[m] += w * modes.modes.along(model.coords[node], frame[a])[k];
+            for (q, &node) in p.part.interface.iter().enumerate() {
+                for a in 0..nd {
+                    let t = &map.terms[q * nd + a];
+                    for &(v, coef) in &t.vars[..t.n] {
+                        if let Var::M(i) = v {
+                            col[i] += coef * map.shares[q] * modes.modes.along(model.coords[node], map.frames[q][a])[k];
+                        }
                     }
                 }
             }

@@ -1,43 +1,62 @@
-//! Where the interface unknowns are: which pair or join each interface node
-//! of each part is, the pairs' frames, the prescribed local values, and the
-//! numbering of the means and relative displacements ([`super::coords`]).
-//! Built once by [`Layout::new`], in named steps; every interface solver
-//! reads its parts through it ([`Layout::terms_of`], [`Layout::frames_of`]).
+//! Where the interface unknowns are, and how every interface node of every
+//! part is written in them: its frame and the terms of each of its local
+//! components. Built once by [`Layout::new`], in named steps; every
+//! interface solver reads its parts through it ([`Layout::terms_of`],
+//! [`Layout::frames_of`]).
+//!
+//! - a lone pair, its supports along its frame: the mean / relative
+//!   coordinates of [`super::coords`], in the pair's local axes;
+//! - a junction (copies in several pairs, or a pair whose supports do not
+//!   lie along its frame): [`super::junction`], in global axes;
+//! - a join (a node that parts of one body share, in no pair): one mean
+//!   per free component, global axes.
+//!
+//! Means are numbered pair by pair (a junction's with its first pair), then
+//! the joins'; relative displacements pair by pair.
 
 use std::collections::HashMap;
 
-use super::coords::{self, Axis, Terms, Var};
+use super::coords::{number_pair, Axis, Terms, Var};
+use super::junction::{clusters, Junction};
 use super::IDENTITY;
 use crate::contact::basis::{self, FaceBasis};
 use crate::contact::frame::{aligned_axis, frame, Frame};
 use crate::fem::sparse::NONE;
-use crate::model::{Model, ModelError};
+use crate::model::Model;
 use crate::substructure::OperatorRef;
 
-/// Where a part's interface nodes sit among the pairs.
+/// How a part's interface nodes are written in the unknowns.
 pub(super) struct PartMap {
-    /// What each interface node of the part is, in the part's order.
-    pub nodes: Vec<Slot>,
-    /// Transformed edges, as positions in `nodes`.
+    /// The frame of each interface node of the part, in the part's order.
+    pub frames: Vec<Frame>,
+    /// The unknowns of each interface DOF (local axes, face basis).
+    pub terms: Vec<Terms>,
+    /// Each interface node's share of its means (the coarse space's
+    /// weight): 1/2 on a lone pair, 1/q on a junction of q copies, 1/p on a
+    /// join of p parts.
+    pub shares: Vec<f64>,
+    /// Transformed edges, as positions in the part's interface nodes.
     pub edges: Vec<[usize; 3]>,
 }
 
-/// An interface node of a part: one side of a contact pair, or a node the
-/// part shares with other parts of the same body (a bonded join, where a
-/// body is cut into substructures): always tied, its displacement (global
-/// axes) is a mean of the interface.
-#[derive(Clone, Copy, Debug)]
-pub(super) enum Slot {
-    Pair { pair: usize, side: usize },
-    Join(usize),
+/// How one interface node is written.
+#[derive(Clone, Debug)]
+struct NodeVars {
+    frame: Frame,
+    terms: [Terms; 3],
+    share: f64,
 }
 
 /// The interface's unknowns and where every part's interface nodes are among them.
 pub(super) struct Layout {
     pub nd: usize,
+    /// Each pair's frame (rows n, t, b).
     pub frames: Vec<Frame>,
-    /// The unknowns of each pair's local axes.
+    /// Each lone pair's axes (a junction's pairs: `Absent`).
     pub axes: Vec<[Axis; 3]>,
+    pub junctions: Vec<Junction>,
+    /// (junction, its pair index) of each pair in one.
+    pub in_junction: Vec<Option<(usize, usize)>>,
     /// The unknowns of each join's components.
     pub joins: Vec<[Axis; 3]>,
     /// Parts that share each join, and where the join is.
@@ -45,85 +64,119 @@ pub(super) struct Layout {
     pub parts: Vec<PartMap>,
     /// (part, position) of each pair's k and l.
     pub at: Vec<[(usize, usize); 2]>,
-    /// Means of the pairs (the first `nm_pairs` of `nm`), all means, and
-    /// relative displacements.
+    /// Means of the pairs and junctions (the first `nm_pairs` of `nm`), all
+    /// means, and relative displacements.
     pub nm_pairs: usize,
     pub nm: usize,
     pub nr: usize,
 }
 
-/// Which part holds each interface node first, which parts share it, and
-/// what it is.
-struct Slots {
+/// Which part holds each interface node first, and which parts share it.
+struct Holders {
     where_is: Vec<(usize, usize)>,
     holders: Vec<Vec<usize>>,
-    role: Vec<Option<Slot>>,
-    join_nodes: Vec<usize>,
 }
 
 impl Layout {
     /// The layout of the condensed `parts` (every part of the model, in
     /// order) in the face basis `basis`.
-    pub fn new(model: &Model, parts: &[OperatorRef], basis: &FaceBasis) -> Result<Layout, ModelError> {
+    pub fn new(model: &Model, parts: &[OperatorRef], basis: &FaceBasis) -> Layout {
         let nd = model.nd;
-        let slots = slots(model, parts);
-        let (frames, mut fixed) = frames_and_fixed(model)?;
-        fixed_in_face_basis(basis, &mut fixed, nd);
-        let (axes, nm_pairs, nr) = coords::number(&fixed, nd);
-        let (joins, nm) = join_axes(model, &slots.join_nodes, nm_pairs);
-        let join_parts = slots.join_nodes.iter().map(|&n| (slots.holders[n].clone(), model.coords[n])).collect();
-        let at = model.pairs.iter().map(|p| [slots.where_is[p.k], slots.where_is[p.l]]).collect();
-        let parts = parts.iter().map(|p| part_map(p, &slots.role, basis)).collect();
-        Ok(Layout { nd, frames, axes, joins, join_parts, parts, at, nm_pairs, nm, nr })
-    }
-
-    /// The unknowns and side of an interface node, and its frame.
-    pub fn slot(&self, slot: Slot) -> (&[Axis; 3], usize, Frame) {
-        match slot {
-            Slot::Pair { pair, side } => (&self.axes[pair], side, self.frames[pair]),
-            Slot::Join(j) => (&self.joins[j], 0, IDENTITY),
+        let Holders { where_is, holders } = holders(model, parts);
+        // prescribed values in the face basis
+        let held = basis::prescribed(basis, &model.prescribed, nd);
+        let (frames, fixed) = frames_and_fixed(model, &held);
+        let ends: Vec<(usize, usize)> = model.pairs.iter().map(|p| (p.k, p.l)).collect();
+        let groups = clusters(&ends, model.n_nodes(), |p| fixed[p].is_none());
+        let mut in_junction = vec![None; ends.len()];
+        for (j, g) in groups.iter().enumerate() {
+            for (i, &p) in g.iter().enumerate() {
+                in_junction[p] = Some((j, i));
+            }
         }
+        // 1. pairs and junctions, in pair order
+        let (mut nm, mut nr) = (0, 0);
+        let mut axes = vec![[Axis::Absent; 3]; ends.len()];
+        let mut junctions: Vec<Junction> = Vec::with_capacity(groups.len());
+        for p in 0..ends.len() {
+            match in_junction[p] {
+                Some((j, 0)) => {
+                    debug_assert_eq!(junctions.len(), j);
+                    junctions.push(Junction::new(groups[j].clone(), |q| (ends[q].0, ends[q].1, frames[q]), &held, nd, &mut nm, &mut nr));
+                }
+                Some(_) => {}
+                None => axes[p] = number_pair(fixed[p].as_ref().expect("a lone pair's values"), nd, &mut nm, &mut nr),
+            }
+        }
+        let nm_pairs = nm;
+        // 2. joins: nodes shared by parts that are in no pair
+        let mut paired = vec![false; model.n_nodes()];
+        for &(k, l) in &ends {
+            paired[k] = true;
+            paired[l] = true;
+        }
+        let join_nodes: Vec<usize> = (0..model.n_nodes()).filter(|&n| !paired[n] && holders[n].len() > 1).collect();
+        let joins = join_axes(model, &join_nodes, &mut nm);
+        // 3. every interface node written in the unknowns
+        let mut vars: HashMap<usize, NodeVars> = HashMap::new();
+        for (p, &(k, l)) in ends.iter().enumerate() {
+            if in_junction[p].is_none() {
+                for (side, node) in [k, l].into_iter().enumerate() {
+                    vars.insert(node, NodeVars { frame: frames[p], terms: axes[p].map(|a| a.terms(side)), share: 0.5 });
+                }
+            }
+        }
+        for j in &junctions {
+            let share = 1.0 / j.copies.len() as f64;
+            for (c, &node) in j.copies.iter().enumerate() {
+                vars.insert(node, NodeVars { frame: IDENTITY, terms: j.terms[c].clone(), share });
+            }
+        }
+        for (ax, &node) in joins.iter().zip(&join_nodes) {
+            vars.insert(node, NodeVars { frame: IDENTITY, terms: ax.map(|a| a.terms(0)), share: 1.0 / holders[node].len() as f64 });
+        }
+        let join_parts = join_nodes.iter().map(|&n| (holders[n].clone(), model.coords[n])).collect();
+        let at = model.pairs.iter().map(|p| [where_is[p.k], where_is[p.l]]).collect();
+        let parts = parts.iter().map(|p| part_map(&p.part.interface, &vars, nd, basis)).collect();
+        Layout { nd, frames, axes, junctions, in_junction, joins, join_parts, parts, at, nm_pairs, nm, nr }
     }
 
     /// The frame of each interface node of a part.
     pub fn frames_of(&self, map: &PartMap) -> Vec<Frame> {
-        map.nodes.iter().map(|&slot| self.slot(slot).2).collect()
+        map.frames.clone()
     }
 
-    /// The unknowns of each of a part's `nc` interface DOFs.
-    pub fn terms_of(&self, nc: usize, map: &PartMap) -> Vec<Terms> {
-        let nd = self.nd;
-        (0..nc)
-            .map(|u| {
-                let (axes, side, _) = self.slot(map.nodes[u / nd]);
-                axes[u % nd].terms(side)
-            })
-            .collect()
+    /// The unknowns of each of a part's interface DOFs.
+    pub fn terms_of(&self, map: &PartMap) -> Vec<Terms> {
+        map.terms.clone()
     }
 
-    /// The unknowns of every pair and of every join node, group by group.
+    /// The unknowns of every lone pair, every junction and every join
+    /// node, group by group (the iterative interface's preconditioner blocks).
     pub fn groups(&self) -> Vec<Vec<Var>> {
-        (self.axes.iter().chain(&self.joins))
-            .map(|ax| {
-                let mut vars = Vec::new();
-                for a in ax {
-                    match *a {
-                        Axis::Free { m, r } => vars.extend([Var::M(m), Var::R(r)]),
-                        Axis::HeldK { r, .. } | Axis::HeldL { r, .. } => vars.push(Var::R(r)),
-                        Axis::Joined { m } => vars.push(Var::M(m)),
-                        Axis::Held { .. } | Axis::Absent => {}
-                    }
+        let vars_of = |ax: &[Axis; 3]| -> Vec<Var> {
+            let mut vars = Vec::new();
+            for a in ax {
+                match *a {
+                    Axis::Free { m, r } => vars.extend([Var::M(m), Var::R(r)]),
+                    Axis::HeldK { r, .. } | Axis::HeldL { r, .. } => vars.push(Var::R(r)),
+                    Axis::Joined { m } => vars.push(Var::M(m)),
+                    Axis::Held { .. } | Axis::Absent => {}
                 }
-                vars
-            })
+            }
+            vars
+        };
+        (self.axes.iter().zip(&self.in_junction))
+            .filter(|(_, j)| j.is_none())
+            .map(|(ax, _)| vars_of(ax))
+            .chain(self.junctions.iter().map(|j| j.m.iter().map(|&m| Var::M(m)).chain(j.r.iter().map(|&r| Var::R(r))).collect()))
+            .chain(self.joins.iter().map(vars_of))
             .collect()
     }
 }
 
-/// The first part holding each node; the parts sharing each node; each
-/// interface node's role: a pair's side, or a join when several parts
-/// share a node that is in no pair.
-fn slots(model: &Model, parts: &[OperatorRef]) -> Slots {
+/// The first part holding each node, and the parts sharing each node.
+fn holders(model: &Model, parts: &[OperatorRef]) -> Holders {
     let mut where_is = vec![(NONE, NONE); model.n_nodes()];
     let mut holders: Vec<Vec<usize>> = vec![Vec::new(); model.n_nodes()];
     for (pi, p) in parts.iter().enumerate() {
@@ -134,25 +187,15 @@ fn slots(model: &Model, parts: &[OperatorRef]) -> Slots {
             holders[n].push(pi);
         }
     }
-    let mut role = vec![None; model.n_nodes()];
-    for (pair, p) in model.pairs.iter().enumerate() {
-        role[p.k] = Some(Slot::Pair { pair, side: 0 });
-        role[p.l] = Some(Slot::Pair { pair, side: 1 });
-    }
-    let mut join_nodes = Vec::new();
-    for n in 0..model.n_nodes() {
-        if role[n].is_none() && holders[n].len() > 1 {
-            role[n] = Some(Slot::Join(join_nodes.len()));
-            join_nodes.push(n);
-        }
-    }
-    Slots { where_is, holders, role, join_nodes }
+    Holders { where_is, holders }
 }
 
-/// Each pair's frame, and the prescribed local values of each side (nodal
-/// basis); a support across the frame is refused.
+/// Each pair's frame, and each lone pair's prescribed local values per unit
+/// ramp (`held`, in the face basis); None for a pair whose supports do not
+/// lie along its frame: it is a junction of one pair, in global axes, with
+/// the frame of its normal alone.
 #[allow(clippy::type_complexity)]
-fn frames_and_fixed(model: &Model) -> Result<(Vec<Frame>, Vec<[[Option<f64>; 3]; 2]>), ModelError> {
+fn frames_and_fixed(model: &Model, held: &[Option<f64>]) -> (Vec<Frame>, Vec<Option<[[Option<f64>; 3]; 2]>>) {
     let nd = model.nd;
     let mut frames = Vec::with_capacity(model.pairs.len());
     let mut fixed = Vec::with_capacity(model.pairs.len());
@@ -164,80 +207,64 @@ fn frames_and_fixed(model: &Model) -> Result<(Vec<Frame>, Vec<[[Option<f64>; 3];
             }
         }
         let f = frame(nd, pair.normal, sup);
-        let mut fx = [[None; 3]; 2];
-        for (side, node) in [pair.k, pair.l].into_iter().enumerate() {
-            for c in 0..nd {
-                if let Some(v) = model.prescribed[node * nd + c] {
-                    let (a, sign) = aligned_axis(&f, nd, c).ok_or_else(|| ModelError::Invalid {
-                        scene: model.scene.clone(),
-                        key: "supports".into(),
-                        msg: format!(
-                            "the contact node at {:?} is supported in direction {} which is not along its contact frame (normal {:?}): support it along the contact normal or tangent",
-                            model.coords[node],
-                            ["x", "y", "z"][c],
-                            pair.normal
-                        ),
-                    })?;
-                    fx[side][a] = Some(sign * v);
-                }
+        match local_values(&f, held, [pair.k, pair.l], nd) {
+            Some(fx) => {
+                frames.push(f);
+                fixed.push(Some(fx));
             }
-        }
-        frames.push(f);
-        fixed.push(fx);
-    }
-    Ok((frames, fixed))
-}
-
-/// The prescribed values in the face basis (per side, local axis).
-fn fixed_in_face_basis(basis: &FaceBasis, fixed: &mut [[[Option<f64>; 3]; 2]], nd: usize) {
-    if basis.is_nodal() {
-        return;
-    }
-    for side in 0..2 {
-        for a in 0..nd {
-            let v: Vec<f64> = fixed.iter().map(|fx| fx[side][a].unwrap_or(0.0)).collect();
-            let mut t = v.clone();
-            for &[m, c1, c2] in &basis.edges {
-                t[m] = (v[m] - basis::ALPHA * (v[c1] + v[c2])) / (1.0 - 2.0 * basis::ALPHA);
-            }
-            for (p, fx) in fixed.iter_mut().enumerate() {
-                if fx[side][a].is_some() {
-                    fx[side][a] = Some(t[p]);
-                }
+            None => {
+                frames.push(frame(nd, pair.normal, [false; 3]));
+                fixed.push(None);
             }
         }
     }
+    (frames, fixed)
 }
 
-/// The joins' unknowns: a mean per component (numbered from `nm`), or the
-/// prescribed value; and the number of means with them.
-fn join_axes(model: &Model, join_nodes: &[usize], mut nm: usize) -> (Vec<[Axis; 3]>, usize) {
+/// The prescribed local values (per unit ramp) of a pair's two sides in
+/// frame `f`, or None when a held global direction is not along one of
+/// its axes.
+fn local_values(f: &Frame, held: &[Option<f64>], nodes: [usize; 2], nd: usize) -> Option<[[Option<f64>; 3]; 2]> {
+    let mut fx = [[None; 3]; 2];
+    for (side, node) in nodes.into_iter().enumerate() {
+        for c in 0..nd {
+            if let Some(v) = held[node * nd + c] {
+                let (a, sign) = aligned_axis(f, nd, c)?;
+                fx[side][a] = Some(sign * v);
+            }
+        }
+    }
+    // a frame that could not follow the supports (NaN) aligns nothing
+    f.iter().flatten().all(|x| x.is_finite()).then_some(fx)
+}
+
+/// The joins' unknowns: a mean per component (numbered on from `nm`), or
+/// the prescribed value.
+fn join_axes(model: &Model, join_nodes: &[usize], nm: &mut usize) -> Vec<[Axis; 3]> {
     let nd = model.nd;
-    let joins = join_nodes
+    join_nodes
         .iter()
         .map(|&n| {
             std::array::from_fn(|c| match (c < nd, model.prescribed.get(n * nd + c).copied().flatten()) {
                 (false, _) => Axis::Absent,
                 (true, Some(v)) => Axis::Held { vk: v, vl: v },
                 (true, None) => {
-                    nm += 1;
-                    Axis::Joined { m: nm - 1 }
+                    *nm += 1;
+                    Axis::Joined { m: *nm - 1 }
                 }
             })
         })
-        .collect();
-    (joins, nm)
+        .collect()
 }
 
-/// What each interface node of a part is, and its transformed face edges.
-fn part_map(p: &OperatorRef, role: &[Option<Slot>], basis: &FaceBasis) -> PartMap {
-    let nodes: Vec<Slot> = p.part.interface.iter().map(|&n| role[n].expect("an interface node is in a pair or shared by parts")).collect();
-    let mut pos: HashMap<(usize, usize), usize> = HashMap::new();
-    for (q, slot) in nodes.iter().enumerate() {
-        if let Slot::Pair { pair, side } = *slot {
-            pos.insert((pair, side), q);
-        }
+/// How a part's interface nodes are written, and its transformed face edges.
+fn part_map(interface: &[usize], vars: &HashMap<usize, NodeVars>, nd: usize, basis: &FaceBasis) -> PartMap {
+    let of = |n: usize| vars.get(&n).expect("an interface node is in a pair or shared by parts");
+    let pos: HashMap<usize, usize> = interface.iter().enumerate().map(|(q, &n)| (n, q)).collect();
+    PartMap {
+        frames: interface.iter().map(|&n| of(n).frame).collect(),
+        terms: interface.iter().flat_map(|&n| of(n).terms[..nd].to_vec()).collect(),
+        shares: interface.iter().map(|&n| of(n).share).collect(),
+        edges: basis::part_edges(basis, |n| pos.get(&n).copied()),
     }
-    let edges = basis::part_edges(basis, |pair| [pos.get(&(pair, 0)).copied(), pos.get(&(pair, 1)).copied()]);
-    PartMap { nodes, edges }
 }

@@ -8,6 +8,11 @@
 //! factors, GMRES). A new way of solving the interface is one more
 //! implementation of [`Solver`], chosen in [`InterfaceProblem::new`].
 //!
+//! Where joints cross, copies of one node are in several pairs whose ties
+//! close loops: those pairs are solved as junctions ([`junction`]), on the
+//! null space of their tied rows, their tied forces the least-norm ones
+//! within every pair's limit.
+//!
 //! A set of contact states is a choice, per pair axis, between a known
 //! relative displacement `r` (tied: stick on every axis, slip on the normal)
 //! and a known relation for the contact force λ (open: λ = 0; slip: the
@@ -22,12 +27,14 @@ pub mod dense;
 pub mod gmres;
 pub mod iterative;
 pub mod joins;
+pub mod junction;
 mod layout;
 pub mod reduce;
 
 use coords::{Axis, Var};
 use dense::Dense;
 use iterative::{Iterative, Remote};
+use junction::Tied;
 use layout::Layout;
 
 use super::basis::FaceBasis;
@@ -65,15 +72,42 @@ pub struct Relation {
     pub force: [f64; 3],
     pub coupling: [f64; 3],
     pub spring: [[f64; 3]; 3],
+    /// The normal pressure force p the relation was linearised at: a pair
+    /// at a junction, whose normal force is known only after the solve,
+    /// takes `force + coupling * pressure` (see [`junction`]).
+    pub pressure: f64,
+    /// What the pair can carry, for a junction choosing its tied forces.
+    pub limit: Limit,
+}
+
+/// What a pair can carry in force, `λ_n <= tension` and `|λ_T| <= cohesion
+/// - friction λ_n` (λ on body I, tension positive; cohesion and tension are
+/// strengths times the pair's area): where a junction's tied forces are not
+/// unique, it takes the least-norm ones within these (see [`junction`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Limit {
+    pub tension: f64,
+    pub cohesion: f64,
+    pub friction: f64,
+}
+
+impl Limit {
+    /// No limit.
+    pub const NONE: Limit = Limit { tension: f64::INFINITY, cohesion: f64::INFINITY, friction: 0.0 };
 }
 
 impl Relation {
     /// Stuck at `target`, open, or slipping with a known tangential force.
     pub fn simple(state: ContactState, target: [f64; 3], force: [f64; 3]) -> Relation {
-        Relation { state, target, force, coupling: [0.0; 3], spring: [[0.0; 3]; 3] }
+        Relation { state, target, force, coupling: [0.0; 3], spring: [[0.0; 3]; 3], pressure: 0.0, limit: Limit::NONE }
     }
 
-    fn free_axis(&self, a: usize) -> bool {
+    /// The same relation with what the pair can carry.
+    pub fn within(self, limit: Limit) -> Relation {
+        Relation { limit, ..self }
+    }
+
+    pub fn free_axis(&self, a: usize) -> bool {
         match self.state {
             ContactState::Stick => false,
             ContactState::Slip => a > 0,
@@ -82,13 +116,50 @@ impl Relation {
     }
 }
 
+/// The free directions of the relative displacements r under one set of
+/// relations: `r = r0 + sum_a y_a col_a`. A lone pair's free axis is a
+/// column of one entry; a junction's free directions are the columns of its
+/// null space (see [`junction`]).
+pub struct Freedom {
+    /// r where every y is 0: the tied axes' targets, the junctions' r0.
+    pub r0: Vec<f64>,
+    /// The columns, orthonormal, each over r.
+    pub cols: Vec<Vec<(usize, f64)>>,
+    /// The column of each lone pair's free r (NONE where tied or in a junction).
+    pub pos: Vec<usize>,
+    pub junctions: Vec<JunctionBlock>,
+    /// The lone slipping pairs' free tangential rows.
+    pub slips: Vec<SlipRow>,
+}
+
+/// A junction's part of a solve: its columns, and what its slipping pairs
+/// add on them (`Z^T k Z`, `Z^T (f + k r0)`).
+pub struct JunctionBlock {
+    pub cols: std::ops::Range<usize>,
+    pub kz: nalgebra::DMatrix<f64>,
+    pub fz: nalgebra::DVector<f64>,
+    pub tied: Tied,
+}
+
+/// A lone slipping pair's free tangential row (r index), whose equation is
+/// the friction law's (see [`Relation`]):
+/// `(W r - c)_row + force + coupling (W r - c)_normal + sum_c spring_c r_c = 0`.
+pub struct SlipRow {
+    pub row: usize,
+    pub normal: Option<usize>,
+    pub coupling: f64,
+    pub springs: Vec<(usize, f64)>,
+    pub force: f64,
+}
+
 /// A way of solving the interface system: the seam between
 /// [`InterfaceProblem`] and its solvers ([`Dense`], [`Iterative`]).
 pub trait Solver {
-    /// Solves the pairs' relations `rel` (pair `p`'s local axes numbered
-    /// by `axes[p]`) under the load factors `lambda`; `None` when the
-    /// system is singular (the problem then finds out why).
-    fn solve(&self, axes: &[[Axis; 3]], rel: &[Relation], lambda: &[f64]) -> Option<Answer>;
+    /// Solves one set of relations, given by the free directions `fr` of
+    /// the relative displacements (`states`: the state set, to tell whether
+    /// it changed since the last solve), under the load factors `lambda`;
+    /// `None` when the system is singular (the problem then finds out why).
+    fn solve(&self, fr: &Freedom, states: &[ContactState], lambda: &[f64]) -> Option<Answer>;
     /// The system's diagonal at relative displacement `r` (the scale that
     /// turns a pair's slip into a force).
     fn diagonal(&self, r: usize) -> f64;
@@ -137,6 +208,10 @@ pub struct InterfaceSolution {
     /// differed from the last solve's): good for judging the states, not
     /// as the answer.
     pub loose: bool,
+    /// A junction pair with axes its loop's ties lock (see
+    /// [`junction::Junction::forces`]): its force as if those were tied,
+    /// which is what it is judged by.
+    pub as_tied: Vec<Option<[f64; 3]>>,
 }
 
 /// Why an interface solve failed.
@@ -155,7 +230,7 @@ impl<'a> InterfaceProblem<'a> {
     /// interface on other MPI ranks, `threads` this rank's ones.
     pub fn new(model: &Model, parts: &[OperatorRef], remote: Option<&'a dyn Remote>, threads: usize) -> Result<InterfaceProblem<'a>, ModelError> {
         let basis = FaceBasis::new(model);
-        let layout = Layout::new(model, parts, &basis)?;
+        let layout = Layout::new(model, parts, &basis);
         let rigid: Vec<PartModes> = parts.iter().map(|p| PartModes::new(model, &p.part.nodes(model))).collect();
         let positions = model.pairs.iter().map(|p| model.coords[p.k]).collect();
         let solver: Box<dyn Solver + 'a> = if parts.iter().any(|p| matches!(p.s, SchurRef::Applied { .. }) && p.nc > 0) {
@@ -197,14 +272,77 @@ impl<'a> InterfaceProblem<'a> {
     }
 
     /// A stiffness of pair `p`'s relative displacement (the mean diagonal
-    /// of W over its axes): the scale that turns a slip into a force.
+    /// of W over its axes): the scale that turns a slip into a force. A
+    /// junction pair's axis is a row of its junction's r: the diagonal's
+    /// quadratic form on it.
     pub fn stiffness(&self, p: usize) -> f64 {
-        let d: Vec<f64> = self.layout.axes[p].iter().filter_map(|a| a.r()).map(|r| self.solver.diagonal(r)).collect();
+        let d: Vec<f64> = match self.layout.in_junction[p] {
+            Some((j, i)) => {
+                let jn = &self.layout.junctions[j];
+                (0..self.layout.nd)
+                    .map(|a| jn.rows[i][a].iter().zip(&jn.r).map(|(x, &r)| x * x * self.solver.diagonal(r)).sum::<f64>())
+                    .filter(|&v| v > 0.0)
+                    .collect()
+            }
+            None => self.layout.axes[p].iter().filter_map(|a| a.r()).map(|r| self.solver.diagonal(r)).collect(),
+        };
         if d.is_empty() {
             1.0
         } else {
             d.iter().sum::<f64>() / d.len() as f64
         }
+    }
+
+    /// The free directions of the relative displacements under `rel`.
+    fn freedom(&self, rel: &[Relation], ramp: f64) -> Freedom {
+        let (nd, layout) = (self.layout.nd, &self.layout);
+        let mut r0 = vec![0.0; layout.nr];
+        let mut cols: Vec<Vec<(usize, f64)>> = Vec::new();
+        let mut pos = vec![crate::fem::sparse::NONE; layout.nr];
+        for (p, rl) in rel.iter().enumerate() {
+            if layout.in_junction[p].is_some() {
+                continue;
+            }
+            for a in 0..nd {
+                if let Some(ri) = layout.axes[p][a].r() {
+                    if rl.free_axis(a) {
+                        pos[ri] = cols.len();
+                        cols.push(vec![(ri, 1.0)]);
+                    } else {
+                        r0[ri] = rl.target[a];
+                    }
+                }
+            }
+        }
+        let mut junctions = Vec::with_capacity(layout.junctions.len());
+        for jn in &layout.junctions {
+            let tied = jn.tie(rel, ramp, |p| self.basis.areas[p]);
+            for (x, &ri) in jn.r.iter().enumerate() {
+                r0[ri] = tied.r0[x];
+            }
+            let first = cols.len();
+            for c in 0..tied.z.ncols() {
+                cols.push(jn.r.iter().enumerate().map(|(x, &ri)| (ri, tied.z[(x, c)])).collect());
+            }
+            // the slipping pairs' springs and forces on the free directions
+            let kz = tied.z.transpose() * &tied.k * &tied.z;
+            let fz = tied.z.transpose() * (&tied.f + &tied.k * &tied.r0);
+            junctions.push(JunctionBlock { cols: first..cols.len(), kz, fz, tied });
+        }
+        // the lone slipping pairs' rows
+        let mut slips = Vec::new();
+        for (p, rl) in rel.iter().enumerate() {
+            if rl.state != ContactState::Slip || layout.in_junction[p].is_some() {
+                continue;
+            }
+            let ax = &layout.axes[p];
+            for a in 1..nd {
+                let Some(ra) = ax[a].r() else { continue };
+                let springs = (1..nd).filter_map(|c| ax[c].r().map(|rc| (rc, rl.spring[a][c]))).filter(|s| s.1 != 0.0).collect();
+                slips.push(SlipRow { row: ra, normal: ax[0].r(), coupling: rl.coupling[a], springs, force: rl.force[a] });
+            }
+        }
+        Freedom { r0, cols, pos, junctions, slips }
     }
 
     /// Solves the interface system for the relations `rel` of every pair
@@ -220,8 +358,9 @@ impl<'a> InterfaceProblem<'a> {
         if !sliding.is_empty() {
             return Err(SolveFailure::Sliding(sliding));
         }
-        let answer = self.solver.solve(&self.layout.axes, rel, lambda).ok_or_else(|| self.diagnose(&states))?;
-        let (forces, rels) = self.forces(rel, &answer, lambda[0]);
+        let freedom = self.freedom(rel, lambda[0]);
+        let answer = self.solver.solve(&freedom, &states, lambda).ok_or_else(|| self.diagnose(&states))?;
+        let (forces, rels, as_tied) = self.forces(rel, &answer, &freedom, lambda[0]);
         let pairs = (0..rel.len())
             .map(|p| {
                 let area = self.basis.areas[p];
@@ -230,18 +369,25 @@ impl<'a> InterfaceProblem<'a> {
             })
             .collect();
         let d_c = self.displacements(&answer, lambda[0]);
-        Ok(InterfaceSolution { pairs, forces, rel: rels, d_c, residual: answer.residual, loose: answer.loose })
+        Ok(InterfaceSolution { pairs, forces, rel: rels, d_c, residual: answer.residual, loose: answer.loose, as_tied })
     }
 
     /// The contact forces, `-(W r - c)`, and the relative displacements of
     /// every pair; a free axis carries what its relation prescribes (an
-    /// open pair exactly zero, not round-off).
-    fn forces(&self, rel: &[Relation], answer: &Answer, ramp: f64) -> (Vec<[f64; 3]>, Vec<[f64; 3]>) {
+    /// open pair exactly zero, not round-off). A junction's pairs share
+    /// what its ties carry, the least-norm way within their limits, and
+    /// the forces its locked pairs would carry tied (`as_tied`).
+    #[allow(clippy::type_complexity)]
+    fn forces(&self, rel: &[Relation], answer: &Answer, fr: &Freedom, ramp: f64) -> (Vec<[f64; 3]>, Vec<[f64; 3]>, Vec<Option<[f64; 3]>>) {
         let nd = self.layout.nd;
         let (r, wr_c) = (&answer.r, &answer.residual_r);
         let mut forces = vec![[0.0; 3]; rel.len()];
         let mut rels = vec![[0.0; 3]; rel.len()];
+        let mut as_tied = vec![None; rel.len()];
         for (p, ax) in self.layout.axes.iter().enumerate() {
+            if self.layout.in_junction[p].is_some() {
+                continue;
+            }
             for a in 0..nd {
                 match ax[a] {
                     Axis::Held { vk, vl } => rels[p][a] = (vl - vk) * ramp,
@@ -265,7 +411,16 @@ impl<'a> InterfaceProblem<'a> {
                 }
             }
         }
-        (forces, rels)
+        for (jn, block) in self.layout.junctions.iter().zip(&fr.junctions) {
+            let rj = nalgebra::DVector::from_iterator(jn.r.len(), jn.r.iter().map(|&i| r[i]));
+            let g = nalgebra::DVector::from_iterator(jn.r.len(), jn.r.iter().map(|&i| -wr_c[i]));
+            for (&p, (f, x, t)) in jn.pairs.iter().zip(jn.forces(&block.tied, rel, &rj, &g, ramp)) {
+                forces[p] = f;
+                rels[p] = x;
+                as_tied[p] = t;
+            }
+        }
+        (forces, rels, as_tied)
     }
 
     /// The interface displacements of every part, global axes, nodal basis.
@@ -273,13 +428,7 @@ impl<'a> InterfaceProblem<'a> {
         let nd = self.layout.nd;
         (self.layout.parts.iter())
             .map(|map| {
-                let (mut terms, mut frames) = (Vec::with_capacity(map.nodes.len() * nd), Vec::with_capacity(map.nodes.len()));
-                for &slot in &map.nodes {
-                    let (axes, side, f) = self.layout.slot(slot);
-                    terms.extend((0..nd).map(|a| axes[a].terms(side)));
-                    frames.push(f);
-                }
-                coords::part_displacements(&terms, &frames, &map.edges, nd, ramp, |v| match v {
+                coords::part_displacements(&map.terms, &map.frames, &map.edges, nd, ramp, |v| match v {
                     Var::M(i) => answer.m[i],
                     Var::R(i) => answer.r[i],
                 })

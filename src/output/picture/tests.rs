@@ -589,7 +589,7 @@ fn a_joint_set_of_many_planes_gets_a_plan_per_plane_and_one_overview() {
     }
     let mut model = model_of(coords, quads);
     let n = model.n_nodes();
-    model.pairs = (0..n).map(|k| crate::model::Pair { k, l: k, contact: 0, normal: if k < 5 * 28 { [0.0, 0.0, 1.0] } else { [1.0, 0.0, 0.0] }, area: 0.1 }).collect();
+    model.pairs = (0..n).map(|k| crate::model::Pair { k, l: k, contact: 0, normal: if k < 5 * 28 { [0.0, 0.0, 1.0] } else { [1.0, 0.0, 0.0] }, area: 0.1, shares: Vec::new() }).collect();
     let states: Vec<ContactState> = (0..n).map(|k| match model.coords[k][0] {
         x if x < 1.0 => ContactState::Open,
         x if x < 2.0 => ContactState::Slip,

@@ -1,0 +1,649 @@
+//! Junctions: node copies in more than one pair.
+//!
+//! Where joints cross, every block keeps its own copy of the node and the
+//! pairs follow the faces (four pairs at a crossing in 2D, twelve at a point
+//! where eight blocks meet in 3D; two between the same copies on a crease).
+//! The stuck pairs around a junction then form closed loops, and their ties
+//! are redundant: four stuck pairs around a crossing tie four copies with
+//! eight equations of which six are independent. The mean / relative
+//! coordinates of a lone pair ([`super::coords`]) cannot express that, so a
+//! junction (every pair of a cluster of copies joined by pairs, when the
+//! cluster is more than one pair) is written in global axes:
+//!
+//! ```text
+//! d_0 = m,  d_j = m + r_j   (j = 1..q-1, per component; r_j = d_j - d_0)
+//! ```
+//!
+//! or, on a component some copy is held in, `d_h = v_h` for the held ones
+//! and `d_j = v + r_j` for the others (v the first held value). The means m
+//! are free under every state, as a lone pair's are; each pair's relative
+//! displacement in its own axes is a row of the junction's r:
+//!
+//! ```text
+//! rel_p = T_p (d_l - d_k) = C_p r + c_p ramp
+//! ```
+//!
+//! A set of states ties some rows: `C_T r = t`. Redundant rows (the loops)
+//! make C_T rank-deficient; the displacements are still unique, so r is
+//! written on the null space of C_T, `r = r_0 + Z y` (C_T's singular value
+//! decomposition: r_0 its least-squares solution, Z the right singular
+//! vectors of its zero singular values), and only y enters the system.
+//!
+//! The tied forces are not unique: a self-equilibrated loop of forces can
+//! be added. The interface takes the one of least `sum λ_i^2 / A_i` (A_i the
+//! area of the row's pair), the limit of equally stiff joint springs per
+//! unit area as their stiffness grows: what 3DEC's sub-contacts and DDA's
+//! penalty springs would give with stiff joints, without their compliance,
+//! and what no ordering of blocks or groups can change. Mortar methods meet
+//! the same redundancy at crosspoints and remove the crosspoint's
+//! multipliers (Wohlmuth 2001), which ties the crosspoint to its master
+//! side; here every block keeps its copy, and a crossing can open or slip.
+//! Under a uniform stress with equal areas around a crossing the
+//! least-norm forces are the exact tractions `σ n A` of each face.
+//!
+//! A slipping pair's friction force along its free axes is its relation's
+//! `force + coupling p + spring rel` as elsewhere, with the coupling to its
+//! own normal force taken at the pressure it was linearised at: at a
+//! junction the normal force is one of the tied forces, known only after the
+//! solve (the iteration converges to the same fixed point).
+
+use nalgebra::{DMatrix, DVector};
+
+use super::coords::{Terms, Var};
+use super::{Limit, Relation};
+use crate::contact::frame::Frame;
+use crate::contact::law::ContactState;
+
+/// Singular values below this fraction of the largest are zero: the
+/// redundant ties of a loop (the rows are unit vectors of the pairs' frames,
+/// so independent ones are O(1)).
+const RANK_TOLERANCE: f64 = 1e-10;
+
+/// The pairs that are solved as junctions: every pair of a cluster (copies
+/// joined through pairs) of more than one pair, and the pairs `general`
+/// asks for (a pair whose supports do not lie along its frame). Returns
+/// the clusters, pairs ascending, in order of their first pair.
+pub fn clusters(pairs: &[(usize, usize)], n_nodes: usize, general: impl Fn(usize) -> bool) -> Vec<Vec<usize>> {
+    let mut parent: Vec<usize> = (0..n_nodes).collect();
+    fn root(p: &mut [usize], mut i: usize) -> usize {
+        while p[i] != i {
+            p[i] = p[p[i]];
+            i = p[i];
+        }
+        i
+    }
+    for &(k, l) in pairs {
+        let (a, b) = (root(&mut parent, k), root(&mut parent, l));
+        parent[a.max(b)] = a.min(b);
+    }
+    let mut of_root: std::collections::HashMap<usize, usize> = std::collections::HashMap::new();
+    let mut all: Vec<Vec<usize>> = Vec::new();
+    for (p, &(k, _)) in pairs.iter().enumerate() {
+        let r = root(&mut parent, k);
+        let at = *of_root.entry(r).or_insert_with(|| {
+            all.push(Vec::new());
+            all.len() - 1
+        });
+        all[at].push(p);
+    }
+    all.into_iter().filter(|c| c.len() > 1 || general(c[0])).collect()
+}
+
+/// One junction: its pairs and copies, how each copy is written in the
+/// unknowns, and each pair's rows.
+#[derive(Clone, Debug)]
+pub struct Junction {
+    /// Its pairs (model pair indices), ascending.
+    pub pairs: Vec<usize>,
+    /// Its copies (model nodes), ascending.
+    pub copies: Vec<usize>,
+    /// The unknowns of each copy's components (global axes).
+    pub terms: Vec<[Terms; 3]>,
+    /// Its relative displacements: global indices into r.
+    pub r: Vec<usize>,
+    /// Its means: global indices into m.
+    pub m: Vec<usize>,
+    /// Per pair and local axis, the row of C over `r` and the constant per unit ramp.
+    pub rows: Vec<[Vec<f64>; 3]>,
+    pub consts: Vec<[f64; 3]>,
+    nd: usize,
+}
+
+/// A junction under one set of relations.
+#[derive(Clone, Debug)]
+pub struct Tied {
+    /// An orthonormal basis of the free directions of r (columns over the
+    /// junction's r): `r = r0 + Z y`.
+    pub z: DMatrix<f64>,
+    /// r at y = 0: the tied rows' least-squares (least-norm) solution.
+    pub r0: DVector<f64>,
+    /// What the slipping pairs add over the junction's r: the springs'
+    /// stiffness, and their force at r = 0 (`W r - c + k r + f = -C_T^T λ_T`).
+    pub k: DMatrix<f64>,
+    pub f: DVector<f64>,
+    /// The tied rows (junction pair, axis), and the map from the force they
+    /// must carry (over r) to their least-norm forces.
+    rows: Vec<(usize, usize)>,
+    split: Split,
+    /// The area of each of the junction's pairs.
+    areas: Vec<f64>,
+}
+
+/// How the tied `rows` (pair, axis) share the force `g` they must carry
+/// (over r): `C_T^T λ = g`. With `ν = λ / sqrt(A)` the least-norm share is
+/// `ν0 = pinv(C_T^T D) g`, and every other share is `ν0 + N s` (N the null
+/// space of `C_T^T D`: the loops' self-equilibrated forces).
+#[derive(Clone, Debug)]
+struct Split {
+    rows: Vec<(usize, usize)>,
+    d: Vec<f64>,
+    pinv: DMatrix<f64>,
+    null: DMatrix<f64>,
+}
+
+impl Split {
+    fn new(all: &[[Vec<f64>; 3]], rows: &[(usize, usize)], areas: &[f64], n_r: usize) -> Split {
+        let m_t = rows.len();
+        let d: Vec<f64> = rows.iter().map(|&(j, _)| areas[j].max(f64::MIN_POSITIVE).sqrt()).collect();
+        if m_t == 0 || n_r == 0 {
+            return Split { rows: rows.to_vec(), d, pinv: DMatrix::zeros(m_t, n_r), null: DMatrix::identity(m_t, m_t) };
+        }
+        // (C_T^T D)^T = D C_T, padded to square: its U spans the range of
+        // D C_T and, past the rank, the null space of C_T^T D
+        let n = m_t.max(n_r);
+        let dc = DMatrix::<f64>::from_fn(m_t, n, |i, c| if c < n_r { all[rows[i].0][rows[i].1][c] * d[i] } else { 0.0 });
+        let svd = dc.svd(true, true);
+        let (u, v_t) = (svd.u.expect("U"), svd.v_t.expect("V^T"));
+        let sv = &svd.singular_values;
+        let smax = sv.iter().copied().fold(0.0, f64::max);
+        let rank: Vec<usize> = (0..sv.len()).filter(|&i| sv[i] > RANK_TOLERANCE * smax.max(f64::MIN_POSITIVE)).collect();
+        // pinv(C_T^T D) = pinv((D C_T)^T) = U S^-1 V^T restricted to r's columns
+        let pinv = DMatrix::<f64>::from_fn(m_t, n_r, |i, c| rank.iter().map(|&k| u[(i, k)] * v_t[(k, c)] / sv[k]).sum());
+        let free: Vec<usize> = (0..m_t).filter(|k| !rank.contains(k)).collect();
+        let null = DMatrix::<f64>::from_fn(m_t, free.len(), |i, c| u[(i, free[c])]);
+        Split { rows: rows.to_vec(), d, pinv, null }
+    }
+
+    /// The forces of the rows: the least-norm share of `g`, or where that
+    /// breaks a pair's limit (tension beyond its strength, shear beyond its
+    /// Coulomb bound for a stuck pair), the least-norm share within every
+    /// limit, when the loops leave one.
+    fn forces(&self, g: &DVector<f64>, limits: &[Limit]) -> DVector<f64> {
+        let nu0 = &self.pinv * g;
+        let lambda = |s: &DVector<f64>| DVector::from_fn(self.rows.len(), |i, _| self.d[i] * (nu0[i] + (self.null.row(i) * s)[0]));
+        let zero = DVector::zeros(self.null.ncols());
+        let plain = lambda(&zero);
+        if self.null.ncols() == 0 || self.violations(&plain, limits).is_empty() {
+            return plain;
+        }
+        // cuts: a row combination of λ with its bound, `a . λ <= b`
+        let mut cuts: Vec<(Vec<(usize, f64)>, f64)> = Vec::new();
+        let mut s = zero;
+        for _ in 0..12 {
+            let lam = lambda(&s);
+            let new = self.violations(&lam, limits);
+            if new.is_empty() {
+                return lam;
+            }
+            cuts.extend(new);
+            // in s: a . D (nu0 + N s) <= b
+            let g_rows: Vec<DVector<f64>> = cuts.iter().map(|(a, _)| a.iter().fold(DVector::zeros(self.null.ncols()), |acc, &(i, c)| acc + self.null.row(i).transpose() * (c * self.d[i]))).collect();
+            let h: Vec<f64> = cuts.iter().map(|(a, b)| b - a.iter().map(|&(i, c)| c * self.d[i] * nu0[i]).sum::<f64>()).collect();
+            match least_norm_point(&g_rows, &h) {
+                Some(x) => s = x,
+                // no share within every limit: the loop cannot carry g so
+                None => return plain,
+            }
+        }
+        let lam = lambda(&s);
+        if self.violations(&lam, limits).is_empty() {
+            lam
+        } else {
+            plain
+        }
+    }
+
+    /// The limits `λ` breaks, as cuts: the tension of every tied normal,
+    /// and the Coulomb bound of every stuck pair along its shear's
+    /// direction (in 2D, both signs). The cuts stay a hair (1e-9 of the
+    /// largest force) inside the limits: a share the loops can choose is
+    /// chosen strictly within them, so that judging the pairs by it, with
+    /// the law's own `>=`, does not find them on the limit and let go.
+    fn violations(&self, lam: &DVector<f64>, limits: &[Limit]) -> Vec<(Vec<(usize, f64)>, f64)> {
+        let scale = lam.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
+        let (margin, tol) = (1e-9 * scale, 1e-12 * scale);
+        let mut out = Vec::new();
+        let mut j0 = 0;
+        while j0 < self.rows.len() {
+            let j = self.rows[j0].0;
+            let at: Vec<usize> = (j0..self.rows.len()).take_while(|&i| self.rows[i].0 == j).collect();
+            j0 += at.len();
+            let lim = limits[j];
+            let Some(&n) = at.iter().find(|&&i| self.rows[i].1 == 0) else { continue };
+            if lam[n] > lim.tension - margin + tol {
+                out.push((vec![(n, 1.0)], lim.tension - margin));
+            }
+            let t: Vec<usize> = at.iter().copied().filter(|&i| self.rows[i].1 > 0).collect();
+            if t.is_empty() || !lim.cohesion.is_finite() {
+                continue;
+            }
+            // |λ_T| <= c - f λ_n  as  d . λ_T + f λ_n <= c
+            let lt = t.iter().map(|&i| lam[i] * lam[i]).sum::<f64>().sqrt();
+            let bound = lim.cohesion - lim.friction * lam[n] - margin;
+            if lt > bound + tol {
+                let c = lim.cohesion - margin;
+                if t.len() == 1 {
+                    let sign = lam[t[0]].signum();
+                    out.push((vec![(t[0], sign), (n, lim.friction)], c));
+                } else {
+                    let mut a: Vec<(usize, f64)> = t.iter().map(|&i| (i, lam[i] / lt)).collect();
+                    a.push((n, lim.friction));
+                    out.push((a, c));
+                }
+            }
+        }
+        out
+    }
+}
+
+/// The point of least norm with `g_i . x <= h_i` for every i (a primal-dual
+/// active-set method; the problems are a few dozen unknowns); None when the
+/// constraints leave no point.
+fn least_norm_point(g: &[DVector<f64>], h: &[f64]) -> Option<DVector<f64>> {
+    let k = g.first().map_or(0, |v| v.len());
+    let scale = h.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(g.iter().map(|v| v.norm()).fold(0.0, f64::max)).max(f64::MIN_POSITIVE);
+    let tol = 1e-12 * scale;
+    let mut active: Vec<usize> = Vec::new();
+    for _ in 0..(4 * g.len() + 20) {
+        // the least-norm x on the active constraints: x = -G_W^T y, G_W G_W^T y = -h_W
+        let m = active.len();
+        let gw = DMatrix::<f64>::from_fn(m, k, |i, c| g[active[i]][c]);
+        let y = if m == 0 {
+            DVector::zeros(0)
+        } else {
+            let gram = &gw * gw.transpose();
+            let rhs = DVector::from_fn(m, |i, _| -h[active[i]]);
+            let eps = 1e-12 * gram.norm();
+            gram.pseudo_inverse(eps).ok()? * rhs
+        };
+        let x = if m == 0 { DVector::zeros(k) } else { -(gw.transpose() * &y) };
+        // the active constraints must hold as equalities: else none can
+        if active.iter().any(|&i| (g[i].dot(&x) - h[i]).abs() > 1e-8 * scale) {
+            return None;
+        }
+        let worst = (0..g.len()).filter(|i| !active.contains(i)).map(|i| (i, g[i].dot(&x) - h[i])).max_by(|a, b| a.1.total_cmp(&b.1));
+        match worst {
+            Some((i, v)) if v > tol => active.push(i),
+            _ => match (0..m).min_by(|&a, &b| y[a].total_cmp(&y[b])) {
+                Some(a) if y[a] < -tol => {
+                    active.remove(a);
+                }
+                _ => return Some(x),
+            },
+        }
+    }
+    None
+}
+
+impl Junction {
+    /// The junction of `pairs` (their (k, l) and frames given by `pair`),
+    /// with the prescribed value per unit ramp of each model DOF
+    /// (`prescribed[node * nd + c]`); numbers its means and relative
+    /// displacements from `nm` and `nr` on.
+    pub fn new(pairs: Vec<usize>, pair: impl Fn(usize) -> (usize, usize, Frame), prescribed: &[Option<f64>], nd: usize, nm: &mut usize, nr: &mut usize) -> Junction {
+        let mut copies: Vec<usize> = pairs.iter().flat_map(|&p| {
+            let (k, l, _) = pair(p);
+            [k, l]
+        }).collect();
+        copies.sort_unstable();
+        copies.dedup();
+        let q = copies.len();
+        let none = || Terms { vars: [(Var::M(0), 0.0); 2], n: 0, constant: 0.0 };
+        let mut terms: Vec<[Terms; 3]> = (0..q).map(|_| [none(), none(), none()]).collect();
+        // r index of (copy, component), or None where the copy is held or is the reference
+        let mut r_of = vec![[None; 3]; q];
+        let (mut r, mut m) = (Vec::new(), Vec::new());
+        for c in 0..nd {
+            let held: Vec<Option<f64>> = copies.iter().map(|&n| prescribed[n * nd + c]).collect();
+            let reference = held.iter().flatten().next().copied();
+            for (j, h) in held.iter().enumerate() {
+                let t = &mut terms[j][c];
+                match (reference, h) {
+                    (_, Some(v)) => t.constant = *v,
+                    (None, None) if j == 0 => {
+                        t.vars[0] = (Var::M(*nm), 1.0);
+                        t.n = 1;
+                        m.push(*nm);
+                    }
+                    (reference, None) => {
+                        let mut n = 0;
+                        if reference.is_none() {
+                            t.vars[0] = (Var::M(*nm), 1.0);
+                            n = 1;
+                        }
+                        t.vars[n] = (Var::R(*nr), 1.0);
+                        t.n = n + 1;
+                        t.constant = reference.unwrap_or(0.0);
+                        r_of[j][c] = Some(r.len());
+                        r.push(*nr);
+                        *nr += 1;
+                    }
+                }
+            }
+            if reference.is_none() {
+                *nm += 1;
+            }
+        }
+        let n_r = r.len();
+        let mut rows = Vec::with_capacity(pairs.len());
+        let mut consts = Vec::with_capacity(pairs.len());
+        for &p in &pairs {
+            let (k, l, f) = pair(p);
+            let (jk, jl) = (copies.binary_search(&k).expect("a copy"), copies.binary_search(&l).expect("a copy"));
+            let mut row: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; n_r]);
+            let mut cst = [0.0; 3];
+            for (a, row_a) in row.iter_mut().enumerate().take(nd) {
+                for c in 0..nd {
+                    let w = f[a][c];
+                    if w == 0.0 {
+                        continue;
+                    }
+                    // d_l - d_k along global c
+                    if let Some(i) = r_of[jl][c] {
+                        row_a[i] += w;
+                    }
+                    if let Some(i) = r_of[jk][c] {
+                        row_a[i] -= w;
+                    }
+                    cst[a] += w * (terms[jl][c].constant - terms[jk][c].constant);
+                }
+            }
+            rows.push(row);
+            consts.push(cst);
+        }
+        Junction { pairs, copies, terms, r, m, rows, consts, nd }
+    }
+
+    /// The junction under the relations `rel` (of every model pair) at
+    /// `ramp`; `area` gives each pair's area.
+    pub fn tie(&self, rel: &[Relation], ramp: f64, area: impl Fn(usize) -> f64) -> Tied {
+        let (nd, n_r) = (self.nd, self.r.len());
+        let mut rows: Vec<(usize, usize)> = Vec::new();
+        for (j, &p) in self.pairs.iter().enumerate() {
+            for a in 0..nd {
+                if !rel[p].free_axis(a) {
+                    rows.push((j, a));
+                }
+            }
+        }
+        let m_t = rows.len();
+        if n_r == 0 {
+            // every copy held in every component: nothing to solve for
+            let zero = DMatrix::zeros(0, 0);
+            let areas: Vec<f64> = self.pairs.iter().map(|&p| area(p)).collect();
+            let split = Split::new(&self.rows, &rows, &areas, 0);
+            return Tied { z: zero.clone(), r0: DVector::zeros(0), k: zero, f: DVector::zeros(0), split, rows, areas };
+        }
+        let c_t = DMatrix::<f64>::from_fn(m_t.max(n_r), n_r, |i, c| if i < m_t { self.rows[rows[i].0][rows[i].1][c] } else { 0.0 });
+        let t = DVector::<f64>::from_fn(m_t.max(n_r), |i, _| {
+            if i < m_t {
+                let (j, a) = rows[i];
+                rel[self.pairs[j]].target[a] - self.consts[j][a] * ramp
+            } else {
+                0.0
+            }
+        });
+        // C_T = U S V^T: the null space is V's columns of zero singular values
+        let svd = c_t.svd(true, true);
+        let (u, v_t) = (svd.u.expect("U"), svd.v_t.expect("V^T"));
+        let smax = svd.singular_values.iter().copied().fold(0.0, f64::max);
+        let rank_of = |s: f64| s > RANK_TOLERANCE * smax.max(f64::MIN_POSITIVE);
+        let mut r0 = DVector::<f64>::zeros(n_r);
+        let mut free_cols = Vec::new();
+        for (i, &s) in svd.singular_values.iter().enumerate() {
+            if rank_of(s) {
+                let coef = u.column(i).dot(&t) / s;
+                r0 += v_t.row(i).transpose() * coef;
+            } else {
+                free_cols.push(i);
+            }
+        }
+        // (a wide C_T: V^T has n_r rows whatever m_t; a row beyond m_t's
+        // singular values is a free direction too)
+        let z = DMatrix::<f64>::from_fn(n_r, free_cols.len(), |i, c| v_t[(free_cols[c], i)]);
+        // slipping pairs: springs and forces along their free axes
+        let mut k = DMatrix::<f64>::zeros(n_r, n_r);
+        let mut f = DVector::<f64>::zeros(n_r);
+        for (j, &p) in self.pairs.iter().enumerate() {
+            let rl = &rel[p];
+            if rl.state != ContactState::Slip {
+                continue;
+            }
+            for a in 1..nd {
+                let row_a = DVector::from_column_slice(&self.rows[j][a]);
+                let mut fa = rl.force[a] + rl.coupling[a] * rl.pressure;
+                for c in 1..nd {
+                    let s = rl.spring[a][c];
+                    if s == 0.0 {
+                        continue;
+                    }
+                    fa += s * self.consts[j][c] * ramp;
+                    let row_c = DVector::from_column_slice(&self.rows[j][c]);
+                    k += &row_a * row_c.transpose() * s;
+                }
+                f += &row_a * fa;
+            }
+        }
+        let areas: Vec<f64> = self.pairs.iter().map(|&p| area(p)).collect();
+        let split = Split::new(&self.rows, &rows, &areas, n_r);
+        Tied { z, r0, k, f, rows, split, areas }
+    }
+
+    /// The contact force on body I of each of the junction's pairs (local
+    /// axes), its relative displacement, and its force as if tied where it
+    /// is locked, from the junction's r and `g = -(W r - c)` on it (the
+    /// force the pairs must carry, over r).
+    ///
+    /// A free axis is locked when the tied rows fix it (its row has no part
+    /// along the free directions Z): an open pair whose copies the loop's
+    /// other ties keep together has a zero gap whatever it carries; a
+    /// slipping pair they keep from slipping has no slip. Tying it would
+    /// change no displacement, only the forces, so its gap or slip cannot
+    /// tell its state: the forces with every locked axis tied can, the
+    /// least-norm ones within every pair's limit (None where nothing is
+    /// locked).
+    pub fn forces(&self, tied: &Tied, rel: &[Relation], r: &DVector<f64>, g: &DVector<f64>, ramp: f64) -> Vec<([f64; 3], [f64; 3], Option<[f64; 3]>)> {
+        let nd = self.nd;
+        let rels: Vec<[f64; 3]> = (0..self.pairs.len())
+            .map(|j| std::array::from_fn(|a| if a < nd { DVector::from_column_slice(&self.rows[j][a]).dot(r) + self.consts[j][a] * ramp } else { 0.0 }))
+            .collect();
+        // what the tied rows carry: g less the slipping pairs' friction
+        let carried = g - (&tied.k * r + &tied.f);
+        let limits: Vec<Limit> = self.pairs.iter().map(|&p| rel[p].limit).collect();
+        let lambda = tied.split.forces(&carried, &limits);
+        let mut out: Vec<([f64; 3], [f64; 3], Option<[f64; 3]>)> = rels.iter().map(|&x| ([0.0; 3], x, None)).collect();
+        for (i, &(j, a)) in tied.rows.iter().enumerate() {
+            out[j].0[a] = lambda[i];
+        }
+        for (j, &p) in self.pairs.iter().enumerate() {
+            let rl = &rel[p];
+            if rl.state != ContactState::Slip {
+                continue;
+            }
+            for a in 1..nd {
+                out[j].0[a] = rl.force[a] + rl.coupling[a] * rl.pressure + (1..nd).map(|c| rl.spring[a][c] * rels[j][c]).sum::<f64>();
+            }
+        }
+        // free rows the ties lock (no part along Z): open pairs' normals,
+        // and slipping pairs' shear where they have not slipped (a slip the
+        // loop had locked elsewhere could not be tied back: their shear is
+        // judged by their slip, as any other pair's)
+        let is_locked = |j: usize, a: usize| {
+            let row = DVector::from_column_slice(&self.rows[j][a]);
+            tied.z.ncols() == 0 || (tied.z.transpose() * &row).norm() <= 1e-9 * row.norm()
+        };
+        let scale = rels.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
+        let mut locked: Vec<(usize, usize)> = Vec::new();
+        for (j, &p) in self.pairs.iter().enumerate() {
+            match rel[p].state {
+                ContactState::Open if is_locked(j, 0) => locked.push((j, 0)),
+                ContactState::Slip => {
+                    let shear: Vec<usize> = (1..nd).collect();
+                    let unmoved = shear.iter().all(|&a| (rels[j][a] - rel[p].target[a]).abs() <= 1e-10 * scale);
+                    if unmoved && shear.iter().all(|&a| is_locked(j, a)) {
+                        locked.extend(shear.iter().map(|&a| (j, a)));
+                    }
+                }
+                _ => {}
+            }
+        }
+        if locked.is_empty() {
+            return out;
+        }
+        // the least-norm forces with the locked axes tied too; the other
+        // free axes keep what their relations give them
+        let mut rows: Vec<(usize, usize)> = tied.rows.iter().chain(&locked).copied().collect();
+        rows.sort_unstable();
+        let mut carried = g.clone();
+        for (j, f) in out.iter().enumerate() {
+            for a in 0..nd {
+                if !rows.contains(&(j, a)) {
+                    carried -= DVector::from_column_slice(&self.rows[j][a]) * f.0[a];
+                }
+            }
+        }
+        let lambda = Split::new(&self.rows, &rows, &tied.areas, g.len()).forces(&carried, &limits);
+        let mut as_tied: Vec<[f64; 3]> = out.iter().map(|o| o.0).collect();
+        for (i, &(j, a)) in rows.iter().enumerate() {
+            as_tied[j][a] = lambda[i];
+        }
+        for &(j, _) in &locked {
+            out[j].2 = Some(as_tied[j]);
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const X: Frame = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    const Y: Frame = [[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]];
+
+    /// A crossing in 2D: copies 0 (bottom left), 1 (bottom right), 2 (top
+    /// left), 3 (top right); pairs 0-1 and 2-3 across x = 0 (normal +x),
+    /// 0-2 and 1-3 across y = 0 (normal +y).
+    fn crossing() -> (Vec<(usize, usize, Frame)>, Junction) {
+        let pairs = vec![(0, 1, X), (2, 3, X), (0, 2, Y), (1, 3, Y)];
+        let (mut nm, mut nr) = (0, 0);
+        let j = Junction::new((0..4).collect(), |p| pairs[p], &[None; 8], 2, &mut nm, &mut nr);
+        assert_eq!((nm, nr), (2, 6));
+        (pairs, j)
+    }
+
+    fn stuck(n: usize) -> Vec<Relation> {
+        (0..n).map(|_| Relation::simple(ContactState::Stick, [0.0; 3], [0.0; 3])).collect()
+    }
+
+    #[test]
+    fn stuck_loops_leave_no_free_direction() {
+        let (_, j) = crossing();
+        let tied = j.tie(&stuck(4), 1.0, |_| 1.0);
+        assert_eq!(tied.z.ncols(), 0, "eight ties of rank six fix all six relative displacements");
+        assert!(tied.r0.norm() < 1e-15);
+    }
+
+    /// Uniform stress (sxx, syy, sxy) with equal areas: the copies' forces
+    /// are the faces' tractions summed; the least-norm split gives each
+    /// pair its own face's traction exactly.
+    #[test]
+    fn least_norm_forces_are_the_face_tractions_under_uniform_stress() {
+        let (pairs, j) = crossing();
+        let (sxx, syy, sxy) = (-3.0, -1.5, 0.7);
+        // traction on body I from body II, local axes: t_x face (n = +x): (sxx, sxy); y face (n = +y): local n = y, t = -x
+        let want = |p: usize| -> [f64; 2] {
+            if pairs[p].2 == X {
+                [sxx, sxy]
+            } else {
+                [syy, -sxy]
+            }
+        };
+        // g over r = -(force on r from the bodies) = sum_p C_p^T λ_p
+        let mut g = DVector::<f64>::zeros(6);
+        for p in 0..4 {
+            for a in 0..2 {
+                g += DVector::from_column_slice(&j.rows[p][a]) * want(p)[a];
+            }
+        }
+        let rel = stuck(4);
+        let tied = j.tie(&rel, 1.0, |_| 1.0);
+        let out = j.forces(&tied, &rel, &DVector::zeros(6), &g, 1.0);
+        for p in 0..4 {
+            for a in 0..2 {
+                assert!((out[p].0[a] - want(p)[a]).abs() < 1e-13, "pair {p} axis {a}: {} vs {}", out[p].0[a], want(p)[a]);
+            }
+        }
+    }
+
+    /// One pair slipping in a stuck loop: the loop still locks its slip
+    /// (no free direction), and its friction force is what it prescribes.
+    #[test]
+    fn a_slipping_pair_in_a_stuck_loop_is_locked_and_carries_its_friction() {
+        let (_, j) = crossing();
+        let mut rel = stuck(4);
+        rel[0] = Relation { state: ContactState::Slip, target: [0.0; 3], force: [0.0, 0.25, 0.0], coupling: [0.0; 3], spring: [[0.0; 3]; 3], pressure: 0.0, limit: Limit::NONE };
+        let tied = j.tie(&rel, 1.0, |_| 1.0);
+        assert_eq!(tied.z.ncols(), 0);
+        let out = j.forces(&tied, &rel, &DVector::zeros(6), &DVector::zeros(6), 1.0);
+        assert!((out[0].0[1] - 0.25).abs() < 1e-15);
+        // the loop takes the friction back: the forces on every copy balance
+        let mut on_copy = [[0.0f64; 2]; 4];
+        let frames = [X, X, Y, Y];
+        let ends = [(0, 1), (2, 3), (0, 2), (1, 3)];
+        for p in 0..4 {
+            for c in 0..2 {
+                let f: f64 = (0..2).map(|a| frames[p][a][c] * out[p].0[a]).sum();
+                on_copy[ends[p].0][c] += f;
+                on_copy[ends[p].1][c] -= f;
+            }
+        }
+        for f in on_copy {
+            assert!(f[0].abs() < 1e-14 && f[1].abs() < 1e-14, "{on_copy:?}");
+        }
+    }
+
+    /// All four open: every relative displacement is free, no force.
+    #[test]
+    fn open_pairs_free_everything() {
+        let (_, j) = crossing();
+        let rel: Vec<Relation> = (0..4).map(|_| Relation::simple(ContactState::Open, [0.0; 3], [0.0; 3])).collect();
+        let tied = j.tie(&rel, 1.0, |_| 1.0);
+        assert_eq!(tied.z.ncols(), 6);
+    }
+
+    /// A crease: two pairs between the same two copies with normals at 90
+    /// degrees. Both slipping tie the two normals: the copies slide only
+    /// along the crease (z).
+    #[test]
+    fn a_crease_slides_only_along_its_line() {
+        let s = 0.5f64.sqrt();
+        let f1: Frame = [[s, s, 0.0], [-s, s, 0.0], [0.0, 0.0, 1.0]];
+        let f2: Frame = [[-s, s, 0.0], [-s, -s, 0.0], [0.0, 0.0, 1.0]];
+        let pairs = [(0, 1, f1), (0, 1, f2)];
+        let (mut nm, mut nr) = (0, 0);
+        let j = Junction::new(vec![0, 1], |p| pairs[p], &[None; 6], 3, &mut nm, &mut nr);
+        let rel: Vec<Relation> = (0..2).map(|_| Relation::simple(ContactState::Slip, [0.0; 3], [0.0; 3])).collect();
+        let tied = j.tie(&rel, 1.0, |_| 1.0);
+        assert_eq!(tied.z.ncols(), 1);
+        assert!((tied.z[(2, 0)].abs() - 1.0).abs() < 1e-14, "{}", tied.z);
+    }
+
+    #[test]
+    fn clusters_are_pairs_sharing_copies() {
+        // a lone pair, a crossing, and a lone pair asked to be general
+        let pairs = [(0, 1), (2, 3), (4, 5), (2, 4), (3, 5), (6, 7)];
+        let c = clusters(&pairs, 8, |p| p == 5);
+        assert_eq!(c, vec![vec![1, 2, 3, 4], vec![5]]);
+    }
+}
