@@ -101,10 +101,10 @@ fn the_iterative_interface_on_two_and_three_ranks_gives_the_serial_answer() {
 
 #[test]
 fn more_ranks_than_parts_are_refused_saying_what_to_do() {
+    // block on block: two parts (the dam, once two, has a part per block since joints cut blocks)
     let case = Case::new("mpi-too-many");
-    case.copy("geo/dam.geo");
-    case.copy("geo/dam.toml");
-    let o = mpirun(&case, 3, &["solve", "dam.toml", "--out", "out", "--quiet"]);
+    let scene = common::scenes::coarse_blocks(&case);
+    let o = mpirun(&case, 3, &["solve", scene, "--out", "out", "--quiet"]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success());
     assert_eq!(err.matches("error:").count(), 1, "one message: {err}");
