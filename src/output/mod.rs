@@ -304,6 +304,7 @@ fn summary(run: &Run) -> serde_json::Value {
                   "elements": run.model.bodies.iter().map(|b| b.cells.len()).sum::<usize>() },
         "bodies": run.model.bodies.iter().map(|b| b.name.clone()).collect::<Vec<_>>(),
         "dofs": st.dofs,
+        "interface_solver": st.interface_solver,
         "parts": st.parts,
         "timings_s": st.timings,
         "residuals": st.residuals,

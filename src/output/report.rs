@@ -28,7 +28,7 @@ pub fn report(run: &Run) -> String {
     let _ = writeln!(s, "| elements | {} |", run.model.bodies.iter().map(|b| b.cells.len()).sum::<usize>());
     let _ = writeln!(s, "| model nodes (after contact split) | {} |", run.model.n_nodes());
     let _ = writeln!(s, "| DOFs (unknowns) | {} |", st.dofs.total);
-    let _ = writeln!(s, "| interface DOFs | {} |", st.dofs.interface);
+    let _ = writeln!(s, "| interface DOFs | {} ({} interface solver) |", st.dofs.interface, st.interface_solver);
     let _ = writeln!(s, "| parts (condensed) | {} ({}) |", st.parts.total, st.parts.condensed);
     if st.ranks.len() > 1 {
         let _ = writeln!(
