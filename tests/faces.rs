@@ -1,0 +1,142 @@
+//! Resultants per contact group and per block face pair (issue 17, item 5):
+//! summary.json's `contact.groups` and `contact.faces`, `faces.csv`, and
+//! report.md's tables, on the jointed column of tests/junctions.rs.
+//!
+//! ```text
+//!   push on top (x), gravity (-z)      a 2 x 2 x 2 cube of eight unit blocks
+//!        -->  +-------+-------+        (tests/geo/cross3d.geo, hex20) cut by
+//!            /   b6  /  b7   /|        jx: x = 1, jy: y = 1, jz: z = 1,
+//!           +-------+-------+ |        fixed at its base z = 0
+//!          /   b4  /   b5  /| +
+//!         +-------+-------+ |/|
+//!         |  b0   |  b1   | + |
+//!         +-------+-------+/
+//! ```
+//!
+//! Goals, each asserted:
+//! - the group jz carries the weight of the four blocks above it and the
+//!   whole push, F = (4 q, 0, -4 rho g), to 1e-8; N = -4 rho g and T = 4 q
+//!   in its mean frame n = +z; its area is 4 and each of its four face
+//!   pairs has area 1;
+//! - every upper block is in equilibrium under the resultants of its face
+//!   pairs (+F where it is side I, -F where it is side II), its weight and
+//!   the push on its top, to 1e-8: the face pairs are the forces between
+//!   blocks;
+//! - faces.csv's face pairs add up to summary.json's groups, and each face
+//!   pair is the sum of its rows of contact.csv;
+//! - report.md lists every group and the face pairs.
+
+mod common;
+
+use std::collections::HashMap;
+
+use common::Case;
+
+const RHO: f64 = 2.5e-3;
+const G: f64 = 9.81;
+const PUSH: f64 = 0.005;
+
+/// The rows of a CSV file as maps from the header's names, numbers parsed
+/// where they are numbers.
+fn csv(path: &std::path::Path) -> Vec<HashMap<String, String>> {
+    let text = common::read(path);
+    let mut lines = text.lines();
+    let head: Vec<String> = lines.next().expect("header").split(',').map(str::to_string).collect();
+    lines.map(|l| head.iter().cloned().zip(l.split(',').map(str::to_string)).collect()).collect()
+}
+
+fn num(row: &HashMap<String, String>, key: &str) -> f64 {
+    row.get(key).unwrap_or_else(|| panic!("no column {key}")).parse().unwrap_or_else(|_| panic!("{key} = {:?}", row[key]))
+}
+
+fn vec3(v: &serde_json::Value) -> [f64; 3] {
+    std::array::from_fn(|i| v[i].as_f64().expect("a number"))
+}
+
+#[test]
+fn face_pairs_carry_the_forces_between_blocks_and_add_up_to_their_groups() {
+    let case = Case::new("faces-column");
+    case.copy("tests/geo/cross3d.geo");
+    let text = format!(
+        "title = \"jointed column\"\nmesh = \"cross3d.geo\"\nanalysis = \"solid\"\ngravity = [0.0, 0.0, -{G}]\n\n\
+         [gmsh]\norder = 2\nsetnumber = {{ hex = 1, n = 2, serendipity = 1 }}\n\n\
+         [materials.rock]\nE = 1000.0\nnu = 0.25\ndensity = {RHO}\n\n[[bodies]]\ngroup = \"rock\"\nmaterial = \"rock\"\n\n\
+         [[contacts]]\ngroup = \"jx\"\nfriction = 0.6\n\n[[contacts]]\ngroup = \"jy\"\nfriction = 0.6\n\n[[contacts]]\ngroup = \"jz\"\nfriction = 0.6\n\n\
+         [[supports]]\ngroup = \"z0\"\nfix = [\"x\", \"y\", \"z\"]\n\n[[loads]]\ngroup = \"z1\"\ntraction = [{PUSH}, 0.0, 0.0]\n"
+    );
+    let run = case.run(&case.write("column.toml", &text)).unwrap_or_else(|e| panic!("column: {e:#}"));
+    let out = case.out("column");
+    let summary = common::json(&out.join("summary.json"));
+    let groups = summary["contact"]["groups"].as_array().expect("contact.groups");
+    assert_eq!(groups.len(), 3, "one entry per contact group");
+    let weight = RHO * G * 4.0;
+    let scale = weight.hypot(4.0 * PUSH);
+
+    // the joint plane z = 1 carries the weight above it and the push
+    let jz = groups.iter().find(|g| g["name"] == "jz").expect("jz");
+    let f = vec3(&jz["force"]);
+    let want = [4.0 * PUSH, 0.0, -weight];
+    let err = (0..3).map(|i| (f[i] - want[i]).abs()).fold(0.0, f64::max) / scale;
+    let (n, t) = (jz["normal_force"].as_f64().expect("N"), jz["shear_force"].as_f64().expect("T"));
+    eprintln!("jz: F = {f:?} against {want:?} ({err:.1e}); N = {n:.6e}, T = {t:.6e}; area {}", jz["area"]["total"]);
+    assert!(err < 1e-8, "jz carries {f:?}, not {want:?}");
+    let nz = vec3(&jz["normal"]);
+    assert!(nz[0].abs() < 1e-12 && nz[1].abs() < 1e-12 && (nz[2] - 1.0).abs() < 1e-12, "jz's mean normal is +z (side I below): {nz:?}");
+    assert!((n + weight).abs() < 1e-8 * scale && (t - 4.0 * PUSH).abs() < 1e-8 * scale, "N = {n}, T = {t}");
+    assert!((jz["area"]["total"].as_f64().expect("area") - 4.0).abs() < 1e-12, "jz's area is 4");
+    assert_eq!(jz["face_pairs"], 4);
+    let mobilised = jz["mobilised_max"].as_f64().expect("mobilised");
+    assert!((0.0..=1.0).contains(&mobilised), "mobilised friction {mobilised} in [0, 1]");
+
+    // faces.csv: the face pairs add up to their groups
+    let faces = csv(&out.join("faces.csv"));
+    assert_eq!(summary["contact"]["faces"]["count"].as_u64(), Some(faces.len() as u64));
+    assert_eq!(faces.len(), 12, "four face pairs per joint plane");
+    for g in groups {
+        let rows: Vec<_> = faces.iter().filter(|r| r["contact"] == g["name"].as_str().expect("name")).collect();
+        let area: f64 = rows.iter().map(|r| num(r, "area")).sum();
+        assert!((area - g["area"]["total"].as_f64().expect("area")).abs() < 1e-12);
+        for (i, k) in ["f_x", "f_y", "f_z"].iter().enumerate() {
+            let sum: f64 = rows.iter().map(|r| num(r, k)).sum();
+            assert!((sum - vec3(&g["force"])[i]).abs() < 1e-12 * scale, "{}: {k}", g["name"]);
+        }
+        for r in &rows {
+            assert!((num(r, "area") - 1.0).abs() < 1e-12, "each face pair is a unit square: {r:?}");
+        }
+    }
+
+    // ... and each face pair is the sum of its rows of contact.csv
+    let pairs = csv(&out.join("contact.csv"));
+    for r in &faces {
+        let mine: Vec<_> = pairs.iter().filter(|p| p["contact"] == r["contact"] && p["block_i"] == r["block_i"] && p["block_ii"] == r["block_ii"]).collect();
+        assert_eq!(mine.len() as f64, num(r, "pairs"));
+        let fz: f64 = mine.iter().map(|p| (num(p, "sigma_n") * num(p, "n_z") + num(p, "tau_z")) * num(p, "area")).sum();
+        assert!((fz - num(r, "f_z")).abs() < 1e-10 * scale, "contact.csv's rows of a face pair: {fz} against {}", num(r, "f_z"));
+    }
+
+    // every upper block is held by its faces alone: F on it + weight + push = 0
+    let m = &run.model;
+    let upper: Vec<usize> = (0..m.bodies.len()).filter(|&b| m.bodies[b].block.expect("a block").centre[2] > 1.0).collect();
+    assert_eq!(upper.len(), 4);
+    let mut worst: f64 = 0.0;
+    for &b in &upper {
+        let mut sum = [PUSH, 0.0, -RHO * G];
+        for r in &faces {
+            let sign = if num(r, "block_i") as usize == b { 1.0 } else if num(r, "block_ii") as usize == b { -1.0 } else { 0.0 };
+            for (i, k) in ["f_x", "f_y", "f_z"].iter().enumerate() {
+                sum[i] += sign * num(r, k);
+            }
+        }
+        worst = sum.iter().fold(worst, |w, v| w.max(v.abs() / scale));
+    }
+    eprintln!("upper blocks: out of balance by {worst:.1e} of the load");
+    assert!(worst < 1e-8, "an upper block is out of balance under its face pairs: {worst:.1e}");
+
+    // report.md: every group, and the face pairs
+    let report = common::read(&out.join("report.md"));
+    assert!(report.contains("## Contact groups") && report.contains("## Block faces"), "report.md has the two tables");
+    for name in ["jx", "jy", "jz"] {
+        assert!(report.lines().any(|l| l.starts_with(&format!("| {name} | 4 |"))), "report.md's group table has {name}");
+    }
+    assert!(report.contains("All 12 block face pairs"), "twelve face pairs, all listed");
+}
