@@ -6,7 +6,7 @@ CARGO   ?= cargo
 BIN     := target/release/subcontact
 PYTHON  ?= python3
 
-.PHONY: all deps deps-mpi build cylinder tunnel footing footing-layers dam blocks3d dam3d test test-mpi bench bench3d bench-ccx bench-interface scaling stress clean
+.PHONY: all deps deps-mpi build cylinder tunnel tunnel-joints footing footing-layers dam blocks3d dam3d dam3d-joints test test-mpi bench bench3d bench-ccx bench-interface scaling stress clean
 
 all: build
 
@@ -47,6 +47,13 @@ tunnel: deps build
 	$(BIN) solve geo/tunnel_slip.toml --quiet
 	@for r in tunnel tunnel_slip; do echo; echo "results/$$r/report.md:"; \
 	  awk '/^## Lining/{p=1} p{print} p&&/^Largest error/{exit}' results/$$r/report.md; done
+
+# A tunnel in rock cut by three joint sets into ~150 blocks (one body
+# group, one contact group per set), in-situ stress, bare opening: which
+# blocks loosen in the crown (results/tunnel_joints/report.md: the contact
+# groups and the most mobilised block faces; faces.csv).
+tunnel-joints: deps build
+	$(BIN) solve geo/tunnel_joints.toml
 
 # A gravity dam of three blocks on rock: self-weight, then the reservoir in
 # two steps; the heel opens (results/dam/, dam.pvd for the steps).
