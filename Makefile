@@ -71,6 +71,13 @@ blocks3d: deps build
 dam3d: deps build
 	$(BIN) solve geo/dam3d.toml
 
+# A gravity dam in 3D whose contraction joints cross its lift joints: three
+# monoliths in a stepped valley, each cut into three lifts; self-weight,
+# then the reservoir in two steps (results/dam3d_joints/: joints.png with
+# every joint by state, the contact groups and block faces in report.md).
+dam3d-joints: deps build
+	$(BIN) solve geo/dam3d_joints.toml
+
 # Run time against error on the cylinder, orders 1 and 2, up to ~2.6e6 DOFs:
 # results/cylinder/bench.{csv,md,svg}.
 bench: deps build
