@@ -50,10 +50,6 @@ fn above(z0: f64, k: f64) -> (f64, f64) {
     })
 }
 
-fn vec3(v: &serde_json::Value) -> [f64; 3] {
-    std::array::from_fn(|i| v[i].as_f64().expect("a number"))
-}
-
 #[test]
 fn the_base_and_every_lift_joint_carry_the_dam_above_them_and_the_water() {
     let case = Case::new("dam3d-joints");
@@ -112,17 +108,15 @@ fn the_base_and_every_lift_joint_carry_the_dam_above_them_and_the_water() {
     let groups = summary["contact"]["groups"].as_array().expect("contact.groups");
     let g = groups.iter().find(|g| g["name"] == "base").expect("base");
     let (w, t) = above(0.0, 1.0);
-    let f = vec3(&g["force"]);
+    let f = common::json_vec3(&g["force"]);
     assert!((f[0] - t).abs() < 1e-8 * w && f[1].abs() < 1e-8 * w && (f[2] + w).abs() < 1e-8 * w, "summary.json's base carries {f:?}");
     assert_eq!(g["face_pairs"], 3, "the base: one face pair per monolith");
-    let faces = common::read(&out.join("faces.csv"));
-    let head: Vec<&str> = faces.lines().next().expect("header").split(',').collect();
-    let col = |name: &str| head.iter().position(|h| *h == name).expect("a column");
+    let faces = common::csv_rows(&out.join("faces.csv"));
     for z0 in [20.0, 35.0] {
-        let rows: Vec<Vec<&str>> = faces.lines().skip(1).map(|l| l.split(',').collect()).filter(|r: &Vec<&str>| r[col("contact")] == "lifts" && (r[col("z")].parse::<f64>().expect("z") - z0).abs() < 1e-9).collect();
+        let rows: Vec<_> = faces.iter().filter(|r| r["contact"] == "lifts" && (common::csv_num(r, "z") - z0).abs() < 1e-9).collect();
         assert_eq!(rows.len(), 3, "the lift joint z = {z0}: one face pair per monolith");
-        let fx: f64 = rows.iter().map(|r| r[col("f_x")].parse::<f64>().expect("f_x")).sum();
-        let fz: f64 = rows.iter().map(|r| r[col("f_z")].parse::<f64>().expect("f_z")).sum();
+        let fx: f64 = rows.iter().map(|r| common::csv_num(r, "f_x")).sum();
+        let fz: f64 = rows.iter().map(|r| common::csv_num(r, "f_z")).sum();
         let (w, t) = above(z0, 1.0);
         assert!((fx - t).abs() < 1e-8 * w && (fz + w).abs() < 1e-8 * w, "faces.csv's lift joint z = {z0}: ({fx}, {fz}) against ({t}, {})", -w);
     }

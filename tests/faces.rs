@@ -28,30 +28,11 @@
 
 mod common;
 
-use std::collections::HashMap;
-
 use common::Case;
 
 const RHO: f64 = 2.5e-3;
 const G: f64 = 9.81;
 const PUSH: f64 = 0.005;
-
-/// The rows of a CSV file as maps from the header's names, numbers parsed
-/// where they are numbers.
-fn csv(path: &std::path::Path) -> Vec<HashMap<String, String>> {
-    let text = common::read(path);
-    let mut lines = text.lines();
-    let head: Vec<String> = lines.next().expect("header").split(',').map(str::to_string).collect();
-    lines.map(|l| head.iter().cloned().zip(l.split(',').map(str::to_string)).collect()).collect()
-}
-
-fn num(row: &HashMap<String, String>, key: &str) -> f64 {
-    row.get(key).unwrap_or_else(|| panic!("no column {key}")).parse().unwrap_or_else(|_| panic!("{key} = {:?}", row[key]))
-}
-
-fn vec3(v: &serde_json::Value) -> [f64; 3] {
-    std::array::from_fn(|i| v[i].as_f64().expect("a number"))
-}
 
 #[test]
 fn face_pairs_carry_the_forces_between_blocks_and_add_up_to_their_groups() {
@@ -74,13 +55,13 @@ fn face_pairs_carry_the_forces_between_blocks_and_add_up_to_their_groups() {
 
     // the joint plane z = 1 carries the weight above it and the push
     let jz = groups.iter().find(|g| g["name"] == "jz").expect("jz");
-    let f = vec3(&jz["force"]);
+    let f = common::json_vec3(&jz["force"]);
     let want = [4.0 * PUSH, 0.0, -weight];
     let err = (0..3).map(|i| (f[i] - want[i]).abs()).fold(0.0, f64::max) / scale;
     let (n, t) = (jz["normal_force"].as_f64().expect("N"), jz["shear_force"].as_f64().expect("T"));
     eprintln!("jz: F = {f:?} against {want:?} ({err:.1e}); N = {n:.6e}, T = {t:.6e}; area {}", jz["area"]["total"]);
     assert!(err < 1e-8, "jz carries {f:?}, not {want:?}");
-    let nz = vec3(&jz["normal"]);
+    let nz = common::json_vec3(&jz["normal"]);
     assert!(nz[0].abs() < 1e-12 && nz[1].abs() < 1e-12 && (nz[2] - 1.0).abs() < 1e-12, "jz's mean normal is +z (side I below): {nz:?}");
     assert!((n + weight).abs() < 1e-8 * scale && (t - 4.0 * PUSH).abs() < 1e-8 * scale, "N = {n}, T = {t}");
     assert!((jz["area"]["total"].as_f64().expect("area") - 4.0).abs() < 1e-12, "jz's area is 4");
@@ -89,29 +70,29 @@ fn face_pairs_carry_the_forces_between_blocks_and_add_up_to_their_groups() {
     assert!((0.0..=1.0).contains(&mobilised), "mobilised friction {mobilised} in [0, 1]");
 
     // faces.csv: the face pairs add up to their groups
-    let faces = csv(&out.join("faces.csv"));
+    let faces = common::csv_rows(&out.join("faces.csv"));
     assert_eq!(summary["contact"]["faces"]["count"].as_u64(), Some(faces.len() as u64));
     assert_eq!(faces.len(), 12, "four face pairs per joint plane");
     for g in groups {
         let rows: Vec<_> = faces.iter().filter(|r| r["contact"] == g["name"].as_str().expect("name")).collect();
-        let area: f64 = rows.iter().map(|r| num(r, "area")).sum();
+        let area: f64 = rows.iter().map(|r| common::csv_num(r, "area")).sum();
         assert!((area - g["area"]["total"].as_f64().expect("area")).abs() < 1e-12);
         for (i, k) in ["f_x", "f_y", "f_z"].iter().enumerate() {
-            let sum: f64 = rows.iter().map(|r| num(r, k)).sum();
-            assert!((sum - vec3(&g["force"])[i]).abs() < 1e-12 * scale, "{}: {k}", g["name"]);
+            let sum: f64 = rows.iter().map(|r| common::csv_num(r, k)).sum();
+            assert!((sum - common::json_vec3(&g["force"])[i]).abs() < 1e-12 * scale, "{}: {k}", g["name"]);
         }
         for r in &rows {
-            assert!((num(r, "area") - 1.0).abs() < 1e-12, "each face pair is a unit square: {r:?}");
+            assert!((common::csv_num(r, "area") - 1.0).abs() < 1e-12, "each face pair is a unit square: {r:?}");
         }
     }
 
     // ... and each face pair is the sum of its rows of contact.csv
-    let pairs = csv(&out.join("contact.csv"));
+    let pairs = common::csv_rows(&out.join("contact.csv"));
     for r in &faces {
         let mine: Vec<_> = pairs.iter().filter(|p| p["contact"] == r["contact"] && p["block_i"] == r["block_i"] && p["block_ii"] == r["block_ii"]).collect();
-        assert_eq!(mine.len() as f64, num(r, "pairs"));
-        let fz: f64 = mine.iter().map(|p| (num(p, "sigma_n") * num(p, "n_z") + num(p, "tau_z")) * num(p, "area")).sum();
-        assert!((fz - num(r, "f_z")).abs() < 1e-10 * scale, "contact.csv's rows of a face pair: {fz} against {}", num(r, "f_z"));
+        assert_eq!(mine.len() as f64, common::csv_num(r, "pairs"));
+        let fz: f64 = mine.iter().map(|p| (common::csv_num(p, "sigma_n") * common::csv_num(p, "n_z") + common::csv_num(p, "tau_z")) * common::csv_num(p, "area")).sum();
+        assert!((fz - common::csv_num(r, "f_z")).abs() < 1e-10 * scale, "contact.csv's rows of a face pair: {fz} against {}", common::csv_num(r, "f_z"));
     }
 
     // every upper block is held by its faces alone: F on it + weight + push = 0
@@ -122,9 +103,9 @@ fn face_pairs_carry_the_forces_between_blocks_and_add_up_to_their_groups() {
     for &b in &upper {
         let mut sum = [PUSH, 0.0, -RHO * G];
         for r in &faces {
-            let sign = if num(r, "block_i") as usize == b { 1.0 } else if num(r, "block_ii") as usize == b { -1.0 } else { 0.0 };
+            let sign = if common::csv_num(r, "block_i") as usize == b { 1.0 } else if common::csv_num(r, "block_ii") as usize == b { -1.0 } else { 0.0 };
             for (i, k) in ["f_x", "f_y", "f_z"].iter().enumerate() {
-                sum[i] += sign * num(r, k);
+                sum[i] += sign * common::csv_num(r, k);
             }
         }
         worst = sum.iter().fold(worst, |w, v| w.max(v.abs() / scale));

@@ -71,14 +71,10 @@ fn bedding_planes_carry_the_rock_above_and_the_crown_loosens() {
     assert!((hole / (std::f64::consts::PI * R * R) - 1.0).abs() < 1e-3, "the meshed opening is the circle");
 
     // every bedding plane across the whole box carries the rock above it
-    let faces = common::read(&case.out("tunnel_joints").join("faces.csv"));
-    let mut lines = faces.lines();
-    let head: Vec<&str> = lines.next().expect("header").split(',').collect();
-    let col = |name: &str| head.iter().position(|h| *h == name).unwrap_or_else(|| panic!("faces.csv has no column {name}"));
-    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
-    let num = |r: &Vec<&str>, name: &str| r[col(name)].parse::<f64>().expect("a number");
+    let rows = common::csv_rows(&case.out("tunnel_joints").join("faces.csv"));
+    let num = common::csv_num;
     for y in [7.5, 4.5, -4.5, -7.5] {
-        let on: Vec<&Vec<&str>> = rows.iter().filter(|r| r[col("contact")] == "bedding" && (num(r, "y") - y).abs() < 1e-9).collect();
+        let on: Vec<_> = rows.iter().filter(|r| r["contact"] == "bedding" && (num(r, "y") - y).abs() < 1e-9).collect();
         let fy: f64 = on.iter().map(|r| num(r, "f_y")).sum();
         let width: f64 = on.iter().map(|r| num(r, "area")).sum();
         let above: f64 = (0..m.bodies.len()).filter(|&b| m.bodies[b].block.expect("a block").centre[1] > y).map(|b| volume[b]).sum();

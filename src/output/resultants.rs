@@ -104,9 +104,9 @@ impl Resultant {
     fn add(&mut self, p: &PairRecord, weighted_normal: &mut [f64; 3]) {
         self.pairs += 1;
         self.areas[p.state.code() as usize] += p.area;
-        for i in 0..3 {
+        for (i, n) in weighted_normal.iter_mut().enumerate() {
             self.force[i] += p.force[i];
-            weighted_normal[i] += p.area * p.normal[i];
+            *n += p.area * p.normal[i];
             self.centre[i] += p.area * p.x[i];
         }
         if self.pairs == 1 || p.mobilised > self.mobilised {
@@ -240,6 +240,8 @@ fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
 mod tests {
     use super::*;
 
+    /// A record in the order of its fields (a table row reads best so).
+    #[allow(clippy::too_many_arguments)]
     fn record(contact: usize, blocks: [usize; 2], x: [f64; 3], normal: [f64; 3], area: f64, force: [f64; 3], state: ContactState, mobilised: f64) -> PairRecord {
         PairRecord { contact, blocks, x, normal, area, force, state, mobilised }
     }
