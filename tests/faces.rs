@@ -24,7 +24,9 @@
 //!   blocks;
 //! - faces.csv's face pairs add up to summary.json's groups, and each face
 //!   pair is the sum of its rows of contact.csv;
-//! - report.md lists every group and the face pairs.
+//! - report.md lists every group and the face pairs;
+//! - on the paper's cylinder, the cut's one face pair carries the pressure
+//!   on body 1's arc (F_x, to rounding) and Lamé's hoop force N = p a.
 
 mod common;
 
@@ -120,4 +122,26 @@ fn face_pairs_carry_the_forces_between_blocks_and_add_up_to_their_groups() {
         assert!(report.lines().any(|l| l.starts_with(&format!("| {name} | 4 |"))), "report.md's group table has {name}");
     }
     assert!(report.contains("All 12 block face pairs"), "twelve face pairs, all listed");
+}
+
+/// The paper's cylinder (a = 3, b = 5, p = 0.1, quarter model cut at 45
+/// degrees): the cut's face pair carries, on body 1 (0 to 45 degrees), the
+/// x-component of the pressure on its arc, F_x = -p a sin 45 degrees (the
+/// symmetry plane y = 0 takes only y), to rounding; and in its mean frame
+/// Lamé's hoop force across a radial cut, N = p a (b free), with no shear.
+#[test]
+fn the_cylinders_cut_carries_the_hoop_force() {
+    let case = Case::new("faces-cylinder");
+    case.copy("geo/cylinder.geo");
+    let text = common::scenes::edited("geo/cylinder.toml", &[("setnumber = { lc = 0.05 }", "setnumber = { lc = 0.2 }")]);
+    case.run(&case.write("cylinder.toml", &text)).unwrap_or_else(|e| panic!("cylinder: {e:#}"));
+    let faces = common::csv_rows(&case.out("cylinder").join("faces.csv"));
+    assert_eq!(faces.len(), 1, "one face pair: the cut");
+    let (p, a) = (0.1, 3.0);
+    let f = &faces[0];
+    let (fx, n, t) = (common::csv_num(f, "f_x"), common::csv_num(f, "normal_force"), common::csv_num(f, "shear_force"));
+    eprintln!("cylinder's cut: F_x = {fx:.12} (-p a sin 45 = {:.12}), N = {n:.8} (p a = {}), T = {t:.2e}", -p * a * 0.5f64.sqrt(), p * a);
+    assert!((fx + p * a * 0.5f64.sqrt()).abs() < 1e-10, "F_x = {fx}");
+    assert!((n - p * a).abs() < 1e-4 * p * a && t < 1e-6 * p * a, "N = {n}, T = {t}");
+    assert_eq!((f["name_i"].as_str(), f["name_ii"].as_str()), ("body_1", "body_2"), "two bodies: side I is the first");
 }

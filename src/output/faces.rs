@@ -120,7 +120,11 @@ pub fn report(run: &Run) -> String {
         let _ = writeln!(s, "| {} | {faces} | {} | {} | {} |", m.interfaces[g].name, q.pairs, areas(q), forces(q, m.nd));
     }
     let most = r.most_mobilised(MOST_FACES);
-    let which = if most.len() < r.faces.len() { format!("The {} most mobilised of {} block face pairs", most.len(), r.faces.len()) } else { format!("All {} block face pairs, most mobilised first", r.faces.len()) };
+    let which = match r.faces.len() {
+        1 => "The one block face pair".to_string(),
+        n if most.len() < n => format!("The {} most mobilised of {n} block face pairs", most.len()),
+        n => format!("All {n} block face pairs, most mobilised first"),
+    };
     let _ = writeln!(s, "\n## Block faces\n\n{which} (a face pair: the part of a contact group between two blocks; every one in `faces.csv`). The same quantities in the face's mean frame, and the face's centre.\n");
     let _ = writeln!(s, "| contact | block I | block II | centre | area stick / slip / open | mean normal n | F | N | T | mobilised max (at) |");
     let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|");
