@@ -3,7 +3,8 @@
 //! size, the contact iteration, timings (the same as summary.json's: both
 //! are staged once the output stage is timed), the load steps with the
 //! factor each load had at each step, errors against the closed form, the
-//! pictures, what the scene's `[analytic]` check adds (`Checks::analytic`), and
+//! pictures, the contact groups and most mobilised block faces
+//! (faces.rs), what the scene's `[analytic]` check adds (`Checks::analytic`), and
 //! the probes.
 
 use std::fmt::Write;
@@ -96,6 +97,7 @@ pub fn report(run: &Run) -> String {
             }
         }
     }
+    s += &super::faces::report(run);
     s += &run.checks.analytic.report;
     for (name, samples) in &run.checks.probes {
         let _ = writeln!(s, "\n## Probe `{name}`\n");
