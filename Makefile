@@ -6,7 +6,7 @@ CARGO   ?= cargo
 BIN     := target/release/subcontact
 PYTHON  ?= python3
 
-.PHONY: all deps deps-mpi build cylinder tunnel tunnel-joints footing footing-layers dam blocks3d dam3d dam3d-joints test test-mpi bench bench3d bench-ccx bench-interface scaling stress clean
+.PHONY: all deps deps-mpi build cylinder tunnel tunnel-joints footing footing-layers dam blocks3d dam3d dam3d-joints rockmass test test-mpi bench bench3d bench-blocks bench-ccx bench-interface scaling stress clean
 
 all: build
 
@@ -78,6 +78,13 @@ dam3d: deps build
 dam3d-joints: deps build
 	$(BIN) solve geo/dam3d_joints.toml
 
+# A jointed rock mass: a 10 m cube cut by three joint sets into 64 blocks
+# (hex20), one body group and a contact group per joint set; gravity, then
+# pressure and shear on the top: joints near the top slip and open
+# (results/rockmass/: joints.png, plan_*.png, faces.csv, report.md).
+rockmass: deps build
+	$(BIN) solve geo/rockmass.toml
+
 # Run time against error on the cylinder, orders 1 and 2, up to ~2.6e6 DOFs:
 # results/cylinder/bench.{csv,md,svg}.
 bench: deps build
@@ -91,6 +98,13 @@ bench3d: deps build
 	$(BIN) bench geo/blocks3d_hex.toml --orders 1,2 --levels 4 --start 0.25 --max-dofs 150000 --out results/bench3d/hex
 	$(BIN) bench geo/blocks3d.toml --orders 1,2 --levels 3 --start 0.2 --max-dofs 250000 --out results/bench3d/tet
 	$(BIN) bench scripts/bench3d/blocks3d_hex27.toml --orders 2 --levels 2 --start 0.125 --out results/bench3d/hex27
+
+# The jointed rock mass at 64, 512 and 1,000 blocks, each with its contacts
+# and bonded (docs/blocks.md): contact iterations per step, contact solve
+# against the bonded solve, peak memory: results/bench_blocks/blocks.{md,json}.
+# About 8 minutes.
+bench-blocks: deps build
+	$(PYTHON) scripts/blocks/bench.py
 
 # CalculiX 2.20 on the same hex20 mesh and loads as subcontact (block on
 # block, bonded and frictional contact, lc = 0.125, 1/12, 0.0625), ccx on 1 and

@@ -170,9 +170,10 @@ impl Trial {
 ///   slipping that way (it carries no force yet: |ξ| = c |s| >= b(0)),
 ///   otherwise it sticks;
 /// - stick: slipping when `|λ_T| >= b(p)` (eq. 16, `tau >= c - f sigma_n`)
-///   by more than `force_tol`: a pair that carries nothing (a joint at a
-///   free surface, its forces round-off) stays stuck instead of following
-///   the sign of its round-off from solve to solve;
+///   and its shear is more than `force_tol`, or it has no strength at all
+///   (b = 0): a pair that carries nothing (a joint at a free surface, its
+///   forces round-off) stays stuck instead of following the sign of its
+///   round-off from solve to solve;
 /// - slip: stuck again when `|ξ| < b(p)` with `ξ = λ_T + c s`, or when its
 ///   slip runs against the friction force it carried.
 ///
@@ -199,7 +200,8 @@ pub fn judge(current: ContactState, t: &Trial, s: &Strength, cracked: bool, coul
         _ if t.force[0] >= ft * t.area => ContactState::Open,
         ContactState::Stick => {
             let (b, _) = friction_bound(s, cracked, t.area, -t.force[0]);
-            if t.force[1].hypot(t.force[2]) >= b && t.force[1].hypot(t.force[2]) > force_tol {
+            let lam_t = t.force[1].hypot(t.force[2]);
+            if lam_t >= b && (lam_t > force_tol || b == 0.0) {
                 ContactState::Slip
             } else {
                 ContactState::Stick
@@ -280,7 +282,7 @@ mod tests {
         assert_eq!(judge(Open, &t(0.0, 0.0, 0.0, -1e-3), &S, true, true, 1e-12, 0.0), Stick, "closes where it is");
         assert_eq!(judge(Open, &t(0.0, 0.0, 1e-3, -1e-3), &S, true, true, 1e-12, 0.0), Slip, "closes after moving along the joint");
         let cohesive = Strength { residual_cohesion: 0.5, ..S };
-        assert_eq!(judge(Open, &t(0.0, 0.0, 1e-3, -1e-3), &cohesive, true, true, 1e-12), Stick, "a cohesive crack holds a small move");
+        assert_eq!(judge(Open, &t(0.0, 0.0, 1e-3, -1e-3), &cohesive, true, true, 1e-12, 0.0), Stick, "a cohesive crack holds a small move");
         assert_eq!(judge(Slip, &t(-1.0, 0.5, 0.0, 0.0), &S, true, true, 1e-12, 0.0), Slip);
         assert_eq!(judge(Slip, &t(0.1, 0.0, 0.0, 0.0), &S, true, true, 1e-12, 0.0), Open);
     }
@@ -292,7 +294,7 @@ mod tests {
         assert_eq!(judge(Slip, &t(-1.0, 0.5, -1e-3, 0.0), &S, true, true, 1e-12, 0.0), Stick);
         // a large reversed slip makes |ξ| large, but it runs against the friction: stuck
         assert_eq!(judge(Slip, &t(-1.0, 0.5, -1.0, 0.0), &S, true, true, 1e-12, 0.0), Stick);
-        assert_eq!(judge(Slip, &t(-1.0, 0.0, -1e-3, 0.0), &S, true, false, 1e-12), Slip, "frictionless slip never sticks");
+        assert_eq!(judge(Slip, &t(-1.0, 0.0, -1e-3, 0.0), &S, true, false, 1e-12, 0.0), Slip, "frictionless slip never sticks");
     }
 
     #[test]
