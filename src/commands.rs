@@ -72,13 +72,15 @@ pub fn paper(fine: &Path, paper: &Path, verbose: bool) -> Result<()> {
     let runs = [("paper mesh (30 hex8)", &run_paper.solution()), ("default mesh", &run_fine.solution())];
     let tables = lame.map(|l| paper::tables(&l, &runs, true)).unwrap_or_default();
     println!("{tables}");
+    // read and write report.md in one transaction on the directory
+    let lock = crate::output::files::Lock::acquire(&fine_out, &mut |m| eprintln!("subcontact: {m}"))?;
     let path = fine_out.join("report.md");
     let mut text = std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
     text += "\n# The paper's tables: theory, the paper, this tool on the paper's mesh and on the default mesh\n";
     text += &tables;
-    let tmp = fine_out.join(".report.md.tmp");
-    std::fs::write(&tmp, text).with_context(|| format!("writing {}", tmp.display()))?;
-    std::fs::rename(&tmp, &path).with_context(|| format!("writing {}", path.display()))?;
+    let mut staged = crate::output::files::Staged::amend(&fine_out, &run_fine.scene.name);
+    staged.add("report.md", text.into_bytes());
+    staged.commit_locked(&lock).with_context(|| format!("writing {}", path.display()))?;
     println!("tables written to {}", path.display());
     Ok(())
 }

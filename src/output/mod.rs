@@ -24,7 +24,7 @@ use vtu::{Field, IntField};
 /// ([`restage_summary`] adds them with the final timings), for the
 /// directory `out`.
 pub fn stage(run: &Run, out: &std::path::Path) -> Result<Staged> {
-    let mut staged = Staged::new(out);
+    let mut staged = Staged::new(out, &run.scene.name);
     let name = &run.scene.name;
     let model = &run.model;
     let last = run.last();
@@ -79,24 +79,6 @@ pub fn step_times(scene: &crate::scene::Scene) -> Vec<f64> {
         [one] if one.len() == n && one.windows(2).all(|w| w[1] > w[0]) => one.clone(),
         _ => (1..=n).map(|k| k as f64 / n as f64).collect(),
     }
-}
-
-/// Result files of scene `name` in `dir` that are not among `written`: VTU
-/// and PVD files named after the scene, the CSV tables and the pictures
-/// (`deformed_*.png`, `interfaces.svg`, `plan_*.png`, `joints.png`).
-pub fn stale(dir: &std::path::Path, name: &str, written: &[std::path::PathBuf]) -> Vec<std::path::PathBuf> {
-    let Ok(entries) = std::fs::read_dir(dir) else { return Vec::new() };
-    entries
-        .flatten()
-        .map(|e| e.path())
-        .filter(|p| p.is_file() && !written.contains(p))
-        .filter(|p| {
-            let f = p.file_name().and_then(|f| f.to_str()).unwrap_or("");
-            let ours = f.starts_with(name) && [".vtu", ".pvd", ".png", ".svg"].iter().any(|x| f.ends_with(x));
-            let picture = (f.starts_with("deformed_") || f.starts_with("plan_")) && f.ends_with(".png");
-            ours || picture || ["contact.csv", "probes.csv", "interfaces.svg", "joints.png"].contains(&f)
-        })
-        .collect()
 }
 
 /// Adds `summary.json` and `report.md`, both with the run's final timings
