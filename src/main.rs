@@ -40,7 +40,9 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             if root {
-                eprintln!("error: {}", chain(&e));
+                // a closed stderr (a pipe whose reader left) ends quietly
+                use std::io::Write;
+                let _ = writeln!(std::io::stderr(), "error: {}", chain(&e));
             }
             ExitCode::FAILURE
         }

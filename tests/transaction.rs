@@ -224,3 +224,26 @@ fn another_scenes_results_and_a_users_files_stay_and_a_failed_commit_changes_not
     }
     user_files_intact(&user);
 }
+
+/// `subcontact solve dam.toml 2>&1 | head -1`: the reader leaves after
+/// the first line; the run goes on silently, writes its results and exits
+/// 0 (before, `failed printing to stdout: Broken pipe`, exit 101).
+#[test]
+fn a_pipe_whose_reader_leaves_silences_the_run_but_does_not_stop_it() {
+    use std::io::BufRead;
+    let case = Case::new("tx-pipe");
+    case.copy("geo/dam.geo");
+    case.write("dam.toml", &dam("A"));
+    for args in [&["solve", "dam.toml", "--out", "out"][..], &["check", "dam.toml"][..], &["--help"][..]] {
+        let (reader, writer) = std::io::pipe().expect("pipe");
+        let mut child = Command::new(env!("CARGO_BIN_EXE_subcontact")).args(args).current_dir(&case.dir).stdout(writer.try_clone().expect("clone")).stderr(writer).spawn().expect("spawn");
+        let mut first = String::new();
+        std::io::BufReader::new(reader).read_line(&mut first).expect("a first line");
+        // the reader is gone now: every later write meets a broken pipe
+        let status = child.wait().expect("wait");
+        assert!(status.success(), "{args:?}: {status:?} after {first:?}");
+    }
+    let refs = [("A", results(&case.dir.join("out")))];
+    whole_set(&case.dir.join("out"), &refs).expect("the results of the piped run");
+    assert!(json(&case.dir.join("out/summary.json"))["contact"]["converged"].as_bool().unwrap_or(false));
+}
