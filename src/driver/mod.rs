@@ -32,6 +32,7 @@ mod stats;
 mod steps;
 
 pub use messages::{Apex, At, ContactError, PlanError};
+pub use plan::condensation;
 
 use crate::analytic;
 use crate::contact::law::PairResult;
@@ -63,6 +64,8 @@ pub struct RunOptions {
     pub verbose: bool,
     /// Compute everything but write no result files (benchmarks).
     pub skip_output: bool,
+    /// Run even when the estimated peak memory exceeds what is available.
+    pub ignore_memory_estimate: bool,
 }
 
 impl RunOptions {

@@ -36,12 +36,18 @@ pub(super) fn plan(scene: &Scene, model: &Model, opts: &RunOptions, ranks: usize
     let threads = opts.threads.unwrap_or_else(|| (std::thread::available_parallelism().map_or(1, |n| n.get()) / ranks).max(1));
     let nd = model.nd;
     let interface_dofs: usize = parts.iter().map(|p| p.interface.len() * nd).sum();
-    let how = match opts.interface.unwrap_or(scene.solver.interface) {
+    let how = condensation(opts.interface.unwrap_or(scene.solver.interface), interface_dofs);
+    Ok(Plan { parts, owner, threads, how, interface_dofs })
+}
+
+/// How parts of `interface_dofs` interface DOFs in all are condensed when
+/// the interface is solved as `choice` says.
+pub fn condensation(choice: InterfaceSolver, interface_dofs: usize) -> Condensation {
+    match choice {
         InterfaceSolver::Iterative => Condensation::Applied,
         InterfaceSolver::Auto if interface_dofs >= ITERATIVE_FROM => Condensation::Applied,
         _ => Condensation::Dense,
-    };
-    Ok(Plan { parts, owner, threads, how, interface_dofs })
+    }
 }
 
 /// The model's parts, each cut into `k` pieces where it has the cells for
