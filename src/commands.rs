@@ -71,12 +71,13 @@ pub fn check(scene_path: &Path) -> Result<()> {
     let model = Model::build(&mesh, &scene.model_spec())?;
     let parts = substructure::cut(&model, substructure::parts(&model), scene.solver.substructures);
     let dofs = substructure::parts::dof_counts(&model, &parts);
-    outln!("{}: scene and mesh `{}` are consistent", scene_path.display(), msh.display());
-    outln!("  {} bodies, {} elements, {} model nodes, {} contact pairs, {} part(s)", model.bodies.len(), model.bodies.iter().map(|b| b.cells.len()).sum::<usize>(), model.n_nodes(), model.pairs.len(), parts.len());
+    // a run that would not fit in memory fails the check, before it says anything
     let how = driver::condensation(scene.solver.interface, dofs.interface);
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     let need = crate::memory::estimate(&model, &parts.iter().collect::<Vec<_>>(), how, threads, true, dofs.interface, scene.solver.load_steps);
     let available = crate::memory::check(&model.scene, need, [dofs.total, dofs.interface], parts.len())?;
+    outln!("{}: scene and mesh `{}` are consistent", scene_path.display(), msh.display());
+    outln!("  {} bodies, {} elements, {} model nodes, {} contact pairs, {} part(s)", model.bodies.len(), model.bodies.iter().map(|b| b.cells.len()).sum::<usize>(), model.n_nodes(), model.pairs.len(), parts.len());
     outln!("  {} DOFs ({} interface); estimated peak memory {} of {} available", dofs.total, dofs.interface, crate::memory::human(need.total), crate::memory::human(available.bytes));
     warn(&scene.warnings());
     warn(&crate::model::warnings::warnings(&model));
