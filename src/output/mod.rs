@@ -24,6 +24,7 @@ use vtu::{Field, IntField};
 /// ([`restage_summary`] adds them with the final timings), for the
 /// directory `out`.
 pub fn stage(run: &Run, out: &std::path::Path) -> Result<Staged> {
+    finite(run)?;
     let mut staged = Staged::new(out, &run.scene.name);
     let name = &run.scene.name;
     let model = &run.model;
@@ -65,6 +66,31 @@ pub fn stage(run: &Run, out: &std::path::Path) -> Result<Staged> {
         staged.add(&file, bytes);
     }
     Ok(staged)
+}
+
+/// Results that are not numbers (an overflow: a traction of -1e300 gives
+/// a von Mises stress of inf) are an error, not files full of `inf` and
+/// `null`: the first one found, by step, names what and where.
+fn finite(run: &Run) -> Result<()> {
+    let model = &run.model;
+    let nd = model.nd;
+    for st in &run.steps {
+        let bad = if let Some(i) = st.u.iter().position(|v| !v.is_finite()) {
+            Some(format!("the displacement at node {} is {}", i / nd, st.u[i]))
+        } else if let Some((b, s)) = st.stresses.iter().enumerate().find_map(|(b, bs)| bs.stress.iter().find(|s| !von_mises(s).is_finite()).map(|s| (b, s))) {
+            Some(format!("the stress in body {} is {s:?} (von Mises {})", model.bodies[b].label(), von_mises(s)))
+        } else {
+            st.contact.as_ref().and_then(|c| c.pairs.iter().position(|p| ![p.sigma_n, p.tau_t, p.tau_b, p.gap, p.slip].iter().all(|v| v.is_finite())).map(|p| format!("contact pair {p}'s values are {:?}", c.pairs[p])))
+        };
+        if let Some(what) = bad {
+            anyhow::bail!(
+                "{}: the results are not finite numbers at load step {}: {what}. The loads or prescribed displacements are too large for double precision (stresses above ~1e154 overflow the von Mises stress): give them in other units (kN or MPa instead of N or Pa). No result files were written",
+                run.scene.path.display(),
+                st.step
+            );
+        }
+    }
+    Ok(())
 }
 
 /// The time of each load step in the `.pvd` collections: its load factor.

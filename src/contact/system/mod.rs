@@ -239,7 +239,7 @@ impl<'a> InterfaceProblem<'a> {
             Box::new(Dense::new(&layout, parts).map_err(|_| ModelError::Invalid {
                 scene: model.scene.clone(),
                 key: "supports".into(),
-                msg: "the bodies are not held even with every contact stuck (the bonded interface system is singular): add a support".into(),
+                msg: format!("the bodies are not held even with every contact stuck (the bonded interface system is singular): add a support{}", crate::model::quality::why_not_held(model)),
             })?)
         };
         Ok(InterfaceProblem { layout, basis, solver, rigid, positions })
