@@ -58,7 +58,7 @@ impl Lock {
     /// Writes this process's id into the lock file, for the next waiter's
     /// message (best effort: the lock is the flock, not the text).
     fn mark(&mut self) {
-        let _ = self.file.set_len(0).and_then(|()| self.file.rewind()).and_then(|()| write!(self.file, "{}\n", std::process::id()));
+        let _ = self.file.set_len(0).and_then(|()| self.file.rewind()).and_then(|()| writeln!(self.file, "{}", std::process::id()));
     }
 }
 
