@@ -216,7 +216,10 @@ fn msh_reader_never_panics_or_hangs() {
         })
     });
     run("msh", |rng, n| {
-        let bytes = if rng.below(3) == 0 { mutate_text(rng, &ascii).into_bytes() } else { mutate_bytes(rng, &meshes[rng.below(meshes.len())]) };
+        let bytes = if rng.below(3) == 0 { mutate_text(rng, &ascii).into_bytes() } else { {
+            let m = rng.below(meshes.len());
+            mutate_bytes(rng, &meshes[m])
+        } };
         let p = case.dir.join(format!("input-{n}.msh"));
         std::fs::write(&p, bytes).expect("input");
         let q = p.clone();
@@ -239,7 +242,8 @@ fn scene_parser_never_panics_or_hangs() {
     });
     run("scene", |rng, n| {
         let p = case.dir.join(format!("input-{n}.toml"));
-        std::fs::write(&p, mutate_text(rng, &scenes[rng.below(scenes.len())])).expect("input");
+        let k = rng.below(scenes.len());
+        std::fs::write(&p, mutate_text(rng, &scenes[k])).expect("input");
         let q = p.clone();
         guarded("scene", &p, move || {
             let _ = Scene::load(&q);
