@@ -37,9 +37,12 @@ group = "top"
 traction = [0.0, 0.0, -1.0]
 "#;
 
+/// Cells, base facets, top facets: node lists each.
+type Cube = (Vec<Vec<usize>>, Vec<Vec<usize>>, Vec<Vec<usize>>);
+
 /// The unit cube at `origin` (its own 8 nodes appended to `nodes`): six
 /// positive tetrahedra, its base triangles (z = 0) and top triangles.
-fn cube(nodes: &mut Vec<[f64; 3]>, origin: [f64; 3]) -> (Vec<Vec<usize>>, Vec<Vec<usize>>, Vec<Vec<usize>>) {
+fn cube(nodes: &mut Vec<[f64; 3]>, origin: [f64; 3]) -> Cube {
     let b = nodes.len();
     for v in 0..8 {
         nodes.push([origin[0] + (v & 1) as f64, origin[1] + ((v >> 1) & 1) as f64, origin[2] + ((v >> 2) & 1) as f64]);

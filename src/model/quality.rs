@@ -59,11 +59,11 @@ pub fn corner_quality(model: &Model, cell: &crate::mesh::Cell) -> f64 {
         shape::eval(lin, xi, &mut n, &mut dn);
         let o = model.coords[cell.nodes[0]];
         let mut cols = [[0.0; 3]; 3];
-        for a in 0..nn {
-            let r = element::sub(model.coords[cell.nodes[a]], o);
+        for (&node, g) in cell.nodes.iter().zip(&dn) {
+            let r = element::sub(model.coords[node], o);
             for j in 0..dim {
                 for i in 0..3 {
-                    cols[j][i] += r[i] * dn[a][j];
+                    cols[j][i] += r[i] * g[j];
                 }
             }
         }
