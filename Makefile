@@ -6,7 +6,7 @@ CARGO   ?= cargo
 BIN     := target/release/subcontact
 PYTHON  ?= python3
 
-.PHONY: all deps deps-mpi build cylinder tunnel tunnel-joints footing footing-layers dam blocks3d dam3d dam3d-joints rockmass test test-mpi bench bench3d bench-blocks bench-ccx bench-interface scaling stress clean
+.PHONY: all deps deps-mpi build cylinder tunnel tunnel-joints footing footing-layers dam blocks3d dam3d dam3d-joints rockmass test test-mpi fuzz bench bench3d bench-blocks bench-ccx bench-interface scaling stress clean
 
 all: build
 
@@ -129,6 +129,14 @@ stress: deps
 
 test: deps
 	$(CARGO) test --release
+
+# Fuzzing: the MSH reader, the scene parser and a whole `check` on mutated
+# inputs, FUZZ_SECONDS per target (default 60: about 3 minutes); a panic or
+# a hang fails and saves the input under target/tmp/fuzz-found/. A mutation
+# loop on stable Rust (cargo-fuzz needs nightly); `make test` runs it 4 s.
+FUZZ_SECONDS ?= 60
+fuzz: deps
+	FUZZ_SECONDS=$(FUZZ_SECONDS) $(CARGO) test --release --test fuzz -- --nocapture --test-threads 1
 
 # MPI: OpenMPI with its headers and the clang the mpi crate's bindings need
 # (Debian), then the MPI tests (tests/mpi.rs: 2 and 3 ranks on localhost

@@ -288,7 +288,7 @@ pub fn write(rows: &[Row], out: &std::path::Path, title: &str) -> Result<Vec<Pat
         ""
     };
     let md = format!("# Benchmark: {title}\n\n![error against run time and DOFs](bench.svg)\n\n{note}{}", table(rows));
-    let mut staged = Staged::new(out);
+    let mut staged = Staged::new(out, "bench");
     staged.add("bench.csv", csv.into_bytes());
     staged.add("bench.md", md.into_bytes());
     staged.add("bench.svg", svg.into_bytes());

@@ -61,6 +61,10 @@ pub enum Command {
         /// interface DOFs). Overrides [solver] interface.
         #[arg(long, value_enum)]
         interface: Option<InterfaceSolver>,
+        /// Run even when the estimated peak memory exceeds the memory available
+        /// (the estimate errs high; the run may still be stopped by the system).
+        #[arg(long)]
+        no_memory_check: bool,
     },
     /// Run time against error: mesh the scene at successive refinements for each element order,
     /// solve each (with contact, and bonded as the floor of one linear solve), and write

@@ -1,7 +1,25 @@
 //! What each subcommand does, on top of the driver; the only place besides
-//! `main` that prints to the terminal.
+//! `main` that prints to the terminal. A closed stdout or stderr (`solve
+//! s.toml 2>&1 | head -1`) silences the lines, not the run: the results
+//! are the data, and a reader that left is no reason to throw them away.
 
 use std::path::Path;
+
+/// `println!` that ignores a closed stdout (a pipe whose reader left).
+macro_rules! outln {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout(), $($t)*);
+    }};
+}
+
+/// `eprintln!` that ignores a closed stderr.
+macro_rules! errln {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($t)*);
+    }};
+}
 
 use anyhow::{Context, Result};
 
@@ -29,21 +47,21 @@ pub fn solve(scene: &Path, opts: &RunOptions, comm: &dyn Comm) -> Result<()> {
 /// Warnings on stderr, one paragraph each.
 fn warn(warnings: &[String]) {
     for w in warnings {
-        eprintln!("warning: {w}");
+        errln!("warning: {w}");
     }
 }
 
 fn print_summary(run: &Run, out: &Path) {
     let st = &run.stats;
-    println!("{}: {} DOFs ({} interface), {:.2} s", run.scene.name, st.dofs.total, st.dofs.interface, st.timings.total);
+    outln!("{}: {} DOFs ({} interface), {:.2} s", run.scene.name, st.dofs.total, st.dofs.interface, st.timings.total);
     if let Some(c) = run.contact() {
         let k = state_counts(&c.states);
-        println!("  contact: {} pairs, {} iteration(s), {} stick / {} slip / {} open", c.states.len(), c.summary.iterations, k[2], k[1], k[0]);
+        outln!("  contact: {} pairs, {} iteration(s), {} stick / {} slip / {} open", c.states.len(), c.summary.iterations, k[2], k[1], k[0]);
     }
     if let Some(e) = &run.checks.errors {
-        println!("  error vs closed form: displacement {:.3e}, stress {:.3e} (relative L2)", e.displacement_l2, e.stress_l2);
+        outln!("  error vs closed form: displacement {:.3e}, stress {:.3e} (relative L2)", e.displacement_l2, e.stress_l2);
     }
-    println!("  results in {}", out.display());
+    outln!("  results in {}", out.display());
 }
 
 pub fn check(scene_path: &Path) -> Result<()> {
@@ -53,9 +71,14 @@ pub fn check(scene_path: &Path) -> Result<()> {
     let model = Model::build(&mesh, &scene.model_spec())?;
     let parts = substructure::cut(&model, substructure::parts(&model), scene.solver.substructures);
     let dofs = substructure::parts::dof_counts(&model, &parts);
-    println!("{}: scene and mesh `{}` are consistent", scene_path.display(), msh.display());
-    println!("  {} bodies, {} elements, {} model nodes, {} contact pairs, {} part(s)", model.bodies.len(), model.bodies.iter().map(|b| b.cells.len()).sum::<usize>(), model.n_nodes(), model.pairs.len(), parts.len());
-    println!("  {} DOFs ({} interface)", dofs.total, dofs.interface);
+    // a run that would not fit in memory fails the check, before it says anything
+    let (how, sparse) = driver::interface_plan(scene.solver.interface, &parts, model.nd);
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let need = crate::memory::estimate(&model, &parts.iter().collect::<Vec<_>>(), (how, sparse), threads, true, dofs.interface, scene.solver.load_steps);
+    let available = crate::memory::check(&model.scene, need, [dofs.total, dofs.interface], parts.len())?;
+    outln!("{}: scene and mesh `{}` are consistent", scene_path.display(), msh.display());
+    outln!("  {} bodies, {} elements, {} model nodes, {} contact pairs, {} part(s)", model.bodies.len(), model.bodies.iter().map(|b| b.cells.len()).sum::<usize>(), model.n_nodes(), model.pairs.len(), parts.len());
+    outln!("  {} DOFs ({} interface); estimated peak memory {} of {} available", dofs.total, dofs.interface, crate::memory::human(need.total), crate::memory::human(available.bytes));
     warn(&scene.warnings());
     warn(&crate::model::warnings::warnings(&model));
     Ok(())
@@ -71,15 +94,17 @@ pub fn paper(fine: &Path, paper: &Path, verbose: bool) -> Result<()> {
     let lame = run_paper.scene.analytic.as_ref().and_then(|a| analytic::lame(a, &run_paper.model));
     let runs = [("paper mesh (30 hex8)", &run_paper.solution()), ("default mesh", &run_fine.solution())];
     let tables = lame.map(|l| paper::tables(&l, &runs, true)).unwrap_or_default();
-    println!("{tables}");
+    outln!("{tables}");
+    // read and write report.md in one transaction on the directory
+    let lock = crate::output::files::Lock::acquire(&fine_out, &mut |m| errln!("subcontact: {m}"))?;
     let path = fine_out.join("report.md");
     let mut text = std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
     text += "\n# The paper's tables: theory, the paper, this tool on the paper's mesh and on the default mesh\n";
     text += &tables;
-    let tmp = fine_out.join(".report.md.tmp");
-    std::fs::write(&tmp, text).with_context(|| format!("writing {}", tmp.display()))?;
-    std::fs::rename(&tmp, &path).with_context(|| format!("writing {}", path.display()))?;
-    println!("tables written to {}", path.display());
+    let mut staged = crate::output::files::Staged::amend(&fine_out, &run_fine.scene.name);
+    staged.add("report.md", text.into_bytes());
+    staged.commit_locked(&lock).with_context(|| format!("writing {}", path.display()))?;
+    outln!("tables written to {}", path.display());
     Ok(())
 }
 
@@ -99,9 +124,9 @@ pub fn bench(scene: &Path, opts: &crate::bench::BenchOptions) -> Result<()> {
     bar.finish_and_clear();
     let title = scene.display().to_string();
     let files = crate::bench::write(&rows, &out, &title)?;
-    println!("{}", crate::bench::table(&rows));
+    outln!("{}", crate::bench::table(&rows));
     for f in files {
-        println!("wrote {}", f.display());
+        outln!("wrote {}", f.display());
     }
     Ok(())
 }

@@ -16,6 +16,7 @@ pub mod commands;
 pub mod contact;
 pub mod driver;
 pub mod fem;
+pub mod memory;
 pub mod mesh;
 pub mod model;
 pub mod output;

@@ -11,6 +11,11 @@ use subcontact::cli::{Cli, Command};
 use subcontact::parallel::{Comm, Serial};
 use subcontact::{commands, driver::RunOptions};
 
+/// The system allocator, but an allocation that fails ends the run with
+/// one paragraph and exit status 1 instead of an abort (subcontact::memory).
+#[global_allocator]
+static ALLOCATOR: subcontact::memory::Guarded = subcontact::memory::Guarded;
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     #[cfg(feature = "mpi")]
@@ -24,8 +29,9 @@ fn main() -> ExitCode {
     let comm: &dyn Comm = &Serial;
     let root = comm.rank() == 0;
     let result = match cli.command {
-        Command::Solve { scene, out, bonded, quiet, substructures, threads, interface } => {
-            commands::solve(&scene, &RunOptions { out, bonded, verbose: !quiet, substructures, threads, interface, ..Default::default() }, comm)
+        Command::Solve { scene, out, bonded, quiet, substructures, threads, interface, no_memory_check } => {
+            let opts = RunOptions { out, bonded, verbose: !quiet, substructures, threads, interface, ignore_memory_estimate: no_memory_check, ..Default::default() };
+            commands::solve(&scene, &opts, comm)
         }
         // the other commands run on rank 0 alone
         _ if !root => Ok(()),
@@ -40,7 +46,9 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             if root {
-                eprintln!("error: {}", chain(&e));
+                // a closed stderr (a pipe whose reader left) ends quietly
+                use std::io::Write;
+                let _ = writeln!(std::io::stderr(), "error: {}", chain(&e));
             }
             ExitCode::FAILURE
         }

@@ -42,6 +42,7 @@ pub(super) struct Parts<'r> {
 
 /// Condenses this rank's parts of `plan` and sets up the interface.
 pub(super) fn condense<'r>(model: &Model, plan: &Plan, opts: &RunOptions, ranks: &'r Ranks) -> Result<Parts<'r>> {
+    agree(ranks.comm(), memory(model, plan, opts, ranks.rank()))?;
     let t = Instant::now();
     let n_parts = plan.parts.len();
     let on = if ranks.size() > 1 {
@@ -74,6 +75,25 @@ pub(super) fn condense<'r>(model: &Model, plan: &Plan, opts: &RunOptions, ranks:
         c.drop_schur();
     }
     Ok(Parts { mine, problem, local, all, assemble_s, condense_s: wall_s - assemble_s, wall_s, interface_s: t.elapsed().as_secs_f64() })
+}
+
+/// The DOFs and this rank's estimated peak memory, said before anything
+/// is factorised; more than is available is an error unless ignored.
+fn memory(model: &Model, plan: &Plan, opts: &RunOptions, rank: usize) -> Result<()> {
+    let mine: Vec<&substructure::Part> = (plan.parts.iter().enumerate()).filter(|(i, _)| plan.owner[*i] == rank).map(|(_, p)| p).collect();
+    let steps = model.cases.first().map_or(1, |c| c.len());
+    let need = crate::memory::estimate(model, &mine, (plan.how, plan.sparse), plan.threads, rank == 0, plan.interface_dofs, steps);
+    let dofs = substructure::parts::dof_counts(model, &plan.parts);
+    let checked = crate::memory::check(&model.scene, need, [dofs.total, dofs.interface], mine.len());
+    let available = match &checked {
+        Ok(a) => a.clone(),
+        Err(e) => e.available.clone(),
+    };
+    progress(opts, &format!("{} DOFs ({} interface); estimated peak memory {} of {} available", dofs.total, dofs.interface, crate::memory::human(need.total), crate::memory::human(available.bytes)));
+    match checked {
+        Err(e) if !opts.ignore_memory_estimate => Err(e.into()),
+        _ => Ok(()),
+    }
 }
 
 /// The interface of the parts' operators `ops`, when some part has one.

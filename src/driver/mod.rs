@@ -32,6 +32,7 @@ mod stats;
 mod steps;
 
 pub use messages::{Apex, At, ContactError, PlanError};
+pub use plan::interface as interface_plan;
 
 use crate::analytic;
 use crate::contact::law::PairResult;
@@ -63,6 +64,8 @@ pub struct RunOptions {
     pub verbose: bool,
     /// Compute everything but write no result files (benchmarks).
     pub skip_output: bool,
+    /// Run even when the estimated peak memory exceeds what is available.
+    pub ignore_memory_estimate: bool,
 }
 
 impl RunOptions {
@@ -74,8 +77,15 @@ impl RunOptions {
 
 fn progress(opts: &RunOptions, msg: &str) {
     if opts.verbose {
-        eprintln!("subcontact: {msg}");
+        say(msg);
     }
+}
+
+/// A line on stderr, whatever `--quiet` says (a wait for another run); a
+/// closed stderr (a pipe whose reader left) is no reason to stop a run.
+fn say(msg: &str) {
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr(), "subcontact: {msg}");
 }
 
 /// Reads the mesh of a scene, running gmsh when it is a .geo.
@@ -92,8 +102,12 @@ pub fn load_mesh(scene: &Scene, out: &Path) -> Result<(Mesh, PathBuf, bool)> {
                 setnumber: scene.gmsh.setnumber.clone(),
                 clscale: scene.gmsh.clscale,
             };
+            // the mesh cache lives in the result directory, which another
+            // run's commit may be replacing: under its lock
+            let lock = output::files::Lock::acquire(out, &mut |m| say(m))?;
             let meshed = gmsh::mesh(&job)?;
             let mesh = msh::read_msh(&msh_path)?;
+            drop(lock);
             Ok((mesh, msh_path, matches!(meshed, gmsh::Meshed::Cached)))
         }
     }
@@ -198,12 +212,9 @@ fn write(mut run: Run, opts: &RunOptions, out: &Path, t0: Instant) -> Result<Run
     run.stats.timings.total = t0.elapsed().as_secs_f64();
     // the summary carries the final timings
     let staged = output::restage_summary(staged, &run)?;
-    let written = staged.commit().with_context(|| format!("writing results to {}", out.display()))?;
-    // files an earlier run of this scene wrote that this one did not (more
-    // load steps, contacts, probes) would mislead: remove them
-    for old in output::stale(out, &run.scene.name, &written) {
-        let _ = std::fs::remove_file(old);
-    }
+    // one transaction: the files an earlier run of this scene wrote and
+    // this one did not (more load steps, contacts, probes) go, nothing else
+    staged.commit_with(&mut |m| say(m)).with_context(|| format!("writing results to {}", out.display()))?;
     match not_converged(&run, Some(out.to_path_buf())) {
         Some(e) => Err(e.into()),
         None => Ok(run),

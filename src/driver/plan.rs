@@ -51,15 +51,24 @@ pub(super) fn plan(scene: &Scene, model: &Model, opts: &RunOptions, ranks: usize
     let threads = opts.threads.unwrap_or_else(|| (std::thread::available_parallelism().map_or(1, |n| n.get()) / ranks).max(1));
     let nd = model.nd;
     let interface_dofs: usize = parts.iter().map(|p| p.interface.len() * nd).sum();
-    let (how, sparse) = match opts.interface.unwrap_or(scene.solver.interface) {
+    let (how, sparse) = interface(opts.interface.unwrap_or(scene.solver.interface), &parts, nd);
+    Ok(Plan { parts, owner, threads, how, sparse, interface_dofs })
+}
+
+/// How `parts` are condensed and their interface solved when `[solver]
+/// interface` says `choice`: (dense or applied S, the sparse interface).
+/// Auto takes the sparse interface for many small parts, the iterative one
+/// from [`ITERATIVE_FROM`] interface DOFs, else the dense one.
+pub fn interface(choice: InterfaceSolver, parts: &[Part], nd: usize) -> (Condensation, bool) {
+    let interface_dofs: usize = parts.iter().map(|p| p.interface.len() * nd).sum();
+    match choice {
         InterfaceSolver::Iterative => (Condensation::Applied, false),
         InterfaceSolver::Sparse => (Condensation::Dense, true),
         InterfaceSolver::Dense => (Condensation::Dense, false),
-        InterfaceSolver::Auto if blocky(&parts, nd) => (Condensation::Dense, true),
+        InterfaceSolver::Auto if blocky(parts, nd) => (Condensation::Dense, true),
         InterfaceSolver::Auto if interface_dofs >= ITERATIVE_FROM => (Condensation::Applied, false),
         InterfaceSolver::Auto => (Condensation::Dense, false),
-    };
-    Ok(Plan { parts, owner, threads, how, sparse, interface_dofs })
+    }
 }
 
 /// Whether the parts are many and small, as the blocks of a rock mass:

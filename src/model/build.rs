@@ -215,6 +215,9 @@ impl Model {
             pairs.push(Pair { k: p.k, l: p.l, contact: p.contact, normal, area, shares: p.shares.iter().map(|s| (s.facet, s.node)).collect() });
         }
         model.pairs = pairs;
+        // 6. Every cell positive over its whole extent, not only where it
+        // is integrated.
+        super::quality::folded(&model)?;
         Ok(model)
     }
 }

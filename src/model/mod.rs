@@ -29,6 +29,7 @@ mod build;
 mod builder;
 mod contacts;
 mod held;
+pub mod quality;
 mod spec;
 mod topology;
 
@@ -170,6 +171,8 @@ pub enum ModelError {
     EmptyGroup { scene: String, key: String, group: String, dim: String, mesh: String },
     #[error("element {tag} of body \"{body}\" is inverted or degenerate (Jacobian determinant {det_j:.3e}): fix the mesh (node order or a collapsed element)")]
     Inverted { body: String, tag: u64, det_j: f64 },
+    #[error("element {tag} ({kind}) of body {body} is folded or inverted: its Jacobian determinant is {det_j:.3e} {}, where it must be positive over the whole element, not only at the integration points. Fix the mesh: corner nodes in the wrong order, or a mid-side node beyond the opposite side (with gmsh: Mesh.HighOrderOptimize = 2, or a finer mesh where the boundary curves)", match node { Some(k) => format!("at its node {k} (gmsh order)"), None => "at its centre".to_string() })]
+    Folded { body: String, tag: u64, kind: &'static str, node: Option<usize>, det_j: f64 },
 }
 
 impl Model {

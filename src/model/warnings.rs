@@ -2,15 +2,52 @@
 //! without a word. Two bodies that share model nodes move together there
 //! (the nodes are one set of unknowns), so where no contact lies between
 //! them they are glued: layered ground on purpose, or a `[[contacts]]`
-//! entry forgotten. Read from the model alone, after it is built; the
-//! writers put the warnings in summary.json and report.md, the commands on
-//! stderr.
+//! entry forgotten. Also a mesh that is legal but suspect ([`super::quality`]):
+//! sliver elements, and nodes that coincide inside one body group (volumes
+//! not fused); and gravity that loads nothing, no body having a density.
+//! Read from the model alone, after it is built; the writers put the
+//! warnings in summary.json and report.md, the commands on stderr.
 
 use super::Model;
 
 /// One paragraph per pair of bodies that share nodes with no contact pair
 /// between them, in body order.
 pub fn warnings(model: &Model) -> Vec<String> {
+    let mut out = bonds(model);
+    out.extend(mesh(model));
+    if model.gravity.iter().any(|&g| g != 0.0) && model.bodies.iter().all(|b| b.density == 0.0) {
+        out.push(format!(
+            "{}: gravity = {:?} is given, but no body has a density, so gravity loads nothing. Give the materials a density (in the scene's units: density * |g| is the unit weight), or leave gravity out",
+            model.scene,
+            &model.gravity[..model.nd]
+        ));
+    }
+    out
+}
+
+/// Slivers and coincident nodes, one paragraph each.
+fn mesh(model: &Model) -> Vec<String> {
+    let mut out = Vec::new();
+    let slivers = super::quality::slivers(model);
+    if let Some((body, tag, q)) = slivers.first() {
+        out.push(format!(
+            "{}: {} element(s) are nearly flat (slivers: scaled Jacobian below {:e} at a corner), the worst element {tag} of body {body} (scaled Jacobian {q:.1e}): their stiffness is ill-conditioned and their stresses unreliable. Re-mesh them (gmsh: Mesh.Optimize = 1, Mesh.OptimizeNetgen = 1)",
+            model.scene,
+            slivers.len(),
+            super::quality::SLIVER
+        ));
+    }
+    for (group, n, x) in super::quality::coincident(model) {
+        out.push(format!(
+            "{}: body \"{group}\" has {n} nodes that lie on another node of the same body (the first at ({:.6}, {:.6}, {:.6})): its mesh is not joined there, as when volumes are not fused, so the pieces move apart. Fuse them in the .geo (BooleanFragments, or Coherence), or give them a [[contacts]] entry if they should touch",
+            model.scene, x[0], x[1], x[2]
+        ));
+    }
+    out
+}
+
+/// One paragraph per pair of bodies bonded without a contact.
+fn bonds(model: &Model) -> Vec<String> {
     bonded(model)
         .into_iter()
         .map(|b| {
@@ -105,7 +142,8 @@ mod tests {
         let m = model(true);
         // a and b share nodes 1 and 2; a and c share node 0; b and c only pairs
         assert_eq!(bonded(&m), vec![Bonded { bodies: [0, 1], nodes: 2 }, Bonded { bodies: [0, 2], nodes: 1 }]);
-        let w = warnings(&m);
+        // (the row's nodes all sit at the origin: the mesh warnings are another test's)
+        let w = bonds(&m);
         assert_eq!(w.len(), 2);
         assert!(w[0].starts_with("row.toml: bodies \"a\" and \"b\" share 2 nodes and no contact lies between them, so they are bonded there"), "{}", w[0]);
         assert!(w[1].contains("\"a\" and \"c\" share 1 node and"), "{}", w[1]);

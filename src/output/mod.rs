@@ -27,7 +27,8 @@ use vtu::{Field, IntField};
 /// ([`restage_summary`] adds them with the final timings), for the
 /// directory `out`.
 pub fn stage(run: &Run, out: &std::path::Path) -> Result<Staged> {
-    let mut staged = Staged::new(out);
+    finite(run)?;
+    let mut staged = Staged::new(out, &run.scene.name);
     let name = &run.scene.name;
     let model = &run.model;
     let last = run.last();
@@ -73,6 +74,31 @@ pub fn stage(run: &Run, out: &std::path::Path) -> Result<Staged> {
     Ok(staged)
 }
 
+/// Results that are not numbers (an overflow: a traction of -1e300 gives
+/// a von Mises stress of inf) are an error, not files full of `inf` and
+/// `null`: the first one found, by step, names what and where.
+fn finite(run: &Run) -> Result<()> {
+    let model = &run.model;
+    let nd = model.nd;
+    for st in &run.steps {
+        let bad = if let Some(i) = st.u.iter().position(|v| !v.is_finite()) {
+            Some(format!("the displacement at node {} is {}", i / nd, st.u[i]))
+        } else if let Some((b, s)) = st.stresses.iter().enumerate().find_map(|(b, bs)| bs.stress.iter().find(|s| !von_mises(s).is_finite()).map(|s| (b, s))) {
+            Some(format!("the stress in body {} is {s:?} (von Mises {})", model.bodies[b].label(), von_mises(s)))
+        } else {
+            st.contact.as_ref().and_then(|c| c.pairs.iter().position(|p| ![p.sigma_n, p.tau_t, p.tau_b, p.gap, p.slip].iter().all(|v| v.is_finite())).map(|p| format!("contact pair {p}'s values are {:?}", c.pairs[p])))
+        };
+        if let Some(what) = bad {
+            anyhow::bail!(
+                "{}: the results are not finite numbers at load step {}: {what}. The loads or prescribed displacements are too large for double precision (stresses above ~1e154 overflow the von Mises stress): give them in other units (kN or MPa instead of N or Pa). No result files were written",
+                run.scene.path.display(),
+                st.step
+            );
+        }
+    }
+    Ok(())
+}
+
 /// The time of each load step in the `.pvd` collections: its load factor.
 /// That is the factor of the one load (or loads sharing factors) that
 /// changes from step to step when it grows at every step (a reservoir
@@ -85,24 +111,6 @@ pub fn step_times(scene: &crate::scene::Scene) -> Vec<f64> {
         [one] if one.len() == n && one.windows(2).all(|w| w[1] > w[0]) => one.clone(),
         _ => (1..=n).map(|k| k as f64 / n as f64).collect(),
     }
-}
-
-/// Result files of scene `name` in `dir` that are not among `written`: VTU
-/// and PVD files named after the scene, the CSV tables and the pictures
-/// (`deformed_*.png`, `interfaces.svg`, `plan_*.png`, `joints.png`).
-pub fn stale(dir: &std::path::Path, name: &str, written: &[std::path::PathBuf]) -> Vec<std::path::PathBuf> {
-    let Ok(entries) = std::fs::read_dir(dir) else { return Vec::new() };
-    entries
-        .flatten()
-        .map(|e| e.path())
-        .filter(|p| p.is_file() && !written.contains(p))
-        .filter(|p| {
-            let f = p.file_name().and_then(|f| f.to_str()).unwrap_or("");
-            let ours = f.starts_with(name) && [".vtu", ".pvd", ".png", ".svg"].iter().any(|x| f.ends_with(x));
-            let picture = (f.starts_with("deformed_") || f.starts_with("plan_")) && f.ends_with(".png");
-            ours || picture || ["contact.csv", "faces.csv", "probes.csv", "interfaces.svg", "joints.png"].contains(&f)
-        })
-        .collect()
 }
 
 /// Adds `summary.json` and `report.md`, both with the run's final timings

@@ -19,7 +19,8 @@ pub fn solve_fails(case: &Case, scene: &str, out: &str) -> String {
 
 /// Exit status 1, stderr one paragraph starting with `error: `, no panic or
 /// backtrace, empty stdout, and nothing but mesh caches (`[<name>/]mesh/*.msh`,
-/// `.msh.key`) in `results`. Returns the message, trimmed.
+/// `.msh.key`, and the locks `.<name>.lock` beside them) in `results`.
+/// Returns the message, trimmed.
 pub fn clean_failure(case: &Case, out: &Output, results: &Path) -> String {
     let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
     let stdout = String::from_utf8_lossy(&out.stdout);
@@ -35,6 +36,8 @@ pub fn clean_failure(case: &Case, out: &Output, results: &Path) -> String {
     let results_written: Vec<&String> = files
         .iter()
         .filter(|f| !((f.starts_with("mesh/") || f.contains("/mesh/")) && (f.ends_with(".msh") || f.ends_with(".msh.key"))))
+        // the lock beside a result directory (taken while meshing into its cache)
+        .filter(|f| !(f.starts_with('.') && f.ends_with(".lock") && !f.contains('/')))
         .collect();
     assert!(results_written.is_empty(), "a failed run left files in {}: {results_written:?}\n(stderr: {msg})", results.display());
     msg

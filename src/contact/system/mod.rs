@@ -239,7 +239,7 @@ impl<'a> InterfaceProblem<'a> {
         let not_held = |_| ModelError::Invalid {
             scene: model.scene.clone(),
             key: "supports".into(),
-            msg: "the bodies are not held even with every contact stuck (the bonded interface system is singular): add a support".into(),
+            msg: format!("the bodies are not held even with every contact stuck (the bonded interface system is singular): add a support{}", crate::model::quality::why_not_held(model)),
         };
         let solver: Box<dyn Solver + 'a> = if parts.iter().any(|p| matches!(p.s, SchurRef::Applied { .. }) && p.nc > 0) {
             Box::new(Iterative::build(model, &layout, parts, &rigid, remote, threads))

@@ -63,6 +63,9 @@ pub enum MshError {
     )]
     Malformed { path: PathBuf, detail: String },
 
+    #[error("`{}`: node {node} has the coordinates ({}, {}, {}), which are not numbers: the file is damaged or was written by a tool that lost them; mesh the .geo again with gmsh", path.display(), x[0], x[1], x[2])]
+    NotFinite { path: PathBuf, node: u64, x: [f64; 3] },
+
     #[error("`{}` is MSH {version}: re-export it with gmsh -format msh41", path.display())]
     Version { path: PathBuf, version: String },
 
@@ -225,6 +228,9 @@ fn parse_msh(path: &Path, bytes: &[u8]) -> Result<Mesh, MshError> {
         return Err(r.malformed("no $Elements section"));
     };
     let entities = entities.unwrap_or_default();
+    if let Some((i, x)) = coords.iter().enumerate().find(|(_, x)| x.iter().any(|v| !v.is_finite())) {
+        return Err(MshError::NotFinite { path: path.to_path_buf(), node: node_tags.get(i).copied().unwrap_or(i as u64 + 1), x: *x });
+    }
     build_mesh(path, coords, node_tags, &names, &entities, blocks)
 }
 

@@ -372,16 +372,23 @@ fn no_plan_view_in_2d_and_stale_ones_are_removed() {
     let files: Vec<String> = pictures(&snap(&run)).expect("pictures").into_iter().map(|(f, _)| f).collect();
     assert_eq!(files, ["deformed_von_mises.png", "interfaces.svg"]);
     assert!(!crate::output::report::report(&run).contains("plan_"));
-    let dir = out_dir("stale_plans");
-    for f in ["plan_joint.png", "plan_old_face.png", "deformed_displacement.png", "notes.png", "plan.txt"] {
-        std::fs::write(dir.join(f), b"x").expect("file");
+    // an earlier run's plan views go with the next commit (the manifest
+    // lists them); a user's picture stays
+    let dir = out_dir("stale_plans").join("out");
+    let mut earlier = crate::output::files::Staged::new(&dir, "cylinder");
+    for f in ["plan_joint.png", "plan_old_face.png", "deformed_displacement.png"] {
+        earlier.add(f, b"x".to_vec());
     }
-    let mut stale: Vec<String> = crate::output::stale(&dir, "cylinder", &[dir.join("plan_joint.png")])
-        .iter()
-        .map(|p| p.file_name().and_then(|f| f.to_str()).unwrap_or("").to_string())
-        .collect();
-    stale.sort();
-    assert_eq!(stale, ["deformed_displacement.png", "plan_old_face.png"]);
+    earlier.commit().expect("commit");
+    std::fs::write(dir.join("notes.png"), b"x").expect("file");
+    let mut now = crate::output::files::Staged::new(&dir, "cylinder");
+    for (f, bytes) in pictures(&snap(&run)).expect("pictures") {
+        now.add(&f, bytes);
+    }
+    now.commit().expect("commit");
+    let mut left: Vec<String> = std::fs::read_dir(&dir).expect("dir").map(|e| e.expect("entry").file_name().to_string_lossy().into_owned()).collect();
+    left.sort();
+    assert_eq!(left, [crate::output::files::MANIFEST, "deformed_von_mises.png", "interfaces.svg", "notes.png"]);
 }
 
 /// A scene next to a copy of `tests/geo/<geo>`, run without result files.

@@ -200,7 +200,7 @@ fn meshio_read(path: &Path) -> ReadBack {
 
 fn meshio_read_bytes(bytes: &[u8], tag: &str) -> ReadBack {
     let dir = scratch_dir(tag);
-    let mut staged = Staged::new(&dir);
+    let mut staged = Staged::new(&dir, "readback");
     staged.add("mesh.vtu", bytes.to_vec());
     let paths = staged.commit().unwrap();
     let m = meshio_read(&paths[0]);
@@ -407,7 +407,7 @@ const KINDS: [CellKind; 18] = [
 #[test]
 fn each_kind_round_trips_through_meshio() {
     let dir = scratch_dir("kinds");
-    let mut staged = Staged::new(&dir);
+    let mut staged = Staged::new(&dir, "readback");
     let meshes: Vec<(CellKind, TestMesh)> = KINDS
         .iter()
         .chain([CellKind::Point1].iter())
@@ -515,7 +515,7 @@ fn empty_grid_and_odd_names_are_readable() {
         "{text}"
     );
     let dir = scratch_dir("empty");
-    let mut staged = Staged::new(&dir);
+    let mut staged = Staged::new(&dir, "readback");
     staged.add("empty.vtu", bytes);
     staged.add("no-cells.vtu", no_cells);
     let paths = staged.commit().unwrap();
@@ -703,7 +703,7 @@ fn pvd_lists_the_steps_in_order() {
         (1e-7, "a&b \"c\".vtu".to_string()),
     ];
     let dir = scratch_dir("pvd");
-    let mut staged = Staged::new(&dir);
+    let mut staged = Staged::new(&dir, "readback");
     staged.add("series.pvd", pvd_bytes(&steps));
     let path = staged.commit().unwrap().remove(0);
     let out = Command::new("python3")

@@ -1,0 +1,148 @@
+//! The mesh's cells and nodes checked beyond what the integration points
+//! see: a cell folded between them, a sliver, and nodes that coincide
+//! inside one body group.
+//!
+//! - **Folded** ([`folded`], an error): the Jacobian determinant must be
+//!   positive over the whole cell, not only at the integration points. A
+//!   quadratic tet10 whose corner nodes are swapped keeps det J > 0 at its
+//!   four points while it is negative over part of the cell. det J is
+//!   checked at every node of the cell (moved 1/1000 of the way to the
+//!   centre, where a pyramid's apex is singular) and at its centre.
+//! - **Slivers** ([`slivers`], a warning): the scaled Jacobian of the
+//!   cell's corners (the linear cell), `q = det J / Π |∂x/∂ξ_j|`, is 1 for
+//!   a right-angled corner and 0 for a flat one; below [`SLIVER`] the cell
+//!   is nearly flat (a tetrahedron with a node 1e-9 off its neighbours'
+//!   plane has q ~ 1e-8; a box stretched 1:1000 has q = 1).
+//! - **Coincident nodes** ([`coincident`], a warning): two mesh nodes at
+//!   the same place in the cells of one body group and in no contact pair
+//!   leave the group cut there (volumes that were not fused).
+
+use std::collections::HashMap;
+
+use super::{Model, ModelError};
+use crate::fem::element;
+use crate::fem::shape::{self, linear_sibling, reference_centre, reference_nodes};
+
+/// Below this scaled Jacobian a cell is a sliver.
+pub const SLIVER: f64 = 1e-6;
+
+/// The first cell (body order) whose Jacobian determinant is not positive
+/// at one of its nodes or its centre.
+pub fn folded(model: &Model) -> Result<(), ModelError> {
+    for body in &model.bodies {
+        for cell in &body.cells {
+            let xs: Vec<[f64; 3]> = cell.nodes.iter().map(|&n| model.coords[n]).collect();
+            let c = reference_centre(cell.kind);
+            let inward = |xi: &[f64; 3]| -> [f64; 3] { std::array::from_fn(|d| xi[d] + 1e-3 * (c[d] - xi[d])) };
+            let at = reference_nodes(cell.kind).iter().map(inward).chain([c]).enumerate();
+            for (i, xi) in at {
+                if let Err(e) = element::point(cell.kind, &xs, xi) {
+                    let node = (i < cell.nodes.len()).then_some(i + 1);
+                    return Err(ModelError::Folded { body: body.label(), tag: cell.tag, kind: cell.kind.name(), node, det_j: e.det_j });
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The least scaled Jacobian over the corners of a cell's linear sibling.
+pub fn corner_quality(model: &Model, cell: &crate::mesh::Cell) -> f64 {
+    let lin = linear_sibling(cell.kind);
+    let nn = lin.n_nodes();
+    let dim = lin.dim();
+    let (mut n, mut dn) = (vec![0.0; nn], vec![[0.0; 3]; nn]);
+    let c = reference_centre(lin);
+    let mut worst = f64::INFINITY;
+    for xi in reference_nodes(lin) {
+        let xi: [f64; 3] = std::array::from_fn(|d| xi[d] + 1e-3 * (c[d] - xi[d]));
+        shape::eval(lin, xi, &mut n, &mut dn);
+        let o = model.coords[cell.nodes[0]];
+        let mut cols = [[0.0; 3]; 3];
+        for (&node, g) in cell.nodes.iter().zip(&dn) {
+            let r = element::sub(model.coords[node], o);
+            for j in 0..dim {
+                for i in 0..3 {
+                    cols[j][i] += r[i] * g[j];
+                }
+            }
+        }
+        let det = if dim == 2 { cols[0][0] * cols[1][1] - cols[0][1] * cols[1][0] } else { element::dot(cols[0], element::cross(cols[1], cols[2])) };
+        let lengths: f64 = (0..dim).map(|j| element::norm(cols[j])).product();
+        worst = worst.min(if lengths > 0.0 { det / lengths } else { 0.0 });
+    }
+    worst
+}
+
+/// Slivers: (body label, gmsh element tag, quality) of every cell below
+/// [`SLIVER`], worst first.
+pub fn slivers(model: &Model) -> Vec<(String, u64, f64)> {
+    let mut out: Vec<(String, u64, f64)> = Vec::new();
+    for body in &model.bodies {
+        for cell in &body.cells {
+            let q = corner_quality(model, cell);
+            if q < SLIVER {
+                out.push((body.label(), cell.tag, q));
+            }
+        }
+    }
+    out.sort_by(|a, b| a.2.total_cmp(&b.2));
+    out
+}
+
+/// What may leave bodies free, for the message of a singular interface:
+/// the bodies (blocks) no support touches, and body groups whose volumes
+/// are not fused.
+pub fn why_not_held(model: &Model) -> String {
+    let nd = model.nd;
+    let unsupported: Vec<String> = (model.bodies.iter())
+        .filter(|b| !b.cells.iter().flat_map(|c| &c.nodes).any(|&n| (0..nd).any(|c| model.prescribed[n * nd + c].is_some())))
+        .map(|b| b.label())
+        .collect();
+    let mut s = String::new();
+    if !unsupported.is_empty() {
+        s += &format!(". No support touches {}: each is held only through its contacts", unsupported.join(", "));
+    }
+    for (group, n, x) in coincident(model) {
+        s += &format!(". Body \"{group}\" has {n} nodes on other nodes of itself (the first at ({:.6}, {:.6}, {:.6})): its volumes are not fused there (BooleanFragments or Coherence in the .geo)", x[0], x[1], x[2]);
+    }
+    s
+}
+
+/// Nodes at one place in one body group: (group name, how many nodes have
+/// a twin, the first place).
+pub fn coincident(model: &Model) -> Vec<(String, usize, [f64; 3])> {
+    let size = model.coords.iter().flat_map(|x| x.iter()).fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
+    let tol = 1e-12 * size;
+    let paired: std::collections::HashSet<(usize, usize)> = model.pairs.iter().map(|p| (p.k.min(p.l), p.k.max(p.l))).collect();
+    let mut out = Vec::new();
+    let groups = model.bodies.iter().map(|b| b.group).max().map_or(0, |g| g + 1);
+    for g in 0..groups {
+        let mut nodes: Vec<usize> = model.bodies.iter().filter(|b| b.group == g).flat_map(|b| b.cells.iter().flat_map(|c| c.nodes.iter().copied())).collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        // bins of size tol: a twin is in this bin or a neighbour's
+        let key = |x: [f64; 3]| -> [i64; 3] { std::array::from_fn(|d| (x[d] / tol.max(f64::MIN_POSITIVE)).floor() as i64) };
+        let mut bins: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
+        for &n in &nodes {
+            bins.entry(key(model.coords[n])).or_default().push(n);
+        }
+        let mut twins = 0;
+        let mut first: Option<[f64; 3]> = None;
+        for &a in &nodes {
+            let k = key(model.coords[a]);
+            let near = (0..27).flat_map(|i| bins.get(&[k[0] + i % 3 - 1, k[1] + (i / 3) % 3 - 1, k[2] + i / 9 - 1]).into_iter().flatten());
+            let twin = near.into_iter().any(|&b| {
+                b != a && model.mesh_node[a] != model.mesh_node[b] && !paired.contains(&(a.min(b), a.max(b))) && (0..3).all(|d| (model.coords[a][d] - model.coords[b][d]).abs() <= tol)
+            });
+            if twin {
+                twins += 1;
+                first.get_or_insert(model.coords[a]);
+            }
+        }
+        if let (Some(x), Some(body)) = (first, model.bodies.iter().find(|b| b.group == g)) {
+            out.push((body.name.clone(), twins, x));
+        }
+    }
+    out
+}

@@ -1,0 +1,185 @@
+//! Bad input that used to pass without a word (issue 20, "Found" 5 and 7):
+//! a tet10 folded between its integration points, slivers, nodes that
+//! coincide inside one body (volumes not fused), a NaN coordinate, results
+//! that overflow (a traction of -1e300), gravity without density. Each ends
+//! in a clear error naming the element, node or scene, or in a warning in
+//! summary.json and report.md.
+//!
+//! The meshes are written by `common::msh` (gmsh makes none of these on
+//! purpose): unit cubes cut into six tetrahedra (Kuhn), held on z = 0.
+
+mod common;
+
+use common::cli::{clean_failure, says};
+use common::msh::{write_msh41, MshGroup};
+use common::{json, read, Case};
+use subcontact::fem::element;
+use subcontact::mesh::CellKind;
+
+const SCENE: &str = r#"title = "cubes"
+mesh = "cubes.msh"
+analysis = "solid"
+
+[materials.m]
+E = 1000.0
+nu = 0.3
+
+[[bodies]]
+group = "body"
+material = "m"
+
+[[supports]]
+group = "base"
+fix = ["x", "y", "z"]
+
+[[loads]]
+group = "top"
+traction = [0.0, 0.0, -1.0]
+"#;
+
+/// Cells, base facets, top facets: node lists each.
+type Cube = (Vec<Vec<usize>>, Vec<Vec<usize>>, Vec<Vec<usize>>);
+
+/// The unit cube at `origin` (its own 8 nodes appended to `nodes`): six
+/// positive tetrahedra, its base triangles (z = 0) and top triangles.
+fn cube(nodes: &mut Vec<[f64; 3]>, origin: [f64; 3]) -> Cube {
+    let b = nodes.len();
+    for v in 0..8 {
+        nodes.push([origin[0] + (v & 1) as f64, origin[1] + ((v >> 1) & 1) as f64, origin[2] + ((v >> 2) & 1) as f64]);
+    }
+    let tets = [[0, 1, 3, 7], [0, 1, 5, 7], [0, 2, 3, 7], [0, 2, 6, 7], [0, 4, 5, 7], [0, 4, 6, 7]];
+    let cells = tets.iter().map(|t| positive(nodes, t.iter().map(|&v| b + v).collect())).collect();
+    let base = vec![vec![b, b + 1, b + 3], vec![b, b + 3, b + 2]];
+    let top = vec![vec![b + 4, b + 5, b + 7], vec![b + 4, b + 7, b + 6]];
+    (cells, base, top)
+}
+
+/// The tet4 `t` with its last two nodes swapped if it was inverted.
+fn positive(nodes: &[[f64; 3]], mut t: Vec<usize>) -> Vec<usize> {
+    let x: Vec<[f64; 3]> = t.iter().map(|&n| nodes[n]).collect();
+    let d = |i: usize| element::sub(x[i], x[0]);
+    if element::dot(d(1), element::cross(d(2), d(3))) < 0.0 {
+        t.swap(2, 3);
+    }
+    t
+}
+
+fn groups(cells: Vec<Vec<usize>>, base: Vec<Vec<usize>>, top: Vec<Vec<usize>>, gmsh_type: i32) -> Vec<MshGroup> {
+    vec![
+        MshGroup { name: "body".into(), dim: 3, gmsh_type, cells },
+        MshGroup { name: "base".into(), dim: 2, gmsh_type: 2, cells: base },
+        MshGroup { name: "top".into(), dim: 2, gmsh_type: 2, cells: top },
+    ]
+}
+
+fn solve_ok(case: &Case) -> serde_json::Value {
+    let o = case.cli(&["solve", "cubes.toml", "--out", "out", "--quiet"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    json(&case.dir.join("out/summary.json"))
+}
+
+/// The warning of summary.json that contains `needle`, also in report.md.
+fn warned(case: &Case, summary: &serde_json::Value, needle: &str) -> String {
+    let w: Vec<&str> = summary["warnings"].as_array().expect("warnings").iter().filter_map(|w| w.as_str()).filter(|w| w.contains(needle)).collect();
+    assert_eq!(w.len(), 1, "one warning with {needle:?}: {}", summary["warnings"]);
+    assert!(read(&case.dir.join("out/report.md")).contains(w[0]), "report.md lacks: {}", w[0]);
+    w[0].to_string()
+}
+
+#[test]
+fn a_tet10_folded_between_its_integration_points_is_refused_naming_it() {
+    // one tet10, the mid-side node of edge 0-1 pulled back past corner 0:
+    // det J is negative at corner 0, positive at every integration point
+    let mut x: Vec<[f64; 3]> = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    let mid = |a: [f64; 3], b: [f64; 3]| -> [f64; 3] { std::array::from_fn(|d| 0.5 * (a[d] + b[d])) };
+    // gmsh tet10: 4 on 0-1, 5 on 1-2, 6 on 2-0, 7 on 3-0, 8 on 3-2, 9 on 3-1
+    for (a, b) in [(0, 1), (1, 2), (2, 0), (3, 0), (3, 2), (3, 1)] {
+        x.push(mid(x[a], x[b]));
+    }
+    x[4][0] -= 0.3;
+    let at_points = element::stiffness_rule(subcontact::fem::Analysis::Solid, CellKind::Tet10);
+    for q in &at_points {
+        assert!(element::point(CellKind::Tet10, &x, q.xi).is_ok(), "the integration points must not see the fold");
+    }
+    assert!(element::point(CellKind::Tet10, &x, [1e-3, 1e-3, 1e-3]).is_err(), "folded at corner 0");
+    let case = Case::new("bad-mesh-folded");
+    let face = |ns: [usize; 6]| vec![ns.to_vec()];
+    let g = vec![
+        MshGroup { name: "body".into(), dim: 3, gmsh_type: 11, cells: vec![(0..10).collect()] },
+        MshGroup { name: "base".into(), dim: 2, gmsh_type: 9, cells: face([0, 1, 2, 4, 5, 6]) },
+        MshGroup { name: "top".into(), dim: 2, gmsh_type: 9, cells: face([1, 2, 3, 5, 8, 9]) },
+    ];
+    write_msh41(&case.dir.join("cubes.msh"), &x, &g);
+    case.write("cubes.toml", SCENE);
+    let msg = clean_failure(&case, &case.cli(&["solve", "cubes.toml", "--out", "out", "--quiet"]), &case.dir.join("out"));
+    says(&msg, &["element 1 (tet10) of body \"body\" is folded or inverted", "at its node 1 (gmsh order)", "not only at the integration points"]);
+    let msg = clean_failure(&case, &case.cli(&["check", "cubes.toml"]), &case.dir.join("results"));
+    says(&msg, &["is folded or inverted"]);
+}
+
+#[test]
+fn a_sliver_and_an_unfused_cube_are_warned_of_in_summary_and_report() {
+    let case = Case::new("bad-mesh-warned");
+    let mut nodes = Vec::new();
+    let (mut cells, mut base, mut top) = cube(&mut nodes, [0.0; 3]);
+    // a second cube beside the first on its own nodes, in the same body
+    let (c2, b2, t2) = cube(&mut nodes, [1.0, 0.0, 0.0]);
+    cells.extend(c2);
+    base.extend(b2);
+    top.extend(t2);
+    // a sliver on the first cube's face y = 0: its fourth node 1e-9 off that plane
+    nodes.push([0.4, -1e-9, 0.5]);
+    let s = nodes.len() - 1;
+    cells.push(positive(&nodes, vec![0, 1, 5, s]));
+    write_msh41(&case.dir.join("cubes.msh"), &nodes, &groups(cells, base, top, 4));
+    case.write("cubes.toml", SCENE);
+    let summary = solve_ok(&case);
+    let w = warned(&case, &summary, "nearly flat");
+    says(&w, &["1 element(s)", "the worst element 13 of body \"body\"", "scaled Jacobian"]);
+    let w = warned(&case, &summary, "lie on another node of the same body");
+    says(&w, &["body \"body\" has 8 nodes", "(1.000000, 0.000000, 0.000000)", "BooleanFragments"]);
+    // and on stderr from check
+    let o = case.cli(&["check", "cubes.toml"]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success() && stderr.contains("nearly flat") && stderr.contains("lie on another node"), "{stderr}");
+}
+
+#[test]
+fn a_nan_coordinate_is_named_as_such_not_as_an_inverted_element() {
+    let case = Case::new("bad-mesh-nan");
+    let mut nodes = Vec::new();
+    let (cells, base, top) = cube(&mut nodes, [0.0; 3]);
+    nodes[7][1] = f64::NAN;
+    write_msh41(&case.dir.join("cubes.msh"), &nodes, &groups(cells, base, top, 4));
+    case.write("cubes.toml", SCENE);
+    let msg = clean_failure(&case, &case.cli(&["solve", "cubes.toml", "--out", "out", "--quiet"]), &case.dir.join("out"));
+    says(&msg, &["cubes.msh`: node 8 has the coordinates (1, NaN, 1), which are not numbers"]);
+    assert!(!msg.contains("inverted"), "{msg}");
+}
+
+#[test]
+fn a_traction_of_minus_1e300_is_an_error_not_inf_in_the_files() {
+    let case = Case::new("bad-mesh-overflow");
+    let mut nodes = Vec::new();
+    let (cells, base, top) = cube(&mut nodes, [0.0; 3]);
+    write_msh41(&case.dir.join("cubes.msh"), &nodes, &groups(cells, base, top, 4));
+    case.write("cubes.toml", &SCENE.replace("traction = [0.0, 0.0, -1.0]", "traction = [0.0, 0.0, -1e300]"));
+    let msg = clean_failure(&case, &case.cli(&["solve", "cubes.toml", "--out", "out", "--quiet"]), &case.dir.join("out"));
+    says(&msg, &["cubes.toml: the results are not finite numbers at load step 1", "von Mises inf", "other units", "No result files were written"]);
+}
+
+#[test]
+fn gravity_without_any_density_is_warned_of() {
+    let case = Case::new("bad-mesh-gravity");
+    let mut nodes = Vec::new();
+    let (cells, base, top) = cube(&mut nodes, [0.0; 3]);
+    write_msh41(&case.dir.join("cubes.msh"), &nodes, &groups(cells, base, top, 4));
+    case.write("cubes.toml", &SCENE.replace("analysis = \"solid\"", "analysis = \"solid\"\ngravity = [0.0, 0.0, -9.81]"));
+    let summary = solve_ok(&case);
+    let w = warned(&case, &summary, "gravity");
+    says(&w, &["cubes.toml: gravity = [0.0, 0.0, -9.81] is given, but no body has a density, so gravity loads nothing"]);
+    // with a density, no such warning
+    case.write("cubes.toml", &SCENE.replace("analysis = \"solid\"", "analysis = \"solid\"\ngravity = [0.0, 0.0, -9.81]").replace("nu = 0.3", "nu = 0.3\ndensity = 1.0"));
+    let summary = solve_ok(&case);
+    assert!(!summary["warnings"].to_string().contains("gravity"), "{}", summary["warnings"]);
+}
