@@ -114,28 +114,7 @@ pub(super) fn split(b: &Builder, topo: &Topology, size: f64) -> Result<Split, Mo
     }
 
     // 2. The two cells of every facet.
-    let mut cells_of: Vec<[usize; 2]> = Vec::with_capacity(shared.len());
-    // facets that bound one cell, with their contact and cell: read as a
-    // whole (below) to say what is wrong with their group
-    let mut lone: Vec<(usize, &Cell, usize)> = Vec::new();
-    for &(ci, f) in &shared {
-        let key = format!("{}.group", spec.contacts[ci].key);
-        let name = group_name(spec, ci);
-        match topo.bounding(f).as_slice() {
-            [x, y] => cells_of.push([*x, *y]),
-            [one] => {
-                lone.push((ci, f, *one));
-                cells_of.push([*one, *one]);
-            }
-            [] => return Err(b.invalid(key, format!("element {} of group \"{name}\" touches no body: it is not a face of any element of the [[bodies]] groups", f.tag))),
-            many => return Err(b.invalid(key, format!("element {} of group \"{name}\" is a face of {} elements; a face separates two", f.tag, many.len()))),
-        }
-    }
-    if let Some(&(ci, ..)) = lone.first() {
-        let of_group: Vec<(&Cell, usize)> = lone.iter().filter(|l| l.0 == ci).map(|l| (l.1, l.2)).collect();
-        let between = shared.iter().zip(&cells_of).filter(|((c, _), [x, y])| *c == ci && x != y).count();
-        return Err(touches_one(b, topo, ci, &of_group, between));
-    }
+    let cells_of = two_cells(b, topo, &shared)?;
 
     // 3. Blocks, and one model node per fan at every node of a cut.
     let block = topo.blocks(&cut);
@@ -361,6 +340,36 @@ fn describe_cell(b: &Builder, topo: &Topology, block: &[usize], c: usize) -> Str
     let nodes: Vec<usize> = of_body.iter().filter(|&&x| block[x] == block[c]).flat_map(|&x| topo.cells[x].nodes.iter().copied()).collect();
     let centre: [f64; 3] = std::array::from_fn(|d| nodes.iter().map(|&n| b.mesh.coords[n][d]).sum::<f64>() / nodes.len().max(1) as f64);
     format!("block {} of body \"{name}\" (centre at ({:.4}, {:.4}, {:.4}))", block[c] - first + 1, centre[0], centre[1], centre[2])
+}
+
+/// The two cells of every facet of the shared contact groups (`shared`:
+/// each facet with its contact); a facet that bounds one cell, none or
+/// more than two is an error naming its group.
+fn two_cells(b: &Builder, topo: &Topology, shared: &[(usize, &Cell)]) -> Result<Vec<[usize; 2]>, ModelError> {
+    let spec = b.spec;
+    let mut cells_of: Vec<[usize; 2]> = Vec::with_capacity(shared.len());
+    // facets that bound one cell, with their contact and cell: read as a
+    // whole (below) to say what is wrong with their group
+    let mut lone: Vec<(usize, &Cell, usize)> = Vec::new();
+    for &(ci, f) in shared {
+        let key = format!("{}.group", spec.contacts[ci].key);
+        let name = group_name(spec, ci);
+        match topo.bounding(f).as_slice() {
+            [x, y] => cells_of.push([*x, *y]),
+            [one] => {
+                lone.push((ci, f, *one));
+                cells_of.push([*one, *one]);
+            }
+            [] => return Err(b.invalid(key, format!("element {} of group \"{name}\" touches no body: it is not a face of any element of the [[bodies]] groups", f.tag))),
+            many => return Err(b.invalid(key, format!("element {} of group \"{name}\" is a face of {} elements; a face separates two", f.tag, many.len()))),
+        }
+    }
+    if let Some(&(ci, ..)) = lone.first() {
+        let of_group: Vec<(&Cell, usize)> = lone.iter().filter(|l| l.0 == ci).map(|l| (l.1, l.2)).collect();
+        let between = shared.iter().zip(&cells_of).filter(|((c, _), [x, y])| *c == ci && x != y).count();
+        return Err(touches_one(b, topo, ci, &of_group, between));
+    }
+    Ok(cells_of)
 }
 
 /// The message for a contact group (`contacts[ci]`) with facets that bound
