@@ -24,6 +24,9 @@
 //!    and the upper layer's self-weight on the lower one (sides on
 //!    rollers): sigma_n = -rho g h at every pair, and the joint carries
 //!    the weight to round-off.
+//! 5. The same patch test across a face of pyramids (tests/geo/
+//!    contact_pyramids.geo: hexahedra above, tetrahedra below, pyramids
+//!    between them on the joint), pyramid5, pyramid13, pyramid14.
 
 mod common;
 
@@ -371,6 +374,43 @@ fn uniform_stress_crosses_joints_of_wedges_exactly() {
             // judged open after the first solve (tensile strength 0)
             assert_eq!(c.summary.iterations, if stacked == 1 { 1 } else { 2 }, "{name}: iterations");
         }
+    }
+}
+
+/// The contact patch test across a face of pyramids (issue 19: contact on
+/// the pyramids' quadrangles): tests/geo/contact_pyramids.geo, hexahedra
+/// above the joint and tetrahedra below, which gmsh joins to the joint's
+/// quadrangles by pyramids. The uniform stress of test 1; every pair sticks
+/// and carries sigma n exactly, pyramid5, pyramid13 and pyramid14.
+#[test]
+fn uniform_stress_crosses_a_joint_onto_pyramids_exactly() {
+    let case = Case::new("contact3d-pyramids");
+    case.copy("tests/geo/contact_pyramids.geo");
+    let (sxx, szz, sxz, syz) = (-1.0 / 3.0, -1.0, 0.2, -0.1);
+    let loads = [
+        traction("top", [sxz, syz, szz]),
+        traction("x1", [sxx, 0.0, sxz]),
+        traction("x0", [-sxx, 0.0, -sxz]),
+        traction("y1", [0.0, sxx, syz]),
+        traction("y0", [0.0, -sxx, -syz]),
+    ]
+    .concat();
+    for (name, order, ser) in [("pyramid5", 1, 0), ("pyramid14", 2, 0), ("pyramid13", 2, 1)] {
+        let text = scene((name, order, 0, ser), 0.3, "contact_pyramids.geo", &loads).replace("friction = 0.5", "friction = 0.8");
+        let run = solve(&case, name, &text);
+        let c = contact(&run);
+        // the lower block's cells on the joint are pyramids of this kind
+        let joint: std::collections::HashSet<usize> = run.model.pairs.iter().map(|p| p.k).collect();
+        let on_joint: Vec<&str> = (run.model.bodies[0].cells.iter()).filter(|cell| cell.nodes.iter().filter(|n| joint.contains(n)).count() >= 4).map(|cell| cell.kind.name()).collect();
+        assert!(!on_joint.is_empty() && on_joint.iter().all(|k| *k == name), "{name}: the joint's lower side is pyramids: {on_joint:?}");
+        let mut worst: f64 = 0.0;
+        for p in 0..c.states.len() {
+            assert_eq!(c.states[p], ContactState::Stick, "{name}: pair {p} sticks");
+            let (r, t) = (&c.pairs[p], c.shear(p));
+            worst = worst.max((r.sigma_n - szz).abs()).max((t[0] - sxz).abs()).max((t[1] - syz).abs()).max(t[2].abs());
+        }
+        eprintln!("{name}: {} pairs, {} cells on the joint, max traction error {worst:.1e}", c.states.len(), on_joint.len());
+        assert!(worst < 1e-8, "{name}: the uniform traction crosses the joint exactly ({worst:.2e})");
     }
 }
 
