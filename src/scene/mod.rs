@@ -59,7 +59,6 @@ pub use crate::analytic::Analytic;
 pub use crate::contact::{InterfaceSolver, SlipLaw, StateRule, TractionRecovery};
 pub use crate::fem::Analysis;
 pub use crate::model::{ContactGroups, InitialStress, LoadKind};
-pub use crate::output::picture::Region;
 pub use crate::recover::Probe;
 
 /// `[materials.NAME]`: linear isotropic elasticity.
@@ -193,6 +192,18 @@ impl MeshSource {
 
 /// The fields `[output] fields` accepts (and its default: all of them).
 pub const OUTPUT_FIELDS: &[&str] = &["displacement", "stress"];
+
+/// What the deformed picture frames instead of the contacts
+/// (`[output] frame` in the scene).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Region {
+    /// The cells whose centre lies in the box `from`..`to` (z is ignored in
+    /// 2D).
+    Box { from: [f64; 3], to: [f64; 3] },
+    /// The named bodies (their groups) and the cells around them, within a
+    /// quarter of their size.
+    Bodies(Vec<String>),
+}
 
 /// `[output]`.
 #[derive(Debug, Clone, PartialEq)]

@@ -44,6 +44,7 @@ use crate::contact::law::ContactState;
 use crate::model::Model;
 use crate::recover::BodyStress;
 use crate::results::ContactRun;
+use crate::scene::Region;
 use crate::fem::Analysis;
 
 /// Why a picture could not be drawn.
@@ -63,18 +64,6 @@ pub enum PictureError {
     Png(#[from] png::EncodingError),
     #[error("drawing the interface plot: {0}")]
     Plot(String),
-}
-
-/// What the deformed picture frames instead of the contacts
-/// (`[output] frame` in the scene).
-#[derive(Clone, Debug, PartialEq)]
-pub enum Region {
-    /// The cells whose centre lies in the box `from`..`to` (z is ignored in
-    /// 2D).
-    Box { from: [f64; 3], to: [f64; 3] },
-    /// The named bodies (their groups) and the cells around them, within a
-    /// quarter of their size.
-    Bodies(Vec<String>),
 }
 
 /// The quantity that colours the deformed picture.
