@@ -25,6 +25,7 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 
 mod condense;
+mod memory;
 mod messages;
 mod plan;
 mod ranks;
