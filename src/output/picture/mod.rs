@@ -228,25 +228,3 @@ fn sig2(v: f64) -> String {
     format!("{v:.1e}")
 }
 
-// Small vector algebra for the views, the sheets and the interfaces' directions.
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn sub3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-
-fn norm3(v: [f64; 3]) -> [f64; 3] {
-    let l = dot(v, v).sqrt();
-    if l > 0.0 {
-        v.map(|x| x / l)
-    } else {
-        v
-    }
-}

@@ -11,6 +11,7 @@ use super::raster::{encode_png, register_font, Canvas, FontMetrics};
 use super::*;
 use plotters::style::IntoFont;
 use crate::driver::{self, RunOptions};
+use crate::fem::vec3::{dot, sub};
 use crate::results::{state_counts, Run};
 use crate::scene::Scene;
 use std::path::{Path, PathBuf};
@@ -353,7 +354,7 @@ fn plan_view_of_a_3d_joint_shows_where_it_slips() {
         let t = c.shear(p);
         let u = &run.last().u;
         let rel: [f64; 3] = std::array::from_fn(|d| u[pair.l * nd + d] - u[pair.k * nd + d]);
-        let slip = sub3(rel, pair.normal.map(|x| x * dot(rel, pair.normal)));
+        let slip = sub(rel, pair.normal.map(|x| x * dot(rel, pair.normal)));
         assert!((dot(t, t).sqrt() - c.pairs[p].tau()).abs() <= 1e-9 * c.pairs[p].tau().max(1e-12), "pair {p}: the frame is orthonormal");
         assert!(t[0] > 0.9 * dot(t, t).sqrt(), "pair {p}: shear {t:?} along +x");
         assert!(dot(t, slip) > 0.99 * dot(t, t).sqrt() * dot(slip, slip).sqrt(), "pair {p}: shear {t:?} along the slip {slip:?}");

@@ -3,7 +3,7 @@
 //! slices thin in z (a plane section extruded), else z; the eye turned to
 //! the right of the viewer's axis and raised above it.
 
-use super::{cross, dot, norm3, sub3};
+use crate::fem::vec3::{cross, dot, normalized, sub};
 
 /// A model at most this thick in z, relative to the smaller of its x and y
 /// extents, is a slice: a plane section extruded along z.
@@ -44,7 +44,7 @@ impl View {
             let k = (0..3).min_by(|&a, &b| up[a].abs().total_cmp(&up[b].abs())).unwrap_or(0);
             let mut t = [0.0; 3];
             t[k] = if k == 1 { -1.0 } else { 1.0 };
-            (norm3(sub3(t, up.map(|x| x * dot(t, up)))), 30.0f64, 25.0f64)
+            (normalized(sub(t, up.map(|x| x * dot(t, up)))), 30.0f64, 25.0f64)
         } else if up[1] == 1.0 {
             ([0.0, 0.0, 1.0], 20.0, 20.0)
         } else {
