@@ -121,7 +121,7 @@ pub fn run_on(mut scene: Scene, opts: &RunOptions, comm: &dyn Comm) -> Result<Op
 
     // 1. Scene.
     if opts.bonded {
-        scene.contacts.clear();
+        scene.bond_all();
     }
     let out = opts.out_dir(&scene);
 

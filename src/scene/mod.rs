@@ -257,6 +257,10 @@ pub struct Scene {
     pub probes: Vec<Probe>,
     pub analytic: Option<Analytic>,
     pub output: Output,
+    /// Every contact bonded on purpose (`solve --bonded`): `contacts` is
+    /// empty and the bodies that shared them move as one, which no warning
+    /// need point out.
+    pub bonded: bool,
 }
 
 impl Scene {
@@ -274,6 +278,13 @@ impl Scene {
     pub fn parse(text: &str, path: &Path) -> Result<Scene, SceneError> {
         let raw: raw::RawScene = toml::from_str(text).map_err(|e| errors::toml_error(text, path, &e))?;
         validate::Checker { path }.scene(raw)
+    }
+
+    /// Bonds every contact ([`Scene::bonded`]): the bodies keep the nodes
+    /// they share, and the run is the monolithic solve.
+    pub fn bond_all(&mut self) {
+        self.contacts.clear();
+        self.bonded = true;
     }
 
     /// The material of `body`. Panics only if `body` was not validated
