@@ -48,9 +48,9 @@ pub enum ContactError {
     /// frictionless slip), so no load along the joint is to blame.
     Sliding { scene: PathBuf, at: At, bodies: Vec<String>, no_shear: bool },
     /// A load step's iteration did not converge after `iterations`
-    /// (`cycled`: its states cycle); `results`: where the last iteration's
-    /// results were written.
-    NotConverged { scene: PathBuf, step: Option<usize>, iterations: usize, cycled: bool, results: Option<PathBuf> },
+    /// (`cycled`: its states cycle) under `rule`; `results`: where the last
+    /// iteration's results were written.
+    NotConverged { scene: PathBuf, step: Option<usize>, iterations: usize, cycled: bool, rule: StateRule, results: Option<PathBuf> },
     /// Substructures joined by bonded interfaces alone, and that system singular.
     BondedNotHeld { scene: PathBuf },
     /// The interface mass matrix of the consistent traction recovery could
@@ -173,14 +173,15 @@ impl fmt::Display for ContactError {
                     write!(f, " — loss of equilibrium: the load along the contact exceeds what friction and cohesion can carry. Reduce the load, add a support that holds {} tangentially, or raise the friction or cohesion of {its} contacts", if bodies.len() > 1 { "them" } else { "it" })
                 }
             }
-            ContactError::NotConverged { scene, step, iterations, cycled, results } => {
+            ContactError::NotConverged { scene, step, iterations, cycled, rule, results } => {
                 write!(f, "{}: the contact iteration did not converge", scene.display())?;
                 if let Some(k) = step {
                     write!(f, " at load step {k}")?;
                 }
                 write!(f, " after {iterations} iteration(s){}", if *cycled { " (the states cycle)" } else { "" })?;
                 if let Some(out) = results {
-                    write!(f, "; the results in {} are those of the last iteration (summary.json contact.converged = false, report.md lists the last two state sets). Try more [solver] max_iterations, more load steps, or the default rule = \"robust\"", out.display())?;
+                    let other = if *rule == StateRule::Paper { ", or the default rule = \"robust\"" } else { "" };
+                    write!(f, "; the results in {} are those of the last iteration (summary.json contact.converged = false, report.md lists the last two state sets). Try more [solver] max_iterations or more load steps{other}", out.display())?;
                 }
                 Ok(())
             }
