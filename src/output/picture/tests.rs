@@ -633,3 +633,24 @@ fn a_joint_set_of_many_planes_gets_a_plan_per_plane_and_one_overview() {
     assert!(svg.contains("joints 1 of 7, z = 0") && svg.contains("joints 7 of 7, x = 2.5"));
     keep("jointset_interfaces.png", &interface_plot_png(&model, &c).expect("plot"));
 }
+
+/// Issue 21: the pictures' errors are typed, and a caller tells them apart
+/// by variant: results that are not the model's (a caller's bug), and a
+/// model with nothing to plot.
+#[test]
+fn picture_errors_are_told_apart_by_variant() {
+    let run = cylinder(0.5, 1);
+    let c = contact(&run);
+    let u = &run.last().u[1..];
+    let wrong = Snapshot { u, ..snap(&run) };
+    assert!(matches!(deformed_png(&wrong, Field::VonMises, None), Err(PictureError::Mismatch { what: "displacements or stresses" })));
+    let mut fewer = c.clone();
+    fewer.states.pop();
+    assert!(matches!(joints_png("t", &run.model, &fewer, &[]), Err(PictureError::Mismatch { what: "contact results" })));
+    let mut bare = run.model.clone();
+    bare.interfaces.clear();
+    match interface_plot_svg(&bare, c) {
+        Err(PictureError::Empty(why)) => assert!(why.contains("no contact interface"), "{why}"),
+        other => panic!("nothing to plot, not {:?}", other.map(|s| s.len())),
+    }
+}
