@@ -6,7 +6,7 @@ CARGO   ?= cargo
 BIN     := target/release/subcontact
 PYTHON  ?= python3
 
-.PHONY: all deps deps-mpi build cylinder tunnel footing footing-layers dam blocks3d dam3d test test-mpi bench bench3d bench-ccx bench-interface scaling stress clean
+.PHONY: all deps deps-mpi build cylinder tunnel tunnel-joints footing footing-layers dam blocks3d dam3d dam3d-joints test test-mpi bench bench3d bench-ccx bench-interface scaling stress clean
 
 all: build
 
@@ -48,6 +48,13 @@ tunnel: deps build
 	@for r in tunnel tunnel_slip; do echo; echo "results/$$r/report.md:"; \
 	  awk '/^## Lining/{p=1} p{print} p&&/^Largest error/{exit}' results/$$r/report.md; done
 
+# A tunnel in rock cut by three joint sets into ~150 blocks (one body
+# group, one contact group per set), in-situ stress, bare opening: which
+# blocks loosen in the crown (results/tunnel_joints/report.md: the contact
+# groups and the most mobilised block faces; faces.csv).
+tunnel-joints: deps build
+	$(BIN) solve geo/tunnel_joints.toml
+
 # A gravity dam of three blocks on rock: self-weight, then the reservoir in
 # two steps; the heel opens (results/dam/, dam.pvd for the steps).
 dam: deps build
@@ -63,6 +70,13 @@ blocks3d: deps build
 # self-weight, then the reservoir in two steps (results/dam3d/).
 dam3d: deps build
 	$(BIN) solve geo/dam3d.toml
+
+# A gravity dam in 3D whose contraction joints cross its lift joints: three
+# monoliths in a stepped valley, each cut into three lifts; self-weight,
+# then the reservoir in two steps (results/dam3d_joints/: joints.png with
+# every joint by state, the contact groups and block faces in report.md).
+dam3d-joints: deps build
+	$(BIN) solve geo/dam3d_joints.toml
 
 # Run time against error on the cylinder, orders 1 and 2, up to ~2.6e6 DOFs:
 # results/cylinder/bench.{csv,md,svg}.

@@ -91,6 +91,9 @@ pub struct Stats {
     /// The mesh read, and whether gmsh's output was reused.
     pub msh: PathBuf,
     pub mesh_cached: bool,
+    /// How the interface was solved: "dense", "sparse" or "iterative"
+    /// (`[solver] interface`), "none" without one.
+    pub interface_solver: &'static str,
     pub dofs: Dofs,
     pub parts: PartCounts,
     pub residuals: Residuals,

@@ -169,14 +169,17 @@ impl Trial {
 ///   pair that has moved along the joint since its stick reference closes
 ///   slipping that way (it carries no force yet: |ξ| = c |s| >= b(0)),
 ///   otherwise it sticks;
-/// - stick: slipping when `|λ_T| >= b(p)` (eq. 16, `tau >= c - f sigma_n`);
+/// - stick: slipping when `|λ_T| >= b(p)` (eq. 16, `tau >= c - f sigma_n`)
+///   by more than `force_tol`: a pair that carries nothing (a joint at a
+///   free surface, its forces round-off) stays stuck instead of following
+///   the sign of its round-off from solve to solve;
 /// - slip: stuck again when `|ξ| < b(p)` with `ξ = λ_T + c s`, or when its
 ///   slip runs against the friction force it carried.
 ///
 /// Cracked pairs (ever opened or slipped) have `f_t = 0` and the residual
 /// cohesion; `coulomb` is false for frictionless slip, which never sticks
 /// once slipping.
-pub fn judge(current: ContactState, t: &Trial, s: &Strength, cracked: bool, coulomb: bool, gap_tol: f64) -> ContactState {
+pub fn judge(current: ContactState, t: &Trial, s: &Strength, cracked: bool, coulomb: bool, gap_tol: f64, force_tol: f64) -> ContactState {
     let ft = s.tensile_limit(cracked);
     match current {
         ContactState::Open if t.gap >= -gap_tol => ContactState::Open,
@@ -196,7 +199,7 @@ pub fn judge(current: ContactState, t: &Trial, s: &Strength, cracked: bool, coul
         _ if t.force[0] >= ft * t.area => ContactState::Open,
         ContactState::Stick => {
             let (b, _) = friction_bound(s, cracked, t.area, -t.force[0]);
-            if t.force[1].hypot(t.force[2]) >= b {
+            if t.force[1].hypot(t.force[2]) >= b && t.force[1].hypot(t.force[2]) > force_tol {
                 ContactState::Slip
             } else {
                 ContactState::Stick
@@ -250,21 +253,21 @@ mod tests {
             ((-4.0, -3.5), Slip), // shear sign does not matter
         ];
         for ((sn, tau), want) in cases {
-            assert_eq!(judge(Stick, &t(sn, tau, 0.0, 0.0), &S, false, true, 0.0), want, "sigma_n {sn} tau {tau}");
+            assert_eq!(judge(Stick, &t(sn, tau, 0.0, 0.0), &S, false, true, 0.0, 0.0), want, "sigma_n {sn} tau {tau}");
             assert_eq!(judge_paper(&r(sn, tau), &S, false), want, "paper: sigma_n {sn} tau {tau}");
         }
         // the shear direction in the joint plane does not matter either
         let diag = Trial { force: [-4.0, 2.1, 2.1], ..t(0.0, 0.0, 0.0, 0.0) };
-        assert_eq!(judge(Stick, &diag, &S, false, true, 0.0), Stick);
+        assert_eq!(judge(Stick, &diag, &S, false, true, 0.0, 0.0), Stick);
         let diag = Trial { force: [-4.0, 2.2, 2.2], ..diag };
-        assert_eq!(judge(Stick, &diag, &S, false, true, 0.0), Slip);
+        assert_eq!(judge(Stick, &diag, &S, false, true, 0.0, 0.0), Slip);
     }
 
     #[test]
     fn cracked_pairs_lose_tensile_strength_and_cohesion() {
-        assert_eq!(judge(Stick, &t(0.5, 0.0, 0.0, 0.0), &S, false, true, 0.0), Stick);
-        assert_eq!(judge(Stick, &t(0.5, 0.0, 0.0, 0.0), &S, true, true, 0.0), Open);
-        assert_eq!(judge(Stick, &t(-1.0, 0.6, 0.0, 0.0), &S, true, true, 0.0), Slip);
+        assert_eq!(judge(Stick, &t(0.5, 0.0, 0.0, 0.0), &S, false, true, 0.0, 0.0), Stick);
+        assert_eq!(judge(Stick, &t(0.5, 0.0, 0.0, 0.0), &S, true, true, 0.0, 0.0), Open);
+        assert_eq!(judge(Stick, &t(-1.0, 0.6, 0.0, 0.0), &S, true, true, 0.0, 0.0), Slip);
         // the paper's rule too
         assert_eq!(judge_paper(&r(0.5, 0.0), &S, false), Stick);
         assert_eq!(judge_paper(&r(0.5, 0.0), &S, true), Open);
@@ -273,22 +276,22 @@ mod tests {
 
     #[test]
     fn open_pairs_follow_their_gap() {
-        assert_eq!(judge(Open, &t(0.0, 0.0, 0.0, 1e-3), &S, true, true, 1e-12), Open);
-        assert_eq!(judge(Open, &t(0.0, 0.0, 0.0, -1e-3), &S, true, true, 1e-12), Stick, "closes where it is");
-        assert_eq!(judge(Open, &t(0.0, 0.0, 1e-3, -1e-3), &S, true, true, 1e-12), Slip, "closes after moving along the joint");
+        assert_eq!(judge(Open, &t(0.0, 0.0, 0.0, 1e-3), &S, true, true, 1e-12, 0.0), Open);
+        assert_eq!(judge(Open, &t(0.0, 0.0, 0.0, -1e-3), &S, true, true, 1e-12, 0.0), Stick, "closes where it is");
+        assert_eq!(judge(Open, &t(0.0, 0.0, 1e-3, -1e-3), &S, true, true, 1e-12, 0.0), Slip, "closes after moving along the joint");
         let cohesive = Strength { residual_cohesion: 0.5, ..S };
         assert_eq!(judge(Open, &t(0.0, 0.0, 1e-3, -1e-3), &cohesive, true, true, 1e-12), Stick, "a cohesive crack holds a small move");
-        assert_eq!(judge(Slip, &t(-1.0, 0.5, 0.0, 0.0), &S, true, true, 1e-12), Slip);
-        assert_eq!(judge(Slip, &t(0.1, 0.0, 0.0, 0.0), &S, true, true, 1e-12), Open);
+        assert_eq!(judge(Slip, &t(-1.0, 0.5, 0.0, 0.0), &S, true, true, 1e-12, 0.0), Slip);
+        assert_eq!(judge(Slip, &t(0.1, 0.0, 0.0, 0.0), &S, true, true, 1e-12, 0.0), Open);
     }
 
     #[test]
     fn slipping_pairs_stick_again_when_they_move_against_their_friction() {
         // carrying the bound 0.5 along +t under sigma_n = -1
-        assert_eq!(judge(Slip, &t(-1.0, 0.5, 1e-3, 0.0), &S, true, true, 1e-12), Slip);
-        assert_eq!(judge(Slip, &t(-1.0, 0.5, -1e-3, 0.0), &S, true, true, 1e-12), Stick);
+        assert_eq!(judge(Slip, &t(-1.0, 0.5, 1e-3, 0.0), &S, true, true, 1e-12, 0.0), Slip);
+        assert_eq!(judge(Slip, &t(-1.0, 0.5, -1e-3, 0.0), &S, true, true, 1e-12, 0.0), Stick);
         // a large reversed slip makes |ξ| large, but it runs against the friction: stuck
-        assert_eq!(judge(Slip, &t(-1.0, 0.5, -1.0, 0.0), &S, true, true, 1e-12), Stick);
+        assert_eq!(judge(Slip, &t(-1.0, 0.5, -1.0, 0.0), &S, true, true, 1e-12, 0.0), Stick);
         assert_eq!(judge(Slip, &t(-1.0, 0.0, -1e-3, 0.0), &S, true, false, 1e-12), Slip, "frictionless slip never sticks");
     }
 
@@ -297,7 +300,7 @@ mod tests {
         let s = Strength { friction: 0.5, cohesion: 1.0, tensile_strength: 5.0, residual_cohesion: 0.0 };
         assert!(s.above_apex());
         assert_eq!(s.tensile_limit(false), 2.0);
-        assert_eq!(judge(Stick, &t(2.5, 0.0, 0.0, 0.0), &s, false, true, 0.0), Open, "above c/f the joint opens");
+        assert_eq!(judge(Stick, &t(2.5, 0.0, 0.0, 0.0), &s, false, true, 0.0, 0.0), Open, "above c/f the joint opens");
         assert_eq!(judge_paper(&r(2.5, 0.0), &s, false), Slip, "the paper's rule slips there with no shear strength");
         assert!(!S.above_apex());
     }

@@ -40,6 +40,10 @@ use crate::fem::vec3::{norm, sub};
 /// (a pair that just started slipping is nearly tied across its slip).
 const BETA_MAX: f64 = 0.999;
 
+/// Forces below this fraction of the largest pair force are round-off: a
+/// stuck pair does not start slipping on them (see [`judge`]).
+const FORCE_ROUND_OFF: f64 = 1e-12;
+
 /// Relative tolerance on the friction force of slipping pairs.
 const FORCE_TOL: f64 = 1e-12;
 
@@ -127,6 +131,7 @@ impl<'p> Newton<'p> {
         let scale_u = rel.iter().map(|v| norm(*v)).fold(0.0, f64::max);
         let scale_f = force.iter().map(|f| norm(*f)).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
         let tol_u = 1e-10 * scale_u;
+        let tol_f = FORCE_ROUND_OFF * scale_f;
         let mut next = h.states.clone();
         let mut violation = vec![0.0; n];
         let mut residual: f64 = 0.0;
@@ -142,11 +147,11 @@ impl<'p> Newton<'p> {
                 // a closing pair does, where it is) unless the force it would
                 // carry closed is tension beyond its strength
                 (Some(f), ContactState::Open) if f[0] >= law.strength.tensile_limit(cr) * area => ContactState::Open,
-                (Some(_), ContactState::Open) => judge(st, &Trial { gap: f64::NEG_INFINITY, ..trial }, &law.strength, cr, coulomb, tol_u),
+                (Some(_), ContactState::Open) => judge(st, &Trial { gap: f64::NEG_INFINITY, ..trial }, &law.strength, cr, coulomb, tol_u, tol_f),
                 // a slipping one it keeps from slipping: stuck if the loop
                 // can carry its shear within every pair's bound
-                (Some(f), _) => judge(ContactState::Stick, &Trial { force: f, ..trial }, &law.strength, cr, coulomb, tol_u),
-                (None, _) => judge(st, &trial, &law.strength, cr, coulomb, tol_u),
+                (Some(f), _) => judge(ContactState::Stick, &Trial { force: f, ..trial }, &law.strength, cr, coulomb, tol_u, tol_f),
+                (None, _) => judge(st, &trial, &law.strength, cr, coulomb, tol_u, tol_f),
             };
             if st == ContactState::Slip && next[p] == ContactState::Slip {
                 residual = residual.max(friction_residual(law, cr, area, self.stiffness[p], force[p], slip));

@@ -101,7 +101,7 @@ pub(super) fn condense<'r>(model: &Model, plan: &Plan, opts: &RunOptions, ranks:
     let t = Instant::now();
     let local = PartStats::of(&mine);
     let all = PartStats::total(&ranks.gather(&local).unwrap_or_default());
-    let problem = ranks.interface(&mut mine, |ops, remote| interface(model, ops, remote, plan.threads))?;
+    let problem = ranks.interface(&mut mine, |ops, remote| interface(model, ops, remote, plan))?;
     // the interface holds what it needs of every S
     for (_, c) in mine.iter_mut() {
         c.drop_schur();
@@ -110,11 +110,11 @@ pub(super) fn condense<'r>(model: &Model, plan: &Plan, opts: &RunOptions, ranks:
 }
 
 /// The interface of the parts' operators `ops`, when some part has one.
-fn interface<'r>(model: &Model, ops: &[OperatorRef], remote: Option<&'r dyn Remote>, threads: usize) -> Result<Option<InterfaceProblem<'r>>> {
+fn interface<'r>(model: &Model, ops: &[OperatorRef], remote: Option<&'r dyn Remote>, plan: &Plan) -> Result<Option<InterfaceProblem<'r>>> {
     if ops.iter().all(|o| o.nc == 0) {
         return Ok(None);
     }
-    Ok(Some(InterfaceProblem::new(model, ops, remote, threads)?))
+    Ok(Some(InterfaceProblem::new(model, ops, remote, plan.threads, plan.sparse)?))
 }
 
 /// Factors that would crowd the dense interface out of memory are dropped

@@ -147,10 +147,11 @@ pub fn run_on(mut scene: Scene, opts: &RunOptions, comm: &dyn Comm) -> Result<Op
     let gathered = ranks.gather(&stats::rank(&ranks, &parts, &done));
     stats::add_timings(&mut timings, &parts, &done);
     let all = parts.all;
+    let interface_solver = if parts.problem.is_some() { plan.interface_solver() } else { "none" };
     // the factors go before the results are written
     drop(parts);
     let Some(rank_stats) = gathered else { return Ok(None) };
-    let measured = stats::Measured { msh, mesh_cached, timings, counters: done.counters, residual_interface: done.residual_interface, ranks: rank_stats };
+    let measured = stats::Measured { msh, mesh_cached, timings, counters: done.counters, residual_interface: done.residual_interface, ranks: rank_stats, interface_solver };
     let stats = stats::stats(&model, &plan.parts, all, measured);
     let mut run = Run { scene, model, steps: done.steps, stats, checks: Checks::default() };
 

@@ -19,10 +19,25 @@ pub(super) struct Plan {
     pub owner: Vec<usize>,
     /// Parts a rank condenses at once.
     pub threads: usize,
-    /// Dense S for the dense interface, or applied S for the iterative one.
+    /// Dense S for the dense and the sparse interface, or applied S for the
+    /// iterative one.
     pub how: Condensation,
+    /// The interface means factorised sparse (many small parts) instead of
+    /// the dense reduction (with `how` dense).
+    pub sparse: bool,
     /// Interface DOFs summed over the parts (what decides `how` by default).
     pub interface_dofs: usize,
+}
+
+impl Plan {
+    /// How the interface is solved, as `[solver] interface` names it.
+    pub fn interface_solver(&self) -> &'static str {
+        match (self.how, self.sparse) {
+            (Condensation::Applied, _) => "iterative",
+            (_, true) => "sparse",
+            _ => "dense",
+        }
+    }
 }
 
 /// The plan of a run on `ranks` MPI ranks (1 without MPI).
@@ -36,13 +51,27 @@ pub(super) fn plan(scene: &Scene, model: &Model, opts: &RunOptions, ranks: usize
     let threads = opts.threads.unwrap_or_else(|| (std::thread::available_parallelism().map_or(1, |n| n.get()) / ranks).max(1));
     let nd = model.nd;
     let interface_dofs: usize = parts.iter().map(|p| p.interface.len() * nd).sum();
-    let how = match opts.interface.unwrap_or(scene.solver.interface) {
-        InterfaceSolver::Iterative => Condensation::Applied,
-        InterfaceSolver::Auto if interface_dofs >= ITERATIVE_FROM => Condensation::Applied,
-        _ => Condensation::Dense,
+    let (how, sparse) = match opts.interface.unwrap_or(scene.solver.interface) {
+        InterfaceSolver::Iterative => (Condensation::Applied, false),
+        InterfaceSolver::Sparse => (Condensation::Dense, true),
+        InterfaceSolver::Dense => (Condensation::Dense, false),
+        InterfaceSolver::Auto if blocky(&parts, nd) => (Condensation::Dense, true),
+        InterfaceSolver::Auto if interface_dofs >= ITERATIVE_FROM => (Condensation::Applied, false),
+        InterfaceSolver::Auto => (Condensation::Dense, false),
     };
-    Ok(Plan { parts, owner, threads, how, interface_dofs })
+    Ok(Plan { parts, owner, threads, how, sparse, interface_dofs })
 }
+
+/// Whether the parts are many and small, as the blocks of a rock mass:
+/// then the sparse interface pays (see [`crate::contact::system::sparse`]).
+fn blocky(parts: &[Part], nd: usize) -> bool {
+    parts.len() >= BLOCKY_PARTS && parts.iter().all(|p| p.interface.len() * nd <= BLOCKY_PART_INTERFACE)
+}
+
+/// From how many parts, each with at most [`BLOCKY_PART_INTERFACE`]
+/// interface DOFs, `interface = "auto"` takes the sparse interface.
+const BLOCKY_PARTS: usize = 16;
+const BLOCKY_PART_INTERFACE: usize = 6_000;
 
 /// The model's parts, each cut into `k` pieces where it has the cells for
 /// them (and a note of the parts left whole).

@@ -62,6 +62,8 @@ pub(super) struct Measured {
     pub counters: Counters,
     pub residual_interface: f64,
     pub ranks: Vec<RankStats>,
+    /// How the interface was solved.
+    pub interface_solver: &'static str,
 }
 
 /// The run's statistics on rank 0, from its parts (all ranks'), the plan's
@@ -78,6 +80,7 @@ pub(super) fn stats(model: &Model, parts: &[Part], all: PartStats, m: Measured) 
     Stats {
         msh: m.msh,
         mesh_cached: m.mesh_cached,
+        interface_solver: m.interface_solver,
         dofs: Dofs { total: all.interior + interface, interface },
         parts: PartCounts { total: parts.len(), condensed: all.condensed },
         residuals: Residuals { interface: m.residual_interface, assembled: all.backward_error },

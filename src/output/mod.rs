@@ -1,12 +1,15 @@
 //! Result files of a run, staged in memory and written together:
 //! `<name>.vtu` (bodies), `<name>_contact.vtu` (interfaces), `contact.csv`,
+//! `faces.csv` (the resultants per block face pair, [`faces`]),
 //! `probes.csv`, the pictures, then (once the output stage is timed)
 //! `summary.json` and `report.md`, which embeds the pictures.
 
+pub mod faces;
 pub mod files;
 pub mod picture;
 pub mod plot;
 pub mod report;
+pub mod resultants;
 pub mod vtu;
 
 use anyhow::{Context, Result};
@@ -33,6 +36,9 @@ pub fn stage(run: &Run, out: &std::path::Path) -> Result<Staged> {
     if let Some(c) = &last.contact {
         staged.add(&format!("{name}_contact.vtu"), contact_vtu(model, c)?);
         staged.add("contact.csv", contact_csv(model, c).into_bytes());
+    }
+    if let Some(r) = resultants::of_run(run) {
+        staged.add("faces.csv", faces::faces_csv(model, &r).into_bytes());
     }
     if run.steps.len() > 1 {
         // one file per load step and ParaView collections over them, the
@@ -94,7 +100,7 @@ pub fn stale(dir: &std::path::Path, name: &str, written: &[std::path::PathBuf]) 
             let f = p.file_name().and_then(|f| f.to_str()).unwrap_or("");
             let ours = f.starts_with(name) && [".vtu", ".pvd", ".png", ".svg"].iter().any(|x| f.ends_with(x));
             let picture = (f.starts_with("deformed_") || f.starts_with("plan_")) && f.ends_with(".png");
-            ours || picture || ["contact.csv", "probes.csv", "interfaces.svg", "joints.png"].contains(&f)
+            ours || picture || ["contact.csv", "faces.csv", "probes.csv", "interfaces.svg", "joints.png"].contains(&f)
         })
         .collect()
 }
@@ -270,7 +276,7 @@ fn contact_csv(model: &Model, c: &ContactRun) -> String {
 }
 
 /// A CSV field: quoted when it holds a comma or a quote.
-fn csv_field(v: &str) -> String {
+pub(crate) fn csv_field(v: &str) -> String {
     if v.contains([',', '"', '\n']) {
         format!("\"{}\"", v.replace('"', "\"\""))
     } else {
@@ -307,6 +313,7 @@ fn summary(run: &Run) -> serde_json::Value {
                   "elements": run.model.bodies.iter().map(|b| b.cells.len()).sum::<usize>() },
         "bodies": run.model.bodies.iter().map(|b| b.name.clone()).collect::<Vec<_>>(),
         "dofs": st.dofs,
+        "interface_solver": st.interface_solver,
         "parts": st.parts,
         "timings_s": st.timings,
         "residuals": st.residuals,
@@ -327,6 +334,11 @@ fn summary(run: &Run) -> serde_json::Value {
             "cycles_broken": it.cycles_broken,
             "history": it.history.iter().map(|h| { let k = state_counts(h); json!({"stick": k[2], "slip": k[1], "open": k[0]}) }).collect::<Vec<_>>(),
         });
+        if let Some(r) = resultants::of_run(run) {
+            let (groups, faces) = faces::summary(&run.model, &r);
+            v["contact"]["groups"] = groups;
+            v["contact"]["faces"] = faces;
+        }
     }
     v["steps"] = json!(run
         .steps

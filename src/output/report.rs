@@ -3,7 +3,8 @@
 //! size, the contact iteration, timings (the same as summary.json's: both
 //! are staged once the output stage is timed), the load steps with the
 //! factor each load had at each step, errors against the closed form, the
-//! pictures, what the scene's `[analytic]` check adds (`Checks::analytic`), and
+//! pictures, the contact groups and most mobilised block faces
+//! (faces.rs), what the scene's `[analytic]` check adds (`Checks::analytic`), and
 //! the probes.
 
 use std::fmt::Write;
@@ -28,7 +29,7 @@ pub fn report(run: &Run) -> String {
     let _ = writeln!(s, "| elements | {} |", run.model.bodies.iter().map(|b| b.cells.len()).sum::<usize>());
     let _ = writeln!(s, "| model nodes (after contact split) | {} |", run.model.n_nodes());
     let _ = writeln!(s, "| DOFs (unknowns) | {} |", st.dofs.total);
-    let _ = writeln!(s, "| interface DOFs | {} |", st.dofs.interface);
+    let _ = writeln!(s, "| interface DOFs | {} ({} interface solver) |", st.dofs.interface, st.interface_solver);
     let _ = writeln!(s, "| parts (condensed) | {} ({}) |", st.parts.total, st.parts.condensed);
     if st.ranks.len() > 1 {
         let _ = writeln!(
@@ -96,6 +97,7 @@ pub fn report(run: &Run) -> String {
             }
         }
     }
+    s += &super::faces::report(run);
     s += &run.checks.analytic.report;
     for (name, samples) in &run.checks.probes {
         let _ = writeln!(s, "\n## Probe `{name}`\n");

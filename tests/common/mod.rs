@@ -1,7 +1,7 @@
 //! Shared helpers of the integration tests. Here: [`Case`], a scratch
 //! directory per test case, with scenes written or copied into it and solved
 //! there through the library's driver or the real binary; and the reading of
-//! files, the repository's and the results'. By theme, beside it:
+//! files, the repository's and the results' (text, JSON, CSV rows). By theme, beside it:
 //!
 //! - [`scenes`]: scene texts that several test files write (a repository
 //!   scene with edits, two stacked blocks, Lamé's cylinder);
@@ -117,4 +117,24 @@ pub fn repo_text(repo_path: &str) -> String {
 /// A JSON file (summary.json), parsed.
 pub fn json(path: &Path) -> serde_json::Value {
     serde_json::from_str(&read(path)).unwrap_or_else(|e| panic!("{}: not JSON: {e}", path.display()))
+}
+
+/// A JSON array of three numbers (a vector of summary.json).
+pub fn json_vec3(v: &serde_json::Value) -> [f64; 3] {
+    std::array::from_fn(|i| v[i].as_f64().unwrap_or_else(|| panic!("not three numbers: {v}")))
+}
+
+/// The rows of a CSV file of the results (no quoted fields), as maps from
+/// the header's names.
+pub fn csv_rows(path: &Path) -> Vec<std::collections::HashMap<String, String>> {
+    let text = read(path);
+    let mut lines = text.lines();
+    let head: Vec<String> = lines.next().unwrap_or_else(|| panic!("{}: no header", path.display())).split(',').map(str::to_string).collect();
+    lines.map(|l| head.iter().cloned().zip(l.split(',').map(str::to_string)).collect()).collect()
+}
+
+/// A number of a CSV row of [`csv_rows`].
+pub fn csv_num(row: &std::collections::HashMap<String, String>, key: &str) -> f64 {
+    let v = row.get(key).unwrap_or_else(|| panic!("no column {key}"));
+    v.parse().unwrap_or_else(|_| panic!("{key} = {v:?} is not a number"))
 }

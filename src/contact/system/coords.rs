@@ -25,6 +25,7 @@ use faer::Mat;
 
 use super::super::basis;
 use super::super::frame::Frame;
+use crate::fem::sparse::SymMatrix;
 
 /// How one local axis of a pair enters the unknowns: `m` indexes the means,
 /// `r` the relative displacements.
@@ -60,6 +61,14 @@ pub struct Terms {
 }
 
 impl Axis {
+    /// The mean of this axis, if it has one.
+    pub fn m(self) -> Option<usize> {
+        match self {
+            Axis::Free { m, .. } | Axis::Joined { m } => Some(m),
+            _ => None,
+        }
+    }
+
     pub fn r(self) -> Option<usize> {
         match self {
             Axis::Free { r, .. } | Axis::HeldK { r, .. } | Axis::HeldL { r, .. } => Some(r),
@@ -230,6 +239,52 @@ pub fn for_each_entry(s: &[f64], terms: &[Terms], mut f: impl FnMut(Var, Var, f6
                 }
             }
         }
+    }
+}
+
+/// Scratch space of [`add_clique`]: one slot per unknown of the matrix.
+pub struct CliqueScratch {
+    local: Vec<usize>,
+    pos: Vec<usize>,
+}
+
+impl CliqueScratch {
+    pub fn new(n: usize) -> CliqueScratch {
+        CliqueScratch { local: vec![usize::MAX; n], pos: vec![usize::MAX; n] }
+    }
+}
+
+/// Adds one part's `K_p = W^T S' W` (`s` local, `terms[u]` the unknowns of
+/// DOF u) to the lower triangle of `k`, whose pattern holds the part's
+/// clique: the terms whose unknown `index` maps to an equation; the others
+/// are left out.
+pub fn add_clique(k: &mut SymMatrix, s: &[f64], terms: &[Terms], index: impl Fn(Var) -> Option<usize>, scratch: &mut CliqueScratch) {
+    let mut vars: Vec<usize> = terms.iter().flat_map(|t| t.vars[..t.n].iter().filter_map(|&(x, _)| index(x))).collect();
+    vars.sort_unstable();
+    vars.dedup();
+    let m = vars.len();
+    for (a, &v) in vars.iter().enumerate() {
+        scratch.local[v] = a;
+    }
+    let mut kp = vec![0.0; m * m];
+    for_each_entry(s, terms, |i, j, x| {
+        if let (Some(a), Some(b)) = (index(i), index(j)) {
+            kp[scratch.local[a] + scratch.local[b] * m] += x;
+        }
+    });
+    for (b, &col) in vars.iter().enumerate() {
+        let (lo, hi) = (k.col_ptr[col], k.col_ptr[col + 1]);
+        for p in lo..hi {
+            scratch.pos[k.row_idx[p]] = p;
+        }
+        for (a, &row) in vars.iter().enumerate() {
+            if row >= col {
+                k.values[scratch.pos[row]] += kp[a + b * m];
+            }
+        }
+    }
+    for &v in &vars {
+        scratch.local[v] = usize::MAX;
     }
 }
 

@@ -34,7 +34,7 @@
 //! dense, so this is a constant factor, not a change of order: what would
 //! change the order is not forming the pieces' S at all (docs/scaling.md).
 
-use super::coords::{fixed_load, for_each_entry, for_each_load, Blocks, Terms, Var};
+use super::coords::{add_clique, fixed_load, for_each_load, Blocks, CliqueScratch, Terms, Var};
 use super::reduce::combine;
 use crate::fem::sparse::SymMatrix;
 use crate::substructure::ordering::Ordering;
@@ -60,10 +60,7 @@ pub struct SparseBlocks {
     k: SymMatrix,
     b: Vec<Vec<f64>>,
     b_fixed: Vec<f64>,
-    /// scratch: the local index of each unknown in the part being added
-    local: Vec<usize>,
-    /// scratch: the position of each row in the column being filled
-    pos: Vec<usize>,
+    scratch: CliqueScratch,
 }
 
 /// What recovers the join means once the pairs' unknowns are known.
@@ -96,40 +93,15 @@ impl SparseBlocks {
             k: SymMatrix::from_cliques(n, &vars),
             b: vec![vec![0.0; n]; cases],
             b_fixed: vec![0.0; n],
-            local: vec![usize::MAX; n],
-            pos: vec![usize::MAX; n],
+            scratch: CliqueScratch::new(n),
         }
     }
 
     /// Adds one part (its `s` and `g` already in local axes, see
     /// [`super::coords::localise`]).
     pub fn add_part(&mut self, s: &[f64], g: &[Vec<f64>], terms: &[Terms]) {
-        let vars = unknowns(terms, self.nm, self.nj);
-        let m = vars.len();
-        for (a, &v) in vars.iter().enumerate() {
-            self.local[v] = a;
-        }
-        // K_p in the part's unknowns, then into the sparse lower triangle
-        let mut kp = vec![0.0; m * m];
-        for_each_entry(s, terms, |i, j, x| {
-            let (a, b) = (self.local[index(i, self.nm, self.nj)], self.local[index(j, self.nm, self.nj)]);
-            kp[a + b * m] += x;
-        });
-        for (b, &col) in vars.iter().enumerate() {
-            let (lo, hi) = (self.k.col_ptr[col], self.k.col_ptr[col + 1]);
-            for p in lo..hi {
-                self.pos[self.k.row_idx[p]] = p;
-            }
-            for (a, &row) in vars.iter().enumerate() {
-                if row >= col {
-                    self.k.values[self.pos[row]] += kp[a + b * m];
-                }
-            }
-        }
-        for &v in &vars {
-            self.local[v] = usize::MAX;
-        }
         let (nm, nj) = (self.nm, self.nj);
+        add_clique(&mut self.k, s, terms, |v| Some(index(v, nm, nj)), &mut self.scratch);
         for (b, gc) in self.b.iter_mut().zip(g) {
             for_each_load(gc, terms, |i, x| b[index(i, nm, nj)] += x);
         }

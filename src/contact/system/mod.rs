@@ -30,12 +30,14 @@ pub mod joins;
 pub mod junction;
 mod layout;
 pub mod reduce;
+pub mod sparse;
 
 use coords::{Axis, Var};
 use dense::Dense;
 use iterative::{Iterative, Remote};
 use junction::Tied;
 use layout::Layout;
+use sparse::Sparse;
 
 use super::basis::FaceBasis;
 use super::frame::Frame;
@@ -232,20 +234,24 @@ pub enum SolveFailure {
 impl<'a> InterfaceProblem<'a> {
     /// The interface of the condensed `parts` (every part of the model, in
     /// order); `remote` applies the S of parts condensed for the iterative
-    /// interface on other MPI ranks, `threads` this rank's ones.
-    pub fn new(model: &Model, parts: &[OperatorRef], remote: Option<&'a dyn Remote>, threads: usize) -> Result<InterfaceProblem<'a>, ModelError> {
+    /// interface on other MPI ranks, `threads` this rank's ones; `sparse`:
+    /// densely condensed parts solved by [`Sparse`] instead of [`Dense`].
+    pub fn new(model: &Model, parts: &[OperatorRef], remote: Option<&'a dyn Remote>, threads: usize, sparse: bool) -> Result<InterfaceProblem<'a>, ModelError> {
         let basis = FaceBasis::new(model);
         let layout = Layout::new(model, parts, &basis);
         let rigid: Vec<PartModes> = parts.iter().map(|p| PartModes::new(model, &p.part.nodes(model))).collect();
         let positions = model.pairs.iter().map(|p| model.coords[p.k]).collect();
+        let not_held = |_| ModelError::Invalid {
+            scene: model.scene.clone(),
+            key: "supports".into(),
+            msg: "the bodies are not held even with every contact stuck (the bonded interface system is singular): add a support".into(),
+        };
         let solver: Box<dyn Solver + 'a> = if parts.iter().any(|p| matches!(p.s, SchurRef::Applied { .. }) && p.nc > 0) {
             Box::new(Iterative::build(model, &layout, parts, &rigid, remote, threads))
+        } else if sparse {
+            Box::new(Sparse::new(&layout, parts, threads).map_err(not_held)?)
         } else {
-            Box::new(Dense::new(&layout, parts).map_err(|_| ModelError::Invalid {
-                scene: model.scene.clone(),
-                key: "supports".into(),
-                msg: "the bodies are not held even with every contact stuck (the bonded interface system is singular): add a support".into(),
-            })?)
+            Box::new(Dense::new(&layout, parts).map_err(not_held)?)
         };
         Ok(InterfaceProblem { layout, basis, solver, rigid, positions })
     }

@@ -1,0 +1,493 @@
+//! The sparse interface solver, for many small parts: a rock mass of
+//! hundreds of blocks, where the joints are most of the model and the
+//! dense interface (W of every relative displacement) would not fit.
+//!
+//! In the unknowns `[m; r]` of [`super::coords`] the means are unknowns
+//! under every set of relations, so their block is factorised once, sparse
+//! (a clique per part, METIS nested dissection in 3D):
+//!
+//! ```text
+//! K_mm = L L^T                                   (the bonded interface)
+//! r = r0 + Z y                                   (the state set's free directions)
+//! Z^T W Z y + friction = Z^T (c - W r0)          W = K_rr - K_rm K_mm^-1 K_mr
+//! ```
+//!
+//! and each state set solves only its free directions y, by GMRES
+//! ([`super::gmres`]) on `Z^T W Z`, each application one solve with L and
+//! two sweeps of the parts' condensed matrices (kept dense, in local
+//! axes: a block's S is small). The preconditioner is the same system
+//! with `K_rr` for W (the stiffness of the free relative displacements
+//! with the means held instead of free), sparse and factorised once per
+//! solve. A stuck pair costs nothing: all stuck is one solve with L.
+//! Each solve starts from the last one's answer; a solve whose state set
+//! differs from the last one's stops at the iterative interface's loose
+//! tolerance, as there ([`super::iterative`]).
+//!
+//! Once y is known, `m = K_mm^-1 (b_m - K_mr r)` and `W r - c = K_rm m +
+//! K_rr r - b_r`, the contact forces.
+
+use std::sync::Mutex;
+
+use super::coords::{add_clique, fixed_load, for_each_load, localise, CliqueScratch, Terms, Var};
+use super::gmres;
+use super::iterative::{LOOSE_TOLERANCE, TOLERANCE};
+use super::layout::Layout;
+use super::reduce::{combine, NotHeld};
+use super::{Answer, Freedom, Solver};
+use crate::contact::law::ContactState;
+use crate::fem::sparse::{Cholesky, SymMatrix};
+use crate::substructure::ordering::Ordering;
+use crate::substructure::schur::PartialCholesky;
+use crate::substructure::{OperatorRef, SchurRef};
+
+const RESTART: usize = 200;
+const MAX_ITERATIONS: usize = 5_000;
+
+/// A part's condensed matrix in the pairs' local axes, and the unknowns of
+/// each of its interface DOFs.
+struct Local {
+    s: Vec<f64>,
+    terms: Vec<Terms>,
+}
+
+/// The interface with its means factorised; see the module header.
+pub struct Sparse {
+    nm: usize,
+    nr: usize,
+    parts: Vec<Local>,
+    k_mm: PartialCholesky,
+    /// K_rr's diagonal: the scale of a pair's slip.
+    k_rr_diag: Vec<f64>,
+    /// The loads over `[m; r]`, per load case and for the prescribed values at ramp 1.
+    b: Vec<Vec<f64>>,
+    b_fixed: Vec<f64>,
+    threads: usize,
+    last: Mutex<Option<Vec<f64>>>,
+    last_states: Mutex<Option<Vec<ContactState>>>,
+    iterations: Mutex<Vec<usize>>,
+}
+
+impl Sparse {
+    /// The interface of the densely condensed `parts` (in the order of
+    /// `layout.parts`), swept in `threads`; fails when even every pair
+    /// stuck leaves a body free.
+    pub(super) fn new(layout: &Layout, parts: &[OperatorRef], threads: usize) -> Result<Sparse, NotHeld> {
+        let (nd, nm, nr) = (layout.nd, layout.nm, layout.nr);
+        let cases = parts.iter().map(|p| p.g.len()).max().unwrap_or(1);
+        let mut local = Vec::with_capacity(parts.len());
+        let mut b = vec![vec![0.0; nm + nr]; cases];
+        let mut b_fixed = vec![0.0; nm + nr];
+        let at = |v: Var| match v {
+            Var::M(i) => i,
+            Var::R(i) => nm + i,
+        };
+        for (part, map) in parts.iter().zip(&layout.parts) {
+            let SchurRef::Dense(s) = part.s else { continue };
+            if part.nc == 0 {
+                continue;
+            }
+            let (s, g) = localise(s, part.g, nd, &map.frames, &map.edges);
+            for (bc, gc) in b.iter_mut().zip(&g) {
+                for_each_load(gc, &map.terms, |i, x| bc[at(i)] += x);
+            }
+            fixed_load(&s, &map.terms, |i, x| b_fixed[at(i)] += x);
+            local.push(Local { s, terms: map.terms.clone() });
+        }
+        let k_mm = means_matrix(&local, nm);
+        let node_of = mean_nodes(layout);
+        let factor = PartialCholesky::factor(&k_mm, nm, &node_of, Ordering::choose(nm, nd), faer::Par::Seq).map_err(|_| NotHeld)?;
+        drop(k_mm);
+        let mut solver = Sparse {
+            nm,
+            nr,
+            parts: local,
+            k_mm: factor,
+            k_rr_diag: Vec::new(),
+            b,
+            b_fixed,
+            threads: threads.max(1),
+            last: Mutex::new(None),
+            last_states: Mutex::new(None),
+            iterations: Mutex::new(Vec::new()),
+        };
+        solver.k_rr_diag = solver.diagonal_r();
+        Ok(solver)
+    }
+
+    /// `K [m; r]`, the parts swept in threads: (its mean rows, its relative rows).
+    fn apply(&self, m: &[f64], r: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let (nm, nr) = (self.nm, self.nr);
+        let value = |v: Var| match v {
+            Var::M(i) => m[i],
+            Var::R(i) => r[i],
+        };
+        let sweep = |parts: &[Local]| -> Vec<f64> {
+            let mut y = vec![0.0; nm + nr];
+            let mut x = Vec::new();
+            let mut out = Vec::new();
+            for p in parts {
+                let nc = p.terms.len();
+                x.clear();
+                x.extend(p.terms.iter().map(|t| t.vars[..t.n].iter().map(|&(v, c)| c * value(v)).sum::<f64>()));
+                out.clear();
+                out.resize(nc, 0.0);
+                for (col, &xv) in p.s.chunks_exact(nc).zip(&x) {
+                    if xv != 0.0 {
+                        out.iter_mut().zip(col).for_each(|(o, s)| *o += s * xv);
+                    }
+                }
+                for (t, &o) in p.terms.iter().zip(&out) {
+                    for &(v, c) in &t.vars[..t.n] {
+                        match v {
+                            Var::M(i) => y[i] += c * o,
+                            Var::R(i) => y[nm + i] += c * o,
+                        }
+                    }
+                }
+            }
+            y
+        };
+        let chunk = self.parts.len().div_ceil(self.threads).max(1);
+        let mut y = if self.threads == 1 || self.parts.len() < 2 * self.threads {
+            sweep(&self.parts)
+        } else {
+            let sums: Vec<Vec<f64>> = std::thread::scope(|scope| {
+                let handles: Vec<_> = self.parts.chunks(chunk).map(|c| scope.spawn(move || sweep(c))).collect();
+                handles.into_iter().map(|h| h.join().expect("a sweep of the parts")).collect()
+            });
+            let mut sums = sums.into_iter();
+            let mut y = sums.next().unwrap_or_else(|| vec![0.0; nm + nr]);
+            for s in sums {
+                y.iter_mut().zip(&s).for_each(|(a, b)| *a += b);
+            }
+            y
+        };
+        let yr = y.split_off(nm);
+        (y, yr)
+    }
+
+    /// `K_mm^-1 v`.
+    fn solve_means(&self, mut v: Vec<f64>) -> Vec<f64> {
+        if self.nm > 0 {
+            self.k_mm.solve_many(&mut v, 1);
+        }
+        v
+    }
+
+    /// `W v = K_rr v - K_rm K_mm^-1 K_mr v`.
+    fn w(&self, v: &[f64]) -> Vec<f64> {
+        let (k_mr_v, _) = self.apply(&vec![0.0; self.nm], v);
+        let s: Vec<f64> = self.solve_means(k_mr_v).iter().map(|x| -x).collect();
+        self.apply(&s, v).1
+    }
+
+    /// The diagonal of `K_rr`, one sweep per part.
+    fn diagonal_r(&self) -> Vec<f64> {
+        let mut d = vec![0.0; self.nr];
+        for p in &self.parts {
+            let nc = p.terms.len();
+            for (u, tu) in p.terms.iter().enumerate() {
+                for (v, tv) in p.terms.iter().enumerate() {
+                    for &(i, ci) in &tu.vars[..tu.n] {
+                        for &(j, cj) in &tv.vars[..tv.n] {
+                            if let (Var::R(a), Var::R(b)) = (i, j) {
+                                if a == b {
+                                    d[a] += ci * cj * p.s[u + v * nc];
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        d
+    }
+
+    /// Whether this solve may stop at the loose tolerance (the states changed).
+    fn loose(&self, states: &[ContactState]) -> bool {
+        match self.last_states.lock() {
+            Ok(mut last) => {
+                let same = last.as_deref() == Some(states);
+                *last = Some(states.to_vec());
+                !same && !states.is_empty()
+            }
+            Err(_) => false,
+        }
+    }
+}
+
+impl Solver for Sparse {
+    fn solve(&self, fr: &Freedom, states: &[ContactState], lambda: &[f64]) -> Option<Answer> {
+        let (nm, nr) = (self.nm, self.nr);
+        let b = combine(&self.b, &self.b_fixed, lambda);
+        let (b_m, b_r) = b.split_at(nm);
+        let loose = self.loose(states);
+        let free = Free { fr, nr };
+        // from the last answer, moved onto r0 + span(Z): r_s = r0 + Z y0
+        let y0 = match self.last.lock().ok().and_then(|l| l.clone()) {
+            Some(last) if last.len() == nr => free.restrict(&last.iter().zip(&fr.r0).map(|(l, r0)| l - r0).collect::<Vec<_>>()),
+            _ => vec![0.0; fr.cols.len()],
+        };
+        let mut r_s = fr.r0.clone();
+        r_s.iter_mut().zip(free.expand(&y0)).for_each(|(r, e)| *r += e);
+        // c - W r_s = b_r - K_rr r_s - K_rm K_mm^-1 (b_m - K_mr r_s): what the
+        // free rows still lack at the start (the right-hand side less A y0)
+        let (k_mr_r, _) = self.apply(&vec![0.0; nm], &r_s);
+        let u = self.solve_means(b_m.iter().zip(&k_mr_r).map(|(b, k)| b - k).collect());
+        let (_, k_r) = self.apply(&u, &r_s);
+        let known: Vec<f64> = b_r.iter().zip(&k_r).map(|(b, k)| b - k).collect();
+        let rhs0 = free.rhs(&known, &y0);
+        let a = |y: &[f64]| free.operator(y, &self.w(&free.expand(y)));
+        let precondition = Preconditioner::new(self, fr);
+        let scale = norm(&b).max(norm(&rhs0)).max(f64::MIN_POSITIVE);
+        let tolerance = if loose { LOOSE_TOLERANCE } else { TOLERANCE };
+        let (dy, conv) = if fr.cols.is_empty() {
+            (Vec::new(), gmres::Convergence { iterations: 0, residual: 0.0, converged: true })
+        } else {
+            gmres::solve(a, |v: &[f64]| precondition.apply(v), &rhs0, tolerance * scale, RESTART, MAX_ITERATIONS)
+        };
+        if let Ok(mut its) = self.iterations.lock() {
+            its.push(conv.iterations + 2); // and the solves for c and the means
+        }
+        let residual = conv.residual / scale;
+        if !conv.converged && !(residual <= 1e-6) {
+            return None;
+        }
+        let y: Vec<f64> = y0.iter().zip(&dy).map(|(a, b)| a + b).collect();
+        let mut r = fr.r0.clone();
+        for (v, e) in r.iter_mut().zip(free.expand(&y)) {
+            *v += e;
+        }
+        let (k_mr_r, _) = self.apply(&vec![0.0; nm], &r);
+        let m = self.solve_means(b_m.iter().zip(&k_mr_r).map(|(b, k)| b - k).collect());
+        let (_, k_r) = self.apply(&m, &r);
+        let residual_r = k_r.iter().zip(b_r).map(|(k, b)| k - b).collect();
+        if !residual.is_finite() || m.iter().chain(&r).any(|v| !v.is_finite()) {
+            return None;
+        }
+        if let Ok(mut last) = self.last.lock() {
+            *last = Some(r.clone());
+        }
+        Some(Answer { m, r, residual_r, residual, loose })
+    }
+
+    fn diagonal(&self, r: usize) -> f64 {
+        self.k_rr_diag[r]
+    }
+
+    fn counts(&self) -> Vec<usize> {
+        self.iterations.lock().map(|v| v.clone()).unwrap_or_default()
+    }
+}
+
+/// The free directions of one solve: `Z` and the friction law's rows on them.
+struct Free<'f> {
+    fr: &'f Freedom,
+    nr: usize,
+}
+
+impl Free<'_> {
+    /// `Z y` over r.
+    fn expand(&self, y: &[f64]) -> Vec<f64> {
+        let mut v = vec![0.0; self.nr];
+        for (col, &yc) in self.fr.cols.iter().zip(y) {
+            for &(i, z) in col {
+                v[i] += z * yc;
+            }
+        }
+        v
+    }
+
+    /// `Z^T v`.
+    fn restrict(&self, v: &[f64]) -> Vec<f64> {
+        self.fr.cols.iter().map(|col| col.iter().map(|&(i, z)| z * v[i]).sum()).collect()
+    }
+
+    /// `Z^T w` with the friction law's terms on the free rows: the coupling
+    /// of a slipping row to its normal force, the springs of the slip
+    /// direction, the junctions' springs (`w = W Z y`).
+    fn operator(&self, y: &[f64], w: &[f64]) -> Vec<f64> {
+        let fr = self.fr;
+        let mut out = self.restrict(w);
+        for s in &fr.slips {
+            let i = fr.pos[s.row];
+            if let (Some(rn), true) = (s.normal, s.coupling != 0.0) {
+                out[i] += s.coupling * w[rn];
+            }
+            out[i] += s.springs.iter().map(|&(rc, k)| k * y[fr.pos[rc]]).sum::<f64>();
+        }
+        for jb in &fr.junctions {
+            for (a, fa) in jb.cols.clone().enumerate() {
+                out[fa] += jb.cols.clone().enumerate().map(|(c, fc)| jb.kz[(a, c)] * y[fc]).sum::<f64>();
+            }
+        }
+        out
+    }
+
+    /// The right-hand side less `A y0`, from `known = c - W (r0 + Z y0)`:
+    /// what the free rows lack at `y0`.
+    fn rhs(&self, known: &[f64], y0: &[f64]) -> Vec<f64> {
+        let fr = self.fr;
+        let mut rhs = self.restrict(known);
+        for s in &fr.slips {
+            let i = fr.pos[s.row];
+            rhs[i] -= s.force + s.springs.iter().map(|&(rc, k)| k * y0[fr.pos[rc]]).sum::<f64>();
+            if let (Some(rn), true) = (s.normal, s.coupling != 0.0) {
+                rhs[i] += s.coupling * known[rn];
+            }
+        }
+        for jb in &fr.junctions {
+            for (a, fa) in jb.cols.clone().enumerate() {
+                rhs[fa] -= jb.fz[a] + jb.cols.clone().enumerate().map(|(c, fc)| jb.kz[(a, c)] * y0[fc]).sum::<f64>();
+            }
+        }
+        rhs
+    }
+}
+
+/// `M = Z^T K_rr Z` with the springs of the slipping pairs and junctions
+/// (symmetric; the coupling to the normal force left out), factorised;
+/// its diagonal when the factorisation fails.
+enum Preconditioner {
+    Factor(Cholesky),
+    Diagonal(Vec<f64>),
+}
+
+impl Preconditioner {
+    fn new(sp: &Sparse, fr: &Freedom) -> Preconditioner {
+        let n = fr.cols.len();
+        if n == 0 {
+            return Preconditioner::Diagonal(Vec::new());
+        }
+        let mut cols_of: Vec<Vec<(usize, f64)>> = vec![Vec::new(); sp.nr];
+        for (c, col) in fr.cols.iter().enumerate() {
+            for &(i, z) in col {
+                cols_of[i].push((c, z));
+            }
+        }
+        let mut entries: Vec<(usize, usize, f64)> = Vec::new();
+        let mut free: Vec<(usize, usize, f64)> = Vec::new(); // (local DOF, column, coefficient)
+        for p in &sp.parts {
+            free.clear();
+            for (u, t) in p.terms.iter().enumerate() {
+                for &(v, c) in &t.vars[..t.n] {
+                    if let Var::R(i) = v {
+                        free.extend(cols_of[i].iter().map(|&(col, z)| (u, col, c * z)));
+                    }
+                }
+            }
+            let nc = p.terms.len();
+            for &(u, a, x) in &free {
+                for &(v, b, y) in &free {
+                    if a >= b {
+                        entries.push((a, b, x * y * p.s[u + v * nc]));
+                    }
+                }
+            }
+        }
+        for s in &fr.slips {
+            let i = fr.pos[s.row];
+            entries.extend(s.springs.iter().map(|&(rc, k)| (i.max(fr.pos[rc]), i.min(fr.pos[rc]), if i == fr.pos[rc] { k } else { 0.5 * k })));
+        }
+        for jb in &fr.junctions {
+            for (a, fa) in jb.cols.clone().enumerate() {
+                for (c, fc) in jb.cols.clone().enumerate() {
+                    if fa >= fc {
+                        entries.push((fa, fc, jb.kz[(a, c)]));
+                    }
+                }
+            }
+        }
+        let m = lower_from_entries(n, entries);
+        match Cholesky::factor(&m) {
+            Ok(f) => Preconditioner::Factor(f),
+            Err(_) => Preconditioner::Diagonal((0..n).map(|i| m.get(i, i)).collect()),
+        }
+    }
+
+    fn apply(&self, v: &[f64]) -> Vec<f64> {
+        match self {
+            Preconditioner::Factor(f) => {
+                let mut x = v.to_vec();
+                f.solve(&mut x);
+                x
+            }
+            Preconditioner::Diagonal(d) => v.iter().zip(d).map(|(x, d)| if *d > 0.0 { x / d } else { *x }).collect(),
+        }
+    }
+}
+
+/// The lower triangle of an `n x n` symmetric matrix from (row >= col,
+/// col, value) entries, repeated ones summed; every diagonal entry present.
+fn lower_from_entries(n: usize, mut entries: Vec<(usize, usize, f64)>) -> SymMatrix {
+    entries.extend((0..n).map(|i| (i, i, 0.0)));
+    entries.sort_unstable_by_key(|&(r, c, _)| (c, r));
+    let mut col_ptr = vec![0usize; n + 1];
+    let (mut row_idx, mut values): (Vec<usize>, Vec<f64>) = (Vec::new(), Vec::new());
+    let mut last = (usize::MAX, usize::MAX);
+    for (r, c, v) in entries {
+        if (r, c) == last {
+            *values.last_mut().expect("a value") += v;
+        } else {
+            row_idx.push(r);
+            values.push(v);
+            col_ptr[c + 1] = row_idx.len();
+            last = (r, c);
+        }
+    }
+    for c in 0..n {
+        col_ptr[c + 1] = col_ptr[c + 1].max(col_ptr[c]);
+    }
+    SymMatrix { n, col_ptr, row_idx, values }
+}
+
+/// `K_mm`, sparse: a clique of means per part.
+fn means_matrix(parts: &[Local], nm: usize) -> SymMatrix {
+    let means = |v: Var| match v {
+        Var::M(i) => Some(i),
+        Var::R(_) => None,
+    };
+    let cliques: Vec<Vec<usize>> = (parts.iter())
+        .map(|p| {
+            let mut c: Vec<usize> = p.terms.iter().flat_map(|t| t.vars[..t.n].iter().filter_map(|&(v, _)| means(v))).collect();
+            c.sort_unstable();
+            c.dedup();
+            c
+        })
+        .collect();
+    let mut k = SymMatrix::from_cliques(nm, &cliques);
+    let mut scratch = CliqueScratch::new(nm);
+    for p in parts {
+        add_clique(&mut k, &p.s, &p.terms, means, &mut scratch);
+    }
+    k
+}
+
+/// A node id per mean (a lone pair, a junction or a join), for nested
+/// dissection to keep a node's means together.
+fn mean_nodes(layout: &Layout) -> Vec<usize> {
+    let mut node = vec![0; layout.nm];
+    let mut id = 0;
+    let mut mark = |ms: &mut dyn Iterator<Item = usize>| {
+        for m in ms {
+            node[m] = id;
+        }
+        id += 1;
+    };
+    for (ax, j) in layout.axes.iter().zip(&layout.in_junction) {
+        if j.is_none() {
+            mark(&mut ax.iter().filter_map(|a| a.m()));
+        }
+    }
+    for jn in &layout.junctions {
+        mark(&mut jn.m.iter().copied());
+    }
+    for ax in &layout.joins {
+        mark(&mut ax.iter().filter_map(|a| a.m()));
+    }
+    node
+}
+
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}

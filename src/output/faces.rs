@@ -1,0 +1,157 @@
+//! The contact resultants ([`super::resultants`]) as the outputs give them:
+//! `faces.csv` (one row per block face pair, every one), summary.json's
+//! `contact.groups` (every group) and `contact.faces` (the count and the
+//! most mobilised face pairs), and report.md's two tables: every contact
+//! group, and the [`MOST_FACES`] most mobilised face pairs, so that the
+//! report stays readable with hundreds of blocks.
+
+use std::fmt::Write;
+
+use serde_json::json;
+
+use super::resultants::{FacePair, Resultant, Resultants};
+use crate::model::Model;
+use crate::results::Run;
+
+/// Face pairs in report.md's table and summary.json's `most_mobilised`.
+pub const MOST_FACES: usize = 20;
+
+/// A block as the tables name it: its body group, and its number when the
+/// group is cut into several blocks (`rock #3`), as `Body::label` counts.
+pub fn block_name(model: &Model, b: usize) -> String {
+    let body = &model.bodies[b];
+    match body.block {
+        Some(k) => format!("{} #{}", body.name, k.index + 1),
+        None => body.name.clone(),
+    }
+}
+
+/// `faces.csv`: one row per face pair. Blocks as contact.csv's `block_i`,
+/// `block_ii` (the VTU's cell data `block`), then named; the face's centre
+/// and mean normal, its areas, the resultant on side I (global), N and T
+/// in the mean frame, and the largest mobilised friction and where.
+pub fn faces_csv(model: &Model, r: &Resultants) -> String {
+    let mut s = String::from(
+        "contact,block_i,block_ii,name_i,name_ii,pairs,x,y,z,n_x,n_y,n_z,area,area_stick,area_slip,area_open,f_x,f_y,f_z,normal_force,shear_force,mobilised_max,mobilised_x,mobilised_y,mobilised_z\n",
+    );
+    for f in &r.faces {
+        let q = &f.resultant;
+        let numbers: Vec<String> = (q.centre.iter().chain(&q.normal))
+            .chain(&[q.area(), q.areas[2], q.areas[1], q.areas[0]])
+            .chain(&q.force)
+            .chain(&[q.normal_force(), q.shear_force(), q.mobilised])
+            .chain(&q.mobilised_at)
+            .map(|v| format!("{v:.12e}"))
+            .collect();
+        let _ = writeln!(
+            s,
+            "{},{},{},{},{},{},{}",
+            super::csv_field(&model.interfaces[f.contact].name),
+            f.blocks[0],
+            f.blocks[1],
+            super::csv_field(&block_name(model, f.blocks[0])),
+            super::csv_field(&block_name(model, f.blocks[1])),
+            q.pairs,
+            numbers.join(",")
+        );
+    }
+    s
+}
+
+fn resultant_json(q: &Resultant) -> serde_json::Value {
+    json!({
+        "pairs": q.pairs,
+        "area": { "total": q.area(), "stick": q.areas[2], "slip": q.areas[1], "open": q.areas[0] },
+        "centre": q.centre,
+        "normal": q.normal,
+        "force": q.force,
+        "normal_force": q.normal_force(),
+        "shear_force": q.shear_force(),
+        "mobilised_max": q.mobilised,
+        "mobilised_at": q.mobilised_at,
+    })
+}
+
+fn face_json(model: &Model, f: &FacePair) -> serde_json::Value {
+    let mut v = resultant_json(&f.resultant);
+    v["contact"] = json!(model.interfaces[f.contact].name);
+    v["block_i"] = json!(f.blocks[0]);
+    v["block_ii"] = json!(f.blocks[1]);
+    v["name_i"] = json!(block_name(model, f.blocks[0]));
+    v["name_ii"] = json!(block_name(model, f.blocks[1]));
+    v
+}
+
+/// summary.json's `contact.groups` (every group, by name) and
+/// `contact.faces` (how many, the file with all of them, the most
+/// mobilised).
+pub fn summary(model: &Model, r: &Resultants) -> (serde_json::Value, serde_json::Value) {
+    let groups = (r.groups.iter().enumerate())
+        .map(|(g, q)| {
+            let mut v = resultant_json(q);
+            v["name"] = json!(model.interfaces[g].name);
+            v["face_pairs"] = json!(r.faces.iter().filter(|f| f.contact == g).count());
+            v
+        })
+        .collect::<Vec<_>>();
+    let faces = json!({
+        "count": r.faces.len(),
+        "file": "faces.csv",
+        "most_mobilised": r.most_mobilised(MOST_FACES).into_iter().map(|f| face_json(model, f)).collect::<Vec<_>>(),
+    });
+    (json!(groups), faces)
+}
+
+/// report.md's section on the contact groups and the most mobilised face
+/// pairs (empty without contacts).
+pub fn report(run: &Run) -> String {
+    let Some(r) = super::resultants::of_run(run) else { return String::new() };
+    let m = &run.model;
+    let mut s = String::new();
+    let _ = writeln!(s, "\n## Contact groups\n");
+    let _ = writeln!(
+        s,
+        "Resultant force F on side I (global x, y, z); N = F . n and T = |F - N n| in the group's mean frame n (tension positive); mobilised friction |tau| / (c - f sigma_n), 1 where a pair slips or opens or has no strength left.\n"
+    );
+    let _ = writeln!(s, "| contact | face pairs | pairs | area stick / slip / open | mean normal n | F | N | T | mobilised max (at) |");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|");
+    for (g, q) in r.groups.iter().enumerate() {
+        let faces = r.faces.iter().filter(|f| f.contact == g).count();
+        let _ = writeln!(s, "| {} | {faces} | {} | {} | {} |", m.interfaces[g].name, q.pairs, areas(q), forces(q, m.nd));
+    }
+    let most = r.most_mobilised(MOST_FACES);
+    let which = match r.faces.len() {
+        1 => "The one block face pair".to_string(),
+        n if most.len() < n => format!("The {} most mobilised of {n} block face pairs", most.len()),
+        n => format!("All {n} block face pairs, most mobilised first"),
+    };
+    let _ = writeln!(s, "\n## Block faces\n\n{which} (a face pair: the part of a contact group between two blocks; every one in `faces.csv`). The same quantities in the face's mean frame, and the face's centre.\n");
+    let _ = writeln!(s, "| contact | block I | block II | centre | area stick / slip / open | mean normal n | F | N | T | mobilised max (at) |");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|");
+    for f in most {
+        let q = &f.resultant;
+        let _ = writeln!(s, "| {} | {} | {} | {} | {} | {} |", m.interfaces[f.contact].name, block_name(m, f.blocks[0]), block_name(m, f.blocks[1]), point(q.centre, m.nd), areas(q), forces(q, m.nd));
+    }
+    s
+}
+
+fn areas(q: &Resultant) -> String {
+    format!("{:.4} / {:.4} / {:.4}", q.areas[2], q.areas[1], q.areas[0])
+}
+
+/// Mean normal, F, N, T and the largest mobilised friction, as table
+/// cells (vectors of `nd` components).
+fn forces(q: &Resultant, nd: usize) -> String {
+    let force = vector(q.force, nd, |v| format!("{v:.4e}"));
+    format!("{} | {force} | {:.4e} | {:.4e} | {:.3} {}", point(q.normal, nd), q.normal_force(), q.shear_force(), q.mobilised, point(q.mobilised_at, nd))
+}
+
+/// A position or direction: x, y (and z in a solid model).
+fn point(x: [f64; 3], nd: usize) -> String {
+    vector(x, nd, |v| format!("{v:.3}"))
+}
+
+fn vector(x: [f64; 3], nd: usize, f: impl Fn(f64) -> String) -> String {
+    let c: Vec<String> = x[..nd.clamp(2, 3)].iter().map(|&v| f(v)).collect();
+    format!("({})", c.join(", "))
+}
