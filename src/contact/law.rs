@@ -280,7 +280,7 @@ mod tests {
         assert_eq!(judge(Open, &t(0.0, 0.0, 0.0, -1e-3), &S, true, true, 1e-12, 0.0), Stick, "closes where it is");
         assert_eq!(judge(Open, &t(0.0, 0.0, 1e-3, -1e-3), &S, true, true, 1e-12, 0.0), Slip, "closes after moving along the joint");
         let cohesive = Strength { residual_cohesion: 0.5, ..S };
-        assert_eq!(judge(Open, &t(0.0, 0.0, 1e-3, -1e-3), &cohesive, true, true, 1e-12), Stick, "a cohesive crack holds a small move");
+        assert_eq!(judge(Open, &t(0.0, 0.0, 1e-3, -1e-3), &cohesive, true, true, 1e-12, 0.0), Stick, "a cohesive crack holds a small move");
         assert_eq!(judge(Slip, &t(-1.0, 0.5, 0.0, 0.0), &S, true, true, 1e-12, 0.0), Slip);
         assert_eq!(judge(Slip, &t(0.1, 0.0, 0.0, 0.0), &S, true, true, 1e-12, 0.0), Open);
     }
@@ -292,7 +292,7 @@ mod tests {
         assert_eq!(judge(Slip, &t(-1.0, 0.5, -1e-3, 0.0), &S, true, true, 1e-12, 0.0), Stick);
         // a large reversed slip makes |ξ| large, but it runs against the friction: stuck
         assert_eq!(judge(Slip, &t(-1.0, 0.5, -1.0, 0.0), &S, true, true, 1e-12, 0.0), Stick);
-        assert_eq!(judge(Slip, &t(-1.0, 0.0, -1e-3, 0.0), &S, true, false, 1e-12), Slip, "frictionless slip never sticks");
+        assert_eq!(judge(Slip, &t(-1.0, 0.0, -1e-3, 0.0), &S, true, false, 1e-12, 0.0), Slip, "frictionless slip never sticks");
     }
 
     #[test]
