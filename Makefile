@@ -155,9 +155,6 @@ deps-mpi:
 test-mpi: deps deps-mpi
 	CARGO_TARGET_DIR=$(MPI_TARGET) $(CARGO) test --release --features mpi --test mpi
 
-# The scaling runs of docs/scaling.md: a 5.7e5-DOF column on a column on 1 and
-# 2 threads, 1 and 2 MPI ranks, 2, 4 and 8 substructures per body:
-# results/scaling/scaling.{md,json}. About 15 minutes on 2 cores.
 # The dense and the iterative interface on the same 3D scenes (block on
 # block on hex20/hex27/tet10, the 1.09e6-DOF strip): the table of
 # docs/bench3d.md, results/bench3d/interfaces.md. About 20 minutes; the
@@ -165,6 +162,9 @@ test-mpi: deps deps-mpi
 bench-interface: deps build
 	$(PYTHON) scripts/bench3d/interfaces.py
 
+# The scaling runs of docs/scaling.md: a 5.7e5-DOF column on a column on 1 and
+# 2 threads, 1 and 2 MPI ranks, 2, 4 and 8 substructures per body:
+# results/scaling/scaling.{md,json}. About 15 minutes on 2 cores.
 scaling: deps deps-mpi build
 	CARGO_TARGET_DIR=$(MPI_TARGET) $(CARGO) build --release --features mpi
 	$(PYTHON) scripts/scaling/scaling.py

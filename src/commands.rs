@@ -39,7 +39,9 @@ pub fn solve(scene: &Path, opts: &RunOptions, comm: &dyn Comm) -> Result<()> {
     if run.steps.iter().filter_map(|s| s.contact.as_ref()).any(|c| c.summary.apex_openings > 0) {
         warn(&run.scene.warnings());
     }
-    warn(&crate::model::warnings::warnings(&run.model));
+    if !run.scene.bonded {
+        warn(&crate::model::warnings::warnings(&run.model));
+    }
     print_summary(&run, &opts.out_dir(&run.scene));
     Ok(())
 }

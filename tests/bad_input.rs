@@ -293,3 +293,40 @@ fn check_fails_cleanly_on_a_bad_scene() {
     let msg = clean_failure(&case, &out, &case.dir.join("results"));
     says(&msg, &["bad2.toml", "materials.concrete.nu", "0.499"]);
 }
+
+/// Issue 19: a contact group that misses the other body named one body and
+/// the first facet it met, however far from the other body that was. A
+/// block on a ground block (tests/geo/block_on_ground.geo), contact groups
+/// as users get them wrong: the message names both bodies, says whether the
+/// group takes in faces of two bodies or outer faces, and hints at
+/// BooleanFragments only when the two were meshed apart.
+#[test]
+fn a_contact_group_that_misses_the_other_body_says_how() {
+    let case = Case::new("contact-group-misses");
+    case.copy("tests/geo/block_on_ground.geo");
+    let scene = |name: &str, fragments: u8, contact: &str| {
+        let text = format!(
+            "mesh = \"block_on_ground.geo\"\nanalysis = \"solid\"\n[gmsh]\norder = 1\nsetnumber = {{ lc = 0.5, fragments = {fragments} }}\n\
+             [materials.rock]\nE = 100.0\nnu = 0.3\n[[bodies]]\ngroup = \"ground\"\nmaterial = \"rock\"\n[[bodies]]\ngroup = \"block\"\nmaterial = \"rock\"\n\
+             [[contacts]]\n{contact}\nfriction = 0.5\n[[supports]]\ngroup = \"bottom\"\nfix = [\"x\", \"y\", \"z\"]\n"
+        );
+        case.write(&format!("{name}.toml"), &text);
+        let msg = solve_fails(&case, &format!("{name}.toml"));
+        eprintln!("{name}: {msg}");
+        msg
+    };
+    // the ground's top, meshed apart from the block: most of it lies far
+    // from the block, but some of it against the block's base
+    let msg = scene("apart", 0, "group = \"ground_top\"");
+    says(&msg, &["apart.toml", "contacts[0].group", "\"ground_top\"", "touches only body \"ground\"", "lies against body \"block\"", "does not share its nodes", "BooleanFragments"]);
+    // the same with shared nodes: the group takes in the ground's outer top
+    let msg = scene("outer", 1, "group = \"ground_top\"");
+    says(&msg, &["outer.toml", "\"ground_top\"", "touch only one body", "body \"ground\"", "between two bodies", "Leave its outer faces out"]);
+    assert!(!msg.contains("BooleanFragments"), "the bodies share their nodes: no advice to fragment them: {msg}");
+    // one side of groups = [..] takes in faces of two bodies
+    let msg = scene("two_bodies", 1, "groups = [\"outer_tops\", \"block_base\"]");
+    says(&msg, &["two_bodies.toml", "contacts[0].groups[0]", "\"outer_tops\" bounds body \"block\" and body \"ground\"", "each group is the face of one body"]);
+    // one side of groups = [..] is the face the two bodies share
+    let msg = scene("shared", 1, "groups = [\"ground_top\", \"block_base\"]");
+    says(&msg, &["shared.toml", "\"ground_top\" lies between body \"ground\" and body \"block\"", "share its nodes", "group = \"ground_top\""]);
+}

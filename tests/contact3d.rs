@@ -24,12 +24,19 @@
 //!    and the upper layer's self-weight on the lower one (sides on
 //!    rollers): sigma_n = -rho g h at every pair, and the joint carries
 //!    the weight to round-off.
+//! 5. The same patch test across a face of pyramids (tests/geo/
+//!    contact_pyramids.geo: hexahedra above, tetrahedra below, pyramids
+//!    between them on the joint), pyramid5, pyramid13, pyramid14.
+//! 6. A wedge in a groove held by friction alone along the groove while
+//!    every pair slips down its face (tests/geo/wedge_groove.geo).
 
 mod common;
 
 use common::Case;
 use subcontact::contact::law::ContactState;
+use subcontact::driver::ContactError;
 use subcontact::results::{ContactRun, Run};
+use subcontact::scene::StateRule;
 
 /// Element kinds: (name, gmsh order, hex, serendipity).
 const KINDS: [(&str, usize, usize, usize); 5] = [("tet4", 1, 0, 0), ("tet10", 2, 0, 0), ("hex8", 1, 1, 0), ("hex20", 2, 1, 1), ("hex27", 2, 1, 0)];
@@ -374,6 +381,43 @@ fn uniform_stress_crosses_joints_of_wedges_exactly() {
     }
 }
 
+/// The contact patch test across a face of pyramids (issue 19: contact on
+/// the pyramids' quadrangles): tests/geo/contact_pyramids.geo, hexahedra
+/// above the joint and tetrahedra below, which gmsh joins to the joint's
+/// quadrangles by pyramids. The uniform stress of test 1; every pair sticks
+/// and carries sigma n exactly, pyramid5, pyramid13 and pyramid14.
+#[test]
+fn uniform_stress_crosses_a_joint_onto_pyramids_exactly() {
+    let case = Case::new("contact3d-pyramids");
+    case.copy("tests/geo/contact_pyramids.geo");
+    let (sxx, szz, sxz, syz) = (-1.0 / 3.0, -1.0, 0.2, -0.1);
+    let loads = [
+        traction("top", [sxz, syz, szz]),
+        traction("x1", [sxx, 0.0, sxz]),
+        traction("x0", [-sxx, 0.0, -sxz]),
+        traction("y1", [0.0, sxx, syz]),
+        traction("y0", [0.0, -sxx, -syz]),
+    ]
+    .concat();
+    for (name, order, ser) in [("pyramid5", 1, 0), ("pyramid14", 2, 0), ("pyramid13", 2, 1)] {
+        let text = scene((name, order, 0, ser), 0.3, "contact_pyramids.geo", &loads).replace("friction = 0.5", "friction = 0.8");
+        let run = solve(&case, name, &text);
+        let c = contact(&run);
+        // the lower block's cells on the joint are pyramids of this kind
+        let joint: std::collections::HashSet<usize> = run.model.pairs.iter().map(|p| p.k).collect();
+        let on_joint: Vec<&str> = (run.model.bodies[0].cells.iter()).filter(|cell| cell.nodes.iter().filter(|n| joint.contains(n)).count() >= 4).map(|cell| cell.kind.name()).collect();
+        assert!(!on_joint.is_empty() && on_joint.iter().all(|k| *k == name), "{name}: the joint's lower side is pyramids: {on_joint:?}");
+        let mut worst: f64 = 0.0;
+        for p in 0..c.states.len() {
+            assert_eq!(c.states[p], ContactState::Stick, "{name}: pair {p} sticks");
+            let (r, t) = (&c.pairs[p], c.shear(p));
+            worst = worst.max((r.sigma_n - szz).abs()).max((t[0] - sxz).abs()).max((t[1] - syz).abs()).max(t[2].abs());
+        }
+        eprintln!("{name}: {} pairs, {} cells on the joint, max traction error {worst:.1e}", c.states.len(), on_joint.len());
+        assert!(worst < 1e-8, "{name}: the uniform traction crosses the joint exactly ({worst:.2e})");
+    }
+}
+
 /// Self-weight across a joint of wedges: the layers of contact_wedges.geo
 /// (stacked) on rollers (x0, x1 held in x, y0, y1 in y, the base in z),
 /// gravity down; the joint carries the upper layer's weight. The stress is
@@ -409,5 +453,55 @@ fn self_weight_crosses_a_joint_of_wedges_exactly() {
         eprintln!("{name}: {} pairs, sigma_n within {worst:.1e} of -rho g h = {want}, joint force {weight:.12} against the weight {upper:.12}", c.states.len());
         assert!((weight + upper).abs() < 1e-10 * upper, "{name}: the joint carries the weight ({weight} vs {upper})");
         assert!(worst < 1e-8 * want.abs(), "{name}: sigma_n = -rho g h at every pair ({worst:.2e})");
+    }
+}
+
+/// A wedge held across its slip by friction alone (issue 19 item 4: a wedge
+/// in a groove): tests/geo/wedge_groove.geo, the wedge's two faces sloping
+/// 45 degrees against the rock and nothing under it, its self-weight W =
+/// rho g V (V = 0.84 x 2) on them, friction 0.3 below tan 45: every pair
+/// slips down its face, and only friction holds the wedge along the groove,
+/// where no load pushes it. The robust rule linearises the Coulomb law with
+/// a stiffness across the slip, so the wedge is held: the faces carry W
+/// exactly, and every pair |tau| = f |sigma_n|. It was refused at the
+/// second iteration as a loss of equilibrium, "the load along the contact
+/// exceeds what friction and cohesion can carry", with no load along the
+/// groove at all. Frictionless, nothing holds the wedge along the groove,
+/// and it is refused as that.
+#[test]
+fn a_wedge_slipping_down_its_groove_is_held_along_it_by_friction() {
+    let case = Case::new("contact3d-wedge-groove");
+    case.copy("tests/geo/wedge_groove.geo");
+    let text = |f: f64| {
+        format!(
+            "title = \"a wedge in a groove\"\nmesh = \"wedge_groove.geo\"\nanalysis = \"solid\"\ngravity = [0.0, 0.0, -10.0]\n[gmsh]\norder = 1\nsetnumber = {{ lc = 0.3 }}\n\
+             [materials.rock]\nE = 1.0e4\nnu = 0.25\ndensity = 2.5\n[[bodies]]\ngroup = \"rock\"\nmaterial = \"rock\"\n[[bodies]]\ngroup = \"wedge\"\nmaterial = \"rock\"\n\
+             [[contacts]]\ngroup = \"faces\"\nfriction = {f:?}\n[[supports]]\ngroup = \"bottom\"\nfix = [\"x\", \"y\", \"z\"]\n"
+        )
+    };
+    let run = solve(&case, "held", &text(0.3));
+    let c = contact(&run);
+    assert!(c.summary.converged && c.states.iter().all(|&s| s == ContactState::Slip), "every pair slips: {:?}", c.states);
+    // the force on the rock (body I) is the wedge's weight
+    let w = 2.5 * 10.0 * 0.84 * 2.0;
+    let total: [f64; 3] = std::array::from_fn(|i| (0..c.states.len()).map(|p| c.force(p)[i]).sum());
+    let coulomb = (0..c.states.len()).map(|p| (c.pairs[p].tau() - 0.3 * c.pairs[p].sigma_n.abs()).abs() / c.pairs[p].sigma_n.abs()).fold(0.0, f64::max);
+    eprintln!("wedge in a groove: {} pairs slip in {} iterations; force on the rock {total:?} (W = {w}); Coulomb residual {coulomb:.1e}", c.states.len(), c.summary.iterations);
+    assert!(total[0].abs() < 1e-9 * w && total[1].abs() < 1e-9 * w && (total[2] + w).abs() < 1e-9 * w, "the faces carry the weight: {total:?}");
+    assert!(coulomb < 1e-9, "every pair at the Coulomb limit ({coulomb:.1e})");
+    // the paper's rule gives a slipping pair a fixed shear: nothing holds
+    // the wedge along the groove, and the message says that rule is why
+    case.write("paper.toml", &format!("{}[solver]\nrule = \"paper\"\n", text(0.3)));
+    match case.contact_error(&case.dir.join("paper.toml")) {
+        ContactError::Sliding { bodies, no_shear, rule, .. } => assert!(bodies == ["wedge"] && !no_shear && rule == StateRule::Paper, "{bodies:?} {no_shear} {rule:?}"),
+        other => panic!("the paper's rule lets the wedge slide, not {other:?}"),
+    }
+    let out = case.cli(&["solve", "paper.toml", "--quiet"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("the paper's rule, which gives a slipping pair a fixed shear") && err.contains("rule = \"robust\""), "{err}");
+    case.write("frictionless.toml", &text(0.0));
+    match case.contact_error(&case.dir.join("frictionless.toml")) {
+        ContactError::Sliding { bodies, no_shear, .. } => assert!(bodies == ["wedge"] && no_shear, "{bodies:?} {no_shear}"),
+        other => panic!("frictionless, the wedge slides along the groove, not {other:?}"),
     }
 }

@@ -60,7 +60,7 @@ use subcontact::contact::traction::ConsistentTraction;
 use subcontact::driver::{ContactError, ContactRun, Run};
 use subcontact::fem::{element::facet_point, quadrature};
 use subcontact::analytic::paper::contact_sigma_n_at;
-use subcontact::scene::{Analysis, ContactGroups};
+use subcontact::scene::{Analysis, ContactGroups, StateRule};
 
 // ---------------------------------------------------------------------------
 // helpers
@@ -601,6 +601,31 @@ fn paper_rule_cycles_on_an_opening_joint_and_says_so_while_the_robust_rule_conve
         eprintln!("{name}: paper rule cycles after {paper_its} iteration(s) (step 1); robust rule converges in {steps:?} iteration(s) per step");
         assert!((2..=4).contains(&paper_its), "{name}: the cycle is found at once ({paper_its})");
         assert!(steps.iter().all(|&k| (2..=10).contains(&k)), "{name}: robust iterations {steps:?}");
+        // the advice names the robust rule to a run that did not use it, and
+        // only then (the robust rule cut short at one iteration)
+        assert!(stderr_of(&case, &format!("{name}_paper.toml")).contains("or the default rule = \"robust\""), "{name}: the paper's run is pointed to the robust rule");
+        case.write(&format!("{name}_short.toml"), &cut_short(&read(&case.dir.join(format!("{name}_robust.toml")))));
+        match case.contact_error(&case.dir.join(format!("{name}_short.toml"))) {
+            ContactError::NotConverged { rule, .. } => assert_eq!(rule, StateRule::Robust, "{name}"),
+            other => panic!("{name}: not converged, not {other:?}"),
+        }
+        let short = stderr_of(&case, &format!("{name}_short.toml"));
+        assert!(short.contains("did not converge") && !short.contains("rule = \"robust\""), "{name}: no advice to use the rule it used: {short}");
+    }
+}
+
+/// The stderr of `solve SCENE` in the case (to `out_<stem>`).
+fn stderr_of(case: &Case, scene: &str) -> String {
+    let out = case.cli(&["solve", scene, "--out", &format!("out_{}", scene.trim_end_matches(".toml")), "--quiet"]);
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+/// A scene with `[solver] max_iterations = 1`.
+fn cut_short(scene: &str) -> String {
+    if scene.contains("[solver]\n") {
+        scene.replacen("[solver]\n", "[solver]\nmax_iterations = 1\n", 1)
+    } else {
+        format!("{scene}\n[solver]\nmax_iterations = 1\n")
     }
 }
 

@@ -464,7 +464,8 @@ fn dam_steps_report_their_factors_and_the_report_the_summarys_timings() {
 /// Issue 19: two bodies that share nodes with no contact between them are
 /// bonded, and the user hears of it: summary.json `warnings`, report.md,
 /// stderr of solve and check. The two blocks of tests/geo/contact_stack.geo
-/// without their [[contacts]] entry.
+/// without their [[contacts]] entry; with it, `solve --bonded` bonds them
+/// on purpose and warns of nothing.
 #[test]
 fn bodies_bonded_without_a_contact_are_warned_of() {
     let case = Case::new("outputs-bonded");
@@ -488,4 +489,13 @@ fn bodies_bonded_without_a_contact_are_warned_of() {
     assert!(report.contains(&format!("**Warning:** glued.toml: {says}")), "{report}");
     let check = case.cli(&["check", "glued.toml"]);
     assert!(String::from_utf8_lossy(&check.stderr).contains(says));
+
+    // `solve --bonded` bonds the scene's contact on purpose: nothing to warn of
+    let text = read(&case.dir.join("glued.toml")) + "[[contacts]]\ngroup = \"joint\"\nfriction = 0.5\n";
+    case.write("jointed.toml", &text);
+    let out = case.cli(&["solve", "jointed.toml", "--out", "bonded", "--quiet", "--bonded"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success() && !stderr.contains("warning"), "no warning of a bond asked for: {stderr}");
+    let summary = json(&case.dir.join("bonded/summary.json"));
+    assert_eq!(summary["warnings"].as_array().map(|a| a.len()), Some(0), "{}", summary["warnings"]);
 }

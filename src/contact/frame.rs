@@ -12,14 +12,9 @@
 //! when the interface lies in a symmetry plane), and in 3D b is taken along a
 //! supported direction perpendicular to n.
 
-use crate::fem::vec3::{cross, norm};
+use crate::fem::vec3::{cross, normalized};
 
 pub type Frame = [[f64; 3]; 3];
-
-fn unit(v: [f64; 3]) -> [f64; 3] {
-    let l = norm(v);
-    [v[0] / l, v[1] / l, v[2] / l]
-}
 
 /// The frame of a pair with normal `n` whose nodes have the global
 /// directions `fixed` supported; `nd` is 2 or 3.
@@ -36,7 +31,7 @@ pub fn frame(nd: usize, n: [f64; 3], fixed: [bool; 3]) -> Frame {
         for &c in &fixed {
             n[c] = 0.0;
         }
-        n = unit(n);
+        n = normalized(n);
     }
     if nd == 2 {
         return [[n[0], n[1], 0.0], [-n[1], n[0], 0.0], [0.0, 0.0, 1.0]];
@@ -48,7 +43,7 @@ pub fn frame(nd: usize, n: [f64; 3], fixed: [bool; 3]) -> Frame {
             (cross(b, n), b)
         }
         None => {
-            let t = if n[2].abs() < 0.9 { unit(cross(axes[2], n)) } else { unit(cross(n, axes[0])) };
+            let t = if n[2].abs() < 0.9 { normalized(cross(axes[2], n)) } else { normalized(cross(n, axes[0])) };
             (t, cross(n, t))
         }
     };

@@ -2,8 +2,10 @@
 //!
 //! Each part's rigid motions are [`RigidModes`] about the part's centre,
 //! lengths scaled by its size. Supports ask `u_c(x) = 0` at each supported
-//! DOF, and every tied local axis `a` of a pair (k on part P, l on part Q)
-//! asks `a . (u_P(x) - u_Q(x)) = 0`. With C the matrix of these rows, the
+//! DOF, and every direction `a` in which a pair (k on part P, l on part Q)
+//! is held asks `a . (u_P(x) - u_Q(x)) = 0`: its tied local axes, and
+//! across a slipping pair's slip where the robust rule's friction holds it
+//! (see `InterfaceProblem::free`). With C the matrix of these rows, the
 //! rigid motions nothing stops are the null space of `C^T C` (size 3 or 6
 //! per part): the interface system is singular exactly when it is not
 //! empty, whatever round-off lets a factorisation get away with. Decided

@@ -7,9 +7,9 @@ use std::time::Instant;
 
 use anyhow::Result;
 
+use super::memory::physical_memory;
 use super::plan::Plan;
 use super::ranks::{agree, Ranks};
-use super::stats::{physical_memory, PartStats};
 use super::{progress, RunOptions};
 use crate::contact::system::iterative::Remote;
 use crate::contact::system::InterfaceProblem;
@@ -38,6 +38,39 @@ pub(super) struct Parts<'r> {
     pub condense_s: f64,
     pub wall_s: f64,
     pub interface_s: f64,
+}
+
+/// A rank's condensed parts in numbers.
+#[derive(Clone, Copy, Debug, Default, serde::Serialize, serde::Deserialize)]
+pub(super) struct PartStats {
+    /// Interior and interface equations.
+    pub interior: usize,
+    pub interface: usize,
+    /// Parts with an interface.
+    pub condensed: usize,
+    /// The largest backward error of their sparse solves.
+    pub backward_error: f64,
+}
+
+impl PartStats {
+    pub fn of(mine: &[(usize, Condensed)]) -> PartStats {
+        PartStats {
+            interior: mine.iter().map(|(_, c)| c.ni).sum(),
+            interface: mine.iter().map(|(_, c)| c.nc).sum(),
+            condensed: mine.iter().filter(|(_, c)| c.nc > 0).count(),
+            backward_error: mine.iter().map(|(_, c)| c.backward_error).fold(0.0, f64::max),
+        }
+    }
+
+    /// All ranks' parts together.
+    pub fn total(all: &[PartStats]) -> PartStats {
+        PartStats {
+            interior: all.iter().map(|s| s.interior).sum(),
+            interface: all.iter().map(|s| s.interface).sum(),
+            condensed: all.iter().map(|s| s.condensed).sum(),
+            backward_error: all.iter().map(|s| s.backward_error).fold(0.0, f64::max),
+        }
+    }
 }
 
 /// Condenses this rank's parts of `plan` and sets up the interface.

@@ -45,12 +45,14 @@ pub enum ContactError {
     /// Bodies that slide or rotate freely on their slipping pairs (none
     /// named when the cause was not found). `no_shear`: their slipping
     /// contacts carry no shear at all (no friction and no cohesion, or
-    /// frictionless slip), so no load along the joint is to blame.
-    Sliding { scene: PathBuf, at: At, bodies: Vec<String>, no_shear: bool },
+    /// frictionless slip), so no load along the joint is to blame. `rule`:
+    /// the paper's gives a slipping pair a fixed shear, which holds nothing
+    /// across its slip (the robust rule's friction does).
+    Sliding { scene: PathBuf, at: At, bodies: Vec<String>, no_shear: bool, rule: StateRule },
     /// A load step's iteration did not converge after `iterations`
-    /// (`cycled`: its states cycle); `results`: where the last iteration's
-    /// results were written.
-    NotConverged { scene: PathBuf, step: Option<usize>, iterations: usize, cycled: bool, results: Option<PathBuf> },
+    /// (`cycled`: its states cycle) under `rule`; `results`: where the last
+    /// iteration's results were written.
+    NotConverged { scene: PathBuf, step: Option<usize>, iterations: usize, cycled: bool, rule: StateRule, results: Option<PathBuf> },
     /// Substructures joined by bonded interfaces alone, and that system singular.
     BondedNotHeld { scene: PathBuf },
     /// The interface mass matrix of the consistent traction recovery could
@@ -85,7 +87,7 @@ impl ContactError {
             SolveFailure::Sliding(ids) => {
                 let bodies = names(&ids);
                 let no_shear = no_shear(model, scene, &f.states, &bodies);
-                ContactError::Sliding { scene: scene_path, at, bodies, no_shear }
+                ContactError::Sliding { scene: scene_path, at, bodies, no_shear, rule: scene.solver.rule }
             }
         }
     }
@@ -160,7 +162,7 @@ impl fmt::Display for ContactError {
                     if one { "it" } else { "them" },
                 )
             }
-            ContactError::Sliding { scene, at, bodies, no_shear } => {
+            ContactError::Sliding { scene, at, bodies, no_shear, rule } => {
                 let (who, moves, its) = match bodies.len() {
                     0 => ("a body".to_string(), "slides or rotates", "its"),
                     1 => (bodies_named(bodies), "slides or rotates", "its"),
@@ -169,18 +171,22 @@ impl fmt::Display for ContactError {
                 write!(f, "{}: the interface system is singular at {at}: {who} {moves} freely on {its} contacts", scene.display())?;
                 if *no_shear {
                     write!(f, ", which carry no shear (no friction and no cohesion, or slip = \"frictionless\"): nothing holds {} along them, whatever the load. Add a support that holds {} tangentially, or give the contacts friction or cohesion", if bodies.len() > 1 { "them" } else { "it" }, if bodies.len() > 1 { "them" } else { "it" })
+                } else if *rule == StateRule::Paper {
+                    let it = if bodies.len() > 1 { "them" } else { "it" };
+                    write!(f, " — loss of equilibrium: the load along the contact exceeds what friction and cohesion can carry; or the paper's rule, which gives a slipping pair a fixed shear, holds nothing across the slip once every pair holding {it} slips. Reduce the load, add a support that holds {it} tangentially, raise the friction or cohesion of {its} contacts, or use the default rule = \"robust\", whose friction holds across the slip")
                 } else {
                     write!(f, " — loss of equilibrium: the load along the contact exceeds what friction and cohesion can carry. Reduce the load, add a support that holds {} tangentially, or raise the friction or cohesion of {its} contacts", if bodies.len() > 1 { "them" } else { "it" })
                 }
             }
-            ContactError::NotConverged { scene, step, iterations, cycled, results } => {
+            ContactError::NotConverged { scene, step, iterations, cycled, rule, results } => {
                 write!(f, "{}: the contact iteration did not converge", scene.display())?;
                 if let Some(k) = step {
                     write!(f, " at load step {k}")?;
                 }
                 write!(f, " after {iterations} iteration(s){}", if *cycled { " (the states cycle)" } else { "" })?;
                 if let Some(out) = results {
-                    write!(f, "; the results in {} are those of the last iteration (summary.json contact.converged = false, report.md lists the last two state sets). Try more [solver] max_iterations, more load steps, or the default rule = \"robust\"", out.display())?;
+                    let other = if *rule == StateRule::Paper { ", or the default rule = \"robust\"" } else { "" };
+                    write!(f, "; the results in {} are those of the last iteration (summary.json contact.converged = false, report.md lists the last two state sets). Try more [solver] max_iterations or more load steps{other}", out.display())?;
                 }
                 Ok(())
             }

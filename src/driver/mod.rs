@@ -25,6 +25,7 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 
 mod condense;
+mod memory;
 mod messages;
 mod plan;
 mod ranks;
@@ -134,7 +135,7 @@ pub fn run_on(mut scene: Scene, opts: &RunOptions, comm: &dyn Comm) -> Result<Op
 
     // 1. Scene.
     if opts.bonded {
-        scene.contacts.clear();
+        scene.bond_all();
     }
     let out = opts.out_dir(&scene);
 
@@ -226,7 +227,7 @@ fn write(mut run: Run, opts: &RunOptions, out: &Path, t0: Instant) -> Result<Run
 fn not_converged(run: &Run, results: Option<PathBuf>) -> Option<ContactError> {
     let c = run.contact().filter(|c| !c.summary.converged)?;
     let step = (run.scene.solver.load_steps > 1).then(|| run.last().step);
-    Some(ContactError::NotConverged { scene: run.scene.path.clone(), step, iterations: c.summary.iterations, cycled: c.summary.cycled, results })
+    Some(ContactError::NotConverged { scene: run.scene.path.clone(), step, iterations: c.summary.iterations, cycled: c.summary.cycled, rule: run.scene.solver.rule, results })
 }
 
 /// Max |sigma_n - exact normal traction| over the pairs, relative to the

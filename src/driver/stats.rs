@@ -1,49 +1,18 @@
-//! What a run cost and how well it went, in named numbers: each rank's
-//! parts ([`PartStats`], gathered on rank 0), the model's unknowns counted
-//! once ([`interface_dofs`]), each rank's share ([`RankStats`]) and the
-//! run's [`Stats`] for summary.json and report.md.
+//! What a run cost and how well it went, in named numbers, from what the
+//! stages return: the model's unknowns counted once ([`interface_dofs`]),
+//! each rank's share ([`RankStats`]: its parts, as
+//! [`super::condense::PartStats`] counts them, its time, memory and bytes)
+//! and the run's [`Stats`] for summary.json and report.md.
 
 use std::path::PathBuf;
 
-use super::condense::Parts;
+use super::condense::{PartStats, Parts};
+use super::memory::peak_memory;
 use super::ranks::Ranks;
 use super::steps::LoadSteps;
 use crate::model::Model;
 use crate::results::{Counters, Dofs, PartCounts, RankStats, Residuals, Stats, Timings};
-use crate::substructure::{Condensed, Part};
-
-/// A rank's condensed parts in numbers.
-#[derive(Clone, Copy, Debug, Default, serde::Serialize, serde::Deserialize)]
-pub(super) struct PartStats {
-    /// Interior and interface equations.
-    pub interior: usize,
-    pub interface: usize,
-    /// Parts with an interface.
-    pub condensed: usize,
-    /// The largest backward error of their sparse solves.
-    pub backward_error: f64,
-}
-
-impl PartStats {
-    pub fn of(mine: &[(usize, Condensed)]) -> PartStats {
-        PartStats {
-            interior: mine.iter().map(|(_, c)| c.ni).sum(),
-            interface: mine.iter().map(|(_, c)| c.nc).sum(),
-            condensed: mine.iter().filter(|(_, c)| c.nc > 0).count(),
-            backward_error: mine.iter().map(|(_, c)| c.backward_error).fold(0.0, f64::max),
-        }
-    }
-
-    /// All ranks' parts together.
-    pub fn total(all: &[PartStats]) -> PartStats {
-        PartStats {
-            interior: all.iter().map(|s| s.interior).sum(),
-            interface: all.iter().map(|s| s.interface).sum(),
-            condensed: all.iter().map(|s| s.condensed).sum(),
-            backward_error: all.iter().map(|s| s.backward_error).fold(0.0, f64::max),
-        }
-    }
-}
+use crate::substructure::Part;
 
 /// The interface's unknowns: a node shared by several parts is counted
 /// once; a pair node with all its components (as without substructures), a
@@ -119,20 +88,4 @@ pub(super) fn stats(model: &Model, parts: &[Part], all: PartStats, m: Measured) 
         counters,
         ranks,
     }
-}
-
-/// The machine's memory in bytes (Linux; `u64::MAX` elsewhere: never short).
-pub(super) fn physical_memory() -> u64 {
-    meminfo("/proc/meminfo", "MemTotal:").map_or(u64::MAX, |kb| kb * 1024)
-}
-
-/// Peak resident memory of this process in bytes (Linux; 0 elsewhere).
-pub(super) fn peak_memory() -> u64 {
-    meminfo("/proc/self/status", "VmHWM:").map_or(0, |kb| kb * 1024)
-}
-
-/// The value in kB of the line of `file` that starts with `key`.
-fn meminfo(file: &str, key: &str) -> Option<u64> {
-    let text = std::fs::read_to_string(file).ok()?;
-    text.lines().find(|l| l.starts_with(key)).and_then(|l| l.split_whitespace().nth(1)).and_then(|v| v.parse::<u64>().ok())
 }

@@ -1,6 +1,7 @@
 //! Small algebra of 3-vectors (`[f64; 3]`, global or local axes): what the
-//! element kernels, the contact frames and the contact rules share. Plane
-//! analyses use the same arrays with a zero third component.
+//! element kernels, the model's contacts, the contact frames and rules and
+//! the pictures share. Plane analyses use the same arrays with a zero third
+//! component.
 
 pub fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
@@ -17,6 +18,16 @@ pub fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 /// The Euclidean length.
 pub fn norm(a: [f64; 3]) -> f64 {
     dot(a, a).sqrt()
+}
+
+/// `a` scaled to length 1 (`a` itself when it is zero).
+pub fn normalized(a: [f64; 3]) -> [f64; 3] {
+    let l = norm(a);
+    if l > 0.0 {
+        a.map(|x| x / l)
+    } else {
+        a
+    }
 }
 
 /// The unit vector along axis `c`.

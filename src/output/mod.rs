@@ -123,10 +123,13 @@ pub fn restage_summary(mut staged: Staged, run: &Run) -> Result<Staged> {
 
 /// What is legal but probably not meant, one paragraph each: the scene's
 /// ([`crate::scene::Scene::warnings`]) and the model's (bodies bonded by
-/// shared nodes, [`crate::model::warnings`]).
+/// shared nodes, [`crate::model::warnings`], unless the run bonded every
+/// contact on purpose: [`crate::scene::Scene::bonded`]).
 pub fn warnings(run: &Run) -> Vec<String> {
     let mut w = run.scene.warnings();
-    w.extend(crate::model::warnings::warnings(&run.model));
+    if !run.scene.bonded {
+        w.extend(crate::model::warnings::warnings(&run.model));
+    }
     w
 }
 

@@ -59,7 +59,6 @@ pub use crate::analytic::Analytic;
 pub use crate::contact::{InterfaceSolver, SlipLaw, StateRule, TractionRecovery};
 pub use crate::fem::Analysis;
 pub use crate::model::{ContactGroups, InitialStress, LoadKind};
-pub use crate::output::picture::Region;
 pub use crate::recover::Probe;
 
 /// `[materials.NAME]`: linear isotropic elasticity.
@@ -194,6 +193,18 @@ impl MeshSource {
 /// The fields `[output] fields` accepts (and its default: all of them).
 pub const OUTPUT_FIELDS: &[&str] = &["displacement", "stress"];
 
+/// What the deformed picture frames instead of the contacts
+/// (`[output] frame` in the scene).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Region {
+    /// The cells whose centre lies in the box `from`..`to` (z is ignored in
+    /// 2D).
+    Box { from: [f64; 3], to: [f64; 3] },
+    /// The named bodies (their groups) and the cells around them, within a
+    /// quarter of their size.
+    Bodies(Vec<String>),
+}
+
 /// `[output]`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Output {
@@ -246,6 +257,10 @@ pub struct Scene {
     pub probes: Vec<Probe>,
     pub analytic: Option<Analytic>,
     pub output: Output,
+    /// Every contact bonded on purpose (`solve --bonded`): `contacts` is
+    /// empty and the bodies that shared them move as one, which no warning
+    /// need point out.
+    pub bonded: bool,
 }
 
 impl Scene {
@@ -263,6 +278,13 @@ impl Scene {
     pub fn parse(text: &str, path: &Path) -> Result<Scene, SceneError> {
         let raw: raw::RawScene = toml::from_str(text).map_err(|e| errors::toml_error(text, path, &e))?;
         validate::Checker { path }.scene(raw)
+    }
+
+    /// Bonds every contact ([`Scene::bonded`]): the bodies keep the nodes
+    /// they share, and the run is the monolithic solve.
+    pub fn bond_all(&mut self) {
+        self.contacts.clear();
+        self.bonded = true;
     }
 
     /// The material of `body`. Panics only if `body` was not validated

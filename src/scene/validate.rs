@@ -289,6 +289,7 @@ impl Checker<'_> {
             probes,
             analytic,
             output,
+            bonded: false,
         })
     }
 

@@ -122,6 +122,50 @@ fn slip_rows_of(slip_rows: &[SlipRow], full: &mut [f64], x: &[f64]) {
     }
 }
 
+/// The unknowns of one solve, every mean then the free columns of `fr`,
+/// against the full `[m; r]`.
+struct Columns<'f> {
+    /// The means, and every unknown (means and relative displacements).
+    nm: usize,
+    n: usize,
+    fr: &'f Freedom,
+}
+
+impl Columns<'_> {
+    /// `[m; r0-free r]` over every unknown from the solve's unknowns `v`
+    /// (the relative part `sum_a v_a col_a`).
+    fn expand(&self, v: &[f64]) -> Vec<f64> {
+        let nm = self.nm;
+        let mut full = vec![0.0; self.n];
+        full[..nm].copy_from_slice(&v[..nm]);
+        for (a, col) in self.fr.cols.iter().enumerate() {
+            for &(i, zi) in col {
+                full[nm + i] += zi * v[nm + a];
+            }
+        }
+        full
+    }
+
+    /// The solve's unknowns' share of `full`: the means, and each free
+    /// column's projection.
+    fn restrict(&self, full: &[f64]) -> Vec<f64> {
+        let nm = self.nm;
+        let mut v = full[..nm].to_vec();
+        v.extend(self.fr.cols.iter().map(|col| col.iter().map(|&(i, zi)| zi * full[nm + i]).sum::<f64>()));
+        v
+    }
+
+    /// Adds the junctions' springs on the solve's unknowns `v` to `out`.
+    fn springs(&self, out: &mut [f64], v: &[f64]) {
+        let nm = self.nm;
+        for jb in &self.fr.junctions {
+            for (a, fa) in jb.cols.clone().enumerate() {
+                out[nm + fa] += jb.cols.clone().enumerate().map(|(c, fc)| jb.kz[(a, c)] * v[nm + fc]).sum::<f64>();
+            }
+        }
+    }
+}
+
 /// The coarse level of one solve: `Φ` and `J Φ` on its unknowns, and
 /// `Φ^T J Φ` factorised.
 struct Coarse {
@@ -372,61 +416,24 @@ impl<'a> Iterative<'a> {
     /// when GMRES does not get below 1e-6 (a singular system: a body
     /// sliding freely). The unknowns are every mean, then the free columns.
     fn solve_gmres(&self, fr: &Freedom, states: &[ContactState], lambda: &[f64]) -> Option<Answer> {
-        let (nm, nr) = (self.nm, self.nr);
-        let n = nm + nr;
+        let cols = Columns { nm: self.nm, n: self.nm + self.nr, fr };
         let b = combine(&self.b, &self.b_fixed, lambda);
         let loose = self.loose(states);
-        let expand = |v: &[f64]| -> Vec<f64> {
-            let mut full = vec![0.0; n];
-            full[..nm].copy_from_slice(&v[..nm]);
-            for (a, col) in fr.cols.iter().enumerate() {
-                for &(i, zi) in col {
-                    full[nm + i] += zi * v[nm + a];
-                }
-            }
-            full
-        };
-        let restrict = |full: &[f64]| -> Vec<f64> {
-            let mut v = full[..nm].to_vec();
-            v.extend(fr.cols.iter().map(|col| col.iter().map(|&(i, zi)| zi * full[nm + i]).sum::<f64>()));
-            v
-        };
-        // the junctions' springs, on the restricted unknowns
-        let springs = |out: &mut [f64], v: &[f64]| {
-            for jb in &fr.junctions {
-                for (a, fa) in jb.cols.clone().enumerate() {
-                    out[nm + fa] += jb.cols.clone().enumerate().map(|(c, fc)| jb.kz[(a, c)] * v[nm + fc]).sum::<f64>();
-                }
-            }
-        };
-        let slip_rows: Vec<SlipRow> = fr.slips.iter().map(|s| SlipRow { row: nm + s.row, normal: s.normal.map(|r| nm + r), coupling: s.coupling, springs: s.springs.iter().map(|&(c, k)| (nm + c, k)).collect(), force: s.force }).collect();
-        let (x0, y0) = self.start(fr, &restrict);
-        let mut e0 = self.apply(&x0);
-        for (e, bi) in e0.iter_mut().zip(&b) {
-            *e -= bi;
-        }
-        slip_rows_of(&slip_rows, &mut e0, &x0);
-        for s in &slip_rows {
-            e0[s.row] += s.force;
-        }
-        let mut e0 = restrict(&e0);
-        springs(&mut e0, &y0);
-        for jb in &fr.junctions {
-            for (a, fa) in jb.cols.clone().enumerate() {
-                e0[nm + fa] += jb.fz[a];
-            }
-        }
-        let rhs: Vec<f64> = e0.iter().map(|v| -v).collect();
+        let slip_rows: Vec<SlipRow> = (fr.slips.iter())
+            .map(|s| SlipRow { row: self.nm + s.row, normal: s.normal.map(|r| self.nm + r), coupling: s.coupling, springs: s.springs.iter().map(|&(c, k)| (self.nm + c, k)).collect(), force: s.force })
+            .collect();
+        let (x0, y0) = self.start(fr, |v| cols.restrict(v));
+        let rhs = self.start_residual(&cols, &slip_rows, &b, &x0, &y0);
         let j = |v: &[f64]| -> Vec<f64> {
-            let dx = expand(v);
+            let dx = cols.expand(v);
             let mut full = self.apply(&dx);
             slip_rows_of(&slip_rows, &mut full, &dx);
-            let mut out = restrict(&full);
-            springs(&mut out, v);
+            let mut out = cols.restrict(&full);
+            cols.springs(&mut out, v);
             out
         };
         let precondition = self.preconditioner(fr);
-        let coarse = self.coarse(nm + fr.cols.len(), &slip_rows, &restrict);
+        let coarse = self.coarse(self.nm + fr.cols.len(), &slip_rows, |v| cols.restrict(v));
         let m = |v: &[f64]| -> Vec<f64> {
             let (r1, y) = match &coarse {
                 Some(c) => {
@@ -453,8 +460,38 @@ impl<'a> Iterative<'a> {
         if !conv.converged && !(residual <= 1e-6) {
             return None;
         }
+        Some(self.answer(x0, &cols.expand(&dx), &b, residual, loose))
+    }
+
+    /// The right-hand side of GMRES: minus the residual of the solve's
+    /// equations at its start `x0` (`y0`: the free columns' coordinates
+    /// there), with the slipping rows' forces and the junctions' springs.
+    fn start_residual(&self, cols: &Columns, slip_rows: &[SlipRow], b: &[f64], x0: &[f64], y0: &[f64]) -> Vec<f64> {
+        let mut e0 = self.apply(x0);
+        for (e, bi) in e0.iter_mut().zip(b) {
+            *e -= bi;
+        }
+        slip_rows_of(slip_rows, &mut e0, x0);
+        for s in slip_rows {
+            e0[s.row] += s.force;
+        }
+        let mut e0 = cols.restrict(&e0);
+        cols.springs(&mut e0, y0);
+        let nm = self.nm;
+        for jb in &cols.fr.junctions {
+            for (a, fa) in jb.cols.clone().enumerate() {
+                e0[nm + fa] += jb.fz[a];
+            }
+        }
+        e0.iter().map(|v| -v).collect()
+    }
+
+    /// The answer `x = x0 + dx` (`dx` over every unknown), remembered as
+    /// the next solve's start, with `K x - b` on the relative rows.
+    fn answer(&self, x0: Vec<f64>, dx: &[f64], b: &[f64], residual: f64, loose: bool) -> Answer {
+        let (nm, nr) = (self.nm, self.nr);
         let mut x = x0;
-        for (xi, d) in x.iter_mut().zip(expand(&dx)) {
+        for (xi, d) in x.iter_mut().zip(dx) {
             *xi += d;
         }
         let kx = self.apply(&x);
@@ -463,7 +500,7 @@ impl<'a> Iterative<'a> {
         if let Ok(mut last) = self.last.lock() {
             *last = Some(x);
         }
-        Some(Answer { m, r, residual_r, residual, loose })
+        Answer { m, r, residual_r, residual, loose }
     }
 
     /// Whether this solve may stop at [`LOOSE_TOLERANCE`]: loose while the

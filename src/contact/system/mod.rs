@@ -58,6 +58,11 @@ use crate::substructure::{OperatorRef, SchurRef};
 /// dense interface ran out of 24 GB.
 pub const ITERATIVE_FROM: usize = 20_000;
 
+/// A slipping pair's friction spring holds it across its slip (in the
+/// check for bodies that slide freely) from this share of the pair's own
+/// stiffness ([`InterfaceProblem::stiffness`]) on.
+const SPRING_HOLDS: f64 = 1e-6;
+
 const IDENTITY: Frame = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 
 /// What a pair's unknowns are asked to satisfy in one solve.
@@ -356,16 +361,16 @@ impl<'a> InterfaceProblem<'a> {
     pub fn solve(&self, rel: &[Relation], lambda: &[f64]) -> Result<InterfaceSolution, SolveFailure> {
         let states: Vec<ContactState> = rel.iter().map(|r| r.state).collect();
         // A part nothing holds makes the system singular only up to
-        // round-off: decide it from the states and the supports first.
-        if let failure @ SolveFailure::NotHeld(_) = self.diagnose(&states) {
+        // round-off: decide it from the relations and the supports first.
+        if let failure @ SolveFailure::NotHeld(_) = self.diagnose(rel) {
             return Err(failure);
         }
-        let sliding = self.free(&states, false);
+        let sliding = self.free(rel, false);
         if !sliding.is_empty() {
             return Err(SolveFailure::Sliding(sliding));
         }
         let freedom = self.freedom(rel, lambda[0]);
-        let answer = self.solver.solve(&freedom, &states, lambda).ok_or_else(|| self.diagnose(&states))?;
+        let answer = self.solver.solve(&freedom, &states, lambda).ok_or_else(|| self.diagnose(rel))?;
         let (forces, rels, as_tied) = self.forces(rel, &answer, &freedom, lambda[0]);
         let pairs = (0..rel.len())
             .map(|p| {
@@ -443,19 +448,24 @@ impl<'a> InterfaceProblem<'a> {
     }
 
     /// Parts that a rigid motion moves which the supports and the pairs tied
-    /// by `states` do not stop; `slip_holds`: count slipping pairs as stuck
-    /// (then only open pairs release anything).
-    fn free(&self, states: &[ContactState], slip_holds: bool) -> Vec<usize> {
+    /// by the relations `rel` do not stop; `slip_holds`: count slipping
+    /// pairs as stuck (then only open pairs release anything). Otherwise a
+    /// slipping pair holds its normal, and across its slip where its
+    /// relation has a friction spring there (the robust rule's linearised
+    /// Coulomb law, [`Relation::spring`]): a wedge whose every pair slips
+    /// down its groove is held along the groove by friction.
+    fn free(&self, rel: &[Relation], slip_holds: bool) -> Vec<usize> {
         let (nd, layout) = (self.layout.nd, &self.layout);
-        let ties = states.iter().enumerate().flat_map(|(p, st)| {
-            let axes = match st {
-                ContactState::Stick => nd,
-                ContactState::Slip if slip_holds => nd,
-                ContactState::Slip => 1,
-                ContactState::Open => 0,
+        let ties = rel.iter().enumerate().flat_map(|(p, rl)| {
+            let frame = &layout.frames[p];
+            let dirs: Vec<[f64; 3]> = match rl.state {
+                ContactState::Stick => frame[..nd].to_vec(),
+                ContactState::Slip if slip_holds => frame[..nd].to_vec(),
+                ContactState::Slip => std::iter::once(frame[0]).chain(spring_range(&rl.spring, frame, nd, SPRING_HOLDS * self.stiffness(p))).collect(),
+                ContactState::Open => Vec::new(),
             };
             let [(pk, _), (pl, _)] = layout.at[p];
-            (0..axes).map(move |a| Tie { parts: [pk, pl], x: self.positions[p], dir: layout.frames[p][a] })
+            dirs.into_iter().map(move |dir| Tie { parts: [pk, pl], x: self.positions[p], dir })
         });
         // parts of one body cut into substructures are always tied at their joins
         let joined = layout.join_parts.iter().flat_map(|(ps, x)| {
@@ -466,12 +476,26 @@ impl<'a> InterfaceProblem<'a> {
 
     /// Why the interface system is singular: parts held by nothing once
     /// their open pairs let go, or else a part sliding on slipping pairs.
-    fn diagnose(&self, states: &[ContactState]) -> SolveFailure {
-        let free = self.free(states, true);
+    fn diagnose(&self, rel: &[Relation]) -> SolveFailure {
+        let free = self.free(rel, true);
         if free.is_empty() {
-            SolveFailure::Sliding(self.free(states, false))
+            SolveFailure::Sliding(self.free(rel, false))
         } else {
             SolveFailure::NotHeld(free)
         }
     }
+}
+
+/// The global directions in which a slipping pair's friction spring (local
+/// t, b rows and columns of `spring`) holds it: its rows as unit vectors,
+/// those whose stiffness is below `floor` left out (none without a spring).
+fn spring_range(spring: &[[f64; 3]; 3], frame: &Frame, nd: usize, floor: f64) -> Vec<[f64; 3]> {
+    (1..nd)
+        .filter_map(|a| {
+            // the frame's rows are orthonormal: |dir| is the row's stiffness
+            let dir: [f64; 3] = std::array::from_fn(|i| (1..nd).map(|c| spring[a][c] * frame[c][i]).sum::<f64>());
+            let len = crate::fem::vec3::norm(dir);
+            (len > 0.0 && len >= floor).then(|| dir.map(|x| x / len))
+        })
+        .collect()
 }

@@ -20,9 +20,10 @@ use super::legend::{colour_bar, colour_map_of, legend, lut_colour, triad, Legend
 use super::raster::{encode_png, label, register_font, Canvas};
 use super::surface::{centred, edges, fill, mesh_alpha, patches, sub_triangles, with_centre, Patch};
 use super::view::View;
-use super::{dot, norm3, num, sig2, state_colour, Field, PictureError, Snapshot, GHOST, INK, NO_PAIR};
-use crate::fem::material::von_mises;
+use super::{num, sig2, state_colour, Field, PictureError, Snapshot, GHOST, INK, NO_PAIR};
 use crate::fem::Analysis;
+use crate::fem::material::von_mises;
+use crate::fem::vec3::{dot, normalized};
 
 pub(super) const W: usize = 1200;
 pub(super) const H: usize = 800;
@@ -432,7 +433,7 @@ fn draw_bodies(cv: &mut Canvas, snap: &Snapshot, frame: &Frame, values: &[Vec<f3
     patches.sort_by(|a, b| depth_of(&Piece::Whole(a)).total_cmp(&depth_of(&Piece::Whole(b))));
     let mut order: Vec<(f64, Piece)> = patches.iter().map(Piece::Whole).chain(clipped.iter().chain(&sections).map(Piece::Cut)).map(|p| (depth_of(&p), p)).collect();
     order.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let light = norm3(std::array::from_fn(|i| 0.3 * view.right[i] + 0.5 * view.up[i] + view.eye[i]));
+    let light = normalized(std::array::from_fn(|i| 0.3 * view.right[i] + 0.5 * view.up[i] + view.eye[i]));
     for (_, piece) in &order {
         match piece {
             Piece::Whole(p) => {

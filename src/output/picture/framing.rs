@@ -6,7 +6,8 @@
 //! scene may name a box or bodies instead (`[output] frame`, [`Region`]).
 
 use super::cutaway::Cut;
-use super::{num, Region};
+use super::num;
+use crate::scene::Region;
 use crate::model::Model;
 
 /// The box the picture is cut to (None: the whole model) and what the

@@ -22,11 +22,12 @@ use plotters::prelude::*;
 use super::plan::{plan_files, sheet_pairs, sides, PlanFile};
 use super::raster::{register_font, rgb};
 use super::sheets::{direction, Shape, Sheet};
-use super::{dot, num, state_colour, sub3, PictureError};
+use super::{num, state_colour, PictureError};
 use crate::contact::law::ContactState;
+use crate::fem::Analysis;
+use crate::fem::vec3::{dot, sub};
 use crate::model::Model;
 use crate::results::ContactRun;
-use crate::fem::Analysis;
 #[cfg(test)]
 use super::raster::encode_png;
 
@@ -146,7 +147,7 @@ pub(super) fn along(model: &Model, ii: usize) -> Along {
         }
         lo
     };
-    let dist = |a: [f64; 3], b: [f64; 3]| dot(sub3(a, b), sub3(a, b)).sqrt();
+    let dist = |a: [f64; 3], b: [f64; 3]| dot(sub(a, b), sub(a, b)).sqrt();
     if model.analysis != Analysis::Solid {
         // links between consecutive nodes of each facet (corner, mid, corner),
         // in node order: of two ends equally near the corner, the first node
@@ -193,7 +194,7 @@ pub(super) fn along(model: &Model, ii: usize) -> Along {
     let mean: [f64; 3] = std::array::from_fn(|d| nodes.iter().map(|&k| x(k)[d]).sum::<f64>() / n);
     let mut cov = nalgebra::Matrix3::<f64>::zeros();
     for &k in &nodes {
-        let r = sub3(x(k), mean);
+        let r = sub(x(k), mean);
         for i in 0..3 {
             for j in 0..3 {
                 cov[(i, j)] += r[i] * r[j];
@@ -206,7 +207,7 @@ pub(super) fn along(model: &Model, ii: usize) -> Along {
     if dot(dir, [1.0, 1.0, 1.0]) < 0.0 {
         dir = dir.map(|v| -v);
     }
-    let mut pts: Vec<(usize, f64)> = nodes.iter().map(|&k| (pair_of[&k], dot(sub3(x(k), mean), dir))).collect();
+    let mut pts: Vec<(usize, f64)> = nodes.iter().map(|&k| (pair_of[&k], dot(sub(x(k), mean), dir))).collect();
     let smin = pts.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
     for p in &mut pts {
         p.1 -= smin;

@@ -44,6 +44,7 @@ use crate::contact::law::ContactState;
 use crate::model::Model;
 use crate::recover::BodyStress;
 use crate::results::ContactRun;
+use crate::scene::Region;
 use crate::fem::Analysis;
 
 /// Why a picture could not be drawn.
@@ -63,18 +64,6 @@ pub enum PictureError {
     Png(#[from] png::EncodingError),
     #[error("drawing the interface plot: {0}")]
     Plot(String),
-}
-
-/// What the deformed picture frames instead of the contacts
-/// (`[output] frame` in the scene).
-#[derive(Clone, Debug, PartialEq)]
-pub enum Region {
-    /// The cells whose centre lies in the box `from`..`to` (z is ignored in
-    /// 2D).
-    Box { from: [f64; 3], to: [f64; 3] },
-    /// The named bodies (their groups) and the cells around them, within a
-    /// quarter of their size.
-    Bodies(Vec<String>),
 }
 
 /// The quantity that colours the deformed picture.
@@ -239,25 +228,3 @@ fn sig2(v: f64) -> String {
     format!("{v:.1e}")
 }
 
-// Small vector algebra for the views, the sheets and the interfaces' directions.
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn sub3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-
-fn norm3(v: [f64; 3]) -> [f64; 3] {
-    let l = dot(v, v).sqrt();
-    if l > 0.0 {
-        v.map(|x| x / l)
-    } else {
-        v
-    }
-}

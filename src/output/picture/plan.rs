@@ -26,9 +26,10 @@ use super::legend::{colour_bar, colour_map, lut_colour, nice_step, Limits};
 use super::raster::{encode_png, label, register_font, Canvas, Label};
 use super::sheets::{direction, sheets, Flat, Shape, Sheet};
 use super::surface::{centred, edges, fill, mesh_alpha, pieces, Patch};
-use super::{dot, num, state_colour, PictureError, INK, NO_PAIR};
+use super::{num, state_colour, PictureError, INK, NO_PAIR};
 use crate::contact::law::ContactState;
 use crate::fem::Analysis;
+use crate::fem::vec3::dot;
 use crate::model::Model;
 use crate::results::ContactRun;
 

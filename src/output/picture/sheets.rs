@@ -27,7 +27,8 @@
 
 use super::surface::{facet_patches, Patch};
 use super::view::model_up;
-use super::{cross, dot, norm3, num, sub3};
+use super::num;
+use crate::fem::vec3::{cross, dot, normalized, sub};
 use crate::mesh::Cell;
 use crate::model::Model;
 
@@ -107,7 +108,7 @@ impl Sheet {
     pub(super) fn angle(&self, x: [f64; 3]) -> f64 {
         match &self.shape {
             Shape::Cylinder { centre, zero, side, .. } => {
-                let q = sub3(x, *centre);
+                let q = sub(x, *centre);
                 dot(q, *side).atan2(dot(q, *zero))
             }
             _ => 0.0,
@@ -251,13 +252,13 @@ fn facet_geometry(f: &Cell, coords: &[[f64; 3]]) -> ([f64; 3], f64, [f64; 3]) {
     let c: [f64; 3] = std::array::from_fn(|d| x.iter().map(|p| p[d]).sum::<f64>() / nc as f64);
     let mut m = [0.0; 3];
     for i in 0..nc {
-        let w = cross(sub3(x[i], c), sub3(x[(i + 1) % nc], c));
+        let w = cross(sub(x[i], c), sub(x[(i + 1) % nc], c));
         for d in 0..3 {
             m[d] += 0.5 * w[d];
         }
     }
     let a = dot(m, m).sqrt();
-    (norm3(m), a, c)
+    (normalized(m), a, c)
 }
 
 /// A unit vector within a degree of a world axis, made that axis (a
@@ -344,7 +345,7 @@ pub(super) fn sheets(model: &Model, ii: usize) -> Vec<Sheet> {
                 m[d] += s * geo[f].1 * geo[f].0[d];
             }
         }
-        let mean = norm3(m);
+        let mean = normalized(m);
         if piece.iter().all(|&f| dot(geo[f].0, mean).abs() >= flat_tol) {
             let n = canonical(mean);
             let area: f64 = piece.iter().map(|&f| geo[f].1).sum();
@@ -395,7 +396,7 @@ fn plane_shape(n: [f64; 3], offset: f64, up: [f64; 3]) -> Shape {
 
 fn axes(n: [f64; 3], up: [f64; 3]) -> ([f64; 3], [f64; 3], [f64; 3]) {
     let e = if dot(n, up) < -1e-6 { n.map(|x| -x) } else { n };
-    let along = |d: [f64; 3]| norm3(sub3(d, e.map(|x| x * dot(d, e))));
+    let along = |d: [f64; 3]| normalized(sub(d, e.map(|x| x * dot(d, e))));
     if dot(e, up).abs() > 0.5 {
         // the world axis least along up, the first of equals
         let a = (0..3).fold(0, |b, a| if up[a].abs() < up[b].abs() - 1e-12 { a } else { b });
@@ -430,7 +431,7 @@ fn curved(model: &Model, ii: usize, piece: Vec<usize>, geo: &[([f64; 3], f64, [f
     nodes.sort_unstable();
     nodes.dedup();
     if eig.eigenvalues[imin] <= 0.03 * total {
-        let a = snap(canonical(norm3([eig.eigenvectors[(0, imin)], eig.eigenvectors[(1, imin)], eig.eigenvectors[(2, imin)]])));
+        let a = snap(canonical(normalized([eig.eigenvectors[(0, imin)], eig.eigenvectors[(1, imin)], eig.eigenvectors[(2, imin)]])));
         if let Some(shape) = cylinder(model, &nodes, a, up) {
             return Sheet { interface: ii, facets: piece, shape, set: 0 };
         }
@@ -442,7 +443,7 @@ fn curved(model: &Model, ii: usize, piece: Vec<usize>, geo: &[([f64; 3], f64, [f
             s[d] += geo[f].1 * geo[f].0[d];
         }
     }
-    let e = if dot(s, s).sqrt() >= 0.3 * total && total > 0.0 { norm3(s) } else { up };
+    let e = if dot(s, s).sqrt() >= 0.3 * total && total > 0.0 { normalized(s) } else { up };
     let (e, r, v) = axes(e, up);
     Sheet { interface: ii, facets: piece, shape: Shape::Curved { e, r, v }, set: 0 }
 }
@@ -451,15 +452,15 @@ fn curved(model: &Model, ii: usize, piece: Vec<usize>, geo: &[([f64; 3], f64, [f
 /// (least squares) and where the angles start and are cut.
 fn cylinder(model: &Model, nodes: &[usize], a: [f64; 3], up: [f64; 3]) -> Option<Shape> {
     // angle 0: up across the axis (a tunnel's crown), else the world axis least along a
-    let across = |d: [f64; 3]| sub3(d, a.map(|x| x * dot(d, a)));
+    let across = |d: [f64; 3]| sub(d, a.map(|x| x * dot(d, a)));
     let u = across(up);
     let (zero, crown) = if dot(u, u).sqrt() > 0.5 {
-        (norm3(u), true)
+        (normalized(u), true)
     } else {
         let k = (0..3).fold(0, |b, k| if a[k].abs() < a[b].abs() - 1e-12 { k } else { b });
         let mut h = [0.0; 3];
         h[k] = 1.0;
-        (norm3(across(h)), false)
+        (normalized(across(h)), false)
     };
     let side = cross(a, zero);
     // Kasa's circle: x^2 + y^2 + D x + E y + F = 0 in least squares, about the nodes' mean
@@ -468,7 +469,7 @@ fn cylinder(model: &Model, nodes: &[usize], a: [f64; 3], up: [f64; 3]) -> Option
     let mut ata = nalgebra::Matrix3::<f64>::zeros();
     let mut atb = nalgebra::Vector3::<f64>::zeros();
     for &k in nodes {
-        let q = sub3(model.coords[k], mean);
+        let q = sub(model.coords[k], mean);
         let (x, y) = (dot(q, zero), dot(q, side));
         let row = nalgebra::Vector3::new(x, y, 1.0);
         ata += row * row.transpose();
@@ -477,7 +478,7 @@ fn cylinder(model: &Model, nodes: &[usize], a: [f64; 3], up: [f64; 3]) -> Option
     let sol = ata.lu().solve(&atb)?;
     let (cx, cy) = (-0.5 * sol[0], -0.5 * sol[1]);
     let centre: [f64; 3] = std::array::from_fn(|d| mean[d] + cx * zero[d] + cy * side[d]);
-    let radius = nodes.iter().map(|&k| dot(across(sub3(model.coords[k], centre)), across(sub3(model.coords[k], centre))).sqrt()).sum::<f64>() / n;
+    let radius = nodes.iter().map(|&k| dot(across(sub(model.coords[k], centre)), across(sub(model.coords[k], centre))).sqrt()).sum::<f64>() / n;
     if !radius.is_finite() || radius <= 0.0 {
         return None;
     }
@@ -485,7 +486,7 @@ fn cylinder(model: &Model, nodes: &[usize], a: [f64; 3], up: [f64; 3]) -> Option
     let mut angles: Vec<f64> = nodes
         .iter()
         .map(|&k| {
-            let q = sub3(model.coords[k], centre);
+            let q = sub(model.coords[k], centre);
             dot(q, side).atan2(dot(q, zero))
         })
         .collect();

@@ -5,11 +5,11 @@
 //! with the nodal field interpolated linearly (Gouraud).
 
 use super::raster::Canvas;
-use super::{cross, dot, norm3, sub3};
-use crate::model::Model;
-use crate::fem::shape::{HEX_EDGES, HEX_FACES, TET_EDGES};
-use crate::mesh::{Cell, CellKind};
 use crate::fem::Analysis;
+use crate::fem::shape::{HEX_EDGES, HEX_FACES, TET_EDGES};
+use crate::fem::vec3::{cross, dot, normalized, sub};
+use crate::mesh::{Cell, CellKind};
+use crate::model::Model;
 
 /// A cell or face drawn as a surface patch: nodes in gmsh 2D order (Tri3/6,
 /// Quad4/8/9: corners, mid-edge nodes, centre).
@@ -31,7 +31,7 @@ impl Patch {
     /// Unit normal of a 3D face (from its diagonals; zero when degenerate).
     pub(super) fn normal(&self, coords: &[[f64; 3]]) -> [f64; 3] {
         let x: Vec<[f64; 3]> = self.nodes[..self.kind.n_corners()].iter().map(|&n| coords[n]).collect();
-        norm3(cross(sub3(x[2], x[0]), sub3(x[x.len() - 1], x[1])))
+        normalized(cross(sub(x[2], x[0]), sub(x[x.len() - 1], x[1])))
     }
     /// Node chain of edge i: corner, mid-edge node (if any), next corner.
     pub(super) fn edge(&self, i: usize) -> ([usize; 3], usize) {

@@ -11,6 +11,7 @@ use super::raster::{encode_png, register_font, Canvas, FontMetrics};
 use super::*;
 use plotters::style::IntoFont;
 use crate::driver::{self, RunOptions};
+use crate::fem::vec3::{dot, sub};
 use crate::results::{state_counts, Run};
 use crate::scene::Scene;
 use std::path::{Path, PathBuf};
@@ -353,7 +354,7 @@ fn plan_view_of_a_3d_joint_shows_where_it_slips() {
         let t = c.shear(p);
         let u = &run.last().u;
         let rel: [f64; 3] = std::array::from_fn(|d| u[pair.l * nd + d] - u[pair.k * nd + d]);
-        let slip = sub3(rel, pair.normal.map(|x| x * dot(rel, pair.normal)));
+        let slip = sub(rel, pair.normal.map(|x| x * dot(rel, pair.normal)));
         assert!((dot(t, t).sqrt() - c.pairs[p].tau()).abs() <= 1e-9 * c.pairs[p].tau().max(1e-12), "pair {p}: the frame is orthonormal");
         assert!(t[0] > 0.9 * dot(t, t).sqrt(), "pair {p}: shear {t:?} along +x");
         assert!(dot(t, slip) > 0.99 * dot(t, t).sqrt() * dot(slip, slip).sqrt(), "pair {p}: shear {t:?} along the slip {slip:?}");
@@ -638,4 +639,25 @@ fn a_joint_set_of_many_planes_gets_a_plan_per_plane_and_one_overview() {
     let svg = interface_plot_svg(&model, &c).expect("plot");
     assert!(svg.contains("joints 1 of 7, z = 0") && svg.contains("joints 7 of 7, x = 2.5"));
     keep("jointset_interfaces.png", &interface_plot_png(&model, &c).expect("plot"));
+}
+
+/// Issue 21: the pictures' errors are typed, and a caller tells them apart
+/// by variant: results that are not the model's (a caller's bug), and a
+/// model with nothing to plot.
+#[test]
+fn picture_errors_are_told_apart_by_variant() {
+    let run = cylinder(0.5, 1);
+    let c = contact(&run);
+    let u = &run.last().u[1..];
+    let wrong = Snapshot { u, ..snap(&run) };
+    assert!(matches!(deformed_png(&wrong, Field::VonMises, None), Err(PictureError::Mismatch { what: "displacements or stresses" })));
+    let mut fewer = c.clone();
+    fewer.states.pop();
+    assert!(matches!(joints_png("t", &run.model, &fewer, &[]), Err(PictureError::Mismatch { what: "contact results" })));
+    let mut bare = run.model.clone();
+    bare.interfaces.clear();
+    match interface_plot_svg(&bare, c) {
+        Err(PictureError::Empty(why)) => assert!(why.contains("no contact interface"), "{why}"),
+        other => panic!("nothing to plot, not {:?}", other.map(|s| s.len())),
+    }
 }

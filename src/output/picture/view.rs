@@ -1,18 +1,25 @@
 //! Which way is up, and the oblique view of 3D models that the deformed
 //! picture and the joints' overview share: up against gravity, else y for
-//! extrusions thin in z (a plane section extruded), else z; the eye turned
-//! to the right of the viewer's axis and raised above it.
+//! slices thin in z (a plane section extruded), else z; the eye turned to
+//! the right of the viewer's axis and raised above it.
 
-use super::{cross, dot, norm3, sub3};
+use crate::fem::vec3::{cross, dot, normalized, sub};
+
+/// A model at most this thick in z, relative to the smaller of its x and y
+/// extents, is a slice: a plane section extruded along z.
+const SLICE: f64 = 0.25;
 
 /// Which way is up in a 3D model of this extent: against gravity when there
-/// is some; else y, as in the plane pictures, for models thinner in z than
-/// across (extrusions of a plane section); else z.
+/// is some; else y, as in the plane pictures, for slices (at most
+/// [`SLICE`] of their section thick in z: the paper's cylinder, a tunnel
+/// slice along z); else z, the vertical of 3D scenes (the README's depth
+/// for k0 and water pressure), so that a footing on ground wider than deep
+/// stands upright.
 pub(super) fn up_of(extent: [f64; 3], gravity: [f64; 3]) -> [f64; 3] {
     let g = dot(gravity, gravity).sqrt();
     if g > 0.0 {
         gravity.map(|x| -x / g)
-    } else if extent[2] < 0.99 * extent[0].min(extent[1]) {
+    } else if extent[2] <= SLICE * extent[0].min(extent[1]) {
         [0.0, 1.0, 0.0]
     } else {
         [0.0, 0.0, 1.0]
@@ -37,7 +44,7 @@ impl View {
             let k = (0..3).min_by(|&a, &b| up[a].abs().total_cmp(&up[b].abs())).unwrap_or(0);
             let mut t = [0.0; 3];
             t[k] = if k == 1 { -1.0 } else { 1.0 };
-            (norm3(sub3(t, up.map(|x| x * dot(t, up)))), 30.0f64, 25.0f64)
+            (normalized(sub(t, up.map(|x| x * dot(t, up)))), 30.0f64, 25.0f64)
         } else if up[1] == 1.0 {
             ([0.0, 0.0, 1.0], 20.0, 20.0)
         } else {
@@ -74,4 +81,24 @@ pub(super) fn model_box(model: &crate::model::Model) -> ([f64; 3], [f64; 3]) {
 pub(super) fn model_up(model: &crate::model::Model) -> [f64; 3] {
     let (lo, hi) = model_box(model);
     up_of(std::array::from_fn(|d| (hi[d] - lo[d]).max(0.0)), model.gravity)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::up_of;
+
+    /// Issue 19: the footing on two layers (8 x 8 in plan, 4.5 deep, no
+    /// gravity) was drawn with y up, seen from above, since it is thinner
+    /// in z than across; z is the vertical of a 3D scene unless the model
+    /// is a slice.
+    #[test]
+    fn a_footing_on_wide_ground_stands_upright_and_a_slice_keeps_y_up() {
+        let (y, z) = ([0.0, 1.0, 0.0], [0.0, 0.0, 1.0]);
+        assert_eq!(up_of([8.0, 8.0, 4.5], [0.0; 3]), z, "the footing on layers");
+        assert_eq!(up_of([4.0, 2.0, 2.0], [0.0; 3]), z, "a wedge in a groove");
+        assert_eq!(up_of([5.0, 5.0, 1.0], [0.0; 3]), y, "the paper's cylinder, 1 m thick");
+        assert_eq!(up_of([50.0, 50.0, 2.0], [0.0; 3]), y, "a tunnel slice along z");
+        assert_eq!(up_of([5.0, 5.0, 1.0], [0.0, -9.81, 0.0]), y, "against gravity");
+        assert_eq!(up_of([50.0, 2.0, 50.0], [0.0, 0.0, -9.81]), z, "against gravity");
+    }
 }

@@ -1,0 +1,180 @@
+//! The house rules a program can check on the source itself (issue 21):
+//! no import circle between files. Data flows one way, mesh -> fem ->
+//! substructure -> contact -> recover -> output, and within a module too no
+//! two files should need each other: a circle means neither can be read,
+//! changed or tested alone.
+//!
+//! Every `use crate::..`, `use super::..`, `use self::..` (and a child
+//! module named without `self::`) of every file under src/ is an edge to
+//! the file that defines the module it names; tests (`#[cfg(test)]`
+//! modules, `tests.rs`, files under a `tests/` folder) are left out. A
+//! module and its own `mod.rs` (or `foo.rs` of `foo/`) are not counted: the
+//! parent declares the child. The test fails naming every circle left.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+/// The module path of every source file (`["contact", "system", "dense"]`).
+fn modules(root: &Path) -> BTreeMap<Vec<String>, PathBuf> {
+    let mut out = BTreeMap::new();
+    let mut dirs = vec![root.to_path_buf()];
+    while let Some(dir) = dirs.pop() {
+        for entry in std::fs::read_dir(&dir).expect("a source folder").flatten() {
+            let path = entry.path();
+            if path.is_dir() {
+                if path.file_name().is_some_and(|n| n != "tests") {
+                    dirs.push(path);
+                }
+                continue;
+            }
+            let rel = path.strip_prefix(root).expect("under src");
+            let Some(stem) = rel.to_str().and_then(|s| s.strip_suffix(".rs")) else { continue };
+            let mut m: Vec<String> = stem.split('/').map(str::to_string).collect();
+            if m.last().is_some_and(|l| l == "tests") {
+                continue;
+            }
+            if m.last().is_some_and(|l| l == "mod") || m == ["lib"] || m == ["main"] {
+                m.pop();
+            }
+            out.insert(m, path);
+        }
+    }
+    out
+}
+
+/// The source without comments and without `#[cfg(test)]` modules.
+fn code(text: &str) -> String {
+    let mut s: String = text.lines().map(|l| l.split("//").next().unwrap_or("")).collect::<Vec<_>>().join("\n");
+    while let Some(at) = s.find("#[cfg(test)]") {
+        let Some(open) = s[at..].find('{').map(|i| at + i) else { break };
+        let (mut depth, mut end) = (0, open);
+        for (i, c) in s[open..].char_indices() {
+            depth += match c {
+                '{' => 1,
+                '}' => -1,
+                _ => 0,
+            };
+            if depth == 0 {
+                end = open + i + 1;
+                break;
+            }
+        }
+        s.replace_range(at..end, "");
+    }
+    s
+}
+
+/// The paths a `use` tree names: `a::{b, c::{d, e}}` is a::b, a::c::d, a::c::e.
+fn expand(tree: &str) -> Vec<String> {
+    let tree: String = tree.split_whitespace().collect();
+    let Some(open) = tree.find('{') else { return vec![tree.split(" as ").next().unwrap_or("").to_string()] };
+    let prefix = tree[..open].trim_end_matches("::");
+    let inner = &tree[open + 1..tree.len() - 1];
+    let (mut parts, mut depth, mut start) = (Vec::new(), 0, 0);
+    for (i, c) in inner.char_indices() {
+        match c {
+            '{' => depth += 1,
+            '}' => depth -= 1,
+            ',' if depth == 0 => {
+                parts.push(&inner[start..i]);
+                start = i + 1;
+            }
+            _ => {}
+        }
+    }
+    parts.push(&inner[start..]);
+    parts
+        .into_iter()
+        .filter(|p| !p.is_empty())
+        .flat_map(expand)
+        .map(|p| if p == "self" { prefix.to_string() } else { format!("{prefix}::{p}") })
+        .collect()
+}
+
+/// The tree of the `use` statement that ends a `;`-separated chunk of code
+/// (after attributes and a visibility), if it is one.
+fn use_tree(chunk: &str) -> Option<&str> {
+    chunk.lines().find_map(|line| {
+        let t = line.trim_start();
+        let t = ["pub(crate) ", "pub(super) ", "pub "].iter().find_map(|v| t.strip_prefix(v)).unwrap_or(t);
+        // from `use ` to the end of the chunk: a tree may span lines
+        t.strip_prefix("use ").map(|tree| &chunk[tree.as_ptr() as usize - chunk.as_ptr() as usize..])
+    })
+}
+
+/// The file modules each file imports from (parents and children left out).
+fn edges(files: &BTreeMap<Vec<String>, PathBuf>) -> BTreeMap<Vec<String>, BTreeSet<Vec<String>>> {
+    let mut out: BTreeMap<Vec<String>, BTreeSet<Vec<String>>> = BTreeMap::new();
+    for (here, path) in files {
+        let text = code(&std::fs::read_to_string(path).expect("a source file"));
+        for stmt in text.split(';').filter_map(use_tree) {
+            for p in expand(stmt) {
+                let segs: Vec<&str> = p.split("::").filter(|s| !s.is_empty()).collect();
+                let (mut base, mut rest) = (here.clone(), &segs[..]);
+                match rest.first() {
+                    Some(&"crate") => {
+                        base.clear();
+                        rest = &rest[1..];
+                    }
+                    Some(&"super") | Some(&"self") => {
+                        while let Some(&s) = rest.first().filter(|s| **s == "super" || **s == "self") {
+                            if s == "super" {
+                                base.pop();
+                            }
+                            rest = &rest[1..];
+                        }
+                    }
+                    Some(first) if files.contains_key(&[here.clone(), vec![first.to_string()]].concat()) => {}
+                    _ => continue,
+                }
+                let full: Vec<String> = base.iter().cloned().chain(rest.iter().map(|s| s.to_string())).collect();
+                // the longest prefix that is a file of its own
+                let Some(target) = (0..=full.len()).rev().map(|k| full[..k].to_vec()).find(|m| files.contains_key(m)) else { continue };
+                let family = target.len() + 1 == here.len() && here.starts_with(&target) || here.len() + 1 == target.len() && target.starts_with(here);
+                if &target != here && !family {
+                    out.entry(here.clone()).or_default().insert(target);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// A circle through `start`, if the edges have one: the files in order.
+fn circle(edges: &BTreeMap<Vec<String>, BTreeSet<Vec<String>>>, start: &Vec<String>) -> Option<Vec<Vec<String>>> {
+    let mut stack = vec![(start.clone(), vec![start.clone()])];
+    let mut seen = BTreeSet::new();
+    while let Some((at, path)) = stack.pop() {
+        for next in edges.get(&at).into_iter().flatten() {
+            if next == start {
+                return Some(path);
+            }
+            if seen.insert(next.clone()) {
+                stack.push((next.clone(), [path.clone(), vec![next.clone()]].concat()));
+            }
+        }
+    }
+    None
+}
+
+#[test]
+fn no_two_files_import_each_other_around_a_circle() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let files = modules(&root);
+    let edges = edges(&files);
+    let n: usize = edges.values().map(|e| e.len()).sum();
+    assert!(files.len() > 50 && n > 200, "the source was read: {} files, {n} imports", files.len());
+    let name = |m: &Vec<String>| files[m].strip_prefix(&root).map_or_else(|_| String::new(), |p| p.display().to_string());
+    let mut circles: BTreeSet<Vec<String>> = BTreeSet::new();
+    for m in files.keys() {
+        if let Some(c) = circle(&edges, m) {
+            let mut names: Vec<String> = c.iter().map(name).collect();
+            // one circle, whichever file it was found from
+            let first = names.iter().enumerate().min_by_key(|(_, n)| n.as_str()).map_or(0, |(i, _)| i);
+            names.rotate_left(first);
+            circles.insert(names);
+        }
+    }
+    let listed: Vec<String> = circles.iter().map(|c| format!("{} -> {}", c.join(" -> "), c[0])).collect();
+    assert!(circles.is_empty(), "import circles between files:\n{}", listed.join("\n"));
+}
