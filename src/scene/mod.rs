@@ -56,6 +56,7 @@ mod tests;
 pub use errors::SceneError;
 
 pub use crate::analytic::Analytic;
+pub use crate::contact::safety::Reduce;
 pub use crate::contact::{InterfaceSolver, SlipLaw, StateRule, TractionRecovery};
 pub use crate::fem::Analysis;
 pub use crate::model::{ContactGroups, InitialStress, LoadKind};
@@ -149,6 +150,32 @@ impl Default for Solver {
             substructures: 1,
             interface: InterfaceSolver::Auto,
         }
+    }
+}
+
+/// `[safety]`: the factor of safety against sliding by strength reduction
+/// after the load steps (`solve` runs it when the table is there; `subcontact
+/// safety` runs it on any scene, with these defaults when it is not).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Safety {
+    /// What is divided by F (`reduce = [..]`, default all three).
+    pub reduce: Reduce,
+    /// The `[[contacts]]` entries reduced, as indices (`contacts = [group
+    /// names]`, default all).
+    pub contacts: Vec<usize>,
+    /// The increase of F from trial to trial before the bracket closes (default 0.1).
+    pub step: f64,
+    /// F is found when the last factor that holds and the first that
+    /// fails differ by at most `tolerance × F` (default 1e-3).
+    pub tolerance: f64,
+    /// The largest F tried (default 10).
+    pub max_factor: f64,
+}
+
+impl Safety {
+    /// The defaults on a scene of `contacts` contacts: all reduced.
+    pub fn all(contacts: usize) -> Safety {
+        Safety { reduce: Reduce::ALL, contacts: (0..contacts).collect(), step: 0.1, tolerance: 1e-3, max_factor: 10.0 }
     }
 }
 
@@ -246,6 +273,8 @@ pub struct Scene {
     pub probes: Vec<Probe>,
     pub analytic: Option<Analytic>,
     pub output: Output,
+    /// The safety search after the load steps, when asked for.
+    pub safety: Option<Safety>,
 }
 
 impl Scene {
@@ -263,6 +292,16 @@ impl Scene {
     pub fn parse(text: &str, path: &Path) -> Result<Scene, SceneError> {
         let raw: raw::RawScene = toml::from_str(text).map_err(|e| errors::toml_error(text, path, &e))?;
         validate::Checker { path }.scene(raw)
+    }
+
+    /// The scene with a safety search: its own `[safety]`, or one with the
+    /// defaults (`subcontact safety` on a scene without the table), checked
+    /// as the table would be (a scene without contacts has nothing to reduce).
+    pub fn with_safety(mut self) -> Result<Scene, SceneError> {
+        if self.safety.is_none() {
+            self.safety = Some(validate::Checker { path: &self.path }.safety(raw::RawSafety::default(), &self.contacts)?);
+        }
+        Ok(self)
     }
 
     /// The material of `body`. Panics only if `body` was not validated
