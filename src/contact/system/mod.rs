@@ -21,6 +21,13 @@
 //! rows of its free relative displacements. A supported axis of a pair is a
 //! prescribed `d'`; its force is read on the unsupported side, and is zero
 //! where both are supported (the supports carry it).
+//!
+//! Before solving, the parts nothing holds are found from the relations'
+//! geometry ([`super::rigid`]): every tied axis holds, and so does a
+//! slipping pair across its slip where the robust rule's linearised
+//! friction has a spring (its force turns as the pair moves across it: a
+//! wedge slipping along a V-groove while its friction still holds it
+//! partly across the groove is not free to slide; [`Relation::across`]).
 
 pub mod coords;
 pub mod dense;
@@ -105,6 +112,28 @@ impl Relation {
     /// The same relation with what the pair can carry.
     pub fn within(self, limit: Limit) -> Relation {
         Relation { limit, ..self }
+    }
+
+    /// Where a slipping pair's friction resists a motion of its sides
+    /// besides its normal (global components): across its slip direction,
+    /// when its relation has a spring there (the robust rule's linearised
+    /// friction turns as the pair moves across its slip, so the force
+    /// changes with that motion: a slipping wedge whose friction still
+    /// holds it partly across the line it slides along is not free to
+    /// slide). None for a pair whose friction is fixed or lies along its
+    /// slip only, and in 2D (one tangential axis, no "across").
+    pub fn across(&self, frame: &Frame, nd: usize) -> Option<[f64; 3]> {
+        if self.state != ContactState::Slip || nd < 3 {
+            return None;
+        }
+        // the spring k (I - n n^T) has rank one: its largest column is across n
+        let k = &self.spring;
+        let col = (1..3).map(|a| [k[1][a], k[2][a]]).max_by(|u, v| u[0].hypot(u[1]).total_cmp(&v[0].hypot(v[1])))?;
+        let len = col[0].hypot(col[1]);
+        if !(len > 0.0) {
+            return None;
+        }
+        Some(std::array::from_fn(|i| (col[0] * frame[1][i] + col[1] * frame[2][i]) / len))
     }
 
     pub fn free_axis(&self, a: usize) -> bool {
@@ -354,7 +383,8 @@ impl<'a> InterfaceProblem<'a> {
         if let failure @ SolveFailure::NotHeld(_) = self.diagnose(&states) {
             return Err(failure);
         }
-        let sliding = self.free(&states, false);
+        let across: Vec<Option<[f64; 3]>> = (rel.iter().zip(&self.layout.frames)).map(|(r, f)| r.across(f, self.layout.nd)).collect();
+        let sliding = self.free(&states, false, &across);
         if !sliding.is_empty() {
             return Err(SolveFailure::Sliding(sliding));
         }
@@ -438,8 +468,10 @@ impl<'a> InterfaceProblem<'a> {
 
     /// Parts that a rigid motion moves which the supports and the pairs tied
     /// by `states` do not stop; `slip_holds`: count slipping pairs as stuck
-    /// (then only open pairs release anything).
-    fn free(&self, states: &[ContactState], slip_holds: bool) -> Vec<usize> {
+    /// (then only open pairs release anything); `across`: the direction in
+    /// which a slipping pair's friction, linearised with a spring across its
+    /// slip, resists a motion (see [`Relation::across`]; empty: none).
+    fn free(&self, states: &[ContactState], slip_holds: bool, across: &[Option<[f64; 3]>]) -> Vec<usize> {
         let (nd, layout) = (self.layout.nd, &self.layout);
         let ties = states.iter().enumerate().flat_map(|(p, st)| {
             let axes = match st {
@@ -449,7 +481,9 @@ impl<'a> InterfaceProblem<'a> {
                 ContactState::Open => 0,
             };
             let [(pk, _), (pl, _)] = layout.at[p];
-            (0..axes).map(move |a| Tie { parts: [pk, pl], x: self.positions[p], dir: layout.frames[p][a] })
+            let spring = across.get(p).copied().flatten().filter(|_| *st == ContactState::Slip && !slip_holds);
+            let dirs = (0..axes).map(move |a| layout.frames[p][a]).chain(spring);
+            dirs.map(move |dir| Tie { parts: [pk, pl], x: self.positions[p], dir })
         });
         // parts of one body cut into substructures are always tied at their joins
         let joined = layout.join_parts.iter().flat_map(|(ps, x)| {
@@ -461,11 +495,41 @@ impl<'a> InterfaceProblem<'a> {
     /// Why the interface system is singular: parts held by nothing once
     /// their open pairs let go, or else a part sliding on slipping pairs.
     fn diagnose(&self, states: &[ContactState]) -> SolveFailure {
-        let free = self.free(states, true);
+        let free = self.free(states, true, &[]);
         if free.is_empty() {
-            SolveFailure::Sliding(self.free(states, false))
+            SolveFailure::Sliding(self.free(states, false, &[]))
         } else {
             SolveFailure::NotHeld(free)
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A slipping pair linearised with a spring across its slip resists a
+    /// motion across it (and only there); a stuck, open or paper-rule
+    /// slipping pair (no spring), or any pair in 2D, adds nothing.
+    #[test]
+    fn a_slipping_pair_resists_across_its_slip_where_its_spring_acts() {
+        // frame: n = z, t = x, b = y; slip direction 0.6 t + 0.8 b
+        let frame: Frame = [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+        let (nt, nb, kp) = (0.6, 0.8, 50.0);
+        let mut spring = [[0.0; 3]; 3];
+        for (i, a) in [(1, nt), (2, nb)] {
+            for (j, b) in [(1, nt), (2, nb)] {
+                spring[i][j] = kp * (f64::from(u8::from(i == j)) - a * b);
+            }
+        }
+        let slip = Relation { spring, ..Relation::simple(ContactState::Slip, [0.0; 3], [0.0; 3]) };
+        let d = slip.across(&frame, 3).expect("a direction");
+        let along = [nt, nb, 0.0];
+        assert!((d.iter().map(|x| x * x).sum::<f64>() - 1.0).abs() < 1e-12, "unit: {d:?}");
+        assert!(d.iter().zip(along).map(|(a, b)| a * b).sum::<f64>().abs() < 1e-12, "across the slip: {d:?}");
+        assert!(d[2].abs() < 1e-12, "in the joint's plane: {d:?}");
+        assert_eq!(slip.across(&frame, 2), None, "2D has no across");
+        assert_eq!(Relation::simple(ContactState::Slip, [0.0; 3], [0.3, 0.0, 0.0]).across(&frame, 3), None, "a fixed friction force");
+        assert_eq!(Relation { state: ContactState::Stick, ..slip }.across(&frame, 3), None);
     }
 }
