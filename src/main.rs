@@ -27,6 +27,9 @@ fn main() -> ExitCode {
         Command::Solve { scene, out, bonded, quiet, substructures, threads, interface } => {
             commands::solve(&scene, &RunOptions { out, bonded, verbose: !quiet, substructures, threads, interface, ..Default::default() }, comm)
         }
+        Command::Safety { scene, out, quiet, substructures, threads, interface } => {
+            commands::safety(&scene, &RunOptions { out, verbose: !quiet, substructures, threads, interface, ..Default::default() }, comm)
+        }
         // the other commands run on rank 0 alone
         _ if !root => Ok(()),
         Command::Check { scene } => commands::check(&scene),

@@ -10,6 +10,9 @@
 
 use std::path::PathBuf;
 
+mod safety;
+pub use safety::{Failure, FailureKind, SafetyRun, SearchCost, Trial};
+
 use crate::analytic::{Check, Solution};
 use crate::contact::law::{ContactState, PairResult};
 use crate::contact::Summary;
@@ -64,6 +67,8 @@ pub struct Run {
     pub steps: Vec<StepResult>,
     pub stats: Stats,
     pub checks: Checks,
+    /// The safety search after the load steps, when the run made one.
+    pub safety: Option<SafetyRun>,
 }
 
 impl Run {

@@ -1,12 +1,14 @@
 //! Result files of a run, staged in memory and written together:
 //! `<name>.vtu` (bodies), `<name>_contact.vtu` (interfaces), `contact.csv`,
-//! `probes.csv`, the pictures, then (once the output stage is timed)
-//! `summary.json` and `report.md`, which embeds the pictures.
+//! `probes.csv`, the pictures, the safety search's files (`safety.rs`),
+//! then (once the output stage is timed) `summary.json` and `report.md`,
+//! which embeds the pictures.
 
 pub mod files;
 pub mod picture;
 pub mod plot;
 pub mod report;
+mod safety;
 pub mod vtu;
 
 use anyhow::{Context, Result};
@@ -64,6 +66,7 @@ pub fn stage(run: &Run, out: &std::path::Path) -> Result<Staged> {
     for (file, bytes) in picture::pictures(&snap).context("drawing the pictures")? {
         staged.add(&file, bytes);
     }
+    safety::stage(run, &mut staged)?;
     Ok(staged)
 }
 
@@ -83,7 +86,8 @@ pub fn step_times(scene: &crate::scene::Scene) -> Vec<f64> {
 
 /// Result files of scene `name` in `dir` that are not among `written`: VTU
 /// and PVD files named after the scene, the CSV tables and the pictures
-/// (`deformed_*.png`, `interfaces.svg`, `plan_*.png`, `joints.png`).
+/// (`deformed_*.png`, `interfaces.svg`, `plan_*.png`, `joints.png`) and the
+/// safety search's (`safety.csv`, `safety_*`).
 pub fn stale(dir: &std::path::Path, name: &str, written: &[std::path::PathBuf]) -> Vec<std::path::PathBuf> {
     let Ok(entries) = std::fs::read_dir(dir) else { return Vec::new() };
     entries
@@ -94,7 +98,8 @@ pub fn stale(dir: &std::path::Path, name: &str, written: &[std::path::PathBuf]) 
             let f = p.file_name().and_then(|f| f.to_str()).unwrap_or("");
             let ours = f.starts_with(name) && [".vtu", ".pvd", ".png", ".svg"].iter().any(|x| f.ends_with(x));
             let picture = (f.starts_with("deformed_") || f.starts_with("plan_")) && f.ends_with(".png");
-            ours || picture || ["contact.csv", "probes.csv", "interfaces.svg", "joints.png"].contains(&f)
+            let safety = f.starts_with("safety_") && [".png", ".svg", ".csv"].iter().any(|x| f.ends_with(x));
+            ours || picture || safety || ["contact.csv", "probes.csv", "interfaces.svg", "joints.png", "safety.csv"].contains(&f)
         })
         .collect()
 }
@@ -348,5 +353,8 @@ fn summary(run: &Run) -> serde_json::Value {
     let probes: serde_json::Map<String, serde_json::Value> =
         checks.probes.iter().map(|(name, s)| (name.clone(), serde_json::to_value(s).unwrap_or_default())).collect();
     v["probes"] = serde_json::Value::Object(probes);
+    if let Some(s) = safety::summary(run) {
+        v["safety"] = s;
+    }
     v
 }

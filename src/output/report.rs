@@ -3,8 +3,8 @@
 //! size, the contact iteration, timings (the same as summary.json's: both
 //! are staged once the output stage is timed), the load steps with the
 //! factor each load had at each step, errors against the closed form, the
-//! pictures, what the scene's `[analytic]` check adds (`Checks::analytic`), and
-//! the probes.
+//! pictures, what the scene's `[analytic]` check adds (`Checks::analytic`),
+//! the safety search's factor (`safety.rs`), and the probes.
 
 use std::fmt::Write;
 
@@ -97,6 +97,7 @@ pub fn report(run: &Run) -> String {
         }
     }
     s += &run.checks.analytic.report;
+    s += &super::safety::report(run);
     for (name, samples) in &run.checks.probes {
         let _ = writeln!(s, "\n## Probe `{name}`\n");
         let _ = writeln!(s, "| x | y | z | ux | uy | uz | sxx | syy | szz | sxy | von Mises |\n|---|---|---|---|---|---|---|---|---|---|---|");
