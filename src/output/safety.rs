@@ -35,10 +35,21 @@ pub(super) fn stage(run: &Run, staged: &mut Staged) -> Result<()> {
         staged.add(&format!("{name}_safety_contact.vtu"), super::contact_vtu(model, c)?);
         staged.add("safety_contact.csv", super::contact_csv(model, c).into_bytes());
     }
-    let title = format!("{}: F = {} holds; displacement since F = 1", run.scene.title, fmt_f(s.factor));
+    // the mechanism: the model deformed and coloured by the displacement since F = 1
+    let title = format!("{}: F = {}, the last state that holds; displacement since F = 1", run.scene.title, fmt_f(s.factor));
     let snap = Snapshot { title: &title, model, u: &s.du, stresses: &[], contact: s.last.contact.as_ref(), region: run.scene.output.frame.as_ref() };
-    for (file, bytes) in picture::pictures(&snap).context("drawing the safety search's pictures")? {
-        staged.add(&format!("safety_{file}"), bytes);
+    let drawn = picture::deformed_png(&snap, picture::Field::Displacement, None).context("drawing the safety search's mechanism")?;
+    staged.add(&format!("safety_{}", picture::deformed_file(&[])), drawn);
+    // the joints at F: along each interface, and in 3D in plan by state
+    let Some(c) = &s.last.contact else { return Ok(()) };
+    let title = format!("{}: F = {}, the last state that holds", run.scene.title, fmt_f(s.factor));
+    staged.add("safety_interfaces.svg", picture::interface_plot_svg(model, c)?.into_bytes());
+    let plans = picture::plan_files(model);
+    for p in &plans {
+        staged.add(&format!("safety_{}", p.file), picture::plan_png(&title, model, c, p)?);
+    }
+    if let Some(f) = picture::joints_file(&plans) {
+        staged.add(&format!("safety_{f}"), picture::joints_png(&title, model, c, &plans)?);
     }
     Ok(())
 }
