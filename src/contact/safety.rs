@@ -161,9 +161,12 @@ mod tests {
         assert_eq!((laws[0].strength.friction, laws[1].strength), (0.3, s));
     }
 
-    /// A structure that holds while F <= limit; each state counts the
-    /// trials that led to it (to see that trials start from the last hold).
-    fn search_up(limit: f64, steps: &Steps) -> (Bracket<Vec<f64>, f64>, Vec<(f64, Option<f64>)>) {
+    /// Each trial's factor and the factor of the state it started from.
+    type Log = Vec<(f64, Option<f64>)>;
+
+    /// A structure that holds while F <= limit; each state lists the
+    /// factors that led to it (to see that trials start from the last hold).
+    fn search_up(limit: f64, steps: &Steps) -> (Bracket<Vec<f64>, f64>, Log) {
         let mut log = Vec::new();
         let b = upward(steps, vec![1.0], |f, from: &Vec<f64>| {
             log.push((f, from.last().copied()));
@@ -204,7 +207,7 @@ mod tests {
         assert_eq!(log.last().map(|t| t.0), Some(1.45), "the bound itself is tried");
         let (b, _) = search_up(1.0004, &STEPS);
         let (h, _) = b.holds.expect("F = 1 holds");
-        assert!(h >= 1.0 && h <= 1.0004 && b.fails.expect("fails").0 <= 1.0 + 1e-3 * h + 1e-15);
+        assert!((1.0..=1.0004).contains(&h) && b.fails.expect("fails").0 <= 1.0 + 1e-3 * h + 1e-15);
     }
 
     #[test]
@@ -222,7 +225,7 @@ mod tests {
         let (f, _) = b.fails.expect("fails");
         assert!(h <= 0.6789 && f > 0.6789 && f - h <= 1e-3 * h && s == h, "[{h}, {f}]");
         assert!((tried[0] - 0.9).abs() < 1e-12 && (tried[3] - 0.6).abs() < 1e-12);
-        let b = downward(&STEPS, 1.0, |f| Err::<f64, f64>(f));
+        let b = downward(&STEPS, 1.0, Err::<f64, f64>);
         assert!(b.holds.is_none());
         assert!((b.fails.expect("fails").0 - 0.1).abs() < 1e-12, "down to 1 / max_factor");
     }

@@ -73,33 +73,28 @@ pub(super) fn run(step: &Step, parts: &Parts, opts: &RunOptions, ranks: &Ranks, 
     let model = step.model;
     let lambda: Vec<f64> = model.cases.iter().map(|c| c[step.scene.solver.load_steps - 1]).collect();
     let t = Instant::now();
-    let searched = ranks.on_root(&parts.mine, || search(step, options, &lambda, &done.history, opts));
+    let mut searched = ranks.on_root(&parts.mine, || search(step, options, &lambda, &done.history, opts));
     let search_s = t.elapsed().as_secs_f64();
-    // recover the last converged state when it is not the last load step's
-    let answer = searched.as_ref().and_then(|s| s.held.outcome.as_ref().map(|_| ()));
+    // recover the last state that holds, unless it is the last load step's
     let t = Instant::now();
     let (need_stress, need_u) = step.needs();
-    let (mut searched, contact, u) = match (searched, ranks.comm().broadcast(&answer.is_some())) {
-        (Some(mut s), true) => {
-            let problem = step.problem.expect("a search has an interface");
-            let outcome = s.held.outcome.take().expect("recovered state");
-            let (contact, d_c) = step.contact_run(problem, outcome);
-            let u = ranks.recover(model, &step.plan.parts, &parts.mine, Some(Ok(d_c)), &lambda, need_u)?;
-            (Some(s), Some(contact), u)
-        }
-        (s, true) => (s, None, ranks.recover(model, &step.plan.parts, &parts.mine, None, &lambda, need_u)?),
-        (s, false) => (s, None, None),
-    };
-    let Some(s) = searched.take() else { return Ok(None) };
+    let mut recovered = None;
+    if ranks.comm().broadcast(&searched.as_ref().is_some_and(|s| s.held.outcome.is_some())) {
+        let answer = searched.as_mut().and_then(|s| s.held.outcome.take()).map(|o| step.contact_run(step.problem.expect("a search has an interface"), o));
+        let (contact, d_c) = answer.unzip();
+        let u = ranks.recover(model, &step.plan.parts, &parts.mine, d_c.map(Ok), &lambda, need_u)?;
+        recovered = contact.zip(u);
+    }
+    let Some(s) = searched else { return Ok(None) };
     let last = done.steps.last().expect("rank 0 keeps the steps");
-    let last = match (contact, u) {
-        (Some(c), Some(u)) => {
+    let last = match recovered {
+        Some((c, u)) => {
             done.counters.interior_recoveries += usize::from(need_u) * step.plan.parts.len();
             done.counters.stress_recoveries += usize::from(need_stress);
             let stresses = if need_stress { recover::nodal_stresses(model, &u) } else { Vec::new() };
             StepResult { step: last.step, load_factor: last.load_factor, case_factors: last.case_factors.clone(), u, stresses, contact: Some(c) }
         }
-        _ => StepResult { step: last.step, load_factor: last.load_factor, case_factors: last.case_factors.clone(), u: last.u.clone(), stresses: last.stresses.clone(), contact: last.contact.clone() },
+        None => StepResult { step: last.step, load_factor: last.load_factor, case_factors: last.case_factors.clone(), u: last.u.clone(), stresses: last.stresses.clone(), contact: last.contact.clone() },
     };
     let recover_s = t.elapsed().as_secs_f64();
     // what the search cost, beside the load steps'
@@ -127,9 +122,7 @@ struct Searched {
 
 /// Brackets and bisects F from the state at F = 1.
 fn search(step: &Step, options: &Safety, lambda: &[f64], history: &History, opts: &RunOptions) -> Searched {
-    let problem = step.problem.expect("a search has an interface");
-    let chosen = step.model.pairs.iter().map(|p| options.contacts.contains(&p.contact)).collect();
-    let mut trials = Trials { step, problem, chosen, reduce: options.reduce, opts, trials: Vec::new(), iterations: 0, residual: 0.0 };
+    let mut trials = Trials::new(step, options, opts);
     progress(opts, &format!("safety: reducing {} of {} by F from 1 in steps of {} (tolerance {} x F, at most F = {})", options.reduce.names().join(", "), contact_names(step, &options.contacts), options.step, options.tolerance, options.max_factor));
     let steps = Steps { step: options.step, tolerance: options.tolerance, max_factor: options.max_factor };
     let start = Held { factor: 1.0, history: history.clone(), outcome: None };
@@ -137,13 +130,20 @@ fn search(step: &Step, options: &Safety, lambda: &[f64], history: &History, opts
     let held = b.holds.map(|h| h.1).expect("the search upward starts from a state that holds");
     let secs: f64 = trials.trials.iter().map(|t| t.seconds).sum();
     match &b.fails {
-        Some((f, _)) => progress(opts, &format!("safety: F = {:.4} (holds at {}, fails at {}) after {} trials, {} contact iterations, {secs:.2} s", held.factor, held.factor, f, trials.trials.len(), trials.iterations)),
+        Some((f, _)) => progress(opts, &format!("safety: F = {:.4} (holds at {}, fails at {}) after {} trials, {} contact iterations, {secs:.2} s", held.factor, six(held.factor), six(*f), trials.trials.len(), trials.iterations)),
         None => progress(opts, &format!("safety: the search reached its bound: the scene still holds at F = {} (max_factor) after {} trials", held.factor, trials.trials.len())),
     }
     Searched { held, fails: b.fails, trials: trials.trials, iterations: trials.iterations, residual: trials.residual }
 }
 
-impl Trials<'_, '_> {
+impl<'s, 'a> Trials<'s, 'a> {
+    /// No trial yet, on the contacts `options` chooses.
+    fn new(step: &'s Step<'a>, options: &Safety, opts: &'s RunOptions) -> Trials<'s, 'a> {
+        let problem = step.problem.expect("a search has an interface");
+        let chosen = step.model.pairs.iter().map(|p| options.contacts.contains(&p.contact)).collect();
+        Trials { step, problem, chosen, reduce: options.reduce, opts, trials: Vec::new(), iterations: 0, residual: 0.0 }
+    }
+
     /// The laws at factor `f`.
     fn laws(&self, f: f64) -> Vec<PairLaw> {
         reduction::reduced(&self.step.laws, &self.chosen, self.reduce, f)
@@ -223,13 +223,18 @@ impl Trials<'_, '_> {
     }
 }
 
-/// ": \"a\", \"b\"" naming blocks, or nothing.
+/// " (\"a\", \"b\")" naming blocks, or nothing.
 fn named(model: &crate::model::Model, blocks: &[usize]) -> String {
     if blocks.is_empty() {
         String::new()
     } else {
         format!(" ({})", model.body_names(blocks))
     }
+}
+
+/// A factor with six decimals, trailing zeros dropped.
+fn six(v: f64) -> String {
+    format!("{v:.6}").trim_end_matches('0').trim_end_matches('.').to_string()
 }
 
 /// The chosen contacts for a reader: "all contacts" or their groups.
@@ -251,9 +256,7 @@ pub(super) fn unsafe_as_given(step: &Step, parts: &Parts, opts: &RunOptions, ran
         return err;
     }
     let searched = ranks.on_root(&parts.mine, || {
-        let problem = step.problem.expect("a search has an interface");
-        let chosen = step.model.pairs.iter().map(|p| options.contacts.contains(&p.contact)).collect();
-        let mut trials = Trials { step, problem, chosen, reduce: options.reduce, opts, trials: Vec::new(), iterations: 0, residual: 0.0 };
+        let mut trials = Trials::new(step, options, opts);
         progress(opts, "safety: the load steps fail at F = 1: seeking F below 1, each trial running the load steps from the start");
         let steps = Steps { step: options.step, tolerance: options.tolerance, max_factor: options.max_factor };
         let b = reduction::downward(&steps, (), |f| trials.path(f).map_err(|_| ()));

@@ -130,7 +130,7 @@ impl Relation {
         let k = &self.spring;
         let col = (1..3).map(|a| [k[1][a], k[2][a]]).max_by(|u, v| u[0].hypot(u[1]).total_cmp(&v[0].hypot(v[1])))?;
         let len = col[0].hypot(col[1]);
-        if !(len > 0.0) {
+        if len.is_nan() || len <= 0.0 {
             return None;
         }
         Some(std::array::from_fn(|i| (col[0] * frame[1][i] + col[1] * frame[2][i]) / len))
