@@ -3,7 +3,8 @@
 //! the displacements, stresses and contact states of every load step
 //! ([`Run::last`] is the answer), the run's [`Stats`] (sizes, residuals,
 //! timings, counters, ranks) and its [`Checks`] (errors against a closed
-//! form, probes, what the scene's `[analytic]` check adds). A step's
+//! form, probes, what the scene's `[analytic]` check adds), and after a
+//! safety search its [`SafetyRun`] (`results/safety.rs`). A step's
 //! [`ContactRun`] keeps the contact iteration's own [`Summary`]. Plain data:
 //! the driver fills it, the writers read it, and this module imports
 //! neither.

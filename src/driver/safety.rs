@@ -124,9 +124,8 @@ struct Searched {
 fn search(step: &Step, options: &Safety, lambda: &[f64], history: &History, opts: &RunOptions) -> Searched {
     let mut trials = Trials::new(step, options, opts);
     progress(opts, &format!("safety: reducing {} of {} by F from 1 in steps of {} (tolerance {} x F, at most F = {})", options.reduce.names().join(", "), contact_names(step, &options.contacts), options.step, options.tolerance, options.max_factor));
-    let steps = Steps { step: options.step, tolerance: options.tolerance, max_factor: options.max_factor };
     let start = Held { factor: 1.0, history: history.clone(), outcome: None };
-    let b = reduction::upward(&steps, start, |f, from: &Held| trials.up(f, from, lambda));
+    let b = reduction::upward(&steps(options), start, |f, from: &Held| trials.up(f, from, lambda));
     let held = b.holds.map(|h| h.1).expect("the search upward starts from a state that holds");
     let secs: f64 = trials.trials.iter().map(|t| t.seconds).sum();
     match &b.fails {
@@ -232,6 +231,11 @@ fn named(model: &crate::model::Model, blocks: &[usize]) -> String {
     }
 }
 
+/// How the scene's `[safety]` chooses the factors.
+fn steps(options: &Safety) -> Steps {
+    Steps { step: options.step, tolerance: options.tolerance, max_factor: options.max_factor }
+}
+
 /// A factor with six decimals, trailing zeros dropped.
 fn six(v: f64) -> String {
     format!("{v:.6}").trim_end_matches('0').trim_end_matches('.').to_string()
@@ -258,8 +262,7 @@ pub(super) fn unsafe_as_given(step: &Step, parts: &Parts, opts: &RunOptions, ran
     let searched = ranks.on_root(&parts.mine, || {
         let mut trials = Trials::new(step, options, opts);
         progress(opts, "safety: the load steps fail at F = 1: seeking F below 1, each trial running the load steps from the start");
-        let steps = Steps { step: options.step, tolerance: options.tolerance, max_factor: options.max_factor };
-        let b = reduction::downward(&steps, (), |f| trials.path(f).map_err(|_| ()));
+        let b = reduction::downward(&steps(options), (), |f| trials.path(f).map_err(|_| ()));
         (b.holds.map(|h| h.0), b.fails.map_or(1.0, |f| f.0))
     });
     match (searched, at_one) {

@@ -31,7 +31,8 @@ pub struct SafetyRun {
 #[derive(Clone, Debug)]
 pub struct Trial {
     pub factor: f64,
-    /// The factor of the state it started from.
+    /// The factor of the state it started from (0 for a trial that ran
+    /// the load steps from their start).
     pub from: f64,
     pub holds: bool,
     pub iterations: usize,
