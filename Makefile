@@ -6,7 +6,7 @@ CARGO   ?= cargo
 BIN     := target/release/subcontact
 PYTHON  ?= python3
 
-.PHONY: all deps deps-mpi build cylinder tunnel tunnel-joints footing footing-layers dam blocks3d dam3d dam3d-joints rockmass test test-mpi fuzz bench bench3d bench-blocks bench-ccx bench-interface scaling stress clean
+.PHONY: all deps deps-mpi build cylinder tunnel tunnel-joints footing footing-layers dam blocks3d dam3d dam3d-joints rockmass wedge safety test test-mpi fuzz bench bench3d bench-blocks bench-ccx bench-interface scaling stress clean
 
 all: build
 
@@ -84,6 +84,19 @@ dam3d-joints: deps build
 # (results/rockmass/: joints.png, plan_*.png, faces.csv, report.md).
 rockmass: deps build
 	$(BIN) solve geo/rockmass.toml
+
+# A rock wedge in a V-groove (Hoek & Bray) under its weight, then its factor
+# of safety against sliding by strength reduction of the joints ([safety]):
+# results/wedge/ (report.md, safety_*.png, summary.json "safety").
+wedge: deps build
+	$(BIN) solve geo/wedge.toml
+
+# The factor of safety against sliding beside the closed forms
+# (docs/safety.md): the wedge in a V-groove on two meshes against Hoek &
+# Bray's rigid block, the gravity dam against its base's resultants by hand;
+# the table in results/safety/safety.md. About half a minute.
+safety: deps build
+	$(PYTHON) scripts/safety/safety.py
 
 # Run time against error on the cylinder, orders 1 and 2, up to ~2.6e6 DOFs:
 # results/cylinder/bench.{csv,md,svg}.

@@ -1,4 +1,4 @@
-//! Command line: `subcontact solve | bench | check | paper`.
+//! Command line: `subcontact solve | safety | bench | check | paper`.
 
 use std::path::PathBuf;
 
@@ -23,6 +23,8 @@ pub struct Cli {
 const EXAMPLES: &str = "Examples:
   subcontact solve geo/cylinder.toml              results in results/cylinder/
   subcontact solve geo/cylinder.toml --out /tmp/c  results elsewhere
+  subcontact safety geo/dam.toml                  the load steps, then the factor of safety against
+                                                  sliding by strength reduction of the contacts
   subcontact check geo/cylinder.toml              validate scene, mesh and model; solve nothing
   subcontact bench geo/cylinder.toml --orders 1,2 --levels 5 --start 0.4
                                                   run time against error, results/cylinder/bench.*
@@ -65,6 +67,34 @@ pub enum Command {
         /// (the estimate errs high; the run may still be stopped by the system).
         #[arg(long)]
         no_memory_check: bool,
+    },
+    /// The factor of safety against sliding: solve the load steps, then divide the strength of
+    /// the contacts (f = tan(phi), c, f_t) by F, raised step by step from the last step's state
+    /// until equilibrium is lost, and bisect F to the tolerance. Options from the scene's
+    /// [safety] table (reduce, contacts, step, tolerance, max_factor), else the defaults: all
+    /// three on every contact, steps of 0.1, tolerance 1e-3 x F, up to F = 10. `solve` runs the
+    /// same search on a scene with a [safety] table. Results as `solve`'s, plus safety.csv (the
+    /// trials), the last state that holds (<name>_safety*.vtu, safety_contact.csv, safety_*.png)
+    /// and F in summary.json ("safety") and report.md. A scene that already fails at F = 1 is
+    /// unsafe as given: F is sought below 1, and the run fails naming the blocks that slide.
+    Safety {
+        /// The scene file (TOML), next to its .geo or .msh.
+        scene: PathBuf,
+        /// Directory for the results.
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Print no progress.
+        #[arg(long, short)]
+        quiet: bool,
+        /// Cut every part into K substructures (as for solve).
+        #[arg(long, value_name = "K", value_parser = at_least_one)]
+        substructures: Option<usize>,
+        /// Parts condensed at once (as for solve).
+        #[arg(long, value_name = "N", value_parser = at_least_one)]
+        threads: Option<usize>,
+        /// How the interface system is solved (as for solve).
+        #[arg(long, value_enum)]
+        interface: Option<InterfaceSolver>,
     },
     /// Run time against error: mesh the scene at successive refinements for each element order,
     /// solve each (with contact, and bonded as the floor of one linear solve), and write

@@ -32,7 +32,17 @@ use crate::scene::Scene;
 use crate::substructure;
 
 pub fn solve(scene: &Path, opts: &RunOptions, comm: &dyn Comm) -> Result<()> {
-    let Some(run) = driver::run_on(Scene::load(scene)?, opts, comm)? else {
+    solved(driver::run_on(Scene::load(scene)?, opts, comm)?, opts)
+}
+
+/// `solve` with a safety search, the scene's `[safety]` or the defaults.
+pub fn safety(scene: &Path, opts: &RunOptions, comm: &dyn Comm) -> Result<()> {
+    solved(driver::run_on(Scene::load(scene)?.with_safety()?, opts, comm)?, opts)
+}
+
+/// What a solved run says on the terminal (rank 0's; the others say nothing).
+fn solved(run: Option<Run>, opts: &RunOptions) -> Result<()> {
+    let Some(run) = run else {
         return Ok(()); // not rank 0: rank 0 reports
     };
     // say what happened: pairs that opened between the Coulomb apex and f_t
@@ -63,7 +73,26 @@ fn print_summary(run: &Run, out: &Path) {
     if let Some(e) = &run.checks.errors {
         outln!("  error vs closed form: displacement {:.3e}, stress {:.3e} (relative L2)", e.displacement_l2, e.stress_l2);
     }
+    if let Some(s) = &run.safety {
+        print_safety(run, s);
+    }
     outln!("  results in {}", out.display());
+}
+
+/// The factor of safety in one line, and a warning when the search
+/// reached its bound.
+fn print_safety(run: &Run, s: &crate::results::SafetyRun) {
+    match (s.fails_at, &s.failure) {
+        (Some(f), Some(fail)) => {
+            let who = if fail.blocks.is_empty() { String::new() } else { format!(": {} ({})", run.model.body_names(&fail.blocks), fail.kind.key()) };
+            let g = |v: f64| format!("{v:.6}").trim_end_matches('0').trim_end_matches('.').to_string();
+            outln!("  factor of safety against sliding F = {:.4} (holds at {}, fails at {}){who}", s.factor, g(s.factor), g(f));
+        }
+        _ => {
+            outln!("  factor of safety against sliding F > {} (the search reached its bound)", s.factor);
+            warn(&[format!("{}: the safety search reached its bound safety.max_factor = {} and the scene still holds there: F is at least that. Raise max_factor in [safety] to find F", run.scene.path.display(), s.factor)]);
+        }
+    }
 }
 
 pub fn check(scene_path: &Path) -> Result<()> {

@@ -33,6 +33,9 @@ fn main() -> ExitCode {
             let opts = RunOptions { out, bonded, verbose: !quiet, substructures, threads, interface, ignore_memory_estimate: no_memory_check, ..Default::default() };
             commands::solve(&scene, &opts, comm)
         }
+        Command::Safety { scene, out, quiet, substructures, threads, interface } => {
+            commands::safety(&scene, &RunOptions { out, verbose: !quiet, substructures, threads, interface, ..Default::default() }, comm)
+        }
         // the other commands run on rank 0 alone
         _ if !root => Ok(()),
         Command::Check { scene } => commands::check(&scene),

@@ -3,12 +3,16 @@
 //! the displacements, stresses and contact states of every load step
 //! ([`Run::last`] is the answer), the run's [`Stats`] (sizes, residuals,
 //! timings, counters, ranks) and its [`Checks`] (errors against a closed
-//! form, probes, what the scene's `[analytic]` check adds). A step's
+//! form, probes, what the scene's `[analytic]` check adds), and after a
+//! safety search its [`SafetyRun`] (`results/safety.rs`). A step's
 //! [`ContactRun`] keeps the contact iteration's own [`Summary`]. Plain data:
 //! the driver fills it, the writers read it, and this module imports
 //! neither.
 
 use std::path::PathBuf;
+
+mod safety;
+pub use safety::{Failure, FailureKind, SafetyRun, SearchCost, Trial};
 
 use crate::analytic::{Check, Solution};
 use crate::contact::law::{ContactState, PairResult};
@@ -64,6 +68,8 @@ pub struct Run {
     pub steps: Vec<StepResult>,
     pub stats: Stats,
     pub checks: Checks,
+    /// The safety search after the load steps, when the run made one.
+    pub safety: Option<SafetyRun>,
 }
 
 impl Run {

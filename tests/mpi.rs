@@ -134,3 +134,37 @@ fn a_failure_on_any_rank_ends_every_rank_with_one_message_and_no_results() {
         assert!(case.files_in(&case.dir.join("out")).iter().all(|f| f.starts_with("mesh")), "{interface}: no results");
     }
 }
+
+/// The safety search (issue 18) on ranks: rank 0 runs the trials while the
+/// others apply their parts' S (iterative) or wait (dense); the factor and
+/// the last state that holds are the serial ones, and a scene unsafe as
+/// given fails on every rank with the serial message.
+#[test]
+fn the_safety_search_on_two_ranks_gives_the_serial_factor() {
+    let case = Case::new("mpi-safety");
+    case.copy("geo/dam.geo");
+    case.copy("geo/dam.toml");
+    let factor = |out: &str| common::json(&case.dir.join(out).join("summary.json"))["safety"]["factor"].as_f64().expect("a factor");
+    for interface in ["dense", "iterative"] {
+        let serial = format!("serial_{interface}");
+        let args = |out: &str| vec!["safety".to_string(), "dam.toml".into(), "--out".into(), out.to_string(), "--quiet".into(), "--substructures".into(), "2".into(), "--interface".into(), interface.into()];
+        let o = case.cli(&args(&serial).iter().map(String::as_str).collect::<Vec<_>>());
+        assert!(o.status.success(), "serial: {}", String::from_utf8_lossy(&o.stderr));
+        let np2 = format!("np2_{interface}");
+        let o = mpirun(&case, 2, &args(&np2).iter().map(String::as_str).collect::<Vec<_>>());
+        assert!(o.status.success(), "2 ranks: {}", String::from_utf8_lossy(&o.stderr));
+        let (fs, fm) = (factor(&serial), factor(&np2));
+        let e = csv_difference(&case.dir.join(format!("{serial}/safety_contact.csv")), &case.dir.join(format!("{np2}/safety_contact.csv")));
+        eprintln!("safety, {interface} interface: F = {fs} serial, {fm} on 2 ranks; last state differs by {e:.1e}");
+        assert!((fs - fm).abs() <= 1e-3 * fs, "{interface}: F {fs} against {fm}");
+        assert!(e < 1e-6, "{interface}: the last state that holds: {e:e}");
+    }
+    // unsafe as given: the dam's base with a tenth of its friction
+    case.write("weak.toml", &common::read(&case.dir.join("dam.toml")).replacen("friction = 0.75", "friction = 0.075", 1));
+    let o = mpirun(&case, 2, &["safety", "weak.toml", "--out", "weak", "--quiet", "--substructures", "2"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && !err.contains("panicked"), "{err}");
+    assert_eq!(err.matches("error:").count(), 1, "one message: {err}");
+    common::cli::says(&err, &["weak.toml: unsafe as given", "\"block_1\"", "below 1: F = 0."]);
+    assert!(case.files_in(&case.dir.join("weak")).iter().all(|f| f.starts_with("mesh")), "no results");
+}

@@ -35,6 +35,7 @@ pub mod newton;
 pub mod options;
 pub mod paper;
 pub mod rigid;
+pub mod safety;
 pub mod system;
 pub mod traction;
 
@@ -51,7 +52,7 @@ pub struct PairLaw {
 }
 
 /// What carries over from iteration to iteration and from step to step.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub struct History {
     pub states: Vec<ContactState>,
     /// Pairs that opened or slipped in a converged state (crack memory).

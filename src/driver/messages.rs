@@ -60,6 +60,16 @@ pub enum ContactError {
     Traction { scene: PathBuf, reason: String },
 }
 
+/// Why a safety search could not be made.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SafetyError {
+    /// The load steps lose equilibrium at full strength (`at_one`): the
+    /// scene is unsafe as given. F was sought below 1, each trial running
+    /// the load steps from the start: `holds` the largest factor that held
+    /// (None: none down to 1 / `max_factor`), `fails` the smallest that failed.
+    Unsafe { scene: PathBuf, at_one: ContactError, holds: Option<f64>, fails: f64, max_factor: f64 },
+}
+
 /// Why the parts cannot be spread over the MPI ranks.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum PlanError {
@@ -69,6 +79,7 @@ pub enum PlanError {
 
 impl std::error::Error for ContactError {}
 impl std::error::Error for PlanError {}
+impl std::error::Error for SafetyError {}
 
 impl ContactError {
     /// The error of a failed iteration at load step `step`; `parts` are the
@@ -208,5 +219,29 @@ impl fmt::Display for PlanError {
                 )
             }
         }
+    }
+}
+
+impl fmt::Display for SafetyError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let SafetyError::Unsafe { scene, at_one, holds, fails, max_factor } = self;
+        let (cause, no_shear) = match at_one {
+            ContactError::Sliding { at, bodies, no_shear, .. } => {
+                let who = if bodies.is_empty() { "a body".to_string() } else { bodies_named(bodies) };
+                let verb = if bodies.len() > 1 { "slide or rotate" } else { "slides or rotates" };
+                (format!("the scene loses equilibrium at {at}: {who} {verb} freely on {} contacts", if bodies.len() > 1 { "their" } else { "its" }), *no_shear)
+            }
+            ContactError::NotHeld { at, bodies, .. } => {
+                let one = bodies.len() == 1;
+                (format!("{} {} held by nothing at {at} once {} contacts open", bodies_named(bodies), if one { "is" } else { "are" }, if one { "its" } else { "their" }), false)
+            }
+            other => (other.to_string(), false),
+        };
+        write!(f, "{}: unsafe as given: with the full strength of its contacts (F = 1) {cause}. Its factor of safety against sliding is below 1: ", scene.display())?;
+        match holds {
+            Some(h) => write!(f, "F = {h:.4} (the load steps hold with the reduced strength parameters multiplied by 1/F = {:.4} and fail from F = {fails:.4} up; each trial ran the load steps from the start)", 1.0 / h)?,
+            None => write!(f, "F < {:.4}: the load steps fail even with the reduced strength parameters multiplied by {max_factor} (safety.max_factor){}", 1.0 / max_factor, if no_shear { ", since the contacts the blocks slide on carry no shear (no friction and no cohesion, or slip = \"frictionless\")" } else { "" })?,
+        }
+        write!(f, ". A search upward needs a state that holds at F = 1, so none was made and no result files were written. Raise the friction or cohesion of those contacts, lower the loads, or hold the blocks that slide")
     }
 }

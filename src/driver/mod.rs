@@ -10,7 +10,9 @@
 //!    [`condense`] them, each rank its own (parts without contact are
 //!    solved directly), and set up the interface on rank 0;
 //! 5. and 6. the load [`steps`]: iterate the contact states on the
-//!    interface, recover interior displacements and stresses;
+//!    interface, recover interior displacements and stresses; then, when
+//!    the scene has `[safety]`, the factor of safety against sliding by
+//!    strength reduction ([`safety`]) from where the last step ended;
 //! 7. errors and probes of the last step, the check the scene's
 //!    `[analytic]` asks for, then every result file at once (none when
 //!    anything failed).
@@ -29,10 +31,11 @@ mod memory;
 mod messages;
 mod plan;
 mod ranks;
+mod safety;
 mod stats;
 mod steps;
 
-pub use messages::{Apex, At, ContactError, PlanError};
+pub use messages::{Apex, At, ContactError, PlanError, SafetyError};
 pub use plan::interface as interface_plan;
 
 use crate::analytic;
@@ -156,8 +159,13 @@ pub fn run_on(mut scene: Scene, opts: &RunOptions, comm: &dyn Comm) -> Result<Op
     let ranks = ranks::Ranks::new(comm, plan.owner.clone(), plan.how == Condensation::Applied);
     let parts = condense::condense(&model, &plan, opts, &ranks)?;
 
-    // 5.–6. The load steps: contact iteration, recovery.
-    let done = steps::run(&scene, &model, &plan, &parts, opts, &ranks)?;
+    // 5.–6. The load steps: contact iteration, recovery; then the safety
+    // search when the scene asks for one (a scene that fails at full
+    // strength is unsafe as given).
+    let step = steps::Step::new(&scene, &model, &plan, &parts, &ranks)?;
+    let mut done = steps::run(&step, &parts, opts, &ranks).map_err(|e| safety::unsafe_as_given(&step, &parts, opts, &ranks, e))?;
+    let safety = safety::run(&step, &parts, opts, &ranks, &mut done)?;
+    drop(step);
     let gathered = ranks.gather(&stats::rank(&ranks, &parts, &done));
     stats::add_timings(&mut timings, &parts, &done);
     let all = parts.all;
@@ -167,7 +175,7 @@ pub fn run_on(mut scene: Scene, opts: &RunOptions, comm: &dyn Comm) -> Result<Op
     let Some(rank_stats) = gathered else { return Ok(None) };
     let measured = stats::Measured { msh, mesh_cached, timings, counters: done.counters, residual_interface: done.residual_interface, ranks: rank_stats, interface_solver };
     let stats = stats::stats(&model, &plan.parts, all, measured);
-    let mut run = Run { scene, model, steps: done.steps, stats, checks: Checks::default() };
+    let mut run = Run { scene, model, steps: done.steps, stats, checks: Checks::default(), safety };
 
     // 7. What the last step is checked against, then the output, all at once.
     let t = Instant::now();

@@ -38,6 +38,8 @@ pub(super) struct LoadSteps {
     /// iterations (the S d of the iterative interface).
     pub bytes: u64,
     pub bytes_interface: u64,
+    /// States, cracks and slips where the last step ended (on rank 0).
+    pub history: History,
 }
 
 /// One step's interface answer on rank 0.
@@ -47,24 +49,38 @@ struct Answer {
     contact: Option<ContactRun>,
 }
 
-/// What every step reads.
-struct Step<'a> {
-    scene: &'a Scene,
-    model: &'a Model,
-    plan: &'a Plan,
-    problem: Option<&'a InterfaceProblem<'a>>,
-    laws: Vec<PairLaw>,
+/// What every step reads (and the safety search after them).
+pub(super) struct Step<'a> {
+    pub scene: &'a Scene,
+    pub model: &'a Model,
+    pub plan: &'a Plan,
+    pub problem: Option<&'a InterfaceProblem<'a>>,
+    /// The scene's pair laws, at full strength.
+    pub laws: Vec<PairLaw>,
     traction: Option<ConsistentTraction>,
 }
 
+impl<'a> Step<'a> {
+    /// What the steps of `scene` read, on every rank.
+    pub fn new(scene: &'a Scene, model: &'a Model, plan: &'a Plan, parts: &'a Parts, ranks: &Ranks) -> Result<Step<'a>> {
+        let traction = agree(ranks.comm(), traction(scene, model, parts.problem.as_ref()).map_err(anyhow::Error::from))?;
+        Ok(Step { scene, model, plan, problem: parts.problem.as_ref(), laws: laws(model, scene), traction })
+    }
+
+    /// Whether the steps recover the stresses and the interior
+    /// displacements: only for fields, probes or errors that need them.
+    pub fn needs(&self) -> (bool, bool) {
+        let scene = self.scene;
+        let need_stress = scene.output.wants("stress");
+        (need_stress, need_stress || scene.output.wants("displacement") || !scene.probes.is_empty() || scene.analytic.is_some())
+    }
+}
+
 /// Runs every load step of the scene.
-pub(super) fn run(scene: &Scene, model: &Model, plan: &Plan, parts: &Parts, opts: &RunOptions, ranks: &Ranks) -> Result<LoadSteps> {
-    let traction = agree(ranks.comm(), traction(scene, model, parts.problem.as_ref()).map_err(anyhow::Error::from))?;
-    let this = Step { scene, model, plan, problem: parts.problem.as_ref(), laws: laws(model, scene), traction };
-    // skip what the scene does not ask for: interior displacements only for
-    // fields, probes or errors; stresses only when asked
-    let need_stress = scene.output.wants("stress");
-    let need_u = need_stress || scene.output.wants("displacement") || !scene.probes.is_empty() || scene.analytic.is_some();
+pub(super) fn run(this: &Step, parts: &Parts, opts: &RunOptions, ranks: &Ranks) -> Result<LoadSteps> {
+    let (scene, model, plan) = (this.scene, this.model, this.plan);
+    // skip what the scene does not ask for
+    let (need_stress, need_u) = this.needs();
     let n_steps = scene.solver.load_steps;
     if !model.pairs.is_empty() {
         progress(opts, &format!("contact iteration on {} pairs, {} load step(s)", model.pairs.len(), n_steps));
@@ -111,6 +127,7 @@ pub(super) fn run(scene: &Scene, model: &Model, plan: &Plan, parts: &Parts, opts
         }
     }
     out.bytes = ranks.bytes_sent() - bytes_before;
+    out.history = history;
     out.counters.interface_applications_per_solve = parts.problem.as_ref().map_or_else(Vec::new, |p| p.applications());
     Ok(out)
 }
@@ -141,7 +158,7 @@ impl Step<'_> {
     /// A step's contact result from the iteration's outcome (the stresses
     /// of contacts with `traction = "consistent"` recovered from the pair
     /// forces), and the parts' interface displacements.
-    fn contact_run(&self, problem: &InterfaceProblem, outcome: Outcome) -> (ContactRun, Vec<Vec<f64>>) {
+    pub fn contact_run(&self, problem: &InterfaceProblem, outcome: Outcome) -> (ContactRun, Vec<Vec<f64>>) {
         let Outcome { states, solution, summary } = outcome;
         let mut pairs = solution.pairs;
         if let Some(tr) = &self.traction {

@@ -1,8 +1,9 @@
 //! Result files of a run, staged in memory and written together:
 //! `<name>.vtu` (bodies), `<name>_contact.vtu` (interfaces), `contact.csv`,
 //! `faces.csv` (the resultants per block face pair, [`faces`]),
-//! `probes.csv`, the pictures, then (once the output stage is timed)
-//! `summary.json` and `report.md`, which embeds the pictures.
+//! `probes.csv`, the pictures, the safety search's files (`safety.rs`),
+//! then (once the output stage is timed) `summary.json` and `report.md`,
+//! which embeds the pictures.
 
 pub mod faces;
 pub mod files;
@@ -10,6 +11,7 @@ pub mod picture;
 pub mod plot;
 pub mod report;
 pub mod resultants;
+mod safety;
 pub mod vtu;
 
 use anyhow::{Context, Result};
@@ -71,6 +73,7 @@ pub fn stage(run: &Run, out: &std::path::Path) -> Result<Staged> {
     for (file, bytes) in picture::pictures(&snap).context("drawing the pictures")? {
         staged.add(&file, bytes);
     }
+    safety::stage(run, &mut staged)?;
     Ok(staged)
 }
 
@@ -371,5 +374,8 @@ fn summary(run: &Run) -> serde_json::Value {
     let probes: serde_json::Map<String, serde_json::Value> =
         checks.probes.iter().map(|(name, s)| (name.clone(), serde_json::to_value(s).unwrap_or_default())).collect();
     v["probes"] = serde_json::Value::Object(probes);
+    if let Some(s) = safety::summary(run) {
+        v["safety"] = s;
+    }
     v
 }

@@ -4,8 +4,8 @@
 //! are staged once the output stage is timed), the load steps with the
 //! factor each load had at each step, errors against the closed form, the
 //! pictures, the contact groups and most mobilised block faces
-//! (faces.rs), what the scene's `[analytic]` check adds (`Checks::analytic`), and
-//! the probes.
+//! (faces.rs), what the scene's `[analytic]` check adds (`Checks::analytic`),
+//! the safety search's factor (`safety.rs`), and the probes.
 
 use std::fmt::Write;
 
@@ -99,6 +99,7 @@ pub fn report(run: &Run) -> String {
     }
     s += &super::faces::report(run);
     s += &run.checks.analytic.report;
+    s += &super::safety::report(run);
     for (name, samples) in &run.checks.probes {
         let _ = writeln!(s, "\n## Probe `{name}`\n");
         let _ = writeln!(s, "| x | y | z | ux | uy | uz | sxx | syy | szz | sxy | von Mises |\n|---|---|---|---|---|---|---|---|---|---|---|");

@@ -56,6 +56,7 @@ mod tests;
 pub use errors::SceneError;
 
 pub use crate::analytic::Analytic;
+pub use crate::contact::safety::Reduce;
 pub use crate::contact::{InterfaceSolver, SlipLaw, StateRule, TractionRecovery};
 pub use crate::fem::Analysis;
 pub use crate::model::{ContactGroups, InitialStress, LoadKind};
@@ -148,6 +149,32 @@ impl Default for Solver {
             substructures: 1,
             interface: InterfaceSolver::Auto,
         }
+    }
+}
+
+/// `[safety]`: the factor of safety against sliding by strength reduction
+/// after the load steps (`solve` runs it when the table is there; `subcontact
+/// safety` runs it on any scene, with these defaults when it is not).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Safety {
+    /// What is divided by F (`reduce = [..]`, default all three).
+    pub reduce: Reduce,
+    /// The `[[contacts]]` entries reduced, as indices (`contacts = [group
+    /// names]`, default all).
+    pub contacts: Vec<usize>,
+    /// The increase of F from trial to trial before the bracket closes (default 0.1).
+    pub step: f64,
+    /// F is found when the last factor that holds and the first that
+    /// fails differ by at most `tolerance × F` (default 1e-3).
+    pub tolerance: f64,
+    /// The largest F tried (default 10).
+    pub max_factor: f64,
+}
+
+impl Safety {
+    /// The defaults on a scene of `contacts` contacts: all reduced.
+    pub fn all(contacts: usize) -> Safety {
+        Safety { reduce: Reduce::ALL, contacts: (0..contacts).collect(), step: 0.1, tolerance: 1e-3, max_factor: 10.0 }
     }
 }
 
@@ -261,6 +288,8 @@ pub struct Scene {
     /// empty and the bodies that shared them move as one, which no warning
     /// need point out.
     pub bonded: bool,
+    /// The safety search after the load steps, when asked for.
+    pub safety: Option<Safety>,
 }
 
 impl Scene {
@@ -281,10 +310,22 @@ impl Scene {
     }
 
     /// Bonds every contact ([`Scene::bonded`]): the bodies keep the nodes
-    /// they share, and the run is the monolithic solve.
+    /// they share, and the run is the monolithic solve (with nothing to
+    /// reduce in a safety search).
     pub fn bond_all(&mut self) {
         self.contacts.clear();
         self.bonded = true;
+        self.safety = None;
+    }
+
+    /// The scene with a safety search: its own `[safety]`, or one with the
+    /// defaults (`subcontact safety` on a scene without the table), checked
+    /// as the table would be (a scene without contacts has nothing to reduce).
+    pub fn with_safety(mut self) -> Result<Scene, SceneError> {
+        if self.safety.is_none() {
+            self.safety = Some(validate::Checker { path: &self.path }.safety(raw::RawSafety::default(), &self.contacts)?);
+        }
+        Ok(self)
     }
 
     /// The material of `body`. Panics only if `body` was not validated

@@ -33,6 +33,7 @@ pub(super) struct RawScene {
     pub(super) probes: Vec<RawProbe>,
     pub(super) analytic: Option<RawAnalytic>,
     pub(super) output: Option<RawOutput>,
+    pub(super) safety: Option<RawSafety>,
 }
 
 #[derive(Deserialize)]
@@ -158,4 +159,14 @@ pub(super) struct RawFrame {
     pub(super) from: Option<Vec<f64>>,
     pub(super) to: Option<Vec<f64>>,
     pub(super) bodies: Option<Vec<String>>,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawSafety {
+    pub(super) reduce: Option<Vec<String>>,
+    pub(super) contacts: Option<Vec<String>>,
+    pub(super) step: Option<f64>,
+    pub(super) tolerance: Option<f64>,
+    pub(super) max_factor: Option<f64>,
 }

@@ -660,3 +660,37 @@ fn output_frame_is_a_box_or_bodies() {
     rejects(&minimal("[output]\nframe = { from = [0, 0], to = [1, 1], bodies = [\"b1\"] }\n"), &["output.frame", "either"]);
     rejects(&minimal("[output]\nframe = { centre = [0, 0] }\n"), &["unknown field `centre`"]);
 }
+
+/// `[safety]` (issue 18): defaults, choices, and every rule named by its
+/// key; misspelt keys are errors like everywhere else.
+#[test]
+fn safety_rules() {
+    let joints = "[[contacts]]\ngroup = \"base\"\nfriction = 0.75\n[[contacts]]\ngroups = [\"j_a\", \"j_b\"]\ncohesion = 1.0\n";
+    let with = |table: &str| minimal(&format!("{joints}[safety]\n{table}"));
+    assert_eq!(load(&minimal(joints)).expect("no table").safety, None);
+    let s = load(&with("")).expect("defaults").safety.expect("a table");
+    assert_eq!(s, Safety::all(2));
+    assert_eq!((s.reduce, s.contacts.as_slice(), s.step, s.tolerance, s.max_factor), (Reduce::ALL, &[0, 1][..], 0.1, 1e-3, 10.0));
+    let s = load(&with("reduce = [\"cohesion\", \"friction\"]\ncontacts = [\"j_b\"]\nstep = 0.05\ntolerance = 1e-4\nmax_factor = 3.0\n")).expect("choices").safety.expect("a table");
+    assert_eq!(s.reduce, Reduce { friction: true, cohesion: true, tensile_strength: false });
+    assert_eq!((s.contacts.as_slice(), s.step, s.tolerance, s.max_factor), (&[1][..], 0.05, 1e-4, 3.0));
+    assert_eq!(load(&with("contacts = [\"j_a|j_b\", \"base\"]\n")).expect("a pair by both names").safety.expect("table").contacts, vec![0, 1]);
+
+    let m = rejects(&with("tolerence = 0.01\n"), &["tolerence", "safety", "`tolerance`", "`max_factor`"]);
+    assert!(m.contains("Unknown keys are errors"), "{m}");
+    rejects(&with("reduce = [\"phi\"]\n"), &["safety.reduce[0] = \"phi\"", "\"friction\", \"cohesion\", \"tensile_strength\""]);
+    rejects(&with("reduce = [\"friction\", \"friction\"]\n"), &["safety.reduce[1]", "twice"]);
+    rejects(&with("reduce = []\n"), &["safety.reduce", "empty"]);
+    rejects(&with("contacts = [\"bse\"]\n"), &["safety.contacts[0] = \"bse\"", "\"base\", \"j_a|j_b\""]);
+    rejects(&with("contacts = [\"base\", \"base\"]\n"), &["safety.contacts[1]", "contacts[0] again"]);
+    rejects(&with("contacts = []\n"), &["safety.contacts", "empty"]);
+    rejects(&with("step = 0\n"), &["safety.step = 0", "> 0"]);
+    rejects(&with("tolerance = 1.5\n"), &["safety.tolerance = 1.5", "below 1"]);
+    rejects(&with("tolerance = -1e-3\n"), &["safety.tolerance", "> 0"]);
+    rejects(&with("max_factor = 1.0\n"), &["safety.max_factor = 1", "exceed 1"]);
+    rejects(&with("max_factor = nan\n"), &["safety.max_factor", "finite"]);
+    // nothing to reduce: the base has no cohesion, the pair no friction
+    rejects(&with("reduce = [\"cohesion\"]\ncontacts = [\"base\"]\n"), &["safety", "reduces nothing", "cohesion", "\"base\""]);
+    rejects(&with("reduce = [\"tensile_strength\"]\n"), &["reduces nothing", "tensile_strength"]);
+    rejects(&minimal("[safety]\n"), &["safety", "has none", "[[contacts]]"]);
+}

@@ -14,6 +14,7 @@ use super::{Analysis, Body, GmshOptions, Material, MeshSource, Output, Probe, Re
 
 mod analytic;
 mod groups;
+mod safety;
 
 /// `name` as it would appear in a key path: bare when it is a bare TOML key,
 /// quoted otherwise.
@@ -270,6 +271,7 @@ impl Checker<'_> {
         let probes = self.probes(raw.probes, analysis)?;
         let analytic = raw.analytic.map(|a| self.analytic(a, analysis, &bodies, &materials)).transpose()?;
         let output = self.output(raw.output, analysis, &bodies)?;
+        let safety = raw.safety.map(|s| self.safety(s, &contacts)).transpose()?;
 
         Ok(Scene {
             path: self.path.to_path_buf(),
@@ -290,6 +292,7 @@ impl Checker<'_> {
             analytic,
             output,
             bonded: false,
+            safety,
         })
     }
 

@@ -21,6 +21,13 @@
 //! rows of its free relative displacements. A supported axis of a pair is a
 //! prescribed `d'`; its force is read on the unsupported side, and is zero
 //! where both are supported (the supports carry it).
+//!
+//! Before solving, the parts nothing holds are found from the relations'
+//! geometry ([`super::rigid`]): every tied axis holds, and so does a
+//! slipping pair across its slip where the robust rule's linearised
+//! friction has a spring (its force turns as the pair moves across it: a
+//! wedge slipping along a V-groove while its friction still holds it
+//! partly across the groove is not free to slide).
 
 pub mod coords;
 pub mod dense;

@@ -1,0 +1,232 @@
+//! Strength reduction: the factor of safety against sliding, as PLAXIS's
+//! Safety phase (φ–c reduction) and RS2/RS3's shear strength reduction
+//! define it. The strength of the chosen contacts is divided by a factor F,
+//!
+//! ```text
+//! f_F = f / F   (f = tan φ)      c_F = c / F   (and the residual cohesion)      f_t,F = f_t / F
+//! ```
+//!
+//! each switchable ([`Reduce`]), until no equilibrium is found; F is the
+//! factor at which it is lost. Since c / f and f_t / c are left as they
+//! are, the Coulomb apex c / f does not move.
+//!
+//! The search ([`upward`]) starts from the state that holds at F = 1 and
+//! raises F step by step, every trial starting from the last state that
+//! held (friction depends on the path), until a trial fails or F reaches
+//! its bound; then it bisects between the last F that held and the first
+//! that failed until they differ by at most `tolerance × F`. A scene that
+//! already fails at F = 1 is searched below 1 ([`downward`]): every trial
+//! there runs the load path from its start with the strengths raised to
+//! 1 / F of the scene's. What a trial is (one more contact iteration on the
+//! condensed interface) is the caller's: these functions only choose the
+//! factors, from what each trial returns.
+
+use super::law::Strength;
+use super::PairLaw;
+
+/// Which strength parameters are divided by F.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Reduce {
+    /// The friction coefficient f = tan φ.
+    pub friction: bool,
+    /// The cohesion and the residual cohesion.
+    pub cohesion: bool,
+    pub tensile_strength: bool,
+}
+
+impl Reduce {
+    /// Every parameter (the default).
+    pub const ALL: Reduce = Reduce { friction: true, cohesion: true, tensile_strength: true };
+
+    /// The scene-file names of the parameters reduced.
+    pub fn names(&self) -> Vec<&'static str> {
+        [(self.friction, "friction"), (self.cohesion, "cohesion"), (self.tensile_strength, "tensile_strength")].into_iter().filter(|p| p.0).map(|p| p.1).collect()
+    }
+
+    /// The strength divided by `factor` where asked.
+    pub fn strength(&self, s: &Strength, factor: f64) -> Strength {
+        let by = |on: bool, v: f64| if on { v / factor } else { v };
+        Strength {
+            friction: by(self.friction, s.friction),
+            cohesion: by(self.cohesion, s.cohesion),
+            residual_cohesion: by(self.cohesion, s.residual_cohesion),
+            tensile_strength: by(self.tensile_strength, s.tensile_strength),
+        }
+    }
+}
+
+/// The laws of every pair at the factor `factor`: those of the pairs
+/// `chosen` reduced, the others as they are.
+pub fn reduced(laws: &[PairLaw], chosen: &[bool], reduce: Reduce, factor: f64) -> Vec<PairLaw> {
+    (laws.iter().zip(chosen)).map(|(l, &on)| if on { PairLaw { strength: reduce.strength(&l.strength, factor), ..*l } } else { *l }).collect()
+}
+
+/// How the factors are chosen.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Steps {
+    /// The increase of F from trial to trial while bracketing (> 0).
+    pub step: f64,
+    /// The bracket is closed when `fails - holds <= tolerance * holds`.
+    pub tolerance: f64,
+    /// The largest F tried; below 1, the smallest is 1 / max_factor.
+    pub max_factor: f64,
+}
+
+/// Where a search ended: the largest factor that held (with the caller's
+/// state there) and the smallest that failed (with why). `fails` is None
+/// when the search reached `max_factor` and it held; `holds` is None when
+/// a search below 1 reached 1 / max_factor and it failed.
+pub struct Bracket<S, E> {
+    pub holds: Option<(f64, S)>,
+    pub fails: Option<(f64, E)>,
+}
+
+/// F from 1 up: `trial(F, from)` runs the trial at F from the state `from`
+/// of the last factor that held (`start` at F = 1) and returns the state it
+/// reached or why it failed.
+pub fn upward<S, E>(steps: &Steps, start: S, mut trial: impl FnMut(f64, &S) -> Result<S, E>) -> Bracket<S, E> {
+    let mut holds = (1.0, start);
+    let mut k = 0;
+    let fails = loop {
+        k += 1;
+        let f = (1.0 + k as f64 * steps.step).min(steps.max_factor);
+        match trial(f, &holds.1) {
+            Ok(s) => holds = (f, s),
+            Err(e) => break (f, e),
+        }
+        if f >= steps.max_factor {
+            return Bracket { holds: Some(holds), fails: None };
+        }
+    };
+    let (holds, fails) = bisect(steps, holds, fails, |f, from: &S| trial(f, from));
+    Bracket { holds: Some(holds), fails: Some(fails) }
+}
+
+/// F from 1 down, when F = 1 fails with `at_one`: `trial(F)` runs the whole
+/// load path at F from its start.
+pub fn downward<S, E>(steps: &Steps, at_one: E, mut trial: impl FnMut(f64) -> Result<S, E>) -> Bracket<S, E> {
+    let lowest = 1.0 / steps.max_factor;
+    let mut fails = (1.0, at_one);
+    let mut k = 0;
+    let holds = loop {
+        k += 1;
+        let f = (1.0 - k as f64 * steps.step).max(lowest);
+        match trial(f) {
+            Ok(s) => break (f, s),
+            Err(e) => fails = (f, e),
+        }
+        if f <= lowest {
+            return Bracket { holds: None, fails: Some(fails) };
+        }
+    };
+    let (holds, fails) = bisect(steps, holds, fails, |f, _: &S| trial(f));
+    Bracket { holds: Some(holds), fails: Some(fails) }
+}
+
+/// Halves the bracket (`holds` below `fails`) until it is within the
+/// tolerance, each trial from the state of the last factor that held.
+fn bisect<S, E>(steps: &Steps, mut holds: (f64, S), mut fails: (f64, E), mut trial: impl FnMut(f64, &S) -> Result<S, E>) -> ((f64, S), (f64, E)) {
+    while fails.0 - holds.0 > steps.tolerance * holds.0 {
+        let f = 0.5 * (holds.0 + fails.0);
+        match trial(f, &holds.1) {
+            Ok(s) => holds = (f, s),
+            Err(e) => fails = (f, e),
+        }
+    }
+    (holds, fails)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contact::SlipLaw;
+
+    const STEPS: Steps = Steps { step: 0.1, tolerance: 1e-3, max_factor: 10.0 };
+
+    #[test]
+    fn every_switch_divides_its_own_parameter_and_no_other() {
+        let s = Strength { friction: 0.6, cohesion: 2.0, tensile_strength: 1.0, residual_cohesion: 0.5 };
+        assert_eq!(Reduce::ALL.strength(&s, 2.0), Strength { friction: 0.3, cohesion: 1.0, tensile_strength: 0.5, residual_cohesion: 0.25 });
+        let only_f = Reduce { friction: true, cohesion: false, tensile_strength: false };
+        assert_eq!(only_f.strength(&s, 2.0), Strength { friction: 0.3, ..s });
+        assert_eq!(only_f.names(), vec!["friction"]);
+        let c_ft = Reduce { friction: false, cohesion: true, tensile_strength: true };
+        assert_eq!(c_ft.strength(&s, 4.0), Strength { friction: 0.6, cohesion: 0.5, tensile_strength: 0.25, residual_cohesion: 0.125 });
+        // the Coulomb apex c / f stays where it is when both are reduced
+        let r = Reduce::ALL.strength(&s, 3.7);
+        assert!((r.cohesion / r.friction - s.cohesion / s.friction).abs() < 1e-12);
+        // pairs not chosen keep their law
+        let law = PairLaw { strength: s, slip: SlipLaw::Coulomb };
+        let laws = reduced(&[law, law], &[true, false], Reduce::ALL, 2.0);
+        assert_eq!((laws[0].strength.friction, laws[1].strength), (0.3, s));
+    }
+
+    /// Each trial's factor and the factor of the state it started from.
+    type Log = Vec<(f64, Option<f64>)>;
+
+    /// A structure that holds while F <= limit; each state lists the
+    /// factors that led to it (to see that trials start from the last hold).
+    fn search_up(limit: f64, steps: &Steps) -> (Bracket<Vec<f64>, f64>, Log) {
+        let mut log = Vec::new();
+        let b = upward(steps, vec![1.0], |f, from: &Vec<f64>| {
+            log.push((f, from.last().copied()));
+            if f <= limit {
+                Ok([&from[..], &[f]].concat())
+            } else {
+                Err(f)
+            }
+        });
+        (b, log)
+    }
+
+    #[test]
+    fn upward_brackets_by_steps_then_bisects_to_the_tolerance_from_the_last_hold() {
+        let (b, log) = search_up(1.2345, &STEPS);
+        let (h, path) = b.holds.expect("holds");
+        let (f, e) = b.fails.expect("fails");
+        assert!(h <= 1.2345 && f > 1.2345 && f - h <= 1e-3 * h, "bracket [{h}, {f}]");
+        assert_eq!(e, f);
+        // 1.1, 1.2 hold; 1.3 fails; then halving 0.1 down to 1e-3: 7 trials
+        let first: Vec<f64> = log[..3].iter().map(|t| t.0).collect();
+        assert!(first.iter().zip([1.1, 1.2, 1.3]).all(|(a, b)| (a - b).abs() < 1e-12), "{first:?}");
+        assert_eq!(log.len(), 3 + 7);
+        // every trial starts from the last factor that held, and the path is monotone
+        for w in path.windows(2) {
+            assert!(w[1] > w[0], "{path:?}");
+        }
+        for (f, from) in &log {
+            assert!(from.is_some_and(|x| x < *f));
+        }
+    }
+
+    #[test]
+    fn upward_says_when_it_reaches_its_bound_and_when_the_first_step_fails() {
+        let (b, log) = search_up(100.0, &Steps { max_factor: 1.45, ..STEPS });
+        assert!(b.fails.is_none(), "bound reached");
+        assert_eq!(b.holds.expect("holds").0, 1.45);
+        assert_eq!(log.last().map(|t| t.0), Some(1.45), "the bound itself is tried");
+        let (b, _) = search_up(1.0004, &STEPS);
+        let (h, _) = b.holds.expect("F = 1 holds");
+        assert!((1.0..=1.0004).contains(&h) && b.fails.expect("fails").0 <= 1.0 + 1e-3 * h + 1e-15);
+    }
+
+    #[test]
+    fn downward_finds_a_factor_below_one_from_fresh_starts_or_says_none_held() {
+        let mut tried = Vec::new();
+        let b = downward(&STEPS, 1.0, |f| {
+            tried.push(f);
+            if f <= 0.6789 {
+                Ok(f)
+            } else {
+                Err(f)
+            }
+        });
+        let (h, s) = b.holds.expect("holds");
+        let (f, _) = b.fails.expect("fails");
+        assert!(h <= 0.6789 && f > 0.6789 && f - h <= 1e-3 * h && s == h, "[{h}, {f}]");
+        assert!((tried[0] - 0.9).abs() < 1e-12 && (tried[3] - 0.6).abs() < 1e-12);
+        let b = downward(&STEPS, 1.0, Err::<f64, f64>);
+        assert!(b.holds.is_none());
+        assert!((b.fails.expect("fails").0 - 0.1).abs() < 1e-12, "down to 1 / max_factor");
+    }
+}

@@ -1,0 +1,114 @@
+//! Checks of `[safety]`: what is reduced (`reduce`, names of the contact
+//! strength keys), which contacts (`contacts`, their group names; either
+//! group of a `groups = [a, b]` entry names it), and the search's `step`,
+//! `tolerance` and `max_factor`. A search that would reduce nothing (every
+//! chosen parameter zero on every chosen contact) is an error: its F would
+//! be the bound whatever the scene.
+
+use super::{quoted_list, Checker, R};
+use crate::scene::raw::RawSafety;
+use crate::scene::{Contact, ContactGroups, Reduce, Safety};
+
+/// The names `reduce` accepts.
+const REDUCIBLE: &[&str] = &["friction", "cohesion", "tensile_strength"];
+
+impl Checker<'_> {
+    pub(in crate::scene) fn safety(&self, s: RawSafety, contacts: &[Contact]) -> R<Safety> {
+        if contacts.is_empty() {
+            return Err(self.err("safety", "the safety search divides the strength of the [[contacts]] by a factor, and this scene has none; add the contacts whose sliding you want to check, or remove [safety]."));
+        }
+        let defaults = Safety::all(contacts.len());
+        let reduce = match s.reduce {
+            None => defaults.reduce,
+            Some(names) => self.reduce(&names)?,
+        };
+        let chosen = match s.contacts {
+            None => defaults.contacts,
+            Some(names) => self.chosen(&names, contacts)?,
+        };
+        let step = self.positive(s.step, defaults.step, "safety.step", "the increase of F from trial to trial must be a finite number > 0.")?;
+        let tolerance = self.positive(s.tolerance, defaults.tolerance, "safety.tolerance", "the relative tolerance on F must be a finite number > 0.")?;
+        if tolerance >= 1.0 {
+            return Err(self.bad("safety.tolerance", tolerance, "the relative tolerance on F must be below 1 (F is found within tolerance × F; 0.001 by default)."));
+        }
+        let max_factor = self.positive(s.max_factor, defaults.max_factor, "safety.max_factor", "the largest F tried must be a finite number > 1.")?;
+        if max_factor <= 1.0 {
+            return Err(self.bad("safety.max_factor", max_factor, "the largest F tried must exceed 1 (F = 1 is the scene as given; 10 by default)."));
+        }
+        let reduces = |c: &Contact| (reduce.friction && c.friction > 0.0) || (reduce.cohesion && (c.cohesion > 0.0 || c.residual_cohesion > 0.0)) || (reduce.tensile_strength && c.tensile_strength > 0.0);
+        if !chosen.iter().any(|&i| reduces(&contacts[i])) {
+            return Err(self.err(
+                "safety",
+                format!("reduces nothing: {} of the chosen contacts ({}) is zero everywhere, so no factor would change the scene. Reduce a parameter they have (safety.reduce), or choose other contacts (safety.contacts).", reduce.names().join(", "), quoted_list(chosen.iter().map(|&i| name(&contacts[i])))),
+            ));
+        }
+        Ok(Safety { reduce, contacts: chosen, step, tolerance, max_factor })
+    }
+
+    /// `reduce = [..]`: a non-empty list of the strength keys, each once.
+    fn reduce(&self, names: &[String]) -> R<Reduce> {
+        if names.is_empty() {
+            return Err(self.err("safety.reduce", format!("is empty: list what is divided by F, any of {} (all three if omitted).", quoted_list(REDUCIBLE))));
+        }
+        let mut r = Reduce { friction: false, cohesion: false, tensile_strength: false };
+        for (j, n) in names.iter().enumerate() {
+            let key = format!("safety.reduce[{j}]");
+            let flag = match n.as_str() {
+                "friction" => &mut r.friction,
+                "cohesion" => &mut r.cohesion,
+                "tensile_strength" => &mut r.tensile_strength,
+                _ => return Err(self.bad(key, format!("{n:?}"), format!("not a strength parameter; use any of {} (friction is f = tan(phi); cohesion includes the residual cohesion).", quoted_list(REDUCIBLE)))),
+            };
+            if *flag {
+                return Err(self.bad(key, format!("{n:?}"), "listed twice; give each parameter once."));
+            }
+            *flag = true;
+        }
+        Ok(r)
+    }
+
+    /// `contacts = [..]`: group names of `[[contacts]]` entries, each once.
+    fn chosen(&self, names: &[String], contacts: &[Contact]) -> R<Vec<usize>> {
+        if names.is_empty() {
+            return Err(self.err("safety.contacts", "is empty: name the contact groups whose strength is reduced (all contacts if omitted)."));
+        }
+        let mut out: Vec<usize> = Vec::new();
+        for (j, n) in names.iter().enumerate() {
+            let key = format!("safety.contacts[{j}]");
+            let Some(i) = contacts.iter().position(|c| names_it(c, n)) else {
+                return Err(self.bad(key, format!("{n:?}"), format!("is not the group of a [[contacts]] entry; the scene's contacts are {}.", quoted_list(contacts.iter().map(name)))));
+            };
+            if out.contains(&i) {
+                return Err(self.bad(key, format!("{n:?}"), format!("names contacts[{i}] again; give each contact once.")));
+            }
+            out.push(i);
+        }
+        out.sort_unstable();
+        Ok(out)
+    }
+
+    /// A finite number > 0, or `default`.
+    fn positive(&self, v: Option<f64>, default: f64, key: &str, what: &str) -> R<f64> {
+        match v {
+            None => Ok(default),
+            Some(x) if x.is_finite() && x > 0.0 => Ok(x),
+            Some(x) => Err(self.bad(key, x, what)),
+        }
+    }
+}
+
+/// Whether `n` is the group of contact `c` (either group of a pair).
+fn names_it(c: &Contact, n: &str) -> bool {
+    match &c.groups {
+        ContactGroups::Shared(g) => g == n,
+        ContactGroups::Pair(a, b) => a == n || b == n || format!("{a}|{b}") == n,
+    }
+}
+
+/// The group a contact is known by in messages.
+fn name(c: &Contact) -> String {
+    match &c.groups {
+        ContactGroups::Shared(g) => g.clone(),
+        ContactGroups::Pair(a, b) => format!("{a}|{b}"),
+    }
+}

@@ -1,0 +1,261 @@
+//! The factor of safety against sliding by strength reduction (issue 18),
+//! through the gmsh CLI and the real binary (`subcontact safety`, or
+//! `solve` on a scene with `[safety]`), against the closed forms of limit
+//! equilibrium.
+//!
+//! References: a block on an inclined plane (any statics text); the
+//! symmetric wedge of Hoek & Bray, *Rock Slope Engineering* (F = sin beta /
+//! sin(xi/2) tan(phi) / tan(psi)); the 2D gravity dam's base by hand from
+//! its own contact resultants, F = (c A + N tan phi) / T.
+//!
+//! Goal, one statement per test: (1) a block on a plane inclined at theta,
+//! 2D and 3D (the slope turned in plan), slides at F = tan(phi) / tan(theta)
+//! without cohesion and at (c A + W cos(theta) tan(phi)) / (W sin(theta))
+//! with it, within 1 %, and with only tan(phi) reduced at W cos(theta)
+//! tan(phi) / (W sin(theta) - c A); the search costs contact iterations,
+//! never a factorisation; (2) the elastic wedge in a V-groove reaches the
+//! rigid-block factor within 1 % on two meshes; (3) the dam's search finds
+//! the F of its base's resultants; (4) DESIGN.md §5's block on a 20 degree
+//! slope with f = 0.3645 has F = f / tan 20; (5) a scene that fails at F = 1
+//! is unsafe as given: a clean failure naming the block, with its F < 1 (the
+//! same closed form); a search that reaches max_factor says so.
+//!
+//! ```text
+//!   2D and 3D (tests/geo/contact_stack*.geo)    wedge (geo/wedge.geo), section
+//!          g (turned by theta)                         +----+----+
+//!        \ |                                            \ wedge /   xi = 90
+//!         \|  +-------+ top (W)                          \     /    y along the line,
+//!          v  +=joint=+ f, c                               \___/     plunging at psi
+//!             +-------+ bottom, base held               crevice
+//! ```
+//!
+//! Parameters: the top block 2 x 1 (x 1), density 1, g = 10: W = 20, joint
+//! area A = 2; theta = 20 degrees; f = 0.6, c = 1 (residual cohesion = c,
+//! so that slipping pairs keep it as limit equilibrium assumes). Wedge:
+//! geo/wedge.toml (xi = 90, psi = 30, phi = 35: F = 1.7151). Tolerances:
+//! 1 % on the closed forms as the issue states (the bracket itself is
+//! 1e-3 x F wide; the measured errors are printed and are far smaller).
+
+mod common;
+
+use common::cli::{clean_failure, says};
+use common::scenes::edited;
+use common::{json, read, Case};
+use serde_json::Value;
+
+const THETA: f64 = 20.0;
+const F_COEF: f64 = 0.6;
+const COHESION: f64 = 1.0;
+/// The top block's weight and the joint's area (2 x 1 x 1, density 1, g = 10).
+const W: f64 = 20.0;
+const AREA: f64 = 2.0;
+
+/// The block of tests/geo/contact_stack*.geo on a plane inclined at theta:
+/// the model stays axis-aligned and gravity is turned, along x in 2D and
+/// at 30 degrees from x in plan in 3D.
+fn incline(solid: bool, friction: f64, cohesion: f64, safety: &str) -> String {
+    let (s, c) = THETA.to_radians().sin_cos();
+    let (mesh, gmsh, gravity, analysis) = if solid {
+        let (a, b) = 30f64.to_radians().sin_cos();
+        ("contact_stack3d.geo", "order = 2\nsetnumber = { n = 3, nz = 2, hex = 1, serendipity = 1 }", format!("[{}, {}, {}]", 10.0 * s * b, -10.0 * c, 10.0 * s * a), "solid")
+    } else {
+        ("contact_stack.geo", "order = 2\nsetnumber = { n = 4 }", format!("[{}, {}]", 10.0 * s, -10.0 * c), "plane_strain")
+    };
+    let fix = if solid { "[\"x\", \"y\", \"z\"]" } else { "[\"x\", \"y\"]" };
+    format!(
+        "title = \"a block on a plane inclined at {THETA} degrees\"\nmesh = \"{mesh}\"\nanalysis = \"{analysis}\"\ngravity = {gravity}\n\n[gmsh]\n{gmsh}\n\n\
+         [materials.rock]\nE = 1000.0\nnu = 0.25\ndensity = 1.0\n\n[[bodies]]\ngroup = \"bottom\"\nmaterial = \"rock\"\n\n[[bodies]]\ngroup = \"top\"\nmaterial = \"rock\"\n\n\
+         [[contacts]]\ngroup = \"joint\"\nfriction = {friction:?}\ncohesion = {cohesion:?}\nresidual_cohesion = {cohesion:?}\ntensile_strength = 0.0\n\n\
+         [[supports]]\ngroup = \"base\"\nfix = {fix}\n\n{safety}"
+    )
+}
+
+/// Runs `subcontact ARGS` in the case and returns its summary.json's
+/// `safety`, the whole summary and stderr; the run must succeed.
+fn safety_run(case: &Case, args: &[&str], out: &str) -> (Value, Value, String) {
+    let mut all = args.to_vec();
+    all.extend(["--out", out]);
+    let o = case.cli(&all);
+    let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(o.status.success(), "subcontact {all:?} failed:\n{stderr}");
+    let summary = json(&case.dir.join(out).join("summary.json"));
+    (summary["safety"].clone(), summary, stderr)
+}
+
+/// F found within `tol` of `exact`, the exact value inside (or within the
+/// tolerance of) the bracket.
+fn assert_factor(what: &str, safety: &Value, exact: f64, tol: f64) -> f64 {
+    let f = safety["factor"].as_f64().expect("factor");
+    let fails = safety["fails_at"].as_f64().expect("a failure found");
+    eprintln!("{what}: F = {f:.5} (fails at {fails:.5}) against {exact:.5}: {:+.3} %", 100.0 * (f / exact - 1.0));
+    assert!(f <= fails && fails - f <= 1.001e-3 * f + 1e-12, "{what}: bracket [{f}, {fails}] within the tolerance");
+    assert!((f / exact - 1.0).abs() < tol, "{what}: F = {f} against {exact}");
+    f
+}
+
+/// The search costs contact iterations on the condensed interface: the
+/// parts are factorised once, whatever the trials.
+fn assert_cost(what: &str, safety: &Value, summary: &Value) {
+    let parts = summary["parts"]["total"].as_u64().expect("parts");
+    assert_eq!(summary["counters"]["factorisations"].as_u64(), Some(parts), "{what}: one factorisation per part");
+    assert_eq!(safety["cost"]["factorisations"].as_u64(), Some(0), "{what}: none in the search");
+    let trials = safety["cost"]["trials"].as_u64().expect("trials");
+    let its = safety["cost"]["contact_iterations"].as_u64().expect("iterations");
+    assert_eq!(trials as usize, safety["trials"].as_array().map_or(0, Vec::len));
+    assert!(trials >= 3 && its >= trials, "{what}: {trials} trials, {its} contact iterations");
+    let steps: u64 = summary["steps"].as_array().expect("steps").iter().map(|s| s["contact"]["iterations"].as_u64().unwrap_or(0)).sum();
+    assert_eq!(summary["counters"]["interface_solves"].as_u64(), Some(steps + its), "{what}: the counters count the search's iterations");
+    eprintln!("{what}: {trials} trials, {its} contact iterations ({:.1} per trial), {:.4} s per trial", its as f64 / trials as f64, safety["cost_per_trial"]["seconds"].as_f64().unwrap_or(0.0));
+}
+
+#[test]
+fn a_block_on_an_inclined_plane_slides_at_the_limit_equilibrium_factor_in_2d_and_3d() {
+    let case = Case::new("safety-incline");
+    case.copy("tests/geo/contact_stack.geo");
+    case.copy("tests/geo/contact_stack3d.geo");
+    let t = THETA.to_radians();
+    let (wn, wt) = (W * t.cos(), W * t.sin());
+    for solid in [false, true] {
+        let dim = if solid { "3D" } else { "2D" };
+        // no cohesion: F = tan(phi) / tan(theta); the scene has no [safety]
+        let scene = format!("incline{dim}.toml");
+        case.write(&scene, &incline(solid, F_COEF, 0.0, ""));
+        let (s, summary, stderr) = safety_run(&case, &["safety", &scene], &format!("out{dim}"));
+        assert_factor(&format!("{dim}, c = 0"), &s, F_COEF / t.tan(), 0.01);
+        assert_cost(dim, &s, &summary);
+        assert_eq!(s["failure"]["kind"], "sliding", "{dim}");
+        assert_eq!(s["failure"]["blocks"][0]["body"], "top", "{dim}: the top block slides");
+        says(&stderr, &["safety: F = 1.1000 holds", "fails at contact iteration", "\"top\""]);
+        let dir = case.dir.join(format!("out{dim}"));
+        for f in ["safety.csv", "safety_contact.csv", "safety_deformed_displacement.png", "safety_interfaces.svg", &format!("incline{dim}_safety.vtu")] {
+            assert!(dir.join(f).is_file(), "{dim}: {f} written");
+        }
+        if solid {
+            assert!(dir.join("safety_plan_joint.png").is_file(), "3D: the joint's plan at F");
+        }
+        let report = read(&dir.join("report.md"));
+        says(&report, &["## Factor of safety against sliding", "none in the search", "(safety_deformed_displacement.png)"]);
+
+        // cohesion kept while slipping: (c A + W cos tan phi) / (W sin)
+        let scene = format!("cohesion{dim}.toml");
+        case.write(&scene, &incline(solid, F_COEF, COHESION, "[safety]\n"));
+        let (s, _, quiet) = safety_run(&case, &["solve", &scene, "--quiet"], &format!("coh{dim}"));
+        assert!(!quiet.contains("safety: F ="), "--quiet silences the progress: {quiet}");
+        assert_factor(&format!("{dim}, c = {COHESION}"), &s, (COHESION * AREA + wn * F_COEF) / wt, 0.01);
+
+        // only tan(phi) reduced: W cos tan(phi) / F + c A = W sin
+        let scene = format!("friction{dim}.toml");
+        case.write(&scene, &incline(solid, F_COEF, COHESION, "[safety]\nreduce = [\"friction\"]\n"));
+        let (s, _, _) = safety_run(&case, &["solve", &scene, "--quiet"], &format!("fric{dim}"));
+        assert_eq!(s["reduced"], serde_json::json!(["friction"]));
+        assert_factor(&format!("{dim}, tan(phi) alone"), &s, wn * F_COEF / (wt - COHESION * AREA), 0.01);
+    }
+}
+
+/// DESIGN.md §5: a block held only by friction on a 20 degree slope holds
+/// at f = 0.3645 and slides at 0.2; its factor is f / tan 20 on both sides
+/// of 1 (below 1 the scene is unsafe as given: a clean failure that names
+/// the block and gives F, each trial the load step from its start).
+#[test]
+fn the_block_of_design_section_5_and_an_unsafe_one() {
+    let case = Case::new("safety-design5");
+    case.copy("tests/geo/contact_stack.geo");
+    let tan = THETA.to_radians().tan();
+    case.write("holds.toml", &incline(false, 0.3645, 0.0, "[safety]\ntolerance = 1e-4\n"));
+    let (s, _, _) = safety_run(&case, &["solve", "holds.toml", "--quiet"], "holds");
+    assert_factor("f = 0.3645", &s, 0.3645 / tan, 0.001);
+
+    case.write("slides.toml", &incline(false, 0.3, 0.0, ""));
+    let o = case.cli(&["safety", "slides.toml", "--out", "slides", "--quiet"]);
+    let msg = clean_failure(&case, &o, &case.dir.join("slides"));
+    says(&msg, &["slides.toml: unsafe as given", "(F = 1)", "body \"top\" slides or rotates freely", "below 1: F = 0.", "no result files were written"]);
+    let f: f64 = msg.split("below 1: F = ").nth(1).and_then(|r| r.split(' ').next()).and_then(|v| v.parse().ok()).expect("F in the message");
+    eprintln!("f = 0.3: unsafe as given, F = {f} against {:.5}", 0.3 / tan);
+    assert!((f / (0.3 / tan) - 1.0).abs() < 0.01, "F = {f} below 1");
+}
+
+/// geo/wedge.toml (Hoek & Bray): the elastic wedge slides at the rigid
+/// block's factor on a coarse and a finer mesh. It settles into the V
+/// under its weight and its joints lock shear across the line of
+/// intersection; as F rises the wedge slides along the line, which turns
+/// its friction along the line and releases that shear, so that at failure
+/// the normal forces are the rigid block's.
+#[test]
+fn the_wedge_in_a_v_groove_reaches_the_rigid_block_factor_on_two_meshes() {
+    let case = Case::new("safety-wedge");
+    case.copy("geo/wedge.geo");
+    let (xi, phi, psi) = (90f64.to_radians(), 35f64.to_radians(), 30f64.to_radians());
+    let rigid = 1.0 / (xi / 2.0).sin() * phi.tan() / psi.tan();
+    for lc in ["2.0", "1.4"] {
+        let scene = format!("wedge{lc}.toml");
+        case.write(&scene, &edited("geo/wedge.toml", &[("lc = 1.0 }", &format!("lc = {lc} }}"))]));
+        let (s, summary, _) = safety_run(&case, &["solve", &scene, "--quiet"], &format!("out{lc}"));
+        assert_factor(&format!("wedge, lc = {lc}"), &s, rigid, 0.01);
+        assert_cost(&format!("wedge, lc = {lc}"), &s, &summary);
+        assert_eq!(s["failure"]["blocks"][0]["body"], "wedge");
+        // at F the joints carry the rigid block's normal force, f N / T = F
+        let at_f = &s["joints"][0]["at_factor"];
+        let from_resultants = at_f["factor_from_resultants"].as_f64().expect("F_joint");
+        assert!((from_resultants / rigid - 1.0).abs() < 0.01, "lc = {lc}: f N / T = {from_resultants}");
+        assert!(case.dir.join(format!("out{lc}/safety_joints.png")).is_file(), "both faces by state");
+    }
+}
+
+/// geo/dam.toml: the search against the base's own limit equilibrium by
+/// hand from contact.csv at F = 1 (the base has no cohesion: F = f N / T).
+#[test]
+fn the_dams_base_slides_at_the_factor_of_its_resultants() {
+    let case = Case::new("safety-dam");
+    case.copy("geo/dam.geo");
+    case.copy("geo/dam.toml");
+    let (s, summary, _) = safety_run(&case, &["safety", "dam.toml", "--quiet"], "dam");
+    let csv = read(&case.dir.join("dam/contact.csv"));
+    let mut lines = csv.lines();
+    let head: Vec<&str> = lines.next().expect("header").split(',').collect();
+    let col = |name: &str| head.iter().position(|h| *h == name).unwrap_or_else(|| panic!("column {name}"));
+    let (mut n, mut t) = (0.0, [0.0; 2]);
+    for line in lines {
+        let v: Vec<&str> = line.split(',').collect();
+        if v[col("contact")] != "base" {
+            continue;
+        }
+        let x = |name: &str| v[col(name)].parse::<f64>().expect("number");
+        n -= x("sigma_n") * x("area");
+        t[0] += x("tau_x") * x("area");
+        t[1] += x("tau_y") * x("area");
+    }
+    let hand = 0.75 * n / t[0].hypot(t[1]);
+    eprintln!("dam base: N = {n:.4} MN/m, T = {:.4} MN/m: F = f N / T = {hand:.5}", t[0].hypot(t[1]));
+    assert_factor("dam", &s, hand, 0.002);
+    assert_cost("dam", &s, &summary);
+    let blocks: Vec<&str> = s["failure"]["blocks"].as_array().expect("blocks").iter().filter_map(|b| b["body"].as_str()).collect();
+    assert_eq!(blocks, ["block_1", "block_2", "block_3"], "the dam slides on its base");
+}
+
+/// A search bounded below the block's factor (1.65) ends at its bound:
+/// a result (exit 0, F > 1.5 on stdout), with a warning that says so.
+#[test]
+fn a_search_that_reaches_its_bound_says_so() {
+    let case = Case::new("safety-bound");
+    case.copy("tests/geo/contact_stack.geo");
+    case.write("bound.toml", &incline(false, F_COEF, 0.0, "[safety]\nstep = 0.2\nmax_factor = 1.5\n"));
+    let o = case.cli(&["solve", "bound.toml", "--out", "bound"]);
+    let (stdout, stderr) = (String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "a bound is a result: {stderr}");
+    says(&stdout, &["F > 1.5 (the search reached its bound)"]);
+    says(&stderr, &["safety: F = 1.2000 holds", "safety: F = 1.4000 holds", "safety: F = 1.5000 holds", "warning: ", "reached its bound safety.max_factor = 1.5", "Raise max_factor"]);
+    let s = json(&case.dir.join("bound/summary.json"))["safety"].clone();
+    assert_eq!((s["bound_reached"].as_bool(), s["factor"].as_f64(), s["fails_at"].as_f64()), (Some(true), Some(1.5), None));
+    says(&read(&case.dir.join("bound/report.md")), &["**F > 1.5**: the search reached its bound"]);
+}
+
+/// A misspelt key of [safety] is named, as everywhere in a scene.
+#[test]
+fn a_misspelt_safety_key_is_named() {
+    let case = Case::new("safety-misspelt");
+    case.copy("tests/geo/contact_stack.geo");
+    case.write("typo.toml", &incline(false, F_COEF, 0.0, "[safety]\ntolerence = 1e-3\n"));
+    let o = case.cli(&["safety", "typo.toml", "--out", "typo", "--quiet"]);
+    let msg = clean_failure(&case, &o, &case.dir.join("typo"));
+    says(&msg, &["typo.toml", "(in safety)", "unknown field `tolerence`", "`tolerance`", "Unknown keys are errors"]);
+}
