@@ -50,6 +50,7 @@
 use nalgebra::{DMatrix, DVector};
 
 use super::coords::{Terms, Var};
+use super::ldp::least_norm_point;
 use super::{Limit, Relation};
 use crate::contact::frame::Frame;
 use crate::contact::law::ContactState;
@@ -58,6 +59,14 @@ use crate::contact::law::ContactState;
 /// redundant ties of a loop (the rows are unit vectors of the pairs' frames,
 /// so independent ones are O(1)).
 const RANK_TOLERANCE: f64 = 1e-10;
+
+/// How far inside the pairs' limits a junction's tied forces are chosen
+/// when the least-norm ones break one (a fraction of the largest force),
+/// how far past a cut counts as breaking it, and how many rounds of cuts
+/// close in on the Coulomb cones (see `Split::forces`).
+const MARGIN: f64 = 1e-9;
+const CUT_TOL: f64 = 1e-12;
+const CUT_ROUNDS: usize = 12;
 
 /// The pairs that are solved as junctions: every pair of a cluster (copies
 /// joined through pairs) of more than one pair, and the pairs `general`
@@ -173,15 +182,15 @@ impl Split {
         let lambda = |s: &DVector<f64>| DVector::from_fn(self.rows.len(), |i, _| self.d[i] * (nu0[i] + (self.null.row(i) * s)[0]));
         let zero = DVector::zeros(self.null.ncols());
         let plain = lambda(&zero);
-        if self.null.ncols() == 0 || self.violations(&plain, limits).is_empty() {
+        if self.null.ncols() == 0 || self.violations(&plain, limits, CUT_TOL).is_empty() {
             return plain;
         }
         // cuts: a row combination of λ with its bound, `a . λ <= b`
         let mut cuts: Vec<(Vec<(usize, f64)>, f64)> = Vec::new();
         let mut s = zero;
-        for _ in 0..12 {
+        for _ in 0..CUT_ROUNDS {
             let lam = lambda(&s);
-            let new = self.violations(&lam, limits);
+            let new = self.violations(&lam, limits, CUT_TOL);
             if new.is_empty() {
                 return lam;
             }
@@ -195,8 +204,10 @@ impl Split {
                 None => return plain,
             }
         }
+        // the cuts close in on a cone's curved limit from outside: a share
+        // that ends within half the margin of them is still inside every limit
         let lam = lambda(&s);
-        if self.violations(&lam, limits).is_empty() {
+        if self.violations(&lam, limits, MARGIN / 2.0).is_empty() {
             lam
         } else {
             plain
@@ -208,10 +219,12 @@ impl Split {
     /// direction (in 2D, both signs). The cuts stay a hair (1e-9 of the
     /// largest force) inside the limits: a share the loops can choose is
     /// chosen strictly within them, so that judging the pairs by it, with
-    /// the law's own `>=`, does not find them on the limit and let go.
-    fn violations(&self, lam: &DVector<f64>, limits: &[Limit]) -> Vec<(Vec<(usize, f64)>, f64)> {
+    /// the law's own `>=`, does not find them on the limit and let go. A
+    /// limit is broken when `λ` passes its cut by more than `slack` (of
+    /// the largest force).
+    fn violations(&self, lam: &DVector<f64>, limits: &[Limit], slack: f64) -> Vec<(Vec<(usize, f64)>, f64)> {
         let scale = lam.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
-        let (margin, tol) = (1e-9 * scale, 1e-12 * scale);
+        let (margin, tol) = (MARGIN * scale, slack * scale);
         let mut out = Vec::new();
         let mut j0 = 0;
         while j0 < self.rows.len() {
@@ -244,45 +257,6 @@ impl Split {
         }
         out
     }
-}
-
-/// The point of least norm with `g_i . x <= h_i` for every i (a primal-dual
-/// active-set method; the problems are a few dozen unknowns); None when the
-/// constraints leave no point.
-fn least_norm_point(g: &[DVector<f64>], h: &[f64]) -> Option<DVector<f64>> {
-    let k = g.first().map_or(0, |v| v.len());
-    let scale = h.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(g.iter().map(|v| v.norm()).fold(0.0, f64::max)).max(f64::MIN_POSITIVE);
-    let tol = 1e-12 * scale;
-    let mut active: Vec<usize> = Vec::new();
-    for _ in 0..(4 * g.len() + 20) {
-        // the least-norm x on the active constraints: x = -G_W^T y, G_W G_W^T y = -h_W
-        let m = active.len();
-        let gw = DMatrix::<f64>::from_fn(m, k, |i, c| g[active[i]][c]);
-        let y = if m == 0 {
-            DVector::zeros(0)
-        } else {
-            let gram = &gw * gw.transpose();
-            let rhs = DVector::from_fn(m, |i, _| -h[active[i]]);
-            let eps = 1e-12 * gram.norm();
-            gram.pseudo_inverse(eps).ok()? * rhs
-        };
-        let x = if m == 0 { DVector::zeros(k) } else { -(gw.transpose() * &y) };
-        // the active constraints must hold as equalities: else none can
-        if active.iter().any(|&i| (g[i].dot(&x) - h[i]).abs() > 1e-8 * scale) {
-            return None;
-        }
-        let worst = (0..g.len()).filter(|i| !active.contains(i)).map(|i| (i, g[i].dot(&x) - h[i])).max_by(|a, b| a.1.total_cmp(&b.1));
-        match worst {
-            Some((i, v)) if v > tol => active.push(i),
-            _ => match (0..m).min_by(|&a, &b| y[a].total_cmp(&y[b])) {
-                Some(a) if y[a] < -tol => {
-                    active.remove(a);
-                }
-                _ => return Some(x),
-            },
-        }
-    }
-    None
 }
 
 impl Junction {
@@ -637,6 +611,35 @@ mod tests {
         let tied = j.tie(&rel, 1.0, |_| 1.0);
         assert_eq!(tied.z.ncols(), 1);
         assert!((tied.z[(2, 0)].abs() - 1.0).abs() < 1e-14, "{}", tied.z);
+    }
+
+    /// A crease, both pairs stuck, carrying a push into the V and along
+    /// its line: the least-norm share puts as much shear as pressure on
+    /// each face, beyond f = 0.6; the share within both Coulomb cones is
+    /// taken (the faces' normals carry the push into the V, friction the
+    /// push along the line), and it still carries the push.
+    #[test]
+    fn a_stuck_crease_shares_its_force_within_both_coulomb_cones() {
+        let s = 0.5f64.sqrt();
+        let f1: Frame = [[s, s, 0.0], [-s, s, 0.0], [0.0, 0.0, 1.0]];
+        let f2: Frame = [[-s, s, 0.0], [-s, -s, 0.0], [0.0, 0.0, 1.0]];
+        let pairs = [(0, 1, f1), (0, 1, f2)];
+        let (mut nm, mut nr) = (0, 0);
+        let j = Junction::new(vec![0, 1], |p| pairs[p], &[None; 6], 3, &mut nm, &mut nr);
+        let limit = Limit { tension: 0.0, cohesion: 0.0, friction: 0.6 };
+        let rel: Vec<Relation> = stuck(2).into_iter().map(|r| r.within(limit)).collect();
+        let tied = j.tie(&rel, 1.0, |_| 1.0);
+        let g = DVector::from_column_slice(&[0.0, -2.0 * s, 0.3]);
+        let out = j.forces(&tied, &rel, &DVector::zeros(3), &g, 1.0);
+        let mut carried = DVector::<f64>::zeros(3);
+        for (p, (f, _, _)) in out.iter().enumerate() {
+            let shear = f[1].hypot(f[2]);
+            assert!(f[0] < 0.0 && shear < -0.6 * f[0], "pair {p} within its cone: {f:?}");
+            for (row, fa) in j.rows[p].iter().zip(f) {
+                carried += DVector::from_column_slice(row) * *fa;
+            }
+        }
+        assert!((carried - &g).norm() < 1e-12, "the faces carry the push");
     }
 
     #[test]

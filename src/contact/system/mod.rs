@@ -36,6 +36,7 @@ pub mod iterative;
 pub mod joins;
 pub mod junction;
 mod layout;
+mod ldp;
 pub mod reduce;
 pub mod sparse;
 
