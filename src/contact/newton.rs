@@ -257,6 +257,6 @@ fn friction_residual(law: &PairLaw, cracked: bool, area: f64, c: f64, force: [f6
     if lx == 0.0 {
         return norm(lt);
     }
-    norm([0.0, lt[1] - b * xi[1] / lx, lt[2] - b * xi[2] / lx])
+    norm([0.0, lt[1] - b * (xi[1] / lx), lt[2] - b * (xi[2] / lx)])
 }
 

@@ -53,6 +53,7 @@ use crate::contact::frame::Frame;
 use crate::contact::law::ContactState;
 use crate::contact::rigid::PartModes;
 use crate::fem::rigid::n_modes;
+use crate::fem::vec3::length;
 use crate::model::Model;
 use crate::substructure::interior::SharedSolve;
 use crate::substructure::{OperatorRef, SchurRef};
@@ -450,7 +451,7 @@ impl<'a> Iterative<'a> {
             }
             out
         };
-        let scale = b.iter().map(|v| v * v).sum::<f64>().sqrt().max(rhs.iter().map(|v| v * v).sum::<f64>().sqrt()).max(f64::MIN_POSITIVE);
+        let scale = length(&b).max(length(&rhs)).max(f64::MIN_POSITIVE);
         let tolerance = if loose { LOOSE_TOLERANCE } else { TOLERANCE };
         let (dx, conv) = gmres::solve(j, m, &rhs, tolerance * scale, RESTART, MAX_ITERATIONS);
         if let Ok(mut its) = self.iterations.lock() {

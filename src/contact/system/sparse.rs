@@ -489,5 +489,5 @@ fn mean_nodes(layout: &Layout) -> Vec<usize> {
 }
 
 fn norm(v: &[f64]) -> f64 {
-    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+    crate::fem::vec3::length(v)
 }
