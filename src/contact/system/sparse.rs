@@ -250,7 +250,9 @@ impl Solver for Sparse {
             its.push(conv.iterations + 2); // and the solves for c and the means
         }
         let residual = conv.residual / scale;
-        if !conv.converged && !(residual <= 1e-6) {
+        // (a NaN residual is no answer either)
+        let close = residual <= 1e-6;
+        if !conv.converged && !close {
             return None;
         }
         let y: Vec<f64> = y0.iter().zip(&dy).map(|(a, b)| a + b).collect();
