@@ -175,7 +175,7 @@ fn check(path: &Path, out: &Path) {
     let Ok(model) = Model::build(&mesh, &scene.model_spec()) else { return };
     let parts = subcontact::substructure::cut(&model, subcontact::substructure::parts(&model), scene.solver.substructures.min(4));
     let dofs = subcontact::substructure::parts::dof_counts(&model, &parts);
-    let how = subcontact::driver::condensation(scene.solver.interface, dofs.interface);
+    let how = subcontact::driver::interface_plan(scene.solver.interface, &parts, model.nd);
     let _ = subcontact::memory::estimate(&model, &parts.iter().collect::<Vec<_>>(), how, 1, true, dofs.interface, scene.solver.load_steps);
     let _ = subcontact::model::warnings::warnings(&model);
 }

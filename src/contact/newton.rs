@@ -153,6 +153,8 @@ impl<'p> Newton<'p> {
             let trial = Trial { force: force[p], area, slip, gap: rel[p][0], stiffness: self.stiffness[p] };
             let coulomb = law.slip == SlipLaw::Coulomb;
             next[p] = match (self.as_tied[p], st) {
+                // both sides held by supports: the supports carry it, it stays shut
+                _ if self.problem.held(p) => ContactState::Stick,
                 // an open junction pair its loop keeps shut: it closes (as
                 // a closing pair does, where it is) unless the force it would
                 // carry closed is tension beyond its strength

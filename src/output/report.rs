@@ -25,7 +25,7 @@ pub fn report(run: &Run) -> String {
         let _ = writeln!(s, "**Warning:** {w}.\n");
     }
     let _ = writeln!(s, "| quantity | value |\n|---|---|");
-    let _ = writeln!(s, "| bodies | {} |", run.model.bodies.iter().map(|b| b.name.as_str()).collect::<Vec<_>>().join(", "));
+    let _ = writeln!(s, "| bodies | {} |", body_groups(&run.model));
     let _ = writeln!(s, "| elements | {} |", run.model.bodies.iter().map(|b| b.cells.len()).sum::<usize>());
     let _ = writeln!(s, "| model nodes (after contact split) | {} |", run.model.n_nodes());
     let _ = writeln!(s, "| DOFs (unknowns) | {} |", st.dofs.total);
@@ -193,4 +193,17 @@ pub(crate) fn applied(scene: &crate::scene::Scene) -> Vec<Applied> {
         }
     }
     columns
+}
+
+/// The body groups in scene order, each with its count of blocks where its
+/// contacts cut it into several: "rock (64 blocks), lining".
+fn body_groups(model: &crate::model::Model) -> String {
+    let mut groups: Vec<(&str, usize)> = Vec::new();
+    for b in &model.bodies {
+        match groups.iter_mut().find(|(n, _)| *n == b.name) {
+            Some(g) => g.1 += 1,
+            None => groups.push((&b.name, 1)),
+        }
+    }
+    groups.iter().map(|&(n, k)| if k > 1 { format!("{n} ({k} blocks)") } else { n.to_string() }).collect::<Vec<_>>().join(", ")
 }

@@ -301,6 +301,17 @@ impl<'a> InterfaceProblem<'a> {
         self.layout.axes.len()
     }
 
+    /// Whether both sides of pair `p` are held by supports along all its
+    /// axes: its relative displacement is prescribed, the supports carry
+    /// its forces, and it can neither open nor slip.
+    pub fn held(&self, p: usize) -> bool {
+        let nd = self.layout.nd;
+        match self.layout.in_junction[p] {
+            Some((j, i)) => self.layout.junctions[j].rows[i][..nd].iter().all(|row| row.iter().all(|&x| x == 0.0)),
+            None => self.layout.axes[p][..nd].iter().all(|a| matches!(a, Axis::Held { .. })),
+        }
+    }
+
     /// A stiffness of pair `p`'s relative displacement (the mean diagonal
     /// of W over its axes): the scale that turns a slip into a force. A
     /// junction pair's axis is a row of its junction's r: the diagonal's
@@ -384,7 +395,7 @@ impl<'a> InterfaceProblem<'a> {
         if let failure @ SolveFailure::NotHeld(_) = self.diagnose(rel) {
             return Err(failure);
         }
-        let sliding = self.free(rel, false);
+        let sliding = self.free(rel, SlipHolds::Spring);
         if !sliding.is_empty() {
             return Err(SolveFailure::Sliding(sliding));
         }
@@ -467,20 +478,19 @@ impl<'a> InterfaceProblem<'a> {
     }
 
     /// Parts that a rigid motion moves which the supports and the pairs tied
-    /// by the relations `rel` do not stop; `slip_holds`: count slipping
-    /// pairs as stuck (then only open pairs release anything). Otherwise a
-    /// slipping pair holds its normal, and across its slip where its
-    /// relation has a friction spring there (the robust rule's linearised
-    /// Coulomb law, [`Relation::spring`]): a wedge whose every pair slips
-    /// down its groove is held along the groove by friction.
-    fn free(&self, rel: &[Relation], slip_holds: bool) -> Vec<usize> {
+    /// by the relations `rel` do not stop, a slipping pair holding as
+    /// `slip` says.
+    fn free(&self, rel: &[Relation], slip: SlipHolds) -> Vec<usize> {
         let (nd, layout) = (self.layout.nd, &self.layout);
         let ties = rel.iter().enumerate().flat_map(|(p, rl)| {
             let frame = &layout.frames[p];
             let dirs: Vec<[f64; 3]> = match rl.state {
                 ContactState::Stick => frame[..nd].to_vec(),
-                ContactState::Slip if slip_holds => frame[..nd].to_vec(),
-                ContactState::Slip => std::iter::once(frame[0]).chain(spring_range(&rl.spring, frame, nd, SPRING_HOLDS * self.stiffness(p))).collect(),
+                ContactState::Slip => match slip {
+                    SlipHolds::Everything => frame[..nd].to_vec(),
+                    SlipHolds::Spring => std::iter::once(frame[0]).chain(spring_range(&rl.spring, frame, nd, SPRING_HOLDS * self.stiffness(p))).collect(),
+                    SlipHolds::Normal => vec![frame[0]],
+                },
                 ContactState::Open => Vec::new(),
             };
             let [(pk, _), (pl, _)] = layout.at[p];
@@ -496,13 +506,29 @@ impl<'a> InterfaceProblem<'a> {
     /// Why the interface system is singular: parts held by nothing once
     /// their open pairs let go, or else a part sliding on slipping pairs.
     fn diagnose(&self, rel: &[Relation]) -> SolveFailure {
-        let free = self.free(rel, true);
+        let free = self.free(rel, SlipHolds::Everything);
         if free.is_empty() {
-            SolveFailure::Sliding(self.free(rel, false))
+            // the solve found what the springs' directions did not: name
+            // the parts that nothing but friction holds along their slip
+            SolveFailure::Sliding(self.free(rel, SlipHolds::Normal))
         } else {
             SolveFailure::NotHeld(free)
         }
     }
+}
+
+/// What a slipping pair holds in the check for parts that move freely.
+#[derive(Clone, Copy)]
+enum SlipHolds {
+    /// Everything, as if stuck: then only open pairs release anything.
+    Everything,
+    /// Its normal, and across its slip where its relation has a friction
+    /// spring there (the robust rule's linearised Coulomb law,
+    /// [`Relation::spring`]): a wedge whose every pair slips down its
+    /// groove is held along the groove by friction.
+    Spring,
+    /// Its normal only (a fixed friction force holds nothing).
+    Normal,
 }
 
 /// The global directions in which a slipping pair's friction spring (local
