@@ -250,7 +250,11 @@ impl Newton<'_> {
         let parts: Vec<usize> = sliding.iter().copied().filter(|&part| both_ways(part)).collect();
         let released: Vec<usize> = (0..n).filter(|&p| before[p] == ContactState::Stick && h.states[p] != ContactState::Stick && parts.iter().any(|&q| on(p, q))).collect();
         if (0..n).filter(|&p| h.states[p] != before[p]).count() >= 2 {
-            let strong = released.iter().copied().filter(|&p| self.laws[p].slip == SlipLaw::Coulomb && friction_bound(&self.laws[p].strength, true, 1.0, 1.0).0 > 0.0);
+            // (a pair that carries no shear once cracked holds nothing stuck)
+            let strong = released.iter().copied().filter(|&p| {
+                let (law, s) = (&self.laws[p], &self.laws[p].strength);
+                law.slip == SlipLaw::Coulomb && (s.friction > 0.0 || s.residual_cohesion > 0.0)
+            });
             if let Some(p) = least(strong, |p| self.violation[p]) {
                 return Some((p, Hold::Released));
             }

@@ -122,8 +122,7 @@ fn axpy(alpha: f64, x: &[f64], y: &mut [f64]) {
 mod tests {
     use super::*;
 
-    /// An unsymmetric tridiagonal system (convection-diffusion), Jacobi
-    /// preconditioned, restarted: the answer to 1e-10.
+    /// The test system's size.
     const N: usize = 200;
 
     /// An unsymmetric tridiagonal operator (convection-diffusion).
