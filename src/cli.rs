@@ -39,34 +39,11 @@ probes.csv, summary.json (sizes, timings, errors, contact states), report.md.";
 pub enum Command {
     /// Solve a scene and write its results (default directory results/<scene name>).
     Solve {
-        /// The scene file (TOML), next to its .geo or .msh.
-        scene: PathBuf,
-        /// Directory for the results.
-        #[arg(long)]
-        out: Option<PathBuf>,
+        #[command(flatten)]
+        run: RunArgs,
         /// Ignore the [[contacts]]: bodies meeting at a shared curve/surface are bonded (one monolithic solve).
         #[arg(long)]
         bonded: bool,
-        /// Print no progress.
-        #[arg(long, short)]
-        quiet: bool,
-        /// Cut every part (bodies joined by shared nodes) into K substructures with METIS,
-        /// joined by bonded interfaces: the answer is the uncut one, but each piece is
-        /// factorised alone (in its own thread or MPI rank). Overrides [solver] substructures.
-        #[arg(long, value_name = "K", value_parser = at_least_one)]
-        substructures: Option<usize>,
-        /// Parts condensed at once (default: the machine's cores, divided among MPI ranks).
-        #[arg(long, value_name = "N", value_parser = at_least_one)]
-        threads: Option<usize>,
-        /// How the interface system is solved: dense (S formed and factorised), iterative
-        /// (S applied through the parts' interior factors, GMRES) or auto (dense below 20,000
-        /// interface DOFs). Overrides [solver] interface.
-        #[arg(long, value_enum)]
-        interface: Option<InterfaceSolver>,
-        /// Run even when the estimated peak memory exceeds the memory available
-        /// (the estimate errs high; the run may still be stopped by the system).
-        #[arg(long)]
-        no_memory_check: bool,
     },
     /// The factor of safety against sliding: solve the load steps, then divide the strength of
     /// the contacts (f = tan(phi), c, f_t) by F, raised step by step from the last step's state
@@ -78,23 +55,8 @@ pub enum Command {
     /// and F in summary.json ("safety") and report.md. A scene that already fails at F = 1 is
     /// unsafe as given: F is sought below 1, and the run fails naming the blocks that slide.
     Safety {
-        /// The scene file (TOML), next to its .geo or .msh.
-        scene: PathBuf,
-        /// Directory for the results.
-        #[arg(long)]
-        out: Option<PathBuf>,
-        /// Print no progress.
-        #[arg(long, short)]
-        quiet: bool,
-        /// Cut every part into K substructures (as for solve).
-        #[arg(long, value_name = "K", value_parser = at_least_one)]
-        substructures: Option<usize>,
-        /// Parts condensed at once (as for solve).
-        #[arg(long, value_name = "N", value_parser = at_least_one)]
-        threads: Option<usize>,
-        /// How the interface system is solved (as for solve).
-        #[arg(long, value_enum)]
-        interface: Option<InterfaceSolver>,
+        #[command(flatten)]
+        run: RunArgs,
     },
     /// Run time against error: mesh the scene at successive refinements for each element order,
     /// solve each (with contact, and bonded as the floor of one linear solve), and write
@@ -146,4 +108,38 @@ fn at_least_one(s: &str) -> Result<usize, String> {
         Ok(n) => Ok(n),
         Err(_) => Err(format!("{s:?} is not a whole number")),
     }
+}
+
+/// What `solve` and `safety` take alike: the scene, where the results go,
+/// and how the run is spread and solved.
+#[derive(clap::Args, Debug)]
+pub struct RunArgs {
+    /// The scene file (TOML), next to its .geo or .msh.
+    pub scene: PathBuf,
+    /// Directory for the results.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Print no progress.
+    #[arg(long, short)]
+    pub quiet: bool,
+    /// Cut every part (bodies joined by shared nodes) into K substructures with METIS,
+    /// joined by bonded interfaces: the answer is the uncut one, but each piece is
+    /// factorised alone (in its own thread or MPI rank). Overrides [solver] substructures.
+    #[arg(long, value_name = "K", value_parser = at_least_one)]
+    pub substructures: Option<usize>,
+    /// Parts condensed at once (default: the machine's cores, divided among MPI ranks).
+    #[arg(long, value_name = "N", value_parser = at_least_one)]
+    pub threads: Option<usize>,
+    /// How the interface system is solved: dense (S formed, the interface reduced and
+    /// factorised densely), sparse (the interface means factorised once, sparse, GMRES in the
+    /// free relative displacements: many small blocks), iterative (S applied through the
+    /// parts' interior factors, GMRES) or auto (sparse from 16 blocks of at most 6,000
+    /// interface DOFs, dense below 20,000 interface DOFs, iterative above). Overrides
+    /// [solver] interface.
+    #[arg(long, value_enum)]
+    pub interface: Option<InterfaceSolver>,
+    /// Run even when the estimated peak memory exceeds the memory available
+    /// (the estimate errs high; the run may still be stopped by the system).
+    #[arg(long)]
+    pub no_memory_check: bool,
 }

@@ -7,7 +7,7 @@
 use std::process::ExitCode;
 
 use clap::Parser;
-use subcontact::cli::{Cli, Command};
+use subcontact::cli::{Cli, Command, RunArgs};
 use subcontact::parallel::{Comm, Serial};
 use subcontact::{commands, driver::RunOptions};
 
@@ -29,12 +29,13 @@ fn main() -> ExitCode {
     let comm: &dyn Comm = &Serial;
     let root = comm.rank() == 0;
     let result = match cli.command {
-        Command::Solve { scene, out, bonded, quiet, substructures, threads, interface, no_memory_check } => {
-            let opts = RunOptions { out, bonded, verbose: !quiet, substructures, threads, interface, ignore_memory_estimate: no_memory_check, ..Default::default() };
-            commands::solve(&scene, &opts, comm)
+        Command::Solve { run, bonded } => {
+            let (scene, opts) = options(run);
+            commands::solve(&scene, &RunOptions { bonded, ..opts }, comm)
         }
-        Command::Safety { scene, out, quiet, substructures, threads, interface } => {
-            commands::safety(&scene, &RunOptions { out, verbose: !quiet, substructures, threads, interface, ..Default::default() }, comm)
+        Command::Safety { run } => {
+            let (scene, opts) = options(run);
+            commands::safety(&scene, &opts, comm)
         }
         // the other commands run on rank 0 alone
         _ if !root => Ok(()),
@@ -73,4 +74,10 @@ fn chain(e: &anyhow::Error) -> String {
         last = text;
     }
     msg
+}
+
+/// The scene and the run's options from `solve`'s and `safety`'s arguments.
+fn options(a: RunArgs) -> (std::path::PathBuf, RunOptions) {
+    let opts = RunOptions { out: a.out, verbose: !a.quiet, substructures: a.substructures, threads: a.threads, interface: a.interface, ignore_memory_estimate: a.no_memory_check, ..Default::default() };
+    (a.scene, opts)
 }

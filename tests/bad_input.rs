@@ -106,6 +106,18 @@ fn negative_young_modulus_is_rejected() {
 }
 
 #[test]
+fn young_modulus_beyond_double_precision_is_rejected_saying_to_change_units() {
+    // (1e-310 is subnormal: the solve ended in NaN displacements blamed on
+    // the loads; 1.7e308 in "not held ... add a support")
+    let case = Case::new("bad-e-range");
+    for (e, shown) in [("1e-310", "= 1e-310"), ("1.7e308", "= 1.7e308")] {
+        let scene = cylinder(&case, "bad", &[("E = 2.0e5", &format!("E = {e}"))]);
+        let msg = solve_fails(&case, &scene);
+        says(&msg, &["bad.toml", "materials.concrete.E", shown, "between 1e-300 and 1e300", "double precision", "other units"]);
+    }
+}
+
+#[test]
 fn missing_mesh_file_is_named() {
     let case = Case::new("bad-no-mesh");
     let scene = cylinder(&case, "bad", &[("mesh = \"cylinder.geo\"", "mesh = \"nothere.msh\""), ("[gmsh]\norder = 2\nsetnumber = { lc = 0.2 }\n", "")]);

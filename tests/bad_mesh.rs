@@ -3,10 +3,13 @@
 //! coincide inside one body (volumes not fused), a NaN coordinate, results
 //! that overflow (a traction of -1e300), gravity without density. Each ends
 //! in a clear error naming the element, node or scene, or in a warning in
-//! summary.json and report.md.
+//! summary.json and report.md. And boxes not fused in one body group, one
+//! of them held by nothing: the error names the body group, the block and
+//! where it lies, and says to fuse them.
 //!
 //! The meshes are written by `common::msh` (gmsh makes none of these on
-//! purpose): unit cubes cut into six tetrahedra (Kuhn), held on z = 0.
+//! purpose): unit cubes cut into six tetrahedra (Kuhn), held on z = 0; the
+//! unfused boxes are OpenCASCADE's, meshed by the gmsh CLI.
 
 mod common;
 
@@ -155,6 +158,57 @@ fn a_nan_coordinate_is_named_as_such_not_as_an_inverted_element() {
     let msg = clean_failure(&case, &case.cli(&["solve", "cubes.toml", "--out", "out", "--quiet"]), &case.dir.join("out"));
     says(&msg, &["cubes.msh`: node 8 has the coordinates (1, NaN, 1), which are not numbers"]);
     assert!(!msg.contains("inverted"), "{msg}");
+    // check reads the mesh the same way
+    let msg = clean_failure(&case, &case.cli(&["check", "cubes.toml"]), &case.dir.join("results"));
+    says(&msg, &["node 8 has the coordinates (1, NaN, 1), which are not numbers"]);
+    assert!(!msg.contains("inverted") && !msg.contains("folded"), "{msg}");
+}
+
+#[test]
+fn two_unfused_boxes_in_one_body_group_name_the_one_nothing_holds_and_say_fuse() {
+    // OpenCASCADE boxes (rectangles in 2D) stacked in one physical group
+    // without BooleanFragments, the lower one held, both loaded: the upper
+    // one has nodes of its own on the lower one's top face, and nothing
+    // holds it
+    let case = Case::new("bad-mesh-unfused-boxes");
+    let loads = |t: &str| format!("[[loads]]\ngroup = \"top\"\ntraction = {t}\n\n[[loads]]\ngroup = \"side\"\ntraction = {t}\n");
+    let solid = (
+        "Box(1) = {0, 0, 0, 1, 1, 1};\nBox(2) = {0, 0, 1, 1, 1, 1};\nPhysical Volume(\"rock\") = {1, 2};\n\
+         Physical Surface(\"base\") = Surface In BoundingBox{-e, -e, -e, 1 + e, 1 + e, e};\n\
+         Physical Surface(\"top\") = Surface In BoundingBox{-e, -e, 2 - e, 1 + e, 1 + e, 2 + e};\n\
+         Physical Surface(\"side\") = Surface In BoundingBox{1 - e, -e, -e, 1 + e, 1 + e, 2 + e};\n",
+        "solid",
+        "Volume",
+        loads("[0.0, 0.5, -1.0]"),
+    );
+    let plane = (
+        "Rectangle(1) = {0, 0, 0, 1, 1};\nRectangle(2) = {0, 1, 0, 1, 1};\nPhysical Surface(\"rock\") = {1, 2};\n\
+         Physical Curve(\"base\") = Curve In BoundingBox{-e, -e, -e, 1 + e, e, e};\n\
+         Physical Curve(\"top\") = Curve In BoundingBox{-e, 2 - e, -e, 1 + e, 2 + e, e};\n\
+         Physical Curve(\"side\") = Curve In BoundingBox{1 - e, -e, -e, 1 + e, 2 + e, e};\n",
+        "plane_strain",
+        "Surface",
+        loads("[0.5, -1.0]"),
+    );
+    for (shapes, analysis, entity, loads) in [solid, plane] {
+        let scene = format!(
+            "title = \"two boxes\"\nmesh = \"boxes.geo\"\nanalysis = \"{analysis}\"\n\n[gmsh]\norder = 2\n\n[materials.m]\nE = 1000.0\nnu = 0.3\n\n\
+             [[bodies]]\ngroup = \"rock\"\nmaterial = \"m\"\n\n[[supports]]\ngroup = \"base\"\nfix = {}\n\n{loads}",
+            if analysis == "solid" { "[\"x\", \"y\", \"z\"]" } else { "[\"x\", \"y\"]" }
+        );
+        case.write("boxes.toml", &scene);
+        let geo = |fuse: &str| format!("SetFactory(\"OpenCASCADE\");\ne = 1e-6;\nMesh.CharacteristicLengthMax = 0.5;\n{}{fuse}{}", &shapes[..shapes.find("Physical").expect("groups")], &shapes[shapes.find("Physical").expect("groups")..]);
+        case.write("boxes.geo", &geo(""));
+        let fuse = format!("BooleanFragments{{ {entity}{{:}}; Delete; }}{{}}");
+        for args in [&["solve", "boxes.toml", "--out", "out", "--quiet"][..], &["check", "boxes.toml"][..]] {
+            let msg = clean_failure(&case, &case.cli(args), &case.dir.join("out"));
+            says(&msg, &["boxes.toml", "supports", "body \"rock\" block 2 of 2 (centre at", "not held", "It lies on body \"rock\" block 1 of 2", "without sharing them", "were not fused", &fuse]);
+        }
+        // fused as the message says, the same scene solves
+        case.write("boxes.geo", &geo(&format!("{fuse}\n")));
+        let o = case.cli(&["solve", "boxes.toml", "--out", "fused", "--quiet"]);
+        assert!(o.status.success(), "{analysis}, fused: {}", String::from_utf8_lossy(&o.stderr));
+    }
 }
 
 #[test]

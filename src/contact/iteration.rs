@@ -2,11 +2,14 @@
 //! as deal.II's step-41 reads: solve the interface with the current
 //! relations, judge every pair from the result, stop when the states no
 //! longer change (and the rule's forces have settled), when they cycle (a
-//! rule that reports cycles) or after `max_iterations`. A converged step is
-//! committed once, by [`super::commit`]: where it ended, and the cracks it made.
+//! rule that reports cycles) or after `max_iterations`. A state set that
+//! leaves parts free to slide is put back to the rule first, which may keep
+//! one of their pairs stuck (a Newton step that overshot) before it is a
+//! loss of equilibrium. A converged step is committed once, by
+//! [`super::commit`]: where it ended, and the cracks it made.
 
 use super::law::ContactState;
-use super::system::{InterfaceProblem, InterfaceSolution, Relation};
+use super::system::{InterfaceProblem, InterfaceSolution, Relation, SolveFailure};
 use super::{commit, Failed, History, Outcome, Summary};
 
 /// A state rule: the relations each iteration solves with, and the verdict
@@ -19,6 +22,12 @@ pub(super) trait Rule {
     /// rule may count into `summary` (cycles broken, apex openings) and
     /// mark it `cycled` to stop the iteration there.
     fn judge(&mut self, h: &mut History, solution: &InterfaceSolution, summary: &mut Summary) -> Verdict;
+    /// The states in `h`, the last verdict's, leave the parts `sliding`
+    /// free to slide: a rule may keep one of their pairs stuck instead
+    /// (true), and the step is solved again; false: the parts do slide.
+    fn hold_back(&mut self, _h: &mut History, _sliding: &[usize]) -> bool {
+        false
+    }
     /// What the rule keeps of a converged step beyond [`commit`].
     fn commit(self, _h: &mut History)
     where
@@ -39,8 +48,13 @@ pub(super) fn run(mut rule: impl Rule, problem: &InterfaceProblem, lambda: &[f64
     let mut summary = Summary::default();
     loop {
         summary.iterations += 1;
-        let relations = rule.relations(h);
-        let solution = problem.solve(&relations, lambda).map_err(|failure| Failed { failure, states: h.states.clone(), iteration: summary.iterations })?;
+        let solution = loop {
+            match problem.solve(&rule.relations(h), lambda) {
+                Ok(solution) => break solution,
+                Err(SolveFailure::Sliding(parts)) if rule.hold_back(h, &parts) => {}
+                Err(failure) => return Err(Failed { failure, states: h.states.clone(), iteration: summary.iterations }),
+            }
+        };
         summary.history.push(h.states.clone());
         let Verdict { next, settled } = rule.judge(h, &solution, &mut summary);
         // (a loose interface solve is never the answer: the next, with the

@@ -27,14 +27,17 @@
 //! converged when no state changes and every slipping pair's force agrees
 //! with the nonlinear law. A state set that comes back after others (a
 //! cycle the sets alone cannot leave) is broken by changing only the most
-//! violated pair from then on.
+//! violated pair from then on. In 2D, a set that lets a block slide on a
+//! joint that slips both ways (outwards from a point that sticks) keeps a
+//! pair of it stuck ([`Newton::held_back`]): a Newton step's overshoot, not
+//! a loss of equilibrium.
 
 use super::iteration::{Rule, Verdict};
 use super::law::{friction_bound, judge, ContactState, Trial};
 use super::options::SlipLaw;
 use super::system::{InterfaceProblem, InterfaceSolution, Limit, Relation};
 use super::{cracked, limit, tangential, History, PairLaw, Summary};
-use crate::fem::vec3::{norm, sub};
+use crate::fem::vec3::{dot, norm, sub};
 
 /// The largest β = b / |ξ| the linearisation uses: k⊥ stays below 1000 c_p
 /// (a pair that just started slipping is nearly tied across its slip).
@@ -66,6 +69,13 @@ pub(super) struct Newton<'p> {
     /// The last solve's forces of junction pairs as if their locked axes
     /// were tied (what they are judged by: see `InterfaceSolution::as_tied`).
     as_tied: Vec<Option<[f64; 3]>>,
+    /// The states the last verdict was judged from, and how far each pair
+    /// it changed was from its state (what [`Rule::hold_back`] picks by).
+    judged_from: Vec<ContactState>,
+    violation: Vec<f64>,
+    /// Pairs kept stuck this step in place of a pair that let go (see
+    /// [`Newton::held_back`], 2.).
+    swapped: Vec<bool>,
 }
 
 /// Every pair's next state, and how far each changing pair is from its
@@ -82,7 +92,7 @@ impl<'p> Newton<'p> {
     pub fn new(problem: &'p InterfaceProblem<'p>, laws: &'p [PairLaw], h: &History) -> Newton<'p> {
         let stiffness = (0..laws.len()).map(|p| problem.stiffness(p)).collect();
         let reference = h.rel_start.iter().map(|&r| tangential(r)).collect();
-        Newton { problem, laws, stiffness, reference, start: h.states.clone(), force: h.force.clone(), rel: h.rel_start.clone(), one_at_a_time: false, as_tied: vec![None; laws.len()] }
+        Newton { problem, laws, stiffness, reference, start: h.states.clone(), force: h.force.clone(), rel: h.rel_start.clone(), one_at_a_time: false, as_tied: vec![None; laws.len()], judged_from: Vec::new(), violation: Vec::new(), swapped: vec![false; laws.len()] }
     }
 
     /// The relation pair `p` is solved with at this iteration.
@@ -204,6 +214,73 @@ impl<'p> Newton<'p> {
     }
 }
 
+impl Newton<'_> {
+    /// The pair to keep stuck when the states the last verdict chose leave
+    /// the parts `sliding` free to slide. A Newton step overshoots where
+    /// slip spreads over a joint: in 2D a slipping pair's linearised
+    /// friction holds nothing along its slip, so a set in which every pair
+    /// of a block slips leaves it free, although a joint that slips both
+    /// ways (towards a point that sticks, as under an auxetic block pressed
+    /// onto its base, or away from it, as under a soft pad) has a pair near
+    /// that point that carries less than its bound once the others slip.
+    /// Where the part's pairs pull it both ways (their last forces, global
+    /// axes), the part does not slide as a block, and
+    ///
+    /// 1. if the verdict let several stuck pairs go at once, the one of them
+    ///    that exceeded its bound the least, and has a strength, sticks;
+    /// 2. if it let one go (to slip or open), the part's slipping pair
+    ///    whose friction pulls against that one's shear and that is nearest
+    ///    to sticking (smallest `|ξ| - b`) sticks in its place, each pair
+    ///    once a step.
+    ///
+    /// Otherwise none: every pair pulls the part one way (or none can), a
+    /// loss of equilibrium. In 3D a slipping pair's friction holds across
+    /// its slip (see `InterfaceProblem::free`), and the states are left as
+    /// they are.
+    fn held_back(&self, h: &History, sliding: &[usize]) -> Option<(usize, Hold)> {
+        let (before, n) = (&self.judged_from, h.states.len());
+        if before.len() != n || self.problem.nd() != 2 {
+            return None;
+        }
+        let on = |p: usize, part: usize| self.problem.parts_of(p).contains(&part);
+        let both_ways = |part: usize| {
+            let pulls: Vec<[f64; 3]> = (0..n).filter(|&p| h.states[p] == ContactState::Slip && on(p, part)).map(|p| self.pull(p, part)).collect();
+            pulls.iter().enumerate().any(|(i, a)| pulls[i + 1..].iter().any(|b| dot(*a, *b) < 0.0))
+        };
+        let parts: Vec<usize> = sliding.iter().copied().filter(|&part| both_ways(part)).collect();
+        let released: Vec<usize> = (0..n).filter(|&p| before[p] == ContactState::Stick && h.states[p] != ContactState::Stick && parts.iter().any(|&q| on(p, q))).collect();
+        if (0..n).filter(|&p| h.states[p] != before[p]).count() >= 2 {
+            // (a pair that carries no shear once cracked holds nothing stuck)
+            let strong = released.iter().copied().filter(|&p| {
+                let (law, s) = (&self.laws[p], &self.laws[p].strength);
+                law.slip == SlipLaw::Coulomb && (s.friction > 0.0 || s.residual_cohesion > 0.0)
+            });
+            if let Some(p) = least(strong, |p| self.violation[p]) {
+                return Some((p, Hold::Released));
+            }
+        }
+        let &[q] = released.as_slice() else { return None };
+        let part = *parts.iter().find(|&&part| on(q, part))?;
+        let excess = |p: usize| {
+            let slip = sub(tangential(self.rel[p]), self.reference[p]);
+            let trial = Trial { force: self.force[p], area: self.problem.area(p), slip, gap: self.rel[p][0], stiffness: self.stiffness[p] };
+            norm(trial.xi()) - friction_bound(&self.laws[p].strength, cracked(h, p), trial.area, -trial.force[0]).0
+        };
+        let shear = self.pull(q, part);
+        let against = (0..n).filter(|&p| h.states[p] == ContactState::Slip && before[p] == ContactState::Slip && !self.swapped[p] && on(p, part));
+        least(against.filter(|&p| dot(self.pull(p, part), shear) < 0.0), excess).map(|p| (p, Hold::InPlace))
+    }
+
+    /// The tangential force of pair `p` on `part` (one of its sides) in the
+    /// last solve, global axes.
+    fn pull(&self, p: usize, part: usize) -> [f64; 3] {
+        let frame = &self.problem.frames()[p];
+        let side = if self.problem.parts_of(p)[0] == part { 1.0 } else { -1.0 };
+        let f = self.force[p];
+        std::array::from_fn(|i| side * (f[1] * frame[1][i] + f[2] * frame[2][i]))
+    }
+}
+
 impl Rule for Newton<'_> {
     fn relations(&self, h: &History) -> Vec<Relation> {
         (0..self.laws.len()).map(|p| self.relation(h, p).within(limit(&self.laws[p], cracked(h, p), self.problem.area(p)))).collect()
@@ -237,7 +314,23 @@ impl Rule for Newton<'_> {
             }
             h.sigma_n[p] = solution.pairs[p].sigma_n;
         }
+        self.judged_from.clone_from(&h.states);
+        self.violation = judged.violation;
         Verdict { settled: judged.residual <= FORCE_TOL * judged.scale_f, next: judged.next }
+    }
+
+    /// A set the last verdict chose leaves `sliding` free to slide (see
+    /// [`Newton::held_back`]): one pair of theirs sticks instead, and the
+    /// step is solved again; false when none may, the parts do slide.
+    fn hold_back(&mut self, h: &mut History, sliding: &[usize]) -> bool {
+        match self.held_back(h, sliding) {
+            Some((p, how)) => {
+                h.states[p] = ContactState::Stick;
+                self.swapped[p] |= how == Hold::InPlace;
+                true
+            }
+            None => false,
+        }
     }
 
     /// The stick references of this step are where its pairs are tied from now on.
@@ -246,6 +339,19 @@ impl Rule for Newton<'_> {
     }
 }
 
+
+/// Which pair [`Newton::held_back`] keeps stuck: one of those the verdict
+/// let go (1.), or a slipping one in place of the one it let go (2.).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Hold {
+    Released,
+    InPlace,
+}
+
+/// The pair of `pairs` with the smallest `value` (the first of equals).
+fn least(pairs: impl Iterator<Item = usize>, value: impl Fn(usize) -> f64) -> Option<usize> {
+    pairs.map(|p| (value(p), p)).min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1))).map(|(_, p)| p)
+}
 
 /// How far a slipping pair's force is from the nonlinear law, `|λ_T - b ξ/|ξ||`.
 fn friction_residual(law: &PairLaw, cracked: bool, area: f64, c: f64, force: [f64; 3], slip: [f64; 3]) -> f64 {
@@ -259,6 +365,6 @@ fn friction_residual(law: &PairLaw, cracked: bool, area: f64, c: f64, force: [f6
     if lx == 0.0 {
         return norm(lt);
     }
-    norm([0.0, lt[1] - b * xi[1] / lx, lt[2] - b * xi[2] / lx])
+    norm([0.0, lt[1] - b * (xi[1] / lx), lt[2] - b * (xi[2] / lx)])
 }
 

@@ -3,9 +3,11 @@
 //! counted as closed) must move some prescribed DOF. A free one makes the
 //! stiffness singular only up to round-off, which the Cholesky factorisation
 //! may not notice, so it is caught here with a message naming the bodies and
-//! the motion.
+//! the motion, and, where they lie on another body without sharing its
+//! nodes (volumes that were not fused), saying so and how to fuse them.
 
 use super::builder::Builder;
+use super::quality;
 use super::topology::UnionFind;
 use super::{Body, ModelError};
 use crate::fem::element::dofs_per_node;
@@ -61,17 +63,37 @@ pub(super) fn check_held(b: &Builder, coords: &[[f64; 3]], bodies: &[Body], link
         free.dedup();
         if !free.is_empty() {
             let one = members.len() == 1;
-            return Err(b.invalid(
-                "supports".into(),
-                format!(
-                    "{} {} not held: no support stops {} {} (contacts counted as closed), so the stiffness matrix is singular. Add a support that stops it (fix = [..] on a physical point, curve or surface)",
-                    if one { "body" } else { "bodies" },
-                    members.iter().map(|&i| bodies[i].label()).collect::<Vec<_>>().join(", "),
-                    if one { "its" } else { "their" },
-                    free.join(", ")
-                ),
-            ));
+            let (it, its) = if one { ("it", "its") } else { ("them", "their") };
+            let what = format!(
+                "{} {} not held: no support stops {its} {} (contacts counted as closed), so the stiffness matrix is singular",
+                if one { "body" } else { "bodies" },
+                members.iter().map(|&i| bodies[i].label()).collect::<Vec<_>>().join(", "),
+                free.join(", ")
+            );
+            let others: Vec<usize> = (0..coords.len()).filter(|&n| body_of[n] != usize::MAX && sets.root(body_of[n]) != r).collect();
+            let advice = match quality::lying_on(coords, &nodes, &others) {
+                Some(on) => unfused(bodies, &body_of, coords, analysis.dim(), on, it),
+                None => format!("Add a support that stops {it} (fix = [..] on a physical point, curve or surface)"),
+            };
+            return Err(b.invalid("supports".into(), format!("{what}. {advice}")));
         }
     }
     Ok(())
+}
+
+/// What to do when bodies nothing holds lie on another without sharing
+/// nodes with it (`on`: how many of their nodes, the first, and the node it
+/// lies on): volumes (surfaces in 2D) that were not fused, which were most
+/// likely meant as one body.
+fn unfused(bodies: &[Body], body_of: &[usize], coords: &[[f64; 3]], dim: usize, (n, a, b): (usize, usize, usize), it: &str) -> String {
+    let (entities, entity) = if dim == 3 { ("volumes", "Volume") } else { ("surfaces", "Surface") };
+    let x = coords[a];
+    format!(
+        "{} on body {} at {n} node(s) without sharing them (the first at ({:.6}, {:.6}, {:.6})): the {entities} were not fused there, so nothing joins {it} to that body. Fuse them in the .geo so that they share their nodes (OpenCASCADE: BooleanFragments{{ {entity}{{:}}; Delete; }}{{}}; the built-in kernel: Coherence;), give the touching faces a [[contacts]] entry if they should slip or open there, or add a support that stops {it}",
+        if it == "it" { "It lies" } else { "They lie" },
+        bodies[body_of[b]].label(),
+        x[0],
+        x[1],
+        x[2]
+    )
 }

@@ -15,7 +15,9 @@
 //!   plane has q ~ 1e-8; a box stretched 1:1000 has q = 1).
 //! - **Coincident nodes** ([`coincident`], a warning): two mesh nodes at
 //!   the same place in the cells of one body group and in no contact pair
-//!   leave the group cut there (volumes that were not fused).
+//!   leave the group cut there (volumes that were not fused). Where that
+//!   leaves a block that nothing holds, [`lying_on`] finds what it lies on
+//!   for the message that refuses it.
 
 use std::collections::HashMap;
 
@@ -112,8 +114,6 @@ pub fn why_not_held(model: &Model) -> String {
 /// Nodes at one place in one body group: (group name, how many nodes have
 /// a twin, the first place).
 pub fn coincident(model: &Model) -> Vec<(String, usize, [f64; 3])> {
-    let size = model.coords.iter().flat_map(|x| x.iter()).fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
-    let tol = 1e-12 * size;
     let paired: std::collections::HashSet<(usize, usize)> = model.pairs.iter().map(|p| (p.k.min(p.l), p.k.max(p.l))).collect();
     let mut out = Vec::new();
     let groups = model.bodies.iter().map(|b| b.group).max().map_or(0, |g| g + 1);
@@ -121,20 +121,11 @@ pub fn coincident(model: &Model) -> Vec<(String, usize, [f64; 3])> {
         let mut nodes: Vec<usize> = model.bodies.iter().filter(|b| b.group == g).flat_map(|b| b.cells.iter().flat_map(|c| c.nodes.iter().copied())).collect();
         nodes.sort_unstable();
         nodes.dedup();
-        // bins of size tol: a twin is in this bin or a neighbour's
-        let key = |x: [f64; 3]| -> [i64; 3] { std::array::from_fn(|d| (x[d] / tol.max(f64::MIN_POSITIVE)).floor() as i64) };
-        let mut bins: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
-        for &n in &nodes {
-            bins.entry(key(model.coords[n])).or_default().push(n);
-        }
+        let bins = Bins::new(&model.coords, &nodes);
         let mut twins = 0;
         let mut first: Option<[f64; 3]> = None;
         for &a in &nodes {
-            let k = key(model.coords[a]);
-            let near = (0..27).flat_map(|i| bins.get(&[k[0] + i % 3 - 1, k[1] + (i / 3) % 3 - 1, k[2] + i / 9 - 1]).into_iter().flatten());
-            let twin = near.into_iter().any(|&b| {
-                b != a && model.mesh_node[a] != model.mesh_node[b] && !paired.contains(&(a.min(b), a.max(b))) && (0..3).all(|d| (model.coords[a][d] - model.coords[b][d]).abs() <= tol)
-            });
+            let twin = bins.on(model.coords[a]).any(|b| b != a && model.mesh_node[a] != model.mesh_node[b] && !paired.contains(&(a.min(b), a.max(b))));
             if twin {
                 twins += 1;
                 first.get_or_insert(model.coords[a]);
@@ -145,4 +136,48 @@ pub fn coincident(model: &Model) -> Vec<(String, usize, [f64; 3])> {
         }
     }
     out
+}
+
+/// The nodes `these` that lie on nodes of `others` (within 1e-12 of the
+/// model's size; the two lists share no node): how many, and the first
+/// such node with the node of `others` it lies on.
+pub fn lying_on(coords: &[[f64; 3]], these: &[usize], others: &[usize]) -> Option<(usize, usize, usize)> {
+    let bins = Bins::new(coords, others);
+    let mut on = these.iter().filter_map(|&a| bins.on(coords[a]).next().map(|b| (a, b)));
+    let (a, b) = on.next()?;
+    Some((1 + on.count(), a, b))
+}
+
+/// Nodes binned by place, to find the nodes at a place: bins of the
+/// tolerance's size, a node within it of a place is in that place's bin or
+/// a neighbour's.
+struct Bins<'a> {
+    coords: &'a [[f64; 3]],
+    tol: f64,
+    bins: HashMap<[i64; 3], Vec<usize>>,
+}
+
+impl<'a> Bins<'a> {
+    /// `nodes` binned, the tolerance 1e-12 of the largest coordinate.
+    fn new(coords: &'a [[f64; 3]], nodes: &[usize]) -> Bins<'a> {
+        let size = coords.iter().flat_map(|x| x.iter()).fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
+        let mut bins = Bins { coords, tol: 1e-12 * size, bins: HashMap::new() };
+        for &n in nodes {
+            bins.bins.entry(bins.key(coords[n])).or_default().push(n);
+        }
+        bins
+    }
+
+    fn key(&self, x: [f64; 3]) -> [i64; 3] {
+        std::array::from_fn(|d| (x[d] / self.tol.max(f64::MIN_POSITIVE)).floor() as i64)
+    }
+
+    /// The binned nodes within the tolerance of `x` (every component).
+    fn on(&self, x: [f64; 3]) -> impl Iterator<Item = usize> + '_ {
+        let k = self.key(x);
+        (0..27)
+            .flat_map(move |i| self.bins.get(&[k[0] + i % 3 - 1, k[1] + (i / 3) % 3 - 1, k[2] + i / 9 - 1]).into_iter().flatten())
+            .copied()
+            .filter(move |&b| (0..3).all(|d| (self.coords[b][d] - x[d]).abs() <= self.tol))
+    }
 }

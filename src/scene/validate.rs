@@ -16,6 +16,13 @@ mod analytic;
 mod groups;
 mod safety;
 
+/// The Young's moduli a scene may give: beyond them the stiffness entries
+/// (E times the elements' sizes, and Poisson factors up to ~1e3) leave
+/// double precision's range. Measured on blocks3d: 1e-300 and 1e305 solve
+/// as E = 3e4 does, scaled; 1e-310 ends in NaN, 1.7e308 in a singular
+/// matrix. Inside, any consistent units give the same results, scaled.
+const E_RANGE: (f64, f64) = (1e-300, 1e300);
+
 /// `name` as it would appear in a key path: bare when it is a bare TOML key,
 /// quoted otherwise.
 fn key_name(name: &str) -> String {
@@ -408,6 +415,13 @@ impl Checker<'_> {
                     format!("{k}.E"),
                     e,
                     "Young's modulus must be a finite number > 0.",
+                ));
+            }
+            if !(E_RANGE.0..=E_RANGE.1).contains(&e) {
+                return Err(self.bad(
+                    format!("{k}.E"),
+                    format!("{e:e}"),
+                    "Young's modulus must lie between 1e-300 and 1e300: beyond, the stiffness matrices (E times the elements' sizes and Poisson factors) leave what double precision can hold (1e-308 to 1e308), and the solve ends in NaN or a singular matrix. Give E, the loads and the strengths in other units (the results are the same in any consistent units, scaled).",
                 ));
             }
             let nu = self.required(m.nu, &format!("{k}.nu"), "Poisson's ratio, -1 < nu < 0.5")?;

@@ -53,6 +53,7 @@ use crate::contact::frame::Frame;
 use crate::contact::law::ContactState;
 use crate::contact::rigid::PartModes;
 use crate::fem::rigid::n_modes;
+use crate::fem::vec3::length;
 use crate::model::Model;
 use crate::substructure::interior::SharedSolve;
 use crate::substructure::{OperatorRef, SchurRef};
@@ -65,6 +66,26 @@ pub const TOLERANCE: f64 = 1e-10;
 pub const LOOSE_TOLERANCE: f64 = 1e-6;
 const RESTART: usize = 200;
 const MAX_ITERATIONS: usize = 5_000;
+
+/// The state set of the last solve, which tells whether a solve may stop
+/// at [`LOOSE_TOLERANCE`] (the sparse interface keeps one too).
+#[derive(Default)]
+pub(super) struct LastStates(Mutex<Option<Vec<ContactState>>>);
+
+impl LastStates {
+    /// Loose while the states change; the same states as last time (or
+    /// none to judge: bonded joins alone) are solved tightly.
+    pub(super) fn loose(&self, states: &[ContactState]) -> bool {
+        match self.0.lock() {
+            Ok(mut last) => {
+                let same = last.as_deref() == Some(states);
+                *last = Some(states.to_vec());
+                !same && !states.is_empty()
+            }
+            Err(_) => false,
+        }
+    }
+}
 
 /// Where a part's S is applied.
 pub enum Source {
@@ -212,7 +233,7 @@ pub struct Iterative<'a> {
     phi: Vec<Vec<f64>>,
     k_phi: Vec<Vec<f64>>,
     /// The state set of the last solve.
-    last_states: Mutex<Option<Vec<ContactState>>>,
+    last_states: LastStates,
     /// The last solution, where the next solve starts.
     last: Mutex<Option<Vec<f64>>>,
     /// GMRES iterations of every solve so far.
@@ -277,7 +298,7 @@ impl<'a> Iterative<'a> {
             threads,
             phi: orthonormal(coarse),
             k_phi: Vec::new(),
-            last_states: Mutex::new(None),
+            last_states: LastStates::default(),
             last: Mutex::new(None),
             iterations: Mutex::new(Vec::new()),
         };
@@ -418,7 +439,7 @@ impl<'a> Iterative<'a> {
     fn solve_gmres(&self, fr: &Freedom, states: &[ContactState], lambda: &[f64]) -> Option<Answer> {
         let cols = Columns { nm: self.nm, n: self.nm + self.nr, fr };
         let b = combine(&self.b, &self.b_fixed, lambda);
-        let loose = self.loose(states);
+        let loose = self.last_states.loose(states);
         let slip_rows: Vec<SlipRow> = (fr.slips.iter())
             .map(|s| SlipRow { row: self.nm + s.row, normal: s.normal.map(|r| self.nm + r), coupling: s.coupling, springs: s.springs.iter().map(|&(c, k)| (self.nm + c, k)).collect(), force: s.force })
             .collect();
@@ -450,7 +471,7 @@ impl<'a> Iterative<'a> {
             }
             out
         };
-        let scale = b.iter().map(|v| v * v).sum::<f64>().sqrt().max(rhs.iter().map(|v| v * v).sum::<f64>().sqrt()).max(f64::MIN_POSITIVE);
+        let scale = length(&b).max(length(&rhs)).max(f64::MIN_POSITIVE);
         let tolerance = if loose { LOOSE_TOLERANCE } else { TOLERANCE };
         let (dx, conv) = gmres::solve(j, m, &rhs, tolerance * scale, RESTART, MAX_ITERATIONS);
         if let Ok(mut its) = self.iterations.lock() {
@@ -501,20 +522,6 @@ impl<'a> Iterative<'a> {
             *last = Some(x);
         }
         Answer { m, r, residual_r, residual, loose }
-    }
-
-    /// Whether this solve may stop at [`LOOSE_TOLERANCE`]: loose while the
-    /// states change; the same states as last time (or none to judge:
-    /// bonded joins alone) are solved tightly.
-    fn loose(&self, states: &[ContactState]) -> bool {
-        match self.last_states.lock() {
-            Ok(mut last) => {
-                let same = last.as_deref() == Some(states);
-                *last = Some(states.to_vec());
-                !same && !states.is_empty()
-            }
-            Err(_) => false,
-        }
     }
 
     /// Where GMRES starts: the last answer, its relative displacements

@@ -54,6 +54,7 @@ use super::ldp::least_norm_point;
 use super::{Limit, Relation};
 use crate::contact::frame::Frame;
 use crate::contact::law::ContactState;
+use crate::fem::vec3::{length, to_one};
 
 /// Singular values below this fraction of the largest are zero: the
 /// redundant ties of a loop (the rows are unit vectors of the pairs' frames,
@@ -178,6 +179,14 @@ impl Split {
     /// Coulomb bound for a stuck pair), the least-norm share within every
     /// limit, when the loops leave one.
     fn forces(&self, g: &DVector<f64>, limits: &[Limit]) -> DVector<f64> {
+        // the forces brought near 1 (exactly, by a power of two) first: the
+        // tolerances of `least_norm_point` add forces to lengths, so that
+        // they are the same in every unit of force
+        let s = to_one(g.as_slice());
+        if s != 1.0 {
+            let scaled: Vec<Limit> = limits.iter().map(|l| Limit { tension: l.tension * s, cohesion: l.cohesion * s, friction: l.friction }).collect();
+            return self.forces(&(g * s), &scaled) / s;
+        }
         let nu0 = &self.pinv * g;
         let lambda = |s: &DVector<f64>| DVector::from_fn(self.rows.len(), |i, _| self.d[i] * (nu0[i] + (self.null.row(i) * s)[0]));
         let zero = DVector::zeros(self.null.ncols());
@@ -241,7 +250,7 @@ impl Split {
                 continue;
             }
             // |λ_T| <= c - f λ_n  as  d . λ_T + f λ_n <= c
-            let lt = t.iter().map(|&i| lam[i] * lam[i]).sum::<f64>().sqrt();
+            let lt = length(&t.iter().map(|&i| lam[i]).collect::<Vec<f64>>());
             let bound = lim.cohesion - lim.friction * lam[n] - margin;
             if lt > bound + tol {
                 let c = lim.cohesion - margin;

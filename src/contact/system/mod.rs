@@ -285,6 +285,18 @@ impl<'a> InterfaceProblem<'a> {
         self.basis.areas[p]
     }
 
+    /// Displacement components per node: 2 in plane and axisymmetric
+    /// analyses, 3 in solids.
+    pub fn nd(&self) -> usize {
+        self.layout.nd
+    }
+
+    /// The parts of pair `p`'s two sides (k, l).
+    pub fn parts_of(&self, p: usize) -> [usize; 2] {
+        let [(pk, _), (pl, _)] = self.layout.at[p];
+        [pk, pl]
+    }
+
     /// Number of pairs.
     pub fn n_pairs(&self) -> usize {
         self.layout.axes.len()

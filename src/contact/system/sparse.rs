@@ -30,7 +30,7 @@ use std::sync::Mutex;
 
 use super::coords::{add_clique, fixed_load, for_each_load, localise, CliqueScratch, Terms, Var};
 use super::gmres;
-use super::iterative::{LOOSE_TOLERANCE, TOLERANCE};
+use super::iterative::{LastStates, LOOSE_TOLERANCE, TOLERANCE};
 use super::layout::Layout;
 use super::reduce::{combine, NotHeld};
 use super::{Answer, Freedom, Solver};
@@ -63,7 +63,7 @@ pub struct Sparse {
     b_fixed: Vec<f64>,
     threads: usize,
     last: Mutex<Option<Vec<f64>>>,
-    last_states: Mutex<Option<Vec<ContactState>>>,
+    last_states: LastStates,
     iterations: Mutex<Vec<usize>>,
 }
 
@@ -107,7 +107,7 @@ impl Sparse {
             b_fixed,
             threads: threads.max(1),
             last: Mutex::new(None),
-            last_states: Mutex::new(None),
+            last_states: LastStates::default(),
             iterations: Mutex::new(Vec::new()),
         };
         solver.k_rr_diag = solver.diagonal_r();
@@ -202,18 +202,6 @@ impl Sparse {
         }
         d
     }
-
-    /// Whether this solve may stop at the loose tolerance (the states changed).
-    fn loose(&self, states: &[ContactState]) -> bool {
-        match self.last_states.lock() {
-            Ok(mut last) => {
-                let same = last.as_deref() == Some(states);
-                *last = Some(states.to_vec());
-                !same && !states.is_empty()
-            }
-            Err(_) => false,
-        }
-    }
 }
 
 impl Solver for Sparse {
@@ -221,7 +209,7 @@ impl Solver for Sparse {
         let (nm, nr) = (self.nm, self.nr);
         let b = combine(&self.b, &self.b_fixed, lambda);
         let (b_m, b_r) = b.split_at(nm);
-        let loose = self.loose(states);
+        let loose = self.last_states.loose(states);
         let free = Free { fr, nr };
         // from the last answer, moved onto r0 + span(Z): r_s = r0 + Z y0
         let y0 = match self.last.lock().ok().and_then(|l| l.clone()) {
@@ -250,7 +238,9 @@ impl Solver for Sparse {
             its.push(conv.iterations + 2); // and the solves for c and the means
         }
         let residual = conv.residual / scale;
-        if !conv.converged && !(residual <= 1e-6) {
+        // (a NaN residual is no answer either)
+        let close = residual <= 1e-6;
+        if !conv.converged && !close {
             return None;
         }
         let y: Vec<f64> = y0.iter().zip(&dy).map(|(a, b)| a + b).collect();
@@ -489,5 +479,5 @@ fn mean_nodes(layout: &Layout) -> Vec<usize> {
 }
 
 fn norm(v: &[f64]) -> f64 {
-    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+    crate::fem::vec3::length(v)
 }
