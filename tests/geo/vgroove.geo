@@ -7,8 +7,8 @@
 //
 //      z   wedge "top"
 //    1 +--+---------+--+
-//      |   \ wedge /   |   rock: "bottom" (z = -1), "ends" (y = 0, L)
-//      |    \     /    |
+//      |   \ wedge /   |   rock: "bottom" (z = -1), "ends" (y = 0, L);
+//      |    \     /    |   wedge: "wedge_ends" (y = 0, L)
 //    0 +     \   /     +-- x
 //      |      \ /      |
 //   -1 +-------+-------+
@@ -32,6 +32,10 @@ Physical Volume("rock") = {rk()};
 Physical Volume("wedge") = {wedge()};
 Physical Surface("groove") = {Surface In BoundingBox{-half - e, -e, -e, e, L + e, depth + e}, Surface In BoundingBox{-e, -e, -e, half + e, L + e, depth + e}};
 Physical Surface("bottom") = {Surface In BoundingBox{-2 * half - e, -e, -1 - e, 2 * half + e, L + e, -1 + e}};
-Physical Surface("ends") = {Surface In BoundingBox{-2 * half - e, -e, -1 - e, 2 * half + e, e, depth + e}, Surface In BoundingBox{-2 * half - e, L - e, -1 - e, 2 * half + e, L + e, depth + e}};
+ends() = {Surface In BoundingBox{-2 * half - e, -e, -1 - e, 2 * half + e, e, depth + e}, Surface In BoundingBox{-2 * half - e, L - e, -1 - e, 2 * half + e, L + e, depth + e}};
+wends() = {Surface In BoundingBox{-half - e, -e, -e, half + e, e, depth + e}, Surface In BoundingBox{-half - e, L - e, -e, half + e, L + e, depth + e}};
+rends() = ends(); rends() -= wends();
+Physical Surface("ends") = {rends()};
+Physical Surface("wedge_ends") = {wends()};
 Physical Surface("top") = {Surface In BoundingBox{-half - e, -e, depth - e, half + e, L + e, depth + e}};
 Mesh.CharacteristicLengthMax = lc;

@@ -536,7 +536,7 @@ fn colour_scales_leave_out_hot_spots_and_part_bodies_far_apart() {
 fn a_contact_on_two_planes_gets_a_plan_per_plane_and_an_overview() {
     let toml = "title = \"A wedge in a V-groove\"\nmesh = \"vgroove.geo\"\nanalysis = \"solid\"\n[gmsh]\norder = 1\nsetnumber = { lc = 0.25 }\n\
                 [materials.rock]\nE = 1000.0\nnu = 0.25\n[[bodies]]\ngroup = \"rock\"\nmaterial = \"rock\"\n[[bodies]]\ngroup = \"wedge\"\nmaterial = \"rock\"\n\
-                [[contacts]]\ngroup = \"groove\"\nfriction = 0.6\n[[supports]]\ngroup = \"bottom\"\nfix = [\"x\", \"y\", \"z\"]\n[[supports]]\ngroup = \"ends\"\nfix = [\"y\"]\n\
+                [[contacts]]\ngroup = \"groove\"\nfriction = 0.6\n[[supports]]\ngroup = \"bottom\"\nfix = [\"x\", \"y\", \"z\"]\n[[supports]]\ngroup = \"ends\"\nfix = [\"y\"]\n[[supports]]\ngroup = \"wedge_ends\"\nfix = [\"y\"]\n\
                 [[loads]]\ngroup = \"top\"\ntraction = [0.15, 0.0, -1.0]\n";
     let run = run_geo("vgroove", "vgroove.geo", toml);
     let plans = plan_files(&run.model);
