@@ -53,19 +53,27 @@ Line(3) = {3, 1};
 Curve Loop(1) = {1, 2, 3};
 Plane Surface(1) = {1};
 v[] = Extrude {0, L, 0} { Surface{1}; };
-Point(11) = {-c, 0, h0, lc};
-Point(12) = {c, 0, h0, lc};
-Line(11) = {1, 11};
-Line(12) = {11, 12};
-Line(13) = {12, 3};
-Curve Loop(11) = {11, 12, 13, 3};
-Plane Surface(11) = {11};
-w[] = Extrude {0, L, 0} { Surface{11}; };
+// (h0 = 0: no crevice, the wedge is the groove itself, on a sharp crease)
+If (h0 > 0)
+  Point(11) = {-c, 0, h0, lc};
+  Point(12) = {c, 0, h0, lc};
+  Line(11) = {1, 11};
+  Line(12) = {11, 12};
+  Line(13) = {12, 3};
+  Curve Loop(11) = {11, 12, 13, 3};
+  Plane Surface(11) = {11};
+  w[] = Extrude {0, L, 0} { Surface{11}; };
+EndIf
 
 // 2. The rock: a box with the groove cut out, fragmented with the wedge so
 // that the joint planes are surfaces shared by both.
 Box(10) = {-2 * b, 0, -d, 4 * b, L, 2 * d};
-r() = BooleanDifference{ Volume{10}; Delete; }{ Volume{v[1]}; Delete; };
+If (h0 > 0)
+  r() = BooleanDifference{ Volume{10}; Delete; }{ Volume{v[1]}; Delete; };
+Else
+  r() = BooleanDifference{ Volume{10}; Delete; }{ Volume{v[1]}; };
+  w[] = v[];
+EndIf
 all() = BooleanFragments{ Volume{r(), w[1]}; Delete; }{};
 
 // 3. Groups, found by bounding boxes (e: OpenCASCADE's boxes are enlarged).
