@@ -95,8 +95,10 @@ impl<'p> Newton<'p> {
         Newton { problem, laws, stiffness, reference, start: h.states.clone(), force: h.force.clone(), rel: h.rel_start.clone(), one_at_a_time: false, as_tied: vec![None; laws.len()], judged_from: Vec::new(), violation: Vec::new(), swapped: vec![false; laws.len()] }
     }
 
-    /// The relation pair `p` is solved with at this iteration.
-    fn relation(&self, h: &History, p: usize) -> Relation {
+    /// The relation pair `p` is solved with at this iteration; `line`: the
+    /// one direction its junction leaves it to slip along, if so (its
+    /// friction then acts along that line alone).
+    fn relation(&self, h: &History, p: usize, line: Option<[f64; 3]>) -> Relation {
         let (law, area, c) = (&self.laws[p], self.problem.area(p), self.stiffness[p]);
         let (force, rel, reference) = (self.force[p], self.rel[p], self.reference[p]);
         let state = h.states[p];
@@ -109,22 +111,33 @@ impl<'p> Newton<'p> {
         let pk = (-force[0]).max(0.0);
         let (bk, db) = friction_bound(&law.strength, cracked(h, p), area, pk);
         let s = sub(tangential(rel), reference);
-        let xi = [0.0, force[1] + c * s[1], force[2] + c * s[2]];
+        let xi = along([0.0, force[1] + c * s[1], force[2] + c * s[2]], line);
         let lx = norm(xi);
         let scale = norm(force) + c * norm(s) + bk;
+        let dir = match line {
+            Some(_) => {
+                let d = along(h.dir[p], line);
+                let l = norm(d);
+                if l > 0.0 { d.map(|x| x / l) } else { d }
+            }
+            None => h.dir[p],
+        };
         let (n, beta) = if lx > 1e-14 * scale && lx > 0.0 {
             ([0.0, xi[1] / lx, xi[2] / lx], (bk / lx).min(BETA_MAX))
-        } else if norm(h.dir[p]) > 0.0 {
-            (h.dir[p], 0.0)
+        } else if norm(dir) > 0.0 {
+            (dir, 0.0)
         } else {
             // no direction yet (a pair that has just closed): no friction this time
             return Relation::simple(state, target, [0.0; 3]);
         };
+        // the spring holds the slip across n within the directions it can
+        // take: none on a line, whose only direction is n
         let kp = c * beta / (1.0 - beta);
         let mut spring = [[0.0; 3]; 3];
         for i in 1..3 {
             for j in 1..3 {
-                spring[i][j] = kp * (f64::from(u8::from(i == j)) - n[i] * n[j]);
+                let free = line.map_or(f64::from(u8::from(i == j)), |d| d[i] * d[j]);
+                spring[i][j] = kp * (free - n[i] * n[j]);
             }
         }
         let mut constant = [0.0; 3];
@@ -134,8 +147,9 @@ impl<'p> Newton<'p> {
         Relation { state, target, force: constant, coupling: [0.0, db * n[1], db * n[2]], spring, pressure: pk, limit: Limit::NONE }
     }
 
-    /// Judges every pair (1. of the iteration).
-    fn next_states(&self, h: &History) -> Judged {
+    /// Judges every pair (1. of the iteration); `lines` as
+    /// [`InterfaceProblem::slip_lines`] for the states solved.
+    fn next_states(&self, h: &History, lines: &[Option<[f64; 3]>]) -> Judged {
         let n = self.laws.len();
         let (force, rel) = (&self.force, &self.rel);
         let scale_u = rel.iter().map(|v| norm(*v)).fold(0.0, f64::max);
@@ -149,8 +163,15 @@ impl<'p> Newton<'p> {
             let (st, law) = (h.states[p], &self.laws[p]);
             let area = self.problem.area(p);
             let cr = cracked(h, p);
-            let slip = sub(tangential(rel[p]), self.reference[p]);
-            let trial = Trial { force: force[p], area, slip, gap: rel[p][0], stiffness: self.stiffness[p] };
+            let mut slip = sub(tangential(rel[p]), self.reference[p]);
+            let mut trial_force = force[p];
+            // a pair slipping on a line is judged along it
+            if let (ContactState::Slip, Some(d)) = (st, lines[p]) {
+                slip = along(slip, Some(d));
+                let t = along(force[p], Some(d));
+                trial_force = [force[p][0], t[1], t[2]];
+            }
+            let trial = Trial { force: trial_force, area, slip, gap: rel[p][0], stiffness: self.stiffness[p] };
             let coulomb = law.slip == SlipLaw::Coulomb;
             next[p] = match (self.as_tied[p], st) {
                 // both sides held by supports: the supports carry it, it stays shut
@@ -166,7 +187,7 @@ impl<'p> Newton<'p> {
                 (None, _) => judge(st, &trial, &law.strength, cr, coulomb, tol_u, tol_f),
             };
             if st == ContactState::Slip && next[p] == ContactState::Slip {
-                residual = residual.max(friction_residual(law, cr, area, self.stiffness[p], force[p], slip));
+                residual = residual.max(friction_residual(law, cr, area, self.stiffness[p], trial.force, slip));
             }
             if next[p] != st {
                 let (b, _) = friction_bound(&law.strength, cr, area, -force[p][0]);
@@ -283,7 +304,8 @@ impl Newton<'_> {
 
 impl Rule for Newton<'_> {
     fn relations(&self, h: &History) -> Vec<Relation> {
-        (0..self.laws.len()).map(|p| self.relation(h, p).within(limit(&self.laws[p], cracked(h, p), self.problem.area(p)))).collect()
+        let lines = self.problem.slip_lines(&h.states);
+        (0..self.laws.len()).map(|p| self.relation(h, p, lines[p]).within(limit(&self.laws[p], cracked(h, p), self.problem.area(p)))).collect()
     }
 
     fn judge(&mut self, h: &mut History, solution: &InterfaceSolution, summary: &mut Summary) -> Verdict {
@@ -296,17 +318,18 @@ impl Rule for Newton<'_> {
             }
         }
         // 1. the next state of every pair; 2. a cycle broken
-        let mut judged = self.next_states(h);
+        let lines = self.problem.slip_lines(&h.states);
+        let mut judged = self.next_states(h, &lines);
         if self.break_cycle(h, &mut judged, &summary.history) {
             summary.cycles_broken += 1;
         }
         summary.apex_openings += self.apex_openings(h, &judged.next);
         // 3. directions of slipping pairs (a fallback where ξ vanishes)
-        for p in 0..self.laws.len() {
+        for (p, &line) in lines.iter().enumerate() {
             if judged.next[p] == ContactState::Slip {
                 let slip = sub(tangential(self.rel[p]), self.reference[p]);
                 let c = self.stiffness[p];
-                let xi = [0.0, self.force[p][1] + c * slip[1], self.force[p][2] + c * slip[2]];
+                let xi = along([0.0, self.force[p][1] + c * slip[1], self.force[p][2] + c * slip[2]], line);
                 let l = norm(xi);
                 if l > 0.0 {
                     h.dir[p] = [0.0, xi[1] / l, xi[2] / l];
@@ -351,6 +374,17 @@ enum Hold {
 /// The pair of `pairs` with the smallest `value` (the first of equals).
 fn least(pairs: impl Iterator<Item = usize>, value: impl Fn(usize) -> f64) -> Option<usize> {
     pairs.map(|p| (value(p), p)).min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1))).map(|(_, p)| p)
+}
+
+/// The shear of `v` (local axes) along `line`, or all of it without one.
+fn along(v: [f64; 3], line: Option<[f64; 3]>) -> [f64; 3] {
+    match line {
+        Some(d) => {
+            let s = v[1] * d[1] + v[2] * d[2];
+            [0.0, s * d[1], s * d[2]]
+        }
+        None => tangential(v),
+    }
 }
 
 /// How far a slipping pair's force is from the nonlinear law, `|λ_T - b ξ/|ξ||`.

@@ -54,7 +54,7 @@ use super::ldp::least_norm_point;
 use super::{Limit, Relation};
 use crate::contact::frame::Frame;
 use crate::contact::law::ContactState;
-use crate::fem::vec3::{length, to_one};
+use crate::fem::vec3::{dot, length, norm, sub, to_one};
 
 /// Singular values below this fraction of the largest are zero: the
 /// redundant ties of a loop (the rows are unit vectors of the pairs' frames,
@@ -116,8 +116,24 @@ pub struct Junction {
     /// Per pair and local axis, the row of C over `r` and the constant per unit ramp.
     pub rows: Vec<[Vec<f64>; 3]>,
     pub consts: Vec<[f64; 3]>,
+    /// Each pair's frame, and its partners: the other pairs between the
+    /// same two copies (the faces of a crease or a corner).
+    frames: Vec<Frame>,
+    partners: Vec<Vec<usize>>,
     nd: usize,
 }
+
+/// A tied row: a pair of the junction (its index there) and a unit
+/// direction in its local axes, `[1, 0, 0]` its normal.
+type Row = (usize, [f64; 3]);
+
+const NORMAL: [f64; 3] = [1.0, 0.0, 0.0];
+
+/// A closed partner's normal crosses a pair's shear plane (a crease)
+/// where its part in that plane is more than this; faces of one contact
+/// meet at a crease at 40 degrees or more (`CREASE_ANGLE`), where it is
+/// sin 40 = 0.64.
+const CROSSES: f64 = 1e-3;
 
 /// A junction under one set of relations.
 #[derive(Clone, Debug)]
@@ -131,28 +147,29 @@ pub struct Tied {
     /// stiffness, and their force at r = 0 (`W r - c + k r + f = -C_T^T λ_T`).
     pub k: DMatrix<f64>,
     pub f: DVector<f64>,
-    /// The tied rows (junction pair, axis), and the map from the force they
-    /// must carry (over r) to their least-norm forces.
-    rows: Vec<(usize, usize)>,
+    /// The tied rows, and the map from the force they must carry (over r)
+    /// to their least-norm forces.
+    rows: Vec<Row>,
     split: Split,
     /// The area of each of the junction's pairs.
     areas: Vec<f64>,
 }
 
-/// How the tied `rows` (pair, axis) share the force `g` they must carry
+/// How the tied `rows` share the force `g` they must carry
 /// (over r): `C_T^T λ = g`. With `ν = λ / sqrt(A)` the least-norm share is
 /// `ν0 = pinv(C_T^T D) g`, and every other share is `ν0 + N s` (N the null
 /// space of `C_T^T D`: the loops' self-equilibrated forces).
 #[derive(Clone, Debug)]
 struct Split {
-    rows: Vec<(usize, usize)>,
+    rows: Vec<Row>,
     d: Vec<f64>,
     pinv: DMatrix<f64>,
     null: DMatrix<f64>,
 }
 
 impl Split {
-    fn new(all: &[[Vec<f64>; 3]], rows: &[(usize, usize)], areas: &[f64], n_r: usize) -> Split {
+    /// The split of `rows`, whose rows of C over r are `c_rows`.
+    fn new(c_rows: &[Vec<f64>], rows: &[Row], areas: &[f64], n_r: usize) -> Split {
         let m_t = rows.len();
         let d: Vec<f64> = rows.iter().map(|&(j, _)| areas[j].max(f64::MIN_POSITIVE).sqrt()).collect();
         if m_t == 0 || n_r == 0 {
@@ -161,7 +178,7 @@ impl Split {
         // (C_T^T D)^T = D C_T, padded to square: its U spans the range of
         // D C_T and, past the rank, the null space of C_T^T D
         let n = m_t.max(n_r);
-        let dc = DMatrix::<f64>::from_fn(m_t, n, |i, c| if c < n_r { all[rows[i].0][rows[i].1][c] * d[i] } else { 0.0 });
+        let dc = DMatrix::<f64>::from_fn(m_t, n, |i, c| if c < n_r { c_rows[i][c] * d[i] } else { 0.0 });
         let svd = dc.svd(true, true);
         let (u, v_t) = (svd.u.expect("U"), svd.v_t.expect("V^T"));
         let sv = &svd.singular_values;
@@ -241,11 +258,11 @@ impl Split {
             let at: Vec<usize> = (j0..self.rows.len()).take_while(|&i| self.rows[i].0 == j).collect();
             j0 += at.len();
             let lim = limits[j];
-            let Some(&n) = at.iter().find(|&&i| self.rows[i].1 == 0) else { continue };
+            let Some(&n) = at.iter().find(|&&i| self.rows[i].1[0] != 0.0) else { continue };
             if lam[n] > lim.tension - margin + tol {
                 out.push((vec![(n, 1.0)], lim.tension - margin));
             }
-            let t: Vec<usize> = at.iter().copied().filter(|&i| self.rows[i].1 > 0).collect();
+            let t: Vec<usize> = at.iter().copied().filter(|&i| self.rows[i].1[0] == 0.0).collect();
             if t.is_empty() || !lim.cohesion.is_finite() {
                 continue;
             }
@@ -344,38 +361,80 @@ impl Junction {
             rows.push(row);
             consts.push(cst);
         }
-        Junction { pairs, copies, terms, r, m, rows, consts, nd }
+        let frames: Vec<Frame> = pairs.iter().map(|&p| pair(p).2).collect();
+        let ends: Vec<(usize, usize)> = pairs.iter().map(|&p| pair(p)).map(|(k, l, _)| (k.min(l), k.max(l))).collect();
+        let partners = (0..pairs.len()).map(|j| (0..pairs.len()).filter(|&i| i != j && ends[i] == ends[j]).collect()).collect();
+        Junction { pairs, copies, terms, r, m, rows, consts, frames, partners, nd }
     }
 
-    /// The junction under the relations `rel` (of every model pair) at
-    /// `ramp`; `area` gives each pair's area.
-    pub fn tie(&self, rel: &[Relation], ramp: f64, area: impl Fn(usize) -> f64) -> Tied {
-        let (nd, n_r) = (self.nd, self.r.len());
-        let mut rows: Vec<(usize, usize)> = Vec::new();
+    /// The tied rows under `state` (of every model pair): a stuck pair's
+    /// normal and [`Self::shear_dirs`], a slipping pair's normal.
+    fn tied_rows(&self, state: impl Fn(usize) -> ContactState) -> Vec<Row> {
+        let mut rows = Vec::new();
         for (j, &p) in self.pairs.iter().enumerate() {
-            for a in 0..nd {
-                if !rel[p].free_axis(a) {
-                    rows.push((j, a));
+            match state(p) {
+                ContactState::Stick => {
+                    rows.push((j, NORMAL));
+                    rows.extend(self.shear_dirs(j, |q| state(q) != ContactState::Open).into_iter().map(|dir| (j, dir)));
                 }
+                ContactState::Slip => rows.push((j, NORMAL)),
+                ContactState::Open => {}
             }
         }
-        let m_t = rows.len();
-        if n_r == 0 {
-            // every copy held in every component: nothing to solve for
-            let zero = DMatrix::zeros(0, 0);
-            let areas: Vec<f64> = self.pairs.iter().map(|&p| area(p)).collect();
-            let split = Split::new(&self.rows, &rows, &areas, 0);
-            return Tied { z: zero.clone(), r0: DVector::zeros(0), k: zero, f: DVector::zeros(0), split, rows, areas };
+        rows
+    }
+
+    /// The directions (local axes) pair j's shear is tied along when it
+    /// sticks, `closed` telling which pairs are closed: its t and b axes,
+    /// but on a crease (a closed partner) the crease's line alone, and in a
+    /// corner (two closed partners across each other) none. The force
+    /// across a crease goes through the faces' normals, stuck or slipping
+    /// alike: a slipping face carries its friction along the crease (see
+    /// [`Self::slip_lines`]), and a stuck one that shared the force across
+    /// with its partner's normal would take that partner's pressure, and
+    /// friction, away.
+    fn shear_dirs(&self, j: usize, closed: impl Fn(usize) -> bool) -> Vec<[f64; 3]> {
+        let f = &self.frames[j];
+        let axes: Vec<[f64; 3]> = (1..self.nd).map(|a| std::array::from_fn(|c| f64::from(u8::from(c == a)))).collect();
+        // the closed partners' normals seen in this pair's shear plane
+        let across: Vec<[f64; 3]> = self.partners[j]
+            .iter()
+            .filter(|&&i| closed(self.pairs[i]))
+            .map(|&i| std::array::from_fn(|a| if a == 0 || a >= self.nd { 0.0 } else { dot(self.frames[i][0], f[a]) }))
+            .filter(|v: &[f64; 3]| norm(*v) > CROSSES)
+            .collect();
+        let Some(v) = across.first() else { return axes };
+        if self.nd == 2 {
+            return Vec::new();
         }
-        let c_t = DMatrix::<f64>::from_fn(m_t.max(n_r), n_r, |i, c| if i < m_t { self.rows[rows[i].0][rows[i].1][c] } else { 0.0 });
-        let t = DVector::<f64>::from_fn(m_t.max(n_r), |i, _| {
-            if i < m_t {
-                let (j, a) = rows[i];
-                rel[self.pairs[j]].target[a] - self.consts[j][a] * ramp
-            } else {
-                0.0
+        let l = norm(*v);
+        let line = [0.0, -v[2] / l, v[1] / l];
+        if across.iter().any(|w| dot(*w, line).abs() > CROSSES) {
+            Vec::new()
+        } else {
+            vec![line]
+        }
+    }
+
+    /// The row of C over r along `dir` (local axes), and its constant.
+    fn c_row(&self, (j, dir): Row) -> (Vec<f64>, f64) {
+        let mut row = vec![0.0; self.r.len()];
+        let mut cst = 0.0;
+        for a in (0..self.nd).filter(|&a| dir[a] != 0.0) {
+            for (x, y) in row.iter_mut().zip(&self.rows[j][a]) {
+                *x += dir[a] * y;
             }
-        });
+            cst += dir[a] * self.consts[j][a];
+        }
+        (row, cst)
+    }
+
+    /// The free directions Z of r when the rows `c_rows` are tied to `t`
+    /// (padded to at least as many entries as r), and r0, the tied rows'
+    /// least-squares (least-norm) solution: `r = r0 + Z y`.
+    fn null_space(&self, c_rows: &[Vec<f64>], t: &DVector<f64>) -> (DMatrix<f64>, DVector<f64>) {
+        let (m_t, n_r) = (c_rows.len(), self.r.len());
+        let c_t = DMatrix::<f64>::from_fn(m_t.max(n_r), n_r, |i, c| if i < m_t { c_rows[i][c] } else { 0.0 });
         // C_T = U S V^T: the null space is V's columns of zero singular values
         let svd = c_t.svd(true, true);
         let (u, v_t) = (svd.u.expect("U"), svd.v_t.expect("V^T"));
@@ -385,7 +444,7 @@ impl Junction {
         let mut free_cols = Vec::new();
         for (i, &s) in svd.singular_values.iter().enumerate() {
             if rank_of(s) {
-                let coef = u.column(i).dot(&t) / s;
+                let coef = u.column(i).dot(t) / s;
                 r0 += v_t.row(i).transpose() * coef;
             } else {
                 free_cols.push(i);
@@ -394,6 +453,63 @@ impl Junction {
         // (a wide C_T: V^T has n_r rows whatever m_t; a row beyond m_t's
         // singular values is a free direction too)
         let z = DMatrix::<f64>::from_fn(n_r, free_cols.len(), |i, c| v_t[(free_cols[c], i)]);
+        (z, r0)
+    }
+
+    /// The line each of the junction's pairs can slip along under
+    /// `states` (of every model pair): its direction in the pair's local
+    /// axes `[0, t, b]` where the junction's ties leave its shear exactly
+    /// one free direction, as on a crease whose other face is closed (the
+    /// copies then move only along the crease), None where they leave it
+    /// two or none (and in 2D).
+    pub fn slip_lines(&self, states: &[ContactState]) -> Vec<Option<[f64; 3]>> {
+        let mut lines = vec![None; self.pairs.len()];
+        if self.nd < 3 || self.r.is_empty() {
+            return lines;
+        }
+        let c_rows: Vec<Vec<f64>> = self.tied_rows(|p| states[p]).into_iter().map(|row| self.c_row(row).0).collect();
+        let (z, _) = self.null_space(&c_rows, &DVector::zeros(c_rows.len().max(self.r.len())));
+        for (j, line) in lines.iter_mut().enumerate() {
+            // the shear axes' parts along the free directions
+            let m = DMatrix::<f64>::from_fn(2, z.ncols(), |a, c| (0..self.r.len()).map(|i| self.rows[j][a + 1][i] * z[(i, c)]).sum());
+            let scale = (1..3).map(|a| self.rows[j][a].iter().map(|x| x * x).sum::<f64>().sqrt()).fold(0.0, f64::max);
+            if z.ncols() == 0 || scale == 0.0 {
+                continue;
+            }
+            let svd = m.svd(true, false);
+            let u = svd.u.expect("U");
+            let sv = &svd.singular_values;
+            if sv.iter().filter(|&&s| s > 1e-9 * scale).count() == 1 {
+                let k = sv.imax();
+                *line = Some([0.0, u[(0, k)], u[(1, k)]]);
+            }
+        }
+        lines
+    }
+
+    /// The junction under the relations `rel` (of every model pair) at
+    /// `ramp`; `area` gives each pair's area.
+    pub fn tie(&self, rel: &[Relation], ramp: f64, area: impl Fn(usize) -> f64) -> Tied {
+        let (nd, n_r) = (self.nd, self.r.len());
+        let rows = self.tied_rows(|p| rel[p].state);
+        let (c_rows, consts): (Vec<Vec<f64>>, Vec<f64>) = rows.iter().map(|&row| self.c_row(row)).unzip();
+        if n_r == 0 {
+            // every copy held in every component: nothing to solve for
+            let zero = DMatrix::zeros(0, 0);
+            let areas: Vec<f64> = self.pairs.iter().map(|&p| area(p)).collect();
+            let split = Split::new(&c_rows, &rows, &areas, 0);
+            return Tied { z: zero.clone(), r0: DVector::zeros(0), k: zero, f: DVector::zeros(0), split, rows, areas };
+        }
+        let t = DVector::<f64>::from_fn(rows.len().max(n_r), |i, _| {
+            if i < rows.len() {
+                let (j, dir) = rows[i];
+                let target: f64 = (0..nd).filter(|&a| dir[a] != 0.0).map(|a| dir[a] * rel[self.pairs[j]].target[a]).sum();
+                target - consts[i] * ramp
+            } else {
+                0.0
+            }
+        });
+        let (z, r0) = self.null_space(&c_rows, &t);
         // slipping pairs: springs and forces along their free axes
         let mut k = DMatrix::<f64>::zeros(n_r, n_r);
         let mut f = DVector::<f64>::zeros(n_r);
@@ -418,7 +534,7 @@ impl Junction {
             }
         }
         let areas: Vec<f64> = self.pairs.iter().map(|&p| area(p)).collect();
-        let split = Split::new(&self.rows, &rows, &areas, n_r);
+        let split = Split::new(&c_rows, &rows, &areas, n_r);
         Tied { z, r0, k, f, rows, split, areas }
     }
 
@@ -445,8 +561,10 @@ impl Junction {
         let limits: Vec<Limit> = self.pairs.iter().map(|&p| rel[p].limit).collect();
         let lambda = tied.split.forces(&carried, &limits);
         let mut out: Vec<([f64; 3], [f64; 3], Option<[f64; 3]>)> = rels.iter().map(|&x| ([0.0; 3], x, None)).collect();
-        for (i, &(j, a)) in tied.rows.iter().enumerate() {
-            out[j].0[a] = lambda[i];
+        for (&(j, dir), &l) in tied.rows.iter().zip(lambda.iter()) {
+            for a in (0..nd).filter(|&a| dir[a] != 0.0) {
+                out[j].0[a] += l * dir[a];
+            }
         }
         for (j, &p) in self.pairs.iter().enumerate() {
             let rl = &rel[p];
@@ -461,20 +579,21 @@ impl Junction {
         // and slipping pairs' shear where they have not slipped (a slip the
         // loop had locked elsewhere could not be tied back: their shear is
         // judged by their slip, as any other pair's)
-        let is_locked = |j: usize, a: usize| {
-            let row = DVector::from_column_slice(&self.rows[j][a]);
+        let is_locked = |row: Row| {
+            let row = DVector::from_vec(self.c_row(row).0);
             tied.z.ncols() == 0 || (tied.z.transpose() * &row).norm() <= 1e-9 * row.norm()
         };
+        let along = |v: [f64; 3], dir: [f64; 3]| (0..nd).map(|a| v[a] * dir[a]).sum::<f64>();
         let scale = rels.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
-        let mut locked: Vec<(usize, usize)> = Vec::new();
+        let mut locked: Vec<Row> = Vec::new();
         for (j, &p) in self.pairs.iter().enumerate() {
             match rel[p].state {
-                ContactState::Open if is_locked(j, 0) => locked.push((j, 0)),
+                ContactState::Open if is_locked((j, NORMAL)) => locked.push((j, NORMAL)),
                 ContactState::Slip => {
-                    let shear: Vec<usize> = (1..nd).collect();
-                    let unmoved = shear.iter().all(|&a| (rels[j][a] - rel[p].target[a]).abs() <= 1e-10 * scale);
-                    if unmoved && shear.iter().all(|&a| is_locked(j, a)) {
-                        locked.extend(shear.iter().map(|&a| (j, a)));
+                    let shear = self.shear_dirs(j, |q| rel[q].state != ContactState::Open);
+                    let unmoved = shear.iter().all(|&dir| along(sub(rels[j], rel[p].target), dir).abs() <= 1e-10 * scale);
+                    if unmoved && shear.iter().all(|&dir| is_locked((j, dir))) {
+                        locked.extend(shear.iter().map(|&dir| (j, dir)));
                     }
                 }
                 _ => {}
@@ -485,20 +604,29 @@ impl Junction {
         }
         // the least-norm forces with the locked axes tied too; the other
         // free axes keep what their relations give them
-        let mut rows: Vec<(usize, usize)> = tied.rows.iter().chain(&locked).copied().collect();
-        rows.sort_unstable();
-        let mut carried = g.clone();
-        for (j, f) in out.iter().enumerate() {
-            for a in 0..nd {
-                if !rows.contains(&(j, a)) {
-                    carried -= DVector::from_column_slice(&self.rows[j][a]) * f.0[a];
-                }
+        let mut rows: Vec<Row> = tied.rows.iter().chain(&locked).copied().collect();
+        rows.sort_by_key(|&(j, dir)| (j, dir.iter().position(|&x| x != 0.0)));
+        // each pair's force less its parts along the rows: what stays
+        let mut kept: Vec<[f64; 3]> = out.iter().map(|o| o.0).collect();
+        for &(j, dir) in &rows {
+            let f = along(kept[j], dir);
+            for a in (0..nd).filter(|&a| dir[a] != 0.0) {
+                kept[j][a] -= f * dir[a];
             }
         }
-        let lambda = Split::new(&self.rows, &rows, &tied.areas, g.len()).forces(&carried, &limits);
-        let mut as_tied: Vec<[f64; 3]> = out.iter().map(|o| o.0).collect();
-        for (i, &(j, a)) in rows.iter().enumerate() {
-            as_tied[j][a] = lambda[i];
+        let mut carried = g.clone();
+        for (j, f) in kept.iter().enumerate() {
+            for a in (0..nd).filter(|&a| f[a] != 0.0) {
+                carried -= DVector::from_column_slice(&self.rows[j][a]) * f[a];
+            }
+        }
+        let c_rows: Vec<Vec<f64>> = rows.iter().map(|&row| self.c_row(row).0).collect();
+        let lambda = Split::new(&c_rows, &rows, &tied.areas, g.len()).forces(&carried, &limits);
+        let mut as_tied = kept;
+        for (&(j, dir), &l) in rows.iter().zip(lambda.iter()) {
+            for a in (0..nd).filter(|&a| dir[a] != 0.0) {
+                as_tied[j][a] += l * dir[a];
+            }
         }
         for &(j, _) in &locked {
             out[j].2 = Some(as_tied[j]);

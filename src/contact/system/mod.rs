@@ -335,6 +335,19 @@ impl<'a> InterfaceProblem<'a> {
         }
     }
 
+    /// The line each pair can slip along under `states`, in its local
+    /// axes, where a junction's ties leave its shear one free direction
+    /// (see [`junction::Junction::slip_lines`]); None elsewhere.
+    pub fn slip_lines(&self, states: &[ContactState]) -> Vec<Option<[f64; 3]>> {
+        let mut lines = vec![None; states.len()];
+        for jn in &self.layout.junctions {
+            for (&p, line) in jn.pairs.iter().zip(jn.slip_lines(states)) {
+                lines[p] = line;
+            }
+        }
+        lines
+    }
+
     /// The free directions of the relative displacements under `rel`.
     fn freedom(&self, rel: &[Relation], ramp: f64) -> Freedom {
         let (nd, layout) = (self.layout.nd, &self.layout);
