@@ -3,8 +3,9 @@
 (issue 18) beside the closed forms, for docs/safety.md and the README.
 
 - The rock wedge in a V-groove (geo/wedge.toml) on its default mesh
-  (lc = 1) and a coarser one (lc = 2), both with the bisection tolerance
-  lowered to 1e-4, against Hoek & Bray's rigid-block factor
+  (lc = 1) and a coarser one (lc = 2), and on its sharp crease (h0 = 0,
+  no crevice, lc = 1), all with the bisection tolerance lowered to 1e-4,
+  against Hoek & Bray's rigid-block factor
   F = sin(beta) / sin(xi / 2) * tan(phi) / tan(psi) (beta = 90 degrees for
   the symmetric wedge; xi = 90 degrees, the .geo's default; phi from the
   joints' friction; psi, the plunge of the line of intersection, from the
@@ -46,14 +47,16 @@ def run(args: list[str]) -> dict:
     return json.loads((out / "summary.json").read_text())
 
 
-def wedge_scene(lc: float) -> str:
-    """geo/wedge.toml at element size lc and tolerance 1e-4, written into
-    results/safety/ (its mesh path made relative to there)."""
+def wedge_scene(lc: float, crease: bool = False) -> str:
+    """geo/wedge.toml at element size lc and tolerance 1e-4 (on the sharp
+    crease: h0 = 0), written into results/safety/ (its mesh path made
+    relative to there)."""
     text = (ROOT / "geo/wedge.toml").read_text()
-    for old, new in [('mesh = "wedge.geo"', 'mesh = "../../geo/wedge.geo"'), ("lc = 1.0 }", f"lc = {lc} }}"), ("tolerance = 1.0e-3", "tolerance = 1.0e-4")]:
+    size = f"lc = {lc}, h0 = 0 }}" if crease else f"lc = {lc} }}"
+    for old, new in [('mesh = "wedge.geo"', 'mesh = "../../geo/wedge.geo"'), ("lc = 1.0 }", size), ("tolerance = 1.0e-3", "tolerance = 1.0e-4")]:
         assert old in text, f"geo/wedge.toml no longer contains {old!r}: update scripts/safety/safety.py"
         text = text.replace(old, new, 1)
-    path = OUT / f"wedge_lc{lc:g}.toml"
+    path = OUT / f"wedge_lc{lc:g}{'_crease' if crease else ''}.toml"
     path.write_text(text)
     return str(path.relative_to(ROOT))
 
@@ -102,6 +105,8 @@ def main() -> None:
     for lc in (2.0, 1.0):
         summary = run(["solve", wedge_scene(lc)])
         rows.append(row(f"wedge in a V-groove, tet10 lc = {lc:g}", summary, rigid, "Hoek & Bray"))
+    summary = run(["solve", wedge_scene(1.0, crease=True)])
+    rows.append(row("wedge on its sharp crease (h0 = 0), tet10 lc = 1", summary, rigid, "Hoek & Bray"))
     dam = run(["safety", "geo/dam.toml"])
     rows.append(row("gravity dam, base", dam, dam_by_hand(dam), "f N / T by hand"))
     head = (
