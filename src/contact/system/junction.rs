@@ -734,20 +734,41 @@ mod tests {
     }
 
     /// A crease: two pairs between the same two copies with normals at 90
-    /// degrees. Both slipping tie the two normals: the copies slide only
-    /// along the crease (z).
-    #[test]
-    fn a_crease_slides_only_along_its_line() {
+    /// degrees (x + y and y - x), the crease's line along z.
+    fn crease() -> Junction {
         let s = 0.5f64.sqrt();
         let f1: Frame = [[s, s, 0.0], [-s, s, 0.0], [0.0, 0.0, 1.0]];
         let f2: Frame = [[-s, s, 0.0], [-s, -s, 0.0], [0.0, 0.0, 1.0]];
         let pairs = [(0, 1, f1), (0, 1, f2)];
         let (mut nm, mut nr) = (0, 0);
-        let j = Junction::new(vec![0, 1], |p| pairs[p], &[None; 6], 3, &mut nm, &mut nr);
+        Junction::new(vec![0, 1], |p| pairs[p], &[None; 6], 3, &mut nm, &mut nr)
+    }
+
+    /// A crease, both pairs slipping tie the two normals: the copies slide only
+    /// along the crease (z).
+    #[test]
+    fn a_crease_slides_only_along_its_line() {
+        let j = crease();
         let rel: Vec<Relation> = (0..2).map(|_| Relation::simple(ContactState::Slip, [0.0; 3], [0.0; 3])).collect();
         let tied = j.tie(&rel, 1.0, |_| 1.0);
         assert_eq!(tied.z.ncols(), 1);
         assert!((tied.z[(2, 0)].abs() - 1.0).abs() < 1e-14, "{}", tied.z);
+    }
+
+    /// A crease whose faces both slip leaves each face's shear one
+    /// direction, the crease's line (local b = global z), and each face's
+    /// friction acts along it. One face stuck ties that line too (nothing
+    /// is left to slip along); with one face open the other slips freely
+    /// in its plane. Neither has a line.
+    #[test]
+    fn a_creases_faces_slip_along_its_line() {
+        let j = crease();
+        for (p, line) in j.slip_lines(&[ContactState::Slip; 2]).into_iter().enumerate() {
+            let d = line.unwrap_or_else(|| panic!("pair {p} slips along the crease"));
+            assert!(d[0] == 0.0 && d[1].abs() < 1e-12 && (d[2].abs() - 1.0).abs() < 1e-12, "pair {p} along {d:?}");
+        }
+        assert_eq!(j.slip_lines(&[ContactState::Stick, ContactState::Slip]), [None, None]);
+        assert_eq!(j.slip_lines(&[ContactState::Slip, ContactState::Open])[0], None);
     }
 
     /// A crease, both pairs stuck, carrying a push into the V and along
@@ -757,16 +778,11 @@ mod tests {
     /// push along the line), and it still carries the push.
     #[test]
     fn a_stuck_crease_shares_its_force_within_both_coulomb_cones() {
-        let s = 0.5f64.sqrt();
-        let f1: Frame = [[s, s, 0.0], [-s, s, 0.0], [0.0, 0.0, 1.0]];
-        let f2: Frame = [[-s, s, 0.0], [-s, -s, 0.0], [0.0, 0.0, 1.0]];
-        let pairs = [(0, 1, f1), (0, 1, f2)];
-        let (mut nm, mut nr) = (0, 0);
-        let j = Junction::new(vec![0, 1], |p| pairs[p], &[None; 6], 3, &mut nm, &mut nr);
+        let j = crease();
         let limit = Limit { tension: 0.0, cohesion: 0.0, friction: 0.6 };
         let rel: Vec<Relation> = stuck(2).into_iter().map(|r| r.within(limit)).collect();
         let tied = j.tie(&rel, 1.0, |_| 1.0);
-        let g = DVector::from_column_slice(&[0.0, -2.0 * s, 0.3]);
+        let g = DVector::from_column_slice(&[0.0, -2.0 * 0.5f64.sqrt(), 0.3]);
         let out = j.forces(&tied, &rel, &DVector::zeros(3), &g, 1.0);
         let mut carried = DVector::<f64>::zeros(3);
         for (p, (f, _, _)) in out.iter().enumerate() {
