@@ -31,6 +31,7 @@
 use std::collections::{HashMap, HashSet};
 
 use super::builder::Builder;
+use super::facet_cells::two_cells;
 use super::topology::{corner_key, FaceKey, Topology};
 use super::{ContactGroups, Interface, ModelError};
 use crate::fem::{element, shape};
@@ -78,16 +79,51 @@ pub(super) struct Split {
 }
 
 /// Splits every contact of the description, numbers the blocks and makes
-/// the pairs. `size` is the mesh's size (the pairing tolerance of
-/// `groups = [..]` is 1e-6 of it).
+/// the pairs, in the steps below. `size` is the mesh's size (the pairing
+/// tolerance of `groups = [..]` is 1e-6 of it).
 pub(super) fn split(b: &Builder, topo: &Topology, size: f64) -> Result<Split, ModelError> {
-    let (mesh, spec) = (b.mesh, b.spec);
-    let sd = spec.analysis.dim();
-
     // 1. The facets of shared contact groups cut the bodies.
+    let cuts = cuts(b)?;
+    // 2. The two cells of every facet.
+    let cells_of = two_cells(b, topo, &cuts.shared)?;
+    // 3. Blocks, and one model node per fan at every node of a cut.
+    let block = topo.blocks(&cuts.cut);
+    let copies = copy_nodes(b, topo, &cuts);
+    // 4. Side I of every facet.
+    let sides = Sides::new(b, topo, &cuts.shared, &cells_of, &block);
+    // 5. Interfaces and the facets' shares of pairs (k, l) at each node.
+    let mut shares = Shares::default();
+    let mut interfaces: Vec<Interface> = Vec::with_capacity(b.spec.contacts.len());
+    let mut signs: Vec<Vec<f64>> = Vec::with_capacity(b.spec.contacts.len());
+    for (ci, c) in b.spec.contacts.iter().enumerate() {
+        let (iface, sg) = match &c.groups {
+            ContactGroups::Shared(name) => sides.shared_interface(ci, name, &copies, &mut shares),
+            ContactGroups::Pair(na, nb) => sides.paired_interface(ci, (na, nb), size, &copies, &mut shares)?,
+        };
+        interfaces.push(iface);
+        signs.push(sg);
+    }
+    // 6. Pairs: the shares of each (contact, k, l), split at creases.
+    let pairs = shares.pairs(&copies.mesh_node);
+    let Copies { coords, mesh_node, cells } = copies;
+    Ok(Split { coords, mesh_node, cells, block, pairs, interfaces, signs })
+}
+
+/// The facets of the shared contact groups, each once: what cuts the bodies.
+struct Cuts<'a> {
+    /// The corners of every facet (its key) -> its index in `shared`.
+    cut: HashMap<FaceKey, usize>,
+    /// Every facet with its contact (index in the description's contacts).
+    shared: Vec<(usize, &'a Cell)>,
+}
+
+/// The facets of every `group = ".."` contact, each once: what cuts the
+/// bodies into blocks. A facet in two contacts is an error naming both.
+fn cuts<'a>(b: &Builder<'a>) -> Result<Cuts<'a>, ModelError> {
+    let sd = b.spec.analysis.dim();
     let mut cut: HashMap<FaceKey, usize> = HashMap::new();
     let mut shared: Vec<(usize, &Cell)> = Vec::new();
-    for (ci, c) in spec.contacts.iter().enumerate() {
+    for (ci, c) in b.spec.contacts.iter().enumerate() {
         let ContactGroups::Shared(name) = &c.groups else { continue };
         let key = format!("{}.group", c.key);
         let g = b.group(&key, name, &[sd - 1])?;
@@ -112,25 +148,37 @@ pub(super) fn split(b: &Builder, topo: &Topology, size: f64) -> Result<Split, Mo
             }
         }
     }
+    Ok(Cuts { cut, shared })
+}
 
-    // 2. The two cells of every facet.
-    let cells_of = two_cells(b, topo, &shared)?;
+/// The model nodes after the split and the cells in them.
+struct Copies {
+    /// The mesh's nodes, then the copies.
+    coords: Vec<[f64; 3]>,
+    /// Mesh node of every model node.
+    mesh_node: Vec<usize>,
+    /// Every cell of the topology, in model nodes.
+    cells: Vec<Cell>,
+}
 
-    // 3. Blocks, and one model node per fan at every node of a cut.
-    let block = topo.blocks(&cut);
+/// One model node per fan at every node of a cut, contact by contact: the
+/// first fan keeps the mesh node, every other fan's cells get a new copy,
+/// so that the sides of a contact can move apart.
+fn copy_nodes(b: &Builder, topo: &Topology, cuts: &Cuts) -> Copies {
+    let mesh = b.mesh;
     let mut coords = mesh.coords.clone();
     let mut mesh_node: Vec<usize> = (0..coords.len()).collect();
     let mut cells: Vec<Cell> = topo.cells.iter().map(|c| (*c).clone()).collect();
     let mut done: HashSet<usize> = HashSet::new();
-    for ci in 0..spec.contacts.len() {
-        let mut nodes: Vec<usize> = shared.iter().filter(|s| s.0 == ci).flat_map(|s| s.1.nodes.iter().copied()).collect();
+    for ci in 0..b.spec.contacts.len() {
+        let mut nodes: Vec<usize> = cuts.shared.iter().filter(|s| s.0 == ci).flat_map(|s| s.1.nodes.iter().copied()).collect();
         nodes.sort_unstable();
         nodes.dedup();
         for n in nodes {
             if !done.insert(n) {
                 continue;
             }
-            for fan in topo.fans(n, &cut).iter().skip(1) {
+            for fan in topo.fans(n, &cuts.cut).iter().skip(1) {
                 let m = coords.len();
                 coords.push(mesh.coords[n]);
                 mesh_node.push(n);
@@ -142,167 +190,223 @@ pub(super) fn split(b: &Builder, topo: &Topology, size: f64) -> Result<Split, Mo
             }
         }
     }
-    let node_in = |c: usize, n: usize| -> usize {
-        let at = topo.cells[c].nodes.iter().position(|&x| x == n).expect("the node is in the cell");
-        cells[c].nodes[at]
-    };
+    Copies { coords, mesh_node, cells }
+}
 
-    // 4. Side I of every facet.
-    let normal_of = |f: &Cell, c: usize| -> ([f64; 3], f64) {
-        let fc: Vec<[f64; 3]> = f.nodes.iter().map(|&n| mesh.coords[n]).collect();
-        let cc: Vec<[f64; 3]> = topo.cells[c].nodes.iter().map(|&n| mesh.coords[n]).collect();
+/// What the interfaces are built from: the shared facets with their two
+/// cells and the blocks, and what decides side I of each facet.
+struct Sides<'a> {
+    b: &'a Builder<'a>,
+    topo: &'a Topology<'a>,
+    shared: &'a [(usize, &'a Cell)],
+    cells_of: &'a [[usize; 2]],
+    block: &'a [usize],
+    /// Within a body, by (contact, lower block, higher block): the normals
+    /// the two blocks share in the contact, outward of the lower block and
+    /// weighted by area, and that area.
+    between: HashMap<(usize, usize, usize), ([f64; 3], f64)>,
+}
+
+impl<'a> Sides<'a> {
+    /// The sides of the shared facets, with the normals every two blocks
+    /// of one body share in a contact summed: they decide side I between
+    /// blocks.
+    fn new(b: &'a Builder<'a>, topo: &'a Topology<'a>, shared: &'a [(usize, &'a Cell)], cells_of: &'a [[usize; 2]], block: &'a [usize]) -> Sides<'a> {
+        let mut sides = Sides { b, topo, shared, cells_of, block, between: HashMap::new() };
+        for (i, &(ci, f)) in shared.iter().enumerate() {
+            let [x, y] = cells_of[i];
+            if topo.body[x] == topo.body[y] && block[x] != block[y] {
+                let low = if block[x] < block[y] { x } else { y };
+                let (n, da) = sides.normal_of(f, low);
+                let e = sides.between.entry((ci, block[x].min(block[y]), block[x].max(block[y]))).or_insert(([0.0; 3], 0.0));
+                for d in 0..3 {
+                    e.0[d] += n[d] * da;
+                }
+                e.1 += da;
+            }
+        }
+        sides
+    }
+
+    /// Facet f's unit normal at its centre, outward of cell c, and its area
+    /// element there (mesh coordinates).
+    fn normal_of(&self, f: &Cell, c: usize) -> ([f64; 3], f64) {
+        let (coords, topo) = (&self.b.mesh.coords, self.topo);
+        let fc: Vec<[f64; 3]> = f.nodes.iter().map(|&n| coords[n]).collect();
+        let cc: Vec<[f64; 3]> = topo.cells[c].nodes.iter().map(|&n| coords[n]).collect();
         let sign = element::outward_sign(f.kind, &fc, topo.cells[c].kind, &cc);
         let (_, n, da, _) = element::facet_point(f.kind, &fc, shape::reference_centre(f.kind));
         ([sign * n[0], sign * n[1], sign * n[2]], da)
-    };
-    // within a body: the normals the two blocks share in a contact, outward of the lower block
-    let mut between: HashMap<(usize, usize, usize), ([f64; 3], f64)> = HashMap::new();
-    for (i, &(ci, f)) in shared.iter().enumerate() {
-        let [x, y] = cells_of[i];
-        if topo.body[x] == topo.body[y] && block[x] != block[y] {
-            let low = if block[x] < block[y] { x } else { y };
-            let (n, da) = normal_of(f, low);
-            let e = between.entry((ci, block[x].min(block[y]), block[x].max(block[y]))).or_insert(([0.0; 3], 0.0));
-            for d in 0..3 {
-                e.0[d] += n[d] * da;
-            }
-            e.1 += da;
-        }
     }
-    let side_i = |i: usize| -> [usize; 2] {
-        let (ci, f) = shared[i];
-        let [x, y] = cells_of[i];
+
+    /// The cells of shared facet i as [side I, side II]: the body listed
+    /// first, or between blocks of one body the low side (module header).
+    fn side_i(&self, i: usize) -> [usize; 2] {
+        let (topo, block) = (self.topo, self.block);
+        let (ci, f) = self.shared[i];
+        let [x, y] = self.cells_of[i];
         if topo.body[x] != topo.body[y] {
             return if topo.body[x] < topo.body[y] { [x, y] } else { [y, x] };
         }
         let (low, high) = if block[x] <= block[y] { (x, y) } else { (y, x) };
-        let n = match between.get(&(ci, block[low], block[high])) {
+        let n = match self.between.get(&(ci, block[low], block[high])) {
             Some(&(n, area)) if element::norm(n) > 1e-6 * area => n,
             // one block on both sides (a joint that ends inside it), or two
             // blocks whose shared facets close around: this facet's own normal
-            _ => normal_of(f, low).0,
+            _ => self.normal_of(f, low).0,
         };
         if points_up(n) {
             [low, high]
         } else {
             [high, low]
         }
-    };
+    }
 
-    // 5. Interfaces and the facets' shares of pairs (k, l) at each node.
-    let mut interfaces: Vec<Interface> = Vec::with_capacity(spec.contacts.len());
-    let mut signs: Vec<Vec<f64>> = Vec::with_capacity(spec.contacts.len());
-    let mut shares: Vec<((usize, usize, usize), Vec<(Share, [f64; 3])>)> = Vec::new();
-    let mut share_of: HashMap<(usize, usize, usize), usize> = HashMap::new();
-    let mut add_share = |key: (usize, usize, usize), share: Share, n: [f64; 3]| {
-        let at = *share_of.entry(key).or_insert_with(|| {
-            shares.push((key, Vec::new()));
-            shares.len() - 1
+    /// Contact `ci` with `group = name`: its interface (the facets in side
+    /// I's model nodes) and the signs of its facets; adds each facet's
+    /// shares of the pairs at its nodes whose two sides have their own copy.
+    fn shared_interface(&self, ci: usize, name: &str, copies: &Copies, shares: &mut Shares) -> (Interface, Vec<f64>) {
+        let (topo, cells) = (self.topo, &copies.cells);
+        let (mut facets, mut sides, mut sg) = (Vec::new(), Vec::new(), Vec::new());
+        for (i, &(fci, f)) in self.shared.iter().enumerate() {
+            if fci != ci {
+                continue;
+            }
+            let [ca, cb] = self.side_i(i);
+            let (n, _) = self.normal_of(f, ca);
+            let fid = facets.len();
+            let mut fi = f.clone();
+            for (j, x) in fi.nodes.iter_mut().enumerate() {
+                let (k, l) = (topo.node_in(cells, ca, f.nodes[j]), topo.node_in(cells, cb, f.nodes[j]));
+                *x = k;
+                if k != l {
+                    shares.add((ci, k, l), Share { facet: fid, node: j }, n);
+                }
+            }
+            facets.push(fi);
+            sides.push([self.block[ca], self.block[cb]]);
+            sg.push(facet_sign(&copies.coords, &facets[fid], &cells[ca]));
+        }
+        (interface(name.to_string(), facets, sides), sg)
+    }
+
+    /// Contact `ci` with `groups = [a, b]`: its interface and the signs of
+    /// its facets, side I the block listed first; adds the shares of the
+    /// pairs of nodes at one position. An error when a group is not the
+    /// face of one block, both are of the same block, or the nodes do not
+    /// pair.
+    fn paired_interface(&self, ci: usize, (na, nb): (&str, &str), size: f64, copies: &Copies, shares: &mut Shares) -> Result<(Interface, Vec<f64>), ModelError> {
+        let (b, topo, block) = (self.b, self.topo, self.block);
+        let (c, sd) = (&b.spec.contacts[ci], b.spec.analysis.dim());
+        let ka = format!("{}.groups[0]", c.key);
+        let kb = format!("{}.groups[1]", c.key);
+        let ga = b.group(&ka, na, &[sd - 1])?;
+        let gb = b.group(&kb, nb, &[sd - 1])?;
+        let sa = one_side(b, topo, block, &ka, na, &ga.cells)?;
+        let sb = one_side(b, topo, block, &kb, nb, &gb.cells)?;
+        if block[sa[0]] == block[sb[0]] {
+            return Err(b.invalid(
+                format!("{}.groups", c.key),
+                format!(
+                    "both \"{na}\" and \"{nb}\" bound {}: a contact between a body and itself is not supported; split the body into two physical groups",
+                    describe_cell(b, topo, block, sa[0])
+                ),
+            ));
+        }
+        let ((gi, ci_cells), (gii, cii_cells)) = if block[sa[0]] < block[sb[0]] { ((ga, sa), (gb, sb)) } else { ((gb, sb), (ga, sa)) };
+        let (map_i, map_ii) = (side_map(topo, &copies.cells, &gi.cells, &ci_cells), side_map(topo, &copies.cells, &gii.cells, &cii_cells));
+        let pairs = pair_by_position(&b.mesh.coords, &gi.nodes(), &gii.nodes(), 1e-6 * size)
+            .map_err(|msg| b.invalid(format!("{}.groups", c.key), format!("pairing the nodes of \"{}\" with those of \"{}\": {msg}", gi.name, gii.name)))?;
+        let partner: HashMap<usize, usize> = pairs.into_iter().collect();
+        let (mut facets, mut sides, mut sg) = (Vec::new(), Vec::new(), Vec::new());
+        for (f, &ca) in gi.cells.iter().zip(&ci_cells) {
+            let fid = facets.len();
+            let (n, _) = self.normal_of(f, ca);
+            let mut fi = f.clone();
+            for (j, x) in fi.nodes.iter_mut().enumerate() {
+                let m = f.nodes[j];
+                *x = map_i[&m];
+                shares.add((ci, map_i[&m], map_ii[&partner[&m]]), Share { facet: fid, node: j }, n);
+            }
+            sg.push(facet_sign(&copies.coords, &fi, &copies.cells[ca]));
+            facets.push(fi);
+            sides.push([block[ca], block[cii_cells[0]]]);
+        }
+        Ok((interface(format!("{}|{}", gi.name, gii.name), facets, sides), sg))
+    }
+}
+
+/// Each mesh node of a `groups = [..]` side's facets in the model node of
+/// its own cell (`owners`, one per facet): the side's copy of the node.
+fn side_map(topo: &Topology, cells: &[Cell], facets: &[Cell], owners: &[usize]) -> HashMap<usize, usize> {
+    let mut map = HashMap::new();
+    for (f, &c) in facets.iter().zip(owners) {
+        for &n in &f.nodes {
+            map.entry(n).or_insert_with(|| topo.node_in(cells, c, n));
+        }
+    }
+    map
+}
+
+/// The interface of a contact from its facets and their (body I, body II):
+/// the bodies of its first facet and every body on side I, ascending.
+fn interface(name: String, facets: Vec<Cell>, sides: Vec<[usize; 2]>) -> Interface {
+    let body_i = sides.first().map_or(0, |s| s[0]);
+    let body_ii = sides.first().map_or(0, |s| s[1]);
+    let mut side_i: Vec<usize> = sides.iter().map(|s| s[0]).collect();
+    side_i.sort_unstable();
+    side_i.dedup();
+    Interface { name, body_i, body_ii, side_i, facets, sides }
+}
+
+/// The facets' shares of the pairs, by (contact, k, l) in the order they
+/// first appear, each share with its facet's normal outward of side I.
+#[derive(Default)]
+struct Shares {
+    list: Vec<(PairKey, Vec<ShareNormal>)>,
+    at: HashMap<PairKey, usize>,
+}
+
+/// (contact, k, l): the pair a share belongs to, before creases split it.
+type PairKey = (usize, usize, usize);
+
+/// A share with its facet's normal outward of side I.
+type ShareNormal = (Share, [f64; 3]);
+
+impl Shares {
+    /// Adds a facet's share (with its normal n) to the pair (contact, k, l).
+    fn add(&mut self, key: PairKey, share: Share, n: [f64; 3]) {
+        let at = *self.at.entry(key).or_insert_with(|| {
+            self.list.push((key, Vec::new()));
+            self.list.len() - 1
         });
-        shares[at].1.push((share, n));
-    };
-    for (ci, c) in spec.contacts.iter().enumerate() {
-        let mut iface = Interface { name: String::new(), body_i: 0, body_ii: 0, side_i: Vec::new(), facets: Vec::new(), sides: Vec::new() };
-        let mut sg = Vec::new();
-        match &c.groups {
-            ContactGroups::Shared(name) => {
-                iface.name = name.clone();
-                for (i, &(fci, f)) in shared.iter().enumerate() {
-                    if fci != ci {
-                        continue;
-                    }
-                    let [ca, cb] = side_i(i);
-                    let (n, _) = normal_of(f, ca);
-                    let fid = iface.facets.len();
-                    let mut fi = f.clone();
-                    for (j, x) in fi.nodes.iter_mut().enumerate() {
-                        let (k, l) = (node_in(ca, f.nodes[j]), node_in(cb, f.nodes[j]));
-                        *x = k;
-                        if k != l {
-                            add_share((ci, k, l), Share { facet: fid, node: j }, n);
-                        }
-                    }
-                    iface.facets.push(fi);
-                    iface.sides.push([block[ca], block[cb]]);
-                    sg.push(facet_sign(&coords, &iface.facets[fid], &cells[ca]));
-                }
-            }
-            ContactGroups::Pair(na, nb) => {
-                let ka = format!("{}.groups[0]", c.key);
-                let kb = format!("{}.groups[1]", c.key);
-                let ga = b.group(&ka, na, &[sd - 1])?;
-                let gb = b.group(&kb, nb, &[sd - 1])?;
-                let sa = one_side(b, topo, &block, &ka, na, &ga.cells)?;
-                let sb = one_side(b, topo, &block, &kb, nb, &gb.cells)?;
-                if block[sa[0]] == block[sb[0]] {
-                    return Err(b.invalid(
-                        format!("{}.groups", c.key),
-                        format!(
-                            "both \"{na}\" and \"{nb}\" bound {}: a contact between a body and itself is not supported; split the body into two physical groups",
-                            describe_cell(b, topo, &block, sa[0])
-                        ),
-                    ));
-                }
-                let ((gi, ci_cells), (gii, cii_cells)) = if block[sa[0]] < block[sb[0]] { ((ga, sa), (gb, sb)) } else { ((gb, sb), (ga, sa)) };
-                // each side's mesh nodes in its own cells' model nodes
-                let side_map = |facets: &[Cell], owners: &[usize]| -> HashMap<usize, usize> {
-                    let mut map = HashMap::new();
-                    for (f, &c) in facets.iter().zip(owners) {
-                        for &n in &f.nodes {
-                            map.entry(n).or_insert_with(|| node_in(c, n));
-                        }
-                    }
-                    map
-                };
-                let (map_i, map_ii) = (side_map(&gi.cells, &ci_cells), side_map(&gii.cells, &cii_cells));
-                let pairs = pair_by_position(&mesh.coords, &gi.nodes(), &gii.nodes(), 1e-6 * size)
-                    .map_err(|msg| b.invalid(format!("{}.groups", c.key), format!("pairing the nodes of \"{}\" with those of \"{}\": {msg}", gi.name, gii.name)))?;
-                let partner: HashMap<usize, usize> = pairs.into_iter().collect();
-                iface.name = format!("{}|{}", gi.name, gii.name);
-                for (f, &ca) in gi.cells.iter().zip(&ci_cells) {
-                    let fid = iface.facets.len();
-                    let (n, _) = normal_of(f, ca);
-                    let mut fi = f.clone();
-                    for (j, x) in fi.nodes.iter_mut().enumerate() {
-                        let m = f.nodes[j];
-                        *x = map_i[&m];
-                        add_share((ci, map_i[&m], map_ii[&partner[&m]]), Share { facet: fid, node: j }, n);
-                    }
-                    sg.push(facet_sign(&coords, &fi, &cells[ca]));
-                    iface.facets.push(fi);
-                    iface.sides.push([block[ca], block[cii_cells[0]]]);
-                }
-            }
-        }
-        iface.body_i = iface.sides.first().map_or(0, |s| s[0]);
-        iface.body_ii = iface.sides.first().map_or(0, |s| s[1]);
-        iface.side_i = iface.sides.iter().map(|s| s[0]).collect();
-        iface.side_i.sort_unstable();
-        iface.side_i.dedup();
-        interfaces.push(iface);
-        signs.push(sg);
+        self.list[at].1.push((share, n));
     }
 
-    // 6. Pairs: the shares of each (contact, k, l), split at creases.
-    shares.sort_by_key(|((ci, k, l), _)| (*ci, mesh_node[*k], *k, *l));
-    let cos_crease = CREASE_ANGLE.to_radians().cos();
-    let mut pairs = Vec::new();
-    for ((ci, k, l), list) in shares {
-        let mut faces: Vec<([f64; 3], Vec<Share>)> = Vec::new();
-        for (share, n) in list {
-            match faces.iter_mut().find(|(sum, _)| element::dot(*sum, n) >= cos_crease * element::norm(*sum)) {
-                Some((sum, members)) => {
-                    for d in 0..3 {
-                        sum[d] += n[d];
+    /// The pairs, ordered by contact and mesh node: the shares of each
+    /// (contact, k, l), split where their facets' normals turn by more than
+    /// [`CREASE_ANGLE`], one pair per face.
+    fn pairs(mut self, mesh_node: &[usize]) -> Vec<RawPair> {
+        self.list.sort_by_key(|((ci, k, l), _)| (*ci, mesh_node[*k], *k, *l));
+        let cos_crease = CREASE_ANGLE.to_radians().cos();
+        let mut pairs = Vec::new();
+        for ((ci, k, l), list) in self.list {
+            let mut faces: Vec<([f64; 3], Vec<Share>)> = Vec::new();
+            for (share, n) in list {
+                match faces.iter_mut().find(|(sum, _)| element::dot(*sum, n) >= cos_crease * element::norm(*sum)) {
+                    Some((sum, members)) => {
+                        for d in 0..3 {
+                            sum[d] += n[d];
+                        }
+                        members.push(share);
                     }
-                    members.push(share);
+                    None => faces.push((n, vec![share])),
                 }
-                None => faces.push((n, vec![share])),
             }
+            pairs.extend(faces.into_iter().map(|(_, shares)| RawPair { k, l, contact: ci, shares }));
         }
-        pairs.extend(faces.into_iter().map(|(_, shares)| RawPair { k, l, contact: ci, shares }));
+        pairs
     }
-    Ok(Split { coords, mesh_node, cells, block, pairs, interfaces, signs })
 }
 
 /// Whether the normal n points along +x, +y or +z, whichever of the three
@@ -313,18 +417,10 @@ fn points_up(n: [f64; 3]) -> bool {
 }
 
 /// The sign making `facet`'s natural normal outward for `cell` (model nodes).
-fn facet_sign(coords: &[[f64; 3]], facet: &Cell, cell: &Cell) -> f64 {
+pub(super) fn facet_sign(coords: &[[f64; 3]], facet: &Cell, cell: &Cell) -> f64 {
     let fc: Vec<[f64; 3]> = facet.nodes.iter().map(|&n| coords[n]).collect();
     let cc: Vec<[f64; 3]> = cell.nodes.iter().map(|&n| coords[n]).collect();
     element::outward_sign(facet.kind, &fc, cell.kind, &cc)
-}
-
-/// The group name of contact `ci` (shared groups).
-fn group_name(spec: &super::ModelSpec, ci: usize) -> &str {
-    match &spec.contacts[ci].groups {
-        ContactGroups::Shared(n) => n,
-        ContactGroups::Pair(a, _) => a,
-    }
 }
 
 /// "body "rock"", or "block 3 of body "rock" (centre at (x, y, z))" when
@@ -340,137 +436,6 @@ fn describe_cell(b: &Builder, topo: &Topology, block: &[usize], c: usize) -> Str
     let nodes: Vec<usize> = of_body.iter().filter(|&&x| block[x] == block[c]).flat_map(|&x| topo.cells[x].nodes.iter().copied()).collect();
     let centre: [f64; 3] = std::array::from_fn(|d| nodes.iter().map(|&n| b.mesh.coords[n][d]).sum::<f64>() / nodes.len().max(1) as f64);
     format!("block {} of body \"{name}\" (centre at ({:.4}, {:.4}, {:.4}))", block[c] - first + 1, centre[0], centre[1], centre[2])
-}
-
-/// The two cells of every facet of the shared contact groups (`shared`:
-/// each facet with its contact); a facet that bounds one cell, none or
-/// more than two is an error naming its group.
-fn two_cells(b: &Builder, topo: &Topology, shared: &[(usize, &Cell)]) -> Result<Vec<[usize; 2]>, ModelError> {
-    let spec = b.spec;
-    let mut cells_of: Vec<[usize; 2]> = Vec::with_capacity(shared.len());
-    // facets that bound one cell, with their contact and cell: read as a
-    // whole (below) to say what is wrong with their group
-    let mut lone: Vec<(usize, &Cell, usize)> = Vec::new();
-    for &(ci, f) in shared {
-        let key = format!("{}.group", spec.contacts[ci].key);
-        let name = group_name(spec, ci);
-        match topo.bounding(f).as_slice() {
-            [x, y] => cells_of.push([*x, *y]),
-            [one] => {
-                lone.push((ci, f, *one));
-                cells_of.push([*one, *one]);
-            }
-            [] => return Err(b.invalid(key, format!("element {} of group \"{name}\" touches no body: it is not a face of any element of the [[bodies]] groups", f.tag))),
-            many => return Err(b.invalid(key, format!("element {} of group \"{name}\" is a face of {} elements; a face separates two", f.tag, many.len()))),
-        }
-    }
-    if let Some(&(ci, ..)) = lone.first() {
-        let of_group: Vec<(&Cell, usize)> = lone.iter().filter(|l| l.0 == ci).map(|l| (l.1, l.2)).collect();
-        let between = shared.iter().zip(&cells_of).filter(|((c, _), [x, y])| *c == ci && x != y).count();
-        return Err(touches_one(b, topo, ci, &of_group, between));
-    }
-    Ok(cells_of)
-}
-
-/// The message for a contact group (`contacts[ci]`) with facets that bound
-/// one cell each (`lone`, with their cells; `between`: its facets between
-/// two cells). Beside facets between two bodies they are outer faces the
-/// group takes in. A group of lone facets alone names the body nearest
-/// any of them, and when that body lies against one without sharing its
-/// nodes, says how to make the mesh conformal.
-fn touches_one(b: &Builder, topo: &Topology, ci: usize, lone: &[(&Cell, usize)], between: usize) -> ModelError {
-    let key = format!("{}.group", b.spec.contacts[ci].key);
-    let name = group_name(b.spec, ci);
-    let (f, cell) = lone[0];
-    let own = &b.spec.bodies[topo.body[cell]].group;
-    let surface = if f.kind.dim() == 1 { "curve" } else { "surface" };
-    if between > 0 {
-        return b.invalid(
-            key,
-            format!(
-                "group \"{name}\" takes in {} element(s) that touch only one body (element {} of body \"{own}\" the first) besides the {between} between two bodies: a contact is the {surface} the bodies share. Leave its outer faces out of the Physical group",
-                lone.len(),
-                f.tag
-            ),
-        );
-    }
-    let hint = match against(b, topo, lone) {
-        Some((i, dist, other)) => format!(
-            "; its element {} lies against body \"{}\" ({dist:.3e} away), which does not share its nodes: the two were meshed apart. Make the mesh conformal (OpenCASCADE: BooleanFragments{{ Volume{{..}}; Delete; }}{{ Volume{{..}}; Delete; }}, or Coherence), or give each side its own group and pair them with groups = [..]",
-            lone[i].0.tag,
-            b.spec.bodies[other].group
-        ),
-        None => match nearest(b, topo, centre(b, f), topo.body[cell]) {
-            Some((dist, other)) => format!("; the nearest other body is \"{}\", {dist:.3e} away", b.spec.bodies[other].group),
-            None => String::new(),
-        },
-    };
-    b.invalid(
-        key,
-        format!(
-            "group \"{name}\" touches only body \"{own}\" (element {}{}){hint}. A contact needs a body on each side sharing the {surface} (group = ..), or two coincident groups (groups = [..])",
-            f.tag,
-            if lone.len() > 1 { format!(" and {} more", lone.len() - 1) } else { String::new() }
-        ),
-    )
-}
-
-/// The centre of a facet's corners.
-fn centre(b: &Builder, f: &Cell) -> [f64; 3] {
-    let nc = f.kind.n_corners();
-    std::array::from_fn(|d| f.nodes[..nc].iter().map(|&n| b.mesh.coords[n][d]).sum::<f64>() / nc as f64)
-}
-
-/// The nearest node of a body other than `body` to `x`: (distance, body).
-fn nearest(b: &Builder, topo: &Topology, x: [f64; 3], body: usize) -> Option<(f64, usize)> {
-    (topo.cells.iter().zip(&topo.body))
-        .filter(|(_, &cb)| cb != body)
-        .flat_map(|(c, &cb)| c.nodes.iter().map(move |&n| (element::norm(element::sub(b.mesh.coords[n], x)), cb)))
-        .min_by(|a, c| a.0.total_cmp(&c.0))
-}
-
-/// Of the lone facets, the one another body's nodes come nearest to
-/// (within twice the facet's size, relative to it): (its index, the
-/// distance, that body). Other bodies' nodes are hashed on a grid of the
-/// largest facet's size, so that every facet looks at its neighbourhood.
-fn against(b: &Builder, topo: &Topology, lone: &[(&Cell, usize)]) -> Option<(usize, f64, usize)> {
-    let coords = &b.mesh.coords;
-    let at: Vec<([f64; 3], f64)> = (lone.iter())
-        .map(|(f, _)| {
-            let c = centre(b, f);
-            (c, f.nodes[..f.kind.n_corners()].iter().map(|&n| element::norm(element::sub(coords[n], c))).fold(0.0, f64::max))
-        })
-        .collect();
-    let h = at.iter().map(|a| a.1).fold(0.0, f64::max);
-    if h <= 0.0 {
-        return None;
-    }
-    let cell_of = |x: [f64; 3]| x.map(|v| (v / h).floor() as i64);
-    let bodies: HashSet<usize> = lone.iter().map(|&(_, c)| topo.body[c]).collect();
-    let mut grid: HashMap<[i64; 3], Vec<(usize, usize)>> = HashMap::new();
-    for (c, &cb) in topo.cells.iter().zip(&topo.body) {
-        if bodies.len() == 1 && bodies.contains(&cb) {
-            continue;
-        }
-        for &n in &c.nodes {
-            grid.entry(cell_of(coords[n])).or_default().push((n, cb));
-        }
-    }
-    let mut best: Option<(f64, usize, f64, usize)> = None;
-    for (i, (&(_, cell), &(x, size))) in lone.iter().zip(&at).enumerate() {
-        let own = topo.body[cell];
-        let g = cell_of(x);
-        for d in 0..125 {
-            let key = [g[0] + d % 5 - 2, g[1] + d / 5 % 5 - 2, g[2] + d / 25 - 2];
-            for &(n, cb) in grid.get(&key).map_or(&[][..], |v| &v[..]) {
-                let dist = element::norm(element::sub(coords[n], x));
-                if cb != own && dist < 2.0 * size && best.is_none_or(|bb| dist / size < bb.0) {
-                    best = Some((dist / size, i, dist, cb));
-                }
-            }
-        }
-    }
-    best.map(|(_, i, dist, cb)| (i, dist, cb))
 }
 
 /// The one cell each facet of a `groups = [..]` side bounds; all in one block.

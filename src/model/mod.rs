@@ -19,7 +19,8 @@
 //! the cells their facets bound (a point support every copy).
 //!
 //! [`Model::build`] (build.rs) takes the steps in order: bodies, contacts
-//! (topology.rs: blocks and fans; contacts.rs: the split and the pairs),
+//! (topology.rs: blocks and fans; facet_cells.rs: the two cells of every
+//! contact facet; contacts.rs: the split and the pairs),
 //! supports, the rigid-motion check (held.rs), loads, pair normals and
 //! areas. builder.rs holds what every step reads and its messages.
 //! What the built model makes legal but a user may not mean (bodies bonded
@@ -28,6 +29,7 @@
 mod build;
 mod builder;
 mod contacts;
+mod facet_cells;
 mod held;
 pub mod quality;
 mod spec;

@@ -105,6 +105,14 @@ impl<'a> Topology<'a> {
         self.at(corners[0]).iter().copied().filter(|&c| corners[1..].iter().all(|n| self.cells[c].nodes.contains(n))).collect()
     }
 
+    /// The model node mesh node `n` became in cell `c`, read from the cells
+    /// in model nodes (`cells`, as the contact split left them): where a
+    /// node was copied, each cell knows its own copy.
+    pub(super) fn node_in(&self, cells: &[Cell], c: usize, n: usize) -> usize {
+        let at = self.cells[c].nodes.iter().position(|&x| x == n).expect("the node is in the cell");
+        cells[c].nodes[at]
+    }
+
     /// The corners cells a and b share, sorted, when they touch through a face.
     fn shared_face(&self, a: usize, b: usize) -> Option<FaceKey> {
         let (ca, cb) = (self.cells[a], self.cells[b]);
