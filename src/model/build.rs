@@ -1,13 +1,14 @@
 //! [`Model::build`]: the model from a mesh and a [`ModelSpec`], in numbered
-//! steps. Each step resolves the physical groups it names (with a message
-//! naming the input's key when a group is missing, empty or of the wrong
-//! dimension) and moves what it builds onto the model nodes the contact
-//! split made.
+//! steps, each (but the assembly of the model) a function (here, or in contacts.rs,
+//! held.rs, quality.rs) that returns what it built. Each step resolves the
+//! physical groups it names (with a message naming the input's key when a
+//! group is missing, empty or of the wrong dimension) and moves what it
+//! builds onto the model nodes the contact split made.
 
 use std::collections::HashMap;
 
 use super::builder::{dim_name, Builder};
-use super::contacts::{self, Split};
+use super::contacts::{self, facet_sign, RawPair, Split};
 use super::held::check_held;
 use super::topology::Topology;
 use super::{Block, Body, FacetLoad, InitialStress, Model, ModelError, ModelSpec, Pair};
@@ -16,210 +17,253 @@ use crate::fem::Analysis;
 use crate::mesh::{Cell, Mesh};
 
 impl Model {
+    /// The model from a mesh and its description: the steps below, in
+    /// order, each a function of this file (or of a sibling) that resolves
+    /// the groups it names and returns what it built.
     pub fn build(mesh: &Mesh, spec: &ModelSpec) -> Result<Model, ModelError> {
         let b = Builder { mesh, spec };
-        let sd = spec.analysis.dim();
-        let nd = dofs_per_node(spec.analysis);
-
-        // 0. The mesh's dimension is the analysis's: a plane analysis of a 3D
-        // mesh (or of a 3D .geo meshed in 2D) is a wrong `analysis`, not a
-        // wrong body group.
-        let mesh_dim = mesh.dim();
-        if mesh_dim != sd {
-            return Err(b.invalid(
-                "analysis".into(),
-                format!(
-                    "analysis = \"{}\" needs a {sd}D mesh with the bodies as physical {}s, but the mesh `{}` is {mesh_dim}D (it has physical {}s): {}",
-                    spec.analysis,
-                    dim_name(sd),
-                    spec.mesh,
-                    dim_name(mesh_dim),
-                    if mesh_dim == 3 {
-                        "use analysis = \"solid\"".to_string()
-                    } else {
-                        "use a plane analysis (plane_strain, plane_stress, axisymmetric), or give the .geo physical volumes".to_string()
-                    }
-                ),
-            ));
-        }
-
-        // 1. Bodies: the cells of every body group.
-        let mut groups: Vec<&[Cell]> = Vec::with_capacity(spec.bodies.len());
-        for body in &spec.bodies {
-            let g = b.group(&format!("{}.group", body.key), &body.group, &[sd])?;
-            if let Some(InitialStress::Geostatic { .. }) = body.initial {
-                if body.density <= 0.0 || spec.gravity.iter().all(|&g| g == 0.0) {
-                    return Err(b.invalid(
-                        format!("{}.k0", body.key),
-                        format!(
-                            "a geostatic initial stress needs the weight of body \"{}\": give its material a density > 0 and the scene a gravity = [..]",
-                            body.group
-                        ),
-                    ));
-                }
-            }
-            groups.push(&g.cells);
-        }
+        // 0. The mesh's dimension is the analysis's.
+        check_dimension(&b)?;
+        // 1. Bodies: the cells of every body group, in the plane of the analysis.
+        let groups = body_groups(&b)?;
         let size = mesh.size();
         check_plane(&b, &groups, size)?;
-
         // 2. Contacts: the blocks, one node per fan along the contact
         // facets, and the pairs.
-        let topo = Topology::new(mesh.coords.len(), sd, &groups);
-        let Split { coords, mesh_node, cells, block, pairs: raw_pairs, interfaces, signs } = contacts::split(&b, &topo, size)?;
-        let n_model = coords.len();
-        let bodies = blocks(spec, &topo, &block, &cells, &coords);
-        // where each cell went: (body, index in its cells)
-        let mut placed = vec![(0, 0); cells.len()];
-        let mut count = vec![0; bodies.len()];
-        for (c, &bl) in block.iter().enumerate() {
-            placed[c] = (bl, count[bl]);
-            count[bl] += 1;
-        }
-        // the model node of mesh node n in cell c
-        let node_in = |c: usize, n: usize| -> usize {
-            let at = topo.cells[c].nodes.iter().position(|&x| x == n).expect("the node is in the cell");
-            cells[c].nodes[at]
-        };
-        let mut copies_of: Vec<Vec<usize>> = vec![Vec::new(); mesh.coords.len()];
-        for (m, &n) in mesh_node.iter().enumerate() {
-            copies_of[n].push(m);
-        }
-
-        // 3. Supports. A point support holds every copy of its node; a
-        // support on a curve or surface holds the copies of the cells its
-        // facets bound, so a support on one body's face next to a contact
-        // does not drag the other body's copy of the shared corner node
-        // (a symmetry line crossing a contact bounds both bodies: both held).
-        let mut prescribed: Vec<Option<f64>> = vec![None; n_model * nd];
-        for s in &spec.supports {
-            let g = b.group(&format!("{}.group", s.key), &s.group, &(0..=sd).collect::<Vec<_>>())?;
-            let mut held: Vec<usize> = Vec::new();
-            for cell in &g.cells {
-                let owners = if cell.kind.dim() == 0 { Vec::new() } else { topo.bounding(cell) };
-                for &n in &cell.nodes {
-                    if owners.is_empty() {
-                        held.extend(copies_of[n].iter().copied());
-                    } else {
-                        held.extend(owners.iter().map(|&c| node_in(c, n)));
-                    }
-                }
-            }
-            held.sort_unstable();
-            held.dedup();
-            for m in held {
-                for c in 0..nd {
-                    if let Some(v) = s.prescribed[c] {
-                        prescribed[m * nd + c] = Some(v);
-                    } else if s.fix[c] {
-                        prescribed[m * nd + c] = Some(0.0);
-                    }
-                }
-            }
-        }
-
-        // 3b. Every rigid-body motion of every cluster of bodies (joined by
-        // shared nodes or contacts, contacts counted as closed) must be
-        // stopped by a support: a free one makes the stiffness singular only
-        // up to round-off, which the Cholesky factorisation may not notice.
-        let links: Vec<(usize, usize)> = raw_pairs.iter().map(|p| (p.k, p.l)).collect();
-        check_held(&b, &coords, &bodies, &links, &prescribed)?;
-
-        // 4. Loads, each facet on the copy of the cell it bounds.
-        let mut loads = Vec::new();
-        let steps = spec.load_steps;
-        let mut cases: Vec<Vec<f64>> = vec![(1..=steps).map(|k| k as f64 / steps as f64).collect()];
-        for load in &spec.loads {
-            let case = match &load.factors {
-                None => 0,
-                Some(f) => {
-                    cases.push(f.clone());
-                    cases.len() - 1
-                }
-            };
-            let key = format!("{}.group", load.key);
-            let g = b.group(&key, &load.group, &[sd - 1])?;
-            for f in &g.cells {
-                let c = match topo.bounding(f).as_slice() {
-                    [one] => *one,
-                    [] => {
-                        return Err(b.invalid(
-                            key.clone(),
-                            format!("element {} of group \"{}\" is not on the boundary of any body", f.tag, load.group),
-                        ))
-                    }
-                    owners => {
-                        let names: Vec<String> = owners.iter().map(|&c| bodies[block[c]].label()).collect();
-                        return Err(b.invalid(
-                            key.clone(),
-                            format!("element {} of group \"{}\" lies between bodies {}: loads go on outer boundaries", f.tag, load.group, names.join(" and ")),
-                        ));
-                    }
-                };
-                let mut cell = f.clone();
-                for n in &mut cell.nodes {
-                    *n = node_in(c, *n);
-                }
-                let (body, element) = placed[c];
-                let sign = facet_sign(&coords, &cell, &cells[c]);
-                loads.push(FacetLoad { cell, sign, kind: load.kind.clone(), body, element, case });
-            }
-        }
-
+        let topo = Topology::new(mesh.coords.len(), spec.analysis.dim(), &groups);
+        let split = contacts::split(&b, &topo, size)?;
+        let bodies = blocks(spec, &topo, &split.block, &split.cells, &split.coords);
+        // 3. Supports, and 3b. every rigid-body motion held by one.
+        let prescribed = supports(&b, &topo, &split)?;
+        let links: Vec<(usize, usize)> = split.pairs.iter().map(|p| (p.k, p.l)).collect();
+        check_held(&b, &split.coords, &bodies, &links, &prescribed)?;
+        // 4. Load cases, and loads, each facet on the copy of the cell it bounds.
+        let cases = Cases::new(spec);
+        let loads = loads(&b, &topo, &split, &bodies, &cases.of_load)?;
         // 5. Pair normals and areas from their facets on side I.
         let mut model = Model {
             scene: spec.source.clone(),
             analysis: spec.analysis,
-            nd,
+            nd: dofs_per_node(spec.analysis),
             thickness: spec.thickness,
             gravity: spec.gravity,
-            coords,
+            coords: split.coords,
             bodies,
             loads,
             prescribed,
             pairs: Vec::new(),
-            interfaces,
-            mesh_node,
-            gravity_case: match &spec.gravity_factors {
-                None => 0,
-                Some(f) => {
-                    cases.push(f.clone());
-                    cases.len() - 1
-                }
-            },
-            initial_case: {
-                cases.push(vec![1.0; steps]);
-                cases.len() - 1
-            },
-            cases,
+            interfaces: split.interfaces,
+            mesh_node: split.mesh_node,
+            cases: cases.factors,
+            gravity_case: cases.gravity,
+            initial_case: cases.initial,
         };
-        let mut points: HashMap<(usize, usize), Vec<FacetPoint>> = HashMap::new();
-        let mut pairs = Vec::with_capacity(raw_pairs.len());
-        for p in &raw_pairs {
-            let (mut nk, mut area) = ([0.0; 3], 0.0);
-            for s in &p.shares {
-                let pts = points.entry((p.contact, s.facet)).or_insert_with(|| facet_points(&model, &model.interfaces[p.contact].facets[s.facet]));
-                let sign = signs[p.contact][s.facet];
-                for q in pts.iter() {
-                    let a = s.node;
-                    area += q.w * q.da * q.measure * q.n[a];
-                    // normals weighted by geometry only (N_a >= 0 weights
-                    // avoid cancelling on serendipity faces)
-                    for i in 0..3 {
-                        nk[i] += sign * q.unit[i] * q.w * q.da * q.n[a].abs();
-                    }
-                }
-            }
-            let nrm = element::norm(nk);
-            let normal = if nrm > 0.0 { [nk[0] / nrm, nk[1] / nrm, nk[2] / nrm] } else { [0.0; 3] };
-            pairs.push(Pair { k: p.k, l: p.l, contact: p.contact, normal, area, shares: p.shares.iter().map(|s| (s.facet, s.node)).collect() });
-        }
-        model.pairs = pairs;
+        model.pairs = pair_normals(&model, &split.pairs, &split.signs);
         // 6. Every cell positive over its whole extent, not only where it
         // is integrated.
         super::quality::folded(&model)?;
         Ok(model)
     }
+}
+
+/// Ok when the mesh's dimension is the analysis's: a plane analysis of a
+/// 3D mesh (or of a 3D .geo meshed in 2D) is a wrong `analysis`, not a
+/// wrong body group, and the message says so.
+fn check_dimension(b: &Builder) -> Result<(), ModelError> {
+    let (mesh, spec) = (b.mesh, b.spec);
+    let (sd, mesh_dim) = (spec.analysis.dim(), mesh.dim());
+    if mesh_dim != sd {
+        return Err(b.invalid(
+            "analysis".into(),
+            format!(
+                "analysis = \"{}\" needs a {sd}D mesh with the bodies as physical {}s, but the mesh `{}` is {mesh_dim}D (it has physical {}s): {}",
+                spec.analysis,
+                dim_name(sd),
+                spec.mesh,
+                dim_name(mesh_dim),
+                if mesh_dim == 3 {
+                    "use analysis = \"solid\"".to_string()
+                } else {
+                    "use a plane analysis (plane_strain, plane_stress, axisymmetric), or give the .geo physical volumes".to_string()
+                }
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The cells of every body group, in `[[bodies]]` order; a geostatic
+/// initial stress without the weight to make it is an error.
+fn body_groups<'a>(b: &Builder<'a>) -> Result<Vec<&'a [Cell]>, ModelError> {
+    let spec = b.spec;
+    let mut groups: Vec<&[Cell]> = Vec::with_capacity(spec.bodies.len());
+    for body in &spec.bodies {
+        let g = b.group(&format!("{}.group", body.key), &body.group, &[spec.analysis.dim()])?;
+        if let Some(InitialStress::Geostatic { .. }) = body.initial {
+            if body.density <= 0.0 || spec.gravity.iter().all(|&g| g == 0.0) {
+                return Err(b.invalid(
+                    format!("{}.k0", body.key),
+                    format!(
+                        "a geostatic initial stress needs the weight of body \"{}\": give its material a density > 0 and the scene a gravity = [..]",
+                        body.group
+                    ),
+                ));
+            }
+        }
+        groups.push(&g.cells);
+    }
+    Ok(groups)
+}
+
+/// The prescribed value of every DOF (`node * nd + c`), None where free.
+/// A point support holds every copy of its node; a support on a curve or
+/// surface holds the copies of the cells its facets bound, so a support on
+/// one body's face next to a contact does not drag the other body's copy
+/// of the shared corner node (a symmetry line crossing a contact bounds
+/// both bodies: both held).
+fn supports(b: &Builder, topo: &Topology, split: &Split) -> Result<Vec<Option<f64>>, ModelError> {
+    let (sd, nd) = (b.spec.analysis.dim(), dofs_per_node(b.spec.analysis));
+    let mut copies_of: Vec<Vec<usize>> = vec![Vec::new(); b.mesh.coords.len()];
+    for (m, &n) in split.mesh_node.iter().enumerate() {
+        copies_of[n].push(m);
+    }
+    let mut prescribed: Vec<Option<f64>> = vec![None; split.coords.len() * nd];
+    for s in &b.spec.supports {
+        let g = b.group(&format!("{}.group", s.key), &s.group, &(0..=sd).collect::<Vec<_>>())?;
+        let mut held: Vec<usize> = Vec::new();
+        for cell in &g.cells {
+            let owners = if cell.kind.dim() == 0 { Vec::new() } else { topo.bounding(cell) };
+            for &n in &cell.nodes {
+                if owners.is_empty() {
+                    held.extend(copies_of[n].iter().copied());
+                } else {
+                    held.extend(owners.iter().map(|&c| topo.node_in(&split.cells, c, n)));
+                }
+            }
+        }
+        held.sort_unstable();
+        held.dedup();
+        for m in held {
+            for c in 0..nd {
+                if let Some(v) = s.prescribed[c] {
+                    prescribed[m * nd + c] = Some(v);
+                } else if s.fix[c] {
+                    prescribed[m * nd + c] = Some(0.0);
+                }
+            }
+        }
+    }
+    Ok(prescribed)
+}
+
+/// The load cases, numbered as the model numbers them.
+struct Cases {
+    /// Load factor of each case at each load step.
+    factors: Vec<Vec<f64>>,
+    /// The case of each of the description's loads.
+    of_load: Vec<usize>,
+    /// The case of gravity, and of the initial stresses.
+    gravity: usize,
+    initial: usize,
+}
+
+impl Cases {
+    /// The ramp k / load_steps (case 0, for whatever has no factors of its
+    /// own), then each load's own factors, gravity's, and the initial
+    /// stresses' (1 at every step: they are there before the first load).
+    fn new(spec: &ModelSpec) -> Cases {
+        let steps = spec.load_steps;
+        let mut factors: Vec<Vec<f64>> = vec![(1..=steps).map(|k| k as f64 / steps as f64).collect()];
+        let mut case_of = |own: &Option<Vec<f64>>| match own {
+            None => 0,
+            Some(f) => {
+                factors.push(f.clone());
+                factors.len() - 1
+            }
+        };
+        let of_load = spec.loads.iter().map(|load| case_of(&load.factors)).collect();
+        let gravity = case_of(&spec.gravity_factors);
+        factors.push(vec![1.0; steps]);
+        let initial = factors.len() - 1;
+        Cases { factors, of_load, gravity, initial }
+    }
+}
+
+/// Every facet of every load group on the copy of the cell it bounds, with
+/// the sign that makes its normal outward and its load case (`of_load`);
+/// a facet on no body's boundary, or between two bodies, is an error.
+fn loads(b: &Builder, topo: &Topology, split: &Split, bodies: &[Body], of_load: &[usize]) -> Result<Vec<FacetLoad>, ModelError> {
+    let placed = placed(&split.block, bodies.len());
+    let mut loads = Vec::new();
+    for (load, &case) in b.spec.loads.iter().zip(of_load) {
+        let key = format!("{}.group", load.key);
+        let g = b.group(&key, &load.group, &[b.spec.analysis.dim() - 1])?;
+        for f in &g.cells {
+            let c = match topo.bounding(f).as_slice() {
+                [one] => *one,
+                [] => {
+                    return Err(b.invalid(
+                        key.clone(),
+                        format!("element {} of group \"{}\" is not on the boundary of any body", f.tag, load.group),
+                    ))
+                }
+                owners => {
+                    let names: Vec<String> = owners.iter().map(|&c| bodies[split.block[c]].label()).collect();
+                    return Err(b.invalid(
+                        key.clone(),
+                        format!("element {} of group \"{}\" lies between bodies {}: loads go on outer boundaries", f.tag, load.group, names.join(" and ")),
+                    ));
+                }
+            };
+            let mut cell = f.clone();
+            for n in &mut cell.nodes {
+                *n = topo.node_in(&split.cells, c, *n);
+            }
+            let (body, element) = placed[c];
+            let sign = facet_sign(&split.coords, &cell, &split.cells[c]);
+            loads.push(FacetLoad { cell, sign, kind: load.kind.clone(), body, element, case });
+        }
+    }
+    Ok(loads)
+}
+
+/// Where each cell went: (its body, its index in the body's cells), as
+/// [`blocks`] puts the cells of every block in order.
+fn placed(block: &[usize], n_bodies: usize) -> Vec<(usize, usize)> {
+    let mut placed = vec![(0, 0); block.len()];
+    let mut count = vec![0; n_bodies];
+    for (c, &bl) in block.iter().enumerate() {
+        placed[c] = (bl, count[bl]);
+        count[bl] += 1;
+    }
+    placed
+}
+
+/// The pairs with their normals and areas, integrated over the facets of
+/// side I each pair takes them from (`signs`: each facet's outward sign).
+fn pair_normals(model: &Model, raw_pairs: &[RawPair], signs: &[Vec<f64>]) -> Vec<Pair> {
+    let mut points: HashMap<(usize, usize), Vec<FacetPoint>> = HashMap::new();
+    let mut pairs = Vec::with_capacity(raw_pairs.len());
+    for p in raw_pairs {
+        let (mut nk, mut area) = ([0.0; 3], 0.0);
+        for s in &p.shares {
+            let pts = points.entry((p.contact, s.facet)).or_insert_with(|| facet_points(model, &model.interfaces[p.contact].facets[s.facet]));
+            let sign = signs[p.contact][s.facet];
+            for q in pts.iter() {
+                let a = s.node;
+                area += q.w * q.da * q.measure * q.n[a];
+                // normals weighted by geometry only (N_a >= 0 weights
+                // avoid cancelling on serendipity faces)
+                for i in 0..3 {
+                    nk[i] += sign * q.unit[i] * q.w * q.da * q.n[a].abs();
+                }
+            }
+        }
+        let nrm = element::norm(nk);
+        let normal = if nrm > 0.0 { [nk[0] / nrm, nk[1] / nrm, nk[2] / nrm] } else { [0.0; 3] };
+        pairs.push(Pair { k: p.k, l: p.l, contact: p.contact, normal, area, shares: p.shares.iter().map(|s| (s.facet, s.node)).collect() });
+    }
+    pairs
 }
 
 /// Plane models lie in z = 0, axisymmetric ones in x = r >= 0.
@@ -277,13 +321,6 @@ fn blocks(spec: &ModelSpec, topo: &Topology, block: &[usize], cells: &[Cell], co
             Body { name: body.group.clone(), group: g, block, e: body.e, nu: body.nu, density: body.density, cells, initial: body.initial }
         })
         .collect()
-}
-
-/// The sign making `facet`'s natural normal outward for `cell` (model nodes).
-fn facet_sign(coords: &[[f64; 3]], facet: &Cell, cell: &Cell) -> f64 {
-    let fc: Vec<[f64; 3]> = facet.nodes.iter().map(|&n| coords[n]).collect();
-    let cc: Vec<[f64; 3]> = cell.nodes.iter().map(|&n| coords[n]).collect();
-    element::outward_sign(facet.kind, &fc, cell.kind, &cc)
 }
 
 /// A quadrature point of a facet: weight, shape values, natural unit
