@@ -1,9 +1,9 @@
 //! [`Model::build`]: the model from a mesh and a [`ModelSpec`], in numbered
-//! steps, each (but the assembly of the model) a function (here, or in contacts.rs,
-//! held.rs, quality.rs) that returns what it built. Each step resolves the
-//! physical groups it names (with a message naming the input's key when a
-//! group is missing, empty or of the wrong dimension) and moves what it
-//! builds onto the model nodes the contact split made.
+//! steps, each (but the assembly of the model) a function (here, or in
+//! contacts.rs, held.rs, quality.rs) that returns what it built. Each step
+//! resolves the physical groups it names (with a message naming the input's
+//! key when a group is missing, empty or of the wrong dimension) and moves
+//! what it builds onto the model nodes the contact split made.
 
 use std::collections::HashMap;
 
