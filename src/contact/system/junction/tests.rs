@@ -1,0 +1,172 @@
+//! Unit tests of [`super`]: a stuck crossing has no free direction, the
+//! least-norm forces are the face tractions under a uniform stress, a
+//! slipping pair in a stuck loop is locked and carries its friction, open
+//! pairs free everything, and a crease (two faces between the same two
+//! copies) slides only along its line and shares a stuck force within both
+//! Coulomb cones.
+
+use super::*;
+
+const X: Frame = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+const Y: Frame = [[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]];
+
+/// A crossing in 2D: copies 0 (bottom left), 1 (bottom right), 2 (top
+/// left), 3 (top right); pairs 0-1 and 2-3 across x = 0 (normal +x),
+/// 0-2 and 1-3 across y = 0 (normal +y).
+fn crossing() -> (Vec<(usize, usize, Frame)>, Junction) {
+    let pairs = vec![(0, 1, X), (2, 3, X), (0, 2, Y), (1, 3, Y)];
+    let (mut nm, mut nr) = (0, 0);
+    let j = Junction::new((0..4).collect(), |p| pairs[p], &[None; 8], 2, &mut nm, &mut nr);
+    assert_eq!((nm, nr), (2, 6));
+    (pairs, j)
+}
+
+fn stuck(n: usize) -> Vec<Relation> {
+    (0..n).map(|_| Relation::simple(ContactState::Stick, [0.0; 3], [0.0; 3])).collect()
+}
+
+#[test]
+fn stuck_loops_leave_no_free_direction() {
+    let (_, j) = crossing();
+    let tied = j.tie(&stuck(4), 1.0, |_| 1.0);
+    assert_eq!(tied.z.ncols(), 0, "eight ties of rank six fix all six relative displacements");
+    assert!(tied.r0.norm() < 1e-15);
+}
+
+/// Uniform stress (sxx, syy, sxy) with equal areas: the copies' forces
+/// are the faces' tractions summed; the least-norm split gives each
+/// pair its own face's traction exactly.
+#[test]
+fn least_norm_forces_are_the_face_tractions_under_uniform_stress() {
+    let (pairs, j) = crossing();
+    let (sxx, syy, sxy) = (-3.0, -1.5, 0.7);
+    // traction on body I from body II, local axes: t_x face (n = +x): (sxx, sxy); y face (n = +y): local n = y, t = -x
+    let want = |p: usize| -> [f64; 2] {
+        if pairs[p].2 == X {
+            [sxx, sxy]
+        } else {
+            [syy, -sxy]
+        }
+    };
+    // g over r = -(force on r from the bodies) = sum_p C_p^T λ_p
+    let mut g = DVector::<f64>::zeros(6);
+    for p in 0..4 {
+        for a in 0..2 {
+            g += DVector::from_column_slice(&j.rows[p][a]) * want(p)[a];
+        }
+    }
+    let rel = stuck(4);
+    let tied = j.tie(&rel, 1.0, |_| 1.0);
+    let out = j.forces(&tied, &rel, &DVector::zeros(6), &g, 1.0);
+    for p in 0..4 {
+        for a in 0..2 {
+            assert!((out[p].0[a] - want(p)[a]).abs() < 1e-13, "pair {p} axis {a}: {} vs {}", out[p].0[a], want(p)[a]);
+        }
+    }
+}
+
+/// One pair slipping in a stuck loop: the loop still locks its slip
+/// (no free direction), and its friction force is what it prescribes.
+#[test]
+fn a_slipping_pair_in_a_stuck_loop_is_locked_and_carries_its_friction() {
+    let (_, j) = crossing();
+    let mut rel = stuck(4);
+    rel[0] = Relation { state: ContactState::Slip, target: [0.0; 3], force: [0.0, 0.25, 0.0], coupling: [0.0; 3], spring: [[0.0; 3]; 3], pressure: 0.0, limit: Limit::NONE };
+    let tied = j.tie(&rel, 1.0, |_| 1.0);
+    assert_eq!(tied.z.ncols(), 0);
+    let out = j.forces(&tied, &rel, &DVector::zeros(6), &DVector::zeros(6), 1.0);
+    assert!((out[0].0[1] - 0.25).abs() < 1e-15);
+    // the loop takes the friction back: the forces on every copy balance
+    let mut on_copy = [[0.0f64; 2]; 4];
+    let frames = [X, X, Y, Y];
+    let ends = [(0, 1), (2, 3), (0, 2), (1, 3)];
+    for p in 0..4 {
+        for c in 0..2 {
+            let f: f64 = (0..2).map(|a| frames[p][a][c] * out[p].0[a]).sum();
+            on_copy[ends[p].0][c] += f;
+            on_copy[ends[p].1][c] -= f;
+        }
+    }
+    for f in on_copy {
+        assert!(f[0].abs() < 1e-14 && f[1].abs() < 1e-14, "{on_copy:?}");
+    }
+}
+
+/// All four open: every relative displacement is free, no force.
+#[test]
+fn open_pairs_free_everything() {
+    let (_, j) = crossing();
+    let rel: Vec<Relation> = (0..4).map(|_| Relation::simple(ContactState::Open, [0.0; 3], [0.0; 3])).collect();
+    let tied = j.tie(&rel, 1.0, |_| 1.0);
+    assert_eq!(tied.z.ncols(), 6);
+}
+
+/// A crease: two pairs between the same two copies with normals at 90
+/// degrees (x + y and y - x), the crease's line along z.
+fn crease() -> Junction {
+    let s = 0.5f64.sqrt();
+    let f1: Frame = [[s, s, 0.0], [-s, s, 0.0], [0.0, 0.0, 1.0]];
+    let f2: Frame = [[-s, s, 0.0], [-s, -s, 0.0], [0.0, 0.0, 1.0]];
+    let pairs = [(0, 1, f1), (0, 1, f2)];
+    let (mut nm, mut nr) = (0, 0);
+    Junction::new(vec![0, 1], |p| pairs[p], &[None; 6], 3, &mut nm, &mut nr)
+}
+
+/// A crease, both pairs slipping tie the two normals: the copies slide only
+/// along the crease (z).
+#[test]
+fn a_crease_slides_only_along_its_line() {
+    let j = crease();
+    let rel: Vec<Relation> = (0..2).map(|_| Relation::simple(ContactState::Slip, [0.0; 3], [0.0; 3])).collect();
+    let tied = j.tie(&rel, 1.0, |_| 1.0);
+    assert_eq!(tied.z.ncols(), 1);
+    assert!((tied.z[(2, 0)].abs() - 1.0).abs() < 1e-14, "{}", tied.z);
+}
+
+/// A crease whose faces both slip leaves each face's shear one
+/// direction, the crease's line (local b = global z), and each face's
+/// friction acts along it. One face stuck ties that line too (nothing
+/// is left to slip along); with one face open the other slips freely
+/// in its plane. Neither has a line.
+#[test]
+fn a_creases_faces_slip_along_its_line() {
+    let j = crease();
+    for (p, line) in j.slip_lines(&[ContactState::Slip; 2]).into_iter().enumerate() {
+        let d = line.unwrap_or_else(|| panic!("pair {p} slips along the crease"));
+        assert!(d[0] == 0.0 && d[1].abs() < 1e-12 && (d[2].abs() - 1.0).abs() < 1e-12, "pair {p} along {d:?}");
+    }
+    assert_eq!(j.slip_lines(&[ContactState::Stick, ContactState::Slip]), [None, None]);
+    assert_eq!(j.slip_lines(&[ContactState::Slip, ContactState::Open])[0], None);
+}
+
+/// A crease, both pairs stuck, carrying a push into the V and along
+/// its line: the least-norm share puts as much shear as pressure on
+/// each face, beyond f = 0.6; the share within both Coulomb cones is
+/// taken (the faces' normals carry the push into the V, friction the
+/// push along the line), and it still carries the push.
+#[test]
+fn a_stuck_crease_shares_its_force_within_both_coulomb_cones() {
+    let j = crease();
+    let limit = Limit { tension: 0.0, cohesion: 0.0, friction: 0.6 };
+    let rel: Vec<Relation> = stuck(2).into_iter().map(|r| r.within(limit)).collect();
+    let tied = j.tie(&rel, 1.0, |_| 1.0);
+    let g = DVector::from_column_slice(&[0.0, -2.0 * 0.5f64.sqrt(), 0.3]);
+    let out = j.forces(&tied, &rel, &DVector::zeros(3), &g, 1.0);
+    let mut carried = DVector::<f64>::zeros(3);
+    for (p, (f, _, _)) in out.iter().enumerate() {
+        let shear = f[1].hypot(f[2]);
+        assert!(f[0] < 0.0 && shear < -0.6 * f[0], "pair {p} within its cone: {f:?}");
+        for (row, fa) in j.rows[p].iter().zip(f) {
+            carried += DVector::from_column_slice(row) * *fa;
+        }
+    }
+    assert!((carried - &g).norm() < 1e-12, "the faces carry the push");
+}
+
+#[test]
+fn clusters_are_pairs_sharing_copies() {
+    // a lone pair, a crossing, and a lone pair asked to be general
+    let pairs = [(0, 1), (2, 3), (4, 5), (2, 4), (3, 5), (6, 7)];
+    let c = clusters(&pairs, 8, |p| p == 5);
+    assert_eq!(c, vec![vec![1, 2, 3, 4], vec![5]]);
+}
