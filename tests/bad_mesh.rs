@@ -75,6 +75,16 @@ fn groups(cells: Vec<Vec<usize>>, base: Vec<Vec<usize>>, top: Vec<Vec<usize>>, g
     ]
 }
 
+/// One tet4 cube meshed into `cubes.msh` (after `edit` of its nodes) and
+/// `scene` as `cubes.toml`.
+fn one_cube(case: &Case, edit: impl FnOnce(&mut [[f64; 3]]), scene: &str) {
+    let mut nodes = Vec::new();
+    let (cells, base, top) = cube(&mut nodes, [0.0; 3]);
+    edit(&mut nodes);
+    write_msh41(&case.dir.join("cubes.msh"), &nodes, &groups(cells, base, top, 4));
+    case.write("cubes.toml", scene);
+}
+
 fn solve_ok(case: &Case) -> serde_json::Value {
     let o = case.cli(&["solve", "cubes.toml", "--out", "out", "--quiet"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
@@ -150,11 +160,7 @@ fn a_sliver_and_an_unfused_cube_are_warned_of_in_summary_and_report() {
 #[test]
 fn a_nan_coordinate_is_named_as_such_not_as_an_inverted_element() {
     let case = Case::new("bad-mesh-nan");
-    let mut nodes = Vec::new();
-    let (cells, base, top) = cube(&mut nodes, [0.0; 3]);
-    nodes[7][1] = f64::NAN;
-    write_msh41(&case.dir.join("cubes.msh"), &nodes, &groups(cells, base, top, 4));
-    case.write("cubes.toml", SCENE);
+    one_cube(&case, |nodes| nodes[7][1] = f64::NAN, SCENE);
     let msg = clean_failure(&case, &case.cli(&["solve", "cubes.toml", "--out", "out", "--quiet"]), &case.dir.join("out"));
     says(&msg, &["cubes.msh`: node 8 has the coordinates (1, NaN, 1), which are not numbers"]);
     assert!(!msg.contains("inverted"), "{msg}");
@@ -214,10 +220,7 @@ fn two_unfused_boxes_in_one_body_group_name_the_one_nothing_holds_and_say_fuse()
 #[test]
 fn a_traction_of_minus_1e300_is_an_error_not_inf_in_the_files() {
     let case = Case::new("bad-mesh-overflow");
-    let mut nodes = Vec::new();
-    let (cells, base, top) = cube(&mut nodes, [0.0; 3]);
-    write_msh41(&case.dir.join("cubes.msh"), &nodes, &groups(cells, base, top, 4));
-    case.write("cubes.toml", &SCENE.replace("traction = [0.0, 0.0, -1.0]", "traction = [0.0, 0.0, -1e300]"));
+    one_cube(&case, |_| {}, &SCENE.replace("traction = [0.0, 0.0, -1.0]", "traction = [0.0, 0.0, -1e300]"));
     let msg = clean_failure(&case, &case.cli(&["solve", "cubes.toml", "--out", "out", "--quiet"]), &case.dir.join("out"));
     says(&msg, &["cubes.toml: the results are not finite numbers at load step 1", "von Mises inf", "other units", "No result files were written"]);
 }
@@ -225,10 +228,7 @@ fn a_traction_of_minus_1e300_is_an_error_not_inf_in_the_files() {
 #[test]
 fn gravity_without_any_density_is_warned_of() {
     let case = Case::new("bad-mesh-gravity");
-    let mut nodes = Vec::new();
-    let (cells, base, top) = cube(&mut nodes, [0.0; 3]);
-    write_msh41(&case.dir.join("cubes.msh"), &nodes, &groups(cells, base, top, 4));
-    case.write("cubes.toml", &SCENE.replace("analysis = \"solid\"", "analysis = \"solid\"\ngravity = [0.0, 0.0, -9.81]"));
+    one_cube(&case, |_| {}, &SCENE.replace("analysis = \"solid\"", "analysis = \"solid\"\ngravity = [0.0, 0.0, -9.81]"));
     let summary = solve_ok(&case);
     let w = warned(&case, &summary, "gravity");
     says(&w, &["cubes.toml: gravity = [0.0, 0.0, -9.81] is given, but no body has a density, so gravity loads nothing"]);
