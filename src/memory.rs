@@ -70,7 +70,8 @@ pub struct Estimate {
     pub total: f64,
     /// The parts' factors together.
     pub factors: f64,
-    /// The dense interface: every part's S and the interface system.
+    /// The interface matrices: every part's S and the interface system
+    /// (dense, or the sparse interface's factor of the means).
     pub interface: f64,
 }
 
@@ -86,7 +87,7 @@ pub struct Available {
 #[error(
     "{scene}: this run needs about {} of memory at its peak ({} DOFs, {} interface; {} for the factors of {parts} part(s){}), more than the {} available ({}). Make it smaller: {}--substructures K (smaller factors, K pieces per body), more MPI ranks (mpirun -np N, with the cargo feature mpi), or a coarser mesh (a larger lc in [gmsh] setnumber); or run it where there is more memory (--no-memory-check runs it anyway: the estimate errs high, but the system may stop the run)",
     human(need.total), dofs[0], dofs[1], human(need.factors),
-    if need.interface > 0.0 { format!(", {} for the dense interface", human(need.interface)) } else { String::new() },
+    if need.interface > 0.0 { format!(", {} for the interface matrices", human(need.interface)) } else { String::new() },
     human(available.bytes), available.what,
     if need.interface > 0.0 { "--interface iterative (no dense interface matrices), " } else { "" }
 )]
@@ -131,14 +132,20 @@ pub fn estimate(model: &Model, parts: &[&Part], (how, sparse): (Condensation, bo
     let condensing = factors + schur + threads.clamp(1, parts.len().max(1)) as f64 * busiest;
     let w = match (how, sparse && solves_interface) {
         // the means' sparse factor: 50 nm^(4/3) values in 3D, measured on
-        // the jointed cubes of make bench-blocks (nm = 3.6e4: 5.4e7, 7.1e4: 1.5e8)
+        // the jointed cubes of make bench-blocks (nm = 3.6e4: 5.4e7, 7.1e4: 1.5e8).
+        // Their peaks (VmHWM) against the estimate: 64 blocks of 5^3
+        // hex20 4.62 GB (3.5 GB without K_mm and the scratch, now 4.7),
+        // 512 blocks 1.95 (1.7, now 2.9), 1,000 blocks 5.14 (3.8, now 6.5)
         (Condensation::Dense, true) => 8.0 * SPARSE_FILL * (interface_dofs as f64 / 2.0).powf(4.0 / 3.0),
         (Condensation::Dense, false) if solves_interface => 3.0 * 8.0 * (interface_dofs as f64 / 2.0).powi(2),
         _ => 0.0,
     };
     let kept = if factors > 0.3 * physical() { 0.0 } else { factors };
-    // each S is also copied into the pairs' frames while W is assembled
-    let interface = kept + 2.0 * schur + w;
+    // each S is also copied into the pairs' frames while W is assembled;
+    // the sparse interface then holds K_mm (a clique of means per part,
+    // 16 bytes an entry: 0.7 schur measured) and factorises it, the
+    // factorisation's scratch beside the factor (up to 0.8 of it)
+    let interface = if sparse && solves_interface { kept + 3.0 * schur + 2.0 * w } else { kept + 2.0 * schur + w };
     // displacements, stresses (6 per body node) and the files, per step
     let results = (steps.max(1) as f64 + 1.0) * model.n_nodes() as f64 * 8.0 * (nd + 6.0 + 8.0);
     Estimate { total: resident() + MARGIN * condensing.max(interface) + results + PICTURES, factors, interface: schur + w }
