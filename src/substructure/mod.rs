@@ -26,6 +26,7 @@ pub mod ordering;
 pub mod parts;
 pub mod interior;
 pub mod schur;
+pub mod single;
 
 pub use parts::{cut, parts, Part};
 

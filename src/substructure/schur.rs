@@ -56,19 +56,8 @@ impl PartialCholesky {
     pub fn factor(k: &SymMatrix, ni: usize, node_of: &[usize], ordering: Ordering, par: Par) -> Result<PartialCholesky, FactorError> {
         let n = k.n;
         let resource = |e: &dyn std::fmt::Debug| FactorError::Resource(format!("{e:?}"));
-        let mut fwd = ordering::interior(k, ni, node_of, ordering)?;
-        fwd.extend(ni..n);
-        let mut inv = vec![0usize; n];
-        for (new, &old) in fwd.iter().enumerate() {
-            inv[old] = new;
-        }
-        let perm = faer::perm::PermRef::new_checked(&fwd, &inv, n);
+        let symbolic = symbolic(k, ni, node_of, ordering)?;
         let a_sym = SymbolicSparseColMatRef::new_checked(n, n, &k.col_ptr, None, &k.row_idx);
-        let params = CholeskySymbolicParams {
-            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-            ..Default::default()
-        };
-        let symbolic = factorize_symbolic_cholesky(a_sym, Side::Lower, SymmetricOrdering::Custom(perm), params).map_err(|e| resource(&e))?;
         // the shift on the interface diagonal
         let mut vals = k.values.clone();
         let mut alpha: f64 = 0.0;
@@ -239,6 +228,26 @@ impl PartialCholesky {
             }
         }
     }
+}
+
+/// The supernodal symbolic factorisation of `k` with its equations `0..ni`
+/// ordered by `ordering` (`node_of` as [`ordering::interior`]) and the
+/// rest last.
+pub(super) fn symbolic(k: &SymMatrix, ni: usize, node_of: &[usize], ordering: Ordering) -> Result<SymbolicCholesky<usize>, FactorError> {
+    let n = k.n;
+    let mut fwd = ordering::interior(k, ni, node_of, ordering)?;
+    fwd.extend(ni..n);
+    let mut inv = vec![0usize; n];
+    for (new, &old) in fwd.iter().enumerate() {
+        inv[old] = new;
+    }
+    let perm = faer::perm::PermRef::new_checked(&fwd, &inv, n);
+    let a_sym = SymbolicSparseColMatRef::new_checked(n, n, &k.col_ptr, None, &k.row_idx);
+    let params = CholeskySymbolicParams {
+        supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+        ..Default::default()
+    };
+    factorize_symbolic_cholesky(a_sym, Side::Lower, SymmetricOrdering::Custom(perm), params).map_err(|e| FactorError::Resource(format!("{e:?}")))
 }
 
 /// Size and cost of a sparse factor.
