@@ -197,11 +197,12 @@ pub fn judge(current: ContactState, t: &Trial, s: &Strength, cracked: bool, coul
                 ContactState::Slip
             }
         }
-        _ if t.force[0] >= ft * t.area => ContactState::Open,
+        _ if t.force[0] >= ft * t.area && t.force[0] > force_tol => ContactState::Open,
         ContactState::Stick => {
             let (b, _) = friction_bound(s, cracked, t.area, -t.force[0]);
             let lam_t = t.force[1].hypot(t.force[2]);
-            if lam_t >= b && (lam_t > force_tol || b == 0.0) {
+            let strengthless = s.friction == 0.0 && s.effective(cracked).1 <= 0.0;
+            if lam_t >= b && (lam_t > force_tol || strengthless) {
                 ContactState::Slip
             } else {
                 ContactState::Stick

@@ -339,7 +339,9 @@ impl Rule for Newton<'_> {
         }
         self.judged_from.clone_from(&h.states);
         self.violation = judged.violation;
-        Verdict { settled: judged.residual <= FORCE_TOL * judged.scale_f, next: judged.next }
+        // (an iterative solve resolves the forces only to its residual)
+        let settled = judged.residual <= (FORCE_TOL * judged.scale_f).max(solution.accuracy);
+        Verdict { settled, next: judged.next }
     }
 
     /// A set the last verdict chose leaves `sliding` free to slide (see

@@ -105,7 +105,7 @@ impl Solver for Dense {
             let m_j = joined.means(&m, &r, lambda);
             m.extend(m_j);
         }
-        Some(Answer { m, r, residual_r, residual, loose: false })
+        Some(Answer { m, r, residual_r, residual, accuracy: 0.0, loose: false })
     }
 
     fn diagonal(&self, r: usize) -> f64 {

@@ -481,7 +481,7 @@ impl<'a> Iterative<'a> {
         if !conv.converged && !(residual <= 1e-6) {
             return None;
         }
-        Some(self.answer(x0, &cols.expand(&dx), &b, residual, loose))
+        Some(self.answer(x0, &cols.expand(&dx), &b, (residual, conv.residual), loose))
     }
 
     /// The right-hand side of GMRES: minus the residual of the solve's
@@ -509,7 +509,7 @@ impl<'a> Iterative<'a> {
 
     /// The answer `x = x0 + dx` (`dx` over every unknown), remembered as
     /// the next solve's start, with `K x - b` on the relative rows.
-    fn answer(&self, x0: Vec<f64>, dx: &[f64], b: &[f64], residual: f64, loose: bool) -> Answer {
+    fn answer(&self, x0: Vec<f64>, dx: &[f64], b: &[f64], (residual, accuracy): (f64, f64), loose: bool) -> Answer {
         let (nm, nr) = (self.nm, self.nr);
         let mut x = x0;
         for (xi, d) in x.iter_mut().zip(dx) {
@@ -521,7 +521,7 @@ impl<'a> Iterative<'a> {
         if let Ok(mut last) = self.last.lock() {
             *last = Some(x);
         }
-        Answer { m, r, residual_r, residual, loose }
+        Answer { m, r, residual_r, residual, accuracy, loose }
     }
 
     /// Where GMRES starts: the last answer, its relative displacements

@@ -192,6 +192,10 @@ pub struct Answer {
     pub residual_r: Vec<f64>,
     /// Relative residual of the solve.
     pub residual: f64,
+    /// The residual of an iterative solve in force units (2-norm over the
+    /// rows it solved; 0 for a direct solve): the forces are not resolved
+    /// more finely than this.
+    pub accuracy: f64,
     /// Solved to a loose tolerance (see [`InterfaceSolution::loose`]).
     pub loose: bool,
 }
@@ -219,6 +223,8 @@ pub struct InterfaceSolution {
     pub d_c: Vec<Vec<f64>>,
     /// Relative residual of the interface solve.
     pub residual: f64,
+    /// [`Answer::accuracy`]: what the forces are resolved to.
+    pub accuracy: f64,
     /// Solved to the iterative interface's loose tolerance (its state set
     /// differed from the last solve's): good for judging the states, not
     /// as the answer.
@@ -424,7 +430,7 @@ impl<'a> InterfaceProblem<'a> {
             })
             .collect();
         let d_c = self.displacements(&answer, lambda[0]);
-        Ok(InterfaceSolution { pairs, forces, rel: rels, d_c, residual: answer.residual, loose: answer.loose, as_tied })
+        Ok(InterfaceSolution { pairs, forces, rel: rels, d_c, residual: answer.residual, accuracy: answer.accuracy, loose: answer.loose, as_tied })
     }
 
     /// The contact forces, `-(W r - c)`, and the relative displacements of
