@@ -121,6 +121,8 @@ pub struct Junction {
     frames: Vec<Frame>,
     partners: Vec<Vec<usize>>,
     nd: usize,
+    /// What the last set of tied rows gave (see [`memo`]).
+    memo: Memo,
 }
 
 /// A tied row: a pair of the junction (its index there) and a unit
@@ -364,7 +366,7 @@ impl Junction {
         let frames: Vec<Frame> = pairs.iter().map(|&p| pair(p).2).collect();
         let ends: Vec<(usize, usize)> = pairs.iter().map(|&p| pair(p)).map(|(k, l, _)| (k.min(l), k.max(l))).collect();
         let partners = (0..pairs.len()).map(|j| (0..pairs.len()).filter(|&i| i != j && ends[i] == ends[j]).collect()).collect();
-        Junction { pairs, copies, terms, r, m, rows, consts, frames, partners, nd }
+        Junction { pairs, copies, terms, r, m, rows, consts, frames, partners, nd, memo: Memo::default() }
     }
 
     /// The tied rows under `state` (of every model pair): a stuck pair's
@@ -429,10 +431,11 @@ impl Junction {
         (row, cst)
     }
 
-    /// The free directions Z of r when the rows `c_rows` are tied to `t`
-    /// (padded to at least as many entries as r), and r0, the tied rows'
-    /// least-squares (least-norm) solution: `r = r0 + Z y`.
-    fn null_space(&self, c_rows: &[Vec<f64>], t: &DVector<f64>) -> (DMatrix<f64>, DVector<f64>) {
+    /// The free directions Z of r when the rows `c_rows` are tied, and the
+    /// map P from their targets `t` (padded to at least as many entries as
+    /// r) to the tied rows' least-squares (least-norm) solution `r0 = P t`:
+    /// `r = r0 + Z y`.
+    fn null_space(&self, c_rows: &[Vec<f64>]) -> (DMatrix<f64>, DMatrix<f64>) {
         let (m_t, n_r) = (c_rows.len(), self.r.len());
         let c_t = DMatrix::<f64>::from_fn(m_t.max(n_r), n_r, |i, c| if i < m_t { c_rows[i][c] } else { 0.0 });
         // C_T = U S V^T: the null space is V's columns of zero singular values
@@ -440,12 +443,11 @@ impl Junction {
         let (u, v_t) = (svd.u.expect("U"), svd.v_t.expect("V^T"));
         let smax = svd.singular_values.iter().copied().fold(0.0, f64::max);
         let rank_of = |s: f64| s > RANK_TOLERANCE * smax.max(f64::MIN_POSITIVE);
-        let mut r0 = DVector::<f64>::zeros(n_r);
+        let mut pinv = DMatrix::<f64>::zeros(n_r, m_t.max(n_r));
         let mut free_cols = Vec::new();
         for (i, &s) in svd.singular_values.iter().enumerate() {
             if rank_of(s) {
-                let coef = u.column(i).dot(t) / s;
-                r0 += v_t.row(i).transpose() * coef;
+                pinv += v_t.row(i).transpose() * u.column(i).transpose() / s;
             } else {
                 free_cols.push(i);
             }
@@ -453,7 +455,7 @@ impl Junction {
         // (a wide C_T: V^T has n_r rows whatever m_t; a row beyond m_t's
         // singular values is a free direction too)
         let z = DMatrix::<f64>::from_fn(n_r, free_cols.len(), |i, c| v_t[(free_cols[c], i)]);
-        (z, r0)
+        (z, pinv)
     }
 
     /// The line each of the junction's pairs can slip along under
@@ -463,12 +465,15 @@ impl Junction {
     /// copies then move only along the crease), None where they leave it
     /// two or none (and in 2D).
     pub fn slip_lines(&self, states: &[ContactState]) -> Vec<Option<[f64; 3]>> {
-        let mut lines = vec![None; self.pairs.len()];
         if self.nd < 3 || self.r.is_empty() {
-            return lines;
+            return vec![None; self.pairs.len()];
         }
-        let c_rows: Vec<Vec<f64>> = self.tied_rows(|p| states[p]).into_iter().map(|row| self.c_row(row).0).collect();
-        let (z, _) = self.null_space(&c_rows, &DVector::zeros(c_rows.len().max(self.r.len())));
+        self.memo.with(self, &self.tied_rows(|p| states[p]), |t| t.lines(self).to_vec())
+    }
+
+    /// [`Self::slip_lines`] where the free directions are `z`.
+    fn lines_along(&self, z: &DMatrix<f64>) -> Vec<Option<[f64; 3]>> {
+        let mut lines = vec![None; self.pairs.len()];
         for (j, line) in lines.iter_mut().enumerate() {
             // the shear axes' parts along the free directions
             let m = DMatrix::<f64>::from_fn(2, z.ncols(), |a, c| (0..self.r.len()).map(|i| self.rows[j][a + 1][i] * z[(i, c)]).sum());
@@ -500,6 +505,8 @@ impl Junction {
             let split = Split::new(&c_rows, &rows, &areas, 0);
             return Tied { z: zero.clone(), r0: DVector::zeros(0), k: zero, f: DVector::zeros(0), split, rows, areas };
         }
+        let areas: Vec<f64> = self.pairs.iter().map(|&p| area(p)).collect();
+        let (z, pinv, split) = self.memo.with(self, &rows, |t| (t.z.clone(), t.pinv.clone(), t.split(&areas, n_r).clone()));
         let t = DVector::<f64>::from_fn(rows.len().max(n_r), |i, _| {
             if i < rows.len() {
                 let (j, dir) = rows[i];
@@ -509,7 +516,7 @@ impl Junction {
                 0.0
             }
         });
-        let (z, r0) = self.null_space(&c_rows, &t);
+        let r0 = pinv * t;
         // slipping pairs: springs and forces along their free axes
         let mut k = DMatrix::<f64>::zeros(n_r, n_r);
         let mut f = DVector::<f64>::zeros(n_r);
@@ -533,8 +540,6 @@ impl Junction {
                 f += &row_a * fa;
             }
         }
-        let areas: Vec<f64> = self.pairs.iter().map(|&p| area(p)).collect();
-        let split = Split::new(&c_rows, &rows, &areas, n_r);
         Tied { z, r0, k, f, rows, split, areas }
     }
 
@@ -634,6 +639,9 @@ impl Junction {
         out
     }
 }
+
+mod memo;
+use memo::Memo;
 
 #[cfg(test)]
 mod tests;

@@ -1,0 +1,76 @@
+//! What a junction's ties give that depends only on which rows are tied
+//! (the states of its pairs), kept for the last set of tied rows: the free
+//! directions Z, the map from the rows' targets to r0, the split of the
+//! force they carry, and the pairs' slip lines. Each is an SVD (the lines
+//! one per pair), asked for two or three times per contact iteration
+//! (the relations, the solve, the judgement), while most junctions of a
+//! rock mass keep their states from one contact iteration to the next:
+//! the 512-block cube of `make bench-blocks` spent a tenth of its run in
+//! these SVDs before they were kept.
+
+use std::sync::Mutex;
+
+use nalgebra::DMatrix;
+
+use super::{Junction, Row, Split};
+
+/// The last [`Tying`] of a junction (empty when cloned).
+#[derive(Default)]
+pub(super) struct Memo(Mutex<Option<Tying>>);
+
+impl Clone for Memo {
+    fn clone(&self) -> Memo {
+        Memo::default()
+    }
+}
+
+impl std::fmt::Debug for Memo {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Memo")
+    }
+}
+
+/// A junction with `rows` tied.
+pub(super) struct Tying {
+    rows: Vec<Row>,
+    /// The rows of C over r of the tied rows.
+    c_rows: Vec<Vec<f64>>,
+    /// The free directions of r, and the map from the rows' targets to r0
+    /// (see [`Junction::null_space`]).
+    pub z: DMatrix<f64>,
+    pub pinv: DMatrix<f64>,
+    split: Option<Split>,
+    lines: Option<Vec<Option<[f64; 3]>>>,
+}
+
+impl Tying {
+    /// How the tied rows share the force they carry (the pairs' `areas`
+    /// are the junction's own: the same at every call).
+    pub fn split(&mut self, areas: &[f64], n_r: usize) -> &Split {
+        let (rows, c_rows) = (&self.rows, &self.c_rows);
+        self.split.get_or_insert_with(|| Split::new(c_rows, rows, areas, n_r))
+    }
+
+    /// The pairs' slip lines (see [`Junction::slip_lines`]).
+    pub fn lines(&mut self, jn: &Junction) -> &[Option<[f64; 3]>] {
+        let z = &self.z;
+        self.lines.get_or_insert_with(|| jn.lines_along(z))
+    }
+}
+
+impl Memo {
+    /// `f` of the junction `jn` with `rows` tied, from the last call's if
+    /// it tied the same rows.
+    pub fn with<R>(&self, jn: &Junction, rows: &[Row], f: impl FnOnce(&mut Tying) -> R) -> R {
+        let mut last = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        let tying = match last.take() {
+            Some(t) if t.rows == rows => t,
+            _ => {
+                let c_rows: Vec<Vec<f64>> = rows.iter().map(|&row| jn.c_row(row).0).collect();
+                let (z, pinv) = jn.null_space(&c_rows);
+                Tying { rows: rows.to_vec(), c_rows, z, pinv, split: None, lines: None }
+            }
+        };
+        f(last.insert(tying))
+    }
+}
