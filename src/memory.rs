@@ -135,7 +135,10 @@ pub fn estimate(model: &Model, parts: &[&Part], (how, sparse): (Condensation, bo
         // the jointed cubes of make bench-blocks (nm = 3.6e4: 5.4e7, 7.1e4: 1.5e8).
         // Their peaks (VmHWM) against the estimate: 64 blocks of 5^3
         // hex20 4.62 GB (3.5 GB without K_mm and the scratch, now 4.7),
-        // 512 blocks 1.95 (1.7, now 2.9), 1,000 blocks 5.14 (3.8, now 6.5)
+        // 512 blocks 1.95 (1.7, now 2.9), 1,000 blocks 5.14 (3.8, now 6.5).
+        // The factor is now kept in single precision (4.05, 1.68 and 4.43
+        // GB measured); 8 bytes a value stays, for K_mm that single
+        // precision cannot hold, factorised in double
         (Condensation::Dense, true) => 8.0 * SPARSE_FILL * (interface_dofs as f64 / 2.0).powf(4.0 / 3.0),
         (Condensation::Dense, false) if solves_interface => 3.0 * 8.0 * (interface_dofs as f64 / 2.0).powi(2),
         _ => 0.0,
