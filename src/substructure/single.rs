@@ -66,16 +66,6 @@ impl SingleCholesky {
         let back = self.scale / t;
         x.iter().map(|&v| f64::from(v) * back).collect()
     }
-
-    /// Values stored (supernodes are dense: this counts their zeros).
-    pub fn len(&self) -> usize {
-        self.values.len()
-    }
-
-    /// No equations.
-    pub fn is_empty(&self) -> bool {
-        self.values.is_empty()
-    }
 }
 
 #[cfg(test)]

@@ -497,16 +497,14 @@ impl Junction {
     pub fn tie(&self, rel: &[Relation], ramp: f64, area: impl Fn(usize) -> f64) -> Tied {
         let (nd, n_r) = (self.nd, self.r.len());
         let rows = self.tied_rows(|p| rel[p].state);
-        let (c_rows, consts): (Vec<Vec<f64>>, Vec<f64>) = rows.iter().map(|&row| self.c_row(row)).unzip();
+        let areas: Vec<f64> = self.pairs.iter().map(|&p| area(p)).collect();
         if n_r == 0 {
             // every copy held in every component: nothing to solve for
             let zero = DMatrix::zeros(0, 0);
-            let areas: Vec<f64> = self.pairs.iter().map(|&p| area(p)).collect();
-            let split = Split::new(&c_rows, &rows, &areas, 0);
+            let split = Split::new(&[], &rows, &areas, 0);
             return Tied { z: zero.clone(), r0: DVector::zeros(0), k: zero, f: DVector::zeros(0), split, rows, areas };
         }
-        let areas: Vec<f64> = self.pairs.iter().map(|&p| area(p)).collect();
-        let (z, pinv, split) = self.memo.with(self, &rows, |t| (t.z.clone(), t.pinv.clone(), t.split(&areas, n_r).clone()));
+        let (z, pinv, split, consts) = self.memo.with(self, &rows, |t| (t.z.clone(), t.pinv.clone(), t.split(&areas, n_r).clone(), t.consts.clone()));
         let t = DVector::<f64>::from_fn(rows.len().max(n_r), |i, _| {
             if i < rows.len() {
                 let (j, dir) = rows[i];

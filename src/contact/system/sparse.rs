@@ -188,6 +188,11 @@ impl Sparse {
         (y, yr)
     }
 
+    /// `K_mr r`: the means' rows of `K [0; r]`.
+    fn k_mr(&self, r: &[f64]) -> Vec<f64> {
+        self.apply(&vec![0.0; self.nm], r).0
+    }
+
     /// `K_mm^-1 v`, to the factor's precision.
     fn solve_means(&self, v: &[f64]) -> Vec<f64> {
         if self.nm == 0 {
@@ -258,7 +263,7 @@ impl Solver for Sparse {
             Some((m, _)) => m,
             None => {
                 substitutions += 1;
-                let (k_mr_r, _) = self.apply(&vec![0.0; nm], &r_s);
+                let k_mr_r = self.k_mr(&r_s);
                 self.solve_means(&b_m.iter().zip(&k_mr_r).map(|(b, k)| b - k).collect::<Vec<_>>())
             }
         };
@@ -278,7 +283,7 @@ impl Solver for Sparse {
         let precondition = |v: &[f64]| {
             let (v_m, v_y) = v.split_at(nm);
             let dy = schur.apply(v_y);
-            let (k_mr_z, _) = self.apply(&vec![0.0; nm], &free.expand(&dy));
+            let k_mr_z = self.k_mr(&free.expand(&dy));
             let mut out = self.solve_means(&v_m.iter().zip(&k_mr_z).map(|(v, k)| v - k).collect::<Vec<_>>());
             out.extend(dy);
             out

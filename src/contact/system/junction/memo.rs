@@ -1,7 +1,8 @@
 //! What a junction's ties give that depends only on which rows are tied
-//! (the states of its pairs), kept for the last set of tied rows: the free
-//! directions Z, the map from the rows' targets to r0, the split of the
-//! force they carry, and the pairs' slip lines. Each is an SVD (the lines
+//! (the states of its pairs), kept for the last set of tied rows: the rows
+//! of C and their constants, the free directions Z, the map from the rows'
+//! targets to r0, the split of the force they carry, and the pairs' slip
+//! lines. Each is an SVD (the lines
 //! one per pair), asked for two or three times per contact iteration
 //! (the relations, the solve, the judgement), while most junctions of a
 //! rock mass keep their states from one contact iteration to the next:
@@ -33,8 +34,9 @@ impl std::fmt::Debug for Memo {
 /// A junction with `rows` tied.
 pub(super) struct Tying {
     rows: Vec<Row>,
-    /// The rows of C over r of the tied rows.
+    /// The rows of C over r of the tied rows, and their constants per unit ramp.
     c_rows: Vec<Vec<f64>>,
+    pub consts: Vec<f64>,
     /// The free directions of r, and the map from the rows' targets to r0
     /// (see [`Junction::null_space`]).
     pub z: DMatrix<f64>,
@@ -66,9 +68,9 @@ impl Memo {
         let tying = match last.take() {
             Some(t) if t.rows == rows => t,
             _ => {
-                let c_rows: Vec<Vec<f64>> = rows.iter().map(|&row| jn.c_row(row).0).collect();
+                let (c_rows, consts): (Vec<Vec<f64>>, Vec<f64>) = rows.iter().map(|&row| jn.c_row(row)).unzip();
                 let (z, pinv) = jn.null_space(&c_rows);
-                Tying { rows: rows.to_vec(), c_rows, z, pinv, split: None, lines: None }
+                Tying { rows: rows.to_vec(), c_rows, consts, z, pinv, split: None, lines: None }
             }
         };
         f(last.insert(tying))
