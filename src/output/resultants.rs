@@ -35,6 +35,7 @@
 //! [`of_run`] makes them from a run's last load step.
 
 use crate::contact::law::{ContactState, PairResult, Strength};
+use crate::fem::vec3::dot;
 use crate::results::Run;
 
 /// What one pair adds to its group and face pair.
@@ -230,10 +231,6 @@ pub fn of_run(run: &Run) -> Option<Resultants> {
         })
         .collect();
     Some(sum(&records, m.interfaces.len()))
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 #[cfg(test)]

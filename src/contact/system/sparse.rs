@@ -48,6 +48,7 @@ use super::reduce::{combine, NotHeld};
 use super::{Answer, Freedom, Solver};
 use crate::contact::law::ContactState;
 use crate::fem::sparse::{Cholesky, SymMatrix};
+use crate::fem::vec3::length;
 use crate::substructure::ordering::Ordering;
 use crate::substructure::schur::PartialCholesky;
 use crate::substructure::single::SingleCholesky;
@@ -211,7 +212,7 @@ impl Sparse {
         for _ in 0..REFINEMENTS {
             let (k_m, k_r) = self.apply(m, r);
             let res: Vec<f64> = b_m.iter().zip(&k_m).map(|(b, k)| b - k).collect();
-            let size = norm(&res);
+            let size = length(&res);
             if size <= f64::EPSILON * scale || size >= 0.5 * last {
                 return k_r;
             }
@@ -288,9 +289,9 @@ impl Solver for Sparse {
             out.extend(dy);
             out
         };
-        let scale = norm(&b).max(norm(&rhs0)).max(f64::MIN_POSITIVE);
+        let scale = length(&b).max(length(&rhs0)).max(f64::MIN_POSITIVE);
         let loose = self.last_states.loose(states);
-        let tolerance = if loose { (LOOSE_TOLERANCE * scale).max(LOOSE_REDUCTION * norm(&rhs0)) } else { TOLERANCE * scale };
+        let tolerance = if loose { (LOOSE_TOLERANCE * scale).max(LOOSE_REDUCTION * length(&rhs0)) } else { TOLERANCE * scale };
         let (dx, conv) = gmres::solve(a, precondition, &rhs0, tolerance, RESTART, MAX_ITERATIONS);
         if let Ok(mut its) = self.iterations.lock() {
             its.push(conv.iterations + substitutions);
@@ -502,7 +503,7 @@ impl Means {
             let x: Vec<f64> = (0..k.n).map(|i| 1.0 + 0.5 * (i as f64 * 0.01).sin()).collect();
             let b = k.mul(&x);
             let err = k.mul(&f.solve(&b)).iter().zip(&b).map(|(a, b)| (a - b).powi(2)).sum::<f64>().sqrt();
-            if err <= SINGLE_ACCURACY * norm(&b) {
+            if err <= SINGLE_ACCURACY * length(&b) {
                 return Some(Means::Single(f));
             }
         }
@@ -570,9 +571,5 @@ fn mean_nodes(layout: &Layout) -> Vec<usize> {
         mark(&mut ax.iter().filter_map(|a| a.m()));
     }
     node
-}
-
-fn norm(v: &[f64]) -> f64 {
-    crate::fem::vec3::length(v)
 }
 
