@@ -121,8 +121,8 @@ impl Solver for Dense {
 /// (a lone pair's free axis is a column of one entry: a row of W), with the
 /// lone slipping pairs' friction law on their free tangential rows,
 /// `(W r - c)_t + force + coupling (W r - c)_n + spring r = 0`, and the
-/// junctions' springs and forces on their own columns; and whether the
-/// matrix is symmetric.
+/// junctions' springs, forces and implicit pressures' lift on their own
+/// rows; and whether the matrix is symmetric.
 fn free_system(reduced: &Reduced, fr: &Freedom, c: &[f64]) -> (Mat<f64>, Mat<f64>, bool) {
     let w = &reduced.w;
     let nr = w.nrows();
@@ -175,6 +175,25 @@ fn free_system(reduced: &Reduced, fr: &Freedom, c: &[f64]) -> (Mat<f64>, Mat<f64
             rhs[(fa, 0)] -= jb.fz[a];
             for (b, fb) in jb.cols.clone().enumerate() {
                 wf[(fa, fb)] += jb.kz[(a, b)];
+            }
+        }
+        // the implicit pressures' lift: L (W r - c) + L k Z y on its rows
+        if let Some(lift) = &jb.lift {
+            symmetric = false;
+            for (a, fa) in jb.cols.clone().enumerate() {
+                for (x, &ri) in jb.r.iter().enumerate() {
+                    let l = lift.on_w[(a, x)];
+                    if l == 0.0 {
+                        continue;
+                    }
+                    for (fj, cj) in fr.cols.iter().enumerate() {
+                        wf[(fa, fj)] += l * entry(&[(ri, 1.0)], cj);
+                    }
+                    rhs[(fa, 0)] += l * known[ri];
+                }
+                for (b, fb) in jb.cols.clone().enumerate() {
+                    wf[(fa, fb)] += lift.on_y[(a, b)];
+                }
             }
         }
     }

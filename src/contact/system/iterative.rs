@@ -176,12 +176,15 @@ impl Columns<'_> {
         v
     }
 
-    /// Adds the junctions' springs on the solve's unknowns `v` to `out`.
-    fn springs(&self, out: &mut [f64], v: &[f64]) {
+    /// Adds the junctions' springs on the solve's unknowns `v` to `out`,
+    /// and their implicit pressures' lift at `full` (`K x - b` or `K dx`
+    /// over every unknown).
+    fn springs(&self, out: &mut [f64], v: &[f64], full: &[f64]) {
         let nm = self.nm;
         for jb in &self.fr.junctions {
+            let lifted = jb.lifted(|i| full[nm + i], &v[nm..]);
             for (a, fa) in jb.cols.clone().enumerate() {
-                out[nm + fa] += jb.cols.clone().enumerate().map(|(c, fc)| jb.kz[(a, c)] * v[nm + fc]).sum::<f64>();
+                out[nm + fa] += jb.cols.clone().enumerate().map(|(c, fc)| jb.kz[(a, c)] * v[nm + fc]).sum::<f64>() + lifted.as_ref().map_or(0.0, |l| l[a]);
             }
         }
     }
@@ -450,7 +453,7 @@ impl<'a> Iterative<'a> {
             let mut full = self.apply(&dx);
             slip_rows_of(&slip_rows, &mut full, &dx);
             let mut out = cols.restrict(&full);
-            cols.springs(&mut out, v);
+            cols.springs(&mut out, v, &full);
             out
         };
         let precondition = self.preconditioner(fr);
@@ -496,8 +499,9 @@ impl<'a> Iterative<'a> {
         for s in slip_rows {
             e0[s.row] += s.force;
         }
-        let mut e0 = cols.restrict(&e0);
-        cols.springs(&mut e0, y0);
+        let full = e0;
+        let mut e0 = cols.restrict(&full);
+        cols.springs(&mut e0, y0, &full);
         let nm = self.nm;
         for jb in &cols.fr.junctions {
             for (a, fa) in jb.cols.clone().enumerate() {

@@ -42,10 +42,8 @@
 //! least-norm forces are the exact tractions `σ n A` of each face.
 //!
 //! A slipping pair's friction force along its free axes is its relation's
-//! `force + coupling p + spring rel` as elsewhere, with the coupling to its
-//! own normal force taken at the pressure it was linearised at: at a
-//! junction the normal force is one of the tied forces, known only after the
-//! solve (the iteration converges to the same fixed point).
+//! `force + coupling p + spring rel` as elsewhere; its pressure p, one of
+//! the tied forces, is solved for with r ([`pressure`]).
 
 use nalgebra::{DMatrix, DVector};
 
@@ -155,6 +153,9 @@ pub struct Tied {
     split: Split,
     /// The area of each of the junction's pairs.
     areas: Vec<f64>,
+    /// The slipping pairs' pressures, solved for with r (see [`pressure`]);
+    /// None where they are the last solve's (`Relation::pressure`, in `f`).
+    pub pressure: Option<Pressure>,
 }
 
 /// How the tied `rows` share the force `g` they must carry
@@ -191,6 +192,11 @@ impl Split {
         let free: Vec<usize> = (0..m_t).filter(|k| !rank.contains(k)).collect();
         let null = DMatrix::<f64>::from_fn(m_t, free.len(), |i, c| u[(i, free[c])]);
         Split { rows: rows.to_vec(), d, pinv, null }
+    }
+
+    /// The least-norm share of `g`, whatever the limits.
+    fn plain(&self, g: &DVector<f64>) -> DVector<f64> {
+        DVector::from_fn(self.rows.len(), |i, _| self.d[i] * (self.pinv.row(i) * g)[0])
     }
 
     /// The forces of the rows: the least-norm share of `g`, or where that
@@ -502,7 +508,7 @@ impl Junction {
             // every copy held in every component: nothing to solve for
             let zero = DMatrix::zeros(0, 0);
             let split = Split::new(&[], &rows, &areas, 0);
-            return Tied { z: zero.clone(), r0: DVector::zeros(0), k: zero, f: DVector::zeros(0), split, rows, areas };
+            return Tied { z: zero.clone(), r0: DVector::zeros(0), k: zero, f: DVector::zeros(0), split, rows, areas, pressure: None };
         }
         let (z, pinv, split, consts) = self.memo.with(self, &rows, |t| (t.z.clone(), t.pinv.clone(), t.split(&areas, n_r).clone(), t.consts.clone()));
         let t = DVector::<f64>::from_fn(rows.len().max(n_r), |i, _| {
@@ -515,17 +521,28 @@ impl Junction {
             }
         });
         let r0 = pinv * t;
-        // slipping pairs: springs and forces along their free axes
+        // slipping pairs: springs and forces along their free axes, and
+        // their friction per unit pressure (`pressure`); a pair that has
+        // just closed (linearised at no pressure) takes its friction at
+        // that pressure this once, as before the pressures were solved for
+        // (the 2D jointed tunnel of `make tunnel-joints`: 18 contact
+        // iterations, 28 solving for its pressure too; at the coarser mesh
+        // of tests/tunnel_joints.rs 26 against 31)
         let mut k = DMatrix::<f64>::zeros(n_r, n_r);
         let mut f = DVector::<f64>::zeros(n_r);
-        for (j, &p) in self.pairs.iter().enumerate() {
-            let rl = &rel[p];
-            if rl.state != ContactState::Slip {
-                continue;
-            }
+        let slipping: Vec<usize> = (0..self.pairs.len()).filter(|&j| rel[self.pairs[j]].state == ContactState::Slip).collect();
+        let coupled: Vec<usize> = slipping.iter().copied().filter(|&j| rel[self.pairs[j]].pressure > 0.0 && rel[self.pairs[j]].coupling.iter().any(|&c| c != 0.0)).collect();
+        let per_pressure = DMatrix::<f64>::from_fn(n_r, coupled.len(), |i, s| {
+            let (j, rl) = (coupled[s], &rel[self.pairs[coupled[s]]]);
+            (1..nd).map(|a| self.rows[j][a][i] * rl.coupling[a]).sum()
+        });
+        let pressure = if self.memo.looped() { None } else { Pressure::new(coupled, per_pressure, &split) };
+        for &j in &slipping {
+            let rl = &rel[self.pairs[j]];
+            let lagged = if pressure.as_ref().is_some_and(|pr| pr.pairs.contains(&j)) { 0.0 } else { rl.pressure };
             for a in 1..nd {
                 let row_a = DVector::from_column_slice(&self.rows[j][a]);
-                let mut fa = rl.force[a] + rl.coupling[a] * rl.pressure;
+                let mut fa = rl.force[a] + rl.coupling[a] * lagged;
                 for c in 1..nd {
                     let s = rl.spring[a][c];
                     if s == 0.0 {
@@ -538,7 +555,7 @@ impl Junction {
                 f += &row_a * fa;
             }
         }
-        Tied { z, r0, k, f, rows, split, areas }
+        Tied { z, r0, k, f, rows, split, areas, pressure }
     }
 
     /// The contact force on body I of each of the junction's pairs (local
@@ -559,10 +576,24 @@ impl Junction {
         let rels: Vec<[f64; 3]> = (0..self.pairs.len())
             .map(|j| std::array::from_fn(|a| if a < nd { DVector::from_column_slice(&self.rows[j][a]).dot(r) + self.consts[j][a] * ramp } else { 0.0 }))
             .collect();
-        // what the tied rows carry: g less the slipping pairs' friction
-        let carried = g - (&tied.k * r + &tied.f);
+        // the slipping pairs' pressures, and what the tied rows carry: g
+        // less the slipping pairs' friction
+        let pressures = tied.pressure.as_ref().map(|pr| pr.at(&(&tied.k * r + &tied.f - g)));
+        let friction = match (&tied.pressure, &pressures) {
+            (Some(pr), Some(p)) => &tied.f + &pr.r * p,
+            _ => tied.f.clone(),
+        };
+        let carried = g - (&tied.k * r + friction);
         let limits: Vec<Limit> = self.pairs.iter().map(|&p| rel[p].limit).collect();
         let lambda = tied.split.forces(&carried, &limits);
+        let mut pressure: Vec<f64> = self.pairs.iter().map(|&p| rel[p].pressure).collect();
+        if let (Some(pr), Some(p)) = (&tied.pressure, &pressures) {
+            for (&j, &pj) in pr.pairs.iter().zip(p.iter()) {
+                pressure[j] = pj;
+            }
+        }
+        let slipping = |j: usize| rel[self.pairs[j]].state == ContactState::Slip;
+        self.memo.set_looped(pressure::looped(&tied.split, &lambda, &tied.split.plain(&carried), slipping));
         let mut out: Vec<([f64; 3], [f64; 3], Option<[f64; 3]>)> = rels.iter().map(|&x| ([0.0; 3], x, None)).collect();
         for (&(j, dir), &l) in tied.rows.iter().zip(lambda.iter()) {
             for a in (0..nd).filter(|&a| dir[a] != 0.0) {
@@ -575,7 +606,7 @@ impl Junction {
                 continue;
             }
             for a in 1..nd {
-                out[j].0[a] = rl.force[a] + rl.coupling[a] * rl.pressure + (1..nd).map(|c| rl.spring[a][c] * rels[j][c]).sum::<f64>();
+                out[j].0[a] = rl.force[a] + rl.coupling[a] * pressure[j] + (1..nd).map(|c| rl.spring[a][c] * rels[j][c]).sum::<f64>();
             }
         }
         // free rows the ties lock (no part along Z): open pairs' normals,
@@ -639,7 +670,9 @@ impl Junction {
 }
 
 mod memo;
+pub mod pressure;
 use memo::Memo;
+use pressure::Pressure;
 
 #[cfg(test)]
 mod tests;

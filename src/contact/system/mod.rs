@@ -148,12 +148,37 @@ pub struct Freedom {
 }
 
 /// A junction's part of a solve: its columns, and what its slipping pairs
-/// add on them (`Z^T k Z`, `Z^T (f + k r0)`).
+/// add on them (`Z^T k Z`, `Z^T (f + k r0)`; and the lift of their
+/// implicit pressures, when they have them).
 pub struct JunctionBlock {
     pub cols: std::ops::Range<usize>,
     pub kz: nalgebra::DMatrix<f64>,
     pub fz: nalgebra::DVector<f64>,
+    /// The junction's relative displacements (indices into r).
+    pub r: Vec<usize>,
+    pub lift: Option<Lift>,
     pub tied: Tied,
+}
+
+/// What a junction's slipping pairs' implicit pressures add to its rows
+/// ([`junction::pressure`]): `on_w` times `W r - c` on the junction's r,
+/// `on_y` times its own free columns' y (`L` and `L k Z` there; the
+/// constant part is in [`JunctionBlock::fz`]).
+pub struct Lift {
+    pub on_w: nalgebra::DMatrix<f64>,
+    pub on_y: nalgebra::DMatrix<f64>,
+}
+
+impl JunctionBlock {
+    /// The lift's part of the block's rows (one per column) at `w` (`W r -
+    /// c`, by r index) and `y` (the free columns' coordinates); None
+    /// without a lift.
+    pub fn lifted(&self, w: impl Fn(usize) -> f64, y: &[f64]) -> Option<nalgebra::DVector<f64>> {
+        let lift = self.lift.as_ref()?;
+        let wj = nalgebra::DVector::from_iterator(self.r.len(), self.r.iter().map(|&i| w(i)));
+        let yj = nalgebra::DVector::from_column_slice(&y[self.cols.clone()]);
+        Some(&lift.on_w * wj + &lift.on_y * yj)
+    }
 }
 
 /// A lone slipping pair's free tangential row (r index), whose equation is
@@ -387,8 +412,15 @@ impl<'a> InterfaceProblem<'a> {
             }
             // the slipping pairs' springs and forces on the free directions
             let kz = tied.z.transpose() * &tied.k * &tied.z;
-            let fz = tied.z.transpose() * (&tied.f + &tied.k * &tied.r0);
-            junctions.push(JunctionBlock { cols: first..cols.len(), kz, fz, tied });
+            let at_r0 = &tied.f + &tied.k * &tied.r0;
+            let mut fz = tied.z.transpose() * &at_r0;
+            let lift = tied.pressure.as_ref().map(|pr| {
+                // L = Z^T R M A; its constant part L (f + k r0)
+                let on_w = tied.z.transpose() * &pr.r * &pr.ma;
+                fz += &on_w * &at_r0;
+                Lift { on_y: &on_w * &tied.k * &tied.z, on_w }
+            });
+            junctions.push(JunctionBlock { cols: first..cols.len(), kz, fz, r: jn.r.clone(), lift, tied });
         }
         // the lone slipping pairs' rows
         let mut slips = Vec::new();

@@ -351,7 +351,8 @@ impl Free<'_> {
 
     /// `Z^T w` with the friction law's terms on the free rows: the coupling
     /// of a slipping row to its normal force, the springs of the slip
-    /// direction, the junctions' springs (`w = W Z y`).
+    /// direction, the junctions' springs and the lift of their implicit
+    /// pressures (`w = W Z y`).
     fn operator(&self, y: &[f64], w: &[f64]) -> Vec<f64> {
         let fr = self.fr;
         let mut out = self.restrict(w);
@@ -363,8 +364,9 @@ impl Free<'_> {
             out[i] += s.springs.iter().map(|&(rc, k)| k * y[fr.pos[rc]]).sum::<f64>();
         }
         for jb in &fr.junctions {
+            let lifted = jb.lifted(|i| w[i], y);
             for (a, fa) in jb.cols.clone().enumerate() {
-                out[fa] += jb.cols.clone().enumerate().map(|(c, fc)| jb.kz[(a, c)] * y[fc]).sum::<f64>();
+                out[fa] += jb.cols.clone().enumerate().map(|(c, fc)| jb.kz[(a, c)] * y[fc]).sum::<f64>() + lifted.as_ref().map_or(0.0, |l| l[a]);
             }
         }
         out
@@ -383,8 +385,9 @@ impl Free<'_> {
             }
         }
         for jb in &fr.junctions {
+            let lifted = jb.lifted(|i| -known[i], y0);
             for (a, fa) in jb.cols.clone().enumerate() {
-                rhs[fa] -= jb.fz[a] + jb.cols.clone().enumerate().map(|(c, fc)| jb.kz[(a, c)] * y0[fc]).sum::<f64>();
+                rhs[fa] -= jb.fz[a] + jb.cols.clone().enumerate().map(|(c, fc)| jb.kz[(a, c)] * y0[fc]).sum::<f64>() + lifted.as_ref().map_or(0.0, |l| l[a]);
             }
         }
         rhs
@@ -572,4 +575,5 @@ fn mean_nodes(layout: &Layout) -> Vec<usize> {
     }
     node
 }
+
 

@@ -8,6 +8,9 @@
 //! rock mass keep their states from one contact iteration to the next:
 //! the 512-block cube of `make bench-blocks` spent a tenth of its run in
 //! these SVDs before they were kept.
+//!
+//! Beside it, whatever rows were tied: whether the last solve's loops
+//! carried part of a slipping pair's pressure (see [`super::pressure`]).
 
 use std::sync::Mutex;
 
@@ -15,9 +18,10 @@ use nalgebra::DMatrix;
 
 use super::{Junction, Row, Split};
 
-/// The last [`Tying`] of a junction (empty when cloned).
+/// The last [`Tying`] of a junction, and whether its last solve's loops
+/// carried part of a slipping pair's pressure (empty, false, when cloned).
 #[derive(Default)]
-pub(super) struct Memo(Mutex<Option<Tying>>);
+pub(super) struct Memo(Mutex<Option<Tying>>, Mutex<bool>);
 
 impl Clone for Memo {
     fn clone(&self) -> Memo {
@@ -61,6 +65,16 @@ impl Tying {
 }
 
 impl Memo {
+    /// Whether the loops carried part of a slipping pair's pressure in
+    /// the last solve, whichever rows it tied (see [`super::pressure`]).
+    pub fn looped(&self) -> bool {
+        *self.1.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    pub fn set_looped(&self, looped: bool) {
+        *self.1.lock().unwrap_or_else(|e| e.into_inner()) = looped;
+    }
+
     /// `f` of the junction `jn` with `rows` tied, from the last call's if
     /// it tied the same rows.
     pub fn with<R>(&self, jn: &Junction, rows: &[Row], f: impl FnOnce(&mut Tying) -> R) -> R {

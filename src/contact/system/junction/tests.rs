@@ -92,6 +92,38 @@ fn a_slipping_pair_in_a_stuck_loop_is_locked_and_carries_its_friction() {
     }
 }
 
+/// One pair slipping in a stuck loop under a uniform stress, its friction
+/// linearised in its pressure (`force + coupling p`): the friction it
+/// carries is that of the pressure the split gives it in the same solve,
+/// not of the pressure it was linearised at, and the copies balance.
+#[test]
+fn a_slipping_pairs_friction_follows_the_pressure_the_loop_gives_it() {
+    let (pairs, j) = crossing();
+    let mut rel = stuck(4);
+    rel[0] = Relation { state: ContactState::Slip, target: [0.0; 3], force: [0.0, 0.1, 0.0], coupling: [0.0, 0.5, 0.0], spring: [[0.0; 3]; 3], pressure: 9.0, limit: Limit::NONE };
+    let (sxx, syy, sxy) = (-3.0, -1.5, 0.7);
+    let mut g = DVector::<f64>::zeros(6);
+    for (p, &(_, _, f)) in pairs.iter().enumerate() {
+        let t = if f == X { [sxx, sxy] } else { [syy, -sxy] };
+        for a in 0..2 {
+            g += DVector::from_column_slice(&j.rows[p][a]) * t[a];
+        }
+    }
+    let tied = j.tie(&rel, 1.0, |_| 1.0);
+    assert!(tied.pressure.is_some(), "the pressure is solved for");
+    let out = j.forces(&tied, &rel, &DVector::zeros(6), &g, 1.0);
+    let p = -out[0].0[0];
+    assert!(p > 1.0, "pair 0 is pressed: {p}");
+    assert!((out[0].0[1] - (0.1 + 0.5 * p)).abs() < 1e-13, "friction {} of pressure {p}", out[0].0[1]);
+    let mut carried = DVector::<f64>::zeros(6);
+    for (p, (f, _, _)) in out.iter().enumerate() {
+        for (row, fa) in j.rows[p].iter().zip(f) {
+            carried += DVector::from_column_slice(row) * *fa;
+        }
+    }
+    assert!((carried - &g).norm() < 1e-12, "the pairs carry the load");
+}
+
 /// All four open: every relative displacement is free, no force.
 #[test]
 fn open_pairs_free_everything() {

@@ -1,0 +1,97 @@
+//! A junction's slipping pairs' friction, implicit in their pressure.
+//!
+//! A slipping pair's friction is linearised in its own pressure force p
+//! (`force + coupling p + spring rel`, [`Relation`]). A lone pair's p is a
+//! row of the system (its normal's `W r - c`), so the coupling is a term of
+//! its equation and Newton converges quadratically. At a junction p is the
+//! split of the force the tied rows carry, known only after the solve;
+//! taking it from the last solve made Newton converge tenfold an iteration
+//! on junction pairs (the 512-block cube of `make bench-blocks`: the last
+//! five or six solves of a step). Here it is solved with the rest. With
+//! `u = W r - c + k r + f0` over the junction's r (f0 the friction at
+//! p = 0) and R the friction per unit pressure (a column per slipping pair):
+//!
+//! ```text
+//! p = A (u + R p)        so   p = M A u,   M = (I - A R)^-1
+//! ```
+//!
+//! A the least-norm split's rows of the slipping pairs' normals (its `-λ_n`
+//! per unit of carried force). The junction's equations `Z^T (u + R p) = 0`
+//! become
+//!
+//! ```text
+//! (Z^T + L) u = 0,   L = Z^T R M A
+//! ```
+//!
+//! which is what the interface solvers take ([`super::super::Lift`]).
+//! Where the least-norm share broke a limit at a slipping pair's normal in
+//! the last solve (the loops then carry part of its pressure, chosen after
+//! the solve), the junction's pressures are the last solve's instead
+//! (`Relation::pressure`): taking the loops' part from the last solve and
+//! the rest implicitly kept the 2D jointed tunnel (`make tunnel-joints`)
+//! cycling between five state sets for 100 iterations; this way it
+//! converges in 26 (28 with every junction's pressures the last solve's).
+
+use nalgebra::{DMatrix, DVector};
+
+use super::{Split, NORMAL};
+
+/// A junction's friction in its slipping pairs' pressures.
+#[derive(Clone, Debug)]
+pub struct Pressure {
+    /// The junction's pairs (indices there) whose pressure is solved for.
+    pub pairs: Vec<usize>,
+    /// The friction per unit pressure of each, over r (n_r x pairs).
+    pub r: DMatrix<f64>,
+    /// `M A` (pairs x n_r): `p = M A u`.
+    pub ma: DMatrix<f64>,
+}
+
+/// The largest gain `||A R||_inf` at which the friction feeds the
+/// pressures back for them to be solved for. Beyond one, taking them from
+/// the last solve diverges, and solving for them can give a pressure of
+/// the wrong sign, a tension the friction it reverses holds up: a crossing
+/// of the 2D jointed tunnel did so, and its pair toggled between slipping
+/// and open for 100 iterations. Below 3/4 the pressures are the limit of
+/// the last-solve ones (`||M|| <= 4`); beyond, they are the last solve's
+/// (in one run of that tunnel, 43 of 1,702 junction solves; 1/2 did as well there, but
+/// 38 contact iterations instead of 18 on `make tunnel-joints` and 42
+/// instead of 28 on `make dam3d-joints`).
+const GAIN: f64 = 0.75;
+
+impl Pressure {
+    /// The pressures of `pairs` (junction indices, each with its friction
+    /// per unit pressure over r in `r`'s columns) under `split`. None where
+    /// the split does not tie a pair's normal, or the feedback is beyond
+    /// [`GAIN`].
+    pub(super) fn new(pairs: Vec<usize>, r: DMatrix<f64>, split: &Split) -> Option<Pressure> {
+        let n_r = r.nrows();
+        let rows: Vec<usize> = pairs.iter().map(|&j| split.rows.iter().position(|&row| row == (j, NORMAL))).collect::<Option<_>>()?;
+        let a = DMatrix::<f64>::from_fn(pairs.len(), n_r, |s, c| split.d[rows[s]] * split.pinv[(rows[s], c)]);
+        let ar = &a * &r;
+        let gain = (0..ar.nrows()).map(|i| ar.row(i).iter().map(|v| v.abs()).sum::<f64>()).fold(0.0, f64::max);
+        if !(gain <= GAIN) {
+            return None;
+        }
+        let m = (DMatrix::<f64>::identity(pairs.len(), pairs.len()) - ar).try_inverse()?;
+        Some(Pressure { ma: m * a, pairs, r })
+    }
+
+    /// The pressures at `u` (over the junction's r).
+    pub fn at(&self, u: &DVector<f64>) -> DVector<f64> {
+        &self.ma * u
+    }
+}
+
+/// Whether the share `lambda` of `split`'s rows is not the least-norm one
+/// `plain` at the normal of a pair `slipping` says slips: the loops carry
+/// part of its pressure.
+pub(super) fn looped(split: &Split, lambda: &DVector<f64>, plain: &DVector<f64>, slipping: impl Fn(usize) -> bool) -> bool {
+    let scale = lambda.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    (split.rows.iter().enumerate()).any(|(i, &(j, dir))| dir == NORMAL && slipping(j) && (lambda[i] - plain[i]).abs() > LOOPED * scale)
+}
+
+/// A share differs from the least-norm one by more than this (of its
+/// largest force) where the loops carry part of it (the cuts keep 1e-9
+/// inside the limits).
+const LOOPED: f64 = 1e-12;
