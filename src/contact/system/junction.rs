@@ -522,16 +522,15 @@ impl Junction {
         });
         let r0 = pinv * t;
         // slipping pairs: springs and forces along their free axes, and
-        // their friction per unit pressure (`pressure`); a pair that has
-        // just closed (linearised at no pressure) takes its friction at
-        // that pressure this once, as before the pressures were solved for
-        // (the 2D jointed tunnel of `make tunnel-joints`: 18 contact
-        // iterations, 28 solving for its pressure too; at the coarser mesh
-        // of tests/tunnel_joints.rs 26 against 31)
+        // their friction per unit pressure (`pressure`). (A pair that has
+        // just closed could take its friction at no pressure this once:
+        // `make tunnel-joints` then takes 18 contact iterations instead of
+        // 28, but the 1,000-block cube of `make bench-blocks` 11 instead
+        // of 9.)
         let mut k = DMatrix::<f64>::zeros(n_r, n_r);
         let mut f = DVector::<f64>::zeros(n_r);
         let slipping: Vec<usize> = (0..self.pairs.len()).filter(|&j| rel[self.pairs[j]].state == ContactState::Slip).collect();
-        let coupled: Vec<usize> = slipping.iter().copied().filter(|&j| rel[self.pairs[j]].pressure > 0.0 && rel[self.pairs[j]].coupling.iter().any(|&c| c != 0.0)).collect();
+        let coupled: Vec<usize> = slipping.iter().copied().filter(|&j| rel[self.pairs[j]].coupling.iter().any(|&c| c != 0.0)).collect();
         let per_pressure = DMatrix::<f64>::from_fn(n_r, coupled.len(), |i, s| {
             let (j, rl) = (coupled[s], &rel[self.pairs[coupled[s]]]);
             (1..nd).map(|a| self.rows[j][a][i] * rl.coupling[a]).sum()
@@ -539,7 +538,7 @@ impl Junction {
         let pressure = if self.memo.looped() { None } else { Pressure::new(coupled, per_pressure, &split) };
         for &j in &slipping {
             let rl = &rel[self.pairs[j]];
-            let lagged = if pressure.as_ref().is_some_and(|pr| pr.pairs.contains(&j)) { 0.0 } else { rl.pressure };
+            let lagged = if pressure.is_some() { 0.0 } else { rl.pressure };
             for a in 1..nd {
                 let row_a = DVector::from_column_slice(&self.rows[j][a]);
                 let mut fa = rl.force[a] + rl.coupling[a] * lagged;
