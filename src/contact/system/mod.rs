@@ -443,9 +443,11 @@ impl<'a> InterfaceProblem<'a> {
     pub fn solve(&self, rel: &[Relation], lambda: &[f64]) -> Result<InterfaceSolution, SolveFailure> {
         let states: Vec<ContactState> = rel.iter().map(|r| r.state).collect();
         // A part nothing holds makes the system singular only up to
-        // round-off: decide it from the relations and the supports first.
-        if let failure @ SolveFailure::NotHeld(_) = self.diagnose(rel) {
-            return Err(failure);
+        // round-off: decide it from the relations and the supports first
+        // (as `diagnose` would, without looking for sliding parts).
+        let not_held = self.free(rel, SlipHolds::Everything);
+        if !not_held.is_empty() {
+            return Err(SolveFailure::NotHeld(not_held));
         }
         let sliding = self.free(rel, SlipHolds::Spring);
         if !sliding.is_empty() {
