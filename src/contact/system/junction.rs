@@ -43,7 +43,8 @@
 //!
 //! A slipping pair's friction force along its free axes is its relation's
 //! `force + coupling p + spring rel` as elsewhere; its pressure p, one of
-//! the tied forces, is solved for with r ([`pressure`]).
+//! the tied forces, is solved for with r, or taken from the last solve
+//! where that cannot be done safely ([`pressure`]).
 
 use nalgebra::{DMatrix, DVector};
 

@@ -88,8 +88,8 @@ pub struct Relation {
     pub coupling: [f64; 3],
     pub spring: [[f64; 3]; 3],
     /// The normal pressure force p the relation was linearised at: a pair
-    /// at a junction, whose normal force is known only after the solve,
-    /// takes `force + coupling * pressure` (see [`junction`]).
+    /// at a junction whose pressure is not solved for (see
+    /// [`junction::pressure`]) takes `force + coupling * pressure`.
     pub pressure: f64,
     /// What the pair can carry, for a junction choosing its tied forces.
     pub limit: Limit,

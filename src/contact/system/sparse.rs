@@ -580,5 +580,3 @@ fn mean_nodes(layout: &Layout) -> Vec<usize> {
     }
     node
 }
-
-
