@@ -376,6 +376,12 @@ impl Junction {
         Junction { pairs, copies, terms, r, m, rows, consts, frames, partners, nd, memo: Memo::default() }
     }
 
+    /// A new load: the junction solves for its slipping pairs' pressures
+    /// again, until its loops carry part of one (see [`pressure`]).
+    pub fn new_load(&self) {
+        self.memo.reset_looped();
+    }
+
     /// The tied rows under `state` (of every model pair): a stuck pair's
     /// normal and [`Self::shear_dirs`], a slipping pair's normal.
     fn tied_rows(&self, state: impl Fn(usize) -> ContactState) -> Vec<Row> {
@@ -527,7 +533,7 @@ impl Junction {
         // just closed could take its friction at no pressure this once:
         // `make tunnel-joints` then takes 18 contact iterations instead of
         // 28, but the 1,000-block cube of `make bench-blocks` 11 instead
-        // of 9.)
+        // of 9, measured before the loops' note was kept for the load.)
         let mut k = DMatrix::<f64>::zeros(n_r, n_r);
         let mut f = DVector::<f64>::zeros(n_r);
         let slipping: Vec<usize> = (0..self.pairs.len()).filter(|&j| rel[self.pairs[j]].state == ContactState::Slip).collect();

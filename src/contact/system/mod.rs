@@ -234,6 +234,10 @@ pub struct InterfaceProblem<'a> {
     /// which parts nothing holds.
     rigid: Vec<PartModes>,
     positions: Vec<[f64; 3]>,
+    /// The load factors of the last solve: a new load (step) lets the
+    /// junctions solve for their pressures again (see
+    /// [`junction::Junction::new_load`]).
+    load: std::sync::Mutex<Vec<f64>>,
 }
 
 /// Result of one interface solve.
@@ -292,7 +296,7 @@ impl<'a> InterfaceProblem<'a> {
         } else {
             Box::new(Dense::new(&layout, parts).map_err(not_held)?)
         };
-        Ok(InterfaceProblem { layout, basis, solver, rigid, positions })
+        Ok(InterfaceProblem { layout, basis, solver, rigid, positions, load: Default::default() })
     }
 
     /// Each pair's frame, rows n, t, b (global components).
@@ -452,6 +456,12 @@ impl<'a> InterfaceProblem<'a> {
         let sliding = self.free(rel, SlipHolds::Spring);
         if !sliding.is_empty() {
             return Err(SolveFailure::Sliding(sliding));
+        }
+        if let Ok(mut load) = self.load.lock() {
+            if load.as_slice() != lambda {
+                self.layout.junctions.iter().for_each(junction::Junction::new_load);
+                *load = lambda.to_vec();
+            }
         }
         let freedom = self.freedom(rel, lambda[0]);
         let answer = self.solver.solve(&freedom, &states, lambda).ok_or_else(|| self.diagnose(rel))?;

@@ -65,14 +65,21 @@ impl Tying {
 }
 
 impl Memo {
-    /// Whether the loops carried part of a slipping pair's pressure in
-    /// the last solve, whichever rows it tied (see [`super::pressure`]).
+    /// Whether the loops carried part of a slipping pair's pressure in a
+    /// solve since the last [`Memo::reset_looped`], whichever rows it tied
+    /// (see [`super::pressure`]).
     pub fn looped(&self) -> bool {
         *self.1.lock().unwrap_or_else(|e| e.into_inner())
     }
 
+    /// Notes that the loops carried part of a pressure, if `looped`; it
+    /// stays noted until [`Memo::reset_looped`].
     pub fn set_looped(&self, looped: bool) {
-        *self.1.lock().unwrap_or_else(|e| e.into_inner()) = looped;
+        *self.1.lock().unwrap_or_else(|e| e.into_inner()) |= looped;
+    }
+
+    pub fn reset_looped(&self) {
+        *self.1.lock().unwrap_or_else(|e| e.into_inner()) = false;
     }
 
     /// `f` of the junction `jn` with `rows` tied, from the last call's if

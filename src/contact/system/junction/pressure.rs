@@ -24,13 +24,17 @@
 //! ```
 //!
 //! which is what the interface solvers take ([`super::super::Lift`]).
-//! Where the least-norm share broke a limit at a slipping pair's normal in
-//! the last solve (the loops then carry part of its pressure, chosen after
-//! the solve), the junction's pressures are the last solve's instead
-//! (`Relation::pressure`): taking the loops' part from the last solve and
-//! the rest implicitly kept the 2D jointed tunnel (`make tunnel-joints`)
-//! cycling between five state sets for 100 iterations; this way it
-//! converges in 26 (28 with every junction's pressures the last solve's).
+//! Once the least-norm share has broken a limit at a slipping pair's normal
+//! (the loops then carry part of its pressure, chosen after the solve), the
+//! junction's pressures are the last solve's (`Relation::pressure`) until
+//! the load changes:
+//! - taking the loops' part from the last solve and the rest implicitly
+//!   kept the 2D jointed tunnel (`make tunnel-joints`) cycling between five
+//!   state sets for 100 iterations;
+//! - switching back to solving for them as soon as a solve's loops let go
+//!   kept the 8 hex20 blocks of tests/geo/cross3d.geo under an oblique
+//!   load (dense interface) toggling two pairs for 100 iterations, as the
+//!   junction's way of solving changed with them.
 
 use nalgebra::{DMatrix, DVector};
 
@@ -55,7 +59,8 @@ pub struct Pressure {
 /// and open for 100 iterations. Below 3/4 the pressures are the limit of
 /// the last-solve ones (`||M|| <= 4`); beyond, they are the last solve's
 /// (in one run of that tunnel, 43 of 1,702 junction solves; with 1/2
-/// `make tunnel-joints` took 39 contact iterations instead of 28).
+/// `make tunnel-joints` took 39 contact iterations instead of 28, before
+/// the loops' note was kept for the load).
 const GAIN: f64 = 0.75;
 
 impl Pressure {
