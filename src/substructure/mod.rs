@@ -27,6 +27,7 @@ pub mod parts;
 pub mod interior;
 pub mod schur;
 pub mod single;
+pub mod twofold;
 
 pub use parts::{cut, parts, Part};
 

@@ -16,12 +16,14 @@
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltParams;
-use faer::sparse::linalg::cholesky::{LltRef, SymbolicCholesky};
+use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
+use faer::sparse::linalg::cholesky::{LltRef, SymbolicCholesky, SymbolicCholeskyRaw};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side, Spec};
 
 use super::ordering::Ordering;
 use super::schur::symbolic;
+use super::twofold::Twofold;
 use crate::fem::sparse::{FactorError, SymMatrix};
 use crate::fem::vec3::to_one;
 
@@ -31,12 +33,14 @@ pub struct SingleCholesky {
     values: Vec<f32>,
     /// The power of two K was scaled by before rounding.
     scale: f64,
+    /// The supernodes dealt to two threads, where there are two.
+    twofold: Option<Twofold>,
 }
 
 impl SingleCholesky {
     /// Factorises `k` (lower triangle), ordered by `ordering` (`node_of`
     /// the node of each equation, for nested dissection).
-    pub fn factor(k: &SymMatrix, node_of: &[usize], ordering: Ordering) -> Result<SingleCholesky, FactorError> {
+    pub fn factor(k: &SymMatrix, node_of: &[usize], ordering: Ordering, threads: usize) -> Result<SingleCholesky, FactorError> {
         let n = k.n;
         let symbolic = symbolic(k, n, node_of, ordering)?;
         let diagonal: Vec<f64> = (0..n).map(|c| k.get(c, c)).collect();
@@ -52,19 +56,35 @@ impl SingleCholesky {
         symbolic
             .factorize_numeric_llt(&mut values, a, Side::Lower, Default::default(), Par::Seq, MemStack::new(&mut buf), Default::default())
             .map_err(|_| FactorError::NotPositiveDefinite)?;
-        Ok(SingleCholesky { symbolic, values, scale })
+        let twofold = match symbolic.raw() {
+            SymbolicCholeskyRaw::Supernodal(sn) if threads >= 2 => Twofold::new(sn),
+            _ => None,
+        };
+        Ok(SingleCholesky { symbolic, values, scale, twofold })
     }
 
     /// `K^-1 b`, to single precision.
     pub fn solve(&self, b: &[f64]) -> Vec<f64> {
         let n = b.len();
         let t = to_one(b);
+        let back = self.scale / t;
+        if let (Some(two), SymbolicCholeskyRaw::Supernodal(sn), Some(perm)) = (&self.twofold, self.symbolic.raw(), self.symbolic.perm()) {
+            // (faer's own substitution permutes the same way: x = P b, then P^T x)
+            let (fwd, inv) = perm.arrays();
+            let mut x: Vec<f32> = fwd.iter().map(|&i| (b[i] * t) as f32).collect();
+            two.solve(SupernodalLltRef::new(sn, &self.values), &mut x);
+            return inv.iter().map(|&i| f64::from(x[i]) * back).collect();
+        }
         let mut x: Vec<f32> = b.iter().map(|&v| (v * t) as f32).collect();
         let llt = LltRef::new(&self.symbolic, &self.values);
         let mut buf = MemBuffer::new(self.symbolic.solve_in_place_scratch::<f32>(1, Par::Seq));
         llt.solve_in_place_with_conj(Conj::No, MatMut::from_column_major_slice_mut(&mut x, n, 1), Par::Seq, MemStack::new(&mut buf));
-        let back = self.scale / t;
         x.iter().map(|&v| f64::from(v) * back).collect()
+    }
+
+    /// Whether substitutions run in two threads (see [`super::twofold`]).
+    pub fn twofold(&self) -> bool {
+        self.twofold.is_some()
     }
 }
 
@@ -97,14 +117,58 @@ mod tests {
         let node_of: Vec<usize> = (0..n).collect();
         let want: Vec<f64> = (0..n).map(|i| (i as f64 * 0.3).sin()).collect();
         let b = k.mul(&want);
-        let f = SingleCholesky::factor(&k, &node_of, Ordering::Amd).expect("positive definite");
+        let f = SingleCholesky::factor(&k, &node_of, Ordering::Amd, 1).expect("positive definite");
         let x = f.solve(&b);
         let err = x.iter().zip(&want).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
         assert!(err > 0.0 && err < 1e-3, "error {err}");
         let s = 2f64.powi(-664);
         let tiny = laplacian(n, 3.0 * s);
-        let ft = SingleCholesky::factor(&tiny, &node_of, Ordering::Amd).expect("positive definite");
+        let ft = SingleCholesky::factor(&tiny, &node_of, Ordering::Amd, 1).expect("positive definite");
         let xt = ft.solve(&b);
         assert!(xt.iter().zip(&x).all(|(a, b)| *a == b / s), "scaled by 2^-664");
+    }
+
+    /// A cube of `n^3` nodes, one equation each, every cell a clique of
+    /// its 8 corners (`8 I - 1` plus a little on the diagonal).
+    fn cube(n: usize) -> SymMatrix {
+        let id = |i: usize, j: usize, k: usize| i + n * (j + n * k);
+        let mut cells = Vec::new();
+        for (i, j, k) in (0..n - 1).flat_map(|i| (0..n - 1).flat_map(move |j| (0..n - 1).map(move |k| (i, j, k)))) {
+            cells.push((0..8).map(|c| id(i + (c & 1), j + ((c >> 1) & 1), k + (c >> 2))).collect::<Vec<usize>>());
+        }
+        let mut a = SymMatrix::from_cliques(n * n * n, &cells);
+        let ke: Vec<f64> = (0..64).map(|e| if e % 9 == 0 { 7.01 } else { -1.0 }).collect();
+        for c in &cells {
+            a.add(c, &ke);
+        }
+        a
+    }
+
+    /// Two threads substitute what one does, to single precision: the
+    /// subtrees below the root separators side by side, and the top's
+    /// supernodes by one thread or (all of them wide) by both.
+    #[test]
+    fn two_threads_give_the_answer_of_one() {
+        let k = cube(22);
+        let node_of: Vec<usize> = (0..k.n).collect();
+        let want: Vec<f64> = (0..k.n).map(|i| 1.0 + (i as f64 * 0.01).sin()).collect();
+        let b = k.mul(&want);
+        let one = SingleCholesky::factor(&k, &node_of, Ordering::NestedDissection, 1).expect("positive definite");
+        let mut two = SingleCholesky::factor(&k, &node_of, Ordering::NestedDissection, 2).expect("positive definite");
+        assert!(!one.twofold() && two.twofold(), "a {}-value factor is shared", two.values.len());
+        let x1 = one.solve(&b);
+        let largest = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let apart = |x: &[f64], y: &[f64]| largest(&x.iter().zip(y).map(|(a, b)| a - b).collect::<Vec<_>>()) / largest(y);
+        assert!(apart(&x1, &want) < 1e-3, "one thread: {}", apart(&x1, &want));
+        let x2 = two.solve(&b);
+        assert!(apart(&x2, &x1) < 1e-5, "two threads against one: {}", apart(&x2, &x1));
+        let shared = match two.symbolic.raw() {
+            SymbolicCholeskyRaw::Supernodal(sn) => Twofold::with(sn, 1),
+            SymbolicCholeskyRaw::Simplicial(_) => None,
+        };
+        assert!(shared.is_some(), "supernodal");
+        two.twofold = shared;
+        let x3 = two.solve(&b);
+        assert!(apart(&x3, &x1) < 1e-5, "every top supernode shared, against one thread: {}", apart(&x3, &x1));
     }
 }

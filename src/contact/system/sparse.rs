@@ -123,7 +123,7 @@ impl Sparse {
         }
         let k_mm = means_matrix(&local, nm);
         let node_of = mean_nodes(layout);
-        let factor = Means::factor(&k_mm, &node_of, Ordering::choose(nm, nd)).ok_or(NotHeld)?;
+        let factor = Means::factor(&k_mm, &node_of, Ordering::choose(nm, nd), threads).ok_or(NotHeld)?;
         drop(k_mm);
         let mut solver = Sparse {
             nm,
@@ -505,8 +505,8 @@ enum Means {
 }
 
 impl Means {
-    fn factor(k: &SymMatrix, node_of: &[usize], ordering: Ordering) -> Option<Means> {
-        if let Ok(f) = SingleCholesky::factor(k, node_of, ordering) {
+    fn factor(k: &SymMatrix, node_of: &[usize], ordering: Ordering, threads: usize) -> Option<Means> {
+        if let Ok(f) = SingleCholesky::factor(k, node_of, ordering, threads) {
             // the test vector: K times a smooth field of ones
             let x: Vec<f64> = (0..k.n).map(|i| 1.0 + 0.5 * (i as f64 * 0.01).sin()).collect();
             let b = k.mul(&x);
