@@ -420,24 +420,48 @@ impl Preconditioner {
             }
         }
         let mut entries: Vec<(usize, usize, f64)> = Vec::new();
-        let mut free: Vec<(usize, usize, f64)> = Vec::new(); // (local DOF, column, coefficient)
+        let mut free: Vec<(usize, usize, f64)> = Vec::new(); // (local DOF, local column, coefficient)
+        // the part's free columns, and each column's place among them
+        let (mut local, mut place) = (Vec::new(), vec![usize::MAX; n]);
+        let mut block = Vec::new();
         for p in &sp.parts {
             free.clear();
             for (u, t) in p.terms.iter().enumerate() {
                 for &(v, c) in &t.vars[..t.n] {
                     if let Var::R(i) = v {
-                        free.extend(cols_of[i].iter().map(|&(col, z)| (u, col, c * z)));
+                        for &(col, z) in &cols_of[i] {
+                            if place[col] == usize::MAX {
+                                place[col] = local.len();
+                                local.push(col);
+                            }
+                            free.push((u, place[col], c * z));
+                        }
                     }
                 }
             }
-            let nc = p.terms.len();
+            // Z_p^T S_p Z_p over the part's free columns, then its lower
+            // triangle: one entry per pair of columns, not per pair of the
+            // terms they touch (the 1,000-block cube: 0.3 million entries
+            // per solve instead of 1.5, 0.03 s instead of 0.14)
+            let (nc, nf) = (p.terms.len(), local.len());
+            block.clear();
+            block.resize(nf * nf, 0.0);
             for &(u, a, x) in &free {
                 for &(v, b, y) in &free {
-                    if a >= b {
-                        entries.push((a, b, x * y * p.s[u + v * nc]));
+                    block[a + b * nf] += x * y * p.s[u + v * nc];
+                }
+            }
+            for (a, &ca) in local.iter().enumerate() {
+                for (b, &cb) in local.iter().enumerate() {
+                    if ca >= cb {
+                        entries.push((ca, cb, block[a + b * nf]));
                     }
                 }
             }
+            for &c in &local {
+                place[c] = usize::MAX;
+            }
+            local.clear();
         }
         for s in &fr.slips {
             let i = fr.pos[s.row];
@@ -473,24 +497,41 @@ impl Preconditioner {
 
 /// The lower triangle of an `n x n` symmetric matrix from (row >= col,
 /// col, value) entries, repeated ones summed; every diagonal entry present.
-fn lower_from_entries(n: usize, mut entries: Vec<(usize, usize, f64)>) -> SymMatrix {
-    entries.extend((0..n).map(|i| (i, i, 0.0)));
-    entries.sort_unstable_by_key(|&(r, c, _)| (c, r));
-    let mut col_ptr = vec![0usize; n + 1];
-    let (mut row_idx, mut values): (Vec<usize>, Vec<f64>) = (Vec::new(), Vec::new());
-    let mut last = (usize::MAX, usize::MAX);
-    for (r, c, v) in entries {
-        if (r, c) == last {
-            *values.last_mut().expect("a value") += v;
-        } else {
-            row_idx.push(r);
-            values.push(v);
-            col_ptr[c + 1] = row_idx.len();
-            last = (r, c);
-        }
+fn lower_from_entries(n: usize, entries: Vec<(usize, usize, f64)>) -> SymMatrix {
+    // bucketed by column, then each column sorted by row (a sort of all
+    // the entries at once took 0.012 s of a 0.02 s preconditioner on the
+    // 512-block cube); a column's bucket starts with its diagonal
+    let mut start = vec![0usize; n + 1];
+    for &(_, c, _) in &entries {
+        start[c + 1] += 1;
     }
     for c in 0..n {
-        col_ptr[c + 1] = col_ptr[c + 1].max(col_ptr[c]);
+        start[c + 1] += start[c] + 1;
+    }
+    let mut next = start.clone();
+    let mut bucket = vec![(0usize, 0.0f64); start[n]];
+    for c in 0..n {
+        bucket[next[c]] = (c, 0.0);
+        next[c] += 1;
+    }
+    for (r, c, v) in entries {
+        bucket[next[c]] = (r, v);
+        next[c] += 1;
+    }
+    let mut col_ptr = vec![0usize; n + 1];
+    let (mut row_idx, mut values): (Vec<usize>, Vec<f64>) = (Vec::with_capacity(bucket.len()), Vec::with_capacity(bucket.len()));
+    for c in 0..n {
+        let column = &mut bucket[start[c]..start[c + 1]];
+        column.sort_by_key(|&(r, _)| r);
+        for &(r, v) in column.iter() {
+            if row_idx.len() > col_ptr[c] && row_idx.last() == Some(&r) {
+                *values.last_mut().expect("a value") += v;
+            } else {
+                row_idx.push(r);
+                values.push(v);
+            }
+        }
+        col_ptr[c + 1] = row_idx.len();
     }
     SymMatrix { n, col_ptr, row_idx, values }
 }
