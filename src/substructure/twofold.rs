@@ -241,18 +241,32 @@ fn cut(nrows: usize, ncols: usize) -> usize {
     blocks.iter().copied().chain([ncols]).min_by(|x, y| work(*x).total_cmp(&work(*y))).unwrap_or(0)
 }
 
+/// A supernode of `wide` values or more: its first column, its rows below
+/// the diagonal block, its values and the cut of its rows.
+struct Wide<'a> {
+    start: usize,
+    pattern: &'a [usize],
+    ls: MatRef<'a, f32>,
+    m: usize,
+}
+
+impl<'a> Wide<'a> {
+    fn of(l: SupernodalLltRef<'a, usize, f32>, s: usize, wide: usize) -> Option<Wide<'a>> {
+        let node = l.supernode(s);
+        let ls = node.val();
+        (ls.nrows() * ls.ncols() >= wide).then(|| Wide { start: node.start(), pattern: node.pattern(), ls, m: cut(ls.nrows(), ls.ncols()) })
+    }
+}
+
 /// `forward` on the top's supernode `s`, its rows shared by two threads
 /// where it is wide: the first thread solves the blocks above the cut and
 /// passes each block's answer to the second, which updates the rows below
 /// the cut with it and then solves its own blocks.
 fn forward_wide(l: SupernodalLltRef<'_, usize, f32>, s: usize, x: &mut [f32], wide: usize) {
-    let node = l.supernode(s);
-    let (start, pattern, ls) = (node.start(), node.pattern(), node.val());
-    let (nrows, ncols) = (ls.nrows(), ls.ncols());
-    if nrows * ncols < wide {
+    let Some(Wide { start, pattern, ls, m }) = Wide::of(l, s, wide) else {
         return forward(l, &[s], x);
-    }
-    let m = cut(nrows, ncols);
+    };
+    let (nrows, ncols) = (ls.nrows(), ls.ncols());
     // z: the supernode's own rows, then (negated) its updates to the rows below
     let mut z: Vec<f32> = x[start..start + ncols].to_vec();
     z.resize(nrows, 0.0);
@@ -297,13 +311,10 @@ fn forward_wide(l: SupernodalLltRef<'_, usize, f32>, s: usize, x: &mut [f32], wi
 /// where it is wide: the second thread solves its own blocks, then sends
 /// the first each block's product with the rows below the cut.
 fn backward_wide(l: SupernodalLltRef<'_, usize, f32>, s: usize, x: &mut [f32], wide: usize) {
-    let node = l.supernode(s);
-    let (start, pattern, ls) = (node.start(), node.pattern(), node.val());
-    let (nrows, ncols) = (ls.nrows(), ls.ncols());
-    if nrows * ncols < wide {
+    let Some(Wide { start, pattern, ls, m }) = Wide::of(l, s, wide) else {
         return backward(l, &[s], x);
-    }
-    let m = cut(nrows, ncols);
+    };
+    let (nrows, ncols) = (ls.nrows(), ls.ncols());
     let mut z: Vec<f32> = x[start..start + ncols].to_vec();
     z.extend(pattern.iter().map(|&r| x[r]));
     let (za, zb) = z.split_at_mut(m);
