@@ -47,7 +47,7 @@ use super::coords::{for_each_load, Terms, Var};
 use super::gmres;
 use super::layout::Layout;
 use super::reduce::combine;
-use super::{coords, Answer, Freedom, Solver};
+use super::{coords, in_runs, Answer, Freedom, Solver};
 use crate::contact::basis;
 use crate::contact::frame::Frame;
 use crate::contact::law::ContactState;
@@ -410,22 +410,12 @@ impl<'a> Iterative<'a> {
             }
             acc
         };
-        let threads = self.threads.min(local.len()).max(1);
-        let mut out = if threads == 1 {
-            sum(&local)
-        } else {
-            // the parts in one run per thread
-            let chunk = local.len().div_ceil(threads);
-            let partials: Vec<Vec<Vec<f64>>> = std::thread::scope(|scope| {
-                let handles: Vec<_> = local.chunks(chunk).map(|ps| scope.spawn(move || sum(ps))).collect();
-                handles.into_iter().map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e))).collect()
-            });
-            let mut out = vec![vec![0.0; n]; k];
-            for p in partials {
-                add_columns(&mut out, p);
-            }
-            out
-        };
+        // the parts in one run per thread
+        let mut partials = in_runs(&local, self.threads, sum).into_iter();
+        let mut out = partials.next().unwrap_or_else(|| vec![vec![0.0; n]; k]);
+        for p in partials {
+            add_columns(&mut out, p);
+        }
         if let (Some(remote), false) = (self.remote, remote_parts.is_empty()) {
             for (i, sd) in remote.receive() {
                 let at = remote_parts.iter().find(|r| r.0 == i).expect("a part that was sent").1;

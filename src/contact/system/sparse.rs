@@ -45,7 +45,7 @@ use super::gmres;
 use super::iterative::{LastStates, LOOSE_TOLERANCE, TOLERANCE};
 use super::layout::Layout;
 use super::reduce::{combine, NotHeld};
-use super::{Answer, Freedom, Solver};
+use super::{in_runs, Answer, Freedom, Solver};
 use crate::contact::law::ContactState;
 use crate::fem::sparse::{Cholesky, SymMatrix};
 use crate::fem::vec3::length;
@@ -175,21 +175,13 @@ impl Sparse {
             }
             y
         };
-        let chunk = self.parts.len().div_ceil(self.threads).max(1);
-        let mut y = if self.threads == 1 || self.parts.len() < 2 * self.threads {
-            sweep(&self.parts)
-        } else {
-            let sums: Vec<Vec<f64>> = std::thread::scope(|scope| {
-                let handles: Vec<_> = self.parts.chunks(chunk).map(|c| scope.spawn(move || sweep(c))).collect();
-                handles.into_iter().map(|h| h.join().expect("a sweep of the parts")).collect()
-            });
-            let mut sums = sums.into_iter();
-            let mut y = sums.next().unwrap_or_else(|| vec![0.0; nm + nr]);
-            for s in sums {
-                y.iter_mut().zip(&s).for_each(|(a, b)| *a += b);
-            }
-            y
-        };
+        // (two parts a thread at least)
+        let threads = if self.parts.len() < 2 * self.threads { 1 } else { self.threads };
+        let mut sums = in_runs(&self.parts, threads, sweep).into_iter();
+        let mut y = sums.next().unwrap_or_else(|| vec![0.0; nm + nr]);
+        for s in sums {
+            y.iter_mut().zip(&s).for_each(|(a, b)| *a += b);
+        }
         let yr = y.split_off(nm);
         (y, yr)
     }
