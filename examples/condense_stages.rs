@@ -12,7 +12,9 @@ use subcontact::driver::load_mesh;
 use subcontact::model::Model;
 use subcontact::scene::Scene;
 use subcontact::substructure::ordering::Ordering;
-use subcontact::substructure::{assembly, condense_parts, interior_nodes, numbering, parts, schur::PartialCholesky, Condensation};
+use subcontact::substructure::{
+    assembly, condense_parts, interior_nodes, numbering, parts, schur::PartialCholesky, Condensation,
+};
 
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().collect();
@@ -28,7 +30,8 @@ fn main() -> anyhow::Result<()> {
         // whole `condense` per part: one after the other ("sequential"), or two threads ("concurrent")
         let t = Instant::now();
         let threads = if mode == "concurrent" { 2 } else { 1 };
-        let done: Vec<usize> = condense_parts(&model, parts(&model), threads, Condensation::Dense)?.iter().map(|c| c.nc).collect();
+        let done: Vec<usize> =
+            condense_parts(&model, parts(&model), threads, Condensation::Dense)?.iter().map(|c| c.nc).collect();
         println!("{mode}: condense of {} parts (nc {done:?}) {:.3}s", done.len(), t.elapsed().as_secs_f64());
         return Ok(());
     }
@@ -44,7 +47,8 @@ fn main() -> anyhow::Result<()> {
             _ => Ordering::choose(ni, model.nd),
         };
         let t = Instant::now();
-        subcontact::substructure::ordering::interior(&a.k, ni, &node_of, ordering).map_err(|e| anyhow::anyhow!("{e}"))?;
+        subcontact::substructure::ordering::interior(&a.k, ni, &node_of, ordering)
+            .map_err(|e| anyhow::anyhow!("{e}"))?;
         let t_order = t.elapsed().as_secs_f64();
         let t = Instant::now();
         let chol = PartialCholesky::factor(&a.k, ni, &node_of, ordering, par).map_err(|e| anyhow::anyhow!("{e}"))?;

@@ -12,10 +12,10 @@ use std::path::PathBuf;
 use anyhow::{bail, Result};
 
 use crate::driver::{self, RunOptions};
-use crate::results::Run;
 use crate::output::files::Staged;
 use crate::output::plot::{self, Panel, Series};
 use crate::recover::Sample;
+use crate::results::Run;
 use crate::scene::Scene;
 
 /// What to run.
@@ -111,7 +111,11 @@ fn refined(base: &Scene, order: usize, level: usize, opts: &BenchOptions) -> (Sc
 }
 
 /// Runs the study; `progress(done, total, message)` after each solve.
-pub fn bench(scene_path: &std::path::Path, opts: &BenchOptions, progress: &mut dyn FnMut(usize, usize, &str)) -> Result<(Vec<Row>, PathBuf)> {
+pub fn bench(
+    scene_path: &std::path::Path,
+    opts: &BenchOptions,
+    progress: &mut dyn FnMut(usize, usize, &str),
+) -> Result<(Vec<Row>, PathBuf)> {
     let mut base = Scene::load(scene_path)?;
     // run time against error of the load steps: no safety search
     base.safety = None;
@@ -205,7 +209,8 @@ fn against_reference(rows: &mut [Row]) {
 
 /// Least-squares slope of log(y) against log(x) over finite positive points.
 pub fn loglog_slope(points: &[(f64, f64)]) -> Option<f64> {
-    let p: Vec<(f64, f64)> = points.iter().filter(|q| q.0 > 0.0 && q.1 > 0.0 && q.1.is_finite()).map(|q| (q.0.ln(), q.1.ln())).collect();
+    let p: Vec<(f64, f64)> =
+        points.iter().filter(|q| q.0 > 0.0 && q.1 > 0.0 && q.1.is_finite()).map(|q| (q.0.ln(), q.1.ln())).collect();
     if p.len() < 2 {
         return None;
     }
@@ -220,7 +225,11 @@ pub fn loglog_slope(points: &[(f64, f64)]) -> Option<f64> {
 /// An error for the table: "–" where there is none (no closed form, or the
 /// reference level itself; bench.csv keeps NaN).
 fn error(e: f64) -> String {
-    if e.is_nan() { "–".into() } else { format!("{e:.3e}") }
+    if e.is_nan() {
+        "–".into()
+    } else {
+        format!("{e:.3e}")
+    }
 }
 
 /// The Markdown table and the fitted rates.
@@ -251,8 +260,17 @@ pub fn table(rows: &[Row]) -> String {
     orders.dedup();
     for o in orders {
         let sel: Vec<&Row> = rows.iter().filter(|r| r.order == o).collect();
-        let rate = |f: &dyn Fn(&Row) -> f64| loglog_slope(&sel.iter().map(|r| (r.h, f(r))).collect::<Vec<_>>()).map_or("–".into(), |v| format!("{v:.2}"));
-        let _ = writeln!(s, "| {o} | {} | {} | {} |", rate(&|r| r.error_displacement_l2), rate(&|r| r.error_stress_l2), rate(&|r| r.error_contact_max));
+        let rate = |f: &dyn Fn(&Row) -> f64| {
+            loglog_slope(&sel.iter().map(|r| (r.h, f(r))).collect::<Vec<_>>())
+                .map_or("–".into(), |v| format!("{v:.2}"))
+        };
+        let _ = writeln!(
+            s,
+            "| {o} | {} | {} | {} |",
+            rate(&|r| r.error_displacement_l2),
+            rate(&|r| r.error_stress_l2),
+            rate(&|r| r.error_contact_max)
+        );
     }
     s
 }
@@ -270,21 +288,42 @@ pub fn write(rows: &[Row], out: &std::path::Path, title: &str) -> Result<Vec<Pat
     let series = |x: &dyn Fn(&Row) -> f64| -> Vec<Series> {
         orders
             .iter()
-            .map(|&o| Series { label: format!("order {o}"), points: rows.iter().filter(|r| r.order == o).map(|r| (x(r), r.error_stress_l2)).collect() })
+            .map(|&o| Series {
+                label: format!("order {o}"),
+                points: rows.iter().filter(|r| r.order == o).map(|r| (x(r), r.error_stress_l2)).collect(),
+            })
             .collect()
     };
     let by_time = series(&|r| r.time_s);
     let by_dofs = series(&|r| r.dofs as f64);
     let svg = plot::svg(
         &[
-            Panel { title: "stress error against run time", x_label: "run time (s)", y_label: "relative L2 stress error", log_x: true, log_y: true, series: &by_time },
-            Panel { title: "stress error against DOFs", x_label: "DOFs", y_label: "relative L2 stress error", log_x: true, log_y: true, series: &by_dofs },
+            Panel {
+                title: "stress error against run time",
+                x_label: "run time (s)",
+                y_label: "relative L2 stress error",
+                log_x: true,
+                log_y: true,
+                series: &by_time,
+            },
+            Panel {
+                title: "stress error against DOFs",
+                x_label: "DOFs",
+                y_label: "relative L2 stress error",
+                log_x: true,
+                log_y: true,
+                series: &by_dofs,
+            },
         ],
         560,
         420,
     )
     .map_err(|e| anyhow::anyhow!("drawing bench.svg: {e}"))?;
-    let note = if rows.iter().any(|r| r.error_displacement_l2.is_nan() && r.order == rows.iter().map(|q| q.order).max().unwrap_or(0)) && rows.iter().any(|r| r.error_displacement_l2.is_finite()) {
+    let note = if rows
+        .iter()
+        .any(|r| r.error_displacement_l2.is_nan() && r.order == rows.iter().map(|q| q.order).max().unwrap_or(0))
+        && rows.iter().any(|r| r.error_displacement_l2.is_finite())
+    {
         "Errors without a closed form: relative L2 of displacement and stress at the scene's probe points against the finest level of the highest order (the reference, whose own errors are left out).\n\n"
     } else {
         ""

@@ -2,8 +2,8 @@
 
 use std::path::PathBuf;
 
-use clap::{Parser, Subcommand};
 use crate::contact::InterfaceSolver;
+use clap::{Parser, Subcommand};
 
 /// Contact between elastic bodies by the substructure interface method.
 ///
@@ -86,9 +86,7 @@ pub enum Command {
         out: Option<PathBuf>,
     },
     /// Validate a scene, its mesh and its model (groups, pairs, supports) without solving.
-    Check {
-        scene: PathBuf,
-    },
+    Check { scene: PathBuf },
     /// Solve the fine and the paper-mesh cylinder scenes and print the paper's Tables 1 and 2
     /// side by side with both (also written to the fine scene's report.md).
     Paper {

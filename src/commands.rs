@@ -23,10 +23,10 @@ macro_rules! errln {
 
 use anyhow::{Context, Result};
 
-use crate::driver::{self, RunOptions};
-use crate::parallel::Comm;
-use crate::model::Model;
 use crate::analytic::{self, paper};
+use crate::driver::{self, RunOptions};
+use crate::model::Model;
+use crate::parallel::Comm;
 use crate::results::{state_counts, Run};
 use crate::scene::Scene;
 use crate::substructure;
@@ -68,10 +68,21 @@ fn print_summary(run: &Run, out: &Path) {
     outln!("{}: {} DOFs ({} interface), {:.2} s", run.scene.name, st.dofs.total, st.dofs.interface, st.timings.total);
     if let Some(c) = run.contact() {
         let k = state_counts(&c.states);
-        outln!("  contact: {} pairs, {} iteration(s), {} stick / {} slip / {} open", c.states.len(), c.summary.iterations, k[2], k[1], k[0]);
+        outln!(
+            "  contact: {} pairs, {} iteration(s), {} stick / {} slip / {} open",
+            c.states.len(),
+            c.summary.iterations,
+            k[2],
+            k[1],
+            k[0]
+        );
     }
     if let Some(e) = &run.checks.errors {
-        outln!("  error vs closed form: displacement {:.3e}, stress {:.3e} (relative L2)", e.displacement_l2, e.stress_l2);
+        outln!(
+            "  error vs closed form: displacement {:.3e}, stress {:.3e} (relative L2)",
+            e.displacement_l2,
+            e.stress_l2
+        );
     }
     if let Some(s) = &run.safety {
         print_safety(run, s);
@@ -84,9 +95,18 @@ fn print_summary(run: &Run, out: &Path) {
 fn print_safety(run: &Run, s: &crate::results::SafetyRun) {
     match (s.fails_at, &s.failure) {
         (Some(f), Some(fail)) => {
-            let who = if fail.blocks.is_empty() { String::new() } else { format!(": {} ({})", run.model.body_names(&fail.blocks), fail.kind.key()) };
+            let who = if fail.blocks.is_empty() {
+                String::new()
+            } else {
+                format!(": {} ({})", run.model.body_names(&fail.blocks), fail.kind.key())
+            };
             let g = |v: f64| format!("{v:.6}").trim_end_matches('0').trim_end_matches('.').to_string();
-            outln!("  factor of safety against sliding F = {:.4} (holds at {}, fails at {}){who}", s.factor, g(s.factor), g(f));
+            outln!(
+                "  factor of safety against sliding F = {:.4} (holds at {}, fails at {}){who}",
+                s.factor,
+                g(s.factor),
+                g(f)
+            );
         }
         _ => {
             outln!("  factor of safety against sliding F > {} (the search reached its bound)", s.factor);
@@ -105,11 +125,32 @@ pub fn check(scene_path: &Path) -> Result<()> {
     // a run that would not fit in memory fails the check, before it says anything
     let (how, sparse) = driver::interface_plan(scene.solver.interface, &parts, model.nd);
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let need = crate::memory::estimate(&model, &parts.iter().collect::<Vec<_>>(), (how, sparse), threads, true, dofs.interface, scene.solver.load_steps);
+    let need = crate::memory::estimate(
+        &model,
+        &parts.iter().collect::<Vec<_>>(),
+        (how, sparse),
+        threads,
+        true,
+        dofs.interface,
+        scene.solver.load_steps,
+    );
     let available = crate::memory::check(&model.scene, need, [dofs.total, dofs.interface], parts.len())?;
     outln!("{}: scene and mesh `{}` are consistent", scene_path.display(), msh.display());
-    outln!("  {} bodies, {} elements, {} model nodes, {} contact pairs, {} part(s)", model.bodies.len(), model.bodies.iter().map(|b| b.cells.len()).sum::<usize>(), model.n_nodes(), model.pairs.len(), parts.len());
-    outln!("  {} DOFs ({} interface); estimated peak memory {} of {} available", dofs.total, dofs.interface, crate::memory::human(need.total), crate::memory::human(available.bytes));
+    outln!(
+        "  {} bodies, {} elements, {} model nodes, {} contact pairs, {} part(s)",
+        model.bodies.len(),
+        model.bodies.iter().map(|b| b.cells.len()).sum::<usize>(),
+        model.n_nodes(),
+        model.pairs.len(),
+        parts.len()
+    );
+    outln!(
+        "  {} DOFs ({} interface); estimated peak memory {} of {} available",
+        dofs.total,
+        dofs.interface,
+        crate::memory::human(need.total),
+        crate::memory::human(available.bytes)
+    );
     warn(&scene.warnings());
     warn(&crate::model::warnings::warnings(&model));
     Ok(())
@@ -146,7 +187,10 @@ pub fn bench(scene: &Path, opts: &crate::bench::BenchOptions) -> Result<()> {
     }
     let total = (opts.orders.len() * opts.levels) as u64;
     let bar = ProgressBar::new(total);
-    bar.set_style(ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} {msg}").unwrap_or_else(|_| ProgressStyle::default_bar()));
+    bar.set_style(
+        ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} {msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
     bar.set_message("meshing and solving level 0");
     let (rows, out) = crate::bench::bench(scene, opts, &mut |done, _, msg| {
         bar.set_position(done as u64);

@@ -42,7 +42,15 @@ fn main() -> ExitCode {
         Command::Check { scene } => commands::check(&scene),
         Command::Bench { scene, levels, orders, ratio, start, max_dofs, no_monolithic, out } => commands::bench(
             &scene,
-            &subcontact::bench::BenchOptions { levels, orders, ratio, start, max_dofs, monolithic: !no_monolithic, out },
+            &subcontact::bench::BenchOptions {
+                levels,
+                orders,
+                ratio,
+                start,
+                max_dofs,
+                monolithic: !no_monolithic,
+                out,
+            },
         ),
         Command::Paper { fine, paper, quiet } => commands::paper(&fine, &paper, !quiet),
     };
@@ -78,6 +86,14 @@ fn chain(e: &anyhow::Error) -> String {
 
 /// The scene and the run's options from `solve`'s and `safety`'s arguments.
 fn options(a: RunArgs) -> (std::path::PathBuf, RunOptions) {
-    let opts = RunOptions { out: a.out, verbose: !a.quiet, substructures: a.substructures, threads: a.threads, interface: a.interface, ignore_memory_estimate: a.no_memory_check, ..Default::default() };
+    let opts = RunOptions {
+        out: a.out,
+        verbose: !a.quiet,
+        substructures: a.substructures,
+        threads: a.threads,
+        interface: a.interface,
+        ignore_memory_estimate: a.no_memory_check,
+        ..Default::default()
+    };
     (a.scene, opts)
 }

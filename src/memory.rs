@@ -116,7 +116,15 @@ const SPARSE_FILL: f64 = 50.0;
 /// (and whether the interface is the sparse one), `threads` at a time, the
 /// interface of `interface_dofs` DOFs solved here when `solves_interface`,
 /// over `steps` load steps.
-pub fn estimate(model: &Model, parts: &[&Part], (how, sparse): (Condensation, bool), threads: usize, solves_interface: bool, interface_dofs: usize, steps: usize) -> Estimate {
+pub fn estimate(
+    model: &Model,
+    parts: &[&Part],
+    (how, sparse): (Condensation, bool),
+    threads: usize,
+    solves_interface: bool,
+    interface_dofs: usize,
+    steps: usize,
+) -> Estimate {
     let nd = model.nd as f64;
     let mut factors = 0.0;
     let mut schur = 0.0;
@@ -151,7 +159,11 @@ pub fn estimate(model: &Model, parts: &[&Part], (how, sparse): (Condensation, bo
     let interface = if sparse && solves_interface { kept + 3.0 * schur + 2.0 * w } else { kept + 2.0 * schur + w };
     // displacements, stresses (6 per body node) and the files, per step
     let results = (steps.max(1) as f64 + 1.0) * model.n_nodes() as f64 * 8.0 * (nd + 6.0 + 8.0);
-    Estimate { total: resident() + MARGIN * condensing.max(interface) + results + PICTURES, factors, interface: schur + w }
+    Estimate {
+        total: resident() + MARGIN * condensing.max(interface) + results + PICTURES,
+        factors,
+        interface: schur + w,
+    }
 }
 
 /// A part's node graph ordered as the factorisation orders its equations,
@@ -205,8 +217,12 @@ fn part_fill(model: &Model, part: &Part, how: Condensation) -> (f64, f64, usize)
     }
     let perm = faer::perm::PermRef::new_checked(&fwd, &inv, n);
     let a = SymbolicSparseColMatRef::new_checked(n, n, &graph.col_ptr, None, &graph.row_idx);
-    let params = CholeskySymbolicParams { supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL, ..Default::default() };
-    let fill = factorize_symbolic_cholesky(a, Side::Lower, SymmetricOrdering::Custom(perm), params).map_or(dense_guess(n), |s| s.len_val() as f64);
+    let params = CholeskySymbolicParams {
+        supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+        ..Default::default()
+    };
+    let fill = factorize_symbolic_cholesky(a, Side::Lower, SymmetricOrdering::Custom(perm), params)
+        .map_or(dense_guess(n), |s| s.len_val() as f64);
     (fill, k_nnz, nc)
 }
 
@@ -249,7 +265,11 @@ fn cgroups() -> Vec<(String, String, String)> {
             loop {
                 let (max, cur) = (p.join("memory.max"), p.join("memory.current"));
                 if max.exists() {
-                    out.push((max.display().to_string(), cur.display().to_string(), format!("the cgroup limit {} less its usage", max.display())));
+                    out.push((
+                        max.display().to_string(),
+                        cur.display().to_string(),
+                        format!("the cgroup limit {} less its usage", max.display()),
+                    ));
                 }
                 if !p.pop() || !p.starts_with("/sys/fs/cgroup") {
                     break;
@@ -257,7 +277,11 @@ fn cgroups() -> Vec<(String, String, String)> {
             }
         } else if ctl.split(',').any(|c| c == "memory") {
             let p = std::path::PathBuf::from("/sys/fs/cgroup/memory").join(path);
-            out.push((p.join("memory.limit_in_bytes").display().to_string(), p.join("memory.usage_in_bytes").display().to_string(), format!("the cgroup limit {} less its usage", p.join("memory.limit_in_bytes").display())));
+            out.push((
+                p.join("memory.limit_in_bytes").display().to_string(),
+                p.join("memory.usage_in_bytes").display().to_string(),
+                format!("the cgroup limit {} less its usage", p.join("memory.limit_in_bytes").display()),
+            ));
         }
     }
     out

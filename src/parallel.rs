@@ -125,11 +125,14 @@ impl Comm for Mpi {
             let mut counts = vec![0u64; self.size()];
             root.gather_into_root(&n, &mut counts[..]);
             let counts_i: Vec<i32> = counts.iter().map(|&c| c as i32).collect();
-            let displs: Vec<i32> = counts_i.iter().scan(0, |acc, &c| {
-                let d = *acc;
-                *acc += c;
-                Some(d)
-            }).collect();
+            let displs: Vec<i32> = counts_i
+                .iter()
+                .scan(0, |acc, &c| {
+                    let d = *acc;
+                    *acc += c;
+                    Some(d)
+                })
+                .collect();
             let mut buf = vec![0u8; counts.iter().sum::<u64>() as usize];
             {
                 let mut part = PartitionMut::new(&mut buf[..], counts_i.clone(), &displs[..]);
@@ -153,11 +156,14 @@ impl Comm for Mpi {
             self.count(counts.iter().skip(1).sum::<u64>() as usize + 8 * (self.size() - 1));
             root.scatter_into_root(&counts[..], &mut n);
             let counts_i: Vec<i32> = counts.iter().map(|&c| c as i32).collect();
-            let displs: Vec<i32> = counts_i.iter().scan(0, |acc, &c| {
-                let d = *acc;
-                *acc += c;
-                Some(d)
-            }).collect();
+            let displs: Vec<i32> = counts_i
+                .iter()
+                .scan(0, |acc, &c| {
+                    let d = *acc;
+                    *acc += c;
+                    Some(d)
+                })
+                .collect();
             let flat: Vec<u8> = per_rank.concat();
             let mut mine = vec![0u8; n as usize];
             let part = Partition::new(&flat[..], counts_i, &displs[..]);

@@ -28,7 +28,14 @@ fn coords(model: &Model, nodes: &[usize]) -> Vec<[f64; 3]> {
 /// Total stress at a point of a cell: the initial stress plus `D eps`, the
 /// strain with the cell's mean dilatation where it uses B-bar
 /// ([`element::mean_dilatation`]), as its stiffness did.
-fn total_stress(model: &Model, body: &crate::model::Body, d: &[f64], p: &element::Point, ue: &[f64], mean: Option<f64>) -> [f64; 6] {
+fn total_stress(
+    model: &Model,
+    body: &crate::model::Body,
+    d: &[f64],
+    p: &element::Point,
+    ue: &[f64],
+    mean: Option<f64>,
+) -> [f64; 6] {
     let mut s = full_stress(model.analysis, body.e, body.nu, d, &element::strain(model.analysis, p, ue, mean));
     if body.initial.is_some() {
         let s0 = body.initial_at(p.x, model.analysis, model.gravity);
@@ -178,7 +185,14 @@ pub fn probe(model: &Model, u: &[f64], probe: &Probe) -> Vec<Sample> {
                     for c in 0..nd {
                         disp[c] += (0..cell.kind.n_nodes()).map(|a| p.n[a] * ue[a * nd + c]).sum::<f64>();
                     }
-                    let sh = total_stress(model, body, &d, &p, &ue, element::mean_dilatation(model.analysis, cell.kind, body.nu, &xe, &ue));
+                    let sh = total_stress(
+                        model,
+                        body,
+                        &d,
+                        &p,
+                        &ue,
+                        element::mean_dilatation(model.analysis, cell.kind, body.nu, &xe, &ue),
+                    );
                     for c in 0..6 {
                         stress[c] += sh[c];
                     }

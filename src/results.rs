@@ -85,7 +85,8 @@ impl Run {
 
     /// What an `[analytic]` check reads of this run: its last load step.
     pub fn solution(&self) -> Solution<'_> {
-        let probed = self.checks.probes.iter().flat_map(|(_, s)| s).filter(|s| s.found).map(|s| (s.x, s.stress)).collect();
+        let probed =
+            self.checks.probes.iter().flat_map(|(_, s)| s).filter(|s| s.found).map(|s| (s.x, s.stress)).collect();
         Solution { model: &self.model, u: &self.last().u, probed, pairs: self.contact().map(|c| &c.pairs[..]) }
     }
 }

@@ -41,7 +41,8 @@ Physical Curve("joint") = {3};
 Physical Curve("top") = {6};
 "#;
 
-const BLOCKS_MATERIAL: &str = "mesh = \"blocks.geo\"\nanalysis = \"plane_strain\"\n[materials.rock]\nE = 1000.0\nnu = 0.25\n";
+const BLOCKS_MATERIAL: &str =
+    "mesh = \"blocks.geo\"\nanalysis = \"plane_strain\"\n[materials.rock]\nE = 1000.0\nnu = 0.25\n";
 
 /// Runs `subcontact solve SCENE --out out --quiet` in the case and checks the
 /// failure is clean; returns the message.
@@ -54,7 +55,17 @@ fn unknown_body_group_is_named_with_the_groups_the_mesh_has() {
     let case = Case::new("bad-body-group");
     let scene = cylinder(&case, "bad", &[("\"body_2\"", "\"body_3\"")]);
     let msg = solve_fails(&case, &scene);
-    says(&msg, &["bad.toml", "bodies[1].group", "\"body_3\"", "not a physical group", "\"body_2\" (surface)", "Check the name"]);
+    says(
+        &msg,
+        &[
+            "bad.toml",
+            "bodies[1].group",
+            "\"body_3\"",
+            "not a physical group",
+            "\"body_2\" (surface)",
+            "Check the name",
+        ],
+    );
 }
 
 #[test]
@@ -113,14 +124,21 @@ fn young_modulus_beyond_double_precision_is_rejected_saying_to_change_units() {
     for (e, shown) in [("1e-310", "= 1e-310"), ("1.7e308", "= 1.7e308")] {
         let scene = cylinder(&case, "bad", &[("E = 2.0e5", &format!("E = {e}"))]);
         let msg = solve_fails(&case, &scene);
-        says(&msg, &["bad.toml", "materials.concrete.E", shown, "between 1e-300 and 1e300", "double precision", "other units"]);
+        says(
+            &msg,
+            &["bad.toml", "materials.concrete.E", shown, "between 1e-300 and 1e300", "double precision", "other units"],
+        );
     }
 }
 
 #[test]
 fn missing_mesh_file_is_named() {
     let case = Case::new("bad-no-mesh");
-    let scene = cylinder(&case, "bad", &[("mesh = \"cylinder.geo\"", "mesh = \"nothere.msh\""), ("[gmsh]\norder = 2\nsetnumber = { lc = 0.2 }\n", "")]);
+    let scene = cylinder(
+        &case,
+        "bad",
+        &[("mesh = \"cylinder.geo\"", "mesh = \"nothere.msh\""), ("[gmsh]\norder = 2\nsetnumber = { lc = 0.2 }\n", "")],
+    );
     let msg = solve_fails(&case, &scene);
     says(&msg, &["bad.toml", "mesh", "nothere.msh", "does not exist", "correct the path"]);
 }
@@ -131,14 +149,22 @@ fn truncated_msh_ascii_or_binary_is_reported_as_truncated() {
     case.copy("geo/cylinder.geo");
     for (file, binary) in [("x.msh", false), ("xb.msh", true)] {
         let full = format!("full-{file}");
-        let mut args = vec!["cylinder.geo", "-2", "-order", "2", "-setnumber", "lc", "0.2", "-format", "msh41", "-o", &full];
+        let mut args =
+            vec!["cylinder.geo", "-2", "-order", "2", "-setnumber", "lc", "0.2", "-format", "msh41", "-o", &full];
         if binary {
             args.push("-bin");
         }
         gmsh(&case, &args);
         let bytes = std::fs::read(case.dir.join(&full)).expect("gmsh's mesh");
         std::fs::write(case.dir.join(file), &bytes[..bytes.len() / 2]).expect("truncated mesh");
-        let scene = cylinder(&case, "bad", &[("mesh = \"cylinder.geo\"", &format!("mesh = \"{file}\"")), ("[gmsh]\norder = 2\nsetnumber = { lc = 0.2 }\n", "")]);
+        let scene = cylinder(
+            &case,
+            "bad",
+            &[
+                ("mesh = \"cylinder.geo\"", &format!("mesh = \"{file}\"")),
+                ("[gmsh]\norder = 2\nsetnumber = { lc = 0.2 }\n", ""),
+            ],
+        );
         let msg = solve_fails(&case, &scene);
         says(&msg, &[file, "not a complete MSH 4.1 file", "truncated", "Mesh the .geo again"]);
     }
@@ -165,7 +191,8 @@ fn block_held_only_by_a_contact_that_opens_is_named() {
 fn body_without_any_support_is_named() {
     let case = Case::new("bad-no-support");
     case.write("blocks.geo", BLOCKS_GEO);
-    let scene = BLOCKS_MATERIAL.to_string() + "[[bodies]]\ngroup = \"ground\"\nmaterial = \"rock\"\n[[loads]]\ngroup = \"joint\"\npressure = 1.0\n";
+    let scene = BLOCKS_MATERIAL.to_string()
+        + "[[bodies]]\ngroup = \"ground\"\nmaterial = \"rock\"\n[[loads]]\ngroup = \"joint\"\npressure = 1.0\n";
     case.write("ground.toml", &scene);
     let msg = solve_fails(&case, "ground.toml");
     says(&msg, &["body \"ground\"", "not held", "Add a support"]);
@@ -178,7 +205,8 @@ fn cylinder_without_its_x_symmetry_support_is_reported_not_solved() {
     // no body; at lc = 0.05 nothing notices.
     let case = Case::new("bad-partial-support");
     for lc in ["lc = 0.2", "lc = 0.05"] {
-        let scene = cylinder(&case, "bad", &[("lc = 0.2", lc), ("[[supports]]\ngroup = \"symmetry_x0\"\nfix = [\"x\"]\n", "")]);
+        let scene =
+            cylinder(&case, "bad", &[("lc = 0.2", lc), ("[[supports]]\ngroup = \"symmetry_x0\"\nfix = [\"x\"]\n", "")]);
         let msg = solve_fails(&case, &scene);
         says(&msg, &["bad.toml", "body_1", "body_2", "Add a support"]);
     }
@@ -210,7 +238,10 @@ fn empty_physical_group_is_named_as_empty() {
     let geo = repo_text("geo/cylinder.geo");
     // gmsh 4.8.4 keeps the name in $PhysicalNames, without elements and without a word.
     case.write("ghost.geo", &(geo + "Physical Surface(\"ghost\") = {99};\nPhysical Curve(\"ghost_curve\") = {99};\n"));
-    for (edit, key, group) in [(("\"body_2\"", "\"ghost\""), "bodies[1].group", "\"ghost\""), (("\"symmetry_x0\"", "\"ghost_curve\""), "supports[0].group", "\"ghost_curve\"")] {
+    for (edit, key, group) in [
+        (("\"body_2\"", "\"ghost\""), "bodies[1].group", "\"ghost\""),
+        (("\"symmetry_x0\"", "\"ghost_curve\""), "supports[0].group", "\"ghost_curve\""),
+    ] {
         let scene = cylinder(&case, "bad", &[("mesh = \"cylinder.geo\"", "mesh = \"ghost.geo\""), edit]);
         let msg = solve_fails(&case, &scene);
         says(&msg, &["bad.toml", key, group, "without elements", "Check the entity numbers"]);
@@ -225,7 +256,12 @@ fn plane_analysis_on_a_3d_mesh_says_to_use_solid() {
     let base = repo_text("geo/cylinder_paper.toml");
     // the .geo meshed as a plane analysis asks (gmsh -2), and a 3D .msh
     for mesh in ["cylinder_paper.geo", "paper3d.msh"] {
-        for from in ["analysis = \"solid\"", "from = [2.956414504, 1.224586984, 0.5]", "to = [4.434621756, 1.836880476, 0.5]", "[[supports]]\ngroup = \"faces_z\"\nfix = [\"z\"]\n"] {
+        for from in [
+            "analysis = \"solid\"",
+            "from = [2.956414504, 1.224586984, 0.5]",
+            "to = [4.434621756, 1.836880476, 0.5]",
+            "[[supports]]\ngroup = \"faces_z\"\nfix = [\"z\"]\n",
+        ] {
             assert!(base.contains(from), "geo/cylinder_paper.toml changed: update this test ({from:?})");
         }
         let mut text = base
@@ -290,7 +326,10 @@ fn check_passes_on_the_cylinder_and_writes_no_results() {
     assert!(out.status.success(), "check failed: {}", String::from_utf8_lossy(&out.stderr));
     says(&stdout, &["cylinder.toml", "consistent", "2 bodies", "81 contact pairs"]);
     let files = case.files_in(&case.dir.join("results"));
-    assert!(files.iter().all(|f| f.starts_with("cylinder/mesh/") || f == ".cylinder.lock"), "check wrote results: {files:?}");
+    assert!(
+        files.iter().all(|f| f.starts_with("cylinder/mesh/") || f == ".cylinder.lock"),
+        "check wrote results: {files:?}"
+    );
 }
 
 #[test]
@@ -330,15 +369,52 @@ fn a_contact_group_that_misses_the_other_body_says_how() {
     // the ground's top, meshed apart from the block: most of it lies far
     // from the block, but some of it against the block's base
     let msg = scene("apart", 0, "group = \"ground_top\"");
-    says(&msg, &["apart.toml", "contacts[0].group", "\"ground_top\"", "touches only body \"ground\"", "lies against body \"block\"", "does not share its nodes", "BooleanFragments"]);
+    says(
+        &msg,
+        &[
+            "apart.toml",
+            "contacts[0].group",
+            "\"ground_top\"",
+            "touches only body \"ground\"",
+            "lies against body \"block\"",
+            "does not share its nodes",
+            "BooleanFragments",
+        ],
+    );
     // the same with shared nodes: the group takes in the ground's outer top
     let msg = scene("outer", 1, "group = \"ground_top\"");
-    says(&msg, &["outer.toml", "\"ground_top\"", "touch only one body", "body \"ground\"", "between two bodies", "Leave its outer faces out"]);
+    says(
+        &msg,
+        &[
+            "outer.toml",
+            "\"ground_top\"",
+            "touch only one body",
+            "body \"ground\"",
+            "between two bodies",
+            "Leave its outer faces out",
+        ],
+    );
     assert!(!msg.contains("BooleanFragments"), "the bodies share their nodes: no advice to fragment them: {msg}");
     // one side of groups = [..] takes in faces of two bodies
     let msg = scene("two_bodies", 1, "groups = [\"outer_tops\", \"block_base\"]");
-    says(&msg, &["two_bodies.toml", "contacts[0].groups[0]", "\"outer_tops\" bounds body \"block\" and body \"ground\"", "each group is the face of one body"]);
+    says(
+        &msg,
+        &[
+            "two_bodies.toml",
+            "contacts[0].groups[0]",
+            "\"outer_tops\" bounds body \"block\" and body \"ground\"",
+            "each group is the face of one body",
+        ],
+    );
     // one side of groups = [..] is the face the two bodies share
     let msg = scene("shared", 1, "groups = [\"ground_top\", \"block_base\"]");
-    says(&msg, &["shared.toml", "\"ground_top\" lies between body \"ground\" and body \"block\"", "share its nodes", "group = \"ground_top\""]);
+    says(
+        &msg,
+        &[
+            "shared.toml",
+            "\"ground_top\" lies between body \"ground\" and body \"block\"",
+            "share its nodes",
+            "group = \"ground_top\"",
+        ],
+    );
 }

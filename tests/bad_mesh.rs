@@ -93,7 +93,13 @@ fn solve_ok(case: &Case) -> serde_json::Value {
 
 /// The warning of summary.json that contains `needle`, also in report.md.
 fn warned(case: &Case, summary: &serde_json::Value, needle: &str) -> String {
-    let w: Vec<&str> = summary["warnings"].as_array().expect("warnings").iter().filter_map(|w| w.as_str()).filter(|w| w.contains(needle)).collect();
+    let w: Vec<&str> = summary["warnings"]
+        .as_array()
+        .expect("warnings")
+        .iter()
+        .filter_map(|w| w.as_str())
+        .filter(|w| w.contains(needle))
+        .collect();
     assert_eq!(w.len(), 1, "one warning with {needle:?}: {}", summary["warnings"]);
     assert!(read(&case.dir.join("out/report.md")).contains(w[0]), "report.md lacks: {}", w[0]);
     w[0].to_string()
@@ -124,8 +130,16 @@ fn a_tet10_folded_between_its_integration_points_is_refused_naming_it() {
     ];
     write_msh41(&case.dir.join("cubes.msh"), &x, &g);
     case.write("cubes.toml", SCENE);
-    let msg = clean_failure(&case, &case.cli(&["solve", "cubes.toml", "--out", "out", "--quiet"]), &case.dir.join("out"));
-    says(&msg, &["element 1 (tet10) of body \"body\" is folded or inverted", "at its node 1 (gmsh order)", "not only at the integration points"]);
+    let msg =
+        clean_failure(&case, &case.cli(&["solve", "cubes.toml", "--out", "out", "--quiet"]), &case.dir.join("out"));
+    says(
+        &msg,
+        &[
+            "element 1 (tet10) of body \"body\" is folded or inverted",
+            "at its node 1 (gmsh order)",
+            "not only at the integration points",
+        ],
+    );
     let msg = clean_failure(&case, &case.cli(&["check", "cubes.toml"]), &case.dir.join("results"));
     says(&msg, &["is folded or inverted"]);
 }
@@ -161,7 +175,8 @@ fn a_sliver_and_an_unfused_cube_are_warned_of_in_summary_and_report() {
 fn a_nan_coordinate_is_named_as_such_not_as_an_inverted_element() {
     let case = Case::new("bad-mesh-nan");
     one_cube(&case, |nodes| nodes[7][1] = f64::NAN, SCENE);
-    let msg = clean_failure(&case, &case.cli(&["solve", "cubes.toml", "--out", "out", "--quiet"]), &case.dir.join("out"));
+    let msg =
+        clean_failure(&case, &case.cli(&["solve", "cubes.toml", "--out", "out", "--quiet"]), &case.dir.join("out"));
     says(&msg, &["cubes.msh`: node 8 has the coordinates (1, NaN, 1), which are not numbers"]);
     assert!(!msg.contains("inverted"), "{msg}");
     // check reads the mesh the same way
@@ -177,7 +192,9 @@ fn two_unfused_boxes_in_one_body_group_name_the_one_nothing_holds_and_say_fuse()
     // one has nodes of its own on the lower one's top face, and nothing
     // holds it
     let case = Case::new("bad-mesh-unfused-boxes");
-    let loads = |t: &str| format!("[[loads]]\ngroup = \"top\"\ntraction = {t}\n\n[[loads]]\ngroup = \"side\"\ntraction = {t}\n");
+    let loads = |t: &str| {
+        format!("[[loads]]\ngroup = \"top\"\ntraction = {t}\n\n[[loads]]\ngroup = \"side\"\ntraction = {t}\n")
+    };
     let solid = (
         "Box(1) = {0, 0, 0, 1, 1, 1};\nBox(2) = {0, 0, 1, 1, 1, 1};\nPhysical Volume(\"rock\") = {1, 2};\n\
          Physical Surface(\"base\") = Surface In BoundingBox{-e, -e, -e, 1 + e, 1 + e, e};\n\
@@ -203,12 +220,30 @@ fn two_unfused_boxes_in_one_body_group_name_the_one_nothing_holds_and_say_fuse()
             if analysis == "solid" { "[\"x\", \"y\", \"z\"]" } else { "[\"x\", \"y\"]" }
         );
         case.write("boxes.toml", &scene);
-        let geo = |fuse: &str| format!("SetFactory(\"OpenCASCADE\");\ne = 1e-6;\nMesh.CharacteristicLengthMax = 0.5;\n{}{fuse}{}", &shapes[..shapes.find("Physical").expect("groups")], &shapes[shapes.find("Physical").expect("groups")..]);
+        let geo = |fuse: &str| {
+            format!(
+                "SetFactory(\"OpenCASCADE\");\ne = 1e-6;\nMesh.CharacteristicLengthMax = 0.5;\n{}{fuse}{}",
+                &shapes[..shapes.find("Physical").expect("groups")],
+                &shapes[shapes.find("Physical").expect("groups")..]
+            )
+        };
         case.write("boxes.geo", &geo(""));
         let fuse = format!("BooleanFragments{{ {entity}{{:}}; Delete; }}{{}}");
         for args in [&["solve", "boxes.toml", "--out", "out", "--quiet"][..], &["check", "boxes.toml"][..]] {
             let msg = clean_failure(&case, &case.cli(args), &case.dir.join("out"));
-            says(&msg, &["boxes.toml", "supports", "body \"rock\" block 2 of 2 (centre at", "not held", "It lies on body \"rock\" block 1 of 2", "without sharing them", "were not fused", &fuse]);
+            says(
+                &msg,
+                &[
+                    "boxes.toml",
+                    "supports",
+                    "body \"rock\" block 2 of 2 (centre at",
+                    "not held",
+                    "It lies on body \"rock\" block 1 of 2",
+                    "without sharing them",
+                    "were not fused",
+                    &fuse,
+                ],
+            );
         }
         // fused as the message says, the same scene solves
         case.write("boxes.geo", &geo(&format!("{fuse}\n")));
@@ -221,19 +256,40 @@ fn two_unfused_boxes_in_one_body_group_name_the_one_nothing_holds_and_say_fuse()
 fn a_traction_of_minus_1e300_is_an_error_not_inf_in_the_files() {
     let case = Case::new("bad-mesh-overflow");
     one_cube(&case, |_| {}, &SCENE.replace("traction = [0.0, 0.0, -1.0]", "traction = [0.0, 0.0, -1e300]"));
-    let msg = clean_failure(&case, &case.cli(&["solve", "cubes.toml", "--out", "out", "--quiet"]), &case.dir.join("out"));
-    says(&msg, &["cubes.toml: the results are not finite numbers at load step 1", "von Mises inf", "other units", "No result files were written"]);
+    let msg =
+        clean_failure(&case, &case.cli(&["solve", "cubes.toml", "--out", "out", "--quiet"]), &case.dir.join("out"));
+    says(
+        &msg,
+        &[
+            "cubes.toml: the results are not finite numbers at load step 1",
+            "von Mises inf",
+            "other units",
+            "No result files were written",
+        ],
+    );
 }
 
 #[test]
 fn gravity_without_any_density_is_warned_of() {
     let case = Case::new("bad-mesh-gravity");
-    one_cube(&case, |_| {}, &SCENE.replace("analysis = \"solid\"", "analysis = \"solid\"\ngravity = [0.0, 0.0, -9.81]"));
+    one_cube(
+        &case,
+        |_| {},
+        &SCENE.replace("analysis = \"solid\"", "analysis = \"solid\"\ngravity = [0.0, 0.0, -9.81]"),
+    );
     let summary = solve_ok(&case);
     let w = warned(&case, &summary, "gravity");
-    says(&w, &["cubes.toml: gravity = [0.0, 0.0, -9.81] is given, but no body has a density, so gravity loads nothing"]);
+    says(
+        &w,
+        &["cubes.toml: gravity = [0.0, 0.0, -9.81] is given, but no body has a density, so gravity loads nothing"],
+    );
     // with a density, no such warning
-    case.write("cubes.toml", &SCENE.replace("analysis = \"solid\"", "analysis = \"solid\"\ngravity = [0.0, 0.0, -9.81]").replace("nu = 0.3", "nu = 0.3\ndensity = 1.0"));
+    case.write(
+        "cubes.toml",
+        &SCENE
+            .replace("analysis = \"solid\"", "analysis = \"solid\"\ngravity = [0.0, 0.0, -9.81]")
+            .replace("nu = 0.3", "nu = 0.3\ndensity = 1.0"),
+    );
     let summary = solve_ok(&case);
     assert!(!summary["warnings"].to_string().contains("gravity"), "{}", summary["warnings"]);
 }

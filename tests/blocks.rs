@@ -53,7 +53,13 @@ fn rockmass(case: &Case, n: usize) -> &'static str {
     case.copy("geo/rockmass.geo");
     let text = common::scenes::edited(
         "geo/rockmass.toml",
-        &[("setnumber = { n = 4, m = 2, hex = 1, serendipity = 1 }", &format!("setnumber = {{ n = {n}, m = 1, hex = 1, serendipity = 1 }}")), ("factors = [0.0, 1.0]", "factors = [0.5, 1.0]")],
+        &[
+            (
+                "setnumber = { n = 4, m = 2, hex = 1, serendipity = 1 }",
+                &format!("setnumber = {{ n = {n}, m = 1, hex = 1, serendipity = 1 }}"),
+            ),
+            ("factors = [0.0, 1.0]", "factors = [0.5, 1.0]"),
+        ],
     );
     case.write("rockmass.toml", &text);
     "rockmass.toml"
@@ -74,14 +80,25 @@ fn differences(a: &Run, b: &Run) -> (f64, f64, f64) {
     let (mut all, mut first) = (Vec::new(), f64::NAN);
     for (sa, sb) in a.steps.iter().zip(&b.steps) {
         let (ca, cb) = (sa.contact.as_ref().expect("contact"), sb.contact.as_ref().expect("contact"));
-        let big = ca.pairs.iter().chain(&cb.pairs).fold(0.0f64, |m, p| m.max(p.sigma_n.abs()).max(p.tau_t.abs()).max(p.tau_b.abs()));
-        let carries = |p: &subcontact::contact::law::PairResult| p.sigma_n.abs().max(p.tau_t.abs()).max(p.tau_b.abs()) > 1e-12 * big;
+        let big = ca
+            .pairs
+            .iter()
+            .chain(&cb.pairs)
+            .fold(0.0f64, |m, p| m.max(p.sigma_n.abs()).max(p.tau_t.abs()).max(p.tau_b.abs()));
+        let carries = |p: &subcontact::contact::law::PairResult| {
+            p.sigma_n.abs().max(p.tau_t.abs()).max(p.tau_b.abs()) > 1e-12 * big
+        };
         for (i, (x, y)) in ca.states.iter().zip(&cb.states).enumerate() {
             if carries(&ca.pairs[i]) || carries(&cb.pairs[i]) {
                 assert_eq!(x, y, "pair {i} at step {}: {:?} against {:?}", sa.step, ca.pairs[i], cb.pairs[i]);
             }
         }
-        let step: Vec<(f64, f64)> = ca.pairs.iter().zip(&cb.pairs).flat_map(|(p, q)| [(p.sigma_n, q.sigma_n), (p.tau_t, q.tau_t), (p.tau_b, q.tau_b)]).collect();
+        let step: Vec<(f64, f64)> = ca
+            .pairs
+            .iter()
+            .zip(&cb.pairs)
+            .flat_map(|(p, q)| [(p.sigma_n, q.sigma_n), (p.tau_t, q.tau_t), (p.tau_b, q.tau_b)])
+            .collect();
         if first.is_nan() {
             first = rel(&step);
         }
@@ -95,14 +112,18 @@ fn same_answer(case: &Case, scene: &str) {
     let sparse = solve(case, scene, InterfaceSolver::Sparse);
     assert_eq!((dense.stats.interface_solver, sparse.stats.interface_solver), ("dense", "sparse"));
     let (u, t, first) = differences(&dense, &sparse);
-    let its: Vec<usize> = sparse.steps.iter().filter_map(|s| s.contact.as_ref().map(|c| c.summary.iterations)).collect();
+    let its: Vec<usize> =
+        sparse.steps.iter().filter_map(|s| s.contact.as_ref().map(|c| c.summary.iterations)).collect();
     eprintln!(
         "{scene}: {} parts, {} pairs, contact iterations {its:?}, {} GMRES applications: displacements {u:.1e}, contact stresses {t:.1e} ({first:.1e} at step 1)",
         sparse.stats.parts.total,
         sparse.model.pairs.len(),
         sparse.stats.counters.interface_applications
     );
-    assert!(u < 1e-8 && first < 1e-8 && t < 1e-6, "{scene}: sparse against dense: displacements {u:.1e}, contact stresses {t:.1e} ({first:.1e} at step 1)");
+    assert!(
+        u < 1e-8 && first < 1e-8 && t < 1e-6,
+        "{scene}: sparse against dense: displacements {u:.1e}, contact stresses {t:.1e} ({first:.1e} at step 1)"
+    );
 }
 
 #[test]
@@ -130,7 +151,10 @@ fn the_rock_mass_as_it_ships_solved_sparse_is_the_dense_answer() {
 fn the_3d_dam_and_block_on_block_solved_sparse_are_the_dense_answers() {
     let case = Case::new("blocks-sparse-dam");
     case.copy("geo/dam3d.geo");
-    case.write("dam3d.toml", &common::scenes::edited("geo/dam3d.toml", &[("setnumber = { lc = 2.5 }", "setnumber = { lc = 4.0 }")]));
+    case.write(
+        "dam3d.toml",
+        &common::scenes::edited("geo/dam3d.toml", &[("setnumber = { lc = 2.5 }", "setnumber = { lc = 4.0 }")]),
+    );
     same_answer(&case, "dam3d.toml");
     let scene = common::scenes::coarse_blocks(&case);
     same_answer(&case, scene);
@@ -155,7 +179,13 @@ fn a_rock_mass_held_by_nothing_is_refused_by_the_sparse_interface_as_by_the_dens
     // the base lets go of z: the side rollers hold x and y, nothing holds z
     let text = common::scenes::edited(
         "geo/rockmass.toml",
-        &[("setnumber = { n = 4, m = 2, hex = 1, serendipity = 1 }", "setnumber = { n = 2, m = 1, hex = 1, serendipity = 1 }"), ("group = \"base\"\nfix = [\"x\", \"y\", \"z\"]", "group = \"base\"\nfix = [\"x\", \"y\"]")],
+        &[
+            (
+                "setnumber = { n = 4, m = 2, hex = 1, serendipity = 1 }",
+                "setnumber = { n = 2, m = 1, hex = 1, serendipity = 1 }",
+            ),
+            ("group = \"base\"\nfix = [\"x\", \"y\", \"z\"]", "group = \"base\"\nfix = [\"x\", \"y\"]"),
+        ],
     );
     case.write("loose.toml", &text);
     for interface in ["dense", "sparse"] {

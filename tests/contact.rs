@@ -23,10 +23,10 @@ use common::cli::{clean_failure, says};
 use common::measure::{body_nodes, diff_to_bonded, max_abs};
 use common::scenes::{self, two_blocks};
 use common::Case;
+use subcontact::analytic::paper::{contact_sigma_n_at, TABLE2_R};
 use subcontact::analytic::Lame;
 use subcontact::contact::law::ContactState;
 use subcontact::driver::{At, ContactError, Run};
-use subcontact::analytic::paper::{contact_sigma_n_at, TABLE2_R};
 use subcontact::scene::Analysis;
 
 // ---------------------------------------------------------------------------
@@ -35,7 +35,12 @@ use subcontact::scene::Analysis;
 /// Radius of the k node of every pair and its sigma_n.
 fn pair_radii(run: &Run) -> Vec<(f64, f64)> {
     let c = run.contact().expect("a contact run");
-    run.model.pairs.iter().zip(&c.pairs).map(|(p, r)| (run.model.coords[p.k][0].hypot(run.model.coords[p.k][1]), r.sigma_n)).collect()
+    run.model
+        .pairs
+        .iter()
+        .zip(&c.pairs)
+        .map(|(p, r)| (run.model.coords[p.k][0].hypot(run.model.coords[p.k][1]), r.sigma_n))
+        .collect()
 }
 
 fn assert_all(run: &Run, state: ContactState) {
@@ -53,7 +58,8 @@ fn lame(run: &Run) -> Lame {
 
 /// Model nodes used by the bodies' cells.
 fn used_nodes(run: &Run) -> Vec<usize> {
-    let mut v: Vec<usize> = run.model.bodies.iter().flat_map(|b| b.cells.iter().flat_map(|c| c.nodes.iter().copied())).collect();
+    let mut v: Vec<usize> =
+        run.model.bodies.iter().flat_map(|b| b.cells.iter().flat_map(|c| c.nodes.iter().copied())).collect();
     v.sort_unstable();
     v.dedup();
     v
@@ -71,7 +77,15 @@ fn refused(case: &Case, scene: &str) -> String {
 /// STACK_SUPPORTS_2D the top block is held by the contact alone; with
 /// STACK_SUPPORTS_3D (plane strain: z faces, symmetry x = 0) it is held in x
 /// and z but only the contact holds it in y.
-fn stack_scene(geo: &str, analysis: &str, order: usize, setnumber: &str, load: &str, contact: &str, supports: &str) -> String {
+fn stack_scene(
+    geo: &str,
+    analysis: &str,
+    order: usize,
+    setnumber: &str,
+    load: &str,
+    contact: &str,
+    supports: &str,
+) -> String {
     let head = format!(
         r#"title = "two stacked blocks"
 mesh = "{geo}"
@@ -84,7 +98,8 @@ setnumber = {{ {setnumber} }}"#
     two_blocks(&head, 1000.0, 0.25, contact, &format!("{supports}\n\n[[loads]]\ngroup = \"top_face\"\n{load}\n"))
 }
 
-const STACK_SUPPORTS_2D: &str = "[[supports]]\ngroup = \"base\"\nfix = [\"y\"]\n\n[[supports]]\ngroup = \"corner\"\nfix = [\"x\"]\n";
+const STACK_SUPPORTS_2D: &str =
+    "[[supports]]\ngroup = \"base\"\nfix = [\"y\"]\n\n[[supports]]\ngroup = \"corner\"\nfix = [\"x\"]\n";
 const STACK_SUPPORTS_3D: &str = "[[supports]]\ngroup = \"base\"\nfix = [\"y\"]\n\n[[supports]]\ngroup = \"x0\"\nfix = [\"x\"]\n\n[[supports]]\ngroup = \"z_faces\"\nfix = [\"z\"]\n";
 const STRONG_JOINT: &str = "friction = 0.5\ncohesion = 1.0\ntensile_strength = 2.0";
 
@@ -128,7 +143,10 @@ fn all_stick_equals_bonded_solve_on_3d_boxes_under_an_inclined_load() {
     let load = "traction = [0.3, -1.0, 0.2]";
     let strong = "friction = 0.5\ncohesion = 100.0\ntensile_strength = 100.0";
     for (name, order, set) in [("hex27", 2, "n = 3, nz = 2, hex = 1"), ("tet4", 1, "n = 6, hex = 0")] {
-        let scene = case.write(&format!("boxes_{name}.toml"), &stack_scene("contact_stack3d.geo", "solid", order, set, load, strong, clamped));
+        let scene = case.write(
+            &format!("boxes_{name}.toml"),
+            &stack_scene("contact_stack3d.geo", "solid", order, set, load, strong, clamped),
+        );
         let contact = case.run(&scene).expect("contact run");
         let bonded = case.run_with(&scene, true).expect("bonded run");
         assert_all(&contact, ContactState::Stick);
@@ -165,7 +183,12 @@ fn paper_mesh_splits_84_nodes_into_96_with_12_stuck_pairs_and_matches_table2() {
     for r in &TABLE2_R[1..5] {
         let s = contact_sigma_n_at(&run.solution(), *r).expect("a pair at r");
         let e = (s - lame.sigma_theta(*r)) / lame.sigma_theta(*r);
-        eprintln!("paper mesh, r = {r}: sigma_n = {:.4} (1e-2 MPa), theory {:.4}, {:+.3} %", 100.0 * s, 100.0 * lame.sigma_theta(*r), 100.0 * e);
+        eprintln!(
+            "paper mesh, r = {r}: sigma_n = {:.4} (1e-2 MPa), theory {:.4}, {:+.3} %",
+            100.0 * s,
+            100.0 * lame.sigma_theta(*r),
+            100.0 * e
+        );
         assert!(e.abs() < 0.01, "r = {r}: {:+.3} %", 100.0 * e);
     }
 }
@@ -191,7 +214,12 @@ fn default_cylinder_mesh_contact_stress_is_lame_sigma_theta_at_every_pair() {
         assert!(e.abs() < 0.005, "Table 2, r = {r}: {:+.3} %", 100.0 * e);
         table = table.max(e.abs());
     }
-    eprintln!("default cylinder mesh: {} pairs, max |sigma_n / sigma_theta - 1| = {:.2e} (pairs), {:.2e} (Table 2)", run.model.pairs.len(), worst, table);
+    eprintln!(
+        "default cylinder mesh: {} pairs, max |sigma_n / sigma_theta - 1| = {:.2e} (pairs), {:.2e} (Table 2)",
+        run.model.pairs.len(),
+        worst,
+        table
+    );
 }
 
 // ---------------------------------------------------------------------------
@@ -205,7 +233,11 @@ fn separate_coincident_contact_groups_give_the_shared_curve_answer() {
     let shared_text = scenes::edited("geo/cylinder.toml", &[("lc = 0.05", "lc = 0.1")]);
     let split_text = scenes::edited(
         "geo/cylinder.toml",
-        &[("lc = 0.05", "lc = 0.1"), ("cylinder.geo", "contact_cylinder_split.geo"), ("group = \"A-A\"", "groups = [\"a\", \"b\"]")],
+        &[
+            ("lc = 0.05", "lc = 0.1"),
+            ("cylinder.geo", "contact_cylinder_split.geo"),
+            ("group = \"A-A\"", "groups = [\"a\", \"b\"]"),
+        ],
     );
     assert_ne!(split_text, shared_text);
     let shared = case.run(&case.write("shared.toml", &shared_text)).expect("shared-curve run");
@@ -227,7 +259,10 @@ fn separate_coincident_contact_groups_give_the_shared_curve_answer() {
             .into_iter()
             .map(|(b, n)| {
                 let x = run.model.coords[n];
-                ((b, [(x[0] * 1e8).round() as i64, (x[1] * 1e8).round() as i64]), [run.last().u[2 * n], run.last().u[2 * n + 1]])
+                (
+                    (b, [(x[0] * 1e8).round() as i64, (x[1] * 1e8).round() as i64]),
+                    [run.last().u[2 * n], run.last().u[2 * n + 1]],
+                )
             })
             .collect()
     }
@@ -277,7 +312,15 @@ fn patch_test_2d(kinds: &[(&str, usize, &str)]) {
     case.copy("tests/geo/contact_stack.geo");
     let t = 1.5;
     for (name, order, set) in kinds {
-        let text = stack_scene("contact_stack.geo", "plane_stress", *order, set, &format!("traction = [0.0, {t}]"), STRONG_JOINT, STACK_SUPPORTS_2D);
+        let text = stack_scene(
+            "contact_stack.geo",
+            "plane_stress",
+            *order,
+            set,
+            &format!("traction = [0.0, {t}]"),
+            STRONG_JOINT,
+            STACK_SUPPORTS_2D,
+        );
         let run = case.run(&case.write(&format!("stack_{name}.toml"), &text)).expect("patch test run");
         let kind = run.model.bodies[0].cells[0].kind.name();
         assert_eq!(&kind, name, "element kind");
@@ -301,7 +344,11 @@ fn contact_patch_test_in_tension_is_exact_for_linear_elements() {
 
 #[test]
 fn contact_patch_test_in_tension_is_exact_for_quadratic_elements() {
-    patch_test_2d(&[("quad9", 2, "n = 3, quad = 1"), ("quad8", 2, "n = 3, quad = 1, serendipity = 1"), ("tri6", 2, "n = 4, quad = 0")]);
+    patch_test_2d(&[
+        ("quad9", 2, "n = 3, quad = 1"),
+        ("quad8", 2, "n = 3, quad = 1, serendipity = 1"),
+        ("tri6", 2, "n = 4, quad = 0"),
+    ]);
 }
 
 /// f_t = 2 and a pull of 2.5: the first (all stuck) solve gives sigma_n =
@@ -336,7 +383,9 @@ fn tension_above_tensile_strength_opens_every_pair_and_names_the_free_body() {
         assert!(stderr.contains(&format!("(0 stick, 0 slip, {pairs} open)")), "gives the states: {stderr}");
         assert!(stderr.contains("iteration 2"), "after the first (all stuck) solve: {stderr}");
         match case.contact_error(&case.dir.join(&scene)) {
-            ContactError::NotHeld { bodies, at, .. } => assert_eq!((bodies, at.iteration, at.states), (vec!["top".to_string()], 2, [pairs, 0, 0]), "{name}"),
+            ContactError::NotHeld { bodies, at, .. } => {
+                assert_eq!((bodies, at.iteration, at.states), (vec!["top".to_string()], 2, [pairs, 0, 0]), "{name}")
+            }
             other => panic!("{name}: not held, not {other:?}"),
         }
     }
@@ -353,8 +402,20 @@ fn contact_patch_test_in_compression_is_exact_in_axisymmetry() {
     case.copy("tests/geo/contact_stack.geo");
     let p = 1.5;
     let base_only = "[[supports]]\ngroup = \"base\"\nfix = [\"y\"]\n";
-    for (name, order, set) in [("quad4", 1, "n = 4, quad = 1"), ("quad9", 2, "n = 3, quad = 1, x0 = 1"), ("tri6", 2, "n = 4, quad = 0, x0 = 1")] {
-        let text = stack_scene("contact_stack.geo", "axisymmetric", order, set, &format!("pressure = {p}"), "friction = 0.5\ncohesion = 0.0\ntensile_strength = 0.0", base_only);
+    for (name, order, set) in [
+        ("quad4", 1, "n = 4, quad = 1"),
+        ("quad9", 2, "n = 3, quad = 1, x0 = 1"),
+        ("tri6", 2, "n = 4, quad = 0, x0 = 1"),
+    ] {
+        let text = stack_scene(
+            "contact_stack.geo",
+            "axisymmetric",
+            order,
+            set,
+            &format!("pressure = {p}"),
+            "friction = 0.5\ncohesion = 0.0\ntensile_strength = 0.0",
+            base_only,
+        );
         let run = case.run(&case.write(&format!("axi_{name}.toml"), &text)).expect("axisymmetric patch test run");
         assert_eq!(run.model.bodies[0].cells[0].kind.name(), name);
         assert_all(&run, ContactState::Stick);
@@ -365,7 +426,11 @@ fn contact_patch_test_in_compression_is_exact_in_axisymmetry() {
             assert!(e < 1e-9, "{name}: pair at {:?}: sigma_n {} tau {}", run.model.coords[pr.k], r.sigma_n, r.tau());
             worst = worst.max(e);
         }
-        eprintln!("axisymmetric contact patch test {name}: {} pairs, max |sigma_n + p|, |tau| = {:.2e} p", c.pairs.len(), worst);
+        eprintln!(
+            "axisymmetric contact patch test {name}: {} pairs, max |sigma_n + p|, |tau| = {:.2e} p",
+            c.pairs.len(),
+            worst
+        );
     }
 }
 
@@ -381,10 +446,32 @@ fn frictionless_joint_that_lets_a_block_slide_is_refused_as_singular() {
     // the block's position along the joint is anyone's guess
     for (name, load) in [("sideways", "traction = [0.2, -1.5]"), ("down", "traction = [0.0, -1.5]")] {
         let scene = format!("slide_{name}.toml");
-        case.write(&scene, &stack_scene("contact_stack.geo", "plane_stress", 1, "n = 4, quad = 1", load, frictionless, STACK_SUPPORTS_2D));
+        case.write(
+            &scene,
+            &stack_scene(
+                "contact_stack.geo",
+                "plane_stress",
+                1,
+                "n = 4, quad = 1",
+                load,
+                frictionless,
+                STACK_SUPPORTS_2D,
+            ),
+        );
         let stderr = refused(&case, &scene);
         eprintln!("slide-off {name}: {}", stderr.trim());
-        says(&stderr, &[scene.as_str(), "singular", "iteration 2", "(0 stick, 5 slip, 0 open)", "slides or rotates freely", "carry no shear", "give the contacts friction or cohesion"]);
+        says(
+            &stderr,
+            &[
+                scene.as_str(),
+                "singular",
+                "iteration 2",
+                "(0 stick, 5 slip, 0 open)",
+                "slides or rotates freely",
+                "carry no shear",
+                "give the contacts friction or cohesion",
+            ],
+        );
         // nothing along the joint is to blame when the joint carries no shear at all
         assert!(!stderr.contains("exceeds"), "no load exceeds a shear strength of zero: {stderr}");
         match case.contact_error(&case.dir.join(&scene)) {
@@ -415,7 +502,15 @@ fn contact_patch_test_in_3d_with_supports_on_interface_nodes() {
         ("hex20", 2, "n = 2, nz = 1, hex = 1, serendipity = 1"),
         ("tet4", 1, "n = 4, hex = 0"),
     ] {
-        let text = stack_scene("contact_stack3d.geo", "solid", order, set, &format!("pressure = {p}"), weak, STACK_SUPPORTS_3D);
+        let text = stack_scene(
+            "contact_stack3d.geo",
+            "solid",
+            order,
+            set,
+            &format!("pressure = {p}"),
+            weak,
+            STACK_SUPPORTS_3D,
+        );
         let run = case.run(&case.write(&format!("boxes_{name}.toml"), &text)).expect("3D patch test run");
         assert_eq!(run.model.bodies[0].cells[0].kind.name(), name);
         let supported = run.model.pairs.iter().filter(|pr| run.model.prescribed[pr.k * 3 + 2].is_some()).count();
@@ -425,10 +520,21 @@ fn contact_patch_test_in_3d_with_supports_on_interface_nodes() {
         let mut worst = 0.0f64;
         for (pr, r) in run.model.pairs.iter().zip(&c.pairs) {
             let e = (r.sigma_n + p).abs().max(r.tau()) / p;
-            assert!(e < 1e-9, "{name}: pair at {:?}: sigma_n {} tau_t {} tau_b {}", run.model.coords[pr.k], r.sigma_n, r.tau_t, r.tau_b);
+            assert!(
+                e < 1e-9,
+                "{name}: pair at {:?}: sigma_n {} tau_t {} tau_b {}",
+                run.model.coords[pr.k],
+                r.sigma_n,
+                r.tau_t,
+                r.tau_b
+            );
             worst = worst.max(e);
         }
-        eprintln!("3D contact patch test {name}: {} pairs ({supported} supported in z), max |sigma_n + p|, |tau| = {:.2e} p", c.pairs.len(), worst);
+        eprintln!(
+            "3D contact patch test {name}: {} pairs ({supported} supported in z), max |sigma_n + p|, |tau| = {:.2e} p",
+            c.pairs.len(),
+            worst
+        );
     }
 }
 
@@ -492,7 +598,10 @@ pressure = 0.1
         // no cohesion, friction 0.8: the pairs carry no shear but the
         // end pairs' support reactions, which are not contact shear, so
         // every pair still sticks
-        let scene = case.write(&format!("ring_{name}_cohesionless.toml"), &ring(order, set, "friction = 0.8\ncohesion = 0.0\ntensile_strength = 0.0"));
+        let scene = case.write(
+            &format!("ring_{name}_cohesionless.toml"),
+            &ring(order, set, "friction = 0.8\ncohesion = 0.0\ntensile_strength = 0.0"),
+        );
         let cohesionless = case.run(&scene).expect("cohesionless ring run");
         assert_all(&cohesionless, ContactState::Stick);
         let d = diff_to_bonded(&cohesionless, &bonded);
@@ -505,7 +614,9 @@ pressure = 0.1
         let c = slip.contact().expect("contact");
         let worst_slip = pair_radii(&slip).iter().map(|(_, s)| ((s - exact) / exact).abs()).fold(0.0, f64::max);
         let max_tau = c.pairs.iter().map(|r| r.tau()).fold(0.0, f64::max);
-        eprintln!("ring {name} frictionless: max |sigma_n / sigma_r(4) - 1| = {worst_slip:.2e}, max tau = {max_tau:.2e}");
+        eprintln!(
+            "ring {name} frictionless: max |sigma_n / sigma_r(4) - 1| = {worst_slip:.2e}, max tau = {max_tau:.2e}"
+        );
         assert!(worst_slip < 0.005, "{name}: {worst_slip:.3e}");
         assert!(max_tau < 1e-9 * exact.abs(), "{name}: slipping pairs carry no shear ({max_tau:.3e})");
     }
@@ -520,7 +631,11 @@ fn unpaired_interface_nodes_are_refused_naming_the_groups() {
     case.copy("tests/geo/contact_cylinder_split.geo");
     let text = scenes::edited(
         "geo/cylinder.toml",
-        &[("cylinder.geo", "contact_cylinder_split.geo"), ("group = \"A-A\"", "groups = [\"a\", \"b\"]"), ("lc = 0.05", "lc = 0.5, extra = 1")],
+        &[
+            ("cylinder.geo", "contact_cylinder_split.geo"),
+            ("group = \"A-A\"", "groups = [\"a\", \"b\"]"),
+            ("lc = 0.05", "lc = 0.5, extra = 1"),
+        ],
     );
     case.write("unpaired.toml", &text);
     let stderr = refused(&case, "unpaired.toml");
@@ -532,8 +647,16 @@ fn unpaired_interface_nodes_are_refused_naming_the_groups() {
 fn contact_group_on_one_body_is_refused_naming_the_group_and_body() {
     let case = Case::new("contact-one-body");
     case.copy("tests/geo/contact_stack.geo");
-    let text = stack_scene("contact_stack.geo", "plane_stress", 1, "n = 2", "traction = [0.0, 1.0]", STRONG_JOINT, STACK_SUPPORTS_2D)
-        .replace("group = \"joint\"", "group = \"top_face\"");
+    let text = stack_scene(
+        "contact_stack.geo",
+        "plane_stress",
+        1,
+        "n = 2",
+        "traction = [0.0, 1.0]",
+        STRONG_JOINT,
+        STACK_SUPPORTS_2D,
+    )
+    .replace("group = \"joint\"", "group = \"top_face\"");
     case.write("one_body.toml", &text);
     let stderr = refused(&case, "one_body.toml");
     eprintln!("one body: {}", stderr.trim());
@@ -546,7 +669,11 @@ fn contact_of_a_body_with_itself_is_refused_naming_the_body() {
     case.copy("tests/geo/contact_cylinder_split.geo");
     let text = scenes::edited(
         "geo/cylinder.toml",
-        &[("cylinder.geo", "contact_cylinder_split.geo"), ("group = \"A-A\"", "groups = [\"a\", \"symmetry_y0\"]"), ("lc = 0.05", "lc = 0.5")],
+        &[
+            ("cylinder.geo", "contact_cylinder_split.geo"),
+            ("group = \"A-A\"", "groups = [\"a\", \"symmetry_y0\"]"),
+            ("lc = 0.05", "lc = 0.5"),
+        ],
     );
     case.write("self.toml", &text);
     let stderr = refused(&case, "self.toml");
@@ -626,21 +753,37 @@ gravity_factors = [{factors}]
         )
     };
     for rule in ["paper", "robust"] {
-        let run = case.run(&case.write(&format!("memory_{rule}.toml"), &scene(rule, "-1.0, 0.4"))).expect("two load steps");
+        let run =
+            case.run(&case.write(&format!("memory_{rule}.toml"), &scene(rule, "-1.0, 0.4"))).expect("two load steps");
         let [first, second] = [&run.steps[0], &run.steps[1]].map(|s| s.contact.as_ref().expect("contact"));
         assert!(first.summary.converged && second.summary.converged, "{rule}: both steps converge");
         assert!(first.pairs.iter().all(|p| p.sigma_n < -0.1), "{rule}: step 1 presses the joint");
-        assert!(first.states.iter().all(|&s| s == ContactState::Slip), "{rule}: step 1 slips everywhere: {:?}", first.states);
-        assert!(second.states.iter().all(|&s| s == ContactState::Open), "{rule}: step 2 opens the cracked joint: {:?}", second.states);
+        assert!(
+            first.states.iter().all(|&s| s == ContactState::Slip),
+            "{rule}: step 1 slips everywhere: {:?}",
+            first.states
+        );
+        assert!(
+            second.states.iter().all(|&s| s == ContactState::Open),
+            "{rule}: step 2 opens the cracked joint: {:?}",
+            second.states
+        );
         eprintln!("crack memory, {rule}: step 1 {} slip, step 2 {} open", first.states.len(), second.states.len());
         if rule != "paper" {
             continue;
         }
         let once = case.run(&case.write(&format!("fresh_{rule}.toml"), &scene(rule, "0.4"))).expect("one load step");
         let c = once.contact().expect("contact");
-        assert!(c.summary.converged && c.states.iter().all(|&s| s != ContactState::Open), "{rule}: the intact joint holds the pull: {:?}", c.states);
+        assert!(
+            c.summary.converged && c.states.iter().all(|&s| s != ContactState::Open),
+            "{rule}: the intact joint holds the pull: {:?}",
+            c.states
+        );
         let pull = c.pairs.iter().map(|p| p.sigma_n).fold(f64::INFINITY, f64::min);
-        assert!(pull > 0.0 && c.pairs.iter().all(|p| p.sigma_n < 0.3), "{rule}: a pull below f_t everywhere (smallest {pull})");
+        assert!(
+            pull > 0.0 && c.pairs.iter().all(|p| p.sigma_n < 0.3),
+            "{rule}: a pull below f_t everywhere (smallest {pull})"
+        );
         eprintln!("the pull alone, {rule}: sigma_n from {pull:.3}, nothing opens");
     }
 }

@@ -39,13 +39,18 @@ use subcontact::results::{ContactRun, Run};
 use subcontact::scene::StateRule;
 
 /// Element kinds: (name, gmsh order, hex, serendipity).
-const KINDS: [(&str, usize, usize, usize); 5] = [("tet4", 1, 0, 0), ("tet10", 2, 0, 0), ("hex8", 1, 1, 0), ("hex20", 2, 1, 1), ("hex27", 2, 1, 0)];
+const KINDS: [(&str, usize, usize, usize); 5] =
+    [("tet4", 1, 0, 0), ("tet10", 2, 0, 0), ("hex8", 1, 1, 0), ("hex20", 2, 1, 1), ("hex27", 2, 1, 0)];
 
 /// A blocks3d scene: E = 1000, nu = 0.25, the joint with friction 0.5 and
 /// no cohesion or tensile strength, the base held, and `loads` (TOML).
 fn scene(kind: (&str, usize, usize, usize), lc: f64, mesh: &str, loads: &str) -> String {
     let (_, order, hex, ser) = kind;
-    let gmsh = if mesh.ends_with(".geo") { format!("[gmsh]\norder = {order}\nsetnumber = {{ lc = {lc}, hex = {hex}, serendipity = {ser} }}") } else { String::new() };
+    let gmsh = if mesh.ends_with(".geo") {
+        format!("[gmsh]\norder = {order}\nsetnumber = {{ lc = {lc}, hex = {hex}, serendipity = {ser} }}")
+    } else {
+        String::new()
+    };
     format!(
         r#"title = "blocks"
 mesh = "{mesh}"
@@ -128,7 +133,11 @@ fn uniform_stress_with_shear_crosses_the_joint_exactly_on_every_3d_kind() {
             // body I is the lower block: n = +z, the traction on it is (sxz, syz, szz)
             worst = worst.max((r.sigma_n - szz).abs()).max((t[0] - sxz).abs()).max((t[1] - syz).abs()).max(t[2].abs());
         }
-        eprintln!("{name} ({face} faces): {} pairs, {} iteration(s), max traction error {worst:.1e}", c.states.len(), c.summary.iterations);
+        eprintln!(
+            "{name} ({face} faces): {} pairs, {} iteration(s), max traction error {worst:.1e}",
+            c.states.len(),
+            c.summary.iterations
+        );
         assert!(worst < 1e-8, "{name}: the uniform traction crosses the joint exactly ({worst:.2e})");
         assert_eq!(c.summary.iterations, 1, "{name}: stuck from the start");
     }
@@ -146,16 +155,31 @@ fn check_coulomb(name: &str, c: &ContactRun, f: f64, total: [f64; 3]) -> [usize;
     for (p, r) in c.pairs.iter().enumerate() {
         match c.states[p] {
             ContactState::Open => {
-                assert!(r.sigma_n.abs() < tol && r.tau() < tol, "{name}: open pair {p} carries nothing ({} {})", r.sigma_n, r.tau());
+                assert!(
+                    r.sigma_n.abs() < tol && r.tau() < tol,
+                    "{name}: open pair {p} carries nothing ({} {})",
+                    r.sigma_n,
+                    r.tau()
+                );
                 assert!(r.gap > -tol, "{name}: open pair {p} does not interpenetrate ({})", r.gap);
             }
             ContactState::Slip => {
                 assert!(r.sigma_n <= tol, "{name}: slipping pair {p} is not in tension ({})", r.sigma_n);
-                assert!((r.tau() - f * r.sigma_n.abs()).abs() < tol, "{name}: slipping pair {p}: |tau| {} = f |sigma_n| {}", r.tau(), f * r.sigma_n.abs());
+                assert!(
+                    (r.tau() - f * r.sigma_n.abs()).abs() < tol,
+                    "{name}: slipping pair {p}: |tau| {} = f |sigma_n| {}",
+                    r.tau(),
+                    f * r.sigma_n.abs()
+                );
             }
             ContactState::Stick => {
                 assert!(r.sigma_n <= tol, "{name}: stuck pair {p} is not in tension ({})", r.sigma_n);
-                assert!(r.tau() <= f * r.sigma_n.abs() + tol, "{name}: stuck pair {p}: |tau| {} <= f |sigma_n| {}", r.tau(), f * r.sigma_n.abs());
+                assert!(
+                    r.tau() <= f * r.sigma_n.abs() + tol,
+                    "{name}: stuck pair {p}: |tau| {} <= f |sigma_n| {}",
+                    r.tau(),
+                    f * r.sigma_n.abs()
+                );
             }
         }
         n[c.states[p].code() as usize] += 1;
@@ -184,8 +208,15 @@ fn partial_slip_converges_in_a_bounded_number_of_iterations_on_every_kind_and_me
             let c = contact(&run);
             let [open, slip, stick] = check_coulomb(&name, c, 0.5, push);
             assert!(slip > 0 && stick > 0, "{name}: partial slip ({stick} stick, {slip} slip)");
-            assert!(open * 20 < c.states.len(), "{name}: the joint stays closed but at the trailing corner ({open} open)");
-            rows.push(format!("{name}: {} pairs, {stick} stick / {slip} slip / {open} open, {} iterations", c.states.len(), c.summary.iterations));
+            assert!(
+                open * 20 < c.states.len(),
+                "{name}: the joint stays closed but at the trailing corner ({open} open)"
+            );
+            rows.push(format!(
+                "{name}: {} pairs, {stick} stick / {slip} slip / {open} open, {} iterations",
+                c.states.len(),
+                c.summary.iterations
+            ));
             its.push(c.summary.iterations);
         }
         assert!(its.iter().all(|&k| k <= 15), "{}: bounded iterations {its:?}", kind.0);
@@ -204,7 +235,11 @@ fn an_oblique_push_that_lifts_a_corner_converges_with_slip_in_its_direction() {
         let run = solve(&case, &name, &scene(kind, lc, "blocks3d.geo", &traction("top", push)));
         let c = contact(&run);
         let [open, slip, stick] = check_coulomb(&name, c, 0.5, push);
-        eprintln!("{name}: {} pairs, {stick} stick / {slip} slip / {open} open, {} iterations", c.states.len(), c.summary.iterations);
+        eprintln!(
+            "{name}: {} pairs, {stick} stick / {slip} slip / {open} open, {} iterations",
+            c.states.len(),
+            c.summary.iterations
+        );
         assert!(open > 0 && slip > 0 && stick > 0, "{name}: a lifted corner, slip and stick");
         assert!(c.summary.iterations <= 15, "{name}: {} iterations", c.summary.iterations);
         // the trailing corner (x = 0, y = 0) lifts
@@ -212,7 +247,11 @@ fn an_oblique_push_that_lifts_a_corner_converges_with_slip_in_its_direction() {
             let x = run.model.coords[run.model.pairs[p].k];
             x[0].abs() < 1e-9 && x[1].abs() < 1e-9
         });
-        assert_eq!(c.states[corner.expect("a pair at the corner")], ContactState::Open, "{name}: the trailing corner lifts");
+        assert_eq!(
+            c.states[corner.expect("a pair at the corner")],
+            ContactState::Open,
+            "{name}: the trailing corner lifts"
+        );
         // the friction on the lower block points along the push
         for p in (0..c.states.len()).filter(|&p| c.states[p] == ContactState::Slip) {
             let t = c.shear(p);
@@ -269,7 +308,10 @@ fn turning_the_model_in_space_changes_neither_states_nor_stresses() {
     let kind = KINDS[1];
     let push = [0.3, 0.0, -1.0];
     // mesh once; the turned model has the same mesh with turned nodes
-    common::cli::gmsh(&case, &["-3", "-order", "2", "-setnumber", "lc", "0.2", "-setnumber", "hex", "0", "blocks3d.geo", "-o", "blocks.msh"]);
+    common::cli::gmsh(
+        &case,
+        &["-3", "-order", "2", "-setnumber", "lc", "0.2", "-setnumber", "hex", "0", "blocks3d.geo", "-o", "blocks.msh"],
+    );
     let n = 14f64.sqrt();
     let (axis, angle) = ([1.0 / n, 2.0 / n, 3.0 / n], 0.7);
     let text = common::read(&case.dir.join("blocks.msh"));
@@ -292,7 +334,8 @@ fn turning_the_model_in_space_changes_neither_states_nor_stresses() {
         let (ra, rb) = (&ca.pairs[p], &cb.pairs[q]);
         let ta = rotate(axis, angle, ca.shear(p));
         let tb = cb.shear(q);
-        worst = worst.max((ra.sigma_n - rb.sigma_n).abs()).max((0..3).map(|i| (ta[i] - tb[i]).abs()).fold(0.0, f64::max));
+        worst =
+            worst.max((ra.sigma_n - rb.sigma_n).abs()).max((0..3).map(|i| (ta[i] - tb[i]).abs()).fold(0.0, f64::max));
     }
     eprintln!("turned model: {} pairs, states equal, max stress difference {:.1e} of {scale}", ca.states.len(), worst);
     assert!(worst < 1e-8 * scale, "stresses agree when turned ({worst:.2e})");
@@ -307,14 +350,24 @@ fn turning_the_model_in_space_changes_neither_states_nor_stresses() {
 fn a_tensile_strength_above_the_coulomb_apex_is_reported_and_the_joint_opens_above_it() {
     let case = Case::new("contact3d-apex");
     case.copy("geo/blocks3d.geo");
-    let joint = ("friction = 0.5\ncohesion = 0.0\ntensile_strength = 0.0", "friction = 0.5\ncohesion = 0.25\ntensile_strength = 2.0");
-    let pulled = |t: f64| scene(KINDS[2], 0.5, "blocks3d.geo", &traction("top", [0.0, 0.0, t])).replacen(joint.0, joint.1, 1);
+    let joint = (
+        "friction = 0.5\ncohesion = 0.0\ntensile_strength = 0.0",
+        "friction = 0.5\ncohesion = 0.25\ntensile_strength = 2.0",
+    );
+    let pulled =
+        |t: f64| scene(KINDS[2], 0.5, "blocks3d.geo", &traction("top", [0.0, 0.0, t])).replacen(joint.0, joint.1, 1);
     case.write("above.toml", &pulled(1.0));
     case.write("below.toml", &pulled(0.4));
     let out = case.cli(&["check", "above.toml"]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "check passes: {err}");
-    for want in ["warning:", "contacts[0] (\"joint\")", "tensile_strength = 2", "Coulomb apex c / f = 0.25 / 0.5 = 0.5:", "open there"] {
+    for want in [
+        "warning:",
+        "contacts[0] (\"joint\")",
+        "tensile_strength = 2",
+        "Coulomb apex c / f = 0.25 / 0.5 = 0.5:",
+        "open there",
+    ] {
         assert!(err.contains(want), "check warns with {want:?}: {err}");
     }
     let out = case.cli(&["solve", "above.toml", "--out", "above", "--quiet"]);
@@ -351,7 +404,14 @@ fn uniform_stress_crosses_joints_of_wedges_exactly() {
                 .replace(", hex = 0,", &format!(", stacked = {stacked},"));
             let name = format!("{name}-{}", if stacked == 1 { "stacked" } else { "side-by-side" });
             let run = solve(&case, &name, &text);
-            assert!(run.model.bodies.iter().flat_map(|b| &b.cells).all(|c| c.kind.name() == name.split('-').next().unwrap()), "{name}: wedges only");
+            assert!(
+                run.model
+                    .bodies
+                    .iter()
+                    .flat_map(|b| &b.cells)
+                    .all(|c| c.kind.name() == name.split('-').next().unwrap()),
+                "{name}: wedges only"
+            );
             let c = contact(&run);
             let face = run.model.interfaces[0].facets[0].kind.name();
             let mut worst: f64 = 0.0;
@@ -382,7 +442,10 @@ fn uniform_stress_crosses_joints_of_wedges_exactly() {
             // sides in every direction, they stay shut (they were judged
             // open on their zero force, one iteration more)
             assert_eq!(c.summary.iterations, 1, "{name}: iterations");
-            assert!((0..c.states.len()).all(|p| c.states[p] == ContactState::Stick), "{name}: every pair sticks, the base's too");
+            assert!(
+                (0..c.states.len()).all(|p| c.states[p] == ContactState::Stick),
+                "{name}: every pair sticks, the base's too"
+            );
         }
     }
 }
@@ -399,20 +462,31 @@ fn uniform_stress_crosses_a_joint_onto_pyramids_exactly() {
     let (_, szz, sxz, syz) = PATCH;
     let loads = patch_loads();
     for (name, order, ser) in [("pyramid5", 1, 0), ("pyramid14", 2, 0), ("pyramid13", 2, 1)] {
-        let text = scene((name, order, 0, ser), 0.3, "contact_pyramids.geo", &loads).replace("friction = 0.5", "friction = 0.8");
+        let text = scene((name, order, 0, ser), 0.3, "contact_pyramids.geo", &loads)
+            .replace("friction = 0.5", "friction = 0.8");
         let run = solve(&case, name, &text);
         let c = contact(&run);
         // the lower block's cells on the joint are pyramids of this kind
         let joint: std::collections::HashSet<usize> = run.model.pairs.iter().map(|p| p.k).collect();
-        let on_joint: Vec<&str> = (run.model.bodies[0].cells.iter()).filter(|cell| cell.nodes.iter().filter(|n| joint.contains(n)).count() >= 4).map(|cell| cell.kind.name()).collect();
-        assert!(!on_joint.is_empty() && on_joint.iter().all(|k| *k == name), "{name}: the joint's lower side is pyramids: {on_joint:?}");
+        let on_joint: Vec<&str> = (run.model.bodies[0].cells.iter())
+            .filter(|cell| cell.nodes.iter().filter(|n| joint.contains(n)).count() >= 4)
+            .map(|cell| cell.kind.name())
+            .collect();
+        assert!(
+            !on_joint.is_empty() && on_joint.iter().all(|k| *k == name),
+            "{name}: the joint's lower side is pyramids: {on_joint:?}"
+        );
         let mut worst: f64 = 0.0;
         for p in 0..c.states.len() {
             assert_eq!(c.states[p], ContactState::Stick, "{name}: pair {p} sticks");
             let (r, t) = (&c.pairs[p], c.shear(p));
             worst = worst.max((r.sigma_n - szz).abs()).max((t[0] - sxz).abs()).max((t[1] - syz).abs()).max(t[2].abs());
         }
-        eprintln!("{name}: {} pairs, {} cells on the joint, max traction error {worst:.1e}", c.states.len(), on_joint.len());
+        eprintln!(
+            "{name}: {} pairs, {} cells on the joint, max traction error {worst:.1e}",
+            c.states.len(),
+            on_joint.len()
+        );
         assert!(worst < 1e-8, "{name}: the uniform traction crosses the joint exactly ({worst:.2e})");
     }
 }
@@ -444,7 +518,8 @@ fn self_weight_crosses_a_joint_of_wedges_exactly() {
         let (mut worst, mut weight) = (0.0f64, 0.0);
         for p in 0..c.states.len() {
             assert_eq!(c.states[p], ContactState::Stick, "{name}: pair {p} sticks");
-            worst = worst.max((c.pairs[p].sigma_n - want).abs()).max(c.shear(p).iter().fold(0.0f64, |m, t| m.max(t.abs())));
+            worst =
+                worst.max((c.pairs[p].sigma_n - want).abs()).max(c.shear(p).iter().fold(0.0f64, |m, t| m.max(t.abs())));
             weight += c.force(p)[2];
         }
         // the lower layer is body I (n = +z): the joint pushes it down by the weight
@@ -480,27 +555,44 @@ fn a_wedge_slipping_down_its_groove_is_held_along_it_by_friction() {
     };
     let run = solve(&case, "held", &text(0.3));
     let c = contact(&run);
-    assert!(c.summary.converged && c.states.iter().all(|&s| s == ContactState::Slip), "every pair slips: {:?}", c.states);
+    assert!(
+        c.summary.converged && c.states.iter().all(|&s| s == ContactState::Slip),
+        "every pair slips: {:?}",
+        c.states
+    );
     // the force on the rock (body I) is the wedge's weight
     let w = 2.5 * 10.0 * 0.84 * 2.0;
     let total: [f64; 3] = std::array::from_fn(|i| (0..c.states.len()).map(|p| c.force(p)[i]).sum());
-    let coulomb = (0..c.states.len()).map(|p| (c.pairs[p].tau() - 0.3 * c.pairs[p].sigma_n.abs()).abs() / c.pairs[p].sigma_n.abs()).fold(0.0, f64::max);
+    let coulomb = (0..c.states.len())
+        .map(|p| (c.pairs[p].tau() - 0.3 * c.pairs[p].sigma_n.abs()).abs() / c.pairs[p].sigma_n.abs())
+        .fold(0.0, f64::max);
     eprintln!("wedge in a groove: {} pairs slip in {} iterations; force on the rock {total:?} (W = {w}); Coulomb residual {coulomb:.1e}", c.states.len(), c.summary.iterations);
-    assert!(total[0].abs() < 1e-9 * w && total[1].abs() < 1e-9 * w && (total[2] + w).abs() < 1e-9 * w, "the faces carry the weight: {total:?}");
+    assert!(
+        total[0].abs() < 1e-9 * w && total[1].abs() < 1e-9 * w && (total[2] + w).abs() < 1e-9 * w,
+        "the faces carry the weight: {total:?}"
+    );
     assert!(coulomb < 1e-9, "every pair at the Coulomb limit ({coulomb:.1e})");
     // the paper's rule gives a slipping pair a fixed shear: nothing holds
     // the wedge along the groove, and the message says that rule is why
     case.write("paper.toml", &format!("{}[solver]\nrule = \"paper\"\n", text(0.3)));
     match case.contact_error(&case.dir.join("paper.toml")) {
-        ContactError::Sliding { bodies, no_shear, rule, .. } => assert!(bodies == ["wedge"] && !no_shear && rule == StateRule::Paper, "{bodies:?} {no_shear} {rule:?}"),
+        ContactError::Sliding { bodies, no_shear, rule, .. } => {
+            assert!(bodies == ["wedge"] && !no_shear && rule == StateRule::Paper, "{bodies:?} {no_shear} {rule:?}")
+        }
         other => panic!("the paper's rule lets the wedge slide, not {other:?}"),
     }
     let out = case.cli(&["solve", "paper.toml", "--quiet"]);
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("the paper's rule, which gives a slipping pair a fixed shear") && err.contains("rule = \"robust\""), "{err}");
+    assert!(
+        err.contains("the paper's rule, which gives a slipping pair a fixed shear")
+            && err.contains("rule = \"robust\""),
+        "{err}"
+    );
     case.write("frictionless.toml", &text(0.0));
     match case.contact_error(&case.dir.join("frictionless.toml")) {
-        ContactError::Sliding { bodies, no_shear, .. } => assert!(bodies == ["wedge"] && no_shear, "{bodies:?} {no_shear}"),
+        ContactError::Sliding { bodies, no_shear, .. } => {
+            assert!(bodies == ["wedge"] && no_shear, "{bodies:?} {no_shear}")
+        }
         other => panic!("frictionless, the wedge slides along the groove, not {other:?}"),
     }
 }

@@ -45,7 +45,9 @@ fn a_wedge_in_a_sharp_groove_converges_and_every_crease_pair_obeys_coulomb() {
     for ends in [false, true] {
         for f in [0.3, 0.6, 0.8] {
             let name = format!("f{f}_{}", if ends { "ends" } else { "base" });
-            let run = case.run(&case.write(&format!("{name}.toml"), &scene(f, ends))).unwrap_or_else(|e| panic!("{name}: {e:#}"));
+            let run = case
+                .run(&case.write(&format!("{name}.toml"), &scene(f, ends)))
+                .unwrap_or_else(|e| panic!("{name}: {e:#}"));
             let c = run.contact().expect("a contact run");
             let n = c.states.len();
             let total: [f64; 3] = std::array::from_fn(|i| (0..n).map(|p| c.force(p)[i]).sum());
@@ -65,8 +67,16 @@ fn a_wedge_in_a_sharp_groove_converges_and_every_crease_pair_obeys_coulomb() {
                 count(ContactState::Stick),
                 count(ContactState::Slip)
             );
-            assert!(c.summary.converged && c.summary.iterations <= 30, "{name}: {} iterations, converged {}", c.summary.iterations, c.summary.converged);
-            assert!(total[0].abs() < 1e-9 * W && total[1].abs() < 1e-9 * W && (total[2] + W).abs() < 1e-9 * W, "{name}: the faces carry the weight: {total:?}");
+            assert!(
+                c.summary.converged && c.summary.iterations <= 30,
+                "{name}: {} iterations, converged {}",
+                c.summary.iterations,
+                c.summary.converged
+            );
+            assert!(
+                total[0].abs() < 1e-9 * W && total[1].abs() < 1e-9 * W && (total[2] + W).abs() < 1e-9 * W,
+                "{name}: the faces carry the weight: {total:?}"
+            );
             assert!(slip < 1e-9 && stick < 1e-9, "{name}: Coulomb's law (slip {slip:.1e}, stick {stick:.1e})");
             assert!(count(ContactState::Slip) > 0 && count(ContactState::Stick) > 0, "{name}: partial slip");
         }

@@ -32,7 +32,9 @@ fn dam(case: &Case, bodies_order: Option<&[&str]>) -> Run {
     if let Some(order) = bodies_order {
         let start = text.find("[[bodies]]").expect("bodies");
         let end = text.find("[[contacts]]").expect("contacts");
-        let block = |g: &str| format!("[[bodies]]\ngroup = \"{g}\"\nmaterial = \"{}\"\n\n", if g == "rock" { "rock" } else { "concrete" });
+        let block = |g: &str| {
+            format!("[[bodies]]\ngroup = \"{g}\"\nmaterial = \"{}\"\n\n", if g == "rock" { "rock" } else { "concrete" })
+        };
         let bodies: String = order.iter().map(|g| block(g)).collect();
         text = format!("{}{}{}", &text[..start], bodies, &text[end..]);
     }
@@ -96,7 +98,10 @@ fn heel_is_closed_under_self_weight_and_opens_under_the_full_reservoir() {
     let scale = max_abs(base.iter().map(|&p| c.pairs[p].sigma_n));
     for &p in &base[..first_closed] {
         assert!(c.pairs[p].gap > 0.0, "open pairs gap");
-        assert!(c.pairs[p].sigma_n.abs() < 1e-9 * scale && c.pairs[p].tau().abs() < 1e-9 * scale, "open pairs carry nothing");
+        assert!(
+            c.pairs[p].sigma_n.abs() < 1e-9 * scale && c.pairs[p].tau().abs() < 1e-9 * scale,
+            "open pairs carry nothing"
+        );
     }
 }
 
@@ -112,7 +117,12 @@ fn the_answer_does_not_depend_on_the_order_of_the_blocks() {
             .into_iter()
             .map(|p| {
                 let pair = &run.model.pairs[p];
-                let block = [pair.k, pair.l].iter().map(|&n| &run.model.bodies[body[n]].name).find(|n| *n != "rock").expect("a block").clone();
+                let block = [pair.k, pair.l]
+                    .iter()
+                    .map(|&n| &run.model.bodies[body[n]].name)
+                    .find(|n| *n != "rock")
+                    .expect("a block")
+                    .clone();
                 (run.model.coords[pair.k][0], block, p)
             })
             .collect();

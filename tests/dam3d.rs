@@ -23,7 +23,10 @@ const D: f64 = 10.0;
 
 fn dam3d(case: &Case) -> Run {
     case.copy("geo/dam3d.geo");
-    let text = common::scenes::edited("geo/dam3d.toml", &[("setnumber = { lc = 2.5 }", "setnumber = { lc = 6.0, lc_rock = 25.0 }")]);
+    let text = common::scenes::edited(
+        "geo/dam3d.toml",
+        &[("setnumber = { lc = 2.5 }", "setnumber = { lc = 6.0, lc_rock = 25.0 }")],
+    );
     case.run(&case.write("dam3d.toml", &text)).unwrap_or_else(|e| panic!("dam3d: {e:#}"))
 }
 
@@ -75,7 +78,9 @@ fn joints_end_on_the_base_and_the_base_carries_the_weight_and_the_water() {
         assert!((f[2] + weight).abs() < 1e-8 * scale, "step {}: vertical {} against {}", step + 1, f[2], -weight);
     }
     // the heel lifts under the full reservoir, not under self-weight
-    let heel = (0..m.pairs.len()).filter(|&p| m.pairs[p].contact == base && m.coords[m.pairs[p].k][0].abs() < 1e-9).collect::<Vec<_>>();
+    let heel = (0..m.pairs.len())
+        .filter(|&p| m.pairs[p].contact == base && m.coords[m.pairs[p].k][0].abs() < 1e-9)
+        .collect::<Vec<_>>();
     assert!(!heel.is_empty());
     let states = |s: usize| run.steps[s].contact.as_ref().expect("contact").states.clone();
     assert!(heel.iter().all(|&p| states(0)[p] != ContactState::Open), "self-weight keeps the heel closed");

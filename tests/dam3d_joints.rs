@@ -55,7 +55,10 @@ fn above(z0: f64, k: f64) -> (f64, f64) {
 fn the_base_and_every_lift_joint_carry_the_dam_above_them_and_the_water() {
     let case = Case::new("dam3d-joints");
     case.copy("geo/dam3d_joints.geo");
-    let text = common::scenes::edited("geo/dam3d_joints.toml", &[("setnumber = { lc = 4.0 }", "setnumber = { lc = 6.0, lc_rock = 25.0 }")]);
+    let text = common::scenes::edited(
+        "geo/dam3d_joints.toml",
+        &[("setnumber = { lc = 4.0 }", "setnumber = { lc = 6.0, lc_rock = 25.0 }")],
+    );
     let scene = case.write("dam3d_joints.toml", &text);
     let run = case.run(&scene).unwrap_or_else(|e| panic!("dam3d_joints: {e:#}"));
     let m = &run.model;
@@ -63,7 +66,8 @@ fn the_base_and_every_lift_joint_carry_the_dam_above_them_and_the_water() {
 
     // where the contraction joint y = 10 crosses the lift joint z = 20, four
     // blocks meet: every node of that line has four copies
-    let on_line = |x: [f64; 3]| (x[1] - 10.0).abs() < 1e-9 && (x[2] - 20.0).abs() < 1e-9 && x[0] > 1e-9 && x[0] < 18.8 - 1e-9;
+    let on_line =
+        |x: [f64; 3]| (x[1] - 10.0).abs() < 1e-9 && (x[2] - 20.0).abs() < 1e-9 && x[0] > 1e-9 && x[0] < 18.8 - 1e-9;
     let mut copies: std::collections::BTreeMap<usize, std::collections::BTreeSet<usize>> = Default::default();
     for p in &m.pairs {
         for n in [p.k, p.l] {
@@ -72,7 +76,10 @@ fn the_base_and_every_lift_joint_carry_the_dam_above_them_and_the_water() {
             }
         }
     }
-    assert!(!copies.is_empty() && copies.values().all(|c| c.len() == 4), "four copies along the crossing line: {copies:?}");
+    assert!(
+        !copies.is_empty() && copies.values().all(|c| c.len() == 4),
+        "four copies along the crossing line: {copies:?}"
+    );
 
     // the forces, at every load step; each step's files are the last step's
     // only, so the steps are read from the run and the last one also from the files
@@ -95,8 +102,16 @@ fn the_base_and_every_lift_joint_carry_the_dam_above_them_and_the_water() {
         };
         for (what, z0, f) in [
             ("base", 0.0, sum(&|p| m.pairs[p].contact == base)),
-            ("lift joint z = 20", 20.0, sum(&|p| m.pairs[p].contact == lifts && (m.coords[m.pairs[p].k][2] - 20.0).abs() < 1e-9)),
-            ("lift joint z = 35", 35.0, sum(&|p| m.pairs[p].contact == lifts && (m.coords[m.pairs[p].k][2] - 35.0).abs() < 1e-9)),
+            (
+                "lift joint z = 20",
+                20.0,
+                sum(&|p| m.pairs[p].contact == lifts && (m.coords[m.pairs[p].k][2] - 20.0).abs() < 1e-9),
+            ),
+            (
+                "lift joint z = 35",
+                35.0,
+                sum(&|p| m.pairs[p].contact == lifts && (m.coords[m.pairs[p].k][2] - 35.0).abs() < 1e-9),
+            ),
         ] {
             let (w, t) = above(z0, k);
             let want = [t, 0.0, -w];
@@ -105,7 +120,9 @@ fn the_base_and_every_lift_joint_carry_the_dam_above_them_and_the_water() {
             assert!(err < 1e-8, "step {}: the {what} carries {f:?}, not {want:?}", s + 1);
         }
         // side I of the base is the rock, of a lift joint the lift below
-        assert!((0..m.pairs.len()).filter(|&p| m.pairs[p].contact == base).all(|p| m.bodies[body[m.pairs[p].k]].name == "rock"));
+        assert!((0..m.pairs.len())
+            .filter(|&p| m.pairs[p].contact == base)
+            .all(|p| m.bodies[body[m.pairs[p].k]].name == "rock"));
     }
 
     // the same from the files of the last step: summary.json's base, faces.csv's lift joints
@@ -115,20 +132,32 @@ fn the_base_and_every_lift_joint_carry_the_dam_above_them_and_the_water() {
     let g = groups.iter().find(|g| g["name"] == "base").expect("base");
     let (w, t) = above(0.0, 1.0);
     let f = common::json_vec3(&g["force"]);
-    assert!((f[0] - t).abs() < 1e-8 * w && f[1].abs() < 1e-8 * w && (f[2] + w).abs() < 1e-8 * w, "summary.json's base carries {f:?}");
+    assert!(
+        (f[0] - t).abs() < 1e-8 * w && f[1].abs() < 1e-8 * w && (f[2] + w).abs() < 1e-8 * w,
+        "summary.json's base carries {f:?}"
+    );
     assert_eq!(g["face_pairs"], 3, "the base: one face pair per monolith");
     let faces = common::csv_rows(&out.join("faces.csv"));
     for z0 in [20.0, 35.0] {
-        let rows: Vec<_> = faces.iter().filter(|r| r["contact"] == "lifts" && (common::csv_num(r, "z") - z0).abs() < 1e-9).collect();
+        let rows: Vec<_> =
+            faces.iter().filter(|r| r["contact"] == "lifts" && (common::csv_num(r, "z") - z0).abs() < 1e-9).collect();
         assert_eq!(rows.len(), 3, "the lift joint z = {z0}: one face pair per monolith");
         let fx: f64 = rows.iter().map(|r| common::csv_num(r, "f_x")).sum();
         let fz: f64 = rows.iter().map(|r| common::csv_num(r, "f_z")).sum();
         let (w, t) = above(z0, 1.0);
-        assert!((fx - t).abs() < 1e-8 * w && (fz + w).abs() < 1e-8 * w, "faces.csv's lift joint z = {z0}: ({fx}, {fz}) against ({t}, {})", -w);
+        assert!(
+            (fx - t).abs() < 1e-8 * w && (fz + w).abs() < 1e-8 * w,
+            "faces.csv's lift joint z = {z0}: ({fx}, {fz}) against ({t}, {})",
+            -w
+        );
     }
 
     // the heel (x = 0 on the base) opens under the full reservoir, not under self-weight
-    let heel: Vec<usize> = (0..m.pairs.len()).filter(|&p| m.pairs[p].contact == base && m.coords[m.pairs[p].k][0].abs() < 1e-9 && m.pairs[p].normal[2] > 0.99).collect();
+    let heel: Vec<usize> = (0..m.pairs.len())
+        .filter(|&p| {
+            m.pairs[p].contact == base && m.coords[m.pairs[p].k][0].abs() < 1e-9 && m.pairs[p].normal[2] > 0.99
+        })
+        .collect();
     assert!(!heel.is_empty());
     let states = |s: usize| &run.steps[s].contact.as_ref().expect("contact").states;
     assert!(heel.iter().all(|&p| states(0)[p] != ContactState::Open), "self-weight keeps the heel closed");

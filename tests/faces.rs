@@ -64,7 +64,10 @@ fn face_pairs_carry_the_forces_between_blocks_and_add_up_to_their_groups() {
     eprintln!("jz: F = {f:?} against {want:?} ({err:.1e}); N = {n:.6e}, T = {t:.6e}; area {}", jz["area"]["total"]);
     assert!(err < 1e-8, "jz carries {f:?}, not {want:?}");
     let nz = common::json_vec3(&jz["normal"]);
-    assert!(nz[0].abs() < 1e-12 && nz[1].abs() < 1e-12 && (nz[2] - 1.0).abs() < 1e-12, "jz's mean normal is +z (side I below): {nz:?}");
+    assert!(
+        nz[0].abs() < 1e-12 && nz[1].abs() < 1e-12 && (nz[2] - 1.0).abs() < 1e-12,
+        "jz's mean normal is +z (side I below): {nz:?}"
+    );
     assert!((n + weight).abs() < 1e-8 * scale && (t - 4.0 * PUSH).abs() < 1e-8 * scale, "N = {n}, T = {t}");
     assert!((jz["area"]["total"].as_f64().expect("area") - 4.0).abs() < 1e-12, "jz's area is 4");
     assert_eq!(jz["face_pairs"], 4);
@@ -91,21 +94,41 @@ fn face_pairs_carry_the_forces_between_blocks_and_add_up_to_their_groups() {
     // ... and each face pair is the sum of its rows of contact.csv
     let pairs = common::csv_rows(&out.join("contact.csv"));
     for r in &faces {
-        let mine: Vec<_> = pairs.iter().filter(|p| p["contact"] == r["contact"] && p["block_i"] == r["block_i"] && p["block_ii"] == r["block_ii"]).collect();
+        let mine: Vec<_> = pairs
+            .iter()
+            .filter(|p| p["contact"] == r["contact"] && p["block_i"] == r["block_i"] && p["block_ii"] == r["block_ii"])
+            .collect();
         assert_eq!(mine.len() as f64, common::csv_num(r, "pairs"));
-        let fz: f64 = mine.iter().map(|p| (common::csv_num(p, "sigma_n") * common::csv_num(p, "n_z") + common::csv_num(p, "tau_z")) * common::csv_num(p, "area")).sum();
-        assert!((fz - common::csv_num(r, "f_z")).abs() < 1e-10 * scale, "contact.csv's rows of a face pair: {fz} against {}", common::csv_num(r, "f_z"));
+        let fz: f64 = mine
+            .iter()
+            .map(|p| {
+                (common::csv_num(p, "sigma_n") * common::csv_num(p, "n_z") + common::csv_num(p, "tau_z"))
+                    * common::csv_num(p, "area")
+            })
+            .sum();
+        assert!(
+            (fz - common::csv_num(r, "f_z")).abs() < 1e-10 * scale,
+            "contact.csv's rows of a face pair: {fz} against {}",
+            common::csv_num(r, "f_z")
+        );
     }
 
     // every upper block is held by its faces alone: F on it + weight + push = 0
     let m = &run.model;
-    let upper: Vec<usize> = (0..m.bodies.len()).filter(|&b| m.bodies[b].block.expect("a block").centre[2] > 1.0).collect();
+    let upper: Vec<usize> =
+        (0..m.bodies.len()).filter(|&b| m.bodies[b].block.expect("a block").centre[2] > 1.0).collect();
     assert_eq!(upper.len(), 4);
     let mut worst: f64 = 0.0;
     for &b in &upper {
         let mut sum = [PUSH, 0.0, -RHO * G];
         for r in &faces {
-            let sign = if common::csv_num(r, "block_i") as usize == b { 1.0 } else if common::csv_num(r, "block_ii") as usize == b { -1.0 } else { 0.0 };
+            let sign = if common::csv_num(r, "block_i") as usize == b {
+                1.0
+            } else if common::csv_num(r, "block_ii") as usize == b {
+                -1.0
+            } else {
+                0.0
+            };
             for (i, k) in ["f_x", "f_y", "f_z"].iter().enumerate() {
                 sum[i] += sign * common::csv_num(r, k);
             }
@@ -119,7 +142,10 @@ fn face_pairs_carry_the_forces_between_blocks_and_add_up_to_their_groups() {
     let report = common::read(&out.join("report.md"));
     assert!(report.contains("## Contact groups") && report.contains("## Block faces"), "report.md has the two tables");
     for name in ["jx", "jy", "jz"] {
-        assert!(report.lines().any(|l| l.starts_with(&format!("| {name} | 4 |"))), "report.md's group table has {name}");
+        assert!(
+            report.lines().any(|l| l.starts_with(&format!("| {name} | 4 |"))),
+            "report.md's group table has {name}"
+        );
     }
     assert!(report.contains("All 12 block face pairs"), "twelve face pairs, all listed");
 }
@@ -133,14 +159,19 @@ fn face_pairs_carry_the_forces_between_blocks_and_add_up_to_their_groups() {
 fn the_cylinders_cut_carries_the_hoop_force() {
     let case = Case::new("faces-cylinder");
     case.copy("geo/cylinder.geo");
-    let text = common::scenes::edited("geo/cylinder.toml", &[("setnumber = { lc = 0.05 }", "setnumber = { lc = 0.2 }")]);
+    let text =
+        common::scenes::edited("geo/cylinder.toml", &[("setnumber = { lc = 0.05 }", "setnumber = { lc = 0.2 }")]);
     case.run(&case.write("cylinder.toml", &text)).unwrap_or_else(|e| panic!("cylinder: {e:#}"));
     let faces = common::csv_rows(&case.out("cylinder").join("faces.csv"));
     assert_eq!(faces.len(), 1, "one face pair: the cut");
     let (p, a) = (0.1, 3.0);
     let f = &faces[0];
     let (fx, n, t) = (common::csv_num(f, "f_x"), common::csv_num(f, "normal_force"), common::csv_num(f, "shear_force"));
-    eprintln!("cylinder's cut: F_x = {fx:.12} (-p a sin 45 = {:.12}), N = {n:.8} (p a = {}), T = {t:.2e}", -p * a * 0.5f64.sqrt(), p * a);
+    eprintln!(
+        "cylinder's cut: F_x = {fx:.12} (-p a sin 45 = {:.12}), N = {n:.8} (p a = {}), T = {t:.2e}",
+        -p * a * 0.5f64.sqrt(),
+        p * a
+    );
     assert!((fx + p * a * 0.5f64.sqrt()).abs() < 1e-10, "F_x = {fx}");
     assert!((n - p * a).abs() < 1e-4 * p * a && t < 1e-6 * p * a, "N = {n}, T = {t}");
     assert_eq!((f["name_i"].as_str(), f["name_ii"].as_str()), ("body_1", "body_2"), "two bodies: side I is the first");

@@ -128,7 +128,10 @@ fn solve(case: &Case, name: &str, e: f64, depth: f64) -> Footing {
         assert!(x[1].abs() < 1e-12, "pair {p} lies on the base");
         assert!((pair.normal[1] - 1.0).abs() < 1e-12, "pair {p}: n = +y (the ground is body I)");
         let t = [-pair.normal[1], pair.normal[0]];
-        let f = [(r.sigma_n * pair.normal[0] + r.tau_t * t[0]) * pair.area, (r.sigma_n * pair.normal[1] + r.tau_t * t[1]) * pair.area];
+        let f = [
+            (r.sigma_n * pair.normal[0] + r.tau_t * t[0]) * pair.area,
+            (r.sigma_n * pair.normal[1] + r.tau_t * t[1]) * pair.area,
+        ];
         fn_sum += r.sigma_n * pair.area;
         fx += f[0];
         fy += f[1];
@@ -136,7 +139,10 @@ fn solve(case: &Case, name: &str, e: f64, depth: f64) -> Footing {
         pairs.push((x[0], f[1], -r.sigma_n));
     }
     let (en, ex, ey, em) = ((fn_sum + V).abs() / V, fx.abs() / V, (fy + V).abs() / V, (m + V * e).abs() / (V * B));
-    assert!(en < 1e-8 && ex < 1e-8 && ey < 1e-8 && em < 1e-8, "{name}: balance of sum sigma_n A {en:.1e}, x {ex:.1e}, y {ey:.1e}, moment {em:.1e}");
+    assert!(
+        en < 1e-8 && ex < 1e-8 && ey < 1e-8 && em < 1e-8,
+        "{name}: balance of sum sigma_n A {en:.1e}, x {ex:.1e}, y {ey:.1e}, moment {em:.1e}"
+    );
 
     // 2. The contact: one interval from the loaded edge; open pairs have lifted.
     pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -172,15 +178,35 @@ impl Footing {
     /// Asserts the contact length is within one element of `want`.
     fn assert_length(&self, want: f64, rule: &str) {
         let d = self.length - want;
-        eprintln!("  depth {}, e = {:.4}: L = {:.4}, {rule} = {want:.4}, {:+.4} m ({:+.2} elements)", self.depth, self.e, self.length, d, d / LC);
-        assert!(d.abs() <= LC + 1e-9, "depth {}, e = {}: L = {} against {rule} = {want}: more than one element (lc = {LC}) off", self.depth, self.e, self.length);
+        eprintln!(
+            "  depth {}, e = {:.4}: L = {:.4}, {rule} = {want:.4}, {:+.4} m ({:+.2} elements)",
+            self.depth,
+            self.e,
+            self.length,
+            d,
+            d / LC
+        );
+        assert!(
+            d.abs() <= LC + 1e-9,
+            "depth {}, e = {}: L = {} against {rule} = {want}: more than one element (lc = {LC}) off",
+            self.depth,
+            self.e,
+            self.length
+        );
     }
 
     /// Every pair closed.
     fn assert_full_contact(&self) {
         let c = self.run.contact().expect("contact");
         for (p, s) in c.states.iter().enumerate() {
-            assert_ne!(*s, ContactState::Open, "depth {}, e = {}: pair at x = {} must stay closed", self.depth, self.e, self.run.model.coords[self.run.model.pairs[p].k][0]);
+            assert_ne!(
+                *s,
+                ContactState::Open,
+                "depth {}, e = {}: pair at x = {} must stay closed",
+                self.depth,
+                self.e,
+                self.run.model.coords[self.run.model.pairs[p].k][0]
+            );
         }
     }
 
@@ -188,9 +214,28 @@ impl Footing {
     /// carried by the half of the contact (of length `l`) nearer to it.
     fn near_share(&self, l: f64) -> f64 {
         let peak = self.pairs.iter().max_by(|a, b| a.2.total_cmp(&b.2)).expect("pairs");
-        assert!((peak.0 - B / 2.0).abs() < 1e-9, "depth {}, e = {}: peak pressure {} at x = {}, not at the loaded edge", self.depth, self.e, peak.2, peak.0);
+        assert!(
+            (peak.0 - B / 2.0).abs() < 1e-9,
+            "depth {}, e = {}: peak pressure {} at x = {}, not at the loaded edge",
+            self.depth,
+            self.e,
+            peak.2,
+            peak.0
+        );
         let mid = B / 2.0 - l / 2.0;
-        let near: f64 = self.pairs.iter().map(|&(x, f, _)| if (x - mid).abs() < 1e-9 { -0.5 * f } else if x > mid { -f } else { 0.0 }).sum();
+        let near: f64 = self
+            .pairs
+            .iter()
+            .map(|&(x, f, _)| {
+                if (x - mid).abs() < 1e-9 {
+                    -0.5 * f
+                } else if x > mid {
+                    -f
+                } else {
+                    0.0
+                }
+            })
+            .sum();
         near / V
     }
 
@@ -198,7 +243,11 @@ impl Footing {
     /// relative to the mean pressure V / (B/2 - x0).
     fn profile_error(&self, x0: f64, margin: f64, p_ref: impl Fn(f64) -> f64) -> f64 {
         let mean = V / (B / 2.0 - x0);
-        self.pairs.iter().filter(|q| q.0 >= x0 + margin - 1e-9 && q.0 <= B / 2.0 - margin + 1e-9).map(|q| (q.2 - p_ref(q.0)).abs() / mean).fold(0.0, f64::max)
+        self.pairs
+            .iter()
+            .filter(|q| q.0 >= x0 + margin - 1e-9 && q.0 <= B / 2.0 - margin + 1e-9)
+            .map(|q| (q.2 - p_ref(q.0)).abs() / mean)
+            .fold(0.0, f64::max)
     }
 }
 
@@ -280,7 +329,11 @@ fn deep_ground_contact_length_follows_the_rigid_footing_on_a_half_space() {
         assert!(err < 0.1, "{name}: {err}");
         if e >= B / 4.0 {
             let miss = f.length - rigid_block_length(e);
-            eprintln!("  the rigid-block rule 3 (B/2 - e) = {:.4} is {miss:.4} m ({:.1} elements) short", rigid_block_length(e), miss / LC);
+            eprintln!(
+                "  the rigid-block rule 3 (B/2 - e) = {:.4} is {miss:.4} m ({:.1} elements) short",
+                rigid_block_length(e),
+                miss / LC
+            );
             assert!(miss > 5.0 * LC, "the deep ground's contact is longer than the rule's by more than five elements");
         }
     }
@@ -310,7 +363,10 @@ fn full_contact_inside_the_middle_third() {
 fn square_footing_on_layers_of_prisms_lifts_its_far_corner_and_carries_the_load() {
     let case = Case::new("footing-layers");
     case.copy("geo/footing_layers.geo");
-    let text = common::scenes::edited("geo/footing_layers.toml", &[("setnumber = { lc = 0.25, e = 0.6 }", "setnumber = { lc = 0.4, lc_far = 2.0, e = 0.6 }")]);
+    let text = common::scenes::edited(
+        "geo/footing_layers.toml",
+        &[("setnumber = { lc = 0.25, e = 0.6 }", "setnumber = { lc = 0.4, lc_far = 2.0, e = 0.6 }")],
+    );
     case.write("footing_layers.toml", &text);
     let out = case.cli(&["solve", "footing_layers.toml", "--out", "res", "--quiet"]);
     assert!(out.status.success(), "subcontact solve failed: {}", String::from_utf8_lossy(&out.stderr));
@@ -318,10 +374,16 @@ fn square_footing_on_layers_of_prisms_lifts_its_far_corner_and_carries_the_load(
     let csv = read(&res.join("contact.csv"));
     let mut lines = csv.lines();
     let header: Vec<&str> = lines.next().expect("header").split(',').collect();
-    let col = |name: &str| header.iter().position(|h| *h == name).unwrap_or_else(|| panic!("contact.csv has no column {name}"));
+    let col = |name: &str| {
+        header.iter().position(|h| *h == name).unwrap_or_else(|| panic!("contact.csv has no column {name}"))
+    };
     // every column a number but the contact's name (NaN here)
     let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|v| v.parse().unwrap_or(f64::NAN)).collect()).collect();
-    let at = |x: f64, y: f64| rows.iter().find(|r| (r[col("x")] - x).abs() < 1e-9 && (r[col("y")] - y).abs() < 1e-9).expect("a pair at the corner");
+    let at = |x: f64, y: f64| {
+        rows.iter()
+            .find(|r| (r[col("x")] - x).abs() < 1e-9 && (r[col("y")] - y).abs() < 1e-9)
+            .expect("a pair at the corner")
+    };
     let (far, loaded) = (at(-1.0, -1.0), at(1.0, 1.0));
     eprintln!(
         "footing on layers: {} pairs; far corner status {} gap {:.4e} m; loaded corner status {} sigma_n {:.3}",
@@ -346,8 +408,13 @@ fn square_footing_on_layers_of_prisms_lifts_its_far_corner_and_carries_the_load(
     );
     // meshio (as ParaView) reads the results: wedge18 cells, tri6 facets and the pairs
     let types = |file: &str| -> String {
-        let script = "import sys, meshio\nm = meshio.read(sys.argv[1])\nprint(' '.join(sorted({c.type for c in m.cells})))";
-        let out = std::process::Command::new("python3").args(["-c", script]).arg(res.join(file)).output().expect("python3 (make deps)");
+        let script =
+            "import sys, meshio\nm = meshio.read(sys.argv[1])\nprint(' '.join(sorted({c.type for c in m.cells})))";
+        let out = std::process::Command::new("python3")
+            .args(["-c", script])
+            .arg(res.join(file))
+            .output()
+            .expect("python3 (make deps)");
         assert!(out.status.success(), "meshio cannot read {file}: {}", String::from_utf8_lossy(&out.stderr));
         String::from_utf8_lossy(&out.stdout).trim().to_string()
     };

@@ -42,7 +42,27 @@ impl Rng {
     }
 }
 
-const EDGE: &[&str] = &["nan", "inf", "-inf", "-0.0", "0", "-1", "1e308", "-1e308", "1e-320", "99999999999999999999", "4294967297", "18446744073709551616", "0.5", "\"\"", "\"x\"", "[]", "[1e308, nan]", "{}", "true"];
+const EDGE: &[&str] = &[
+    "nan",
+    "inf",
+    "-inf",
+    "-0.0",
+    "0",
+    "-1",
+    "1e308",
+    "-1e308",
+    "1e-320",
+    "99999999999999999999",
+    "4294967297",
+    "18446744073709551616",
+    "0.5",
+    "\"\"",
+    "\"x\"",
+    "[]",
+    "[1e308, nan]",
+    "{}",
+    "true",
+];
 
 /// A text mutated 1-4 times.
 fn mutate_text(rng: &mut Rng, text: &str) -> String {
@@ -66,8 +86,11 @@ fn mutate_text(rng: &mut Rng, text: &str) -> String {
             }
             3 | 4 => {
                 // a number token replaced by an edge value
-                let words: Vec<String> = lines[i].split_inclusive([' ', ',', '[', ']', '=']).map(str::to_string).collect();
-                let nums: Vec<usize> = (0..words.len()).filter(|&k| words[k].trim_matches([' ', ',', '[', ']', '=']).parse::<f64>().is_ok()).collect();
+                let words: Vec<String> =
+                    lines[i].split_inclusive([' ', ',', '[', ']', '=']).map(str::to_string).collect();
+                let nums: Vec<usize> = (0..words.len())
+                    .filter(|&k| words[k].trim_matches([' ', ',', '[', ']', '=']).parse::<f64>().is_ok())
+                    .collect();
                 if !nums.is_empty() {
                     let k = nums[rng.below(nums.len())];
                     let tail: String = words[k].chars().filter(|c| [' ', ',', '[', ']', '='].contains(c)).collect();
@@ -114,7 +137,8 @@ fn mutate_bytes(rng: &mut Rng, bytes: &[u8]) -> Vec<u8> {
             0 => b[i] ^= 1 << rng.below(8),
             1 => b[i] = rng.next() as u8,
             2 => {
-                let word: [u8; 8] = [u64::MAX, 0, 1 << 31, 1 << 63, u32::MAX as u64, rng.next()][rng.below(6)].to_le_bytes();
+                let word: [u8; 8] =
+                    [u64::MAX, 0, 1 << 31, 1 << 63, u32::MAX as u64, rng.next()][rng.below(6)].to_le_bytes();
                 for (k, w) in word.iter().enumerate().take(b.len() - i) {
                     b[i + k] = *w;
                 }
@@ -139,7 +163,11 @@ fn guarded(target: &str, input: &Path, f: impl FnOnce() + Send + 'static) {
         std::fs::create_dir_all(&keep).expect("fuzz-found");
         let saved = keep.join(input.file_name().expect("name"));
         let _ = std::fs::copy(input, &saved);
-        panic!("{target}: {} on the input saved as {}", if outcome.is_err() { "a hang (10 s)" } else { "a panic" }, saved.display());
+        panic!(
+            "{target}: {} on the input saved as {}",
+            if outcome.is_err() { "a hang (10 s)" } else { "a panic" },
+            saved.display()
+        );
     }
     let _ = worker.join();
 }
@@ -149,19 +177,24 @@ fn seconds() -> f64 {
 }
 
 fn seed() -> u64 {
-    std::env::var("FUZZ_SEED").ok().and_then(|s| s.parse().ok()).unwrap_or_else(|| std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(1, |d| d.as_nanos() as u64) | 1)
+    std::env::var("FUZZ_SEED").ok().and_then(|s| s.parse().ok()).unwrap_or_else(|| {
+        std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(1, |d| d.as_nanos() as u64) | 1
+    })
 }
 
 /// The repository's scenes meshed (cached in the case) and rewritten to
 /// read their .msh: (scene name, scene text, mesh path).
 fn seeds(case: &Case) -> Vec<(String, String, PathBuf)> {
     let mut out = Vec::new();
-    for (name, edits) in [("cylinder", vec![]), ("dam", vec![]), ("blocks3d", vec![("lc = 0.1,", "lc = 0.25,")]), ("footing", vec![])] {
+    for (name, edits) in
+        [("cylinder", vec![]), ("dam", vec![]), ("blocks3d", vec![("lc = 0.1,", "lc = 0.25,")]), ("footing", vec![])]
+    {
         case.copy(&format!("geo/{name}.geo"));
         let text = common::scenes::edited(&format!("geo/{name}.toml"), &edits);
         let path = case.write(&format!("{name}.toml"), &text);
         let scene = Scene::load(&path).expect("seed scene");
-        let (_, msh, _) = subcontact::driver::load_mesh(&scene, &case.dir.join(format!("mesh-{name}"))).expect("seed mesh");
+        let (_, msh, _) =
+            subcontact::driver::load_mesh(&scene, &case.dir.join(format!("mesh-{name}"))).expect("seed mesh");
         let text = text.replace(&format!("mesh = \"{name}.geo\""), &format!("mesh = \"{}\"", msh.display()));
         out.push((name.to_string(), text, msh));
     }
@@ -173,10 +206,22 @@ fn check(path: &Path, out: &Path) {
     let Ok(scene) = Scene::load(path) else { return };
     let Ok((mesh, _, _)) = subcontact::driver::load_mesh(&scene, out) else { return };
     let Ok(model) = Model::build(&mesh, &scene.model_spec()) else { return };
-    let parts = subcontact::substructure::cut(&model, subcontact::substructure::parts(&model), scene.solver.substructures.min(4));
+    let parts = subcontact::substructure::cut(
+        &model,
+        subcontact::substructure::parts(&model),
+        scene.solver.substructures.min(4),
+    );
     let dofs = subcontact::substructure::parts::dof_counts(&model, &parts);
     let how = subcontact::driver::interface_plan(scene.solver.interface, &parts, model.nd);
-    let _ = subcontact::memory::estimate(&model, &parts.iter().collect::<Vec<_>>(), how, 1, true, dofs.interface, scene.solver.load_steps);
+    let _ = subcontact::memory::estimate(
+        &model,
+        &parts.iter().collect::<Vec<_>>(),
+        how,
+        1,
+        true,
+        dofs.interface,
+        scene.solver.load_steps,
+    );
     let _ = subcontact::model::warnings::warnings(&model);
 }
 
@@ -207,7 +252,11 @@ fn msh_reader_never_panics_or_hangs() {
     let meshes: Vec<Vec<u8>> = seeds(&case).iter().map(|(_, _, m)| std::fs::read(m).expect("seed mesh")).collect();
     // an ASCII one too: gmsh writes binary
     let ascii = case.dir.join("ascii.msh");
-    common::msh::write_msh41(&ascii, &[[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], &[common::msh::MshGroup { name: "b".into(), dim: 2, gmsh_type: 2, cells: vec![vec![0, 1, 2]] }]);
+    common::msh::write_msh41(
+        &ascii,
+        &[[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+        &[common::msh::MshGroup { name: "b".into(), dim: 2, gmsh_type: 2, cells: vec![vec![0, 1, 2]] }],
+    );
     let ascii = std::fs::read_to_string(&ascii).expect("ascii");
     replay("msh", |p| {
         let p = p.to_path_buf();
@@ -216,10 +265,14 @@ fn msh_reader_never_panics_or_hangs() {
         })
     });
     run("msh", |rng, n| {
-        let bytes = if rng.below(3) == 0 { mutate_text(rng, &ascii).into_bytes() } else { {
-            let m = rng.below(meshes.len());
-            mutate_bytes(rng, &meshes[m])
-        } };
+        let bytes = if rng.below(3) == 0 {
+            mutate_text(rng, &ascii).into_bytes()
+        } else {
+            {
+                let m = rng.below(meshes.len());
+                mutate_bytes(rng, &meshes[m])
+            }
+        };
         let p = case.dir.join(format!("input-{n}.msh"));
         std::fs::write(&p, bytes).expect("input");
         let q = p.clone();

@@ -129,8 +129,12 @@ fn edges(files: &BTreeMap<Vec<String>, PathBuf>) -> BTreeMap<Vec<String>, BTreeS
                 }
                 let full: Vec<String> = base.iter().cloned().chain(rest.iter().map(|s| s.to_string())).collect();
                 // the longest prefix that is a file of its own
-                let Some(target) = (0..=full.len()).rev().map(|k| full[..k].to_vec()).find(|m| files.contains_key(m)) else { continue };
-                let family = target.len() + 1 == here.len() && here.starts_with(&target) || here.len() + 1 == target.len() && target.starts_with(here);
+                let Some(target) = (0..=full.len()).rev().map(|k| full[..k].to_vec()).find(|m| files.contains_key(m))
+                else {
+                    continue;
+                };
+                let family = target.len() + 1 == here.len() && here.starts_with(&target)
+                    || here.len() + 1 == target.len() && target.starts_with(here);
                 if &target != here && !family {
                     out.entry(here.clone()).or_default().insert(target);
                 }
@@ -164,7 +168,8 @@ fn no_two_files_import_each_other_around_a_circle() {
     let edges = edges(&files);
     let n: usize = edges.values().map(|e| e.len()).sum();
     assert!(files.len() > 50 && n > 200, "the source was read: {} files, {n} imports", files.len());
-    let name = |m: &Vec<String>| files[m].strip_prefix(&root).map_or_else(|_| String::new(), |p| p.display().to_string());
+    let name =
+        |m: &Vec<String>| files[m].strip_prefix(&root).map_or_else(|_| String::new(), |p| p.display().to_string());
     let mut circles: BTreeSet<Vec<String>> = BTreeSet::new();
     for m in files.keys() {
         if let Some(c) = circle(&edges, m) {

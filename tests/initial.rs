@@ -84,11 +84,9 @@ fn uniform_initial_stress_with_boundary_tractions_stays_uniform() {
     // top need tractions; with no gravity the stress stays sigma0.
     let case = Case::new("initial-uniform");
     case.write("box.geo", GEO);
-    let toml = scene(
-        "initial_stress = [-2.0, -1.0, -0.9, 0.0]",
-        "[[loads]]\ngroup = \"top\"\ntraction = [0.0, -1.0]\n",
-    )
-    .replace("gravity = [0.0, -9.81]\n", "");
+    let toml =
+        scene("initial_stress = [-2.0, -1.0, -0.9, 0.0]", "[[loads]]\ngroup = \"top\"\ntraction = [0.0, -1.0]\n")
+            .replace("gravity = [0.0, -9.81]\n", "");
     let run = case.run(&case.write("box.toml", &toml)).expect("run");
     let umax = max_abs(run.last().u.iter().copied());
     assert!(umax < 1e-12, "largest displacement {umax:e}");

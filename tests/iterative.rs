@@ -30,7 +30,12 @@ use subcontact::results::Run;
 
 fn solve(case: &Case, scene: &str, interface: InterfaceSolver, substructures: usize) -> Run {
     let out = case.out(&format!("{}-{interface:?}-k{substructures}", scene.trim_end_matches(".toml")));
-    let opts = RunOptions { out: Some(out), interface: Some(interface), substructures: Some(substructures), ..Default::default() };
+    let opts = RunOptions {
+        out: Some(out),
+        interface: Some(interface),
+        substructures: Some(substructures),
+        ..Default::default()
+    };
     driver::run(&case.dir.join(scene), &opts).unwrap_or_else(|e| panic!("{scene}, {interface:?}: {e:#}"))
 }
 
@@ -49,7 +54,12 @@ fn differences(a: &Run, b: &Run) -> (f64, f64, f64) {
     for (sa, sb) in a.steps.iter().zip(&b.steps) {
         let (ca, cb) = (sa.contact.as_ref().expect("contact"), sb.contact.as_ref().expect("contact"));
         assert_eq!(ca.states, cb.states, "the same contact states at step {}", sa.step);
-        let step: Vec<(f64, f64)> = ca.pairs.iter().zip(&cb.pairs).flat_map(|(p, q)| [(p.sigma_n, q.sigma_n), (p.tau_t, q.tau_t), (p.tau_b, q.tau_b)]).collect();
+        let step: Vec<(f64, f64)> = ca
+            .pairs
+            .iter()
+            .zip(&cb.pairs)
+            .flat_map(|(p, q)| [(p.sigma_n, q.sigma_n), (p.tau_t, q.tau_t), (p.tau_b, q.tau_b)])
+            .collect();
         if first.is_nan() {
             first = rel(step.clone());
         }
@@ -65,7 +75,8 @@ fn same_answer(case: &Case, scene: &str, dense_k: usize, iterative_k: usize, lat
     assert_eq!(dense.stats.counters.interface_applications, 0);
     assert!(iterative.stats.counters.interface_applications > 0, "{scene}: the iterative run applied no S");
     let (u, t, first) = differences(&dense, &iterative);
-    let its: Vec<usize> = iterative.steps.iter().filter_map(|s| s.contact.as_ref().map(|c| c.summary.iterations)).collect();
+    let its: Vec<usize> =
+        iterative.steps.iter().filter_map(|s| s.contact.as_ref().map(|c| c.summary.iterations)).collect();
     eprintln!(
         "{scene}: {} interface DOFs, contact iterations {its:?}, {} applications of S: displacements {u:.1e}, contact stresses {t:.1e} ({first:.1e} at step 1)",
         iterative.stats.dofs.interface, iterative.stats.counters.interface_applications
@@ -94,6 +105,10 @@ fn a_column_cut_into_substructures_solved_iteratively_is_the_uncut_dense_answer(
     common::scenes::column(&case, "column.toml", &[("lc = 0.0357142857142857", "lc = 0.125")]);
     same_answer(&case, "column.toml", 1, 4, 1e-8);
     // hex20: serendipity quad8 faces in the transformed contact basis
-    common::scenes::column(&case, "column20.toml", &[("order = 1", "order = 2"), ("lc = 0.0357142857142857, hex = 1", "lc = 0.25, hex = 1, serendipity = 1")]);
+    common::scenes::column(
+        &case,
+        "column20.toml",
+        &[("order = 1", "order = 2"), ("lc = 0.0357142857142857, hex = 1", "lc = 0.25, hex = 1, serendipity = 1")],
+    );
     same_answer(&case, "column20.toml", 1, 4, 1e-8);
 }

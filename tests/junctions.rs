@@ -44,7 +44,11 @@ const NU: f64 = 0.25;
 type Stress = [f64; 6];
 
 fn traction(s: &Stress, n: [f64; 3]) -> [f64; 3] {
-    [s[0] * n[0] + s[3] * n[1] + s[5] * n[2], s[3] * n[0] + s[1] * n[1] + s[4] * n[2], s[5] * n[0] + s[4] * n[1] + s[2] * n[2]]
+    [
+        s[0] * n[0] + s[3] * n[1] + s[5] * n[2],
+        s[3] * n[0] + s[1] * n[1] + s[4] * n[2],
+        s[5] * n[0] + s[4] * n[1] + s[2] * n[2],
+    ]
 }
 
 fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
@@ -95,7 +99,14 @@ fn cross2d(case: &Case, gmsh: &str, s: &Stress) -> Run {
 fn cross3d(case: &Case, gmsh: &str, s: &Stress) -> Run {
     case.copy("tests/geo/cross3d.geo");
     let mut loads = String::new();
-    for (group, n) in [("x0", [-1.0, 0.0, 0.0]), ("x1", [1.0, 0.0, 0.0]), ("y0", [0.0, -1.0, 0.0]), ("y1", [0.0, 1.0, 0.0]), ("z0", [0.0, 0.0, -1.0]), ("z1", [0.0, 0.0, 1.0])] {
+    for (group, n) in [
+        ("x0", [-1.0, 0.0, 0.0]),
+        ("x1", [1.0, 0.0, 0.0]),
+        ("y0", [0.0, -1.0, 0.0]),
+        ("y1", [0.0, 1.0, 0.0]),
+        ("z0", [0.0, 0.0, -1.0]),
+        ("z1", [0.0, 0.0, 1.0]),
+    ] {
         let t = traction(s, n);
         loads += &format!("[[loads]]\ngroup = \"{group}\"\ntraction = [{}, {}, {}]\n\n", t[0], t[1], t[2]);
     }
@@ -117,7 +128,12 @@ fn crossing_patch_2d_tri6() {
     let case = Case::new("cross-patch-tri6");
     let run = cross2d(&case, "order = 2\nsetnumber = { lc = 0.3 }", &S2);
     // four copies at the crossing, and pairs of both joints there
-    let centre: Vec<usize> = (0..run.model.pairs.len()).filter(|&p| { let x = run.model.coords[run.model.pairs[p].k]; (x[0] - 1.0).abs() < 1e-9 && (x[1] - 1.0).abs() < 1e-9 }).collect();
+    let centre: Vec<usize> = (0..run.model.pairs.len())
+        .filter(|&p| {
+            let x = run.model.coords[run.model.pairs[p].k];
+            (x[0] - 1.0).abs() < 1e-9 && (x[1] - 1.0).abs() < 1e-9
+        })
+        .collect();
     assert_eq!(centre.len(), 4, "four pairs around the crossing");
     assert_eq!(run.model.bodies.len(), 4, "one body group, four blocks");
     assert_patch(&run, &S2, "2D tri6");
@@ -135,7 +151,8 @@ fn crossing_patch_3d_tet10() {
     let case = Case::new("cross-patch-tet10");
     let run = cross3d(&case, "order = 2\nsetnumber = { lc = 0.6 }", &S3);
     assert_eq!(run.model.bodies.len(), 8, "one body group, eight blocks");
-    let centre = run.model.pairs.iter().filter(|p| run.model.coords[p.k].iter().all(|&x| (x - 1.0).abs() < 1e-9)).count();
+    let centre =
+        run.model.pairs.iter().filter(|p| run.model.coords[p.k].iter().all(|&x| (x - 1.0).abs() < 1e-9)).count();
     assert_eq!(centre, 12, "twelve pairs where eight blocks meet");
     assert_patch(&run, &S3, "3D tet10");
 }
@@ -172,7 +189,12 @@ fn rotation(a: [f64; 3], deg: f64) -> Rot {
     let l = dot(a, a).sqrt();
     let a = [a[0] / l, a[1] / l, a[2] / l];
     let (s, c) = deg.to_radians().sin_cos();
-    std::array::from_fn(|i| std::array::from_fn(|j| c * f64::from(u8::from(i == j)) + (1.0 - c) * a[i] * a[j] - s * [[0.0, a[2], -a[1]], [-a[2], 0.0, a[0]], [a[1], -a[0], 0.0]][i][j]))
+    std::array::from_fn(|i| {
+        std::array::from_fn(|j| {
+            c * f64::from(u8::from(i == j)) + (1.0 - c) * a[i] * a[j]
+                - s * [[0.0, a[2], -a[1]], [-a[2], 0.0, a[0]], [a[1], -a[0], 0.0]][i][j]
+        })
+    })
 }
 
 /// Writes `out` as the MSH 4.1 (ASCII) file `src` with every node turned by `r`.
@@ -201,7 +223,12 @@ fn rotate_msh(src: &std::path::Path, out: &std::path::Path, r: &Rot) {
                 w.push('\n');
             }
             for _ in 0..f[3] {
-                let x: Vec<f64> = lines.next().expect("coordinates").split_whitespace().map(|v| v.parse().expect("a number")).collect();
+                let x: Vec<f64> = lines
+                    .next()
+                    .expect("coordinates")
+                    .split_whitespace()
+                    .map(|v| v.parse().expect("a number"))
+                    .collect();
                 let y = rotate(r, [x[0], x[1], x[2]]);
                 w += &format!("{:.17e} {:.17e} {:.17e}\n", y[0], y[1], y[2]);
             }
@@ -221,7 +248,10 @@ fn pair_keys(run: &Run, r: &Rot) -> Vec<(Vec<i64>, usize)> {
         .iter()
         .map(|b| {
             let nodes: Vec<usize> = b.cells.iter().flat_map(|c| c.nodes.iter().copied()).collect();
-            let x = nodes.iter().fold([0.0; 3], |a, &n| { let y = rotate_back(r, m.coords[n]); [a[0] + y[0], a[1] + y[1], a[2] + y[2]] });
+            let x = nodes.iter().fold([0.0; 3], |a, &n| {
+                let y = rotate_back(r, m.coords[n]);
+                [a[0] + y[0], a[1] + y[1], a[2] + y[2]]
+            });
             x.map(|v| v / nodes.len() as f64)
         })
         .collect();
@@ -257,21 +287,46 @@ fn assert_same(a: &Run, b: &Run, r: &Rot, what: &str) {
     let (mut ds, mut du): (f64, f64) = (0.0, 0.0);
     for ((x, p), (y, q)) in ka.iter().zip(&kb) {
         assert_eq!(x, y, "{what}: the same pairs");
-        assert_eq!(ca.states[*p], cb.states[*q], "{what}: the state of the pair at {:?}", a.model.coords[a.model.pairs[*p].k]);
+        assert_eq!(
+            ca.states[*p], cb.states[*q],
+            "{what}: the state of the pair at {:?}",
+            a.model.coords[a.model.pairs[*p].k]
+        );
         counts[ca.states[*p].code() as usize] += 1;
         let (u, v) = (&ca.pairs[*p], &cb.pairs[*q]);
         ds = ds.max((u.sigma_n - v.sigma_n).abs()).max((u.tau() - v.tau()).abs());
         du = du.max((u.gap - v.gap).abs()).max((u.slip - v.slip).abs());
     }
-    eprintln!("{what}: {} pairs ({} stick, {} slip, {} open): stresses within {:.1e}, gaps and slips within {:.1e}", ka.len(), counts[2], counts[1], counts[0], ds / stress, du / moved.max(f64::MIN_POSITIVE));
+    eprintln!(
+        "{what}: {} pairs ({} stick, {} slip, {} open): stresses within {:.1e}, gaps and slips within {:.1e}",
+        ka.len(),
+        counts[2],
+        counts[1],
+        counts[0],
+        ds / stress,
+        du / moved.max(f64::MIN_POSITIVE)
+    );
     assert!(counts[1] > 0 && counts[2] > 0, "{what}: the loading makes some pairs slip and some stick ({counts:?})");
-    assert!(ds < 1e-8 * stress && du < 1e-8 * moved.max(f64::MIN_POSITIVE), "{what}: stresses differ by {ds:.1e}, relative displacements by {du:.1e}");
+    assert!(
+        ds < 1e-8 * stress && du < 1e-8 * moved.max(f64::MIN_POSITIVE),
+        "{what}: stresses differ by {ds:.1e}, relative displacements by {du:.1e}"
+    );
 }
 
 /// A scene over `mesh` with the body groups `bodies` (in that order, all of
 /// one material) and the crossing's joints, held by a fixed `base`, loaded by
 /// tractions (turned by `r`); friction 0.6.
-fn scene(mesh: &str, analysis: &str, gmsh: &str, bodies: &[&str], joints: &[&str], base: &str, loads: &[(&str, [f64; 3])], r: &Rot, strength: &str) -> String {
+fn scene(
+    mesh: &str,
+    analysis: &str,
+    gmsh: &str,
+    bodies: &[&str],
+    joints: &[&str],
+    base: &str,
+    loads: &[(&str, [f64; 3])],
+    r: &Rot,
+    strength: &str,
+) -> String {
     let nd = if analysis == "solid" { 3 } else { 2 };
     let mut t = format!("title = \"crossing\"\nmesh = \"{mesh}\"\nanalysis = \"{analysis}\"\n\n{gmsh}\n[materials.rock]\nE = {E}\nnu = {NU}\n\n");
     for b in bodies {
@@ -303,7 +358,8 @@ fn the_answer_does_not_depend_on_block_order_groups_or_rotation_2d() {
     rotate_msh(&case.dir.join("cross2d.msh"), &case.dir.join("turned.msh"), &r);
     let j = ["jx", "jy"];
     let one = scene("cross2d.msh", "plane_strain", "", &["rock"], &j, "bottom", &LOADS_2D, &ID, "");
-    let four = scene("cross2d.msh", "plane_strain", "", &["d", "b", "c", "a"], &["jy", "jx"], "bottom", &LOADS_2D, &ID, "");
+    let four =
+        scene("cross2d.msh", "plane_strain", "", &["d", "b", "c", "a"], &["jy", "jx"], "bottom", &LOADS_2D, &ID, "");
     let turned = scene("turned.msh", "plane_strain", "", &["rock"], &j, "bottom", &LOADS_2D, &r, "");
     let run = |name: &str, text: &str| case.run(&case.write(name, text)).unwrap_or_else(|e| panic!("{name}: {e:#}"));
     let (a, b, c) = (run("one.toml", &one), run("four.toml", &four), run("turned.toml", &turned));
@@ -320,7 +376,17 @@ fn the_answer_does_not_depend_on_block_order_groups_or_rotation_3d() {
     rotate_msh(&case.dir.join("cross3d.msh"), &case.dir.join("turned.msh"), &r);
     let j = ["jx", "jy", "jz"];
     let one = scene("cross3d.msh", "solid", "", &["rock"], &j, "z0", &LOADS_3D, &ID, "");
-    let eight = scene("cross3d.msh", "solid", "", &["b6", "b3", "b0", "b7", "b1", "b4", "b2", "b5"], &["jz", "jx", "jy"], "z0", &LOADS_3D, &ID, "");
+    let eight = scene(
+        "cross3d.msh",
+        "solid",
+        "",
+        &["b6", "b3", "b0", "b7", "b1", "b4", "b2", "b5"],
+        &["jz", "jx", "jy"],
+        "z0",
+        &LOADS_3D,
+        &ID,
+        "",
+    );
     let turned = scene("turned.msh", "solid", "", &["rock"], &j, "z0", &LOADS_3D, &r, "");
     let run = |name: &str, text: &str| case.run(&case.write(name, text)).unwrap_or_else(|e| panic!("{name}: {e:#}"));
     let (a, b, c) = (run("one.toml", &one), run("eight.toml", &eight), run("turned.toml", &turned));
@@ -332,7 +398,17 @@ fn the_answer_does_not_depend_on_block_order_groups_or_rotation_3d() {
 fn a_large_cohesion_gives_the_bonded_answer() {
     let case = Case::new("cross-bonded");
     case.copy("tests/geo/cross3d.geo");
-    let text = scene("cross3d.geo", "solid", "[gmsh]\norder = 2\nsetnumber = { lc = 0.6 }\n", &["rock"], &["jx", "jy", "jz"], "z0", &LOADS_3D, &ID, "cohesion = 1e6\ntensile_strength = 1e6\n");
+    let text = scene(
+        "cross3d.geo",
+        "solid",
+        "[gmsh]\norder = 2\nsetnumber = { lc = 0.6 }\n",
+        &["rock"],
+        &["jx", "jy", "jz"],
+        "z0",
+        &LOADS_3D,
+        &ID,
+        "cohesion = 1e6\ntensile_strength = 1e6\n",
+    );
     let path = case.write("strong.toml", &text);
     let joints = case.run_with(&path, false).expect("the jointed cube");
     let bonded = case.run_with(&path, true).expect("the bonded cube");
@@ -354,7 +430,17 @@ fn a_jointed_column_carries_its_weight_and_push_on_every_joint_plane() {
     let case = Case::new("cross-column");
     case.copy("tests/geo/cross3d.geo");
     let (rho, g, push) = (2.5e-3, 9.81, 0.005);
-    let mut text = scene("cross3d.geo", "solid", "[gmsh]\norder = 2\nsetnumber = { hex = 1, n = 2, serendipity = 1 }\n", &["rock"], &["jx", "jy", "jz"], "z0", &[("z1", [push, 0.0, 0.0])], &ID, "");
+    let mut text = scene(
+        "cross3d.geo",
+        "solid",
+        "[gmsh]\norder = 2\nsetnumber = { hex = 1, n = 2, serendipity = 1 }\n",
+        &["rock"],
+        &["jx", "jy", "jz"],
+        "z0",
+        &[("z1", [push, 0.0, 0.0])],
+        &ID,
+        "",
+    );
     text = text.replace("nu = 0.25\n", &format!("nu = 0.25\ndensity = {rho}\n"));
     text = text.replacen("analysis = \"solid\"\n", "analysis = \"solid\"\ngravity = [0.0, 0.0, -9.81]\n", 1);
     let run = case.run(&case.write("column.toml", &text)).unwrap_or_else(|e| panic!("column: {e:#}"));
@@ -375,6 +461,9 @@ fn a_jointed_column_carries_its_weight_and_push_on_every_joint_plane() {
     let scale = weight.hypot(push * 4.0);
     let err = (0..3).map(|i| (f[i] - want[i]).abs()).fold(0.0, f64::max) / scale;
     let k = [0, 1, 2].map(|s| c.states.iter().filter(|x| x.code() == s).count());
-    eprintln!("column: joint z = 1 carries {f:?} against {want:?} ({err:.1e}); {} stick, {} slip, {} open", k[2], k[1], k[0]);
+    eprintln!(
+        "column: joint z = 1 carries {f:?} against {want:?} ({err:.1e}); {} stick, {} slip, {} open",
+        k[2], k[1], k[0]
+    );
     assert!(err < 1e-8, "the joint z = 1 carries {f:?}, not {want:?}");
 }

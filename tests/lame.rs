@@ -67,9 +67,9 @@ use std::time::Instant;
 use common::measure::loglog_slope;
 use common::scenes::lame_cylinder;
 use common::Case;
+use subcontact::analytic::paper::table1_values;
 use subcontact::analytic::Lame;
 use subcontact::driver::Run;
-use subcontact::analytic::paper::table1_values;
 use subcontact::mesh::CellKind;
 use subcontact::scene::Analysis;
 
@@ -139,7 +139,11 @@ fn rates(title: &str, levels: &[Level]) -> (f64, f64) {
 fn assert_rates(what: &str, p: usize, displacement: f64, stress: f64, levels: &[Level]) {
     let p = p as f64;
     assert!(levels.len() >= 3, "{what}: a rate needs at least 3 meshes");
-    assert!((displacement - (p + 1.0)).abs() < 0.2, "{what}: displacement rate {displacement:.3}, expected {}", p + 1.0);
+    assert!(
+        (displacement - (p + 1.0)).abs() < 0.2,
+        "{what}: displacement rate {displacement:.3}, expected {}",
+        p + 1.0
+    );
     assert!((stress - p).abs() < 0.2, "{what}: stress rate {stress:.3}, expected {p}");
     for w in levels.windows(2) {
         let local = (w[0].displacement_l2 / w[1].displacement_l2).ln() / (w[0].h / w[1].h).ln();
@@ -300,7 +304,8 @@ fn pyramid_slice(path: &std::path::Path, kind: CellKind, lc: f64) -> usize {
         })
     };
     // the hexahedron's corners in gmsh order, in quarter cells
-    const CORNER: [[usize; 3]; 8] = [[0, 0, 0], [4, 0, 0], [4, 4, 0], [0, 4, 0], [0, 0, 4], [4, 0, 4], [4, 4, 4], [0, 4, 4]];
+    const CORNER: [[usize; 3]; 8] =
+        [[0, 0, 0], [4, 0, 0], [4, 4, 0], [0, 4, 0], [0, 0, 4], [4, 0, 4], [4, 4, 4], [0, 4, 4]];
     let mid = |p: [usize; 3], q: [usize; 3]| -> [usize; 3] { std::array::from_fn(|i| (p[i] + q[i]) / 2) };
     let (mut cells, mut facets): (Vec<Vec<usize>>, Vec<Vec<Vec<usize>>>) = (Vec::new(), vec![Vec::new(); 5]);
     for i in 0..nr {
@@ -309,7 +314,8 @@ fn pyramid_slice(path: &std::path::Path, kind: CellKind, lc: f64) -> usize {
             let centre = at([2, 2, 2]);
             for (f, face) in HEX_FACES.iter().enumerate() {
                 // the base turned inwards (towards the apex), as gmsh's pyramid
-                let base: Vec<[usize; 3]> = [face[0], face[3], face[2], face[1]].iter().map(|&c| at(CORNER[c])).collect();
+                let base: Vec<[usize; 3]> =
+                    [face[0], face[3], face[2], face[1]].iter().map(|&c| at(CORNER[c])).collect();
                 let mut q = base.clone();
                 q.push(centre);
                 if kind != CellKind::Pyramid5 {
@@ -325,11 +331,11 @@ fn pyramid_slice(path: &std::path::Path, kind: CellKind, lc: f64) -> usize {
                 // boundary facets: the base as a quadrangle (corners, then
                 // the base's mid-edge nodes 5, 8, 10, 6, then its centre)
                 let side = match f {
-                    2 if i == 0 => Some(0),          // r = a: inner
-                    1 if j == 0 => Some(1),          // t = 0: y0
-                    4 if j == nt - 1 => Some(2),     // t = 90 degrees: x0
-                    0 => Some(3),                    // z0
-                    5 => Some(4),                    // z1
+                    2 if i == 0 => Some(0),      // r = a: inner
+                    1 if j == 0 => Some(1),      // t = 0: y0
+                    4 if j == nt - 1 => Some(2), // t = 90 degrees: x0
+                    0 => Some(3),                // z0
+                    5 => Some(4),                // z1
                     _ => None,
                 };
                 if let Some(side) = side {
@@ -364,13 +370,18 @@ fn slice_of_pyramids_converges_at_rate_2_for_pyramid5_and_3_for_pyramid13_and_py
     let case = Case::new("lame-slice-pyramids");
     let template = slice().replace("\n[gmsh]\n", "\n").replace(GMSH, "");
     // the quadratic ones one level coarser (their finest mesh costs most)
-    for (kind, order, lcs) in [(CellKind::Pyramid5, 1, [0.4, 0.2, 0.1]), (CellKind::Pyramid13, 2, [0.5, 0.25, 0.125]), (CellKind::Pyramid14, 2, [0.5, 0.25, 0.125])] {
+    for (kind, order, lcs) in [
+        (CellKind::Pyramid5, 1, [0.4, 0.2, 0.1]),
+        (CellKind::Pyramid13, 2, [0.5, 0.25, 0.125]),
+        (CellKind::Pyramid14, 2, [0.5, 0.25, 0.125]),
+    ] {
         let levels: Vec<Level> = lcs
             .iter()
             .map(|&lc| {
                 let name = format!("{}_lc{lc}", kind.name());
                 let grid = pyramid_slice(&case.dir.join(format!("{name}.msh")), kind, lc);
-                let path = case.write(&format!("{name}.toml"), &template.replace("lame_slice.geo", &format!("{name}.msh")));
+                let path =
+                    case.write(&format!("{name}.toml"), &template.replace("lame_slice.geo", &format!("{name}.msh")));
                 let t = Instant::now();
                 let run = case.run(&path).unwrap_or_else(|e| panic!("{name}: {e:#}"));
                 let seconds = t.elapsed().as_secs_f64();
@@ -379,7 +390,14 @@ fn slice_of_pyramids_converges_at_rate_2_for_pyramid5_and_3_for_pyramid13_and_py
                 assert!(run.model.bodies[0].cells.iter().all(|c| c.kind == kind));
                 let errors = run.checks.errors.as_ref().expect("[analytic] gives errors");
                 // h: the size of the grid's cells, each six pyramids
-                Level { lc, cells, h: (quarter_annulus() / grid as f64).sqrt(), displacement_l2: errors.displacement_l2, stress_l2: errors.stress_l2, seconds }
+                Level {
+                    lc,
+                    cells,
+                    h: (quarter_annulus() / grid as f64).sqrt(),
+                    displacement_l2: errors.displacement_l2,
+                    stress_l2: errors.stress_l2,
+                    seconds,
+                }
             })
             .collect();
         let (r, s) = rates(&format!("slice of {}", kind.name()), &levels);
@@ -475,9 +493,19 @@ fn halves_of_different_stiffness_sliding_on_the_cut_are_each_lames_cylinder_of_t
         let path = case.write(&format!("two_{e2:e}.toml"), &scene(e2));
         let run: Run = case.run(&path).unwrap_or_else(|e| panic!("E2 = {e2:e}: {e:#}"));
         let e = run.checks.errors.as_ref().expect("[analytic] errors");
-        eprintln!("E2 / E1 = {}: displacement_l2 {:.3e}, stress_l2 {:.3e}, contact {:.3e}", e2 / E, e.displacement_l2, e.stress_l2, run.checks.contact_error_max.unwrap_or(f64::NAN));
+        eprintln!(
+            "E2 / E1 = {}: displacement_l2 {:.3e}, stress_l2 {:.3e}, contact {:.3e}",
+            e2 / E,
+            e.displacement_l2,
+            e.stress_l2,
+            run.checks.contact_error_max.unwrap_or(f64::NAN)
+        );
         // the report says how the norms treat two materials
-        assert_eq!(run.checks.analytic.report.contains("different materials"), e2 != E, "report.md's note on the materials");
+        assert_eq!(
+            run.checks.analytic.report.contains("different materials"),
+            e2 != E,
+            "report.md's note on the materials"
+        );
         (e.displacement_l2, e.stress_l2)
     };
     let (u1, s1) = errors(E);

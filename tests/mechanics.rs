@@ -54,12 +54,12 @@ use common::measure::{count, force_on_body_i, tangent};
 use common::scenes::{self, two_blocks};
 use common::{json, read, repo_text, Case};
 use serde_json::Value;
+use subcontact::analytic::paper::contact_sigma_n_at;
 use subcontact::analytic::Lame;
 use subcontact::contact::law::ContactState;
 use subcontact::contact::traction::ConsistentTraction;
 use subcontact::driver::{ContactError, ContactRun, Run};
 use subcontact::fem::{element::facet_point, quadrature};
-use subcontact::analytic::paper::contact_sigma_n_at;
 use subcontact::scene::{Analysis, ContactGroups, StateRule};
 
 // ---------------------------------------------------------------------------
@@ -126,7 +126,12 @@ fn check_pushed_block(name: &str, run: &Run, f: f64, p: f64) {
             assert!(r.sigma_n < 0.0, "{name}: pair at {at:?} in compression ({})", r.sigma_n);
             let limit = f * r.sigma_n.abs();
             let e = (r.tau() - limit).abs() / limit;
-            assert!(e < 1e-6, "{name} step {}: pair at {at:?}: tau {} against f |sigma_n| = {limit} ({e:.2e})", k + 1, r.tau());
+            assert!(
+                e < 1e-6,
+                "{name} step {}: pair at {at:?}: tau {} against f |sigma_n| = {limit} ({e:.2e})",
+                k + 1,
+                r.tau()
+            );
             worst = worst.max(e);
             let t = tangent(pair.normal);
             let tx = (r.sigma_n * pair.normal[0] + r.tau_t * t[0]) * if base_is_i { 1.0 } else { -1.0 };
@@ -167,7 +172,13 @@ fn pushed_block_slips_at_every_pair_with_coulomb_shear_and_its_normal_forces_car
         ("quad9", vec![], 0.3, 1.0, "quad9"),
         ("quad4", vec![("order = 2", "order = 1")], 0.3, 1.0, "quad4"),
         ("tri6", vec![("mesh = \"block_push.geo\"", "mesh = \"block_push_tri.geo\"")], 0.3, 1.0, "tri6"),
-        ("f0.5_p2", vec![("friction = 0.3", "friction = 0.5"), ("pressure = 1.0", "pressure = 2.0")], 0.5, 2.0, "quad9"),
+        (
+            "f0.5_p2",
+            vec![("friction = 0.3", "friction = 0.5"), ("pressure = 1.0", "pressure = 2.0")],
+            0.5,
+            2.0,
+            "quad9",
+        ),
         // the push in 4 steps (ux ramped) under the full pressure at every step
         (
             "steps",
@@ -236,13 +247,20 @@ fn pairs_opened_only_by_an_iteration_close_again_slipping_not_stuck_where_that_i
         ("frictionless_f0.3", &[("friction = 0.3", "friction = 0.3\nslip = \"frictionless\"")]),
     ];
     for (name, edits) in variants {
-        let run = case.run(&edited(&case, "geo/block_push.toml", &format!("{name}.toml"), edits)).unwrap_or_else(|e| panic!("{name}: {e:#}"));
+        let run = case
+            .run(&edited(&case, "geo/block_push.toml", &format!("{name}.toml"), edits))
+            .unwrap_or_else(|e| panic!("{name}: {e:#}"));
         let c = run.contact().expect("contact");
         assert!(c.summary.converged, "{name}: converged");
-        let opened = c.summary.history.iter().map(|h| h.iter().filter(|&&s| s == ContactState::Open).count()).max().unwrap_or(0);
+        let opened =
+            c.summary.history.iter().map(|h| h.iter().filter(|&&s| s == ContactState::Open).count()).max().unwrap_or(0);
         assert!(opened > 0, "{name}: pairs open during the iteration (the case exercises re-closure)");
         assert_eq!(count(c, ContactState::Slip), c.pairs.len(), "{name}: every pair slips in the end: {:?}", c.states);
-        eprintln!("{name}: up to {opened} pairs open during the iteration, all {} slip after {} iterations", c.pairs.len(), c.summary.iterations);
+        eprintln!(
+            "{name}: up to {opened} pairs open during the iteration, all {} slip after {} iterations",
+            c.pairs.len(),
+            c.summary.iterations
+        );
     }
 }
 
@@ -275,8 +293,17 @@ fn check_cgs4_holds(name: &str, run: &Run) {
             assert!(r.sigma_n < 0.0, "{name} step {}: pair at {at:?} in compression", k + 1);
             let limit = CGS4_FRICTION * r.sigma_n.abs();
             match c.states[i] {
-                ContactState::Slip => assert!((r.tau() - limit).abs() < 1e-6 * limit, "{name} step {}: slipping pair at {at:?}: tau {} = f |sigma_n| {limit}", k + 1, r.tau()),
-                ContactState::Stick => assert!(r.tau() < limit * (1.0 + 1e-9), "{name} step {}: stuck pair at {at:?} within its limit", k + 1),
+                ContactState::Slip => assert!(
+                    (r.tau() - limit).abs() < 1e-6 * limit,
+                    "{name} step {}: slipping pair at {at:?}: tau {} = f |sigma_n| {limit}",
+                    k + 1,
+                    r.tau()
+                ),
+                ContactState::Stick => assert!(
+                    r.tau() < limit * (1.0 + 1e-9),
+                    "{name} step {}: stuck pair at {at:?} within its limit",
+                    k + 1
+                ),
                 ContactState::Open => panic!("{name} step {}: pair at {at:?} open", k + 1),
             }
         }
@@ -287,7 +314,10 @@ fn check_cgs4_holds(name: &str, run: &Run) {
         let (sn, st) = resultants(run, c, |_| true);
         let fi = force_on_body_i(run, c, |_| true);
         let on_base = if base_is_i { fi } else { [-fi[0], -fi[1]] };
-        let e = [(sn + n).abs(), (st + t).abs(), (on_base[0] - f_push).abs(), (on_base[1] + CGS4_G).abs()].into_iter().fold(0.0, f64::max) / CGS4_G;
+        let e = [(sn + n).abs(), (st + t).abs(), (on_base[0] - f_push).abs(), (on_base[1] + CGS4_G).abs()]
+            .into_iter()
+            .fold(0.0, f64::max)
+            / CGS4_G;
         eprintln!(
             "CGS-4 {name} step {}: F/G = {:.6} ({factor} of the limit): {} stick / {} slip, {} iteration(s); N = {n:.9}, T = {t:.9}, equilibrium {e:.1e} G; friction used T / fN = {:.5}",
             k + 1,
@@ -316,11 +346,18 @@ fn cgs4_block_holds_below_and_loses_equilibrium_above_the_slip_limit_within_half
     let gravity_to_traction: [(&str, &str); 3] = [
         ("gravity = [0.0, -10.0]\n", ""),
         ("gravity_factors = [1.0, 1.0, 1.0, 1.0, 1.0]\n", ""),
-        ("[solver]", "[[loads]]\ngroup = \"top\"\ntraction = [0.0, -1.0]\nfactors = [1.0, 1.0, 1.0, 1.0, 1.0]\n\n[solver]"),
+        (
+            "[solver]",
+            "[[loads]]\ngroup = \"top\"\ntraction = [0.0, -1.0]\nfactors = [1.0, 1.0, 1.0, 1.0, 1.0]\n\n[solver]",
+        ),
     ];
     let variants: Vec<(&str, Edits, &str)> = vec![
         ("stiff block, quad9, gravity", vec![], "quad9"),
-        ("equal stiffness, quad4, weight as traction", [&[("E = 2.0e5", "E = 1.0e4"), ("order = 2", "order = 1")][..], &gravity_to_traction[..]].concat(), "quad4"),
+        (
+            "equal stiffness, quad4, weight as traction",
+            [&[("E = 2.0e5", "E = 1.0e4"), ("order = 2", "order = 1")][..], &gravity_to_traction[..]].concat(),
+            "quad4",
+        ),
         ("soft block, tri6, gravity", vec![("E = 2.0e5", "E = 100.0"), ("h = 0.25 }", "h = 0.25, quad = 0 }")], "tri6"),
     ];
     for (i, (name, edits, kind)) in variants.into_iter().enumerate() {
@@ -338,7 +375,16 @@ fn cgs4_block_holds_below_and_loses_equilibrium_above_the_slip_limit_within_half
         // 0.5 % above the limit: a clean failure (exit 1, one error paragraph, no result files)
         let stderr = solve_fails(&case, &scene, &format!("out_above_{i}"));
         eprintln!("CGS-4 {name}, F/G = 1.005 x limit at step 5: {stderr}");
-        says(&stderr, &[scene.as_str(), "loss of equilibrium", "body \"block\"", "load step 5,", "or raise the friction or cohesion of its contacts"]);
+        says(
+            &stderr,
+            &[
+                scene.as_str(),
+                "loss of equilibrium",
+                "body \"block\"",
+                "load step 5,",
+                "or raise the friction or cohesion of its contacts",
+            ],
+        );
         match case.contact_error(&case.dir.join(&scene)) {
             ContactError::Sliding { bodies, no_shear, at, .. } => {
                 assert_eq!((bodies, at.step), (vec!["block".to_string()], Some(5)), "{name}");
@@ -363,7 +409,8 @@ fn patch_stress(theta_deg: f64) -> [[f64; 2]; 2] {
     let mut out = [[0.0; 2]; 2];
     for i in 0..2 {
         for j in 0..2 {
-            out[i][j] = (0..2).flat_map(|k| (0..2).map(move |l| (k, l))).map(|(k, l)| r[i][k] * sl[k][l] * r[j][l]).sum();
+            out[i][j] =
+                (0..2).flat_map(|k| (0..2).map(move |l| (k, l))).map(|(k, l)| r[i][k] * sl[k][l] * r[j][l]).sum();
         }
     }
     out
@@ -379,7 +426,14 @@ fn turn(theta_deg: f64, v: [f64; 2]) -> [f64; 2] {
 fn patch_scene(order: usize, set: &str, theta: f64, recovery: &str) -> String {
     let sigma = patch_stress(theta);
     let mut loads = String::new();
-    for (group, n_local) in [("base", [0.0, -1.0]), ("top_face", [0.0, 1.0]), ("left_bottom", [-1.0, 0.0]), ("left_top", [-1.0, 0.0]), ("right_bottom", [1.0, 0.0]), ("right_top", [1.0, 0.0])] {
+    for (group, n_local) in [
+        ("base", [0.0, -1.0]),
+        ("top_face", [0.0, 1.0]),
+        ("left_bottom", [-1.0, 0.0]),
+        ("left_top", [-1.0, 0.0]),
+        ("right_bottom", [1.0, 0.0]),
+        ("right_top", [1.0, 0.0]),
+    ] {
         let n = turn(theta, n_local);
         let t = [sigma[0][0] * n[0] + sigma[0][1] * n[1], sigma[1][0] * n[0] + sigma[1][1] * n[1]];
         loads += &format!("[[loads]]\ngroup = \"{group}\"\ntraction = [{:?}, {:?}]\n\n", t[0], t[1]);
@@ -414,7 +468,9 @@ fn contact_patch_test(kinds: &[(&str, usize, &str)]) {
     for &(kind, order, set) in kinds {
         for (theta, recovery) in [(0.0, "lumped"), (30.0, "lumped"), (30.0, "consistent")] {
             let name = format!("{kind}_{theta}_{recovery}");
-            let run = case.run(&case.write(&format!("patch_{name}.toml"), &patch_scene(order, set, theta, recovery))).unwrap_or_else(|e| panic!("{name}: {e:#}"));
+            let run = case
+                .run(&case.write(&format!("patch_{name}.toml"), &patch_scene(order, set, theta, recovery)))
+                .unwrap_or_else(|e| panic!("{name}: {e:#}"));
             assert_eq!(run.model.bodies[0].cells[0].kind.name(), kind, "{name}: element kind");
             let c = run.contact().expect("contact");
             assert!(c.summary.converged);
@@ -432,10 +488,18 @@ fn contact_patch_test(kinds: &[(&str, usize, &str)]) {
                 let sn = [sigma[0][0] * n[0] + sigma[0][1] * n[1], sigma[1][0] * n[0] + sigma[1][1] * n[1]];
                 let (want_n, want_t) = (n[0] * sn[0] + n[1] * sn[1], t[0] * sn[0] + t[1] * sn[1]);
                 let e = ((r.sigma_n - want_n) / want_n).abs().max(((r.tau_t - want_t) / want_t).abs());
-                assert!(e < 1e-9, "{name}: pair at {at:?}: sigma_n {} (want {want_n}), tau_t {} (want {want_t}): {e:.2e}", r.sigma_n, r.tau_t);
+                assert!(
+                    e < 1e-9,
+                    "{name}: pair at {at:?}: sigma_n {} (want {want_n}), tau_t {} (want {want_t}): {e:.2e}",
+                    r.sigma_n,
+                    r.tau_t
+                );
                 worst = worst.max(e);
             }
-            eprintln!("contact patch test {name}: {} pairs stick, max relative error of sigma_n, tau_t {worst:.1e}", c.pairs.len());
+            eprintln!(
+                "contact patch test {name}: {} pairs stick, max relative error of sigma_n, tau_t {worst:.1e}",
+                c.pairs.len()
+            );
         }
     }
 }
@@ -447,7 +511,11 @@ fn uniform_pressure_and_shear_cross_the_joint_exactly_with_linear_elements_also_
 
 #[test]
 fn uniform_pressure_and_shear_cross_the_joint_exactly_with_quadratic_elements_also_turned_30_degrees() {
-    contact_patch_test(&[("quad9", 2, "n = 3, quad = 1"), ("quad8", 2, "n = 3, quad = 1, serendipity = 1"), ("tri6", 2, "n = 4, quad = 0")]);
+    contact_patch_test(&[
+        ("quad9", 2, "n = 3, quad = 1"),
+        ("quad8", 2, "n = 3, quad = 1, serendipity = 1"),
+        ("tri6", 2, "n = 4, quad = 0"),
+    ]);
 }
 
 // ---------------------------------------------------------------------------
@@ -533,13 +601,22 @@ fn joint_pulled_open_in_one_step_closes_again_when_the_load_reverses() {
         let at = run.model.coords[pair.k];
         assert_eq!(open.states[i], ContactState::Open, "step 1: pair at {at:?} open");
         assert!(r.gap > 0.0, "step 1: pair at {at:?} gap {}", r.gap);
-        assert!(r.sigma_n.abs() < 1e-9 && r.tau() < 1e-9, "step 1: open pair at {at:?} carries nothing ({}, {})", r.sigma_n, r.tau());
+        assert!(
+            r.sigma_n.abs() < 1e-9 && r.tau() < 1e-9,
+            "step 1: open pair at {at:?} carries nothing ({}, {})",
+            r.sigma_n,
+            r.tau()
+        );
         max_gap = max_gap.max(r.gap);
     }
     for (i, (pair, r)) in run.model.pairs.iter().zip(&closed.pairs).enumerate() {
         let at = run.model.coords[pair.k];
         assert_ne!(closed.states[i], ContactState::Open, "step 2: pair at {at:?} closed again");
-        assert!(r.gap.abs() <= 1e-12 * max_gap, "step 2: pair at {at:?} gap {:.3e} (step 1 up to {max_gap:.3e})", r.gap);
+        assert!(
+            r.gap.abs() <= 1e-12 * max_gap,
+            "step 2: pair at {at:?} gap {:.3e} (step 1 up to {max_gap:.3e})",
+            r.gap
+        );
         assert!(r.sigma_n < 0.0, "step 2: pair at {at:?} in compression ({})", r.sigma_n);
         // cracked: f_t = 0 and the residual cohesion 0
         assert!(r.tau() <= 0.5 * r.sigma_n.abs() * (1.0 + 1e-6), "step 2: pair at {at:?} within the cracked limit");
@@ -577,7 +654,9 @@ fn paper_rule_cycles_on_an_opening_joint_and_says_so_while_the_robust_rule_conve
             assert!(stderr.contains(&want), "{name}: mentions {want:?}: {stderr}");
         }
         match case.contact_error(&case.dir.join(format!("{name}_paper.toml"))) {
-            ContactError::NotConverged { cycled, results, .. } => assert!(cycled && results.is_some(), "{name}: cycled, results written"),
+            ContactError::NotConverged { cycled, results, .. } => {
+                assert!(cycled && results.is_some(), "{name}: cycled, results written")
+            }
             other => panic!("{name}: not converged, not {other:?}"),
         }
         let dir = case.dir.join(format!("out_{name}_paper"));
@@ -587,7 +666,10 @@ fn paper_rule_cycles_on_an_opening_joint_and_says_so_while_the_robust_rule_conve
         let paper_its = s["contact"]["iterations"].as_u64().expect("iterations");
         let report = read(&dir.join("report.md"));
         assert!(report.contains("## Last two state sets"), "{name}: report lists the last two state sets");
-        assert!(report.contains(&format!("| pair | iteration {} | iteration {paper_its} |", paper_its - 1)), "{name}: the last two iterations: {report}");
+        assert!(
+            report.contains(&format!("| pair | iteration {} | iteration {paper_its} |", paper_its - 1)),
+            "{name}: the last two iterations: {report}"
+        );
 
         let (ok, stderr) = solve_cli(&case, &format!("{name}_robust.toml"), &format!("out_{name}_robust"));
         assert!(ok, "{name}: the robust rule converges: {stderr}");
@@ -595,7 +677,9 @@ fn paper_rule_cycles_on_an_opening_joint_and_says_so_while_the_robust_rule_conve
         assert_eq!(r["contact"]["converged"], Value::Bool(true));
         assert_eq!(r["contact"]["cycled"], Value::Bool(false));
         let steps: Vec<u64> = match r["steps"].as_array() {
-            Some(a) if !a.is_empty() => a.iter().map(|s| s["contact"]["iterations"].as_u64().expect("iterations")).collect(),
+            Some(a) if !a.is_empty() => {
+                a.iter().map(|s| s["contact"]["iterations"].as_u64().expect("iterations")).collect()
+            }
             _ => vec![r["contact"]["iterations"].as_u64().expect("iterations")],
         };
         eprintln!("{name}: paper rule cycles after {paper_its} iteration(s) (step 1); robust rule converges in {steps:?} iteration(s) per step");
@@ -603,14 +687,20 @@ fn paper_rule_cycles_on_an_opening_joint_and_says_so_while_the_robust_rule_conve
         assert!(steps.iter().all(|&k| (2..=10).contains(&k)), "{name}: robust iterations {steps:?}");
         // the advice names the robust rule to a run that did not use it, and
         // only then (the robust rule cut short at one iteration)
-        assert!(stderr_of(&case, &format!("{name}_paper.toml")).contains("or the default rule = \"robust\""), "{name}: the paper's run is pointed to the robust rule");
+        assert!(
+            stderr_of(&case, &format!("{name}_paper.toml")).contains("or the default rule = \"robust\""),
+            "{name}: the paper's run is pointed to the robust rule"
+        );
         case.write(&format!("{name}_short.toml"), &cut_short(&read(&case.dir.join(format!("{name}_robust.toml")))));
         match case.contact_error(&case.dir.join(format!("{name}_short.toml"))) {
             ContactError::NotConverged { rule, .. } => assert_eq!(rule, StateRule::Robust, "{name}"),
             other => panic!("{name}: not converged, not {other:?}"),
         }
         let short = stderr_of(&case, &format!("{name}_short.toml"));
-        assert!(short.contains("did not converge") && !short.contains("rule = \"robust\""), "{name}: no advice to use the rule it used: {short}");
+        assert!(
+            short.contains("did not converge") && !short.contains("rule = \"robust\""),
+            "{name}: no advice to use the rule it used: {short}"
+        );
     }
 }
 
@@ -673,11 +763,17 @@ fn consistent_recovery_is_exact_for_exact_forces_but_not_closer_on_the_paper_mes
     case.copy("geo/cylinder.geo");
     let lumped = case.run(&case.copy("geo/cylinder_paper.toml")).expect("lumped run");
     let consistent = case
-        .run(&edited(&case, "geo/cylinder_paper.toml", "paper_consistent.toml", &[("tensile_strength = 3.0e5", "tensile_strength = 3.0e5\ntraction = \"consistent\"")]))
+        .run(&edited(
+            &case,
+            "geo/cylinder_paper.toml",
+            "paper_consistent.toml",
+            &[("tensile_strength = 3.0e5", "tensile_strength = 3.0e5\ntraction = \"consistent\"")],
+        ))
         .expect("consistent run");
     let b = &lumped.model.bodies[0];
     let lame = Lame { a: 3.0, b: 5.0, p: 0.1, e: b.e, nu: b.nu, analysis: Analysis::PlaneStrain };
-    let err = |run: &Run, r: f64| contact_sigma_n_at(&run.solution(), r).expect("a pair at r") / lame.sigma_theta(r) - 1.0;
+    let err =
+        |run: &Run, r: f64| contact_sigma_n_at(&run.solution(), r).expect("a pair at r") / lame.sigma_theta(r) - 1.0;
     let (l3, l5, c3, c5) = (err(&lumped, 3.0), err(&lumped, 5.0), err(&consistent, 3.0), err(&consistent, 5.0));
     eprintln!("paper mesh, sigma_n / sigma_theta - 1: lumped r = 3: {:+.3} %, r = 5: {:+.3} %; consistent r = 3: {:+.3} %, r = 5: {:+.3} %", 100.0 * l3, 100.0 * l5, 100.0 * c3, 100.0 * c5);
     assert!(c3.abs() > l3.abs() && c5.abs() > l5.abs(), "measured: consistent is not closer on the paper mesh");
@@ -719,7 +815,12 @@ fn consistent_recovery_is_exact_for_exact_forces_but_not_closer_on_the_paper_mes
     let fine = [("lc = 0.05", "lc = 0.2")];
     let q_lumped = case.run(&edited(&case, "geo/cylinder.toml", "quad9_lumped.toml", &fine)).expect("quad9 lumped");
     let q_consistent = case
-        .run(&edited(&case, "geo/cylinder.toml", "quad9_consistent.toml", &[fine[0], ("tensile_strength = 3.0e5", "tensile_strength = 3.0e5\ntraction = \"consistent\"")]))
+        .run(&edited(
+            &case,
+            "geo/cylinder.toml",
+            "quad9_consistent.toml",
+            &[fine[0], ("tensile_strength = 3.0e5", "tensile_strength = 3.0e5\ntraction = \"consistent\"")],
+        ))
         .expect("quad9 consistent");
     for r in [3.0, 5.0] {
         let (el, ec) = (err(&q_lumped, r), err(&q_consistent, r));
@@ -738,7 +839,12 @@ fn stack_scene_opens_its_upper_joint_and_the_lower_joint_sticks_carrying_the_mid
     let run = case.run(&case.copy("geo/stack.toml")).unwrap_or_else(|e| panic!("{e:#}"));
     let c = run.contact().expect("contact");
     assert!(c.summary.converged);
-    let lower = run.scene.contacts.iter().position(|k| matches!(&k.groups, ContactGroups::Shared(g) if g == "lower_joint")).expect("lower joint");
+    let lower = run
+        .scene
+        .contacts
+        .iter()
+        .position(|k| matches!(&k.groups, ContactGroups::Shared(g) if g == "lower_joint"))
+        .expect("lower joint");
     let upper = 1 - lower;
     let pull = 100.0;
     let (mut n_upper, mut n_lower) = (0, 0);
@@ -748,7 +854,10 @@ fn stack_scene_opens_its_upper_joint_and_the_lower_joint_sticks_carrying_the_mid
             n_upper += 1;
             assert_eq!(c.states[i], ContactState::Open, "upper joint pair at {at:?} open");
             assert!(r.gap > 0.0, "upper joint pair at {at:?}: gap {}", r.gap);
-            assert!(r.sigma_n.abs() < 1e-9 * pull && r.tau() < 1e-9 * pull, "upper joint pair at {at:?} carries nothing");
+            assert!(
+                r.sigma_n.abs() < 1e-9 * pull && r.tau() < 1e-9 * pull,
+                "upper joint pair at {at:?} carries nothing"
+            );
         } else {
             n_lower += 1;
             assert_eq!(c.states[i], ContactState::Stick, "lower joint pair at {at:?} sticks");

@@ -20,12 +20,25 @@ use common::Case;
 /// `subcontact ARGS` in the case under `ulimit -v KB`.
 fn limited(case: &Case, kb: u64, args: &[&str]) -> Output {
     let script = format!("ulimit -v {kb} && exec \"$0\" \"$@\"");
-    Command::new("sh").arg("-c").arg(script).arg(env!("CARGO_BIN_EXE_subcontact")).args(args).current_dir(&case.dir).output().expect("sh")
+    Command::new("sh")
+        .arg("-c")
+        .arg(script)
+        .arg(env!("CARGO_BIN_EXE_subcontact"))
+        .args(args)
+        .current_dir(&case.dir)
+        .output()
+        .expect("sh")
 }
 
 fn blocks(case: &Case, lc: &str) {
     case.copy("geo/blocks3d.geo");
-    case.write("blocks.toml", &edited("geo/blocks3d.toml", &[("setnumber = { lc = 0.1, hex = 0 }", &format!("setnumber = {{ lc = {lc}, hex = 0 }}"))]));
+    case.write(
+        "blocks.toml",
+        &edited(
+            "geo/blocks3d.toml",
+            &[("setnumber = { lc = 0.1, hex = 0 }", &format!("setnumber = {{ lc = {lc}, hex = 0 }}"))],
+        ),
+    );
 }
 
 #[test]
@@ -49,7 +62,19 @@ fn a_run_that_would_not_fit_is_refused_before_it_factorises_and_says_what_to_do(
     for args in [&["solve", "blocks.toml", "--out", "out", "--quiet"][..], &["check", "blocks.toml"][..]] {
         let o = limited(&case, 1_000_000, args);
         let msg = clean_failure(&case, &o, &case.dir.join("out"));
-        says(&msg, &["blocks.toml: this run needs about ", "6894 interface", "ulimit -v", "--interface iterative", "--substructures K", "MPI ranks", "a coarser mesh", "--no-memory-check"]);
+        says(
+            &msg,
+            &[
+                "blocks.toml: this run needs about ",
+                "6894 interface",
+                "ulimit -v",
+                "--interface iterative",
+                "--substructures K",
+                "MPI ranks",
+                "a coarser mesh",
+                "--no-memory-check",
+            ],
+        );
     }
 }
 
@@ -59,13 +84,21 @@ fn an_allocation_that_fails_anyway_ends_in_one_paragraph_and_leaves_the_earlier_
     blocks(&case, "0.2");
     let o = case.cli(&["solve", "blocks.toml", "--out", "out", "--quiet"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let before: Vec<(String, Vec<u8>)> = case.files_in(&case.dir.join("out")).into_iter().filter(|f| !f.starts_with("mesh/")).map(|f| (f.clone(), std::fs::read(case.dir.join("out").join(&f)).expect("read"))).collect();
+    let before: Vec<(String, Vec<u8>)> = case
+        .files_in(&case.dir.join("out"))
+        .into_iter()
+        .filter(|f| !f.starts_with("mesh/"))
+        .map(|f| (f.clone(), std::fs::read(case.dir.join("out").join(&f)).expect("read")))
+        .collect();
     blocks(&case, "0.07");
     let o = limited(&case, 1_000_000, &["solve", "blocks.toml", "--out", "out", "--quiet", "--no-memory-check"]);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{stderr}");
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
-    says(&stderr, &["error: out of memory: an allocation of ", "no result files were written", "--interface iterative"]);
+    says(
+        &stderr,
+        &["error: out of memory: an allocation of ", "no result files were written", "--interface iterative"],
+    );
     for (f, b) in &before {
         assert_eq!(std::fs::read(case.dir.join("out").join(f)).ok().as_ref(), Some(b), "{f} changed");
     }

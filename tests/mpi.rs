@@ -59,15 +59,22 @@ fn parts_on_two_and_three_ranks_give_the_serial_answer() {
         for n in [2, 3] {
             let out = format!("{stem}_np{n}");
             solve_ok(&case, n, scene, &out, &["--substructures", cut]);
-            let e = csv_difference(&case.dir.join(format!("{stem}_serial/contact.csv")), &case.dir.join(format!("{out}/contact.csv")));
+            let e = csv_difference(
+                &case.dir.join(format!("{stem}_serial/contact.csv")),
+                &case.dir.join(format!("{out}/contact.csv")),
+            );
             eprintln!("{scene}, {n} ranks: contact.csv differs from serial by {e:.1e}");
             assert!(e < 1e-10, "{scene} on {n} ranks: {e:.2e}");
             if scene == "blocks.toml" {
-                let e = csv_difference(&case.dir.join(format!("{stem}_serial/probes.csv")), &case.dir.join(format!("{out}/probes.csv")));
+                let e = csv_difference(
+                    &case.dir.join(format!("{stem}_serial/probes.csv")),
+                    &case.dir.join(format!("{out}/probes.csv")),
+                );
                 assert!(e < 1e-10, "{scene} on {n} ranks, probes: {e:.2e}");
             }
             let files = |d: &str| {
-                let mut f: Vec<String> = case.files_in(&case.dir.join(d)).into_iter().filter(|f| !f.starts_with("mesh")).collect();
+                let mut f: Vec<String> =
+                    case.files_in(&case.dir.join(d)).into_iter().filter(|f| !f.starts_with("mesh")).collect();
                 f.sort();
                 f
             };
@@ -76,7 +83,10 @@ fn parts_on_two_and_three_ranks_give_the_serial_answer() {
             let ranks = summary["ranks"].as_array().expect("ranks");
             assert_eq!(ranks.len(), n, "every rank reports");
             assert!(ranks.iter().all(|r| !r["parts"].as_array().expect("parts").is_empty()), "every rank has a part");
-            assert!(ranks.iter().all(|r| r["bytes_sent_per_contact_iteration"] == 0), "nothing travels during the iteration");
+            assert!(
+                ranks.iter().all(|r| r["bytes_sent_per_contact_iteration"] == 0),
+                "nothing travels during the iteration"
+            );
         }
     }
 }
@@ -93,11 +103,15 @@ fn the_iterative_interface_on_two_and_three_ranks_gives_the_serial_answer() {
         let e = csv_difference(&case.dir.join("serial/contact.csv"), &case.dir.join(format!("{out}/contact.csv")));
         let summary = common::json(&case.dir.join(format!("{out}/summary.json")));
         let ranks = summary["ranks"].as_array().expect("ranks");
-        let per_iteration: Vec<u64> = ranks.iter().map(|r| r["bytes_sent_per_contact_iteration"].as_u64().expect("bytes")).collect();
+        let per_iteration: Vec<u64> =
+            ranks.iter().map(|r| r["bytes_sent_per_contact_iteration"].as_u64().expect("bytes")).collect();
         eprintln!("iterative interface, {n} ranks: contact.csv differs from serial by {e:.1e}; bytes sent per contact iteration {per_iteration:?}");
         assert!(e < 1e-8, "{n} ranks: {e:.2e}");
         assert!(summary["counters"]["interface_applications"].as_u64().expect("applications") > 0);
-        assert!(per_iteration[1..].iter().all(|&b| b > 0), "the other ranks send S d during the iteration: {per_iteration:?}");
+        assert!(
+            per_iteration[1..].iter().all(|&b| b > 0),
+            "the other ranks send S d during the iteration: {per_iteration:?}"
+        );
     }
 }
 
@@ -106,7 +120,16 @@ fn a_rock_mass_of_27_blocks_on_two_and_three_ranks_gives_the_serial_answer() {
     // the sparse interface: each rank condenses its blocks, rank 0 factorises the means
     let case = Case::new("mpi-blocks");
     case.copy("geo/rockmass.geo");
-    let text = common::scenes::edited("geo/rockmass.toml", &[("setnumber = { n = 4, m = 2, hex = 1, serendipity = 1 }", "setnumber = { n = 3, m = 1, hex = 1, serendipity = 1 }"), ("factors = [0.0, 1.0]", "factors = [0.5, 1.0]")]);
+    let text = common::scenes::edited(
+        "geo/rockmass.toml",
+        &[
+            (
+                "setnumber = { n = 4, m = 2, hex = 1, serendipity = 1 }",
+                "setnumber = { n = 3, m = 1, hex = 1, serendipity = 1 }",
+            ),
+            ("factors = [0.0, 1.0]", "factors = [0.5, 1.0]"),
+        ],
+    );
     case.write("mass.toml", &text);
     solve_ok(&case, 0, "mass.toml", "serial", &[]);
     for n in [2, 3] {
@@ -143,11 +166,18 @@ fn a_failure_on_any_rank_ends_every_rank_with_one_message_and_no_results() {
     // the upper block pulled off the lower one: held by nothing once the joint opens
     let text = common::scenes::edited(
         "geo/blocks3d.toml",
-        &[("setnumber = { lc = 0.1, hex = 0 }", "setnumber = { lc = 0.25, hex = 0 }"), ("traction = [0.3, 0.0, -1.0]", "traction = [0.0, 0.0, 1.0]")],
+        &[
+            ("setnumber = { lc = 0.1, hex = 0 }", "setnumber = { lc = 0.25, hex = 0 }"),
+            ("traction = [0.3, 0.0, -1.0]", "traction = [0.0, 0.0, 1.0]"),
+        ],
     );
     case.write("pulled.toml", &text);
     for interface in ["dense", "iterative"] {
-        let o = mpirun(&case, 2, &["solve", "pulled.toml", "--out", "out", "--quiet", "--substructures", "2", "--interface", interface]);
+        let o = mpirun(
+            &case,
+            2,
+            &["solve", "pulled.toml", "--out", "out", "--quiet", "--substructures", "2", "--interface", interface],
+        );
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(!o.status.success(), "{interface}");
         assert_eq!(err.matches("error:").count(), 1, "{interface}: one message: {err}");
@@ -166,23 +196,43 @@ fn the_safety_search_on_two_ranks_gives_the_serial_factor() {
     let case = Case::new("mpi-safety");
     case.copy("geo/dam.geo");
     case.copy("geo/dam.toml");
-    let factor = |out: &str| common::json(&case.dir.join(out).join("summary.json"))["safety"]["factor"].as_f64().expect("a factor");
+    let factor = |out: &str| {
+        common::json(&case.dir.join(out).join("summary.json"))["safety"]["factor"].as_f64().expect("a factor")
+    };
     for interface in ["dense", "iterative"] {
         let serial = format!("serial_{interface}");
-        let args = |out: &str| vec!["safety".to_string(), "dam.toml".into(), "--out".into(), out.to_string(), "--quiet".into(), "--substructures".into(), "2".into(), "--interface".into(), interface.into()];
+        let args = |out: &str| {
+            vec![
+                "safety".to_string(),
+                "dam.toml".into(),
+                "--out".into(),
+                out.to_string(),
+                "--quiet".into(),
+                "--substructures".into(),
+                "2".into(),
+                "--interface".into(),
+                interface.into(),
+            ]
+        };
         let o = case.cli(&args(&serial).iter().map(String::as_str).collect::<Vec<_>>());
         assert!(o.status.success(), "serial: {}", String::from_utf8_lossy(&o.stderr));
         let np2 = format!("np2_{interface}");
         let o = mpirun(&case, 2, &args(&np2).iter().map(String::as_str).collect::<Vec<_>>());
         assert!(o.status.success(), "2 ranks: {}", String::from_utf8_lossy(&o.stderr));
         let (fs, fm) = (factor(&serial), factor(&np2));
-        let e = csv_difference(&case.dir.join(format!("{serial}/safety_contact.csv")), &case.dir.join(format!("{np2}/safety_contact.csv")));
+        let e = csv_difference(
+            &case.dir.join(format!("{serial}/safety_contact.csv")),
+            &case.dir.join(format!("{np2}/safety_contact.csv")),
+        );
         eprintln!("safety, {interface} interface: F = {fs} serial, {fm} on 2 ranks; last state differs by {e:.1e}");
         assert!((fs - fm).abs() <= 1e-3 * fs, "{interface}: F {fs} against {fm}");
         assert!(e < 1e-6, "{interface}: the last state that holds: {e:e}");
     }
     // unsafe as given: the dam's base with a tenth of its friction
-    case.write("weak.toml", &common::read(&case.dir.join("dam.toml")).replacen("friction = 0.75", "friction = 0.075", 1));
+    case.write(
+        "weak.toml",
+        &common::read(&case.dir.join("dam.toml")).replacen("friction = 0.75", "friction = 0.075", 1),
+    );
     let o = mpirun(&case, 2, &["safety", "weak.toml", "--out", "weak", "--quiet", "--substructures", "2"]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success() && !err.contains("panicked"), "{err}");

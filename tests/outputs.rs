@@ -52,21 +52,37 @@ json.dump({
 
 /// Reads a VTU with meshio; fails with a clear message when meshio is missing.
 fn meshio(path: &Path) -> Vtu {
-    let out = Command::new("python3").arg("-c").arg(MESHIO_DUMP).arg(path).output().expect("python3 must be installed to read the VTU files (make deps)");
+    let out = Command::new("python3")
+        .arg("-c")
+        .arg(MESHIO_DUMP)
+        .arg(path)
+        .output()
+        .expect("python3 must be installed to read the VTU files (make deps)");
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.code() != Some(3), "{}", stderr.trim());
     assert!(out.status.success(), "meshio cannot read {}:\n{stderr}", path.display());
     let v: Value = serde_json::from_slice(&out.stdout).expect("meshio dump is JSON");
-    let floats = |a: &Value| -> Vec<f64> { a.as_array().expect("array").iter().map(|x| x.as_f64().expect("number")).collect() };
+    let floats =
+        |a: &Value| -> Vec<f64> { a.as_array().expect("array").iter().map(|x| x.as_f64().expect("number")).collect() };
     Vtu {
         points: v["points"].as_array().unwrap().iter().map(|p| floats(p).try_into().expect("3 coordinates")).collect(),
         cells: v["cells"]
             .as_array()
             .unwrap()
             .iter()
-            .map(|b| (b[0].as_str().unwrap().to_string(), b[1].as_array().unwrap().iter().map(|c| floats(c).iter().map(|&n| n as usize).collect()).collect()))
+            .map(|b| {
+                (
+                    b[0].as_str().unwrap().to_string(),
+                    b[1].as_array().unwrap().iter().map(|c| floats(c).iter().map(|&n| n as usize).collect()).collect(),
+                )
+            })
             .collect(),
-        point_data: v["point_data"].as_object().unwrap().iter().map(|(k, a)| (k.clone(), a.as_array().unwrap().iter().map(floats).collect())).collect(),
+        point_data: v["point_data"]
+            .as_object()
+            .unwrap()
+            .iter()
+            .map(|(k, a)| (k.clone(), a.as_array().unwrap().iter().map(floats).collect()))
+            .collect(),
         cell_data: v["cell_data"].as_object().unwrap().iter().map(|(k, a)| (k.clone(), floats(a))).collect(),
     }
 }
@@ -74,7 +90,10 @@ fn meshio(path: &Path) -> Vtu {
 impl Vtu {
     /// Point field `name`, checked to have `n_comp` components at every point.
     fn field(&self, name: &str, n_comp: usize) -> &Vec<Vec<f64>> {
-        let f = self.point_data.get(name).unwrap_or_else(|| panic!("no point data `{name}`; have {:?}", self.point_data.keys().collect::<Vec<_>>()));
+        let f = self
+            .point_data
+            .get(name)
+            .unwrap_or_else(|| panic!("no point data `{name}`; have {:?}", self.point_data.keys().collect::<Vec<_>>()));
         assert_eq!(f.len(), self.points.len(), "`{name}` has a value per point");
         assert!(f.iter().all(|v| v.len() == n_comp), "`{name}` must have {n_comp} components");
         assert!(f.iter().flatten().all(|x| x.is_finite()), "`{name}` has non-finite values");
@@ -182,7 +201,11 @@ fn bodies_vtu_has_displacement_stress_von_mises_body_and_stays_quad9() {
         let dist = |p: [f64; 3], q: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]);
         let h = dist(x(0), [x(2)[0], x(2)[1]]);
         for (k, (i, j)) in [(0, 1), (1, 2), (2, 3), (3, 0)].into_iter().enumerate() {
-            assert!(dist(x(4 + k), mid(i, j)) < 0.05 * h, "quad9 cell {c:?}: node {} is not the midpoint of edge {i}-{j}", 4 + k);
+            assert!(
+                dist(x(4 + k), mid(i, j)) < 0.05 * h,
+                "quad9 cell {c:?}: node {} is not the midpoint of edge {i}-{j}",
+                4 + k
+            );
         }
         assert!(dist(x(8), mid(0, 2)) < 0.05 * h, "quad9 cell {c:?}: node 8 is not the centre");
     }
@@ -198,7 +221,12 @@ fn von_mises_field_is_von_mises_of_the_stress_field() {
     let scale = vm.iter().map(|v| v[0]).fold(0.0, f64::max);
     assert!(scale > 0.0);
     for (i, (s, v)) in stress.iter().zip(vm).enumerate() {
-        assert!((von_mises(s) - v[0]).abs() <= 1e-12 * scale, "point {i}: von_mises {} but the stress {s:?} gives {}", v[0], von_mises(s));
+        assert!(
+            (von_mises(s) - v[0]).abs() <= 1e-12 * scale,
+            "point {i}: von_mises {} but the stress {s:?} gives {}",
+            v[0],
+            von_mises(s)
+        );
     }
     // plane strain: szz = nu (sxx + syy), no out-of-plane shear
     for s in stress {
@@ -238,7 +266,10 @@ fn contact_csv_has_the_promised_header_and_one_row_per_pair() {
     let r = cylinder();
     // the promised columns first, then the ones added since (area, global
     // shear vector; the pair's normal, its contact group and its two blocks)
-    assert_eq!(r.csv_header, "pair,x,y,z,status,sigma_n,tau_t,tau_b,gap,slip,area,tau_x,tau_y,tau_z,n_x,n_y,n_z,contact,block_i,block_ii");
+    assert_eq!(
+        r.csv_header,
+        "pair,x,y,z,status,sigma_n,tau_t,tau_b,gap,slip,area,tau_x,tau_y,tau_z,n_x,n_y,n_z,contact,block_i,block_ii"
+    );
     let text = std::fs::read_to_string(r.dir.join("contact.csv")).expect("contact.csv");
     assert!(text.lines().skip(1).all(|l| l.split(',').nth(17) == Some("A-A")), "every pair is on contact A-A");
     let pairs = at(&r.summary, "contact.pairs").as_u64().unwrap() as usize;
@@ -247,16 +278,32 @@ fn contact_csv_has_the_promised_header_and_one_row_per_pair() {
     for (i, row) in r.csv.iter().enumerate() {
         assert_eq!(row["pair"], i as f64);
         let rr = row["x"].hypot(row["y"]);
-        assert!((row["x"] - row["y"]).abs() < 1e-9 && (A - 1e-9..=B + 1e-9).contains(&rr), "pair {i} is not on the 45-degree cut: {row:?}");
+        assert!(
+            (row["x"] - row["y"]).abs() < 1e-9 && (A - 1e-9..=B + 1e-9).contains(&rr),
+            "pair {i} is not on the 45-degree cut: {row:?}"
+        );
         assert_eq!(row["status"], 2.0, "all pairs stick");
         // the outward normal of body I (the first listed, below the cut): (-1, 1) / sqrt 2
         let h = 0.5f64.sqrt();
-        assert!((row["n_x"] + h).abs() < 1e-9 && (row["n_y"] - h).abs() < 1e-9 && row["n_z"] == 0.0, "pair {i}: normal {row:?}");
+        assert!(
+            (row["n_x"] + h).abs() < 1e-9 && (row["n_y"] - h).abs() < 1e-9 && row["n_z"] == 0.0,
+            "pair {i}: normal {row:?}"
+        );
         assert_eq!((row["block_i"], row["block_ii"]), (0.0, 1.0), "pair {i}: body I is the first listed");
         // tension positive: the cut carries sigma_theta > 0
         let th = lame_sigma_theta(rr);
-        assert!((row["sigma_n"] - th).abs() < 1e-3 * th, "pair {i} at r = {rr}: sigma_n {} vs Lamé {th}", row["sigma_n"]);
-        assert!(row["tau_t"].abs() < 1e-6 * th && row["tau_b"] == 0.0 && row["gap"].abs() < 1e-12 && row["slip"].abs() < 1e-12, "{row:?}");
+        assert!(
+            (row["sigma_n"] - th).abs() < 1e-3 * th,
+            "pair {i} at r = {rr}: sigma_n {} vs Lamé {th}",
+            row["sigma_n"]
+        );
+        assert!(
+            row["tau_t"].abs() < 1e-6 * th
+                && row["tau_b"] == 0.0
+                && row["gap"].abs() < 1e-12
+                && row["slip"].abs() < 1e-12,
+            "{row:?}"
+        );
     }
 }
 
@@ -272,17 +319,25 @@ fn contact_vtu_has_the_promised_fields_and_matches_contact_csv() {
     let mut names: Vec<&str> = m.point_data.keys().map(|k| k.as_str()).collect();
     names.sort();
     assert_eq!(names, ["area", "gap", "shear", "sigma_n", "slip", "status", "tau"]);
-    let (status, sigma_n, tau, gap, slip) = (m.field("status", 1), m.field("sigma_n", 1), m.field("tau", 1), m.field("gap", 1), m.field("slip", 1));
+    let (status, sigma_n, tau, gap, slip) =
+        (m.field("status", 1), m.field("sigma_n", 1), m.field("tau", 1), m.field("gap", 1), m.field("slip", 1));
     assert_eq!(m.points.len(), r.csv.len(), "one point per pair");
     let close = |a: f64, b: f64| (a - b).abs() <= 1e-11 * (1.0 + a.abs().max(b.abs()));
     for (i, x) in m.points.iter().enumerate() {
         let row = r
             .csv
             .iter()
-            .find(|row| (row["x"] - x[0]).abs() < 1e-9 && (row["y"] - x[1]).abs() < 1e-9 && (row["z"] - x[2]).abs() < 1e-9)
+            .find(|row| {
+                (row["x"] - x[0]).abs() < 1e-9 && (row["y"] - x[1]).abs() < 1e-9 && (row["z"] - x[2]).abs() < 1e-9
+            })
             .unwrap_or_else(|| panic!("contact VTU point {x:?} is no pair of contact.csv"));
         assert_eq!(status[i][0], row["status"], "status at {x:?}");
-        assert!(close(sigma_n[i][0], row["sigma_n"]), "sigma_n at {x:?}: VTU {} vs CSV {}", sigma_n[i][0], row["sigma_n"]);
+        assert!(
+            close(sigma_n[i][0], row["sigma_n"]),
+            "sigma_n at {x:?}: VTU {} vs CSV {}",
+            sigma_n[i][0],
+            row["sigma_n"]
+        );
         assert!(close(tau[i][0], row["tau_t"].hypot(row["tau_b"])), "tau at {x:?}");
         assert!(close(gap[i][0], row["gap"]) && close(slip[i][0], row["slip"]), "gap/slip at {x:?}");
     }
@@ -301,7 +356,8 @@ fn summary_json_has_the_promised_keys_with_consistent_values() {
     let it = at(s, "contact.iterations").as_u64().unwrap();
     assert!((1..=2).contains(&it), "stuck from the start: 1 or 2 iterations, got {it}");
     assert_eq!(at(s, "contact.converged"), &Value::Bool(true));
-    let states: Vec<u64> = ["stick", "slip", "open"].iter().map(|k| at(s, &format!("contact.states.{k}")).as_u64().unwrap()).collect();
+    let states: Vec<u64> =
+        ["stick", "slip", "open"].iter().map(|k| at(s, &format!("contact.states.{k}")).as_u64().unwrap()).collect();
     assert_eq!(states, [pairs, 0, 0]);
     let total = at(s, "timings_s.total").as_f64().unwrap();
     for k in ["mesh", "assemble", "condense", "interface", "recover", "output"] {
@@ -341,7 +397,8 @@ fn report_md_has_the_scene_the_iterations_the_states_and_the_papers_tables() {
     ] {
         assert!(text.contains(needle), "report.md lacks {needle:?}:\n{text}");
     }
-    let table = |title: &str| text.split(title).nth(1).unwrap().lines().skip(4).take_while(|l| l.starts_with('|')).count();
+    let table =
+        |title: &str| text.split(title).nth(1).unwrap().lines().skip(4).take_while(|l| l.starts_with('|')).count();
     assert_eq!(table("## Table 1"), 5, "Table 1 has the paper's 5 radii");
     assert_eq!(table("## Table 2"), 6, "Table 2 has the paper's 6 radii");
 }
@@ -391,11 +448,13 @@ fn mesh_is_reused_on_a_second_run_and_remade_when_setnumber_changes() {
     assert_eq!(at(&second, "mesh.nodes"), at(&first, "mesh.nodes"));
     let third = run("lc = 0.25");
     assert_eq!(at(&third, "mesh.cached"), &Value::Bool(false), "a new lc remeshes");
-    assert!(at(&third, "mesh.nodes").as_u64().unwrap() < at(&first, "mesh.nodes").as_u64().unwrap(), "lc = 0.25 is coarser than 0.2");
+    assert!(
+        at(&third, "mesh.nodes").as_u64().unwrap() < at(&first, "mesh.nodes").as_u64().unwrap(),
+        "lc = 0.25 is coarser than 0.2"
+    );
     let report = read(&case.dir.join("out/report.md"));
     assert!(!report.contains("(cached)"), "report.md of the remeshed run says cached");
 }
-
 
 /// Issue 19: ParaView blends point data `status` between 0, 1 and 2; a
 /// vertex cell per pair carries it as cell data `pair_status`, which
@@ -411,7 +470,11 @@ fn contact_vtu_has_a_categorical_status_on_a_vertex_cell_per_pair() {
     assert!(status[..facets].iter().all(|&s| s == -1.0), "-1 on the facets");
     for (cell, &s) in m.cells[1].1.iter().zip(&status[facets..]) {
         let x = m.points[cell[0]];
-        let row = r.csv.iter().find(|row| (row["x"] - x[0]).abs() < 1e-9 && (row["y"] - x[1]).abs() < 1e-9).expect("a pair of contact.csv");
+        let row = r
+            .csv
+            .iter()
+            .find(|row| (row["x"] - x[0]).abs() < 1e-9 && (row["y"] - x[1]).abs() < 1e-9)
+            .expect("a pair of contact.csv");
         assert_eq!(s, row["status"], "pair at {x:?}");
     }
     let interface = m.cell_data.get("interface").expect("cell data interface");
@@ -440,17 +503,32 @@ fn dam_steps_report_their_factors_and_the_report_the_summarys_timings() {
     assert!(m.cell_data["pair_status"].iter().any(|&s| s == 2.0));
 
     let report = read(&dir.join("report.md"));
-    for row in ["| step | gravity | \"upstream_face\", \"reservoir_floor\" | iterations | stick / slip / open | converged |", "| 1 | 1 | 0 | ", "| 2 | 1 | 0.5 | ", "| 3 | 1 | 1 | "] {
+    for row in [
+        "| step | gravity | \"upstream_face\", \"reservoir_floor\" | iterations | stick / slip / open | converged |",
+        "| 1 | 1 | 0 | ",
+        "| 2 | 1 | 0.5 | ",
+        "| 3 | 1 | 1 | ",
+    ] {
         assert!(report.contains(row), "report.md lacks {row:?}:\n{report}");
     }
     assert!(!report.contains("ramp k/N"));
     let summary = json(&dir.join("summary.json"));
     let steps = summary["steps"].as_array().expect("steps");
-    assert_eq!(steps[1]["case_factors"].as_array().map(|a| a.len()), Some(5), "ramp, two loads, gravity, initial stress");
+    assert_eq!(
+        steps[1]["case_factors"].as_array().map(|a| a.len()),
+        Some(5),
+        "ramp, two loads, gravity, initial stress"
+    );
     // the timings row of report.md, to its three decimals, is summary.json's
     let t = &summary["timings_s"];
-    let want: Vec<String> = ["mesh", "model", "assemble", "condense", "interface", "recover", "output", "total"].iter().map(|k| format!("{:.3}", t[k].as_f64().expect("a timing"))).collect();
-    let row = format!("| time mesh / model / assemble / condense / interface / recover / output / total (s) | {} |", want.join(" / "));
+    let want: Vec<String> = ["mesh", "model", "assemble", "condense", "interface", "recover", "output", "total"]
+        .iter()
+        .map(|k| format!("{:.3}", t[k].as_f64().expect("a timing")))
+        .collect();
+    let row = format!(
+        "| time mesh / model / assemble / condense / interface / recover / output / total (s) | {} |",
+        want.join(" / ")
+    );
     assert!(report.contains(&row), "report.md lacks {row:?}:\n{report}");
     assert!(t["output"].as_f64().unwrap() > 0.0, "the output stage is timed");
 
@@ -481,10 +559,17 @@ fn bodies_bonded_without_a_contact_are_warned_of() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let stderr = String::from_utf8_lossy(&out.stderr);
     let says = "bodies \"bottom\" and \"top\" share";
-    assert!(stderr.contains(&format!("warning: glued.toml: {says}")) && stderr.contains("so they are bonded there"), "{stderr}");
+    assert!(
+        stderr.contains(&format!("warning: glued.toml: {says}")) && stderr.contains("so they are bonded there"),
+        "{stderr}"
+    );
     let summary = json(&case.dir.join("out/summary.json"));
-    let warnings: Vec<&str> = summary["warnings"].as_array().expect("warnings").iter().filter_map(|w| w.as_str()).collect();
-    assert!(warnings.len() == 1 && warnings[0].contains(says) && warnings[0].contains("add a [[contacts]] entry"), "{warnings:?}");
+    let warnings: Vec<&str> =
+        summary["warnings"].as_array().expect("warnings").iter().filter_map(|w| w.as_str()).collect();
+    assert!(
+        warnings.len() == 1 && warnings[0].contains(says) && warnings[0].contains("add a [[contacts]] entry"),
+        "{warnings:?}"
+    );
     let report = read(&case.dir.join("out/report.md"));
     assert!(report.contains(&format!("**Warning:** glued.toml: {says}")), "{report}");
     let check = case.cli(&["check", "glued.toml"]);

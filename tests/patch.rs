@@ -103,7 +103,9 @@ impl Uniform {
     fn strain(&self) -> [[f64; 3]; 3] {
         let s = self.tensor();
         let tr = s[0][0] + s[1][1] + s[2][2];
-        std::array::from_fn(|i| std::array::from_fn(|j| ((1.0 + NU) * s[i][j] - if i == j { NU * tr } else { 0.0 }) / E))
+        std::array::from_fn(|i| {
+            std::array::from_fn(|j| ((1.0 + NU) * s[i][j] - if i == j { NU * tr } else { 0.0 }) / E)
+        })
     }
 }
 
@@ -193,13 +195,27 @@ fn kinds_3d() -> Vec<Kind> {
 }
 
 /// The scene of one patch run.
-fn scene(geo: &str, analysis: &str, k: &Kind, switch: &str, loads: &[(String, String)], supports: &[(&str, &str)]) -> String {
+fn scene(
+    geo: &str,
+    analysis: &str,
+    k: &Kind,
+    switch: &str,
+    loads: &[(String, String)],
+    supports: &[(&str, &str)],
+) -> String {
     let set = format!("{switch} = {}, serendipity = {}", k.structured as u8, k.serendipity as u8);
     scene_with(geo, analysis, k.order, &set, loads, supports)
 }
 
 /// The scene of one patch run, with the `setnumber` entries `set`.
-fn scene_with(geo: &str, analysis: &str, order: usize, set: &str, loads: &[(String, String)], supports: &[(&str, &str)]) -> String {
+fn scene_with(
+    geo: &str,
+    analysis: &str,
+    order: usize,
+    set: &str,
+    loads: &[(String, String)],
+    supports: &[(&str, &str)],
+) -> String {
     let mut s = format!(
         "mesh = \"{geo}\"\nanalysis = \"{analysis}\"\n\n[gmsh]\norder = {order}\nsetnumber = {{ {set} }}\n\n\
          [materials.m]\nE = {E}\nnu = {NU}\n\n[[bodies]]\ngroup = \"body\"\nmaterial = \"m\"\n"
@@ -259,12 +275,14 @@ fn deviation(run: &Run, sigma: &[f64; 6], u_exact: &dyn Fn(Vec3) -> Vec3, probe:
         let d = material::d_matrix(m.analysis, body.e, body.nu);
         for cell in &body.cells {
             let xe: Vec<Vec3> = cell.nodes.iter().map(|&n| m.coords[n]).collect();
-            let ue: Vec<f64> = cell.nodes.iter().flat_map(|&n| (0..nd).map(move |c| run.last().u[n * nd + c])).collect();
+            let ue: Vec<f64> =
+                cell.nodes.iter().flat_map(|&n| (0..nd).map(move |c| run.last().u[n * nd + c])).collect();
             // the strain the stiffness used: B-bar's where the cell has it
             let mean = element::mean_dilatation(m.analysis, cell.kind, body.nu, &xe, &ue);
             for q in quadrature::stiffness_rule(cell.kind) {
                 let p = element::point(cell.kind, &xe, q.xi).expect("cell not inverted");
-                let s = material::full_stress(m.analysis, body.e, body.nu, &d, &element::strain(m.analysis, &p, &ue, mean));
+                let s =
+                    material::full_stress(m.analysis, body.e, body.nu, &d, &element::strain(m.analysis, &p, &ue, mean));
                 dev.gauss = worst(dev.gauss, stress_dev(&s, sigma, scale));
                 n_points += 1;
             }
@@ -311,7 +329,10 @@ fn non_affinity(kind: CellKind, corners: &[Vec3]) -> f64 {
     if matches!(kind, CellKind::Tri3 | CellKind::Tri6 | CellKind::Tet4 | CellKind::Tet10) {
         return 0.0;
     }
-    let size = corners.iter().flat_map(|x| corners.iter().map(move |y| dot(sub(*x, *y), sub(*x, *y)).sqrt())).fold(0.0, f64::max);
+    let size = corners
+        .iter()
+        .flat_map(|x| corners.iter().map(move |y| dot(sub(*x, *y), sub(*x, *y)).sqrt()))
+        .fold(0.0, f64::max);
     let len = |v: Vec3| dot(v, v).sqrt();
     match kind.n_corners() {
         // a prism is affine when its top triangle is its bottom one translated
@@ -328,8 +349,9 @@ fn non_affinity(kind: CellKind, corners: &[Vec3]) -> f64 {
     // squares affine fit is c + sum_j xi_j a_j with a_j = sum x xi_j / n
     let c = centroid(corners);
     let nn = corners.len() as f64;
-    let a: Vec<Vec3> =
-        (0..kind.dim()).map(|j| std::array::from_fn(|i| corners.iter().zip(refs).map(|(x, r)| x[i] * r[j]).sum::<f64>() / nn)).collect();
+    let a: Vec<Vec3> = (0..kind.dim())
+        .map(|j| std::array::from_fn(|i| corners.iter().zip(refs).map(|(x, r)| x[i] * r[j]).sum::<f64>() / nn))
+        .collect();
     let mut res: f64 = 0.0;
     let mut size: f64 = 0.0;
     for (x, r) in corners.iter().zip(refs) {
@@ -390,7 +412,8 @@ fn patch_2d(analysis: &str, sigma_in: Uniform, sigma_out: [f64; 6]) {
         })
         .collect();
     let axisym = analysis == "axisymmetric";
-    let supports: Vec<(&str, &str)> = if axisym { vec![("A", "[\"y\"]")] } else { vec![("A", "[\"x\", \"y\"]"), ("B", "[\"y\"]")] };
+    let supports: Vec<(&str, &str)> =
+        if axisym { vec![("A", "[\"y\"]")] } else { vec![("A", "[\"x\", \"y\"]"), ("B", "[\"y\"]")] };
     let eps = sigma_in.strain();
     let (a, b) = (pts[&1], pts[&2]);
     // the rigid rotation w that keeps u_y(B) = 0 with u(A) = 0: u = eps d + w (-d_y, d_x)
@@ -481,7 +504,10 @@ fn uniform_stress_is_exact_in_axisymmetry_up_to_and_on_the_axis() {
     let loads: Vec<(String, String)> = [(1, 2), (2, 3), (3, 4)]
         .iter()
         .map(|&(i, j)| {
-            (format!("side_{i}{j}"), format!("traction = {}", fmt_vec(sigma.traction(outward_normal(&[pts[&i], pts[&j]], c)), 2)))
+            (
+                format!("side_{i}{j}"),
+                format!("traction = {}", fmt_vec(sigma.traction(outward_normal(&[pts[&i], pts[&j]], c)), 2)),
+            )
         })
         .collect();
     let eps = sigma.strain();
@@ -659,7 +685,8 @@ fn uniform_stress_is_exact_on_distorted_prism6_prism15_prism18() {
 fn uniform_stress_is_exact_on_distorted_pyramid5_pyramid13_pyramid14_among_tetrahedra() {
     use CellKind::*;
     // a pyramid on each quadrangle of the faces, none of them a parallelogram
-    let runs = shell_runs(2, [[Tet4, Pyramid5], [Tet10, Pyramid14], [Tet10, Pyramid13]], [Pyramid5, Pyramid14, Pyramid13]);
+    let runs =
+        shell_runs(2, [[Tet4, Pyramid5], [Tet10, Pyramid14], [Tet10, Pyramid13]], [Pyramid5, Pyramid14, Pyramid13]);
     solid_patch("patch-pyramid", "tests/geo/patch_shell.geo", &runs);
 }
 
@@ -672,16 +699,17 @@ fn uniform_stress_is_exact_on_mixed_hexahedra_prisms_pyramids_and_tetrahedra() {
     use CellKind::*;
     let runs = shell_runs(3, [[Hex8, Prism6], [Hex27, Prism18], [Hex20, Prism15]], [Prism6, Prism18, Prism15]);
     solid_patch("patch-hex-prism", "tests/geo/patch_shell.geo", &runs);
-    let runs: Vec<SolidRun> = [(1, 0, [Hex8, Tet4, Pyramid5]), (2, 0, [Hex27, Tet10, Pyramid14]), (2, 1, [Hex20, Tet10, Pyramid13])]
-        .into_iter()
-        .map(|(order, serendipity, kinds)| SolidRun {
-            name: kinds.iter().map(|k| k.name()).collect::<Vec<_>>().join("+"),
-            set: format!("mixed = 1, n = 2, serendipity = {serendipity}"),
-            order,
-            kinds: kinds.to_vec(),
-            distorted: Some(kinds[2]),
-        })
-        .collect();
+    let runs: Vec<SolidRun> =
+        [(1, 0, [Hex8, Tet4, Pyramid5]), (2, 0, [Hex27, Tet10, Pyramid14]), (2, 1, [Hex20, Tet10, Pyramid13])]
+            .into_iter()
+            .map(|(order, serendipity, kinds)| SolidRun {
+                name: kinds.iter().map(|k| k.name()).collect::<Vec<_>>().join("+"),
+                set: format!("mixed = 1, n = 2, serendipity = {serendipity}"),
+                order,
+                kinds: kinds.to_vec(),
+                distorted: Some(kinds[2]),
+            })
+            .collect();
     solid_patch("patch-hex-pyramid-tet", "tests/geo/patch_hex.geo", &runs);
 }
 
@@ -779,14 +807,25 @@ fn hydrostatic_stress_is_exact_on_curved_tri6_quad8_quad9_in_plane_strain_and_qu
     let kinds: Vec<Kind> = kinds_2d().into_iter().filter(|k| k.order == 2).collect();
     let supports = [("A", "[\"x\", \"y\"]"), ("B", "[\"y\"]")];
     let probe = (polar(2.1, 20.0), polar(3.9, 70.0));
-    let mut failures = hydrostatic(&case, "patch_curved.geo", "plane_strain", "quads", &kinds, &supports, &u_exact, sigma.0, probe);
+    let mut failures =
+        hydrostatic(&case, "patch_curved.geo", "plane_strain", "quads", &kinds, &supports, &u_exact, sigma.0, probe);
 
     // axisymmetric: sigma_rr = sigma_zz = sigma_tt = -p, u_r = eps r, u_z = eps (z - z_A)
     let sigma = Uniform([-P, -P, -P, 0.0, 0.0, 0.0]);
     let eps = sigma.strain()[0][0];
     let u_exact = move |x: Vec3| -> Vec3 { [eps * x[0], eps * (x[1] - a[1]), 0.0] };
     let kinds: Vec<Kind> = kinds_2d().into_iter().filter(|k| k.order == 2 && k.structured).collect();
-    failures.extend(hydrostatic(&case, "patch_curved.geo", "axisymmetric", "quads", &kinds, &[("A", "[\"y\"]")], &u_exact, sigma.0, probe));
+    failures.extend(hydrostatic(
+        &case,
+        "patch_curved.geo",
+        "axisymmetric",
+        "quads",
+        &kinds,
+        &[("A", "[\"y\"]")],
+        &u_exact,
+        sigma.0,
+        probe,
+    ));
     assert!(failures.is_empty(), "patch test failed:\n{}", failures.join("\n"));
 }
 
@@ -846,6 +885,7 @@ fn hydrostatic_stress_is_exact_on_curved_prism15_prism18() {
     let supports = [("A", "[\"x\", \"y\", \"z\"]"), ("B", "[\"y\", \"z\"]"), ("C", "[\"z\"]")];
     let (from, to) = (polar(2.1, 20.0), polar(3.9, 70.0));
     let probe = ([from[0], from[1], 0.1], [to[0], to[1], 1.4]);
-    let failures = hydrostatic(&case, "patch_curved_3d.geo", "solid", "prisms", &kinds, &supports, &u_exact, sigma.0, probe);
+    let failures =
+        hydrostatic(&case, "patch_curved_3d.geo", "solid", "prisms", &kinds, &supports, &u_exact, sigma.0, probe);
     assert!(failures.is_empty(), "patch test failed:\n{}", failures.join("\n"));
 }

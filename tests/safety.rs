@@ -58,9 +58,19 @@ fn incline(solid: bool, friction: f64, cohesion: f64, safety: &str) -> String {
     let (s, c) = THETA.to_radians().sin_cos();
     let (mesh, gmsh, gravity, analysis) = if solid {
         let (a, b) = 30f64.to_radians().sin_cos();
-        ("contact_stack3d.geo", "order = 2\nsetnumber = { n = 3, nz = 2, hex = 1, serendipity = 1 }", format!("[{}, {}, {}]", 10.0 * s * b, -10.0 * c, 10.0 * s * a), "solid")
+        (
+            "contact_stack3d.geo",
+            "order = 2\nsetnumber = { n = 3, nz = 2, hex = 1, serendipity = 1 }",
+            format!("[{}, {}, {}]", 10.0 * s * b, -10.0 * c, 10.0 * s * a),
+            "solid",
+        )
     } else {
-        ("contact_stack.geo", "order = 2\nsetnumber = { n = 4 }", format!("[{}, {}]", 10.0 * s, -10.0 * c), "plane_strain")
+        (
+            "contact_stack.geo",
+            "order = 2\nsetnumber = { n = 4 }",
+            format!("[{}, {}]", 10.0 * s, -10.0 * c),
+            "plane_strain",
+        )
     };
     let fix = if solid { "[\"x\", \"y\", \"z\"]" } else { "[\"x\", \"y\"]" };
     format!(
@@ -104,9 +114,22 @@ fn assert_cost(what: &str, safety: &Value, summary: &Value) {
     let its = safety["cost"]["contact_iterations"].as_u64().expect("iterations");
     assert_eq!(trials as usize, safety["trials"].as_array().map_or(0, Vec::len));
     assert!(trials >= 3 && its >= trials, "{what}: {trials} trials, {its} contact iterations");
-    let steps: u64 = summary["steps"].as_array().expect("steps").iter().map(|s| s["contact"]["iterations"].as_u64().unwrap_or(0)).sum();
-    assert_eq!(summary["counters"]["interface_solves"].as_u64(), Some(steps + its), "{what}: the counters count the search's iterations");
-    eprintln!("{what}: {trials} trials, {its} contact iterations ({:.1} per trial), {:.4} s per trial", its as f64 / trials as f64, safety["cost_per_trial"]["seconds"].as_f64().unwrap_or(0.0));
+    let steps: u64 = summary["steps"]
+        .as_array()
+        .expect("steps")
+        .iter()
+        .map(|s| s["contact"]["iterations"].as_u64().unwrap_or(0))
+        .sum();
+    assert_eq!(
+        summary["counters"]["interface_solves"].as_u64(),
+        Some(steps + its),
+        "{what}: the counters count the search's iterations"
+    );
+    eprintln!(
+        "{what}: {trials} trials, {its} contact iterations ({:.1} per trial), {:.4} s per trial",
+        its as f64 / trials as f64,
+        safety["cost_per_trial"]["seconds"].as_f64().unwrap_or(0.0)
+    );
 }
 
 #[test]
@@ -128,14 +151,23 @@ fn a_block_on_an_inclined_plane_slides_at_the_limit_equilibrium_factor_in_2d_and
         assert_eq!(s["failure"]["blocks"][0]["body"], "top", "{dim}: the top block slides");
         says(&stderr, &["safety: F = 1.1000 holds", "fails at contact iteration", "\"top\""]);
         let dir = case.dir.join(format!("out{dim}"));
-        for f in ["safety.csv", "safety_contact.csv", "safety_deformed_displacement.png", "safety_interfaces.svg", &format!("incline{dim}_safety.vtu")] {
+        for f in [
+            "safety.csv",
+            "safety_contact.csv",
+            "safety_deformed_displacement.png",
+            "safety_interfaces.svg",
+            &format!("incline{dim}_safety.vtu"),
+        ] {
             assert!(dir.join(f).is_file(), "{dim}: {f} written");
         }
         if solid {
             assert!(dir.join("safety_plan_joint.png").is_file(), "3D: the joint's plan at F");
         }
         let report = read(&dir.join("report.md"));
-        says(&report, &["## Factor of safety against sliding", "none in the search", "(safety_deformed_displacement.png)"]);
+        says(
+            &report,
+            &["## Factor of safety against sliding", "none in the search", "(safety_deformed_displacement.png)"],
+        );
 
         // cohesion kept while slipping: (c A + W cos tan phi) / (W sin)
         let scene = format!("cohesion{dim}.toml");
@@ -169,8 +201,22 @@ fn the_block_of_design_section_5_and_an_unsafe_one() {
     case.write("slides.toml", &incline(false, 0.3, 0.0, ""));
     let o = case.cli(&["safety", "slides.toml", "--out", "slides", "--quiet"]);
     let msg = clean_failure(&case, &o, &case.dir.join("slides"));
-    says(&msg, &["slides.toml: unsafe as given", "(F = 1)", "body \"top\" slides or rotates freely", "below 1: F = 0.", "no result files were written"]);
-    let f: f64 = msg.split("below 1: F = ").nth(1).and_then(|r| r.split(' ').next()).and_then(|v| v.parse().ok()).expect("F in the message");
+    says(
+        &msg,
+        &[
+            "slides.toml: unsafe as given",
+            "(F = 1)",
+            "body \"top\" slides or rotates freely",
+            "below 1: F = 0.",
+            "no result files were written",
+        ],
+    );
+    let f: f64 = msg
+        .split("below 1: F = ")
+        .nth(1)
+        .and_then(|r| r.split(' ').next())
+        .and_then(|v| v.parse().ok())
+        .expect("F in the message");
     eprintln!("f = 0.3: unsafe as given, F = {f} against {:.5}", 0.3 / tan);
     assert!((f / (0.3 / tan) - 1.0).abs() < 0.01, "F = {f} below 1");
 }
@@ -232,7 +278,8 @@ fn the_dams_base_slides_at_the_factor_of_its_resultants() {
     eprintln!("dam base: N = {n:.4} MN/m, T = {:.4} MN/m: F = f N / T = {hand:.5}", t[0].hypot(t[1]));
     assert_factor("dam", &s, hand, 0.002);
     assert_cost("dam", &s, &summary);
-    let blocks: Vec<&str> = s["failure"]["blocks"].as_array().expect("blocks").iter().filter_map(|b| b["body"].as_str()).collect();
+    let blocks: Vec<&str> =
+        s["failure"]["blocks"].as_array().expect("blocks").iter().filter_map(|b| b["body"].as_str()).collect();
     assert_eq!(blocks, ["block_1", "block_2", "block_3"], "the dam slides on its base");
 }
 
@@ -247,9 +294,22 @@ fn a_search_that_reaches_its_bound_says_so() {
     let (stdout, stderr) = (String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
     assert!(o.status.success(), "a bound is a result: {stderr}");
     says(&stdout, &["F > 1.5 (the search reached its bound)"]);
-    says(&stderr, &["safety: F = 1.2000 holds", "safety: F = 1.4000 holds", "safety: F = 1.5000 holds", "warning: ", "reached its bound safety.max_factor = 1.5", "Raise max_factor"]);
+    says(
+        &stderr,
+        &[
+            "safety: F = 1.2000 holds",
+            "safety: F = 1.4000 holds",
+            "safety: F = 1.5000 holds",
+            "warning: ",
+            "reached its bound safety.max_factor = 1.5",
+            "Raise max_factor",
+        ],
+    );
     let s = json(&case.dir.join("bound/summary.json"))["safety"].clone();
-    assert_eq!((s["bound_reached"].as_bool(), s["factor"].as_f64(), s["fails_at"].as_f64()), (Some(true), Some(1.5), None));
+    assert_eq!(
+        (s["bound_reached"].as_bool(), s["factor"].as_f64(), s["fails_at"].as_f64()),
+        (Some(true), Some(1.5), None)
+    );
     says(&read(&case.dir.join("bound/report.md")), &["**F > 1.5**: the search reached its bound"]);
 }
 

@@ -60,8 +60,7 @@ fn a_body_without_contact_is_not_condensed() {
 fn parts_are_factorised_once_for_all_iterations_and_load_steps() {
     let case = Case::new("skip-steps");
     case.copy("geo/block_push.geo");
-    let toml = repo_text("geo/block_push.toml")
-        + "\n[solver]\nload_steps = 3\n";
+    let toml = repo_text("geo/block_push.toml") + "\n[solver]\nload_steps = 3\n";
     let scene = case.write("block_push.toml", &toml);
     let run = case.run(&scene).expect("run");
     let c = counters(&run);

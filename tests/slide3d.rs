@@ -72,6 +72,9 @@ uz = 6.0e-3
     // and the slip is diagonal, not along one axis: both x and z components
     let p = run.model.pairs.len() / 2;
     let pair = &run.model.pairs[p];
-    let (dx, dz) = (run.last().u[pair.l * nd] - run.last().u[pair.k * nd], run.last().u[pair.l * nd + 2] - run.last().u[pair.k * nd + 2]);
+    let (dx, dz) = (
+        run.last().u[pair.l * nd] - run.last().u[pair.k * nd],
+        run.last().u[pair.l * nd + 2] - run.last().u[pair.k * nd + 2],
+    );
     assert!(dx.abs() > 1e-5 && dz.abs() > 1e-5, "diagonal slip ({dx:e}, {dz:e})");
 }

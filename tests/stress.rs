@@ -97,19 +97,30 @@ use units::{units_case, units_compound_case};
 fn solve(case: &Case, name: &str, text: &str, bonded: bool) -> Run {
     let path = case.write(&format!("{name}.toml"), text);
     let out = case.out(&format!("{name}{}", if bonded { "-bonded" } else { "" }));
-    driver::run(&path, &RunOptions { out: Some(out), bonded, skip_output: true, ..Default::default() }).unwrap_or_else(|e| panic!("{name}: {e:#}"))
+    driver::run(&path, &RunOptions { out: Some(out), bonded, skip_output: true, ..Default::default() })
+        .unwrap_or_else(|e| panic!("{name}: {e:#}"))
 }
 
 /// The converged contact iteration of a run (panics otherwise).
 fn converged(run: &Run) -> &ContactRun {
     let c = run.contact().unwrap_or_else(|| panic!("{}: no contact solve", run.scene.name));
-    assert!(c.summary.converged, "{}: the contact iteration did not converge ({} iterations, cycled {})", run.scene.name, c.summary.iterations, c.summary.cycled);
+    assert!(
+        c.summary.converged,
+        "{}: the contact iteration did not converge ({} iterations, cycled {})",
+        run.scene.name, c.summary.iterations, c.summary.cycled
+    );
     c
 }
 
 /// The pairs' states and the iterations, for a row's notes.
 fn states_note(c: &ContactRun) -> String {
-    format!("{} stick / {} slip / {} open, {} it.", count(c, ContactState::Stick), count(c, ContactState::Slip), count(c, ContactState::Open), c.summary.iterations)
+    format!(
+        "{} stick / {} slip / {} open, {} it.",
+        count(c, ContactState::Stick),
+        count(c, ContactState::Slip),
+        count(c, ContactState::Open),
+        c.summary.iterations
+    )
 }
 
 /// Nodal (body-averaged) stress of model node `n` in body `b`.
@@ -172,12 +183,30 @@ fn stress_suite_full() {
     ] {
         s.run_case(&format!("contrast {} lc 0.1", m.kind), |s| contrast_case(s, m, &decades, [4e-3, 1e-5, 4e-4]));
     }
-    s.run_case("contrast quad9 lc 0.05", |s| contrast_case(s, Ring { kind: "quad9", order: 2, quad: true, serendipity: false, lc: 0.05 }, &[1.0, 1e6], [1e-3, 2e-7, 2e-5]));
-    s.run_case("contrast quad4 lc 0.1", |s| contrast_case(s, Ring { kind: "quad4", order: 1, quad: true, serendipity: false, lc: 0.1 }, &[1.0, 1e3, 1e6], [0.25, 5e-4, 5e-4]));
+    s.run_case("contrast quad9 lc 0.05", |s| {
+        contrast_case(
+            s,
+            Ring { kind: "quad9", order: 2, quad: true, serendipity: false, lc: 0.05 },
+            &[1.0, 1e6],
+            [1e-3, 2e-7, 2e-5],
+        )
+    });
+    s.run_case("contrast quad4 lc 0.1", |s| {
+        contrast_case(
+            s,
+            Ring { kind: "quad4", order: 1, quad: true, serendipity: false, lc: 0.1 },
+            &[1.0, 1e3, 1e6],
+            [0.25, 5e-4, 5e-4],
+        )
+    });
     for lc in [0.1, 0.05] {
-        s.run_case(&format!("locking lc {lc}"), |s| locking_case(s, lc, &["quad4", "hex8", "tri3", "quad9", "quad8", "tri6"], 1e-3));
+        s.run_case(&format!("locking lc {lc}"), |s| {
+            locking_case(s, lc, &["quad4", "hex8", "tri3", "quad9", "quad8", "tri6"], 1e-3)
+        });
     }
-    s.run_case("aspect, more kinds and cells", |s| aspect_case(s, &["quad4", "quad9", "quad8", "tri3", "tri6"], &[1.0, 10.0, 100.0, 1000.0], 4));
+    s.run_case("aspect, more kinds and cells", |s| {
+        aspect_case(s, &["quad4", "quad9", "quad8", "tri3", "tri6"], &[1.0, 10.0, 100.0, 1000.0], 4)
+    });
     // quad9 80 x 40: h = 0.25 m (nodes 0.125 m apart) at y ~ 4.2e6, where
     // absolute coordinates in the Jacobian lost the 1e-8 (1.2e-8 shifted,
     // 6.6e-8 shifted and rotated) before the kernels took them relative to

@@ -33,7 +33,12 @@ fn differences(a: &Run, b: &Run) -> (f64, f64) {
     let u = rel(a.last().u.iter().copied().zip(b.last().u.iter().copied()).collect());
     let (ca, cb) = (a.contact().expect("contact"), b.contact().expect("contact"));
     assert_eq!(ca.states, cb.states, "the same contact states");
-    let t = rel(ca.pairs.iter().zip(&cb.pairs).flat_map(|(p, q)| [(p.sigma_n, q.sigma_n), (p.tau_t, q.tau_t), (p.tau_b, q.tau_b)]).collect());
+    let t = rel(ca
+        .pairs
+        .iter()
+        .zip(&cb.pairs)
+        .flat_map(|(p, q)| [(p.sigma_n, q.sigma_n), (p.tau_t, q.tau_t), (p.tau_b, q.tau_b)])
+        .collect());
     (u, t)
 }
 
@@ -41,10 +46,18 @@ fn same_answer_when_cut(case: &Case, scene: &str, cuts: &[usize]) {
     let whole = solve(case, scene, 1);
     for &k in cuts {
         let cut = solve(case, scene, k);
-        assert!(cut.stats.parts.total > whole.stats.parts.total, "{scene}: {k} substructures cut the parts ({} -> {})", whole.stats.parts.total, cut.stats.parts.total);
+        assert!(
+            cut.stats.parts.total > whole.stats.parts.total,
+            "{scene}: {k} substructures cut the parts ({} -> {})",
+            whole.stats.parts.total,
+            cut.stats.parts.total
+        );
         let (u, t) = differences(&whole, &cut);
         eprintln!("{scene}, {k} substructures: {} parts, {} interface DOFs (uncut {}): displacements {u:.1e}, contact stresses {t:.1e}", cut.stats.parts.total, cut.stats.dofs.interface, whole.stats.dofs.interface);
-        assert!(u < 1e-9 && t < 1e-9, "{scene}, {k} substructures: displacements differ by {u:.1e}, contact stresses by {t:.1e}");
+        assert!(
+            u < 1e-9 && t < 1e-9,
+            "{scene}, {k} substructures: displacements differ by {u:.1e}, contact stresses by {t:.1e}"
+        );
     }
 }
 
@@ -60,6 +73,10 @@ fn a_column_whose_joins_outnumber_its_contact_unknowns_gives_the_uncut_answer() 
     let case = Case::new("substructures-column");
     common::scenes::column(&case, "column.toml", &[("lc = 0.0357142857142857", "lc = 0.125")]);
     same_answer_when_cut(&case, "column.toml", &[4]);
-    common::scenes::column(&case, "column20.toml", &[("order = 1", "order = 2"), ("lc = 0.0357142857142857, hex = 1", "lc = 0.25, hex = 1, serendipity = 1")]);
+    common::scenes::column(
+        &case,
+        "column20.toml",
+        &[("order = 1", "order = 2"), ("lc = 0.0357142857142857, hex = 1", "lc = 0.25, hex = 1, serendipity = 1")],
+    );
     same_answer_when_cut(&case, "column20.toml", &[4]);
 }

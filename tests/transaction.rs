@@ -25,7 +25,13 @@ const MANIFEST: &str = ".subcontact-manifest.json";
 /// The dam scene of variant `v` ("A" or "B"), its title naming it.
 fn dam(v: &str) -> String {
     let g = if v == "A" { "-9.81" } else { "-9.5" };
-    edited("geo/dam.toml", &[("title = \"Gravity dam", &format!("title = \"Variant {v}: gravity dam")), ("gravity = [0.0, -9.81]", &format!("gravity = [0.0, {g}]"))])
+    edited(
+        "geo/dam.toml",
+        &[
+            ("title = \"Gravity dam", &format!("title = \"Variant {v}: gravity dam")),
+            ("gravity = [0.0, -9.81]", &format!("gravity = [0.0, {g}]")),
+        ],
+    )
 }
 
 fn solve(case: &Case, scene: &str, out: &str) -> std::process::Output {
@@ -38,11 +44,17 @@ fn solve(case: &Case, scene: &str, out: &str) -> std::process::Output {
 /// their bytes; panics unless every listed file is there.
 fn results(dir: &Path) -> BTreeMap<String, Vec<u8>> {
     let m = json(&dir.join(MANIFEST));
-    let list = m["writers"]["dam"].as_array().unwrap_or_else(|| panic!("{}: the manifest lists no dam files: {m}", dir.display()));
+    let list = m["writers"]["dam"]
+        .as_array()
+        .unwrap_or_else(|| panic!("{}: the manifest lists no dam files: {m}", dir.display()));
     list.iter()
         .map(|f| {
             let f = f.as_str().expect("a name");
-            (f.to_string(), std::fs::read(dir.join(f)).unwrap_or_else(|e| panic!("{}: listed file {f} is missing: {e}", dir.display())))
+            (
+                f.to_string(),
+                std::fs::read(dir.join(f))
+                    .unwrap_or_else(|e| panic!("{}: listed file {f} is missing: {e}", dir.display())),
+            )
         })
         .collect()
 }
@@ -54,17 +66,28 @@ fn whole_set(dir: &Path, refs: &[(&str, BTreeMap<String, Vec<u8>>)]) -> Result<S
     let got = results(dir);
     for (v, r) in refs {
         if got.keys().ne(r.keys()) {
-            return Err(format!("files {:?}, expected {:?}", got.keys().collect::<Vec<_>>(), r.keys().collect::<Vec<_>>()));
+            return Err(format!(
+                "files {:?}, expected {:?}",
+                got.keys().collect::<Vec<_>>(),
+                r.keys().collect::<Vec<_>>()
+            ));
         }
         let timed = ["summary.json", "report.md"];
         if got.iter().all(|(f, b)| timed.contains(&f.as_str()) || r[f] == *b) {
             let title = json(&dir.join("summary.json"))["title"].as_str().unwrap_or("").to_string();
             let report = String::from_utf8_lossy(&got["report.md"]).into_owned();
             let name = format!("Variant {v}:");
-            return if title.starts_with(&name) && report.contains(&name) { Ok(v.to_string()) } else { Err(format!("variant {v}'s files with summary title {title:?}")) };
+            return if title.starts_with(&name) && report.contains(&name) {
+                Ok(v.to_string())
+            } else {
+                Err(format!("variant {v}'s files with summary title {title:?}"))
+            };
         }
     }
-    let mixed: Vec<String> = got.iter().map(|(f, b)| format!("{f}: {}", refs.iter().find(|(_, r)| r[f] == *b).map_or("neither", |(v, _)| v))).collect();
+    let mixed: Vec<String> = got
+        .iter()
+        .map(|(f, b)| format!("{f}: {}", refs.iter().find(|(_, r)| r[f] == *b).map_or("neither", |(v, _)| v)))
+        .collect();
     Err(format!("a mixed set: {mixed:?}"))
 }
 
@@ -85,7 +108,11 @@ impl Rng {
 /// scene's results, a photo, a sketch), and a folder of 300 pictures.
 fn user_files(out: &Path) -> Vec<(PathBuf, Vec<u8>)> {
     std::fs::create_dir_all(out.join("photos")).expect("photos");
-    let mut files: Vec<(PathBuf, Vec<u8>)> = ["notes.txt", "dam3d.vtu", "dam3d_contact.vtu", "dam_site_photo.png", "dam_sketch.svg"].iter().map(|f| (out.join(f), format!("user's {f}").into_bytes())).collect();
+    let mut files: Vec<(PathBuf, Vec<u8>)> =
+        ["notes.txt", "dam3d.vtu", "dam3d_contact.vtu", "dam_site_photo.png", "dam_sketch.svg"]
+            .iter()
+            .map(|f| (out.join(f), format!("user's {f}").into_bytes()))
+            .collect();
     files.extend((0..300).map(|i| (out.join(format!("photos/p{i:03}.png")), vec![i as u8; 100])));
     for (p, b) in &files {
         std::fs::write(p, b).expect("user file");
@@ -119,7 +146,8 @@ fn a_run_killed_at_random_instants_leaves_the_old_or_the_new_results_whole() {
     solve(&case, "dam.toml", "out");
     let run_ms = t.elapsed().as_millis() as u64;
 
-    let seed = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(1, |d| d.as_nanos() as u64) | 1;
+    let seed =
+        std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(1, |d| d.as_nanos() as u64) | 1;
     eprintln!("kill test: a run takes {run_ms} ms; seed {seed}");
     let mut rng = Rng(seed);
     let mut last = "A".to_string();
@@ -153,7 +181,12 @@ fn a_run_killed_at_random_instants_leaves_the_old_or_the_new_results_whole() {
     // the next run settles whatever the kills left beside the directory
     solve(&case, "dam.toml", "out");
     user_files_intact(&user);
-    let beside: Vec<String> = std::fs::read_dir(&case.dir).expect("dir").flatten().map(|e| e.file_name().to_string_lossy().into_owned()).filter(|n| n.starts_with(".out.")).collect();
+    let beside: Vec<String> = std::fs::read_dir(&case.dir)
+        .expect("dir")
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with(".out."))
+        .collect();
     assert_eq!(beside, [".out.lock"], "staging directories left");
 }
 
@@ -166,13 +199,20 @@ fn two_runs_into_one_directory_at_once_leave_one_whole_set() {
         std::fs::write(case.dir.join(v).join("dam.toml"), dam(v)).expect("scene");
         solve(&case, &format!("{v}/dam.toml"), &format!("ref{v}"));
     }
-    let refs: Vec<(&str, BTreeMap<String, Vec<u8>>)> = ["A", "B"].iter().map(|v| (*v, results(&case.dir.join(format!("ref{v}"))))).collect();
+    let refs: Vec<(&str, BTreeMap<String, Vec<u8>>)> =
+        ["A", "B"].iter().map(|v| (*v, results(&case.dir.join(format!("ref{v}"))))).collect();
     let user = user_files(&case.dir.join("shared"));
     for trial in 0..6 {
         let children: Vec<_> = ["A", "B"]
             .iter()
             .map(|v| {
-                Command::new(env!("CARGO_BIN_EXE_subcontact")).args(["solve", &format!("{v}/dam.toml"), "--out", "shared", "--quiet"]).current_dir(&case.dir).stdout(Stdio::null()).stderr(Stdio::piped()).spawn().expect("spawn")
+                Command::new(env!("CARGO_BIN_EXE_subcontact"))
+                    .args(["solve", &format!("{v}/dam.toml"), "--out", "shared", "--quiet"])
+                    .current_dir(&case.dir)
+                    .stdout(Stdio::null())
+                    .stderr(Stdio::piped())
+                    .spawn()
+                    .expect("spawn")
             })
             .collect();
         for c in children {
@@ -194,7 +234,12 @@ fn another_scenes_results_and_a_users_files_stay_and_a_failed_commit_changes_not
     // another scene, whose name starts with this one's, into the same folder
     case.write("dam_b.toml", &dam("B"));
     solve(&case, "dam_b.toml", "shared");
-    let theirs: Vec<String> = json(&case.dir.join("shared").join(MANIFEST))["writers"]["dam_b"].as_array().expect("dam_b's files").iter().map(|f| f.as_str().unwrap_or("").to_string()).collect();
+    let theirs: Vec<String> = json(&case.dir.join("shared").join(MANIFEST))["writers"]["dam_b"]
+        .as_array()
+        .expect("dam_b's files")
+        .iter()
+        .map(|f| f.as_str().unwrap_or("").to_string())
+        .collect();
     let user = user_files(&case.dir.join("shared"));
     solve(&case, "dam.toml", "shared");
     solve(&case, "dam.toml", "shared");
@@ -202,7 +247,8 @@ fn another_scenes_results_and_a_users_files_stay_and_a_failed_commit_changes_not
     let m = json(&case.dir.join("shared").join(MANIFEST));
     // dam_b keeps its own files; those of common names (contact.csv, the
     // pictures, summary.json) are dam's now
-    let still: Vec<&str> = m["writers"]["dam_b"].as_array().expect("dam_b's files").iter().filter_map(|f| f.as_str()).collect();
+    let still: Vec<&str> =
+        m["writers"]["dam_b"].as_array().expect("dam_b's files").iter().filter_map(|f| f.as_str()).collect();
     assert!(still.contains(&"dam_b.vtu") && still.contains(&"dam_b_contact_step003.vtu"), "{still:?}");
     for f in &theirs {
         assert!(case.dir.join("shared").join(f).is_file(), "{f} of the other scene was removed");
@@ -236,7 +282,13 @@ fn a_pipe_whose_reader_leaves_silences_the_run_but_does_not_stop_it() {
     case.write("dam.toml", &dam("A"));
     for args in [&["solve", "dam.toml", "--out", "out"][..], &["check", "dam.toml"][..], &["--help"][..]] {
         let (reader, writer) = std::io::pipe().expect("pipe");
-        let mut child = Command::new(env!("CARGO_BIN_EXE_subcontact")).args(args).current_dir(&case.dir).stdout(writer.try_clone().expect("clone")).stderr(writer).spawn().expect("spawn");
+        let mut child = Command::new(env!("CARGO_BIN_EXE_subcontact"))
+            .args(args)
+            .current_dir(&case.dir)
+            .stdout(writer.try_clone().expect("clone"))
+            .stderr(writer)
+            .spawn()
+            .expect("spawn");
         let mut first = String::new();
         std::io::BufReader::new(reader).read_line(&mut first).expect("a first line");
         // the reader is gone now: every later write meets a broken pipe

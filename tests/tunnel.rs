@@ -30,10 +30,10 @@ mod common;
 
 use common::measure::max_abs;
 use common::{read, repo_text, Case};
+use subcontact::analytic::lining::{self, Comparison};
 use subcontact::analytic::TunnelSlip;
 use subcontact::contact::law::ContactState;
 use subcontact::driver::Run;
-use subcontact::analytic::lining::{self, Comparison};
 use subcontact::scene::{Analytic, Scene};
 
 /// Copies the shipped scene `name` (and tunnel.geo) into the case as `out`,
@@ -147,11 +147,18 @@ fn far_boundary_at_10_radii_is_too_close_for_the_moment() {
     // underestimates it, each by more than the 3 % budget; at 40 R both
     // agree with the closed form (coarse mesh: lc = 0.2, 3 elements through).
     let case = Case::new("tunnel-far");
-    let mesh = |d: f64, nr: usize| format!("setnumber = {{ lc = 0.2, nl = 3, nr = {nr}, R = 5.0, t = 0.125, D = {d:.1} }}");
+    let mesh =
+        |d: f64, nr: usize| format!("setnumber = {{ lc = 0.2, nl = 3, nr = {nr}, R = 5.0, t = 0.125, D = {d:.1} }}");
     let shipped = "setnumber = { lc = 0.1, nl = 4, nr = 52, R = 5.0, t = 0.125, D = 200.0 }";
     let held = |s: String| {
-        s.replace("[[loads]]\ngroup = \"far_x\"\npressure = 0.3", "[[supports]]\ngroup = \"far_x\"\nfix = [\"x\", \"y\"]\n# pressure = 0.3")
-            .replace("[[loads]]\ngroup = \"far_y\"\npressure = 0.6", "[[supports]]\ngroup = \"far_y\"\nfix = [\"x\", \"y\"]\n# pressure = 0.6")
+        s.replace(
+            "[[loads]]\ngroup = \"far_x\"\npressure = 0.3",
+            "[[supports]]\ngroup = \"far_x\"\nfix = [\"x\", \"y\"]\n# pressure = 0.3",
+        )
+        .replace(
+            "[[loads]]\ngroup = \"far_y\"\npressure = 0.6",
+            "[[supports]]\ngroup = \"far_y\"\nfix = [\"x\", \"y\"]\n# pressure = 0.6",
+        )
     };
     let mut m2_error = Vec::new();
     for (d, nr, hold) in [(50.0, 30, false), (50.0, 30, true), (200.0, 44, false)] {
@@ -170,7 +177,10 @@ fn far_boundary_at_10_radii_is_too_close_for_the_moment() {
         let (_, m2) = modes(&c, |r| r.moment);
         m2_error.push((m2 - tu.modes().2) / tu.modes().2);
     }
-    eprintln!("M2 error: D = 10 R loaded {:+.3}, held {:+.3}; D = 40 R loaded {:+.3}", m2_error[0], m2_error[1], m2_error[2]);
+    eprintln!(
+        "M2 error: D = 10 R loaded {:+.3}, held {:+.3}; D = 40 R loaded {:+.3}",
+        m2_error[0], m2_error[1], m2_error[2]
+    );
     assert!(m2_error[0] > 0.04, "loaded far boundary at 10 R: {:+.3}", m2_error[0]);
     assert!(m2_error[1] < -0.02, "held far boundary at 10 R: {:+.3}", m2_error[1]);
     assert!(m2_error[2].abs() < 0.025, "loaded far boundary at 40 R: {:+.3}", m2_error[2]);
@@ -200,6 +210,10 @@ fn lined_tunnel_scene_rules() {
     rejects("radius = 5.0", "radius = 5.0\na = 3.0", &["analytic.a", "lined_tunnel", "\"radius\""]);
     rejects("thickness = 0.125\np", "thickness = 12.0\np", &["analytic.thickness", "< 2 radius"]);
     rejects("analysis = \"plane_strain\"", "analysis = \"plane_stress\"", &["analytic.kind", "plane_strain"]);
-    rejects("material = \"concrete\"\n", "material = \"concrete\"\ninitial_stress = [0, 0, 0, 0]\n", &["bodies[0].initial_stress", "stress-free"]);
+    rejects(
+        "material = \"concrete\"\n",
+        "material = \"concrete\"\ninitial_stress = [0, 0, 0, 0]\n",
+        &["bodies[0].initial_stress", "stress-free"],
+    );
     rejects("p = 0.6\n", "", &["analytic.p", "missing"]);
 }

@@ -44,7 +44,10 @@ fn bedding_planes_carry_the_rock_above_and_the_crown_loosens() {
     let p_top = RHO_G * (50.0 - W);
     let text = common::scenes::edited(
         "geo/tunnel_joints.toml",
-        &[("setnumber = { lc = 0.6, lc_far = 2.0 }", "setnumber = { lc = 1.0, lc_far = 2.0, W = 10 }"), ("pressure = 0.92704", &format!("pressure = {p_top}"))],
+        &[
+            ("setnumber = { lc = 0.6, lc_far = 2.0 }", "setnumber = { lc = 1.0, lc_far = 2.0, W = 10 }"),
+            ("pressure = 0.92704", &format!("pressure = {p_top}")),
+        ],
     );
     let run = case.run(&case.write("tunnel_joints.toml", &text)).unwrap_or_else(|e| panic!("tunnel_joints: {e:#}"));
     let c = run.contact().expect("contact");
@@ -59,7 +62,8 @@ fn bedding_planes_carry_the_rock_above_and_the_crown_loosens() {
                 .map(|cell| {
                     let x: Vec<[f64; 3]> = cell.nodes.iter().map(|&n| m.coords[n]).collect();
                     let mut fe = vec![0.0; 2 * x.len()];
-                    element::body_force(m.analysis, cell.kind, &x, [0.0, 1.0, 0.0], m.thickness, &mut fe).expect("a valid cell");
+                    element::body_force(m.analysis, cell.kind, &x, [0.0, 1.0, 0.0], m.thickness, &mut fe)
+                        .expect("a valid cell");
                     fe.iter().skip(1).step_by(2).sum::<f64>()
                 })
                 .sum()
@@ -67,7 +71,11 @@ fn bedding_planes_carry_the_rock_above_and_the_crown_loosens() {
         .collect();
     let total: f64 = volume.iter().sum();
     let hole = (2.0 * W).powi(2) - total;
-    eprintln!("{} blocks, rock {total:.6} m^2, opening {hole:.6} m^2 (pi R^2 = {:.6})", m.bodies.len(), std::f64::consts::PI * R * R);
+    eprintln!(
+        "{} blocks, rock {total:.6} m^2, opening {hole:.6} m^2 (pi R^2 = {:.6})",
+        m.bodies.len(),
+        std::f64::consts::PI * R * R
+    );
     assert!((hole / (std::f64::consts::PI * R * R) - 1.0).abs() < 1e-3, "the meshed opening is the circle");
 
     // every bedding plane across the whole box carries the rock above it
@@ -77,23 +85,40 @@ fn bedding_planes_carry_the_rock_above_and_the_crown_loosens() {
         let on: Vec<_> = rows.iter().filter(|r| r["contact"] == "bedding" && (num(r, "y") - y).abs() < 1e-9).collect();
         let fy: f64 = on.iter().map(|r| num(r, "f_y")).sum();
         let width: f64 = on.iter().map(|r| num(r, "area")).sum();
-        let above: f64 = (0..m.bodies.len()).filter(|&b| m.bodies[b].block.expect("a block").centre[1] > y).map(|b| volume[b]).sum();
+        let above: f64 =
+            (0..m.bodies.len()).filter(|&b| m.bodies[b].block.expect("a block").centre[1] > y).map(|b| volume[b]).sum();
         let want = -(RHO_G * above + p_top * 2.0 * W);
-        eprintln!("bedding y = {y}: {} face pairs over {width:.6} m carry F_y = {fy:.10} against {want:.10} ({:.1e})", on.len(), ((fy - want) / want).abs());
+        eprintln!(
+            "bedding y = {y}: {} face pairs over {width:.6} m carry F_y = {fy:.10} against {want:.10} ({:.1e})",
+            on.len(),
+            ((fy - want) / want).abs()
+        );
         assert!((width - 2.0 * W).abs() < 1e-9, "the plane y = {y} crosses the whole box");
         assert!(((fy - want) / want).abs() < 1e-8, "the plane y = {y} carries {fy}, not {want}");
     }
 
     // the rock loosens around the opening
     let k = common::measure::count;
-    eprintln!("{} pairs: {} stick, {} slip, {} open", c.states.len(), k(c, ContactState::Stick), k(c, ContactState::Slip), k(c, ContactState::Open));
+    eprintln!(
+        "{} pairs: {} stick, {} slip, {} open",
+        c.states.len(),
+        k(c, ContactState::Stick),
+        k(c, ContactState::Slip),
+        k(c, ContactState::Open)
+    );
     assert!(k(c, ContactState::Open) > 0, "some joints open");
     let bedding = m.interfaces.iter().position(|i| i.name == "bedding").expect("bedding");
     let crown_slips = (0..m.pairs.len()).any(|p| {
         let x = m.coords[m.pairs[p].k];
-        m.pairs[p].contact == bedding && (x[1] - 4.5).abs() < 1e-9 && x[0].abs() < R && c.states[p] == ContactState::Slip
+        m.pairs[p].contact == bedding
+            && (x[1] - 4.5).abs() < 1e-9
+            && x[0].abs() < R
+            && c.states[p] == ContactState::Slip
     });
     assert!(crown_slips, "the bedding plane above the crown slips over it");
     let report = common::read(&case.out("tunnel_joints").join("report.md"));
-    assert!(report.contains(&format!("The 20 most mobilised of {} block face pairs", rows.len())), "report.md lists the most mobilised face pairs");
+    assert!(
+        report.contains(&format!("The 20 most mobilised of {} block face pairs", rows.len())),
+        "report.md lists the most mobilised face pairs"
+    );
 }

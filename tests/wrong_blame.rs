@@ -47,7 +47,8 @@ fn tiny() -> f64 {
 /// The scene text with `E` of every material (`all`: and every
 /// stress-like number, the loads, densities and strengths) times `s`.
 fn scaled(text: &str, s: f64, all: bool) -> String {
-    let stress_like = ["density", "cohesion", "tensile_strength", "residual_cohesion", "pressure", "unit_weight", "traction"];
+    let stress_like =
+        ["density", "cohesion", "tensile_strength", "residual_cohesion", "pressure", "unit_weight", "traction"];
     fn walk(v: &mut toml::Value, key: &str, s: f64, keys: &dyn Fn(&str) -> bool) {
         match v {
             toml::Value::Float(x) if keys(key) => *x *= s,
@@ -73,7 +74,13 @@ fn solve(case: &Case, scene: &str, out: &str, args: &[&str]) -> (Vec<HashMap<Str
 /// states and iterations, its stresses `force` and gaps and slips `length`
 /// times the unscaled ones (relative to the largest, 1e-10: the CSV's 13
 /// digits; unscaled they differed by up to the whole value).
-fn same_but_scaled(what: &str, base: &(Vec<HashMap<String, String>>, serde_json::Value), run: &(Vec<HashMap<String, String>>, serde_json::Value), force: f64, length: f64) {
+fn same_but_scaled(
+    what: &str,
+    base: &(Vec<HashMap<String, String>>, serde_json::Value),
+    run: &(Vec<HashMap<String, String>>, serde_json::Value),
+    force: f64,
+    length: f64,
+) {
     assert_eq!(base.1["contact"]["iterations"], run.1["contact"]["iterations"], "{what}: contact iterations");
     for (cols, factor) in [(["sigma_n", "tau_t", "tau_b"].as_slice(), force), (["gap", "slip"].as_slice(), length)] {
         let largest = base.0.iter().flat_map(|r| cols.iter().map(|c| csv_num(r, c).abs())).fold(0.0, f64::max);
@@ -81,7 +88,13 @@ fn same_but_scaled(what: &str, base: &(Vec<HashMap<String, String>>, serde_json:
             assert_eq!(a["status"], b["status"], "{what}: the state of pair {}", a["pair"]);
             for c in cols {
                 let d = (csv_num(b, c) / factor - csv_num(a, c)).abs();
-                assert!(d <= 1e-10 * largest, "{what}: pair {} {c}: {} scaled back against {}", a["pair"], csv_num(b, c) / factor, csv_num(a, c));
+                assert!(
+                    d <= 1e-10 * largest,
+                    "{what}: pair {} {c}: {} scaled back against {}",
+                    a["pair"],
+                    csv_num(b, c) / factor,
+                    csv_num(a, c)
+                );
             }
         }
     }
@@ -152,8 +165,18 @@ fn holds_coulomb(case: &Case, scene: &str, f: f64) -> (usize, usize) {
         let status: usize = r["status"].parse().expect("status");
         count[status] += 1;
         match status {
-            2 => assert!(tau < -f * sn, "{scene}: stuck pair {} carries |tau| = {tau} beyond f |sigma_n| = {}", r["pair"], -f * sn),
-            1 => assert!((tau + f * sn).abs() <= 1e-12 * sn.abs(), "{scene}: slipping pair {}: |tau| = {tau}, f |sigma_n| = {}", r["pair"], -f * sn),
+            2 => assert!(
+                tau < -f * sn,
+                "{scene}: stuck pair {} carries |tau| = {tau} beyond f |sigma_n| = {}",
+                r["pair"],
+                -f * sn
+            ),
+            1 => assert!(
+                (tau + f * sn).abs() <= 1e-12 * sn.abs(),
+                "{scene}: slipping pair {}: |tau| = {tau}, f |sigma_n| = {}",
+                r["pair"],
+                -f * sn
+            ),
             _ => assert!(sn == 0.0 && csv_num(r, "gap") >= 0.0, "{scene}: open pair {} carries {sn}", r["pair"]),
         }
         load += sn * area;
@@ -171,7 +194,8 @@ fn an_auxetic_block_pressed_onto_its_base_slips_both_ways_and_is_solved() {
     let case = Case::new("blame-auxetic");
     case.copy("tests/geo/contact_stack.geo");
     for nu in [-0.99f64, -0.97] {
-        let materials = format!("[materials.base]\nE = 1000.0\nnu = {nu:?}\n\n[materials.top]\nE = 1000.0\nnu = {nu:?}\n");
+        let materials =
+            format!("[materials.base]\nE = 1000.0\nnu = {nu:?}\n\n[materials.top]\nE = 1000.0\nnu = {nu:?}\n");
         let scene = format!("auxetic{}.toml", (-nu * 100.0).round());
         case.write(&scene, &pressed("plane_stress", 4, 0.2, &materials));
         let (stick, slip) = holds_coulomb(&case, &scene, 0.2);

@@ -170,13 +170,23 @@ pub fn compare(tunnel: &LinedTunnel, sol: &Solution) -> Option<Comparison> {
     let (t0, t2, m2) = tunnel.modes();
     let thrust_scale = t0.abs() + t2.abs();
     let moment_scale = tunnel.uniform_moment().abs() + m2.abs();
-    let worst = |f: &dyn Fn(&Row) -> f64, scale: f64| rows.iter().map(f).fold(0.0, f64::max) / scale.max(f64::MIN_POSITIVE);
+    let worst =
+        |f: &dyn Fn(&Row) -> f64, scale: f64| rows.iter().map(f).fold(0.0, f64::max) / scale.max(f64::MIN_POSITIVE);
     let thrust_error = worst(&|r: &Row| (r.thrust - r.thrust_theory).abs(), thrust_scale);
     let moment_error = worst(&|r: &Row| (r.moment - r.moment_theory).abs(), moment_scale);
-    let published_moment_error = worst(&|r: &Row| (r.moment - tunnel.moment_published(r.theta_deg.to_radians())).abs(), m2.abs());
+    let published_moment_error =
+        worst(&|r: &Row| (r.moment - tunnel.moment_published(r.theta_deg.to_radians())).abs(), m2.abs());
     let u_scale = rows.iter().map(|r| r.displacement_theory).fold(0.0, f64::max);
     let displacement_error = worst(&|r: &Row| r.displacement_error, u_scale);
-    Some(Comparison { rows, thrust_scale, moment_scale, thrust_error, moment_error, published_moment_error, displacement_error })
+    Some(Comparison {
+        rows,
+        thrust_scale,
+        moment_scale,
+        thrust_error,
+        moment_error,
+        published_moment_error,
+        displacement_error,
+    })
 }
 
 /// The check: the report section, and the comparison in summary.json's
@@ -248,7 +258,10 @@ pub fn report_section(tu: &LinedTunnel, c: Option<&Comparison>) -> String {
         let _ = writeln!(s, "The lining body `{}` covers none of the angles 0, {STEP_DEG}, ... degrees between r = {ri} and {ro}: check radius and thickness in [analytic].", tu.lining.group);
         return s;
     };
-    let _ = writeln!(s, "| theta (deg) | T FE | T theory | error | M FE | M theory | error |\n|---|---|---|---|---|---|---|");
+    let _ = writeln!(
+        s,
+        "| theta (deg) | T FE | T theory | error | M FE | M theory | error |\n|---|---|---|---|---|---|---|"
+    );
     for r in &c.rows {
         let _ = writeln!(
             s,
@@ -270,7 +283,11 @@ pub fn report_section(tu: &LinedTunnel, c: Option<&Comparison>) -> String {
         100.0 * c.moment_error,
         c.moment_scale
     );
-    let _ = writeln!(s, "Against the published moment M2 cos 2theta alone: {:.2} % of |M2|.", 100.0 * c.published_moment_error);
+    let _ = writeln!(
+        s,
+        "Against the published moment M2 cos 2theta alone: {:.2} % of |M2|.",
+        100.0 * c.published_moment_error
+    );
     let _ = writeln!(
         s,
         "Displacement of the lining's middle surface against the thin ring's: largest error {:.2} % of max |u|. (The displacement L2 error above covers the whole block, whose far part departs from the closed form's infinite plane.)",

@@ -73,7 +73,9 @@ pub fn exact(analytic: &Analytic, model: &Model) -> Vec<Box<dyn Exact>> {
         .iter()
         .map(|body| -> Box<dyn Exact> {
             match analytic {
-                &Analytic::LameCylinder { a, b, p } => Box::new(Lame { a, b, p, e: body.e, nu: body.nu, analysis: model.analysis }),
+                &Analytic::LameCylinder { a, b, p } => {
+                    Box::new(Lame { a, b, p, e: body.e, nu: body.nu, analysis: model.analysis })
+                }
                 Analytic::LinedTunnel(t) => Box::new(t.clone()),
             }
         })

@@ -73,7 +73,12 @@ pub fn contact_sigma_n_at(sol: &Solution, r: f64) -> Option<f64> {
 pub fn table1_values(sol: &Solution) -> Vec<Option<(f64, f64)>> {
     TABLE1_R
         .iter()
-        .map(|&r| sol.probed.iter().find(|(x, _)| (x[0].hypot(x[1]) - r).abs() < 1e-6 * r).map(|(x, s)| polar(sol.model.analysis, *x, s)))
+        .map(|&r| {
+            sol.probed
+                .iter()
+                .find(|(x, _)| (x[0].hypot(x[1]) - r).abs() < 1e-6 * r)
+                .map(|(x, s)| polar(sol.model.analysis, *x, s))
+        })
         .collect()
 }
 

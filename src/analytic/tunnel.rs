@@ -118,7 +118,8 @@ impl LinedTunnel {
     }
 
     pub fn coefficients(&self) -> TunnelCoefficients {
-        let (e, nu, el, nul, r, t) = (self.ground.e, self.ground.nu, self.lining.e, self.lining.nu, self.radius, self.thickness);
+        let (e, nu, el, nul, r, t) =
+            (self.ground.e, self.ground.nu, self.lining.e, self.lining.nu, self.radius, self.thickness);
         let (a, i) = (t, t.powi(3) / 12.0);
         let c = e * r * (1.0 - nul * nul) / (el * a * (1.0 - nu * nu));
         let f = e * r.powi(3) * (1.0 - nul * nul) / (el * i * (1.0 - nu * nu));
@@ -126,7 +127,8 @@ impl LinedTunnel {
         match self.slip {
             TunnelSlip::None => {
                 let beta = ((6.0 + f) * c * (1.0 - nu) + 2.0 * f * nu) / (3.0 * f + 3.0 * c + 2.0 * c * f * (1.0 - nu));
-                let b2 = c * (1.0 - nu) / (2.0 * (c * (1.0 - nu) + 4.0 * nu - 6.0 * beta - 3.0 * beta * c * (1.0 - nu)));
+                let b2 =
+                    c * (1.0 - nu) / (2.0 * (c * (1.0 - nu) + 4.0 * nu - 6.0 * beta - 3.0 * beta * c * (1.0 - nu)));
                 TunnelCoefficients { c, f, a0, a2: beta * b2, b2: Some(b2) }
             }
             TunnelSlip::Full => {
@@ -142,7 +144,11 @@ impl LinedTunnel {
         let co = self.coefficients();
         let t0 = p * r * (1.0 + k) * (1.0 - co.a0) / 2.0;
         match (self.slip, co.b2) {
-            (TunnelSlip::None, Some(b2)) => (t0, p * r * (1.0 - k) * (1.0 + 2.0 * co.a2) / 2.0, p * r * r * (1.0 - k) * (1.0 - 2.0 * co.a2 + 2.0 * b2) / 4.0),
+            (TunnelSlip::None, Some(b2)) => (
+                t0,
+                p * r * (1.0 - k) * (1.0 + 2.0 * co.a2) / 2.0,
+                p * r * r * (1.0 - k) * (1.0 - 2.0 * co.a2 + 2.0 * b2) / 4.0,
+            ),
             _ => {
                 let m2 = p * r * r * (1.0 - k) * (1.0 - 2.0 * co.a2) / 2.0;
                 (t0, m2 / r, m2)
@@ -217,7 +223,8 @@ impl LinedTunnel {
         let (q0, a, b) = self.ground_field();
         let (nu, g) = (self.ground.nu, self.ground.e / (2.0 * (1.0 + self.ground.nu)));
         let rr = self.radius;
-        let ur = q0 * rr * rr / (2.0 * g * r) + (2.0 * a / r.powi(3) + 4.0 * (1.0 - nu) * b / r) / (2.0 * g) * (2.0 * theta).cos();
+        let ur = q0 * rr * rr / (2.0 * g * r)
+            + (2.0 * a / r.powi(3) + 4.0 * (1.0 - nu) * b / r) / (2.0 * g) * (2.0 * theta).cos();
         let ut = (2.0 * a / r.powi(3) + 2.0 * (2.0 * nu - 1.0) * b / r) / (2.0 * g) * (2.0 * theta).sin();
         (ur, ut)
     }
@@ -258,7 +265,8 @@ impl LinedTunnel {
         let (c2, s2) = ((2.0 * theta).cos(), (2.0 * theta).sin());
         let (p, k, rr) = (self.p, self.k, self.radius);
         let (q0, a, b) = self.ground_field();
-        let sr = -p * (1.0 + k) / 2.0 + p * (1.0 - k) / 2.0 * c2 - q0 * rr * rr / (r * r) + (-6.0 * a / r.powi(4) - 4.0 * b / (r * r)) * c2;
+        let sr = -p * (1.0 + k) / 2.0 + p * (1.0 - k) / 2.0 * c2 - q0 * rr * rr / (r * r)
+            + (-6.0 * a / r.powi(4) - 4.0 * b / (r * r)) * c2;
         let st = -p * (1.0 + k) / 2.0 - p * (1.0 - k) / 2.0 * c2 + q0 * rr * rr / (r * r) + 6.0 * a / r.powi(4) * c2;
         let tau = -p * (1.0 - k) / 2.0 * s2 + (-6.0 * a / r.powi(4) - 2.0 * b / (r * r)) * s2;
         // plane strain: the excavation adds nu (d sigma_r + d sigma_theta) to sigma_z
@@ -302,7 +310,14 @@ mod tests {
     use std::f64::consts::{FRAC_PI_2, FRAC_PI_4};
 
     /// ground (E, nu), lining (E_l, nu_l), t, R, far field (P, K).
-    fn tunnel([e, nu]: [f64; 2], [el, nul]: [f64; 2], t: f64, r: f64, [p, k]: [f64; 2], slip: TunnelSlip) -> LinedTunnel {
+    fn tunnel(
+        [e, nu]: [f64; 2],
+        [el, nul]: [f64; 2],
+        t: f64,
+        r: f64,
+        [p, k]: [f64; 2],
+        slip: TunnelSlip,
+    ) -> LinedTunnel {
         LinedTunnel {
             radius: r,
             thickness: t,
@@ -431,7 +446,9 @@ mod tests {
             // the lining's own motion is the ring's, slip or not
             let l = tu.lining_displacement(FRAC_PI_4).1;
             assert!((l - v2).abs() < 1e-9 * scale, "{tu:?}: v2 {l} vs {v2}");
-            assert!(((tu.lining_displacement(0.0).0 - tu.lining_displacement(FRAC_PI_2).0) / 2.0 - w2).abs() < 1e-9 * scale);
+            assert!(
+                ((tu.lining_displacement(0.0).0 - tu.lining_displacement(FRAC_PI_2).0) / 2.0 - w2).abs() < 1e-9 * scale
+            );
             // the ground's stress at r = R is the lining's reaction
             let (s_r0, s_r2, s_t2) = tu.interface();
             for theta in [0.0, 0.4, 1.1] {
@@ -446,7 +463,12 @@ mod tests {
             }
             // far away: the in-situ stress, tension positive
             let s = tu.stress([0.0, 1.0e5 * r, 0.0]);
-            assert!((s[0] + tu.k * tu.p).abs() < 1e-6 * tu.p && (s[1] + tu.p).abs() < 1e-6 * tu.p && s[3].abs() < 1e-6 * tu.p, "{s:?}");
+            assert!(
+                (s[0] + tu.k * tu.p).abs() < 1e-6 * tu.p
+                    && (s[1] + tu.p).abs() < 1e-6 * tu.p
+                    && s[3].abs() < 1e-6 * tu.p,
+                "{s:?}"
+            );
         }
     }
 }

@@ -70,7 +70,8 @@ impl FaceBasis {
         let mean = nodal.iter().map(|a| a.abs()).sum::<f64>() / n.max(1) as f64;
         let nd = model.nd;
         // prescribed components of a node, as a bit set
-        let held = |node: usize| (0..nd).filter(|&c| model.prescribed[node * nd + c].is_some()).fold(0u8, |m, c| m | (1 << c));
+        let held =
+            |node: usize| (0..nd).filter(|&c| model.prescribed[node * nd + c].is_some()).fold(0u8, |m, c| m | (1 << c));
         // every face edge's pair triple, and per middle mesh node: needed, supports allow it
         let mut by_mid: HashMap<usize, [usize; 3]> = HashMap::new();
         let mut decide: HashMap<usize, (bool, bool)> = HashMap::new();
@@ -84,10 +85,11 @@ impl FaceBasis {
                     }
                     let needed = always || nodal[c1] <= 1e-9 * mean || nodal[c2] <= 1e-9 * mean;
                     // a middle node held where its corners are not keeps the nodal basis
-                    let supported_ok = [|p: &crate::model::Pair| p.k, |p: &crate::model::Pair| p.l].iter().all(|side| {
-                        let hm = held(side(&model.pairs[m]));
-                        hm & held(side(&model.pairs[c1])) == hm && hm & held(side(&model.pairs[c2])) == hm
-                    });
+                    let supported_ok =
+                        [|p: &crate::model::Pair| p.k, |p: &crate::model::Pair| p.l].iter().all(|side| {
+                            let hm = held(side(&model.pairs[m]));
+                            hm & held(side(&model.pairs[c1])) == hm && hm & held(side(&model.pairs[c2])) == hm
+                        });
                     by_mid.insert(m, [m, c1, c2]);
                     let d = decide.entry(model.mesh_node[model.pairs[m].k]).or_insert((false, true));
                     d.0 |= needed;
@@ -166,7 +168,9 @@ pub fn prescribed(basis: &FaceBasis, prescribed: &[Option<f64>], nd: usize) -> V
     let mut out = prescribed.to_vec();
     for &[m, c1, c2] in &basis.nodes {
         for c in 0..nd {
-            if let (Some(vm), Some(v1), Some(v2)) = (prescribed[m * nd + c], prescribed[c1 * nd + c], prescribed[c2 * nd + c]) {
+            if let (Some(vm), Some(v1), Some(v2)) =
+                (prescribed[m * nd + c], prescribed[c1 * nd + c], prescribed[c2 * nd + c])
+            {
                 out[m * nd + c] = Some((vm - ALPHA * (v1 + v2)) / (1.0 - 2.0 * ALPHA));
             }
         }
@@ -258,7 +262,10 @@ mod tests {
         let mut want = vec![0.0; nc * nc];
         for i in 0..nc {
             for j in 0..nc {
-                want[i + j * nc] = (0..nc).flat_map(|a| (0..nc).map(move |b| (a, b))).map(|(a, b)| q[a + i * nc] * s[a + b * nc] * q[b + j * nc]).sum();
+                want[i + j * nc] = (0..nc)
+                    .flat_map(|a| (0..nc).map(move |b| (a, b)))
+                    .map(|(a, b)| q[a + i * nc] * s[a + b * nc] * q[b + j * nc])
+                    .sum();
             }
         }
         let mut got = s.clone();
@@ -285,7 +292,16 @@ mod tests {
             assert!((a[3 + c] - 0.2).abs() < 1e-15);
         }
         let quad8 = FaceBasis { edges: vec![[4, 0, 1], [5, 1, 2], [6, 2, 3], [7, 3, 0]], nodes: vec![], areas: vec![] };
-        let a = quad8.transpose_apply(&[-1.0 / 12.0, -1.0 / 12.0, -1.0 / 12.0, -1.0 / 12.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0]);
+        let a = quad8.transpose_apply(&[
+            -1.0 / 12.0,
+            -1.0 / 12.0,
+            -1.0 / 12.0,
+            -1.0 / 12.0,
+            1.0 / 3.0,
+            1.0 / 3.0,
+            1.0 / 3.0,
+            1.0 / 3.0,
+        ]);
         for c in 0..4 {
             assert!((a[c] - 0.05).abs() < 1e-15, "{}", a[c]);
             assert!((a[4 + c] - 0.2).abs() < 1e-15);

@@ -44,7 +44,13 @@ pub(super) struct Verdict {
 }
 
 /// Runs `rule` under the load factors `lambda` from the states in `h`.
-pub(super) fn run(mut rule: impl Rule, problem: &InterfaceProblem, lambda: &[f64], h: &mut History, max_iterations: usize) -> Result<Outcome, Failed> {
+pub(super) fn run(
+    mut rule: impl Rule,
+    problem: &InterfaceProblem,
+    lambda: &[f64],
+    h: &mut History,
+    max_iterations: usize,
+) -> Result<Outcome, Failed> {
     let mut summary = Summary::default();
     loop {
         summary.iterations += 1;
@@ -52,7 +58,9 @@ pub(super) fn run(mut rule: impl Rule, problem: &InterfaceProblem, lambda: &[f64
             match problem.solve(&rule.relations(h), lambda) {
                 Ok(solution) => break solution,
                 Err(SolveFailure::Sliding(parts)) if rule.hold_back(h, &parts) => {}
-                Err(failure) => return Err(Failed { failure, states: h.states.clone(), iteration: summary.iterations }),
+                Err(failure) => {
+                    return Err(Failed { failure, states: h.states.clone(), iteration: summary.iterations })
+                }
             }
         };
         summary.history.push(h.states.clone());

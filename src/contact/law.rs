@@ -180,7 +180,15 @@ impl Trial {
 /// Cracked pairs (ever opened or slipped) have `f_t = 0` and the residual
 /// cohesion; `coulomb` is false for frictionless slip, which never sticks
 /// once slipping.
-pub fn judge(current: ContactState, t: &Trial, s: &Strength, cracked: bool, coulomb: bool, gap_tol: f64, force_tol: f64) -> ContactState {
+pub fn judge(
+    current: ContactState,
+    t: &Trial,
+    s: &Strength,
+    cracked: bool,
+    coulomb: bool,
+    gap_tol: f64,
+    force_tol: f64,
+) -> ContactState {
     let ft = s.tensile_limit(cracked);
     match current {
         ContactState::Open if t.gap >= -gap_tol => ContactState::Open,
@@ -246,10 +254,10 @@ mod tests {
     fn truth_table_of_the_paper_criteria() {
         // (sigma_n, tau) -> state, from stick; the robust rule and the paper agree
         let cases = [
-            ((2.0, 0.0), Open),   // at the tensile strength
-            ((3.0, 5.0), Open),   // above it, whatever the shear
-            ((1.5, 0.0), Stick),  // tension below f_t, no shear: limit c - f s = 0.25
-            ((1.5, 0.25), Slip),  // on the limit (binary-exact numbers: 1 - 0.5 * 1.9 is not 0.05)
+            ((2.0, 0.0), Open),  // at the tensile strength
+            ((3.0, 5.0), Open),  // above it, whatever the shear
+            ((1.5, 0.0), Stick), // tension below f_t, no shear: limit c - f s = 0.25
+            ((1.5, 0.25), Slip), // on the limit (binary-exact numbers: 1 - 0.5 * 1.9 is not 0.05)
             ((1.5, 0.2499), Stick),
             ((-4.0, 2.9), Stick), // compression raises the limit to 3
             ((-4.0, 3.0), Slip),
@@ -281,9 +289,17 @@ mod tests {
     fn open_pairs_follow_their_gap() {
         assert_eq!(judge(Open, &t(0.0, 0.0, 0.0, 1e-3), &S, true, true, 1e-12, 0.0), Open);
         assert_eq!(judge(Open, &t(0.0, 0.0, 0.0, -1e-3), &S, true, true, 1e-12, 0.0), Stick, "closes where it is");
-        assert_eq!(judge(Open, &t(0.0, 0.0, 1e-3, -1e-3), &S, true, true, 1e-12, 0.0), Slip, "closes after moving along the joint");
+        assert_eq!(
+            judge(Open, &t(0.0, 0.0, 1e-3, -1e-3), &S, true, true, 1e-12, 0.0),
+            Slip,
+            "closes after moving along the joint"
+        );
         let cohesive = Strength { residual_cohesion: 0.5, ..S };
-        assert_eq!(judge(Open, &t(0.0, 0.0, 1e-3, -1e-3), &cohesive, true, true, 1e-12, 0.0), Stick, "a cohesive crack holds a small move");
+        assert_eq!(
+            judge(Open, &t(0.0, 0.0, 1e-3, -1e-3), &cohesive, true, true, 1e-12, 0.0),
+            Stick,
+            "a cohesive crack holds a small move"
+        );
         assert_eq!(judge(Slip, &t(-1.0, 0.5, 0.0, 0.0), &S, true, true, 1e-12, 0.0), Slip);
         assert_eq!(judge(Slip, &t(0.1, 0.0, 0.0, 0.0), &S, true, true, 1e-12, 0.0), Open);
     }
@@ -295,7 +311,11 @@ mod tests {
         assert_eq!(judge(Slip, &t(-1.0, 0.5, -1e-3, 0.0), &S, true, true, 1e-12, 0.0), Stick);
         // a large reversed slip makes |ξ| large, but it runs against the friction: stuck
         assert_eq!(judge(Slip, &t(-1.0, 0.5, -1.0, 0.0), &S, true, true, 1e-12, 0.0), Stick);
-        assert_eq!(judge(Slip, &t(-1.0, 0.0, -1e-3, 0.0), &S, true, false, 1e-12, 0.0), Slip, "frictionless slip never sticks");
+        assert_eq!(
+            judge(Slip, &t(-1.0, 0.0, -1e-3, 0.0), &S, true, false, 1e-12, 0.0),
+            Slip,
+            "frictionless slip never sticks"
+        );
     }
 
     #[test]
@@ -311,7 +331,11 @@ mod tests {
     #[test]
     fn paper_rule_judges_open_pairs_by_their_zero_stress() {
         assert_eq!(judge_paper(&r(0.0, 0.0), &S, false), Stick);
-        assert_eq!(judge_paper(&r(0.0, 0.0), &S, true), Open, "a cracked pair has f_t = 0: its zero stress keeps it open");
+        assert_eq!(
+            judge_paper(&r(0.0, 0.0), &S, true),
+            Open,
+            "a cracked pair has f_t = 0: its zero stress keeps it open"
+        );
         assert_eq!(judge_paper(&r(2.5, 0.0), &S, false), Open);
         assert_eq!(judge_paper(&r(-4.0, 3.0), &S, false), Slip);
     }

@@ -149,7 +149,11 @@ pub(crate) fn cracked(h: &History, p: usize) -> bool {
 /// What pair `p` can carry in force, by its law and whether it is cracked.
 pub(crate) fn limit(law: &PairLaw, cracked: bool, area: f64) -> system::Limit {
     let (_, c) = law.strength.effective(cracked);
-    system::Limit { tension: law.strength.tensile_limit(cracked) * area, cohesion: c * area, friction: law.strength.friction }
+    system::Limit {
+        tension: law.strength.tensile_limit(cracked) * area,
+        cohesion: c * area,
+        friction: law.strength.friction,
+    }
 }
 
 /// Commits a converged step: where it ended, and the cracks it made.

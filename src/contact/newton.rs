@@ -92,7 +92,20 @@ impl<'p> Newton<'p> {
     pub fn new(problem: &'p InterfaceProblem<'p>, laws: &'p [PairLaw], h: &History) -> Newton<'p> {
         let stiffness = (0..laws.len()).map(|p| problem.stiffness(p)).collect();
         let reference = h.rel_start.iter().map(|&r| tangential(r)).collect();
-        Newton { problem, laws, stiffness, reference, start: h.states.clone(), force: h.force.clone(), rel: h.rel_start.clone(), one_at_a_time: false, as_tied: vec![None; laws.len()], judged_from: Vec::new(), violation: Vec::new(), swapped: vec![false; laws.len()] }
+        Newton {
+            problem,
+            laws,
+            stiffness,
+            reference,
+            start: h.states.clone(),
+            force: h.force.clone(),
+            rel: h.rel_start.clone(),
+            one_at_a_time: false,
+            as_tied: vec![None; laws.len()],
+            judged_from: Vec::new(),
+            violation: Vec::new(),
+            swapped: vec![false; laws.len()],
+        }
     }
 
     /// The relation pair `p` is solved with at this iteration; `line`: the
@@ -118,7 +131,11 @@ impl<'p> Newton<'p> {
             Some(_) => {
                 let d = along(h.dir[p], line);
                 let l = norm(d);
-                if l > 0.0 { d.map(|x| x / l) } else { d }
+                if l > 0.0 {
+                    d.map(|x| x / l)
+                } else {
+                    d
+                }
             }
             None => h.dir[p],
         };
@@ -144,7 +161,15 @@ impl<'p> Newton<'p> {
         for i in 1..3 {
             constant[i] = (bk - db * pk) * n[i] - (1..3).map(|j| spring[i][j] * reference[j]).sum::<f64>();
         }
-        Relation { state, target, force: constant, coupling: [0.0, db * n[1], db * n[2]], spring, pressure: pk, limit: Limit::NONE }
+        Relation {
+            state,
+            target,
+            force: constant,
+            coupling: [0.0, db * n[1], db * n[2]],
+            spring,
+            pressure: pk,
+            limit: Limit::NONE,
+        }
     }
 
     /// Judges every pair (1. of the iteration); `lines` as
@@ -180,10 +205,14 @@ impl<'p> Newton<'p> {
                 // a closing pair does, where it is) unless the force it would
                 // carry closed is tension beyond its strength
                 (Some(f), ContactState::Open) if f[0] >= law.strength.tensile_limit(cr) * area => ContactState::Open,
-                (Some(_), ContactState::Open) => judge(st, &Trial { gap: f64::NEG_INFINITY, ..trial }, &law.strength, cr, coulomb, tol_u, tol_f),
+                (Some(_), ContactState::Open) => {
+                    judge(st, &Trial { gap: f64::NEG_INFINITY, ..trial }, &law.strength, cr, coulomb, tol_u, tol_f)
+                }
                 // a slipping one it keeps from slipping: stuck if the loop
                 // can carry its shear within every pair's bound
-                (Some(f), _) => judge(ContactState::Stick, &Trial { force: f, ..trial }, &law.strength, cr, coulomb, tol_u, tol_f),
+                (Some(f), _) => {
+                    judge(ContactState::Stick, &Trial { force: f, ..trial }, &law.strength, cr, coulomb, tol_u, tol_f)
+                }
                 (None, _) => judge(st, &trial, &law.strength, cr, coulomb, tol_u, tol_f),
             };
             if st == ContactState::Slip && next[p] == ContactState::Slip {
@@ -212,7 +241,9 @@ impl<'p> Newton<'p> {
         let first = !self.one_at_a_time;
         self.one_at_a_time = true;
         let v = &judged.violation;
-        let worst = (0..v.len()).filter(|&p| judged.next[p] != h.states[p]).max_by(|&a, &b| v[a].total_cmp(&v[b]).then(b.cmp(&a)));
+        let worst = (0..v.len())
+            .filter(|&p| judged.next[p] != h.states[p])
+            .max_by(|&a, &b| v[a].total_cmp(&v[b]).then(b.cmp(&a)));
         let keep = worst.expect("some pair changes");
         for p in 0..v.len() {
             if p != keep {
@@ -265,11 +296,20 @@ impl Newton<'_> {
         }
         let on = |p: usize, part: usize| self.problem.parts_of(p).contains(&part);
         let both_ways = |part: usize| {
-            let pulls: Vec<[f64; 3]> = (0..n).filter(|&p| h.states[p] == ContactState::Slip && on(p, part)).map(|p| self.pull(p, part)).collect();
+            let pulls: Vec<[f64; 3]> = (0..n)
+                .filter(|&p| h.states[p] == ContactState::Slip && on(p, part))
+                .map(|p| self.pull(p, part))
+                .collect();
             pulls.iter().enumerate().any(|(i, a)| pulls[i + 1..].iter().any(|b| dot(*a, *b) < 0.0))
         };
         let parts: Vec<usize> = sliding.iter().copied().filter(|&part| both_ways(part)).collect();
-        let released: Vec<usize> = (0..n).filter(|&p| before[p] == ContactState::Stick && h.states[p] != ContactState::Stick && parts.iter().any(|&q| on(p, q))).collect();
+        let released: Vec<usize> = (0..n)
+            .filter(|&p| {
+                before[p] == ContactState::Stick
+                    && h.states[p] != ContactState::Stick
+                    && parts.iter().any(|&q| on(p, q))
+            })
+            .collect();
         if (0..n).filter(|&p| h.states[p] != before[p]).count() >= 2 {
             // (a pair that carries no shear once cracked holds nothing stuck)
             let strong = released.iter().copied().filter(|&p| {
@@ -284,11 +324,19 @@ impl Newton<'_> {
         let part = *parts.iter().find(|&&part| on(q, part))?;
         let excess = |p: usize| {
             let slip = sub(tangential(self.rel[p]), self.reference[p]);
-            let trial = Trial { force: self.force[p], area: self.problem.area(p), slip, gap: self.rel[p][0], stiffness: self.stiffness[p] };
+            let trial = Trial {
+                force: self.force[p],
+                area: self.problem.area(p),
+                slip,
+                gap: self.rel[p][0],
+                stiffness: self.stiffness[p],
+            };
             norm(trial.xi()) - friction_bound(&self.laws[p].strength, cracked(h, p), trial.area, -trial.force[0]).0
         };
         let shear = self.pull(q, part);
-        let against = (0..n).filter(|&p| h.states[p] == ContactState::Slip && before[p] == ContactState::Slip && !self.swapped[p] && on(p, part));
+        let against = (0..n).filter(|&p| {
+            h.states[p] == ContactState::Slip && before[p] == ContactState::Slip && !self.swapped[p] && on(p, part)
+        });
         least(against.filter(|&p| dot(self.pull(p, part), shear) < 0.0), excess).map(|p| (p, Hold::InPlace))
     }
 
@@ -305,7 +353,9 @@ impl Newton<'_> {
 impl Rule for Newton<'_> {
     fn relations(&self, h: &History) -> Vec<Relation> {
         let lines = self.problem.slip_lines(&h.states);
-        (0..self.laws.len()).map(|p| self.relation(h, p, lines[p]).within(limit(&self.laws[p], cracked(h, p), self.problem.area(p)))).collect()
+        (0..self.laws.len())
+            .map(|p| self.relation(h, p, lines[p]).within(limit(&self.laws[p], cracked(h, p), self.problem.area(p))))
+            .collect()
     }
 
     fn judge(&mut self, h: &mut History, solution: &InterfaceSolution, summary: &mut Summary) -> Verdict {
@@ -364,7 +414,6 @@ impl Rule for Newton<'_> {
     }
 }
 
-
 /// Which pair [`Newton::held_back`] keeps stuck: one of those the verdict
 /// let go (1.), or a slipping one in place of the one it let go (2.).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -403,4 +452,3 @@ fn friction_residual(law: &PairLaw, cracked: bool, area: f64, c: f64, force: [f6
     }
     norm([0.0, lt[1] - b * (xi[1] / lx), lt[2] - b * (xi[2] / lx)])
 }
-

@@ -39,7 +39,15 @@ impl<'p> Paper<'p> {
 
 impl Rule for Paper<'_> {
     fn relations(&self, h: &History) -> Vec<Relation> {
-        (0..self.laws.len()).map(|p| Relation::simple(h.states[p], h.offset[p], self.friction(h, p)).within(limit(&self.laws[p], cracked(h, p), self.problem.area(p)))).collect()
+        (0..self.laws.len())
+            .map(|p| {
+                Relation::simple(h.states[p], h.offset[p], self.friction(h, p)).within(limit(
+                    &self.laws[p],
+                    cracked(h, p),
+                    self.problem.area(p),
+                ))
+            })
+            .collect()
     }
 
     fn judge(&mut self, h: &mut History, solution: &InterfaceSolution, summary: &mut Summary) -> Verdict {
@@ -57,7 +65,8 @@ impl Rule for Paper<'_> {
             }
             None => r[p],
         };
-        let next: Vec<ContactState> = (0..n).map(|p| judge_paper(&judged(p), &self.laws[p].strength, h.cracked[p])).collect();
+        let next: Vec<ContactState> =
+            (0..n).map(|p| judge_paper(&judged(p), &self.laws[p].strength, h.cracked[p])).collect();
         summary.cycled = next != h.states && summary.history.contains(&next);
 
         // carry the new states: friction directions, offsets; and how far
@@ -96,7 +105,8 @@ impl Rule for Paper<'_> {
             if nx == ContactState::Stick && st != ContactState::Stick {
                 // stuck again: keep the slip of earlier steps; a re-closing
                 // pair touches where it is
-                h.offset[p] = if st == ContactState::Open { tangential(solution.rel[p]) } else { tangential(h.rel_start[p]) };
+                h.offset[p] =
+                    if st == ContactState::Open { tangential(solution.rel[p]) } else { tangential(h.rel_start[p]) };
             }
             h.sigma_n[p] = r[p].sigma_n;
         }

@@ -39,7 +39,9 @@ impl PartModes {
             .map(|&n| (0..3).map(|i| (model.coords[n][i] - center[i]).powi(2)).sum::<f64>().sqrt())
             .fold(0.0, f64::max);
         let modes = RigidModes::new(model.analysis, center, if scale > 0.0 { scale } else { 1.0 });
-        let supported = nodes.iter().flat_map(|&n| (0..nd).filter(move |&c| model.prescribed[n * nd + c].is_some()).map(move |c| (n, c)));
+        let supported = nodes
+            .iter()
+            .flat_map(|&n| (0..nd).filter(move |&c| model.prescribed[n * nd + c].is_some()).map(move |c| (n, c)));
         let gram = modes.gram_of_supports(&model.coords, supported);
         PartModes { modes, gram }
     }
@@ -137,7 +139,8 @@ fn free_in(parts: &[PartModes], gram: &[DMatrix<f64>], ties: &[Tie], group: &[us
     for t in ties {
         let (Some(&i), Some(&j)) = (index.get(&t.parts[0]), index.get(&t.parts[1])) else { continue };
         let (rp, rq) = (parts[t.parts[0]].modes.along(t.x, t.dir), parts[t.parts[1]].modes.along(t.x, t.dir));
-        let row: Vec<(usize, f64)> = (0..nm).map(|a| (i * nm + a, rp[a])).chain((0..nm).map(|a| (j * nm + a, -rq[a]))).collect();
+        let row: Vec<(usize, f64)> =
+            (0..nm).map(|a| (i * nm + a, rp[a])).chain((0..nm).map(|a| (j * nm + a, -rq[a]))).collect();
         for &(r, a) in &row {
             for &(c, b) in &row {
                 m[(r, c)] += a * b;
@@ -205,8 +208,16 @@ mod tests {
         // the other at the crown c: neither is held alone, both together
         // unless a, b and c lie on one line
         let plane = |center| part(Analysis::PlaneStrain, center, &[]);
-        let ground = || part(Analysis::PlaneStrain, [2.0, -1.0, 0.0], &[([0.0, -1.0, 0.0], 0), ([0.0, -1.0, 0.0], 1), ([4.0, -1.0, 0.0], 1)]);
-        let pin = |p: usize, q: usize, x: [f64; 3]| [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]].map(|dir| Tie { parts: [p, q], x, dir });
+        let ground = || {
+            part(
+                Analysis::PlaneStrain,
+                [2.0, -1.0, 0.0],
+                &[([0.0, -1.0, 0.0], 0), ([0.0, -1.0, 0.0], 1), ([4.0, -1.0, 0.0], 1)],
+            )
+        };
+        let pin = |p: usize, q: usize, x: [f64; 3]| {
+            [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]].map(|dir| Tie { parts: [p, q], x, dir })
+        };
         let arch = |crown: [f64; 3]| {
             let parts = [ground(), plane([1.0, 1.0, 0.0]), plane([3.0, 1.0, 0.0])];
             let ties = [pin(0, 1, [0.0, 0.0, 0.0]), pin(0, 2, [4.0, 0.0, 0.0]), pin(1, 2, crown)];
@@ -240,7 +251,8 @@ mod tests {
         assert_eq!(free_parts(&parts, joint(&[n]).into_iter()), vec![1], "slipping: slides along x");
         assert_eq!(free_parts(&parts, joint(&[]).into_iter()), vec![1], "open: held by nothing");
         // a single tied pair stops translations, not the rotation about it
-        let one = vec![Tie { parts: [0, 1], x: [1.0, 1.0, 0.0], dir: n }, Tie { parts: [0, 1], x: [1.0, 1.0, 0.0], dir: t }];
+        let one =
+            vec![Tie { parts: [0, 1], x: [1.0, 1.0, 0.0], dir: n }, Tie { parts: [0, 1], x: [1.0, 1.0, 0.0], dir: t }];
         assert_eq!(free_parts(&parts, one.into_iter()), vec![1]);
         // without the x support the bottom slides too, and the stuck top with it
         let loose = plane([1.0, 0.5, 0.0], &[([0.0, 0.0, 0.0], 1), ([2.0, 0.0, 0.0], 1)]);

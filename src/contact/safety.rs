@@ -40,7 +40,11 @@ impl Reduce {
 
     /// The scene-file names of the parameters reduced.
     pub fn names(&self) -> Vec<&'static str> {
-        [(self.friction, "friction"), (self.cohesion, "cohesion"), (self.tensile_strength, "tensile_strength")].into_iter().filter(|p| p.0).map(|p| p.1).collect()
+        [(self.friction, "friction"), (self.cohesion, "cohesion"), (self.tensile_strength, "tensile_strength")]
+            .into_iter()
+            .filter(|p| p.0)
+            .map(|p| p.1)
+            .collect()
     }
 
     /// The strength divided by `factor` where asked.
@@ -58,7 +62,9 @@ impl Reduce {
 /// The laws of every pair at the factor `factor`: those of the pairs
 /// `chosen` reduced, the others as they are.
 pub fn reduced(laws: &[PairLaw], chosen: &[bool], reduce: Reduce, factor: f64) -> Vec<PairLaw> {
-    (laws.iter().zip(chosen)).map(|(l, &on)| if on { PairLaw { strength: reduce.strength(&l.strength, factor), ..*l } } else { *l }).collect()
+    (laws.iter().zip(chosen))
+        .map(|(l, &on)| if on { PairLaw { strength: reduce.strength(&l.strength, factor), ..*l } } else { *l })
+        .collect()
 }
 
 /// How the factors are chosen.
@@ -125,7 +131,12 @@ pub fn downward<S, E>(steps: &Steps, at_one: E, mut trial: impl FnMut(f64) -> Re
 
 /// Halves the bracket (`holds` below `fails`) until it is within the
 /// tolerance, each trial from the state of the last factor that held.
-fn bisect<S, E>(steps: &Steps, mut holds: (f64, S), mut fails: (f64, E), mut trial: impl FnMut(f64, &S) -> Result<S, E>) -> ((f64, S), (f64, E)) {
+fn bisect<S, E>(
+    steps: &Steps,
+    mut holds: (f64, S),
+    mut fails: (f64, E),
+    mut trial: impl FnMut(f64, &S) -> Result<S, E>,
+) -> ((f64, S), (f64, E)) {
     while fails.0 - holds.0 > steps.tolerance * holds.0 {
         let f = 0.5 * (holds.0 + fails.0);
         match trial(f, &holds.1) {
@@ -146,12 +157,18 @@ mod tests {
     #[test]
     fn every_switch_divides_its_own_parameter_and_no_other() {
         let s = Strength { friction: 0.6, cohesion: 2.0, tensile_strength: 1.0, residual_cohesion: 0.5 };
-        assert_eq!(Reduce::ALL.strength(&s, 2.0), Strength { friction: 0.3, cohesion: 1.0, tensile_strength: 0.5, residual_cohesion: 0.25 });
+        assert_eq!(
+            Reduce::ALL.strength(&s, 2.0),
+            Strength { friction: 0.3, cohesion: 1.0, tensile_strength: 0.5, residual_cohesion: 0.25 }
+        );
         let only_f = Reduce { friction: true, cohesion: false, tensile_strength: false };
         assert_eq!(only_f.strength(&s, 2.0), Strength { friction: 0.3, ..s });
         assert_eq!(only_f.names(), vec!["friction"]);
         let c_ft = Reduce { friction: false, cohesion: true, tensile_strength: true };
-        assert_eq!(c_ft.strength(&s, 4.0), Strength { friction: 0.6, cohesion: 0.5, tensile_strength: 0.25, residual_cohesion: 0.125 });
+        assert_eq!(
+            c_ft.strength(&s, 4.0),
+            Strength { friction: 0.6, cohesion: 0.5, tensile_strength: 0.25, residual_cohesion: 0.125 }
+        );
         // the Coulomb apex c / f stays where it is when both are reduced
         let r = Reduce::ALL.strength(&s, 3.7);
         assert!((r.cohesion / r.friction - s.cohesion / s.friction).abs() < 1e-12);

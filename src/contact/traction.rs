@@ -25,9 +25,14 @@ impl ConsistentTraction {
         let n = model.pairs.len();
         // the pair of every facet node (a junction's copy has one per face)
         let at = model.facet_pairs();
-        let facets: Vec<(&crate::mesh::Cell, &[usize])> =
-            model.interfaces.iter().zip(&at).flat_map(|(i, a)| i.facets.iter().zip(a.iter().map(|v| v.as_slice()))).collect();
-        let paired: Vec<Vec<usize>> = facets.iter().map(|(_, p)| p.iter().copied().filter(|&x| x != NONE).collect()).collect();
+        let facets: Vec<(&crate::mesh::Cell, &[usize])> = model
+            .interfaces
+            .iter()
+            .zip(&at)
+            .flat_map(|(i, a)| i.facets.iter().zip(a.iter().map(|v| v.as_slice())))
+            .collect();
+        let paired: Vec<Vec<usize>> =
+            facets.iter().map(|(_, p)| p.iter().copied().filter(|&x| x != NONE).collect()).collect();
         let identity: Vec<usize> = (0..n).collect();
         let mut m = SymMatrix::pattern(n, 1, &identity, paired.iter().map(|p| p.as_slice()));
         let mut me = Vec::new();

@@ -89,8 +89,14 @@ pub(super) fn condense<'r>(model: &Model, plan: &Plan, opts: &RunOptions, ranks:
     if plan.how == Condensation::Applied {
         progress(opts, &format!("{} interface DOFs over the parts: no S formed, the interface solved by GMRES through the parts' interior factors", plan.interface_dofs));
     }
-    let (index, own): (Vec<usize>, Vec<_>) = (plan.parts.iter().enumerate()).filter(|(i, _)| plan.owner[*i] == ranks.rank()).map(|(i, p)| (i, p.clone())).unzip();
-    let condensed = agree(ranks.comm(), substructure::condense_parts(model, own, plan.threads, plan.how).map_err(anyhow::Error::from))?;
+    let (index, own): (Vec<usize>, Vec<_>) = (plan.parts.iter().enumerate())
+        .filter(|(i, _)| plan.owner[*i] == ranks.rank())
+        .map(|(i, p)| (i, p.clone()))
+        .unzip();
+    let condensed = agree(
+        ranks.comm(),
+        substructure::condense_parts(model, own, plan.threads, plan.how).map_err(anyhow::Error::from),
+    )?;
     let mut mine: Vec<(usize, Condensed)> = index.into_iter().zip(condensed).collect();
     // the wall time, split between assembly and condensation as the parts spent it
     let wall_s = t.elapsed().as_secs_f64();
@@ -107,22 +113,49 @@ pub(super) fn condense<'r>(model: &Model, plan: &Plan, opts: &RunOptions, ranks:
     for (_, c) in mine.iter_mut() {
         c.drop_schur();
     }
-    Ok(Parts { mine, problem, local, all, assemble_s, condense_s: wall_s - assemble_s, wall_s, interface_s: t.elapsed().as_secs_f64() })
+    Ok(Parts {
+        mine,
+        problem,
+        local,
+        all,
+        assemble_s,
+        condense_s: wall_s - assemble_s,
+        wall_s,
+        interface_s: t.elapsed().as_secs_f64(),
+    })
 }
 
 /// The DOFs and this rank's estimated peak memory, said before anything
 /// is factorised; more than is available is an error unless ignored.
 fn memory(model: &Model, plan: &Plan, opts: &RunOptions, rank: usize) -> Result<()> {
-    let mine: Vec<&substructure::Part> = (plan.parts.iter().enumerate()).filter(|(i, _)| plan.owner[*i] == rank).map(|(_, p)| p).collect();
+    let mine: Vec<&substructure::Part> =
+        (plan.parts.iter().enumerate()).filter(|(i, _)| plan.owner[*i] == rank).map(|(_, p)| p).collect();
     let steps = model.cases.first().map_or(1, |c| c.len());
-    let need = crate::memory::estimate(model, &mine, (plan.how, plan.sparse), plan.threads, rank == 0, plan.interface_dofs, steps);
+    let need = crate::memory::estimate(
+        model,
+        &mine,
+        (plan.how, plan.sparse),
+        plan.threads,
+        rank == 0,
+        plan.interface_dofs,
+        steps,
+    );
     let dofs = substructure::parts::dof_counts(model, &plan.parts);
     let checked = crate::memory::check(&model.scene, need, [dofs.total, dofs.interface], mine.len());
     let available = match &checked {
         Ok(a) => a.clone(),
         Err(e) => e.available.clone(),
     };
-    progress(opts, &format!("{} DOFs ({} interface); estimated peak memory {} of {} available", dofs.total, dofs.interface, crate::memory::human(need.total), crate::memory::human(available.bytes)));
+    progress(
+        opts,
+        &format!(
+            "{} DOFs ({} interface); estimated peak memory {} of {} available",
+            dofs.total,
+            dofs.interface,
+            crate::memory::human(need.total),
+            crate::memory::human(available.bytes)
+        ),
+    );
     match checked {
         Err(e) if !opts.ignore_memory_estimate => Err(e.into()),
         _ => Ok(()),
@@ -130,7 +163,12 @@ fn memory(model: &Model, plan: &Plan, opts: &RunOptions, rank: usize) -> Result<
 }
 
 /// The interface of the parts' operators `ops`, when some part has one.
-fn interface<'r>(model: &Model, ops: &[OperatorRef], remote: Option<&'r dyn Remote>, plan: &Plan) -> Result<Option<InterfaceProblem<'r>>> {
+fn interface<'r>(
+    model: &Model,
+    ops: &[OperatorRef],
+    remote: Option<&'r dyn Remote>,
+    plan: &Plan,
+) -> Result<Option<InterfaceProblem<'r>>> {
     if ops.iter().all(|o| o.nc == 0) {
         return Ok(None);
     }
@@ -145,6 +183,12 @@ fn free_factors(mine: &mut [(usize, Condensed)], how: Condensation, opts: &RunOp
         for (_, c) in mine.iter_mut() {
             c.drop_factor();
         }
-        progress(opts, &format!("the parts' factors ({:.1} GB) are freed for the interface and made again for the recovery", factor_bytes as f64 / 1e9));
+        progress(
+            opts,
+            &format!(
+                "the parts' factors ({:.1} GB) are freed for the interface and made again for the recovery",
+                factor_bytes as f64 / 1e9
+            ),
+        );
     }
 }

@@ -16,5 +16,8 @@ pub(super) fn peak_memory() -> u64 {
 /// The value in kB of the line of `file` that starts with `key`.
 fn meminfo(file: &str, key: &str) -> Option<u64> {
     let text = std::fs::read_to_string(file).ok()?;
-    text.lines().find(|l| l.starts_with(key)).and_then(|l| l.split_whitespace().nth(1)).and_then(|v| v.parse::<u64>().ok())
+    text.lines()
+        .find(|l| l.starts_with(key))
+        .and_then(|l| l.split_whitespace().nth(1))
+        .and_then(|v| v.parse::<u64>().ok())
 }

@@ -52,7 +52,14 @@ pub enum ContactError {
     /// A load step's iteration did not converge after `iterations`
     /// (`cycled`: its states cycle) under `rule`; `results`: where the last
     /// iteration's results were written.
-    NotConverged { scene: PathBuf, step: Option<usize>, iterations: usize, cycled: bool, rule: StateRule, results: Option<PathBuf> },
+    NotConverged {
+        scene: PathBuf,
+        step: Option<usize>,
+        iterations: usize,
+        cycled: bool,
+        rule: StateRule,
+        results: Option<PathBuf>,
+    },
     /// Substructures joined by bonded interfaces alone, and that system singular.
     BondedNotHeld { scene: PathBuf },
     /// The interface mass matrix of the consistent traction recovery could
@@ -85,7 +92,11 @@ impl ContactError {
     /// The error of a failed iteration at load step `step`; `parts` are the
     /// parts in the interface's order.
     pub(super) fn failed(model: &Model, parts: &[Part], scene: &Scene, step: usize, f: Failed) -> ContactError {
-        let at = At { step: (scene.solver.load_steps > 1).then_some(step), iteration: f.iteration, states: state_counts(&f.states) };
+        let at = At {
+            step: (scene.solver.load_steps > 1).then_some(step),
+            iteration: f.iteration,
+            states: state_counts(&f.states),
+        };
         let names = |ids: &[usize]| -> Vec<String> {
             let mut bodies: Vec<usize> = ids.iter().flat_map(|&i| parts[i].bodies.iter().copied()).collect();
             bodies.sort_unstable();
@@ -94,7 +105,9 @@ impl ContactError {
         };
         let scene_path = scene.path.clone();
         match f.failure {
-            SolveFailure::NotHeld(ids) => ContactError::NotHeld { scene: scene_path, at, bodies: names(&ids), apex: apex(scene) },
+            SolveFailure::NotHeld(ids) => {
+                ContactError::NotHeld { scene: scene_path, at, bodies: names(&ids), apex: apex(scene) }
+            }
             SolveFailure::Sliding(ids) => {
                 let bodies = names(&ids);
                 let no_shear = no_shear(model, scene, &f.states, &bodies);
@@ -125,7 +138,9 @@ fn no_shear(model: &Model, scene: &Scene, states: &[ContactState], bodies: &[Str
         body.cells.iter().flat_map(|c| &c.nodes).for_each(|&n| body_of[n] = b);
     }
     let named = |n: usize| bodies.is_empty() || model.bodies.get(body_of[n]).is_some_and(|b| bodies.contains(&b.name));
-    let mut slipping = (model.pairs.iter().zip(states)).filter(|(p, &s)| s == ContactState::Slip && (named(p.k) || named(p.l))).peekable();
+    let mut slipping = (model.pairs.iter().zip(states))
+        .filter(|(p, &s)| s == ContactState::Slip && (named(p.k) || named(p.l)))
+        .peekable();
     slipping.peek().is_some()
         && slipping.all(|(p, _)| {
             let c = &scene.contacts[p.contact];
@@ -145,7 +160,11 @@ impl fmt::Display for At {
         if let Some(k) = self.step {
             write!(f, "load step {k}, ")?;
         }
-        write!(f, "contact iteration {} ({} stick, {} slip, {} open)", self.iteration, self.states[2], self.states[1], self.states[0])
+        write!(
+            f,
+            "contact iteration {} ({} stick, {} slip, {} open)",
+            self.iteration, self.states[2], self.states[1], self.states[0]
+        )
     }
 }
 
@@ -179,7 +198,11 @@ impl fmt::Display for ContactError {
                     1 => (bodies_named(bodies), "slides or rotates", "its"),
                     _ => (bodies_named(bodies), "slide or rotate", "their"),
                 };
-                write!(f, "{}: the interface system is singular at {at}: {who} {moves} freely on {its} contacts", scene.display())?;
+                write!(
+                    f,
+                    "{}: the interface system is singular at {at}: {who} {moves} freely on {its} contacts",
+                    scene.display()
+                )?;
                 if *no_shear {
                     write!(f, ", which carry no shear (no friction and no cohesion, or slip = \"frictionless\"): nothing holds {} along them, whatever the load. Add a support that holds {} tangentially, or give the contacts friction or cohesion", if bodies.len() > 1 { "them" } else { "it" }, if bodies.len() > 1 { "them" } else { "it" })
                 } else if *rule == StateRule::Paper {
@@ -201,8 +224,14 @@ impl fmt::Display for ContactError {
                 }
                 Ok(())
             }
-            ContactError::BondedNotHeld { scene } => write!(f, "{}: the bonded interface system of the substructures is singular: a body is not held", scene.display()),
-            ContactError::Traction { scene, reason } => write!(f, "{}: consistent contact traction: the interface mass matrix: {reason}", scene.display()),
+            ContactError::BondedNotHeld { scene } => write!(
+                f,
+                "{}: the bonded interface system of the substructures is singular: a body is not held",
+                scene.display()
+            ),
+            ContactError::Traction { scene, reason } => {
+                write!(f, "{}: consistent contact traction: the interface mass matrix: {reason}", scene.display())
+            }
         }
     }
 }
@@ -229,11 +258,25 @@ impl fmt::Display for SafetyError {
             ContactError::Sliding { at, bodies, no_shear, .. } => {
                 let who = if bodies.is_empty() { "a body".to_string() } else { bodies_named(bodies) };
                 let verb = if bodies.len() > 1 { "slide or rotate" } else { "slides or rotates" };
-                (format!("the scene loses equilibrium at {at}: {who} {verb} freely on {} contacts", if bodies.len() > 1 { "their" } else { "its" }), *no_shear)
+                (
+                    format!(
+                        "the scene loses equilibrium at {at}: {who} {verb} freely on {} contacts",
+                        if bodies.len() > 1 { "their" } else { "its" }
+                    ),
+                    *no_shear,
+                )
             }
             ContactError::NotHeld { at, bodies, .. } => {
                 let one = bodies.len() == 1;
-                (format!("{} {} held by nothing at {at} once {} contacts open", bodies_named(bodies), if one { "is" } else { "are" }, if one { "its" } else { "their" }), false)
+                (
+                    format!(
+                        "{} {} held by nothing at {at} once {} contacts open",
+                        bodies_named(bodies),
+                        if one { "is" } else { "are" },
+                        if one { "its" } else { "their" }
+                    ),
+                    false,
+                )
             }
             other => (other.to_string(), false),
         };

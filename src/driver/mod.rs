@@ -163,7 +163,8 @@ pub fn run_on(mut scene: Scene, opts: &RunOptions, comm: &dyn Comm) -> Result<Op
     // search when the scene asks for one (a scene that fails at full
     // strength is unsafe as given).
     let step = steps::Step::new(&scene, &model, &plan, &parts, &ranks)?;
-    let mut done = steps::run(&step, &parts, opts, &ranks).map_err(|e| safety::unsafe_as_given(&step, &parts, opts, &ranks, e))?;
+    let mut done =
+        steps::run(&step, &parts, opts, &ranks).map_err(|e| safety::unsafe_as_given(&step, &parts, opts, &ranks, e))?;
     let safety = safety::run(&step, &parts, opts, &ranks, &mut done)?;
     drop(step);
     let gathered = ranks.gather(&stats::rank(&ranks, &parts, &done));
@@ -173,7 +174,15 @@ pub fn run_on(mut scene: Scene, opts: &RunOptions, comm: &dyn Comm) -> Result<Op
     // the factors go before the results are written
     drop(parts);
     let Some(rank_stats) = gathered else { return Ok(None) };
-    let measured = stats::Measured { msh, mesh_cached, timings, counters: done.counters, residual_interface: done.residual_interface, ranks: rank_stats, interface_solver };
+    let measured = stats::Measured {
+        msh,
+        mesh_cached,
+        timings,
+        counters: done.counters,
+        residual_interface: done.residual_interface,
+        ranks: rank_stats,
+        interface_solver,
+    };
     let stats = stats::stats(&model, &plan.parts, all, measured);
     let mut run = Run { scene, model, steps: done.steps, stats, checks: Checks::default(), safety };
 
@@ -235,7 +244,14 @@ fn write(mut run: Run, opts: &RunOptions, out: &Path, t0: Instant) -> Result<Run
 fn not_converged(run: &Run, results: Option<PathBuf>) -> Option<ContactError> {
     let c = run.contact().filter(|c| !c.summary.converged)?;
     let step = (run.scene.solver.load_steps > 1).then(|| run.last().step);
-    Some(ContactError::NotConverged { scene: run.scene.path.clone(), step, iterations: c.summary.iterations, cycled: c.summary.cycled, rule: run.scene.solver.rule, results })
+    Some(ContactError::NotConverged {
+        scene: run.scene.path.clone(),
+        step,
+        iterations: c.summary.iterations,
+        cycled: c.summary.cycled,
+        rule: run.scene.solver.rule,
+        results,
+    })
 }
 
 /// Max |sigma_n - exact normal traction| over the pairs, relative to the
@@ -250,7 +266,11 @@ fn contact_error(model: &Model, exact: &[Box<dyn analytic::Exact>], pairs: &[Pai
     for (p, r) in model.pairs.iter().zip(pairs) {
         let s = exact[body_of[p.k]].stress(model.coords[p.k]);
         let n = p.normal;
-        let t = [s[0] * n[0] + s[3] * n[1] + s[5] * n[2], s[3] * n[0] + s[1] * n[1] + s[4] * n[2], s[5] * n[0] + s[4] * n[1] + s[2] * n[2]];
+        let t = [
+            s[0] * n[0] + s[3] * n[1] + s[5] * n[2],
+            s[3] * n[0] + s[1] * n[1] + s[4] * n[2],
+            s[5] * n[0] + s[4] * n[1] + s[2] * n[2],
+        ];
         let sn = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
         worst = worst.max((r.sigma_n - sn).abs());
         scale = scale.max(sn.abs());

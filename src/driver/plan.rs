@@ -48,7 +48,8 @@ pub(super) fn plan(scene: &Scene, model: &Model, opts: &RunOptions, ranks: usize
         return Err(PlanError::TooManyRanks { scene: scene.path.clone(), ranks, parts: parts.len(), substructures: k });
     }
     let owner = owners(model, &parts, ranks);
-    let threads = opts.threads.unwrap_or_else(|| (std::thread::available_parallelism().map_or(1, |n| n.get()) / ranks).max(1));
+    let threads =
+        opts.threads.unwrap_or_else(|| (std::thread::available_parallelism().map_or(1, |n| n.get()) / ranks).max(1));
     let nd = model.nd;
     let interface_dofs: usize = parts.iter().map(|p| p.interface.len() * nd).sum();
     let (how, sparse) = interface(opts.interface.unwrap_or(scene.solver.interface), &parts, nd);
@@ -90,10 +91,23 @@ fn cut(model: &Model, k: usize, opts: &RunOptions) -> Vec<Part> {
     let parts = substructure::cut(model, whole, k);
     if k > 1 && parts.len() < uncut * k {
         let kept: Vec<String> = (parts.iter().filter(|p| p.piece.is_none()))
-            .map(|p| format!("{} ({} cells)", p.bodies.iter().map(|&b| format!("\"{}\"", model.bodies[b].name)).collect::<Vec<_>>().join(", "), p.cells.len()))
+            .map(|p| {
+                format!(
+                    "{} ({} cells)",
+                    p.bodies.iter().map(|&b| format!("\"{}\"", model.bodies[b].name)).collect::<Vec<_>>().join(", "),
+                    p.cells.len()
+                )
+            })
             .collect();
         if !kept.is_empty() {
-            progress(opts, &format!("not cut into {k} substructures, too few cells (at least {} per piece): {}", substructure::parts::MIN_CELLS_PER_PIECE, kept.join("; ")));
+            progress(
+                opts,
+                &format!(
+                    "not cut into {k} substructures, too few cells (at least {} per piece): {}",
+                    substructure::parts::MIN_CELLS_PER_PIECE,
+                    kept.join("; ")
+                ),
+            );
         }
     }
     parts

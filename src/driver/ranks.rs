@@ -188,7 +188,15 @@ impl<'c> Ranks<'c> {
     /// displacements, or why it has none) goes to the owners of `parts`, which
     /// recover their interiors (only when `need_u`) and send them back. A
     /// failure on rank 0 ends every rank, rank 0 with its own error.
-    pub fn recover(&self, model: &Model, parts: &[Part], mine: &[(usize, Condensed)], answer: Option<Result<Vec<Vec<f64>>>>, lambda: &[f64], need_u: bool) -> Result<Option<Vec<f64>>> {
+    pub fn recover(
+        &self,
+        model: &Model,
+        parts: &[Part],
+        mine: &[(usize, Condensed)],
+        answer: Option<Result<Vec<Vec<f64>>>>,
+        lambda: &[f64],
+        need_u: bool,
+    ) -> Result<Option<Vec<f64>>> {
         let nd = model.nd;
         let values: Vec<(usize, Vec<f64>)> = if self.comm.size() == 1 {
             let mut d_c = answer.expect("one process is rank 0")?;
@@ -221,13 +229,24 @@ impl<'c> Ranks<'c> {
     }
 
     /// Rank 0's orders to every rank (empty elsewhere), and its own failure.
-    fn orders(&self, answer: Option<Result<Vec<Vec<f64>>>>, lambda: &[f64], need_u: bool) -> (Vec<Order>, Option<anyhow::Error>) {
+    fn orders(
+        &self,
+        answer: Option<Result<Vec<Vec<f64>>>>,
+        lambda: &[f64],
+        need_u: bool,
+    ) -> (Vec<Order>, Option<anyhow::Error>) {
         let size = self.comm.size();
         match answer {
             None => (Vec::new(), None),
             Some(Err(e)) => ((0..size).map(|_| Order::Stop(format!("{e:#}"))).collect(), Some(e)),
             Some(Ok(d_c)) => {
-                let parts = |r: usize| if need_u { (0..d_c.len()).filter(|&i| self.owner[i] == r).map(|i| (i, d_c[i].clone())).collect() } else { Vec::new() };
+                let parts = |r: usize| {
+                    if need_u {
+                        (0..d_c.len()).filter(|&i| self.owner[i] == r).map(|i| (i, d_c[i].clone())).collect()
+                    } else {
+                        Vec::new()
+                    }
+                };
                 ((0..size).map(|r| Order::Recover { lambda: lambda.to_vec(), parts: parts(r) }).collect(), None)
             }
         }
@@ -242,7 +261,8 @@ impl<'c> Ranks<'c> {
 
 impl Remote for Ranks<'_> {
     fn send(&self, work: Vec<(usize, Vec<f64>)>, k: usize) {
-        let mut per_rank: Vec<Service> = (0..self.comm.size()).map(|_| Service::Apply { k, work: Vec::new() }).collect();
+        let mut per_rank: Vec<Service> =
+            (0..self.comm.size()).map(|_| Service::Apply { k, work: Vec::new() }).collect();
         for (i, d) in work {
             if let Service::Apply { work, .. } = &mut per_rank[self.owner[i]] {
                 work.push((i, d));
@@ -277,7 +297,12 @@ fn serve(comm: &dyn Comm, mine: &[(usize, Condensed)]) {
 
 /// Recovers the interiors of `mine` under `lambda`: the displacements of
 /// their nodes, part by part (node order of `Part::nodes`).
-fn recover_parts(model: &Model, mine: &[(usize, Condensed)], d_c: &[(usize, Vec<f64>)], lambda: &[f64]) -> Vec<(usize, Vec<f64>)> {
+fn recover_parts(
+    model: &Model,
+    mine: &[(usize, Condensed)],
+    d_c: &[(usize, Vec<f64>)],
+    lambda: &[f64],
+) -> Vec<(usize, Vec<f64>)> {
     let nd = model.nd;
     let mut u = vec![0.0; model.n_nodes() * nd];
     mine.iter()

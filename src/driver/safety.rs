@@ -62,7 +62,13 @@ struct Trials<'s, 'a> {
 /// Runs the scene's `[safety]` search from the state the load steps left
 /// (`done`), adding its cost to theirs; the search on rank 0, None elsewhere
 /// and when the scene asks for none.
-pub(super) fn run(step: &Step, parts: &Parts, opts: &RunOptions, ranks: &Ranks, done: &mut LoadSteps) -> Result<Option<SafetyRun>> {
+pub(super) fn run(
+    step: &Step,
+    parts: &Parts,
+    opts: &RunOptions,
+    ranks: &Ranks,
+    done: &mut LoadSteps,
+) -> Result<Option<SafetyRun>> {
     let Some(options) = &step.scene.safety else { return Ok(None) };
     // a last step that did not converge has no state to reduce from (the
     // run reports it as such)
@@ -80,7 +86,10 @@ pub(super) fn run(step: &Step, parts: &Parts, opts: &RunOptions, ranks: &Ranks, 
     let (need_stress, need_u) = step.needs();
     let mut recovered = None;
     if ranks.comm().broadcast(&searched.as_ref().is_some_and(|s| s.held.outcome.is_some())) {
-        let answer = searched.as_mut().and_then(|s| s.held.outcome.take()).map(|o| step.contact_run(step.problem.expect("a search has an interface"), o));
+        let answer = searched
+            .as_mut()
+            .and_then(|s| s.held.outcome.take())
+            .map(|o| step.contact_run(step.problem.expect("a search has an interface"), o));
         let (contact, d_c) = answer.unzip();
         let u = ranks.recover(model, &step.plan.parts, &parts.mine, d_c.map(Ok), &lambda, need_u)?;
         recovered = contact.zip(u);
@@ -92,23 +101,52 @@ pub(super) fn run(step: &Step, parts: &Parts, opts: &RunOptions, ranks: &Ranks, 
             done.counters.interior_recoveries += usize::from(need_u) * step.plan.parts.len();
             done.counters.stress_recoveries += usize::from(need_stress);
             let stresses = if need_stress { recover::nodal_stresses(model, &u) } else { Vec::new() };
-            StepResult { step: last.step, load_factor: last.load_factor, case_factors: last.case_factors.clone(), u, stresses, contact: Some(c) }
+            StepResult {
+                step: last.step,
+                load_factor: last.load_factor,
+                case_factors: last.case_factors.clone(),
+                u,
+                stresses,
+                contact: Some(c),
+            }
         }
-        None => StepResult { step: last.step, load_factor: last.load_factor, case_factors: last.case_factors.clone(), u: last.u.clone(), stresses: last.stresses.clone(), contact: last.contact.clone() },
+        None => StepResult {
+            step: last.step,
+            load_factor: last.load_factor,
+            case_factors: last.case_factors.clone(),
+            u: last.u.clone(),
+            stresses: last.stresses.clone(),
+            contact: last.contact.clone(),
+        },
     };
     let recover_s = t.elapsed().as_secs_f64();
     // what the search cost, beside the load steps'
     let problem = step.problem.expect("a search has an interface");
     let applications = problem.applications();
     let before: usize = done.counters.interface_applications_per_solve.iter().sum();
-    let cost = SearchCost { trials: s.trials.len(), contact_iterations: s.iterations, interface_applications: applications.iter().sum::<usize>() - before, search_s, recover_s, factorisations: 0 };
+    let cost = SearchCost {
+        trials: s.trials.len(),
+        contact_iterations: s.iterations,
+        interface_applications: applications.iter().sum::<usize>() - before,
+        search_s,
+        recover_s,
+        factorisations: 0,
+    };
     done.counters.interface_solves += s.iterations;
     done.counters.interface_applications_per_solve = applications;
     done.interface_s += search_s;
     done.recover_s += recover_s;
     done.residual_interface = done.residual_interface.max(s.residual);
     let du = last.u.iter().zip(&done.steps.last().expect("steps").u).map(|(a, b)| a - b).collect();
-    Ok(Some(SafetyRun { factor: s.held.factor, fails_at: s.fails.as_ref().map(|f| f.0), failure: s.fails.map(|f| f.1), trials: s.trials, last, du, cost }))
+    Ok(Some(SafetyRun {
+        factor: s.held.factor,
+        fails_at: s.fails.as_ref().map(|f| f.0),
+        failure: s.fails.map(|f| f.1),
+        trials: s.trials,
+        last,
+        du,
+        cost,
+    }))
 }
 
 /// What the search on rank 0 found.
@@ -123,14 +161,41 @@ struct Searched {
 /// Brackets and bisects F from the state at F = 1.
 fn search(step: &Step, options: &Safety, lambda: &[f64], history: &History, opts: &RunOptions) -> Searched {
     let mut trials = Trials::new(step, options, opts);
-    progress(opts, &format!("safety: reducing {} of {} by F from 1 in steps of {} (tolerance {} x F, at most F = {})", options.reduce.names().join(", "), contact_names(step, &options.contacts), options.step, options.tolerance, options.max_factor));
+    progress(
+        opts,
+        &format!(
+            "safety: reducing {} of {} by F from 1 in steps of {} (tolerance {} x F, at most F = {})",
+            options.reduce.names().join(", "),
+            contact_names(step, &options.contacts),
+            options.step,
+            options.tolerance,
+            options.max_factor
+        ),
+    );
     let start = Held { factor: 1.0, history: history.clone(), outcome: None };
     let b = reduction::upward(&steps(options), start, |f, from: &Held| trials.up(f, from, lambda));
     let held = b.holds.map(|h| h.1).expect("the search upward starts from a state that holds");
     let secs: f64 = trials.trials.iter().map(|t| t.seconds).sum();
     match &b.fails {
-        Some((f, _)) => progress(opts, &format!("safety: F = {:.4} (holds at {}, fails at {}) after {} trials, {} contact iterations, {secs:.2} s", held.factor, six(held.factor), six(*f), trials.trials.len(), trials.iterations)),
-        None => progress(opts, &format!("safety: the search reached its bound: the scene still holds at F = {} (max_factor) after {} trials", held.factor, trials.trials.len())),
+        Some((f, _)) => progress(
+            opts,
+            &format!(
+                "safety: F = {:.4} (holds at {}, fails at {}) after {} trials, {} contact iterations, {secs:.2} s",
+                held.factor,
+                six(held.factor),
+                six(*f),
+                trials.trials.len(),
+                trials.iterations
+            ),
+        ),
+        None => progress(
+            opts,
+            &format!(
+                "safety: the search reached its bound: the scene still holds at F = {} (max_factor) after {} trials",
+                held.factor,
+                trials.trials.len()
+            ),
+        ),
     }
     Searched { held, fails: b.fails, trials: trials.trials, iterations: trials.iterations, residual: trials.residual }
 }
@@ -169,7 +234,8 @@ impl<'s, 'a> Trials<'s, 'a> {
         let mut last = None;
         for k in 0..solver.load_steps {
             let lambda: Vec<f64> = self.step.model.cases.iter().map(|c| c[k]).collect();
-            match self.judge(contact::iterate(self.problem, &laws, solver.rule, &lambda, &mut h, solver.max_iterations)) {
+            match self.judge(contact::iterate(self.problem, &laws, solver.rule, &lambda, &mut h, solver.max_iterations))
+            {
                 Ok(o) => last = Some(o),
                 Err(e) => {
                     self.log(f, 0.0, t, Err(&e));
@@ -190,7 +256,12 @@ impl<'s, 'a> Trials<'s, 'a> {
                     self.residual = self.residual.max(o.solution.residual);
                     return Ok(o);
                 }
-                Err(Failure { kind: FailureKind::NotConverged { cycled: o.summary.cycled }, blocks: Vec::new(), states: o.states, iteration: o.summary.iterations })
+                Err(Failure {
+                    kind: FailureKind::NotConverged { cycled: o.summary.cycled },
+                    blocks: Vec::new(),
+                    states: o.states,
+                    iteration: o.summary.iterations,
+                })
             }
             Err(f) => {
                 self.iterations += f.iteration;
@@ -198,7 +269,8 @@ impl<'s, 'a> Trials<'s, 'a> {
                     SolveFailure::Sliding(ids) => (FailureKind::Sliding, ids),
                     SolveFailure::NotHeld(ids) => (FailureKind::NotHeld, ids),
                 };
-                let mut blocks: Vec<usize> = parts.iter().flat_map(|&i| self.step.plan.parts[i].bodies.iter().copied()).collect();
+                let mut blocks: Vec<usize> =
+                    parts.iter().flat_map(|&i| self.step.plan.parts[i].bodies.iter().copied()).collect();
                 blocks.sort_unstable();
                 blocks.dedup();
                 Err(Failure { kind, blocks, states: f.states, iteration: f.iteration })
@@ -214,11 +286,25 @@ impl<'s, 'a> Trials<'s, 'a> {
         };
         let k = states;
         let what = match r {
-            Ok(_) => format!("holds: {iterations} contact iteration(s), {} stick / {} slip / {} open", k[2], k[1], k[0]),
-            Err(e) => format!("fails at contact iteration {iterations}: {}{}", e.kind.describe(), named(self.step.model, &e.blocks)),
+            Ok(_) => {
+                format!("holds: {iterations} contact iteration(s), {} stick / {} slip / {} open", k[2], k[1], k[0])
+            }
+            Err(e) => format!(
+                "fails at contact iteration {iterations}: {}{}",
+                e.kind.describe(),
+                named(self.step.model, &e.blocks)
+            ),
         };
         progress(self.opts, &format!("safety: F = {f:.4} {what}"));
-        self.trials.push(Trial { factor: f, from, holds, iterations, states, seconds: t.elapsed().as_secs_f64(), failed });
+        self.trials.push(Trial {
+            factor: f,
+            from,
+            holds,
+            iterations,
+            states,
+            seconds: t.elapsed().as_secs_f64(),
+            failed,
+        });
     }
 }
 
@@ -253,20 +339,35 @@ fn contact_names(step: &Step, chosen: &[usize]) -> String {
 /// The error of a safety run whose load steps failed with `err`: when they
 /// lost equilibrium at F = 1, the scene is unsafe as given and F is sought
 /// below 1 ([`SafetyError::Unsafe`]); any other failure is passed on.
-pub(super) fn unsafe_as_given(step: &Step, parts: &Parts, opts: &RunOptions, ranks: &Ranks, err: anyhow::Error) -> anyhow::Error {
+pub(super) fn unsafe_as_given(
+    step: &Step,
+    parts: &Parts,
+    opts: &RunOptions,
+    ranks: &Ranks,
+    err: anyhow::Error,
+) -> anyhow::Error {
     let Some(options) = &step.scene.safety else { return err };
-    let at_one = err.downcast_ref::<ContactError>().filter(|e| matches!(e, ContactError::Sliding { .. } | ContactError::NotHeld { .. })).cloned();
+    let at_one = err
+        .downcast_ref::<ContactError>()
+        .filter(|e| matches!(e, ContactError::Sliding { .. } | ContactError::NotHeld { .. }))
+        .cloned();
     if !ranks.comm().broadcast(&at_one.is_some()) {
         return err;
     }
     let searched = ranks.on_root(&parts.mine, || {
         let mut trials = Trials::new(step, options, opts);
-        progress(opts, "safety: the load steps fail at F = 1: seeking F below 1, each trial running the load steps from the start");
+        progress(
+            opts,
+            "safety: the load steps fail at F = 1: seeking F below 1, each trial running the load steps from the start",
+        );
         let b = reduction::downward(&steps(options), (), |f| trials.path(f).map_err(|_| ()));
         (b.holds.map(|h| h.0), b.fails.map_or(1.0, |f| f.0))
     });
     match (searched, at_one) {
-        (Some((holds, fails)), Some(at_one)) => SafetyError::Unsafe { scene: step.scene.path.clone(), at_one, holds, fails, max_factor: options.max_factor }.into(),
+        (Some((holds, fails)), Some(at_one)) => {
+            SafetyError::Unsafe { scene: step.scene.path.clone(), at_one, holds, fails, max_factor: options.max_factor }
+                .into()
+        }
         _ => err,
     }
 }

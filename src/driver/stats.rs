@@ -27,7 +27,10 @@ pub(super) fn interface_dofs(model: &Model, parts: &[Part]) -> usize {
         in_pair[p.k] = true;
         in_pair[p.l] = true;
     }
-    shared.iter().map(|&n| if in_pair[n] { nd } else { (0..nd).filter(|&c| model.prescribed[n * nd + c].is_none()).count() }).sum()
+    shared
+        .iter()
+        .map(|&n| if in_pair[n] { nd } else { (0..nd).filter(|&c| model.prescribed[n * nd + c].is_none()).count() })
+        .sum()
 }
 
 /// What this rank did: its parts, its condensation's wall time, its memory

@@ -62,8 +62,15 @@ pub(super) struct Step<'a> {
 
 impl<'a> Step<'a> {
     /// What the steps of `scene` read, on every rank.
-    pub fn new(scene: &'a Scene, model: &'a Model, plan: &'a Plan, parts: &'a Parts, ranks: &Ranks) -> Result<Step<'a>> {
-        let traction = agree(ranks.comm(), traction(scene, model, parts.problem.as_ref()).map_err(anyhow::Error::from))?;
+    pub fn new(
+        scene: &'a Scene,
+        model: &'a Model,
+        plan: &'a Plan,
+        parts: &'a Parts,
+        ranks: &Ranks,
+    ) -> Result<Step<'a>> {
+        let traction =
+            agree(ranks.comm(), traction(scene, model, parts.problem.as_ref()).map_err(anyhow::Error::from))?;
         Ok(Step { scene, model, plan, problem: parts.problem.as_ref(), laws: laws(model, scene), traction })
     }
 
@@ -72,7 +79,10 @@ impl<'a> Step<'a> {
     pub fn needs(&self) -> (bool, bool) {
         let scene = self.scene;
         let need_stress = scene.output.wants("stress");
-        (need_stress, need_stress || scene.output.wants("displacement") || !scene.probes.is_empty() || scene.analytic.is_some())
+        (
+            need_stress,
+            need_stress || scene.output.wants("displacement") || !scene.probes.is_empty() || scene.analytic.is_some(),
+        )
     }
 }
 
@@ -116,7 +126,14 @@ pub(super) fn run(this: &Step, parts: &Parts, opts: &RunOptions, ranks: &Ranks) 
             } else {
                 Vec::new()
             };
-            out.steps.push(StepResult { step, load_factor: lambda[0], case_factors: lambda.clone(), u, stresses, contact });
+            out.steps.push(StepResult {
+                step,
+                load_factor: lambda[0],
+                case_factors: lambda.clone(),
+                u,
+                stresses,
+                contact,
+            });
         }
         out.recover_s += t.elapsed().as_secs_f64();
         if n_steps > 1 {
@@ -136,14 +153,25 @@ impl Step<'_> {
     /// The interface displacements of every part at load step `step` under
     /// `lambda`, and the contact result: the state iteration, or one solve
     /// when the parts are joined by bonded interfaces alone.
-    fn iterate(&self, step: usize, lambda: &[f64], history: &mut History, out: &mut LoadSteps) -> Result<Answer, ContactError> {
+    fn iterate(
+        &self,
+        step: usize,
+        lambda: &[f64],
+        history: &mut History,
+        out: &mut LoadSteps,
+    ) -> Result<Answer, ContactError> {
         let nd = self.model.nd;
         let Some(problem) = self.problem else {
             // nothing condensed: every part was solved directly
-            return Ok(Answer { d_c: self.plan.parts.iter().map(|p| vec![0.0; p.interface.len() * nd]).collect(), contact: None });
+            return Ok(Answer {
+                d_c: self.plan.parts.iter().map(|p| vec![0.0; p.interface.len() * nd]).collect(),
+                contact: None,
+            });
         };
         if self.model.pairs.is_empty() {
-            let solution = problem.solve(&[], lambda).map_err(|_| ContactError::BondedNotHeld { scene: self.scene.path.clone() })?;
+            let solution = problem
+                .solve(&[], lambda)
+                .map_err(|_| ContactError::BondedNotHeld { scene: self.scene.path.clone() })?;
             return Ok(Answer { d_c: solution.d_c, contact: None });
         }
         let solver = &self.scene.solver;
@@ -182,7 +210,12 @@ fn laws(model: &Model, scene: &Scene) -> Vec<PairLaw> {
         .map(|p| {
             let c = &scene.contacts[p.contact];
             PairLaw {
-                strength: Strength { friction: c.friction, cohesion: c.cohesion, tensile_strength: c.tensile_strength, residual_cohesion: c.residual_cohesion },
+                strength: Strength {
+                    friction: c.friction,
+                    cohesion: c.cohesion,
+                    tensile_strength: c.tensile_strength,
+                    residual_cohesion: c.residual_cohesion,
+                },
                 slip: c.slip,
             }
         })
@@ -190,10 +223,16 @@ fn laws(model: &Model, scene: &Scene) -> Vec<PairLaw> {
 }
 
 /// The consistent traction recovery, on rank 0 when some contact asks for it.
-fn traction(scene: &Scene, model: &Model, problem: Option<&InterfaceProblem>) -> Result<Option<ConsistentTraction>, ContactError> {
+fn traction(
+    scene: &Scene,
+    model: &Model,
+    problem: Option<&InterfaceProblem>,
+) -> Result<Option<ConsistentTraction>, ContactError> {
     let consistent = scene.contacts.iter().any(|c| c.traction == TractionRecovery::Consistent);
     if problem.is_none() || !consistent || model.pairs.is_empty() {
         return Ok(None);
     }
-    ConsistentTraction::new(model).map(Some).map_err(|e| ContactError::Traction { scene: scene.path.clone(), reason: e.to_string() })
+    ConsistentTraction::new(model)
+        .map(Some)
+        .map_err(|e| ContactError::Traction { scene: scene.path.clone(), reason: e.to_string() })
 }

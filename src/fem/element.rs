@@ -47,8 +47,8 @@
 use super::material::{n_strain, plane_strain_with_zz};
 use super::quadrature::{self, QuadPoint};
 use super::shape;
-use crate::mesh::CellKind;
 use super::Analysis;
+use crate::mesh::CellKind;
 // the 3-vector helpers, where callers of the element kernels found them
 pub use super::vec3::{cross, dot, norm, sub};
 
@@ -213,7 +213,8 @@ pub fn uses_b_bar(analysis: Analysis, kind: CellKind, nu: f64) -> bool {
     nu >= B_BAR_FROM_NU
         && matches!(
             (analysis, kind),
-            (Analysis::PlaneStrain | Analysis::Axisymmetric, CellKind::Quad4) | (Analysis::Solid, CellKind::Hex8 | CellKind::Prism6)
+            (Analysis::PlaneStrain | Analysis::Axisymmetric, CellKind::Quad4)
+                | (Analysis::Solid, CellKind::Hex8 | CellKind::Prism6)
         )
 }
 
@@ -271,7 +272,13 @@ fn b_bar(analysis: Analysis, mean: &[f64], b: &[f64], out: &mut [f64]) {
 
 /// Geometry of a cell at every point of a rule, with the weight
 /// `w det J measure` of each.
-fn rule_points(analysis: Analysis, kind: CellKind, coords: &[[f64; 3]], thickness: f64, rule: &[QuadPoint]) -> Result<Vec<(Point, f64)>, Inverted> {
+fn rule_points(
+    analysis: Analysis,
+    kind: CellKind,
+    coords: &[[f64; 3]],
+    thickness: f64,
+    rule: &[QuadPoint],
+) -> Result<Vec<(Point, f64)>, Inverted> {
     rule.iter()
         .map(|q| {
             let p = point(kind, coords, q.xi)?;
@@ -540,7 +547,8 @@ mod tests {
     /// Rigid motions of a node set: translations and rotations.
     fn rigid_modes(analysis: Analysis, xs: &[[f64; 3]]) -> Vec<Vec<f64>> {
         let nd = dofs_per_node(analysis);
-        let mode = |f: &dyn Fn([f64; 3]) -> [f64; 3]| xs.iter().flat_map(|&x| f(x)[..nd].to_vec()).collect::<Vec<f64>>();
+        let mode =
+            |f: &dyn Fn([f64; 3]) -> [f64; 3]| xs.iter().flat_map(|&x| f(x)[..nd].to_vec()).collect::<Vec<f64>>();
         match analysis {
             Analysis::Axisymmetric => vec![mode(&|_| [0.0, 1.0, 0.0])],
             Analysis::Solid => vec![
@@ -562,7 +570,10 @@ mod tests {
             (Analysis::PlaneStrain, vec![Tri3, Tri6, Quad4, Quad8, Quad9]),
             (Analysis::PlaneStress, vec![Tri3, Tri6, Quad4, Quad8, Quad9]),
             (Analysis::Axisymmetric, vec![Tri3, Tri6, Quad4, Quad8, Quad9]),
-            (Analysis::Solid, vec![Tet4, Tet10, Hex8, Hex20, Hex27, Prism6, Prism15, Prism18, Pyramid5, Pyramid13, Pyramid14]),
+            (
+                Analysis::Solid,
+                vec![Tet4, Tet10, Hex8, Hex20, Hex27, Prism6, Prism15, Prism18, Pyramid5, Pyramid13, Pyramid14],
+            ),
         ];
         // nu near 1/2 too: B-bar (quad4 plane strain / axisymmetric, hex8)
         // must add no zero-energy mode however large lambda is
@@ -602,8 +613,10 @@ mod tests {
             + a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
         let g = [0.5, -2.0, -9.81];
         for kind in CellKind::ALL.into_iter().filter(|k| k.dim() == 3) {
-            let affine: Vec<[f64; 3]> =
-                shape::reference_nodes(kind).iter().map(|p| std::array::from_fn(|i| 2.0 + (0..3).map(|j| a[i][j] * p[j]).sum::<f64>())).collect();
+            let affine: Vec<[f64; 3]> = shape::reference_nodes(kind)
+                .iter()
+                .map(|p| std::array::from_fn(|i| 2.0 + (0..3).map(|j| a[i][j] * p[j]).sum::<f64>()))
+                .collect();
             for (xs, volume) in [(affine, det * quadrature::reference_volume(kind)), (distorted(kind), f64::NAN)] {
                 let volume = if volume.is_nan() {
                     quadrature::rule(kind, 10).iter().map(|q| q.w * point(kind, &xs, q.xi).unwrap().det_j).sum()
@@ -614,7 +627,11 @@ mod tests {
                 body_force(Analysis::Solid, kind, &xs, g, 1.0, &mut fe).expect("not inverted");
                 for c in 0..3 {
                     let total: f64 = fe.iter().skip(c).step_by(3).sum();
-                    assert!((total - g[c] * volume).abs() < 1e-12 * 9.81 * volume, "{kind:?}: {total} vs {}", g[c] * volume);
+                    assert!(
+                        (total - g[c] * volume).abs() < 1e-12 * 9.81 * volume,
+                        "{kind:?}: {total} vs {}",
+                        g[c] * volume
+                    );
                 }
             }
         }
@@ -622,7 +639,12 @@ mod tests {
 
     /// The elements that use B-bar.
     fn b_bar_cases() -> Vec<(Analysis, CellKind)> {
-        vec![(Analysis::PlaneStrain, CellKind::Quad4), (Analysis::Axisymmetric, CellKind::Quad4), (Analysis::Solid, CellKind::Hex8), (Analysis::Solid, CellKind::Prism6)]
+        vec![
+            (Analysis::PlaneStrain, CellKind::Quad4),
+            (Analysis::Axisymmetric, CellKind::Quad4),
+            (Analysis::Solid, CellKind::Hex8),
+            (Analysis::Solid, CellKind::Prism6),
+        ]
     }
 
     #[test]
@@ -644,7 +666,8 @@ mod tests {
             }
             let xs = distorted(kind);
             let mut ke = Vec::new();
-            stiffness(analysis, kind, 0.49, &xs, &d, 1.0, &stiffness_rule(analysis, kind), &mut ke).expect("not inverted");
+            stiffness(analysis, kind, 0.49, &xs, &d, 1.0, &stiffness_rule(analysis, kind), &mut ke)
+                .expect("not inverted");
             let m = (ke.len() as f64).sqrt() as usize;
             let eig = DMatrix::from_row_slice(m, m, &ke).symmetric_eigen().eigenvalues;
             let top = eig.amax();
@@ -691,7 +714,11 @@ mod tests {
                     Analysis::Axisymmetric => [0.3 * x[0], -0.2 * x[1] + 0.1, 0.0],
                     // (the distorted plane cells have z != 0 at their nodes)
                     Analysis::PlaneStrain => [0.3 * x[0] + 0.1 * x[1], 0.2 * x[0] - 0.2 * x[1], 0.0],
-                    _ => [0.3 * x[0] + 0.1 * x[1] - 0.05 * x[2], 0.2 * x[0] - 0.2 * x[1] + 0.4 * x[2], 0.15 * x[0] + 0.25 * x[1] + 0.1 * x[2]],
+                    _ => [
+                        0.3 * x[0] + 0.1 * x[1] - 0.05 * x[2],
+                        0.2 * x[0] - 0.2 * x[1] + 0.4 * x[2],
+                        0.15 * x[0] + 0.25 * x[1] + 0.1 * x[2],
+                    ],
                 }
             };
             let ul: Vec<f64> = xs.iter().flat_map(|&x| lin(x)[..nd].to_vec()).collect();
@@ -699,7 +726,10 @@ mod tests {
             for q in &rule {
                 let p = point(kind, &xs, q.xi).unwrap();
                 let (plain, bar) = (strain(analysis, &p, &ul, None), strain(analysis, &p, &ul, mean));
-                assert!((0..6).all(|i| (plain[i] - bar[i]).abs() < 1e-14), "{analysis:?} {kind:?}: {plain:?} vs {bar:?}");
+                assert!(
+                    (0..6).all(|i| (plain[i] - bar[i]).abs() < 1e-14),
+                    "{analysis:?} {kind:?}: {plain:?} vs {bar:?}"
+                );
             }
         }
     }

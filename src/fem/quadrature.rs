@@ -366,10 +366,8 @@ enum Orbit {
 // Triangle rules (weights: fractions of the area, summing to 1).
 const TRI_1: &[Orbit] = &[Orbit::Centre(1.0)];
 const TRI_2: &[Orbit] = &[Orbit::S21(1.0 / 6.0, 1.0 / 3.0)];
-const TRI_4: &[Orbit] = &[
-    Orbit::S21(0.4459484909159647, 0.223381589678011),
-    Orbit::S21(0.09157621350977108, 0.10995174365532236),
-];
+const TRI_4: &[Orbit] =
+    &[Orbit::S21(0.4459484909159647, 0.223381589678011), Orbit::S21(0.09157621350977108, 0.10995174365532236)];
 /// Radon's 7-point rule: a = (6 ∓ √15)/21, w = (155 ∓ √15)/1200.
 const TRI_5: &[Orbit] = &[
     Orbit::Centre(0.225),
@@ -522,7 +520,10 @@ mod tests {
     }
 
     fn integrate(points: &[QuadPoint], e: [usize; 3]) -> f64 {
-        points.iter().map(|p| p.w * p.xi[0].powi(e[0] as i32) * p.xi[1].powi(e[1] as i32) * p.xi[2].powi(e[2] as i32)).sum()
+        points
+            .iter()
+            .map(|p| p.w * p.xi[0].powi(e[0] as i32) * p.xi[1].powi(e[1] as i32) * p.xi[2].powi(e[2] as i32))
+            .sum()
     }
 
     /// Exponents of the monomials a rule of `degree` must integrate exactly.
@@ -534,7 +535,8 @@ mod tests {
             for b in 0..=r(1) {
                 for c in 0..=r(2) {
                     // simplices and pyramids: total degree; prisms: (ξ, η) and ζ apart
-                    let beyond = ((is_simplex(kind) || is_pyramid(kind)) && a + b + c > degree) || (is_prism(kind) && a + b > degree);
+                    let beyond = ((is_simplex(kind) || is_pyramid(kind)) && a + b + c > degree)
+                        || (is_prism(kind) && a + b > degree);
                     if !beyond {
                         out.push([a, b, c]);
                     }
@@ -545,8 +547,15 @@ mod tests {
     }
 
     /// One representative per reference cell.
-    const CELLS: [CellKind; 7] =
-        [CellKind::Line2, CellKind::Tri3, CellKind::Quad4, CellKind::Tet4, CellKind::Hex8, CellKind::Prism6, CellKind::Pyramid5];
+    const CELLS: [CellKind; 7] = [
+        CellKind::Line2,
+        CellKind::Tri3,
+        CellKind::Quad4,
+        CellKind::Tet4,
+        CellKind::Hex8,
+        CellKind::Prism6,
+        CellKind::Pyramid5,
+    ];
 
     fn max_degree(kind: CellKind) -> usize {
         match kind.dim() {
@@ -654,7 +663,11 @@ mod tests {
     fn prism_rules_have_positive_weights_and_interior_points() {
         for degree in 0..=10 {
             for p in rule(CellKind::Prism6, degree) {
-                assert!(p.w > 0.0 && shape::inside_reference(CellKind::Prism6, p.xi, 0.0), "degree {degree}: {:?}", p.xi);
+                assert!(
+                    p.w > 0.0 && shape::inside_reference(CellKind::Prism6, p.xi, 0.0),
+                    "degree {degree}: {:?}",
+                    p.xi
+                );
             }
         }
     }
@@ -804,7 +817,14 @@ mod tests {
                 let vals: Vec<f64> = pts.iter().map(|p| f(p.xi)).collect();
                 let nodal = apply(&e, &vals, nn);
                 for (i, node) in shape::reference_nodes(kind).iter().enumerate() {
-                    assert!((nodal[i] - f(*node)).abs() < 1e-12, "{} node {}: {} vs {}", kind.name(), i, nodal[i], f(*node));
+                    assert!(
+                        (nodal[i] - f(*node)).abs() < 1e-12,
+                        "{} node {}: {} vs {}",
+                        kind.name(),
+                        i,
+                        nodal[i],
+                        f(*node)
+                    );
                 }
             } else {
                 assert!(matches!(kind, CellKind::Point1 | CellKind::Tri3 | CellKind::Tet4), "{}", kind.name());

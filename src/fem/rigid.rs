@@ -27,7 +27,14 @@ pub fn names(analysis: Analysis) -> &'static [&'static str] {
     match analysis {
         Analysis::PlaneStrain | Analysis::PlaneStress => &["translation in x", "translation in y", "rotation about z"],
         Analysis::Axisymmetric => &["translation along the axis (y)"],
-        Analysis::Solid => &["translation in x", "translation in y", "translation in z", "rotation about x", "rotation about y", "rotation about z"],
+        Analysis::Solid => &[
+            "translation in x",
+            "translation in y",
+            "translation in z",
+            "rotation about x",
+            "rotation about y",
+            "rotation about z",
+        ],
     }
 }
 
@@ -52,10 +59,16 @@ impl RigidModes {
     /// `dir . R(x)`: how much each motion moves the point x along `dir`
     /// (entries past [`n_modes`] are zero).
     pub fn along(&self, x: [f64; 3], dir: [f64; 3]) -> [f64; 6] {
-        let d = [(x[0] - self.center[0]) / self.scale, (x[1] - self.center[1]) / self.scale, (x[2] - self.center[2]) / self.scale];
+        let d = [
+            (x[0] - self.center[0]) / self.scale,
+            (x[1] - self.center[1]) / self.scale,
+            (x[2] - self.center[2]) / self.scale,
+        ];
         match self.analysis {
             // u = t + theta e_z x d
-            Analysis::PlaneStrain | Analysis::PlaneStress => [dir[0], dir[1], -d[1] * dir[0] + d[0] * dir[1], 0.0, 0.0, 0.0],
+            Analysis::PlaneStrain | Analysis::PlaneStress => {
+                [dir[0], dir[1], -d[1] * dir[0] + d[0] * dir[1], 0.0, 0.0, 0.0]
+            }
             Analysis::Axisymmetric => [dir[1], 0.0, 0.0, 0.0, 0.0, 0.0],
             // u = t + w x d: (w x d) . dir = w . (d x dir)
             Analysis::Solid => {
@@ -84,7 +97,11 @@ impl RigidModes {
 
     /// `gram` over the supported components of `nodes`: (node, component)
     /// pairs whose coordinates are `coords[node]`.
-    pub fn gram_of_supports(&self, coords: &[[f64; 3]], supported: impl IntoIterator<Item = (usize, usize)>) -> DMatrix<f64> {
+    pub fn gram_of_supports(
+        &self,
+        coords: &[[f64; 3]],
+        supported: impl IntoIterator<Item = (usize, usize)>,
+    ) -> DMatrix<f64> {
         self.gram(supported.into_iter().map(|(n, c)| (coords[n], unit(c))))
     }
 }
@@ -114,7 +131,11 @@ mod tests {
         let rm = RigidModes::new(Analysis::PlaneStrain, [1.0, 0.5, 0.0], 1.0);
         let coords = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]];
         let rank = |g: DMatrix<f64>| g.symmetric_eigen().eigenvalues.iter().filter(|&&l| l > 1e-12).count();
-        assert_eq!(rank(rm.gram_of_supports(&coords, [(0, 1), (1, 1)])), 2, "two vertical supports: x translation free");
+        assert_eq!(
+            rank(rm.gram_of_supports(&coords, [(0, 1), (1, 1)])),
+            2,
+            "two vertical supports: x translation free"
+        );
         assert_eq!(rank(rm.gram_of_supports(&coords, [(0, 1), (1, 1), (0, 0)])), 3);
     }
 }

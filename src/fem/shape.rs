@@ -43,8 +43,8 @@ mod tests;
 
 pub use inverse::{locate, map_point, LOCATE_TOL};
 pub use nodes::{
-    faces, inside_reference, linear_sibling, reference_centre, reference_nodes, Face, HEX_EDGES, HEX_FACES, PRISM_EDGES, PYRAMID_EDGES,
-    QUAD_EDGES, TET_EDGES, TRI_EDGES,
+    faces, inside_reference, linear_sibling, reference_centre, reference_nodes, Face, HEX_EDGES, HEX_FACES,
+    PRISM_EDGES, PYRAMID_EDGES, QUAD_EDGES, TET_EDGES, TRI_EDGES,
 };
 
 use std::sync::OnceLock;

@@ -7,8 +7,8 @@
 //! unknown (supported, or not part of this matrix).
 
 use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::LltError;
 use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
+use faer::sparse::linalg::LltError;
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::{MatMut, Side};
 
@@ -213,7 +213,8 @@ impl Cholesky {
         }
         let symbolic = SymbolicSparseColMat::new_checked(a.n, a.n, a.col_ptr.clone(), None, a.row_idx.clone());
         let mat = SparseColMat::new(symbolic, a.values.clone());
-        let sym = SymbolicLlt::try_new(mat.symbolic(), Side::Lower).map_err(|e| FactorError::Resource(format!("{e:?}")))?;
+        let sym =
+            SymbolicLlt::try_new(mat.symbolic(), Side::Lower).map_err(|e| FactorError::Resource(format!("{e:?}")))?;
         let llt = Llt::try_new_with_symbolic(sym, mat.as_ref(), Side::Lower).map_err(|e| match e {
             LltError::Numeric(_) => FactorError::NotPositiveDefinite,
             LltError::Generic(g) => FactorError::Resource(format!("{g:?}")),

@@ -24,9 +24,7 @@ pub enum GmshError {
     #[error("geometry file `{}` does not exist: check the scene's path to the .geo", geo.display())]
     GeoMissing { geo: PathBuf },
 
-    #[error(
-        "the gmsh CLI was not found: install it with `apt-get install -y gmsh` (or `make deps`)"
-    )]
+    #[error("the gmsh CLI was not found: install it with `apt-get install -y gmsh` (or `make deps`)")]
     NotInstalled,
 
     #[error("cannot run gmsh: {source}")]
@@ -36,11 +34,7 @@ pub enum GmshError {
     },
 
     #[error("gmsh failed on `{}` ({status}):\n{errors}\nfix the .geo (open it in the gmsh GUI to see the problem)", geo.display())]
-    Failed {
-        geo: PathBuf,
-        status: String,
-        errors: String,
-    },
+    Failed { geo: PathBuf, status: String, errors: String },
 
     #[error("gmsh wrote no mesh for `{}` although it reported no error:\n{output}", geo.display())]
     NoOutput { geo: PathBuf, output: String },
@@ -93,26 +87,16 @@ pub fn mesh(job: &GmshJob) -> Result<Meshed, GmshError> {
 
 /// The installed gmsh's version, e.g. `4.8.4`.
 pub fn gmsh_version() -> Result<String, GmshError> {
-    let out = Command::new("gmsh")
-        .arg("--version")
-        .stdin(Stdio::null())
-        .output()
-        .map_err(spawn_error)?;
+    let out = Command::new("gmsh").arg("--version").stdin(Stdio::null()).output().map_err(spawn_error)?;
     // gmsh 4.8.4 prints its version on stderr.
-    let text = format!(
-        "{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
     let version = text
         .split_whitespace()
         .find(|w| w.chars().next().is_some_and(|c| c.is_ascii_digit()) && w.contains('.'))
         .map(str::to_string);
     match version {
         Some(v) if out.status.success() => Ok(v),
-        _ => Err(GmshError::Version {
-            output: text.trim().to_string(),
-        }),
+        _ => Err(GmshError::Version { output: text.trim().to_string() }),
     }
 }
 
@@ -126,12 +110,8 @@ fn spawn_error(e: io::Error) -> GmshError {
 
 /// The arguments after `gmsh`, for output file `out`.
 fn gmsh_args(job: &GmshJob, binary: bool, out: &Path) -> Vec<std::ffi::OsString> {
-    let mut args: Vec<std::ffi::OsString> = vec![
-        job.geo.clone().into(),
-        format!("-{}", job.dim).into(),
-        "-order".into(),
-        job.order.to_string().into(),
-    ];
+    let mut args: Vec<std::ffi::OsString> =
+        vec![job.geo.clone().into(), format!("-{}", job.dim).into(), "-order".into(), job.order.to_string().into()];
     for (name, value) in &job.setnumber {
         args.push("-setnumber".into());
         args.push(name.into());
@@ -152,12 +132,7 @@ fn gmsh_args(job: &GmshJob, binary: bool, out: &Path) -> Vec<std::ffi::OsString>
 }
 
 fn check_job(job: &GmshJob) -> Result<(), GmshError> {
-    let bad = |detail: String| {
-        Err(GmshError::BadJob {
-            geo: job.geo.clone(),
-            detail,
-        })
-    };
+    let bad = |detail: String| Err(GmshError::BadJob { geo: job.geo.clone(), detail });
     if !(job.dim == 2 || job.dim == 3) {
         return bad(format!("dimension {} (must be 2 or 3)", job.dim));
     }
@@ -166,14 +141,10 @@ fn check_job(job: &GmshJob) -> Result<(), GmshError> {
     }
     for (name, value) in &job.setnumber {
         if name.is_empty() || name.starts_with('-') || name.chars().any(char::is_whitespace) {
-            return bad(format!(
-                "parameter name {name:?} (must be a gmsh name such as `lc`)"
-            ));
+            return bad(format!("parameter name {name:?} (must be a gmsh name such as `lc`)"));
         }
         if !value.is_finite() {
-            return bad(format!(
-                "parameter `{name}` = {value} (must be a finite number)"
-            ));
+            return bad(format!("parameter `{name}` = {value} (must be a finite number)"));
         }
     }
     if let Some(s) = job.clscale {
@@ -182,10 +153,7 @@ fn check_job(job: &GmshJob) -> Result<(), GmshError> {
         }
     }
     if job.msh.file_name().is_none() {
-        return bad(format!(
-            "mesh path `{}` has no file name",
-            job.msh.display()
-        ));
+        return bad(format!("mesh path `{}` has no file name", job.msh.display()));
     }
     Ok(())
 }
@@ -218,10 +186,7 @@ fn job_key(geo_bytes: &[u8], args: &[std::ffi::OsString]) -> String {
     for a in args {
         h.field(a.as_encoded_bytes());
     }
-    let cmd: Vec<String> = args
-        .iter()
-        .map(|a| a.to_string_lossy().into_owned())
-        .collect();
+    let cmd: Vec<String> = args.iter().map(|a| a.to_string_lossy().into_owned()).collect();
     format!("{:016x}\ngmsh {}\n", h.0, cmd.join(" "))
 }
 
@@ -235,15 +200,10 @@ fn key_path(msh: &Path) -> PathBuf {
 fn temp_path(msh: &Path, what: &str) -> PathBuf {
     use std::sync::atomic::{AtomicU64, Ordering};
     static COUNTER: AtomicU64 = AtomicU64::new(0);
-    let nanos = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map(|d| d.subsec_nanos())
-        .unwrap_or(0);
+    let nanos =
+        std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.subsec_nanos()).unwrap_or(0);
     let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-    let name = msh
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
+    let name = msh.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
     let file = format!(".{name}.{}-{n}-{nanos}.tmp.{what}", std::process::id());
     msh.with_file_name(file)
 }
@@ -257,8 +217,7 @@ fn error_lines(output: &str) -> Vec<String> {
         };
         let msg = rest.trim_start().trim_start_matches(':').trim();
         let count_line = msg.split_once(' ').is_some_and(|(n, what)| {
-            n.chars().all(|c| c.is_ascii_digit())
-                && matches!(what, "warning" | "warnings" | "error" | "errors")
+            n.chars().all(|c| c.is_ascii_digit()) && matches!(what, "warning" | "warnings" | "error" | "errors")
         });
         let boxed = msg.is_empty()
             || msg.starts_with("---")
@@ -289,18 +248,8 @@ fn mesh_impl(job: &GmshJob, binary: bool, program: &str) -> Result<Meshed, GmshE
     check_job(job)?;
     let geo_bytes = match std::fs::read(&job.geo) {
         Ok(b) => b,
-        Err(e) if e.kind() == io::ErrorKind::NotFound => {
-            return Err(GmshError::GeoMissing {
-                geo: job.geo.clone(),
-            })
-        }
-        Err(e) => {
-            return Err(GmshError::Io {
-                what: "cannot read",
-                path: job.geo.clone(),
-                source: e,
-            })
-        }
+        Err(e) if e.kind() == io::ErrorKind::NotFound => return Err(GmshError::GeoMissing { geo: job.geo.clone() }),
+        Err(e) => return Err(GmshError::Io { what: "cannot read", path: job.geo.clone(), source: e }),
     };
     let key = job_key(&geo_bytes, &gmsh_args(job, binary, &job.msh));
     let key_file = key_path(&job.msh);
@@ -320,11 +269,7 @@ fn mesh_impl(job: &GmshJob, binary: bool, program: &str) -> Result<Meshed, GmshE
     for old in [&key_file, &job.msh] {
         match std::fs::remove_file(old) {
             Err(e) if e.kind() != io::ErrorKind::NotFound => {
-                return Err(GmshError::Io {
-                    what: "cannot remove",
-                    path: old.clone(),
-                    source: e,
-                })
+                return Err(GmshError::Io { what: "cannot remove", path: old.clone(), source: e })
             }
             _ => {}
         }
@@ -345,58 +290,31 @@ fn mesh_impl(job: &GmshJob, binary: bool, program: &str) -> Result<Meshed, GmshE
     result?;
 
     let tmp_key = temp_path(&job.msh, "key");
-    let written =
-        std::fs::write(&tmp_key, &key).and_then(|()| std::fs::rename(&tmp_key, &key_file));
+    let written = std::fs::write(&tmp_key, &key).and_then(|()| std::fs::rename(&tmp_key, &key_file));
     if let Err(e) = written {
         let _ = std::fs::remove_file(&tmp_key);
-        return Err(GmshError::Io {
-            what: "cannot write",
-            path: key_file,
-            source: e,
-        });
+        return Err(GmshError::Io { what: "cannot write", path: key_file, source: e });
     }
     Ok(Meshed::Generated)
 }
 
 /// Runs gmsh writing to `out`; Ok only if gmsh succeeded, reported no error and wrote `out`.
 fn run_gmsh(job: &GmshJob, binary: bool, out: &Path, program: &str) -> Result<(), GmshError> {
-    let output = Command::new(program)
-        .args(gmsh_args(job, binary, out))
-        .stdin(Stdio::null())
-        .output()
-        .map_err(spawn_error)?;
-    let text = format!(
-        "{}\n{}",
-        String::from_utf8_lossy(&output.stdout),
-        String::from_utf8_lossy(&output.stderr)
-    );
+    let output =
+        Command::new(program).args(gmsh_args(job, binary, out)).stdin(Stdio::null()).output().map_err(spawn_error)?;
+    let text = format!("{}\n{}", String::from_utf8_lossy(&output.stdout), String::from_utf8_lossy(&output.stderr));
     let errors = error_lines(&text);
     if !output.status.success() || !errors.is_empty() {
         let status = match output.status.code() {
             Some(c) => format!("exit status {c}"),
             None => "killed by a signal".to_string(),
         };
-        let errors = if errors.is_empty() {
-            tail(&text, 10)
-        } else {
-            errors.join("\n")
-        };
-        let errors = errors
-            .lines()
-            .map(|l| format!("  {l}"))
-            .collect::<Vec<_>>()
-            .join("\n");
-        return Err(GmshError::Failed {
-            geo: job.geo.clone(),
-            status,
-            errors,
-        });
+        let errors = if errors.is_empty() { tail(&text, 10) } else { errors.join("\n") };
+        let errors = errors.lines().map(|l| format!("  {l}")).collect::<Vec<_>>().join("\n");
+        return Err(GmshError::Failed { geo: job.geo.clone(), status, errors });
     }
     if !out.is_file() {
-        return Err(GmshError::NoOutput {
-            geo: job.geo.clone(),
-            output: tail(&text, 10),
-        });
+        return Err(GmshError::NoOutput { geo: job.geo.clone(), output: tail(&text, 10) });
     }
     Ok(())
 }
@@ -412,10 +330,8 @@ pub(crate) mod tests {
         pub(crate) fn new(name: &str) -> Self {
             use std::sync::atomic::{AtomicU64, Ordering};
             static N: AtomicU64 = AtomicU64::new(0);
-            let nanos = std::time::SystemTime::now()
-                .duration_since(std::time::UNIX_EPOCH)
-                .map(|d| d.as_nanos())
-                .unwrap_or(0);
+            let nanos =
+                std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.as_nanos()).unwrap_or(0);
             let dir = std::env::temp_dir().join(format!(
                 "subcontact-mesh-test-{name}-{}-{}-{nanos}",
                 std::process::id(),
@@ -432,14 +348,7 @@ pub(crate) mod tests {
         }
 
         pub(crate) fn job(&self, geo: &Path, msh: &str, dim: usize, order: usize) -> GmshJob {
-            GmshJob {
-                geo: geo.to_path_buf(),
-                msh: self.0.join(msh),
-                dim,
-                order,
-                setnumber: Vec::new(),
-                clscale: None,
-            }
+            GmshJob { geo: geo.to_path_buf(), msh: self.0.join(msh), dim, order, setnumber: Vec::new(), clscale: None }
         }
     }
 
@@ -492,10 +401,8 @@ Physical Curve("edges") = {1, 2};
 "#;
 
     fn dir_entries(dir: &Path) -> Vec<String> {
-        let mut v: Vec<String> = std::fs::read_dir(dir)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
+        let mut v: Vec<String> =
+            std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
         v.sort();
         v
     }
@@ -516,10 +423,7 @@ Physical Curve("edges") = {1, 2};
         job.setnumber = vec![("lc".into(), 0.5)];
         assert_eq!(mesh(&job).unwrap(), Meshed::Generated);
         let first = std::fs::read(&job.msh).unwrap();
-        assert!(
-            first.starts_with(b"$MeshFormat\n4.1 1 8\n"),
-            "binary MSH 4.1 expected"
-        );
+        assert!(first.starts_with(b"$MeshFormat\n4.1 1 8\n"), "binary MSH 4.1 expected");
         let key = std::fs::read_to_string(key_path(&job.msh)).unwrap();
         assert!(key.contains("-setnumber lc 0.5"), "{key}");
         assert_eq!(mesh(&job).unwrap(), Meshed::Cached);
@@ -546,10 +450,7 @@ Physical Curve("edges") = {1, 2};
         assert_eq!(mesh(&job).unwrap(), Meshed::Generated);
 
         // So are the .geo's bytes.
-        dir.write(
-            "two.geo",
-            &TWO_RECT_GEO.replace("{2, 0, 0, lc}", "{3, 0, 0, lc}"),
-        );
+        dir.write("two.geo", &TWO_RECT_GEO.replace("{2, 0, 0, lc}", "{3, 0, 0, lc}"));
         assert_eq!(mesh(&job).unwrap(), Meshed::Generated);
         assert_eq!(mesh(&job).unwrap(), Meshed::Cached);
 
@@ -561,10 +462,7 @@ Physical Curve("edges") = {1, 2};
         assert_eq!(mesh(&job).unwrap(), Meshed::Cached);
 
         // No temporary file is left behind.
-        assert_eq!(
-            dir_entries(&dir.0.join("out/sub")),
-            vec!["two.msh", "two.msh.key"]
-        );
+        assert_eq!(dir_entries(&dir.0.join("out/sub")), vec!["two.msh", "two.msh.key"]);
     }
 
     #[test]
@@ -574,10 +472,7 @@ Physical Curve("edges") = {1, 2};
         let e = mesh(&job).unwrap_err();
         assert!(matches!(e, GmshError::GeoMissing { .. }), "{e:?}");
         let msg = e.to_string();
-        assert!(
-            msg.contains("nothere.geo") && msg.contains("does not exist"),
-            "{msg}"
-        );
+        assert!(msg.contains("nothere.geo") && msg.contains("does not exist"), "{msg}");
         assert!(!job.msh.exists());
     }
 
@@ -604,25 +499,15 @@ Physical Curve("edges") = {1, 2};
         let e = mesh(&job).unwrap_err();
         let msg = e.to_string();
         assert!(matches!(e, GmshError::Failed { .. }), "{e:?}");
-        assert!(
-            msg.contains("syntax.geo") && msg.contains("syntax error"),
-            "{msg}"
-        );
+        assert!(msg.contains("syntax.geo") && msg.contains("syntax error"), "{msg}");
         assert!(!job.msh.exists());
 
         // A reference to a missing point: many repeated error lines, deduplicated.
-        let geo = dir.write(
-            "badline.geo",
-            "Point(1) = {0, 0, 0};\nLine(1) = {1, 2};\nPhysical Curve(1) = {1};\n",
-        );
+        let geo = dir.write("badline.geo", "Point(1) = {0, 0, 0};\nLine(1) = {1, 2};\nPhysical Curve(1) = {1};\n");
         let job = dir.job(&geo, "badline.msh", 2, 1);
         let msg = mesh(&job).unwrap_err().to_string();
         assert!(msg.contains("Unknown control point 2"), "{msg}");
-        assert_eq!(
-            msg.matches("Line with less than 2 control points").count(),
-            1,
-            "{msg}"
-        );
+        assert_eq!(msg.matches("Line with less than 2 control points").count(), 1, "{msg}");
         assert!(!msg.contains("error summary"), "{msg}");
         assert!(!job.msh.exists());
 
@@ -663,9 +548,6 @@ Physical Curve("edges") = {1, 2};
     fn error_lines_skip_the_summary_box() {
         let out = "Info : x\nError   : a\nError   : ------\nError   : Mesh generation error summary\n\
                    Error   :     0 warnings\nError   :     2 errors\nError   : a\nError   : b 3 errors\n";
-        assert_eq!(
-            error_lines(out),
-            vec!["a".to_string(), "b 3 errors".to_string()]
-        );
+        assert_eq!(error_lines(out), vec!["a".to_string(), "b 3 errors".to_string()]);
     }
 }

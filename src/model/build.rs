@@ -192,7 +192,13 @@ impl Cases {
 /// Every facet of every load group on the copy of the cell it bounds, with
 /// the sign that makes its normal outward and its load case (`of_load`);
 /// a facet on no body's boundary, or between two bodies, is an error.
-fn loads(b: &Builder, topo: &Topology, split: &Split, bodies: &[Body], of_load: &[usize]) -> Result<Vec<FacetLoad>, ModelError> {
+fn loads(
+    b: &Builder,
+    topo: &Topology,
+    split: &Split,
+    bodies: &[Body],
+    of_load: &[usize],
+) -> Result<Vec<FacetLoad>, ModelError> {
     let placed = placed(&split.block, bodies.len());
     let mut loads = Vec::new();
     for (load, &case) in b.spec.loads.iter().zip(of_load) {
@@ -211,7 +217,12 @@ fn loads(b: &Builder, topo: &Topology, split: &Split, bodies: &[Body], of_load: 
                     let names: Vec<String> = owners.iter().map(|&c| bodies[split.block[c]].label()).collect();
                     return Err(b.invalid(
                         key.clone(),
-                        format!("element {} of group \"{}\" lies between bodies {}: loads go on outer boundaries", f.tag, load.group, names.join(" and ")),
+                        format!(
+                            "element {} of group \"{}\" lies between bodies {}: loads go on outer boundaries",
+                            f.tag,
+                            load.group,
+                            names.join(" and ")
+                        ),
                     ));
                 }
             };
@@ -247,7 +258,9 @@ fn pair_normals(model: &Model, raw_pairs: &[RawPair], signs: &[Vec<f64>]) -> Vec
     for p in raw_pairs {
         let (mut nk, mut area) = ([0.0; 3], 0.0);
         for s in &p.shares {
-            let pts = points.entry((p.contact, s.facet)).or_insert_with(|| facet_points(model, &model.interfaces[p.contact].facets[s.facet]));
+            let pts = points
+                .entry((p.contact, s.facet))
+                .or_insert_with(|| facet_points(model, &model.interfaces[p.contact].facets[s.facet]));
             let sign = signs[p.contact][s.facet];
             for q in pts.iter() {
                 let a = s.node;
@@ -261,7 +274,14 @@ fn pair_normals(model: &Model, raw_pairs: &[RawPair], signs: &[Vec<f64>]) -> Vec
         }
         let nrm = element::norm(nk);
         let normal = if nrm > 0.0 { [nk[0] / nrm, nk[1] / nrm, nk[2] / nrm] } else { [0.0; 3] };
-        pairs.push(Pair { k: p.k, l: p.l, contact: p.contact, normal, area, shares: p.shares.iter().map(|s| (s.facet, s.node)).collect() });
+        pairs.push(Pair {
+            k: p.k,
+            l: p.l,
+            contact: p.contact,
+            normal,
+            area,
+            shares: p.shares.iter().map(|s| (s.facet, s.node)).collect(),
+        });
     }
     pairs
 }
@@ -287,7 +307,10 @@ fn check_plane(b: &Builder, groups: &[&[Cell]], size: f64) -> Result<(), ModelEr
         if let Some((body, cell)) = cells().find(|(_, c)| c.nodes.iter().any(|&n| mesh.coords[n][0] < -tol)) {
             return Err(b.invalid(
                 "analysis".into(),
-                format!("axisymmetric models lie in x = r >= 0, but element {} of body \"{}\" has x < 0", cell.tag, spec.bodies[body].group),
+                format!(
+                    "axisymmetric models lie in x = r >= 0, but element {} of body \"{}\" has x < 0",
+                    cell.tag, spec.bodies[body].group
+                ),
             ));
         }
     }
@@ -314,11 +337,22 @@ fn blocks(spec: &ModelSpec, topo: &Topology, block: &[usize], cells: &[Cell], co
             let body = &spec.bodies[g];
             let block = (per_group[g] > 1).then(|| {
                 let nodes: Vec<usize> = cells.iter().flat_map(|c| c.nodes.iter().copied()).collect();
-                let centre = std::array::from_fn(|d| nodes.iter().map(|&n| coords[n][d]).sum::<f64>() / nodes.len().max(1) as f64);
+                let centre = std::array::from_fn(|d| {
+                    nodes.iter().map(|&n| coords[n][d]).sum::<f64>() / nodes.len().max(1) as f64
+                });
                 Block { index: seen[g], of: per_group[g], centre }
             });
             seen[g] += 1;
-            Body { name: body.group.clone(), group: g, block, e: body.e, nu: body.nu, density: body.density, cells, initial: body.initial }
+            Body {
+                name: body.group.clone(),
+                group: g,
+                block,
+                e: body.e,
+                nu: body.nu,
+                density: body.density,
+                cells,
+                initial: body.initial,
+            }
         })
         .collect()
 }
@@ -345,4 +379,3 @@ fn facet_points(model: &Model, f: &Cell) -> Vec<FacetPoint> {
         })
         .collect()
 }
-

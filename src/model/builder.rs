@@ -56,4 +56,3 @@ impl<'a> Builder<'a> {
         ModelError::Invalid { scene: self.spec.source.clone(), key, msg }
     }
 }
-

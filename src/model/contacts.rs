@@ -171,7 +171,8 @@ fn copy_nodes(b: &Builder, topo: &Topology, cuts: &Cuts) -> Copies {
     let mut cells: Vec<Cell> = topo.cells.iter().map(|c| (*c).clone()).collect();
     let mut done: HashSet<usize> = HashSet::new();
     for ci in 0..b.spec.contacts.len() {
-        let mut nodes: Vec<usize> = cuts.shared.iter().filter(|s| s.0 == ci).flat_map(|s| s.1.nodes.iter().copied()).collect();
+        let mut nodes: Vec<usize> =
+            cuts.shared.iter().filter(|s| s.0 == ci).flat_map(|s| s.1.nodes.iter().copied()).collect();
         nodes.sort_unstable();
         nodes.dedup();
         for n in nodes {
@@ -211,14 +212,23 @@ impl<'a> Sides<'a> {
     /// The sides of the shared facets, with the normals every two blocks
     /// of one body share in a contact summed: they decide side I between
     /// blocks.
-    fn new(b: &'a Builder<'a>, topo: &'a Topology<'a>, shared: &'a [(usize, &'a Cell)], cells_of: &'a [[usize; 2]], block: &'a [usize]) -> Sides<'a> {
+    fn new(
+        b: &'a Builder<'a>,
+        topo: &'a Topology<'a>,
+        shared: &'a [(usize, &'a Cell)],
+        cells_of: &'a [[usize; 2]],
+        block: &'a [usize],
+    ) -> Sides<'a> {
         let mut sides = Sides { b, topo, shared, cells_of, block, between: HashMap::new() };
         for (i, &(ci, f)) in shared.iter().enumerate() {
             let [x, y] = cells_of[i];
             if topo.body[x] == topo.body[y] && block[x] != block[y] {
                 let low = if block[x] < block[y] { x } else { y };
                 let (n, da) = sides.normal_of(f, low);
-                let e = sides.between.entry((ci, block[x].min(block[y]), block[x].max(block[y]))).or_insert(([0.0; 3], 0.0));
+                let e = sides
+                    .between
+                    .entry((ci, block[x].min(block[y]), block[x].max(block[y])))
+                    .or_insert(([0.0; 3], 0.0));
                 for d in 0..3 {
                     e.0[d] += n[d] * da;
                 }
@@ -295,7 +305,14 @@ impl<'a> Sides<'a> {
     /// pairs of nodes at one position. An error when a group is not the
     /// face of one block, both are of the same block, or the nodes do not
     /// pair.
-    fn paired_interface(&self, ci: usize, (na, nb): (&str, &str), size: f64, copies: &Copies, shares: &mut Shares) -> Result<(Interface, Vec<f64>), ModelError> {
+    fn paired_interface(
+        &self,
+        ci: usize,
+        (na, nb): (&str, &str),
+        size: f64,
+        copies: &Copies,
+        shares: &mut Shares,
+    ) -> Result<(Interface, Vec<f64>), ModelError> {
         let (b, topo, block) = (self.b, self.topo, self.block);
         let (c, sd) = (&b.spec.contacts[ci], b.spec.analysis.dim());
         let ka = format!("{}.groups[0]", c.key);
@@ -313,10 +330,18 @@ impl<'a> Sides<'a> {
                 ),
             ));
         }
-        let ((gi, ci_cells), (gii, cii_cells)) = if block[sa[0]] < block[sb[0]] { ((ga, sa), (gb, sb)) } else { ((gb, sb), (ga, sa)) };
-        let (map_i, map_ii) = (side_map(topo, &copies.cells, &gi.cells, &ci_cells), side_map(topo, &copies.cells, &gii.cells, &cii_cells));
-        let pairs = pair_by_position(&b.mesh.coords, &gi.nodes(), &gii.nodes(), 1e-6 * size)
-            .map_err(|msg| b.invalid(format!("{}.groups", c.key), format!("pairing the nodes of \"{}\" with those of \"{}\": {msg}", gi.name, gii.name)))?;
+        let ((gi, ci_cells), (gii, cii_cells)) =
+            if block[sa[0]] < block[sb[0]] { ((ga, sa), (gb, sb)) } else { ((gb, sb), (ga, sa)) };
+        let (map_i, map_ii) = (
+            side_map(topo, &copies.cells, &gi.cells, &ci_cells),
+            side_map(topo, &copies.cells, &gii.cells, &cii_cells),
+        );
+        let pairs = pair_by_position(&b.mesh.coords, &gi.nodes(), &gii.nodes(), 1e-6 * size).map_err(|msg| {
+            b.invalid(
+                format!("{}.groups", c.key),
+                format!("pairing the nodes of \"{}\" with those of \"{}\": {msg}", gi.name, gii.name),
+            )
+        })?;
         let partner: HashMap<usize, usize> = pairs.into_iter().collect();
         let (mut facets, mut sides, mut sg) = (Vec::new(), Vec::new(), Vec::new());
         for (f, &ca) in gi.cells.iter().zip(&ci_cells) {
@@ -433,13 +458,28 @@ fn describe_cell(b: &Builder, topo: &Topology, block: &[usize], c: usize) -> Str
     if of_body.iter().all(|&x| block[x] == first) {
         return format!("body \"{name}\"");
     }
-    let nodes: Vec<usize> = of_body.iter().filter(|&&x| block[x] == block[c]).flat_map(|&x| topo.cells[x].nodes.iter().copied()).collect();
-    let centre: [f64; 3] = std::array::from_fn(|d| nodes.iter().map(|&n| b.mesh.coords[n][d]).sum::<f64>() / nodes.len().max(1) as f64);
-    format!("block {} of body \"{name}\" (centre at ({:.4}, {:.4}, {:.4}))", block[c] - first + 1, centre[0], centre[1], centre[2])
+    let nodes: Vec<usize> =
+        of_body.iter().filter(|&&x| block[x] == block[c]).flat_map(|&x| topo.cells[x].nodes.iter().copied()).collect();
+    let centre: [f64; 3] =
+        std::array::from_fn(|d| nodes.iter().map(|&n| b.mesh.coords[n][d]).sum::<f64>() / nodes.len().max(1) as f64);
+    format!(
+        "block {} of body \"{name}\" (centre at ({:.4}, {:.4}, {:.4}))",
+        block[c] - first + 1,
+        centre[0],
+        centre[1],
+        centre[2]
+    )
 }
 
 /// The one cell each facet of a `groups = [..]` side bounds; all in one block.
-fn one_side(b: &Builder, topo: &Topology, block: &[usize], key: &str, name: &str, facets: &[Cell]) -> Result<Vec<usize>, ModelError> {
+fn one_side(
+    b: &Builder,
+    topo: &Topology,
+    block: &[usize],
+    key: &str,
+    name: &str,
+    facets: &[Cell],
+) -> Result<Vec<usize>, ModelError> {
     let mut out = Vec::with_capacity(facets.len());
     for f in facets {
         let cells = topo.bounding(f);
@@ -500,12 +540,20 @@ fn pair_by_position(coords: &[[f64; 3]], a: &[usize], b: &[usize], tol: f64) -> 
                 pairs.push((k, sorted[*j]));
             }
             [] => lonely.push(x),
-            _ => return Err(format!("node at {:?} has {} partners within {:.1e}: the mesh has duplicate nodes", x, hits.len(), tol)),
+            _ => {
+                return Err(format!(
+                    "node at {:?} has {} partners within {:.1e}: the mesh has duplicate nodes",
+                    x,
+                    hits.len(),
+                    tol
+                ))
+            }
         }
     }
     lonely.extend(sorted.iter().zip(&used).filter(|(_, &u)| !u).map(|(&n, _)| coords[n]));
     if !lonely.is_empty() {
-        let first: Vec<String> = lonely.iter().take(5).map(|p| format!("({:.6}, {:.6}, {:.6})", p[0], p[1], p[2])).collect();
+        let first: Vec<String> =
+            lonely.iter().take(5).map(|p| format!("({:.6}, {:.6}, {:.6})", p[0], p[1], p[2])).collect();
         return Err(format!(
             "{} node(s) find no partner on the other side within {:.1e}, first at {}: the two groups must have coincident nodes (same mesh divisions on both curves/surfaces)",
             lonely.len(),

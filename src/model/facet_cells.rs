@@ -17,7 +17,11 @@ use crate::mesh::Cell;
 /// The two cells of every facet of the shared contact groups (`shared`:
 /// each facet with its contact); a facet that bounds one cell, none or
 /// more than two is an error naming its group.
-pub(super) fn two_cells(b: &Builder, topo: &Topology, shared: &[(usize, &Cell)]) -> Result<Vec<[usize; 2]>, ModelError> {
+pub(super) fn two_cells(
+    b: &Builder,
+    topo: &Topology,
+    shared: &[(usize, &Cell)],
+) -> Result<Vec<[usize; 2]>, ModelError> {
     let spec = b.spec;
     let mut cells_of: Vec<[usize; 2]> = Vec::with_capacity(shared.len());
     // facets that bound one cell, with their contact and cell: read as a
@@ -110,7 +114,13 @@ fn against(b: &Builder, topo: &Topology, lone: &[(&Cell, usize)]) -> Option<(usi
     let at: Vec<([f64; 3], f64)> = (lone.iter())
         .map(|(f, _)| {
             let c = centre(b, f);
-            (c, f.nodes[..f.kind.n_corners()].iter().map(|&n| element::norm(element::sub(coords[n], c))).fold(0.0, f64::max))
+            (
+                c,
+                f.nodes[..f.kind.n_corners()]
+                    .iter()
+                    .map(|&n| element::norm(element::sub(coords[n], c)))
+                    .fold(0.0, f64::max),
+            )
         })
         .collect();
     let h = at.iter().map(|a| a.1).fold(0.0, f64::max);

@@ -16,7 +16,13 @@ use crate::fem::rigid::{self, RigidModes};
 /// Fails naming the bodies and the motion when some rigid-body motion of a
 /// cluster of bodies is stopped by no prescribed DOF. Bodies sharing a
 /// model node, or joined by a contact pair `links` (k, l), are one cluster.
-pub(super) fn check_held(b: &Builder, coords: &[[f64; 3]], bodies: &[Body], links: &[(usize, usize)], prescribed: &[Option<f64>]) -> Result<(), ModelError> {
+pub(super) fn check_held(
+    b: &Builder,
+    coords: &[[f64; 3]],
+    bodies: &[Body],
+    links: &[(usize, usize)],
+    prescribed: &[Option<f64>],
+) -> Result<(), ModelError> {
     let analysis = b.spec.analysis;
     let nd = dofs_per_node(analysis);
     let mut body_of = vec![usize::MAX; coords.len()];
@@ -41,7 +47,8 @@ pub(super) fn check_held(b: &Builder, coords: &[[f64; 3]], bodies: &[Body], link
         if members.is_empty() {
             continue;
         }
-        let mut nodes: Vec<usize> = members.iter().flat_map(|&i| bodies[i].cells.iter().flat_map(|c| c.nodes.iter().copied())).collect();
+        let mut nodes: Vec<usize> =
+            members.iter().flat_map(|&i| bodies[i].cells.iter().flat_map(|c| c.nodes.iter().copied())).collect();
         nodes.sort_unstable();
         nodes.dedup();
         let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
@@ -55,10 +62,14 @@ pub(super) fn check_held(b: &Builder, coords: &[[f64; 3]], bodies: &[Body], link
         let size = (0..3).map(|d| (hi[d] - lo[d]).powi(2)).sum::<f64>().sqrt().max(f64::MIN_POSITIVE);
         // Gram matrix of the rigid modes over the prescribed DOFs: singular
         // exactly when some combination of them moves no prescribed DOF
-        let supported = nodes.iter().flat_map(|&n| (0..nd).filter(move |&a| prescribed[n * nd + a].is_some()).map(move |a| (n, a)));
+        let supported =
+            nodes.iter().flat_map(|&n| (0..nd).filter(move |&a| prescribed[n * nd + a].is_some()).map(move |a| (n, a)));
         let g = RigidModes::new(analysis, centre, size).gram_of_supports(coords, supported);
         let eig = nalgebra::SymmetricEigen::new(g);
-        let mut free: Vec<&str> = (0..names.len()).filter(|&k| eig.eigenvalues[k] < 1e-9).map(|k| names[eig.eigenvectors.column(k).iamax()]).collect();
+        let mut free: Vec<&str> = (0..names.len())
+            .filter(|&k| eig.eigenvalues[k] < 1e-9)
+            .map(|k| names[eig.eigenvectors.column(k).iamax()])
+            .collect();
         free.sort_unstable();
         free.dedup();
         if !free.is_empty() {
@@ -70,7 +81,8 @@ pub(super) fn check_held(b: &Builder, coords: &[[f64; 3]], bodies: &[Body], link
                 members.iter().map(|&i| bodies[i].label()).collect::<Vec<_>>().join(", "),
                 free.join(", ")
             );
-            let others: Vec<usize> = (0..coords.len()).filter(|&n| body_of[n] != usize::MAX && sets.root(body_of[n]) != r).collect();
+            let others: Vec<usize> =
+                (0..coords.len()).filter(|&n| body_of[n] != usize::MAX && sets.root(body_of[n]) != r).collect();
             let advice = match quality::lying_on(coords, &nodes, &others) {
                 Some(on) => unfused(bodies, &body_of, coords, analysis.dim(), on, it),
                 None => format!("Add a support that stops {it} (fix = [..] on a physical point, curve or surface)"),
@@ -85,7 +97,14 @@ pub(super) fn check_held(b: &Builder, coords: &[[f64; 3]], bodies: &[Body], link
 /// nodes with it (`on`: how many of their nodes, the first, and the node it
 /// lies on): volumes (surfaces in 2D) that were not fused, which were most
 /// likely meant as one body.
-fn unfused(bodies: &[Body], body_of: &[usize], coords: &[[f64; 3]], dim: usize, (n, a, b): (usize, usize, usize), it: &str) -> String {
+fn unfused(
+    bodies: &[Body],
+    body_of: &[usize],
+    coords: &[[f64; 3]],
+    dim: usize,
+    (n, a, b): (usize, usize, usize),
+    it: &str,
+) -> String {
     let (entities, entity) = if dim == 3 { ("volumes", "Volume") } else { ("surfaces", "Surface") };
     let x = coords[a];
     format!(

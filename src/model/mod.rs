@@ -150,7 +150,15 @@ impl Body {
             None => format!("\"{}\"", self.name),
             Some(b) => {
                 let c = b.centre;
-                format!("\"{}\" block {} of {} (centre at ({:.4}, {:.4}, {:.4}))", self.name, b.index + 1, b.of, c[0], c[1], c[2])
+                format!(
+                    "\"{}\" block {} of {} (centre at ({:.4}, {:.4}, {:.4}))",
+                    self.name,
+                    b.index + 1,
+                    b.of,
+                    c[0],
+                    c[1],
+                    c[2]
+                )
             }
         }
     }
@@ -186,7 +194,11 @@ impl Model {
     /// `usize::MAX` where the node is in no pair (the tip of a joint ending
     /// inside a body).
     pub fn facet_pairs(&self) -> Vec<Vec<Vec<usize>>> {
-        let mut out: Vec<Vec<Vec<usize>>> = self.interfaces.iter().map(|i| i.facets.iter().map(|f| vec![usize::MAX; f.nodes.len()]).collect()).collect();
+        let mut out: Vec<Vec<Vec<usize>>> = self
+            .interfaces
+            .iter()
+            .map(|i| i.facets.iter().map(|f| vec![usize::MAX; f.nodes.len()]).collect())
+            .collect();
         for (p, pair) in self.pairs.iter().enumerate() {
             for &(f, a) in &pair.shares {
                 out[pair.contact][f][a] = p;

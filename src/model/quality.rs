@@ -40,7 +40,13 @@ pub fn folded(model: &Model) -> Result<(), ModelError> {
             for (i, xi) in at {
                 if let Err(e) = element::point(cell.kind, &xs, xi) {
                     let node = (i < cell.nodes.len()).then_some(i + 1);
-                    return Err(ModelError::Folded { body: body.label(), tag: cell.tag, kind: cell.kind.name(), node, det_j: e.det_j });
+                    return Err(ModelError::Folded {
+                        body: body.label(),
+                        tag: cell.tag,
+                        kind: cell.kind.name(),
+                        node,
+                        det_j: e.det_j,
+                    });
                 }
             }
         }
@@ -69,7 +75,11 @@ pub fn corner_quality(model: &Model, cell: &crate::mesh::Cell) -> f64 {
                 }
             }
         }
-        let det = if dim == 2 { cols[0][0] * cols[1][1] - cols[0][1] * cols[1][0] } else { element::dot(cols[0], element::cross(cols[1], cols[2])) };
+        let det = if dim == 2 {
+            cols[0][0] * cols[1][1] - cols[0][1] * cols[1][0]
+        } else {
+            element::dot(cols[0], element::cross(cols[1], cols[2]))
+        };
         let lengths: f64 = (0..dim).map(|j| element::norm(cols[j])).product();
         worst = worst.min(if lengths > 0.0 { det / lengths } else { 0.0 });
     }
@@ -98,7 +108,9 @@ pub fn slivers(model: &Model) -> Vec<(String, u64, f64)> {
 pub fn why_not_held(model: &Model) -> String {
     let nd = model.nd;
     let unsupported: Vec<String> = (model.bodies.iter())
-        .filter(|b| !b.cells.iter().flat_map(|c| &c.nodes).any(|&n| (0..nd).any(|c| model.prescribed[n * nd + c].is_some())))
+        .filter(|b| {
+            !b.cells.iter().flat_map(|c| &c.nodes).any(|&n| (0..nd).any(|c| model.prescribed[n * nd + c].is_some()))
+        })
         .map(|b| b.label())
         .collect();
     let mut s = String::new();
@@ -114,18 +126,26 @@ pub fn why_not_held(model: &Model) -> String {
 /// Nodes at one place in one body group: (group name, how many nodes have
 /// a twin, the first place).
 pub fn coincident(model: &Model) -> Vec<(String, usize, [f64; 3])> {
-    let paired: std::collections::HashSet<(usize, usize)> = model.pairs.iter().map(|p| (p.k.min(p.l), p.k.max(p.l))).collect();
+    let paired: std::collections::HashSet<(usize, usize)> =
+        model.pairs.iter().map(|p| (p.k.min(p.l), p.k.max(p.l))).collect();
     let mut out = Vec::new();
     let groups = model.bodies.iter().map(|b| b.group).max().map_or(0, |g| g + 1);
     for g in 0..groups {
-        let mut nodes: Vec<usize> = model.bodies.iter().filter(|b| b.group == g).flat_map(|b| b.cells.iter().flat_map(|c| c.nodes.iter().copied())).collect();
+        let mut nodes: Vec<usize> = model
+            .bodies
+            .iter()
+            .filter(|b| b.group == g)
+            .flat_map(|b| b.cells.iter().flat_map(|c| c.nodes.iter().copied()))
+            .collect();
         nodes.sort_unstable();
         nodes.dedup();
         let bins = Bins::new(&model.coords, &nodes);
         let mut twins = 0;
         let mut first: Option<[f64; 3]> = None;
         for &a in &nodes {
-            let twin = bins.on(model.coords[a]).any(|b| b != a && model.mesh_node[a] != model.mesh_node[b] && !paired.contains(&(a.min(b), a.max(b))));
+            let twin = bins
+                .on(model.coords[a])
+                .any(|b| b != a && model.mesh_node[a] != model.mesh_node[b] && !paired.contains(&(a.min(b), a.max(b))));
             if twin {
                 twins += 1;
                 first.get_or_insert(model.coords[a]);
@@ -176,7 +196,9 @@ impl<'a> Bins<'a> {
     fn on(&self, x: [f64; 3]) -> impl Iterator<Item = usize> + '_ {
         let k = self.key(x);
         (0..27)
-            .flat_map(move |i| self.bins.get(&[k[0] + i % 3 - 1, k[1] + (i / 3) % 3 - 1, k[2] + i / 9 - 1]).into_iter().flatten())
+            .flat_map(move |i| {
+                self.bins.get(&[k[0] + i % 3 - 1, k[1] + (i / 3) % 3 - 1, k[2] + i / 9 - 1]).into_iter().flatten()
+            })
             .copied()
             .filter(move |&b| (0..3).all(|d| (self.coords[b][d] - x[d]).abs() <= self.tol))
     }

@@ -102,7 +102,11 @@ impl<'a> Topology<'a> {
     /// Cells containing every corner of `facet` (the cells it bounds).
     pub(super) fn bounding(&self, facet: &Cell) -> Vec<usize> {
         let corners = &facet.nodes[..facet.kind.n_corners()];
-        self.at(corners[0]).iter().copied().filter(|&c| corners[1..].iter().all(|n| self.cells[c].nodes.contains(n))).collect()
+        self.at(corners[0])
+            .iter()
+            .copied()
+            .filter(|&c| corners[1..].iter().all(|n| self.cells[c].nodes.contains(n)))
+            .collect()
     }
 
     /// The model node mesh node `n` became in cell `c`, read from the cells
@@ -116,7 +120,11 @@ impl<'a> Topology<'a> {
     /// The corners cells a and b share, sorted, when they touch through a face.
     fn shared_face(&self, a: usize, b: usize) -> Option<FaceKey> {
         let (ca, cb) = (self.cells[a], self.cells[b]);
-        let mut shared: Vec<usize> = ca.nodes[..ca.kind.n_corners()].iter().copied().filter(|n| cb.nodes[..cb.kind.n_corners()].contains(n)).collect();
+        let mut shared: Vec<usize> = ca.nodes[..ca.kind.n_corners()]
+            .iter()
+            .copied()
+            .filter(|n| cb.nodes[..cb.kind.n_corners()].contains(n))
+            .collect();
         (shared.len() >= self.dim).then(|| {
             shared.sort_unstable();
             shared
@@ -136,7 +144,10 @@ impl<'a> Topology<'a> {
             let ca = self.cells[a];
             for &v in &ca.nodes[..ca.kind.n_corners()] {
                 for &b in self.at(v) {
-                    if b > a && self.body[b] == self.body[a] && self.cells[b].nodes[..self.cells[b].kind.n_corners()].contains(&v) {
+                    if b > a
+                        && self.body[b] == self.body[a]
+                        && self.cells[b].nodes[..self.cells[b].kind.n_corners()].contains(&v)
+                    {
                         *count.entry(b).or_insert(0) += 1;
                     }
                 }

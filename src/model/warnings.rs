@@ -99,7 +99,11 @@ pub fn bonded(model: &Model) -> Vec<Bonded> {
             }
         }
     }
-    shared.into_iter().filter(|(key, _)| !touching.contains(key)).map(|(bodies, nodes)| Bonded { bodies, nodes }).collect()
+    shared
+        .into_iter()
+        .filter(|(key, _)| !touching.contains(key))
+        .map(|(bodies, nodes)| Bonded { bodies, nodes })
+        .collect()
 }
 
 #[cfg(test)]
@@ -110,7 +114,16 @@ mod tests {
     use crate::model::{Body, Pair};
 
     fn body(name: &str, cells: &[[usize; 3]]) -> Body {
-        Body { name: name.into(), group: 0, block: None, e: 1.0, nu: 0.2, density: 0.0, cells: cells.iter().map(|n| Cell { kind: CellKind::Tri3, nodes: n.to_vec(), tag: 0 }).collect(), initial: None }
+        Body {
+            name: name.into(),
+            group: 0,
+            block: None,
+            e: 1.0,
+            nu: 0.2,
+            density: 0.0,
+            cells: cells.iter().map(|n| Cell { kind: CellKind::Tri3, nodes: n.to_vec(), tag: 0 }).collect(),
+            initial: None,
+        }
     }
 
     /// Three triangles in a row: a and b share the edge 1-2, b and c the
@@ -156,6 +169,9 @@ mod tests {
         let mut m = model(true);
         m.bodies[2].cells.push(Cell { kind: CellKind::Tri3, nodes: vec![5, 2, 6], tag: 0 });
         assert!(!bonded(&m).iter().any(|b| b.bodies == [1, 2]));
-        assert!(!bonded(&model(false)).iter().any(|b| b.bodies == [1, 2]), "no shared node, no pair: nothing joins b and c");
+        assert!(
+            !bonded(&model(false)).iter().any(|b| b.bodies == [1, 2]),
+            "no shared node, no pair: nothing joins b and c"
+        );
     }
 }

@@ -113,11 +113,15 @@ pub fn report(run: &Run) -> String {
         s,
         "Resultant force F on side I (global x, y, z); N = F . n and T = |F - N n| in the group's mean frame n (tension positive); mobilised friction |tau| / (c - f sigma_n), 1 where a pair slips or opens or has no strength left.\n"
     );
-    let _ = writeln!(s, "| contact | face pairs | pairs | area stick / slip / open | mean normal n | F | N | T | mobilised max (at) |");
+    let _ = writeln!(
+        s,
+        "| contact | face pairs | pairs | area stick / slip / open | mean normal n | F | N | T | mobilised max (at) |"
+    );
     let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|");
     for (g, q) in r.groups.iter().enumerate() {
         let faces = r.faces.iter().filter(|f| f.contact == g).count();
-        let _ = writeln!(s, "| {} | {faces} | {} | {} | {} |", m.interfaces[g].name, q.pairs, areas(q), forces(q, m.nd));
+        let _ =
+            writeln!(s, "| {} | {faces} | {} | {} | {} |", m.interfaces[g].name, q.pairs, areas(q), forces(q, m.nd));
     }
     let most = r.most_mobilised(MOST_FACES);
     let which = match r.faces.len() {
@@ -130,7 +134,16 @@ pub fn report(run: &Run) -> String {
     let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|");
     for f in most {
         let q = &f.resultant;
-        let _ = writeln!(s, "| {} | {} | {} | {} | {} | {} |", m.interfaces[f.contact].name, block_name(m, f.blocks[0]), block_name(m, f.blocks[1]), point(q.centre, m.nd), areas(q), forces(q, m.nd));
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {} | {} | {} |",
+            m.interfaces[f.contact].name,
+            block_name(m, f.blocks[0]),
+            block_name(m, f.blocks[1]),
+            point(q.centre, m.nd),
+            areas(q),
+            forces(q, m.nd)
+        );
     }
     s
 }
@@ -143,7 +156,14 @@ fn areas(q: &Resultant) -> String {
 /// cells (vectors of `nd` components).
 fn forces(q: &Resultant, nd: usize) -> String {
     let force = vector(q.force, nd, |v| format!("{v:.4e}"));
-    format!("{} | {force} | {:.4e} | {:.4e} | {:.3} {}", point(q.normal, nd), q.normal_force(), q.shear_force(), q.mobilised, point(q.mobilised_at, nd))
+    format!(
+        "{} | {force} | {:.4e} | {:.4e} | {:.3} {}",
+        point(q.normal, nd),
+        q.normal_force(),
+        q.shear_force(),
+        q.mobilised,
+        point(q.mobilised_at, nd)
+    )
 }
 
 /// A position or direction: x, y (and z in a solid model).

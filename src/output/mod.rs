@@ -17,11 +17,11 @@ pub mod vtu;
 use anyhow::{Context, Result};
 use serde_json::json;
 
-use crate::results::{state_counts, ContactRun, Run};
 use crate::fem::material::von_mises;
 use crate::mesh::Cell;
 use crate::model::Model;
 use crate::recover::{BodyStress, Sample};
+use crate::results::{state_counts, ContactRun, Run};
 use files::Staged;
 use vtu::{Field, IntField};
 
@@ -69,7 +69,14 @@ pub fn stage(run: &Run, out: &std::path::Path) -> Result<Staged> {
         staged.add("probes.csv", probes_csv(&run.checks.probes).into_bytes());
     }
     // pictures a person would rather look at than read (embedded in report.md)
-    let snap = picture::Snapshot { title: &run.scene.title, model, u: &last.u, stresses: &last.stresses, contact: last.contact.as_ref(), region: run.scene.output.frame.as_ref() };
+    let snap = picture::Snapshot {
+        title: &run.scene.title,
+        model,
+        u: &last.u,
+        stresses: &last.stresses,
+        contact: last.contact.as_ref(),
+        region: run.scene.output.frame.as_ref(),
+    };
     for (file, bytes) in picture::pictures(&snap).context("drawing the pictures")? {
         staged.add(&file, bytes);
     }
@@ -86,10 +93,20 @@ fn finite(run: &Run) -> Result<()> {
     for st in &run.steps {
         let bad = if let Some(i) = st.u.iter().position(|v| !v.is_finite()) {
             Some(format!("the displacement at node {} is {}", i / nd, st.u[i]))
-        } else if let Some((b, s)) = st.stresses.iter().enumerate().find_map(|(b, bs)| bs.stress.iter().find(|s| !von_mises(s).is_finite()).map(|s| (b, s))) {
+        } else if let Some((b, s)) = st
+            .stresses
+            .iter()
+            .enumerate()
+            .find_map(|(b, bs)| bs.stress.iter().find(|s| !von_mises(s).is_finite()).map(|s| (b, s)))
+        {
             Some(format!("the stress in body {} is {s:?} (von Mises {})", model.bodies[b].label(), von_mises(s)))
         } else {
-            st.contact.as_ref().and_then(|c| c.pairs.iter().position(|p| ![p.sigma_n, p.tau_t, p.tau_b, p.gap, p.slip].iter().all(|v| v.is_finite())).map(|p| format!("contact pair {p}'s values are {:?}", c.pairs[p])))
+            st.contact.as_ref().and_then(|c| {
+                c.pairs
+                    .iter()
+                    .position(|p| ![p.sigma_n, p.tau_t, p.tau_b, p.gap, p.slip].iter().all(|v| v.is_finite()))
+                    .map(|p| format!("contact pair {p}'s values are {:?}", c.pairs[p]))
+            })
         };
         if let Some(what) = bad {
             anyhow::bail!(
@@ -109,7 +126,8 @@ fn finite(run: &Run) -> Result<()> {
 /// k / load_steps, which always grows (ParaView orders the steps by time).
 pub fn step_times(scene: &crate::scene::Scene) -> Vec<f64> {
     let n = scene.solver.load_steps;
-    let varying: Vec<Vec<f64>> = report::applied(scene).into_iter().map(|c| c.factors).filter(|f| f.windows(2).any(|w| w[0] != w[1])).collect();
+    let varying: Vec<Vec<f64>> =
+        report::applied(scene).into_iter().map(|c| c.factors).filter(|f| f.windows(2).any(|w| w[0] != w[1])).collect();
     match varying.as_slice() {
         [one] if one.len() == n && one.windows(2).all(|w| w[1] > w[0]) => one.clone(),
         _ => (1..=n).map(|k| k as f64 / n as f64).collect(),
@@ -182,7 +200,13 @@ fn bodies_vtu(model: &Model, u: &[f64], stresses: &[BodyStress], displacement: b
         point_data.push(Field { name: "stress", n_comp: 6, values: &stress });
         point_data.push(Field { name: "von_mises", n_comp: 1, values: &vm });
     }
-    Ok(vtu::vtu_bytes(&points, &cells, &point_data, &[], &[IntField { name: "body", values: &body_id }, IntField { name: "block", values: &block_id }])?)
+    Ok(vtu::vtu_bytes(
+        &points,
+        &cells,
+        &point_data,
+        &[],
+        &[IntField { name: "body", values: &body_id }, IntField { name: "block", values: &block_id }],
+    )?)
 }
 
 /// The interfaces, as body I's facets, with the pair values at their
@@ -231,7 +255,9 @@ fn contact_vtu(model: &Model, c: &ContactRun) -> Result<Vec<u8>> {
         iface_id.push(p.contact as i32);
         pair_status.push(c.states[i].code());
     }
-    let get = |f: &dyn Fn(usize) -> f64| -> Vec<f64> { pairs.iter().map(|&p| if p == usize::MAX { 0.0 } else { f(p) }).collect() };
+    let get = |f: &dyn Fn(usize) -> f64| -> Vec<f64> {
+        pairs.iter().map(|&p| if p == usize::MAX { 0.0 } else { f(p) }).collect()
+    };
     let status: Vec<i32> = pairs.iter().map(|&p| if p == usize::MAX { -1 } else { c.states[p].code() }).collect();
     let sigma_n = get(&|p| c.pairs[p].sigma_n);
     let tau = get(&|p| c.pairs[p].tau());
@@ -249,13 +275,21 @@ fn contact_vtu(model: &Model, c: &ContactRun) -> Result<Vec<u8>> {
         Field { name: "shear", n_comp: 3, values: &shear },
         Field { name: "area", n_comp: 1, values: &area },
     ];
-    Ok(vtu::vtu_bytes(&points, &cells, &point_data, &[], &[IntField { name: "interface", values: &iface_id }, IntField { name: "pair_status", values: &pair_status }])?)
+    Ok(vtu::vtu_bytes(
+        &points,
+        &cells,
+        &point_data,
+        &[],
+        &[IntField { name: "interface", values: &iface_id }, IntField { name: "pair_status", values: &pair_status }],
+    )?)
 }
 
 /// One row per contact pair: position, state and the pair's values.
 fn contact_csv(model: &Model, c: &ContactRun) -> String {
     let body = model.body_of_node();
-    let mut s = String::from("pair,x,y,z,status,sigma_n,tau_t,tau_b,gap,slip,area,tau_x,tau_y,tau_z,n_x,n_y,n_z,contact,block_i,block_ii\n");
+    let mut s = String::from(
+        "pair,x,y,z,status,sigma_n,tau_t,tau_b,gap,slip,area,tau_x,tau_y,tau_z,n_x,n_y,n_z,contact,block_i,block_ii\n",
+    );
     for (i, (p, r)) in model.pairs.iter().zip(&c.pairs).enumerate() {
         let x = model.coords[p.k];
         let t = c.shear(i);
@@ -300,14 +334,13 @@ fn probes_csv(probes: &[(String, Vec<Sample>)]) -> String {
     let mut s = String::from("probe,point,x,y,z,ux,uy,uz,sxx,syy,szz,sxy,syz,sxz,von_mises,found\n");
     for (name, samples) in probes {
         for (i, p) in samples.iter().enumerate() {
-            let vals: Vec<String> = p
-                .x
-                .iter()
-                .chain(&p.displacement)
-                .chain(&p.stress)
-                .chain(std::iter::once(&p.von_mises))
-                .map(|v| format!("{v:.12e}"))
-                .collect();
+            let vals: Vec<String> =
+                p.x.iter()
+                    .chain(&p.displacement)
+                    .chain(&p.stress)
+                    .chain(std::iter::once(&p.von_mises))
+                    .map(|v| format!("{v:.12e}"))
+                    .collect();
             s += &format!("{name},{i},{},{}\n", vals.join(","), p.found);
         }
     }

@@ -19,12 +19,23 @@ pub struct Panel<'a> {
     pub series: &'a [Series],
 }
 
-const COLOURS: [RGBColor; 6] = [RGBColor(31, 119, 180), RGBColor(214, 39, 40), RGBColor(44, 160, 44), RGBColor(255, 127, 14), RGBColor(148, 103, 189), RGBColor(23, 190, 207)];
+const COLOURS: [RGBColor; 6] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(255, 127, 14),
+    RGBColor(148, 103, 189),
+    RGBColor(23, 190, 207),
+];
 
 fn register_font() {
     static ONCE: std::sync::Once = std::sync::Once::new();
     ONCE.call_once(|| {
-        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, include_bytes!("../../assets/DejaVuSans.ttf"));
+        let _ = plotters::style::register_font(
+            "sans-serif",
+            FontStyle::Normal,
+            include_bytes!("../../assets/DejaVuSans.ttf"),
+        );
     });
 }
 
@@ -53,10 +64,17 @@ fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, plotters::coord::Shift>
     macro_rules! lines {
         ($chart:expr) => {{
             let mut chart = $chart;
-            chart.configure_mesh().x_desc(p.x_label).y_desc(p.y_label).label_style(("sans-serif", 12)).draw().map_err(|e| err(&e))?;
+            chart
+                .configure_mesh()
+                .x_desc(p.x_label)
+                .y_desc(p.y_label)
+                .label_style(("sans-serif", 12))
+                .draw()
+                .map_err(|e| err(&e))?;
             for (i, s) in p.series.iter().enumerate() {
                 let c = COLOURS[i % COLOURS.len()];
-                let pts: Vec<(f64, f64)> = s.points.iter().copied().filter(|q| q.0.is_finite() && q.1.is_finite()).collect();
+                let pts: Vec<(f64, f64)> =
+                    s.points.iter().copied().filter(|q| q.0.is_finite() && q.1.is_finite()).collect();
                 chart
                     .draw_series(LineSeries::new(pts.clone(), c.stroke_width(2)))
                     .map_err(|e| err(&e))?
@@ -74,7 +92,9 @@ fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, plotters::coord::Shift>
         }};
     }
     match (p.log_x, p.log_y) {
-        (true, true) => lines!(b.build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale()).map_err(|e| err(&e))?),
+        (true, true) => {
+            lines!(b.build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale()).map_err(|e| err(&e))?)
+        }
         (true, false) => lines!(b.build_cartesian_2d((x0..x1).log_scale(), y0..y1).map_err(|e| err(&e))?),
         (false, true) => lines!(b.build_cartesian_2d(x0..x1, (y0..y1).log_scale()).map_err(|e| err(&e))?),
         (false, false) => lines!(b.build_cartesian_2d(x0..x1, y0..y1).map_err(|e| err(&e))?),
@@ -105,7 +125,14 @@ mod tests {
     #[test]
     fn svg_has_the_lines_and_labels() {
         let s = [Series { label: "order 1".into(), points: vec![(0.1, 1e-2), (1.0, 1e-4)] }];
-        let p = Panel { title: "error against time", x_label: "time (s)", y_label: "error", log_x: true, log_y: true, series: &s };
+        let p = Panel {
+            title: "error against time",
+            x_label: "time (s)",
+            y_label: "error",
+            log_x: true,
+            log_y: true,
+            series: &s,
+        };
         let svg = svg(&[p], 400, 300).expect("plot");
         assert!(svg.starts_with("<svg"));
         assert!(svg.contains("order 1") && svg.contains("error against time"));

@@ -20,7 +20,14 @@ pub fn report(run: &Run) -> String {
     let sc = &run.scene;
     let _ = writeln!(s, "# {}\n", sc.title);
     let st = &run.stats;
-    let _ = writeln!(s, "Scene `{}`, analysis {}, mesh `{}`{}.\n", sc.path.display(), sc.analysis, st.msh.display(), if st.mesh_cached { " (cached)" } else { "" });
+    let _ = writeln!(
+        s,
+        "Scene `{}`, analysis {}, mesh `{}`{}.\n",
+        sc.path.display(),
+        sc.analysis,
+        st.msh.display(),
+        if st.mesh_cached { " (cached)" } else { "" }
+    );
     for w in super::warnings(run) {
         let _ = writeln!(s, "**Warning:** {w}.\n");
     }
@@ -35,13 +42,28 @@ pub fn report(run: &Run) -> String {
         let _ = writeln!(
             s,
             "| MPI ranks: parts / condense (s) / peak memory (MB) | {} |",
-            st.ranks.iter().map(|r| format!("{} / {:.2} / {:.0}", r.parts.len(), r.condense_s, r.peak_memory_bytes as f64 / 1e6)).collect::<Vec<_>>().join(", ")
+            st.ranks
+                .iter()
+                .map(|r| format!("{} / {:.2} / {:.0}", r.parts.len(), r.condense_s, r.peak_memory_bytes as f64 / 1e6))
+                .collect::<Vec<_>>()
+                .join(", ")
         );
     }
     if let Some(c) = run.contact() {
         let (k, it) = (state_counts(&c.states), &c.summary);
         let _ = writeln!(s, "| contact pairs | {} |", c.states.len());
-        let _ = writeln!(s, "| contact iterations | {} ({}) |", it.iterations, if it.converged { "converged" } else if it.cycled { "NOT converged: the states cycle" } else { "NOT converged" });
+        let _ = writeln!(
+            s,
+            "| contact iterations | {} ({}) |",
+            it.iterations,
+            if it.converged {
+                "converged"
+            } else if it.cycled {
+                "NOT converged: the states cycle"
+            } else {
+                "NOT converged"
+            }
+        );
         let _ = writeln!(s, "| states stick / slip / open | {} / {} / {} |", k[2], k[1], k[0]);
         let _ = writeln!(s, "| interface residual | {:.2e} |", st.residuals.interface);
     }
@@ -68,7 +90,19 @@ pub fn report(run: &Run) -> String {
         }
         if !it.converged {
             let _ = writeln!(s, "\n## Last two state sets\n");
-            let _ = writeln!(s, "| pair | {} |", it.history.iter().rev().take(2).rev().enumerate().map(|(i, _)| format!("iteration {}", it.iterations - 1 + i)).collect::<Vec<_>>().join(" | "));
+            let _ = writeln!(
+                s,
+                "| pair | {} |",
+                it.history
+                    .iter()
+                    .rev()
+                    .take(2)
+                    .rev()
+                    .enumerate()
+                    .map(|(i, _)| format!("iteration {}", it.iterations - 1 + i))
+                    .collect::<Vec<_>>()
+                    .join(" | ")
+            );
             let _ = writeln!(s, "|---|---|---|");
             for p in 0..c.states.len() {
                 let cols: Vec<&str> = it.history.iter().rev().take(2).rev().map(|h| h[p].name()).collect();
@@ -76,7 +110,11 @@ pub fn report(run: &Run) -> String {
             }
         }
     }
-    let _ = writeln!(s, "\n![the deformed shape, contact pairs coloured by state]({})", super::picture::deformed_file(&run.last().stresses));
+    let _ = writeln!(
+        s,
+        "\n![the deformed shape, contact pairs coloured by state]({})",
+        super::picture::deformed_file(&run.last().stresses)
+    );
     if run.contact().is_some() {
         let _ = writeln!(s, "\n![contact normal and shear stress along each interface](interfaces.svg)");
         let plans = super::picture::plan_files(&run.model);
@@ -87,12 +125,23 @@ pub fn report(run: &Run) -> String {
             // a joint set of many planes: a list, not a wall of pictures
             let _ = writeln!(s, "\nThe plan views, one per sheet: where it sticks, slips and opens; sigma_n.\n\n| file | contact | sheet |\n|---|---|---|");
             for p in &plans {
-                let _ = writeln!(s, "| [{}]({}) | {} | {} |", p.file, p.file, run.model.interfaces[p.interface].name, p.describe(&run.model));
+                let _ = writeln!(
+                    s,
+                    "| [{}]({}) | {} | {} |",
+                    p.file,
+                    p.file,
+                    run.model.interfaces[p.interface].name,
+                    p.describe(&run.model)
+                );
             }
         } else {
             for p in &plans {
                 let name = &run.model.interfaces[p.interface].name;
-                let (what, which) = if p.of > 1 { (format!("{name} ({})", p.describe(&run.model)), format!(", {}", p.describe(&run.model))) } else { (name.clone(), String::new()) };
+                let (what, which) = if p.of > 1 {
+                    (format!("{name} ({})", p.describe(&run.model)), format!(", {}", p.describe(&run.model)))
+                } else {
+                    (name.clone(), String::new())
+                };
                 let _ = writeln!(s, "\n![plan view of {what}: where it sticks, slips and opens; sigma_n]({})\n\n*Plan view of `{name}`{which}: where it sticks, slips and opens (left); sigma_n (right).*", p.file);
             }
         }
@@ -111,7 +160,17 @@ pub fn report(run: &Run) -> String {
             let _ = writeln!(
                 s,
                 "| {:.4} | {:.4} | {:.4} | {:.4e} | {:.4e} | {:.4e} | {:.4e} | {:.4e} | {:.4e} | {:.4e} | {:.4e} |",
-                p.x[0], p.x[1], p.x[2], p.displacement[0], p.displacement[1], p.displacement[2], p.stress[0], p.stress[1], p.stress[2], p.stress[3], p.von_mises
+                p.x[0],
+                p.x[1],
+                p.x[2],
+                p.displacement[0],
+                p.displacement[1],
+                p.displacement[2],
+                p.stress[0],
+                p.stress[1],
+                p.stress[2],
+                p.stress[3],
+                p.von_mises
             );
         }
     }
@@ -128,11 +187,21 @@ fn load_steps(s: &mut String, run: &Run) {
     let _ = writeln!(s, "| step | {}iterations | stick / slip / open | converged |", head.concat());
     let _ = writeln!(s, "|---|{}---|---|---|", "---|".repeat(columns.len()));
     for st in &run.steps {
-        let factors: String = columns.iter().map(|c| format!("{} | ", factor(c.factors.get(st.step.wrapping_sub(1)).copied()))).collect();
+        let factors: String =
+            columns.iter().map(|c| format!("{} | ", factor(c.factors.get(st.step.wrapping_sub(1)).copied()))).collect();
         match &st.contact {
             Some(c) => {
                 let k = state_counts(&c.states);
-                let _ = writeln!(s, "| {} | {factors}{} | {} / {} / {} | {} |", st.step, c.summary.iterations, k[2], k[1], k[0], if c.summary.converged { "yes" } else { "NO" });
+                let _ = writeln!(
+                    s,
+                    "| {} | {factors}{} | {} / {} / {} | {} |",
+                    st.step,
+                    c.summary.iterations,
+                    k[2],
+                    k[1],
+                    k[0],
+                    if c.summary.converged { "yes" } else { "NO" }
+                );
             }
             None => {
                 let _ = writeln!(s, "| {} | {factors}– | – | – |", st.step);
@@ -148,7 +217,11 @@ fn factor(f: Option<f64>) -> String {
         Some(v) if v.is_finite() => {
             let t = format!("{v:.4}");
             let t = t.trim_end_matches('0').trim_end_matches('.');
-            if t == "-0" { "0".into() } else { t.to_string() }
+            if t == "-0" {
+                "0".into()
+            } else {
+                t.to_string()
+            }
         }
         _ => "–".into(),
     }
@@ -205,5 +278,9 @@ fn body_groups(model: &crate::model::Model) -> String {
             None => groups.push((&b.name, 1)),
         }
     }
-    groups.iter().map(|&(n, k)| if k > 1 { format!("{n} ({k} blocks)") } else { n.to_string() }).collect::<Vec<_>>().join(", ")
+    groups
+        .iter()
+        .map(|&(n, k)| if k > 1 { format!("{n} ({k} blocks)") } else { n.to_string() })
+        .collect::<Vec<_>>()
+        .join(", ")
 }

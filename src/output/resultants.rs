@@ -205,7 +205,12 @@ pub fn sum(pairs: &[PairRecord], n_contacts: usize) -> Resultants {
 /// The strength of every contact group of the run's scene.
 pub fn strengths(run: &Run) -> Vec<Strength> {
     (run.scene.contacts.iter())
-        .map(|c| Strength { friction: c.friction, cohesion: c.cohesion, tensile_strength: c.tensile_strength, residual_cohesion: c.residual_cohesion })
+        .map(|c| Strength {
+            friction: c.friction,
+            cohesion: c.cohesion,
+            tensile_strength: c.tensile_strength,
+            residual_cohesion: c.residual_cohesion,
+        })
         .collect()
 }
 
@@ -217,7 +222,9 @@ pub fn of_run(run: &Run) -> Option<Resultants> {
     let body = m.body_of_node();
     let n_steps = run.steps.len();
     // cracked: open or slipping at the end of an earlier step (crack memory)
-    let cracked = |p: usize| run.steps[..n_steps - 1].iter().filter_map(|s| s.contact.as_ref()).any(|s| s.states[p] != ContactState::Stick);
+    let cracked = |p: usize| {
+        run.steps[..n_steps - 1].iter().filter_map(|s| s.contact.as_ref()).any(|s| s.states[p] != ContactState::Stick)
+    };
     let records: Vec<PairRecord> = (m.pairs.iter().enumerate())
         .map(|(p, pair)| PairRecord {
             contact: pair.contact,
@@ -239,7 +246,16 @@ mod tests {
 
     /// A record in the order of its fields (a table row reads best so).
     #[allow(clippy::too_many_arguments)]
-    fn record(contact: usize, blocks: [usize; 2], x: [f64; 3], normal: [f64; 3], area: f64, force: [f64; 3], state: ContactState, mobilised: f64) -> PairRecord {
+    fn record(
+        contact: usize,
+        blocks: [usize; 2],
+        x: [f64; 3],
+        normal: [f64; 3],
+        area: f64,
+        force: [f64; 3],
+        state: ContactState,
+        mobilised: f64,
+    ) -> PairRecord {
         PairRecord { contact, blocks, x, normal, area, force, state, mobilised }
     }
 
@@ -270,7 +286,10 @@ mod tests {
         assert_eq!((a.mobilised, a.mobilised_at), (1.0, [1.0, 0.0, 0.0]));
         assert!(close(a.failed_fraction(), 0.5));
         // its face pairs, ordered by group then blocks: 0 | 1, then 0 | 2
-        assert_eq!(r.faces.iter().map(|f| (f.contact, f.blocks)).collect::<Vec<_>>(), vec![(0, [0, 1]), (0, [0, 2]), (1, [1, 2])]);
+        assert_eq!(
+            r.faces.iter().map(|f| (f.contact, f.blocks)).collect::<Vec<_>>(),
+            vec![(0, [0, 1]), (0, [0, 2]), (1, [1, 2])]
+        );
         let f01 = &r.faces[0].resultant;
         assert_eq!(f01.pairs, 2);
         assert!(close(f01.force[0], 0.4) && close(f01.force[1], 0.2) && close(f01.force[2], -3.0));

@@ -30,15 +30,27 @@ pub(super) fn stage(run: &Run, staged: &mut Staged) -> Result<()> {
     let Some(s) = &run.safety else { return Ok(()) };
     let (model, name) = (&run.model, &run.scene.name);
     staged.add("safety.csv", trials_csv(s).into_bytes());
-    staged.add(&format!("{name}_safety.vtu"), super::bodies_vtu(model, &s.last.u, &s.last.stresses, run.scene.output.wants("displacement"))?);
+    staged.add(
+        &format!("{name}_safety.vtu"),
+        super::bodies_vtu(model, &s.last.u, &s.last.stresses, run.scene.output.wants("displacement"))?,
+    );
     if let Some(c) = &s.last.contact {
         staged.add(&format!("{name}_safety_contact.vtu"), super::contact_vtu(model, c)?);
         staged.add("safety_contact.csv", super::contact_csv(model, c).into_bytes());
     }
     // the mechanism: the model deformed and coloured by the displacement since F = 1
-    let title = format!("{}: F = {}, the last state that holds; displacement since F = 1", run.scene.title, fmt_f(s.factor));
-    let snap = Snapshot { title: &title, model, u: &s.du, stresses: &[], contact: s.last.contact.as_ref(), region: run.scene.output.frame.as_ref() };
-    let drawn = picture::deformed_png(&snap, picture::Field::Displacement, None).context("drawing the safety search's mechanism")?;
+    let title =
+        format!("{}: F = {}, the last state that holds; displacement since F = 1", run.scene.title, fmt_f(s.factor));
+    let snap = Snapshot {
+        title: &title,
+        model,
+        u: &s.du,
+        stresses: &[],
+        contact: s.last.contact.as_ref(),
+        region: run.scene.output.frame.as_ref(),
+    };
+    let drawn = picture::deformed_png(&snap, picture::Field::Displacement, None)
+        .context("drawing the safety search's mechanism")?;
     staged.add(&format!("safety_{}", picture::deformed_file(&[])), drawn);
     // the joints at F: along each interface, and in 3D in plan by state
     let Some(c) = &s.last.contact else { return Ok(()) };
@@ -59,7 +71,20 @@ fn trials_csv(s: &SafetyRun) -> String {
     let mut out = String::from("trial,factor,from,holds,iterations,stick,slip,open,seconds,failure\n");
     for (i, t) in s.trials.iter().enumerate() {
         let k = t.states;
-        let _ = writeln!(out, "{},{:.9},{:.9},{},{},{},{},{},{:.6},{}", i + 1, t.factor, t.from, t.holds, t.iterations, k[2], k[1], k[0], t.seconds, t.failed.map_or("", |f| f.key()));
+        let _ = writeln!(
+            out,
+            "{},{:.9},{:.9},{},{},{},{},{},{:.6},{}",
+            i + 1,
+            t.factor,
+            t.from,
+            t.holds,
+            t.iterations,
+            k[2],
+            k[1],
+            k[0],
+            t.seconds,
+            t.failed.map_or("", |f| f.key())
+        );
     }
     out
 }
@@ -164,8 +189,18 @@ pub fn report(run: &Run) -> String {
     match (s.fails_at, &s.failure) {
         (Some(f), Some(fail)) => {
             let _ = writeln!(r, "**F = {}** by strength reduction ({what}), from the state of the last load step: it holds at F = {} and fails at F = {} (tolerance {} × F).\n", fmt_f(s.factor), fmt_g(s.factor), fmt_g(f), o.tolerance);
-            let who = if fail.blocks.is_empty() { "the solver named no block".to_string() } else { run.model.body_names(&fail.blocks) };
-            let _ = writeln!(r, "At F = {} (contact iteration {}): {}: {who}.\n", fmt_g(f), fail.iteration, fail.kind.describe());
+            let who = if fail.blocks.is_empty() {
+                "the solver named no block".to_string()
+            } else {
+                run.model.body_names(&fail.blocks)
+            };
+            let _ = writeln!(
+                r,
+                "At F = {} (contact iteration {}): {}: {who}.\n",
+                fmt_g(f),
+                fail.iteration,
+                fail.kind.describe()
+            );
         }
         _ => {
             let _ = writeln!(r, "**F > {}**: the search reached its bound (safety.max_factor = {}) and the scene still holds there ({what}). Raise max_factor to find F.\n", fmt_f(s.factor), o.max_factor);
@@ -179,10 +214,24 @@ pub fn report(run: &Run) -> String {
         "\nThe search: {} trials, {} contact iterations ({:.1} per trial), {:.3} s on the condensed interface ({:.4} s per trial), {:.3} s to recover the last state that holds; sparse factorisations: {} for the whole run (one per part), none in the search.\n",
         c.trials, c.contact_iterations, per(c.contact_iterations as f64), c.search_s, per(c.search_s), c.recover_s, run.stats.counters.factorisations
     );
-    let _ = writeln!(r, "| trial | F | from F | holds | contact iterations | stick / slip / open |\n|---|---|---|---|---|---|");
+    let _ = writeln!(
+        r,
+        "| trial | F | from F | holds | contact iterations | stick / slip / open |\n|---|---|---|---|---|---|"
+    );
     for (i, t) in s.trials.iter().enumerate() {
         let k = t.states;
-        let _ = writeln!(r, "| {} | {} | {} | {} | {} | {} / {} / {} |", i + 1, fmt_f(t.factor), fmt_f(t.from), if t.holds { "yes" } else { t.failed.map_or("no", |f| f.key()) }, t.iterations, k[2], k[1], k[0]);
+        let _ = writeln!(
+            r,
+            "| {} | {} | {} | {} | {} | {} / {} / {} |",
+            i + 1,
+            fmt_f(t.factor),
+            fmt_f(t.from),
+            if t.holds { "yes" } else { t.failed.map_or("no", |f| f.key()) },
+            t.iterations,
+            k[2],
+            k[1],
+            k[0]
+        );
     }
     pictures(&mut r, run, s);
     r
@@ -202,22 +251,49 @@ fn contacts(run: &Run, o: &Safety) -> String {
 /// equilibrium from its resultants.
 fn joints_table(r: &mut String, run: &Run, s: &SafetyRun, o: &Safety) {
     let _ = writeln!(r, "Each reduced contact: its pairs stick / slip / open at F = 1, at F and at failure; its normal force N and shear force T at F = 1, and its own limit equilibrium from them, F_joint = (c A + N f) / T (A its closed area; the factor of a joint that slides as one plane).\n");
-    let _ = writeln!(r, "| contact | F = 1 | F = {} | failure | N | T | F_joint |\n|---|---|---|---|---|---|---|", fmt_f(s.factor));
+    let _ = writeln!(
+        r,
+        "| contact | F = 1 | F = {} | failure | N | T | F_joint |\n|---|---|---|---|---|---|---|",
+        fmt_f(s.factor)
+    );
     let fmt_k = |k: [usize; 3]| format!("{} / {} / {}", k[2], k[1], k[0]);
     for &i in &o.contacts {
         let sc = &run.scene.contacts[i];
         let at_1 = run.contact().map(|c| Joint::of(run, c, i));
         let at_f = s.last.contact.as_ref().map(|c| Joint::of(run, c, i));
-        let failed = s.failure.as_ref().map(|f| state_counts(&run.model.pairs.iter().zip(&f.states).filter(|(p, _)| p.contact == i).map(|(_, &st)| st).collect::<Vec<_>>()));
-        let (n, t, fj) = at_1.as_ref().map_or(("–".into(), "–".into(), "–".into()), |j| (format!("{:.4e}", j.normal), format!("{:.4e}", j.shear), fmt_f(j.factor(sc.cohesion, sc.friction))));
-        let _ = writeln!(r, "| `{}` | {} | {} | {} | {n} | {t} | {fj} |", run.model.interfaces[i].name, at_1.map_or("–".into(), |j| fmt_k(j.states)), at_f.map_or("–".into(), |j| fmt_k(j.states)), failed.map_or("–".into(), fmt_k));
+        let failed = s.failure.as_ref().map(|f| {
+            state_counts(
+                &run.model
+                    .pairs
+                    .iter()
+                    .zip(&f.states)
+                    .filter(|(p, _)| p.contact == i)
+                    .map(|(_, &st)| st)
+                    .collect::<Vec<_>>(),
+            )
+        });
+        let (n, t, fj) = at_1.as_ref().map_or(("–".into(), "–".into(), "–".into()), |j| {
+            (format!("{:.4e}", j.normal), format!("{:.4e}", j.shear), fmt_f(j.factor(sc.cohesion, sc.friction)))
+        });
+        let _ = writeln!(
+            r,
+            "| `{}` | {} | {} | {} | {n} | {t} | {fj} |",
+            run.model.interfaces[i].name,
+            at_1.map_or("–".into(), |j| fmt_k(j.states)),
+            at_f.map_or("–".into(), |j| fmt_k(j.states)),
+            failed.map_or("–".into(), fmt_k)
+        );
     }
 }
 
 /// The pictures of the last state that holds.
 fn pictures(r: &mut String, run: &Run, s: &SafetyRun) {
     let f = fmt_f(s.factor);
-    let _ = writeln!(r, "\n![the model deformed by the displacement from F = 1 to F = {f}: the mechanism as it starts](safety_{})", picture::deformed_file(&[]));
+    let _ = writeln!(
+        r,
+        "\n![the model deformed by the displacement from F = 1 to F = {f}: the mechanism as it starts](safety_{})",
+        picture::deformed_file(&[])
+    );
     if s.last.contact.is_none() {
         return;
     }
@@ -228,6 +304,10 @@ fn pictures(r: &mut String, run: &Run, s: &SafetyRun) {
     }
     for p in plans.iter().take(6) {
         let name = &run.model.interfaces[p.interface].name;
-        let _ = writeln!(r, "\n![plan view of {name} at F = {f}: where it sticks, slips and opens; sigma_n](safety_{})", p.file);
+        let _ = writeln!(
+            r,
+            "\n![plan view of {name} at F = {f}: where it sticks, slips and opens; sigma_n](safety_{})",
+            p.file
+        );
     }
 }

@@ -87,35 +87,24 @@ pub(super) fn toml_error(text: &str, path: &Path, e: &toml::de::Error) -> SceneE
 /// The key path of the `[table]` or `[[array]]` header that governs the line
 /// starting at `line_start` (`contacts[1]`, `materials.rock`), if any.
 fn enclosing_table(text: &str, line_start: usize) -> Option<String> {
-    let upto = text.get(
-        ..line_start
-            + text[line_start..]
-                .find('\n')
-                .unwrap_or(text.len() - line_start),
-    )?;
+    let upto = text.get(..line_start + text[line_start..].find('\n').unwrap_or(text.len() - line_start))?;
     let mut current: Option<String> = None;
     let mut counts: BTreeMap<String, usize> = BTreeMap::new();
     for l in upto.lines() {
         let l = l.split('#').next().unwrap_or("").trim();
-        let (name, array) =
-            if let Some(inner) = l.strip_prefix("[[").and_then(|s| s.strip_suffix("]]")) {
-                (inner.trim(), true)
-            } else if let Some(inner) = l.strip_prefix('[').and_then(|s| s.strip_suffix(']')) {
-                (inner.trim(), false)
-            } else {
-                continue;
-            };
+        let (name, array) = if let Some(inner) = l.strip_prefix("[[").and_then(|s| s.strip_suffix("]]")) {
+            (inner.trim(), true)
+        } else if let Some(inner) = l.strip_prefix('[').and_then(|s| s.strip_suffix(']')) {
+            (inner.trim(), false)
+        } else {
+            continue;
+        };
         // Skip continuation lines of multi-line arrays like `[1.0, 2.0]`.
         let first = name.chars().next();
-        if !matches!(first, Some(c) if c.is_ascii_alphabetic() || c == '_' || c == '"' || c == '\'')
-        {
+        if !matches!(first, Some(c) if c.is_ascii_alphabetic() || c == '_' || c == '"' || c == '\'') {
             continue;
         }
-        let name: String = name
-            .split('.')
-            .map(|p| p.trim())
-            .collect::<Vec<_>>()
-            .join(".");
+        let name: String = name.split('.').map(|p| p.trim()).collect::<Vec<_>>().join(".");
         current = Some(if array {
             let n = counts.entry(name.clone()).or_insert(0);
             *n += 1;

@@ -49,9 +49,9 @@ use crate::model::{BodySpec, ContactSpec, LoadSpec, ModelSpec, SupportSpec};
 
 mod errors;
 mod raw;
-mod validate;
 #[cfg(test)]
 mod tests;
+mod validate;
 
 pub use errors::SceneError;
 
@@ -191,11 +191,7 @@ pub struct GmshOptions {
 
 impl Default for GmshOptions {
     fn default() -> Self {
-        GmshOptions {
-            order: 1,
-            setnumber: Vec::new(),
-            clscale: None,
-        }
+        GmshOptions { order: 1, setnumber: Vec::new(), clscale: None }
     }
 }
 
@@ -252,10 +248,7 @@ impl Output {
 
 impl Default for Output {
     fn default() -> Self {
-        Output {
-            fields: OUTPUT_FIELDS.iter().map(|s| s.to_string()).collect(),
-            frame: None,
-        }
+        Output { fields: OUTPUT_FIELDS.iter().map(|s| s.to_string()).collect(), frame: None }
     }
 }
 
@@ -295,10 +288,8 @@ pub struct Scene {
 impl Scene {
     /// Read, parse and validate the scene file at `path`.
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let text =
+            std::fs::read_to_string(path).map_err(|source| SceneError::Read { path: path.to_path_buf(), source })?;
         Scene::parse(&text, path)
     }
 
@@ -323,7 +314,8 @@ impl Scene {
     /// as the table would be (a scene without contacts has nothing to reduce).
     pub fn with_safety(mut self) -> Result<Scene, SceneError> {
         if self.safety.is_none() {
-            self.safety = Some(validate::Checker { path: &self.path }.safety(raw::RawSafety::default(), &self.contacts)?);
+            self.safety =
+                Some(validate::Checker { path: &self.path }.safety(raw::RawSafety::default(), &self.contacts)?);
         }
         Ok(self)
     }
@@ -342,7 +334,8 @@ impl Scene {
         for (i, c) in self.contacts.iter().enumerate() {
             if c.friction > 0.0 && c.tensile_strength > c.cohesion / c.friction {
                 // six significant digits, no trailing zeros
-                let apex = format!("{:.6}", c.cohesion / c.friction).trim_end_matches('0').trim_end_matches('.').to_string();
+                let apex =
+                    format!("{:.6}", c.cohesion / c.friction).trim_end_matches('0').trim_end_matches('.').to_string();
                 let name = match &c.groups {
                     ContactGroups::Shared(g) => g.clone(),
                     ContactGroups::Pair(a, b) => format!("{a}|{b}"),
@@ -379,21 +372,43 @@ impl Scene {
                 .enumerate()
                 .map(|(i, b)| {
                     let m = self.material_of(b);
-                    BodySpec { key: format!("bodies[{i}]"), group: b.group.clone(), e: m.e, nu: m.nu, density: m.density, initial: b.initial }
+                    BodySpec {
+                        key: format!("bodies[{i}]"),
+                        group: b.group.clone(),
+                        e: m.e,
+                        nu: m.nu,
+                        density: m.density,
+                        initial: b.initial,
+                    }
                 })
                 .collect(),
-            contacts: self.contacts.iter().enumerate().map(|(i, c)| ContactSpec { key: format!("contacts[{i}]"), groups: c.groups.clone() }).collect(),
+            contacts: self
+                .contacts
+                .iter()
+                .enumerate()
+                .map(|(i, c)| ContactSpec { key: format!("contacts[{i}]"), groups: c.groups.clone() })
+                .collect(),
             supports: self
                 .supports
                 .iter()
                 .enumerate()
-                .map(|(i, s)| SupportSpec { key: format!("supports[{i}]"), group: s.group.clone(), fix: s.fix, prescribed: s.prescribed })
+                .map(|(i, s)| SupportSpec {
+                    key: format!("supports[{i}]"),
+                    group: s.group.clone(),
+                    fix: s.fix,
+                    prescribed: s.prescribed,
+                })
                 .collect(),
             loads: self
                 .loads
                 .iter()
                 .enumerate()
-                .map(|(i, l)| LoadSpec { key: format!("loads[{i}]"), group: l.group.clone(), kind: l.kind.clone(), factors: l.factors.clone() })
+                .map(|(i, l)| LoadSpec {
+                    key: format!("loads[{i}]"),
+                    group: l.group.clone(),
+                    kind: l.kind.clone(),
+                    factors: l.factors.clone(),
+                })
                 .collect(),
             load_steps: self.solver.load_steps,
             gravity_factors: self.solver.gravity_factors.clone(),

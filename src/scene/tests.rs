@@ -109,10 +109,7 @@ fn rejects(text: &str, needles: &[&str]) -> String {
         Ok(_) => panic!("accepted, expected an error mentioning {needles:?}:\n{text}"),
         Err(e) => e.to_string(),
     };
-    assert!(
-        msg.starts_with(&path.display().to_string()),
-        "does not start with the file name: {msg}"
-    );
+    assert!(msg.starts_with(&path.display().to_string()), "does not start with the file name: {msg}");
     for n in needles {
         assert!(msg.contains(n), "message lacks {n:?}: {msg}");
     }
@@ -126,37 +123,13 @@ fn design_example_parses() {
     let s = Scene::load(&path).expect("example scene");
     assert_eq!(s.name, "cyl");
     assert_eq!(s.title, "Thick-walled cylinder, quarter model");
-    assert_eq!(
-        s.mesh,
-        MeshSource::Geo(path.parent().unwrap().join("cylinder.geo"))
-    );
+    assert_eq!(s.mesh, MeshSource::Geo(path.parent().unwrap().join("cylinder.geo")));
     assert_eq!(s.analysis, Analysis::PlaneStrain);
     assert_eq!(s.analysis.dim(), 2);
     assert_eq!(s.thickness, 1.0);
-    assert_eq!(
-        s.gmsh,
-        GmshOptions {
-            order: 2,
-            setnumber: vec![("lc".into(), 0.2)],
-            clscale: None
-        }
-    );
-    assert_eq!(
-        s.materials["rock"],
-        Material {
-            e: 2.0e5,
-            nu: 0.167,
-            density: 0.0
-        }
-    );
-    assert_eq!(
-        s.bodies,
-        vec![Body {
-            group: "body_1".into(),
-            material: "rock".into(),
-            initial: None,
-        }]
-    );
+    assert_eq!(s.gmsh, GmshOptions { order: 2, setnumber: vec![("lc".into(), 0.2)], clscale: None });
+    assert_eq!(s.materials["rock"], Material { e: 2.0e5, nu: 0.167, density: 0.0 });
+    assert_eq!(s.bodies, vec![Body { group: "body_1".into(), material: "rock".into(), initial: None }]);
     assert_eq!(s.material_of(&s.bodies[0]).e, 2.0e5);
     assert_eq!(
         s.contacts,
@@ -172,41 +145,15 @@ fn design_example_parses() {
     );
     assert_eq!(
         s.supports,
-        vec![Support {
-            group: "symmetry_x0".into(),
-            fix: [true, false, false],
-            prescribed: [None; 3]
-        }]
+        vec![Support { group: "symmetry_x0".into(), fix: [true, false, false], prescribed: [None; 3] }]
     );
-    assert_eq!(
-        s.loads,
-        vec![Load {
-            group: "inner_surface".into(),
-            kind: LoadKind::Pressure(0.1),
-            factors: None,
-        }]
-    );
-    assert_eq!(
-        s.solver,
-        Solver::default()
-    );
+    assert_eq!(s.loads, vec![Load { group: "inner_surface".into(), kind: LoadKind::Pressure(0.1), factors: None }]);
+    assert_eq!(s.solver, Solver::default());
     assert_eq!(
         s.probes,
-        vec![Probe {
-            name: "radial".into(),
-            from: [2.7716, 1.1481, 0.0],
-            to: [4.6194, 1.9134, 0.0],
-            points: 6
-        }]
+        vec![Probe { name: "radial".into(), from: [2.7716, 1.1481, 0.0], to: [4.6194, 1.9134, 0.0], points: 6 }]
     );
-    assert_eq!(
-        s.analytic,
-        Some(Analytic::LameCylinder {
-            a: 3.0,
-            b: 5.0,
-            p: 0.1
-        })
-    );
+    assert_eq!(s.analytic, Some(Analytic::LameCylinder { a: 3.0, b: 5.0, p: 0.1 }));
     assert_eq!(s.output, Output::default());
     // parse() from a string gives the same scene.
     assert_eq!(Scene::parse(EXAMPLE, &path).expect("parse"), s);
@@ -219,36 +166,15 @@ fn defaults_applied() {
     assert_eq!(s.title, "cyl");
     assert_eq!(s.thickness, 1.0);
     assert_eq!(s.gravity, [0.0; 3]);
-    assert_eq!(
-        s.gmsh,
-        GmshOptions {
-            order: 1,
-            setnumber: vec![],
-            clscale: None
-        }
-    );
+    assert_eq!(s.gmsh, GmshOptions { order: 1, setnumber: vec![], clscale: None });
     assert_eq!(s.materials["rock"].density, 0.0);
     let c = &s.contacts[0];
-    assert_eq!(
-        (
-            c.friction,
-            c.cohesion,
-            c.tensile_strength,
-            c.residual_cohesion
-        ),
-        (0.0, 0.0, 0.0, 0.0)
-    );
+    assert_eq!((c.friction, c.cohesion, c.tensile_strength, c.residual_cohesion), (0.0, 0.0, 0.0, 0.0));
     assert_eq!(c.slip, SlipLaw::Coulomb);
-    assert_eq!(
-        s.solver,
-        Solver::default()
-    );
+    assert_eq!(s.solver, Solver::default());
     assert!(s.supports.is_empty() && s.loads.is_empty() && s.probes.is_empty());
     assert_eq!(s.analytic, None);
-    assert_eq!(
-        s.output.fields,
-        vec!["displacement".to_string(), "stress".to_string()]
-    );
+    assert_eq!(s.output.fields, vec!["displacement".to_string(), "stress".to_string()]);
     assert!(s.output.wants("stress"));
 }
 
@@ -262,24 +188,17 @@ fn other_forms_accepted() {
     .expect("solid scene");
     assert_eq!(s.gravity, [0.0, 0.0, -9.81]);
     assert_eq!(s.analysis.dim(), 3);
-    assert_eq!(
-        s.contacts[0].groups,
-        ContactGroups::Pair("f1".into(), "f2".into())
-    );
+    assert_eq!(s.contacts[0].groups, ContactGroups::Pair("f1".into(), "f2".into()));
     assert_eq!(s.contacts[0].slip, SlipLaw::Frictionless);
     assert_eq!(s.supports[0].fix, [true, false, true]);
     assert_eq!(s.supports[0].prescribed, [None, Some(-0.001), None]);
     assert_eq!(s.loads[0].kind, LoadKind::Traction([0.0, 0.0, -1.0]));
-    assert_eq!(
-        s.gmsh.setnumber,
-        vec![("lc".into(), 0.1), ("n".into(), 4.0)]
-    );
+    assert_eq!(s.gmsh.setnumber, vec![("lc".into(), 0.1), ("n".into(), 4.0)]);
     assert_eq!(s.gmsh.clscale, Some(0.5));
     assert_eq!(s.output.fields, vec!["stress".to_string()]);
     assert!(!s.output.wants("displacement"));
 
-    let top = "gravity = [0, -9.81]\n".to_string()
-        + &minimal("[[loads]]\ngroup = \"t\"\ntraction = [1, 2, 0]\n");
+    let top = "gravity = [0, -9.81]\n".to_string() + &minimal("[[loads]]\ngroup = \"t\"\ntraction = [1, 2, 0]\n");
     let s = load(&top).expect("2D gravity");
     assert_eq!(s.gravity, [0.0, -9.81, 0.0]);
     assert_eq!(s.loads[0].kind, LoadKind::Traction([1.0, 2.0, 0.0]));
@@ -292,98 +211,47 @@ fn other_forms_accepted() {
 fn missing_file() {
     let path = std::env::temp_dir().join("subcontact_no_such_dir/none.toml");
     let msg = Scene::load(&path).expect_err("missing").to_string();
-    assert!(
-        msg.starts_with(&path.display().to_string()) && msg.contains("cannot read"),
-        "{msg}"
-    );
+    assert!(msg.starts_with(&path.display().to_string()) && msg.contains("cannot read"), "{msg}");
 }
 
 #[test]
 fn toml_syntax_and_types() {
-    rejects(
-        &minimal("friction = \n"),
-        &["line 9, column 12", "bodies[0]", "invalid string"],
-    );
-    rejects(
-        &minimal("[solver]\nload_steps = \"two\"\n"),
-        &["line 10", "(in solver)", "expected i64"],
-    );
-    rejects(
-        &minimal("").replace("plane_strain", "plane"),
-        &["line 2", "plane_strain", "axisymmetric"],
-    );
-    rejects(
-        &minimal("[[contacts]]\ngroup = \"i\"\nslip = \"stick\"\n"),
-        &["contacts[0]", "coulomb", "frictionless"],
-    );
+    rejects(&minimal("friction = \n"), &["line 9, column 12", "bodies[0]", "invalid string"]);
+    rejects(&minimal("[solver]\nload_steps = \"two\"\n"), &["line 10", "(in solver)", "expected i64"]);
+    rejects(&minimal("").replace("plane_strain", "plane"), &["line 2", "plane_strain", "axisymmetric"]);
+    rejects(&minimal("[[contacts]]\ngroup = \"i\"\nslip = \"stick\"\n"), &["contacts[0]", "coulomb", "frictionless"]);
 }
 
 #[test]
 fn misspelt_key() {
     let m = rejects(
         &minimal("[[contacts]]\ngroup = \"a\"\n[[contacts]]\ngroup = \"i\"\nfrction = 0.8\n"),
-        &[
-            "frction",
-            "line 13",
-            "contacts[1]",
-            "friction",
-            "tensile_strength",
-        ],
+        &["frction", "line 13", "contacts[1]", "friction", "tensile_strength"],
     );
     assert!(m.contains("Unknown keys are errors"), "{m}");
-    rejects(
-        &minimal("").replace("nu = 0.2", "nu = 0.2\ne = 3"),
-        &["materials.rock", "unknown field `e`", "`E`"],
-    );
-    rejects(
-        &("titel = \"x\"\n".to_string() + &minimal("")),
-        &["titel", "line 1", "`title`"],
-    );
+    rejects(&minimal("").replace("nu = 0.2", "nu = 0.2\ne = 3"), &["materials.rock", "unknown field `e`", "`E`"]);
+    rejects(&("titel = \"x\"\n".to_string() + &minimal("")), &["titel", "line 1", "`title`"]);
 }
 
 #[test]
 fn mesh_rules() {
-    rejects(
-        &minimal("").replace("cylinder.geo", "cylinder.stl"),
-        &["mesh", "cylinder.stl", ".geo", ".msh"],
-    );
-    rejects(
-        &minimal("").replace("cylinder.geo", "other.geo"),
-        &["mesh", "other.geo", "does not exist"],
-    );
-    rejects(
-        &minimal("").replace("mesh = \"cylinder.geo\"\n", ""),
-        &["mesh", "missing"],
-    );
-    rejects(
-        &minimal("").replace("analysis = \"plane_strain\"\n", ""),
-        &["analysis", "missing"],
-    );
-    rejects(
-        &minimal("[gmsh]\norder = 2\n").replace("cylinder.geo", "cylinder.msh"),
-        &["gmsh", ".geo", "cylinder.msh"],
-    );
+    rejects(&minimal("").replace("cylinder.geo", "cylinder.stl"), &["mesh", "cylinder.stl", ".geo", ".msh"]);
+    rejects(&minimal("").replace("cylinder.geo", "other.geo"), &["mesh", "other.geo", "does not exist"]);
+    rejects(&minimal("").replace("mesh = \"cylinder.geo\"\n", ""), &["mesh", "missing"]);
+    rejects(&minimal("").replace("analysis = \"plane_strain\"\n", ""), &["analysis", "missing"]);
+    rejects(&minimal("[gmsh]\norder = 2\n").replace("cylinder.geo", "cylinder.msh"), &["gmsh", ".geo", "cylinder.msh"]);
 }
 
 #[test]
 fn material_rules() {
     let m = |from: &str, to: &str| minimal("").replace(from, to);
-    rejects(
-        &m("E = 1.0", "E = 0.0"),
-        &["materials.rock.E", "= 0", "> 0"],
-    );
+    rejects(&m("E = 1.0", "E = 0.0"), &["materials.rock.E", "= 0", "> 0"]);
     rejects(&m("E = 1.0", "E = inf"), &["materials.rock.E", "inf"]);
     rejects(&m("E = 1.0", "E = -5"), &["materials.rock.E", "-5"]);
-    let msg = rejects(
-        &m("nu = 0.2", "nu = 0.5"),
-        &["materials.rock.nu", "= 0.5", "incompressible", "0.499"],
-    );
+    let msg = rejects(&m("nu = 0.2", "nu = 0.5"), &["materials.rock.nu", "= 0.5", "incompressible", "0.499"]);
     assert!(msg.contains("-1 < nu < 0.5"), "{msg}");
     rejects(&m("nu = 0.2", "nu = -1.0"), &["materials.rock.nu", "-1"]);
-    rejects(
-        &m("nu = 0.2", "nu = 0.2\ndensity = -1"),
-        &["materials.rock.density", "-1", ">= 0"],
-    );
+    rejects(&m("nu = 0.2", "nu = 0.2\ndensity = -1"), &["materials.rock.density", "-1", ">= 0"]);
     rejects(&m("nu = 0.2", ""), &["materials.rock.nu", "missing"]);
     rejects(
         &m("[materials.rock]", "[materials.\"soft clay\"]")
@@ -395,46 +263,16 @@ fn material_rules() {
 
 #[test]
 fn plane_and_solid_rules() {
-    rejects(
-        &("thickness = 0\n".to_string() + &minimal("")),
-        &["thickness", "= 0", "> 0"],
-    );
-    rejects(
-        &("thickness = 2\n".to_string() + &minimal_solid("")),
-        &["thickness", "solid", "remove"],
-    );
-    rejects(
-        &("gravity = [1]\n".to_string() + &minimal("")),
-        &["gravity", "[1]", "2 components"],
-    );
-    rejects(
-        &("gravity = [1, 2, 3, 4]\n".to_string() + &minimal("")),
-        &["gravity", "2 components"],
-    );
-    rejects(
-        &("gravity = [0, -9.8]\n".to_string() + &minimal_solid("")),
-        &["gravity", "3 components"],
-    );
-    rejects(
-        &("gravity = [0, -9.8, 1]\n".to_string() + &minimal("")),
-        &["gravity", "z component must be 0"],
-    );
-    rejects(
-        &minimal("[[supports]]\ngroup = \"s\"\nfix = [\"z\"]\n"),
-        &["supports[0].fix", "\"z\"", "solid"],
-    );
-    rejects(
-        &minimal("[[supports]]\ngroup = \"s\"\nuz = 0.1\n"),
-        &["supports[0].uz", "solid"],
-    );
-    rejects(
-        &minimal("[[loads]]\ngroup = \"l\"\ntraction = [0, 0, 1]\n"),
-        &["loads[0].traction", "z component"],
-    );
-    rejects(
-        &minimal_solid("[[loads]]\ngroup = \"l\"\ntraction = [0, 1]\n"),
-        &["loads[0].traction", "3 components"],
-    );
+    rejects(&("thickness = 0\n".to_string() + &minimal("")), &["thickness", "= 0", "> 0"]);
+    rejects(&("thickness = 2\n".to_string() + &minimal_solid("")), &["thickness", "solid", "remove"]);
+    rejects(&("gravity = [1]\n".to_string() + &minimal("")), &["gravity", "[1]", "2 components"]);
+    rejects(&("gravity = [1, 2, 3, 4]\n".to_string() + &minimal("")), &["gravity", "2 components"]);
+    rejects(&("gravity = [0, -9.8]\n".to_string() + &minimal_solid("")), &["gravity", "3 components"]);
+    rejects(&("gravity = [0, -9.8, 1]\n".to_string() + &minimal("")), &["gravity", "z component must be 0"]);
+    rejects(&minimal("[[supports]]\ngroup = \"s\"\nfix = [\"z\"]\n"), &["supports[0].fix", "\"z\"", "solid"]);
+    rejects(&minimal("[[supports]]\ngroup = \"s\"\nuz = 0.1\n"), &["supports[0].uz", "solid"]);
+    rejects(&minimal("[[loads]]\ngroup = \"l\"\ntraction = [0, 0, 1]\n"), &["loads[0].traction", "z component"]);
+    rejects(&minimal_solid("[[loads]]\ngroup = \"l\"\ntraction = [0, 1]\n"), &["loads[0].traction", "3 components"]);
     let probe = "[[probes]]\nname = \"p\"\nfrom = [0, 0, 1]\nto = [1, 1]\npoints = 3\n";
     rejects(&minimal(probe), &["probes[0].from", "z component"]);
     rejects(&minimal_solid(probe), &["probes[0].to", "3 components"]);
@@ -442,78 +280,34 @@ fn plane_and_solid_rules() {
 
 #[test]
 fn body_rules() {
-    let no_bodies =
-        "mesh = \"cylinder.geo\"\nanalysis = \"solid\"\n[materials.rock]\nE = 1\nnu = 0.1\n";
+    let no_bodies = "mesh = \"cylinder.geo\"\nanalysis = \"solid\"\n[materials.rock]\nE = 1\nnu = 0.1\n";
     rejects(no_bodies, &["bodies", "at least one"]);
     rejects(
         &minimal("[[bodies]]\ngroup = \"b2\"\nmaterial = \"steel\"\n"),
         &["bodies[1].material", "\"steel\"", "\"rock\""],
     );
-    rejects(
-        &minimal("[[bodies]]\ngroup = \"b1\"\nmaterial = \"rock\"\n"),
-        &["bodies[1].group", "\"b1\"", "bodies[0]"],
-    );
-    rejects(
-        &minimal("[[bodies]]\nmaterial = \"rock\"\n"),
-        &["bodies[1].group", "missing"],
-    );
-    rejects(
-        &minimal("[[bodies]]\ngroup = \"\"\nmaterial = \"rock\"\n"),
-        &["bodies[1].group", "empty"],
-    );
+    rejects(&minimal("[[bodies]]\ngroup = \"b1\"\nmaterial = \"rock\"\n"), &["bodies[1].group", "\"b1\"", "bodies[0]"]);
+    rejects(&minimal("[[bodies]]\nmaterial = \"rock\"\n"), &["bodies[1].group", "missing"]);
+    rejects(&minimal("[[bodies]]\ngroup = \"\"\nmaterial = \"rock\"\n"), &["bodies[1].group", "empty"]);
     let no_mat = "mesh = \"cylinder.geo\"\nanalysis = \"solid\"\n[[bodies]]\ngroup = \"b\"\nmaterial = \"rock\"\n";
     rejects(no_mat, &["bodies[0].material", "none are defined"]);
 }
 
 #[test]
 fn contact_rules() {
-    let c = |body: &str| {
-        minimal(&format!(
-            "[[contacts]]\ngroup = \"ok\"\n[[contacts]]\n{body}\n"
-        ))
-    };
+    let c = |body: &str| minimal(&format!("[[contacts]]\ngroup = \"ok\"\n[[contacts]]\n{body}\n"));
     rejects(&c("friction = 0.1"), &["contacts[1]", "group", "groups"]);
-    rejects(
-        &c("group = \"a\"\ngroups = [\"b\", \"c\"]"),
-        &["contacts[1]", "both"],
-    );
-    rejects(
-        &c("groups = [\"b\"]"),
-        &["contacts[1].groups", "[\"b\"]", "exactly 2"],
-    );
-    rejects(
-        &c("groups = [\"b\", \"c\", \"d\"]"),
-        &["contacts[1].groups", "exactly 2"],
-    );
-    rejects(
-        &c("groups = [\"b\", \"b\"]"),
-        &["contacts[1].groups", "differ"],
-    );
-    rejects(
-        &c("group = \"b1\""),
-        &["contacts[1].group", "\"b1\"", "bodies[0]"],
-    );
+    rejects(&c("group = \"a\"\ngroups = [\"b\", \"c\"]"), &["contacts[1]", "both"]);
+    rejects(&c("groups = [\"b\"]"), &["contacts[1].groups", "[\"b\"]", "exactly 2"]);
+    rejects(&c("groups = [\"b\", \"c\", \"d\"]"), &["contacts[1].groups", "exactly 2"]);
+    rejects(&c("groups = [\"b\", \"b\"]"), &["contacts[1].groups", "differ"]);
+    rejects(&c("group = \"b1\""), &["contacts[1].group", "\"b1\"", "bodies[0]"]);
     rejects(&c("group = \"ok\""), &["contacts[1].group", "contacts[0]"]);
-    rejects(
-        &c("friction = -0.1\ngroup = \"x\""),
-        &["contacts[1].friction", "-0.1", ">= 0"],
-    );
-    rejects(
-        &c("friction = nan\ngroup = \"x\""),
-        &["contacts[1].friction", "NaN", "finite"],
-    );
-    rejects(
-        &c("cohesion = -1\ngroup = \"x\""),
-        &["contacts[1].cohesion", "-1"],
-    );
-    rejects(
-        &c("tensile_strength = -1\ngroup = \"x\""),
-        &["contacts[1].tensile_strength", "-1"],
-    );
-    rejects(
-        &c("residual_cohesion = -1\ngroup = \"x\""),
-        &["contacts[1].residual_cohesion", "-1"],
-    );
+    rejects(&c("friction = -0.1\ngroup = \"x\""), &["contacts[1].friction", "-0.1", ">= 0"]);
+    rejects(&c("friction = nan\ngroup = \"x\""), &["contacts[1].friction", "NaN", "finite"]);
+    rejects(&c("cohesion = -1\ngroup = \"x\""), &["contacts[1].cohesion", "-1"]);
+    rejects(&c("tensile_strength = -1\ngroup = \"x\""), &["contacts[1].tensile_strength", "-1"]);
+    rejects(&c("residual_cohesion = -1\ngroup = \"x\""), &["contacts[1].residual_cohesion", "-1"]);
     rejects(
         &c("cohesion = 1\nresidual_cohesion = 2\ngroup = \"x\""),
         &["contacts[1].residual_cohesion", "= 2", "cohesion (1)"],
@@ -525,24 +319,12 @@ fn support_rules() {
     let s = |body: &str| minimal(&format!("[[supports]]\ngroup = \"s\"\n{body}\n"));
     rejects(&s(""), &["supports[0]", "fix", "ux"]);
     rejects(&s("fix = []"), &["supports[0]", "holds nothing"]);
-    rejects(
-        &s("fix = [\"w\"]"),
-        &["supports[0].fix", "\"w\"", "\"x\", \"y\""],
-    );
+    rejects(&s("fix = [\"w\"]"), &["supports[0].fix", "\"w\"", "\"x\", \"y\""]);
     rejects(&s("fix = [\"x\", \"x\"]"), &["supports[0].fix", "twice"]);
-    rejects(
-        &s("fix = [\"x\"]\nux = 0.1"),
-        &["supports[0].ux", "0.1", "also in fix"],
-    );
+    rejects(&s("fix = [\"x\"]\nux = 0.1"), &["supports[0].ux", "0.1", "also in fix"]);
     rejects(&s("uy = inf"), &["supports[0].uy", "finite"]);
-    rejects(
-        &minimal("[[supports]]\nfix = [\"x\"]\n"),
-        &["supports[0].group", "missing"],
-    );
-    rejects(
-        &s("fix = [\"x\"]\nuz = 1").replace("plane_strain", "axisymmetric"),
-        &["supports[0].uz", "axisymmetric"],
-    );
+    rejects(&minimal("[[supports]]\nfix = [\"x\"]\n"), &["supports[0].group", "missing"]);
+    rejects(&s("fix = [\"x\"]\nuz = 1").replace("plane_strain", "axisymmetric"), &["supports[0].uz", "axisymmetric"]);
 }
 
 #[test]
@@ -556,87 +338,37 @@ fn load_rules() {
 
 #[test]
 fn solver_gmsh_probe_rules() {
-    rejects(
-        &minimal("[solver]\nload_steps = 0\n"),
-        &["solver.load_steps", "= 0", "at least 1"],
-    );
-    rejects(
-        &minimal("[solver]\nmax_iterations = -3\n"),
-        &["solver.max_iterations", "-3"],
-    );
-    rejects(
-        &minimal("[gmsh]\norder = 3\n"),
-        &["gmsh.order", "= 3", "1", "2"],
-    );
+    rejects(&minimal("[solver]\nload_steps = 0\n"), &["solver.load_steps", "= 0", "at least 1"]);
+    rejects(&minimal("[solver]\nmax_iterations = -3\n"), &["solver.max_iterations", "-3"]);
+    rejects(&minimal("[gmsh]\norder = 3\n"), &["gmsh.order", "= 3", "1", "2"]);
     rejects(&minimal("[gmsh]\nclscale = 0\n"), &["gmsh.clscale", "> 0"]);
-    rejects(
-        &minimal("[gmsh]\nsetnumber = { lc = inf }\n"),
-        &["gmsh.setnumber.lc", "finite"],
-    );
-    rejects(
-        &minimal("[gmsh]\nsetnumber = { \"a b\" = 1 }\n"),
-        &["gmsh.setnumber.\"a b\"", "DefineConstant"],
-    );
-    let p = |name: &str, pts: i64| {
-        format!("[[probes]]\nname = \"{name}\"\nfrom = [0, 0]\nto = [1, 1]\npoints = {pts}\n")
-    };
-    rejects(
-        &minimal(&p("a", 1)),
-        &["probes[0].points", "= 1", "at least 2"],
-    );
-    rejects(
-        &minimal(&(p("a", 3) + &p("a", 3))),
-        &["probes[1].name", "\"a\"", "unique"],
-    );
+    rejects(&minimal("[gmsh]\nsetnumber = { lc = inf }\n"), &["gmsh.setnumber.lc", "finite"]);
+    rejects(&minimal("[gmsh]\nsetnumber = { \"a b\" = 1 }\n"), &["gmsh.setnumber.\"a b\"", "DefineConstant"]);
+    let p =
+        |name: &str, pts: i64| format!("[[probes]]\nname = \"{name}\"\nfrom = [0, 0]\nto = [1, 1]\npoints = {pts}\n");
+    rejects(&minimal(&p("a", 1)), &["probes[0].points", "= 1", "at least 2"]);
+    rejects(&minimal(&(p("a", 3) + &p("a", 3))), &["probes[1].name", "\"a\"", "unique"]);
     rejects(
         &minimal("[[probes]]\nname = \"a\"\nfrom = [1, 1]\nto = [1, 1]\npoints = 3\n"),
         &["probes[0].to", "non-zero length"],
     );
-    rejects(
-        &minimal("[[probes]]\nname = \"a\"\nfrom = [1, 1]\nto = [2, 1]\n"),
-        &["probes[0].points", "missing"],
-    );
+    rejects(&minimal("[[probes]]\nname = \"a\"\nfrom = [1, 1]\nto = [2, 1]\n"), &["probes[0].points", "missing"]);
 }
 
 #[test]
 fn analytic_and_output_rules() {
     let a = |body: &str| minimal(&format!("[analytic]\n{body}\n"));
-    rejects(
-        &a("kind = \"lame_cylinder\"\na = 5\nb = 3\np = 1"),
-        &["analytic.b", "= 3", "a = 5"],
-    );
-    rejects(
-        &a("kind = \"lame_cylinder\"\na = 0\nb = 3\np = 1"),
-        &["analytic.a", "= 0", "> 0"],
-    );
-    rejects(
-        &a("kind = \"lame_cylinder\"\na = 1\nb = 3\np = inf"),
-        &["analytic.p", "finite"],
-    );
-    rejects(
-        &a("kind = \"lame_cylinder\"\na = 1\nb = 3"),
-        &["analytic.p", "missing"],
-    );
-    rejects(
-        &a("kind = \"kirsch\""),
-        &["analytic.kind", "\"kirsch\"", "\"lame_cylinder\""],
-    );
-    rejects(
-        &a("kind = \"lame_cylinder\"\na = 1\nb = 3\np = 1\nq = 2"),
-        &["analytic", "unknown field `q`"],
-    );
+    rejects(&a("kind = \"lame_cylinder\"\na = 5\nb = 3\np = 1"), &["analytic.b", "= 3", "a = 5"]);
+    rejects(&a("kind = \"lame_cylinder\"\na = 0\nb = 3\np = 1"), &["analytic.a", "= 0", "> 0"]);
+    rejects(&a("kind = \"lame_cylinder\"\na = 1\nb = 3\np = inf"), &["analytic.p", "finite"]);
+    rejects(&a("kind = \"lame_cylinder\"\na = 1\nb = 3"), &["analytic.p", "missing"]);
+    rejects(&a("kind = \"kirsch\""), &["analytic.kind", "\"kirsch\"", "\"lame_cylinder\""]);
+    rejects(&a("kind = \"lame_cylinder\"\na = 1\nb = 3\np = 1\nq = 2"), &["analytic", "unknown field `q`"]);
     rejects(
         &minimal("[output]\nfields = [\"strain\"]\n"),
-        &[
-            "output.fields[0]",
-            "\"strain\"",
-            "\"displacement\", \"stress\"",
-        ],
+        &["output.fields[0]", "\"strain\"", "\"displacement\", \"stress\""],
     );
-    rejects(
-        &minimal("[output]\nfields = [\"stress\", \"stress\"]\n"),
-        &["output.fields[1]", "twice"],
-    );
+    rejects(&minimal("[output]\nfields = [\"stress\", \"stress\"]\n"), &["output.fields[1]", "twice"]);
 }
 
 /// `[output] frame`: a box in the analysis's coordinates or bodies of the
@@ -646,18 +378,31 @@ fn output_frame_is_a_box_or_bodies() {
     let s = load(&minimal("[output]\nframe = { from = [-1, -2], to = [3, 4] }\n")).expect("a 2D box");
     assert_eq!(s.output.frame, Some(Region::Box { from: [-1.0, -2.0, 0.0], to: [3.0, 4.0, 0.0] }));
     assert_eq!(s.output.fields, Output::default().fields, "the fields keep their default");
-    let s = load(&minimal_solid("[output]\nframe = { from = [0, 0, 0], to = [1, 1, 1] }\nfields = [\"stress\"]\n")).expect("a 3D box");
+    let s = load(&minimal_solid("[output]\nframe = { from = [0, 0, 0], to = [1, 1, 1] }\nfields = [\"stress\"]\n"))
+        .expect("a 3D box");
     assert_eq!(s.output.frame, Some(Region::Box { from: [0.0; 3], to: [1.0; 3] }));
     let s = load(&minimal("[output]\nframe = { bodies = [\"b1\"] }\n")).expect("bodies");
     assert_eq!(s.output.frame, Some(Region::Bodies(vec!["b1".into()])));
     assert_eq!(load(&minimal("")).expect("no frame").output.frame, None);
 
-    rejects(&minimal("[output]\nframe = { from = [0, 5], to = [1, 4] }\n"), &["output.frame.to", "[1, 4]", "its y must exceed from's (5)"]);
-    rejects(&minimal_solid("[output]\nframe = { from = [0, 0], to = [1, 1] }\n"), &["output.frame.from", "3 components"]);
-    rejects(&minimal("[output]\nframe = { bodies = [\"lining\"] }\n"), &["output.frame.bodies[0]", "\"lining\"", "\"b1\""]);
+    rejects(
+        &minimal("[output]\nframe = { from = [0, 5], to = [1, 4] }\n"),
+        &["output.frame.to", "[1, 4]", "its y must exceed from's (5)"],
+    );
+    rejects(
+        &minimal_solid("[output]\nframe = { from = [0, 0], to = [1, 1] }\n"),
+        &["output.frame.from", "3 components"],
+    );
+    rejects(
+        &minimal("[output]\nframe = { bodies = [\"lining\"] }\n"),
+        &["output.frame.bodies[0]", "\"lining\"", "\"b1\""],
+    );
     rejects(&minimal("[output]\nframe = { bodies = [] }\n"), &["output.frame.bodies", "at least one body"]);
     rejects(&minimal("[output]\nframe = { from = [0, 0] }\n"), &["output.frame", "either the box", "or the bodies"]);
-    rejects(&minimal("[output]\nframe = { from = [0, 0], to = [1, 1], bodies = [\"b1\"] }\n"), &["output.frame", "either"]);
+    rejects(
+        &minimal("[output]\nframe = { from = [0, 0], to = [1, 1], bodies = [\"b1\"] }\n"),
+        &["output.frame", "either"],
+    );
     rejects(&minimal("[output]\nframe = { centre = [0, 0] }\n"), &["unknown field `centre`"]);
 }
 
@@ -665,20 +410,34 @@ fn output_frame_is_a_box_or_bodies() {
 /// key; misspelt keys are errors like everywhere else.
 #[test]
 fn safety_rules() {
-    let joints = "[[contacts]]\ngroup = \"base\"\nfriction = 0.75\n[[contacts]]\ngroups = [\"j_a\", \"j_b\"]\ncohesion = 1.0\n";
+    let joints =
+        "[[contacts]]\ngroup = \"base\"\nfriction = 0.75\n[[contacts]]\ngroups = [\"j_a\", \"j_b\"]\ncohesion = 1.0\n";
     let with = |table: &str| minimal(&format!("{joints}[safety]\n{table}"));
     assert_eq!(load(&minimal(joints)).expect("no table").safety, None);
     let s = load(&with("")).expect("defaults").safety.expect("a table");
     assert_eq!(s, Safety::all(2));
-    assert_eq!((s.reduce, s.contacts.as_slice(), s.step, s.tolerance, s.max_factor), (Reduce::ALL, &[0, 1][..], 0.1, 1e-3, 10.0));
+    assert_eq!(
+        (s.reduce, s.contacts.as_slice(), s.step, s.tolerance, s.max_factor),
+        (Reduce::ALL, &[0, 1][..], 0.1, 1e-3, 10.0)
+    );
     let s = load(&with("reduce = [\"cohesion\", \"friction\"]\ncontacts = [\"j_b\"]\nstep = 0.05\ntolerance = 1e-4\nmax_factor = 3.0\n")).expect("choices").safety.expect("a table");
     assert_eq!(s.reduce, Reduce { friction: true, cohesion: true, tensile_strength: false });
     assert_eq!((s.contacts.as_slice(), s.step, s.tolerance, s.max_factor), (&[1][..], 0.05, 1e-4, 3.0));
-    assert_eq!(load(&with("contacts = [\"j_a|j_b\", \"base\"]\n")).expect("a pair by both names").safety.expect("table").contacts, vec![0, 1]);
+    assert_eq!(
+        load(&with("contacts = [\"j_a|j_b\", \"base\"]\n"))
+            .expect("a pair by both names")
+            .safety
+            .expect("table")
+            .contacts,
+        vec![0, 1]
+    );
 
     let m = rejects(&with("tolerence = 0.01\n"), &["tolerence", "safety", "`tolerance`", "`max_factor`"]);
     assert!(m.contains("Unknown keys are errors"), "{m}");
-    rejects(&with("reduce = [\"phi\"]\n"), &["safety.reduce[0] = \"phi\"", "\"friction\", \"cohesion\", \"tensile_strength\""]);
+    rejects(
+        &with("reduce = [\"phi\"]\n"),
+        &["safety.reduce[0] = \"phi\"", "\"friction\", \"cohesion\", \"tensile_strength\""],
+    );
     rejects(&with("reduce = [\"friction\", \"friction\"]\n"), &["safety.reduce[1]", "twice"]);
     rejects(&with("reduce = []\n"), &["safety.reduce", "empty"]);
     rejects(&with("contacts = [\"bse\"]\n"), &["safety.contacts[0] = \"bse\"", "\"base\", \"j_a|j_b\""]);
@@ -690,7 +449,10 @@ fn safety_rules() {
     rejects(&with("max_factor = 1.0\n"), &["safety.max_factor = 1", "exceed 1"]);
     rejects(&with("max_factor = nan\n"), &["safety.max_factor", "finite"]);
     // nothing to reduce: the base has no cohesion, the pair no friction
-    rejects(&with("reduce = [\"cohesion\"]\ncontacts = [\"base\"]\n"), &["safety", "reduces nothing", "cohesion", "\"base\""]);
+    rejects(
+        &with("reduce = [\"cohesion\"]\ncontacts = [\"base\"]\n"),
+        &["safety", "reduces nothing", "cohesion", "\"base\""],
+    );
     rejects(&with("reduce = [\"tensile_strength\"]\n"), &["reduces nothing", "tensile_strength"]);
     rejects(&minimal("[safety]\n"), &["safety", "has none", "[[contacts]]"]);
 }

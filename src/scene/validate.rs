@@ -10,7 +10,9 @@ use std::fmt;
 use std::path::Path;
 
 use super::raw::{RawFrame, RawGmsh, RawMaterial, RawOutput, RawProbe, RawScene};
-use super::{Analysis, Body, GmshOptions, Material, MeshSource, Output, Probe, Region, Scene, SceneError, Solver, OUTPUT_FIELDS};
+use super::{
+    Analysis, Body, GmshOptions, Material, MeshSource, Output, Probe, Region, Scene, SceneError, Solver, OUTPUT_FIELDS,
+};
 
 mod analytic;
 mod groups;
@@ -26,11 +28,7 @@ const E_RANGE: (f64, f64) = (1e-300, 1e300);
 /// `name` as it would appear in a key path: bare when it is a bare TOML key,
 /// quoted otherwise.
 fn key_name(name: &str) -> String {
-    if !name.is_empty()
-        && name
-            .chars()
-            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
-    {
+    if !name.is_empty() && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-') {
         name.to_string()
     } else {
         format!("{name:?}")
@@ -39,21 +37,11 @@ fn key_name(name: &str) -> String {
 
 /// A list of names for messages: `"a", "b"`.
 fn quoted_list<S: AsRef<str>>(items: impl IntoIterator<Item = S>) -> String {
-    items
-        .into_iter()
-        .map(|s| format!("\"{}\"", s.as_ref()))
-        .collect::<Vec<_>>()
-        .join(", ")
+    items.into_iter().map(|s| format!("\"{}\"", s.as_ref())).collect::<Vec<_>>().join(", ")
 }
 
 fn fmt_vec(v: &[f64]) -> String {
-    format!(
-        "[{}]",
-        v.iter()
-            .map(|x| x.to_string())
-            .collect::<Vec<_>>()
-            .join(", ")
-    )
+    format!("[{}]", v.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(", "))
 }
 
 /// Checks a raw scene against the rules of each key; `path` is the scene
@@ -66,12 +54,7 @@ type R<T> = Result<T, SceneError>;
 
 impl Checker<'_> {
     /// An error about `key` whose value is `value` (already formatted).
-    fn bad(
-        &self,
-        key: impl Into<String>,
-        value: impl fmt::Display,
-        what: impl fmt::Display,
-    ) -> SceneError {
+    fn bad(&self, key: impl Into<String>, value: impl fmt::Display, what: impl fmt::Display) -> SceneError {
         SceneError::Invalid {
             path: self.path.to_path_buf(),
             key: key.into(),
@@ -82,24 +65,11 @@ impl Checker<'_> {
 
     /// An error about `key` without a value (missing, or about a whole table).
     fn err(&self, key: impl Into<String>, what: impl fmt::Display) -> SceneError {
-        SceneError::Invalid {
-            path: self.path.to_path_buf(),
-            key: key.into(),
-            value: None,
-            message: what.to_string(),
-        }
+        SceneError::Invalid { path: self.path.to_path_buf(), key: key.into(), value: None, message: what.to_string() }
     }
 
     fn required<T>(&self, v: Option<T>, key: &str, what: &str) -> R<T> {
-        v.ok_or_else(|| {
-            self.err(
-                key,
-                format!(
-                    "missing; add `{}` ({what}).",
-                    key.rsplit('.').next().unwrap_or(key)
-                ),
-            )
-        })
+        v.ok_or_else(|| self.err(key, format!("missing; add `{}` ({what}).", key.rsplit('.').next().unwrap_or(key))))
     }
 
     fn group(&self, v: Option<String>, key: &str, what: &str) -> R<String> {
@@ -130,19 +100,10 @@ impl Checker<'_> {
         Ok(v)
     }
 
-    fn at_least(
-        &self,
-        v: Option<i64>,
-        default: usize,
-        min: i64,
-        key: &str,
-        what: &str,
-    ) -> R<usize> {
+    fn at_least(&self, v: Option<i64>, default: usize, min: i64, key: &str, what: &str) -> R<usize> {
         match v {
             None => Ok(default),
-            Some(n) if n >= min => {
-                usize::try_from(n).map_err(|_| self.bad(key, n, format!("{what} is too large.")))
-            }
+            Some(n) if n >= min => usize::try_from(n).map_err(|_| self.bad(key, n, format!("{what} is too large."))),
             Some(n) => Err(self.bad(key, n, format!("{what} must be at least {min}."))),
         }
     }
@@ -196,7 +157,9 @@ impl Checker<'_> {
                 return Err(self.bad(
                     "thickness",
                     t,
-                    format!("thickness applies only to plane_strain and plane_stress; remove it for a {analysis} analysis."),
+                    format!(
+                        "thickness applies only to plane_strain and plane_stress; remove it for a {analysis} analysis."
+                    ),
                 ))
             }
             Some(t) if t.is_finite() && t > 0.0 => t,
@@ -211,28 +174,13 @@ impl Checker<'_> {
         let materials = self.materials(raw.materials)?;
         let bodies = self.bodies(raw.bodies, &materials, analysis)?;
         let contacts = self.contacts(raw.contacts, &bodies)?;
-        let supports = raw
-            .supports
-            .into_iter()
-            .enumerate()
-            .map(|(i, s)| self.support(i, s, analysis))
-            .collect::<R<Vec<_>>>()?;
-        let loads = raw
-            .loads
-            .into_iter()
-            .enumerate()
-            .map(|(i, l)| self.load(i, l, analysis))
-            .collect::<R<Vec<_>>>()?;
+        let supports =
+            raw.supports.into_iter().enumerate().map(|(i, s)| self.support(i, s, analysis)).collect::<R<Vec<_>>>()?;
+        let loads = raw.loads.into_iter().enumerate().map(|(i, l)| self.load(i, l, analysis)).collect::<R<Vec<_>>>()?;
         let solver = match raw.solver {
             None => Solver::default(),
             Some(s) => Solver {
-                load_steps: self.at_least(
-                    s.load_steps,
-                    1,
-                    1,
-                    "solver.load_steps",
-                    "the number of load steps",
-                )?,
+                load_steps: self.at_least(s.load_steps, 1, 1, "solver.load_steps", "the number of load steps")?,
                 max_iterations: self.at_least(
                     s.max_iterations,
                     100,
@@ -271,7 +219,10 @@ impl Checker<'_> {
             if f.len() != steps {
                 return Err(self.err(
                     key,
-                    format!("has {} value(s) but [solver] load_steps = {steps}: give one load factor per step.", f.len()),
+                    format!(
+                        "has {} value(s) but [solver] load_steps = {steps}: give one load factor per step.",
+                        f.len()
+                    ),
                 ));
             }
         }
@@ -304,15 +255,9 @@ impl Checker<'_> {
     }
 
     fn mesh(&self, mesh: Option<String>) -> R<MeshSource> {
-        let m = self.required(
-            mesh,
-            "mesh",
-            "the .geo or .msh file, relative to the scene file",
-        )?;
+        let m = self.required(mesh, "mesh", "the .geo or .msh file, relative to the scene file")?;
         let rel = Path::new(&m);
-        let ext = rel
-            .extension()
-            .map(|e| e.to_string_lossy().to_ascii_lowercase());
+        let ext = rel.extension().map(|e| e.to_string_lossy().to_ascii_lowercase());
         let dir = self.path.parent().unwrap_or(Path::new(""));
         let full = dir.join(rel);
         let source = match ext.as_deref() {
@@ -327,11 +272,7 @@ impl Checker<'_> {
             }
         };
         if !full.is_file() {
-            let shown_dir = if dir.as_os_str().is_empty() {
-                Path::new(".")
-            } else {
-                dir
-            };
+            let shown_dir = if dir.as_os_str().is_empty() { Path::new(".") } else { dir };
             return Err(self.bad(
                 "mesh",
                 format!("{m:?}"),
@@ -361,24 +302,13 @@ impl Checker<'_> {
         let order = match g.order {
             None => 1,
             Some(o @ (1 | 2)) => o as usize,
-            Some(o) => {
-                return Err(self.bad(
-                    "gmsh.order",
-                    o,
-                    "the element order must be 1 (linear) or 2 (quadratic).",
-                ))
-            }
+            Some(o) => return Err(self.bad("gmsh.order", o, "the element order must be 1 (linear) or 2 (quadratic).")),
         };
         let mut setnumber = Vec::new();
         for (name, v) in g.setnumber.unwrap_or_default() {
             let key = format!("gmsh.setnumber.{}", key_name(&name));
-            let ident = name
-                .chars()
-                .next()
-                .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
-                && name
-                    .chars()
-                    .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '.');
+            let ident = name.chars().next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+                && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '.');
             if !ident {
                 return Err(self.err(
                     key,
@@ -390,19 +320,9 @@ impl Checker<'_> {
         let clscale = match g.clscale {
             None => None,
             Some(c) if c.is_finite() && c > 0.0 => Some(c),
-            Some(c) => {
-                return Err(self.bad(
-                    "gmsh.clscale",
-                    c,
-                    "the mesh size factor must be a finite number > 0.",
-                ))
-            }
+            Some(c) => return Err(self.bad("gmsh.clscale", c, "the mesh size factor must be a finite number > 0.")),
         };
-        Ok(GmshOptions {
-            order,
-            setnumber,
-            clscale,
-        })
+        Ok(GmshOptions { order, setnumber, clscale })
     }
 
     fn materials(&self, raw: BTreeMap<String, RawMaterial>) -> R<BTreeMap<String, Material>> {
@@ -411,11 +331,7 @@ impl Checker<'_> {
             let k = format!("materials.{}", key_name(&name));
             let e = self.required(m.e, &format!("{k}.E"), "Young's modulus, > 0")?;
             if !(e.is_finite() && e > 0.0) {
-                return Err(self.bad(
-                    format!("{k}.E"),
-                    e,
-                    "Young's modulus must be a finite number > 0.",
-                ));
+                return Err(self.bad(format!("{k}.E"), e, "Young's modulus must be a finite number > 0."));
             }
             if !(E_RANGE.0..=E_RANGE.1).contains(&e) {
                 return Err(self.bad(
@@ -448,14 +364,9 @@ impl Checker<'_> {
         let mut out = Vec::new();
         for (i, p) in raw.into_iter().enumerate() {
             let k = format!("probes[{i}]");
-            let name =
-                self.required(p.name, &format!("{k}.name"), "a name for the sampled line")?;
+            let name = self.required(p.name, &format!("{k}.name"), "a name for the sampled line")?;
             if name.trim().is_empty() {
-                return Err(self.bad(
-                    format!("{k}.name"),
-                    "\"\"",
-                    "give the probe a non-empty name.",
-                ));
+                return Err(self.bad(format!("{k}.name"), "\"\"", "give the probe a non-empty name."));
             }
             if let Some(j) = seen.insert(name.clone(), i) {
                 return Err(self.bad(
@@ -464,8 +375,7 @@ impl Checker<'_> {
                     format!("the name is already used by probes[{j}]; probe names must be unique."),
                 ));
             }
-            let from =
-                self.required(p.from, &format!("{k}.from"), "the start point [x, y(, z)]")?;
+            let from = self.required(p.from, &format!("{k}.from"), "the start point [x, y(, z)]")?;
             let from = self.vec3(&from, &format!("{k}.from"), analysis)?;
             let to = self.required(p.to, &format!("{k}.to"), "the end point [x, y(, z)]")?;
             let to = self.vec3(&to, &format!("{k}.to"), analysis)?;
@@ -476,13 +386,10 @@ impl Checker<'_> {
                     "the end point equals from; give a line of non-zero length.",
                 ));
             }
-            let points = match self.required(
-                p.points,
-                &format!("{k}.points"),
-                "the number of sample points, >= 2",
-            )? {
-                n if n >= 2 => usize::try_from(n)
-                    .map_err(|_| self.bad(format!("{k}.points"), n, "too many points."))?,
+            let points = match self.required(p.points, &format!("{k}.points"), "the number of sample points, >= 2")? {
+                n if n >= 2 => {
+                    usize::try_from(n).map_err(|_| self.bad(format!("{k}.points"), n, "too many points."))?
+                }
                 n => {
                     return Err(self.bad(
                         format!("{k}.points"),
@@ -491,12 +398,7 @@ impl Checker<'_> {
                     ))
                 }
             };
-            out.push(Probe {
-                name,
-                from,
-                to,
-                points,
-            });
+            out.push(Probe { name, from, to, points });
         }
         Ok(out)
     }
@@ -516,10 +418,7 @@ impl Checker<'_> {
                 return Err(self.bad(
                     key,
                     format!("{f:?}"),
-                    format!(
-                        "unknown field; the allowed ones are {}.",
-                        quoted_list(OUTPUT_FIELDS)
-                    ),
+                    format!("unknown field; the allowed ones are {}.", quoted_list(OUTPUT_FIELDS)),
                 ));
             }
             if !seen.insert(f.as_str()) {

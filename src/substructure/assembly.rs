@@ -11,8 +11,8 @@ use crate::fem::material::d_matrix;
 use crate::fem::quadrature;
 use crate::fem::sparse::{SymMatrix, NONE};
 use crate::mesh::CellKind;
-use crate::model::{Model, ModelError};
 use crate::model::LoadKind;
+use crate::model::{Model, ModelError};
 
 /// Stiffness (lower triangle) and right-hand sides of a part, one per load
 /// case (`Model::cases`; prescribed displacements belong to case 0).
@@ -60,21 +60,25 @@ pub fn assemble(model: &Model, cells: &[(usize, usize)], dof_of: &[usize], n: us
                 }
             };
             let xe = cell_coords(model, &cell.nodes);
-            let inverted = |e: Inverted| ModelError::Inverted { body: body.name.clone(), tag: cell.tag, det_j: e.det_j };
-            element::stiffness(model.analysis, cell.kind, body.nu, &xe, &d, model.thickness, rule, &mut ke).map_err(inverted)?;
+            let inverted =
+                |e: Inverted| ModelError::Inverted { body: body.name.clone(), tag: cell.tag, det_j: e.det_j };
+            element::stiffness(model.analysis, cell.kind, body.nu, &xe, &d, model.thickness, rule, &mut ke)
+                .map_err(inverted)?;
             element_dofs(&cell.nodes, nd, dof_of, &mut dofs);
             k.add(&dofs, &ke);
             let m = dofs.len();
             let mut fe = vec![0.0; m];
             if has_weight {
-                element::body_force(model.analysis, cell.kind, &xe, weight, model.thickness, &mut fe).map_err(inverted)?;
+                element::body_force(model.analysis, cell.kind, &xe, weight, model.thickness, &mut fe)
+                    .map_err(inverted)?;
                 scatter(&dofs, &fe, &mut f[model.gravity_case]);
                 fe.iter_mut().for_each(|v| *v = 0.0);
             }
             if let Some(init) = body.initial {
                 fe.iter_mut().for_each(|v| *v = 0.0);
                 let sigma0 = |x: [f64; 3]| init.at(x, model.analysis, body.density, model.gravity);
-                element::initial_stress_force(model.analysis, cell.kind, &xe, &sigma0, model.thickness, rule, &mut fe).map_err(inverted)?;
+                element::initial_stress_force(model.analysis, cell.kind, &xe, &sigma0, model.thickness, rule, &mut fe)
+                    .map_err(inverted)?;
                 scatter(&dofs, &fe, &mut f[model.initial_case]);
                 fe.iter_mut().for_each(|v| *v = 0.0);
             }
@@ -131,4 +135,3 @@ fn scatter(dofs: &[usize], fe: &[f64], f: &mut [f64]) {
         }
     }
 }
-

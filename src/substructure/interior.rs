@@ -36,7 +36,13 @@ pub type SharedSolve = Arc<InteriorSolve>;
 impl InteriorSolve {
     /// Splits `k` (lower triangle; equations `0..ni` interior, `ni..` interface)
     /// and factorises its interior block.
-    pub fn factor(k: &SymMatrix, ni: usize, node_of: &[usize], ordering: Ordering, par: faer::Par) -> Result<InteriorSolve, FactorError> {
+    pub fn factor(
+        k: &SymMatrix,
+        ni: usize,
+        node_of: &[usize],
+        ordering: Ordering,
+        par: faer::Par,
+    ) -> Result<InteriorSolve, FactorError> {
         let nc = k.n - ni;
         let mut col_ptr = Vec::with_capacity(ni + 1);
         let mut row_idx = Vec::new();

@@ -22,9 +22,9 @@
 //! iterative interface of large joints and many substructures).
 
 pub mod assembly;
+pub mod interior;
 pub mod ordering;
 pub mod parts;
-pub mod interior;
 pub mod schur;
 pub mod single;
 pub mod twofold;
@@ -32,10 +32,10 @@ pub mod twofold;
 pub use parts::{cut, parts, Part};
 
 use crate::fem::sparse::{FactorError, NONE};
+use crate::model::{Model, ModelError};
 use interior::{InteriorSolve, SharedSolve};
 use ordering::Ordering;
 use schur::PartialCholesky;
-use crate::model::{Model, ModelError};
 
 /// What the interface needs of a condensed part: its interface nodes, its
 /// Schur complement ([`Schur`]) and the condensed loads G, one per load
@@ -206,7 +206,12 @@ pub fn interior_nodes(dof_of: &[usize], nd: usize, ni: usize) -> Vec<usize> {
 /// where faer's `Par::rayon(2)` inside the factorisation gives 1.25x (3.9 ->
 /// 3.1 s a part). With the other core busy two threads cost 5-7 % more
 /// than one (16.6-18.0 s against 15.9-16.9 s), rayon(2) 20-50 % more.
-pub fn condense_parts(model: &Model, parts: Vec<Part>, threads: usize, how: Condensation) -> Result<Vec<Condensed>, ModelError> {
+pub fn condense_parts(
+    model: &Model,
+    parts: Vec<Part>,
+    threads: usize,
+    how: Condensation,
+) -> Result<Vec<Condensed>, ModelError> {
     let threads = threads.clamp(1, parts.len().max(1));
     if threads == 1 {
         return parts.into_iter().map(|p| condense(model, p, how)).collect();
@@ -271,7 +276,13 @@ pub fn condense(model: &Model, part: Part, how: Condensation) -> Result<Condense
 
 /// The part's factor with the interface last and S read off it; the
 /// backward error of its solves of each load case.
-fn schur_factor(a: &assembly::Assembled, ni: usize, node_of: &[usize], ordering: Ordering, par: faer::Par) -> Result<Factored, FactorError> {
+fn schur_factor(
+    a: &assembly::Assembled,
+    ni: usize,
+    node_of: &[usize],
+    ordering: Ordering,
+    par: faer::Par,
+) -> Result<Factored, FactorError> {
     let n = a.k.n;
     let nc = n - ni;
     let chol = PartialCholesky::factor(&a.k, ni, node_of, ordering, par)?;
@@ -290,7 +301,14 @@ fn schur_factor(a: &assembly::Assembled, ni: usize, node_of: &[usize], ordering:
 
 /// The part's interior factorised alone (S applied through it) and the
 /// diagonal blocks of K_cc; the backward error of its interior solves.
-fn interior_factor(a: &assembly::Assembled, ni: usize, node_of: &[usize], ordering: Ordering, par: faer::Par, nd: usize) -> Result<Factored, FactorError> {
+fn interior_factor(
+    a: &assembly::Assembled,
+    ni: usize,
+    node_of: &[usize],
+    ordering: Ordering,
+    par: faer::Par,
+    nd: usize,
+) -> Result<Factored, FactorError> {
     let nc = a.k.n - ni;
     let solve = InteriorSolve::factor(&a.k, ni, node_of, ordering, par)?;
     let (g, x) = solve.condensed_loads(&a.f);
@@ -313,7 +331,8 @@ fn refactor(model: &Model, part: &Part) -> PartialCholesky {
     let (dof_of, ni, nc) = numbering(model, part);
     let a = assembly::assemble(model, &part.cells, &dof_of, ni + nc).expect("the part was assembled before");
     let node_of = interior_nodes(&dof_of, model.nd, ni);
-    PartialCholesky::factor(&a.k, ni, &node_of, Ordering::choose(ni, model.nd), faer::get_global_parallelism()).expect("the part was factorised before")
+    PartialCholesky::factor(&a.k, ni, &node_of, Ordering::choose(ni, model.nd), faer::get_global_parallelism())
+        .expect("the part was factorised before")
 }
 
 impl Condensed {

@@ -144,7 +144,10 @@ fn nested_dissection(k: &SymMatrix, ni: usize, node_of: &[usize]) -> Result<Vec<
         list.sort_unstable();
         list.dedup();
         adjncy.extend_from_slice(list);
-        xadj.push(idx_t::try_from(adjncy.len()).map_err(|_| FactorError::Resource(String::from("node graph too large for METIS (32-bit indices)")))?);
+        xadj.push(
+            idx_t::try_from(adjncy.len())
+                .map_err(|_| FactorError::Resource(String::from("node graph too large for METIS (32-bit indices)")))?,
+        );
     }
     drop(adj);
     let mut nvtxs = nn as idx_t;

@@ -32,7 +32,8 @@ pub struct Part {
 impl Part {
     /// The part's nodes, ascending.
     pub fn nodes(&self, model: &Model) -> Vec<usize> {
-        let mut nodes: Vec<usize> = self.cells.iter().flat_map(|&(b, c)| model.bodies[b].cells[c].nodes.iter().copied()).collect();
+        let mut nodes: Vec<usize> =
+            self.cells.iter().flat_map(|&(b, c)| model.bodies[b].cells[c].nodes.iter().copied()).collect();
         nodes.sort_unstable();
         nodes.dedup();
         nodes
@@ -130,7 +131,8 @@ pub fn dof_counts(model: &Model, parts: &[Part]) -> DofCounts {
     for &n in parts.iter().flat_map(|p| &p.interface) {
         shared[n] = true;
     }
-    let interface: usize = (0..model.n_nodes()).filter(|&n| shared[n]).map(|n| if in_pair[n] { nd } else { free(n) }).sum();
+    let interface: usize =
+        (0..model.n_nodes()).filter(|&n| shared[n]).map(|n| if in_pair[n] { nd } else { free(n) }).sum();
     // a node that is not shared belongs to one part
     let mut used = vec![false; model.n_nodes()];
     for &k in model.bodies.iter().flat_map(|b| &b.cells).flat_map(|c| &c.nodes) {
@@ -156,7 +158,9 @@ pub fn cut(model: &Model, parts: Vec<Part>, k: usize) -> Vec<Part> {
             continue;
         }
         let piece_of = partition(model, &part.cells, k);
-        let mut pieces: Vec<Part> = (0..k).map(|i| Part { bodies: Vec::new(), cells: Vec::new(), interface: Vec::new(), piece: Some((i, k)) }).collect();
+        let mut pieces: Vec<Part> = (0..k)
+            .map(|i| Part { bodies: Vec::new(), cells: Vec::new(), interface: Vec::new(), piece: Some((i, k)) })
+            .collect();
         for (&cell, &i) in part.cells.iter().zip(&piece_of) {
             pieces[i].cells.push(cell);
         }

@@ -26,14 +26,15 @@
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltParams;
+use faer::linalg::matmul::matmul;
+use faer::linalg::matmul::triangular::{self, BlockStructure};
 use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
+    factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw,
+    SymmetricOrdering,
 };
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
-use faer::linalg::matmul::matmul;
-use faer::linalg::matmul::triangular::{self, BlockStructure};
 use faer::{Accum, Conj, MatMut, MatRef, Par, Side, Spec};
 
 use super::ordering::{self, Ordering};
@@ -53,7 +54,13 @@ impl PartialCholesky {
     /// interface) with the interior ordered by `ordering` (`node_of[e]` the
     /// node of interior equation `e`) and the interface last; `par` is the
     /// parallelism of the numeric factorisation.
-    pub fn factor(k: &SymMatrix, ni: usize, node_of: &[usize], ordering: Ordering, par: Par) -> Result<PartialCholesky, FactorError> {
+    pub fn factor(
+        k: &SymMatrix,
+        ni: usize,
+        node_of: &[usize],
+        ordering: Ordering,
+        par: Par,
+    ) -> Result<PartialCholesky, FactorError> {
         let n = k.n;
         let resource = |e: &dyn std::fmt::Debug| FactorError::Resource(format!("{e:?}"));
         let symbolic = symbolic(k, ni, node_of, ordering)?;
@@ -76,10 +83,19 @@ impl PartialCholesky {
         let mut values = Vec::new();
         values.try_reserve_exact(symbolic.len_val()).map_err(|e| resource(&e))?;
         values.resize(symbolic.len_val(), 0.0);
-        let mut buf = MemBuffer::try_new(symbolic.factorize_numeric_llt_scratch::<f64>(par, Spec::<LltParams, f64>::default()))
-            .map_err(|e| resource(&e))?;
+        let mut buf =
+            MemBuffer::try_new(symbolic.factorize_numeric_llt_scratch::<f64>(par, Spec::<LltParams, f64>::default()))
+                .map_err(|e| resource(&e))?;
         symbolic
-            .factorize_numeric_llt(&mut values, a, Side::Lower, Default::default(), par, MemStack::new(&mut buf), Default::default())
+            .factorize_numeric_llt(
+                &mut values,
+                a,
+                Side::Lower,
+                Default::default(),
+                par,
+                MemStack::new(&mut buf),
+                Default::default(),
+            )
             .map_err(|_| FactorError::NotPositiveDefinite)?;
         Ok(PartialCholesky { symbolic, values, n, ni, alpha })
     }
@@ -88,7 +104,12 @@ impl PartialCholesky {
     pub fn solve_many(&self, b: &mut [f64], k: usize) {
         let llt = LltRef::new(&self.symbolic, &self.values);
         let mut buf = MemBuffer::new(self.symbolic.solve_in_place_scratch::<f64>(k, Par::Seq));
-        llt.solve_in_place_with_conj(Conj::No, MatMut::from_column_major_slice_mut(b, self.n, k), Par::Seq, MemStack::new(&mut buf));
+        llt.solve_in_place_with_conj(
+            Conj::No,
+            MatMut::from_column_major_slice_mut(b, self.n, k),
+            Par::Seq,
+            MemStack::new(&mut buf),
+        );
     }
 
     /// The shift added to the interface diagonal.
@@ -157,7 +178,8 @@ impl PartialCholesky {
         let (n, ni) = (self.n, self.ni);
         let nc = n - ni;
         let cases = f.len();
-        let mut x: Vec<f64> = f.iter().flat_map(|fk| fk[..ni].iter().copied().chain(std::iter::repeat(0.0).take(nc))).collect();
+        let mut x: Vec<f64> =
+            f.iter().flat_map(|fk| fk[..ni].iter().copied().chain(std::iter::repeat(0.0).take(nc))).collect();
         self.solve_many(&mut x, cases);
         // one product S X_c for all cases (S read once); X_c is the trailing nc rows of x
         let mut sx = vec![0.0; nc * cases];
@@ -233,7 +255,12 @@ impl PartialCholesky {
 /// The supernodal symbolic factorisation of `k` with its equations `0..ni`
 /// ordered by `ordering` (`node_of` as [`ordering::interior`]) and the
 /// rest last.
-pub(super) fn symbolic(k: &SymMatrix, ni: usize, node_of: &[usize], ordering: Ordering) -> Result<SymbolicCholesky<usize>, FactorError> {
+pub(super) fn symbolic(
+    k: &SymMatrix,
+    ni: usize,
+    node_of: &[usize],
+    ordering: Ordering,
+) -> Result<SymbolicCholesky<usize>, FactorError> {
     let n = k.n;
     let mut fwd = ordering::interior(k, ni, node_of, ordering)?;
     fwd.extend(ni..n);
@@ -247,7 +274,8 @@ pub(super) fn symbolic(k: &SymMatrix, ni: usize, node_of: &[usize], ordering: Or
         supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
         ..Default::default()
     };
-    factorize_symbolic_cholesky(a_sym, Side::Lower, SymmetricOrdering::Custom(perm), params).map_err(|e| FactorError::Resource(format!("{e:?}")))
+    factorize_symbolic_cholesky(a_sym, Side::Lower, SymmetricOrdering::Custom(perm), params)
+        .map_err(|e| FactorError::Resource(format!("{e:?}")))
 }
 
 /// Size and cost of a sparse factor.

@@ -40,7 +40,12 @@ pub struct SingleCholesky {
 impl SingleCholesky {
     /// Factorises `k` (lower triangle), ordered by `ordering` (`node_of`
     /// the node of each equation, for nested dissection).
-    pub fn factor(k: &SymMatrix, node_of: &[usize], ordering: Ordering, threads: usize) -> Result<SingleCholesky, FactorError> {
+    pub fn factor(
+        k: &SymMatrix,
+        node_of: &[usize],
+        ordering: Ordering,
+        threads: usize,
+    ) -> Result<SingleCholesky, FactorError> {
         let n = k.n;
         let symbolic = symbolic(k, n, node_of, ordering)?;
         let diagonal: Vec<f64> = (0..n).map(|c| k.get(c, c)).collect();
@@ -51,10 +56,20 @@ impl SingleCholesky {
         let mut values = Vec::new();
         values.try_reserve_exact(symbolic.len_val()).map_err(|e| resource(&e))?;
         values.resize(symbolic.len_val(), 0.0f32);
-        let mut buf = MemBuffer::try_new(symbolic.factorize_numeric_llt_scratch::<f32>(Par::Seq, Spec::<LltParams, f32>::default()))
-            .map_err(|e| resource(&e))?;
+        let mut buf = MemBuffer::try_new(
+            symbolic.factorize_numeric_llt_scratch::<f32>(Par::Seq, Spec::<LltParams, f32>::default()),
+        )
+        .map_err(|e| resource(&e))?;
         symbolic
-            .factorize_numeric_llt(&mut values, a, Side::Lower, Default::default(), Par::Seq, MemStack::new(&mut buf), Default::default())
+            .factorize_numeric_llt(
+                &mut values,
+                a,
+                Side::Lower,
+                Default::default(),
+                Par::Seq,
+                MemStack::new(&mut buf),
+                Default::default(),
+            )
             .map_err(|_| FactorError::NotPositiveDefinite)?;
         let twofold = match symbolic.raw() {
             SymbolicCholeskyRaw::Supernodal(sn) if threads >= 2 => Twofold::new(sn),
@@ -68,7 +83,9 @@ impl SingleCholesky {
         let n = b.len();
         let t = to_one(b);
         let back = self.scale / t;
-        if let (Some(two), SymbolicCholeskyRaw::Supernodal(sn), Some(perm)) = (&self.twofold, self.symbolic.raw(), self.symbolic.perm()) {
+        if let (Some(two), SymbolicCholeskyRaw::Supernodal(sn), Some(perm)) =
+            (&self.twofold, self.symbolic.raw(), self.symbolic.perm())
+        {
             // (faer's own substitution permutes the same way: x = P b, then P^T x)
             let (fwd, inv) = perm.arrays();
             let mut x: Vec<f32> = fwd.iter().map(|&i| (b[i] * t) as f32).collect();
@@ -78,7 +95,12 @@ impl SingleCholesky {
         let mut x: Vec<f32> = b.iter().map(|&v| (v * t) as f32).collect();
         let llt = LltRef::new(&self.symbolic, &self.values);
         let mut buf = MemBuffer::new(self.symbolic.solve_in_place_scratch::<f32>(1, Par::Seq));
-        llt.solve_in_place_with_conj(Conj::No, MatMut::from_column_major_slice_mut(&mut x, n, 1), Par::Seq, MemStack::new(&mut buf));
+        llt.solve_in_place_with_conj(
+            Conj::No,
+            MatMut::from_column_major_slice_mut(&mut x, n, 1),
+            Par::Seq,
+            MemStack::new(&mut buf),
+        );
         x.iter().map(|&v| f64::from(v) * back).collect()
     }
 
@@ -158,7 +180,8 @@ mod tests {
         assert!(!one.twofold() && two.twofold(), "a {}-value factor is shared", two.values.len());
         let x1 = one.solve(&b);
         let largest = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        let apart = |x: &[f64], y: &[f64]| largest(&x.iter().zip(y).map(|(a, b)| a - b).collect::<Vec<_>>()) / largest(y);
+        let apart =
+            |x: &[f64], y: &[f64]| largest(&x.iter().zip(y).map(|(a, b)| a - b).collect::<Vec<_>>()) / largest(y);
         assert!(apart(&x1, &want) < 1e-3, "one thread: {}", apart(&x1, &want));
         let x2 = two.solve(&b);
         assert!(apart(&x2, &x1) < 1e-5, "two threads against one: {}", apart(&x2, &x1));

@@ -32,7 +32,11 @@ fn quads(first: usize, nx: usize, ny: usize, tag0: u64) -> Vec<Cell> {
     let mut cells = Vec::new();
     for j in 0..ny {
         for i in 0..nx {
-            cells.push(Cell { kind: CellKind::Quad4, nodes: vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)], tag: tag0 + cells.len() as u64 });
+            cells.push(Cell {
+                kind: CellKind::Quad4,
+                nodes: vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)],
+                tag: tag0 + cells.len() as u64,
+            });
         }
     }
     cells
@@ -40,7 +44,9 @@ fn quads(first: usize, nx: usize, ny: usize, tag0: u64) -> Vec<Cell> {
 
 fn two_body_model() -> Model {
     let (ny, h) = (2usize, 1.0);
-    let wobble = |x: f64, y: f64| [x + 0.05 * (3.0 * y).sin() * (x * (1.2 - x)), y + 0.04 * (2.0 * x).cos() * (y * (h - y)), 0.0];
+    let wobble = |x: f64, y: f64| {
+        [x + 0.05 * (3.0 * y).sin() * (x * (1.2 - x)), y + 0.04 * (2.0 * x).cos() * (y * (h - y)), 0.0]
+    };
     let mut coords = Vec::new();
     // body 0: 3 x 3 nodes on [0, 1.2] x [0, 1]; its right column is the interface
     for j in 0..=ny {
@@ -71,8 +77,22 @@ fn two_body_model() -> Model {
     prescribed[iface1[0] * nd + 1] = Some(0.0);
     let right = Cell { kind: CellKind::Line2, nodes: vec![first1 + 1, first1 + 3], tag: 900 };
     let right2 = Cell { kind: CellKind::Line2, nodes: vec![first1 + 3, first1 + 5], tag: 901 };
-    let loads = [right, right2].into_iter().map(|cell| FacetLoad { cell, sign: 1.0, kind: LoadKind::Traction([0.7, -0.3, 0.0]), body: 1, element: 0, case: 0 }).collect();
-    let pairs = iface0.iter().zip(&iface1).map(|(&k, &l)| Pair { k, l, contact: 0, normal: [1.0, 0.0, 0.0], area: 0.5, shares: Vec::new() }).collect();
+    let loads = [right, right2]
+        .into_iter()
+        .map(|cell| FacetLoad {
+            cell,
+            sign: 1.0,
+            kind: LoadKind::Traction([0.7, -0.3, 0.0]),
+            body: 1,
+            element: 0,
+            case: 0,
+        })
+        .collect();
+    let pairs = iface0
+        .iter()
+        .zip(&iface1)
+        .map(|(&k, &l)| Pair { k, l, contact: 0, normal: [1.0, 0.0, 0.0], area: 0.5, shares: Vec::new() })
+        .collect();
     Model {
         scene: "two_body_model".into(),
         analysis: Analysis::PlaneStrain,
@@ -82,13 +102,38 @@ fn two_body_model() -> Model {
         mesh_node: (0..n).collect(),
         coords,
         bodies: vec![
-            Body { name: "left".into(), group: 0, block: None, e: 1000.0, nu: 0.3, density: 0.02, cells: quads(0, 2, ny, 1), initial: None },
-            Body { name: "right".into(), group: 0, block: None, e: 3000.0, nu: 0.2, density: 0.01, cells: quads(first1, 1, ny, 100), initial: None },
+            Body {
+                name: "left".into(),
+                group: 0,
+                block: None,
+                e: 1000.0,
+                nu: 0.3,
+                density: 0.02,
+                cells: quads(0, 2, ny, 1),
+                initial: None,
+            },
+            Body {
+                name: "right".into(),
+                group: 0,
+                block: None,
+                e: 3000.0,
+                nu: 0.2,
+                density: 0.01,
+                cells: quads(first1, 1, ny, 100),
+                initial: None,
+            },
         ],
         loads,
         prescribed,
         pairs,
-        interfaces: vec![Interface { name: "cut".into(), body_i: 0, body_ii: 1, side_i: vec![0], facets: Vec::new(), sides: Vec::new() }],
+        interfaces: vec![Interface {
+            name: "cut".into(),
+            body_i: 0,
+            body_ii: 1,
+            side_i: vec![0],
+            facets: Vec::new(),
+            sides: Vec::new(),
+        }],
         cases: vec![vec![1.0], vec![1.0]],
         gravity_case: 0,
         initial_case: 1,
@@ -179,7 +224,12 @@ fn condensation_equals_the_dense_schur_complement() {
         let d_c: Vec<f64> = (0..nc).map(|i| 1e-3 * ((i as f64) * 0.7).sin()).collect();
         let mut u = vec![0.0; model.n_nodes() * model.nd];
         c.recover(&model, &d_c, &[1.0], &mut u);
-        let d_i = dense.k_ii.clone().cholesky().expect("K_ii").solve(&(&dense.f_i - &dense.k_ic * DVector::from_column_slice(&d_c)));
+        let d_i = dense
+            .k_ii
+            .clone()
+            .cholesky()
+            .expect("K_ii")
+            .solve(&(&dense.f_i - &dense.k_ic * DVector::from_column_slice(&d_c)));
         let eu = rel(dense.interior.iter().map(|&dof| u[dof]), d_i.iter().copied());
         assert!(eu < 1e-12, "{name}: recovered interior differs by {eu:.3e} (relative)");
         eprintln!("{name}: S {es:.1e}, G {eg:.1e}, d_i {eu:.1e} (max relative difference to dense)");
@@ -190,7 +240,11 @@ fn condensation_equals_the_dense_schur_complement() {
         let cols = 2;
         let x: Vec<f64> = (0..nc * cols).map(|i| ((i as f64) * 1.3).cos()).collect();
         let sx = applied.apply(&x, cols);
-        let want: Vec<f64> = (0..cols).flat_map(|k| (&dense.s * DVector::from_column_slice(&x[k * nc..(k + 1) * nc])).iter().copied().collect::<Vec<_>>()).collect();
+        let want: Vec<f64> = (0..cols)
+            .flat_map(|k| {
+                (&dense.s * DVector::from_column_slice(&x[k * nc..(k + 1) * nc])).iter().copied().collect::<Vec<_>>()
+            })
+            .collect();
         let ea = rel(sx.iter().copied(), want.iter().copied());
         let eg = rel(applied.g[0].iter().copied(), dense.g.iter().copied());
         let mut ua = vec![0.0; u.len()];
@@ -227,7 +281,11 @@ fn condensed_floating_body_keeps_its_rigid_body_modes() {
         DVector::from_fn(nc, |i, _| if i % 2 == 1 { 1.0 } else { 0.0 }),
         DVector::from_fn(nc, |i, _| {
             let x = model.coords[nodes[i / 2]];
-            if i % 2 == 0 { -x[1] } else { x[0] }
+            if i % 2 == 0 {
+                -x[1]
+            } else {
+                x[0]
+            }
         }),
     ];
     for (m, v) in modes.iter().enumerate() {
@@ -262,12 +320,30 @@ fn stacked_blocks(m: usize, h: usize) -> Model {
         for k in 0..h {
             for j in 0..m {
                 for i in 0..m {
-                    let nodes = vec![id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k), id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)];
+                    let nodes = vec![
+                        id(i, j, k),
+                        id(i + 1, j, k),
+                        id(i + 1, j + 1, k),
+                        id(i, j + 1, k),
+                        id(i, j, k + 1),
+                        id(i + 1, j, k + 1),
+                        id(i + 1, j + 1, k + 1),
+                        id(i, j + 1, k + 1),
+                    ];
                     cells.push(Cell { kind: CellKind::Hex8, nodes, tag: (b * 10_000 + cells.len()) as u64 });
                 }
             }
         }
-        bodies.push(Body { name: format!("block{b}"), group: b, block: None, e: 1000.0 * (b + 1) as f64, nu: 0.25, density: 0.01, cells, initial: None });
+        bodies.push(Body {
+            name: format!("block{b}"),
+            group: b,
+            block: None,
+            e: 1000.0 * (b + 1) as f64,
+            nu: 0.25,
+            density: 0.01,
+            cells,
+            initial: None,
+        });
     }
     let n = coords.len();
     let per = nx * nx * nz;
@@ -277,7 +353,16 @@ fn stacked_blocks(m: usize, h: usize) -> Model {
             prescribed[q * 3 + c] = Some(0.0); // the lower base
         }
     }
-    let pairs = (0..nx * nx).map(|q| Pair { k: h * nx * nx + q, l: per + q, contact: 0, normal: [0.0, 0.0, 1.0], area: 1.0, shares: Vec::new() }).collect();
+    let pairs = (0..nx * nx)
+        .map(|q| Pair {
+            k: h * nx * nx + q,
+            l: per + q,
+            contact: 0,
+            normal: [0.0, 0.0, 1.0],
+            area: 1.0,
+            shares: Vec::new(),
+        })
+        .collect();
     Model {
         scene: "stacked_blocks".into(),
         analysis: Analysis::Solid,
@@ -290,7 +375,14 @@ fn stacked_blocks(m: usize, h: usize) -> Model {
         loads: Vec::new(),
         prescribed,
         pairs,
-        interfaces: vec![Interface { name: "joint".into(), body_i: 0, body_ii: 1, side_i: vec![0], facets: Vec::new(), sides: Vec::new() }],
+        interfaces: vec![Interface {
+            name: "joint".into(),
+            body_i: 0,
+            body_ii: 1,
+            side_i: vec![0],
+            facets: Vec::new(),
+            sides: Vec::new(),
+        }],
         cases: vec![vec![1.0], vec![1.0]],
         gravity_case: 0,
         initial_case: 1,
@@ -328,7 +420,8 @@ fn nested_dissection_cuts_3d_fill() {
     let model = stacked_blocks(10, 8);
     let part = parts(&model).into_iter().find(|p| p.bodies == [0]).expect("the lower block");
     let (dof_of, ni, _) = numbering(&model, &part);
-    let a = assembly::assemble(&model, &part.cells, &dof_of, dof_of.iter().filter(|&&d| d != NONE).count()).expect("assemble");
+    let a = assembly::assemble(&model, &part.cells, &dof_of, dof_of.iter().filter(|&&d| d != NONE).count())
+        .expect("assemble");
     let node_of = interior_nodes(&dof_of, model.nd, ni);
     let flops = |o| PartialCholesky::factor(&a.k, ni, &node_of, o, Par::Seq).expect("factor").stats().flops;
     let (amd, nd) = (flops(Ordering::Amd), flops(Ordering::NestedDissection));
@@ -355,7 +448,8 @@ fn parts_condensed_in_threads_equal_one_after_the_other() {
     free.prescribed.iter_mut().for_each(|p| *p = None);
     free.pairs.clear();
     for threads in [1, 2] {
-        let e = condense_parts(&free, parts(&free), threads, Condensation::Dense).err().expect("a free part is refused");
+        let e =
+            condense_parts(&free, parts(&free), threads, Condensation::Dense).err().expect("a free part is refused");
         assert!(e.to_string().contains("block0"), "{e}");
     }
 }
@@ -374,8 +468,22 @@ fn dof_counts_equal_the_numbering_of_the_parts() {
         shared.sort_unstable();
         shared.dedup();
         let in_pair = |n: usize| model.pairs.iter().any(|p| p.k == n || p.l == n);
-        let iface: usize = shared.iter().map(|&n| if in_pair(n) { model.nd } else { (0..model.nd).filter(|&c| model.prescribed[n * model.nd + c].is_none()).count() }).sum();
+        let iface: usize = shared
+            .iter()
+            .map(|&n| {
+                if in_pair(n) {
+                    model.nd
+                } else {
+                    (0..model.nd).filter(|&c| model.prescribed[n * model.nd + c].is_none()).count()
+                }
+            })
+            .sum();
         assert!(iface > 0, "the model has an interface");
-        assert_eq!(counts, super::parts::DofCounts { total: interior + iface, interface: iface }, "{} pieces", cut.len());
+        assert_eq!(
+            counts,
+            super::parts::DofCounts { total: interior + iface, interface: iface },
+            "{} pieces",
+            cut.len()
+        );
     }
 }

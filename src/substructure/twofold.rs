@@ -254,7 +254,12 @@ impl<'a> Wide<'a> {
     fn of(l: SupernodalLltRef<'a, usize, f32>, s: usize, wide: usize) -> Option<Wide<'a>> {
         let node = l.supernode(s);
         let ls = node.val();
-        (ls.nrows() * ls.ncols() >= wide).then(|| Wide { start: node.start(), pattern: node.pattern(), ls, m: cut(ls.nrows(), ls.ncols()) })
+        (ls.nrows() * ls.ncols() >= wide).then(|| Wide {
+            start: node.start(),
+            pattern: node.pattern(),
+            ls,
+            m: cut(ls.nrows(), ls.ncols()),
+        })
     }
 }
 
@@ -329,14 +334,28 @@ fn backward_wide(l: SupernodalLltRef<'_, usize, f32>, s: usize, x: &mut [f32], w
                 let (mut head, rest) = zb.as_mut().split_at_row_mut(c1 - m);
                 let n = rest.nrows();
                 let mut xk = head.as_mut().subrows_mut(c0 - m, c1 - c0);
-                matmul(xk.as_mut(), Accum::Add, ls.submatrix(c1, c0, n, c1 - c0).transpose(), rest.as_ref(), -1.0f32, Par::Seq);
+                matmul(
+                    xk.as_mut(),
+                    Accum::Add,
+                    ls.submatrix(c1, c0, n, c1 - c0).transpose(),
+                    rest.as_ref(),
+                    -1.0f32,
+                    Par::Seq,
+                );
                 solve_upper_triangular_in_place(ls.submatrix(c0, c0, c1 - c0, c1 - c0).transpose(), xk, Par::Seq);
             }
             for &c0 in above.iter().rev() {
                 let nb = BLOCK.min(m - c0);
                 let mut y = vec![0.0f32; nb];
                 let out = MatMut::from_column_major_slice_mut(&mut y, nb, 1);
-                matmul(out, Accum::Replace, ls.submatrix(m, c0, nrows - m, nb).transpose(), zb.as_ref(), 1.0f32, Par::Seq);
+                matmul(
+                    out,
+                    Accum::Replace,
+                    ls.submatrix(m, c0, nrows - m, nb).transpose(),
+                    zb.as_ref(),
+                    1.0f32,
+                    Par::Seq,
+                );
                 if send.send(y).is_err() {
                     break;
                 }
@@ -348,7 +367,14 @@ fn backward_wide(l: SupernodalLltRef<'_, usize, f32>, s: usize, x: &mut [f32], w
             let (mut head, rest) = za.as_mut().split_at_row_mut(c1);
             let n = rest.nrows();
             let mut xk = head.as_mut().subrows_mut(c0, c1 - c0);
-            matmul(xk.as_mut(), Accum::Add, ls.submatrix(c1, c0, n, c1 - c0).transpose(), rest.as_ref(), -1.0f32, Par::Seq);
+            matmul(
+                xk.as_mut(),
+                Accum::Add,
+                ls.submatrix(c1, c0, n, c1 - c0).transpose(),
+                rest.as_ref(),
+                -1.0f32,
+                Par::Seq,
+            );
             let y = receive.recv().expect("the second substitution thread");
             for (i, v) in y.iter().enumerate() {
                 xk[(i, 0)] -= v;

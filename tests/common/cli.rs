@@ -24,7 +24,12 @@ pub fn solve_fails(case: &Case, scene: &str, out: &str) -> String {
 pub fn clean_failure(case: &Case, out: &Output, results: &Path) -> String {
     let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
     let stdout = String::from_utf8_lossy(&out.stdout);
-    assert_eq!(out.status.code(), Some(1), "expected exit status 1 (a user error), got {:?}; stderr:\n{stderr}", out.status);
+    assert_eq!(
+        out.status.code(),
+        Some(1),
+        "expected exit status 1 (a user error), got {:?}; stderr:\n{stderr}",
+        out.status
+    );
     assert!(stderr.starts_with("error: "), "stderr must start with `error: `:\n{stderr}");
     let msg = stderr.trim().to_string();
     assert!(!msg.contains("\n\n"), "the message must be one paragraph:\n{stderr}");
@@ -35,11 +40,17 @@ pub fn clean_failure(case: &Case, out: &Output, results: &Path) -> String {
     let files = case.files_in(results);
     let results_written: Vec<&String> = files
         .iter()
-        .filter(|f| !((f.starts_with("mesh/") || f.contains("/mesh/")) && (f.ends_with(".msh") || f.ends_with(".msh.key"))))
+        .filter(|f| {
+            !((f.starts_with("mesh/") || f.contains("/mesh/")) && (f.ends_with(".msh") || f.ends_with(".msh.key")))
+        })
         // the lock beside a result directory (taken while meshing into its cache)
         .filter(|f| !(f.starts_with('.') && f.ends_with(".lock") && !f.contains('/')))
         .collect();
-    assert!(results_written.is_empty(), "a failed run left files in {}: {results_written:?}\n(stderr: {msg})", results.display());
+    assert!(
+        results_written.is_empty(),
+        "a failed run left files in {}: {results_written:?}\n(stderr: {msg})",
+        results.display()
+    );
     msg
 }
 
@@ -53,7 +64,8 @@ pub fn says(msg: &str, needles: &[&str]) {
 /// Runs `gmsh ARGS` in the case directory, failing the test if gmsh does.
 pub fn gmsh<S: AsRef<str>>(case: &Case, args: &[S]) {
     let args: Vec<&str> = args.iter().map(|a| a.as_ref()).collect();
-    let out = Command::new("gmsh").args(&args).current_dir(&case.dir).output().expect("gmsh CLI (apt-get install gmsh)");
+    let out =
+        Command::new("gmsh").args(&args).current_dir(&case.dir).output().expect("gmsh CLI (apt-get install gmsh)");
     assert!(
         out.status.success(),
         "gmsh {} failed: {}{}",

@@ -71,12 +71,18 @@ impl Case {
     /// fail in the contact iteration: the typed error.
     pub fn contact_error(&self, scene: &Path) -> ContactError {
         let err = self.run(scene).err().unwrap_or_else(|| panic!("{}: the run must fail", scene.display()));
-        err.downcast_ref::<ContactError>().unwrap_or_else(|| panic!("{}: a contact error, not: {err:#}", scene.display())).clone()
+        err.downcast_ref::<ContactError>()
+            .unwrap_or_else(|| panic!("{}: a contact error, not: {err:#}", scene.display()))
+            .clone()
     }
 
     /// Runs the real binary in this case's directory.
     pub fn cli(&self, args: &[&str]) -> Output {
-        Command::new(env!("CARGO_BIN_EXE_subcontact")).args(args).current_dir(&self.dir).output().expect("run subcontact")
+        Command::new(env!("CARGO_BIN_EXE_subcontact"))
+            .args(args)
+            .current_dir(&self.dir)
+            .output()
+            .expect("run subcontact")
     }
 
     /// Files in a directory (recursively), relative names, sorted.
@@ -129,7 +135,12 @@ pub fn json_vec3(v: &serde_json::Value) -> [f64; 3] {
 pub fn csv_rows(path: &Path) -> Vec<std::collections::HashMap<String, String>> {
     let text = read(path);
     let mut lines = text.lines();
-    let head: Vec<String> = lines.next().unwrap_or_else(|| panic!("{}: no header", path.display())).split(',').map(str::to_string).collect();
+    let head: Vec<String> = lines
+        .next()
+        .unwrap_or_else(|| panic!("{}: no header", path.display()))
+        .split(',')
+        .map(str::to_string)
+        .collect();
     lines.map(|l| head.iter().cloned().zip(l.split(',').map(str::to_string)).collect()).collect()
 }
 

@@ -7,7 +7,10 @@
 /// into the case as "blocks.toml"; returns that name.
 pub fn coarse_blocks(case: &super::Case) -> &'static str {
     case.copy("geo/blocks3d.geo");
-    case.write("blocks.toml", &edited("geo/blocks3d.toml", &[("setnumber = { lc = 0.1, hex = 0 }", "setnumber = { lc = 0.2, hex = 0 }")]));
+    case.write(
+        "blocks.toml",
+        &edited("geo/blocks3d.toml", &[("setnumber = { lc = 0.1, hex = 0 }", "setnumber = { lc = 0.2, hex = 0 }")]),
+    );
     "blocks.toml"
 }
 
@@ -15,7 +18,8 @@ pub fn coarse_blocks(case: &super::Case) -> &'static str {
 /// `name` into the case with geo/blocks3d.geo where the scene finds it.
 pub fn column(case: &super::Case, name: &str, edits: &[(&str, &str)]) {
     std::fs::create_dir_all(case.dir.join("geo")).expect("geo directory");
-    std::fs::copy(super::repo_root().join("geo/blocks3d.geo"), case.dir.join("geo/blocks3d.geo")).expect("copy the geometry");
+    std::fs::copy(super::repo_root().join("geo/blocks3d.geo"), case.dir.join("geo/blocks3d.geo"))
+        .expect("copy the geometry");
     let mut all = vec![("mesh = \"../../geo/blocks3d.geo\"", "mesh = \"geo/blocks3d.geo\"")];
     all.extend_from_slice(edits);
     case.write(name, &edited("scripts/scaling/column.toml", &all));
@@ -66,7 +70,15 @@ group = "joint"
 /// "inner", E = 2e5 in every body, and `[analytic] kind = "lame_cylinder"`
 /// so that the run carries its relative L2 errors. `gmsh` holds the lines of
 /// the `[gmsh]` table, `supports` (group, fixed components) pairs.
-pub fn lame_cylinder(title: &str, mesh: &str, analysis: &str, gmsh: &str, nu: f64, bodies: &[&str], supports: &[(&str, &str)]) -> String {
+pub fn lame_cylinder(
+    title: &str,
+    mesh: &str,
+    analysis: &str,
+    gmsh: &str,
+    nu: f64,
+    bodies: &[&str],
+    supports: &[(&str, &str)],
+) -> String {
     let mut s = format!("title = \"{title}\"\nmesh = \"{mesh}\"\nanalysis = \"{analysis}\"\n\n[gmsh]\n{gmsh}\n\n[materials.m]\nE = 2.0e5\nnu = {nu:?}\n");
     for body in bodies {
         s += &format!("\n[[bodies]]\ngroup = \"{body}\"\nmaterial = \"m\"\n");

@@ -33,12 +33,23 @@ pub fn aspect_case(s: &mut Suite, kinds: &[&str], ratios: &[f64], m: usize) {
                     st.supports = left.into();
                 }
                 let (dx, dy) = (st.w / st.nx as f64, st.h / st.ny as f64);
-                assert!(((if flat { dx / dy } else { dy / dx }) / ar - 1.0).abs() < 1e-12, "aspect ratio of {kind} {ar}");
+                assert!(
+                    ((if flat { dx / dy } else { dy / dx }) / ar - 1.0).abs() < 1e-12,
+                    "aspect ratio of {kind} {ar}"
+                );
                 let name = format!("aspect_{kind}_{}_{ar:e}_{}x{}", if flat { "flat" } else { "tall" }, st.nx, st.ny);
                 let t = Instant::now();
                 let run = solve(&s.case, &name, &st.text(), false);
                 let secs = t.elapsed().as_secs_f64();
-                aspect_row(s, &run, &st, kind, &format!("AR {} ({})", fmt_e(ar), if flat { "flat" } else { "tall" }), Some(aspect_tols(ar, m)), secs);
+                aspect_row(
+                    s,
+                    &run,
+                    &st,
+                    kind,
+                    &format!("AR {} ({})", fmt_e(ar), if flat { "flat" } else { "tall" }),
+                    Some(aspect_tols(ar, m)),
+                    secs,
+                );
             }
         }
     }
@@ -65,10 +76,21 @@ fn aspect_row(s: &mut Suite, run: &Run, st: &Stack, kind: &str, cond: &str, tol:
     let inf_unless = |ok: bool, v: f64| if ok { v } else { f64::INFINITY };
     let label = format!("aspect {kind} {}x{}", st.nx, st.ny);
     let res = Some(run.stats.residuals.interface);
-    let note = format!("u {eu:.1e}, sigma {es:.1e}; {}; {} x {} blocks; {} DOFs", states_note(c), st.w, st.h, run.stats.dofs.total);
+    let note = format!(
+        "u {eu:.1e}, sigma {es:.1e}; {}; {} x {} blocks; {} DOFs",
+        states_note(c),
+        st.w,
+        st.h,
+        run.stats.dofs.total
+    );
     let rows = [
         ("uniform compression: nodal u and sigma vs exact", inf_unless(all_stick, eu.max(es)), tol.map(|t| t.0), note),
-        ("uniform compression: contact sigma_n = -p, tau = 0", inf_unless(all_stick, ec), tol.map(|t| t.1), String::new()),
+        (
+            "uniform compression: contact sigma_n = -p, tau = 0",
+            inf_unless(all_stick, ec),
+            tol.map(|t| t.1),
+            String::new(),
+        ),
     ];
     for (i, (checks, error, t, note)) in rows.into_iter().enumerate() {
         let secs = if i == 0 { secs } else { 0.0 };

@@ -237,12 +237,40 @@ pub fn contrast_case(s: &mut Suite, m: Ring, ratios: &[f64], tol: [f64; 3]) {
             let cond = format!("E2/E1 = {}", fmt_e(e2 / e1));
             let label = format!("contrast {} {} lc {}", m.kind, cond, m.lc);
             let res = Some(run.stats.residuals.interface);
-            let note = format!("{} pairs, {}; sigma_r(c) = {:.4} p", c.pairs.len(), states_note(c), exact.stress(exact.c).0);
+            let note =
+                format!("{} pairs, {}; sigma_r(c) = {:.4} p", c.pairs.len(), states_note(c), exact.stress(exact.c).0);
             s.boolean(&label, "every pair stuck", all_stick, res, &cond, secs, &note);
-            s.check(&label, "stresses at 10 probe points vs closed form (/p)", es, tol[0], res, &cond, 0.0, "sigma_r, sigma_theta, sigma_z at r = 3.1 ... 4.9");
+            s.check(
+                &label,
+                "stresses at 10 probe points vs closed form (/p)",
+                es,
+                tol[0],
+                res,
+                &cond,
+                0.0,
+                "sigma_r, sigma_theta, sigma_z at r = 3.1 ... 4.9",
+            );
             s.check(&label, "nodal displacement vs closed form (/max u_r)", eu, tol[1], res, &cond, 0.0, "");
-            s.check(&label, "contact sigma_n vs sigma_r(c), tau vs 0 (/p)", en.max(et), tol[2], res, &cond, 0.0, &format!("sigma_n {en:.2e}, tau {et:.2e}"));
-            s.check(&label, "interface solve vs bonded solve (/max u)", db, 1e-9, res, &cond, 0.0, "round-off only: the same discrete problem");
+            s.check(
+                &label,
+                "contact sigma_n vs sigma_r(c), tau vs 0 (/p)",
+                en.max(et),
+                tol[2],
+                res,
+                &cond,
+                0.0,
+                &format!("sigma_n {en:.2e}, tau {et:.2e}"),
+            );
+            s.check(
+                &label,
+                "interface solve vs bonded solve (/max u)",
+                db,
+                1e-9,
+                res,
+                &cond,
+                0.0,
+                "round-off only: the same discrete problem",
+            );
         }
     }
 }
@@ -293,7 +321,11 @@ pub fn contrast_swapped_case(s: &mut Suite, m: Ring) {
         Some(a.stats.residuals.interface.max(b.stats.residuals.interface)),
         cond,
         0.0,
-        &format!("sigma_r(c) = {sc:.4} p; mean sigma_n {:.4} / {:.4}", ca.pairs.iter().map(|r| r.sigma_n).sum::<f64>() / ca.pairs.len() as f64, cb.pairs.iter().map(|r| r.sigma_n).sum::<f64>() / cb.pairs.len() as f64),
+        &format!(
+            "sigma_r(c) = {sc:.4} p; mean sigma_n {:.4} / {:.4}",
+            ca.pairs.iter().map(|r| r.sigma_n).sum::<f64>() / ca.pairs.len() as f64,
+            cb.pairs.iter().map(|r| r.sigma_n).sum::<f64>() / cb.pairs.len() as f64
+        ),
     );
 }
 
@@ -305,7 +337,10 @@ pub fn compound_closed_form_case(s: &mut Suite) {
     for i in 0..=20 {
         let r = 3.0 + 0.1 * i as f64;
         let (sr, st, _) = c.stress(r);
-        e = e.max((sr - l.sigma_r(r)).abs()).max((st - l.sigma_theta(r)).abs()).max((c.u_r(r) - l.u_r(r)).abs() / l.u_r(3.0));
+        e = e
+            .max((sr - l.sigma_r(r)).abs())
+            .max((st - l.sigma_theta(r)).abs())
+            .max((c.u_r(r) - l.u_r(r)).abs() / l.u_r(3.0));
     }
     // and with contrast: the four conditions hold
     let d = Compound::new(3.0, 4.0, 5.0, 1.0, [1.0e3, 1.0e9], [NU1, NU2]);
@@ -313,6 +348,16 @@ pub fn compound_closed_form_case(s: &mut Suite) {
     let (s2, _, _) = d.stress_in(1, 4.0);
     let u1 = d.k[0] * 4.0 + d.k[1] / 4.0;
     let u2 = d.k[2] * 4.0 + d.k[3] / 4.0;
-    let bc = (d.stress(3.0).0 + 1.0).abs().max(d.stress(5.0).0.abs()).max((s1 - s2).abs()).max((u1 - u2).abs() / u1.abs());
-    s.check("compound closed form", "E1 = E2 gives Lamé; E2/E1 = 1e6 meets its 4 conditions", e.max(bc), 1e-11, None, "E2/E1 = 1, 1e6", 0.0, "self-check of the reference (4x4 solve, scaled)");
+    let bc =
+        (d.stress(3.0).0 + 1.0).abs().max(d.stress(5.0).0.abs()).max((s1 - s2).abs()).max((u1 - u2).abs() / u1.abs());
+    s.check(
+        "compound closed form",
+        "E1 = E2 gives Lamé; E2/E1 = 1e6 meets its 4 conditions",
+        e.max(bc),
+        1e-11,
+        None,
+        "E2/E1 = 1, 1e6",
+        0.0,
+        "self-check of the reference (4x4 solve, scaled)",
+    );
 }

@@ -38,7 +38,11 @@ pub fn held_by_contact_case(s: &mut Suite) {
         );
     }
     // pulled off: the binary names the free body
-    for (what, x0, y0, angle, scale) in [("MPa", 0.0, 0.0, 0.0, 1.0), ("map coordinates, 30 deg", 5.0e5, 4.2e6, 30.0, 1.0), ("Pa", 0.0, 0.0, 0.0, 1.0e6)] {
+    for (what, x0, y0, angle, scale) in [
+        ("MPa", 0.0, 0.0, 0.0, 1.0),
+        ("map coordinates, 30 deg", 5.0e5, 4.2e6, 30.0, 1.0),
+        ("Pa", 0.0, 0.0, 0.0, 1.0e6),
+    ] {
         for kind in ["quad4", "quad9"] {
             let mut st = map_stack(kind, 4, 2);
             st.x0 = x0;
@@ -53,7 +57,8 @@ pub fn held_by_contact_case(s: &mut Suite) {
             let out = s.case.cli(&["solve", &format!("{name}.toml"), "--quiet"]);
             let secs = t.elapsed().as_secs_f64();
             let stderr = String::from_utf8_lossy(&out.stderr).to_string();
-            let no_files = !s.case.out(&name).join("summary.json").exists() && !s.case.out(&name).join(format!("{name}.vtu")).exists();
+            let no_files = !s.case.out(&name).join("summary.json").exists()
+                && !s.case.out(&name).join(format!("{name}.vtu")).exists();
             let ok = !out.status.success()
                 && stderr.contains("body \"top\"")
                 && !stderr.contains("\"bottom\"")

@@ -54,7 +54,9 @@ pub fn compare_moved(a: &Run, b: &Run, x0: f64, y0: f64, angle_deg: f64, scale_b
     let nb = body_nodes(b);
     assert_eq!(nb.len(), ua.len(), "the same nodes");
     for (body, n) in nb {
-        let (u, s) = ua.get(&(body, key(b.model.coords[n], true))).unwrap_or_else(|| panic!("node {:?} of the moved model has no match", b.model.coords[n]));
+        let (u, s) = ua
+            .get(&(body, key(b.model.coords[n], true)))
+            .unwrap_or_else(|| panic!("node {:?} of the moved model has no match", b.model.coords[n]));
         let (gx, gy) = (b.last().u[2 * n], b.last().u[2 * n + 1]);
         let ul = [c * gx + sn * gy, -sn * gx + c * gy];
         du = du.max((ul[0] - u[0]).abs()).max((ul[1] - u[1]).abs());
@@ -79,7 +81,9 @@ pub fn compare_moved(a: &Run, b: &Run, x0: f64, y0: f64, angle_deg: f64, scale_b
     let mut same_states = ca.states.len() == cb.states.len();
     for (j, p) in b.model.pairs.iter().enumerate() {
         let i = pa[&key(b.model.coords[p.k], true)];
-        dc = dc.max((ca.pairs[i].sigma_n - cb.pairs[j].sigma_n / scale_b).abs()).max((ca.pairs[i].tau_t - cb.pairs[j].tau_t / scale_b).abs());
+        dc = dc
+            .max((ca.pairs[i].sigma_n - cb.pairs[j].sigma_n / scale_b).abs())
+            .max((ca.pairs[i].tau_t - cb.pairs[j].tau_t / scale_b).abs());
         same_states &= ca.states[i] == cb.states[j];
     }
     (du / umax, ds / smax, dc / cmax, same_states)
@@ -142,7 +146,8 @@ fn transform_msh(text: &str, f: &dyn Fn([f64; 2]) -> [f64; 2]) -> String {
             push(&mut out, lines[i]);
             i += 1;
             for _ in 0..head[0] {
-                let b: Vec<usize> = lines[i].split_whitespace().map(|t| t.parse().expect("node block header")).collect();
+                let b: Vec<usize> =
+                    lines[i].split_whitespace().map(|t| t.parse().expect("node block header")).collect();
                 push(&mut out, lines[i]);
                 i += 1;
                 let n = b[3];
@@ -189,7 +194,11 @@ fn mesh_deviation(a: &Run, b: &Run, back: &dyn Fn([f64; 2]) -> [f64; 2]) -> f64 
 }
 
 /// The moves of the map case: (what, x0, y0, angle in degrees).
-const MOVES: [(&str, f64, f64, f64); 3] = [("shifted", 5.0e5, 4.2e6, 0.0), ("rotated 30 deg", 0.0, 0.0, 30.0), ("shifted + rotated 30 deg", 5.0e5, 4.2e6, 30.0)];
+const MOVES: [(&str, f64, f64, f64); 3] = [
+    ("shifted", 5.0e5, 4.2e6, 0.0),
+    ("rotated 30 deg", 0.0, 0.0, 30.0),
+    ("shifted + rotated 30 deg", 5.0e5, 4.2e6, 30.0),
+];
 
 /// Map coordinates. The solver's part: the mesh of the model at the origin
 /// moved exactly (each node x' = x0 + R x rounded once to a double, the
@@ -204,7 +213,11 @@ pub fn map_case(s: &mut Suite, kind: &str, nx: usize, ny: usize) {
     let a = solve(&s.case, &format!("{tag}_origin"), &base.text_msh(&format!("{tag}_origin.msh")), false);
     let t_a = t.elapsed().as_secs_f64();
     let ca = converged(&a);
-    assert!(count(ca, ContactState::Open) > 0 && count(ca, ContactState::Stick) > 0, "the reference opens part of the joint: {}", states_note(ca));
+    assert!(
+        count(ca, ContactState::Open) > 0 && count(ca, ContactState::Stick) > 0,
+        "the reference opens part of the joint: {}",
+        states_note(ca)
+    );
     for (what, x0, y0, angle) in MOVES {
         let th = angle.to_radians();
         let (c, sn) = if angle == 0.0 { (1.0, 0.0) } else { (th.cos(), th.sin()) };

@@ -55,7 +55,9 @@ impl Stack {
             e: 1000.0,
             nu: 0.25,
             contact: "friction = 0.5\ncohesion = 0.0\ntensile_strength = 0.0".into(),
-            supports: "[[supports]]\ngroup = \"base\"\nfix = [\"y\"]\n\n[[supports]]\ngroup = \"corner\"\nfix = [\"x\"]\n".into(),
+            supports:
+                "[[supports]]\ngroup = \"base\"\nfix = [\"y\"]\n\n[[supports]]\ngroup = \"corner\"\nfix = [\"x\"]\n"
+                    .into(),
             load: "pressure = 1.0".into(),
         }
     }
@@ -76,7 +78,11 @@ impl Stack {
     /// The scene, meshed from stress_stack.geo.
     pub fn text(&self) -> String {
         let set: Vec<String> = self.setnumber().iter().map(|(k, v)| format!("{k} = {v:?}")).collect();
-        self.text_on(&format!("mesh = \"stress_stack.geo\"\n\n[gmsh]\norder = {}\nsetnumber = {{ {} }}", self.order, set.join(", ")))
+        self.text_on(&format!(
+            "mesh = \"stress_stack.geo\"\n\n[gmsh]\norder = {}\nsetnumber = {{ {} }}",
+            self.order,
+            set.join(", ")
+        ))
     }
     /// The scene on a ready mesh (a .msh of the case).
     pub fn text_msh(&self, msh: &str) -> String {

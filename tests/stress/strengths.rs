@@ -22,12 +22,15 @@ pub fn strengths_case(s: &mut Suite) {
         for kind in ["quad4", "quad9"] {
             let mut st = Stack::kind(kind);
             st.contact = format!("friction = 0.0\ncohesion = 0.0\ntensile_strength = 0.0\nslip = \"{slip}\"");
-            st.supports = "[[supports]]\ngroup = \"base\"\nfix = [\"y\"]\n\n[[supports]]\ngroup = \"left\"\nfix = [\"x\"]\n".into();
+            st.supports =
+                "[[supports]]\ngroup = \"base\"\nfix = [\"y\"]\n\n[[supports]]\ngroup = \"left\"\nfix = [\"x\"]\n"
+                    .into();
             let t = Instant::now();
             let run = solve(&s.case, &format!("f0c0_{kind}_{slip}"), &st.text(), false);
             let secs = t.elapsed().as_secs_f64();
             let c = converged(&run);
-            let uniform = count(c, ContactState::Stick) == c.states.len() || count(c, ContactState::Slip) == c.states.len();
+            let uniform =
+                count(c, ContactState::Stick) == c.states.len() || count(c, ContactState::Slip) == c.states.len();
             let (eu, es, ec) = uniform_errors(&run, &st, 1.0);
             s.check(
                 &format!("f = 0, c = 0 {kind} {slip}"),
@@ -83,7 +86,9 @@ pub fn strengths_case(s: &mut Suite) {
         let mut viol = 0.0f64;
         for (st_, r) in c.states.iter().zip(&c.pairs) {
             match st_ {
-                ContactState::Open => viol = viol.max(r.sigma_n.abs() / smax).max(r.tau() / smax).max((-r.gap).max(0.0) / gmax),
+                ContactState::Open => {
+                    viol = viol.max(r.sigma_n.abs() / smax).max(r.tau() / smax).max((-r.gap).max(0.0) / gmax)
+                }
                 _ => viol = viol.max(r.sigma_n.max(0.0) / smax),
             }
         }
@@ -113,14 +118,32 @@ pub fn f0_compound_case(s: &mut Suite, lc: f64, ratios: &[f64]) {
     let m = Ring { kind: "quad9", order: 2, quad: true, serendipity: false, lc };
     for &ratio in ratios {
         let t = Instant::now();
-        let stuck = solve(&s.case, &format!("f0c0_compound_{lc}_{ratio:e}_stuck"), &compound_scene(m, E_SOFT, E_SOFT * ratio, STUCK_JOINT, false), false);
-        let free = solve(&s.case, &format!("f0c0_compound_{lc}_{ratio:e}"), &compound_scene(m, E_SOFT, E_SOFT * ratio, "friction = 0.0\ncohesion = 0.0\ntensile_strength = 0.0", false), false);
+        let stuck = solve(
+            &s.case,
+            &format!("f0c0_compound_{lc}_{ratio:e}_stuck"),
+            &compound_scene(m, E_SOFT, E_SOFT * ratio, STUCK_JOINT, false),
+            false,
+        );
+        let free = solve(
+            &s.case,
+            &format!("f0c0_compound_{lc}_{ratio:e}"),
+            &compound_scene(m, E_SOFT, E_SOFT * ratio, "friction = 0.0\ncohesion = 0.0\ntensile_strength = 0.0", false),
+            false,
+        );
         let secs = t.elapsed().as_secs_f64();
         let c = free.contact().expect("a contact run");
         let note = format!("{} pairs, {}", c.pairs.len(), states_note(c));
         let label = format!("f = 0, c = 0 compound quad9 lc {lc}");
         let cond = format!("E2/E1 = {}", fmt_e(ratio));
-        s.boolean(&label, "the contact iteration converges (max_iterations = 100)", c.summary.converged, Some(free.stats.residuals.interface), &cond, secs, &note);
+        s.boolean(
+            &label,
+            "the contact iteration converges (max_iterations = 100)",
+            c.summary.converged,
+            Some(free.stats.residuals.interface),
+            &cond,
+            secs,
+            &note,
+        );
         if !c.summary.converged {
             continue;
         }

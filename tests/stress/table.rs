@@ -47,21 +47,69 @@ impl Suite {
 
     /// Records a checked row: passes when `error <= tol` (NaN fails).
     #[allow(clippy::too_many_arguments)]
-    pub fn check(&mut self, case: &str, checks: &str, error: f64, tol: f64, residual: Option<f64>, condition: &str, seconds: f64, note: &str) {
+    pub fn check(
+        &mut self,
+        case: &str,
+        checks: &str,
+        error: f64,
+        tol: f64,
+        residual: Option<f64>,
+        condition: &str,
+        seconds: f64,
+        note: &str,
+    ) {
         let pass = error <= tol;
-        self.push(Row { case: case.into(), checks: checks.into(), error, tol: Some(tol), pass, residual, condition: condition.into(), seconds, note: note.into() });
+        self.push(Row {
+            case: case.into(),
+            checks: checks.into(),
+            error,
+            tol: Some(tol),
+            pass,
+            residual,
+            condition: condition.into(),
+            seconds,
+            note: note.into(),
+        });
     }
 
     /// Records a reported-only row (no bound; NaN still fails).
     #[allow(clippy::too_many_arguments)]
-    pub fn report(&mut self, case: &str, checks: &str, error: f64, residual: Option<f64>, condition: &str, seconds: f64, note: &str) {
+    pub fn report(
+        &mut self,
+        case: &str,
+        checks: &str,
+        error: f64,
+        residual: Option<f64>,
+        condition: &str,
+        seconds: f64,
+        note: &str,
+    ) {
         let pass = error.is_finite();
-        self.push(Row { case: case.into(), checks: checks.into(), error, tol: None, pass, residual, condition: condition.into(), seconds, note: note.into() });
+        self.push(Row {
+            case: case.into(),
+            checks: checks.into(),
+            error,
+            tol: None,
+            pass,
+            residual,
+            condition: condition.into(),
+            seconds,
+            note: note.into(),
+        });
     }
 
     /// Records a yes/no check.
     #[allow(clippy::too_many_arguments)]
-    pub fn boolean(&mut self, case: &str, checks: &str, ok: bool, residual: Option<f64>, condition: &str, seconds: f64, note: &str) {
+    pub fn boolean(
+        &mut self,
+        case: &str,
+        checks: &str,
+        ok: bool,
+        residual: Option<f64>,
+        condition: &str,
+        seconds: f64,
+        note: &str,
+    ) {
         self.push(Row {
             case: case.into(),
             checks: checks.into(),
@@ -96,7 +144,11 @@ impl Suite {
         let t = Instant::now();
         let result = catch_unwind(AssertUnwindSafe(|| f(self)));
         if let Err(e) = result {
-            let msg = e.downcast_ref::<String>().cloned().or_else(|| e.downcast_ref::<&str>().map(|s| s.to_string())).unwrap_or_default();
+            let msg = e
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| e.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_default();
             let first = msg.lines().next().unwrap_or("").chars().take(300).collect::<String>();
             self.push(Row {
                 case: name.into(),
@@ -125,7 +177,10 @@ impl Suite {
             self.rows.iter().filter(|r| !r.pass).count(),
             total
         );
-        let _ = writeln!(s, "| case | checks | error | tolerance | pass | interface residual | condition | time (s) | notes |");
+        let _ = writeln!(
+            s,
+            "| case | checks | error | tolerance | pass | interface residual | condition | time (s) | notes |"
+        );
         let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|");
         let cell = |t: &str| t.replace('|', "\\|");
         for r in &self.rows {
@@ -135,7 +190,9 @@ impl Suite {
                 cell(&r.case),
                 cell(&r.checks),
                 r.error,
-                r.tol.map(|t| if t == 0.0 { "0".to_string() } else { format!("{t:.0e}") }).unwrap_or_else(|| "report".into()),
+                r.tol
+                    .map(|t| if t == 0.0 { "0".to_string() } else { format!("{t:.0e}") })
+                    .unwrap_or_else(|| "report".into()),
                 if r.pass { "pass" } else { "**FAIL**" },
                 r.residual.map(|v| format!("{v:.1e}")).unwrap_or_else(|| "-".into()),
                 cell(&r.condition),
@@ -151,7 +208,12 @@ impl Suite {
         std::fs::rename(&tmp, dir.join("stress.md")).expect("write the table");
         println!("{s}");
         eprintln!("{s}");
-        let failed: Vec<String> = self.rows.iter().filter(|r| !r.pass).map(|r| format!("{}: {} (error {:.3e}) {}", r.case, r.checks, r.error, r.note)).collect();
+        let failed: Vec<String> = self
+            .rows
+            .iter()
+            .filter(|r| !r.pass)
+            .map(|r| format!("{}: {} (error {:.3e}) {}", r.case, r.checks, r.error, r.note))
+            .collect();
         assert!(failed.is_empty(), "{} stress case(s) failed:\n{}", failed.len(), failed.join("\n"));
     }
 }

@@ -31,7 +31,11 @@ pub fn units_case(s: &mut Suite, kind: &str, nx: usize, ny: usize) {
         Some(a.stats.residuals.interface.max(b.stats.residuals.interface)),
         "E = 2e4 MPa / 2e10 Pa",
         secs,
-        &format!("u {du:.1e}, sigma {ds:.1e}, contact {dc:.1e}; {}; residual Pa {:.1e}", states_note(converged(&b)), b.stats.residuals.interface),
+        &format!(
+            "u {du:.1e}, sigma {ds:.1e}, contact {dc:.1e}; {}; residual Pa {:.1e}",
+            states_note(converged(&b)),
+            b.stats.residuals.interface
+        ),
     );
 }
 
@@ -40,7 +44,8 @@ pub fn units_compound_case(s: &mut Suite) {
     let t = Instant::now();
     let m = Ring { kind: "quad9", order: 2, quad: true, serendipity: false, lc: 0.25 };
     let ta = compound_scene(m, 2.0e4, 2.0e7, STUCK_JOINT, false);
-    let tb = compound_scene(m, 2.0e10, 2.0e13, "friction = 0.8\ncohesion = 1.0e12\ntensile_strength = 1.0e12", false).replace("pressure = 1.0", "pressure = 1.0e6");
+    let tb = compound_scene(m, 2.0e10, 2.0e13, "friction = 0.8\ncohesion = 1.0e12\ntensile_strength = 1.0e12", false)
+        .replace("pressure = 1.0", "pressure = 1.0e6");
     let a = solve(&s.case, "units_compound_mpa", &ta, false);
     let b = solve(&s.case, "units_compound_pa", &tb, false);
     let secs = t.elapsed().as_secs_f64();

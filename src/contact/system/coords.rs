@@ -182,7 +182,15 @@ impl Blocks {
     /// global axes) and condensed loads `g`, with `terms[u]` the unknowns of
     /// its interface DOF u, `frames` the frame of each of its interface
     /// nodes and `edges` its transformed face edges.
-    pub fn add_part(&mut self, s: &[f64], g: &[Vec<f64>], nd: usize, terms: &[Terms], frames: &[Frame], edges: &[[usize; 3]]) {
+    pub fn add_part(
+        &mut self,
+        s: &[f64],
+        g: &[Vec<f64>],
+        nd: usize,
+        terms: &[Terms],
+        frames: &[Frame],
+        edges: &[[usize; 3]],
+    ) {
         let (s, g) = localise(s, g, nd, frames, edges);
         for_each_entry(&s, terms, |i, j, x| match (i, j) {
             (Var::M(a), Var::M(b)) => self.k_mm[(a, b)] += x,
@@ -204,7 +212,13 @@ impl Blocks {
 
 /// A part's Schur complement and condensed loads in the interface basis and
 /// the pairs' local axes: `T Q^T S Q T^T` and `T Q^T G`.
-pub fn localise(s: &[f64], g: &[Vec<f64>], nd: usize, frames: &[Frame], edges: &[[usize; 3]]) -> (Vec<f64>, Vec<Vec<f64>>) {
+pub fn localise(
+    s: &[f64],
+    g: &[Vec<f64>],
+    nd: usize,
+    frames: &[Frame],
+    edges: &[[usize; 3]],
+) -> (Vec<f64>, Vec<Vec<f64>>) {
     let nc = frames.len() * nd;
     let mut s = s.to_vec();
     basis::transform_matrix(&mut s, nc, nd, edges);
@@ -258,7 +272,13 @@ impl CliqueScratch {
 /// DOF u) to the lower triangle of `k`, whose pattern holds the part's
 /// clique: the terms whose unknown `index` maps to an equation; the others
 /// are left out.
-pub fn add_clique(k: &mut SymMatrix, s: &[f64], terms: &[Terms], index: impl Fn(Var) -> Option<usize>, scratch: &mut CliqueScratch) {
+pub fn add_clique(
+    k: &mut SymMatrix,
+    s: &[f64],
+    terms: &[Terms],
+    index: impl Fn(Var) -> Option<usize>,
+    scratch: &mut CliqueScratch,
+) {
     let mut vars: Vec<usize> = terms.iter().flat_map(|t| t.vars[..t.n].iter().filter_map(|&(x, _)| index(x))).collect();
     vars.sort_unstable();
     vars.dedup();
@@ -314,7 +334,14 @@ pub fn fixed_load(s: &[f64], terms: &[Terms], f: impl FnMut(Var, f64)) {
 /// unknowns: `Q T^T (W x + ramp w0)`, with `terms[u]` the unknowns of its
 /// interface DOF u, `frames` the frame of each of its interface nodes,
 /// `edges` its transformed face edges and `value` the unknowns' values.
-pub fn part_displacements(terms: &[Terms], frames: &[Frame], edges: &[[usize; 3]], nd: usize, ramp: f64, value: impl Fn(Var) -> f64) -> Vec<f64> {
+pub fn part_displacements(
+    terms: &[Terms],
+    frames: &[Frame],
+    edges: &[[usize; 3]],
+    nd: usize,
+    ramp: f64,
+    value: impl Fn(Var) -> f64,
+) -> Vec<f64> {
     let mut d = vec![0.0; terms.len()];
     for (q, f) in frames.iter().enumerate() {
         let mut local = [0.0; 3];

@@ -184,7 +184,8 @@ impl Columns<'_> {
         for jb in &self.fr.junctions {
             let lifted = jb.lifted(|i| full[nm + i], &v[nm..]);
             for (a, fa) in jb.cols.clone().enumerate() {
-                out[nm + fa] += jb.cols.clone().enumerate().map(|(c, fc)| jb.kz[(a, c)] * v[nm + fc]).sum::<f64>() + lifted.as_ref().map_or(0.0, |l| l[a]);
+                out[nm + fa] += jb.cols.clone().enumerate().map(|(c, fc)| jb.kz[(a, c)] * v[nm + fc]).sum::<f64>()
+                    + lifted.as_ref().map_or(0.0, |l| l[a]);
             }
         }
     }
@@ -249,7 +250,14 @@ impl<'a> Iterative<'a> {
     /// their own rank through `remote`), the preconditioner's groups (each
     /// pair and join node) and the coarse space of the parts' rigid motions
     /// `rigid`.
-    pub(super) fn build(model: &Model, layout: &Layout, parts: &[OperatorRef], rigid: &[PartModes], remote: Option<&'a dyn Remote>, threads: usize) -> Iterative<'a> {
+    pub(super) fn build(
+        model: &Model,
+        layout: &Layout,
+        parts: &[OperatorRef],
+        rigid: &[PartModes],
+        remote: Option<&'a dyn Remote>,
+        threads: usize,
+    ) -> Iterative<'a> {
         let applied = (parts.iter().enumerate().zip(&layout.parts))
             .filter_map(|((i, p), map)| {
                 let SchurRef::Applied { diag, solve } = p.s else { return None };
@@ -274,7 +282,16 @@ impl<'a> Iterative<'a> {
     /// `remote` applies the parts of other MPI ranks; `threads` apply this
     /// rank's parts side by side.
     #[allow(clippy::too_many_arguments)]
-    pub fn new(nd: usize, nm: usize, nr: usize, parts: Vec<AppliedPart>, groups: Vec<Vec<Var>>, coarse: Vec<Vec<f64>>, remote: Option<&'a dyn Remote>, threads: usize) -> Iterative<'a> {
+    pub fn new(
+        nd: usize,
+        nm: usize,
+        nr: usize,
+        parts: Vec<AppliedPart>,
+        groups: Vec<Vec<Var>>,
+        coarse: Vec<Vec<f64>>,
+        remote: Option<&'a dyn Remote>,
+        threads: usize,
+    ) -> Iterative<'a> {
         let n = nm + nr;
         let idx = |v: Var| match v {
             Var::M(i) => i,
@@ -330,7 +347,8 @@ impl<'a> Iterative<'a> {
                 let mut local = [[0.0; 3]; 3];
                 for a in 0..nd {
                     for c in 0..nd {
-                        local[a][c] = (0..nd).map(|i| f[a][i] * (0..nd).map(|j| d[i * nd + j] * f[c][j]).sum::<f64>()).sum();
+                        local[a][c] =
+                            (0..nd).map(|i| f[a][i] * (0..nd).map(|j| d[i * nd + j] * f[c][j]).sum::<f64>()).sum();
                     }
                 }
                 for a in 0..nd {
@@ -370,7 +388,8 @@ impl<'a> Iterative<'a> {
     fn apply_many(&self, xs: &[&[f64]], ramp: f64) -> Vec<Vec<f64>> {
         let n = self.nm + self.nr;
         let (nm, nd, k) = (self.nm, self.nd, xs.len());
-        let columns = |part: &AppliedPart| -> Vec<f64> { xs.iter().flat_map(|x| part.from_unknowns(x, ramp, nm, nd)).collect() };
+        let columns =
+            |part: &AppliedPart| -> Vec<f64> { xs.iter().flat_map(|x| part.from_unknowns(x, ramp, nm, nd)).collect() };
         // `K` of S d, column by column
         let gather = |part: &AppliedPart, sd: &[f64]| -> Vec<Vec<f64>> {
             let nc = part.terms.len();
@@ -434,7 +453,13 @@ impl<'a> Iterative<'a> {
         let b = combine(&self.b, &self.b_fixed, lambda);
         let loose = self.last_states.loose(states);
         let slip_rows: Vec<SlipRow> = (fr.slips.iter())
-            .map(|s| SlipRow { row: self.nm + s.row, normal: s.normal.map(|r| self.nm + r), coupling: s.coupling, springs: s.springs.iter().map(|&(c, k)| (self.nm + c, k)).collect(), force: s.force })
+            .map(|s| SlipRow {
+                row: self.nm + s.row,
+                normal: s.normal.map(|r| self.nm + r),
+                coupling: s.coupling,
+                springs: s.springs.iter().map(|&(c, k)| (self.nm + c, k)).collect(),
+                force: s.force,
+            })
             .collect();
         let (x0, y0) = self.start(fr, |v| cols.restrict(v));
         let rhs = self.start_residual(&cols, &slip_rows, &b, &x0, &y0);
@@ -523,7 +548,8 @@ impl<'a> Iterative<'a> {
     fn start(&self, fr: &Freedom, restrict: impl Fn(&[f64]) -> Vec<f64>) -> (Vec<f64>, Vec<f64>) {
         let (nm, nr) = (self.nm, self.nr);
         let n = nm + nr;
-        let last = self.last.lock().ok().and_then(|l| l.clone()).filter(|l| l.len() == n).unwrap_or_else(|| vec![0.0; n]);
+        let last =
+            self.last.lock().ok().and_then(|l| l.clone()).filter(|l| l.len() == n).unwrap_or_else(|| vec![0.0; n]);
         let mut shifted = vec![0.0; n];
         for i in 0..nr {
             shifted[nm + i] = last[nm + i] - fr.r0[i];
@@ -577,11 +603,14 @@ impl<'a> Iterative<'a> {
             let p = self.place[nm + col[0].0];
             touching[p.block].push((nm + a, col.iter().map(|&(i, zi)| (self.place[nm + i].at, zi)).collect()));
         }
-        let unknown_of_row: std::collections::HashMap<usize, usize> = (fr.cols.iter().enumerate()).filter_map(|(a, col)| match col.as_slice() {
-            [(i, _)] => Some((*i, nm + a)),
-            _ => None,
-        }).collect();
-        let slip_of: std::collections::HashMap<usize, &super::SlipRow> = fr.slips.iter().map(|s| (nm + fr.pos[s.row], s)).collect();
+        let unknown_of_row: std::collections::HashMap<usize, usize> = (fr.cols.iter().enumerate())
+            .filter_map(|(a, col)| match col.as_slice() {
+                [(i, _)] => Some((*i, nm + a)),
+                _ => None,
+            })
+            .collect();
+        let slip_of: std::collections::HashMap<usize, &super::SlipRow> =
+            fr.slips.iter().map(|s| (nm + fr.pos[s.row], s)).collect();
         let mut junction_of = std::collections::HashMap::new();
         for (bi, jb) in fr.junctions.iter().enumerate() {
             for (a, fa) in jb.cols.clone().enumerate() {
@@ -595,8 +624,12 @@ impl<'a> Iterative<'a> {
             .map(|((members, m), us)| {
                 let k = members.len();
                 // B P: the block times each unknown's entries
-                let bp: Vec<Vec<f64>> = us.iter().map(|(_, e)| (0..k).map(|row| e.iter().map(|&(at, z)| m[row * k + at] * z).sum()).collect()).collect();
-                let mut local = Mat::<f64>::from_fn(us.len(), us.len(), |i, j| us[i].1.iter().map(|&(at, z)| z * bp[j][at]).sum());
+                let bp: Vec<Vec<f64>> = us
+                    .iter()
+                    .map(|(_, e)| (0..k).map(|row| e.iter().map(|&(at, z)| m[row * k + at] * z).sum()).collect())
+                    .collect();
+                let mut local =
+                    Mat::<f64>::from_fn(us.len(), us.len(), |i, j| us[i].1.iter().map(|&(at, z)| z * bp[j][at]).sum());
                 for (li, (u, _)) in us.iter().enumerate() {
                     if let Some(s) = slip_of.get(u) {
                         if let Some(pn) = s.normal.and_then(|rn| members.iter().position(|&x| x == nm + rn)) {

@@ -82,7 +82,14 @@ impl SparseBlocks {
     /// `nm` pair means (`Var::M(0..nm)`), `nj` join means (`Var::M(nm..nm +
     /// nj)`), `nr` relative displacements; `cliques[p]` the terms of each
     /// part's interface DOFs (the pattern of the sparse matrix).
-    pub fn new(nm: usize, nj: usize, nr: usize, cases: usize, cliques: &[Vec<Terms>], node_of: Vec<usize>) -> SparseBlocks {
+    pub fn new(
+        nm: usize,
+        nj: usize,
+        nr: usize,
+        cases: usize,
+        cliques: &[Vec<Terms>],
+        node_of: Vec<usize>,
+    ) -> SparseBlocks {
         let n = nj + nm + nr;
         let vars: Vec<Vec<usize>> = cliques.iter().map(|terms| unknowns(terms, nm, nj)).collect();
         SparseBlocks {
@@ -115,7 +122,8 @@ impl SparseBlocks {
         let SparseBlocks { nj, nm, nr, node_of, k, b, b_fixed, .. } = self;
         let par = faer::get_global_parallelism();
         let nc = nm + nr;
-        let factor = PartialCholesky::factor(&k, nj, &node_of, Ordering::NestedDissection, par).map_err(|_| Singular)?;
+        let factor =
+            PartialCholesky::factor(&k, nj, &node_of, Ordering::NestedDissection, par).map_err(|_| Singular)?;
         drop(k);
         let s = factor.schur(par);
         // b'_c for every load case and the prescribed values, in one solve

@@ -187,9 +187,11 @@ impl Split {
         let (u, v_t) = (svd.u.expect("U"), svd.v_t.expect("V^T"));
         let sv = &svd.singular_values;
         let smax = sv.iter().copied().fold(0.0, f64::max);
-        let rank: Vec<usize> = (0..sv.len()).filter(|&i| sv[i] > RANK_TOLERANCE * smax.max(f64::MIN_POSITIVE)).collect();
+        let rank: Vec<usize> =
+            (0..sv.len()).filter(|&i| sv[i] > RANK_TOLERANCE * smax.max(f64::MIN_POSITIVE)).collect();
         // pinv(C_T^T D) = pinv((D C_T)^T) = U S^-1 V^T restricted to r's columns
-        let pinv = DMatrix::<f64>::from_fn(m_t, n_r, |i, c| rank.iter().map(|&k| u[(i, k)] * v_t[(k, c)] / sv[k]).sum());
+        let pinv =
+            DMatrix::<f64>::from_fn(m_t, n_r, |i, c| rank.iter().map(|&k| u[(i, k)] * v_t[(k, c)] / sv[k]).sum());
         let free: Vec<usize> = (0..m_t).filter(|k| !rank.contains(k)).collect();
         let null = DMatrix::<f64>::from_fn(m_t, free.len(), |i, c| u[(i, free[c])]);
         Split { rows: rows.to_vec(), d, pinv, null }
@@ -210,11 +212,16 @@ impl Split {
         // they are the same in every unit of force
         let s = to_one(g.as_slice());
         if s != 1.0 {
-            let scaled: Vec<Limit> = limits.iter().map(|l| Limit { tension: l.tension * s, cohesion: l.cohesion * s, friction: l.friction }).collect();
+            let scaled: Vec<Limit> = limits
+                .iter()
+                .map(|l| Limit { tension: l.tension * s, cohesion: l.cohesion * s, friction: l.friction })
+                .collect();
             return self.forces(&(g * s), &scaled) / s;
         }
         let nu0 = &self.pinv * g;
-        let lambda = |s: &DVector<f64>| DVector::from_fn(self.rows.len(), |i, _| self.d[i] * (nu0[i] + (self.null.row(i) * s)[0]));
+        let lambda = |s: &DVector<f64>| {
+            DVector::from_fn(self.rows.len(), |i, _| self.d[i] * (nu0[i] + (self.null.row(i) * s)[0]))
+        };
         let zero = DVector::zeros(self.null.ncols());
         let plain = lambda(&zero);
         if self.null.ncols() == 0 || self.violations(&plain, limits, CUT_TOL).is_empty() {
@@ -231,8 +238,16 @@ impl Split {
             }
             cuts.extend(new);
             // in s: a . D (nu0 + N s) <= b
-            let g_rows: Vec<DVector<f64>> = cuts.iter().map(|(a, _)| a.iter().fold(DVector::zeros(self.null.ncols()), |acc, &(i, c)| acc + self.null.row(i).transpose() * (c * self.d[i]))).collect();
-            let h: Vec<f64> = cuts.iter().map(|(a, b)| b - a.iter().map(|&(i, c)| c * self.d[i] * nu0[i]).sum::<f64>()).collect();
+            let g_rows: Vec<DVector<f64>> = cuts
+                .iter()
+                .map(|(a, _)| {
+                    a.iter().fold(DVector::zeros(self.null.ncols()), |acc, &(i, c)| {
+                        acc + self.null.row(i).transpose() * (c * self.d[i])
+                    })
+                })
+                .collect();
+            let h: Vec<f64> =
+                cuts.iter().map(|(a, b)| b - a.iter().map(|&(i, c)| c * self.d[i] * nu0[i]).sum::<f64>()).collect();
             match least_norm_point(&g_rows, &h) {
                 Some(x) => s = x,
                 // no share within every limit: the loop cannot carry g so
@@ -299,11 +314,21 @@ impl Junction {
     /// with the prescribed value per unit ramp of each model DOF
     /// (`prescribed[node * nd + c]`); numbers its means and relative
     /// displacements from `nm` and `nr` on.
-    pub fn new(pairs: Vec<usize>, pair: impl Fn(usize) -> (usize, usize, Frame), prescribed: &[Option<f64>], nd: usize, nm: &mut usize, nr: &mut usize) -> Junction {
-        let mut copies: Vec<usize> = pairs.iter().flat_map(|&p| {
-            let (k, l, _) = pair(p);
-            [k, l]
-        }).collect();
+    pub fn new(
+        pairs: Vec<usize>,
+        pair: impl Fn(usize) -> (usize, usize, Frame),
+        prescribed: &[Option<f64>],
+        nd: usize,
+        nm: &mut usize,
+        nr: &mut usize,
+    ) -> Junction {
+        let mut copies: Vec<usize> = pairs
+            .iter()
+            .flat_map(|&p| {
+                let (k, l, _) = pair(p);
+                [k, l]
+            })
+            .collect();
         copies.sort_unstable();
         copies.dedup();
         let q = copies.len();
@@ -372,7 +397,8 @@ impl Junction {
         }
         let frames: Vec<Frame> = pairs.iter().map(|&p| pair(p).2).collect();
         let ends: Vec<(usize, usize)> = pairs.iter().map(|&p| pair(p)).map(|(k, l, _)| (k.min(l), k.max(l))).collect();
-        let partners = (0..pairs.len()).map(|j| (0..pairs.len()).filter(|&i| i != j && ends[i] == ends[j]).collect()).collect();
+        let partners =
+            (0..pairs.len()).map(|j| (0..pairs.len()).filter(|&i| i != j && ends[i] == ends[j]).collect()).collect();
         Junction { pairs, copies, terms, r, m, rows, consts, frames, partners, nd, memo: Memo::default() }
     }
 
@@ -489,7 +515,9 @@ impl Junction {
         let mut lines = vec![None; self.pairs.len()];
         for (j, line) in lines.iter_mut().enumerate() {
             // the shear axes' parts along the free directions
-            let m = DMatrix::<f64>::from_fn(2, z.ncols(), |a, c| (0..self.r.len()).map(|i| self.rows[j][a + 1][i] * z[(i, c)]).sum());
+            let m = DMatrix::<f64>::from_fn(2, z.ncols(), |a, c| {
+                (0..self.r.len()).map(|i| self.rows[j][a + 1][i] * z[(i, c)]).sum()
+            });
             let scale = (1..3).map(|a| self.rows[j][a].iter().map(|x| x * x).sum::<f64>().sqrt()).fold(0.0, f64::max);
             if z.ncols() == 0 || scale == 0.0 {
                 continue;
@@ -515,13 +543,25 @@ impl Junction {
             // every copy held in every component: nothing to solve for
             let zero = DMatrix::zeros(0, 0);
             let split = Split::new(&[], &rows, &areas, 0);
-            return Tied { z: zero.clone(), r0: DVector::zeros(0), k: zero, f: DVector::zeros(0), split, rows, areas, pressure: None };
+            return Tied {
+                z: zero.clone(),
+                r0: DVector::zeros(0),
+                k: zero,
+                f: DVector::zeros(0),
+                split,
+                rows,
+                areas,
+                pressure: None,
+            };
         }
-        let (z, pinv, split, consts) = self.memo.with(self, &rows, |t| (t.z.clone(), t.pinv.clone(), t.split(&areas, n_r).clone(), t.consts.clone()));
+        let (z, pinv, split, consts) = self
+            .memo
+            .with(self, &rows, |t| (t.z.clone(), t.pinv.clone(), t.split(&areas, n_r).clone(), t.consts.clone()));
         let t = DVector::<f64>::from_fn(rows.len().max(n_r), |i, _| {
             if i < rows.len() {
                 let (j, dir) = rows[i];
-                let target: f64 = (0..nd).filter(|&a| dir[a] != 0.0).map(|a| dir[a] * rel[self.pairs[j]].target[a]).sum();
+                let target: f64 =
+                    (0..nd).filter(|&a| dir[a] != 0.0).map(|a| dir[a] * rel[self.pairs[j]].target[a]).sum();
                 target - consts[i] * ramp
             } else {
                 0.0
@@ -536,8 +576,10 @@ impl Junction {
         // of 9, measured before the loops' note was kept for the load.)
         let mut k = DMatrix::<f64>::zeros(n_r, n_r);
         let mut f = DVector::<f64>::zeros(n_r);
-        let slipping: Vec<usize> = (0..self.pairs.len()).filter(|&j| rel[self.pairs[j]].state == ContactState::Slip).collect();
-        let coupled: Vec<usize> = slipping.iter().copied().filter(|&j| rel[self.pairs[j]].coupling.iter().any(|&c| c != 0.0)).collect();
+        let slipping: Vec<usize> =
+            (0..self.pairs.len()).filter(|&j| rel[self.pairs[j]].state == ContactState::Slip).collect();
+        let coupled: Vec<usize> =
+            slipping.iter().copied().filter(|&j| rel[self.pairs[j]].coupling.iter().any(|&c| c != 0.0)).collect();
         let per_pressure = DMatrix::<f64>::from_fn(n_r, coupled.len(), |i, s| {
             let (j, rl) = (coupled[s], &rel[self.pairs[coupled[s]]]);
             (1..nd).map(|a| self.rows[j][a][i] * rl.coupling[a]).sum()
@@ -577,10 +619,25 @@ impl Junction {
     /// tell its state: the forces with every locked axis tied can, the
     /// least-norm ones within every pair's limit (None where nothing is
     /// locked).
-    pub fn forces(&self, tied: &Tied, rel: &[Relation], r: &DVector<f64>, g: &DVector<f64>, ramp: f64) -> Vec<([f64; 3], [f64; 3], Option<[f64; 3]>)> {
+    pub fn forces(
+        &self,
+        tied: &Tied,
+        rel: &[Relation],
+        r: &DVector<f64>,
+        g: &DVector<f64>,
+        ramp: f64,
+    ) -> Vec<([f64; 3], [f64; 3], Option<[f64; 3]>)> {
         let nd = self.nd;
         let rels: Vec<[f64; 3]> = (0..self.pairs.len())
-            .map(|j| std::array::from_fn(|a| if a < nd { DVector::from_column_slice(&self.rows[j][a]).dot(r) + self.consts[j][a] * ramp } else { 0.0 }))
+            .map(|j| {
+                std::array::from_fn(|a| {
+                    if a < nd {
+                        DVector::from_column_slice(&self.rows[j][a]).dot(r) + self.consts[j][a] * ramp
+                    } else {
+                        0.0
+                    }
+                })
+            })
             .collect();
         // the slipping pairs' pressures, and what the tied rows carry: g
         // less the slipping pairs' friction
@@ -612,7 +669,9 @@ impl Junction {
                 continue;
             }
             for a in 1..nd {
-                out[j].0[a] = rl.force[a] + rl.coupling[a] * pressure[j] + (1..nd).map(|c| rl.spring[a][c] * rels[j][c]).sum::<f64>();
+                out[j].0[a] = rl.force[a]
+                    + rl.coupling[a] * pressure[j]
+                    + (1..nd).map(|c| rl.spring[a][c] * rels[j][c]).sum::<f64>();
             }
         }
         // free rows the ties lock (no part along Z): open pairs' normals,
@@ -631,7 +690,8 @@ impl Junction {
                 ContactState::Open if is_locked((j, NORMAL)) => locked.push((j, NORMAL)),
                 ContactState::Slip => {
                     let shear = self.shear_dirs(j, |q| rel[q].state != ContactState::Open);
-                    let unmoved = shear.iter().all(|&dir| along(sub(rels[j], rel[p].target), dir).abs() <= 1e-10 * scale);
+                    let unmoved =
+                        shear.iter().all(|&dir| along(sub(rels[j], rel[p].target), dir).abs() <= 1e-10 * scale);
                     if unmoved && shear.iter().all(|&dir| is_locked((j, dir))) {
                         locked.extend(shear.iter().map(|&dir| (j, dir)));
                     }

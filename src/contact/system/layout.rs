@@ -102,7 +102,14 @@ impl Layout {
             match in_junction[p] {
                 Some((j, 0)) => {
                     debug_assert_eq!(junctions.len(), j);
-                    junctions.push(Junction::new(groups[j].clone(), |q| (ends[q].0, ends[q].1, frames[q]), &held, nd, &mut nm, &mut nr));
+                    junctions.push(Junction::new(
+                        groups[j].clone(),
+                        |q| (ends[q].0, ends[q].1, frames[q]),
+                        &held,
+                        nd,
+                        &mut nm,
+                        &mut nr,
+                    ));
                 }
                 Some(_) => {}
                 None => axes[p] = number_pair(fixed[p].as_ref().expect("a lone pair's values"), nd, &mut nm, &mut nr),
@@ -133,7 +140,10 @@ impl Layout {
             }
         }
         for (ax, &node) in joins.iter().zip(&join_nodes) {
-            vars.insert(node, NodeVars { frame: IDENTITY, terms: ax.map(|a| a.terms(0)), share: 1.0 / holders[node].len() as f64 });
+            vars.insert(
+                node,
+                NodeVars { frame: IDENTITY, terms: ax.map(|a| a.terms(0)), share: 1.0 / holders[node].len() as f64 },
+            );
         }
         let join_parts = join_nodes.iter().map(|&n| (holders[n].clone(), model.coords[n])).collect();
         let at = model.pairs.iter().map(|p| [where_is[p.k], where_is[p.l]]).collect();
@@ -169,7 +179,11 @@ impl Layout {
         (self.axes.iter().zip(&self.in_junction))
             .filter(|(_, j)| j.is_none())
             .map(|(ax, _)| vars_of(ax))
-            .chain(self.junctions.iter().map(|j| j.m.iter().map(|&m| Var::M(m)).chain(j.r.iter().map(|&r| Var::R(r))).collect()))
+            .chain(
+                self.junctions
+                    .iter()
+                    .map(|j| j.m.iter().map(|&m| Var::M(m)).chain(j.r.iter().map(|&r| Var::R(r))).collect()),
+            )
             .chain(self.joins.iter().map(vars_of))
             .collect()
     }

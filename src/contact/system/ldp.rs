@@ -73,7 +73,10 @@ fn nnls(e: &DMatrix<f64>, f: &DVector<f64>) -> DVector<f64> {
                 break;
             }
             // step from u towards z until the first passive entry reaches 0
-            let alpha = (0..m).filter(|&j| passive[j] && z[j] <= 0.0).map(|j| u[j] / (u[j] - z[j])).fold(f64::INFINITY, f64::min);
+            let alpha = (0..m)
+                .filter(|&j| passive[j] && z[j] <= 0.0)
+                .map(|j| u[j] / (u[j] - z[j]))
+                .fold(f64::INFINITY, f64::min);
             u += (&z - &u) * alpha;
             for j in 0..m {
                 if passive[j] && u[j] <= tol {

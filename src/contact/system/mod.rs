@@ -282,17 +282,26 @@ impl<'a> InterfaceProblem<'a> {
     /// order); `remote` applies the S of parts condensed for the iterative
     /// interface on other MPI ranks, `threads` this rank's ones; `sparse`:
     /// densely condensed parts solved by [`Sparse`] instead of [`Dense`].
-    pub fn new(model: &Model, parts: &[OperatorRef], remote: Option<&'a dyn Remote>, threads: usize, sparse: bool) -> Result<InterfaceProblem<'a>, ModelError> {
+    pub fn new(
+        model: &Model,
+        parts: &[OperatorRef],
+        remote: Option<&'a dyn Remote>,
+        threads: usize,
+        sparse: bool,
+    ) -> Result<InterfaceProblem<'a>, ModelError> {
         let basis = FaceBasis::new(model);
         let layout = Layout::new(model, parts, &basis);
         let rigid: Vec<PartModes> = parts.iter().map(|p| PartModes::new(model, &p.part.nodes(model))).collect();
         let positions = model.pairs.iter().map(|p| model.coords[p.k]).collect();
-        let not_held = |_| ModelError::Invalid {
+        let not_held = |_| {
+            ModelError::Invalid {
             scene: model.scene.clone(),
             key: "supports".into(),
             msg: format!("the bodies are not held even with every contact stuck (the bonded interface system is singular): add a support{}", crate::model::quality::why_not_held(model)),
+        }
         };
-        let solver: Box<dyn Solver + 'a> = if parts.iter().any(|p| matches!(p.s, SchurRef::Applied { .. }) && p.nc > 0) {
+        let solver: Box<dyn Solver + 'a> = if parts.iter().any(|p| matches!(p.s, SchurRef::Applied { .. }) && p.nc > 0)
+        {
             Box::new(Iterative::build(model, &layout, parts, &rigid, remote, threads))
         } else if sparse {
             Box::new(Sparse::new(&layout, parts, threads).map_err(not_held)?)
@@ -360,7 +369,9 @@ impl<'a> InterfaceProblem<'a> {
             Some((j, i)) => {
                 let jn = &self.layout.junctions[j];
                 (0..self.layout.nd)
-                    .map(|a| jn.rows[i][a].iter().zip(&jn.r).map(|(x, &r)| x * x * self.solver.diagonal(r)).sum::<f64>())
+                    .map(|a| {
+                        jn.rows[i][a].iter().zip(&jn.r).map(|(x, &r)| x * x * self.solver.diagonal(r)).sum::<f64>()
+                    })
                     .filter(|&v| v > 0.0)
                     .collect()
             }
@@ -442,8 +453,15 @@ impl<'a> InterfaceProblem<'a> {
             let ax = &layout.axes[p];
             for a in 1..nd {
                 let Some(ra) = ax[a].r() else { continue };
-                let springs = (1..nd).filter_map(|c| ax[c].r().map(|rc| (rc, rl.spring[a][c]))).filter(|s| s.1 != 0.0).collect();
-                slips.push(SlipRow { row: ra, normal: ax[0].r(), coupling: rl.coupling[a], springs, force: rl.force[a] });
+                let springs =
+                    (1..nd).filter_map(|c| ax[c].r().map(|rc| (rc, rl.spring[a][c]))).filter(|s| s.1 != 0.0).collect();
+                slips.push(SlipRow {
+                    row: ra,
+                    normal: ax[0].r(),
+                    coupling: rl.coupling[a],
+                    springs,
+                    force: rl.force[a],
+                });
             }
         }
         Freedom { r0, cols, pos, junctions, slips }
@@ -476,11 +494,26 @@ impl<'a> InterfaceProblem<'a> {
             .map(|p| {
                 let area = self.basis.areas[p];
                 let (f, r) = (forces[p], rels[p]);
-                PairResult { sigma_n: f[0] / area, tau_t: f[1] / area, tau_b: f[2] / area, gap: r[0], slip: r[1].hypot(r[2]) }
+                PairResult {
+                    sigma_n: f[0] / area,
+                    tau_t: f[1] / area,
+                    tau_b: f[2] / area,
+                    gap: r[0],
+                    slip: r[1].hypot(r[2]),
+                }
             })
             .collect();
         let d_c = self.displacements(&answer, lambda[0]);
-        Ok(InterfaceSolution { pairs, forces, rel: rels, d_c, residual: answer.residual, accuracy: answer.accuracy, loose: answer.loose, as_tied })
+        Ok(InterfaceSolution {
+            pairs,
+            forces,
+            rel: rels,
+            d_c,
+            residual: answer.residual,
+            accuracy: answer.accuracy,
+            loose: answer.loose,
+            as_tied,
+        })
     }
 
     /// The contact forces, `-(W r - c)`, and the relative displacements of
@@ -489,7 +522,13 @@ impl<'a> InterfaceProblem<'a> {
     /// what its ties carry, the least-norm way within their limits, and
     /// the forces its locked pairs would carry tied (`as_tied`).
     #[allow(clippy::type_complexity)]
-    fn forces(&self, rel: &[Relation], answer: &Answer, fr: &Freedom, ramp: f64) -> (Vec<[f64; 3]>, Vec<[f64; 3]>, Vec<Option<[f64; 3]>>) {
+    fn forces(
+        &self,
+        rel: &[Relation],
+        answer: &Answer,
+        fr: &Freedom,
+        ramp: f64,
+    ) -> (Vec<[f64; 3]>, Vec<[f64; 3]>, Vec<Option<[f64; 3]>>) {
         let nd = self.layout.nd;
         let (r, wr_c) = (&answer.r, &answer.residual_r);
         let mut forces = vec![[0.0; 3]; rel.len()];
@@ -517,7 +556,9 @@ impl<'a> InterfaceProblem<'a> {
                 let rl = &rel[p];
                 for a in 1..nd {
                     if ax[a].r().is_some() {
-                        forces[p][a] = rl.force[a] + rl.coupling[a] * pn + (1..nd).map(|c| rl.spring[a][c] * rels[p][c]).sum::<f64>();
+                        forces[p][a] = rl.force[a]
+                            + rl.coupling[a] * pn
+                            + (1..nd).map(|c| rl.spring[a][c] * rels[p][c]).sum::<f64>();
                     }
                 }
             }
@@ -579,7 +620,10 @@ impl<'a> InterfaceProblem<'a> {
 
     /// [`InterfaceProblem::stiffness`] of each slipping pair (0 elsewhere).
     fn slip_stiffness(&self, rel: &[Relation]) -> Vec<f64> {
-        rel.iter().enumerate().map(|(p, rl)| if rl.state == ContactState::Slip { self.stiffness(p) } else { 0.0 }).collect()
+        rel.iter()
+            .enumerate()
+            .map(|(p, rl)| if rl.state == ContactState::Slip { self.stiffness(p) } else { 0.0 })
+            .collect()
     }
 
     fn holds(&self) -> Holds<'_> {
@@ -621,7 +665,9 @@ impl Holds<'_> {
                 ContactState::Stick => frame[..nd].to_vec(),
                 ContactState::Slip => match slip {
                     SlipHolds::Everything => frame[..nd].to_vec(),
-                    SlipHolds::Spring => std::iter::once(frame[0]).chain(spring_range(&rl.spring, frame, nd, SPRING_HOLDS * stiffness[p])).collect(),
+                    SlipHolds::Spring => std::iter::once(frame[0])
+                        .chain(spring_range(&rl.spring, frame, nd, SPRING_HOLDS * stiffness[p]))
+                        .collect(),
                     SlipHolds::Normal => vec![frame[0]],
                 },
                 ContactState::Open => Vec::new(),

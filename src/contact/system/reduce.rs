@@ -17,10 +17,10 @@
 //! factorisations of the interface, once; a solve of the contact iteration
 //! then costs the factorisation of its free rows.
 
-use faer::linalg::matmul::matmul;
-use faer::linalg::triangular_solve::{solve_lower_triangular_in_place, solve_upper_triangular_in_place};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::{cholesky_in_place, cholesky_in_place_scratch};
+use faer::linalg::matmul::matmul;
+use faer::linalg::triangular_solve::{solve_lower_triangular_in_place, solve_upper_triangular_in_place};
 use faer::{Accum, Mat, MatMut};
 
 use super::coords::Blocks;
@@ -59,7 +59,8 @@ impl Reduced {
         let mut l = k_mm;
         if nm > 0 {
             let mut buf = MemBuffer::new(cholesky_in_place_scratch::<f64>(nm, par, Default::default()));
-            cholesky_in_place(l.as_mut(), Default::default(), par, MemStack::new(&mut buf), Default::default()).map_err(|_| NotHeld)?;
+            cholesky_in_place(l.as_mut(), Default::default(), par, MemStack::new(&mut buf), Default::default())
+                .map_err(|_| NotHeld)?;
         }
         if nm > 0 {
             // (the strict upper triangle of `l` still holds K_mm: the

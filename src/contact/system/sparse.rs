@@ -288,7 +288,8 @@ impl Solver for Sparse {
         };
         let scale = length(&b).max(length(&rhs0)).max(f64::MIN_POSITIVE);
         let loose = self.last_states.loose(states);
-        let tolerance = if loose { (LOOSE_TOLERANCE * scale).max(LOOSE_REDUCTION * length(&rhs0)) } else { TOLERANCE * scale };
+        let tolerance =
+            if loose { (LOOSE_TOLERANCE * scale).max(LOOSE_REDUCTION * length(&rhs0)) } else { TOLERANCE * scale };
         let (dx, conv) = gmres::solve(a, precondition, &rhs0, tolerance, RESTART, MAX_ITERATIONS);
         if let Ok(mut its) = self.iterations.lock() {
             its.push(conv.iterations + substitutions);
@@ -363,7 +364,8 @@ impl Free<'_> {
         for jb in &fr.junctions {
             let lifted = jb.lifted(|i| w[i], y);
             for (a, fa) in jb.cols.clone().enumerate() {
-                out[fa] += jb.cols.clone().enumerate().map(|(c, fc)| jb.kz[(a, c)] * y[fc]).sum::<f64>() + lifted.as_ref().map_or(0.0, |l| l[a]);
+                out[fa] += jb.cols.clone().enumerate().map(|(c, fc)| jb.kz[(a, c)] * y[fc]).sum::<f64>()
+                    + lifted.as_ref().map_or(0.0, |l| l[a]);
             }
         }
         out
@@ -384,7 +386,9 @@ impl Free<'_> {
         for jb in &fr.junctions {
             let lifted = jb.lifted(|i| -known[i], y0);
             for (a, fa) in jb.cols.clone().enumerate() {
-                rhs[fa] -= jb.fz[a] + jb.cols.clone().enumerate().map(|(c, fc)| jb.kz[(a, c)] * y0[fc]).sum::<f64>() + lifted.as_ref().map_or(0.0, |l| l[a]);
+                rhs[fa] -= jb.fz[a]
+                    + jb.cols.clone().enumerate().map(|(c, fc)| jb.kz[(a, c)] * y0[fc]).sum::<f64>()
+                    + lifted.as_ref().map_or(0.0, |l| l[a]);
             }
         }
         rhs
@@ -413,7 +417,7 @@ impl Preconditioner {
         }
         let mut entries: Vec<(usize, usize, f64)> = Vec::new();
         let mut free: Vec<(usize, usize, f64)> = Vec::new(); // (local DOF, local column, coefficient)
-        // the part's free columns, and each column's place among them
+                                                             // the part's free columns, and each column's place among them
         let (mut local, mut place) = (Vec::new(), vec![usize::MAX; n]);
         let mut block = Vec::new();
         for p in &sp.parts {
@@ -457,7 +461,11 @@ impl Preconditioner {
         }
         for s in &fr.slips {
             let i = fr.pos[s.row];
-            entries.extend(s.springs.iter().map(|&(rc, k)| (i.max(fr.pos[rc]), i.min(fr.pos[rc]), if i == fr.pos[rc] { k } else { 0.5 * k })));
+            entries.extend(
+                s.springs
+                    .iter()
+                    .map(|&(rc, k)| (i.max(fr.pos[rc]), i.min(fr.pos[rc]), if i == fr.pos[rc] { k } else { 0.5 * k })),
+            );
         }
         for jb in &fr.junctions {
             for (a, fa) in jb.cols.clone().enumerate() {
@@ -511,7 +519,8 @@ fn lower_from_entries(n: usize, entries: Vec<(usize, usize, f64)>) -> SymMatrix 
         next[c] += 1;
     }
     let mut col_ptr = vec![0usize; n + 1];
-    let (mut row_idx, mut values): (Vec<usize>, Vec<f64>) = (Vec::with_capacity(bucket.len()), Vec::with_capacity(bucket.len()));
+    let (mut row_idx, mut values): (Vec<usize>, Vec<f64>) =
+        (Vec::with_capacity(bucket.len()), Vec::with_capacity(bucket.len()));
     for c in 0..n {
         let column = &mut bucket[start[c]..start[c + 1]];
         column.sort_by_key(|&(r, _)| r);
@@ -575,7 +584,8 @@ fn means_matrix(parts: &[Local], nm: usize) -> SymMatrix {
     };
     let cliques: Vec<Vec<usize>> = (parts.iter())
         .map(|p| {
-            let mut c: Vec<usize> = p.terms.iter().flat_map(|t| t.vars[..t.n].iter().filter_map(|&(v, _)| means(v))).collect();
+            let mut c: Vec<usize> =
+                p.terms.iter().flat_map(|t| t.vars[..t.n].iter().filter_map(|&(v, _)| means(v))).collect();
             c.sort_unstable();
             c.dedup();
             c

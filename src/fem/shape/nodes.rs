@@ -160,12 +160,7 @@ const TRI6: [[f64; 3]; 6] = [
 /// Edges of the triangle, in gmsh order (mid-edge node 3 + i is on edge i).
 pub const TRI_EDGES: [[usize; 2]; 3] = [[0, 1], [1, 2], [2, 0]];
 
-const QUAD4: [[f64; 3]; 4] = [
-    [-1.0, -1.0, 0.0],
-    [1.0, -1.0, 0.0],
-    [1.0, 1.0, 0.0],
-    [-1.0, 1.0, 0.0],
-];
+const QUAD4: [[f64; 3]; 4] = [[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [1.0, 1.0, 0.0], [-1.0, 1.0, 0.0]];
 
 const QUAD8: [[f64; 3]; 8] = [
     [-1.0, -1.0, 0.0],
@@ -193,12 +188,7 @@ const QUAD9: [[f64; 3]; 9] = [
 /// Edges of the quadrangle, in gmsh order (mid-edge node 4 + i is on edge i).
 pub const QUAD_EDGES: [[usize; 2]; 4] = [[0, 1], [1, 2], [2, 3], [3, 0]];
 
-const TET4: [[f64; 3]; 4] = [
-    [0.0, 0.0, 0.0],
-    [1.0, 0.0, 0.0],
-    [0.0, 1.0, 0.0],
-    [0.0, 0.0, 1.0],
-];
+const TET4: [[f64; 3]; 4] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 
 const TET10: [[f64; 3]; 10] = [
     [0.0, 0.0, 0.0],
@@ -281,40 +271,16 @@ const HEX27: [[f64; 3]; 27] = [
 ];
 
 /// Edges of the hexahedron, in gmsh order (mid-edge node 8 + i is on edge i).
-pub const HEX_EDGES: [[usize; 2]; 12] = [
-    [0, 1],
-    [0, 3],
-    [0, 4],
-    [1, 2],
-    [1, 5],
-    [2, 3],
-    [2, 6],
-    [3, 7],
-    [4, 5],
-    [4, 7],
-    [5, 6],
-    [6, 7],
-];
+pub const HEX_EDGES: [[usize; 2]; 12] =
+    [[0, 1], [0, 3], [0, 4], [1, 2], [1, 5], [2, 3], [2, 6], [3, 7], [4, 5], [4, 7], [5, 6], [6, 7]];
 
 /// Faces of the hexahedron, in gmsh order (Hex27 face node 20 + i is the
 /// centre of face i). Corner order as gmsh's (outward normal).
-pub const HEX_FACES: [[usize; 4]; 6] = [
-    [0, 3, 2, 1],
-    [0, 1, 5, 4],
-    [0, 4, 7, 3],
-    [1, 2, 6, 5],
-    [2, 3, 7, 6],
-    [4, 5, 6, 7],
-];
+pub const HEX_FACES: [[usize; 4]; 6] =
+    [[0, 3, 2, 1], [0, 1, 5, 4], [0, 4, 7, 3], [1, 2, 6, 5], [2, 3, 7, 6], [4, 5, 6, 7]];
 
-const PRISM6: [[f64; 3]; 6] = [
-    [0.0, 0.0, -1.0],
-    [1.0, 0.0, -1.0],
-    [0.0, 1.0, -1.0],
-    [0.0, 0.0, 1.0],
-    [1.0, 0.0, 1.0],
-    [0.0, 1.0, 1.0],
-];
+const PRISM6: [[f64; 3]; 6] =
+    [[0.0, 0.0, -1.0], [1.0, 0.0, -1.0], [0.0, 1.0, -1.0], [0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]];
 
 const PRISM18: [[f64; 3]; 18] = [
     [0.0, 0.0, -1.0],
@@ -346,15 +312,15 @@ const PYRAMID14: [[f64; 3]; 14] = [
     [1.0, 1.0, 0.0],
     [-1.0, 1.0, 0.0],
     [0.0, 0.0, 1.0],
-    [0.0, -1.0, 0.0], //  5: edge (0,1)
-    [-1.0, 0.0, 0.0], //  6: edge (0,3)
+    [0.0, -1.0, 0.0],  //  5: edge (0,1)
+    [-1.0, 0.0, 0.0],  //  6: edge (0,3)
     [-0.5, -0.5, 0.5], //  7: edge (0,4)
-    [1.0, 0.0, 0.0],  //  8: edge (1,2)
-    [0.5, -0.5, 0.5], //  9: edge (1,4)
-    [0.0, 1.0, 0.0],  // 10: edge (2,3)
-    [0.5, 0.5, 0.5],  // 11: edge (2,4)
-    [-0.5, 0.5, 0.5], // 12: edge (3,4)
-    [0.0, 0.0, 0.0],  // 13: base centre
+    [1.0, 0.0, 0.0],   //  8: edge (1,2)
+    [0.5, -0.5, 0.5],  //  9: edge (1,4)
+    [0.0, 1.0, 0.0],   // 10: edge (2,3)
+    [0.5, 0.5, 0.5],   // 11: edge (2,4)
+    [-0.5, 0.5, 0.5],  // 12: edge (3,4)
+    [0.0, 0.0, 0.0],   // 13: base centre
 ];
 
 /// Edges of the pyramid, in gmsh order (mid-edge node 5 + i is on edge i).
@@ -403,7 +369,10 @@ pub fn faces(kind: CellKind) -> Vec<Face> {
             if kind.order() == 2 {
                 for i in 0..nc {
                     let (a, b) = (c[i], c[(i + 1) % nc]);
-                    let e = edges.iter().position(|e| *e == [a, b] || *e == [b, a]).expect("a face's edge is an edge of its cell");
+                    let e = edges
+                        .iter()
+                        .position(|e| *e == [a, b] || *e == [b, a])
+                        .expect("a face's edge is an edge of its cell");
                     nodes.push(first_mid + e);
                 }
             }

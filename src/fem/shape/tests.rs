@@ -14,13 +14,8 @@ fn sample_points(kind: CellKind) -> Vec<[f64; 3]> {
     let simplex = matches!(kind, CellKind::Tri3 | CellKind::Tri6 | CellKind::Tet4 | CellKind::Tet10);
     let prism = matches!(kind, CellKind::Prism6 | CellKind::Prism15 | CellKind::Prism18);
     let pyramid = matches!(kind, CellKind::Pyramid5 | CellKind::Pyramid13 | CellKind::Pyramid14);
-    let raw: [[f64; 3]; 5] = [
-        [0.1, 0.2, 0.3],
-        [0.37, 0.11, 0.05],
-        [0.05, 0.6, 0.21],
-        [0.25, 0.25, 0.25],
-        [0.7, 0.05, 0.1],
-    ];
+    let raw: [[f64; 3]; 5] =
+        [[0.1, 0.2, 0.3], [0.37, 0.11, 0.05], [0.05, 0.6, 0.21], [0.25, 0.25, 0.25], [0.7, 0.05, 0.1]];
     raw.iter()
         .map(|p| {
             let mut q = [0.0; 3];
@@ -306,7 +301,14 @@ fn locate_inverts_the_map_on_distorted_cells() {
     // prisms and pyramids under a smooth non-affine map
     let bend = |p: &[f64; 3]| [p[0] + 0.1 * p[1] * p[2], p[1] - 0.05 * p[0] * p[0], 0.8 * p[2] + 0.1 * p[0] * p[1]];
     let mut cases = cases;
-    for kind in [CellKind::Prism6, CellKind::Prism15, CellKind::Prism18, CellKind::Pyramid5, CellKind::Pyramid13, CellKind::Pyramid14] {
+    for kind in [
+        CellKind::Prism6,
+        CellKind::Prism15,
+        CellKind::Prism18,
+        CellKind::Pyramid5,
+        CellKind::Pyramid13,
+        CellKind::Pyramid14,
+    ] {
         cases.push((kind, reference_nodes(kind).iter().map(bend).collect()));
     }
     for (kind, coords) in cases {
@@ -373,7 +375,16 @@ fn faces_are_conforming_outward_and_where_their_kind_puts_their_nodes() {
     for kind in CellKind::ALL.into_iter().filter(|k| k.dim() == 3) {
         let nodes = reference_nodes(kind);
         let fs = faces(kind);
-        assert_eq!(fs.len(), match kind.n_corners() { 4 => 4, 8 => 6, _ => 5 }, "{}", kind.name());
+        assert_eq!(
+            fs.len(),
+            match kind.n_corners() {
+                4 => 4,
+                8 => 6,
+                _ => 5,
+            },
+            "{}",
+            kind.name()
+        );
         // every node of the cell but its interior ones is on some face
         let mut on_faces: Vec<usize> = fs.iter().flat_map(|f| f.nodes.iter().copied()).collect();
         on_faces.sort_unstable();
@@ -399,14 +410,25 @@ fn faces_are_conforming_outward_and_where_their_kind_puts_their_nodes() {
             let v: [f64; 3] = std::array::from_fn(|i| x[lin.n_nodes() - 1][i] - x[0][i]);
             let n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
             let m = midpoint(&x, &(0..lin.n_nodes()).collect::<Vec<_>>());
-            assert!((0..3).map(|i| n[i] * (m[i] - centre[i])).sum::<f64>() > 0.0, "{} face {:?} is not outward", kind.name(), f.nodes);
+            assert!(
+                (0..3).map(|i| n[i] * (m[i] - centre[i])).sum::<f64>() > 0.0,
+                "{} face {:?} is not outward",
+                kind.name(),
+                f.nodes
+            );
             // the trace of the cell's functions is the face's
             for s in face_points.iter().filter(|s| inside_reference(f.kind, **s, 0.0)) {
                 let (nf, _) = eval_vec(f.kind, *s);
                 let (nc, _) = eval_vec(kind, map(*s));
                 for a in 0..kind.n_nodes() {
                     let want = f.nodes.iter().position(|&b| b == a).map_or(0.0, |b| nf[b]);
-                    assert!((nc[a] - want).abs() < 1e-14, "{} face {:?} at {s:?}: N_{a} = {}, the face's {want}", kind.name(), f.nodes, nc[a]);
+                    assert!(
+                        (nc[a] - want).abs() < 1e-14,
+                        "{} face {:?} at {s:?}: N_{a} = {}, the face's {want}",
+                        kind.name(),
+                        f.nodes,
+                        nc[a]
+                    );
                 }
             }
         }

@@ -79,9 +79,7 @@ pub(super) fn build_mesh(
         cells: Vec::new(),
     };
     for &(dim, tag, _) in names {
-        groups
-            .entry((dim, tag))
-            .or_insert_with(|| new_group(dim, tag));
+        groups.entry((dim, tag)).or_insert_with(|| new_group(dim, tag));
     }
     let mut keys: Vec<_> = entities.iter().collect();
     keys.sort_by_key(|(k, _)| **k);
@@ -91,16 +89,11 @@ pub(super) fn build_mesh(
         }
     }
     if groups.is_empty() {
-        return Err(MshError::NoPhysicalGroups {
-            path: path.to_path_buf(),
-        });
+        return Err(MshError::NoPhysicalGroups { path: path.to_path_buf() });
     }
 
     for block in &blocks {
-        let phys = entities
-            .get(&(block.dim, block.entity))
-            .map(|p| p.as_slice())
-            .unwrap_or(&[]);
+        let phys = entities.get(&(block.dim, block.entity)).map(|p| p.as_slice()).unwrap_or(&[]);
         let n_per = block.kind.n_nodes();
         for (i, &etag) in block.tags.iter().enumerate() {
             let Some(node_tags) = block.nodes.get(i * n_per..(i + 1) * n_per) else {
@@ -120,11 +113,7 @@ pub(super) fn build_mesh(
                     }
                 }
             }
-            let cell = Cell {
-                kind: block.kind,
-                nodes,
-                tag: etag,
-            };
+            let cell = Cell { kind: block.kind, nodes, tag: etag };
             // Each group of the entity gets the cell (the last one without a copy).
             if let Some((&last, rest)) = phys.split_last() {
                 for &p in rest {
@@ -139,9 +128,5 @@ pub(super) fn build_mesh(
         }
     }
 
-    Ok(Mesh {
-        coords,
-        node_tags,
-        groups: groups.into_values().collect(),
-    })
+    Ok(Mesh { coords, node_tags, groups: groups.into_values().collect() })
 }

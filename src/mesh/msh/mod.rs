@@ -91,32 +91,18 @@ pub enum MshError {
         path.display(),
         supported = supported_kinds()
     )]
-    UnsupportedElement {
-        path: PathBuf,
-        code: i32,
-        name: String,
-        group: String,
-    },
+    UnsupportedElement { path: PathBuf, code: i32, name: String, group: String },
 
     #[error(
         "`{}`: element {element} of physical group `{group}` uses node {node}, which is not \
          in the $Nodes section: the file is inconsistent, mesh the .geo again with gmsh",
         path.display()
     )]
-    MissingNode {
-        path: PathBuf,
-        element: u64,
-        node: u64,
-        group: String,
-    },
+    MissingNode { path: PathBuf, element: u64, node: u64, group: String },
 }
 
 fn supported_kinds() -> String {
-    CellKind::ALL
-        .iter()
-        .map(|k| k.name())
-        .collect::<Vec<_>>()
-        .join(", ")
+    CellKind::ALL.iter().map(|k| k.name()).collect::<Vec<_>>().join(", ")
 }
 
 /// Reads an MSH 4.1 file (ASCII or binary) written by gmsh.
@@ -124,16 +110,9 @@ pub fn read_msh(path: &Path) -> Result<Mesh, MshError> {
     let bytes = match std::fs::read(path) {
         Ok(b) => b,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
-            return Err(MshError::NotFound {
-                path: path.to_path_buf(),
-            })
+            return Err(MshError::NotFound { path: path.to_path_buf() })
         }
-        Err(e) => {
-            return Err(MshError::Io {
-                path: path.to_path_buf(),
-                source: e,
-            })
-        }
+        Err(e) => return Err(MshError::Io { path: path.to_path_buf(), source: e }),
     };
     parse_msh(path, &bytes)
 }
@@ -160,9 +139,7 @@ fn parse_msh(path: &Path, bytes: &[u8]) -> Result<Mesh, MshError> {
         }
         let line = r.line();
         let name = match line.trim_ascii().strip_prefix(b"$") {
-            Some(n) if !n.is_empty() && !n.starts_with(b"End") => {
-                String::from_utf8_lossy(n).into_owned()
-            }
+            Some(n) if !n.is_empty() && !n.starts_with(b"End") => String::from_utf8_lossy(n).into_owned(),
             _ => {
                 return Err(r.malformed("expected the start of a section such as `$Nodes`"));
             }
@@ -185,9 +162,7 @@ fn parse_msh(path: &Path, bytes: &[u8]) -> Result<Mesh, MshError> {
                 r.end_section("Entities")?;
             }
             "PartitionedEntities" => {
-                return Err(MshError::Partitioned {
-                    path: path.to_path_buf(),
-                });
+                return Err(MshError::Partitioned { path: path.to_path_buf() });
             }
             "Nodes" => {
                 r.section = "Nodes";
@@ -229,7 +204,11 @@ fn parse_msh(path: &Path, bytes: &[u8]) -> Result<Mesh, MshError> {
     };
     let entities = entities.unwrap_or_default();
     if let Some((i, x)) = coords.iter().enumerate().find(|(_, x)| x.iter().any(|v| !v.is_finite())) {
-        return Err(MshError::NotFinite { path: path.to_path_buf(), node: node_tags.get(i).copied().unwrap_or(i as u64 + 1), x: *x });
+        return Err(MshError::NotFinite {
+            path: path.to_path_buf(),
+            node: node_tags.get(i).copied().unwrap_or(i as u64 + 1),
+            x: *x,
+        });
     }
     build_mesh(path, coords, node_tags, &names, &entities, blocks)
 }

@@ -29,15 +29,7 @@ pub(super) struct Reader<'a> {
 impl<'a> Reader<'a> {
     /// A cursor at the start of `buf`, ASCII until the header says otherwise.
     pub(super) fn new(path: &'a Path, buf: &'a [u8]) -> Self {
-        Reader {
-            path,
-            buf,
-            pos: 0,
-            binary: false,
-            size_t: 8,
-            little: true,
-            section: "",
-        }
+        Reader { path, buf, pos: 0, binary: false, size_t: 8, little: true, section: "" }
     }
 
     pub(super) fn malformed(&self, what: impl std::fmt::Display) -> MshError {
@@ -46,15 +38,8 @@ impl<'a> Reader<'a> {
         } else {
             format!("in section ${} at byte {}", self.section, self.pos)
         };
-        let end = if self.pos >= self.buf.len() {
-            " (end of file)"
-        } else {
-            ""
-        };
-        MshError::Malformed {
-            path: self.path.to_path_buf(),
-            detail: format!("{what} {place}{end}"),
-        }
+        let end = if self.pos >= self.buf.len() { " (end of file)" } else { "" };
+        MshError::Malformed { path: self.path.to_path_buf(), detail: format!("{what} {place}{end}") }
     }
 
     pub(super) fn at_end(&self) -> bool {
@@ -114,10 +99,7 @@ impl<'a> Reader<'a> {
         let before = self.pos;
         match self.word() {
             None => Err(self.malformed(format!("expected {what}"))),
-            Some(w) => match std::str::from_utf8(w)
-                .ok()
-                .and_then(|s| s.parse::<T>().ok())
-            {
+            Some(w) => match std::str::from_utf8(w).ok().and_then(|s| s.parse::<T>().ok()) {
                 Some(v) => Ok(v),
                 None => {
                     self.pos = before;
@@ -137,11 +119,7 @@ impl<'a> Reader<'a> {
         let b = self.bytes(self.size_t, what)?;
         Ok(if self.size_t == 4 {
             let a = [b[0], b[1], b[2], b[3]];
-            u64::from(if self.little {
-                u32::from_le_bytes(a)
-            } else {
-                u32::from_be_bytes(a)
-            })
+            u64::from(if self.little { u32::from_le_bytes(a) } else { u32::from_be_bytes(a) })
         } else {
             let a = [b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]];
             if self.little {
@@ -165,11 +143,7 @@ impl<'a> Reader<'a> {
         }
         let b = self.bytes(4, what)?;
         let a = [b[0], b[1], b[2], b[3]];
-        Ok(if self.little {
-            i32::from_le_bytes(a)
-        } else {
-            i32::from_be_bytes(a)
-        })
+        Ok(if self.little { i32::from_le_bytes(a) } else { i32::from_be_bytes(a) })
     }
 
     /// An MSH `double`.
@@ -179,11 +153,7 @@ impl<'a> Reader<'a> {
         }
         let b = self.bytes(8, what)?;
         let a = [b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]];
-        Ok(if self.little {
-            f64::from_le_bytes(a)
-        } else {
-            f64::from_be_bytes(a)
-        })
+        Ok(if self.little { f64::from_le_bytes(a) } else { f64::from_be_bytes(a) })
     }
 
     /// A capacity for `count` items of at least `min_bytes` bytes each that the

@@ -16,11 +16,7 @@ use crate::mesh::CellKind;
 
 /// A group's name from `$PhysicalNames`, or its tag when it has none.
 pub(super) fn group_name(names: &[(i32, i32, String)], dim: i32, tag: i32) -> String {
-    names
-        .iter()
-        .find(|(d, t, _)| *d == dim && *t == tag)
-        .map(|(_, _, n)| n.clone())
-        .unwrap_or_else(|| tag.to_string())
+    names.iter().find(|(d, t, _)| *d == dim && *t == tag).map(|(_, _, n)| n.clone()).unwrap_or_else(|| tag.to_string())
 }
 
 /// Name and node count of gmsh element types (codes of the MSH format), for
@@ -76,9 +72,7 @@ pub(super) fn read_header(r: &mut Reader) -> Result<(), MshError> {
         return Err(r.malformed("expected the format version"));
     };
     if version.parse::<f64>().is_err() {
-        return Err(r.malformed(format!(
-            "expected the format version 4.1, found `{version}`"
-        )));
+        return Err(r.malformed(format!("expected the format version 4.1, found `{version}`")));
     }
     let file_type: i32 = r.parse_word("the file type (0 ASCII, 1 binary)")?;
     let data_size: usize = r.parse_word("the size of size_t")?;
@@ -86,15 +80,10 @@ pub(super) fn read_header(r: &mut Reader) -> Result<(), MshError> {
         return Err(r.malformed("expected the end of the format line"));
     }
     if version != "4.1" {
-        return Err(MshError::Version {
-            path: r.path.to_path_buf(),
-            version,
-        });
+        return Err(MshError::Version { path: r.path.to_path_buf(), version });
     }
     if !(file_type == 0 || file_type == 1) {
-        return Err(r.malformed(format!(
-            "file type {file_type} is neither 0 (ASCII) nor 1 (binary)"
-        )));
+        return Err(r.malformed(format!("file type {file_type} is neither 0 (ASCII) nor 1 (binary)")));
     }
     if !(data_size == 4 || data_size == 8) {
         return Err(r.malformed(format!("size_t of {data_size} bytes (expected 4 or 8)")));
@@ -159,12 +148,7 @@ pub(super) fn read_entities(r: &mut Reader) -> Result<HashMap<(i32, i32), Vec<i3
     let mut counts = [0usize; 4];
     for (dim, c) in counts.iter_mut().enumerate() {
         *c = r.count(
-            [
-                "the number of points",
-                "the number of curves",
-                "the number of surfaces",
-                "the number of volumes",
-            ][dim],
+            ["the number of points", "the number of curves", "the number of surfaces", "the number of volumes"][dim],
         )?;
     }
     let mut map = HashMap::new();
@@ -233,10 +217,7 @@ pub(super) fn read_nodes(r: &mut Reader) -> Result<(Vec<[f64; 3]>, Vec<u64>), Ms
         }
     }
     if tags.len() != n_nodes {
-        return Err(r.malformed(format!(
-            "the header announces {n_nodes} nodes, the blocks hold {}",
-            tags.len()
-        )));
+        return Err(r.malformed(format!("the header announces {n_nodes} nodes, the blocks hold {}", tags.len())));
     }
     Ok((coords, tags))
 }
@@ -259,27 +240,16 @@ pub(super) fn read_elements(
         let entity = r.int("the entity tag of an element block")?;
         let code = r.int("the element type of an element block")?;
         let n = r.count("the number of elements in a block")?;
-        let phys = entities
-            .get(&(dim, entity))
-            .map(|p| p.as_slice())
-            .unwrap_or(&[]);
+        let phys = entities.get(&(dim, entity)).map(|p| p.as_slice()).unwrap_or(&[]);
         let kind = CellKind::from_gmsh(code);
         let n_per = match (kind, gmsh_type(code)) {
             (Some(k), _) if phys.is_empty() || k.dim() as i32 == dim => k.n_nodes(),
-            (Some(k), _) => {
-                return Err(r.malformed(format!(
-                    "{} elements in an entity of dimension {dim}",
-                    k.name()
-                )))
-            }
+            (Some(k), _) => return Err(r.malformed(format!("{} elements in an entity of dimension {dim}", k.name()))),
             (None, known) if !phys.is_empty() => {
                 return Err(MshError::UnsupportedElement {
                     path: r.path.to_path_buf(),
                     code,
-                    name: known
-                        .map(|(name, _)| name)
-                        .unwrap_or("unknown type")
-                        .to_string(),
+                    name: known.map(|(name, _)| name).unwrap_or("unknown type").to_string(),
                     group: group_name(names, dim, phys[0]),
                 });
             }
@@ -291,9 +261,7 @@ pub(super) fn read_elements(
         let keep = kind.is_some() && !phys.is_empty();
         let per_elem = 1 + n_per;
         if !keep && r.binary {
-            let len = n
-                .checked_mul(per_elem)
-                .and_then(|v| v.checked_mul(r.size_t));
+            let len = n.checked_mul(per_elem).and_then(|v| v.checked_mul(r.size_t));
             match len {
                 Some(len) if len <= r.remaining() => r.pos += len,
                 _ => return Err(r.malformed("expected the elements of a block")),
@@ -320,13 +288,7 @@ pub(super) fn read_elements(
             }
         }
         if let Some(kind) = kind.filter(|_| keep) {
-            blocks.push(Block {
-                dim,
-                entity,
-                kind,
-                tags,
-                nodes,
-            });
+            blocks.push(Block { dim, entity, kind, tags, nodes });
         }
     }
     Ok(blocks)

@@ -16,15 +16,7 @@ use crate::mesh::{Cell, Group};
 type Set<'a> = &'a [(&'a str, f64)];
 
 /// Meshes `geo` with the real gmsh CLI and returns the .msh path.
-fn gmsh(
-    dir: &TestDir,
-    geo: &str,
-    name: &str,
-    dim: usize,
-    order: usize,
-    binary: bool,
-    set: Set,
-) -> PathBuf {
+fn gmsh(dir: &TestDir, geo: &str, name: &str, dim: usize, order: usize, binary: bool, set: Set) -> PathBuf {
     let geo_path = dir.write(&format!("{name}.geo"), geo);
     let job = GmshJob {
         geo: geo_path,
@@ -42,18 +34,8 @@ fn gmsh(
 fn gmsh_raw(dir: &TestDir, geo: &str, name: &str, args: &[&str]) -> PathBuf {
     let geo_path = dir.write(&format!("{name}.geo"), geo);
     let msh = dir.0.join(format!("{name}.msh"));
-    let out = std::process::Command::new("gmsh")
-        .arg(&geo_path)
-        .args(args)
-        .arg("-o")
-        .arg(&msh)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = std::process::Command::new("gmsh").arg(&geo_path).args(args).arg("-o").arg(&msh).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     msh
 }
 
@@ -129,27 +111,15 @@ fn two_rectangles_order_1_and_2_ascii_and_binary() {
             let mesh = read_msh(&path).unwrap();
             check_against_mshio(&path, &mesh);
 
-            let summary: Vec<(&str, usize, i32)> = mesh
-                .groups
-                .iter()
-                .map(|g| (g.name.as_str(), g.dim, g.tag))
-                .collect();
+            let summary: Vec<(&str, usize, i32)> =
+                mesh.groups.iter().map(|g| (g.name.as_str(), g.dim, g.tag)).collect();
             assert_eq!(
                 summary,
-                [
-                    ("corner", 0, 5),
-                    ("shared", 1, 3),
-                    ("bottom", 1, 4),
-                    ("left", 2, 1),
-                    ("right", 2, 2)
-                ]
+                [("corner", 0, 5), ("shared", 1, 3), ("bottom", 1, 4), ("left", 2, 1), ("right", 2, 2)]
             );
             assert_eq!(mesh.dim(), 2);
-            let (line, tri) = if order == 1 {
-                (CellKind::Line2, CellKind::Tri3)
-            } else {
-                (CellKind::Line3, CellKind::Tri6)
-            };
+            let (line, tri) =
+                if order == 1 { (CellKind::Line2, CellKind::Tri3) } else { (CellKind::Line3, CellKind::Tri6) };
             let g = |n: &str| mesh.group(n).unwrap();
             assert_eq!(kinds(g("corner")), [CellKind::Point1]);
             assert_eq!(kinds(g("shared")), [line]);
@@ -172,11 +142,7 @@ fn two_rectangles_order_1_and_2_ascii_and_binary() {
                 assert!((mesh.coords[*n][0] - 1.0).abs() < 1e-12);
             }
             // The surfaces meet only there.
-            let common: Vec<usize> = left
-                .iter()
-                .copied()
-                .filter(|n| right.binary_search(n).is_ok())
-                .collect();
+            let common: Vec<usize> = left.iter().copied().filter(|n| right.binary_search(n).is_ok()).collect();
             assert_eq!(common, shared);
 
             // Counter-clockwise cells tile each unit square.
@@ -195,10 +161,7 @@ fn two_rectangles_order_1_and_2_ascii_and_binary() {
         // ASCII and binary files of the same mesh read the same (ASCII
         // coordinates have 16 significant digits).
         let (bin, ascii) = (&by_format[0], &by_format[1]);
-        assert_eq!(
-            (&bin.node_tags, &bin.groups),
-            (&ascii.node_tags, &ascii.groups)
-        );
+        assert_eq!((&bin.node_tags, &bin.groups), (&ascii.node_tags, &ascii.groups));
         assert_eq!(bin.coords.len(), ascii.coords.len());
         for (a, b) in bin.coords.iter().zip(&ascii.coords) {
             assert!((0..3).all(|d| (a[d] - b[d]).abs() < 1e-14), "{a:?} {b:?}");
@@ -212,32 +175,14 @@ fn hex_box_order_1_and_2() {
     let cases: [(usize, Set, CellKind, CellKind, usize); 3] = [
         (1, &[], CellKind::Hex8, CellKind::Quad4, 27),
         (2, &[], CellKind::Hex27, CellKind::Quad9, 125),
-        (
-            2,
-            &[("Mesh.SecondOrderIncomplete", 1.0)],
-            CellKind::Hex20,
-            CellKind::Quad8,
-            125 - 8 - 36,
-        ),
+        (2, &[("Mesh.SecondOrderIncomplete", 1.0)], CellKind::Hex20, CellKind::Quad8, 125 - 8 - 36),
     ];
     for (i, (order, set, hex, quad, n_nodes)) in cases.into_iter().enumerate() {
         for binary in [true, false] {
-            let path = gmsh(
-                &dir,
-                BOX_GEO,
-                &format!("box{i}-{binary}"),
-                3,
-                order,
-                binary,
-                set,
-            );
+            let path = gmsh(&dir, BOX_GEO, &format!("box{i}-{binary}"), 3, order, binary, set);
             let mesh = read_msh(&path).unwrap();
             check_against_mshio(&path, &mesh);
-            let summary: Vec<(&str, usize)> = mesh
-                .groups
-                .iter()
-                .map(|g| (g.name.as_str(), g.dim))
-                .collect();
+            let summary: Vec<(&str, usize)> = mesh.groups.iter().map(|g| (g.name.as_str(), g.dim)).collect();
             assert_eq!(summary, [("bottom", 2), ("top", 2), ("box", 3)]);
             assert_eq!(mesh.dim(), 3);
             let b = mesh.group("box").unwrap();
@@ -263,12 +208,7 @@ fn quads_order_1_and_2() {
     let cases: [(usize, Set, CellKind, CellKind); 3] = [
         (1, &[], CellKind::Quad4, CellKind::Line2),
         (2, &[], CellKind::Quad9, CellKind::Line3),
-        (
-            2,
-            &[("Mesh.SecondOrderIncomplete", 1.0)],
-            CellKind::Quad8,
-            CellKind::Line3,
-        ),
+        (2, &[("Mesh.SecondOrderIncomplete", 1.0)], CellKind::Quad8, CellKind::Line3),
     ];
     for (i, (order, set, quad, line)) in cases.into_iter().enumerate() {
         let path = gmsh(&dir, QUAD_GEO, &format!("quad{i}"), 2, order, true, set);
@@ -284,30 +224,11 @@ fn quads_order_1_and_2() {
 fn parametric_nodes_are_read() {
     let dir = TestDir::new("param");
     for binary in [true, false] {
-        let plain = read_msh(&gmsh(
-            &dir,
-            TWO_RECT_GEO,
-            &format!("plain{binary}"),
-            2,
-            2,
-            binary,
-            &[],
-        ))
-        .unwrap();
-        let path = gmsh(
-            &dir,
-            TWO_RECT_GEO,
-            &format!("param{binary}"),
-            2,
-            2,
-            binary,
-            &[("Mesh.SaveParametric", 1.0)],
-        );
+        let plain = read_msh(&gmsh(&dir, TWO_RECT_GEO, &format!("plain{binary}"), 2, 2, binary, &[])).unwrap();
+        let path = gmsh(&dir, TWO_RECT_GEO, &format!("param{binary}"), 2, 2, binary, &[("Mesh.SaveParametric", 1.0)]);
         assert!(
             std::fs::read(&path).unwrap().len()
-                > std::fs::read(dir.0.join(format!("plain{binary}.msh")))
-                    .unwrap()
-                    .len()
+                > std::fs::read(dir.0.join(format!("plain{binary}.msh"))).unwrap().len()
         );
         assert_eq!(read_msh(&path).unwrap(), plain);
     }
@@ -362,51 +283,15 @@ fn parse(text: &[u8]) -> Result<Mesh, MshError> {
 fn node_tags_out_of_order_and_several_physical_tags() {
     let mesh = parse(HAND.as_bytes()).unwrap();
     assert_eq!(mesh.node_tags, [3, 1, 2, 4]);
-    assert_eq!(
-        mesh.coords,
-        [
-            [1.0, 0.0, 0.0],
-            [0.0, 0.0, 0.0],
-            [1.0, 1.0, 0.0],
-            [0.0, 1.0, 0.0]
-        ]
-    );
-    let summary: Vec<(&str, usize, i32, usize)> = mesh
-        .groups
-        .iter()
-        .map(|g| (g.name.as_str(), g.dim, g.tag, g.cells.len()))
-        .collect();
-    assert_eq!(
-        summary,
-        [
-            ("an edge", 1, 7, 1),
-            ("plate", 2, 3, 2),
-            ("9", 2, 9, 2),
-            ("11", 2, 11, 2)
-        ]
-    );
+    assert_eq!(mesh.coords, [[1.0, 0.0, 0.0], [0.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]]);
+    let summary: Vec<(&str, usize, i32, usize)> =
+        mesh.groups.iter().map(|g| (g.name.as_str(), g.dim, g.tag, g.cells.len())).collect();
+    assert_eq!(summary, [("an edge", 1, 7, 1), ("plate", 2, 3, 2), ("9", 2, 9, 2), ("11", 2, 11, 2)]);
     let edge = &mesh.groups[0].cells[0];
-    assert_eq!(
-        (edge.kind, edge.nodes.as_slice(), edge.tag),
-        (CellKind::Line2, &[1usize, 0][..], 1)
-    );
+    assert_eq!((edge.kind, edge.nodes.as_slice(), edge.tag), (CellKind::Line2, &[1usize, 0][..], 1));
     let plate = &mesh.groups[1].cells;
-    assert_eq!(
-        plate[0],
-        Cell {
-            kind: CellKind::Tri3,
-            nodes: vec![1, 0, 2],
-            tag: 2
-        }
-    );
-    assert_eq!(
-        plate[1],
-        Cell {
-            kind: CellKind::Tri3,
-            nodes: vec![1, 2, 3],
-            tag: 3
-        }
-    );
+    assert_eq!(plate[0], Cell { kind: CellKind::Tri3, nodes: vec![1, 0, 2], tag: 2 });
+    assert_eq!(plate[1], Cell { kind: CellKind::Tri3, nodes: vec![1, 2, 3], tag: 3 });
     assert_eq!(mesh.groups[2].cells, *plate);
     assert_eq!(mesh.groups[3].cells, *plate);
 
@@ -438,13 +323,7 @@ fn node_tags_out_of_order_and_several_physical_tags() {
 fn mshio_would_misplace_these_nodes() {
     // Why this module has its own reader: mshio drops contiguous node tags.
     let m = mshio::parse_msh_bytes(HAND.as_bytes()).unwrap();
-    assert!(m
-        .data
-        .nodes
-        .unwrap()
-        .node_blocks
-        .iter()
-        .all(|b| b.node_tags.is_none()));
+    assert!(m.data.nodes.unwrap().node_blocks.iter().all(|b| b.node_tags.is_none()));
 }
 
 #[test]
@@ -453,23 +332,14 @@ fn missing_file() {
     let p = dir.0.join("nothere.msh");
     let e = read_msh(&p).unwrap_err();
     assert!(matches!(e, MshError::NotFound { .. }));
-    assert_eq!(
-        e.to_string(),
-        format!(
-            "mesh file `{}` does not exist: check `mesh =` in the scene",
-            p.display()
-        )
-    );
+    assert_eq!(e.to_string(), format!("mesh file `{}` does not exist: check `mesh =` in the scene", p.display()));
 }
 
 fn assert_malformed(r: Result<Mesh, MshError>, detail: &str) {
     match r {
         Err(e @ MshError::Malformed { .. }) => {
             let msg = e.to_string();
-            assert!(
-                msg.starts_with("`test.msh` is not a complete MSH 4.1 file (truncated?): "),
-                "{msg}"
-            );
+            assert!(msg.starts_with("`test.msh` is not a complete MSH 4.1 file (truncated?): "), "{msg}");
             assert!(msg.contains(detail), "{msg} lacks {detail:?}");
         }
         other => panic!("expected Malformed ({detail}), got {other:?}"),
@@ -480,46 +350,19 @@ fn assert_malformed(r: Result<Mesh, MshError>, detail: &str) {
 fn empty_garbage_and_inconsistent_files() {
     assert_malformed(parse(b""), "the file is empty");
     assert_malformed(parse(b"  \n"), "the file is empty");
-    assert_malformed(
-        parse(b"Point(1) = {0, 0, 0};\n"),
-        "does not start with `$MeshFormat`",
-    );
-    assert_malformed(
-        parse(&[0xff, 0x00, 0x13, 0x37]),
-        "does not start with `$MeshFormat`",
-    );
-    assert_malformed(
-        parse(b"$MeshFormat\nabc 0 8\n$EndMeshFormat\n"),
-        "found `abc`",
-    );
-    assert_malformed(
-        parse(b"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"),
-        "no $Nodes section",
-    );
+    assert_malformed(parse(b"Point(1) = {0, 0, 0};\n"), "does not start with `$MeshFormat`");
+    assert_malformed(parse(&[0xff, 0x00, 0x13, 0x37]), "does not start with `$MeshFormat`");
+    assert_malformed(parse(b"$MeshFormat\nabc 0 8\n$EndMeshFormat\n"), "found `abc`");
+    assert_malformed(parse(b"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"), "no $Nodes section");
     assert_malformed(
         parse(b"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n0 0 1 0\n$EndNodes\n"),
         "no $Elements section",
     );
-    assert_malformed(
-        parse(b"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Foo\n1 2 3\n"),
-        "no `$EndFoo`",
-    );
-    assert_malformed(
-        parse(HAND.replace("1 1 3\n", "1 1 x\n").as_bytes()),
-        "found `x`",
-    );
-    assert_malformed(
-        parse(HAND.replace("2 4 1 4", "2 5 1 4").as_bytes()),
-        "announces 5 nodes",
-    );
-    assert_malformed(
-        parse(HAND.replace("\n4\n1 1 0", "\n3\n1 1 0").as_bytes()),
-        "node tag 3 appears twice",
-    );
-    assert_malformed(
-        parse(HAND.replace("$EndNodes", "$EndNode").as_bytes()),
-        "expected `$EndNodes`",
-    );
+    assert_malformed(parse(b"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Foo\n1 2 3\n"), "no `$EndFoo`");
+    assert_malformed(parse(HAND.replace("1 1 3\n", "1 1 x\n").as_bytes()), "found `x`");
+    assert_malformed(parse(HAND.replace("2 4 1 4", "2 5 1 4").as_bytes()), "announces 5 nodes");
+    assert_malformed(parse(HAND.replace("\n4\n1 1 0", "\n3\n1 1 0").as_bytes()), "node tag 3 appears twice");
+    assert_malformed(parse(HAND.replace("$EndNodes", "$EndNode").as_bytes()), "expected `$EndNodes`");
     // Huge counts fail fast, without allocating for them.
     let huge = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 1000000000000000000 1 1000000000000000000\n\
                 2 1 0 1000000000000000000\n1\n";
@@ -532,22 +375,9 @@ fn empty_garbage_and_inconsistent_files() {
 fn missing_node() {
     let text = HAND.replace("3 1 2 4\n", "3 1 2 99\n");
     let e = parse(text.as_bytes()).unwrap_err();
-    assert!(
-        matches!(
-            e,
-            MshError::MissingNode {
-                element: 3,
-                node: 99,
-                ..
-            }
-        ),
-        "{e:?}"
-    );
+    assert!(matches!(e, MshError::MissingNode { element: 3, node: 99, .. }), "{e:?}");
     let msg = e.to_string();
-    assert!(
-        msg.contains("`test.msh`") && msg.contains("element 3") && msg.contains("node 99"),
-        "{msg}"
-    );
+    assert!(msg.contains("`test.msh`") && msg.contains("element 3") && msg.contains("node 99"), "{msg}");
     assert!(msg.contains("`plate`"), "{msg}");
 }
 
@@ -561,16 +391,10 @@ fn old_formats_are_named() {
     ] {
         let path = gmsh_raw(&dir, TWO_RECT_GEO, "old", args);
         let e = read_msh(&path).unwrap_err();
-        assert!(
-            matches!(&e, MshError::Version { version: v, .. } if v == version),
-            "{e:?}"
-        );
+        assert!(matches!(&e, MshError::Version { version: v, .. } if v == version), "{e:?}");
         assert_eq!(
             e.to_string(),
-            format!(
-                "`{}` is MSH {version}: re-export it with gmsh -format msh41",
-                path.display()
-            )
+            format!("`{}` is MSH {version}: re-export it with gmsh -format msh41", path.display())
         );
     }
 }
@@ -578,11 +402,7 @@ fn old_formats_are_named() {
 #[test]
 fn no_physical_groups() {
     let dir = TestDir::new("nophys");
-    let geo: String = TWO_RECT_GEO
-        .lines()
-        .filter(|l| !l.starts_with("Physical"))
-        .collect::<Vec<_>>()
-        .join("\n");
+    let geo: String = TWO_RECT_GEO.lines().filter(|l| !l.starts_with("Physical")).collect::<Vec<_>>().join("\n");
     let path = gmsh(&dir, &geo, "nophys", 2, 1, true, &[]);
     let e = read_msh(&path).unwrap_err();
     assert!(matches!(e, MshError::NoPhysicalGroups { .. }), "{e:?}");
@@ -633,10 +453,16 @@ fn check_nodes_on_reference_positions(mesh: &Mesh, kind: CellKind) -> usize {
     for c in mesh.groups.iter().flat_map(|g| &g.cells).filter(|c| c.kind == kind) {
         for (a, xi) in shape::reference_nodes(kind).iter().enumerate() {
             shape::eval(lin, *xi, &mut n, &mut dn);
-            let want: [f64; 3] = std::array::from_fn(|i| (0..lin.n_nodes()).map(|b| n[b] * mesh.coords[c.nodes[b]][i]).sum());
+            let want: [f64; 3] =
+                std::array::from_fn(|i| (0..lin.n_nodes()).map(|b| n[b] * mesh.coords[c.nodes[b]][i]).sum());
             let got = mesh.coords[c.nodes[a]];
             // gmsh places the nodes to ~1e-12 of the unit cells' size
-            assert!((0..3).all(|i| (got[i] - want[i]).abs() < 1e-9), "{} {}: node {a} at {got:?}, expected {want:?}", kind.name(), c.tag);
+            assert!(
+                (0..3).all(|i| (got[i] - want[i]).abs() < 1e-9),
+                "{} {}: node {a} at {got:?}, expected {want:?}",
+                kind.name(),
+                c.tag
+            );
         }
         count += 1;
     }
@@ -691,17 +517,16 @@ fn unsupported_elements_name_type_and_group() {
         assert!(msg.contains("order 1 or 2") && msg.contains("prisms or pyramids"), "{msg}");
         assert!(msg.contains("`base`") && msg.contains(&path.display().to_string()), "{msg}");
         // the volume alone: its order-3 prisms
-        let volume_only = PRISM_GEO.replace("Physical Surface(\"base\") = {1};", "").replace("Physical Surface(\"side\") = {out[2]};", "");
+        let volume_only = PRISM_GEO
+            .replace("Physical Surface(\"base\") = {1};", "")
+            .replace("Physical Surface(\"side\") = {out[2]};", "");
         let path = gmsh_raw(&dir, &volume_only, &format!("order3v{binary}"), &args);
         let msg = read_msh(&path).unwrap_err().to_string();
         assert!(msg.contains("gmsh type 90 (prism40)") && msg.contains("`wedge`"), "{msg}");
     }
     // Unsupported elements outside any physical group are skipped.
     let text = HAND
-        .replace(
-            "$Elements\n2 3 1 3\n",
-            "$Elements\n3 4 1 4\n2 2 21 1\n4 1 2 3 4 1 2 3 4 1 2\n",
-        )
+        .replace("$Elements\n2 3 1 3\n", "$Elements\n3 4 1 4\n2 2 21 1\n4 1 2 3 4 1 2 3 4 1 2\n")
         .replace("0 1 1 0\n", "0 1 2 0\n")
         .replace("$EndEntities", "2 0 0 0 1 1 0 0 0\n$EndEntities");
     let mesh = parse(text.as_bytes()).unwrap();
@@ -739,10 +564,7 @@ fn truncated_and_corrupted_files_never_panic() {
             if len >= complete {
                 assert_eq!(r.unwrap(), whole);
             } else {
-                assert!(
-                    matches!(r, Err(MshError::Malformed { .. })),
-                    "cut at {len}: {r:?}"
-                );
+                assert!(matches!(r, Err(MshError::Malformed { .. })), "cut at {len}: {r:?}");
             }
         }
         // Random byte changes: any result but a panic.

@@ -32,7 +32,13 @@ impl Lock {
     pub fn acquire(dir: &Path, waiting: &mut dyn FnMut(&str)) -> Result<Lock, OutputError> {
         let target = Target::resolve(dir)?;
         let path = target.lock_path();
-        let file = OpenOptions::new().read(true).write(true).create(true).truncate(false).open(&path).map_err(|source| OutputError::Lock { path: path.clone(), source })?;
+        let file = OpenOptions::new()
+            .read(true)
+            .write(true)
+            .create(true)
+            .truncate(false)
+            .open(&path)
+            .map_err(|source| OutputError::Lock { path: path.clone(), source })?;
         match file.try_lock() {
             Ok(()) => {}
             Err(TryLockError::WouldBlock) => {
@@ -58,7 +64,11 @@ impl Lock {
     /// Writes this process's id into the lock file, for the next waiter's
     /// message (best effort: the lock is the flock, not the text).
     fn mark(&mut self) {
-        let _ = self.file.set_len(0).and_then(|()| self.file.rewind()).and_then(|()| writeln!(self.file, "{}", std::process::id()));
+        let _ = self
+            .file
+            .set_len(0)
+            .and_then(|()| self.file.rewind())
+            .and_then(|()| writeln!(self.file, "{}", std::process::id()));
     }
 }
 

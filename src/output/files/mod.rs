@@ -91,33 +91,13 @@ pub enum OutputError {
         "{location} field `{field}` has {len} values, expected {} ({n_comp} per {location} × {count} {location}s)",
         *n_comp as u128 * *count as u128
     )]
-    FieldLength {
-        location: &'static str,
-        field: String,
-        n_comp: usize,
-        count: usize,
-        len: usize,
-    },
+    FieldLength { location: &'static str, field: String, n_comp: usize, count: usize, len: usize },
     #[error("{location} field `{field}` has no components")]
-    NoComponents {
-        location: &'static str,
-        field: String,
-    },
+    NoComponents { location: &'static str, field: String },
     #[error("cell {index} (gmsh element {tag}, {kind}) has {actual} nodes, expected {expected}")]
-    CellNodes {
-        index: usize,
-        tag: u64,
-        kind: &'static str,
-        expected: usize,
-        actual: usize,
-    },
+    CellNodes { index: usize, tag: u64, kind: &'static str, expected: usize, actual: usize },
     #[error("cell {index} (gmsh element {tag}) refers to node {node}, but there are only {n_points} points")]
-    NodeOutOfRange {
-        index: usize,
-        tag: u64,
-        node: usize,
-        n_points: usize,
-    },
+    NodeOutOfRange { index: usize, tag: u64, node: usize, n_points: usize },
     #[error("too many {what} for a VTU file: {count}")]
     TooLarge { what: &'static str, count: usize },
     #[error("cannot encode the VTU data: {0}")]
@@ -200,7 +180,9 @@ impl Staged {
         let out = &target.path;
         let exists = match fs::symlink_metadata(out) {
             Ok(m) if m.is_dir() => true,
-            Ok(_) => return Err(OutputError::InvalidDir { path: out.clone(), why: "it is a file, not a directory".into() }),
+            Ok(_) => {
+                return Err(OutputError::InvalidDir { path: out.clone(), why: "it is a file, not a directory".into() })
+            }
             Err(_) => false,
         };
         for (name, _) in &self.files {
@@ -209,7 +191,11 @@ impl Staged {
                 return Err(OutputError::InTheWay { path: p });
             }
         }
-        let run = format!("{}-{}", std::process::id(), std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_nanos()));
+        let run = format!(
+            "{}-{}",
+            std::process::id(),
+            std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_nanos())
+        );
         let old = Manifest::read(out);
         let names: Vec<String> = self.files.iter().map(|(n, _)| n.clone()).collect();
         let manifest = old.after(&run, &self.writer, &names, self.keep);
@@ -219,7 +205,11 @@ impl Staged {
         let stage = target.stage_path(&run);
         fs::create_dir(&stage).map_err(|source| OutputError::CreateDir { path: stage.clone(), source })?;
         let swapped = self.fill(&stage, exists.then_some(out.as_path()), &replaced, &manifest).and_then(|()| {
-            swap::swap(&stage, target, &run).map_err(|source| OutputError::Rename { from: stage.clone(), to: out.clone(), source })
+            swap::swap(&stage, target, &run).map_err(|source| OutputError::Rename {
+                from: stage.clone(),
+                to: out.clone(),
+                source,
+            })
         });
         let old_set = match swapped {
             Ok(old_set) => old_set,
@@ -244,9 +234,16 @@ impl Staged {
     }
 
     /// The new set in `stage`: what stays of `out`, the files, the manifest.
-    fn fill(&self, stage: &Path, out: Option<&Path>, replaced: &dyn Fn(&OsStr) -> bool, manifest: &Manifest) -> Result<(), OutputError> {
+    fn fill(
+        &self,
+        stage: &Path,
+        out: Option<&Path>,
+        replaced: &dyn Fn(&OsStr) -> bool,
+        manifest: &Manifest,
+    ) -> Result<(), OutputError> {
         if let Some(out) = out {
-            swap::carry(out, stage, replaced).map_err(|source| OutputError::Carry { from: out.to_path_buf(), source })?;
+            swap::carry(out, stage, replaced)
+                .map_err(|source| OutputError::Carry { from: out.to_path_buf(), source })?;
             if let Ok(m) = fs::metadata(out) {
                 let _ = fs::set_permissions(stage, m.permissions());
             }

@@ -38,13 +38,17 @@ impl Target {
                 let (Some(parent), Some(name)) = (abs.parent(), abs.file_name()) else {
                     return Err(invalid("it has no parent directory to stage the results in"));
                 };
-                fs::create_dir_all(parent).map_err(|source| OutputError::CreateDir { path: parent.to_path_buf(), source })?;
-                let parent = fs::canonicalize(parent).map_err(|source| OutputError::CreateDir { path: parent.to_path_buf(), source })?;
+                fs::create_dir_all(parent)
+                    .map_err(|source| OutputError::CreateDir { path: parent.to_path_buf(), source })?;
+                let parent = fs::canonicalize(parent)
+                    .map_err(|source| OutputError::CreateDir { path: parent.to_path_buf(), source })?;
                 parent.join(name)
             }
         };
         match (real.parent(), real.file_name()) {
-            (Some(parent), Some(name)) => Ok(Target { parent: parent.to_path_buf(), name: name.to_os_string(), path: real.clone() }),
+            (Some(parent), Some(name)) => {
+                Ok(Target { parent: parent.to_path_buf(), name: name.to_os_string(), path: real.clone() })
+            }
             _ => Err(invalid("it has no parent directory to stage the results in")),
         }
     }

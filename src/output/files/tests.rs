@@ -13,7 +13,8 @@ fn scratch(tag: &str) -> PathBuf {
 }
 
 fn listing(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    let mut v: Vec<String> =
+        fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
     v.sort();
     v
 }
@@ -182,7 +183,10 @@ fn a_second_commit_waits_for_the_lock_and_says_so() {
     let (r, said) = other.join().unwrap();
     r.unwrap();
     assert_eq!(said.len(), 1);
-    assert!(said[0].contains(&format!("(process {})", std::process::id())) && said[0].contains("waiting for another run"), "{said:?}");
+    assert!(
+        said[0].contains(&format!("(process {})", std::process::id())) && said[0].contains("waiting for another run"),
+        "{said:?}"
+    );
     assert!(root.join(MANIFEST).is_file());
     fs::remove_dir_all(&root).unwrap();
 }

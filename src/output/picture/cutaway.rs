@@ -88,7 +88,12 @@ impl Cut {
     /// The sections of every body's cells by the box's faces that cut the
     /// model (3D only), each piece clipped to the box: (body, polygon, unit
     /// normal of the face). `value(body, node)` is the field.
-    pub(super) fn sections(&self, model: &Model, u: &dyn Fn(usize) -> [f64; 3], value: &dyn Fn(usize, usize) -> f32) -> Vec<(usize, Vec<Vertex>, [f64; 3])> {
+    pub(super) fn sections(
+        &self,
+        model: &Model,
+        u: &dyn Fn(usize) -> [f64; 3],
+        value: &dyn Fn(usize, usize) -> f32,
+    ) -> Vec<(usize, Vec<Vertex>, [f64; 3])> {
         let mut out = Vec::new();
         if self.dim != 3 {
             return out;
@@ -143,7 +148,10 @@ fn tets(cell: &Cell) -> Vec<[usize; 4]> {
         CellKind::Tet4 | CellKind::Tet10 => vec![[c[0], c[1], c[2], c[3]]],
         CellKind::Hex8 | CellKind::Hex20 | CellKind::Hex27 => {
             // six about the diagonal 0-6
-            [[0, 1, 2, 6], [0, 2, 3, 6], [0, 3, 7, 6], [0, 7, 4, 6], [0, 4, 5, 6], [0, 5, 1, 6]].iter().map(|t| t.map(|i| c[i])).collect()
+            [[0, 1, 2, 6], [0, 2, 3, 6], [0, 3, 7, 6], [0, 7, 4, 6], [0, 4, 5, 6], [0, 5, 1, 6]]
+                .iter()
+                .map(|t| t.map(|i| c[i]))
+                .collect()
         }
         _ => Vec::new(),
     }
@@ -162,7 +170,8 @@ fn slice(t: [Vertex; 4], d: usize, at: f64) -> Vec<Vertex> {
     if pts.len() == 4 {
         // order the quadrilateral round its centre, in the plane
         let (a, b) = ((d + 1) % 3, (d + 2) % 3);
-        let c: [f64; 2] = [pts.iter().map(|p| p.x[a]).sum::<f64>() / 4.0, pts.iter().map(|p| p.x[b]).sum::<f64>() / 4.0];
+        let c: [f64; 2] =
+            [pts.iter().map(|p| p.x[a]).sum::<f64>() / 4.0, pts.iter().map(|p| p.x[b]).sum::<f64>() / 4.0];
         pts.sort_by(|p, q| (p.x[b] - c[1]).atan2(p.x[a] - c[0]).total_cmp(&(q.x[b] - c[1]).atan2(q.x[a] - c[0])));
     }
     if pts.len() < 3 {
@@ -185,7 +194,8 @@ mod tests {
         let sq = vec![v([0.0, 0.0, 0.0]), v([1.0, 0.0, 0.0]), v([1.0, 1.0, 0.0]), v([0.0, 1.0, 0.0])];
         let p = cut.clip(sq);
         assert_eq!(p.len(), 4);
-        let area = 0.5 * (0..4).map(|i| p[i].x[0] * p[(i + 1) % 4].x[1] - p[(i + 1) % 4].x[0] * p[i].x[1]).sum::<f64>().abs();
+        let area =
+            0.5 * (0..4).map(|i| p[i].x[0] * p[(i + 1) % 4].x[1] - p[(i + 1) % 4].x[0] * p[i].x[1]).sum::<f64>().abs();
         assert!((area - 0.25).abs() < 1e-12, "{area}");
         assert!(p.iter().all(|q| (q.v as f64 - (q.x[0] + 2.0 * q.x[1])).abs() < 1e-6));
         assert!(cut.clip(vec![v([2.0, 0.0, 0.0]), v([3.0, 0.0, 0.0]), v([3.0, 1.0, 0.0])]).is_empty());
@@ -200,7 +210,9 @@ mod tests {
         assert!(p.iter().all(|q| (q.x[0] - 0.5).abs() < 1e-12));
         // in order round it: no two successive edges cross (a convex polygon's signed area is its full area)
         let area = 0.5 * (0..4).map(|i| p[i].x[1] * p[(i + 1) % 4].x[2] - p[(i + 1) % 4].x[1] * p[i].x[2]).sum::<f64>();
-        let hull = 0.5 * ((p[2].x[1] - p[0].x[1]) * (p[3].x[2] - p[1].x[2]) - (p[3].x[1] - p[1].x[1]) * (p[2].x[2] - p[0].x[2])).abs();
+        let hull = 0.5
+            * ((p[2].x[1] - p[0].x[1]) * (p[3].x[2] - p[1].x[2]) - (p[3].x[1] - p[1].x[1]) * (p[2].x[2] - p[0].x[2]))
+                .abs();
         assert!((area.abs() - hull).abs() < 1e-12, "{area} vs {hull}");
         assert_eq!(slice(t, 0, 2.0).len(), 0);
     }

@@ -21,9 +21,9 @@ use super::raster::{encode_png, label, register_font, Canvas};
 use super::surface::{centred, edges, fill, mesh_alpha, patches, sub_triangles, with_centre, Patch};
 use super::view::View;
 use super::{num, sig2, state_colour, Field, PictureError, Snapshot, GHOST, INK, NO_PAIR};
-use crate::fem::Analysis;
 use crate::fem::material::von_mises;
 use crate::fem::vec3::{dot, normalized};
+use crate::fem::Analysis;
 
 pub(super) const W: usize = 1200;
 pub(super) const H: usize = 800;
@@ -42,7 +42,8 @@ pub fn deformed_png(snap: &Snapshot, field: Field, scale: Option<f64>) -> Result
 pub(super) fn deformed_canvas(snap: &Snapshot, field: Field, scale: Option<f64>) -> Result<Canvas, PictureError> {
     register_font();
     let model = snap.model;
-    let stresses_ok = snap.stresses.len() == model.bodies.len() || (snap.stresses.is_empty() && field == Field::Displacement);
+    let stresses_ok =
+        snap.stresses.len() == model.bodies.len() || (snap.stresses.is_empty() && field == Field::Displacement);
     if snap.u.len() != model.n_nodes() * model.nd || !stresses_ok {
         return Err(PictureError::Mismatch { what: "displacements or stresses" });
     }
@@ -70,7 +71,12 @@ pub(super) fn deformed_canvas(snap: &Snapshot, field: Field, scale: Option<f64>)
     } else {
         "undeformed shape (no displacement)".to_string()
     };
-    labels.push(label(format!("{} on the {shape}", field.label(model.analysis)), (24.0, 48.0), 17.0, (HPos::Left, VPos::Top)));
+    labels.push(label(
+        format!("{} on the {shape}", field.label(model.analysis)),
+        (24.0, 48.0),
+        17.0,
+        (HPos::Left, VPos::Top),
+    ));
     if let Some(note) = &focus.note {
         labels.push(label(note.clone(), (24.0, 72.0), 14.0, (HPos::Left, VPos::Top)));
     }
@@ -82,10 +88,18 @@ pub(super) fn deformed_canvas(snap: &Snapshot, field: Field, scale: Option<f64>)
         if scales.len() > 1 {
             title.push(format!("in {}", super::plan::body_list(model, &s.bodies, 3).0));
         }
-        let (top, bottom) = if scales.len() == 1 { (146.0, 500.0) } else { (100.0 + i as f64 * slot + 70.0, 100.0 + (i + 1) as f64 * slot - 50.0) };
+        let (top, bottom) = if scales.len() == 1 {
+            (146.0, 500.0)
+        } else {
+            (100.0 + i as f64 * slot + 70.0, 100.0 + (i + 1) as f64 * slot - 50.0)
+        };
         colour_bar(&mut cv, &mut labels, &s.lut, &s.lim, &title, [PANEL_X, top, bottom]);
     }
-    let of = LegendOf { counts: snap.contact.map(|c| crate::results::state_counts(&c.states)), solid: frame.view.is_some(), ghost: frame.moved() && frame.view.is_none() };
+    let of = LegendOf {
+        counts: snap.contact.map(|c| crate::results::state_counts(&c.states)),
+        solid: frame.view.is_some(),
+        ghost: frame.moved() && frame.view.is_none(),
+    };
     legend(&mut cv, &mut labels, &of, 580.0);
     if let Some(view) = &frame.view {
         triad(&mut cv, &mut labels, view);
@@ -191,7 +205,21 @@ impl Frame {
         }
         // a cut's corners frame the picture too (a box round a hole)
         let corners: Vec<[f64; 3]> = match &focus.cut {
-            Some(c) => (0..8).map(|m| std::array::from_fn(|d| if d < c.dim { if m >> d & 1 == 0 { c.lo[d] } else { c.hi[d] } } else { lo[d] })).collect(),
+            Some(c) => (0..8)
+                .map(|m| {
+                    std::array::from_fn(|d| {
+                        if d < c.dim {
+                            if m >> d & 1 == 0 {
+                                c.lo[d]
+                            } else {
+                                c.hi[d]
+                            }
+                        } else {
+                            lo[d]
+                        }
+                    })
+                })
+                .collect(),
             None => Vec::new(),
         };
         for x in &corners {
@@ -212,8 +240,20 @@ impl Frame {
         };
         // the view of the whole model, so that a framed picture keeps its orientation
         let (mlo, mhi) = super::view::model_box(model);
-        let view = (model.analysis == Analysis::Solid).then(|| View::new(std::array::from_fn(|d| mhi[d] - mlo[d]), model.gravity));
-        let mut frame = Frame { mag, umax, px: 1.0, centre: [0.0; 2], sd: Vec::new(), su: Vec::new(), depth: vec![0.0; n], used, cut: focus.cut, view };
+        let view = (model.analysis == Analysis::Solid)
+            .then(|| View::new(std::array::from_fn(|d| mhi[d] - mlo[d]), model.gravity));
+        let mut frame = Frame {
+            mag,
+            umax,
+            px: 1.0,
+            centre: [0.0; 2],
+            sd: Vec::new(),
+            su: Vec::new(),
+            depth: vec![0.0; n],
+            used,
+            cut: focus.cut,
+            view,
+        };
         let mut flat = vec![[[0.0f64; 2]; 2]; n];
         let (mut plo, mut phi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
         let mut widen = |p: [f64; 2]| {
@@ -255,7 +295,10 @@ impl Frame {
     /// A point of the picture's plane in pixels.
     fn screen(&self, p: [f64; 2]) -> [f32; 2] {
         let [x0, y0, x1, y1] = PLOT;
-        [(0.5 * (x0 + x1) + (p[0] - self.centre[0]) * self.px) as f32, (0.5 * (y0 + y1) - (p[1] - self.centre[1]) * self.px) as f32]
+        [
+            (0.5 * (x0 + x1) + (p[0] - self.centre[0]) * self.px) as f32,
+            (0.5 * (y0 + y1) - (p[1] - self.centre[1]) * self.px) as f32,
+        ]
     }
 
     /// Where a clipped piece's vertex lands, deformed or not, and its depth.
@@ -338,14 +381,25 @@ fn patch_triangles(p: &Patch, vert: &dyn Fn(usize) -> Vertex) -> Vec<Vec<Vertex>
         if i < n {
             return vert(p.nodes[i]);
         }
-        Vertex { x: std::array::from_fn(|d| comps[d][i]), u: std::array::from_fn(|d| comps[3 + d][i]), v: comps[6][i] as f32 }
+        Vertex {
+            x: std::array::from_fn(|d| comps[d][i]),
+            u: std::array::from_fn(|d| comps[3 + d][i]),
+            v: comps[6][i] as f32,
+        }
     };
     sub_triangles(p.kind).iter().map(|t| t.iter().map(|&i| at(i)).collect()).collect()
 }
 
 /// A clipped polygon filled on the screen (a fan from its first vertex),
 /// each pixel coloured from the field interpolated linearly.
-fn fill_polygon(cv: &mut Canvas, frame: &Frame, poly: &[Vertex], deformed: bool, paint: &dyn Fn(f32) -> [u8; 3], norm: &dyn Fn(f32) -> f32) {
+fn fill_polygon(
+    cv: &mut Canvas,
+    frame: &Frame,
+    poly: &[Vertex],
+    deformed: bool,
+    paint: &dyn Fn(f32) -> [u8; 3],
+    norm: &dyn Fn(f32) -> f32,
+) {
     let pts: Vec<[f32; 2]> = poly.iter().map(|v| frame.vertex(v, deformed).0).collect();
     for i in 1..poly.len().saturating_sub(1) {
         cv.triangle([pts[0], pts[i], pts[i + 1]], [norm(poly[0].v), norm(poly[i].v), norm(poly[i + 1].v)], paint);
@@ -408,7 +462,9 @@ fn draw_bodies(cv: &mut Canvas, snap: &Snapshot, frame: &Frame, values: &[Vec<f3
         }
         // each mesh line once (from the first cell that has it), outlines over them
         for p in &patches {
-            edges(cv, p, sd, &|outline, first| (!outline && first && mesh_alpha > 0.0).then_some((0.8, [0, 0, 0], mesh_alpha)));
+            edges(cv, p, sd, &|outline, first| {
+                (!outline && first && mesh_alpha > 0.0).then_some((0.8, [0, 0, 0], mesh_alpha))
+            });
         }
         for p in &patches {
             edges(cv, p, sd, &|outline, _| outline.then_some((1.3, INK, 1.0)));
@@ -431,7 +487,12 @@ fn draw_bodies(cv: &mut Canvas, snap: &Snapshot, frame: &Frame, values: &[Vec<f3
         }
     };
     patches.sort_by(|a, b| depth_of(&Piece::Whole(a)).total_cmp(&depth_of(&Piece::Whole(b))));
-    let mut order: Vec<(f64, Piece)> = patches.iter().map(Piece::Whole).chain(clipped.iter().chain(&sections).map(Piece::Cut)).map(|p| (depth_of(&p), p)).collect();
+    let mut order: Vec<(f64, Piece)> = patches
+        .iter()
+        .map(Piece::Whole)
+        .chain(clipped.iter().chain(&sections).map(Piece::Cut))
+        .map(|p| (depth_of(&p), p))
+        .collect();
     order.sort_by(|a, b| a.0.total_cmp(&b.0));
     let light = normalized(std::array::from_fn(|i| 0.3 * view.right[i] + 0.5 * view.up[i] + view.eye[i]));
     for (_, piece) in &order {
@@ -440,7 +501,9 @@ fn draw_bodies(cv: &mut Canvas, snap: &Snapshot, frame: &Frame, values: &[Vec<f3
                 // faces lit from over the viewer's shoulder, either side alike
                 let shade = (0.62 + 0.38 * dot(p.normal(coords), light).abs()) as f32;
                 let v = &values[p.body];
-                fill(cv, p, sd, &|p| centred(p, |k| norm(p.body, v[k])), &|t| colour(p.body, t).map(|c| (c as f32 * shade) as u8));
+                fill(cv, p, sd, &|p| centred(p, |k| norm(p.body, v[k])), &|t| {
+                    colour(p.body, t).map(|c| (c as f32 * shade) as u8)
+                });
                 edges(cv, p, sd, &|outline, _| match outline {
                     true => Some((1.2, [0, 0, 0], 0.85)),
                     false => (mesh_alpha > 0.0).then_some((0.8, [0, 0, 0], mesh_alpha)),
@@ -448,7 +511,9 @@ fn draw_bodies(cv: &mut Canvas, snap: &Snapshot, frame: &Frame, values: &[Vec<f3
             }
             Piece::Cut((b, poly, normal)) => {
                 let shade = (0.62 + 0.38 * dot(*normal, light).abs()) as f32;
-                fill_polygon(cv, frame, poly, true, &|t| colour(*b, t).map(|c| (c as f32 * shade) as u8), &|v| norm(*b, v));
+                fill_polygon(cv, frame, poly, true, &|t| colour(*b, t).map(|c| (c as f32 * shade) as u8), &|v| {
+                    norm(*b, v)
+                });
             }
         }
     }
@@ -480,7 +545,9 @@ fn draw_contacts(cv: &mut Canvas, snap: &Snapshot, frame: &Frame) {
         for p in model.pairs.iter().filter(|p| frame.drawn(p.k)) {
             let q = sd[p.k];
             let cell = ((q[0] / SPACING).floor() as i32, (q[1] / SPACING).floor() as i32);
-            let near = (cell.0 - 1..=cell.0 + 1).flat_map(|a| (cell.1 - 1..=cell.1 + 1).map(move |b| (a, b))).any(|c| kept.get(&c).is_some_and(|v| v.iter().any(|o| (o[0] - q[0]).hypot(o[1] - q[1]) < SPACING)));
+            let near = (cell.0 - 1..=cell.0 + 1)
+                .flat_map(|a| (cell.1 - 1..=cell.1 + 1).map(move |b| (a, b)))
+                .any(|c| kept.get(&c).is_some_and(|v| v.iter().any(|o| (o[0] - q[0]).hypot(o[1] - q[1]) < SPACING)));
             if !near {
                 cv.state_dot(q, colour_of(p.k));
                 kept.entry(cell).or_default().push(q);
@@ -491,7 +558,8 @@ fn draw_contacts(cv: &mut Canvas, snap: &Snapshot, frame: &Frame) {
     let other = |k: usize| if pair_of[k] == usize::MAX { k } else { model.pairs[pair_of[k]].l };
     for casing in [true, false] {
         for f in model.interfaces.iter().flat_map(|i| &i.facets) {
-            let chain: Vec<usize> = if f.nodes.len() == 3 { vec![f.nodes[0], f.nodes[2], f.nodes[1]] } else { f.nodes.clone() };
+            let chain: Vec<usize> =
+                if f.nodes.len() == 3 { vec![f.nodes[0], f.nodes[2], f.nodes[1]] } else { f.nodes.clone() };
             if !chain.iter().all(|&k| frame.drawn(k) && frame.drawn(other(k))) {
                 continue;
             }

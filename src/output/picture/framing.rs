@@ -7,8 +7,8 @@
 
 use super::cutaway::Cut;
 use super::num;
-use crate::scene::Region;
 use crate::model::Model;
+use crate::scene::Region;
 
 /// The box the picture is cut to (None: the whole model) and what the
 /// picture says about it.
@@ -33,12 +33,22 @@ pub(super) fn focus(model: &Model, region: Option<&Region>) -> Focus {
         Some(Region::Box { from, to }) => ((*from, *to), "[output] frame".to_string()),
         Some(Region::Bodies(names)) => {
             let ids: Vec<usize> = names.iter().filter_map(|n| model.bodies.iter().position(|b| &b.name == n)).collect();
-            let Some(b) = node_box(model, ids.iter().flat_map(|&b| model.bodies[b].cells.iter().flat_map(|c| c.nodes.iter().copied()))) else { return whole() };
+            let Some(b) = node_box(
+                model,
+                ids.iter().flat_map(|&b| model.bodies[b].cells.iter().flat_map(|c| c.nodes.iter().copied())),
+            ) else {
+                return whole();
+            };
             let names: Vec<String> = ids.iter().map(|&b| format!("\"{}\"", model.bodies[b].name)).collect();
             (grow(b, 0.25, dim), format!("{} ([output] frame)", names.join(", ")))
         }
         None => {
-            let Some(b) = node_box(model, model.interfaces.iter().flat_map(|i| i.facets.iter().flat_map(|f| f.nodes.iter().copied()))) else { return whole() };
+            let Some(b) = node_box(
+                model,
+                model.interfaces.iter().flat_map(|i| i.facets.iter().flat_map(|f| f.nodes.iter().copied())),
+            ) else {
+                return whole();
+            };
             let grown = grow(b, MARGIN, dim);
             let clipped: Vec<f64> = (0..dim).map(|d| grown.1[d].min(hi[d]) - grown.0[d].max(lo[d])).collect();
             if clipped.iter().copied().fold(0.0, f64::max) >= SMALLER_THAN * size || size <= 0.0 {
@@ -48,7 +58,8 @@ pub(super) fn focus(model: &Model, region: Option<&Region>) -> Focus {
         }
     };
     // the box within the model's: a side beyond the model cuts nothing
-    let bx: ([f64; 3], [f64; 3]) = (std::array::from_fn(|d| bx.0[d].max(lo[d])), std::array::from_fn(|d| bx.1[d].min(hi[d])));
+    let bx: ([f64; 3], [f64; 3]) =
+        (std::array::from_fn(|d| bx.0[d].max(lo[d])), std::array::from_fn(|d| bx.1[d].min(hi[d])));
     if (0..dim).any(|d| bx.0[d] >= bx.1[d]) {
         return Focus { cut: None, note: Some(format!("{why} lies outside the model: the whole model is drawn")) };
     }
@@ -57,8 +68,12 @@ pub(super) fn focus(model: &Model, region: Option<&Region>) -> Focus {
     }
     // round-off (a box that starts at 0 computed as -1e-15) reads as 0
     let tidy = |v: f64| num(if v.abs() < 1e-9 * size { 0.0 } else { v });
-    let range: Vec<String> = (0..dim).map(|d| format!("{} {} .. {}", ["x", "y", "z"][d], tidy(bx.0[d]), tidy(bx.1[d]))).collect();
-    Focus { cut: Some(Cut { lo: bx.0, hi: bx.1, dim }), note: Some(format!("Framed on {why}: cut to {}.", range.join(", "))) }
+    let range: Vec<String> =
+        (0..dim).map(|d| format!("{} {} .. {}", ["x", "y", "z"][d], tidy(bx.0[d]), tidy(bx.1[d]))).collect();
+    Focus {
+        cut: Some(Cut { lo: bx.0, hi: bx.1, dim }),
+        note: Some(format!("Framed on {why}: cut to {}.", range.join(", "))),
+    }
 }
 
 /// The box of some nodes (None without any).

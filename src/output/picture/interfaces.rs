@@ -20,16 +20,16 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::plan::{plan_files, sheet_pairs, sides, PlanFile};
+#[cfg(test)]
+use super::raster::encode_png;
 use super::raster::{register_font, rgb};
 use super::sheets::{direction, Shape, Sheet};
 use super::{num, state_colour, PictureError};
 use crate::contact::law::ContactState;
-use crate::fem::Analysis;
 use crate::fem::vec3::{dot, sub};
+use crate::fem::Analysis;
 use crate::model::Model;
 use crate::results::ContactRun;
-#[cfg(test)]
-use super::raster::encode_png;
 
 /// The most panels an interface plot shows (a joint set of many planes
 /// leaves the rest to `joints.png` and the plan views).
@@ -68,25 +68,37 @@ impl Along {
             let d: [f64; 3] = std::array::from_fn(|i| phi.to_radians().cos() * r[i] + phi.to_radians().sin() * v[i]);
             d.iter().any(|x| (x.abs() - 1.0).abs() < 1e-6)
         };
-        let (phi, left) = scores.iter().copied().filter(|&(a, sc)| plain(a) && sc <= best.1 + 0.02).fold(best, |b, x| if plain(b.0) && b.1 <= x.1 { b } else { x });
+        let (phi, left) = scores
+            .iter()
+            .copied()
+            .filter(|&(a, sc)| plain(a) && sc <= best.1 + 0.02)
+            .fold(best, |b, x| if plain(b.0) && b.1 <= x.1 { b } else { x });
         let (mut pts, axis): (Vec<(usize, f64)>, String) = match &sheet.shape {
             Shape::Cylinder { radius, a, crown, zero, .. } if phi == 0.0 => {
                 let from = if *crown { "the crown".to_string() } else { direction(*zero, true) };
                 let _ = a;
-                (pairs.iter().zip(&uv).map(|(&p, q)| (p, (q[0] / radius).to_degrees())).collect(), format!("angle about the axis from {from} (degrees)"))
+                (
+                    pairs.iter().zip(&uv).map(|(&p, q)| (p, (q[0] / radius).to_degrees())).collect(),
+                    format!("angle about the axis from {from} (degrees)"),
+                )
             }
             _ => {
                 let (r, v) = sheet.directions(uv.first().map_or([0.0; 3], |_| model.coords[model.pairs[pairs[0]].k]));
-                let mut d: [f64; 3] = std::array::from_fn(|i| phi.to_radians().cos() * r[i] + phi.to_radians().sin() * v[i]);
+                let mut d: [f64; 3] =
+                    std::array::from_fn(|i| phi.to_radians().cos() * r[i] + phi.to_radians().sin() * v[i]);
                 let mut sign = 1.0;
                 if d.iter().any(|x| (x + 1.0).abs() < 1e-6) {
                     d = d.map(|x| -x);
                     sign = -1.0;
                 }
-                let name = if cylinder { format!("position along {}", direction(d, false)) } else { match (0..3).find(|&i| (d[i] - 1.0).abs() < 1e-6) {
-                    Some(i) => ["x", "y", "z"][i].to_string(),
-                    None => format!("position along {}", direction(d, false)),
-                } };
+                let name = if cylinder {
+                    format!("position along {}", direction(d, false))
+                } else {
+                    match (0..3).find(|&i| (d[i] - 1.0).abs() < 1e-6) {
+                        Some(i) => ["x", "y", "z"][i].to_string(),
+                        None => format!("position along {}", direction(d, false)),
+                    }
+                };
                 (pairs.iter().zip(&uv).map(|(&p, &q)| (p, sign * s_of(phi, q))).collect(), name)
             }
         };
@@ -121,7 +133,11 @@ fn unexplained(s: &[f64], values: &[[f64; 2]]) -> f64 {
             acc[b].2[j] += v[j] * v[j];
         }
     }
-    let within: f64 = acc.iter().filter(|a| a.0 > 0).map(|(k, sum, sq)| (0..2).map(|j| sq[j] - sum[j] * sum[j] / *k as f64).sum::<f64>()).sum();
+    let within: f64 = acc
+        .iter()
+        .filter(|a| a.0 > 0)
+        .map(|(k, sum, sq)| (0..2).map(|j| sq[j] - sum[j] * sum[j] / *k as f64).sum::<f64>())
+        .sum();
     (within / total).clamp(0.0, 1.0)
 }
 
@@ -134,7 +150,8 @@ pub(super) fn along(model: &Model, ii: usize) -> Along {
     for (i, p) in model.pairs.iter().enumerate() {
         pair_of.insert(p.k, i);
     }
-    let mut nodes: Vec<usize> = iface.facets.iter().flat_map(|f| f.nodes.iter().copied()).filter(|k| pair_of.contains_key(k)).collect();
+    let mut nodes: Vec<usize> =
+        iface.facets.iter().flat_map(|f| f.nodes.iter().copied()).filter(|k| pair_of.contains_key(k)).collect();
     nodes.sort_unstable();
     nodes.dedup();
     let x = |k: usize| model.coords[k];
@@ -154,7 +171,8 @@ pub(super) fn along(model: &Model, ii: usize) -> Along {
         // starts the walk, the same in every run
         let mut links: std::collections::BTreeMap<usize, Vec<usize>> = std::collections::BTreeMap::new();
         for f in &iface.facets {
-            let chain: Vec<usize> = if f.nodes.len() == 3 { vec![f.nodes[0], f.nodes[2], f.nodes[1]] } else { f.nodes.clone() };
+            let chain: Vec<usize> =
+                if f.nodes.len() == 3 { vec![f.nodes[0], f.nodes[2], f.nodes[1]] } else { f.nodes.clone() };
             for w in chain.windows(2) {
                 links.entry(w[0]).or_default().push(w[1]);
                 links.entry(w[1]).or_default().push(w[0]);
@@ -170,7 +188,10 @@ pub(super) fn along(model: &Model, ii: usize) -> Along {
                 let left = links.keys().copied().filter(|k| !seen.contains(k));
                 let ends: Vec<usize> = left.clone().filter(|k| links[k].len() == 1).collect();
                 let pool: Vec<usize> = if ends.is_empty() { left.collect() } else { ends };
-                let Some(&start) = pool.iter().min_by(|&&a, &&b| dist(x(a), corner).total_cmp(&dist(x(b), corner))) else { break };
+                let Some(&start) = pool.iter().min_by(|&&a, &&b| dist(x(a), corner).total_cmp(&dist(x(b), corner)))
+                else {
+                    break;
+                };
                 origin.get_or_insert(start);
                 let mut run_pairs = Vec::new();
                 let (mut prev, mut at) = (usize::MAX, start);
@@ -186,7 +207,11 @@ pub(super) fn along(model: &Model, ii: usize) -> Along {
                 runs.push(run_pairs);
             }
             let o = origin.map(x).unwrap_or_default();
-            return Along { runs, axis: format!("distance along the interface from ({}, {})", num(o[0]), num(o[1])), left: 0.0 };
+            return Along {
+                runs,
+                axis: format!("distance along the interface from ({}, {})", num(o[0]), num(o[1])),
+                left: 0.0,
+            };
         }
     }
     // the principal direction of the pairs' positions
@@ -213,7 +238,11 @@ pub(super) fn along(model: &Model, ii: usize) -> Along {
         p.1 -= smin;
     }
     pts.sort_by(|a, b| a.1.total_cmp(&b.1));
-    Along { runs: vec![pts], axis: format!("position along the direction ({}, {}, {})", num(dir[0]), num(dir[1]), num(dir[2])), left: 0.0 }
+    Along {
+        runs: vec![pts],
+        axis: format!("position along the direction ({}, {}, {})", num(dir[0]), num(dir[1]), num(dir[2])),
+        left: 0.0,
+    }
 }
 
 /// An SVG with one panel per interface (per sheet in 3D, at most
@@ -267,22 +296,37 @@ fn plot_err(e: &dyn std::fmt::Debug) -> PictureError {
     PictureError::Plot(format!("{e:?}"))
 }
 
-fn interface_plot_on<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, model: &Model, contact: &ContactRun, panels: &Panels) -> Result<(), PictureError> {
+fn interface_plot_on<DB: DrawingBackend>(
+    root: DrawingArea<DB, Shift>,
+    model: &Model,
+    contact: &ContactRun,
+    panels: &Panels,
+) -> Result<(), PictureError> {
     register_font();
     root.fill(&WHITE).map_err(|e| plot_err(&e))?;
     let n = panels.list.len();
-    let (plots, note) = if panels.left_out > 0 { root.split_vertically(420 * n as u32) } else { (root.clone(), root.clone()) };
+    let (plots, note) =
+        if panels.left_out > 0 { root.split_vertically(420 * n as u32) } else { (root.clone(), root.clone()) };
     for ((ii, plan), area) in panels.list.iter().zip(plots.split_evenly((n, 1)).iter()) {
         interface_panel(area, model, contact, *ii, plan.as_ref())?;
     }
     if panels.left_out > 0 {
-        let text = format!("{} more surfaces are not plotted here: joints.png shows every one by state, and each has its plan view.", panels.left_out);
+        let text = format!(
+            "{} more surfaces are not plotted here: joints.png shows every one by state, and each has its plan view.",
+            panels.left_out
+        );
         note.draw_text(&text, &("sans-serif", 15).into_font().color(&BLACK), (20, 12)).map_err(|e| plot_err(&e))?;
     }
     root.present().map_err(|e| plot_err(&e))
 }
 
-fn interface_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, model: &Model, c: &ContactRun, ii: usize, plan: Option<&PlanFile>) -> Result<(), PictureError> {
+fn interface_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    model: &Model,
+    c: &ContactRun,
+    ii: usize,
+    plan: Option<&PlanFile>,
+) -> Result<(), PictureError> {
     let err = |e: &dyn std::fmt::Debug| plot_err(e);
     let iface = &model.interfaces[ii];
     let solid = model.analysis == Analysis::Solid;
@@ -318,7 +362,16 @@ fn interface_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, model: &Mo
         Some(p) if p.of > 1 => format!(" {} of {}, {}", p.index + 1, p.of, p.sheet.short(model)),
         _ => String::new(),
     };
-    let caption = format!("{}{which}: {} | {}, {} pairs: {} stick, {} slip, {} open", iface.name, bi.0, bii.0, counts.iter().sum::<usize>(), counts[2], counts[1], counts[0]);
+    let caption = format!(
+        "{}{which}: {} | {}, {} pairs: {} stick, {} slip, {} open",
+        iface.name,
+        bi.0,
+        bii.0,
+        counts.iter().sum::<usize>(),
+        counts[2],
+        counts[1],
+        counts[0]
+    );
     let axis = match plan {
         Some(p) if al.left >= 0.25 => format!("{}; σn and τ also vary across it: see {}", al.axis, p.file),
         _ => al.axis.clone(),
@@ -356,26 +409,39 @@ fn interface_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, model: &Mo
     chart.draw_series(LineSeries::new(vec![(xlo, 0.0), (xhi, 0.0)], BLACK.mix(0.5))).map_err(|e| err(&e))?;
     if solid {
         let dots = all().map(|&(p, s)| Circle::new((s, sn(p)), 4, rgb(state_colour(c.states[p])).filled()));
-        chart.draw_series(dots).map_err(|e| err(&e))?.label("σn (normal, tension > 0)").legend(|(x, y)| Circle::new((x + 9, y), 4, BLACK.filled()));
-        let tris = all().map(|&(p, s)| TriangleMarker::new((s, tau(p)), 5, rgb(state_colour(c.states[p])).stroke_width(2)));
-        chart.draw_series(tris).map_err(|e| err(&e))?.label("τ (shear, magnitude)").legend(|(x, y)| TriangleMarker::new((x + 9, y), 5, BLACK.stroke_width(2)));
+        chart
+            .draw_series(dots)
+            .map_err(|e| err(&e))?
+            .label("σn (normal, tension > 0)")
+            .legend(|(x, y)| Circle::new((x + 9, y), 4, BLACK.filled()));
+        let tris =
+            all().map(|&(p, s)| TriangleMarker::new((s, tau(p)), 5, rgb(state_colour(c.states[p])).stroke_width(2)));
+        chart
+            .draw_series(tris)
+            .map_err(|e| err(&e))?
+            .label("τ (shear, magnitude)")
+            .legend(|(x, y)| TriangleMarker::new((x + 9, y), 5, BLACK.stroke_width(2)));
     } else {
         for (i, r) in al.runs.iter().enumerate() {
             let pts: Vec<(f64, f64)> = r.iter().map(|&(p, s)| (s, sn(p))).collect();
             let a = chart.draw_series(LineSeries::new(pts.clone(), blue.stroke_width(2))).map_err(|e| err(&e))?;
             if i == 0 {
-                a.label("σn (normal, tension > 0)").legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], blue.stroke_width(2)));
+                a.label("σn (normal, tension > 0)")
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], blue.stroke_width(2)));
             }
             chart.draw_series(pts.iter().map(|&q| Circle::new(q, 3, blue.filled()))).map_err(|e| err(&e))?;
             let pts: Vec<(f64, f64)> = r.iter().map(|&(p, s)| (s, tau(p))).collect();
             let a = chart.draw_series(LineSeries::new(pts.clone(), purple.stroke_width(2))).map_err(|e| err(&e))?;
             if i == 0 {
-                a.label("τ (shear, along the tangent)").legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], purple.stroke_width(2)));
+                a.label("τ (shear, along the tangent)")
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], purple.stroke_width(2)));
             }
             chart.draw_series(pts.iter().map(|&q| TriangleMarker::new(q, 4, purple.filled()))).map_err(|e| err(&e))?;
         }
     }
-    for (s, count) in [(ContactState::Stick, counts[2]), (ContactState::Slip, counts[1]), (ContactState::Open, counts[0])] {
+    for (s, count) in
+        [(ContactState::Stick, counts[2]), (ContactState::Slip, counts[1]), (ContactState::Open, counts[0])]
+    {
         if count > 0 {
             let col = rgb(state_colour(s));
             let style = if solid { col.filled() } else { col.mix(0.35).filled() };
@@ -405,7 +471,11 @@ fn interface_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, model: &Mo
         (SeriesLabelPosition::UpperMiddle, 0.5, 1.0),
         (SeriesLabelPosition::LowerMiddle, 0.5, 0.0),
     ];
-    let place = corners.into_iter().min_by_key(|&(_, fx, fy)| under(fx, fy)).map(|c| c.0).unwrap_or(SeriesLabelPosition::UpperRight);
+    let place = corners
+        .into_iter()
+        .min_by_key(|&(_, fx, fy)| under(fx, fy))
+        .map(|c| c.0)
+        .unwrap_or(SeriesLabelPosition::UpperRight);
     chart
         .configure_series_labels()
         .position(place)

@@ -51,13 +51,19 @@ fn pack(sizes: &[[f64; 2]], px: f64) -> (Vec<[f64; 2]>, f64) {
 }
 
 /// The overview of every sheet of `plans` by state.
-pub fn joints_png(title: &str, model: &Model, contact: &ContactRun, plans: &[PlanFile]) -> Result<Vec<u8>, PictureError> {
+pub fn joints_png(
+    title: &str,
+    model: &Model,
+    contact: &ContactRun,
+    plans: &[PlanFile],
+) -> Result<Vec<u8>, PictureError> {
     register_font();
     if contact.states.len() != model.pairs.len() {
         return Err(PictureError::Mismatch { what: "contact results" });
     }
     let flats: Vec<_> = plans.iter().map(|p| p.sheet.flat(model)).collect();
-    let sizes: Vec<[f64; 2]> = flats.iter().map(|f| [(f.hi[0] - f.lo[0]).max(1e-300), (f.hi[1] - f.lo[1]).max(1e-300)]).collect();
+    let sizes: Vec<[f64; 2]> =
+        flats.iter().map(|f| [(f.hi[0] - f.lo[0]).max(1e-300), (f.hi[1] - f.lo[1]).max(1e-300)]).collect();
     // the largest scale whose rows fit the height, no tile over MOST_SIDE
     let biggest = sizes.iter().map(|s| s[0].max(s[1])).fold(0.0, f64::max);
     let widest = sizes.iter().map(|s| s[0]).fold(0.0, f64::max);
@@ -65,7 +71,11 @@ pub fn joints_png(title: &str, model: &Model, contact: &ContactRun, plans: &[Pla
     if pack(&sizes, hi).1 > MOST_HEIGHT {
         for _ in 0..50 {
             let mid = 0.5 * (lo + hi);
-            if pack(&sizes, mid).1 > MOST_HEIGHT { hi = mid } else { lo = mid }
+            if pack(&sizes, mid).1 > MOST_HEIGHT {
+                hi = mid
+            } else {
+                lo = mid
+            }
         }
         hi = lo;
     }
@@ -102,8 +112,18 @@ pub fn joints_png(title: &str, model: &Model, contact: &ContactRun, plans: &[Pla
         }
         let iface = &model.interfaces[plan.interface].name;
         let what = if matches!(plan.sheet.shape, Shape::Cylinder { .. }) { " (unrolled)" } else { "" };
-        labels.push(label(format!("{}{what}: {} / {} / {}", plan.file, counts[2], counts[1], counts[0]), (x0, y0 - 30.0), 13.0, (HPos::Left, VPos::Center)));
-        labels.push(label(format!("\"{iface}\": {}", plan.sheet.short(model)), (x0, y0 - 12.0), 12.0, (HPos::Left, VPos::Center)));
+        labels.push(label(
+            format!("{}{what}: {} / {} / {}", plan.file, counts[2], counts[1], counts[0]),
+            (x0, y0 - 30.0),
+            13.0,
+            (HPos::Left, VPos::Center),
+        ));
+        labels.push(label(
+            format!("\"{iface}\": {}", plan.sheet.short(model)),
+            (x0, y0 - 12.0),
+            12.0,
+            (HPos::Left, VPos::Center),
+        ));
     }
     labels.push(label(title, (24.0, 14.0), 24.0, (HPos::Left, VPos::Top)));
     labels.push(label(
@@ -119,7 +139,12 @@ pub fn joints_png(title: &str, model: &Model, contact: &ContactRun, plans: &[Pla
         labels.push(label(format!("{} ({n})", s.name()), (x + 30.0, 92.0), 14.0, (HPos::Left, VPos::Center)));
         x += 160.0;
     }
-    labels.push(label("after each file name: stick / slip / open pairs", (x + 20.0, 92.0), 13.0, (HPos::Left, VPos::Center)));
+    labels.push(label(
+        "after each file name: stick / slip / open pairs",
+        (x + 20.0, 92.0),
+        13.0,
+        (HPos::Left, VPos::Center),
+    ));
     cv.text(&labels)?;
     encode_png(cv.w, cv.h, &cv.rgb)
 }

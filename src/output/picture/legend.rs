@@ -36,7 +36,8 @@ impl Limits {
             all.push(0.0);
         }
         let n = all.len();
-        let mut quantile = |q: f64| *all.select_nth_unstable_by(((n - 1) as f64 * q).round() as usize, |a, b| a.total_cmp(b)).1;
+        let mut quantile =
+            |q: f64| *all.select_nth_unstable_by(((n - 1) as f64 * q).round() as usize, |a, b| a.total_cmp(b)).1;
         let (mut min, mut max, q_lo, q_hi) = (quantile(0.0), quantile(1.0), quantile(0.005), quantile(0.995));
         let big = min.abs().max(max.abs());
         if min < 0.0 && min > -1e-3 * big {
@@ -77,12 +78,72 @@ pub(super) fn colour_map(signed: bool, lo: f64, hi: f64) -> Vec<[u8; 3]> {
 /// yellow–orange–red (signed: purple–green), 2 light to dark purple
 /// (signed: brown–teal); beyond, as 2.
 pub(super) fn colour_map_of(k: usize, signed: bool, lo: f64, hi: f64) -> Vec<[u8; 3]> {
-    const VIRIDIS: [[u8; 3]; 9] = [[68, 1, 84], [71, 44, 122], [59, 81, 139], [44, 113, 142], [33, 145, 140], [39, 173, 129], [92, 200, 99], [170, 220, 50], [253, 231, 37]];
-    const COOL_WARM: [[u8; 3]; 9] = [[59, 76, 192], [98, 130, 234], [141, 176, 254], [184, 208, 249], [221, 221, 221], [245, 196, 173], [244, 154, 123], [222, 96, 77], [180, 4, 38]];
-    const YL_OR_RD: [[u8; 3]; 9] = [[255, 255, 204], [255, 237, 160], [254, 217, 118], [254, 178, 76], [253, 141, 60], [252, 78, 42], [227, 26, 28], [189, 0, 38], [128, 0, 38]];
-    const PURPLES: [[u8; 3]; 9] = [[252, 251, 253], [239, 237, 245], [218, 218, 235], [188, 189, 220], [158, 154, 200], [128, 125, 186], [106, 81, 163], [84, 39, 143], [63, 0, 125]];
-    const PR_GN: [[u8; 3]; 9] = [[118, 42, 131], [153, 112, 171], [194, 165, 207], [231, 212, 232], [247, 247, 247], [217, 240, 211], [166, 219, 160], [90, 174, 97], [27, 120, 55]];
-    const BR_BG: [[u8; 3]; 9] = [[140, 81, 10], [191, 129, 45], [223, 194, 125], [246, 232, 195], [245, 245, 245], [199, 234, 229], [128, 205, 193], [53, 151, 143], [1, 102, 94]];
+    const VIRIDIS: [[u8; 3]; 9] = [
+        [68, 1, 84],
+        [71, 44, 122],
+        [59, 81, 139],
+        [44, 113, 142],
+        [33, 145, 140],
+        [39, 173, 129],
+        [92, 200, 99],
+        [170, 220, 50],
+        [253, 231, 37],
+    ];
+    const COOL_WARM: [[u8; 3]; 9] = [
+        [59, 76, 192],
+        [98, 130, 234],
+        [141, 176, 254],
+        [184, 208, 249],
+        [221, 221, 221],
+        [245, 196, 173],
+        [244, 154, 123],
+        [222, 96, 77],
+        [180, 4, 38],
+    ];
+    const YL_OR_RD: [[u8; 3]; 9] = [
+        [255, 255, 204],
+        [255, 237, 160],
+        [254, 217, 118],
+        [254, 178, 76],
+        [253, 141, 60],
+        [252, 78, 42],
+        [227, 26, 28],
+        [189, 0, 38],
+        [128, 0, 38],
+    ];
+    const PURPLES: [[u8; 3]; 9] = [
+        [252, 251, 253],
+        [239, 237, 245],
+        [218, 218, 235],
+        [188, 189, 220],
+        [158, 154, 200],
+        [128, 125, 186],
+        [106, 81, 163],
+        [84, 39, 143],
+        [63, 0, 125],
+    ];
+    const PR_GN: [[u8; 3]; 9] = [
+        [118, 42, 131],
+        [153, 112, 171],
+        [194, 165, 207],
+        [231, 212, 232],
+        [247, 247, 247],
+        [217, 240, 211],
+        [166, 219, 160],
+        [90, 174, 97],
+        [27, 120, 55],
+    ];
+    const BR_BG: [[u8; 3]; 9] = [
+        [140, 81, 10],
+        [191, 129, 45],
+        [223, 194, 125],
+        [246, 232, 195],
+        [245, 245, 245],
+        [199, 234, 229],
+        [128, 205, 193],
+        [53, 151, 143],
+        [1, 102, 94],
+    ];
     let (magnitude, diverging) = match k {
         0 => (&VIRIDIS, &COOL_WARM),
         1 => (&YL_OR_RD, &PR_GN),
@@ -128,10 +189,14 @@ pub(super) struct LegendOf {
 pub(super) fn legend(cv: &mut Canvas, labels: &mut Vec<Label>, of: &LegendOf, top: f64) {
     let x = PANEL_X as f32;
     let mut y = top as f32;
-    let text = |labels: &mut Vec<Label>, t: String, x: f32, y: f32, size: f64| labels.push(label(t, (x as f64, y as f64), size, (HPos::Left, VPos::Center)));
+    let text = |labels: &mut Vec<Label>, t: String, x: f32, y: f32, size: f64| {
+        labels.push(label(t, (x as f64, y as f64), size, (HPos::Left, VPos::Center)))
+    };
     if let Some(counts) = of.counts {
         text(labels, "contact pairs".into(), x, y, 16.0);
-        for (s, count) in [(ContactState::Stick, counts[2]), (ContactState::Slip, counts[1]), (ContactState::Open, counts[0])] {
+        for (s, count) in
+            [(ContactState::Stick, counts[2]), (ContactState::Slip, counts[1]), (ContactState::Open, counts[0])]
+        {
             y += 26.0;
             if of.solid {
                 cv.state_dot([x + 12.0, y], state_colour(s));
@@ -151,7 +216,8 @@ pub(super) fn legend(cv: &mut Canvas, labels: &mut Vec<Label>, of: &LegendOf, to
     }
     if of.ghost {
         cv.rect(x as f64 + 2.0, y as f64 - 7.0, x as f64 + 24.0, y as f64 + 7.0, GHOST);
-        let frame = [[x + 2.0, y - 7.0], [x + 24.0, y - 7.0], [x + 24.0, y + 7.0], [x + 2.0, y + 7.0], [x + 2.0, y - 7.0]];
+        let frame =
+            [[x + 2.0, y - 7.0], [x + 24.0, y - 7.0], [x + 24.0, y + 7.0], [x + 2.0, y + 7.0], [x + 2.0, y - 7.0]];
         cv.polyline(frame.into_iter(), 1.0, [175, 175, 175], 1.0);
         text(labels, "undeformed".into(), x + 36.0, y, 15.0);
     }
@@ -162,7 +228,14 @@ pub(super) fn legend(cv: &mut Canvas, labels: &mut Vec<Label>, of: &LegendOf, to
 /// field's minimum and maximum under the bar when they are not its ends.
 /// `at`: the bar's left edge, top and bottom in pixels; its title goes
 /// above it, the last line 52 pixels above, each earlier one 19 higher.
-pub(super) fn colour_bar(cv: &mut Canvas, labels: &mut Vec<Label>, lut: &[[u8; 3]], lim: &Limits, title: &[String], at: [f64; 3]) {
+pub(super) fn colour_bar(
+    cv: &mut Canvas,
+    labels: &mut Vec<Label>,
+    lut: &[[u8; 3]],
+    lim: &Limits,
+    title: &[String],
+    at: [f64; 3],
+) {
     let (lo, hi) = (lim.lo, lim.hi);
     let (bx0, bx1, by0, by1) = (at[0], at[0] + 26.0, at[1], at[2]);
     for (i, line) in title.iter().enumerate() {
@@ -208,13 +281,28 @@ pub(super) fn colour_bar(cv: &mut Canvas, labels: &mut Vec<Label>, lut: &[[u8; 3
         k += 1;
     }
     if over {
-        labels.push(label(format!("up to {}", num(lim.max)), (bx1 + 9.0, by0 - 20.0), 13.0, (HPos::Left, VPos::Center)));
+        labels.push(label(
+            format!("up to {}", num(lim.max)),
+            (bx1 + 9.0, by0 - 20.0),
+            13.0,
+            (HPos::Left, VPos::Center),
+        ));
     }
     if under {
-        labels.push(label(format!("down to {}", num(lim.min)), (bx1 + 9.0, by1 + 20.0), 13.0, (HPos::Left, VPos::Center)));
+        labels.push(label(
+            format!("down to {}", num(lim.min)),
+            (bx1 + 9.0, by1 + 20.0),
+            13.0,
+            (HPos::Left, VPos::Center),
+        ));
     }
     if lim.min > lo + 1e-9 * (hi - lo) || lim.max < hi - 1e-9 * (hi - lo) {
-        labels.push(label(format!("min {}, max {}", num(lim.min), num(lim.max)), (bx0, by1 + 40.0), 13.0, (HPos::Left, VPos::Center)));
+        labels.push(label(
+            format!("min {}, max {}", num(lim.min), num(lim.max)),
+            (bx0, by1 + 40.0),
+            13.0,
+            (HPos::Left, VPos::Center),
+        ));
     }
 }
 
@@ -227,7 +315,12 @@ pub(super) fn triad(cv: &mut Canvas, labels: &mut Vec<Label>, view: &View) {
         let (p, _) = view.project(e);
         let tip = [o[0] + 36.0 * p[0] as f32, o[1] - 36.0 * p[1] as f32];
         cv.segment(o, tip, 1.6, INK, 1.0, true);
-        labels.push(label(*name, ((o[0] + 48.0 * p[0] as f32) as f64, (o[1] - 48.0 * p[1] as f32) as f64), 15.0, (HPos::Center, VPos::Center)));
+        labels.push(label(
+            *name,
+            ((o[0] + 48.0 * p[0] as f32) as f64, (o[1] - 48.0 * p[1] as f32) as f64),
+            15.0,
+            (HPos::Center, VPos::Center),
+        ));
     }
 }
 

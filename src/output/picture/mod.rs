@@ -41,11 +41,11 @@ pub use joints::{joints_file, joints_png};
 pub use plan::{plan_files, plan_png, plan_pngs, PlanFile};
 
 use crate::contact::law::ContactState;
+use crate::fem::Analysis;
 use crate::model::Model;
 use crate::recover::BodyStress;
 use crate::results::ContactRun;
 use crate::scene::Region;
-use crate::fem::Analysis;
 
 /// Why a picture could not be drawn.
 #[derive(Debug, thiserror::Error)]
@@ -81,7 +81,8 @@ pub enum Field {
 }
 
 impl Field {
-    pub const ALL: [Field; 8] = [Field::VonMises, Field::Displacement, Field::Sxx, Field::Syy, Field::Szz, Field::Sxy, Field::Syz, Field::Sxz];
+    pub const ALL: [Field; 8] =
+        [Field::VonMises, Field::Displacement, Field::Sxx, Field::Syy, Field::Szz, Field::Sxy, Field::Syz, Field::Sxz];
 
     /// Spelling for file names and command lines (`von_mises`, `sxx`, ...).
     pub fn key(self) -> &'static str {
@@ -227,4 +228,3 @@ fn sig2(v: f64) -> String {
     }
     format!("{v:.1e}")
 }
-

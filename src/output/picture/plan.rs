@@ -28,8 +28,8 @@ use super::sheets::{direction, sheets, Flat, Shape, Sheet};
 use super::surface::{centred, edges, fill, mesh_alpha, pieces, Patch};
 use super::{num, state_colour, PictureError, INK, NO_PAIR};
 use crate::contact::law::ContactState;
-use crate::fem::Analysis;
 use crate::fem::vec3::dot;
+use crate::fem::Analysis;
 use crate::model::Model;
 use crate::results::ContactRun;
 
@@ -62,7 +62,11 @@ pub fn plan_files(model: &Model) -> Vec<PlanFile> {
     }
     let mut files: Vec<PlanFile> = Vec::new();
     for (ii, iface) in model.interfaces.iter().enumerate() {
-        let stem: String = iface.name.chars().map(|c| if c.is_ascii_alphanumeric() || c == '-' || c == '_' { c } else { '_' }).collect();
+        let stem: String = iface
+            .name
+            .chars()
+            .map(|c| if c.is_ascii_alphanumeric() || c == '-' || c == '_' { c } else { '_' })
+            .collect();
         let all = sheets(model, ii);
         let of = all.len();
         for (index, sheet) in all.into_iter().enumerate() {
@@ -105,12 +109,22 @@ impl Layout {
         let side = (532.0 / ex).min(532.0 / ey);
         let iw = (392.0 * ex / ey).min(1332.0);
         if iw / ex <= 1.25 * side {
-            return Layout { w: 1600, h: 800, boxes: [[80.0, 130.0, 640.0, 690.0], [890.0, 130.0, 1450.0, 690.0]], column: [665.0, 1472.0] };
+            return Layout {
+                w: 1600,
+                h: 800,
+                boxes: [[80.0, 130.0, 640.0, 690.0], [890.0, 130.0, 1450.0, 690.0]],
+                column: [665.0, 1472.0],
+            };
         }
         let (bw, bh) = ((iw + 28.0).max(560.0).round(), (iw * ey / ex + 28.0).max(240.0).round());
         let b2 = 130.0 + bh + 100.0;
         let column = 80.0 + bw + 25.0;
-        Layout { w: ((column + 175.0) as usize).max(1200), h: (b2 + bh + 110.0) as usize, boxes: [[80.0, 130.0, 80.0 + bw, 130.0 + bh], [80.0, b2, 80.0 + bw, b2 + bh]], column: [column, column] }
+        Layout {
+            w: ((column + 175.0) as usize).max(1200),
+            h: (b2 + bh + 110.0) as usize,
+            boxes: [[80.0, 130.0, 80.0 + bw, 130.0 + bh], [80.0, b2, 80.0 + bw, b2 + bh]],
+            column: [column, column],
+        }
     }
 }
 
@@ -125,10 +139,17 @@ impl Fit {
     pub(super) fn new(lo: [f64; 2], hi: [f64; 2], b: [f64; 4], pad: f64) -> Fit {
         let px = ((b[2] - b[0] - 2.0 * pad) / (hi[0] - lo[0])).min((b[3] - b[1] - 2.0 * pad) / (hi[1] - lo[1]));
         let px = if px.is_finite() && px > 0.0 { px } else { 1.0 };
-        Fit { px, centre: [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])], at: [0.5 * (b[0] + b[2]), 0.5 * (b[1] + b[3])] }
+        Fit {
+            px,
+            centre: [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])],
+            at: [0.5 * (b[0] + b[2]), 0.5 * (b[1] + b[3])],
+        }
     }
     pub(super) fn screen(&self, q: [f64; 2]) -> [f32; 2] {
-        [(self.at[0] + (q[0] - self.centre[0]) * self.px) as f32, (self.at[1] - (q[1] - self.centre[1]) * self.px) as f32]
+        [
+            (self.at[0] + (q[0] - self.centre[0]) * self.px) as f32,
+            (self.at[1] - (q[1] - self.centre[1]) * self.px) as f32,
+        ]
     }
 }
 
@@ -159,7 +180,12 @@ pub(super) fn sheet_pairs(model: &Model, sheet: &Sheet) -> (Vec<usize>, Vec<usiz
 /// The contact states as regions over the flat patches at `pos` (a point's
 /// state `code(point)`: 0 open, 1 slip, 2 stick, 3 no pair).
 pub(super) fn paint_states(cv: &mut Canvas, patches: &[Patch], pos: &[[f32; 2]], code: &dyn Fn(usize) -> usize) {
-    let colours = [state_colour(ContactState::Open), state_colour(ContactState::Slip), state_colour(ContactState::Stick), NO_PAIR];
+    let colours = [
+        state_colour(ContactState::Open),
+        state_colour(ContactState::Slip),
+        state_colour(ContactState::Stick),
+        NO_PAIR,
+    ];
     for p in patches {
         let ind: [[f64; 9]; 4] = std::array::from_fn(|s| centred(p, |k| if code(k) == s { 1.0 } else { 0.0 }));
         for (q, tri) in pieces(p, pos) {
@@ -172,7 +198,12 @@ pub(super) fn paint_states(cv: &mut Canvas, patches: &[Patch], pos: &[[f32; 2]],
 }
 
 /// The plan view of one sheet and its two panels' boxes (state, sigma_n).
-pub(super) fn plan_canvas(title: &str, model: &Model, contact: &ContactRun, plan: &PlanFile) -> Result<(Canvas, [[f64; 4]; 2]), PictureError> {
+pub(super) fn plan_canvas(
+    title: &str,
+    model: &Model,
+    contact: &ContactRun,
+    plan: &PlanFile,
+) -> Result<(Canvas, [[f64; 4]; 2]), PictureError> {
     register_font();
     let sheet = &plan.sheet;
     let iface = model.interfaces.get(sheet.interface).ok_or(PictureError::Mismatch { what: "contact interfaces" })?;
@@ -189,7 +220,8 @@ pub(super) fn plan_canvas(title: &str, model: &Model, contact: &ContactRun, plan
     let mut labels = Vec::new();
     // far facets first, where a curved surface folds over itself in plan
     if let Some(e) = sheet.eye() {
-        let depth = |p: &Patch| p.nodes().iter().map(|&i| dot(model.coords[node[i]], e)).sum::<f64>() / p.kind.n_nodes() as f64;
+        let depth =
+            |p: &Patch| p.nodes().iter().map(|&i| dot(model.coords[node[i]], e)).sum::<f64>() / p.kind.n_nodes() as f64;
         patches.sort_by(|a, b| depth(a).total_cmp(&depth(b)));
     }
     let fits = layout.boxes.map(|b| Fit::new(lo, hi, b, 14.0));
@@ -202,7 +234,9 @@ pub(super) fn plan_canvas(title: &str, model: &Model, contact: &ContactRun, plan
     let alpha = mesh_alpha(&patches, &pos[0]);
     let lines = |cv: &mut Canvas, pos: &[[f32; 2]]| {
         for p in &patches {
-            edges(cv, p, pos, &|outline, first| (!outline && first && alpha > 0.0).then_some((0.8, [0, 0, 0], 0.6 * alpha)));
+            edges(cv, p, pos, &|outline, first| {
+                (!outline && first && alpha > 0.0).then_some((0.8, [0, 0, 0], 0.6 * alpha))
+            });
         }
         for p in &patches {
             edges(cv, p, pos, &|outline, _| outline.then_some((1.3, INK, 1.0)));
@@ -218,7 +252,13 @@ pub(super) fn plan_canvas(title: &str, model: &Model, contact: &ContactRun, plan
     paint_states(&mut cv, &patches, &pos[0], &code);
     lines(&mut cv, &pos[0]);
     cv.clip(None);
-    let area_px: f64 = patches.iter().flat_map(|p| pieces(p, &pos[0])).map(|(q, _)| 0.5 * ((q[1][0] - q[0][0]) * (q[2][1] - q[0][1]) - (q[1][1] - q[0][1]) * (q[2][0] - q[0][0])).abs() as f64).sum();
+    let area_px: f64 = patches
+        .iter()
+        .flat_map(|p| pieces(p, &pos[0]))
+        .map(|(q, _)| {
+            0.5 * ((q[1][0] - q[0][0]) * (q[2][1] - q[0][1]) - (q[1][1] - q[0][1]) * (q[2][0] - q[0][0])).abs() as f64
+        })
+        .sum();
     let arrows = slip_arrows(&mut cv, model, contact, sheet, &pairs, &fits[0], area_px);
     let mut counts = [0usize; 3];
     for &p in &pairs {
@@ -228,10 +268,13 @@ pub(super) fn plan_canvas(title: &str, model: &Model, contact: &ContactRun, plan
     state_legend(&mut cv, &mut labels, layout.column[0], layout.boxes[0][1], counts, unpaired, arrows > 0);
 
     // (b) sigma_n
-    let sigma: Vec<f32> = node.iter().map(|&k| match pair_of[k] {
-        usize::MAX => f32::NAN,
-        p => contact.pairs[p].sigma_n as f32,
-    }).collect();
+    let sigma: Vec<f32> = node
+        .iter()
+        .map(|&k| match pair_of[k] {
+            usize::MAX => f32::NAN,
+            p => contact.pairs[p].sigma_n as f32,
+        })
+        .collect();
     let lim = Limits::of(true, &[pairs.iter().map(|&p| contact.pairs[p].sigma_n as f32).collect()]);
     let lut = colour_map(true, lim.lo, lim.hi);
     cv.clip(Some(clips[1]));
@@ -267,7 +310,13 @@ pub(super) fn plan_canvas(title: &str, model: &Model, contact: &ContactRun, plan
     let view = if matches!(sheet.shape, Shape::Cylinder { .. }) { "unrolled view" } else { "plan view" };
     labels.push(label(title, (24.0, 14.0), 24.0, (HPos::Left, VPos::Top)));
     labels.push(label(
-        format!("{view} of contact \"{}\"{what} between {} and {} ({} pairs), {seen}", iface.name, bi.0, bii.0, pairs.len()),
+        format!(
+            "{view} of contact \"{}\"{what} between {} and {} ({} pairs), {seen}",
+            iface.name,
+            bi.0,
+            bii.0,
+            pairs.len()
+        ),
         (24.0, 50.0),
         17.0,
         (HPos::Left, VPos::Top),
@@ -275,7 +324,13 @@ pub(super) fn plan_canvas(title: &str, model: &Model, contact: &ContactRun, plan
     let note = match (counts[1], arrows) {
         (0, _) => "No pair slips.".to_string(),
         (_, 0) => "The slipping pairs carry no shear (frictionless slip): no slip directions to draw.".to_string(),
-        _ => format!("Arrows: the direction in which {} {} relative to {} (the shear on {}), on slipping pairs.", bii.0, if bii.1 > 1 { "slip" } else { "slips" }, bi.0, bi.0),
+        _ => format!(
+            "Arrows: the direction in which {} {} relative to {} (the shear on {}), on slipping pairs.",
+            bii.0,
+            if bii.1 > 1 { "slip" } else { "slips" },
+            bi.0,
+            bi.0
+        ),
     };
     labels.push(label(note, (24.0, layout.h as f64 - 18.0), 14.0, (HPos::Left, VPos::Center)));
     cv.text(&labels)?;
@@ -304,7 +359,9 @@ pub(super) fn sides(model: &Model, pairs: &[usize]) -> [(String, usize); 2] {
         for &p in pairs {
             mine[pick(p)] = true;
         }
-        (0..model.bodies.len()).filter(|&b| model.bodies[b].cells.iter().any(|c| c.nodes.iter().any(|&k| mine[k]))).collect()
+        (0..model.bodies.len())
+            .filter(|&b| model.bodies[b].cells.iter().any(|c| c.nodes.iter().any(|&k| mine[k])))
+            .collect()
     };
     [body_list(model, &holders(&|p| model.pairs[p].k), 4), body_list(model, &holders(&|p| model.pairs[p].l), 4)]
 }
@@ -317,18 +374,31 @@ fn viewer_side(model: &Model, pairs: &[usize], e: [f64; 3]) -> String {
         let pr = &model.pairs[p];
         mine[if dot(pr.normal, e) >= 0.0 { pr.l } else { pr.k }] = true;
     }
-    let bodies: Vec<usize> = (0..model.bodies.len()).filter(|&b| model.bodies[b].cells.iter().any(|c| c.nodes.iter().any(|&k| mine[k]))).collect();
+    let bodies: Vec<usize> = (0..model.bodies.len())
+        .filter(|&b| model.bodies[b].cells.iter().any(|c| c.nodes.iter().any(|&k| mine[k])))
+        .collect();
     body_list(model, &bodies, 4).0
 }
 
 /// Arrows along the shear of slipping pairs, no two closer than the
 /// pairs' spacing or 30 px: the pairs taken row by row from the top, each
 /// kept when no kept one is that near. Returns how many were drawn.
-fn slip_arrows(cv: &mut Canvas, model: &Model, contact: &ContactRun, sheet: &Sheet, pairs: &[usize], fit: &Fit, area_px: f64) -> usize {
+fn slip_arrows(
+    cv: &mut Canvas,
+    model: &Model,
+    contact: &ContactRun,
+    sheet: &Sheet,
+    pairs: &[usize],
+    fit: &Fit,
+    area_px: f64,
+) -> usize {
     let gap = (area_px / pairs.len().max(1) as f64).sqrt().max(30.0) as f32;
     let at = |p: usize| fit.screen(sheet.at(model.coords[model.pairs[p].k]));
-    let mut slipping: Vec<(usize, [f32; 2])> = pairs.iter().filter(|&&p| contact.states[p] == ContactState::Slip).map(|&p| (p, at(p))).collect();
-    slipping.sort_by(|a, b| (a.1[1].round(), a.1[0]).partial_cmp(&(b.1[1].round(), b.1[0])).unwrap_or(std::cmp::Ordering::Equal));
+    let mut slipping: Vec<(usize, [f32; 2])> =
+        pairs.iter().filter(|&&p| contact.states[p] == ContactState::Slip).map(|&p| (p, at(p))).collect();
+    slipping.sort_by(|a, b| {
+        (a.1[1].round(), a.1[0]).partial_cmp(&(b.1[1].round(), b.1[0])).unwrap_or(std::cmp::Ordering::Equal)
+    });
     // kept sites in cells of the gap's size: a near one is in the 3 x 3 around
     let mut kept: std::collections::HashMap<(i64, i64), Vec<[f32; 2]>> = std::collections::HashMap::new();
     let cell = |q: [f32; 2]| ((q[0] / gap).floor() as i64, (q[1] / gap).floor() as i64);
@@ -336,7 +406,9 @@ fn slip_arrows(cv: &mut Canvas, model: &Model, contact: &ContactRun, sheet: &She
     let mut drawn = 0;
     for (p, q) in slipping {
         let (i, j) = cell(q);
-        let near = (i - 1..=i + 1).flat_map(|a| (j - 1..=j + 1).map(move |b| (a, b))).any(|c| kept.get(&c).is_some_and(|v| v.iter().any(|o| (o[0] - q[0]).hypot(o[1] - q[1]) < gap)));
+        let near = (i - 1..=i + 1)
+            .flat_map(|a| (j - 1..=j + 1).map(move |b| (a, b)))
+            .any(|c| kept.get(&c).is_some_and(|v| v.iter().any(|o| (o[0] - q[0]).hypot(o[1] - q[1]) < gap)));
         if near {
             continue;
         }
@@ -371,11 +443,22 @@ fn arrow(cv: &mut Canvas, a: [f32; 2], b: [f32; 2]) {
 
 /// The states with their counts on this interface, facet nodes without a
 /// pair here, and the arrow's meaning.
-fn state_legend(cv: &mut Canvas, labels: &mut Vec<Label>, x: f64, top: f64, counts: [usize; 3], unpaired: bool, arrows: bool) {
+fn state_legend(
+    cv: &mut Canvas,
+    labels: &mut Vec<Label>,
+    x: f64,
+    top: f64,
+    counts: [usize; 3],
+    unpaired: bool,
+    arrows: bool,
+) {
     let mut y = top + 10.0;
     labels.push(label("contact pairs", (x, y), 16.0, (HPos::Left, VPos::Center)));
     let mut entries: Vec<([u8; 3], String)> =
-        [(ContactState::Stick, counts[2]), (ContactState::Slip, counts[1]), (ContactState::Open, counts[0])].iter().map(|&(s, n)| (state_colour(s), format!("{} ({n})", s.name()))).collect();
+        [(ContactState::Stick, counts[2]), (ContactState::Slip, counts[1]), (ContactState::Open, counts[0])]
+            .iter()
+            .map(|&(s, n)| (state_colour(s), format!("{} ({n})", s.name())))
+            .collect();
     if unpaired {
         // facet nodes that are no pair's first node (where contacts meet)
         entries.push((NO_PAIR, "no pair here".into()));
@@ -383,7 +466,14 @@ fn state_legend(cv: &mut Canvas, labels: &mut Vec<Label>, x: f64, top: f64, coun
     for (colour, text) in entries {
         y += 28.0;
         cv.rect(x + 1.0, y - 8.0, x + 25.0, y + 8.0, colour);
-        cv.polyline([[x + 1.0, y - 8.0], [x + 25.0, y - 8.0], [x + 25.0, y + 8.0], [x + 1.0, y + 8.0], [x + 1.0, y - 8.0]].map(|p| [p[0] as f32, p[1] as f32]).into_iter(), 1.0, INK, 1.0);
+        cv.polyline(
+            [[x + 1.0, y - 8.0], [x + 25.0, y - 8.0], [x + 25.0, y + 8.0], [x + 1.0, y + 8.0], [x + 1.0, y - 8.0]]
+                .map(|p| [p[0] as f32, p[1] as f32])
+                .into_iter(),
+            1.0,
+            INK,
+            1.0,
+        );
         labels.push(label(text, (x + 34.0, y), 15.0, (HPos::Left, VPos::Center)));
     }
     if arrows {
@@ -418,7 +508,10 @@ fn axes(cv: &mut Canvas, labels: &mut Vec<Label>, fit: &Fit, lo: [f64; 2], hi: [
                 tick_x(cv, deg.to_radians() * radius, format!("{}°", num(deg)), name);
             }
             let from = if *crown { "the crown".to_string() } else { direction(*zero, true) };
-            (format!("angle about the axis from {from} towards {} (degrees)", direction(*side, true)), format!("along {}", direction(*a, false)))
+            (
+                format!("angle about the axis from {from} towards {} (degrees)", direction(*side, true)),
+                format!("along {}", direction(*a, false)),
+            )
         }
         Shape::Plane { r, v, .. } | Shape::Curved { r, v, .. } => {
             let step = nice_step((hi[0] - lo[0]) / 5.0);
@@ -450,7 +543,14 @@ fn axes(cv: &mut Canvas, labels: &mut Vec<Label>, fit: &Fit, lo: [f64; 2], hi: [
 /// `width` pixels: every 15, 30, 45 or 90 degrees, at least 48 px apart;
 /// the quarter turns named (a tunnel's crown 0, springlines ±90, invert
 /// 180; a shaft's directions).
-pub(super) fn angle_ticks(t0: f64, t1: f64, width: f64, crown: bool, zero: [f64; 3], side: [f64; 3]) -> Vec<(f64, Option<String>)> {
+pub(super) fn angle_ticks(
+    t0: f64,
+    t1: f64,
+    width: f64,
+    crown: bool,
+    zero: [f64; 3],
+    side: [f64; 3],
+) -> Vec<(f64, Option<String>)> {
     let (d0, d1) = (t0.to_degrees(), t1.to_degrees());
     let span = (d1 - d0).max(1e-9);
     let step = [15.0, 30.0, 45.0, 90.0].into_iter().find(|s| width * s / span >= 48.0).unwrap_or(90.0);

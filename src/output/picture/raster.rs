@@ -24,7 +24,11 @@ pub(super) fn label(text: impl Into<String>, at: (f64, f64), size: f64, pos: (HP
 pub(super) fn register_font() {
     static ONCE: std::sync::Once = std::sync::Once::new();
     ONCE.call_once(|| {
-        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, include_bytes!("../../../assets/DejaVuSans.ttf"));
+        let _ = plotters::style::register_font(
+            "sans-serif",
+            FontStyle::Normal,
+            include_bytes!("../../../assets/DejaVuSans.ttf"),
+        );
     });
 }
 
@@ -47,7 +51,12 @@ impl Canvas {
     /// stop at the panel's edge).
     pub(super) fn clip(&mut self, b: Option<[f64; 4]>) {
         self.clip = match b {
-            Some(b) => [b[0].max(0.0) as usize, b[1].max(0.0) as usize, (b[2].max(0.0) as usize).min(self.w), (b[3].max(0.0) as usize).min(self.h)],
+            Some(b) => [
+                b[0].max(0.0) as usize,
+                b[1].max(0.0) as usize,
+                (b[2].max(0.0) as usize).min(self.w),
+                (b[3].max(0.0) as usize).min(self.h),
+            ],
             None => [0, 0, self.w, self.h],
         };
     }
@@ -106,8 +115,10 @@ impl Canvas {
         }
         let xmin = p.iter().map(|v| v[0]).fold(f32::INFINITY, f32::min).floor().max(self.clip[0] as f32) as usize;
         let ymin = p.iter().map(|v| v[1]).fold(f32::INFINITY, f32::min).floor().max(self.clip[1] as f32) as usize;
-        let xmax = (p.iter().map(|v| v[0]).fold(f32::NEG_INFINITY, f32::max).ceil() as isize).min(self.clip[2] as isize - 1);
-        let ymax = (p.iter().map(|v| v[1]).fold(f32::NEG_INFINITY, f32::max).ceil() as isize).min(self.clip[3] as isize - 1);
+        let xmax =
+            (p.iter().map(|v| v[0]).fold(f32::NEG_INFINITY, f32::max).ceil() as isize).min(self.clip[2] as isize - 1);
+        let ymax =
+            (p.iter().map(|v| v[1]).fold(f32::NEG_INFINITY, f32::max).ceil() as isize).min(self.clip[3] as isize - 1);
         if xmax < xmin as isize || ymax < ymin as isize {
             return;
         }
@@ -190,8 +201,10 @@ impl Canvas {
     }
 
     pub(super) fn dot(&mut self, p: [f32; 2], r: f32, c: [u8; 3]) {
-        let (x0, x1) = ((p[0] - r - 1.0).floor().max(0.0) as isize, ((p[0] + r + 1.0).ceil() as isize).min(self.w as isize - 1));
-        let (y0, y1) = ((p[1] - r - 1.0).floor().max(0.0) as isize, ((p[1] + r + 1.0).ceil() as isize).min(self.h as isize - 1));
+        let (x0, x1) =
+            ((p[0] - r - 1.0).floor().max(0.0) as isize, ((p[0] + r + 1.0).ceil() as isize).min(self.w as isize - 1));
+        let (y0, y1) =
+            ((p[1] - r - 1.0).floor().max(0.0) as isize, ((p[1] + r + 1.0).ceil() as isize).min(self.h as isize - 1));
         for y in y0..=y1 {
             for x in x0..=x1 {
                 let d = (x as f32 + 0.5 - p[0]).hypot(y as f32 + 0.5 - p[1]);
@@ -214,7 +227,8 @@ impl Canvas {
         let root = BitMapBackend::with_buffer(&mut self.rgb, (w, h)).into_drawing_area();
         for l in labels {
             let colour = rgb(INK);
-            let style = TextStyle::from(("sans-serif", l.size).into_font()).color(&colour).pos(Pos::new(HPos::Left, l.pos.1));
+            let style =
+                TextStyle::from(("sans-serif", l.size).into_font()).color(&colour).pos(Pos::new(HPos::Left, l.pos.1));
             let k = l.size / metrics.height;
             let width: f64 = l.text.chars().map(|c| metrics.glyph(c).0 * k).sum();
             let mut pen = match l.pos.0 {
@@ -227,7 +241,8 @@ impl Canvas {
                 let (advance, lsb) = metrics.glyph(c);
                 if !c.is_whitespace() {
                     let x = pen.round() as i32 + (lsb * k).floor() as i32;
-                    root.draw_text(c.encode_utf8(&mut buf), &style, (x, l.at.1.round() as i32)).map_err(|e| PictureError::Text { text: l.text.clone(), reason: format!("{e:?}") })?;
+                    root.draw_text(c.encode_utf8(&mut buf), &style, (x, l.at.1.round() as i32))
+                        .map_err(|e| PictureError::Text { text: l.text.clone(), reason: format!("{e:?}") })?;
                 }
                 pen += advance * k;
             }
@@ -256,8 +271,11 @@ impl FontMetrics {
     }
 
     fn parse(font: &'static [u8]) -> Option<FontMetrics> {
-        let u16_at = |b: &[u8], at: usize| -> Option<u16> { Some(u16::from_be_bytes(b.get(at..at + 2)?.try_into().ok()?)) };
-        let u32_at = |b: &[u8], at: usize| -> Option<usize> { Some(u32::from_be_bytes(b.get(at..at + 4)?.try_into().ok()?) as usize) };
+        let u16_at =
+            |b: &[u8], at: usize| -> Option<u16> { Some(u16::from_be_bytes(b.get(at..at + 2)?.try_into().ok()?)) };
+        let u32_at = |b: &[u8], at: usize| -> Option<usize> {
+            Some(u32::from_be_bytes(b.get(at..at + 4)?.try_into().ok()?) as usize)
+        };
         let table = |tag: &[u8; 4]| -> Option<&'static [u8]> {
             let n = u16_at(font, 4)? as usize;
             let r = (0..n).map(|i| 12 + 16 * i).find(|&r| font.get(r..r + 4) == Some(&tag[..]))?;

@@ -25,9 +25,9 @@
 //! Planes come first, by set (normals within 10 degrees) in the order the
 //! facets first meet them, and by offset within a set.
 
+use super::num;
 use super::surface::{facet_patches, Patch};
 use super::view::model_up;
-use super::num;
 use crate::fem::vec3::{cross, dot, normalized, sub};
 use crate::mesh::Cell;
 use crate::model::Model;
@@ -43,7 +43,16 @@ pub(super) enum Shape {
     /// `radius`, angle 0 along `zero` and 90 degrees along `side = a x zero`;
     /// angles run over `[cut, cut + 2 pi)`. `crown`: zero is up (a tunnel),
     /// else a world axis (a shaft). `ring`: a whole turn (no gap).
-    Cylinder { a: [f64; 3], centre: [f64; 3], radius: f64, zero: [f64; 3], side: [f64; 3], cut: f64, crown: bool, ring: bool },
+    Cylinder {
+        a: [f64; 3],
+        centre: [f64; 3],
+        radius: f64,
+        zero: [f64; 3],
+        side: [f64; 3],
+        cut: f64,
+        crown: bool,
+        ring: bool,
+    },
     /// A curved surface seen along `e`, like a plane.
     Curved { e: [f64; 3], r: [f64; 3], v: [f64; 3] },
 }
@@ -87,7 +96,9 @@ impl Sheet {
     pub(super) fn at(&self, x: [f64; 3]) -> [f64; 2] {
         match &self.shape {
             Shape::Plane { r, v, .. } | Shape::Curved { r, v, .. } => [dot(x, *r), dot(x, *v)],
-            Shape::Cylinder { a, radius, cut, .. } => [radius * (cut + (self.angle(x) - cut).rem_euclid(std::f64::consts::TAU)), dot(x, *a)],
+            Shape::Cylinder { a, radius, cut, .. } => {
+                [radius * (cut + (self.angle(x) - cut).rem_euclid(std::f64::consts::TAU)), dot(x, *a)]
+            }
         }
     }
 
@@ -202,7 +213,9 @@ impl Sheet {
                 }
                 s
             }
-            Shape::Cylinder { a, radius, .. } => format!("the cylinder r = {} about an axis along {}", num(*radius), direction(*a, false)),
+            Shape::Cylinder { a, radius, .. } => {
+                format!("the cylinder r = {} about an axis along {}", num(*radius), direction(*a, false))
+            }
             Shape::Curved { e, .. } => format!("a curved surface seen from {}", direction(*e, true)),
         }
     }
@@ -239,8 +252,23 @@ pub(super) fn dip(n: [f64; 3]) -> (f64, f64) {
 /// A direction's name: "x", "−z" ("+z" with `plus`), or its components.
 pub(super) fn direction(d: [f64; 3], plus: bool) -> String {
     match (0..3).find(|&a| (d[a].abs() - 1.0).abs() < 1e-9) {
-        Some(a) => format!("{}{}", if d[a] < 0.0 { "−" } else if plus { "+" } else { "" }, ["x", "y", "z"][a]),
-        None => format!("({}, {}, {})", num((d[0] * 100.0).round() / 100.0), num((d[1] * 100.0).round() / 100.0), num((d[2] * 100.0).round() / 100.0)),
+        Some(a) => format!(
+            "{}{}",
+            if d[a] < 0.0 {
+                "−"
+            } else if plus {
+                "+"
+            } else {
+                ""
+            },
+            ["x", "y", "z"][a]
+        ),
+        None => format!(
+            "({}, {}, {})",
+            num((d[0] * 100.0).round() / 100.0),
+            num((d[1] * 100.0).round() / 100.0),
+            num((d[2] * 100.0).round() / 100.0)
+        ),
     }
 }
 
@@ -351,7 +379,9 @@ pub(super) fn sheets(model: &Model, ii: usize) -> Vec<Sheet> {
             let area: f64 = piece.iter().map(|&f| geo[f].1).sum();
             let offset = piece.iter().map(|&f| geo[f].1 * dot(geo[f].2, n)).sum::<f64>() / area.max(f64::MIN_POSITIVE);
             // the same plane: parallel, and offsets within 1e-4 of the model's size
-            let same = |pn: [f64; 3], po: f64| dot(pn, n).abs() >= flat_tol && (po - dot(pn, n).signum() * offset).abs() <= 1e-4 * extent;
+            let same = |pn: [f64; 3], po: f64| {
+                dot(pn, n).abs() >= flat_tol && (po - dot(pn, n).signum() * offset).abs() <= 1e-4 * extent
+            };
             match planes.iter_mut().find(|(_, pn, po)| same(*pn, *po)) {
                 Some(p) => p.0.extend(piece),
                 None => planes.push((piece, n, offset)),
@@ -431,7 +461,11 @@ fn curved(model: &Model, ii: usize, piece: Vec<usize>, geo: &[([f64; 3], f64, [f
     nodes.sort_unstable();
     nodes.dedup();
     if eig.eigenvalues[imin] <= 0.03 * total {
-        let a = snap(canonical(normalized([eig.eigenvectors[(0, imin)], eig.eigenvectors[(1, imin)], eig.eigenvectors[(2, imin)]])));
+        let a = snap(canonical(normalized([
+            eig.eigenvectors[(0, imin)],
+            eig.eigenvectors[(1, imin)],
+            eig.eigenvectors[(2, imin)],
+        ])));
         if let Some(shape) = cylinder(model, &nodes, a, up) {
             return Sheet { interface: ii, facets: piece, shape, set: 0 };
         }
@@ -478,7 +512,11 @@ fn cylinder(model: &Model, nodes: &[usize], a: [f64; 3], up: [f64; 3]) -> Option
     let sol = ata.lu().solve(&atb)?;
     let (cx, cy) = (-0.5 * sol[0], -0.5 * sol[1]);
     let centre: [f64; 3] = std::array::from_fn(|d| mean[d] + cx * zero[d] + cy * side[d]);
-    let radius = nodes.iter().map(|&k| dot(across(sub(model.coords[k], centre)), across(sub(model.coords[k], centre))).sqrt()).sum::<f64>() / n;
+    let radius = nodes
+        .iter()
+        .map(|&k| dot(across(sub(model.coords[k], centre)), across(sub(model.coords[k], centre))).sqrt())
+        .sum::<f64>()
+        / n;
     if !radius.is_finite() || radius <= 0.0 {
         return None;
     }
@@ -493,10 +531,12 @@ fn cylinder(model: &Model, nodes: &[usize], a: [f64; 3], up: [f64; 3]) -> Option
     angles.sort_by(|x, y| x.total_cmp(y));
     angles.dedup_by(|x, y| (*x - *y).abs() < 1e-9);
     let tau = std::f64::consts::TAU;
-    let gaps: Vec<(f64, f64)> = (0..angles.len()).map(|i| {
-        let (x, y) = (angles[i], if i + 1 < angles.len() { angles[i + 1] } else { angles[0] + tau });
-        (y - x, 0.5 * (x + y))
-    }).collect();
+    let gaps: Vec<(f64, f64)> = (0..angles.len())
+        .map(|i| {
+            let (x, y) = (angles[i], if i + 1 < angles.len() { angles[i + 1] } else { angles[0] + tau });
+            (y - x, 0.5 * (x + y))
+        })
+        .collect();
     let mut sorted: Vec<f64> = gaps.iter().map(|g| g.0).collect();
     sorted.sort_by(|x, y| x.total_cmp(y));
     let typical = sorted.get(sorted.len() / 2).copied().unwrap_or(0.0);
@@ -506,7 +546,11 @@ fn cylinder(model: &Model, nodes: &[usize], a: [f64; 3], up: [f64; 3]) -> Option
         -std::f64::consts::PI
     } else {
         let mid = mid.rem_euclid(tau);
-        if mid > 1e-12 { mid - tau } else { 0.0 }
+        if mid > 1e-12 {
+            mid - tau
+        } else {
+            0.0
+        }
     };
     Some(Shape::Cylinder { a, centre, radius, zero, side, cut, crown, ring })
 }
@@ -522,7 +566,11 @@ pub(super) mod tests {
     /// body cell so that the model has a size, z up by gravity.
     pub(in super::super) fn model_of(coords: Vec<[f64; 3]>, quads: Vec<[usize; 4]>) -> Model {
         let n = coords.len();
-        let facets: Vec<Cell> = quads.iter().enumerate().map(|(i, q)| Cell { kind: CellKind::Quad4, nodes: q.to_vec(), tag: i as u64 + 1 }).collect();
+        let facets: Vec<Cell> = quads
+            .iter()
+            .enumerate()
+            .map(|(i, q)| Cell { kind: CellKind::Quad4, nodes: q.to_vec(), tag: i as u64 + 1 })
+            .collect();
         let cell = Cell { kind: CellKind::Tet4, nodes: (0..4.min(n)).collect(), tag: 0 };
         Model {
             scene: "test.toml".into(),
@@ -531,11 +579,27 @@ pub(super) mod tests {
             thickness: 1.0,
             gravity: [0.0, 0.0, -9.81],
             coords,
-            bodies: vec![Body { name: "a".into(), group: 0, block: None, e: 1.0, nu: 0.2, density: 0.0, cells: vec![cell], initial: None }],
+            bodies: vec![Body {
+                name: "a".into(),
+                group: 0,
+                block: None,
+                e: 1.0,
+                nu: 0.2,
+                density: 0.0,
+                cells: vec![cell],
+                initial: None,
+            }],
             loads: Vec::new(),
             prescribed: vec![None; 3 * n],
             pairs: Vec::new(),
-            interfaces: vec![Interface { name: "joints".into(), body_i: 0, body_ii: 0, side_i: vec![0], sides: vec![[0, 0]; facets.len()], facets }],
+            interfaces: vec![Interface {
+                name: "joints".into(),
+                body_i: 0,
+                body_ii: 0,
+                side_i: vec![0],
+                sides: vec![[0, 0]; facets.len()],
+                facets,
+            }],
             mesh_node: (0..n).collect(),
             cases: vec![vec![1.0]],
             gravity_case: 0,
@@ -545,7 +609,12 @@ pub(super) mod tests {
 
     /// A grid of quads over `[0, 1] x [0, 1]` mapped by `at(s, t)`,
     /// appended to `coords` and `quads`.
-    pub(in super::super) fn grid(coords: &mut Vec<[f64; 3]>, quads: &mut Vec<[usize; 4]>, n: [usize; 2], at: impl Fn(f64, f64) -> [f64; 3]) {
+    pub(in super::super) fn grid(
+        coords: &mut Vec<[f64; 3]>,
+        quads: &mut Vec<[usize; 4]>,
+        n: [usize; 2],
+        at: impl Fn(f64, f64) -> [f64; 3],
+    ) {
         let first = coords.len();
         for j in 0..=n[1] {
             for i in 0..=n[0] {
@@ -630,7 +699,9 @@ pub(super) mod tests {
         let m = ring(0.0, 360.0, 24);
         let sh = sheets(&m, 0);
         assert_eq!(sh.len(), 1);
-        let Shape::Cylinder { a, centre, radius, cut, crown, ring, .. } = sh[0].shape else { panic!("a cylinder: {:?}", sh[0].shape) };
+        let Shape::Cylinder { a, centre, radius, cut, crown, ring, .. } = sh[0].shape else {
+            panic!("a cylinder: {:?}", sh[0].shape)
+        };
         assert!(crown && ring && (radius - 5.0).abs() < 1e-9 && a == [0.0, 1.0, 0.0], "{a:?} {radius}");
         assert!(centre[0].abs() < 1e-9 && centre[2].abs() < 1e-9);
         assert!((cut + std::f64::consts::PI).abs() < 1e-12);
@@ -644,10 +715,14 @@ pub(super) mod tests {
         assert_eq!(flat.patches.len(), 48 + 2);
         let half = 5.0 * std::f64::consts::PI;
         assert_eq!([flat.lo[0], flat.hi[0]], [-half, half], "the whole turn, the invert at both ends");
-        assert!(flat.patches.iter().all(|p| {
-            let xs: Vec<f64> = p.nodes().iter().map(|&i| flat.points[i][0]).collect();
-            xs.iter().fold(f64::NEG_INFINITY, |a, &b| a.max(b)) - xs.iter().fold(f64::INFINITY, |a, &b| a.min(b)) < 2.0
-        }), "no facet stretched across the picture");
+        assert!(
+            flat.patches.iter().all(|p| {
+                let xs: Vec<f64> = p.nodes().iter().map(|&i| flat.points[i][0]).collect();
+                xs.iter().fold(f64::NEG_INFINITY, |a, &b| a.max(b)) - xs.iter().fold(f64::INFINITY, |a, &b| a.min(b))
+                    < 2.0
+            }),
+            "no facet stretched across the picture"
+        );
     }
 
     #[test]
@@ -660,7 +735,12 @@ pub(super) mod tests {
             assert!(matches!(sh[0].shape, Shape::Cylinder { .. }));
             let flat = sh[0].flat(&m);
             let deg = |x: f64| (x / 5.0).to_degrees();
-            assert!((deg(flat.lo[0]) - lo).abs() < 1e-6 && (deg(flat.hi[0]) - hi).abs() < 1e-6, "{a0}..{a1}: {} .. {}", deg(flat.lo[0]), deg(flat.hi[0]));
+            assert!(
+                (deg(flat.lo[0]) - lo).abs() < 1e-6 && (deg(flat.hi[0]) - hi).abs() < 1e-6,
+                "{a0}..{a1}: {} .. {}",
+                deg(flat.lo[0]),
+                deg(flat.hi[0])
+            );
             assert_eq!(flat.patches.len(), 24, "no copies");
         }
     }

@@ -5,9 +5,9 @@
 //! with the nodal field interpolated linearly (Gouraud).
 
 use super::raster::Canvas;
-use crate::fem::Analysis;
 use crate::fem::shape::{HEX_EDGES, HEX_FACES, TET_EDGES};
 use crate::fem::vec3::{cross, dot, normalized, sub};
+use crate::fem::Analysis;
 use crate::mesh::{Cell, CellKind};
 use crate::model::Model;
 
@@ -48,7 +48,8 @@ impl Patch {
 /// Sub-triangles of a patch over its nodes plus a centre at index 8 (Quad).
 pub(super) fn sub_triangles(kind: CellKind) -> &'static [[usize; 3]] {
     const QUAD_LIN: [[usize; 3]; 4] = [[0, 1, 8], [1, 2, 8], [2, 3, 8], [3, 0, 8]];
-    const QUAD_QUAD: [[usize; 3]; 8] = [[0, 4, 8], [4, 1, 8], [1, 5, 8], [5, 2, 8], [2, 6, 8], [6, 3, 8], [3, 7, 8], [7, 0, 8]];
+    const QUAD_QUAD: [[usize; 3]; 8] =
+        [[0, 4, 8], [4, 1, 8], [1, 5, 8], [5, 2, 8], [2, 6, 8], [6, 3, 8], [3, 7, 8], [7, 0, 8]];
     match kind {
         CellKind::Tri3 => &[[0, 1, 2]],
         CellKind::Tri6 => &[[0, 3, 5], [3, 1, 4], [5, 4, 2], [3, 4, 5]],
@@ -79,28 +80,34 @@ type LocalPatches = Vec<(CellKind, Vec<usize>)>;
 /// The surface patches of a 2D cell (itself) or a 3D cell (its faces), in
 /// cell-local node numbers.
 fn local_patches(kind: CellKind) -> LocalPatches {
-    let faces = |corners: &[usize], edges: &[[usize; 2]], first_mid: usize, centre: Option<usize>| -> (CellKind, Vec<usize>) {
-        let nc = corners.len();
-        let mut nodes = corners.to_vec();
-        if kind.order() == 2 {
-            for i in 0..nc {
-                let (a, b) = (corners[i], corners[(i + 1) % nc]);
-                let e = edges.iter().position(|e| (e[0] == a && e[1] == b) || (e[0] == b && e[1] == a)).expect("face edge is a cell edge");
-                nodes.push(first_mid + e);
+    let faces =
+        |corners: &[usize], edges: &[[usize; 2]], first_mid: usize, centre: Option<usize>| -> (CellKind, Vec<usize>) {
+            let nc = corners.len();
+            let mut nodes = corners.to_vec();
+            if kind.order() == 2 {
+                for i in 0..nc {
+                    let (a, b) = (corners[i], corners[(i + 1) % nc]);
+                    let e = edges
+                        .iter()
+                        .position(|e| (e[0] == a && e[1] == b) || (e[0] == b && e[1] == a))
+                        .expect("face edge is a cell edge");
+                    nodes.push(first_mid + e);
+                }
             }
-        }
-        nodes.extend(centre);
-        let k = match (nc, nodes.len()) {
-            (3, 3) => CellKind::Tri3,
-            (3, _) => CellKind::Tri6,
-            (4, 4) => CellKind::Quad4,
-            (4, 8) => CellKind::Quad8,
-            _ => CellKind::Quad9,
+            nodes.extend(centre);
+            let k = match (nc, nodes.len()) {
+                (3, 3) => CellKind::Tri3,
+                (3, _) => CellKind::Tri6,
+                (4, 4) => CellKind::Quad4,
+                (4, 8) => CellKind::Quad8,
+                _ => CellKind::Quad9,
+            };
+            (k, nodes)
         };
-        (k, nodes)
-    };
     match kind {
-        CellKind::Tri3 | CellKind::Tri6 | CellKind::Quad4 | CellKind::Quad8 | CellKind::Quad9 => vec![(kind, (0..kind.n_nodes()).collect())],
+        CellKind::Tri3 | CellKind::Tri6 | CellKind::Quad4 | CellKind::Quad8 | CellKind::Quad9 => {
+            vec![(kind, (0..kind.n_nodes()).collect())]
+        }
         CellKind::Tet4 | CellKind::Tet10 => TET_FACES.iter().map(|f| faces(f, &TET_EDGES, 4, None)).collect(),
         CellKind::Hex8 | CellKind::Hex20 | CellKind::Hex27 => HEX_FACES
             .iter()
@@ -196,7 +203,10 @@ fn mark_outlines(patches: &mut [Patch], coords: &[[f64; 3]], solid: bool) {
         let j = (i..edges.len()).find(|&j| (edges[j].0, edges[j].1) != (edges[i].0, edges[i].1)).unwrap_or(edges.len());
         let sharp = match (solid, j - i) {
             (_, 1) => true,
-            (true, 2) => dot(normal(&patches[edges[i].2 as usize]), normal(&patches[edges[i + 1].2 as usize])).abs() < 30f64.to_radians().cos(),
+            (true, 2) => {
+                dot(normal(&patches[edges[i].2 as usize]), normal(&patches[edges[i + 1].2 as usize])).abs()
+                    < 30f64.to_radians().cos()
+            }
             _ => false,
         };
         if sharp {
@@ -245,7 +255,12 @@ pub(super) fn mesh_alpha(patches: &[Patch], pos: &[[f32; 2]]) -> f32 {
 
 /// Strokes a patch's edges (through their mid-edge nodes): `pick(outline,
 /// first)` gives an edge's width, colour and opacity, or None to leave it.
-pub(super) fn edges(cv: &mut Canvas, p: &Patch, pos: &[[f32; 2]], pick: &dyn Fn(bool, bool) -> Option<(f32, [u8; 3], f32)>) {
+pub(super) fn edges(
+    cv: &mut Canvas,
+    p: &Patch,
+    pos: &[[f32; 2]],
+    pick: &dyn Fn(bool, bool) -> Option<(f32, [u8; 3], f32)>,
+) {
     for i in 0..p.kind.n_corners() {
         if let Some((w, c, a)) = pick(p.outline & (1 << i) != 0, p.first & (1 << i) != 0) {
             let (chain, len) = p.edge(i);
@@ -266,7 +281,13 @@ pub(super) fn pieces(p: &Patch, pos: &[[f32; 2]]) -> impl Iterator<Item = ([[f32
 
 /// Fills a patch through its sub-triangles; `values` gives the patch's
 /// nodal values (index 8 the centre) and `paint` a colour for a value.
-pub(super) fn fill(cv: &mut Canvas, p: &Patch, pos: &[[f32; 2]], values: &dyn Fn(&Patch) -> [f64; 9], paint: &dyn Fn(f32) -> [u8; 3]) {
+pub(super) fn fill(
+    cv: &mut Canvas,
+    p: &Patch,
+    pos: &[[f32; 2]],
+    values: &dyn Fn(&Patch) -> [f64; 9],
+    paint: &dyn Fn(f32) -> [u8; 3],
+) {
     let t = values(p);
     for (q, tri) in pieces(p, pos) {
         cv.triangle(q, tri.map(|i| t[i] as f32), paint);

@@ -4,16 +4,16 @@
 //! show; the pictures are kept in the temporary directory to look at.
 
 use super::deformed::{deformed_canvas, H, W};
-use super::legend::PANEL_X;
 use super::interfaces::{along, interface_plot_png};
 use super::legend::nice_step;
+use super::legend::PANEL_X;
 use super::raster::{encode_png, register_font, Canvas, FontMetrics};
 use super::*;
-use plotters::style::IntoFont;
 use crate::driver::{self, RunOptions};
 use crate::fem::vec3::{dot, sub};
 use crate::results::{state_counts, Run};
 use crate::scene::Scene;
+use plotters::style::IntoFont;
 use std::path::{Path, PathBuf};
 
 /// Decodes a PNG to (width, height, rgb) with the `png` crate.
@@ -86,12 +86,23 @@ fn count(cv: &Canvas, c: [u8; 3]) -> usize {
 
 /// The columns of the pixels of colour `c` inside box `b` (x0, y0, x1, y1).
 fn in_box(cv: &Canvas, b: [f64; 4], c: [u8; 3]) -> Vec<usize> {
-    (b[1] as usize..b[3] as usize).flat_map(|y| (b[0] as usize..b[2] as usize).map(move |x| (x, y))).filter(|&(x, y)| cv.rgb[(y * cv.w + x) * 3..][..3] == c).map(|(x, _)| x).collect()
+    (b[1] as usize..b[3] as usize)
+        .flat_map(|y| (b[0] as usize..b[2] as usize).map(move |x| (x, y)))
+        .filter(|&(x, y)| cv.rgb[(y * cv.w + x) * 3..][..3] == c)
+        .map(|(x, _)| x)
+        .collect()
 }
 
 /// The last state of a run, to draw.
 fn snap(run: &Run) -> Snapshot<'_> {
-    Snapshot { title: &run.scene.title, model: &run.model, u: &run.last().u, stresses: &run.last().stresses, contact: run.contact(), region: run.scene.output.frame.as_ref() }
+    Snapshot {
+        title: &run.scene.title,
+        model: &run.model,
+        u: &run.last().u,
+        stresses: &run.last().stresses,
+        contact: run.contact(),
+        region: run.scene.output.frame.as_ref(),
+    }
 }
 
 fn contact(run: &Run) -> &crate::results::ContactRun {
@@ -102,7 +113,8 @@ fn cylinder(lc: f64, order: usize) -> Run {
     let mut scene = Scene::load(Path::new("geo/cylinder.toml")).expect("scene");
     scene.gmsh.setnumber = vec![("lc".into(), lc)];
     scene.gmsh.order = order;
-    let opts = RunOptions { out: Some(out_dir(&format!("cylinder_{lc}_{order}"))), skip_output: true, ..Default::default() };
+    let opts =
+        RunOptions { out: Some(out_dir(&format!("cylinder_{lc}_{order}"))), skip_output: true, ..Default::default() };
     driver::run_scene(scene, &opts).expect("cylinder run")
 }
 
@@ -168,7 +180,14 @@ fn interface_pairs_are_ordered_by_arc_length_from_the_inner_end() {
 #[test]
 fn interface_walk_starts_at_the_same_end_every_time() {
     let mut scene = Scene::load(Path::new("geo/tunnel_slip.toml")).expect("scene");
-    scene.gmsh.setnumber = vec![("D".into(), 20.0), ("R".into(), 5.0), ("lc".into(), 0.5), ("nl".into(), 1.0), ("nr".into(), 8.0), ("t".into(), 0.125)];
+    scene.gmsh.setnumber = vec![
+        ("D".into(), 20.0),
+        ("R".into(), 5.0),
+        ("lc".into(), 0.5),
+        ("nl".into(), 1.0),
+        ("nr".into(), 8.0),
+        ("t".into(), 0.125),
+    ];
     let opts = RunOptions { out: Some(out_dir("tunnel_ends")), skip_output: true, ..Default::default() };
     let run = driver::run_scene(scene, &opts).expect("tunnel run");
     let first = along(&run.model, 0);
@@ -181,7 +200,11 @@ fn interface_walk_starts_at_the_same_end_every_time() {
 
 #[test]
 fn paper_mesh_picture_in_3d() {
-    let run = driver::run(Path::new("geo/cylinder_paper.toml"), &RunOptions { out: Some(out_dir("paper")), ..Default::default() }).expect("paper run");
+    let run = driver::run(
+        Path::new("geo/cylinder_paper.toml"),
+        &RunOptions { out: Some(out_dir("paper")), ..Default::default() },
+    )
+    .expect("paper run");
     let cv = deformed_canvas(&snap(&run), Field::VonMises, None).expect("canvas");
     assert!(count(&cv, STICK) > 50, "stick dots: {}", count(&cv, STICK));
     let bytes = encode_png(cv.w, cv.h, &cv.rgb).expect("PNG");
@@ -192,7 +215,8 @@ fn paper_mesh_picture_in_3d() {
     keep("paper_interfaces.svg", svg.as_bytes());
     keep("paper_interfaces.png", &interface_plot_png(&run.model, contact(&run)).expect("plot"));
     // the 45-degree cut is vertical: seen along its normal, z up
-    let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, contact(&run), &plan_files(&run.model)[0]).expect("plan view");
+    let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, contact(&run), &plan_files(&run.model)[0])
+        .expect("plan view");
     let stick = in_box(&cv, boxes[0], STICK).len();
     assert!(stick > 20_000, "the cut sticks: {stick} pixels");
     keep("paper_plan.png", &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
@@ -213,7 +237,13 @@ fn stacked_blocks_pushed_sideways_show_the_states_they_reach() {
     }
     let weak = "friction = 0.8\ncohesion = 0.0\ntensile_strength = 0.0";
     let strong = "friction = 0.5\ncohesion = 100.0\ntensile_strength = 100.0";
-    let plane = ("contact_stack.geo", "plane_stress", "[[supports]]\ngroup = \"base\"\nfix = [\"y\"]\n[[supports]]\ngroup = \"corner\"\nfix = [\"x\"]\n", "[0.5, -1.0]", weak);
+    let plane = (
+        "contact_stack.geo",
+        "plane_stress",
+        "[[supports]]\ngroup = \"base\"\nfix = [\"y\"]\n[[supports]]\ngroup = \"corner\"\nfix = [\"x\"]\n",
+        "[0.5, -1.0]",
+        weak,
+    );
     let solid = ("contact_stack3d.geo", "solid", "[[supports]]\ngroup = \"base\"\nfix = [\"x\", \"y\", \"z\"]\n[[supports]]\ngroup = \"z_faces\"\nfix = [\"z\"]\n", "[0.5, -1.0, 0.0]", weak);
     let cases = [
         ("tri6", 2, "n = 8, quad = 0", plane),
@@ -221,7 +251,18 @@ fn stacked_blocks_pushed_sideways_show_the_states_they_reach() {
         ("quad4", 1, "n = 10, quad = 1", plane),
         ("quad8", 2, "n = 6, quad = 1, serendipity = 1", plane),
         ("hex20", 2, "n = 4, nz = 2, hex = 1, serendipity = 1", solid),
-        ("tet4", 1, "n = 6, hex = 0", (solid.0, solid.1, "[[supports]]\ngroup = \"base\"\nfix = [\"x\", \"y\", \"z\"]\n", "[0.3, -1.0, 0.2]", strong)),
+        (
+            "tet4",
+            1,
+            "n = 6, hex = 0",
+            (
+                solid.0,
+                solid.1,
+                "[[supports]]\ngroup = \"base\"\nfix = [\"x\", \"y\", \"z\"]\n",
+                "[0.3, -1.0, 0.2]",
+                strong,
+            ),
+        ),
     ];
     for (name, order, set, (geo, analysis, supports, traction, joint)) in cases {
         let toml = format!(
@@ -237,10 +278,16 @@ fn stacked_blocks_pushed_sideways_show_the_states_they_reach() {
         let run = driver::run(&path, &opts).expect("stack run");
         let c = run.contact().expect("contact");
         let counts = state_counts(&c.states);
-        eprintln!("{name}: {} stick, {} slip, {} open after {} iterations", counts[2], counts[1], counts[0], c.summary.iterations);
+        eprintln!(
+            "{name}: {} stick, {} slip, {} open after {} iterations",
+            counts[2], counts[1], counts[0], c.summary.iterations
+        );
         assert!(c.summary.converged, "{name}");
         if joint == weak {
-            assert!(counts[0] > 0 && counts[2] > 0, "{name}: the joint opens at one end and sticks at the other: {counts:?}");
+            assert!(
+                counts[0] > 0 && counts[2] > 0,
+                "{name}: the joint opens at one end and sticks at the other: {counts:?}"
+            );
         }
         let t = std::time::Instant::now();
         let cv = deformed_canvas(&snap(&run), Field::VonMises, None).expect("canvas");
@@ -250,9 +297,16 @@ fn stacked_blocks_pushed_sideways_show_the_states_they_reach() {
         }
         keep(&format!("stack_{name}_von_mises.png"), &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
         if analysis == "solid" {
-            let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, c, &plan_files(&run.model)[0]).expect("plan view");
-            for (state, colour, n) in [("open", OPEN, counts[0]), ("slip", SLIP, counts[1]), ("stick", STICK, counts[2])] {
-                assert_eq!(!in_box(&cv, boxes[0], colour).is_empty(), n > 0, "{name}: {state} in plan exactly when present ({n} pairs)");
+            let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, c, &plan_files(&run.model)[0])
+                .expect("plan view");
+            for (state, colour, n) in
+                [("open", OPEN, counts[0]), ("slip", SLIP, counts[1]), ("stick", STICK, counts[2])]
+            {
+                assert_eq!(
+                    !in_box(&cv, boxes[0], colour).is_empty(),
+                    n > 0,
+                    "{name}: {state} in plan exactly when present ({n} pairs)"
+                );
             }
             keep(&format!("stack_{name}_plan.png"), &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
         }
@@ -272,8 +326,17 @@ fn triangles_sharing_edges_leave_no_gaps() {
     let n = 60;
     // a jittered grid over [50, 350] x [40, 260], two triangles per square
     let pt = |i: usize, j: usize| -> [f32; 2] {
-        let jitter = |k: usize| if i == 0 || j == 0 || i == n || j == n { 0.0 } else { ((k * 7919 % 101) as f32 / 101.0 - 0.5) * 2.0 };
-        [50.0 + 300.0 * i as f32 / n as f32 + jitter(i * 31 + j), 40.0 + 220.0 * j as f32 / n as f32 + jitter(j * 17 + i * 3)]
+        let jitter = |k: usize| {
+            if i == 0 || j == 0 || i == n || j == n {
+                0.0
+            } else {
+                ((k * 7919 % 101) as f32 / 101.0 - 0.5) * 2.0
+            }
+        };
+        [
+            50.0 + 300.0 * i as f32 / n as f32 + jitter(i * 31 + j),
+            40.0 + 220.0 * j as f32 / n as f32 + jitter(j * 17 + i * 3),
+        ]
     };
     for i in 0..n {
         for j in 0..n {
@@ -282,7 +345,10 @@ fn triangles_sharing_edges_leave_no_gaps() {
             cv.triangle([a, c, d], [0.0; 3], &|_| [0, 0, 0]);
         }
     }
-    let white = (41..259).flat_map(|y| (51..349).map(move |x| (x, y))).filter(|&(x, y)| cv.rgb[(y * 400 + x) * 3] == 255).count();
+    let white = (41..259)
+        .flat_map(|y| (51..349).map(move |x| (x, y)))
+        .filter(|&(x, y)| cv.rgb[(y * 400 + x) * 3] == 255)
+        .count();
     assert_eq!(white, 0, "unpainted pixels inside the mesh");
 }
 
@@ -301,7 +367,11 @@ fn render_time_of_a_fine_mesh() {
         let total = t.elapsed().as_secs_f64();
         let t = std::time::Instant::now();
         let svg = interface_plot_svg(&run.model, contact(&run)).expect("plot");
-        eprintln!("deformed: raster {raster:.3} s, with PNG {total:.3} s ({} kB); interfaces: {:.3} s", bytes.len() / 1024, t.elapsed().as_secs_f64());
+        eprintln!(
+            "deformed: raster {raster:.3} s, with PNG {total:.3} s ({} kB); interfaces: {:.3} s",
+            bytes.len() / 1024,
+            t.elapsed().as_secs_f64()
+        );
         keep("fine_von_mises.png", &bytes);
         keep("fine_interfaces.svg", svg.as_bytes());
     }
@@ -321,13 +391,20 @@ fn plan_view_of_a_3d_joint_shows_where_it_slips() {
     let run = driver::run_scene(scene, &opts).expect("blocks3d run");
     let c = contact(&run);
     let counts = state_counts(&c.states);
-    eprintln!("blocks3d, lc = 0.2: {} pairs, {} stick, {} slip, {} open", c.states.len(), counts[2], counts[1], counts[0]);
+    eprintln!(
+        "blocks3d, lc = 0.2: {} pairs, {} stick, {} slip, {} open",
+        c.states.len(),
+        counts[2],
+        counts[1],
+        counts[0]
+    );
     assert!(c.summary.converged && counts[1] > 0 && counts[2] > 0 && counts[0] == 0, "partial slip: {counts:?}");
     let plans: Vec<(usize, String)> = plan_files(&run.model).into_iter().map(|p| (p.interface, p.file)).collect();
     assert_eq!(plans, vec![(0, "plan_joint.png".to_string())]);
 
     let t = std::time::Instant::now();
-    let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, c, &plan_files(&run.model)[0]).expect("plan view");
+    let (cv, boxes) =
+        super::plan::plan_canvas(&run.scene.title, &run.model, c, &plan_files(&run.model)[0]).expect("plan view");
     eprintln!("plan view drawn in {:.3} s", t.elapsed().as_secs_f64());
     keep("blocks3d_plan_joint.png", &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
     let pixels = |b: [f64; 4], colour: [u8; 3]| in_box(&cv, b, colour);
@@ -343,9 +420,15 @@ fn plan_view_of_a_3d_joint_shows_where_it_slips() {
     // sigma_n: the leading edge (right) is pressed hardest, the bluest
     let b = boxes[1];
     let mid = (0.5 * (b[1] + b[3])) as usize;
-    let rgb_at = |x: f64| -> [u8; 3] { let i = (mid * cv.w + x as usize) * 3; [cv.rgb[i], cv.rgb[i + 1], cv.rgb[i + 2]] };
+    let rgb_at = |x: f64| -> [u8; 3] {
+        let i = (mid * cv.w + x as usize) * 3;
+        [cv.rgb[i], cv.rgb[i + 1], cv.rgb[i + 2]]
+    };
     let (left, right) = (rgb_at(b[0] + 30.0), rgb_at(b[2] - 30.0));
-    assert!(right[0] + 60 < left[0] && right[2] > right[0] + 60, "grey at the trailing edge, blue at the leading one: left {left:?}, right {right:?}");
+    assert!(
+        right[0] + 60 < left[0] && right[2] > right[0] + 60,
+        "grey at the trailing edge, blue at the leading one: left {left:?}, right {right:?}"
+    );
 
     // the arrows: the shear on "lower" from "upper" along +x, the way the
     // upper block slips over the lower one (its relative displacement)
@@ -355,9 +438,15 @@ fn plan_view_of_a_3d_joint_shows_where_it_slips() {
         let u = &run.last().u;
         let rel: [f64; 3] = std::array::from_fn(|d| u[pair.l * nd + d] - u[pair.k * nd + d]);
         let slip = sub(rel, pair.normal.map(|x| x * dot(rel, pair.normal)));
-        assert!((dot(t, t).sqrt() - c.pairs[p].tau()).abs() <= 1e-9 * c.pairs[p].tau().max(1e-12), "pair {p}: the frame is orthonormal");
+        assert!(
+            (dot(t, t).sqrt() - c.pairs[p].tau()).abs() <= 1e-9 * c.pairs[p].tau().max(1e-12),
+            "pair {p}: the frame is orthonormal"
+        );
         assert!(t[0] > 0.9 * dot(t, t).sqrt(), "pair {p}: shear {t:?} along +x");
-        assert!(dot(t, slip) > 0.99 * dot(t, t).sqrt() * dot(slip, slip).sqrt(), "pair {p}: shear {t:?} along the slip {slip:?}");
+        assert!(
+            dot(t, slip) > 0.99 * dot(t, t).sqrt() * dot(slip, slip).sqrt(),
+            "pair {p}: shear {t:?} along the slip {slip:?}"
+        );
     }
 
     // in report.md, under the contact pictures
@@ -387,7 +476,10 @@ fn no_plan_view_in_2d_and_stale_ones_are_removed() {
         now.add(&f, bytes);
     }
     now.commit().expect("commit");
-    let mut left: Vec<String> = std::fs::read_dir(&dir).expect("dir").map(|e| e.expect("entry").file_name().to_string_lossy().into_owned()).collect();
+    let mut left: Vec<String> = std::fs::read_dir(&dir)
+        .expect("dir")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .collect();
     left.sort();
     assert_eq!(left, [crate::output::files::MANIFEST, "deformed_von_mises.png", "interfaces.svg", "notes.png"]);
 }
@@ -398,7 +490,8 @@ fn run_geo(name: &str, geo: &str, toml: &str) -> Run {
     std::fs::copy(format!("tests/geo/{geo}"), dir.join(geo)).expect("copy geo");
     let path = dir.join(format!("{name}.toml"));
     std::fs::write(&path, toml).expect("scene");
-    driver::run(&path, &RunOptions { out: Some(dir.join("out")), skip_output: true, ..Default::default() }).expect("run")
+    driver::run(&path, &RunOptions { out: Some(dir.join("out")), skip_output: true, ..Default::default() })
+        .expect("run")
 }
 
 /// The lining of `tests/geo/tunnel3d.geo` (R = 5, t = 0.4, a 2 m slice of
@@ -424,7 +517,16 @@ fn angle_ticks_name_the_crown_springlines_and_invert() {
     // a ring on 1300 px: every 15 degrees, the quarter turns named
     let ring = angle_ticks(-pi, pi, 1300.0, true, zero, side);
     let named: Vec<(f64, String)> = ring.iter().filter_map(|(d, n)| n.clone().map(|n| (*d, n))).collect();
-    assert_eq!(named, [(-180.0, "invert".to_string()), (-90.0, "springline (−x)".into()), (0.0, "crown".into()), (90.0, "springline (+x)".into()), (180.0, "invert".into())]);
+    assert_eq!(
+        named,
+        [
+            (-180.0, "invert".to_string()),
+            (-90.0, "springline (−x)".into()),
+            (0.0, "crown".into()),
+            (90.0, "springline (+x)".into()),
+            (180.0, "invert".into())
+        ]
+    );
     assert_eq!(ring.len(), 25);
     // a quarter on 200 px: every 30 degrees (15 would be 33 px apart)
     let quarter: Vec<f64> = angle_ticks(0.0, pi / 2.0, 200.0, true, zero, side).into_iter().map(|t| t.0).collect();
@@ -449,25 +551,39 @@ fn a_3d_lining_is_unrolled_from_the_crown() {
         let plans = plan_files(&run.model);
         assert_eq!(plans.len(), 1);
         assert_eq!(plans[0].file, "plan_interface.png");
-        let super::sheets::Shape::Cylinder { a, radius, crown, ring, .. } = plans[0].sheet.shape else { panic!("unrolled") };
-        assert!(crown && ring == full && a == [0.0, 1.0, 0.0] && (radius - 5.2).abs() < 0.05, "axis {a:?}, r = {radius}");
+        let super::sheets::Shape::Cylinder { a, radius, crown, ring, .. } = plans[0].sheet.shape else {
+            panic!("unrolled")
+        };
+        assert!(
+            crown && ring == full && a == [0.0, 1.0, 0.0] && (radius - 5.2).abs() < 0.05,
+            "axis {a:?}, r = {radius}"
+        );
         let flat = plans[0].sheet.flat(&run.model);
         let deg = |x: f64| (x / radius).to_degrees();
         let (lo, hi) = (deg(flat.lo[0]), deg(flat.hi[0]));
         if full {
             assert_eq!((lo.round(), hi.round()), (-180.0, 180.0));
         } else {
-            assert!(lo.abs() < 0.5 && (hi - 90.0).abs() < 0.5, "the quarter from the crown to the springline: {lo} .. {hi}");
+            assert!(
+                lo.abs() < 0.5 && (hi - 90.0).abs() < 0.5,
+                "the quarter from the crown to the springline: {lo} .. {hi}"
+            );
         }
         let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, c, &plans[0]).expect("plan");
         for (state, colour, n) in [("open", OPEN, counts[0]), ("slip", SLIP, counts[1]), ("stick", STICK, counts[2])] {
             assert_eq!(!in_box(&cv, boxes[0], colour).is_empty(), n > 0, "{state} drawn exactly when present");
         }
-        keep(&format!("tunnel3d_{}_plan.png", if full { "ring" } else { "quarter" }), &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
+        keep(
+            &format!("tunnel3d_{}_plan.png", if full { "ring" } else { "quarter" }),
+            &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"),
+        );
         // interfaces.svg: sigma_n varies round the ring, not along the axis
         let al = super::interfaces::Along::of_sheet(&run.model, &plans[0].sheet, c);
         assert_eq!(al.axis, "angle about the axis from the crown (degrees)");
-        keep(&format!("tunnel3d_{}_interfaces.png", if full { "ring" } else { "quarter" }), &interface_plot_png(&run.model, c).expect("plot"));
+        keep(
+            &format!("tunnel3d_{}_interfaces.png", if full { "ring" } else { "quarter" }),
+            &interface_plot_png(&run.model, c).expect("plot"),
+        );
     }
 }
 
@@ -484,16 +600,28 @@ fn a_3d_tunnel_is_framed_on_its_lining_with_a_scale_per_body() {
     let cut = focus.cut.expect("framed");
     assert!(focus.note.as_deref().is_some_and(|n| n.starts_with("Framed on the contacts")), "{:?}", focus.note);
     // the contacts' box (r = 5.2) grown by half its size on each side, the slice whole
-    assert!((cut.hi[0] - 10.4).abs() < 0.1 && (cut.lo[2] + 10.4).abs() < 0.1 && cut.lo[1] == 0.0 && cut.hi[1] == 2.0, "{cut:?}");
-    let values: Vec<Vec<f32>> = run.last().stresses.iter().map(|bs| {
-        let mut v = vec![f32::NAN; run.model.n_nodes()];
-        for (&k, st) in bs.nodes.iter().zip(&bs.stress) {
-            v[k] = crate::fem::material::von_mises(st) as f32;
-        }
-        v
-    }).collect();
+    assert!(
+        (cut.hi[0] - 10.4).abs() < 0.1 && (cut.lo[2] + 10.4).abs() < 0.1 && cut.lo[1] == 0.0 && cut.hi[1] == 2.0,
+        "{cut:?}"
+    );
+    let values: Vec<Vec<f32>> = run
+        .last()
+        .stresses
+        .iter()
+        .map(|bs| {
+            let mut v = vec![f32::NAN; run.model.n_nodes()];
+            for (&k, st) in bs.nodes.iter().zip(&bs.stress) {
+                v[k] = crate::fem::material::von_mises(st) as f32;
+            }
+            v
+        })
+        .collect();
     let scales = super::deformed::scales(Field::VonMises, &values);
-    assert_eq!(scales.iter().map(|s| s.bodies.clone()).collect::<Vec<_>>(), vec![vec![0], vec![1]], "the lining's scale first, then the rock's");
+    assert_eq!(
+        scales.iter().map(|s| s.bodies.clone()).collect::<Vec<_>>(),
+        vec![vec![0], vec![1]],
+        "the lining's scale first, then the rock's"
+    );
     assert!(scales[0].lim.hi > 3.0 * scales[1].lim.hi);
     let cv = deformed_canvas(&s, Field::VonMises, None).expect("picture");
     keep("tunnel3d_ring_von_mises.png", &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
@@ -505,7 +633,11 @@ fn a_3d_tunnel_is_framed_on_its_lining_with_a_scale_per_body() {
     // the scene names the lining: its box and a quarter of its size round it
     let run = tunnel3d(true, "[output]\nframe = { bodies = [\"lining\"] }\n");
     let focus = super::framing::focus(&run.model, run.scene.output.frame.as_ref());
-    assert!(focus.note.as_deref().is_some_and(|n| n.starts_with("Framed on \"lining\" ([output] frame)")), "{:?}", focus.note);
+    assert!(
+        focus.note.as_deref().is_some_and(|n| n.starts_with("Framed on \"lining\" ([output] frame)")),
+        "{:?}",
+        focus.note
+    );
     let cut = focus.cut.expect("framed");
     assert!((cut.hi[0] - 7.8).abs() < 0.1, "{cut:?}");
     keep("tunnel3d_ring_lining_von_mises.png", &deformed_png(&snap(&run), Field::VonMises, None).expect("picture"));
@@ -523,10 +655,16 @@ fn colour_scales_leave_out_hot_spots_and_part_bodies_far_apart() {
     let lim = super::legend::Limits::of(false, &[v[..2000].to_vec()]);
     assert!((lim.hi - 0.9995).abs() < 1e-3, "no outlier, no cut: {}", lim.hi);
     let body = |scale: f32| (0..500).map(|i| scale * (1.0 + i as f32 / 500.0)).collect::<Vec<f32>>();
-    let groups = |vals: &[Vec<f32>], field| super::deformed::scales(field, vals).into_iter().map(|s| s.bodies).collect::<Vec<_>>();
+    let groups = |vals: &[Vec<f32>], field| {
+        super::deformed::scales(field, vals).into_iter().map(|s| s.bodies).collect::<Vec<_>>()
+    };
     assert_eq!(groups(&[body(1.0), body(20.0), body(3.0)], Field::VonMises), vec![vec![1], vec![0, 2]]);
     assert_eq!(groups(&[body(1.0), body(4.0)], Field::VonMises), vec![vec![0, 1]]);
-    assert_eq!(groups(&[body(1.0), body(20.0), body(400.0), body(8000.0)], Field::Sxx), vec![vec![3], vec![2], vec![0, 1]], "at most three");
+    assert_eq!(
+        groups(&[body(1.0), body(20.0), body(400.0), body(8000.0)], Field::Sxx),
+        vec![vec![3], vec![2], vec![0, 1]],
+        "at most three"
+    );
     assert_eq!(groups(&[body(1.0), body(20.0)], Field::Displacement), vec![vec![0, 1]]);
 }
 
@@ -547,12 +685,18 @@ fn a_contact_on_two_planes_gets_a_plan_per_plane_and_an_overview() {
     }
     let pics: Vec<(String, Vec<u8>)> = pictures(&snap(&run)).expect("pictures");
     let names: Vec<&str> = pics.iter().map(|p| p.0.as_str()).collect();
-    assert_eq!(names, ["deformed_von_mises.png", "interfaces.svg", "plan_groove_1.png", "plan_groove_2.png", "joints.png"]);
+    assert_eq!(
+        names,
+        ["deformed_von_mises.png", "interfaces.svg", "plan_groove_1.png", "plan_groove_2.png", "joints.png"]
+    );
     for (f, bytes) in &pics {
         keep(&format!("vgroove_{f}"), bytes);
     }
     let svg = String::from_utf8(pics[1].1.clone()).expect("svg");
-    assert!(svg.contains("groove 1 of 2, dip 45°/090°") && svg.contains("groove 2 of 2, dip 45°/270°"), "one panel per face");
+    assert!(
+        svg.contains("groove 1 of 2, dip 45°/090°") && svg.contains("groove 2 of 2, dip 45°/270°"),
+        "one panel per face"
+    );
     keep("vgroove_interfaces.png", &interface_plot_png(&run.model, contact(&run)).expect("plot"));
     let report = crate::output::report::report(&run);
     assert!(report.contains("![every contact surface by state](joints.png)") && report.contains("(plan_groove_2.png)"));
@@ -597,28 +741,58 @@ fn a_joint_set_of_many_planes_gets_a_plan_per_plane_and_one_overview() {
     }
     let mut model = model_of(coords, quads);
     let n = model.n_nodes();
-    model.pairs = (0..n).map(|k| crate::model::Pair { k, l: k, contact: 0, normal: if k < 5 * 28 { [0.0, 0.0, 1.0] } else { [1.0, 0.0, 0.0] }, area: 0.1, shares: Vec::new() }).collect();
-    let states: Vec<ContactState> = (0..n).map(|k| match model.coords[k][0] {
-        x if x < 1.0 => ContactState::Open,
-        x if x < 2.0 => ContactState::Slip,
-        _ => ContactState::Stick,
-    }).collect();
+    model.pairs = (0..n)
+        .map(|k| crate::model::Pair {
+            k,
+            l: k,
+            contact: 0,
+            normal: if k < 5 * 28 { [0.0, 0.0, 1.0] } else { [1.0, 0.0, 0.0] },
+            area: 0.1,
+            shares: Vec::new(),
+        })
+        .collect();
+    let states: Vec<ContactState> = (0..n)
+        .map(|k| match model.coords[k][0] {
+            x if x < 1.0 => ContactState::Open,
+            x if x < 2.0 => ContactState::Slip,
+            _ => ContactState::Stick,
+        })
+        .collect();
     let c = crate::results::ContactRun {
-        pairs: (0..n).map(|k| PairResult { sigma_n: -1.0 - model.coords[k][2], tau_t: 0.1 * model.coords[k][0], tau_b: 0.0, gap: 0.0, slip: 0.0 }).collect(),
+        pairs: (0..n)
+            .map(|k| PairResult {
+                sigma_n: -1.0 - model.coords[k][2],
+                tau_t: 0.1 * model.coords[k][0],
+                tau_b: 0.0,
+                gap: 0.0,
+                slip: 0.0,
+            })
+            .collect(),
         frames: vec![[[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]; n],
         areas: vec![0.1; n],
         states,
-        summary: crate::contact::Summary { iterations: 1, converged: true, cycled: false, cycles_broken: 0, apex_openings: 0, history: Vec::new() },
+        summary: crate::contact::Summary {
+            iterations: 1,
+            converged: true,
+            cycled: false,
+            cycles_broken: 0,
+            apex_openings: 0,
+            history: Vec::new(),
+        },
     };
     let plans = plan_files(&model);
     let files: Vec<&str> = plans.iter().map(|p| p.file.as_str()).collect();
     assert_eq!(files, (1..=7).map(|k| format!("plan_joints_{k}.png")).collect::<Vec<_>>());
     let described: Vec<String> = plans.iter().map(|p| p.describe(&model)).collect();
-    assert_eq!(described[..5], ["the plane z = 0", "the plane z = 1", "the plane z = 2", "the plane z = 3", "the plane z = 4"]);
+    assert_eq!(
+        described[..5],
+        ["the plane z = 0", "the plane z = 1", "the plane z = 2", "the plane z = 3", "the plane z = 4"]
+    );
     assert_eq!(described[5..], ["the plane x = 0.5", "the plane x = 2.5"]);
     for (i, p) in plans.iter().enumerate() {
         let (cv, boxes) = super::plan::plan_canvas("a joint set", &model, &c, p).expect("plan");
-        let (open, slip, stick) = (in_box(&cv, boxes[0], OPEN).len(), in_box(&cv, boxes[0], SLIP).len(), in_box(&cv, boxes[0], STICK).len());
+        let (open, slip, stick) =
+            (in_box(&cv, boxes[0], OPEN).len(), in_box(&cv, boxes[0], SLIP).len(), in_box(&cv, boxes[0], STICK).len());
         match i {
             // a horizontal plane has all three, in x order
             0..=4 => assert!(open > 0 && slip > 0 && stick > 0, "plane {i}: {open} {slip} {stick}"),
@@ -650,10 +824,16 @@ fn picture_errors_are_told_apart_by_variant() {
     let c = contact(&run);
     let u = &run.last().u[1..];
     let wrong = Snapshot { u, ..snap(&run) };
-    assert!(matches!(deformed_png(&wrong, Field::VonMises, None), Err(PictureError::Mismatch { what: "displacements or stresses" })));
+    assert!(matches!(
+        deformed_png(&wrong, Field::VonMises, None),
+        Err(PictureError::Mismatch { what: "displacements or stresses" })
+    ));
     let mut fewer = c.clone();
     fewer.states.pop();
-    assert!(matches!(joints_png("t", &run.model, &fewer, &[]), Err(PictureError::Mismatch { what: "contact results" })));
+    assert!(matches!(
+        joints_png("t", &run.model, &fewer, &[]),
+        Err(PictureError::Mismatch { what: "contact results" })
+    ));
     let mut bare = run.model.clone();
     bare.interfaces.clear();
     match interface_plot_svg(&bare, c) {

@@ -51,7 +51,8 @@ impl View {
             ([0.0, -1.0, 0.0], 30.0, 25.0)
         };
         let right = cross(up, toward);
-        let (sa, ca, se, ce) = (az.to_radians().sin(), az.to_radians().cos(), el.to_radians().sin(), el.to_radians().cos());
+        let (sa, ca, se, ce) =
+            (az.to_radians().sin(), az.to_radians().cos(), el.to_radians().sin(), el.to_radians().cos());
         let eye: [f64; 3] = std::array::from_fn(|i| ce * (ca * toward[i] + sa * right[i]) + se * up[i]);
         let r: [f64; 3] = std::array::from_fn(|i| ca * right[i] - sa * toward[i]);
         View { eye, right: r, up: cross(eye, r) }

@@ -20,8 +20,7 @@
 //! never touches the file system; `super::files::Staged` writes them.
 
 use vtkio::model::{
-    Attribute, Attributes, ByteOrder, CellType, Cells, DataSet, UnstructuredGridPiece, Version,
-    VertexNumbers, Vtk,
+    Attribute, Attributes, ByteOrder, CellType, Cells, DataSet, UnstructuredGridPiece, Version, VertexNumbers, Vtk,
 };
 use vtkio::xml::Compressor;
 
@@ -136,27 +135,12 @@ pub fn vtk_n_nodes(kind: CellKind) -> usize {
 }
 
 /// Checks that a field has `n_comp * count` values.
-fn check_len(
-    location: &'static str,
-    name: &str,
-    n_comp: usize,
-    count: usize,
-    len: usize,
-) -> Result<(), OutputError> {
+fn check_len(location: &'static str, name: &str, n_comp: usize, count: usize, len: usize) -> Result<(), OutputError> {
     if n_comp == 0 {
-        return Err(OutputError::NoComponents {
-            location,
-            field: name.to_string(),
-        });
+        return Err(OutputError::NoComponents { location, field: name.to_string() });
     }
     if u32::try_from(n_comp).is_err() || n_comp.checked_mul(count) != Some(len) {
-        return Err(OutputError::FieldLength {
-            location,
-            field: name.to_string(),
-            n_comp,
-            count,
-            len,
-        });
+        return Err(OutputError::FieldLength { location, field: name.to_string(), n_comp, count, len });
     }
     Ok(())
 }
@@ -179,16 +163,10 @@ pub fn vtu_bytes(
     let n_cells = cells.len();
     // vtkio writes NumberOfPoints and NumberOfCells as u32.
     if u32::try_from(n_points).is_err() {
-        return Err(OutputError::TooLarge {
-            what: "points",
-            count: n_points,
-        });
+        return Err(OutputError::TooLarge { what: "points", count: n_points });
     }
     if u32::try_from(n_cells).is_err() {
-        return Err(OutputError::TooLarge {
-            what: "cells",
-            count: n_cells,
-        });
+        return Err(OutputError::TooLarge { what: "cells", count: n_cells });
     }
 
     for f in point_data {
@@ -218,12 +196,7 @@ pub fn vtu_bytes(
         }
         let push = |node: usize, connectivity: &mut Vec<u64>| {
             if node >= n_points {
-                return Err(OutputError::NodeOutOfRange {
-                    index,
-                    tag: cell.tag,
-                    node,
-                    n_points,
-                });
+                return Err(OutputError::NodeOutOfRange { index, tag: cell.tag, node, n_points });
             }
             connectivity.push(node as u64);
             Ok(())
@@ -254,11 +227,7 @@ pub fn vtu_bytes(
         cell: cell_data
             .iter()
             .map(attribute)
-            .chain(
-                cell_int_data
-                    .iter()
-                    .map(|f| Attribute::generic(f.name, 1).with_data(f.values.to_vec())),
-            )
+            .chain(cell_int_data.iter().map(|f| Attribute::generic(f.name, 1).with_data(f.values.to_vec())))
             .collect(),
     };
 
@@ -269,48 +238,25 @@ pub fn vtu_bytes(
         file_path: None,
         data: DataSet::inline(UnstructuredGridPiece {
             points: coords.into(),
-            cells: Cells {
-                cell_verts: VertexNumbers::XML {
-                    connectivity,
-                    offsets,
-                },
-                types,
-            },
+            cells: Cells { cell_verts: VertexNumbers::XML { connectivity, offsets }, types },
             data,
         }),
     };
-    let file = vtk
-        .try_into_xml_format(Compressor::ZLib, ZLIB_LEVEL)
-        .map_err(|e| OutputError::Vtk(e.to_string()))?;
+    let file = vtk.try_into_xml_format(Compressor::ZLib, ZLIB_LEVEL).map_err(|e| OutputError::Vtk(e.to_string()))?;
     let mut bytes = Vec::new();
-    file.write(&mut bytes)
-        .map_err(|e| OutputError::Vtk(e.to_string()))?;
+    file.write(&mut bytes).map_err(|e| OutputError::Vtk(e.to_string()))?;
     with_piece_counts(bytes, n_points, n_cells)
 }
 
 /// vtkio leaves out `NumberOfPoints` and `NumberOfCells` when they are zero,
 /// and VTK (so ParaView) and meshio then refuse the file: write the `<Piece>`
 /// tag with both. An unstructured grid's piece has no other attributes.
-fn with_piece_counts(
-    bytes: Vec<u8>,
-    n_points: usize,
-    n_cells: usize,
-) -> Result<Vec<u8>, OutputError> {
+fn with_piece_counts(bytes: Vec<u8>, n_points: usize, n_cells: usize) -> Result<Vec<u8>, OutputError> {
     let missing = || OutputError::Vtk("vtkio wrote no <Piece> element".to_string());
-    let start = bytes
-        .windows(6)
-        .position(|w| w == b"<Piece")
-        .ok_or_else(missing)?;
-    let len = bytes[start..]
-        .iter()
-        .position(|&b| b == b'>')
-        .ok_or_else(missing)?;
+    let start = bytes.windows(6).position(|w| w == b"<Piece").ok_or_else(missing)?;
+    let len = bytes[start..].iter().position(|&b| b == b'>').ok_or_else(missing)?;
     let tag = format!("<Piece NumberOfPoints=\"{n_points}\" NumberOfCells=\"{n_cells}\"");
-    let end = if bytes[start + len - 1] == b'/' {
-        start + len - 1
-    } else {
-        start + len
-    };
+    let end = if bytes[start + len - 1] == b'/' { start + len - 1 } else { start + len };
     let mut out = Vec::with_capacity(bytes.len() + 40);
     out.extend_from_slice(&bytes[..start]);
     out.extend_from_slice(tag.as_bytes());

@@ -9,33 +9,14 @@ mod readback;
 
 // Reference elements in gmsh's order, built from gmsh's tables.
 
-
 /// gmsh's edges of the tetrahedron, in gmsh's mid-edge node order (4..9).
 const GMSH_TET_EDGES: [[usize; 2]; 6] = [[0, 1], [1, 2], [2, 0], [3, 0], [3, 2], [3, 1]];
 /// gmsh's edges of the hexahedron, in gmsh's mid-edge node order (8..19).
-const GMSH_HEX_EDGES: [[usize; 2]; 12] = [
-    [0, 1],
-    [0, 3],
-    [0, 4],
-    [1, 2],
-    [1, 5],
-    [2, 3],
-    [2, 6],
-    [3, 7],
-    [4, 5],
-    [4, 7],
-    [5, 6],
-    [6, 7],
-];
+const GMSH_HEX_EDGES: [[usize; 2]; 12] =
+    [[0, 1], [0, 3], [0, 4], [1, 2], [1, 5], [2, 3], [2, 6], [3, 7], [4, 5], [4, 7], [5, 6], [6, 7]];
 /// gmsh's faces of the hexahedron, in gmsh's face-centre order (20..25).
-const GMSH_HEX_FACES: [[usize; 4]; 6] = [
-    [0, 3, 2, 1],
-    [0, 1, 5, 4],
-    [0, 4, 7, 3],
-    [1, 2, 6, 5],
-    [2, 3, 7, 6],
-    [4, 5, 6, 7],
-];
+const GMSH_HEX_FACES: [[usize; 4]; 6] =
+    [[0, 3, 2, 1], [0, 1, 5, 4], [0, 4, 7, 3], [1, 2, 6, 5], [2, 3, 7, 6], [4, 5, 6, 7]];
 
 /// gmsh's edges of the prism, in gmsh's mid-edge node order (6..14).
 const GMSH_PRISM_EDGES: [[usize; 2]; 9] = [[0, 1], [0, 2], [0, 3], [1, 2], [1, 4], [2, 5], [3, 4], [3, 5], [4, 5]];
@@ -54,30 +35,12 @@ const VTK_PYRAMID_EDGES: [[usize; 2]; 8] = [[0, 1], [1, 2], [2, 3], [3, 0], [0, 
 /// VTK's edges of the tetrahedron (vtkQuadraticTetra, nodes 4..9).
 const VTK_TET_EDGES: [[usize; 2]; 6] = [[0, 1], [1, 2], [2, 0], [0, 3], [1, 3], [2, 3]];
 /// VTK's edges of the hexahedron (vtkQuadraticHexahedron, nodes 8..19).
-const VTK_HEX_EDGES: [[usize; 2]; 12] = [
-    [0, 1],
-    [1, 2],
-    [2, 3],
-    [3, 0],
-    [4, 5],
-    [5, 6],
-    [6, 7],
-    [7, 4],
-    [0, 4],
-    [1, 5],
-    [2, 6],
-    [3, 7],
-];
+const VTK_HEX_EDGES: [[usize; 2]; 12] =
+    [[0, 1], [1, 2], [2, 3], [3, 0], [4, 5], [5, 6], [6, 7], [7, 4], [0, 4], [1, 5], [2, 6], [3, 7]];
 /// VTK's face centres of vtkTriQuadraticHexahedron (nodes 20..25):
 /// x=-1, x=+1, y=-1, y=+1, z=-1, z=+1.
-const VTK_HEX_FACES: [[usize; 4]; 6] = [
-    [0, 3, 7, 4],
-    [1, 2, 6, 5],
-    [0, 1, 5, 4],
-    [3, 2, 6, 7],
-    [0, 1, 2, 3],
-    [4, 5, 6, 7],
-];
+const VTK_HEX_FACES: [[usize; 4]; 6] =
+    [[0, 3, 7, 4], [1, 2, 6, 5], [0, 1, 5, 4], [3, 2, 6, 7], [0, 1, 2, 3], [4, 5, 6, 7]];
 
 fn mean(pts: &[[f64; 3]], ids: &[usize]) -> [f64; 3] {
     let mut m = [0.0; 3];
@@ -92,18 +55,8 @@ fn mean(pts: &[[f64; 3]], ids: &[usize]) -> [f64; 3] {
 /// Node coordinates of the reference element of `kind`, in gmsh order.
 fn gmsh_reference(kind: CellKind) -> Vec<[f64; 3]> {
     let tri = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
-    let quad = vec![
-        [-1.0, -1.0, 0.0],
-        [1.0, -1.0, 0.0],
-        [1.0, 1.0, 0.0],
-        [-1.0, 1.0, 0.0],
-    ];
-    let tet = vec![
-        [0.0, 0.0, 0.0],
-        [1.0, 0.0, 0.0],
-        [0.0, 1.0, 0.0],
-        [0.0, 0.0, 1.0],
-    ];
+    let quad = vec![[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [1.0, 1.0, 0.0], [-1.0, 1.0, 0.0]];
+    let tet = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     let hex = vec![
         [-1.0, -1.0, -1.0],
         [1.0, -1.0, -1.0],
@@ -121,21 +74,9 @@ fn gmsh_reference(kind: CellKind) -> Vec<[f64; 3]> {
         }
         p
     };
-    let prism = vec![
-        [0.0, 0.0, -1.0],
-        [1.0, 0.0, -1.0],
-        [0.0, 1.0, -1.0],
-        [0.0, 0.0, 1.0],
-        [1.0, 0.0, 1.0],
-        [0.0, 1.0, 1.0],
-    ];
-    let pyramid = vec![
-        [-1.0, -1.0, 0.0],
-        [1.0, -1.0, 0.0],
-        [1.0, 1.0, 0.0],
-        [-1.0, 1.0, 0.0],
-        [0.0, 0.0, 1.0],
-    ];
+    let prism =
+        vec![[0.0, 0.0, -1.0], [1.0, 0.0, -1.0], [0.0, 1.0, -1.0], [0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]];
+    let pyramid = vec![[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [1.0, 1.0, 0.0], [-1.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     let ring = |n: usize| (0..n).map(|i| [i, (i + 1) % n]).collect::<Vec<_>>();
     match kind {
         CellKind::Prism6 => prism,
@@ -228,28 +169,19 @@ fn vtk_geometry_error(kind: CellKind, vtk: &[[f64; 3]]) -> Option<String> {
     let corners = vtk_corners(kind);
     for i in 0..nc {
         if !close(vtk[i], gmsh[corners[i]]) {
-            return Some(format!(
-                "corner {i} at {:?}, expected {:?}",
-                vtk[i], gmsh[corners[i]]
-            ));
+            return Some(format!("corner {i} at {:?}, expected {:?}", vtk[i], gmsh[corners[i]]));
         }
     }
     for (k, e) in edges.iter().enumerate() {
         let i = nc + k;
         if !close(vtk[i], mean(vtk, e)) {
-            return Some(format!(
-                "VTK node {i} at {:?} is not the midpoint of corners {e:?}",
-                vtk[i]
-            ));
+            return Some(format!("VTK node {i} at {:?} is not the midpoint of corners {e:?}", vtk[i]));
         }
     }
     for (k, f) in faces.iter().enumerate() {
         let i = nc + edges.len() + k;
         if !close(vtk[i], mean(vtk, f)) {
-            return Some(format!(
-                "VTK node {i} at {:?} is not the centre of face {f:?}",
-                vtk[i]
-            ));
+            return Some(format!("VTK node {i} at {:?} is not the centre of face {f:?}", vtk[i]));
         }
     }
     let n_known = nc + edges.len() + faces.len();
@@ -316,10 +248,15 @@ fn permutations_put_nodes_where_vtk_expects_them() {
         assert_eq!(vtk_geometry_error(kind, &vtk), None, "{kind:?}");
     }
     // The check has teeth: in gmsh order these kinds fail it.
-    for kind in [CellKind::Tet10, CellKind::Hex20, CellKind::Hex27, CellKind::Prism6, CellKind::Prism15, CellKind::Prism18, CellKind::Pyramid13] {
-        assert!(
-            vtk_geometry_error(kind, &gmsh_reference(kind)).is_some(),
-            "{kind:?}"
-        );
+    for kind in [
+        CellKind::Tet10,
+        CellKind::Hex20,
+        CellKind::Hex27,
+        CellKind::Prism6,
+        CellKind::Prism15,
+        CellKind::Prism18,
+        CellKind::Pyramid13,
+    ] {
+        assert!(vtk_geometry_error(kind, &gmsh_reference(kind)).is_some(), "{kind:?}");
     }
 }

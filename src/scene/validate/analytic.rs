@@ -13,7 +13,13 @@ use crate::scene::{Analysis, Analytic, Body, InitialStress, Material};
 const ANALYTIC_KINDS: &[&str] = &["lame_cylinder", "lined_tunnel"];
 
 impl Checker<'_> {
-    pub(super) fn analytic(&self, a: RawAnalytic, analysis: Analysis, bodies: &[Body], materials: &BTreeMap<String, Material>) -> R<Analytic> {
+    pub(super) fn analytic(
+        &self,
+        a: RawAnalytic,
+        analysis: Analysis,
+        bodies: &[Body],
+        materials: &BTreeMap<String, Material>,
+    ) -> R<Analytic> {
         let known = quoted_list(ANALYTIC_KINDS);
         let kind = self.required(a.kind.clone(), "analytic.kind", &format!("one of {known}"))?;
         // keys of the other kind are errors, not ignored
@@ -69,7 +75,13 @@ impl Checker<'_> {
     }
 
     /// `[analytic] kind = "lined_tunnel"` (see [`crate::analytic::Analytic::LinedTunnel`]).
-    fn lined_tunnel(&self, a: RawAnalytic, analysis: Analysis, bodies: &[Body], materials: &BTreeMap<String, Material>) -> R<crate::analytic::LinedTunnel> {
+    fn lined_tunnel(
+        &self,
+        a: RawAnalytic,
+        analysis: Analysis,
+        bodies: &[Body],
+        materials: &BTreeMap<String, Material>,
+    ) -> R<crate::analytic::LinedTunnel> {
         use crate::analytic::{LinedTunnel, TunnelBody, TunnelSlip};
         if analysis != Analysis::PlaneStrain {
             return Err(self.bad(
@@ -86,7 +98,11 @@ impl Checker<'_> {
         let thickness = self.required(a.thickness, "analytic.thickness", "the lining's thickness")?;
         let thickness = self.finite(thickness, "analytic.thickness")?;
         if thickness <= 0.0 || thickness >= 2.0 * radius {
-            return Err(self.bad("analytic.thickness", thickness, format!("the lining's thickness must be > 0 and < 2 radius = {}.", 2.0 * radius)));
+            return Err(self.bad(
+                "analytic.thickness",
+                thickness,
+                format!("the lining's thickness must be > 0 and < 2 radius = {}.", 2.0 * radius),
+            ));
         }
         let p = self.required(a.p, "analytic.p", "the vertical far-field stress P, compression positive")?;
         let p = self.finite(p, "analytic.p")?;
@@ -99,14 +115,25 @@ impl Checker<'_> {
             None | Some("none") => TunnelSlip::None,
             Some("full") => TunnelSlip::Full,
             Some(other) => {
-                return Err(self.bad("analytic.slip", format!("{other:?}"), "use \"none\" (lining and ground bonded) or \"full\" (frictionless interface)."))
+                return Err(self.bad(
+                    "analytic.slip",
+                    format!("{other:?}"),
+                    "use \"none\" (lining and ground bonded) or \"full\" (frictionless interface).",
+                ))
             }
         };
         let body = |key: &str, group: Option<String>, what: &str| -> R<(usize, TunnelBody)> {
             let key = format!("analytic.{key}");
             let g = self.group(group, &key, what)?;
             let i = bodies.iter().position(|b| b.group == g).ok_or_else(|| {
-                self.bad(&key, format!("{g:?}"), format!("no [[bodies]] entry has this group; the bodies are {}.", quoted_list(bodies.iter().map(|b| b.group.as_str()))))
+                self.bad(
+                    &key,
+                    format!("{g:?}"),
+                    format!(
+                        "no [[bodies]] entry has this group; the bodies are {}.",
+                        quoted_list(bodies.iter().map(|b| b.group.as_str()))
+                    ),
+                )
             })?;
             let m = &materials[&bodies[i].material];
             Ok((i, TunnelBody { group: g, e: m.e, nu: m.nu }))
@@ -114,7 +141,11 @@ impl Checker<'_> {
         let (il, lining) = body("lining", a.lining, "the lining's [[bodies]] group")?;
         let (ig, ground) = body("ground", a.ground, "the ground's [[bodies]] group")?;
         if il == ig {
-            return Err(self.bad("analytic.ground", format!("{:?}", ground.group), "the ground must be another body than the lining."));
+            return Err(self.bad(
+                "analytic.ground",
+                format!("{:?}", ground.group),
+                "the ground must be another body than the lining.",
+            ));
         }
         if bodies[il].initial.is_some() {
             return Err(self.err(

@@ -11,7 +11,12 @@ use crate::scene::raw::{RawBody, RawContact, RawLoad, RawPressure, RawSupport};
 use crate::scene::{Analysis, Body, Contact, ContactGroups, InitialStress, Load, LoadKind, Material, Support};
 
 impl Checker<'_> {
-    pub(super) fn bodies(&self, raw: Vec<RawBody>, materials: &BTreeMap<String, Material>, analysis: Analysis) -> R<Vec<Body>> {
+    pub(super) fn bodies(
+        &self,
+        raw: Vec<RawBody>,
+        materials: &BTreeMap<String, Material>,
+        analysis: Analysis,
+    ) -> R<Vec<Body>> {
         if raw.is_empty() {
             return Err(self.err(
                 "bodies",
@@ -22,16 +27,9 @@ impl Checker<'_> {
         let mut out = Vec::new();
         for (i, b) in raw.into_iter().enumerate() {
             let k = format!("bodies[{i}]");
-            let group = self.group(
-                b.group,
-                &format!("{k}.group"),
-                "the body's physical surface (2D) or volume (3D)",
-            )?;
-            let material = self.required(
-                b.material,
-                &format!("{k}.material"),
-                "a material name from [materials]",
-            )?;
+            let group =
+                self.group(b.group, &format!("{k}.group"), "the body's physical surface (2D) or volume (3D)")?;
+            let material = self.required(b.material, &format!("{k}.material"), "a material name from [materials]")?;
             if !materials.contains_key(&material) {
                 let defined = if materials.is_empty() {
                     "none are defined; add a [materials.NAME] table with E and nu".to_string()
@@ -149,30 +147,15 @@ impl Checker<'_> {
             let mut sorted = names.clone();
             sorted.sort();
             if let Some(j) = seen.insert(sorted, i) {
-                return Err(self.err(
-                    &gkey,
-                    format!(
-                        "the same interface is already contacts[{j}]; define each interface once."
-                    ),
-                ));
+                return Err(self
+                    .err(&gkey, format!("the same interface is already contacts[{j}]; define each interface once.")));
             }
-            let friction = self.non_negative(
-                c.friction,
-                &format!("{k}.friction"),
-                "the friction coefficient",
-            )?;
-            let cohesion =
-                self.non_negative(c.cohesion, &format!("{k}.cohesion"), "the cohesion")?;
-            let tensile_strength = self.non_negative(
-                c.tensile_strength,
-                &format!("{k}.tensile_strength"),
-                "the tensile strength",
-            )?;
-            let residual_cohesion = self.non_negative(
-                c.residual_cohesion,
-                &format!("{k}.residual_cohesion"),
-                "the residual cohesion",
-            )?;
+            let friction = self.non_negative(c.friction, &format!("{k}.friction"), "the friction coefficient")?;
+            let cohesion = self.non_negative(c.cohesion, &format!("{k}.cohesion"), "the cohesion")?;
+            let tensile_strength =
+                self.non_negative(c.tensile_strength, &format!("{k}.tensile_strength"), "the tensile strength")?;
+            let residual_cohesion =
+                self.non_negative(c.residual_cohesion, &format!("{k}.residual_cohesion"), "the residual cohesion")?;
             if residual_cohesion > cohesion {
                 return Err(self.bad(
                     format!("{k}.residual_cohesion"),
@@ -195,11 +178,7 @@ impl Checker<'_> {
 
     pub(super) fn support(&self, i: usize, s: RawSupport, analysis: Analysis) -> R<Support> {
         let k = format!("supports[{i}]");
-        let group = self.group(
-            s.group,
-            &format!("{k}.group"),
-            "a physical point, curve or surface",
-        )?;
+        let group = self.group(s.group, &format!("{k}.group"), "a physical point, curve or surface")?;
         let mut fix = [false; 3];
         if let Some(list) = &s.fix {
             let key = format!("{k}.fix");
@@ -215,11 +194,7 @@ impl Checker<'_> {
                             shown,
                             format!(
                                 "{c:?} is not a component; use \"x\", \"y\"{}.",
-                                if analysis == Analysis::Solid {
-                                    " or \"z\""
-                                } else {
-                                    ""
-                                }
+                                if analysis == Analysis::Solid { " or \"z\"" } else { "" }
                             ),
                         ))
                     }
@@ -232,20 +207,13 @@ impl Checker<'_> {
                     ));
                 }
                 if fix[d] {
-                    return Err(self.bad(
-                        key,
-                        shown,
-                        format!("{c:?} is listed twice; list each component once."),
-                    ));
+                    return Err(self.bad(key, shown, format!("{c:?} is listed twice; list each component once.")));
                 }
                 fix[d] = true;
             }
         }
         let mut prescribed = [None; 3];
-        for (d, (name, v)) in [("ux", s.ux), ("uy", s.uy), ("uz", s.uz)]
-            .into_iter()
-            .enumerate()
-        {
+        for (d, (name, v)) in [("ux", s.ux), ("uy", s.uy), ("uz", s.uz)].into_iter().enumerate() {
             let Some(v) = v else { continue };
             let key = format!("{k}.{name}");
             let v = self.finite(v, &key)?;
@@ -253,9 +221,7 @@ impl Checker<'_> {
                 return Err(self.bad(
                     key,
                     v,
-                    format!(
-                        "uz exists only in a solid analysis; a {analysis} analysis has ux and uy."
-                    ),
+                    format!("uz exists only in a solid analysis; a {analysis} analysis has ux and uy."),
                 ));
             }
             if fix[d] {
@@ -278,20 +244,12 @@ impl Checker<'_> {
                 ),
             ));
         }
-        Ok(Support {
-            group,
-            fix,
-            prescribed,
-        })
+        Ok(Support { group, fix, prescribed })
     }
 
     pub(super) fn load(&self, i: usize, l: RawLoad, analysis: Analysis) -> R<Load> {
         let k = format!("loads[{i}]");
-        let group = self.group(
-            l.group,
-            &format!("{k}.group"),
-            "a physical curve (2D) or surface (3D)",
-        )?;
+        let group = self.group(l.group, &format!("{k}.group"), "a physical curve (2D) or surface (3D)")?;
         let kind = match (l.pressure, l.traction) {
             (Some(_), Some(_)) => {
                 return Err(self.err(k, "both pressure and traction are given; a load is one or the other: split it into two [[loads]] entries."))

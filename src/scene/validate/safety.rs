@@ -26,16 +26,43 @@ impl Checker<'_> {
             None => defaults.contacts,
             Some(names) => self.chosen(&names, contacts)?,
         };
-        let step = self.positive(s.step, defaults.step, "safety.step", "the increase of F from trial to trial must be a finite number > 0.")?;
-        let tolerance = self.positive(s.tolerance, defaults.tolerance, "safety.tolerance", "the relative tolerance on F must be a finite number > 0.")?;
+        let step = self.positive(
+            s.step,
+            defaults.step,
+            "safety.step",
+            "the increase of F from trial to trial must be a finite number > 0.",
+        )?;
+        let tolerance = self.positive(
+            s.tolerance,
+            defaults.tolerance,
+            "safety.tolerance",
+            "the relative tolerance on F must be a finite number > 0.",
+        )?;
         if tolerance >= 1.0 {
-            return Err(self.bad("safety.tolerance", tolerance, "the relative tolerance on F must be below 1 (F is found within tolerance × F; 0.001 by default)."));
+            return Err(self.bad(
+                "safety.tolerance",
+                tolerance,
+                "the relative tolerance on F must be below 1 (F is found within tolerance × F; 0.001 by default).",
+            ));
         }
-        let max_factor = self.positive(s.max_factor, defaults.max_factor, "safety.max_factor", "the largest F tried must be a finite number > 1.")?;
+        let max_factor = self.positive(
+            s.max_factor,
+            defaults.max_factor,
+            "safety.max_factor",
+            "the largest F tried must be a finite number > 1.",
+        )?;
         if max_factor <= 1.0 {
-            return Err(self.bad("safety.max_factor", max_factor, "the largest F tried must exceed 1 (F = 1 is the scene as given; 10 by default)."));
+            return Err(self.bad(
+                "safety.max_factor",
+                max_factor,
+                "the largest F tried must exceed 1 (F = 1 is the scene as given; 10 by default).",
+            ));
         }
-        let reduces = |c: &Contact| (reduce.friction && c.friction > 0.0) || (reduce.cohesion && (c.cohesion > 0.0 || c.residual_cohesion > 0.0)) || (reduce.tensile_strength && c.tensile_strength > 0.0);
+        let reduces = |c: &Contact| {
+            (reduce.friction && c.friction > 0.0)
+                || (reduce.cohesion && (c.cohesion > 0.0 || c.residual_cohesion > 0.0))
+                || (reduce.tensile_strength && c.tensile_strength > 0.0)
+        };
         if !chosen.iter().any(|&i| reduces(&contacts[i])) {
             return Err(self.err(
                 "safety",
@@ -48,7 +75,13 @@ impl Checker<'_> {
     /// `reduce = [..]`: a non-empty list of the strength keys, each once.
     fn reduce(&self, names: &[String]) -> R<Reduce> {
         if names.is_empty() {
-            return Err(self.err("safety.reduce", format!("is empty: list what is divided by F, any of {} (all three if omitted).", quoted_list(REDUCIBLE))));
+            return Err(self.err(
+                "safety.reduce",
+                format!(
+                    "is empty: list what is divided by F, any of {} (all three if omitted).",
+                    quoted_list(REDUCIBLE)
+                ),
+            ));
         }
         let mut r = Reduce { friction: false, cohesion: false, tensile_strength: false };
         for (j, n) in names.iter().enumerate() {
@@ -70,16 +103,30 @@ impl Checker<'_> {
     /// `contacts = [..]`: group names of `[[contacts]]` entries, each once.
     fn chosen(&self, names: &[String], contacts: &[Contact]) -> R<Vec<usize>> {
         if names.is_empty() {
-            return Err(self.err("safety.contacts", "is empty: name the contact groups whose strength is reduced (all contacts if omitted)."));
+            return Err(self.err(
+                "safety.contacts",
+                "is empty: name the contact groups whose strength is reduced (all contacts if omitted).",
+            ));
         }
         let mut out: Vec<usize> = Vec::new();
         for (j, n) in names.iter().enumerate() {
             let key = format!("safety.contacts[{j}]");
             let Some(i) = contacts.iter().position(|c| names_it(c, n)) else {
-                return Err(self.bad(key, format!("{n:?}"), format!("is not the group of a [[contacts]] entry; the scene's contacts are {}.", quoted_list(contacts.iter().map(name)))));
+                return Err(self.bad(
+                    key,
+                    format!("{n:?}"),
+                    format!(
+                        "is not the group of a [[contacts]] entry; the scene's contacts are {}.",
+                        quoted_list(contacts.iter().map(name))
+                    ),
+                ));
             };
             if out.contains(&i) {
-                return Err(self.bad(key, format!("{n:?}"), format!("names contacts[{i}] again; give each contact once.")));
+                return Err(self.bad(
+                    key,
+                    format!("{n:?}"),
+                    format!("names contacts[{i}] again; give each contact once."),
+                ));
             }
             out.push(i);
         }

@@ -70,7 +70,8 @@ impl Pressure {
     /// [`GAIN`].
     pub(super) fn new(pairs: Vec<usize>, r: DMatrix<f64>, split: &Split) -> Option<Pressure> {
         let n_r = r.nrows();
-        let rows: Vec<usize> = pairs.iter().map(|&j| split.rows.iter().position(|&row| row == (j, NORMAL))).collect::<Option<_>>()?;
+        let rows: Vec<usize> =
+            pairs.iter().map(|&j| split.rows.iter().position(|&row| row == (j, NORMAL))).collect::<Option<_>>()?;
         let a = DMatrix::<f64>::from_fn(pairs.len(), n_r, |s, c| split.d[rows[s]] * split.pinv[(rows[s], c)]);
         let ar = &a * &r;
         let gain = (0..ar.nrows()).map(|i| ar.row(i).iter().map(|v| v.abs()).sum::<f64>()).fold(0.0, f64::max);
@@ -90,9 +91,15 @@ impl Pressure {
 /// Whether the share `lambda` of `split`'s rows is not the least-norm one
 /// `plain` at the normal of a pair `slipping` says slips: the loops carry
 /// part of its pressure.
-pub(super) fn looped(split: &Split, lambda: &DVector<f64>, plain: &DVector<f64>, slipping: impl Fn(usize) -> bool) -> bool {
+pub(super) fn looped(
+    split: &Split,
+    lambda: &DVector<f64>,
+    plain: &DVector<f64>,
+    slipping: impl Fn(usize) -> bool,
+) -> bool {
     let scale = lambda.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    (split.rows.iter().enumerate()).any(|(i, &(j, dir))| dir == NORMAL && slipping(j) && (lambda[i] - plain[i]).abs() > LOOPED * scale)
+    (split.rows.iter().enumerate())
+        .any(|(i, &(j, dir))| dir == NORMAL && slipping(j) && (lambda[i] - plain[i]).abs() > LOOPED * scale)
 }
 
 /// A share differs from the least-norm one by more than this (of its

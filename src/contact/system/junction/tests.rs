@@ -71,7 +71,15 @@ fn least_norm_forces_are_the_face_tractions_under_uniform_stress() {
 fn a_slipping_pair_in_a_stuck_loop_is_locked_and_carries_its_friction() {
     let (_, j) = crossing();
     let mut rel = stuck(4);
-    rel[0] = Relation { state: ContactState::Slip, target: [0.0; 3], force: [0.0, 0.25, 0.0], coupling: [0.0; 3], spring: [[0.0; 3]; 3], pressure: 0.0, limit: Limit::NONE };
+    rel[0] = Relation {
+        state: ContactState::Slip,
+        target: [0.0; 3],
+        force: [0.0, 0.25, 0.0],
+        coupling: [0.0; 3],
+        spring: [[0.0; 3]; 3],
+        pressure: 0.0,
+        limit: Limit::NONE,
+    };
     let tied = j.tie(&rel, 1.0, |_| 1.0);
     assert_eq!(tied.z.ncols(), 0);
     let out = j.forces(&tied, &rel, &DVector::zeros(6), &DVector::zeros(6), 1.0);
@@ -100,7 +108,15 @@ fn a_slipping_pair_in_a_stuck_loop_is_locked_and_carries_its_friction() {
 fn a_slipping_pairs_friction_follows_the_pressure_the_loop_gives_it() {
     let (pairs, j) = crossing();
     let mut rel = stuck(4);
-    rel[0] = Relation { state: ContactState::Slip, target: [0.0; 3], force: [0.0, 0.1, 0.0], coupling: [0.0, 0.5, 0.0], spring: [[0.0; 3]; 3], pressure: 9.0, limit: Limit::NONE };
+    rel[0] = Relation {
+        state: ContactState::Slip,
+        target: [0.0; 3],
+        force: [0.0, 0.1, 0.0],
+        coupling: [0.0, 0.5, 0.0],
+        spring: [[0.0; 3]; 3],
+        pressure: 9.0,
+        limit: Limit::NONE,
+    };
     let (sxx, syy, sxy) = (-3.0, -1.5, 0.7);
     let mut g = DVector::<f64>::zeros(6);
     for (p, &(_, _, f)) in pairs.iter().enumerate() {

@@ -12,17 +12,10 @@ use crate::output::files::Staged;
 
 #[test]
 fn tet10_swaps_nodes_8_and_9() {
-    let cell = Cell {
-        kind: CellKind::Tet10,
-        nodes: (0..10).collect(),
-        tag: 1,
-    };
+    let cell = Cell { kind: CellKind::Tet10, nodes: (0..10).collect(), tag: 1 };
     let bytes = vtu_bytes(&gmsh_reference(CellKind::Tet10), &[cell], &[], &[], &[]).unwrap();
     let m = meshio_read_bytes(&bytes, "tet10-order");
-    assert_eq!(
-        m.cells,
-        vec![("tetra10".to_string(), vec![0, 1, 2, 3, 4, 5, 6, 7, 9, 8])]
-    );
+    assert_eq!(m.cells, vec![("tetra10".to_string(), vec![0, 1, 2, 3, 4, 5, 6, 7, 9, 8])]);
 }
 
 #[derive(Debug, Default)]
@@ -136,9 +129,7 @@ fn dump(python: &str, script: &str, path: &Path) -> ReadBack {
     );
     let text = String::from_utf8(out.stdout).unwrap();
     let mut m = ReadBack::default();
-    let nums = |it: std::str::SplitWhitespace<'_>| -> Vec<f64> {
-        it.map(|x| x.parse().unwrap()).collect()
-    };
+    let nums = |it: std::str::SplitWhitespace<'_>| -> Vec<f64> { it.map(|x| x.parse().unwrap()).collect() };
     for line in text.lines() {
         let mut it = line.split_whitespace();
         match it.next() {
@@ -177,9 +168,7 @@ fn dump(python: &str, script: &str, path: &Path) -> ReadBack {
 /// VTK's reading of the file, when `SUBCONTACT_VTK_PYTHON` names a Python
 /// with the `vtk` package (an optional cross-check: the tests need only meshio).
 fn vtk_read(path: &Path) -> Option<ReadBack> {
-    let python = std::env::var("SUBCONTACT_VTK_PYTHON")
-        .ok()
-        .filter(|p| !p.is_empty())?;
+    let python = std::env::var("SUBCONTACT_VTK_PYTHON").ok().filter(|p| !p.is_empty())?;
     Some(dump(&python, VTK_DUMP, path))
 }
 
@@ -254,32 +243,17 @@ impl TestMesh {
             for p in gmsh_reference(kind) {
                 points.push([p[0] + 3.0 * c as f64, p[1], p[2]]);
             }
-            cells.push(Cell {
-                kind,
-                nodes: (first..points.len()).collect(),
-                tag: 100 + c as u64,
-            });
+            cells.push(Cell { kind, nodes: (first..points.len()).collect(), tag: 100 + c as u64 });
         }
         let np = points.len();
         let nc = cells.len();
         let displacement = (0..3 * np).map(|i| 1e-3 * i as f64 - 0.1).collect();
         let stress = (0..6 * np).map(|i| (i as f64).sin() * 1e8).collect();
         let von_mises = (0..np).map(|i| 1.0 / (i as f64 + 3.0)).collect();
-        let cell_stress = (0..6 * nc)
-            .map(|i| -(i as f64) * 0.5e6 + 1.0 / 3.0)
-            .collect();
+        let cell_stress = (0..6 * nc).map(|i| -(i as f64) * 0.5e6 + 1.0 / 3.0).collect();
         let cell_von_mises = (0..nc).map(|i| 2.5e7 * (i as f64 + 1.0)).collect();
         let body = (0..nc as i32).map(|i| i % 2 - 7).collect();
-        TestMesh {
-            points,
-            cells,
-            displacement,
-            stress,
-            von_mises,
-            cell_stress,
-            cell_von_mises,
-            body,
-        }
+        TestMesh { points, cells, displacement, stress, von_mises, cell_stress, cell_von_mises, body }
     }
 
     fn bytes(&self) -> Vec<u8> {
@@ -287,38 +261,15 @@ impl TestMesh {
             &self.points,
             &self.cells,
             &[
-                Field {
-                    name: "displacement",
-                    n_comp: 3,
-                    values: &self.displacement,
-                },
-                Field {
-                    name: "stress",
-                    n_comp: 6,
-                    values: &self.stress,
-                },
-                Field {
-                    name: "von_mises",
-                    n_comp: 1,
-                    values: &self.von_mises,
-                },
+                Field { name: "displacement", n_comp: 3, values: &self.displacement },
+                Field { name: "stress", n_comp: 6, values: &self.stress },
+                Field { name: "von_mises", n_comp: 1, values: &self.von_mises },
             ],
             &[
-                Field {
-                    name: "stress",
-                    n_comp: 6,
-                    values: &self.cell_stress,
-                },
-                Field {
-                    name: "von_mises",
-                    n_comp: 1,
-                    values: &self.cell_von_mises,
-                },
+                Field { name: "stress", n_comp: 6, values: &self.cell_stress },
+                Field { name: "von_mises", n_comp: 1, values: &self.cell_von_mises },
             ],
-            &[IntField {
-                name: "body",
-                values: &self.body,
-            }],
+            &[IntField { name: "body", values: &self.body }],
         )
         .unwrap()
     }
@@ -337,17 +288,9 @@ impl TestMesh {
                 CellKind::Prism6 => [0, 2, 1, 3, 5, 4].iter().map(|&i| conn[i]).collect(),
                 _ => conn.clone(),
             };
-            let vtk: Vec<[f64; 3]> = conn
-                .iter()
-                .map(|&i| m.points[i])
-                .map(|p| [p[0] - 3.0 * c as f64, p[1], p[2]])
-                .collect();
-            assert_eq!(
-                vtk_geometry_error(cell.kind, &vtk),
-                None,
-                "read back {:?}",
-                cell.kind
-            );
+            let vtk: Vec<[f64; 3]> =
+                conn.iter().map(|&i| m.points[i]).map(|p| [p[0] - 3.0 * c as f64, p[1], p[2]]).collect();
+            assert_eq!(vtk_geometry_error(cell.kind, &vtk), None, "read back {:?}", cell.kind);
             // And it is the same set of nodes (pyramid14: but its base centre).
             let mut a = conn.clone();
             let mut b = cell.nodes[..vtk_n_nodes(cell.kind)].to_vec();
@@ -357,21 +300,14 @@ impl TestMesh {
         }
         let rows = |v: &[f64], n: usize| v.chunks(n).map(|r| r.to_vec()).collect::<Vec<_>>();
         let point = |name: &str| {
-            &m.point_data
-                .iter()
-                .find(|(n, _)| n == name)
-                .unwrap_or_else(|| panic!("no point field {name}"))
-                .1
+            &m.point_data.iter().find(|(n, _)| n == name).unwrap_or_else(|| panic!("no point field {name}")).1
         };
         assert_eq!(m.point_data.len(), 3);
         assert_eq!(point("displacement"), &rows(&self.displacement, 3));
         assert_eq!(point("stress"), &rows(&self.stress, 6));
         assert_eq!(point("von_mises"), &rows(&self.von_mises, 1));
         let cell = |name: &str| {
-            m.cell_data
-                .iter()
-                .find(|(n, _, _)| n == name)
-                .unwrap_or_else(|| panic!("no cell field {name}"))
+            m.cell_data.iter().find(|(n, _, _)| n == name).unwrap_or_else(|| panic!("no cell field {name}"))
         };
         assert_eq!(m.cell_data.len(), 3);
         assert_eq!(cell("stress").1, "float64");
@@ -408,11 +344,8 @@ const KINDS: [CellKind; 18] = [
 fn each_kind_round_trips_through_meshio() {
     let dir = scratch_dir("kinds");
     let mut staged = Staged::new(&dir, "readback");
-    let meshes: Vec<(CellKind, TestMesh)> = KINDS
-        .iter()
-        .chain([CellKind::Point1].iter())
-        .map(|&k| (k, TestMesh::new(&[k])))
-        .collect();
+    let meshes: Vec<(CellKind, TestMesh)> =
+        KINDS.iter().chain([CellKind::Point1].iter()).map(|&k| (k, TestMesh::new(&[k]))).collect();
     for (kind, mesh) in &meshes {
         staged.add(&format!("{}.vtu", kind.name()), mesh.bytes());
     }
@@ -442,49 +375,25 @@ fn large_arrays_round_trip() {
     // Several ZLib blocks (vtkio's block is 32768 bytes), one array an
     // exact multiple of the block size (4096 f64), one not.
     let n = 4096;
-    let points: Vec<[f64; 3]> = (0..n)
-        .map(|i| [i as f64 * 0.1, (i % 7) as f64, (i as f64).sqrt()])
-        .collect();
-    let cells: Vec<Cell> = (0..n - 1)
-        .map(|i| Cell {
-            kind: CellKind::Line2,
-            nodes: vec![i, i + 1],
-            tag: i as u64,
-        })
-        .collect();
+    let points: Vec<[f64; 3]> = (0..n).map(|i| [i as f64 * 0.1, (i % 7) as f64, (i as f64).sqrt()]).collect();
+    let cells: Vec<Cell> =
+        (0..n - 1).map(|i| Cell { kind: CellKind::Line2, nodes: vec![i, i + 1], tag: i as u64 }).collect();
     let scalar: Vec<f64> = (0..n).map(|i| (i as f64).cos()).collect();
     let body: Vec<i32> = (0..n as i32 - 1).collect();
     let bytes = vtu_bytes(
         &points,
         &cells,
-        &[Field {
-            name: "s",
-            n_comp: 1,
-            values: &scalar,
-        }],
+        &[Field { name: "s", n_comp: 1, values: &scalar }],
         &[],
-        &[IntField {
-            name: "body",
-            values: &body,
-        }],
+        &[IntField { name: "body", values: &body }],
     )
     .unwrap();
     let m = meshio_read_bytes(&bytes, "large");
     assert_eq!(m.points, points);
     assert_eq!(m.cells.len(), n - 1);
-    assert!(m
-        .cells
-        .iter()
-        .enumerate()
-        .all(|(i, (t, c))| t == "line" && *c == vec![i, i + 1]));
-    assert_eq!(
-        m.point_data[0].1,
-        scalar.iter().map(|&x| vec![x]).collect::<Vec<_>>()
-    );
-    assert_eq!(
-        m.cell_data[0].2,
-        body.iter().map(|&x| vec![x as f64]).collect::<Vec<_>>()
-    );
+    assert!(m.cells.iter().enumerate().all(|(i, (t, c))| t == "line" && *c == vec![i, i + 1]));
+    assert_eq!(m.point_data[0].1, scalar.iter().map(|&x| vec![x]).collect::<Vec<_>>());
+    assert_eq!(m.cell_data[0].2, body.iter().map(|&x| vec![x as f64]).collect::<Vec<_>>());
 }
 
 #[test]
@@ -492,28 +401,11 @@ fn empty_grid_and_odd_names_are_readable() {
     // meshio cannot read a grid without cells; VTK can, if it is there.
     let bytes = vtu_bytes(&[], &[], &[], &[], &[]).unwrap();
     let text = String::from_utf8(bytes.clone()).unwrap();
-    assert!(
-        text.contains("<Piece NumberOfPoints=\"0\" NumberOfCells=\"0\">"),
-        "{text}"
-    );
+    assert!(text.contains("<Piece NumberOfPoints=\"0\" NumberOfCells=\"0\">"), "{text}");
     let pts = [[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]];
-    let no_cells = vtu_bytes(
-        &pts,
-        &[],
-        &[Field {
-            name: "v",
-            n_comp: 1,
-            values: &[7.0, 8.0],
-        }],
-        &[],
-        &[],
-    )
-    .unwrap();
+    let no_cells = vtu_bytes(&pts, &[], &[Field { name: "v", n_comp: 1, values: &[7.0, 8.0] }], &[], &[]).unwrap();
     let text = String::from_utf8(no_cells.clone()).unwrap();
-    assert!(
-        text.contains("<Piece NumberOfPoints=\"2\" NumberOfCells=\"0\">"),
-        "{text}"
-    );
+    assert!(text.contains("<Piece NumberOfPoints=\"2\" NumberOfCells=\"0\">"), "{text}");
     let dir = scratch_dir("empty");
     let mut staged = Staged::new(&dir, "readback");
     staged.add("empty.vtu", bytes);
@@ -525,10 +417,7 @@ fn empty_grid_and_odd_names_are_readable() {
     if let Some(v) = vtk_read(&paths[1]) {
         assert_eq!(v.points, pts);
         assert!(v.cells.is_empty());
-        assert_eq!(
-            v.point_data,
-            vec![("v".to_string(), vec![vec![7.0], vec![8.0]])]
-        );
+        assert_eq!(v.point_data, vec![("v".to_string(), vec![vec![7.0], vec![8.0]])]);
     }
     std::fs::remove_dir_all(&dir).unwrap();
 
@@ -536,55 +425,28 @@ fn empty_grid_and_odd_names_are_readable() {
     let bytes = vtu_bytes(
         &mesh.points,
         &mesh.cells,
-        &[Field {
-            name: "a&b<c>\"d'",
-            n_comp: 2,
-            values: &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0],
-        }],
+        &[Field { name: "a&b<c>\"d'", n_comp: 2, values: &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0] }],
         &[],
         &[],
     )
     .unwrap();
     let m = meshio_read_bytes(&bytes, "names");
     assert_eq!(m.point_data[0].0, "a&b<c>\"d'");
-    assert_eq!(
-        m.point_data[0].1,
-        vec![vec![1.0, 2.0], vec![3.0, 4.0], vec![5.0, 6.0]]
-    );
+    assert_eq!(m.point_data[0].1, vec![vec![1.0, 2.0], vec![3.0, 4.0], vec![5.0, 6.0]]);
 }
 
 #[test]
 fn non_finite_values_are_written_as_they_are() {
     // A diverged solution must still open, NaNs and all.
     let mesh = TestMesh::new(&[CellKind::Tri3]);
-    let values = [
-        f64::NAN,
-        1.0,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        -0.0,
-        f64::MIN_POSITIVE,
-    ];
-    let bytes = vtu_bytes(
-        &mesh.points,
-        &mesh.cells,
-        &[Field {
-            name: "u",
-            n_comp: 2,
-            values: &values,
-        }],
-        &[],
-        &[],
-    )
-    .unwrap();
+    let values = [f64::NAN, 1.0, f64::INFINITY, f64::NEG_INFINITY, -0.0, f64::MIN_POSITIVE];
+    let bytes =
+        vtu_bytes(&mesh.points, &mesh.cells, &[Field { name: "u", n_comp: 2, values: &values }], &[], &[]).unwrap();
     let m = meshio_read_bytes(&bytes, "nan");
     let got: Vec<f64> = m.point_data[0].1.concat();
     assert_eq!(got.len(), values.len());
     for (g, v) in got.iter().zip(&values) {
-        assert!(
-            g.to_bits() == v.to_bits() || (g.is_nan() && v.is_nan()),
-            "{g} != {v}"
-        );
+        assert!(g.to_bits() == v.to_bits() || (g.is_nan() && v.is_nan()), "{g} != {v}");
     }
 }
 
@@ -593,88 +455,36 @@ fn file_is_zlib_compressed_vtu() {
     let bytes = TestMesh::new(&[CellKind::Hex27]).bytes();
     let text = String::from_utf8(bytes).unwrap();
     assert!(text.contains("type=\"UnstructuredGrid\""), "{text}");
-    assert!(
-        text.contains("compressor=\"vtkZLibDataCompressor\""),
-        "{text}"
-    );
+    assert!(text.contains("compressor=\"vtkZLibDataCompressor\""), "{text}");
     assert!(text.contains("header_type=\"UInt64\""), "{text}");
-    assert!(
-        text.contains("<Piece NumberOfPoints=\"27\" NumberOfCells=\"1\">"),
-        "{text}"
-    );
+    assert!(text.contains("<Piece NumberOfPoints=\"27\" NumberOfCells=\"1\">"), "{text}");
 }
 
 #[test]
 fn inconsistent_input_is_an_error_naming_it() {
     let mesh = TestMesh::new(&[CellKind::Quad4]);
     let short = [0.0; 11];
-    let err = vtu_bytes(
-        &mesh.points,
-        &mesh.cells,
-        &[Field {
-            name: "displacement",
-            n_comp: 3,
-            values: &short,
-        }],
-        &[],
-        &[],
-    )
-    .unwrap_err();
+    let err =
+        vtu_bytes(&mesh.points, &mesh.cells, &[Field { name: "displacement", n_comp: 3, values: &short }], &[], &[])
+            .unwrap_err();
     let msg = err.to_string();
-    assert!(
-        msg.contains("displacement") && msg.contains("11") && msg.contains("12"),
-        "{msg}"
-    );
+    assert!(msg.contains("displacement") && msg.contains("11") && msg.contains("12"), "{msg}");
 
-    let err = vtu_bytes(
-        &mesh.points,
-        &mesh.cells,
-        &[],
-        &[Field {
-            name: "stress",
-            n_comp: 6,
-            values: &[0.0; 7],
-        }],
-        &[],
-    )
-    .unwrap_err();
+    let err = vtu_bytes(&mesh.points, &mesh.cells, &[], &[Field { name: "stress", n_comp: 6, values: &[0.0; 7] }], &[])
+        .unwrap_err();
     assert!(err.to_string().contains("stress"), "{err}");
 
-    let err = vtu_bytes(
-        &mesh.points,
-        &mesh.cells,
-        &[],
-        &[],
-        &[IntField {
-            name: "body",
-            values: &[],
-        }],
-    )
-    .unwrap_err();
+    let err = vtu_bytes(&mesh.points, &mesh.cells, &[], &[], &[IntField { name: "body", values: &[] }]).unwrap_err();
     assert!(err.to_string().contains("body"), "{err}");
 
-    let err = vtu_bytes(
-        &mesh.points,
-        &mesh.cells,
-        &[Field {
-            name: "nothing",
-            n_comp: 0,
-            values: &[],
-        }],
-        &[],
-        &[],
-    )
-    .unwrap_err();
+    let err = vtu_bytes(&mesh.points, &mesh.cells, &[Field { name: "nothing", n_comp: 0, values: &[] }], &[], &[])
+        .unwrap_err();
     assert!(err.to_string().contains("nothing"), "{err}");
 
     let err = vtu_bytes(
         &mesh.points,
         &mesh.cells,
-        &[Field {
-            name: "huge",
-            n_comp: usize::MAX,
-            values: &[0.0; 4],
-        }],
+        &[Field { name: "huge", n_comp: usize::MAX, values: &[0.0; 4] }],
         &[],
         &[],
     )
@@ -684,10 +494,7 @@ fn inconsistent_input_is_an_error_naming_it() {
     let mut bad = mesh.cells.clone();
     bad[0].nodes.pop();
     let err = vtu_bytes(&mesh.points, &bad, &[], &[], &[]).unwrap_err();
-    assert!(
-        err.to_string().contains("quad4") && err.to_string().contains("100"),
-        "{err}"
-    );
+    assert!(err.to_string().contains("quad4") && err.to_string().contains("100"), "{err}");
 
     let mut bad = mesh.cells.clone();
     bad[0].nodes[2] = 4;
@@ -718,11 +525,7 @@ fn pvd_lists_the_steps_in_order() {
         .output()
         .unwrap();
     std::fs::remove_dir_all(&dir).unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let text = String::from_utf8(out.stdout).unwrap();
     let got: Vec<(f64, String)> = text
         .lines()
