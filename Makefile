@@ -6,7 +6,7 @@ CARGO   ?= cargo
 BIN     := target/release/subcontact
 PYTHON  ?= python3
 
-.PHONY: all deps deps-mpi build cylinder tunnel tunnel-joints footing footing-layers dam blocks3d dam3d dam3d-joints rockmass wedge safety test test-mpi fuzz bench bench3d bench-blocks bench-ccx bench-interface scaling stress clean
+.PHONY: all deps deps-mpi build lint cylinder tunnel tunnel-joints footing footing-layers dam blocks3d dam3d dam3d-joints rockmass wedge safety test test-mpi fuzz bench bench3d bench-blocks bench-ccx bench-interface scaling stress clean
 
 all: build
 
@@ -142,6 +142,12 @@ stress: deps
 
 test: deps
 	$(CARGO) test --release
+
+# The habits CI enforces: the tree formatted (rustfmt.toml) and clippy clean
+# on every target, warnings as errors.
+lint:
+	$(CARGO) fmt --check
+	$(CARGO) clippy --release --all-targets -- -D warnings
 
 # Fuzzing: the MSH reader, the scene parser and a whole `check` on mutated
 # inputs, FUZZ_SECONDS per target (default 60: about 3 minutes); a panic or

@@ -254,7 +254,8 @@ fn separate_coincident_contact_groups_give_the_shared_curve_answer() {
     assert_all(&split, ContactState::Stick);
 
     // displacements by (body, position)
-    fn by_body_and_position(run: &Run) -> Vec<((usize, [i64; 2]), [f64; 2])> {
+    type Keyed = ((usize, [i64; 2]), [f64; 2]);
+    fn by_body_and_position(run: &Run) -> Vec<Keyed> {
         body_nodes(run)
             .into_iter()
             .map(|(b, n)| {

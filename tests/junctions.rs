@@ -316,6 +316,7 @@ fn assert_same(a: &Run, b: &Run, r: &Rot, what: &str) {
 /// A scene over `mesh` with the body groups `bodies` (in that order, all of
 /// one material) and the crossing's joints, held by a fixed `base`, loaded by
 /// tractions (turned by `r`); friction 0.6.
+#[allow(clippy::too_many_arguments)]
 fn scene(
     mesh: &str,
     analysis: &str,

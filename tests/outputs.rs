@@ -500,7 +500,7 @@ fn dam_steps_report_their_factors_and_the_report_the_summarys_timings() {
     }
     // each step's contact file carries the states as categories
     let m = meshio(&dir.join("dam_contact_step001.vtu"));
-    assert!(m.cell_data["pair_status"].iter().any(|&s| s == 2.0));
+    assert!(m.cell_data["pair_status"].contains(&2.0));
 
     let report = read(&dir.join("report.md"));
     for row in [

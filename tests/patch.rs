@@ -741,6 +741,7 @@ fn curvedness(run: &Run) -> f64 {
 
 /// Hydrostatic patch on a domain with curved sides: every side carries
 /// `pressure = p`; returns the failures.
+#[allow(clippy::too_many_arguments)]
 fn hydrostatic(
     case: &Case,
     geo: &str,

@@ -315,6 +315,7 @@ pub fn stiffness_rule(analysis: Analysis, kind: CellKind) -> Vec<QuadPoint> {
 }
 
 /// Element stiffness, row-major `(nn nd) x (nn nd)`, written into `ke`.
+#[allow(clippy::too_many_arguments)] // a kernel: the element's data, no struct to bundle it in
 pub fn stiffness(
     analysis: Analysis,
     kind: CellKind,

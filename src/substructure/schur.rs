@@ -179,7 +179,7 @@ impl PartialCholesky {
         let nc = n - ni;
         let cases = f.len();
         let mut x: Vec<f64> =
-            f.iter().flat_map(|fk| fk[..ni].iter().copied().chain(std::iter::repeat(0.0).take(nc))).collect();
+            f.iter().flat_map(|fk| fk[..ni].iter().copied().chain(std::iter::repeat_n(0.0, nc))).collect();
         self.solve_many(&mut x, cases);
         // one product S X_c for all cases (S read once); X_c is the trailing nc rows of x
         let mut sx = vec![0.0; nc * cases];

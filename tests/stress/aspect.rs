@@ -1,8 +1,8 @@
 //! 3. Aspect ratio up to 1000: the two-block stack of fixed shape with
-//! elements stretched 1:1000 along or across the joint, under uniform
-//! compression, where the exact solution is in every element space (so the
-//! error is round-off, bounded by [`aspect_tols`]); and a slender column of
-//! such elements, reported beside it.
+//!    elements stretched 1:1000 along or across the joint, under uniform
+//!    compression, where the exact solution is in every element space (so the
+//!    error is round-off, bounded by [`aspect_tols`]); and a slender column of
+//!    such elements, reported beside it.
 
 use std::time::Instant;
 

@@ -1,10 +1,10 @@
 //! 1. Stiffness contrast 1 ... 1e6 between two bodies: the compound thick
-//! cylinder (rings a..c and c..b, moduli E1 and E2, bonded by a contact at
-//! r = c that stays stuck, internal pressure p, plane strain) against its
-//! closed form ([`Compound`]: Lamé in each ring, u_r and sigma_r continuous
-//! at r = c); the contact's sign convention on the curved joint; and the
-//! closed form's self-check. The compound scene ([`compound_scene`]) is
-//! also the curved joint of the units and strengths cases.
+//!    cylinder (rings a..c and c..b, moduli E1 and E2, bonded by a contact at
+//!    r = c that stays stuck, internal pressure p, plane strain) against its
+//!    closed form ([`Compound`]: Lamé in each ring, u_r and sigma_r continuous
+//!    at r = c); the contact's sign convention on the curved joint; and the
+//!    closed form's self-check. The compound scene ([`compound_scene`]) is
+//!    also the curved joint of the units and strengths cases.
 
 use std::time::Instant;
 

@@ -1,6 +1,6 @@
 //! 7. A body held only by contact: stuck, it gives the bonded answer;
-//! pulled off, the binary stops with a message naming the body (no panic,
-//! no result files), also at map coordinates and in Pa.
+//!    pulled off, the binary stops with a message naming the body (no panic,
+//!    no result files), also at map coordinates and in Pa.
 
 use std::time::Instant;
 

@@ -1,10 +1,10 @@
 //! 2. Near incompressibility, nu = 0.45, 0.49, 0.499 (against 0.3), on
-//! Lamé's cylinder: the linear quadrilateral and hexahedron take their
-//! dilatation at the element mean (B-bar, `fem::element`) and keep their
-//! displacement accuracy, asserted; so do the quadratic kinds (quad9,
-//! quad8, tri6), asserted; tri3 has no remedy and locks, reported. The
-//! stresses degrade as lambda/mu for the quadratic kinds (their pressure
-//! error), reported for all.
+//!    Lamé's cylinder: the linear quadrilateral and hexahedron take their
+//!    dilatation at the element mean (B-bar, `fem::element`) and keep their
+//!    displacement accuracy, asserted; so do the quadratic kinds (quad9,
+//!    quad8, tri6), asserted; tri3 has no remedy and locks, reported. The
+//!    stresses degrade as lambda/mu for the quadratic kinds (their pressure
+//!    error), reported for all.
 
 use std::time::Instant;
 

@@ -1,10 +1,10 @@
 //! 4. Map coordinates: the stack moved to x ~ 5e5, y ~ 4.2e6 and rotated
-//! 30 degrees (load rotated; the base clamped, which a rotation leaves
-//! valid) gives the answer of the model at the origin, rotated. Asserted on
-//! the origin's mesh moved exactly by the test ([`transform_msh`]: the
-//! solver's share), reported for gmsh meshing the moved .geo. The
-//! comparison of two runs node by node and pair by pair ([`compare_moved`])
-//! serves the units and strengths cases too.
+//!    30 degrees (load rotated; the base clamped, which a rotation leaves
+//!    valid) gives the answer of the model at the origin, rotated. Asserted on
+//!    the origin's mesh moved exactly by the test ([`transform_msh`]: the
+//!    solver's share), reported for gmsh meshing the moved .geo. The
+//!    comparison of two runs node by node and pair by pair ([`compare_moved`])
+//!    serves the units and strengths cases too.
 //!
 //! What keeps the 1e-8 at fine meshes far from the origin: the element
 //! kernels (`fem::element::point`, `facet_point`, `fem::shape::locate`)

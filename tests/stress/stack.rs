@@ -122,7 +122,6 @@ pub fn uniform_errors(run: &Run, st: &Stack, p: f64) -> (f64, f64, f64) {
 }
 
 /// Blocks 10 x 1 (flat: elements stretched along the joint, dx/dy = AR)
-
 /// clamped, an inclined traction on the top face that bends the joint so
 /// that part of it opens (f_t = 0) while the rest sticks.
 pub fn map_stack(kind: &str, nx: usize, ny: usize) -> Stack {

@@ -1,8 +1,8 @@
 //! 6. Contact strengths at their limits: friction 0 and cohesion 0 in
-//! compression (stick or slip, with zero shear either way; also on the
-//! curved joint), very high cohesion (stays stuck: the bonded answer), and
-//! f_t = 0 under bending (the pairs in tension open, the rest carry the
-//! load: complementarity and equilibrium of the contact forces).
+//!    compression (stick or slip, with zero shear either way; also on the
+//!    curved joint), very high cohesion (stays stuck: the bonded answer), and
+//!    f_t = 0 under bending (the pairs in tension open, the rest carry the
+//!    load: complementarity and equilibrium of the contact forces).
 
 use std::time::Instant;
 

@@ -1,7 +1,7 @@
 //! 5. Units: the same model in MPa and in Pa (E, loads, cohesion and
-//! tensile strength scaled by 1e6) gives equal displacements and stresses
-//! scaled by 1e6, on the bent stack and on the compound cylinder's curved
-//! joint.
+//!    tensile strength scaled by 1e6) gives equal displacements and stresses
+//!    scaled by 1e6, on the bent stack and on the compound cylinder's curved
+//!    joint.
 
 use std::time::Instant;
 

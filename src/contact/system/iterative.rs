@@ -388,8 +388,9 @@ impl<'a> Iterative<'a> {
     fn apply_many(&self, xs: &[&[f64]], ramp: f64) -> Vec<Vec<f64>> {
         let n = self.nm + self.nr;
         let (nm, nd, k) = (self.nm, self.nd, xs.len());
-        let columns =
-            |part: &AppliedPart| -> Vec<f64> { xs.iter().flat_map(|x| part.from_unknowns(x, ramp, nm, nd)).collect() };
+        let columns = |part: &AppliedPart| -> Vec<f64> {
+            xs.iter().flat_map(|x| part.displacements_of(x, ramp, nm, nd)).collect()
+        };
         // `K` of S d, column by column
         let gather = |part: &AppliedPart, sd: &[f64]| -> Vec<Vec<f64>> {
             let nc = part.terms.len();
@@ -592,7 +593,7 @@ impl<'a> Iterative<'a> {
     fn preconditioner(&self, fr: &Freedom) -> impl Fn(&[f64]) -> Vec<f64> + '_ {
         let nm = self.nm;
         // the unknowns of each block, with their entries over its members
-        let mut touching: Vec<Vec<(usize, Vec<(usize, f64)>)>> = vec![Vec::new(); self.blocks.len()];
+        let mut touching: Vec<Vec<Entries>> = vec![Vec::new(); self.blocks.len()];
         for i in 0..nm {
             let p = self.place[i];
             if p.block != usize::MAX {
@@ -721,10 +722,13 @@ fn coarse_space(model: &Model, layout: &Layout, parts: &[OperatorRef], rigid: &[
     coarse
 }
 
+/// An unknown of a block and its entries over the block's members.
+type Entries = (usize, Vec<(usize, f64)>);
+
 impl AppliedPart {
     /// The part's interface displacements (global axes, nodal basis) for
     /// the unknowns `x` and the prescribed values at `ramp`.
-    fn from_unknowns(&self, x: &[f64], ramp: f64, nm: usize, nd: usize) -> Vec<f64> {
+    fn displacements_of(&self, x: &[f64], ramp: f64, nm: usize, nd: usize) -> Vec<f64> {
         coords::part_displacements(&self.terms, &self.frames, &self.edges, nd, ramp, |v| match v {
             Var::M(i) => x[i],
             Var::R(i) => x[nm + i],

@@ -309,6 +309,10 @@ impl Split {
     }
 }
 
+/// A junction pair's contact force on body I and relative displacement
+/// (local axes), and its force as if tied where it is locked.
+type PairForces = ([f64; 3], [f64; 3], Option<[f64; 3]>);
+
 impl Junction {
     /// The junction of `pairs` (their (k, l) and frames given by `pair`),
     /// with the prescribed value per unit ramp of each model DOF
@@ -626,7 +630,7 @@ impl Junction {
         r: &DVector<f64>,
         g: &DVector<f64>,
         ramp: f64,
-    ) -> Vec<([f64; 3], [f64; 3], Option<[f64; 3]>)> {
+    ) -> Vec<PairForces> {
         let nd = self.nd;
         let rels: Vec<[f64; 3]> = (0..self.pairs.len())
             .map(|j| {
@@ -657,7 +661,7 @@ impl Junction {
         }
         let slipping = |j: usize| rel[self.pairs[j]].state == ContactState::Slip;
         self.memo.set_looped(pressure::looped(&tied.split, &lambda, &tied.split.plain(&carried), slipping));
-        let mut out: Vec<([f64; 3], [f64; 3], Option<[f64; 3]>)> = rels.iter().map(|&x| ([0.0; 3], x, None)).collect();
+        let mut out: Vec<PairForces> = rels.iter().map(|&x| ([0.0; 3], x, None)).collect();
         for (&(j, dir), &l) in tied.rows.iter().zip(lambda.iter()) {
             for a in (0..nd).filter(|&a| dir[a] != 0.0) {
                 out[j].0[a] += l * dir[a];
