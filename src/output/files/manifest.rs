@@ -9,8 +9,10 @@
 //!   "writers": { "cylinder": ["cylinder.vtu", "contact.csv", "..."], "bench": ["bench.csv"] } }
 //! ```
 //!
-//! A missing or unreadable manifest is an empty one: files it does not
-//! list are never removed.
+//! A writer's files are names in the directory, and its mesh cache
+//! `mesh/<writer>.msh` and `mesh/<writer>.msh.key`, which a commit takes
+//! along like its results. A missing or unreadable manifest is an empty
+//! one: files it does not list are never removed.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -39,6 +41,15 @@ impl Manifest {
     /// The manifest in `dir` (empty when there is none or it cannot be read).
     pub fn read(dir: &Path) -> Manifest {
         std::fs::read(dir.join(MANIFEST)).ok().and_then(|b| serde_json::from_slice(&b).ok()).unwrap_or_default()
+    }
+
+    /// The manifest in the directory opened as `dir` (not following a link).
+    pub(super) fn read_at(dir: &super::at::Dir) -> Manifest {
+        let mut bytes = Vec::new();
+        let read = dir
+            .read_file(std::ffi::OsStr::new(MANIFEST))
+            .and_then(|mut f| std::io::Read::read_to_end(&mut f, &mut bytes));
+        read.ok().and_then(|_| serde_json::from_slice(&bytes).ok()).unwrap_or_default()
     }
 
     /// The files `writer` wrote.

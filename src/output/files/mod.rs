@@ -1,49 +1,62 @@
 //! Result files are written all together or not at all, as one
 //! transaction on the result directory (SQLite's promise, for a directory):
 //! after a kill at any instant, the directory holds the old set of results
-//! or the new one, whole.
+//! or the new one, whole; and nothing outside it is ever written,
+//! truncated or removed.
 //!
-//! [`Staged`] keeps a run's files in memory; [`Staged::commit`]:
+//! A run's [`Stage`] is made when the run starts, beside the directory,
+//! `<parent>/.<name>.stage-<run>` (`<run>` = process id and time); gmsh
+//! meshes into it, outside the lock. [`Staged`] keeps a run's result files
+//! in memory; [`Stage::commit`]:
 //!
 //! 1. locks the directory ([`lock`]: `<parent>/.<name>.lock`; a second run
 //!    into the same directory waits, saying for whom) and makes right what
 //!    a killed commit left ([`swap::recover`]);
-//! 2. builds the new directory beside it, `<parent>/.<name>.stage-<run>`
-//!    (`<run>` = process id and time): hard links to everything of the old
-//!    directory that stays ([`swap::carry`]), then the new files and the
-//!    [`manifest`], each flushed to disk;
+//! 2. writes the new files and the [`manifest`] into the stage, each
+//!    flushed to disk, then hard links to everything of the old directory
+//!    that stays ([`swap::carry`]), and gives the stage the old
+//!    directory's owner, group, mode and extended attributes;
 //! 3. swaps the two directories in one step (`renameat2` with
 //!    `RENAME_EXCHANGE`): this is the commit point;
 //! 4. empties the old set, now in the staging directory's place, of what
-//!    the manifest says this writer wrote before and of the links, and
-//!    removes it ([`swap::settle`]).
+//!    the manifests say this writer wrote and of the links, its manifest
+//!    last, and removes it ([`swap::settle`]).
+//!
+//! Every step works through directory handles the run opened itself
+//! ([`at`]): a symbolic link planted in the result directory or beside it
+//! is never followed, and one where a result file, the mesh cache or the
+//! lock goes is refused.
 //!
 //! Why a whole-directory swap and not a journal of renames per file: a
 //! journal makes the set whole only once the next run has replayed it, and
 //! a person opening the results in ParaView after a kill never runs one.
 //! The price is that the directory is a new one after every run: whatever
 //! else lives in it must be carried over, and is. Files the tool did not
-//! write (a user's notes, another scene's results, the mesh cache `mesh/`)
+//! write (a user's notes, another scene's results, other scenes' meshes)
 //! are hard-linked into the new directory, so they are the same files,
-//! never copied or lost; a file saved into the directory while a commit
-//! runs is moved back after the swap. A file of the name a run writes is
-//! replaced, whoever wrote it; nothing else is ever removed. A shell whose
-//! working directory is the result directory sees the old one until it
-//! changes directory again (`cd .`).
+//! never copied or lost; subdirectories are made anew with the owner,
+//! group, mode and attributes of the old ones; a file saved into the
+//! directory while a commit runs is moved back after the swap. What cannot
+//! be kept that way (a mount point inside the directory; for a user other
+//! than root, another user's directory or file) is refused before the run
+//! does any work. A file of the name a run writes is replaced, whoever
+//! wrote it; nothing else is ever removed. A shell whose working directory
+//! is the result directory sees the old one until it changes directory
+//! again (`cd .`).
 //!
 //! [`OutputError`] is the error of the whole `output` module.
 
+pub mod at;
 pub mod lock;
 pub mod manifest;
+mod stage;
 mod swap;
 mod target;
 
 pub use lock::Lock;
 pub use manifest::{Manifest, MANIFEST};
+pub use stage::{Stage, MESH_DIR};
 
-use std::ffi::OsStr;
-use std::fs;
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// What went wrong while building or writing result files. Messages name the
@@ -85,6 +98,12 @@ pub enum OutputError {
         #[source]
         source: std::io::Error,
     },
+    #[error("cannot write into {}: it is {what}, which a run never follows or replaces; remove it (or give another --out)", path.display())]
+    NotOurs { path: PathBuf, what: &'static str },
+    #[error("cannot keep {} as it is: it is a mount point, and a run replaces the result directory in one step, which cannot take a mount along; mount it elsewhere or give another --out", path.display())]
+    MountPoint { path: PathBuf },
+    #[error("cannot keep {} as it is: {why}; move it out of the result directory, run as its owner, or give another --out", path.display())]
+    CannotKeep { path: PathBuf, why: String },
     #[error("invalid result file name {name:?} in {}: it must be a plain file name", dir.display())]
     InvalidName { dir: PathBuf, name: String },
     #[error(
@@ -162,11 +181,11 @@ impl Staged {
         self.commit_with(&mut |_| {})
     }
 
-    /// Locks the directory, `waiting` told when another run holds it, and commits.
+    /// Makes a stage, locks the directory (`waiting` told when another run
+    /// holds it) and commits.
     pub fn commit_with(self, waiting: &mut dyn FnMut(&str)) -> Result<Vec<PathBuf>, OutputError> {
         self.check_names()?;
-        let lock = Lock::acquire(&self.dir, waiting)?;
-        self.commit_locked(&lock)
+        Stage::begin(&self.dir, waiting)?.commit(self, waiting)
     }
 
     /// Commits under a lock the caller holds on this directory (to read and
@@ -175,55 +194,12 @@ impl Staged {
     /// is as it was.
     pub fn commit_locked(self, lock: &Lock) -> Result<Vec<PathBuf>, OutputError> {
         self.check_names()?;
-        let target = lock.target();
-        swap::recover(target);
-        let out = &target.path;
-        let exists = match fs::symlink_metadata(out) {
-            Ok(m) if m.is_dir() => true,
-            Ok(_) => {
-                return Err(OutputError::InvalidDir { path: out.clone(), why: "it is a file, not a directory".into() })
-            }
-            Err(_) => false,
-        };
-        for (name, _) in &self.files {
-            let p = out.join(name);
-            if fs::symlink_metadata(&p).is_ok_and(|m| m.is_dir()) {
-                return Err(OutputError::InTheWay { path: p });
-            }
-        }
-        let run = format!(
-            "{}-{}",
-            std::process::id(),
-            std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_nanos())
-        );
-        let old = Manifest::read(out);
-        let names: Vec<String> = self.files.iter().map(|(n, _)| n.clone()).collect();
-        let manifest = old.after(&run, &self.writer, &names, self.keep);
-        let was: &[String] = if self.keep { &[] } else { old.files(&self.writer) };
-        let replaced = |n: &OsStr| n == MANIFEST || names.iter().chain(was).any(|f| OsStr::new(f) == n);
+        Stage::under(lock)?.commit_locked(self, lock)
+    }
 
-        let stage = target.stage_path(&run);
-        fs::create_dir(&stage).map_err(|source| OutputError::CreateDir { path: stage.clone(), source })?;
-        let swapped = self.fill(&stage, exists.then_some(out.as_path()), &replaced, &manifest).and_then(|()| {
-            swap::swap(&stage, target, &run).map_err(|source| OutputError::Rename {
-                from: stage.clone(),
-                to: out.clone(),
-                source,
-            })
-        });
-        let old_set = match swapped {
-            Ok(old_set) => old_set,
-            Err(e) => {
-                let _ = fs::remove_dir_all(&stage);
-                return Err(e);
-            }
-        };
-        // committed: the rest only tidies
-        let _ = swap::sync_dir(&target.parent);
-        if let Some(old_set) = old_set {
-            swap::settle(&old_set, out, &replaced);
-        }
-        Ok(names.iter().map(|n| self.dir.join(n)).collect())
+    /// The names of the staged files, in the order they were added.
+    fn names(&self) -> impl Iterator<Item = String> + '_ {
+        self.files.iter().map(|(n, _)| n.clone())
     }
 
     fn check_names(&self) -> Result<(), OutputError> {
@@ -231,34 +207,6 @@ impl Staged {
             Some((name, _)) => Err(OutputError::InvalidName { dir: self.dir.clone(), name: name.clone() }),
             None => Ok(()),
         }
-    }
-
-    /// The new set in `stage`: what stays of `out`, the files, the manifest.
-    fn fill(
-        &self,
-        stage: &Path,
-        out: Option<&Path>,
-        replaced: &dyn Fn(&OsStr) -> bool,
-        manifest: &Manifest,
-    ) -> Result<(), OutputError> {
-        if let Some(out) = out {
-            swap::carry(out, stage, replaced)
-                .map_err(|source| OutputError::Carry { from: out.to_path_buf(), source })?;
-            if let Ok(m) = fs::metadata(out) {
-                let _ = fs::set_permissions(stage, m.permissions());
-            }
-        }
-        let manifest = manifest.bytes();
-        for (name, bytes) in self.files.iter().map(|(n, b)| (n.as_str(), b)).chain([(MANIFEST, &manifest)]) {
-            let path = stage.join(name);
-            let write = || -> std::io::Result<()> {
-                let mut f = fs::OpenOptions::new().write(true).create_new(true).open(&path)?;
-                f.write_all(bytes)?;
-                f.sync_all()
-            };
-            write().map_err(|source| OutputError::Write { path: self.dir.join(name), source })?;
-        }
-        swap::sync_dir(stage).map_err(|source| OutputError::Write { path: stage.to_path_buf(), source })
     }
 }
 

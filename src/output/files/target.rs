@@ -1,23 +1,25 @@
 //! Where a result directory really is: its parent (absolute, symbolic
-//! links resolved, created if missing) and its name there, and the hidden
-//! names beside it that a commit uses: `.<name>.lock`, the staging
+//! links resolved, created if missing), opened once as a directory handle
+//! that every later step works through, and its name there; and the
+//! hidden names beside it that a commit uses: `.<name>.lock`, the staging
 //! directories `.<name>.stage-<run>` and, where the file system cannot swap
 //! two directories in one step, `.<name>.old-<run>`.
 
-use std::ffi::OsString;
+use std::ffi::{OsStr, OsString};
 use std::fs;
 use std::path::{Path, PathBuf};
 
+use super::at::Dir;
 use super::OutputError;
 
-/// A result directory, resolved.
-#[derive(Clone, Debug, PartialEq, Eq)]
+/// A result directory, resolved, with its parent open.
+#[derive(Debug)]
 pub struct Target {
-    /// The directory's parent, absolute and canonical.
-    pub parent: PathBuf,
+    /// The directory's parent, opened (its path absolute and canonical).
+    pub parent: Dir,
     /// Its name in the parent.
     pub name: OsString,
-    /// `parent/name`.
+    /// `parent/name`, for messages.
     pub path: PathBuf,
 }
 
@@ -27,16 +29,23 @@ const OLD: &str = ".old-";
 impl Target {
     /// Resolves `dir`: a symbolic link to a directory is followed (the
     /// results go where it points, the link stays), the parent is created
-    /// when missing. `/` has no parent to stage in and is refused.
+    /// when missing and must be writable (the new set is built there).
+    /// `/`, a file, and a link to nothing are refused.
     pub fn resolve(dir: &Path) -> Result<Target, OutputError> {
-        let invalid = |why: &str| OutputError::InvalidDir { path: dir.to_path_buf(), why: why.to_string() };
-        let abs = std::path::absolute(dir).map_err(|e| invalid(&e.to_string()))?;
-        // a directory that exists (or a link to one): its canonical path
+        let invalid = |why: String| OutputError::InvalidDir { path: dir.to_path_buf(), why };
+        let abs = std::path::absolute(dir).map_err(|e| invalid(e.to_string()))?;
         let real = match fs::canonicalize(&abs) {
-            Ok(p) => p,
+            Ok(p) if p.is_dir() => p,
+            Ok(_) => return Err(invalid("it is a file, not a directory".into())),
             Err(_) => {
+                if let Ok(to) = fs::read_link(&abs) {
+                    return Err(invalid(format!(
+                        "it is a symbolic link to {}, which does not exist: create that directory or remove the link",
+                        to.display()
+                    )));
+                }
                 let (Some(parent), Some(name)) = (abs.parent(), abs.file_name()) else {
-                    return Err(invalid("it has no parent directory to stage the results in"));
+                    return Err(invalid("it has no parent directory to stage the results in".into()));
                 };
                 fs::create_dir_all(parent)
                     .map_err(|source| OutputError::CreateDir { path: parent.to_path_buf(), source })?;
@@ -45,55 +54,77 @@ impl Target {
                 parent.join(name)
             }
         };
-        match (real.parent(), real.file_name()) {
-            (Some(parent), Some(name)) => {
-                Ok(Target { parent: parent.to_path_buf(), name: name.to_os_string(), path: real.clone() })
-            }
-            _ => Err(invalid("it has no parent directory to stage the results in")),
+        let (Some(parent), Some(name)) = (real.parent(), real.file_name()) else {
+            return Err(invalid("it has no parent directory to stage the results in".into()));
+        };
+        let opened = Dir::open_path(parent).map_err(|source| OutputError::CreateDir { path: parent.into(), source })?;
+        if let Err(e) =
+            rustix::fs::accessat(opened.fd(), ".", rustix::fs::Access::WRITE_OK, rustix::fs::AtFlags::EACCESS)
+        {
+            return Err(invalid(format!(
+                "its parent {} is not writable ({e}): a run builds its new set of results beside the directory and swaps it in, in one step, so that a run stopped at any instant leaves the old set or the new one. Make {} writable, or give an --out inside a directory you can write",
+                parent.display(),
+                parent.display()
+            )));
         }
+        Ok(Target { parent: opened, name: name.to_os_string(), path: real.clone() })
     }
 
-    fn beside(&self, what: &str) -> PathBuf {
+    /// A second handle on the same parent.
+    pub fn try_clone(&self) -> Result<Target, OutputError> {
+        let parent = self
+            .parent
+            .try_clone()
+            .map_err(|source| OutputError::CreateDir { path: self.parent.path.clone(), source })?;
+        Ok(Target { parent, name: self.name.clone(), path: self.path.clone() })
+    }
+
+    fn beside(&self, what: &str) -> OsString {
         let mut n = OsString::from(".");
         n.push(&self.name);
         n.push(what);
-        self.parent.join(n)
+        n
     }
 
-    pub fn lock_path(&self) -> PathBuf {
+    /// The lock's name in the parent.
+    pub fn lock_name(&self) -> OsString {
         self.beside(".lock")
     }
 
-    /// The staging directory of run `run`.
-    pub fn stage_path(&self, run: &str) -> PathBuf {
+    /// The name in the parent of run `run`'s staging directory.
+    pub fn stage_name(&self, run: &str) -> OsString {
         self.beside(&format!("{STAGE}{run}"))
     }
 
     /// Where the old directory waits during a two-step swap.
-    pub fn old_path(&self, run: &str) -> PathBuf {
+    pub fn old_name(&self, run: &str) -> OsString {
         self.beside(&format!("{OLD}{run}"))
     }
 
+    /// A name in the parent as a path, for messages.
+    pub fn beside_path(&self, name: &OsStr) -> PathBuf {
+        self.parent.path.join(name)
+    }
+
     /// Staging and old directories beside this one that some run left:
-    /// (path, run, whether it is an `old` one).
-    pub fn leftovers(&self) -> Vec<(PathBuf, String, bool)> {
-        let Ok(entries) = fs::read_dir(&self.parent) else { return Vec::new() };
+    /// (name in the parent, run, whether it is an `old` one).
+    pub fn leftovers(&self) -> Vec<(OsString, String, bool)> {
+        let Ok(names) = self.parent.names() else { return Vec::new() };
         let prefix = format!(".{}", self.name.to_string_lossy());
-        let mut found: Vec<(PathBuf, String, bool)> = entries
-            .flatten()
-            .filter_map(|e| {
-                let n = e.file_name().into_string().ok()?;
-                let rest = n.strip_prefix(&prefix)?;
+        names
+            .into_iter()
+            .filter_map(|n| {
+                let s = n.to_str()?;
+                let rest = s.strip_prefix(&prefix)?;
                 let (run, old) = match (rest.strip_prefix(STAGE), rest.strip_prefix(OLD)) {
-                    (Some(r), _) => (r, false),
-                    (_, Some(r)) => (r, true),
+                    (Some(r), _) => (r.to_string(), false),
+                    (_, Some(r)) => (r.to_string(), true),
                     _ => return None,
                 };
-                e.file_type().ok()?.is_dir().then(|| (e.path(), run.to_string(), old))
+                let st = self.parent.stat(&n).ok()??;
+                (super::at::kind(&st) == rustix::fs::FileType::Directory).then_some((n, run, old))
             })
-            .collect();
-        found.sort();
-        found
+            .collect()
     }
 }
 
@@ -102,21 +133,24 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_link_is_followed_and_a_missing_parent_made() {
+    fn a_link_is_followed_a_missing_parent_made_and_a_dangling_link_refused() {
         let root = std::env::temp_dir().join(format!("subcontact-target-{}", std::process::id()));
         let _ = fs::remove_dir_all(&root);
         let t = Target::resolve(&root.join("a/b/out")).unwrap();
         assert!(root.join("a/b").is_dir());
         assert_eq!(t.name, "out");
-        assert_eq!(t.lock_path(), fs::canonicalize(root.join("a/b")).unwrap().join(".out.lock"));
+        assert_eq!(t.beside_path(&t.lock_name()), fs::canonicalize(root.join("a/b")).unwrap().join(".out.lock"));
         fs::create_dir_all(root.join("real")).unwrap();
         std::os::unix::fs::symlink(root.join("real"), root.join("link")).unwrap();
         let t = Target::resolve(&root.join("link")).unwrap();
         assert_eq!(t.name, "real");
         assert!(Target::resolve(Path::new("/")).is_err());
-        fs::create_dir_all(t.stage_path("1-2")).unwrap();
-        fs::create_dir_all(t.old_path("3-4")).unwrap();
-        fs::write(t.parent.join(".real.stage-file"), b"").unwrap();
+        std::os::unix::fs::symlink(root.join("nowhere"), root.join("dangling")).unwrap();
+        let e = Target::resolve(&root.join("dangling")).unwrap_err().to_string();
+        assert!(e.contains("symbolic link") && e.contains("nowhere") && e.contains("does not exist"), "{e}");
+        fs::create_dir_all(t.beside_path(&t.stage_name("1-2"))).unwrap();
+        fs::create_dir_all(t.beside_path(&t.old_name("3-4"))).unwrap();
+        fs::write(t.parent.path.join(".real.stage-file"), b"").unwrap();
         let left: Vec<(String, bool)> = t.leftovers().into_iter().map(|(_, r, o)| (r, o)).collect();
         assert_eq!(left, vec![("3-4".to_string(), true), ("1-2".to_string(), false)]);
         fs::remove_dir_all(&root).unwrap();
