@@ -23,7 +23,7 @@ fn main() -> anyhow::Result<()> {
     let which = args.get(3).map_or("auto", |s| s.as_str());
     let par = Par::Seq;
     faer::set_global_parallelism(Par::Seq);
-    let (mesh, _, _) = load_mesh(&scene, &out)?;
+    let (mesh, _, _) = load_mesh(&scene, &out, false)?;
     let model = Model::build(&mesh, &scene.model_spec())?;
     drop(mesh);
     if let Some(mode) = args.get(4) {

@@ -86,7 +86,12 @@ pub enum Command {
         out: Option<PathBuf>,
     },
     /// Validate a scene, its mesh and its model (groups, pairs, supports) without solving.
-    Check { scene: PathBuf },
+    Check {
+        scene: PathBuf,
+        /// Let the .geo run programs and write files (see solve --allow-geo-commands).
+        #[arg(long)]
+        allow_geo_commands: bool,
+    },
     /// Solve the fine and the paper-mesh cylinder scenes and print the paper's Tables 1 and 2
     /// side by side with both (also written to the fine scene's report.md).
     Paper {
@@ -140,4 +145,9 @@ pub struct RunArgs {
     /// (the estimate errs high; the run may still be stopped by the system).
     #[arg(long)]
     pub no_memory_check: bool,
+    /// Let the .geo run programs and write files: SystemCall, NonBlockingSystemCall,
+    /// OnelabRun, Save, Print, CreateDir, SendToServer, Printf(...) > "file". Refused
+    /// otherwise: a .geo is a program, and these reach outside the mesh with your rights.
+    #[arg(long)]
+    pub allow_geo_commands: bool,
 }

@@ -115,10 +115,10 @@ fn print_safety(run: &Run, s: &crate::results::SafetyRun) {
     }
 }
 
-pub fn check(scene_path: &Path) -> Result<()> {
+pub fn check(scene_path: &Path, allow_geo_commands: bool) -> Result<()> {
     let scene = Scene::load(scene_path)?;
     let out = Path::new("results").join(&scene.name);
-    let (mesh, msh, _) = driver::load_mesh(&scene, &out)?;
+    let (mesh, msh, _) = driver::load_mesh(&scene, &out, allow_geo_commands)?;
     let model = Model::build(&mesh, &scene.model_spec())?;
     let parts = substructure::cut(&model, substructure::parts(&model), scene.solver.substructures);
     let dofs = substructure::parts::dof_counts(&model, &parts);

@@ -39,7 +39,7 @@ fn main() -> ExitCode {
         }
         // the other commands run on rank 0 alone
         _ if !root => Ok(()),
-        Command::Check { scene } => commands::check(&scene),
+        Command::Check { scene, allow_geo_commands } => commands::check(&scene, allow_geo_commands),
         Command::Bench { scene, levels, orders, ratio, start, max_dofs, no_monolithic, out } => commands::bench(
             &scene,
             &subcontact::bench::BenchOptions {
@@ -93,6 +93,7 @@ fn options(a: RunArgs) -> (std::path::PathBuf, RunOptions) {
         threads: a.threads,
         interface: a.interface,
         ignore_memory_estimate: a.no_memory_check,
+        allow_geo_commands: a.allow_geo_commands,
         ..Default::default()
     };
     (a.scene, opts)

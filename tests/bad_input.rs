@@ -325,11 +325,10 @@ fn check_passes_on_the_cylinder_and_writes_no_results() {
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "check failed: {}", String::from_utf8_lossy(&out.stderr));
     says(&stdout, &["cylinder.toml", "consistent", "2 bodies", "81 contact pairs"]);
-    let files = case.files_in(&case.dir.join("results"));
-    assert!(
-        files.iter().all(|f| f.starts_with("cylinder/mesh/") || f == ".cylinder.lock"),
-        "check wrote results: {files:?}"
-    );
+    let results = case.dir.join("results");
+    let files = case.files_in(&results);
+    assert!(files.iter().all(|f| common::cli::mesh_cache(&results, f)), "check wrote results: {files:?}");
+    assert!(files.contains(&"cylinder/mesh/cylinder.msh".to_string()), "check keeps the mesh: {files:?}");
 }
 
 #[test]

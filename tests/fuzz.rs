@@ -194,7 +194,7 @@ fn seeds(case: &Case) -> Vec<(String, String, PathBuf)> {
         let path = case.write(&format!("{name}.toml"), &text);
         let scene = Scene::load(&path).expect("seed scene");
         let (_, msh, _) =
-            subcontact::driver::load_mesh(&scene, &case.dir.join(format!("mesh-{name}"))).expect("seed mesh");
+            subcontact::driver::load_mesh(&scene, &case.dir.join(format!("mesh-{name}")), false).expect("seed mesh");
         let text = text.replace(&format!("mesh = \"{name}.geo\""), &format!("mesh = \"{}\"", msh.display()));
         out.push((name.to_string(), text, msh));
     }
@@ -204,7 +204,7 @@ fn seeds(case: &Case) -> Vec<(String, String, PathBuf)> {
 /// The whole of `check` in this process: scene, mesh, model, parts, memory.
 fn check(path: &Path, out: &Path) {
     let Ok(scene) = Scene::load(path) else { return };
-    let Ok((mesh, _, _)) = subcontact::driver::load_mesh(&scene, out) else { return };
+    let Ok((mesh, _, _)) = subcontact::driver::load_mesh(&scene, out, false) else { return };
     let Ok(model) = Model::build(&mesh, &scene.model_spec()) else { return };
     let parts = subcontact::substructure::cut(
         &model,

@@ -44,6 +44,7 @@ use crate::contact::InterfaceSolver;
 use crate::mesh::{gmsh, msh, Mesh};
 use crate::model::Model;
 use crate::output;
+use crate::output::files::{Stage, Staged};
 use crate::parallel::{Comm, Serial};
 use crate::recover;
 use crate::scene::{MeshSource, Scene};
@@ -70,6 +71,8 @@ pub struct RunOptions {
     pub skip_output: bool,
     /// Run even when the estimated peak memory exceeds what is available.
     pub ignore_memory_estimate: bool,
+    /// Let the .geo run programs and write files (SystemCall, Save, ...).
+    pub allow_geo_commands: bool,
 }
 
 impl RunOptions {
@@ -92,28 +95,66 @@ fn say(msg: &str) {
     let _ = writeln!(std::io::stderr(), "subcontact: {msg}");
 }
 
-/// Reads the mesh of a scene, running gmsh when it is a .geo.
-pub fn load_mesh(scene: &Scene, out: &Path) -> Result<(Mesh, PathBuf, bool)> {
-    match &scene.mesh {
-        MeshSource::Msh(p) => Ok((msh::read_msh(p)?, p.clone(), false)),
-        MeshSource::Geo(geo) => {
-            let msh_path = out.join("mesh").join(format!("{}.msh", scene.name));
-            let job = gmsh::GmshJob {
-                geo: geo.clone(),
-                msh: msh_path.clone(),
-                dim: scene.analysis.dim(),
-                order: scene.gmsh.order,
-                setnumber: scene.gmsh.setnumber.clone(),
-                clscale: scene.gmsh.clscale,
-            };
-            // the mesh cache lives in the result directory, which another
-            // run's commit may be replacing: under its lock
-            let lock = output::files::Lock::acquire(out, &mut |m| say(m))?;
-            let meshed = gmsh::mesh(&job)?;
-            let mesh = msh::read_msh(&msh_path)?;
-            drop(lock);
-            Ok((mesh, msh_path, matches!(meshed, gmsh::Meshed::Cached)))
-        }
+/// Reads the mesh of a scene, running gmsh when it is a .geo: into the
+/// result directory `out`'s mesh cache, committed alone (`check`).
+pub fn load_mesh(scene: &Scene, out: &Path, allow_geo_commands: bool) -> Result<(Mesh, PathBuf, bool)> {
+    let mut stage = match scene.mesh {
+        MeshSource::Msh(_) => None,
+        MeshSource::Geo(_) => Some(Stage::begin(out, &mut |m| say(m))?),
+    };
+    let meshed = mesh_into(scene, stage.as_mut(), allow_geo_commands)?;
+    if let Some(stage) = stage {
+        stage.commit(Staged::amend(out, &scene.name), &mut |m| say(m))?;
+    }
+    Ok(meshed)
+}
+
+/// The gmsh job of a scene whose mesh is a .geo, its mesh at `msh`.
+pub fn gmsh_job(scene: &Scene, geo: &Path, msh: PathBuf, allow_geo_commands: bool) -> gmsh::GmshJob {
+    gmsh::GmshJob {
+        geo: geo.to_path_buf(),
+        msh,
+        dim: scene.analysis.dim(),
+        order: scene.gmsh.order,
+        setnumber: scene.gmsh.setnumber.clone(),
+        clscale: scene.gmsh.clscale,
+        timeout: std::time::Duration::from_secs_f64(scene.gmsh.timeout),
+        allow_commands: allow_geo_commands,
+    }
+}
+
+/// Reads the mesh of a scene: the .msh, or, for a .geo, the cached mesh
+/// of the result directory when its key matches, else gmsh's, made in
+/// `stage` (the run's staging directory: committed with the results).
+/// The mesh, its path in the result directory, and whether it was cached.
+pub fn mesh_into(scene: &Scene, stage: Option<&mut Stage>, allow_geo_commands: bool) -> Result<(Mesh, PathBuf, bool)> {
+    let (MeshSource::Geo(geo), Some(stage)) = (&scene.mesh, stage) else {
+        let MeshSource::Msh(p) = &scene.mesh else { anyhow::bail!("a .geo scene is meshed into a result directory") };
+        return Ok((msh::read_msh(p)?, p.clone(), false));
+    };
+    let file = format!("{}.msh", scene.name);
+    let shown = stage.out().join(output::files::MESH_DIR).join(&file);
+    let job = gmsh_job(scene, geo, shown.clone(), allow_geo_commands);
+    let key = gmsh::cache_key(&job)?;
+    let cached = stage.reuse_mesh(&file, &key);
+    if !cached {
+        gmsh::run_in(&job, stage.mesh_dir()?.fd())?;
+        stage.keep_mesh(&file, &key)?;
+    }
+    let rel = format!("{}/{file}", output::files::MESH_DIR);
+    let bytes = stage.read(&rel).with_context(|| format!("reading the mesh gmsh made of {}", geo.display()))?;
+    let mesh = msh::parse_msh(&shown, &bytes).map_err(|e| no_mesh(geo, e))?;
+    Ok((mesh, shown, cached))
+}
+
+/// A mesh gmsh made of a .geo that cannot be used: the .geo is to blame.
+fn no_mesh(geo: &Path, e: msh::MshError) -> anyhow::Error {
+    match e {
+        msh::MshError::NoPhysicalGroups { .. } | msh::MshError::Malformed { .. } => anyhow::anyhow!(
+            "gmsh made no mesh of `{}`: the .geo defines no physical groups with elements to mesh. Define the bodies, contacts, supports and loads with Physical Surface/Volume/Curve/Point in the .geo",
+            geo.display()
+        ),
+        e => anyhow::Error::new(e).context(format!("the mesh gmsh made of `{}`", geo.display())),
     }
 }
 
@@ -142,12 +183,39 @@ pub fn run_on(mut scene: Scene, opts: &RunOptions, comm: &dyn Comm) -> Result<Op
     }
     let out = opts.out_dir(&scene);
 
-    // 2. Mesh: rank 0 runs gmsh, then every rank reads the file.
+    // 2. Mesh: rank 0 makes the run's staging directory and runs gmsh
+    // into it (or takes the cached mesh), then every rank reads the file.
     progress(opts, "meshing");
     let t = Instant::now();
-    let (mesh, msh, mesh_cached) = ranks::mesh(comm, &scene, &out)?;
-    let mut timings = Timings { mesh: t.elapsed().as_secs_f64(), ..Default::default() };
+    let (mesh, msh, mesh_cached, stage) = ranks::mesh(comm, &scene, &out, opts)?;
+    let timings = Timings { mesh: t.elapsed().as_secs_f64(), ..Default::default() };
+    let writer = scene.name.clone();
+    let mut to = Writing { out, t0, stage };
+    let result = solve(scene, opts, comm, (mesh, msh, mesh_cached), timings, &mut to);
+    // a run that ends without committing its results keeps its mesh
+    if let Some(stage) = to.stage.filter(Stage::has_files) {
+        let _ = stage.commit(Staged::amend(&to.out, &writer), &mut |m| say(m));
+    }
+    result
+}
 
+/// Where and how a run's results go: the directory, the run's start, and
+/// its staging directory (rank 0) until the commit takes it.
+struct Writing {
+    out: PathBuf,
+    t0: Instant,
+    stage: Option<Stage>,
+}
+
+/// Steps 3 to 7 of [`run_on`], on the mesh of step 2.
+fn solve(
+    scene: Scene,
+    opts: &RunOptions,
+    comm: &dyn Comm,
+    (mesh, msh, mesh_cached): (Mesh, PathBuf, bool),
+    mut timings: Timings,
+    to: &mut Writing,
+) -> Result<Option<Run>> {
     // 3. Model.
     let t = Instant::now();
     let model = Model::build(&mesh, &scene.model_spec())?;
@@ -190,7 +258,7 @@ pub fn run_on(mut scene: Scene, opts: &RunOptions, comm: &dyn Comm) -> Result<Op
     let t = Instant::now();
     run.checks = checks(&run);
     run.stats.timings.recover += t.elapsed().as_secs_f64();
-    write(run, opts, &out, t0).map(Some)
+    write(run, opts, to).map(Some)
 }
 
 /// Errors against the scene's closed form (body by body, each in its own
@@ -210,7 +278,8 @@ fn checks(run: &Run) -> Checks {
 /// Writes every result file of `run` to `out` at once (with the scene's
 /// `[analytic]` check), or none with `skip_output`; a last step that did
 /// not converge is an error after its results are written.
-fn write(mut run: Run, opts: &RunOptions, out: &Path, t0: Instant) -> Result<Run> {
+fn write(mut run: Run, opts: &RunOptions, to: &mut Writing) -> Result<Run> {
+    let (out, t0) = (to.out.as_path(), to.t0);
     if opts.skip_output {
         run.stats.timings.total = t0.elapsed().as_secs_f64();
         return match not_converged(&run, None) {
@@ -232,7 +301,11 @@ fn write(mut run: Run, opts: &RunOptions, out: &Path, t0: Instant) -> Result<Run
     let staged = output::restage_summary(staged, &run)?;
     // one transaction: the files an earlier run of this scene wrote and
     // this one did not (more load steps, contacts, probes) go, nothing else
-    staged.commit_with(&mut |m| say(m)).with_context(|| format!("writing results to {}", out.display()))?;
+    let committed = match to.stage.take() {
+        Some(stage) => stage.commit(staged, &mut |m| say(m)),
+        None => staged.commit_with(&mut |m| say(m)),
+    };
+    committed.with_context(|| format!("writing results to {}", out.display()))?;
     match not_converged(&run, Some(out.to_path_buf())) {
         Some(e) => Err(e.into()),
         None => Ok(run),

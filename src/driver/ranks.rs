@@ -23,11 +23,12 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, Result};
 
-use super::{load_mesh, RunOptions};
+use super::{mesh_into, RunOptions};
 use crate::contact::system::iterative::Remote;
 use crate::contact::system::InterfaceProblem;
 use crate::mesh::{msh, Mesh};
 use crate::model::Model;
+use crate::output::files::Stage;
 use crate::parallel::{Comm, CommExt};
 use crate::scene::{MeshSource, Scene};
 use crate::substructure::{Condensed, Operator, OperatorRef, Part};
@@ -56,18 +57,38 @@ pub(super) fn agree<T>(comm: &dyn Comm, r: Result<T>) -> Result<T> {
 /// The mesh of a scene, on every rank: rank 0 runs gmsh for a .geo (or
 /// reads the .msh); the others read the file it wrote. The mesh, its file,
 /// and whether gmsh's earlier output was reused.
-pub(super) fn mesh(comm: &dyn Comm, scene: &Scene, out: &Path) -> Result<(Mesh, PathBuf, bool)> {
-    let meshed = if comm.is_root() { load_mesh(scene, out).map(Some) } else { Ok(None) };
-    match agree(comm, meshed)? {
-        Some(m) => Ok(m),
+pub(super) fn mesh(
+    comm: &dyn Comm,
+    scene: &Scene,
+    out: &Path,
+    opts: &RunOptions,
+) -> Result<(Mesh, PathBuf, bool, Option<Stage>)> {
+    let meshed = if comm.is_root() { root_mesh(scene, out, opts).map(Some) } else { Ok(None) };
+    let meshed = agree(comm, meshed)?;
+    // where the others read it: the .msh, or the mesh in rank 0's stage
+    let staged: Option<PathBuf> = meshed.as_ref().and_then(|(_, _, _, stage, rel)| Some(stage.as_ref()?.path_of(rel)));
+    let read_at: Option<PathBuf> = comm.broadcast(&staged);
+    match meshed {
+        Some((mesh, msh, cached, stage, _)) => Ok((mesh, msh, cached, stage)),
         None => {
-            let p = match &scene.mesh {
-                MeshSource::Msh(p) => p.clone(),
-                MeshSource::Geo(_) => out.join("mesh").join(format!("{}.msh", scene.name)),
+            let p = match (&scene.mesh, read_at) {
+                (MeshSource::Msh(p), _) => p.clone(),
+                (MeshSource::Geo(_), Some(p)) => p,
+                (MeshSource::Geo(_), None) => anyhow::bail!("rank 0 sent no mesh to read"),
             };
-            Ok((msh::read_msh(&p)?, p, true))
+            Ok((msh::read_msh(&p)?, p, true, None))
         }
     }
+}
+
+/// Rank 0's mesh step: the run's staging directory (when results or a
+/// mesh cache are written) and the mesh; with the mesh's path in the stage.
+fn root_mesh(scene: &Scene, out: &Path, opts: &RunOptions) -> Result<(Mesh, PathBuf, bool, Option<Stage>, String)> {
+    let geo = matches!(scene.mesh, MeshSource::Geo(_));
+    let mut stage = if geo || !opts.skip_output { Some(Stage::begin(out, &mut |m| super::say(m))?) } else { None };
+    let (mesh, msh, cached) = mesh_into(scene, stage.as_mut(), opts.allow_geo_commands)?;
+    let rel = format!("{}/{}.msh", crate::output::files::MESH_DIR, scene.name);
+    Ok((mesh, msh, cached, stage, rel))
 }
 
 /// The ranks once every part has its owner.

@@ -1,12 +1,21 @@
-//! Running the gmsh CLI to turn a `.geo` into an MSH 4.1 mesh, with a cache.
+//! Running the gmsh CLI to turn a `.geo` into an MSH 4.1 mesh.
 //!
-//! [`mesh`] runs
-//! `gmsh <geo> -<dim> -order <order> [-setnumber k v]... [-clscale s] -format msh41 -bin -o <tmp>`
-//! and renames `<tmp>` to the wanted `.msh`, so a failed or interrupted gmsh never
-//! leaves a `.msh` behind. Next to the mesh, `<msh>.key` holds a hash (64-bit
-//! FNV-1a) of the `.geo` bytes and of every argument; while the `.msh` exists and
-//! its key matches, gmsh is not run again. Files that the `.geo` pulls in with
-//! `Include` or `Merge` are not part of the key.
+//! [`run_in`] runs
+//! `gmsh <geo> -<dim> -order <order> [-setnumber k v]... [-clscale s] -format msh41 -bin -o <file>`
+//! in a directory it is handed as an open handle (gmsh's working
+//! directory: the run's staging directory, so a failed or interrupted gmsh
+//! leaves nothing in the results). gmsh runs in its own process group,
+//! killed when this process dies (`PR_SET_PDEATHSIG`) and, with everything
+//! it started, when it takes longer than the job's time limit.
+//!
+//! [`cache_key`] is what the mesh cache compares: a hash (64-bit FNV-1a) of
+//! the `.geo` bytes and of every argument, with the command for people
+//! reading it. Files that the `.geo` pulls in with `Include` or `Merge` are
+//! not part of the key. Before that, the job is checked against what the
+//! `.geo` says ([`super::geo`]): every `setnumber` name must be a
+//! `DefineConstant` of the `.geo` (or a gmsh option, `Mesh.X`), since gmsh
+//! silently ignores any other; and commands that run programs or write
+//! files are refused unless the job allows them.
 //!
 //! gmsh's output is captured, never shown. gmsh 4.8.4 may write a mesh and exit
 //! 0 after reporting errors, so any `Error` line counts as a failure. Parameters
@@ -14,9 +23,12 @@
 //! `DefineConstant[ NAME = {default, Name "..."} ];` (it also sets gmsh options
 //! such as `Mesh.SecondOrderIncomplete`).
 
-use std::io;
+use std::io::{self, Read};
+use std::os::fd::{AsRawFd, BorrowedFd};
+use std::os::unix::process::CommandExt;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
 
 /// Why a mesh could not be made.
 #[derive(Debug, thiserror::Error)]
@@ -50,8 +62,28 @@ pub enum GmshError {
         source: io::Error,
     },
 
+    #[error("gmsh did not finish meshing `{}` within {seconds} s ([gmsh] timeout) and was stopped: coarsen the mesh (a larger size in [gmsh] setnumber), look for a loop in the .geo that never ends, or raise [gmsh] timeout", geo.display())]
+    Timeout { geo: PathBuf, seconds: f64 },
+
+    #[error("[gmsh] setnumber names `{name}`, which `{}` does not define: gmsh would ignore it and mesh with the .geo's own values. {}", geo.display(), defined_names(defined))]
+    UnknownParameter { geo: PathBuf, name: String, defined: Vec<String> },
+
+    #[error("`{}` runs commands that reach outside the mesh: {}. A .geo is a program: these run other programs through the shell or write files wherever the script says, with your rights. Remove them from the .geo, or pass --allow-geo-commands if you trust it", geo.display(), commands.join(", "))]
+    Commands { geo: PathBuf, commands: Vec<String> },
+
     #[error("`gmsh --version` printed no version (output: {output:?})")]
     Version { output: String },
+}
+
+fn defined_names(defined: &[String]) -> String {
+    if defined.is_empty() {
+        "The .geo defines no parameters: add `DefineConstant[ NAME = {value, Name \"...\"} ];` to it for each name to set".into()
+    } else {
+        format!(
+            "The .geo defines (by DefineConstant): {}; use one of those, or add a DefineConstant for the name",
+            defined.join(", ")
+        )
+    }
 }
 
 /// What to mesh and how.
@@ -59,7 +91,8 @@ pub enum GmshError {
 pub struct GmshJob {
     /// The gmsh geometry script.
     pub geo: PathBuf,
-    /// Where the mesh goes (its directory is created); `<msh>.key` goes beside it.
+    /// The mesh's path once committed (for messages); gmsh writes a file
+    /// of its name into the directory [`run_in`] is given.
     pub msh: PathBuf,
     /// 2 or 3.
     pub dim: usize,
@@ -69,20 +102,20 @@ pub struct GmshJob {
     pub setnumber: Vec<(String, f64)>,
     /// `-clscale s`: global factor on mesh sizes.
     pub clscale: Option<f64>,
+    /// How long gmsh may take.
+    pub timeout: Duration,
+    /// Whether the .geo may run programs and write files.
+    pub allow_commands: bool,
 }
+
+/// gmsh's time limit when the scene sets none.
+pub const DEFAULT_TIMEOUT: Duration = Duration::from_secs(600);
 
 /// Whether [`mesh`] ran gmsh or found an up-to-date mesh.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Meshed {
     Generated,
     Cached,
-}
-
-/// Runs `gmsh <geo> -<dim> -order <order> [-setnumber k v]... [-clscale s] -format msh41 -bin -o <msh>` unless <msh> exists
-/// and its key file (<msh>.key: a hash of the .geo bytes and of every argument) matches, writing to a temporary
-/// file first and renaming, so a failed or interrupted gmsh never leaves a .msh behind. Creates the parent directory.
-pub fn mesh(job: &GmshJob) -> Result<Meshed, GmshError> {
-    mesh_with(job, true)
 }
 
 /// The installed gmsh's version, e.g. `4.8.4`.
@@ -109,9 +142,9 @@ fn spawn_error(e: io::Error) -> GmshError {
 }
 
 /// The arguments after `gmsh`, for output file `out`.
-fn gmsh_args(job: &GmshJob, binary: bool, out: &Path) -> Vec<std::ffi::OsString> {
+fn gmsh_args(job: &GmshJob, geo: &Path, binary: bool, out: &Path) -> Vec<std::ffi::OsString> {
     let mut args: Vec<std::ffi::OsString> =
-        vec![job.geo.clone().into(), format!("-{}", job.dim).into(), "-order".into(), job.order.to_string().into()];
+        vec![geo.into(), format!("-{}", job.dim).into(), "-order".into(), job.order.to_string().into()];
     for (name, value) in &job.setnumber {
         args.push("-setnumber".into());
         args.push(name.into());
@@ -152,6 +185,9 @@ fn check_job(job: &GmshJob) -> Result<(), GmshError> {
             return bad(format!("clscale {s} (must be a positive number)"));
         }
     }
+    if job.timeout.is_zero() {
+        return bad("time limit 0 (must be a positive number of seconds)".into());
+    }
     if job.msh.file_name().is_none() {
         return bad(format!("mesh path `{}` has no file name", job.msh.display()));
     }
@@ -178,34 +214,61 @@ impl Fnv {
     }
 }
 
-/// The key file's content: hash, then the command for people reading it.
-fn job_key(geo_bytes: &[u8], args: &[std::ffi::OsString]) -> String {
+/// The mesh cache's key of `job`: a hash of the `.geo` bytes and of every
+/// argument, then the command for people reading it. Checks the job and
+/// the `.geo` first (see the module header).
+pub fn cache_key(job: &GmshJob) -> Result<String, GmshError> {
+    key_with(job, true)
+}
+
+fn key_with(job: &GmshJob, binary: bool) -> Result<String, GmshError> {
+    check_job(job)?;
+    let geo_bytes = match std::fs::read(&job.geo) {
+        Ok(b) => b,
+        Err(e) if e.kind() == io::ErrorKind::NotFound => return Err(GmshError::GeoMissing { geo: job.geo.clone() }),
+        Err(e) => return Err(GmshError::Io { what: "cannot read", path: job.geo.clone(), source: e }),
+    };
+    check_geo(job, &String::from_utf8_lossy(&geo_bytes))?;
     let mut h = Fnv::new();
-    h.field(b"subcontact gmsh key 1");
-    h.field(geo_bytes);
-    for a in args {
+    h.field(b"subcontact gmsh key 2");
+    h.field(&geo_bytes);
+    let args = gmsh_args(job, &job.geo, binary, out_name(job)?);
+    for a in &args {
         h.field(a.as_encoded_bytes());
     }
     let cmd: Vec<String> = args.iter().map(|a| a.to_string_lossy().into_owned()).collect();
-    format!("{:016x}\ngmsh {}\n", h.0, cmd.join(" "))
+    Ok(format!("{:016x}\ngmsh {}\n", h.0, cmd.join(" ")))
 }
 
-fn key_path(msh: &Path) -> PathBuf {
-    let mut s = msh.as_os_str().to_owned();
-    s.push(".key");
-    PathBuf::from(s)
+/// The job against what its `.geo` defines and runs.
+fn check_geo(job: &GmshJob, text: &str) -> Result<(), GmshError> {
+    let found = super::geo::scan(&job.geo, text);
+    if !job.allow_commands && !found.commands.is_empty() {
+        let commands = found
+            .commands
+            .iter()
+            .map(|(f, line, c)| {
+                let file = if *f == job.geo { String::new() } else { format!("{}, ", f.display()) };
+                format!("{c} ({file}line {line})")
+            })
+            .collect();
+        return Err(GmshError::Commands { geo: job.geo.clone(), commands });
+    }
+    // a name with a dot is a gmsh option (Mesh.SecondOrderIncomplete), which gmsh checks
+    match job.setnumber.iter().find(|(n, _)| !n.contains('.') && !found.constants.contains(n)) {
+        Some((name, _)) => {
+            Err(GmshError::UnknownParameter { geo: job.geo.clone(), name: name.clone(), defined: found.constants })
+        }
+        None => Ok(()),
+    }
 }
 
-/// A fresh name beside `msh` for gmsh to write into.
-fn temp_path(msh: &Path, what: &str) -> PathBuf {
-    use std::sync::atomic::{AtomicU64, Ordering};
-    static COUNTER: AtomicU64 = AtomicU64::new(0);
-    let nanos =
-        std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.subsec_nanos()).unwrap_or(0);
-    let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-    let name = msh.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-    let file = format!(".{name}.{}-{n}-{nanos}.tmp.{what}", std::process::id());
-    msh.with_file_name(file)
+/// The file name gmsh writes.
+fn out_name(job: &GmshJob) -> Result<&Path, GmshError> {
+    job.msh.file_name().map(Path::new).ok_or_else(|| GmshError::BadJob {
+        geo: job.geo.clone(),
+        detail: format!("mesh path `{}` has no file name", job.msh.display()),
+    })
 }
 
 /// gmsh's error lines (consecutive repeats and the summary box dropped), at most 15.
@@ -239,73 +302,83 @@ fn tail(output: &str, n: usize) -> String {
     lines[lines.len().saturating_sub(n)..].join("\n")
 }
 
-/// [`mesh`], with a choice of binary or ASCII output (the tests use both).
-pub(crate) fn mesh_with(job: &GmshJob, binary: bool) -> Result<Meshed, GmshError> {
+/// Meshes `job` into the directory `dir` (gmsh's working directory; the
+/// file is named as `job.msh`), after the checks of [`cache_key`].
+pub fn run_in(job: &GmshJob, dir: BorrowedFd<'_>) -> Result<(), GmshError> {
+    key_with(job, true)?;
+    run_gmsh(job, true, dir, "gmsh")
+}
+
+/// Meshes `job` into `job.msh`'s directory, binary or ASCII (the tests use both).
+#[cfg(test)]
+pub(crate) fn mesh_with(job: &GmshJob, binary: bool) -> Result<(), GmshError> {
     mesh_impl(job, binary, "gmsh")
 }
 
-fn mesh_impl(job: &GmshJob, binary: bool, program: &str) -> Result<Meshed, GmshError> {
-    check_job(job)?;
-    let geo_bytes = match std::fs::read(&job.geo) {
-        Ok(b) => b,
-        Err(e) if e.kind() == io::ErrorKind::NotFound => return Err(GmshError::GeoMissing { geo: job.geo.clone() }),
-        Err(e) => return Err(GmshError::Io { what: "cannot read", path: job.geo.clone(), source: e }),
-    };
-    let key = job_key(&geo_bytes, &gmsh_args(job, binary, &job.msh));
-    let key_file = key_path(&job.msh);
-    if job.msh.is_file() && std::fs::read_to_string(&key_file).is_ok_and(|k| k == key) {
-        return Ok(Meshed::Cached);
-    }
-
-    if let Some(dir) = job.msh.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).map_err(|e| GmshError::Io {
-            what: "cannot create directory",
-            path: dir.to_path_buf(),
-            source: e,
-        })?;
-    }
-    // The old key and mesh go first: whatever happens next, no .msh is left
-    // that does not match the .geo and arguments.
-    for old in [&key_file, &job.msh] {
-        match std::fs::remove_file(old) {
-            Err(e) if e.kind() != io::ErrorKind::NotFound => {
-                return Err(GmshError::Io { what: "cannot remove", path: old.clone(), source: e })
-            }
-            _ => {}
-        }
-    }
-
-    let tmp = temp_path(&job.msh, "msh");
-    let result = run_gmsh(job, binary, &tmp, program);
-    let result = result.and_then(|()| {
-        std::fs::rename(&tmp, &job.msh).map_err(|e| GmshError::Io {
-            what: "cannot rename the new mesh to",
-            path: job.msh.clone(),
-            source: e,
-        })
-    });
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result?;
-
-    let tmp_key = temp_path(&job.msh, "key");
-    let written = std::fs::write(&tmp_key, &key).and_then(|()| std::fs::rename(&tmp_key, &key_file));
-    if let Err(e) = written {
-        let _ = std::fs::remove_file(&tmp_key);
-        return Err(GmshError::Io { what: "cannot write", path: key_file, source: e });
-    }
-    Ok(Meshed::Generated)
+#[cfg(test)]
+fn mesh_impl(job: &GmshJob, binary: bool, program: &str) -> Result<(), GmshError> {
+    key_with(job, binary)?;
+    let parent = job.msh.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let dir = std::fs::File::open(parent).map_err(|e| GmshError::Io {
+        what: "cannot open",
+        path: parent.into(),
+        source: e,
+    })?;
+    run_gmsh(job, binary, std::os::fd::AsFd::as_fd(&dir), program)
 }
 
-/// Runs gmsh writing to `out`; Ok only if gmsh succeeded, reported no error and wrote `out`.
-fn run_gmsh(job: &GmshJob, binary: bool, out: &Path, program: &str) -> Result<(), GmshError> {
-    let output =
-        Command::new(program).args(gmsh_args(job, binary, out)).stdin(Stdio::null()).output().map_err(spawn_error)?;
-    let text = format!("{}\n{}", String::from_utf8_lossy(&output.stdout), String::from_utf8_lossy(&output.stderr));
+/// Runs gmsh in `dir`; Ok only if gmsh succeeded in time, reported no
+/// error and wrote its file.
+fn run_gmsh(job: &GmshJob, binary: bool, dir: BorrowedFd<'_>, program: &str) -> Result<(), GmshError> {
+    let out = out_name(job)?;
+    let ran = gmsh_in(job, binary, dir, program, out);
+    if ran.is_err() {
+        // gmsh 4.8.4 writes a mesh of what it read even after errors
+        let _ = rustix::fs::unlinkat(dir, out, rustix::fs::AtFlags::empty());
+    }
+    ran
+}
+
+fn gmsh_in(job: &GmshJob, binary: bool, dir: BorrowedFd<'_>, program: &str, out: &Path) -> Result<(), GmshError> {
+    let geo = std::path::absolute(&job.geo).unwrap_or_else(|_| job.geo.clone());
+    let mut cmd = Command::new(program);
+    cmd.args(gmsh_args(job, &geo, binary, out))
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .process_group(0);
+    let (raw, parent) = (dir.as_raw_fd(), rustix::process::getpid());
+    // SAFETY: between fork and exec only system calls (fchdir, prctl,
+    // getppid), which allocate nothing; `raw` is open in the child until exec
+    unsafe {
+        cmd.pre_exec(move || {
+            rustix::process::fchdir(BorrowedFd::borrow_raw(raw))?;
+            rustix::process::set_parent_process_death_signal(Some(rustix::process::Signal::KILL))?;
+            if rustix::process::getppid() != Some(parent) {
+                return Err(io::Error::other("the parent is gone"));
+            }
+            Ok(())
+        });
+    }
+    let mut child = cmd.spawn().map_err(spawn_error)?;
+    let readers = [child.stdout.take().map(drain), child.stderr.take().map(drain)];
+    let finished = wait_until(&mut child, Instant::now() + job.timeout);
+    // gmsh and anything it started: gone (a child holding the pipes open
+    // would keep the readers waiting)
+    if let Some(pid) = rustix::process::Pid::from_raw(child.id() as i32) {
+        let _ = rustix::process::kill_process_group(pid, rustix::process::Signal::KILL);
+    }
+    let status = match finished {
+        Some(s) => s,
+        None => {
+            let _ = child.wait();
+            return Err(GmshError::Timeout { geo: job.geo.clone(), seconds: job.timeout.as_secs_f64() });
+        }
+    };
+    let text: String = readers.into_iter().flatten().map(|r| r.join().unwrap_or_default() + "\n").collect();
     let errors = error_lines(&text);
-    if !output.status.success() || !errors.is_empty() {
-        let status = match output.status.code() {
+    if !status.success() || !errors.is_empty() {
+        let status = match status.code() {
             Some(c) => format!("exit status {c}"),
             None => "killed by a signal".to_string(),
         };
@@ -313,10 +386,35 @@ fn run_gmsh(job: &GmshJob, binary: bool, out: &Path, program: &str) -> Result<()
         let errors = errors.lines().map(|l| format!("  {l}")).collect::<Vec<_>>().join("\n");
         return Err(GmshError::Failed { geo: job.geo.clone(), status, errors });
     }
-    if !out.is_file() {
+    let wrote = rustix::fs::statat(dir, out, rustix::fs::AtFlags::SYMLINK_NOFOLLOW)
+        .is_ok_and(|st| rustix::fs::FileType::from_raw_mode(st.st_mode) == rustix::fs::FileType::RegularFile);
+    if !wrote {
         return Err(GmshError::NoOutput { geo: job.geo.clone(), output: tail(&text, 10) });
     }
     Ok(())
+}
+
+/// A thread reading a pipe to its end, lossily as text.
+fn drain(mut r: impl Read + Send + 'static) -> std::thread::JoinHandle<String> {
+    std::thread::spawn(move || {
+        let mut b = Vec::new();
+        let _ = r.read_to_end(&mut b);
+        String::from_utf8_lossy(&b).into_owned()
+    })
+}
+
+/// The child's exit status, or `None` when `deadline` passed first.
+fn wait_until(child: &mut std::process::Child, deadline: Instant) -> Option<std::process::ExitStatus> {
+    let mut pause = Duration::from_millis(2);
+    loop {
+        match child.try_wait() {
+            Ok(Some(s)) => return Some(s),
+            Ok(None) if Instant::now() < deadline => {}
+            _ => return None,
+        }
+        std::thread::sleep(pause.min(deadline.saturating_duration_since(Instant::now())));
+        pause = (pause * 2).min(Duration::from_millis(50));
+    }
 }
 
 #[cfg(test)]
@@ -348,7 +446,16 @@ pub(crate) mod tests {
         }
 
         pub(crate) fn job(&self, geo: &Path, msh: &str, dim: usize, order: usize) -> GmshJob {
-            GmshJob { geo: geo.to_path_buf(), msh: self.0.join(msh), dim, order, setnumber: Vec::new(), clscale: None }
+            GmshJob {
+                geo: geo.to_path_buf(),
+                msh: self.0.join(msh),
+                dim,
+                order,
+                setnumber: Vec::new(),
+                clscale: None,
+                timeout: DEFAULT_TIMEOUT,
+                allow_commands: false,
+            }
         }
     }
 
@@ -415,61 +522,94 @@ Physical Curve("edges") = {1, 2};
     }
 
     #[test]
-    fn cache_reuses_and_regenerates() {
-        let dir = TestDir::new("cache");
+    fn the_key_follows_every_argument_and_the_geo() {
+        let dir = TestDir::new("key");
         let geo = dir.write("two.geo", TWO_RECT_GEO);
-        // Also checks that the parent directory is created.
-        let mut job = dir.job(&geo, "out/sub/two.msh", 2, 1);
+        let mut job = dir.job(&geo, "out/two.msh", 2, 1);
         job.setnumber = vec![("lc".into(), 0.5)];
-        assert_eq!(mesh(&job).unwrap(), Meshed::Generated);
-        let first = std::fs::read(&job.msh).unwrap();
-        assert!(first.starts_with(b"$MeshFormat\n4.1 1 8\n"), "binary MSH 4.1 expected");
-        let key = std::fs::read_to_string(key_path(&job.msh)).unwrap();
-        assert!(key.contains("-setnumber lc 0.5"), "{key}");
-        assert_eq!(mesh(&job).unwrap(), Meshed::Cached);
-        assert_eq!(mesh(&job).unwrap(), Meshed::Cached);
-
-        // A changed parameter regenerates, and the mesh follows it.
+        let first = cache_key(&job).unwrap();
+        assert!(first.contains("-setnumber lc 0.5") && first.contains("-o two.msh"), "{first}");
+        assert_eq!(cache_key(&job).unwrap(), first);
+        let mut keys = vec![first];
         job.setnumber = vec![("lc".into(), 0.25)];
-        assert_eq!(mesh(&job).unwrap(), Meshed::Generated);
-        let finer = super::super::msh::read_msh(&job.msh).unwrap();
-        job.setnumber = vec![("lc".into(), 0.5)];
-        assert_eq!(mesh(&job).unwrap(), Meshed::Generated);
-        let coarse = super::super::msh::read_msh(&job.msh).unwrap();
-        assert!(finer.coords.len() > coarse.coords.len());
-        assert_eq!(mesh(&job).unwrap(), Meshed::Cached);
-
-        // Other arguments are part of the key too.
+        keys.push(cache_key(&job).unwrap());
         job.clscale = Some(0.5);
-        assert_eq!(mesh(&job).unwrap(), Meshed::Generated);
-        assert_eq!(mesh(&job).unwrap(), Meshed::Cached);
+        keys.push(cache_key(&job).unwrap());
         job.order = 2;
-        assert_eq!(mesh(&job).unwrap(), Meshed::Generated);
-        assert_eq!(mesh_with(&job, false).unwrap(), Meshed::Generated);
-        assert_eq!(mesh_with(&job, false).unwrap(), Meshed::Cached);
-        assert_eq!(mesh(&job).unwrap(), Meshed::Generated);
-
-        // So are the .geo's bytes.
+        keys.push(cache_key(&job).unwrap());
+        keys.push(key_with(&job, false).unwrap());
         dir.write("two.geo", &TWO_RECT_GEO.replace("{2, 0, 0, lc}", "{3, 0, 0, lc}"));
-        assert_eq!(mesh(&job).unwrap(), Meshed::Generated);
-        assert_eq!(mesh(&job).unwrap(), Meshed::Cached);
+        keys.push(cache_key(&job).unwrap());
+        let mut unique = keys.clone();
+        unique.sort();
+        unique.dedup();
+        assert_eq!(unique.len(), keys.len(), "{keys:?}");
 
-        // A missing key, or a missing mesh, regenerates.
-        std::fs::remove_file(key_path(&job.msh)).unwrap();
-        assert_eq!(mesh(&job).unwrap(), Meshed::Generated);
-        std::fs::remove_file(&job.msh).unwrap();
-        assert_eq!(mesh(&job).unwrap(), Meshed::Generated);
-        assert_eq!(mesh(&job).unwrap(), Meshed::Cached);
+        // gmsh writes the file into the directory it is given, and a finer lc gives more nodes
+        std::fs::create_dir_all(dir.0.join("out")).unwrap();
+        job.order = 1;
+        job.clscale = None;
+        mesh_with(&job, true).unwrap();
+        let fine = super::super::msh::read_msh(&job.msh).unwrap();
+        assert!(std::fs::read(&job.msh).unwrap().starts_with(b"$MeshFormat\n4.1 1 8\n"), "binary MSH 4.1 expected");
+        job.setnumber = vec![("lc".into(), 0.5)];
+        mesh_with(&job, false).unwrap();
+        let coarse = super::super::msh::read_msh(&job.msh).unwrap();
+        assert!(fine.coords.len() > coarse.coords.len());
+    }
 
-        // No temporary file is left behind.
-        assert_eq!(dir_entries(&dir.0.join("out/sub")), vec!["two.msh", "two.msh.key"]);
+    /// A misspelt parameter was meshed at the .geo's own size (issue 32:
+    /// `lcc = 0.02` gave 1,576 DOFs instead of 34,448, exit 0).
+    #[test]
+    fn a_parameter_the_geo_does_not_define_is_refused_naming_those_it_does() {
+        let dir = TestDir::new("param");
+        let geo = dir.write("two.geo", TWO_RECT_GEO);
+        let mut job = dir.job(&geo, "two.msh", 2, 1);
+        job.setnumber = vec![("lcc".into(), 0.02)];
+        let e = cache_key(&job).unwrap_err();
+        let msg = e.to_string();
+        assert!(matches!(e, GmshError::UnknownParameter { .. }), "{e:?}");
+        assert!(msg.contains("`lcc`") && msg.contains("two.geo") && msg.contains("DefineConstant): lc"), "{msg}");
+        // gmsh options pass (gmsh checks them)
+        job.setnumber = vec![("lc".into(), 0.5), ("Mesh.SecondOrderIncomplete".into(), 1.0)];
+        cache_key(&job).unwrap();
+    }
+
+    #[test]
+    fn commands_that_reach_outside_the_mesh_are_refused_unless_allowed() {
+        let dir = TestDir::new("commands");
+        let text = format!("{TWO_RECT_GEO}\nSystemCall \"touch {}\";\n", dir.0.join("touched").display());
+        let geo = dir.write("two.geo", &text);
+        let mut job = dir.job(&geo, "two.msh", 2, 1);
+        let msg = mesh_with(&job, true).unwrap_err().to_string();
+        assert!(msg.contains("SystemCall (line 15)") && msg.contains("--allow-geo-commands"), "{msg}");
+        assert!(!dir.0.join("touched").exists() && !job.msh.exists());
+        job.allow_commands = true;
+        mesh_with(&job, true).unwrap();
+        assert!(dir.0.join("touched").exists());
+    }
+
+    /// A .geo that never finishes ended only when killed (issue 32).
+    #[test]
+    fn gmsh_is_stopped_at_its_time_limit_with_what_it_started() {
+        let dir = TestDir::new("timeout");
+        let geo = dir.write("slow.geo", &format!("{TWO_RECT_GEO}\nSleep 30;\n"));
+        let mut job = dir.job(&geo, "slow.msh", 2, 1);
+        job.timeout = Duration::from_millis(700);
+        let t = Instant::now();
+        let e = mesh_with(&job, true).unwrap_err();
+        let took = t.elapsed().as_secs_f64();
+        assert!(matches!(e, GmshError::Timeout { .. }), "{e:?}");
+        assert!(e.to_string().contains("within 0.7 s ([gmsh] timeout)"), "{e}");
+        assert!((0.6..5.0).contains(&took), "stopped after {took} s");
+        assert!(!job.msh.exists());
     }
 
     #[test]
     fn missing_geo_is_reported() {
         let dir = TestDir::new("nogeo");
         let job = dir.job(&dir.0.join("nothere.geo"), "x.msh", 2, 1);
-        let e = mesh(&job).unwrap_err();
+        let e = mesh_with(&job, true).unwrap_err();
         assert!(matches!(e, GmshError::GeoMissing { .. }), "{e:?}");
         let msg = e.to_string();
         assert!(msg.contains("nothere.geo") && msg.contains("does not exist"), "{msg}");
@@ -496,7 +636,7 @@ Physical Curve("edges") = {1, 2};
         // A syntax error: gmsh 4.8.4 still writes a mesh (of what it read) and exits 1.
         let geo = dir.write("syntax.geo", "Point(1) = {0, 0, 0};\nLine(1) = {1, 2;\n");
         let job = dir.job(&geo, "syntax.msh", 2, 1);
-        let e = mesh(&job).unwrap_err();
+        let e = mesh_with(&job, true).unwrap_err();
         let msg = e.to_string();
         assert!(matches!(e, GmshError::Failed { .. }), "{e:?}");
         assert!(msg.contains("syntax.geo") && msg.contains("syntax error"), "{msg}");
@@ -505,20 +645,11 @@ Physical Curve("edges") = {1, 2};
         // A reference to a missing point: many repeated error lines, deduplicated.
         let geo = dir.write("badline.geo", "Point(1) = {0, 0, 0};\nLine(1) = {1, 2};\nPhysical Curve(1) = {1};\n");
         let job = dir.job(&geo, "badline.msh", 2, 1);
-        let msg = mesh(&job).unwrap_err().to_string();
+        let msg = mesh_with(&job, true).unwrap_err().to_string();
         assert!(msg.contains("Unknown control point 2"), "{msg}");
         assert_eq!(msg.matches("Line with less than 2 control points").count(), 1, "{msg}");
         assert!(!msg.contains("error summary"), "{msg}");
         assert!(!job.msh.exists());
-
-        // A failure replaces an older good mesh: none is left that does not match the .geo.
-        let good = dir.write("good.geo", TWO_RECT_GEO);
-        let mut job = dir.job(&good, "reuse.msh", 2, 1);
-        assert_eq!(mesh(&job).unwrap(), Meshed::Generated);
-        job.geo = geo;
-        assert!(mesh(&job).is_err());
-        assert!(!job.msh.exists());
-        assert!(!key_path(&job.msh).exists());
 
         let mut names = dir_entries(&dir.0);
         names.retain(|n| n.contains("tmp"));
@@ -530,18 +661,18 @@ Physical Curve("edges") = {1, 2};
         let dir = TestDir::new("badjob");
         let geo = dir.write("two.geo", TWO_RECT_GEO);
         let mut job = dir.job(&geo, "x.msh", 4, 1);
-        assert!(matches!(mesh(&job), Err(GmshError::BadJob { .. })));
+        assert!(matches!(mesh_with(&job, true), Err(GmshError::BadJob { .. })));
         job.dim = 2;
         job.order = 3;
-        assert!(matches!(mesh(&job), Err(GmshError::BadJob { .. })));
+        assert!(matches!(mesh_with(&job, true), Err(GmshError::BadJob { .. })));
         job.order = 1;
         job.setnumber = vec![("lc".into(), f64::NAN)];
-        assert!(matches!(mesh(&job), Err(GmshError::BadJob { .. })));
+        assert!(matches!(mesh_with(&job, true), Err(GmshError::BadJob { .. })));
         job.setnumber = vec![("".into(), 1.0)];
-        assert!(matches!(mesh(&job), Err(GmshError::BadJob { .. })));
+        assert!(matches!(mesh_with(&job, true), Err(GmshError::BadJob { .. })));
         job.setnumber = vec![];
         job.clscale = Some(0.0);
-        assert!(matches!(mesh(&job), Err(GmshError::BadJob { .. })));
+        assert!(matches!(mesh_with(&job, true), Err(GmshError::BadJob { .. })));
     }
 
     #[test]

@@ -2,9 +2,11 @@
 //! grouped by gmsh physical group. Cells keep gmsh's node order; node indices
 //! are 0-based positions in `Mesh::coords` (gmsh tags are kept for messages).
 //!
-//! Reading `.msh` files lives in [`msh`], running the gmsh CLI in [`gmsh`].
+//! Reading `.msh` files lives in [`msh`], running the gmsh CLI in [`gmsh`],
+//! what a `.geo` defines and runs in [`geo`].
 //! Nothing here knows about elasticity.
 
+pub mod geo;
 pub mod gmsh;
 pub mod msh;
 

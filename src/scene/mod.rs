@@ -187,11 +187,13 @@ pub struct GmshOptions {
     pub setnumber: Vec<(String, f64)>,
     /// `gmsh -clscale`, > 0.
     pub clscale: Option<f64>,
+    /// gmsh's time limit in seconds (default 600).
+    pub timeout: f64,
 }
 
 impl Default for GmshOptions {
     fn default() -> Self {
-        GmshOptions { order: 1, setnumber: Vec::new(), clscale: None }
+        GmshOptions { order: 1, setnumber: Vec::new(), clscale: None, timeout: 600.0 }
     }
 }
 

@@ -42,6 +42,7 @@ pub(super) struct RawGmsh {
     pub(super) order: Option<i64>,
     pub(super) setnumber: Option<BTreeMap<String, f64>>,
     pub(super) clscale: Option<f64>,
+    pub(super) timeout: Option<f64>,
 }
 
 #[derive(Deserialize)]

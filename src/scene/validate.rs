@@ -322,7 +322,18 @@ impl Checker<'_> {
             Some(c) if c.is_finite() && c > 0.0 => Some(c),
             Some(c) => return Err(self.bad("gmsh.clscale", c, "the mesh size factor must be a finite number > 0.")),
         };
-        Ok(GmshOptions { order, setnumber, clscale })
+        let timeout = match g.timeout {
+            None => GmshOptions::default().timeout,
+            Some(t) if t.is_finite() && t > 0.0 && t <= 1e9 => t,
+            Some(t) => {
+                return Err(self.bad(
+                    "gmsh.timeout",
+                    t,
+                    "gmsh's time limit must be a number of seconds > 0 (default 600).",
+                ))
+            }
+        };
+        Ok(GmshOptions { order, setnumber, clscale, timeout })
     }
 
     fn materials(&self, raw: BTreeMap<String, RawMaterial>) -> R<BTreeMap<String, Material>> {

@@ -19,8 +19,8 @@ pub fn solve_fails(case: &Case, scene: &str, out: &str) -> String {
 
 /// Exit status 1, stderr one paragraph starting with `error: `, no panic or
 /// backtrace, empty stdout, and nothing but mesh caches (`[<name>/]mesh/*.msh`,
-/// `.msh.key`, and the locks `.<name>.lock` beside them) in `results`.
-/// Returns the message, trimmed.
+/// `.msh.key`, the manifest that lists them, and the locks `.<name>.lock`
+/// beside them) in `results`. Returns the message, trimmed.
 pub fn clean_failure(case: &Case, out: &Output, results: &Path) -> String {
     let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
     let stdout = String::from_utf8_lossy(&out.stdout);
@@ -38,20 +38,31 @@ pub fn clean_failure(case: &Case, out: &Output, results: &Path) -> String {
     }
     assert!(stdout.trim().is_empty(), "a failed --quiet run printed on stdout:\n{stdout}");
     let files = case.files_in(results);
-    let results_written: Vec<&String> = files
-        .iter()
-        .filter(|f| {
-            !((f.starts_with("mesh/") || f.contains("/mesh/")) && (f.ends_with(".msh") || f.ends_with(".msh.key")))
-        })
-        // the lock beside a result directory (taken while meshing into its cache)
-        .filter(|f| !(f.starts_with('.') && f.ends_with(".lock") && !f.contains('/')))
-        .collect();
+    let results_written: Vec<&String> = files.iter().filter(|f| !mesh_cache(results, f)).collect();
     assert!(
         results_written.is_empty(),
         "a failed run left files in {}: {results_written:?}\n(stderr: {msg})",
         results.display()
     );
     msg
+}
+
+/// Whether `f` (relative to `dir`) is part of a mesh cache: `mesh/*.msh`,
+/// its key, a manifest listing nothing but those, or a lock.
+pub fn mesh_cache(dir: &Path, f: &str) -> bool {
+    let mesh =
+        |f: &str| (f.starts_with("mesh/") || f.contains("/mesh/")) && (f.ends_with(".msh") || f.ends_with(".msh.key"));
+    let name = f.rsplit('/').next().unwrap_or(f);
+    if name == ".subcontact-manifest.json" {
+        let m = super::json(&dir.join(f));
+        let writers = m["writers"].as_object().cloned().unwrap_or_default();
+        return writers
+            .values()
+            .flat_map(|v| v.as_array().cloned().unwrap_or_default())
+            .all(|v| v.as_str().is_some_and(mesh));
+    }
+    // the lock beside a result directory
+    mesh(f) || (name.starts_with('.') && name.ends_with(".lock"))
 }
 
 /// Asserts that `msg` contains every one of `needles`.

@@ -118,7 +118,7 @@ pub fn read_msh(path: &Path) -> Result<Mesh, MshError> {
 }
 
 /// Parses the bytes of an MSH file; `path` is only used in messages.
-fn parse_msh(path: &Path, bytes: &[u8]) -> Result<Mesh, MshError> {
+pub fn parse_msh(path: &Path, bytes: &[u8]) -> Result<Mesh, MshError> {
     let mut r = Reader::new(path, bytes);
     if bytes.iter().all(|b| b.is_ascii_whitespace()) {
         return Err(r.malformed("the file is empty"));

@@ -25,6 +25,8 @@ fn gmsh(dir: &TestDir, geo: &str, name: &str, dim: usize, order: usize, binary: 
         order,
         setnumber: set.iter().map(|(k, v)| (k.to_string(), *v)).collect(),
         clscale: None,
+        timeout: super::super::gmsh::DEFAULT_TIMEOUT,
+        allow_commands: false,
     };
     mesh_with(&job, binary).unwrap();
     job.msh
