@@ -294,7 +294,10 @@ fn write(mut run: Run, opts: &RunOptions, to: &mut Writing) -> Result<Run> {
         run.checks.analytic = analytic::check(a, &run.solution());
     }
     run.stats.timings.total = t0.elapsed().as_secs_f64();
-    let staged = output::stage(&run, out)?;
+    let (staged, skipped) = output::stage(&run, out)?;
+    for w in skipped {
+        say(&format!("warning: {w}"));
+    }
     run.stats.timings.output = t.elapsed().as_secs_f64();
     run.stats.timings.total = t0.elapsed().as_secs_f64();
     // the summary carries the final timings

@@ -14,7 +14,7 @@ pub mod resultants;
 mod safety;
 pub mod vtu;
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use serde_json::json;
 
 use crate::fem::material::von_mises;
@@ -27,8 +27,9 @@ use vtu::{Field, IntField};
 
 /// Stages every result file of a run except `summary.json` and `report.md`
 /// ([`restage_summary`] adds them with the final timings), for the
-/// directory `out`.
-pub fn stage(run: &Run, out: &std::path::Path) -> Result<Staged> {
+/// directory `out`; with a warning for each picture that could not be
+/// drawn (left out: the other files are written).
+pub fn stage(run: &Run, out: &std::path::Path) -> Result<(Staged, Vec<String>)> {
     finite(run)?;
     let mut staged = Staged::new(out, &run.scene.name);
     let name = &run.scene.name;
@@ -77,11 +78,12 @@ pub fn stage(run: &Run, out: &std::path::Path) -> Result<Staged> {
         contact: last.contact.as_ref(),
         region: run.scene.output.frame.as_ref(),
     };
-    for (file, bytes) in picture::pictures(&snap).context("drawing the pictures")? {
+    let mut drawn = picture::pictures(&snap);
+    safety::stage(run, &mut staged, &mut drawn)?;
+    for (file, bytes) in drawn.files {
         staged.add(&file, bytes);
     }
-    safety::stage(run, &mut staged)?;
-    Ok(staged)
+    Ok((staged, drawn.skipped))
 }
 
 /// Results that are not numbers (an overflow: a traction of -1e300 gives
@@ -320,9 +322,10 @@ fn contact_csv(model: &Model, c: &ContactRun) -> String {
     s
 }
 
-/// A CSV field: quoted when it holds a comma or a quote.
+/// A CSV field (RFC 4180): quoted when it holds a comma, a quote or a
+/// line break, or starts or ends with a space.
 pub(crate) fn csv_field(v: &str) -> String {
-    if v.contains([',', '"', '\n']) {
+    if v.contains([',', '"', '\n', '\r']) || v.starts_with(' ') || v.ends_with(' ') {
         format!("\"{}\"", v.replace('"', "\"\""))
     } else {
         v.to_string()
@@ -330,7 +333,7 @@ pub(crate) fn csv_field(v: &str) -> String {
 }
 
 /// One row per probe point.
-fn probes_csv(probes: &[(String, Vec<Sample>)]) -> String {
+pub(crate) fn probes_csv(probes: &[(String, Vec<Sample>)]) -> String {
     let mut s = String::from("probe,point,x,y,z,ux,uy,uz,sxx,syy,szz,sxy,syz,sxz,von_mises,found\n");
     for (name, samples) in probes {
         for (i, p) in samples.iter().enumerate() {
@@ -341,7 +344,7 @@ fn probes_csv(probes: &[(String, Vec<Sample>)]) -> String {
                     .chain(std::iter::once(&p.von_mises))
                     .map(|v| format!("{v:.12e}"))
                     .collect();
-            s += &format!("{name},{i},{},{}\n", vals.join(","), p.found);
+            s += &format!("{},{i},{},{}\n", csv_field(name), vals.join(","), p.found);
         }
     }
     s
@@ -411,4 +414,24 @@ fn summary(run: &Run) -> serde_json::Value {
         v["safety"] = s;
     }
     v
+}
+
+#[cfg(test)]
+mod csv_tests {
+    use super::*;
+
+    /// A probe named with a comma or a line break broke probes.csv (issue 32).
+    #[test]
+    fn names_with_commas_quotes_and_line_breaks_are_quoted() {
+        let sample =
+            Sample { x: [1.0, 2.0, 0.0], displacement: [0.0; 3], stress: [0.0; 6], von_mises: 0.0, found: true };
+        let csv = probes_csv(&[("crown, \"left\"\nside".into(), vec![sample])]);
+        let row = csv.lines().skip(1).collect::<Vec<_>>().join("\n");
+        assert!(row.starts_with("\"crown, \"\"left\"\"\nside\",0,1.0"), "{csv}");
+        // 16 columns once the quoted field is read as one
+        let unquoted = row.replacen("\"crown, \"\"left\"\"\nside\"", "x", 1);
+        assert_eq!(unquoted.split(',').count(), 16, "{csv}");
+        assert_eq!(csv_field(" padded"), "\" padded\"");
+        assert_eq!(csv_field("plain"), "plain");
+    }
 }

@@ -16,7 +16,7 @@
 
 use std::fmt::Write;
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use serde_json::{json, Value};
 
 use super::files::Staged;
@@ -26,7 +26,7 @@ use crate::results::{state_counts, ContactRun, Run, SafetyRun};
 use crate::scene::Safety;
 
 /// The safety search's files, when the run made one.
-pub(super) fn stage(run: &Run, staged: &mut Staged) -> Result<()> {
+pub(super) fn stage(run: &Run, staged: &mut Staged, drawn: &mut picture::Drawn) -> Result<()> {
     let Some(s) = &run.safety else { return Ok(()) };
     let (model, name) = (&run.model, &run.scene.name);
     staged.add("safety.csv", trials_csv(s).into_bytes());
@@ -49,19 +49,19 @@ pub(super) fn stage(run: &Run, staged: &mut Staged) -> Result<()> {
         contact: s.last.contact.as_ref(),
         region: run.scene.output.frame.as_ref(),
     };
-    let drawn = picture::deformed_png(&snap, picture::Field::Displacement, None)
-        .context("drawing the safety search's mechanism")?;
-    staged.add(&format!("safety_{}", picture::deformed_file(&[])), drawn);
+    drawn.draw(&format!("safety_{}", picture::deformed_file(&[])), || {
+        picture::deformed_png(&snap, picture::Field::Displacement, None)
+    });
     // the joints at F: along each interface, and in 3D in plan by state
     let Some(c) = &s.last.contact else { return Ok(()) };
     let title = format!("{}: F = {}, the last state that holds", run.scene.title, fmt_f(s.factor));
-    staged.add("safety_interfaces.svg", picture::interface_plot_svg(model, c)?.into_bytes());
-    let plans = picture::plan_files(model);
+    drawn.draw("safety_interfaces.svg", || Ok(picture::interface_plot_svg(model, c)?.into_bytes()));
+    let plans = drawn.plans(model);
     for p in &plans {
-        staged.add(&format!("safety_{}", p.file), picture::plan_png(&title, model, c, p)?);
+        drawn.draw(&format!("safety_{}", p.file), || picture::plan_png(&title, model, c, p));
     }
     if let Some(f) = picture::joints_file(&plans) {
-        staged.add(&format!("safety_{f}"), picture::joints_png(&title, model, c, &plans)?);
+        drawn.draw(&format!("safety_{f}"), || picture::joints_png(&title, model, c, &plans));
     }
     Ok(())
 }

@@ -171,7 +171,8 @@ pub(super) fn lut_colour(lut: &[[u8; 3]], t: f32) -> [u8; 3] {
     if t.is_nan() {
         [150, 150, 150]
     } else {
-        lut[(t.clamp(0.0, 1.0) * 255.0 + 0.5) as usize]
+        let last = lut.len().saturating_sub(1);
+        lut.get(((t.clamp(0.0, 1.0) * last as f32 + 0.5) as usize).min(last)).copied().unwrap_or([150, 150, 150])
     }
 }
 
@@ -244,7 +245,8 @@ pub(super) fn colour_bar(
     }
     for y in by0 as usize..by1 as usize {
         let t = 1.0 - (y as f64 - by0) / (by1 - by0 - 1.0);
-        let c = lut[(t * 255.0).round() as usize];
+        // the bar's top may be a fractional pixel: t a little above 1
+        let c = lut_colour(lut, t as f32);
         cv.rect(bx0, y as f64, bx1, y as f64 + 1.0, c);
     }
     let f = |x: f64, y: f64| [x as f32, y as f32];
@@ -253,12 +255,12 @@ pub(super) fn colour_bar(
     let under = lim.min < lo - 1e-9 * (hi - lo);
     let mut frame = vec![f(bx0, by0)];
     if over {
-        cv.triangle([f(bx0, by0), f(bx1, by0), f(mid, by0 - 16.0)], [0.0; 3], &|_| lut[255]);
+        cv.triangle([f(bx0, by0), f(bx1, by0), f(mid, by0 - 16.0)], [0.0; 3], &|_| lut_colour(lut, 1.0));
         frame.push(f(mid, by0 - 16.0));
     }
     frame.extend([f(bx1, by0), f(bx1, by1)]);
     if under {
-        cv.triangle([f(bx0, by1), f(bx1, by1), f(mid, by1 + 16.0)], [0.0; 3], &|_| lut[0]);
+        cv.triangle([f(bx0, by1), f(bx1, by1), f(mid, by1 + 16.0)], [0.0; 3], &|_| lut_colour(lut, 0.0));
         frame.push(f(mid, by1 + 16.0));
     }
     frame.extend([f(bx0, by1), f(bx0, by0)]);

@@ -162,21 +162,73 @@ pub fn deformed_file(stresses: &[BodyStress]) -> &'static str {
 /// coloured by von Mises stress (or the displacement magnitude), and with
 /// contact the interface stresses and, in 3D, each sheet of each interface
 /// laid flat ([`plan_files`]) and, when there are several, all of them by
-/// state ([`joints_file`]).
-pub fn pictures(snap: &Snapshot) -> Result<Vec<(String, Vec<u8>)>, PictureError> {
+/// state ([`joints_file`]). A picture that cannot be drawn is left out
+/// with a warning ([`Drawn`]).
+pub fn pictures(snap: &Snapshot) -> Drawn {
     let field = if snap.stresses.is_empty() { Field::Displacement } else { Field::VonMises };
-    let mut out = vec![(deformed_file(snap.stresses).to_string(), deformed_png(snap, field, None)?)];
+    let mut d = Drawn::default();
+    d.draw(deformed_file(snap.stresses), || deformed_png(snap, field, None));
     if let Some(c) = snap.contact.filter(|_| !snap.model.interfaces.is_empty()) {
-        out.push(("interfaces.svg".to_string(), interface_plot_svg(snap.model, c)?.into_bytes()));
-        let plans = plan_files(snap.model);
+        d.draw("interfaces.svg", || Ok(interface_plot_svg(snap.model, c)?.into_bytes()));
+        let plans = d.plans(snap.model);
         for p in &plans {
-            out.push((p.file.clone(), plan_png(snap.title, snap.model, c, p)?));
+            d.draw(&p.file, || plan_png(snap.title, snap.model, c, p));
         }
         if let Some(f) = joints_file(&plans) {
-            out.push((f.to_string(), joints_png(snap.title, snap.model, c, &plans)?));
+            d.draw(f, || joints_png(snap.title, snap.model, c, &plans));
         }
     }
-    Ok(out)
+    d
+}
+
+/// Pictures drawn, and why any was not: a picture is the least important
+/// output, and one that fails (an error, or a panic in the drawing code)
+/// is skipped with a warning while every other result file is written.
+#[derive(Default)]
+pub struct Drawn {
+    /// (file name, bytes) of each picture drawn.
+    pub files: Vec<(String, Vec<u8>)>,
+    /// One warning per picture left out.
+    pub skipped: Vec<String>,
+}
+
+impl Drawn {
+    /// Draws picture `file` with `f`, or says why it could not.
+    pub fn draw(&mut self, file: &str, f: impl FnOnce() -> Result<Vec<u8>, PictureError>) {
+        match quietly(f) {
+            Ok(Ok(bytes)) => self.files.push((file.to_string(), bytes)),
+            Ok(Err(e)) => self.skipped.push(format!("{file} was not drawn: {e}; the other result files are written")),
+            Err(why) => self.skipped.push(format!(
+                "{file} was not drawn: the drawing code failed ({why}); the other result files are written. Please report it with the scene"
+            )),
+        }
+    }
+
+    /// The plan views of `model`'s interfaces (none, with a warning, when
+    /// they cannot be laid out).
+    pub fn plans(&mut self, model: &Model) -> Vec<PlanFile> {
+        quietly(|| plan_files(model)).unwrap_or_else(|why| {
+            self.skipped.push(format!("the plan views were not drawn: the drawing code failed ({why})"));
+            Vec::new()
+        })
+    }
+}
+
+/// Runs `f`, turning a panic into its message (and place) instead of
+/// printing it: the caller reports it as a warning.
+fn quietly<T>(f: impl FnOnce() -> T) -> Result<T, String> {
+    use std::sync::{Arc, Mutex};
+    let said: Arc<Mutex<String>> = Arc::default();
+    let slot = Arc::clone(&said);
+    let hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        if let Ok(mut s) = slot.lock() {
+            *s = info.to_string().replace('\n', " ");
+        }
+    }));
+    let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(f));
+    std::panic::set_hook(hook);
+    r.map_err(|_| said.lock().map(|s| s.clone()).unwrap_or_default())
 }
 
 /// Colours: the contact states, pairs without a state, the undeformed

@@ -11,14 +11,27 @@ use super::{PictureError, INK};
 
 /// Text to write once the raster is done.
 pub(super) struct Label {
-    text: String,
+    pub(super) text: String,
     at: (f64, f64),
     size: f64,
     pos: (HPos, VPos),
 }
 
 pub(super) fn label(text: impl Into<String>, at: (f64, f64), size: f64, pos: (HPos, VPos)) -> Label {
-    Label { text: text.into(), at, size, pos }
+    Label { text: capped(text.into()), at, size, pos }
+}
+
+/// Longest text drawn on a picture, in characters: a title a user made
+/// huge (a 1 GB title was still being drawn after 12 minutes) is cut.
+pub(super) const MAX_LABEL: usize = 160;
+
+/// `text` cut to [`MAX_LABEL`] characters, with an ellipsis.
+fn capped(mut text: String) -> String {
+    if let Some((at, _)) = text.char_indices().nth(MAX_LABEL) {
+        text.truncate(at);
+        text.push('…');
+    }
+    text
 }
 
 pub(super) fn register_font() {

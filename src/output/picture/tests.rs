@@ -459,7 +459,7 @@ fn plan_view_of_a_3d_joint_shows_where_it_slips() {
 fn no_plan_view_in_2d_and_stale_ones_are_removed() {
     let run = cylinder(0.25, 2);
     assert!(plan_files(&run.model).is_empty());
-    let files: Vec<String> = pictures(&snap(&run)).expect("pictures").into_iter().map(|(f, _)| f).collect();
+    let files: Vec<String> = drawn(&snap(&run)).into_iter().map(|(f, _)| f).collect();
     assert_eq!(files, ["deformed_von_mises.png", "interfaces.svg"]);
     assert!(!crate::output::report::report(&run).contains("plan_"));
     // an earlier run's plan views go with the next commit (the manifest
@@ -472,7 +472,7 @@ fn no_plan_view_in_2d_and_stale_ones_are_removed() {
     earlier.commit().expect("commit");
     std::fs::write(dir.join("notes.png"), b"x").expect("file");
     let mut now = crate::output::files::Staged::new(&dir, "cylinder");
-    for (f, bytes) in pictures(&snap(&run)).expect("pictures") {
+    for (f, bytes) in drawn(&snap(&run)) {
         now.add(&f, bytes);
     }
     now.commit().expect("commit");
@@ -683,7 +683,7 @@ fn a_contact_on_two_planes_gets_a_plan_per_plane_and_an_overview() {
     for p in &plans {
         assert!(p.describe(&run.model).contains("dip 45°"), "{}", p.describe(&run.model));
     }
-    let pics: Vec<(String, Vec<u8>)> = pictures(&snap(&run)).expect("pictures");
+    let pics: Vec<(String, Vec<u8>)> = drawn(&snap(&run));
     let names: Vec<&str> = pics.iter().map(|p| p.0.as_str()).collect();
     assert_eq!(
         names,
@@ -840,4 +840,70 @@ fn picture_errors_are_told_apart_by_variant() {
         Err(PictureError::Empty(why)) => assert!(why.contains("no contact interface"), "{why}"),
         other => panic!("nothing to plot, not {:?}", other.map(|s| s.len())),
     }
+}
+
+/// Every picture of a snapshot; none may be skipped.
+fn drawn(snap: &Snapshot) -> Vec<(String, Vec<u8>)> {
+    let d = pictures(snap);
+    assert!(d.skipped.is_empty(), "{:?}", d.skipped);
+    d.files
+}
+
+/// The 3D tunnel through three joint sets panicked here with exit 101
+/// and no result written (issue 32: index 258 into a 256-colour table,
+/// the bar's top pixel being fractional).
+#[test]
+fn a_colour_bar_at_fractional_pixels_stays_in_its_table() {
+    let lut = super::legend::colour_map(false, 0.0, 1.0);
+    let lim = super::legend::Limits { lo: 0.0, hi: 1.0, min: -1.0, max: 2.0 };
+    let mut cv = Canvas::new(400, 400);
+    for top in [100.0, 100.25, 100.5, 100.999] {
+        let mut labels = Vec::new();
+        super::legend::colour_bar(&mut cv, &mut labels, &lut, &lim, &["σ".into()], [20.0, top, top + 200.3]);
+    }
+    assert_eq!(super::legend::lut_colour(&lut, 1.02), lut[255]);
+    assert_eq!(super::legend::lut_colour(&lut, -3.0), lut[0]);
+    assert_eq!(super::legend::lut_colour(&[], 0.5), [150, 150, 150]);
+}
+
+#[test]
+fn a_picture_that_fails_is_skipped_with_a_warning_and_the_others_drawn() {
+    let mut d = Drawn::default();
+    d.draw("a.png", || Ok(b"a".to_vec()));
+    d.draw("b.png", || {
+        let v: Vec<u8> = Vec::new();
+        Ok(vec![v[3]])
+    });
+    d.draw("c.png", || Err(PictureError::Empty("nothing to draw".into())));
+    d.draw("d.png", || Ok(b"d".to_vec()));
+    let names: Vec<&str> = d.files.iter().map(|(f, _)| f.as_str()).collect();
+    assert_eq!(names, ["a.png", "d.png"]);
+    assert_eq!(d.skipped.len(), 2);
+    assert!(
+        d.skipped[0].starts_with("b.png was not drawn") && d.skipped[0].contains("index out of bounds"),
+        "{:?}",
+        d.skipped
+    );
+    assert!(d.skipped[0].contains("tests.rs"), "where it failed: {:?}", d.skipped);
+    assert!(d.skipped[1].contains("nothing to draw"), "{:?}", d.skipped);
+}
+
+/// A 1 GB title was still being drawn into the PNG after 12 minutes.
+#[test]
+fn a_huge_title_is_cut_where_it_is_drawn() {
+    let l = super::raster::label(
+        "é".repeat(1_000_000),
+        (0.0, 0.0),
+        24.0,
+        (plotters::style::text_anchor::HPos::Left, plotters::style::text_anchor::VPos::Top),
+    );
+    assert_eq!(l.text.chars().count(), super::raster::MAX_LABEL + 1);
+    assert!(l.text.ends_with('…'));
+    let short = super::raster::label(
+        "dam",
+        (0.0, 0.0),
+        24.0,
+        (plotters::style::text_anchor::HPos::Left, plotters::style::text_anchor::VPos::Top),
+    );
+    assert_eq!(short.text, "dam");
 }
