@@ -254,34 +254,40 @@ pub fn available() -> Available {
 /// The cgroup limit and usage files of this process: (limit, usage, name).
 fn cgroups() -> Vec<(String, String, String)> {
     let Ok(text) = std::fs::read_to_string("/proc/self/cgroup") else { return Vec::new() };
+    cgroups_in(std::path::Path::new("/sys/fs/cgroup"), &text)
+}
+
+/// The memory limit and usage files of the cgroups named in `proc_cgroup`
+/// (the text of /proc/self/cgroup) under the cgroup mount `root`: each
+/// cgroup's and every parent's up to the mount, in cgroup v2
+/// (`memory.max`, `memory.current`) and v1 (`memory/memory.limit_in_bytes`,
+/// `memory.usage_in_bytes`; Docker on v1 sets the limit on a parent). In a
+/// cgroup namespace the mount is the process's own cgroup, which the
+/// path from /proc does not name: the walk starts at the deepest part of
+/// the path that exists.
+fn cgroups_in(root: &std::path::Path, proc_cgroup: &str) -> Vec<(String, String, String)> {
     let mut out = Vec::new();
-    for line in text.lines() {
+    for line in proc_cgroup.lines() {
         let mut f = line.splitn(3, ':');
         let (Some(_), Some(ctl), Some(path)) = (f.next(), f.next(), f.next()) else { continue };
-        let path = path.trim_start_matches('/');
-        if ctl.is_empty() {
-            // v2: the limit of this cgroup and of every parent
-            let mut p = std::path::PathBuf::from("/sys/fs/cgroup").join(path);
-            loop {
-                let (max, cur) = (p.join("memory.max"), p.join("memory.current"));
-                if max.exists() {
-                    out.push((
-                        max.display().to_string(),
-                        cur.display().to_string(),
-                        format!("the cgroup limit {} less its usage", max.display()),
-                    ));
-                }
-                if !p.pop() || !p.starts_with("/sys/fs/cgroup") {
-                    break;
-                }
-            }
+        let (base, limit, usage) = if ctl.is_empty() {
+            (root.to_path_buf(), "memory.max", "memory.current")
         } else if ctl.split(',').any(|c| c == "memory") {
-            let p = std::path::PathBuf::from("/sys/fs/cgroup/memory").join(path);
-            out.push((
-                p.join("memory.limit_in_bytes").display().to_string(),
-                p.join("memory.usage_in_bytes").display().to_string(),
-                format!("the cgroup limit {} less its usage", p.join("memory.limit_in_bytes").display()),
-            ));
+            (root.join("memory"), "memory.limit_in_bytes", "memory.usage_in_bytes")
+        } else {
+            continue;
+        };
+        let mut p = base.join(path.trim_start_matches('/'));
+        while !p.is_dir() && p != base && p.pop() {}
+        loop {
+            let (l, u) = (p.join(limit), p.join(usage));
+            if l.exists() && !out.iter().any(|(x, _, _)| *x == l.display().to_string()) {
+                let what = format!("the cgroup limit {} less its usage", l.display());
+                out.push((l.display().to_string(), u.display().to_string(), what));
+            }
+            if p == base || !p.starts_with(&base) || !p.pop() {
+                break;
+            }
         }
     }
     out
@@ -385,4 +391,46 @@ fn out_of_memory(size: usize) -> ! {
     }
     // SAFETY: ends the process at once, running nothing that could allocate
     unsafe { libc::_exit(1) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Docker on cgroup v1 puts the limit on a parent of the process's
+    /// cgroup; only the process's own was read (issue 32), so such a run
+    /// was killed instead of refused.
+    #[test]
+    fn cgroup_limits_are_read_up_the_hierarchy_in_v1_and_v2() {
+        let root = std::env::temp_dir().join(format!("subcontact-cgroup-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&root);
+        let put = |dir: &str, files: &[(&str, &str)]| {
+            std::fs::create_dir_all(root.join(dir)).unwrap();
+            for (f, v) in files {
+                std::fs::write(root.join(dir).join(f), v).unwrap();
+            }
+        };
+        let v1 =
+            |l: &str, u: &str| [("memory.limit_in_bytes", l.to_string()), ("memory.usage_in_bytes", u.to_string())];
+        for (dir, l, u) in [
+            ("memory", "9223372036854771712", "5000000000"),
+            ("memory/docker", "1000000000", "300000000"),
+            ("memory/docker/abc", "9223372036854771712", "200000000"),
+        ] {
+            let files = v1(l, u);
+            put(dir, &[(files[0].0, &files[0].1), (files[1].0, &files[1].1)]);
+        }
+        put("user.slice", &[("memory.max", "2000000000"), ("memory.current", "500000000")]);
+        put("user.slice/run", &[("memory.max", "max"), ("memory.current", "100000000")]);
+        let text = "4:memory:/docker/abc\n0::/user.slice/run\n";
+        let found = cgroups_in(&root, text);
+        let room = |l: &str, u: &str| number(l).zip(number(u)).map(|(l, u)| l - u);
+        let rooms: Vec<Option<f64>> = found.iter().map(|(l, u, _)| room(l, u)).collect();
+        assert_eq!(found.len(), 5, "{found:?}");
+        assert!(rooms.contains(&Some(7e8)) && rooms.contains(&Some(1.5e9)), "{rooms:?}");
+        // in a cgroup namespace the mount is the process's own cgroup
+        let found = cgroups_in(&root, "4:memory:/not/here\n");
+        assert_eq!(found.len(), 1, "{found:?}");
+        std::fs::remove_dir_all(&root).unwrap();
+    }
 }

@@ -178,6 +178,30 @@ impl Safety {
     }
 }
 
+/// The most bytes a scene file may have: a scene is a page of TOML.
+const MAX_SCENE_BYTES: u64 = 16 << 20;
+
+/// The text of the scene file `path`: a plain file (not a device such as
+/// /dev/zero, whose reading never ends), of at most 16 MB.
+fn read_scene(path: &Path) -> Result<String, SceneError> {
+    use std::io::Read;
+    let err = |source: std::io::Error| SceneError::Read { path: path.to_path_buf(), source };
+    let file = std::fs::File::open(path).map_err(err)?;
+    let meta = file.metadata().map_err(err)?;
+    if !meta.is_file() {
+        let what = if meta.is_dir() { "a directory" } else { "not a plain file (a device, a pipe or a socket)" };
+        return Err(err(std::io::Error::other(format!("it is {what}; give the path of a scene's .toml file"))));
+    }
+    let mut text = String::new();
+    file.take(MAX_SCENE_BYTES + 1).read_to_string(&mut text).map_err(err)?;
+    if text.len() as u64 > MAX_SCENE_BYTES {
+        return Err(err(std::io::Error::other(
+            "it is larger than 16 MB, which no scene is; give the path of a scene's .toml file",
+        )));
+    }
+    Ok(text)
+}
+
 /// `[gmsh]`: options for meshing a `.geo` with the gmsh CLI.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GmshOptions {
@@ -290,9 +314,7 @@ pub struct Scene {
 impl Scene {
     /// Read, parse and validate the scene file at `path`.
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
-        let text =
-            std::fs::read_to_string(path).map_err(|source| SceneError::Read { path: path.to_path_buf(), source })?;
-        Scene::parse(&text, path)
+        Scene::parse(&read_scene(path)?, path)
     }
 
     /// Parse and validate scene text. `path` is used in messages, for the

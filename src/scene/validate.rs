@@ -36,6 +36,11 @@ fn key_name(name: &str) -> String {
 }
 
 /// A list of names for messages: `"a", "b"`.
+/// The most load steps a scene may ask for.
+const MAX_STEPS: usize = 100_000;
+/// The most sample points on one probe.
+const MAX_PROBE_POINTS: usize = 1_000_000;
+
 fn quoted_list<S: AsRef<str>>(items: impl IntoIterator<Item = S>) -> String {
     items.into_iter().map(|s| format!("\"{}\"", s.as_ref())).collect::<Vec<_>>().join(", ")
 }
@@ -100,6 +105,18 @@ impl Checker<'_> {
         Ok(v)
     }
 
+    /// `n`, unless it is above `max`: then an error naming `key`.
+    fn at_most(&self, n: usize, max: usize, key: &str, what: &str) -> R<usize> {
+        if n > max {
+            return Err(self.bad(
+                key,
+                n,
+                format!("at most {max} {what}; a count this large would only exhaust the memory."),
+            ));
+        }
+        Ok(n)
+    }
+
     fn at_least(&self, v: Option<i64>, default: usize, min: i64, key: &str, what: &str) -> R<usize> {
         match v {
             None => Ok(default),
@@ -162,7 +179,14 @@ impl Checker<'_> {
                     ),
                 ))
             }
-            Some(t) if t.is_finite() && t > 0.0 => t,
+            Some(t) if t.is_finite() && t > 0.0 && t <= 1e100 => t,
+            Some(t) if t > 1e100 => {
+                return Err(self.bad(
+                    "thickness",
+                    t,
+                    "a thickness beyond 1e100 is beyond what double precision can carry through the stiffness (its products overflow); give the model in other units.",
+                ))
+            }
             Some(t) => return Err(self.bad("thickness", t, "the out-of-plane thickness must be a finite number > 0.")),
         };
         let gravity = match &raw.gravity {
@@ -180,7 +204,12 @@ impl Checker<'_> {
         let solver = match raw.solver {
             None => Solver::default(),
             Some(s) => Solver {
-                load_steps: self.at_least(s.load_steps, 1, 1, "solver.load_steps", "the number of load steps")?,
+                load_steps: self.at_most(
+                    self.at_least(s.load_steps, 1, 1, "solver.load_steps", "the number of load steps")?,
+                    MAX_STEPS,
+                    "solver.load_steps",
+                    "load steps (each keeps its displacements and stresses for the result files)",
+                )?,
                 max_iterations: self.at_least(
                     s.max_iterations,
                     100,
@@ -398,9 +427,12 @@ impl Checker<'_> {
                 ));
             }
             let points = match self.required(p.points, &format!("{k}.points"), "the number of sample points, >= 2")? {
-                n if n >= 2 => {
-                    usize::try_from(n).map_err(|_| self.bad(format!("{k}.points"), n, "too many points."))?
-                }
+                n if n >= 2 => self.at_most(
+                    usize::try_from(n).map_err(|_| self.bad(format!("{k}.points"), n, "too many points."))?,
+                    MAX_PROBE_POINTS,
+                    &format!("{k}.points"),
+                    "sample points on one probe",
+                )?,
                 n => {
                     return Err(self.bad(
                         format!("{k}.points"),

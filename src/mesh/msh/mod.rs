@@ -63,7 +63,7 @@ pub enum MshError {
     )]
     Malformed { path: PathBuf, detail: String },
 
-    #[error("`{}`: node {node} has the coordinates ({}, {}, {}), which are not numbers: the file is damaged or was written by a tool that lost them; mesh the .geo again with gmsh", path.display(), x[0], x[1], x[2])]
+    #[error("`{}`: node {node} has the coordinates ({}, {}, {}), {}", path.display(), x[0], x[1], x[2], if x.iter().all(|v| v.is_finite()) { "beyond 1e100, where lengths, areas and stiffnesses overflow double precision: give the model in other units (or move it nearer the origin)" } else { "which are not numbers: the file is damaged or was written by a tool that lost them; mesh the .geo again with gmsh" })]
     NotFinite { path: PathBuf, node: u64, x: [f64; 3] },
 
     #[error("`{}` is MSH {version}: re-export it with gmsh -format msh41", path.display())]
@@ -105,10 +105,22 @@ fn supported_kinds() -> String {
     CellKind::ALL.iter().map(|k| k.name()).collect::<Vec<_>>().join(", ")
 }
 
+/// The largest coordinate a mesh may have: beyond it, the squares and
+/// cubes of lengths (areas, volumes, stiffnesses) leave double precision.
+pub const MAX_COORDINATE: f64 = 1e100;
+
 /// Reads an MSH 4.1 file (ASCII or binary) written by gmsh.
 pub fn read_msh(path: &Path) -> Result<Mesh, MshError> {
     let bytes = match std::fs::read(path) {
         Ok(b) => b,
+        Err(e) if e.kind() == std::io::ErrorKind::IsADirectory => {
+            return Err(MshError::Io {
+                path: path.to_path_buf(),
+                source: std::io::Error::other(
+                    "it is a directory, not a mesh file; point `mesh =` in the scene at the .msh file",
+                ),
+            })
+        }
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
             return Err(MshError::NotFound { path: path.to_path_buf() })
         }
@@ -203,7 +215,7 @@ pub fn parse_msh(path: &Path, bytes: &[u8]) -> Result<Mesh, MshError> {
         return Err(r.malformed("no $Elements section"));
     };
     let entities = entities.unwrap_or_default();
-    if let Some((i, x)) = coords.iter().enumerate().find(|(_, x)| x.iter().any(|v| !v.is_finite())) {
+    if let Some((i, x)) = coords.iter().enumerate().find(|(_, x)| x.iter().any(|v| !(v.abs() <= MAX_COORDINATE))) {
         return Err(MshError::NotFinite {
             path: path.to_path_buf(),
             node: node_tags.get(i).copied().unwrap_or(i as u64 + 1),
