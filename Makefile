@@ -6,7 +6,7 @@ CARGO   ?= cargo
 BIN     := target/release/subcontact
 PYTHON  ?= python3
 
-.PHONY: all deps deps-mpi build lint cylinder tunnel tunnel-joints footing footing-layers dam blocks3d dam3d dam3d-joints rockmass wedge safety test test-mpi fuzz bench bench3d bench-blocks bench-ccx bench-interface scaling stress clean
+.PHONY: all deps deps-mpi deps-strace build lint cylinder tunnel tunnel-joints footing footing-layers dam blocks3d dam3d dam3d-joints rockmass wedge safety test test-mpi fuzz bench bench3d bench-blocks bench-ccx bench-interface scaling stress clean
 
 all: build
 
@@ -137,10 +137,20 @@ bench-ccx: deps build
 	$(PYTHON) scripts/ccx/bench_ccx.py $(BENCH_CCX_ARGS)
 
 # The numerical stress tests, long cases included: results/stress/stress.md.
-stress: deps
-	$(CARGO) test --release --test stress -- --ignored --nocapture
+# strace, whose fault injection kills runs at each system call of their
+# commit (tests/transaction.rs; a few points in `make test`, every one in
+# `make stress`).
+deps-strace:
+	@command -v strace >/dev/null 2>&1 || { \
+	  echo "strace not found: installing it with apt-get (Debian package strace)"; \
+	  (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq strace >/dev/null) || \
+	  { echo "error: could not install strace; run 'apt-get install -y strace' as root"; exit 1; }; }
 
-test: deps
+stress: deps deps-strace
+	$(CARGO) test --release --test stress -- --ignored --nocapture
+	$(CARGO) test --release --test transaction -- --ignored --nocapture
+
+test: deps deps-strace
 	$(CARGO) test --release
 
 # The habits CI enforces: the tree formatted (rustfmt.toml) and clippy clean
@@ -150,7 +160,7 @@ lint:
 	$(CARGO) clippy --release --all-targets -- -D warnings
 
 # Fuzzing: the MSH reader, the scene parser and a whole `check` on mutated
-# inputs, FUZZ_SECONDS per target (default 60: about 3 minutes); a panic or
+# inputs, and the commit of result files under kills and foreign files, FUZZ_SECONDS per target (default 60: about 3 minutes); a panic or
 # a hang fails and saves the input under target/tmp/fuzz-found/. A mutation
 # loop on stable Rust (cargo-fuzz needs nightly); `make test` runs it 4 s.
 FUZZ_SECONDS ?= 60

@@ -417,3 +417,77 @@ fn a_contact_group_that_misses_the_other_body_says_how() {
         ],
     );
 }
+
+/// A misspelt `[gmsh] setnumber` name was ignored (issue 32: `lcc = 0.02`
+/// meshed at the default size, 1,576 DOFs instead of 34,448, exit 0):
+/// refused, naming the names the .geo defines, before gmsh runs.
+#[test]
+fn a_setnumber_name_the_geo_does_not_define_is_refused() {
+    let case = Case::new("bad-setnumber");
+    let scene = cylinder(&case, "lcc", &[("setnumber = { lc = 0.2 }", "setnumber = { lcc = 0.02 }")]);
+    let msg = solve_fails(&case, &scene);
+    says(&msg, &["[gmsh] setnumber", "`lcc`", "cylinder.geo", "DefineConstant): lc"]);
+    assert!(!case.dir.join("results/lcc/mesh").exists(), "gmsh ran");
+}
+
+/// A .geo's SystemCall ran (issue 32); now refused unless allowed.
+#[test]
+fn shell_commands_in_a_geo_are_refused_unless_allowed() {
+    let case = Case::new("bad-geo-commands");
+    let scene = cylinder(&case, "calls", &[]);
+    let geo = std::fs::read_to_string(case.dir.join("cylinder.geo")).expect("geo");
+    let touched = case.dir.join("ran-a-shell");
+    case.write("cylinder.geo", &format!("{geo}\nSystemCall \"touch {}\";\n", touched.display()));
+    let msg = solve_fails(&case, &scene);
+    says(&msg, &["cylinder.geo", "SystemCall (line", "--allow-geo-commands"]);
+    assert!(!touched.exists());
+    let o = case.cli(&["check", &scene, "--allow-geo-commands"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(touched.exists(), "allowed, the command runs");
+}
+
+/// Messages that named the wrong thing (issue 32): a count too large ended
+/// in "out of memory … try --interface iterative", a thickness of 1e308 in
+/// "not held", a scene that is /dev/zero in out of memory, a .msh path that
+/// is a directory in "does not exist", an empty .geo blamed the cached .msh.
+#[test]
+fn counts_sizes_and_paths_beyond_reason_are_named_for_what_they_are() {
+    let case = Case::new("bad-beyond");
+    for (name, edit, needles) in [
+        (
+            "steps",
+            ("[[probes]]", "[solver]\nload_steps = 1000000000000\n\n[[probes]]"),
+            &["solver.load_steps", "at most 100000"][..],
+        ),
+        ("points", ("points = 5", "points = 1000000000000"), &["probes[0].points", "at most 1000000"][..]),
+        ("thick", ("thickness = 1.0", "thickness = 1e308"), &["thickness", "1e100", "other units"][..]),
+    ] {
+        let scene = cylinder(&case, name, &[edit]);
+        let msg = solve_fails(&case, &scene);
+        says(&msg, needles);
+        assert!(!msg.contains("memory") && !msg.contains("not held"), "{msg}");
+    }
+    let o = case.cli(&["solve", "/dev/zero", "--out", "zero", "--quiet"]);
+    let msg = clean_failure(&case, &o, &case.dir.join("zero"));
+    says(&msg, &["/dev/zero", "not a plain file"]);
+    // a .msh path that is a directory
+    std::fs::create_dir_all(case.dir.join("folder.msh")).expect("dir");
+    let scene = cylinder(
+        &case,
+        "folder",
+        &[("mesh = \"cylinder.geo\"", "mesh = \"folder.msh\""), ("[gmsh]\norder = 2\nsetnumber = { lc = 0.2 }\n", "")],
+    );
+    let msg = solve_fails(&case, &scene);
+    says(&msg, &["folder.msh", "is a directory"]);
+    assert!(!msg.contains("does not exist"), "{msg}");
+    // an empty .geo
+    case.write("empty.geo", "// nothing yet\n");
+    let scene = cylinder(
+        &case,
+        "empty",
+        &[("mesh = \"cylinder.geo\"", "mesh = \"empty.geo\""), ("setnumber = { lc = 0.2 }", "")],
+    );
+    let msg = solve_fails(&case, &scene);
+    says(&msg, &["gmsh made no mesh of", "empty.geo", "Physical"]);
+    assert!(!msg.contains("empty.msh"), "{msg}");
+}

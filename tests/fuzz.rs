@@ -1,6 +1,8 @@
 //! Fuzzing (issue 20): the MSH reader, the scene parser and a whole
 //! `check` (scene, mesh, model, memory estimate) on mutated inputs must
-//! never panic or hang: every input ends in Ok or in an error.
+//! never panic or hang: every input ends in Ok or in an error. And the
+//! commit of result files (issue 32): a fuzzed sequence of commits, kills
+//! at random instants of them and foreign files loses no data.
 //!
 //! A mutation loop of our own, not cargo-fuzz: cargo-fuzz needs a nightly
 //! toolchain (sanitizer flags) and this project builds on stable only; the
@@ -322,4 +324,121 @@ fn check_of_mutated_scenes_never_panics_or_hangs() {
         guarded("check", &p, move || check(&q, &o));
         let _ = std::fs::remove_file(&p);
     });
+}
+
+/// One commit of `writer`'s files (generation `generation`) into `dir`, in
+/// a forked child that this process kills after `kill_after` (or lets
+/// finish when `None`).
+fn forked_commit(dir: &Path, writer: &str, names: &[String], generation: u64, kill_after: Option<Duration>) {
+    let mut staged = subcontact::output::files::Staged::new(dir, writer);
+    for n in names {
+        staged.add(n, format!("{writer}-{generation}").into_bytes());
+    }
+    // SAFETY: the child only commits and leaves with _exit
+    let pid = unsafe { libc::fork() };
+    assert!(pid >= 0, "fork");
+    if pid == 0 {
+        let ok = staged.commit().is_ok();
+        // SAFETY: ends the child at once
+        unsafe { libc::_exit(if ok { 0 } else { 1 }) };
+    }
+    if let Some(t) = kill_after {
+        std::thread::sleep(t);
+        // SAFETY: signals our own child
+        unsafe { libc::kill(pid, libc::SIGKILL) };
+    }
+    let mut status = 0;
+    // SAFETY: waits for our own child
+    unsafe { libc::waitpid(pid, &mut status, 0) };
+}
+
+/// What a result directory must hold after any sequence of commits,
+/// kills and foreign files: each writer's listed files all there and of
+/// one generation, every foreign file as it was written, nothing else.
+fn commit_invariants(dir: &Path, foreign: &std::collections::BTreeMap<String, Vec<u8>>) -> Result<(), String> {
+    let m = common::json(&dir.join(".subcontact-manifest.json"));
+    let mut listed = Vec::new();
+    for (w, files) in m["writers"].as_object().cloned().unwrap_or_default() {
+        let mut generations = std::collections::BTreeSet::new();
+        for f in files.as_array().cloned().unwrap_or_default() {
+            let f = f.as_str().unwrap_or("").to_string();
+            let text = std::fs::read_to_string(dir.join(&f)).map_err(|e| format!("{w}'s {f}: {e}"))?;
+            generations.insert(text);
+            listed.push(f);
+        }
+        if generations.len() > 1 || generations.iter().any(|g| !g.starts_with(&format!("{w}-"))) {
+            return Err(format!("{w}'s files are of several runs: {generations:?}"));
+        }
+    }
+    for (f, bytes) in foreign {
+        if std::fs::read(dir.join(f)).ok().as_ref() != Some(bytes) {
+            return Err(format!("the foreign file {f} changed or vanished"));
+        }
+    }
+    let mut walk = vec![PathBuf::new()];
+    while let Some(rel) = walk.pop() {
+        for e in std::fs::read_dir(dir.join(&rel)).map_err(|e| e.to_string())?.flatten() {
+            let r = rel.join(e.file_name()).to_string_lossy().into_owned();
+            if e.file_type().is_ok_and(|t| t.is_dir()) {
+                walk.push(PathBuf::from(r));
+            } else if r != ".subcontact-manifest.json" && !listed.contains(&r) && !foreign.contains_key(&r) {
+                return Err(format!("stale file {r}"));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The commit path (issue 32): a fuzzed sequence of runs of two writers
+/// (each a random set of names, some shared), kills at random instants of
+/// their commits, and foreign files added between them; after each step
+/// the directory holds whole sets, every foreign file, nothing stale.
+#[test]
+fn the_commit_path_loses_no_data_under_kills_and_foreign_files() {
+    let case = Case::new("fuzz-commit");
+    let dir = case.dir.join("out");
+    let mut foreign = std::collections::BTreeMap::new();
+    let mut generation = 0;
+    run("commit", |rng, n| {
+        match rng.below(4) {
+            0 => {
+                let f = if rng.below(2) == 0 {
+                    format!("user_{}.txt", rng.below(6))
+                } else {
+                    format!("photos/p{}.png", rng.below(6))
+                };
+                if dir.is_dir() {
+                    std::fs::create_dir_all(dir.join("photos")).expect("photos");
+                    let bytes = format!("user {n}").into_bytes();
+                    std::fs::write(dir.join(&f), &bytes).expect("foreign file");
+                    foreign.insert(f, bytes);
+                }
+            }
+            _ => {
+                let writer = ["a", "b"][rng.below(2)];
+                let mut names: Vec<String> = (0..rng.below(6)).map(|i| format!("{writer}_{i}.vtu")).collect();
+                if rng.below(2) == 0 {
+                    names.push("shared.csv".into());
+                }
+                generation += 1;
+                let kill = (rng.below(3) > 0).then(|| Duration::from_micros(rng.below(3000) as u64));
+                forked_commit(&dir, writer, &names, generation, kill);
+            }
+        }
+        if dir.is_dir() {
+            if let Err(e) = commit_invariants(&dir, &foreign) {
+                panic!("step {n}: {e}");
+            }
+        }
+    });
+    // a last commit that finishes settles whatever the kills left beside it
+    forked_commit(&dir, "a", &["a_0.vtu".into()], generation + 1, None);
+    commit_invariants(&dir, &foreign).unwrap_or_else(|e| panic!("after the last commit: {e}"));
+    let beside: Vec<String> = std::fs::read_dir(&case.dir)
+        .expect("dir")
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with(".out."))
+        .collect();
+    assert_eq!(beside, [".out.lock"], "staging directories left");
 }

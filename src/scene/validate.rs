@@ -108,11 +108,7 @@ impl Checker<'_> {
     /// `n`, unless it is above `max`: then an error naming `key`.
     fn at_most(&self, n: usize, max: usize, key: &str, what: &str) -> R<usize> {
         if n > max {
-            return Err(self.bad(
-                key,
-                n,
-                format!("at most {max} {what}; a count this large would only exhaust the memory."),
-            ));
+            return Err(self.bad(key, n, format!("at most {max} {what}.")));
         }
         Ok(n)
     }
@@ -300,6 +296,13 @@ impl Checker<'_> {
                 ))
             }
         };
+        if full.is_dir() {
+            return Err(self.bad(
+                "mesh",
+                format!("{m:?}"),
+                format!("{} is a directory, not a mesh file; point mesh at the .geo or .msh file.", full.display()),
+            ));
+        }
         if !full.is_file() {
             let shown_dir = if dir.as_os_str().is_empty() { Path::new(".") } else { dir };
             return Err(self.bad(
