@@ -251,10 +251,13 @@ fn placed(block: &[usize], n_bodies: usize) -> Vec<(usize, usize)> {
 }
 
 /// The pairs with their normals and areas, integrated over the facets of
-/// side I each pair takes them from (`signs`: each facet's outward sign).
+/// side I each pair takes them from (`signs`: each facet's outward sign);
+/// where a copy is in several pairs, the normal of its surface there
+/// ([`super::normals`]).
 fn pair_normals(model: &Model, raw_pairs: &[RawPair], signs: &[Vec<f64>]) -> Vec<Pair> {
     let mut points: HashMap<(usize, usize), Vec<FacetPoint>> = HashMap::new();
-    let mut pairs = Vec::with_capacity(raw_pairs.len());
+    let mut sums = Vec::with_capacity(raw_pairs.len());
+    let mut areas = Vec::with_capacity(raw_pairs.len());
     for p in raw_pairs {
         let (mut nk, mut area) = ([0.0; 3], 0.0);
         for s in &p.shares {
@@ -272,18 +275,22 @@ fn pair_normals(model: &Model, raw_pairs: &[RawPair], signs: &[Vec<f64>]) -> Vec
                 }
             }
         }
-        let nrm = element::norm(nk);
-        let normal = if nrm > 0.0 { [nk[0] / nrm, nk[1] / nrm, nk[2] / nrm] } else { [0.0; 3] };
-        pairs.push(Pair {
+        sums.push(nk);
+        areas.push(area);
+    }
+    let copies: Vec<[usize; 2]> = raw_pairs.iter().map(|p| [p.k, p.l]).collect();
+    let contacts: Vec<usize> = raw_pairs.iter().map(|p| p.contact).collect();
+    let normals = super::normals::smooth_normals(&copies, &contacts, &sums, &model.mesh_node);
+    (raw_pairs.iter().zip(normals).zip(areas))
+        .map(|((p, normal), area)| Pair {
             k: p.k,
             l: p.l,
             contact: p.contact,
             normal,
             area,
             shares: p.shares.iter().map(|s| (s.facet, s.node)).collect(),
-        });
-    }
-    pairs
+        })
+        .collect()
 }
 
 /// Plane models lie in z = 0, axisymmetric ones in x = r >= 0.

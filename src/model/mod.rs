@@ -21,7 +21,8 @@
 //! [`Model::build`] (build.rs) takes the steps in order: bodies, contacts
 //! (topology.rs: blocks and fans; facet_cells.rs: the two cells of every
 //! contact facet; contacts.rs: the split and the pairs),
-//! supports, the rigid-motion check (held.rs), loads, pair normals and
+//! supports, the rigid-motion check (held.rs), loads, pair normals
+//! (normals.rs: a copy in several pairs takes its surface's normal) and
 //! areas. builder.rs holds what every step reads and its messages.
 //! What the built model makes legal but a user may not mean (bodies bonded
 //! by shared nodes without a contact) is in warnings.rs.
@@ -31,6 +32,7 @@ mod builder;
 mod contacts;
 mod facet_cells;
 mod held;
+mod normals;
 pub mod quality;
 mod spec;
 mod topology;
@@ -91,7 +93,9 @@ pub struct Pair {
     pub k: usize,
     pub l: usize,
     pub contact: usize,
-    /// Unit outward normal of body I at k (area-weighted over its facets).
+    /// Unit outward normal of body I at k (area-weighted over its facets,
+    /// and over those of the pairs it shares a copy with on a smooth
+    /// surface: [`normals`]).
     pub normal: [f64; 3],
     /// Area the pair controls, `∫ N_k dA` over the facets of body I (with
     /// thickness or 2 pi r as for every other integral).
