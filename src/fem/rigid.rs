@@ -11,10 +11,14 @@
 //! pivots of a factorisation. [`crate::model`] asks it of the supports with
 //! every contact closed, [`crate::contact::rigid`] of the parts under a set
 //! of contact states.
+//!
+//! A motion nothing stops is named as a person would ([`Motion`]): a
+//! rotation about a point (an axis through it in 3D), or, when that point
+//! lies far outside the part, a translation along the direction it moves.
 
 use nalgebra::DMatrix;
 
-use super::vec3::{cross, unit};
+use super::vec3::{cross, norm, unit};
 use super::Analysis;
 
 /// The number of rigid motions.
@@ -35,6 +39,43 @@ pub fn names(analysis: Analysis) -> &'static [&'static str] {
             "rotation about y",
             "rotation about z",
         ],
+    }
+}
+
+/// A rotation about a point further than this many part sizes from the
+/// part's centre is named a translation.
+const FAR: f64 = 10.0;
+
+/// A rigid motion of a part, named: what [`RigidModes::motion`] makes of
+/// amplitudes along its modes (their sign is arbitrary: so is the sense).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Motion {
+    /// Along a unit direction (`solid`: in 3D, else in the plane).
+    Translation { dir: [f64; 3], solid: bool },
+    /// In a plane analysis: about a point (about z).
+    Turn { point: [f64; 3] },
+    /// In 3D: about the unit axis through `point`.
+    Rotation { axis: [f64; 3], point: [f64; 3] },
+}
+
+impl std::fmt::Display for Motion {
+    /// "translation along (1.0000, 0.0000)", "rotation about (0.0000,
+    /// 0.0000)" in a plane, "rotation about the axis (..) through (..)" in 3D.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let xyz = |v: [f64; 3], n: usize| {
+            // rounded first, so that a hair below zero is not "-0.0000"
+            let c: Vec<String> = v[..n].iter().map(|x| format!("{:.4}", (x * 1e4).round() / 1e4 + 0.0)).collect();
+            format!("({})", c.join(", "))
+        };
+        match *self {
+            Motion::Translation { dir, solid } => {
+                write!(f, "translation along {}", xyz(dir, if solid { 3 } else { 2 }))
+            }
+            Motion::Turn { point } => write!(f, "rotation about {}", xyz(point, 2)),
+            Motion::Rotation { axis, point } => {
+                write!(f, "rotation about the axis {} through {}", xyz(axis, 3), xyz(point, 3))
+            }
+        }
     }
 }
 
@@ -78,6 +119,45 @@ impl RigidModes {
         }
     }
 
+    /// The motion `u(x) = R(x) a` named: a rotation about the point it
+    /// leaves in place (the axis's point nearest the centre in 3D, where a
+    /// slide along the axis is left unsaid), or a translation when that
+    /// point is further than [`FAR`] sizes away or there is no rotation.
+    pub fn motion(&self, a: &[f64]) -> Motion {
+        let (c, s) = (self.center, self.scale);
+        let t = match self.analysis {
+            Analysis::PlaneStrain | Analysis::PlaneStress => [a[0], a[1], 0.0],
+            Analysis::Axisymmetric => [0.0, a[0], 0.0],
+            Analysis::Solid => [a[0], a[1], a[2]],
+        };
+        // the rotation (per unit of the scaled length) and, from u(p) = 0
+        // (in 3D: u(p) along the axis), the point p - c in scaled lengths
+        let (w, p) = match self.analysis {
+            Analysis::PlaneStrain | Analysis::PlaneStress => ([0.0, 0.0, a[2]], [-a[1] / a[2], a[0] / a[2], 0.0]),
+            Analysis::Axisymmetric => ([0.0; 3], [0.0; 3]),
+            Analysis::Solid => {
+                let w = [a[3], a[4], a[5]];
+                let ww = w.iter().map(|x| x * x).sum::<f64>();
+                (w, cross(w, t).map(|x| x / ww))
+            }
+        };
+        let (wn, tn, solid) = (norm(w), norm(t), self.analysis == Analysis::Solid);
+        if wn == 0.0 || norm(p) > FAR || !p.iter().all(|x| x.is_finite()) {
+            return Motion::Translation { dir: if tn > 0.0 { t.map(|x| x / tn) } else { unit(1) }, solid };
+        }
+        let point = std::array::from_fn(|i| c[i] + s * p[i]);
+        if !solid {
+            return Motion::Turn { point };
+        }
+        let mut axis = w.map(|x| x / wn);
+        // one sense for the axis: its largest component positive
+        let big = (0..3).fold(0, |b, i| if axis[i].abs() > axis[b].abs() { i } else { b });
+        if axis[big] < 0.0 {
+            axis = axis.map(|x| -x);
+        }
+        Motion::Rotation { axis, point }
+    }
+
     /// `sum r r^T` over the held directions, `r = dir . R(x)` for each
     /// (point, direction): singular exactly when some rigid motion moves
     /// none of them.
@@ -117,6 +197,30 @@ mod tests {
         assert_eq!(rm.along([1.0, 0.0, 0.0], [0.0, 1.0, 0.0])[5], 1.0);
         assert_eq!(rm.along([0.0, 1.0, 0.0], [1.0, 0.0, 0.0])[5], -1.0);
         assert_eq!(rm.along([0.0, 1.0, 0.0], [0.0, 0.0, 1.0])[3], 1.0);
+    }
+
+    #[test]
+    fn motions_are_named_by_the_point_they_turn_about_or_the_way_they_go() {
+        // a plane part centred at (2, 1), size 4: u = (a0 - a2 dy, a1 + a2 dx)
+        let rm = RigidModes::new(Analysis::PlaneStrain, [2.0, 1.0, 0.0], 4.0);
+        // turning about (0, 0): d = (-0.5, -0.25), so a0 = -0.25 a2, a1 = 0.5 a2
+        let m = rm.motion(&[-0.25 * 3.0, 0.5 * 3.0, 3.0]);
+        let Motion::Turn { point } = m else { panic!("{m:?}") };
+        assert!(point.iter().all(|x| x.abs() < 1e-15), "{point:?}");
+        assert_eq!(m.to_string(), "rotation about (0.0000, 0.0000)");
+        // a translation, and a rotation about a point 100 sizes away
+        assert_eq!(rm.motion(&[0.6, -0.8, 0.0]), Motion::Translation { dir: [0.6, -0.8, 0.0], solid: false });
+        assert_eq!(rm.motion(&[0.6, -0.8, 0.01]).to_string(), "translation along (0.6000, -0.8000)");
+        // in 3D about the axis x = 1, y = 2 (along z), with a slide along it
+        let rm = RigidModes::new(Analysis::Solid, [0.0; 3], 2.0);
+        // u = t + w x d, w = (0, 0, -1): at d = (0.5, 1, 0) u = (0, 0, t_z)
+        let m = rm.motion(&[-1.0, 0.5, 0.3, 0.0, 0.0, -1.0]);
+        let Motion::Rotation { axis, point } = m else { panic!("{m:?}") };
+        assert_eq!(axis, [0.0, 0.0, 1.0]);
+        assert!((point[0] - 1.0).abs() < 1e-15 && (point[1] - 2.0).abs() < 1e-15 && point[2].abs() < 1e-15);
+        assert_eq!(m.to_string(), "rotation about the axis (0.0000, 0.0000, 1.0000) through (1.0000, 2.0000, 0.0000)");
+        let ax = RigidModes::new(Analysis::Axisymmetric, [3.0, 0.0, 0.0], 1.0);
+        assert_eq!(ax.motion(&[-2.0]), Motion::Translation { dir: [0.0, -1.0, 0.0], solid: false });
     }
 
     #[test]
