@@ -468,7 +468,7 @@ fn frictionless_joint_that_lets_a_block_slide_is_refused_as_singular() {
                 "singular",
                 "iteration 2",
                 "(0 stick, 5 slip, 0 open)",
-                "slides or rotates freely",
+                "slides or rotates freely (translation along (1.0000, 0.0000))",
                 "carry no shear",
                 "give the contacts friction or cohesion",
             ],

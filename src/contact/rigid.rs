@@ -10,10 +10,23 @@
 //! per part): the interface system is singular exactly when it is not
 //! empty, whatever round-off lets a factorisation get away with. Decided
 //! from the geometry, never from pivots.
+//!
+//! A pair on a curved contact that holds only along its normal holds less
+//! than its row says: its normal is the mean of its facets' normals, which
+//! spread over an angle `theta` about it, and the smooth surface the facets
+//! stand for may face anywhere within it. A ring in a round hole meshed in
+//! facets of unequal length has normals a few 1e-4 off the radius, so the
+//! rows stop the ring's rotation, weakly, where nothing does. Such a tie
+//! ([`TieKind::Normal`]) comes with its slack ([`TieKind::Slack`]) across
+//! the directions the pair leaves free, `-theta^2 r_t r_t^T`: a motion
+//! that moves the pairs along their normals by less than their facets'
+//! spread lets it move across them is free.
+
+use std::ops::Deref;
 
 use nalgebra::DMatrix;
 
-use crate::fem::rigid::{n_modes, RigidModes};
+use crate::fem::rigid::{n_modes, Motion, RigidModes};
 use crate::model::Model;
 
 /// The rigid motions of one part and what its supports make of them.
@@ -47,34 +60,84 @@ impl PartModes {
     }
 }
 
-/// One tie between two parts: the pair's position and the tied direction.
+/// One row between two parts: the pair's position and a direction.
 pub struct Tie {
     pub parts: [usize; 2],
     pub x: [f64; 3],
     pub dir: [f64; 3],
+    pub kind: TieKind,
 }
 
-/// The parts that some rigid motion left free by supports and `ties` moves,
-/// ascending; empty when every part is held.
+/// What a [`Tie`]'s row says.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TieKind {
+    /// The parts move alike along `dir`.
+    Exact,
+    /// Along `dir`, a pair's normal known only to within its facets'
+    /// spread: holds with its slack beside it, never alone.
+    Normal,
+    /// The slack of a pair's [`TieKind::Normal`] towards `dir`, a
+    /// direction the pair does not tie, by the angle (radians) its
+    /// facets' normals spread over: the row counts `-angle^2` times.
+    Slack(f64),
+}
+
+impl Tie {
+    /// A tie that holds exactly along `dir`.
+    pub fn exact(parts: [usize; 2], x: [f64; 3], dir: [f64; 3]) -> Tie {
+        Tie { parts, x, dir, kind: TieKind::Exact }
+    }
+
+    /// The weight of its row in `C^T C`.
+    fn weight(&self) -> f64 {
+        match self.kind {
+            TieKind::Exact | TieKind::Normal => 1.0,
+            TieKind::Slack(angle) => -angle * angle,
+        }
+    }
+}
+
+/// The parts some rigid motion left free moves, and those motions.
+/// Dereferences to the parts.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Free {
+    /// The parts, ascending.
+    pub parts: Vec<usize>,
+    /// Each free part's motions, in the order of `parts`: one where a
+    /// single motion is left (a ring turning in its hole), else a basis of
+    /// those left, each along as few of the part's modes as it can be.
+    pub motions: Vec<(usize, Motion)>,
+}
+
+impl Deref for Free {
+    type Target = [usize];
+    fn deref(&self) -> &[usize] {
+        &self.parts
+    }
+}
+
+/// The parts that some rigid motion left free by supports and `ties`
+/// moves, with the motions; empty when every part is held.
 ///
-/// A part whose own supports, and ties to parts already found held, stop
-/// its rigid motions is held: found so part by part from the supported
-/// ones outward (a few 6 x 6 eigenproblems per part, so that a rock mass
-/// of a thousand blocks costs milliseconds). Parts held only together
-/// (two blocks that each need the other) are left to the eigenproblem of
-/// `C^T C` over what remains, one group of parts joined by ties at a time,
-/// with ties to held parts acting as supports.
-pub fn free_parts(parts: &[PartModes], ties: impl Iterator<Item = Tie>) -> Vec<usize> {
+/// A part whose own supports, and exact ties to parts already found held,
+/// stop its rigid motions is held: found so part by part from the
+/// supported ones outward (a few 6 x 6 eigenproblems per part, so that a
+/// rock mass of a thousand blocks costs milliseconds). Parts held only
+/// together (two blocks that each need the other), or only by normals with
+/// slack, are left to the eigenproblem of `C^T C` over what remains, one
+/// group of parts joined by ties at a time, with ties to held parts acting
+/// as supports.
+pub fn free_parts(parts: &[PartModes], ties: impl Iterator<Item = Tie>) -> Free {
     let np = parts.len();
-    let Some(first) = parts.first() else { return Vec::new() };
+    let Some(first) = parts.first() else { return Free::default() };
     let nm = n_modes(first.modes.analysis());
     let ties: Vec<Tie> = ties.filter(|t| t.parts[0] != t.parts[1]).collect();
     let mut at: Vec<Vec<usize>> = vec![Vec::new(); np];
-    for (i, t) in ties.iter().enumerate() {
+    for (i, t) in ties.iter().enumerate().filter(|(_, t)| t.kind == TieKind::Exact) {
         at[t.parts[0]].push(i);
         at[t.parts[1]].push(i);
     }
-    // each part's supports, then its ties to held parts as it learns of them
+    // each part's supports, then its exact ties to held parts as it learns of them
     let mut gram: Vec<DMatrix<f64>> = parts.iter().map(|p| p.gram.clone()).collect();
     let mut held = vec![false; np];
     let mut found: Vec<usize> = (0..np).filter(|&p| full_rank(&gram[p])).collect();
@@ -86,18 +149,21 @@ pub fn free_parts(parts: &[PartModes], ties: impl Iterator<Item = Tie>) -> Vec<u
             if held[q] {
                 continue;
             }
-            add_outer(&mut gram[q], &parts[q].modes.along(t.x, t.dir)[..nm]);
+            add_outer(&mut gram[q], &parts[q].modes.along(t.x, t.dir)[..nm], 1.0);
             if full_rank(&gram[q]) {
                 held[q] = true;
                 found.push(q);
             }
         }
     }
-    let mut free = Vec::new();
+    let mut free = Free::default();
     for group in groups(&held, &ties) {
-        free.extend(free_in(parts, &gram, &ties, &group, nm));
+        let group_free = free_in(parts, &gram, &ties, &held, &group, nm);
+        free.parts.extend(group_free.parts);
+        free.motions.extend(group_free.motions);
     }
-    free.sort_unstable();
+    free.parts.sort_unstable();
+    free.motions.sort_by_key(|m| m.0);
     free
 }
 
@@ -124,10 +190,18 @@ fn groups(held: &[bool], ties: &[Tie]) -> Vec<Vec<usize>> {
     of_root.into_values().collect()
 }
 
-/// The parts of `group` that a rigid motion moves: the null space of
-/// `C^T C` over the group, each part's supports and ties to held parts
-/// already in `gram`.
-fn free_in(parts: &[PartModes], gram: &[DMatrix<f64>], ties: &[Tie], group: &[usize], nm: usize) -> Vec<usize> {
+/// The parts of `group` that a rigid motion moves, and their motions: the
+/// null space (and the negative side, which the slack of normals makes) of
+/// `C^T C` over the group, each part's supports and exact ties to held
+/// parts already in `gram`.
+fn free_in(
+    parts: &[PartModes],
+    gram: &[DMatrix<f64>],
+    ties: &[Tie],
+    held: &[bool],
+    group: &[usize],
+    nm: usize,
+) -> Free {
     let mut index = std::collections::HashMap::new();
     for (i, &p) in group.iter().enumerate() {
         index.insert(p, i);
@@ -137,30 +211,73 @@ fn free_in(parts: &[PartModes], gram: &[DMatrix<f64>], ties: &[Tie], group: &[us
         m.view_mut((i * nm, i * nm), (nm, nm)).copy_from(&gram[p]);
     }
     for t in ties {
-        let (Some(&i), Some(&j)) = (index.get(&t.parts[0]), index.get(&t.parts[1])) else { continue };
+        let w = t.weight();
         let (rp, rq) = (parts[t.parts[0]].modes.along(t.x, t.dir), parts[t.parts[1]].modes.along(t.x, t.dir));
-        let row: Vec<(usize, f64)> =
-            (0..nm).map(|a| (i * nm + a, rp[a])).chain((0..nm).map(|a| (j * nm + a, -rq[a]))).collect();
+        let row: Vec<(usize, f64)> = match (index.get(&t.parts[0]), index.get(&t.parts[1])) {
+            (Some(&i), Some(&j)) => {
+                (0..nm).map(|a| (i * nm + a, rp[a])).chain((0..nm).map(|a| (j * nm + a, -rq[a]))).collect()
+            }
+            // a held part's side acts as a support (exact ties are in `gram`)
+            (Some(&i), None) if held[t.parts[1]] && t.kind != TieKind::Exact => {
+                (0..nm).map(|a| (i * nm + a, rp[a])).collect()
+            }
+            (None, Some(&j)) if held[t.parts[0]] && t.kind != TieKind::Exact => {
+                (0..nm).map(|a| (j * nm + a, rq[a])).collect()
+            }
+            _ => continue,
+        };
         for &(r, a) in &row {
             for &(c, b) in &row {
-                m[(r, c)] += a * b;
+                m[(r, c)] += w * a * b;
             }
         }
     }
     let eig = m.symmetric_eigen();
     let big = eig.eigenvalues.iter().fold(0.0f64, |a, &v| a.max(v.abs()));
-    let mut free = vec![false; group.len()];
+    // the free motions, and each part's share of them
+    let mut shares: Vec<Vec<Vec<f64>>> = vec![Vec::new(); group.len()];
     for (k, &lambda) in eig.eigenvalues.iter().enumerate() {
         if lambda > 1e-12 * big && big > 0.0 {
             continue;
         }
         let v = eig.eigenvectors.column(k);
-        for (i, f) in free.iter_mut().enumerate() {
-            let w: f64 = (0..nm).map(|a| v[i * nm + a].powi(2)).sum::<f64>().sqrt();
-            *f |= w > 1e-6;
+        for (i, share) in shares.iter_mut().enumerate() {
+            let part: Vec<f64> = (0..nm).map(|a| v[i * nm + a]).collect();
+            if part.iter().map(|x| x * x).sum::<f64>().sqrt() > 1e-6 {
+                share.push(part);
+            }
         }
     }
-    group.iter().zip(free).filter(|(_, f)| *f).map(|(&p, _)| p).collect()
+    let mut free = Free::default();
+    for (&p, share) in group.iter().zip(shares).filter(|(_, s)| !s.is_empty()) {
+        free.parts.push(p);
+        free.motions.extend(echelon(share, nm).iter().map(|a| (p, parts[p].modes.motion(a))));
+    }
+    free
+}
+
+/// A basis of the span of `rows` (vectors of length `nm`), each along as
+/// few of the leading modes as it can be (reduced row echelon form).
+fn echelon(rows: Vec<Vec<f64>>, nm: usize) -> Vec<Vec<f64>> {
+    let mut rows = rows;
+    let scale = rows.iter().flatten().fold(0.0f64, |a, x| a.max(x.abs()));
+    let mut basis: Vec<Vec<f64>> = Vec::new();
+    for col in 0..nm {
+        let Some(best) = (0..rows.len()).max_by(|&a, &b| rows[a][col].abs().total_cmp(&rows[b][col].abs())) else {
+            break;
+        };
+        if rows[best][col].abs() <= 1e-6 * scale {
+            continue;
+        }
+        let pivot = rows.swap_remove(best);
+        let pivot: Vec<f64> = pivot.iter().map(|x| x / pivot[col]).collect();
+        for r in rows.iter_mut().chain(basis.iter_mut()) {
+            let f = r[col];
+            r.iter_mut().zip(&pivot).for_each(|(x, y)| *x -= f * y);
+        }
+        basis.push(pivot);
+    }
+    basis
 }
 
 /// Whether a part's Gram matrix stops all its rigid motions.
@@ -170,11 +287,11 @@ fn full_rank(g: &DMatrix<f64>) -> bool {
     big > 0.0 && eig.eigenvalues.iter().all(|&l| l > 1e-12 * big)
 }
 
-/// `g += r r^T`.
-fn add_outer(g: &mut DMatrix<f64>, r: &[f64]) {
+/// `g += w r r^T`.
+fn add_outer(g: &mut DMatrix<f64>, r: &[f64], w: f64) {
     for (i, a) in r.iter().enumerate() {
         for (j, b) in r.iter().enumerate() {
-            g[(i, j)] += a * b;
+            g[(i, j)] += w * a * b;
         }
     }
 }
@@ -195,11 +312,11 @@ mod tests {
     fn an_axisymmetric_ring_is_held_by_an_axial_support_alone() {
         // rings need no radial support: only the axial translation is rigid
         let center = [4.0, 0.5, 0.0];
-        assert_eq!(free_parts(&[part(Analysis::Axisymmetric, center, &[])], std::iter::empty()), vec![0]);
+        assert_eq!(free_parts(&[part(Analysis::Axisymmetric, center, &[])], std::iter::empty()).parts, vec![0]);
         let held = part(Analysis::Axisymmetric, center, &[([4.0, 0.0, 0.0], 1)]);
-        assert_eq!(free_parts(&[held], std::iter::empty()), Vec::<usize>::new());
+        assert_eq!(free_parts(&[held], std::iter::empty()).parts, Vec::<usize>::new());
         let radial = part(Analysis::Axisymmetric, center, &[([4.0, 0.0, 0.0], 0)]);
-        assert_eq!(free_parts(&[radial], std::iter::empty()), vec![0], "a radial support holds nothing rigid");
+        assert_eq!(free_parts(&[radial], std::iter::empty()).parts, vec![0], "a radial support holds nothing rigid");
     }
 
     #[test]
@@ -215,19 +332,63 @@ mod tests {
                 &[([0.0, -1.0, 0.0], 0), ([0.0, -1.0, 0.0], 1), ([4.0, -1.0, 0.0], 1)],
             )
         };
-        let pin = |p: usize, q: usize, x: [f64; 3]| {
-            [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]].map(|dir| Tie { parts: [p, q], x, dir })
-        };
+        let pin =
+            |p: usize, q: usize, x: [f64; 3]| [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]].map(|dir| Tie::exact([p, q], x, dir));
         let arch = |crown: [f64; 3]| {
             let parts = [ground(), plane([1.0, 1.0, 0.0]), plane([3.0, 1.0, 0.0])];
             let ties = [pin(0, 1, [0.0, 0.0, 0.0]), pin(0, 2, [4.0, 0.0, 0.0]), pin(1, 2, crown)];
-            free_parts(&parts, ties.into_iter().flatten())
+            free_parts(&parts, ties.into_iter().flatten()).parts
         };
         assert_eq!(arch([2.0, 2.0, 0.0]), Vec::<usize>::new(), "a three-hinged arch stands");
         assert_eq!(arch([2.0, 0.0, 0.0]), vec![1, 2], "hinges on one line: a mechanism");
         // one half alone on its pin turns
         let parts = [ground(), plane([1.0, 1.0, 0.0])];
-        assert_eq!(free_parts(&parts, pin(0, 1, [0.0, 0.0, 0.0]).into_iter()), vec![1]);
+        assert_eq!(free_parts(&parts, pin(0, 1, [0.0, 0.0, 0.0]).into_iter()).parts, vec![1]);
+    }
+
+    /// A ring (part 1, centred at the origin) in a hole of held ground
+    /// (part 0), tied along its normals at `n` points of the unit circle,
+    /// each normal turned off the radius by `tilt(theta)`, with `spread` the
+    /// angle its facets spread over (0: exact ties).
+    fn ring(n: usize, tilt: impl Fn(f64) -> f64, spread: f64) -> Free {
+        let ground = part(
+            Analysis::PlaneStrain,
+            [0.0, 0.0, 0.0],
+            &[([2.0, 0.0, 0.0], 0), ([2.0, 0.0, 0.0], 1), ([-2.0, 0.0, 0.0], 1)],
+        );
+        let ring = part(Analysis::PlaneStrain, [0.0, 0.0, 0.0], &[]);
+        let mut ties = Vec::new();
+        for i in 0..n {
+            let theta = 2.0 * std::f64::consts::PI * i as f64 / n as f64;
+            let x = [theta.cos(), theta.sin(), 0.0];
+            let a = theta + tilt(theta);
+            let (normal, across) = ([a.cos(), a.sin(), 0.0], [-a.sin(), a.cos(), 0.0]);
+            if spread == 0.0 {
+                ties.push(Tie::exact([1, 0], x, normal));
+            } else {
+                ties.push(Tie { parts: [1, 0], x, dir: normal, kind: TieKind::Normal });
+                ties.push(Tie { parts: [1, 0], x, dir: across, kind: TieKind::Slack(spread) });
+            }
+        }
+        free_parts(&[ground, ring], ties.into_iter())
+    }
+
+    #[test]
+    fn a_ring_turns_in_its_hole_whatever_its_facets_make_of_the_normals() {
+        // normals a few 1e-4 off the radius (facets of unequal length):
+        // exact rows hold the ring, weakly; with their facets' spread
+        // (15 degrees a facet) they do not, and the motion is the rotation
+        let off = |t: f64| 7e-4 * (3.0 * t).sin() + 2e-4 * (5.0 * t).cos();
+        assert_eq!(ring(24, off, 0.0).parts, Vec::<usize>::new(), "exact rows hold it");
+        let free = ring(24, off, 15f64.to_radians());
+        assert_eq!(free.parts, vec![1]);
+        let [(1, Motion::Turn { point })] = free.motions[..] else { panic!("{:?}", free.motions) };
+        assert!(point[0].hypot(point[1]) < 1e-3, "about the centre: {point:?}");
+        // exactly radial normals: free either way
+        assert_eq!(ring(24, |_| 0.0, 0.0).motions.len(), 1);
+        // an oval (normals 0.1 rad off the radius, facets 1 degree apart)
+        // is held by its shape
+        assert_eq!(ring(360, |t| 0.1 * (2.0 * t).sin(), 1f64.to_radians()).parts, Vec::<usize>::new());
     }
 
     #[test]
@@ -240,23 +401,25 @@ mod tests {
             let mut v = Vec::new();
             for x in [0.0, 1.0, 2.0] {
                 for &dir in dirs {
-                    v.push(Tie { parts: [0, 1], x: [x, 1.0, 0.0], dir });
+                    v.push(Tie::exact([0, 1], [x, 1.0, 0.0], dir));
                 }
             }
             v
         };
         let (n, t) = ([0.0, 1.0, 0.0], [1.0, 0.0, 0.0]);
         let parts = [bottom, top];
-        assert_eq!(free_parts(&parts, joint(&[n, t]).into_iter()), Vec::<usize>::new(), "stuck");
-        assert_eq!(free_parts(&parts, joint(&[n]).into_iter()), vec![1], "slipping: slides along x");
-        assert_eq!(free_parts(&parts, joint(&[]).into_iter()), vec![1], "open: held by nothing");
+        assert_eq!(free_parts(&parts, joint(&[n, t]).into_iter()).parts, Vec::<usize>::new(), "stuck");
+        assert_eq!(free_parts(&parts, joint(&[n]).into_iter()).parts, vec![1], "slipping: slides along x");
+        assert_eq!(free_parts(&parts, joint(&[]).into_iter()).parts, vec![1], "open: held by nothing");
         // a single tied pair stops translations, not the rotation about it
-        let one =
-            vec![Tie { parts: [0, 1], x: [1.0, 1.0, 0.0], dir: n }, Tie { parts: [0, 1], x: [1.0, 1.0, 0.0], dir: t }];
-        assert_eq!(free_parts(&parts, one.into_iter()), vec![1]);
+        let one = vec![Tie::exact([0, 1], [1.0, 1.0, 0.0], n), Tie::exact([0, 1], [1.0, 1.0, 0.0], t)];
+        assert_eq!(free_parts(&parts, one.into_iter()).parts, vec![1]);
+        // the motions: the slipping top slides along x
+        let free = free_parts(&parts, joint(&[n]).into_iter());
+        assert_eq!(free.motions, vec![(1, Motion::Translation { dir: [1.0, 0.0, 0.0], solid: false })]);
         // without the x support the bottom slides too, and the stuck top with it
         let loose = plane([1.0, 0.5, 0.0], &[([0.0, 0.0, 0.0], 1), ([2.0, 0.0, 0.0], 1)]);
         let top = plane([1.0, 1.5, 0.0], &[]);
-        assert_eq!(free_parts(&[loose, top], joint(&[n, t]).into_iter()), vec![0, 1]);
+        assert_eq!(free_parts(&[loose, top], joint(&[n, t]).into_iter()).parts, vec![0, 1]);
     }
 }

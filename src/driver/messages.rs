@@ -11,6 +11,7 @@ use std::path::PathBuf;
 use crate::contact::law::ContactState;
 use crate::contact::system::SolveFailure;
 use crate::contact::{Failed, SlipLaw, StateRule};
+use crate::fem::rigid::Motion;
 use crate::model::Model;
 use crate::results::state_counts;
 use crate::scene::Scene;
@@ -47,8 +48,16 @@ pub enum ContactError {
     /// contacts carry no shear at all (no friction and no cohesion, or
     /// frictionless slip), so no load along the joint is to blame. `rule`:
     /// the paper's gives a slipping pair a fixed shear, which holds nothing
-    /// across its slip (the robust rule's friction does).
-    Sliding { scene: PathBuf, at: At, bodies: Vec<String>, no_shear: bool, rule: StateRule },
+    /// across its slip (the robust rule's friction does). `motions`: what
+    /// moves, by body (a ring turning in its hole).
+    Sliding {
+        scene: PathBuf,
+        at: At,
+        bodies: Vec<String>,
+        no_shear: bool,
+        rule: StateRule,
+        motions: Vec<(String, Motion)>,
+    },
     /// A load step's iteration did not converge after `iterations`
     /// (`cycled`: its states cycle) under `rule`; `results`: where the last
     /// iteration's results were written.
@@ -108,10 +117,11 @@ impl ContactError {
             SolveFailure::NotHeld(ids) => {
                 ContactError::NotHeld { scene: scene_path, at, bodies: names(&ids), apex: apex(scene) }
             }
-            SolveFailure::Sliding(ids) => {
-                let bodies = names(&ids);
+            SolveFailure::Sliding(free) => {
+                let bodies = names(&free);
                 let no_shear = no_shear(model, scene, &f.states, &bodies);
-                ContactError::Sliding { scene: scene_path, at, bodies, no_shear, rule: scene.solver.rule }
+                let motions = (free.motions.iter()).map(|&(p, m)| (names(&[p]).join("\", \""), m)).collect();
+                ContactError::Sliding { scene: scene_path, at, bodies, no_shear, rule: scene.solver.rule, motions }
             }
         }
     }
@@ -146,6 +156,21 @@ fn no_shear(model: &Model, scene: &Scene, states: &[ContactState], bodies: &[Str
             let c = &scene.contacts[p.contact];
             c.slip == SlipLaw::Frictionless || (c.friction == 0.0 && c.residual_cohesion == 0.0)
         })
+}
+
+/// The motions that nothing holds, for a message: " (rotation about
+/// (0.0000, 0.0000))", by body where there are several; empty when none
+/// is known.
+fn motions_named(motions: &[(String, Motion)]) -> String {
+    let mut bodies: Vec<&String> = motions.iter().map(|(b, _)| b).collect();
+    bodies.dedup();
+    let each: Vec<String> =
+        (motions.iter()).map(|(b, m)| if bodies.len() > 1 { format!("\"{b}\": {m}") } else { m.to_string() }).collect();
+    if each.is_empty() {
+        String::new()
+    } else {
+        format!(" ({})", each.join("; "))
+    }
 }
 
 /// "body \"a\"" or "bodies \"a\", \"b\"".
@@ -192,7 +217,7 @@ impl fmt::Display for ContactError {
                     if one { "it" } else { "them" },
                 )
             }
-            ContactError::Sliding { scene, at, bodies, no_shear, rule } => {
+            ContactError::Sliding { scene, at, bodies, no_shear, rule, motions } => {
                 let (who, moves, its) = match bodies.len() {
                     0 => ("a body".to_string(), "slides or rotates", "its"),
                     1 => (bodies_named(bodies), "slides or rotates", "its"),
@@ -200,8 +225,9 @@ impl fmt::Display for ContactError {
                 };
                 write!(
                     f,
-                    "{}: the interface system is singular at {at}: {who} {moves} freely on {its} contacts",
-                    scene.display()
+                    "{}: the interface system is singular at {at}: {who} {moves} freely{} on {its} contacts",
+                    scene.display(),
+                    motions_named(motions)
                 )?;
                 if *no_shear {
                     write!(f, ", which carry no shear (no friction and no cohesion, or slip = \"frictionless\"): nothing holds {} along them, whatever the load. Add a support that holds {} tangentially, or give the contacts friction or cohesion", if bodies.len() > 1 { "them" } else { "it" }, if bodies.len() > 1 { "them" } else { "it" })
@@ -255,12 +281,13 @@ impl fmt::Display for SafetyError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let SafetyError::Unsafe { scene, at_one, holds, fails, max_factor } = self;
         let (cause, no_shear) = match at_one {
-            ContactError::Sliding { at, bodies, no_shear, .. } => {
+            ContactError::Sliding { at, bodies, no_shear, motions, .. } => {
                 let who = if bodies.is_empty() { "a body".to_string() } else { bodies_named(bodies) };
                 let verb = if bodies.len() > 1 { "slide or rotate" } else { "slides or rotates" };
                 (
                     format!(
-                        "the scene loses equilibrium at {at}: {who} {verb} freely on {} contacts",
+                        "the scene loses equilibrium at {at}: {who} {verb} freely{} on {} contacts",
+                        motions_named(motions),
                         if bodies.len() > 1 { "their" } else { "its" }
                     ),
                     *no_shear,

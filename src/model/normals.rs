@@ -28,11 +28,21 @@
 //! own joint's normal), pairs across a crease, and pairs that close a loop
 //! (two joints of one group crossing: no copy is the smooth side there).
 //! On a flat contact the sum changes nothing.
+//!
+//! [`Model::normal_spreads`]: how far a pair's facets' normals turn from
+//! its normal, the angle within which the smooth surface they stand for
+//! may face (zero on a flat contact; about the facet angle on a curve).
 
 use std::collections::HashMap;
 
 use super::contacts::CREASE_ANGLE;
-use crate::fem::element::{dot, norm};
+use super::Model;
+use crate::fem::element::{self, dot, norm};
+use crate::fem::shape;
+use crate::fem::vec3::cross;
+
+/// A spread below this many radians is round-off on a flat facet: none.
+const FLAT: f64 = 1e-9;
 
 /// The unit normal of every pair from `sums`, each pair's normal summed
 /// over its own facets (outward of its side I, weighted by area), its
@@ -90,6 +100,32 @@ fn hub(pairs: &[usize], copies: &[[usize; 2]]) -> Option<usize> {
     others.sort_unstable();
     others.dedup();
     (others.len() == n && !others.contains(&hub)).then_some(hub)
+}
+
+impl Model {
+    /// For every pair, the largest angle (radians) between its normal and
+    /// the normals of its facets at their nodes; 0 on flat facets.
+    pub fn normal_spreads(&self) -> Vec<f64> {
+        (self.pairs.iter())
+            .map(|p| {
+                let spread = (p.shares.iter())
+                    .flat_map(|&(f, _)| {
+                        let facet = &self.interfaces[p.contact].facets[f];
+                        let fc: Vec<[f64; 3]> = facet.nodes.iter().map(|&n| self.coords[n]).collect();
+                        (shape::reference_nodes(facet.kind).iter()).map(move |&xi| {
+                            let (_, n, _, _) = element::facet_point(facet.kind, &fc, xi);
+                            norm(cross(n, p.normal)).atan2(dot(n, p.normal).abs())
+                        })
+                    })
+                    .fold(0.0, f64::max);
+                if spread > FLAT {
+                    spread
+                } else {
+                    0.0
+                }
+            })
+            .collect()
+    }
 }
 
 #[cfg(test)]

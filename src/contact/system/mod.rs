@@ -27,7 +27,11 @@
 //! slipping pair across its slip where the robust rule's linearised
 //! friction has a spring (its force turns as the pair moves across it: a
 //! wedge slipping along a V-groove while its friction still holds it
-//! partly across the groove is not free to slide).
+//! partly across the groove is not free to slide). A pair that holds
+//! along its normal alone on a curved contact holds only what its facets'
+//! normals agree on: a lining whose interface carries no shear turns in
+//! its round hole, however its facets' lengths tilt the pairs' normals
+//! (see [`super::rigid`]); what moves is named ([`Free::motions`]).
 
 pub mod coords;
 pub mod dense;
@@ -50,7 +54,7 @@ use sparse::Sparse;
 use super::basis::FaceBasis;
 use super::frame::Frame;
 use super::law::{ContactState, PairResult};
-use super::rigid::{free_parts, PartModes, Tie};
+use super::rigid::{free_parts, Free, PartModes, Tie, TieKind};
 use crate::model::{Model, ModelError};
 use crate::substructure::{OperatorRef, SchurRef};
 
@@ -230,10 +234,11 @@ pub struct InterfaceProblem<'a> {
     layout: Layout,
     basis: FaceBasis,
     solver: Box<dyn Solver + 'a>,
-    /// Rigid motions of each part and the position of each pair, to tell
-    /// which parts nothing holds.
+    /// Rigid motions of each part, and the position of each pair and the
+    /// spread of its facets' normals, to tell which parts nothing holds.
     rigid: Vec<PartModes>,
     positions: Vec<[f64; 3]>,
+    spreads: Vec<f64>,
     /// The load factors of the last solve: a new load (step) lets the
     /// junctions solve for their pressures again (see
     /// [`junction::Junction::new_load`]).
@@ -268,13 +273,14 @@ pub struct InterfaceSolution {
 }
 
 /// Why an interface solve failed.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum SolveFailure {
     /// These parts are held by nothing.
-    NotHeld(Vec<usize>),
-    /// These parts slide (or rotate) freely on slipping pairs: nothing
-    /// holds them tangentially (empty when the cause is not found).
-    Sliding(Vec<usize>),
+    NotHeld(Free),
+    /// These parts slide (or rotate) freely on slipping pairs, in these
+    /// motions: nothing holds them tangentially (empty when the cause is
+    /// not found).
+    Sliding(Free),
 }
 
 impl<'a> InterfaceProblem<'a> {
@@ -293,6 +299,7 @@ impl<'a> InterfaceProblem<'a> {
         let layout = Layout::new(model, parts, &basis);
         let rigid: Vec<PartModes> = parts.iter().map(|p| PartModes::new(model, &p.part.nodes(model))).collect();
         let positions = model.pairs.iter().map(|p| model.coords[p.k]).collect();
+        let spreads = model.normal_spreads();
         let not_held = |_| {
             ModelError::Invalid {
             scene: model.scene.clone(),
@@ -308,7 +315,7 @@ impl<'a> InterfaceProblem<'a> {
         } else {
             Box::new(Dense::new(&layout, parts).map_err(not_held)?)
         };
-        Ok(InterfaceProblem { layout, basis, solver, rigid, positions, load: Default::default(), threads })
+        Ok(InterfaceProblem { layout, basis, solver, rigid, positions, spreads, load: Default::default(), threads })
     }
 
     /// Each pair's frame, rows n, t, b (global components).
@@ -595,7 +602,7 @@ impl<'a> InterfaceProblem<'a> {
     /// Parts that a rigid motion moves which the supports and the pairs tied
     /// by the relations `rel` do not stop, a slipping pair holding as
     /// `slip` says.
-    fn free(&self, rel: &[Relation], slip: SlipHolds) -> Vec<usize> {
+    fn free(&self, rel: &[Relation], slip: SlipHolds) -> Free {
         let stiffness = match slip {
             SlipHolds::Spring => self.slip_stiffness(rel),
             _ => Vec::new(),
@@ -606,7 +613,7 @@ impl<'a> InterfaceProblem<'a> {
     /// `free` with everything a slipping pair holds, and with its springs
     /// (the parts nothing holds, then those the slipping pairs let slide),
     /// side by side.
-    fn holding(&self, rel: &[Relation]) -> (Vec<usize>, Vec<usize>) {
+    fn holding(&self, rel: &[Relation]) -> (Free, Free) {
         let (holds, stiffness) = (self.holds(), self.slip_stiffness(rel));
         if self.threads < 2 {
             return (holds.free(rel, SlipHolds::Everything, &[]), holds.free(rel, SlipHolds::Spring, &stiffness));
@@ -627,7 +634,7 @@ impl<'a> InterfaceProblem<'a> {
     }
 
     fn holds(&self) -> Holds<'_> {
-        Holds { layout: &self.layout, rigid: &self.rigid, positions: &self.positions }
+        Holds { layout: &self.layout, rigid: &self.rigid, positions: &self.positions, spreads: &self.spreads }
     }
 
     /// Why the interface system is singular: parts held by nothing once
@@ -645,19 +652,20 @@ impl<'a> InterfaceProblem<'a> {
 }
 
 /// What [`InterfaceProblem::free`] reads: the layout, the parts' rigid
-/// motions and the pairs' positions (apart from the solver, which need
-/// not be shared between threads).
+/// motions, the pairs' positions and normals' spreads (apart from the
+/// solver, which need not be shared between threads).
 struct Holds<'p> {
     layout: &'p Layout,
     rigid: &'p [PartModes],
     positions: &'p [[f64; 3]],
+    spreads: &'p [f64],
 }
 
 impl Holds<'_> {
     /// The parts a rigid motion moves which the supports and the pairs
     /// tied as `slip` says leave free (`stiffness`: each slipping pair's,
     /// read only for [`SlipHolds::Spring`]).
-    fn free(&self, rel: &[Relation], slip: SlipHolds, stiffness: &[f64]) -> Vec<usize> {
+    fn free(&self, rel: &[Relation], slip: SlipHolds, stiffness: &[f64]) -> Free {
         let (nd, layout) = (self.layout.nd, self.layout);
         let ties = rel.iter().enumerate().flat_map(|(p, rl)| {
             let frame = &layout.frames[p];
@@ -673,14 +681,58 @@ impl Holds<'_> {
                 ContactState::Open => Vec::new(),
             };
             let [(pk, _), (pl, _)] = layout.at[p];
-            dirs.into_iter().map(move |dir| Tie { parts: [pk, pl], x: self.positions[p], dir })
+            self.ties([pk, pl], p, &dirs)
         });
         // parts of one body cut into substructures are always tied at their joins
         let joined = layout.join_parts.iter().flat_map(|(ps, x)| {
-            ps[1..].iter().flat_map(move |&q| (0..nd).map(move |a| Tie { parts: [ps[0], q], x: *x, dir: IDENTITY[a] }))
+            ps[1..].iter().flat_map(move |&q| (0..nd).map(move |a| Tie::exact([ps[0], q], *x, IDENTITY[a])))
         });
         free_parts(self.rigid, ties.chain(joined))
     }
+
+    /// The ties of pair `p` (between `parts`) along `dirs` (its normal
+    /// first, when it holds): exact, unless the pair holds along its normal
+    /// alone in some tangential direction and its facets' normals spread
+    /// ([`crate::model::Model::normal_spreads`]); then its normal comes
+    /// with its slack across each direction it leaves free.
+    fn ties(&self, parts: [usize; 2], p: usize, dirs: &[[f64; 3]]) -> Vec<Tie> {
+        let (nd, frame, x, spread) = (self.layout.nd, &self.layout.frames[p], self.positions[p], self.spreads[p]);
+        let across = match dirs.split_first() {
+            Some((&n, held)) if spread > 0.0 && n == frame[0] => loose(&frame[1..nd], held),
+            _ => Vec::new(),
+        };
+        if across.is_empty() {
+            return dirs.iter().map(|&dir| Tie::exact(parts, x, dir)).collect();
+        }
+        let normal = Tie { parts, x, dir: frame[0], kind: TieKind::Normal };
+        let held = dirs[1..].iter().map(|&dir| Tie::exact(parts, x, dir));
+        let slack = across.into_iter().map(|dir| Tie { parts, x, dir, kind: TieKind::Slack(spread) });
+        std::iter::once(normal).chain(held).chain(slack).collect()
+    }
+}
+
+/// The unit directions in the span of `tangents` (orthonormal) that no
+/// direction of `held` (unit, within that span) holds: an orthonormal
+/// basis of what is left.
+fn loose(tangents: &[[f64; 3]], held: &[[f64; 3]]) -> Vec<[f64; 3]> {
+    let mut basis: Vec<[f64; 3]> = Vec::new();
+    let mut left = Vec::new();
+    for (i, &d) in held.iter().chain(tangents).enumerate() {
+        let mut v = d;
+        for b in &basis {
+            let c = crate::fem::vec3::dot(v, *b);
+            v = std::array::from_fn(|i| v[i] - c * b[i]);
+        }
+        let len = crate::fem::vec3::norm(v);
+        if len > 1e-6 {
+            let v = v.map(|x| x / len);
+            basis.push(v);
+            if i >= held.len() {
+                left.push(v);
+            }
+        }
+    }
+    left
 }
 
 /// What a slipping pair holds in the check for parts that move freely.
