@@ -17,6 +17,8 @@
 //! of its contact between the same two copies, split where their normals
 //! turn by more than [`CREASE_ANGLE`] degrees: a node on a crease (a wedge in
 //! a V-groove) gets one pair per face, each with its face's normal and area.
+//! Where one copy faces several blocks across a smooth contact (a lining
+//! that joints end on), its pairs take its surface's normal (normals.rs).
 //!
 //! Side I, written once: between two bodies, side I is the body listed
 //! first in `[[bodies]]`; between two blocks of one body, it is the block on
