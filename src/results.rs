@@ -192,6 +192,18 @@ pub struct ContactRun {
     /// The area each pair controls (its stresses times it are its forces).
     pub areas: Vec<f64>,
     pub summary: Summary,
+    /// The water in the joints at each pair, when they have some: its
+    /// pressure u at the pair's node, and its force on body I (global
+    /// axes) pushing the faces apart. `pairs` holds the solid-to-solid
+    /// stresses, the effective `sigma_n'`; the total is `sigma_n' - u`.
+    pub water: Option<PairWater>,
+}
+
+/// The water at every pair of a step (zero on dry pairs).
+#[derive(Clone, Debug)]
+pub struct PairWater {
+    pub pressure: Vec<f64>,
+    pub force: Vec<[f64; 3]>,
 }
 
 impl ContactRun {
@@ -199,6 +211,16 @@ impl ContactRun {
     pub fn shear(&self, p: usize) -> [f64; 3] {
         let (f, r) = (&self.frames[p], &self.pairs[p]);
         std::array::from_fn(|i| r.tau_t * f[1][i] + r.tau_b * f[2][i])
+    }
+
+    /// The water pressure at pair `p` (0 when dry).
+    pub fn water_pressure(&self, p: usize) -> f64 {
+        self.water.as_ref().map_or(0.0, |w| w.pressure[p])
+    }
+
+    /// The total normal stress at pair `p`, `sigma_n' - u`.
+    pub fn sigma_n_total(&self, p: usize) -> f64 {
+        self.pairs[p].sigma_n - self.water_pressure(p)
     }
 
     /// The contact force of pair `p` on body I in global axes.

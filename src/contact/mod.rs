@@ -38,6 +38,7 @@ pub mod rigid;
 pub mod safety;
 pub mod system;
 pub mod traction;
+pub mod water;
 
 use law::{ContactState, Strength};
 use system::{InterfaceProblem, InterfaceSolution, SolveFailure};

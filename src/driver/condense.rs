@@ -13,6 +13,7 @@ use super::ranks::{agree, Ranks};
 use super::{progress, RunOptions};
 use crate::contact::system::iterative::Remote;
 use crate::contact::system::InterfaceProblem;
+use crate::contact::water::Water;
 use crate::model::Model;
 use crate::substructure::{self, Condensation, Condensed, OperatorRef};
 
@@ -172,7 +173,8 @@ fn interface<'r>(
     if ops.iter().all(|o| o.nc == 0) {
         return Ok(None);
     }
-    Ok(Some(InterfaceProblem::new(model, ops, remote, plan.threads, plan.sparse)?))
+    let problem = InterfaceProblem::new(model, ops, remote, plan.threads, plan.sparse)?;
+    Ok(Some(problem.with_water(Water::new(model))))
 }
 
 /// Factors that would crowd the dense interface out of memory are dropped

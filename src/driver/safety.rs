@@ -89,7 +89,7 @@ pub(super) fn run(
         let answer = searched
             .as_mut()
             .and_then(|s| s.held.outcome.take())
-            .map(|o| step.contact_run(step.problem.expect("a search has an interface"), o));
+            .map(|o| step.contact_run(step.problem.expect("a search has an interface"), o, &lambda));
         let (contact, d_c) = answer.unzip();
         let u = ranks.recover(model, &step.plan.parts, &parts.mine, d_c.map(Ok), &lambda, need_u)?;
         recovered = contact.zip(u);

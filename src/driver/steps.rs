@@ -20,7 +20,7 @@ use crate::contact::traction::ConsistentTraction;
 use crate::contact::{self, History, Outcome, PairLaw};
 use crate::model::Model;
 use crate::recover;
-use crate::results::{ContactRun, Counters, StepResult};
+use crate::results::{ContactRun, Counters, PairWater, StepResult};
 use crate::scene::{Scene, TractionRecovery};
 
 /// What the load steps did: the steps (on rank 0), and what they cost.
@@ -179,14 +179,20 @@ impl Step<'_> {
             .map_err(|f| ContactError::failed(self.model, &self.plan.parts, self.scene, step, f))?;
         out.residual_interface = out.residual_interface.max(outcome.solution.residual);
         out.counters.interface_solves += outcome.summary.iterations;
-        let (contact, d_c) = self.contact_run(problem, outcome);
+        let (contact, d_c) = self.contact_run(problem, outcome, lambda);
         Ok(Answer { d_c, contact: Some(contact) })
     }
 
     /// A step's contact result from the iteration's outcome (the stresses
     /// of contacts with `traction = "consistent"` recovered from the pair
-    /// forces), and the parts' interface displacements.
-    pub fn contact_run(&self, problem: &InterfaceProblem, outcome: Outcome) -> (ContactRun, Vec<Vec<f64>>) {
+    /// forces), the water in the joints at its states under `lambda`, and
+    /// the parts' interface displacements.
+    pub fn contact_run(
+        &self,
+        problem: &InterfaceProblem,
+        outcome: Outcome,
+        lambda: &[f64],
+    ) -> (ContactRun, Vec<Vec<f64>>) {
         let Outcome { states, solution, summary } = outcome;
         let mut pairs = solution.pairs;
         if let Some(tr) = &self.traction {
@@ -200,7 +206,11 @@ impl Step<'_> {
             }
         }
         let areas = (0..pairs.len()).map(|p| problem.area(p)).collect();
-        (ContactRun { states, pairs, frames: problem.frames().to_vec(), areas, summary }, solution.d_c)
+        let water = problem.water().map(|w| PairWater {
+            pressure: w.pressures(self.model, &states, lambda),
+            force: w.forces(&states, lambda),
+        });
+        (ContactRun { states, pairs, frames: problem.frames().to_vec(), areas, summary, water }, solution.d_c)
     }
 }
 

@@ -57,8 +57,11 @@ impl Model {
             cases: cases.factors,
             gravity_case: cases.gravity,
             initial_case: cases.initial,
+            water: Vec::new(),
         };
         model.pairs = pair_normals(&model, &split.pairs, &split.signs);
+        // 5b. The water in the joints, on the pairs.
+        model.water = super::joint_water::resolve(&b, &model, &split.signs, &cases.of_water)?;
         // 6. Every cell positive over its whole extent, not only where it
         // is integrated.
         super::quality::folded(&model)?;
@@ -162,6 +165,8 @@ struct Cases {
     factors: Vec<Vec<f64>>,
     /// The case of each of the description's loads.
     of_load: Vec<usize>,
+    /// The case of each contact's water (None: a dry contact).
+    of_water: Vec<Option<usize>>,
     /// The case of gravity, and of the initial stresses.
     gravity: usize,
     initial: usize,
@@ -169,8 +174,10 @@ struct Cases {
 
 impl Cases {
     /// The ramp k / load_steps (case 0, for whatever has no factors of its
-    /// own), then each load's own factors, gravity's, and the initial
-    /// stresses' (1 at every step: they are there before the first load).
+    /// own), then each load's own factors, each joint water's, gravity's,
+    /// and the initial stresses' (1 at every step: they are there before
+    /// the first load). Joint water without factors takes the case of the
+    /// face it connects to, or the ramp.
     fn new(spec: &ModelSpec) -> Cases {
         let steps = spec.load_steps;
         let mut factors: Vec<Vec<f64>> = vec![(1..=steps).map(|k| k as f64 / steps as f64).collect()];
@@ -181,11 +188,19 @@ impl Cases {
                 factors.len() - 1
             }
         };
-        let of_load = spec.loads.iter().map(|load| case_of(&load.factors)).collect();
+        let of_load: Vec<usize> = spec.loads.iter().map(|load| case_of(&load.factors)).collect();
+        let of_water = (spec.contacts.iter())
+            .map(|c| {
+                c.water.as_ref().map(|w| match (&w.factors, &w.face) {
+                    (None, Some(face)) => of_load[face.load],
+                    (own, _) => case_of(own),
+                })
+            })
+            .collect();
         let gravity = case_of(&spec.gravity_factors);
         factors.push(vec![1.0; steps]);
         let initial = factors.len() - 1;
-        Cases { factors, of_load, gravity, initial }
+        Cases { factors, of_load, of_water, gravity, initial }
     }
 }
 

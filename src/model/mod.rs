@@ -32,15 +32,18 @@ mod builder;
 mod contacts;
 mod facet_cells;
 mod held;
+mod joint_water;
 mod normals;
 pub mod quality;
 mod spec;
 mod topology;
+pub mod water;
 
 pub use contacts::CREASE_ANGLE;
 pub mod warnings;
 
 pub use spec::{BodySpec, ContactGroups, ContactSpec, InitialStress, LoadKind, LoadSpec, ModelSpec, SupportSpec};
+pub use water::{GroupWater, JointWater};
 
 use crate::fem::Analysis;
 use crate::mesh::Cell;
@@ -145,6 +148,8 @@ pub struct Model {
     /// The load case of the initial stresses: factor 1 at every step (they
     /// are there before the first load).
     pub initial_case: usize,
+    /// The water in the joints: one entry per contact group that has some.
+    pub water: Vec<GroupWater>,
 }
 
 impl Body {

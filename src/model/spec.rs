@@ -8,6 +8,7 @@
 //! defined it (`bodies[0]`, `contacts[2]`). The builder appends the field it
 //! is about (`bodies[0].group`, `contacts[2].groups[1]`).
 
+use super::water::JointWater;
 use crate::fem::Analysis;
 
 /// The model's description, independent of the file format it came from.
@@ -54,6 +55,8 @@ pub struct ContactSpec {
     /// Where the input defined it, e.g. `contacts[0]`.
     pub key: String,
     pub groups: ContactGroups,
+    /// The water in the joint, if any.
+    pub water: Option<JointWater>,
 }
 
 /// Displacement conditions on a physical group.

@@ -147,6 +147,7 @@ mod tests {
             cases: vec![vec![1.0]],
             gravity_case: 0,
             initial_case: 0,
+            water: Vec::new(),
         }
     }
 

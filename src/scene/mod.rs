@@ -59,6 +59,7 @@ pub use crate::analytic::Analytic;
 pub use crate::contact::safety::Reduce;
 pub use crate::contact::{InterfaceSolver, SlipLaw, StateRule, TractionRecovery};
 pub use crate::fem::Analysis;
+pub use crate::model::water::{Drain, JointWater, Levels, WaterFace, WaterPressure};
 pub use crate::model::{ContactGroups, InitialStress, LoadKind};
 pub use crate::recover::Probe;
 
@@ -99,6 +100,8 @@ pub struct Contact {
     pub residual_cohesion: f64,
     /// Contact stress recovery (default lumped).
     pub traction: TractionRecovery,
+    /// The water in the joint (`water = {..}`), if any.
+    pub water: Option<JointWater>,
 }
 
 /// `[[supports]]`: displacement conditions on a physical group.
@@ -410,7 +413,11 @@ impl Scene {
                 .contacts
                 .iter()
                 .enumerate()
-                .map(|(i, c)| ContactSpec { key: format!("contacts[{i}]"), groups: c.groups.clone() })
+                .map(|(i, c)| ContactSpec {
+                    key: format!("contacts[{i}]"),
+                    groups: c.groups.clone(),
+                    water: c.water.clone(),
+                })
                 .collect(),
             supports: self
                 .supports

@@ -75,6 +75,32 @@ pub(super) struct RawContact {
     pub(super) slip: Option<SlipLaw>,
     pub(super) residual_cohesion: Option<f64>,
     pub(super) traction: Option<TractionRecovery>,
+    pub(super) water: Option<RawWater>,
+}
+
+/// `water = { .. }` of a contact: a uniform `pressure`, or a piezometric
+/// `level`, `levels = [[s, h], ..]` or `upstream` / `downstream` heads with
+/// a `unit_weight`; `along`, `drain`, `face` and `factors` beside them.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawWater {
+    pub(super) pressure: Option<f64>,
+    pub(super) unit_weight: Option<f64>,
+    pub(super) level: Option<f64>,
+    pub(super) levels: Option<Vec<Vec<f64>>>,
+    pub(super) upstream: Option<f64>,
+    pub(super) downstream: Option<f64>,
+    pub(super) along: Option<Vec<f64>>,
+    pub(super) drain: Option<RawDrain>,
+    pub(super) face: Option<String>,
+    pub(super) factors: Option<Vec<f64>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawDrain {
+    pub(super) at: Option<f64>,
+    pub(super) efficiency: Option<f64>,
 }
 
 #[derive(Deserialize)]

@@ -141,6 +141,7 @@ fn design_example_parses() {
             slip: SlipLaw::Coulomb,
             residual_cohesion: 0.0,
             traction: TractionRecovery::Lumped,
+            water: None,
         }]
     );
     assert_eq!(

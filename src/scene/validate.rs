@@ -17,6 +17,7 @@ use super::{
 mod analytic;
 mod groups;
 mod safety;
+mod water;
 
 /// The Young's moduli a scene may give: beyond them the stiffness entries
 /// (E times the elements' sizes, and Poisson factors up to ~1e3) leave
@@ -193,7 +194,9 @@ impl Checker<'_> {
         let gmsh = self.gmsh(raw.gmsh, &mesh)?;
         let materials = self.materials(raw.materials)?;
         let bodies = self.bodies(raw.bodies, &materials, analysis)?;
-        let contacts = self.contacts(raw.contacts, &bodies)?;
+        let mut raw_contacts = raw.contacts;
+        let waters: Vec<_> = raw_contacts.iter_mut().map(|c| c.water.take()).collect();
+        let mut contacts = self.contacts(raw_contacts, &bodies)?;
         let supports =
             raw.supports.into_iter().enumerate().map(|(i, s)| self.support(i, s, analysis)).collect::<R<Vec<_>>>()?;
         let loads = raw.loads.into_iter().enumerate().map(|(i, l)| self.load(i, l, analysis)).collect::<R<Vec<_>>>()?;
@@ -249,6 +252,11 @@ impl Checker<'_> {
                         f.len()
                     ),
                 ));
+            }
+        }
+        for (i, w) in waters.into_iter().enumerate() {
+            if let Some(w) = w {
+                contacts[i].water = Some(self.water(&format!("contacts[{i}].water"), w, &loads, analysis, steps)?);
             }
         }
         let probes = self.probes(raw.probes, analysis)?;

@@ -137,6 +137,7 @@ fn two_body_model() -> Model {
         cases: vec![vec![1.0], vec![1.0]],
         gravity_case: 0,
         initial_case: 1,
+        water: Vec::new(),
     }
 }
 
@@ -386,6 +387,7 @@ fn stacked_blocks(m: usize, h: usize) -> Model {
         cases: vec![vec![1.0], vec![1.0]],
         gravity_case: 0,
         initial_case: 1,
+        water: Vec::new(),
     }
 }
 

@@ -69,7 +69,8 @@ impl Dense {
 impl Solver for Dense {
     fn solve(&self, fr: &Freedom, _states: &[ContactState], lambda: &[f64]) -> Option<Answer> {
         let reduced = &self.reduced;
-        let c = reduced.c_at(lambda);
+        let mut c = reduced.c_at(lambda);
+        fr.push(&mut c);
         let (wf, rhs, symmetric) = free_system(reduced, fr, &c);
         let nf = fr.cols.len();
         let z = if nf == 0 {

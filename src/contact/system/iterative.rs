@@ -451,7 +451,8 @@ impl<'a> Iterative<'a> {
     /// sliding freely). The unknowns are every mean, then the free columns.
     fn solve_gmres(&self, fr: &Freedom, states: &[ContactState], lambda: &[f64]) -> Option<Answer> {
         let cols = Columns { nm: self.nm, n: self.nm + self.nr, fr };
-        let b = combine(&self.b, &self.b_fixed, lambda);
+        let mut b = combine(&self.b, &self.b_fixed, lambda);
+        fr.push(&mut b[self.nm..]);
         let loose = self.last_states.loose(states);
         let slip_rows: Vec<SlipRow> = (fr.slips.iter())
             .map(|s| SlipRow {

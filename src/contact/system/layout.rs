@@ -161,6 +161,32 @@ impl Layout {
         map.terms.clone()
     }
 
+    /// The right-hand side on the relative displacements of forces that
+    /// push the two sides of every pair apart: `push[p]` on body I at k
+    /// (global axes, interface basis), its opposite on body II at l.
+    /// `b = W^T G'` on the rows of r; on the means the two sides cancel.
+    pub fn pushed(&self, push: &[[f64; 3]]) -> Vec<f64> {
+        let nd = self.nd;
+        let mut b = vec![0.0; self.nr];
+        for (p, f) in push.iter().enumerate().filter(|(_, f)| **f != [0.0; 3]) {
+            for (side, sign) in [(0, 1.0), (1, -1.0)] {
+                let (part, pos) = self.at[p][side];
+                let map = &self.parts[part];
+                let frame = &map.frames[pos];
+                for a in 0..nd {
+                    let local = sign * (0..3).map(|i| frame[a][i] * f[i]).sum::<f64>();
+                    let t = &map.terms[pos * nd + a];
+                    for &(var, c) in &t.vars[..t.n] {
+                        if let Var::R(i) = var {
+                            b[i] += c * local;
+                        }
+                    }
+                }
+            }
+        }
+        b
+    }
+
     /// The unknowns of every lone pair, every junction and every join
     /// node, group by group (the iterative interface's preconditioner blocks).
     pub fn groups(&self) -> Vec<Vec<Var>> {

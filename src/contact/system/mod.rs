@@ -55,6 +55,7 @@ use super::basis::FaceBasis;
 use super::frame::Frame;
 use super::law::{ContactState, PairResult};
 use super::rigid::{free_parts, Free, PartModes, Tie, TieKind};
+use super::water::Water;
 use crate::model::{Model, ModelError};
 use crate::substructure::{OperatorRef, SchurRef};
 
@@ -149,6 +150,18 @@ pub struct Freedom {
     pub junctions: Vec<JunctionBlock>,
     /// The lone slipping pairs' free tangential rows.
     pub slips: Vec<SlipRow>,
+    /// What the states add to the right-hand side on the rows of r: the
+    /// water in the joints pushing the pairs' sides apart (empty when dry).
+    pub pushed: Vec<f64>,
+}
+
+impl Freedom {
+    /// Adds [`Freedom::pushed`] to a right-hand side over r.
+    pub fn push(&self, b_r: &mut [f64]) {
+        for (b, p) in b_r.iter_mut().zip(&self.pushed) {
+            *b += p;
+        }
+    }
 }
 
 /// A junction's part of a solve: its columns, and what its slipping pairs
@@ -246,6 +259,8 @@ pub struct InterfaceProblem<'a> {
     /// Threads for the work of a solve outside the solver: the junctions'
     /// ties and forces, the checks of what holds the parts.
     threads: usize,
+    /// The water in the joints: a right-hand side that depends on the states.
+    water: Option<Water>,
 }
 
 /// Result of one interface solve.
@@ -315,7 +330,17 @@ impl<'a> InterfaceProblem<'a> {
         } else {
             Box::new(Dense::new(&layout, parts).map_err(not_held)?)
         };
-        Ok(InterfaceProblem { layout, basis, solver, rigid, positions, spreads, load: Default::default(), threads })
+        Ok(InterfaceProblem {
+            layout,
+            basis,
+            solver,
+            rigid,
+            positions,
+            spreads,
+            load: Default::default(),
+            threads,
+            water: None,
+        })
     }
 
     /// Each pair's frame, rows n, t, b (global components).
@@ -471,7 +496,7 @@ impl<'a> InterfaceProblem<'a> {
                 });
             }
         }
-        Freedom { r0, cols, pos, junctions, slips }
+        Freedom { r0, cols, pos, junctions, slips, pushed: Vec::new() }
     }
 
     /// Solves the interface system for the relations `rel` of every pair
@@ -494,7 +519,10 @@ impl<'a> InterfaceProblem<'a> {
                 *load = lambda.to_vec();
             }
         }
-        let freedom = self.freedom(rel, lambda[0]);
+        let mut freedom = self.freedom(rel, lambda[0]);
+        if let Some(water) = &self.water {
+            freedom.pushed = self.pushed(&water.forces(&states, lambda));
+        }
         let answer = self.solver.solve(&freedom, &states, lambda).ok_or_else(|| self.diagnose(rel))?;
         let (forces, rels, as_tied) = self.forces(rel, &answer, &freedom, lambda[0]);
         let pairs = (0..rel.len())
@@ -521,6 +549,31 @@ impl<'a> InterfaceProblem<'a> {
             loose: answer.loose,
             as_tied,
         })
+    }
+
+    /// [`Layout::pushed`] of forces on body I per pair in the nodal basis
+    /// (global axes), taken into the interface basis first.
+    fn pushed(&self, push: &[[f64; 3]]) -> Vec<f64> {
+        let push = if self.basis.is_nodal() {
+            push.to_vec()
+        } else {
+            let comps: Vec<Vec<f64>> =
+                (0..3).map(|i| self.basis.transpose_apply(&push.iter().map(|f| f[i]).collect::<Vec<_>>())).collect();
+            (0..push.len()).map(|p| [comps[0][p], comps[1][p], comps[2][p]]).collect()
+        };
+        self.layout.pushed(&push)
+    }
+
+    /// The water in the joints, when they have some.
+    pub fn water(&self) -> Option<&Water> {
+        self.water.as_ref()
+    }
+
+    /// The interface with the water of its joints, which every solve adds
+    /// to its right-hand side at the states it solves for.
+    pub fn with_water(mut self, water: Option<Water>) -> Self {
+        self.water = water;
+        self
     }
 
     /// The contact forces, `-(W r - c)`, and the relative displacements of

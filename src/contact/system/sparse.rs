@@ -245,7 +245,8 @@ impl Sparse {
 impl Solver for Sparse {
     fn solve(&self, fr: &Freedom, states: &[ContactState], lambda: &[f64]) -> Option<Answer> {
         let (nm, nr) = (self.nm, self.nr);
-        let b = combine(&self.b, &self.b_fixed, lambda);
+        let mut b = combine(&self.b, &self.b_fixed, lambda);
+        fr.push(&mut b[nm..]);
         let (b_m, b_r) = b.split_at(nm);
         let free = Free { fr, nr };
         // from the last answer, its r moved onto r0 + span(Z): r_s = r0 + Z y0

@@ -604,6 +604,7 @@ pub(super) mod tests {
             cases: vec![vec![1.0]],
             gravity_case: 0,
             initial_case: 0,
+            water: Vec::new(),
         }
     }
 

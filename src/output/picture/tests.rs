@@ -771,6 +771,7 @@ fn a_joint_set_of_many_planes_gets_a_plan_per_plane_and_one_overview() {
         frames: vec![[[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]; n],
         areas: vec![0.1; n],
         states,
+        water: None,
         summary: crate::contact::Summary {
             iterations: 1,
             converged: true,

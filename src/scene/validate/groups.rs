@@ -171,6 +171,7 @@ impl Checker<'_> {
                 slip: c.slip.unwrap_or_default(),
                 residual_cohesion,
                 traction: c.traction.unwrap_or_default(),
+                water: None,
             });
         }
         Ok(out)
