@@ -29,10 +29,11 @@ pub fn block_name(model: &Model, b: usize) -> String {
 /// `faces.csv`: one row per face pair. Blocks as contact.csv's `block_i`,
 /// `block_ii` (the VTU's cell data `block`), then named; the face's centre
 /// and mean normal, its areas, the resultant on side I (global), N and T
-/// in the mean frame, and the largest mobilised friction and where.
+/// in the mean frame, the largest mobilised friction and where, and the
+/// uplift U of the water in the joint (0 when dry).
 pub fn faces_csv(model: &Model, r: &Resultants) -> String {
     let mut s = String::from(
-        "contact,block_i,block_ii,name_i,name_ii,pairs,x,y,z,n_x,n_y,n_z,area,area_stick,area_slip,area_open,f_x,f_y,f_z,normal_force,shear_force,mobilised_max,mobilised_x,mobilised_y,mobilised_z\n",
+        "contact,block_i,block_ii,name_i,name_ii,pairs,x,y,z,n_x,n_y,n_z,area,area_stick,area_slip,area_open,f_x,f_y,f_z,normal_force,shear_force,mobilised_max,mobilised_x,mobilised_y,mobilised_z,uplift\n",
     );
     for f in &r.faces {
         let q = &f.resultant;
@@ -41,6 +42,7 @@ pub fn faces_csv(model: &Model, r: &Resultants) -> String {
             .chain(&q.force)
             .chain(&[q.normal_force(), q.shear_force(), q.mobilised])
             .chain(&q.mobilised_at)
+            .chain(&[q.uplift()])
             .map(|v| format!("{v:.12e}"))
             .collect();
         let _ = writeln!(
@@ -69,6 +71,7 @@ fn resultant_json(q: &Resultant) -> serde_json::Value {
         "shear_force": q.shear_force(),
         "mobilised_max": q.mobilised,
         "mobilised_at": q.mobilised_at,
+        "uplift": q.uplift(),
     })
 }
 
@@ -113,15 +116,21 @@ pub fn report(run: &Run) -> String {
         s,
         "Resultant force F on side I (global x, y, z); N = F . n and T = |F - N n| in the group's mean frame n (tension positive); mobilised friction |tau| / (c - f sigma_n), 1 where a pair slips or opens or has no strength left.\n"
     );
+    let wet = !m.water.is_empty();
+    if wet {
+        let _ = writeln!(s, "With water in a joint, F and N are the solid-to-solid forces (the effective normal stress sigma_n'), and U the water's force pushing the faces apart: the total normal force across the joint is N - U.\n");
+    }
+    let (u_head, u_rule) = if wet { (" U |", "---|") } else { ("", "") };
     let _ = writeln!(
         s,
-        "| contact | face pairs | pairs | area stick / slip / open | mean normal n | F | N | T | mobilised max (at) |"
+        "| contact | face pairs | pairs | area stick / slip / open | mean normal n | F | N | T | mobilised max (at) |{u_head}"
     );
-    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|{u_rule}");
     for (g, q) in r.groups.iter().enumerate() {
         let faces = r.faces.iter().filter(|f| f.contact == g).count();
+        let u = if wet { format!(" {:.4e} |", q.uplift()) } else { String::new() };
         let _ =
-            writeln!(s, "| {} | {faces} | {} | {} | {} |", m.interfaces[g].name, q.pairs, areas(q), forces(q, m.nd));
+            writeln!(s, "| {} | {faces} | {} | {} | {} |{u}", m.interfaces[g].name, q.pairs, areas(q), forces(q, m.nd));
     }
     let most = r.most_mobilised(MOST_FACES);
     let which = match r.faces.len() {

@@ -13,6 +13,7 @@ pub mod report;
 pub mod resultants;
 mod safety;
 pub mod vtu;
+mod water;
 
 use anyhow::Result;
 use serde_json::json;
@@ -261,14 +262,16 @@ fn contact_vtu(model: &Model, c: &ContactRun) -> Result<Vec<u8>> {
         pairs.iter().map(|&p| if p == usize::MAX { 0.0 } else { f(p) }).collect()
     };
     let status: Vec<i32> = pairs.iter().map(|&p| if p == usize::MAX { -1 } else { c.states[p].code() }).collect();
-    let sigma_n = get(&|p| c.pairs[p].sigma_n);
+    let sigma_n = get(&|p| c.sigma_n_total(p));
+    let sigma_n_eff = get(&|p| c.pairs[p].sigma_n);
+    let water = get(&|p| c.water_pressure(p));
     let tau = get(&|p| c.pairs[p].tau());
     let gap = get(&|p| c.pairs[p].gap);
     let slip = get(&|p| c.pairs[p].slip);
     let shear: Vec<f64> = pairs.iter().flat_map(|&p| if p == usize::MAX { [0.0; 3] } else { c.shear(p) }).collect();
     let area = get(&|p| c.areas[p]);
     let status_f: Vec<f64> = status.iter().map(|&s| s as f64).collect();
-    let point_data = [
+    let mut point_data = vec![
         Field { name: "status", n_comp: 1, values: &status_f },
         Field { name: "sigma_n", n_comp: 1, values: &sigma_n },
         Field { name: "tau", n_comp: 1, values: &tau },
@@ -277,6 +280,10 @@ fn contact_vtu(model: &Model, c: &ContactRun) -> Result<Vec<u8>> {
         Field { name: "shear", n_comp: 3, values: &shear },
         Field { name: "area", n_comp: 1, values: &area },
     ];
+    if c.water.is_some() {
+        point_data.push(Field { name: "water_pressure", n_comp: 1, values: &water });
+        point_data.push(Field { name: "sigma_n_eff", n_comp: 1, values: &sigma_n_eff });
+    }
     Ok(vtu::vtu_bytes(
         &points,
         &cells,
@@ -286,12 +293,16 @@ fn contact_vtu(model: &Model, c: &ContactRun) -> Result<Vec<u8>> {
     )?)
 }
 
-/// One row per contact pair: position, state and the pair's values.
+/// One row per contact pair: position, state and the pair's values; with
+/// water in the joints, `sigma_n` is the total normal stress and the rows
+/// end with the water pressure u and the effective `sigma_n_eff = sigma_n
+/// + u` the law judges.
 fn contact_csv(model: &Model, c: &ContactRun) -> String {
     let body = model.body_of_node();
     let mut s = String::from(
-        "pair,x,y,z,status,sigma_n,tau_t,tau_b,gap,slip,area,tau_x,tau_y,tau_z,n_x,n_y,n_z,contact,block_i,block_ii\n",
+        "pair,x,y,z,status,sigma_n,tau_t,tau_b,gap,slip,area,tau_x,tau_y,tau_z,n_x,n_y,n_z,contact,block_i,block_ii",
     );
+    s += if c.water.is_some() { ",water_pressure,sigma_n_eff\n" } else { "\n" };
     for (i, (p, r)) in model.pairs.iter().zip(&c.pairs).enumerate() {
         let x = model.coords[p.k];
         let t = c.shear(i);
@@ -302,7 +313,7 @@ fn contact_csv(model: &Model, c: &ContactRun) -> String {
             x[1],
             x[2],
             c.states[i].code(),
-            r.sigma_n,
+            c.sigma_n_total(i),
             r.tau_t,
             r.tau_b,
             r.gap,
@@ -318,6 +329,10 @@ fn contact_csv(model: &Model, c: &ContactRun) -> String {
             body[p.k],
             body[p.l]
         );
+        if c.water.is_some() {
+            s.pop();
+            s += &format!(",{:.12e},{:.12e}\n", c.water_pressure(i), r.sigma_n);
+        }
     }
     s
 }
@@ -412,6 +427,9 @@ fn summary(run: &Run) -> serde_json::Value {
     v["probes"] = serde_json::Value::Object(probes);
     if let Some(s) = safety::summary(run) {
         v["safety"] = s;
+    }
+    if let Some(w) = water::summary(run) {
+        v["water"] = w;
     }
     v
 }

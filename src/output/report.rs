@@ -146,6 +146,7 @@ pub fn report(run: &Run) -> String {
             }
         }
     }
+    s += &super::water::report(run);
     s += &super::faces::report(run);
     s += &run.checks.analytic.report;
     s += &super::safety::report(run);
@@ -251,6 +252,15 @@ pub(crate) fn applied(scene: &crate::scene::Scene) -> Vec<Applied> {
     }
     for l in &scene.loads {
         named.push((format!("\"{}\"", l.group), l.factors.clone().unwrap_or_else(|| ramp.clone())));
+    }
+    for c in &scene.contacts {
+        let Some(w) = &c.water else { continue };
+        let own = w.factors.clone().or_else(|| w.face.as_ref().and_then(|f| scene.loads[f.load].factors.clone()));
+        let name = match &c.groups {
+            crate::scene::ContactGroups::Shared(g) => g.clone(),
+            crate::scene::ContactGroups::Pair(a, b) => format!("{a}|{b}"),
+        };
+        named.push((format!("water in \"{name}\""), own.unwrap_or_else(|| ramp.clone())));
     }
     if scene.supports.iter().any(|sp| sp.prescribed.iter().flatten().any(|&u| u != 0.0)) {
         named.push(("prescribed u".into(), ramp.clone()));

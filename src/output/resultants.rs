@@ -30,6 +30,11 @@
 //! beyond the Coulomb apex c / f): it has no shear strength left. A group
 //! or face pair reports its largest value and where it is.
 //!
+//! With water in a joint, f_p is the solid-to-solid force (the effective
+//! sigma_n'), and the water's force on side I, `w_p`, is summed apart:
+//! `U = -(sum w_p) . n` is the uplift, the water's force pushing the faces
+//! apart (positive); the total normal force across the joint is `N - U`.
+//!
 //! The areas of the pairs by state give the open, slip and stick areas.
 //! Plain data in, plain data out: [`sum`] adds up per-pair records,
 //! [`of_run`] makes them from a run's last load step.
@@ -52,6 +57,8 @@ pub struct PairRecord {
     pub area: f64,
     /// Its force on side I, global axes.
     pub force: [f64; 3],
+    /// The force of the water in the joint on side I, global axes.
+    pub water: [f64; 3],
     pub state: ContactState,
     /// Its mobilised friction ([`mobilised`]).
     pub mobilised: f64,
@@ -65,6 +72,8 @@ pub struct Resultant {
     pub areas: [f64; 3],
     /// The resultant force on side I, global axes.
     pub force: [f64; 3],
+    /// The water's resultant force on side I, global axes.
+    pub water: [f64; 3],
     /// The mean unit normal, outward of side I (zero without pairs).
     pub normal: [f64; 3],
     /// The area-weighted mean position of the pairs.
@@ -95,6 +104,11 @@ impl Resultant {
         dot(self.force, self.normal)
     }
 
+    /// U = -(sum w_p) . n: the water's force pushing the faces apart.
+    pub fn uplift(&self) -> f64 {
+        -dot(self.water, self.normal)
+    }
+
     /// T = |F - N n|: the shear force.
     pub fn shear_force(&self) -> f64 {
         let n = self.normal_force();
@@ -107,6 +121,7 @@ impl Resultant {
         self.areas[p.state.code() as usize] += p.area;
         for (i, n) in weighted_normal.iter_mut().enumerate() {
             self.force[i] += p.force[i];
+            self.water[i] += p.water[i];
             *n += p.area * p.normal[i];
             self.centre[i] += p.area * p.x[i];
         }
@@ -233,6 +248,7 @@ pub fn of_run(run: &Run) -> Option<Resultants> {
             normal: c.frames[p][0],
             area: c.areas[p],
             force: c.force(p),
+            water: c.water.as_ref().map_or([0.0; 3], |w| w.force[p]),
             state: c.states[p],
             mobilised: mobilised(c.states[p], &c.pairs[p], &strength[pair.contact], cracked(p)),
         })
@@ -256,7 +272,7 @@ mod tests {
         state: ContactState,
         mobilised: f64,
     ) -> PairRecord {
-        PairRecord { contact, blocks, x, normal, area, force, state, mobilised }
+        PairRecord { contact, blocks, x, normal, area, force, water: [0.0; 3], state, mobilised }
     }
 
     /// Two groups: "a" (z = 0) between blocks 0 | 1 and 0 | 2, "b" (x = 1)

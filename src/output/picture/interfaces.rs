@@ -338,6 +338,10 @@ fn interface_panel<DB: DrawingBackend>(
     let sn = |p: usize| c.pairs[p].sigma_n;
     // in 2D the shear keeps its sign (along the tangent t)
     let tau = |p: usize| if solid { c.pairs[p].tau() } else { c.pairs[p].tau_t };
+    // the water in the joint, drawn as -u: sigma_n' and -u add up to the total
+    let wet = all().any(|&(p, _)| c.water_pressure(p) > 0.0);
+    let minus_u = |p: usize| -c.water_pressure(p);
+    let sn_label = if wet { "σn' (effective, tension > 0)" } else { "σn (normal, tension > 0)" };
     let mut counts = [0usize; 3];
     for &(p, _) in all() {
         counts[c.states[p].code() as usize] += 1;
@@ -348,7 +352,7 @@ fn interface_panel<DB: DrawingBackend>(
     let span = (smax - smin).max(1e-300);
     let (mut ylo, mut yhi) = (0.0f64, 0.0f64);
     for &(p, _) in all() {
-        for v in [sn(p), tau(p)].into_iter().filter(|v| v.is_finite()) {
+        for v in [sn(p), tau(p), minus_u(p)].into_iter().filter(|v| v.is_finite()) {
             ylo = ylo.min(v);
             yhi = yhi.max(v);
         }
@@ -394,6 +398,7 @@ fn interface_panel<DB: DrawingBackend>(
         .map_err(|e| err(&e))?;
     let blue = RGBColor(31, 90, 180);
     let purple = RGBColor(150, 60, 170);
+    let cyan = RGBColor(0, 160, 190);
     if !solid {
         // each pair's state over the half-way points to its neighbours
         let mut bands = Vec::new();
@@ -412,7 +417,7 @@ fn interface_panel<DB: DrawingBackend>(
         chart
             .draw_series(dots)
             .map_err(|e| err(&e))?
-            .label("σn (normal, tension > 0)")
+            .label(sn_label)
             .legend(|(x, y)| Circle::new((x + 9, y), 4, BLACK.filled()));
         let tris =
             all().map(|&(p, s)| TriangleMarker::new((s, tau(p)), 5, rgb(state_colour(c.states[p])).stroke_width(2)));
@@ -421,12 +426,20 @@ fn interface_panel<DB: DrawingBackend>(
             .map_err(|e| err(&e))?
             .label("τ (shear, magnitude)")
             .legend(|(x, y)| TriangleMarker::new((x + 9, y), 5, BLACK.stroke_width(2)));
+        if wet {
+            let marks = all().map(|&(p, s)| Cross::new((s, minus_u(p)), 4, cyan.stroke_width(2)));
+            chart
+                .draw_series(marks)
+                .map_err(|e| err(&e))?
+                .label("-u (water pressure)")
+                .legend(move |(x, y)| Cross::new((x + 9, y), 4, cyan.stroke_width(2)));
+        }
     } else {
         for (i, r) in al.runs.iter().enumerate() {
             let pts: Vec<(f64, f64)> = r.iter().map(|&(p, s)| (s, sn(p))).collect();
             let a = chart.draw_series(LineSeries::new(pts.clone(), blue.stroke_width(2))).map_err(|e| err(&e))?;
             if i == 0 {
-                a.label("σn (normal, tension > 0)")
+                a.label(sn_label)
                     .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], blue.stroke_width(2)));
             }
             chart.draw_series(pts.iter().map(|&q| Circle::new(q, 3, blue.filled()))).map_err(|e| err(&e))?;
@@ -437,6 +450,14 @@ fn interface_panel<DB: DrawingBackend>(
                     .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], purple.stroke_width(2)));
             }
             chart.draw_series(pts.iter().map(|&q| TriangleMarker::new(q, 4, purple.filled()))).map_err(|e| err(&e))?;
+            if wet {
+                let pts: Vec<(f64, f64)> = r.iter().map(|&(p, s)| (s, minus_u(p))).collect();
+                let a = chart.draw_series(LineSeries::new(pts, cyan.stroke_width(2))).map_err(|e| err(&e))?;
+                if i == 0 {
+                    a.label("-u (water pressure)")
+                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], cyan.stroke_width(2)));
+                }
+            }
         }
     }
     for (s, count) in
@@ -453,7 +474,7 @@ fn interface_panel<DB: DrawingBackend>(
         }
     }
     // the legend goes in the corner with the fewest points under it
-    let entries = 2 + counts.iter().filter(|&&c| c > 0).count();
+    let entries = 2 + usize::from(wet) + counts.iter().filter(|&&c| c > 0).count();
     let (lw, lh) = (0.34, (entries as f64 * 22.0 + 12.0) / (area.dim_in_pixel().1 as f64 - 90.0));
     let under = |fx: f64, fy: f64| {
         let (bx, by) = (fx * (1.0 - lw), fy * (1.0 - lh));
