@@ -11,7 +11,7 @@ use super::builder::{dim_name, Builder};
 use super::contacts::{self, facet_sign, RawPair, Split};
 use super::held::check_held;
 use super::topology::Topology;
-use super::{Block, Body, FacetLoad, InitialStress, Model, ModelError, ModelSpec, Pair};
+use super::{Block, Body, FacetLoad, InitialStress, LoadKind, Model, ModelError, ModelSpec, Pair};
 use crate::fem::element::{self, dofs_per_node};
 use crate::fem::Analysis;
 use crate::mesh::{Cell, Mesh};
@@ -58,10 +58,12 @@ impl Model {
             gravity_case: cases.gravity,
             initial_case: cases.initial,
             water: Vec::new(),
+            seismic: Vec::new(),
         };
         model.pairs = pair_normals(&model, &split.pairs, &split.signs);
         // 5b. The water in the joints, on the pairs.
         model.water = super::joint_water::resolve(&b, &model, &split.signs, &cases.of_water)?;
+        model.seismic = seismic(&b, &cases.of_load)?;
         // 6. Every cell positive over its whole extent, not only where it
         // is integrated.
         super::quality::folded(&model)?;
@@ -217,6 +219,9 @@ fn loads(
     let placed = placed(&split.block, bodies.len());
     let mut loads = Vec::new();
     for (load, &case) in b.spec.loads.iter().zip(of_load) {
+        if let LoadKind::Seismic { .. } = load.kind {
+            continue;
+        }
         let key = format!("{}.group", load.key);
         let g = b.group(&key, &load.group, &[b.spec.analysis.dim() - 1])?;
         for f in &g.cells {
@@ -233,10 +238,15 @@ fn loads(
                     return Err(b.invalid(
                         key.clone(),
                         format!(
-                            "element {} of group \"{}\" lies between bodies {}: loads go on outer boundaries",
+                            "element {} of group \"{}\" lies between bodies {}: loads go on outer boundaries{}",
                             f.tag,
                             load.group,
-                            names.join(" and ")
+                            names.join(" and "),
+                            if load.kind.pressure_at([0.0; 3], 1).is_some() {
+                                ". For water in a joint between bodies, make the group a [[contacts]] entry and give it water = { .. } (a uniform pressure, a level, or an uplift diagram): the water then pushes on both its faces"
+                            } else {
+                                ""
+                            }
                         ),
                     ));
                 }
@@ -251,6 +261,25 @@ fn loads(
         }
     }
     Ok(loads)
+}
+
+/// The seismic loads' accelerations, `|g| (kh direction + kv up)` with up
+/// against gravity, and their load cases (`of_load`).
+fn seismic(b: &Builder, of_load: &[usize]) -> Result<Vec<([f64; 3], usize)>, ModelError> {
+    let g = b.spec.gravity;
+    let size = element::norm(g);
+    let mut out = Vec::new();
+    for (load, &case) in b.spec.loads.iter().zip(of_load) {
+        let LoadKind::Seismic { kh, kv, direction } = load.kind else { continue };
+        if size == 0.0 {
+            return Err(b.invalid(
+                format!("{}.seismic", load.key),
+                "kh and kv are fractions of the acceleration of gravity, but the scene has none: give it gravity = [..] and its materials a density".into(),
+            ));
+        }
+        out.push((std::array::from_fn(|i| size * kh * direction[i] - kv * g[i]), case));
+    }
+    Ok(out)
 }
 
 /// Where each cell went: (its body, its index in the body's cells), as

@@ -150,6 +150,9 @@ pub struct Model {
     pub initial_case: usize,
     /// The water in the joints: one entry per contact group that has some.
     pub water: Vec<GroupWater>,
+    /// Pseudo-static seismic accelerations (global axes; times a body's
+    /// density, its load per unit volume) and their load cases.
+    pub seismic: Vec<([f64; 3], usize)>,
 }
 
 impl Body {

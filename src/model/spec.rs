@@ -130,4 +130,31 @@ pub enum LoadKind {
     Hydrostatic { surface: f64, unit_weight: f64 },
     /// Traction vector (x, y, z), per unit area; z = 0 in 2D.
     Traction([f64; 3]),
+    /// Westergaard's hydrodynamic pressure on a dam's upstream face under
+    /// a horizontal seismic coefficient `kh` (a fraction of g), a pressure
+    /// like the others: `7/8 kh unit_weight sqrt(H (surface - y))` below
+    /// `surface` (y in 2D, z in 3D), H = surface - base the reservoir's
+    /// depth (the depth below the surface taken at most H).
+    Westergaard { kh: f64, surface: f64, base: f64, unit_weight: f64 },
+    /// A pseudo-static seismic acceleration on every body with a density,
+    /// as fractions of |g|: `kh` along the horizontal `direction`, `kv`
+    /// upwards (against gravity). A body load: the entry names no group.
+    Seismic { kh: f64, kv: f64, direction: [f64; 3] },
+}
+
+impl LoadKind {
+    /// The pressure (positive into the body) at x of a pressure load, with
+    /// `vertical` the height axis (1 in 2D, 2 in 3D); None for the others.
+    pub fn pressure_at(&self, x: [f64; 3], vertical: usize) -> Option<f64> {
+        match *self {
+            LoadKind::Pressure(p) => Some(p),
+            LoadKind::Hydrostatic { surface, unit_weight } => Some(unit_weight * (surface - x[vertical]).max(0.0)),
+            LoadKind::Westergaard { kh, surface, base, unit_weight } => {
+                let h = surface - base;
+                let depth = (surface - x[vertical]).clamp(0.0, h.max(0.0));
+                Some(0.875 * kh * unit_weight * (h * depth).sqrt())
+            }
+            LoadKind::Traction(_) | LoadKind::Seismic { .. } => None,
+        }
+    }
 }

@@ -148,6 +148,7 @@ mod tests {
             gravity_case: 0,
             initial_case: 0,
             water: Vec::new(),
+            seismic: Vec::new(),
         }
     }
 

@@ -251,7 +251,11 @@ pub(crate) fn applied(scene: &crate::scene::Scene) -> Vec<Applied> {
         named.push(("gravity".into(), scene.solver.gravity_factors.clone().unwrap_or_else(|| ramp.clone())));
     }
     for l in &scene.loads {
-        named.push((format!("\"{}\"", l.group), l.factors.clone().unwrap_or_else(|| ramp.clone())));
+        let name = match l.kind {
+            crate::scene::LoadKind::Seismic { kh, kv, .. } => format!("seismic kh = {kh}, kv = {kv}"),
+            _ => format!("\"{}\"", l.group),
+        };
+        named.push((name, l.factors.clone().unwrap_or_else(|| ramp.clone())));
     }
     for c in &scene.contacts {
         let Some(w) = &c.water else { continue };

@@ -126,6 +126,10 @@ pub(super) enum RawPressure {
 pub(super) struct RawHydrostatic {
     pub(super) surface: f64,
     pub(super) unit_weight: f64,
+    /// Westergaard's hydrodynamic pressure under this seismic coefficient
+    /// instead of the hydrostatic one, with the reservoir's `base`.
+    pub(super) westergaard: Option<f64>,
+    pub(super) base: Option<f64>,
 }
 
 #[derive(Deserialize)]
@@ -134,7 +138,18 @@ pub(super) struct RawLoad {
     pub(super) group: Option<String>,
     pub(super) pressure: Option<RawPressure>,
     pub(super) traction: Option<Vec<f64>>,
+    pub(super) seismic: Option<RawSeismic>,
     pub(super) factors: Option<Vec<f64>>,
+}
+
+/// `seismic = { kh = .., kv = .., direction = [..] }`: a pseudo-static
+/// acceleration on every body with a density.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawSeismic {
+    pub(super) kh: Option<f64>,
+    pub(super) kv: Option<f64>,
+    pub(super) direction: Option<Vec<f64>>,
 }
 
 #[derive(Deserialize)]

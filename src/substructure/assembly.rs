@@ -74,6 +74,14 @@ pub fn assemble(model: &Model, cells: &[(usize, usize)], dof_of: &[usize], n: us
                 scatter(&dofs, &fe, &mut f[model.gravity_case]);
                 fe.iter_mut().for_each(|v| *v = 0.0);
             }
+            // pseudo-static seismic accelerations, on bodies with a density
+            for &(a, case) in model.seismic.iter().filter(|_| body.density > 0.0) {
+                let force = a.map(|c| c * body.density);
+                element::body_force(model.analysis, cell.kind, &xe, force, model.thickness, &mut fe)
+                    .map_err(inverted)?;
+                scatter(&dofs, &fe, &mut f[case]);
+                fe.iter_mut().for_each(|v| *v = 0.0);
+            }
             if let Some(init) = body.initial {
                 fe.iter_mut().for_each(|v| *v = 0.0);
                 let sigma0 = |x: [f64; 3]| init.at(x, model.analysis, body.density, model.gravity);
@@ -112,14 +120,11 @@ pub fn assemble(model: &Model, cells: &[(usize, usize)], dof_of: &[usize], n: us
         let kind = load.kind.clone();
         // the level of a hydrostatic pressure is y in 2D, z in 3D
         let vertical = if model.analysis == crate::fem::Analysis::Solid { 2 } else { 1 };
-        let traction = move |_x: [f64; 3], n: [f64; 3]| -> [f64; 3] {
-            match kind {
-                LoadKind::Pressure(p) => [-p * n[0], -p * n[1], -p * n[2]],
-                LoadKind::Traction(t) => t,
-                LoadKind::Hydrostatic { surface, unit_weight } => {
-                    let p = unit_weight * (surface - _x[vertical]).max(0.0);
-                    [-p * n[0], -p * n[1], -p * n[2]]
-                }
+        let traction = move |x: [f64; 3], n: [f64; 3]| -> [f64; 3] {
+            match (&kind, kind.pressure_at(x, vertical)) {
+                (_, Some(p)) => [-p * n[0], -p * n[1], -p * n[2]],
+                (LoadKind::Traction(t), None) => *t,
+                (_, None) => [0.0; 3],
             }
         };
         element::facet_force(model.analysis, load.cell.kind, &xe, load.sign, model.thickness, &traction, &mut fe);

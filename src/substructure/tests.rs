@@ -138,6 +138,7 @@ fn two_body_model() -> Model {
         gravity_case: 0,
         initial_case: 1,
         water: Vec::new(),
+        seismic: Vec::new(),
     }
 }
 
@@ -388,6 +389,7 @@ fn stacked_blocks(m: usize, h: usize) -> Model {
         gravity_case: 0,
         initial_case: 1,
         water: Vec::new(),
+        seismic: Vec::new(),
     }
 }
 

@@ -605,6 +605,7 @@ pub(super) mod tests {
             gravity_case: 0,
             initial_case: 0,
             water: Vec::new(),
+            seismic: Vec::new(),
         }
     }
 

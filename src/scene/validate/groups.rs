@@ -7,7 +7,7 @@
 use std::collections::BTreeMap;
 
 use super::{quoted_list, Checker, R};
-use crate::scene::raw::{RawBody, RawContact, RawLoad, RawPressure, RawSupport};
+use crate::scene::raw::{RawBody, RawContact, RawLoad, RawPressure, RawSeismic, RawSupport};
 use crate::scene::{Analysis, Body, Contact, ContactGroups, InitialStress, Load, LoadKind, Material, Support};
 
 impl Checker<'_> {
@@ -250,6 +250,17 @@ impl Checker<'_> {
 
     pub(super) fn load(&self, i: usize, l: RawLoad, analysis: Analysis) -> R<Load> {
         let k = format!("loads[{i}]");
+        if let Some(sm) = l.seismic {
+            if l.group.is_some() || l.pressure.is_some() || l.traction.is_some() {
+                return Err(self.err(
+                    k,
+                    "a seismic load acts on every body with a density and names no group, pressure or traction: give it an entry of its own, [[loads]] seismic = { kh = .., kv = .. } with its factors.",
+                ));
+            }
+            let kind = self.seismic(&format!("{k}.seismic"), sm, analysis)?;
+            let factors = self.factors(&k, l.factors)?;
+            return Ok(Load { group: String::new(), kind, factors });
+        }
         let group = self.group(l.group, &format!("{k}.group"), "a physical curve (2D) or surface (3D)")?;
         let kind = match (l.pressure, l.traction) {
             (Some(_), Some(_)) => {
@@ -267,19 +278,53 @@ impl Checker<'_> {
                 if unit_weight < 0.0 {
                     return Err(self.bad(format!("{k}.pressure.unit_weight"), unit_weight, "the unit weight of the fluid must be >= 0."));
                 }
-                LoadKind::Hydrostatic { surface: self.finite(h.surface, &format!("{k}.pressure.surface"))?, unit_weight }
+                let surface = self.finite(h.surface, &format!("{k}.pressure.surface"))?;
+                match (h.westergaard, h.base) {
+                    (None, None) => LoadKind::Hydrostatic { surface, unit_weight },
+                    (Some(kh), Some(base)) => {
+                        let kh = self.finite(kh, &format!("{k}.pressure.westergaard"))?;
+                        let base = self.finite(base, &format!("{k}.pressure.base"))?;
+                        if base >= surface {
+                            return Err(self.bad(format!("{k}.pressure.base"), base, format!("the reservoir's bottom must lie below its surface ({surface}).")));
+                        }
+                        LoadKind::Westergaard { kh, surface, base, unit_weight }
+                    }
+                    (Some(_), None) => return Err(self.err(format!("{k}.pressure.base"), "missing; Westergaard's pressure needs the reservoir's depth: give base = the height of its bottom (y in 2D, z in 3D).")),
+                    (None, Some(_)) => return Err(self.err(format!("{k}.pressure.westergaard"), "missing; base goes with westergaard = kh (the horizontal seismic coefficient) for the hydrodynamic pressure; remove base for a hydrostatic one.")),
+                }
             }
             (None, Some(t)) => LoadKind::Traction(self.vec3(&t, &format!("{k}.traction"), analysis)?),
         };
-        let factors = match l.factors {
-            None => None,
-            Some(f) => Some(
-                f.iter()
-                    .enumerate()
-                    .map(|(j, &v)| self.finite(v, &format!("{k}.factors[{j}]")))
-                    .collect::<R<Vec<f64>>>()?,
-            ),
-        };
+        let factors = self.factors(&k, l.factors)?;
         Ok(Load { group, kind, factors })
+    }
+
+    /// `factors = [..]` of a load: finite numbers (their count is checked with the load steps).
+    fn factors(&self, k: &str, f: Option<Vec<f64>>) -> R<Option<Vec<f64>>> {
+        f.map(|f| (f.iter().enumerate()).map(|(j, &v)| self.finite(v, &format!("{k}.factors[{j}]"))).collect())
+            .transpose()
+    }
+
+    /// A seismic load: finite coefficients, a horizontal direction (x by default).
+    fn seismic(&self, k: &str, s: RawSeismic, analysis: Analysis) -> R<LoadKind> {
+        let kh = self.finite(s.kh.unwrap_or(0.0), &format!("{k}.kh"))?;
+        let kv = self.finite(s.kv.unwrap_or(0.0), &format!("{k}.kv"))?;
+        let vertical = if analysis == Analysis::Solid { 2 } else { 1 };
+        let direction = match s.direction {
+            None => [1.0, 0.0, 0.0],
+            Some(d) => {
+                let v = self.vec3(&d, &format!("{k}.direction"), analysis)?;
+                let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+                if v[vertical] != 0.0 || len == 0.0 {
+                    return Err(self.bad(
+                        format!("{k}.direction"),
+                        super::fmt_vec(&d),
+                        "the direction of kh must be horizontal and not zero (kv is the vertical part).",
+                    ));
+                }
+                v.map(|c| c / len)
+            }
+        };
+        Ok(LoadKind::Seismic { kh, kv, direction })
     }
 }
