@@ -6,7 +6,7 @@ CARGO   ?= cargo
 BIN     := target/release/subcontact
 PYTHON  ?= python3
 
-.PHONY: all deps deps-mpi deps-strace build lint cylinder tunnel tunnel-joints footing footing-layers dam blocks3d dam3d dam3d-joints rockmass wedge safety test test-mpi fuzz bench bench3d bench-blocks bench-ccx bench-interface scaling stress clean
+.PHONY: all deps deps-mpi deps-strace build lint cylinder tunnel tunnel-joints footing footing-layers dam blocks3d dam3d dam3d-joints rockmass wedge safety slope water test test-mpi fuzz bench bench3d bench-blocks bench-ccx bench-interface scaling stress clean
 
 all: build
 
@@ -97,6 +97,21 @@ wedge: deps build
 # the table in results/safety/safety.md. About half a minute.
 safety: deps build
 	$(PYTHON) scripts/safety/safety.py
+
+# A rock slope with water in its tension crack and on its sliding plane
+# (Hoek & Bray's planar failure): self-weight, then the water; its factor
+# of safety with the water held (results/slope/: report.md, the water on
+# the plane in interfaces.svg and contact.csv).
+slope: deps build
+	$(BIN) solve geo/slope.toml
+
+# Water in the joints beside the closed forms (scripts/water/water.py): the
+# slope dry, with V, with U and V; the wedge with water on its planes; the
+# dam undrained, drained, under k_h = 0.1 with Westergaard, its heel crack
+# against USACE; the joint's water against two loaded faces. One line per
+# case; results/water/water.md. About 20 s.
+water: deps build
+	$(PYTHON) scripts/water/water.py
 
 # Run time against error on the cylinder, orders 1 and 2, up to ~2.6e6 DOFs:
 # results/cylinder/bench.{csv,md,svg}.
