@@ -5,6 +5,8 @@
 use super::*;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+mod water;
+
 /// The full example of DESIGN.md §4.
 const EXAMPLE: &str = r#"
 title    = "Thick-walled cylinder, quarter model"
