@@ -56,9 +56,13 @@ tunnel-joints: deps build
 	$(BIN) solve geo/tunnel_joints.toml
 
 # A gravity dam of three blocks on rock: self-weight, then the reservoir in
-# two steps; the heel opens (results/dam/, dam.pvd for the steps).
+# two steps; the heel opens (results/dam/, dam.pvd for the steps). Then the
+# same dam with the water under it (geo/dam_uplift.toml): the reservoir at
+# 42 m, uplift through a drain line, the heel's crack filled with the
+# reservoir's water, and the base's factor of safety (results/dam_uplift/).
 dam: deps build
 	$(BIN) solve geo/dam.toml
+	$(BIN) solve geo/dam_uplift.toml
 
 # A block pressed onto a block and pushed along x, in 3D on tet10: the
 # trailing edge slips (results/blocks3d/: plan views of the joint by state
@@ -67,9 +71,12 @@ blocks3d: deps build
 	$(BIN) solve geo/blocks3d.toml
 
 # A gravity-dam slice in 3D: three blocks on rock, joints ending on the base;
-# self-weight, then the reservoir in two steps (results/dam3d/).
+# self-weight, then the reservoir in two steps (results/dam3d/); then with
+# uplift, drains and the heel's crack filling, and the base's factor of
+# safety (geo/dam3d_uplift.toml, results/dam3d_uplift/; about 20 s).
 dam3d: deps build
 	$(BIN) solve geo/dam3d.toml
+	$(BIN) solve geo/dam3d_uplift.toml
 
 # A gravity dam in 3D whose contraction joints cross its lift joints: three
 # monoliths in a stepped valley, each cut into three lifts; self-weight,
