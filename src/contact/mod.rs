@@ -25,7 +25,9 @@
 //! tension cut-off, crack memory (a pair that opened or slipped in a
 //! converged state keeps `f_t = 0` and the residual cohesion), re-closure of
 //! open pairs, and states, cracks and slip that carry over from load step
-//! to load step (friction is path-dependent).
+//! to load step (friction is path-dependent). Water in a joint ([`water`])
+//! is a load on both faces of its pairs, so the force solved for is the
+//! solid-to-solid one and the law judges the effective normal stress.
 
 pub mod basis;
 pub mod frame;

@@ -151,3 +151,33 @@ fn points(model: &Model, f: &Cell, sign: f64) -> Vec<Point> {
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Five pairs in a row from the face (pair 0) at s = 0, 1, .., 4: the
+    /// crack is the run of open pairs from the face, to its farthest s.
+    #[test]
+    fn a_crack_runs_from_the_face_through_open_pairs() {
+        let fill = Fill {
+            surface: 40.0,
+            unit_weight: 0.01,
+            pairs: vec![10, 11, 12, 13, 14],
+            seeds: vec![0],
+            neighbours: vec![vec![1], vec![0, 2], vec![1, 3], vec![2, 4], vec![3]],
+        };
+        let s = [0.0, 1.0, 2.0, 3.0, 4.0];
+        let (o, k) = (ContactState::Open, ContactState::Stick);
+        let mut states = vec![k; 15];
+        assert_eq!(crack(&fill, &s, &states), None, "nothing open");
+        states[13] = o;
+        assert_eq!(crack(&fill, &s, &states), None, "open, but not joined to the face");
+        states[10] = o;
+        states[11] = o;
+        let c = crack(&fill, &s, &states).expect("a crack from the face");
+        assert_eq!((c.tip, c.level, c.unit_weight), (1.0, 40.0, 0.01));
+        states[12] = o;
+        assert_eq!(crack(&fill, &s, &states).map(|c| c.tip), Some(3.0), "joined up to the open pair at s = 3");
+    }
+}

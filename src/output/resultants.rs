@@ -106,7 +106,7 @@ impl Resultant {
 
     /// U = -(sum w_p) . n: the water's force pushing the faces apart.
     pub fn uplift(&self) -> f64 {
-        -dot(self.water, self.normal)
+        0.0 - dot(self.water, self.normal)
     }
 
     /// T = |F - N n|: the shear force.

@@ -22,6 +22,11 @@
 //! prescribed `d'`; its force is read on the unsupported side, and is zero
 //! where both are supported (the supports carry it).
 //!
+//! A right-hand side that depends on the states, the water in the joints
+//! pushing every pair's sides apart ([`super::water`]), is added at each
+//! solve on the rows of r ([`Freedom::pushed`], [`Layout::pushed`]): no
+//! part is condensed again.
+//!
 //! Before solving, the parts nothing holds are found from the relations'
 //! geometry ([`super::rigid`]): every tied axis holds, and so does a
 //! slipping pair across its slip where the robust rule's linearised
