@@ -348,3 +348,34 @@ fn water_put_where_it_cannot_go_is_refused_naming_the_key() {
         &["contacts[0].water.face", "downstream end", "along"],
     );
 }
+
+// --- the interfaces ------------------------------------------------------------------
+
+/// geo/dam_uplift.toml (uplift through drains, the heel's crack filling)
+/// on the dense, iterative and sparse interfaces: the same states and
+/// effective stresses (the water joins each one's right-hand side on the
+/// relative displacements).
+#[test]
+fn the_water_is_the_same_on_the_dense_iterative_and_sparse_interfaces() {
+    use subcontact::contact::InterfaceSolver;
+    use subcontact::driver::{self, RunOptions};
+    let case = Case::new("water-interfaces");
+    case.copy("geo/dam.geo");
+    let scene = case.write("dam.toml", &edited("geo/dam_uplift.toml", &[("[safety]\ncontacts = [\"base\"]\n", "")]));
+    let run = |interface: InterfaceSolver, name: &str| -> Run {
+        let opts = RunOptions { out: Some(case.out(name)), interface: Some(interface), ..Default::default() };
+        driver::run(&scene, &opts).expect("the dam solves")
+    };
+    let dense = run(InterfaceSolver::Dense, "dense");
+    let c = dense.contact().expect("contact");
+    assert!(c.states.iter().filter(|&&s| s == ContactState::Open).count() >= 2, "the heel cracks");
+    let scale = c.pairs.iter().map(|p| p.sigma_n.abs()).fold(0.0, f64::max);
+    for (solver, name) in [(InterfaceSolver::Iterative, "iterative"), (InterfaceSolver::Sparse, "sparse")] {
+        let other = run(solver, name);
+        let o = other.contact().expect("contact");
+        assert_eq!(o.states, c.states, "{name}: the same states");
+        let worst = (0..c.pairs.len()).map(|p| (o.pairs[p].sigma_n - c.pairs[p].sigma_n).abs()).fold(0.0, f64::max);
+        eprintln!("{name}: sigma_n' within {:.1e} of the dense interface's", worst / scale);
+        assert!(worst < 1e-8 * scale, "{name}: {worst}");
+    }
+}
