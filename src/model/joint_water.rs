@@ -44,6 +44,7 @@ fn field(b: &Builder, model: &Model, ci: usize, water: &JointWater, key: &str) -
         WaterPressure::Level { unit_weight, along, levels, drain } => (*unit_weight, *along, levels, *drain),
     };
     let points = match levels {
+        Levels::Plane(plane) => return Ok(Field::Plane { unit_weight, along, plane: *plane }),
         Levels::Flat(h) => vec![[0.0, *h]],
         Levels::Table(t) => t.clone(),
         Levels::Ends { upstream, downstream } => {

@@ -15,7 +15,8 @@
 //!
 //! The piezometric level h(s) is linear between the points of its diagram
 //! and constant beyond them: one point is a flat phreatic level; two are the
-//! dam's uplift diagram from the heel's head to the toe's. A drain line at
+//! dam's uplift diagram from the heel's head to the toe's. Or it is an
+//! inclined plane, `h = h0 + a x + b y` (3D; `h0 + a x` in 2D). A drain line at
 //! s_d of efficiency E lowers the diagram there to (USACE EM 1110-2-2100,
 //! USBR):
 //!
@@ -63,6 +64,8 @@ pub enum Levels {
     /// `downstream` at its downstream end: the builder reads the ends off
     /// the joint.
     Ends { upstream: f64, downstream: f64 },
+    /// An inclined plane `h = c[0] + c[1] x + c[2] y` (c[2] = 0 in 2D).
+    Plane([f64; 3]),
 }
 
 /// A drain line at s = `at` of efficiency `efficiency` (0 to 1).
@@ -103,7 +106,17 @@ pub struct GroupWater {
 #[derive(Debug, Clone, PartialEq)]
 pub enum Field {
     Uniform(f64),
-    Level { unit_weight: f64, along: [f64; 3], diagram: Diagram },
+    Level {
+        unit_weight: f64,
+        along: [f64; 3],
+        diagram: Diagram,
+    },
+    /// Below an inclined plane `h = c[0] + c[1] x + c[2] y`.
+    Plane {
+        unit_weight: f64,
+        along: [f64; 3],
+        plane: [f64; 3],
+    },
 }
 
 /// A piezometric diagram: points (s, h), s strictly increasing (one point:
@@ -191,7 +204,7 @@ impl GroupWater {
     pub fn along(&self) -> [f64; 3] {
         match &self.field {
             Field::Uniform(_) => [1.0, 0.0, 0.0],
-            Field::Level { along, .. } => *along,
+            Field::Level { along, .. } | Field::Plane { along, .. } => *along,
         }
     }
 
@@ -218,6 +231,9 @@ impl GroupWater {
                     None => diagram.head(s),
                 };
                 (unit_weight * (h - z)).max(0.0)
+            }
+            Field::Plane { unit_weight, plane, .. } => {
+                (unit_weight * (plane[0] + plane[1] * x[0] + plane[2] * x[1] - z)).max(0.0)
             }
         }
     }
@@ -267,6 +283,18 @@ mod tests {
         assert!((w.pressure([6.0, 0.0, 0.0], None) - 10.0 * h_d).abs() < 1e-12);
         assert!((w.pressure([3.0, 0.0, 0.0], None) - 10.0 * (50.0 + h_d) / 2.0).abs() < 1e-12);
         assert!((w.pressure([18.0, 0.0, 0.0], None) - 10.0 * (h_d + 5.0) / 2.0).abs() < 1e-12);
+    }
+
+    /// An inclined level in 3D: h = 10 + 0.5 x - 0.25 y.
+    #[test]
+    fn below_an_inclined_plane() {
+        let w = GroupWater {
+            field: Field::Plane { unit_weight: 2.0, along: [1.0, 0.0, 0.0], plane: [10.0, 0.5, -0.25] },
+            vertical: 2,
+            ..dam(None)
+        };
+        assert_eq!(w.pressure([2.0, 4.0, 3.0], None), 2.0 * (10.0 + 1.0 - 1.0 - 3.0));
+        assert_eq!(w.pressure([0.0, 0.0, 11.0], None), 0.0);
     }
 
     /// A crack to s = 12 from the heel: the reservoir's full head up to

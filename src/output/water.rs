@@ -32,8 +32,13 @@ fn rows(run: &Run) -> Vec<Row> {
     let groups = super::resultants::of_run(run).map(|r| r.groups).unwrap_or_default();
     (m.water.iter().zip(cracks))
         .map(|(w, crack)| {
+            let height = ["x", "y", "z"][w.vertical];
             let given = match &w.field {
                 Field::Uniform(u) => format!("uniform u = {u}"),
+                Field::Plane { unit_weight, plane, .. } => {
+                    let y = if w.vertical == 2 { format!(" + {} y", plane[2]) } else { String::new() };
+                    format!("u = {unit_weight} (h - {height}), h = {} + {} x{y}", plane[0], plane[1])
+                }
                 Field::Level { unit_weight, along, diagram } => {
                     let pts: Vec<String> = diagram.points.iter().map(|p| format!("({}, {})", p[0], p[1])).collect();
                     let level = if pts.len() == 1 {

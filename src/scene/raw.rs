@@ -88,6 +88,7 @@ pub(super) struct RawWater {
     pub(super) unit_weight: Option<f64>,
     pub(super) level: Option<f64>,
     pub(super) levels: Option<Vec<Vec<f64>>>,
+    pub(super) plane: Option<Vec<f64>>,
     pub(super) upstream: Option<f64>,
     pub(super) downstream: Option<f64>,
     pub(super) along: Option<Vec<f64>>,

@@ -41,6 +41,11 @@ fn water_keys_become_the_joint_water() {
         panic!("a level")
     };
     assert_eq!(levels, Levels::Table(vec![[0.0, 10.0], [5.0, 4.0], [9.0, 1.0]]));
+    let s = load(&with_water("{ unit_weight = 9.81, plane = [10.0, -0.5] }", "")).expect("a plane");
+    let Some(WaterPressure::Level { levels, .. }) = s.contacts[0].water.as_ref().map(|w| w.pressure.clone()) else {
+        panic!("a level")
+    };
+    assert_eq!(levels, Levels::Plane([10.0, -0.5, 0.0]));
 }
 
 #[test]
@@ -75,7 +80,7 @@ fn bad_water_is_named_by_its_key() {
     );
     rejects(
         &with_water("{ unit_weight = 1.0, level = 3.0, drain = { at = 1.0, efficiency = 0.5 } }", ""),
-        &["contacts[0].water.drain", "flat level"],
+        &["contacts[0].water.drain", "a level (flat or a plane) has none"],
     );
     rejects(&with_water("{ unit_weight = 1.0, upstream = 3.0 }", ""), &["contacts[0].water.downstream", "missing"]);
     rejects(
@@ -83,6 +88,10 @@ fn bad_water_is_named_by_its_key() {
         &["contacts[0].water.factors", "load_steps = 1"],
     );
     rejects(&with_water("{ pressure = 0.2, uplift = 1.0 }", ""), &["uplift"]);
+    rejects(
+        &with_water("{ unit_weight = 1.0, plane = [3.0, 0.1, 0.2] }", ""),
+        &["contacts[0].water.plane", "[h0, dh/dx]"],
+    );
 }
 
 #[test]

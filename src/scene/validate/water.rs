@@ -1,6 +1,7 @@
 //! Checks of a contact's `water = { .. }`: one way of giving the pressure
-//! (a uniform `pressure`, a flat `level`, a diagram `levels = [[s, h], ..]`
-//! in order of s, or `upstream` / `downstream` heads over the joint), a
+//! (a uniform `pressure`, a flat `level`, an inclined `plane`, a diagram
+//! `levels = [[s, h], ..]` in order of s, or `upstream` / `downstream` heads
+//! over the joint), a
 //! unit weight >= 0, a horizontal `along`, a drain of efficiency in [0, 1]
 //! on a diagram, a `face` that names a hydrostatic `[[loads]]` entry, and
 //! one factor per load step.
@@ -21,11 +22,12 @@ impl Checker<'_> {
         steps: usize,
     ) -> R<JointWater> {
         let face = w.face.as_deref().map(|f| self.water_face(k, f, loads)).transpose()?;
-        let forms = [w.pressure.is_some(), w.level.is_some(), w.levels.is_some(), w.downstream.is_some()];
+        let forms =
+            [w.pressure.is_some(), w.level.is_some(), w.levels.is_some(), w.downstream.is_some(), w.plane.is_some()];
         if forms.iter().filter(|&&f| f).count() > 1 {
             return Err(self.err(
                 k,
-                "give the water pressure one way: pressure = u (uniform), level = h (a flat piezometric level), levels = [[s, h], ..] (a diagram along the flow) or upstream = h1 with downstream = h2 (from one end of the joint to the other), not several.",
+                "give the water pressure one way: pressure = u (uniform), level = h (a flat piezometric level), plane = [h0, dh/dx(, dh/dy)] (an inclined one), levels = [[s, h], ..] (a diagram along the flow) or upstream = h1 with downstream = h2 (from one end of the joint to the other), not several.",
             ));
         }
         let pressure = if let Some(u) = w.pressure {
@@ -60,7 +62,7 @@ impl Checker<'_> {
                 }
             };
             let along = self.along(&format!("{k}.along"), w.along.as_deref(), analysis)?;
-            let levels = self.levels(k, &w, face.as_ref())?;
+            let levels = self.levels(k, &w, face.as_ref(), analysis)?;
             let drain = w.drain.map(|d| self.drain(&format!("{k}.drain"), d, &levels)).transpose()?;
             WaterPressure::Level { unit_weight, along, levels, drain }
         };
@@ -135,9 +137,26 @@ impl Checker<'_> {
     }
 
     /// The piezometric level: `level`, `levels` or the heads at the ends.
-    fn levels(&self, k: &str, w: &RawWater, face: Option<&WaterFace>) -> R<Levels> {
+    fn levels(&self, k: &str, w: &RawWater, face: Option<&WaterFace>, analysis: Analysis) -> R<Levels> {
         if let Some(h) = w.level {
             return Ok(Levels::Flat(self.finite(h, &format!("{k}.level"))?));
+        }
+        if let Some(p) = &w.plane {
+            let key = format!("{k}.plane");
+            let want = if analysis == Analysis::Solid { 3 } else { 2 };
+            if p.len() != want {
+                let form = if want == 3 {
+                    "[h0, dh/dx, dh/dy]: h = h0 + x dh/dx + y dh/dy"
+                } else {
+                    "[h0, dh/dx]: h = h0 + x dh/dx"
+                };
+                return Err(self.bad(key, fmt_vec(p), format!("give the inclined level as {form}.")));
+            }
+            let mut c = [0.0; 3];
+            for (j, v) in p.iter().enumerate() {
+                c[j] = self.finite(*v, &format!("{key}[{j}]"))?;
+            }
+            return Ok(Levels::Plane(c));
         }
         if let Some(rows) = &w.levels {
             let key = format!("{k}.levels");
@@ -189,17 +208,17 @@ impl Checker<'_> {
             )),
             (None, None) => Err(self.err(
                 k,
-                "no water pressure given; add pressure = u (uniform), level = h (a flat piezometric level), levels = [[s, h], ..] (a diagram along the flow) or upstream = h1 with downstream = h2, with unit_weight.",
+                "no water pressure given; add pressure = u (uniform), level = h (a flat piezometric level), plane = [h0, dh/dx(, dh/dy)] (an inclined one), levels = [[s, h], ..] (a diagram along the flow) or upstream = h1 with downstream = h2, with unit_weight.",
             )),
         }
     }
 
     /// A drain line on a diagram.
     fn drain(&self, key: &str, d: RawDrain, levels: &Levels) -> R<Drain> {
-        if let Levels::Flat(_) = levels {
+        if let Levels::Flat(_) | Levels::Plane(_) = levels {
             return Err(self.err(
                 key,
-                "a drain lowers an uplift diagram at its line; a flat level has none: give the diagram as levels = [[s, h], ..] or upstream / downstream.",
+                "a drain lowers an uplift diagram at its line; a level (flat or a plane) has none: give the diagram as levels = [[s, h], ..] or upstream / downstream.",
             ));
         }
         let at = self.finite(
