@@ -151,6 +151,14 @@ pub fn check(scene_path: &Path, allow_geo_commands: bool) -> Result<()> {
         crate::memory::human(need.total),
         crate::memory::human(available.bytes)
     );
+    if let Some(cut) = scene.cut_job().and(crate::mesh::joints::read_report(&msh)) {
+        let dim = scene.analysis.dim();
+        outln!("  joints:");
+        for line in crate::output::cut::summary(&cut, &scene.joints, dim) {
+            outln!("    {line}");
+        }
+        warn(&crate::output::cut::warnings(&cut, dim));
+    }
     warn(&scene.warnings());
     warn(&crate::model::warnings::warnings(&model));
     Ok(())

@@ -120,6 +120,7 @@ pub fn gmsh_job(scene: &Scene, geo: &Path, msh: PathBuf, allow_geo_commands: boo
         clscale: scene.gmsh.clscale,
         timeout: std::time::Duration::from_secs_f64(scene.gmsh.timeout),
         allow_commands: allow_geo_commands,
+        cut: scene.cut_job(),
     }
 }
 
@@ -138,7 +139,10 @@ pub fn mesh_into(scene: &Scene, stage: Option<&mut Stage>, allow_geo_commands: b
     let key = gmsh::cache_key(&job)?;
     let cached = stage.reuse_mesh(&file, &key);
     if !cached {
-        gmsh::run_in(&job, stage.mesh_dir()?.fd())?;
+        gmsh::run_in(&job, stage.mesh_dir()?.fd()).map_err(|e| match e {
+            gmsh::GmshError::Joints(j) if j.is_about_scene() => anyhow::anyhow!("{}: {j}", scene.path.display()),
+            e => e.into(),
+        })?;
         stage.keep_mesh(&file, &key)?;
     }
     let rel = format!("{}/{file}", output::files::MESH_DIR);

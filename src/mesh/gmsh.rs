@@ -73,6 +73,9 @@ pub enum GmshError {
 
     #[error("`gmsh --version` printed no version (output: {output:?})")]
     Version { output: String },
+
+    #[error(transparent)]
+    Joints(#[from] super::joints::JointError),
 }
 
 fn defined_names(defined: &[String]) -> String {
@@ -106,6 +109,9 @@ pub struct GmshJob {
     pub timeout: Duration,
     /// Whether the .geo may run programs and write files.
     pub allow_commands: bool,
+    /// Joints that cut the bodies: then gmsh runs through its API
+    /// ([`super::joints`]) instead of the CLI, and the joints are part of the key.
+    pub cut: Option<super::joints::CutJob>,
 }
 
 /// gmsh's time limit when the scene sets none.
@@ -236,6 +242,9 @@ fn key_with(job: &GmshJob, binary: bool) -> Result<String, GmshError> {
     for a in &args {
         h.field(a.as_encoded_bytes());
     }
+    if let Some(c) = &job.cut {
+        h.field(c.key_text().as_bytes());
+    }
     let cmd: Vec<String> = args.iter().map(|a| a.to_string_lossy().into_owned()).collect();
     Ok(format!("{:016x}\ngmsh {}\n", h.0, cmd.join(" ")))
 }
@@ -306,7 +315,35 @@ fn tail(output: &str, n: usize) -> String {
 /// file is named as `job.msh`), after the checks of [`cache_key`].
 pub fn run_in(job: &GmshJob, dir: BorrowedFd<'_>) -> Result<(), GmshError> {
     key_with(job, true)?;
-    run_gmsh(job, true, dir, "gmsh")
+    match &job.cut {
+        None => run_gmsh(job, true, dir, "gmsh"),
+        Some(cut) => run_cut(job, cut, dir),
+    }
+}
+
+/// Cuts the bodies by the joints and meshes through gmsh's API (in this
+/// process, so without [`GmshJob::timeout`]), writing the mesh and the
+/// cut's report ([`super::joints::report_path`]) into `dir`.
+fn run_cut(job: &GmshJob, cut: &super::joints::CutJob, dir: BorrowedFd<'_>) -> Result<(), GmshError> {
+    let out = out_name(job)?;
+    let report = super::joints::report_path(out);
+    // gmsh's API takes paths: the directory handle's own, which stays the
+    // directory it was opened on
+    let at = |f: &Path| Path::new(&format!("/proc/self/fd/{}", dir.as_raw_fd())).join(f);
+    let args = super::joints::MeshArgs {
+        geo: &job.geo,
+        dim: job.dim,
+        order: job.order,
+        setnumber: &job.setnumber,
+        clscale: job.clscale,
+    };
+    let ran = super::joints::mesh(&args, cut, &at(out), &at(&report));
+    if ran.is_err() {
+        for f in [out, report.as_path()] {
+            let _ = rustix::fs::unlinkat(dir, f, rustix::fs::AtFlags::empty());
+        }
+    }
+    Ok(ran?)
 }
 
 /// Meshes `job` into `job.msh`'s directory, binary or ASCII (the tests use both).
@@ -455,6 +492,7 @@ pub(crate) mod tests {
                 clscale: None,
                 timeout: DEFAULT_TIMEOUT,
                 allow_commands: false,
+                cut: None,
             }
         }
     }

@@ -3,11 +3,13 @@
 //! are 0-based positions in `Mesh::coords` (gmsh tags are kept for messages).
 //!
 //! Reading `.msh` files lives in [`msh`], running the gmsh CLI in [`gmsh`],
-//! what a `.geo` defines and runs in [`geo`].
+//! what a `.geo` defines and runs in [`geo`], cutting bodies by joint sets
+//! (through gmsh's API) in [`joints`].
 //! Nothing here knows about elasticity.
 
 pub mod geo;
 pub mod gmsh;
+pub mod joints;
 pub mod msh;
 
 /// Cell kinds, named and numbered as in gmsh (`gmsh_code`). The reference

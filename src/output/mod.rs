@@ -5,6 +5,7 @@
 //! then (once the output stage is timed) `summary.json` and `report.md`,
 //! which embeds the pictures.
 
+pub mod cut;
 pub mod faces;
 pub mod files;
 pub mod picture;

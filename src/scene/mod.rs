@@ -45,6 +45,7 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+use crate::mesh::joints::{CutJob, JointSpec};
 use crate::model::{BodySpec, ContactSpec, LoadSpec, ModelSpec, SupportSpec};
 
 mod errors;
@@ -312,6 +313,11 @@ pub struct Scene {
     pub bonded: bool,
     /// The safety search after the load steps, when asked for.
     pub safety: Option<Safety>,
+    /// `[[joint_sets]]` then `[[joints]]`: what cuts the bodies of the
+    /// .geo. Each is also the last entries of `contacts`, in this order.
+    pub joints: Vec<JointSpec>,
+    /// The most blocks the joints may make (`max_blocks`, default 1000).
+    pub max_blocks: usize,
 }
 
 impl Scene {
@@ -345,6 +351,21 @@ impl Scene {
                 Some(validate::Checker { path: &self.path }.safety(raw::RawSafety::default(), &self.contacts)?);
         }
         Ok(self)
+    }
+
+    /// What the mesher cuts the bodies by, when the scene has joints.
+    pub fn cut_job(&self) -> Option<CutJob> {
+        (!self.joints.is_empty()).then(|| CutJob { joints: self.joints.clone(), max_blocks: self.max_blocks })
+    }
+
+    /// The key path that defined contact `i`: `contacts[i]`, or the
+    /// `[[joint_sets]]` / `[[joints]]` entry it comes from.
+    pub fn contact_key(&self, i: usize) -> String {
+        let first_joint = self.contacts.len().saturating_sub(self.joints.len());
+        match i.checked_sub(first_joint).and_then(|j| self.joints.get(j)) {
+            Some(j) if !self.bonded => j.key.clone(),
+            _ => format!("contacts[{i}]"),
+        }
     }
 
     /// The material of `body`. Panics only if `body` was not validated
@@ -413,11 +434,7 @@ impl Scene {
                 .contacts
                 .iter()
                 .enumerate()
-                .map(|(i, c)| ContactSpec {
-                    key: format!("contacts[{i}]"),
-                    groups: c.groups.clone(),
-                    water: c.water.clone(),
-                })
+                .map(|(i, c)| ContactSpec { key: self.contact_key(i), groups: c.groups.clone(), water: c.water.clone() })
                 .collect(),
             supports: self
                 .supports

@@ -8,6 +8,7 @@ use serde::Deserialize;
 use std::collections::BTreeMap;
 
 use super::{Analysis, InterfaceSolver, SlipLaw, StateRule, TractionRecovery};
+use crate::mesh::joints::Shape;
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -34,6 +35,11 @@ pub(super) struct RawScene {
     pub(super) analytic: Option<RawAnalytic>,
     pub(super) output: Option<RawOutput>,
     pub(super) safety: Option<RawSafety>,
+    #[serde(default)]
+    pub(super) joint_sets: Vec<RawJoint>,
+    #[serde(default)]
+    pub(super) joints: Vec<RawJoint>,
+    pub(super) max_blocks: Option<i64>,
 }
 
 #[derive(Deserialize)]
@@ -103,6 +109,48 @@ pub(super) struct RawDrain {
     pub(super) at: Option<f64>,
     pub(super) efficiency: Option<f64>,
 }
+
+/// `[[joint_sets]]` and `[[joints]]`: where the joints lie; every other
+/// key is kept in `contact`, which the checker reads as a [`RawContact`]
+/// (so a joint takes every `[[contacts]]` key, and a key neither knows is
+/// refused there: serde's `flatten` would ignore it).
+#[derive(Deserialize)]
+pub(super) struct RawJoint {
+    pub(super) name: Option<String>,
+    pub(super) dip: Option<f64>,
+    pub(super) dip_direction: Option<f64>,
+    pub(super) angle: Option<f64>,
+    pub(super) spacing: Option<f64>,
+    pub(super) offset: Option<f64>,
+    pub(super) point: Option<Vec<f64>>,
+    pub(super) bodies: Option<Vec<String>>,
+    pub(super) persistence: Option<f64>,
+    pub(super) gap: Option<f64>,
+    pub(super) shape: Option<Shape>,
+    pub(super) centre: Option<Vec<f64>>,
+    pub(super) extent: Option<RawFrame>,
+    pub(super) snap: Option<f64>,
+    #[serde(flatten)]
+    pub(super) contact: toml::Table,
+}
+
+/// The keys of [`RawJoint`] itself, for messages.
+pub(super) const JOINT_KEYS: &[&str] = &[
+    "name",
+    "dip",
+    "dip_direction",
+    "angle",
+    "spacing",
+    "offset",
+    "point",
+    "bodies",
+    "persistence",
+    "gap",
+    "shape",
+    "centre",
+    "extent",
+    "snap",
+];
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]

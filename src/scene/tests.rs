@@ -459,3 +459,84 @@ fn safety_rules() {
     rejects(&with("reduce = [\"tensile_strength\"]\n"), &["reduces nothing", "tensile_strength"]);
     rejects(&minimal("[safety]\n"), &["safety", "has none", "[[contacts]]"]);
 }
+
+#[test]
+fn joint_sets_and_joints_parse() {
+    let s = load(&minimal_solid(
+        "[[contacts]]\ngroup = \"c\"\nfriction = 0.1\n[[joint_sets]]\nname = \"J1\"\ndip = 60\ndip_direction = 30\nspacing = 5\noffset = 1.3\nfriction = 0.7\ncohesion = 0.1\n[[joints]]\nname = \"fault\"\ndip = 80\ndip_direction = 0\npoint = [1, 2, 3]\npersistence = 4\nshape = \"disc\"\n",
+    ))
+    .expect("valid");
+    assert_eq!(s.joints.len(), 2);
+    assert_eq!(s.contacts.len(), 3, "the joints are the last contacts");
+    assert_eq!(s.contacts[1].groups, ContactGroups::Shared("J1".to_string()));
+    assert_eq!((s.contacts[1].friction, s.contacts[1].cohesion), (0.7, 0.1));
+    assert_eq!(s.contacts[2].friction, 0.0);
+    assert_eq!(s.joints[0].bodies, vec!["b1".to_string()], "default: every body");
+    assert_eq!(s.joints[0].placement, crate::mesh::joints::Placement::Set { spacing: 5.0, offset: 1.3 });
+    assert_eq!(s.joints[1].persistence.as_ref().map(|p| p.shape), Some(crate::mesh::joints::Shape::Disc));
+    assert_eq!(
+        (s.contact_key(0), s.contact_key(1), s.contact_key(2)),
+        ("contacts[0]".into(), "joint_sets[0]".into(), "joints[0]".into())
+    );
+    assert_eq!(s.model_spec().contacts[2].key, "joints[0]");
+    assert_eq!(s.max_blocks, 1000);
+    assert!(s.cut_job().is_some_and(|c| c.joints.len() == 2));
+    // 2D: a trace by its angle
+    let s = load(
+        &minimal("[[joint_sets]]\nname = \"bedding\"\nangle = 0\nspacing = 3\nmax_blocks = 5\n")
+            .replace("max_blocks = 5\n", "")
+            .replace("mesh =", "max_blocks = 5\nmesh ="),
+    )
+    .expect("valid 2D");
+    assert_eq!(s.joints[0].orientation, crate::mesh::joints::Orientation::Angle(0.0));
+    assert_eq!(s.max_blocks, 5);
+    assert!(load(&minimal_solid("")).expect("valid").cut_job().is_none());
+}
+
+#[test]
+fn joint_rules() {
+    let set = |body: &str| minimal_solid(&format!("[[joint_sets]]\nname = \"J1\"\n{body}\n"));
+    let ok = "dip = 60\ndip_direction = 30\nspacing = 5";
+    rejects(&set("dip = 95\ndip_direction = 30\nspacing = 5"), &["joint_sets[0].dip", "= 95", "0 (horizontal) to 90"]);
+    rejects(&set("dip = -1\ndip_direction = 30\nspacing = 5"), &["joint_sets[0].dip", "= -1"]);
+    rejects(
+        &set("dip = 60\ndip_direction = 360\nspacing = 5"),
+        &["joint_sets[0].dip_direction", "= 360", "0 <= dip_direction < 360", "is 0 degrees"],
+    );
+    rejects(&set("dip = 60\ndip_direction = -30\nspacing = 5"), &["joint_sets[0].dip_direction", "is 330 degrees"]);
+    rejects(&set("dip = 60\ndip_direction = 30\nspacing = 0"), &["joint_sets[0].spacing", "= 0", "> 0"]);
+    rejects(&set("dip = 60\ndip_direction = 30\nspacing = -2"), &["joint_sets[0].spacing", "= -2"]);
+    rejects(&set("dip = 60\ndip_direction = 30"), &["joint_sets[0].spacing", "missing"]);
+    rejects(&set("dip_direction = 30\nspacing = 5"), &["joint_sets[0].dip", "missing"]);
+    rejects(&set(&format!("{ok}\nangle = 3")), &["joint_sets[0].angle", "2D"]);
+    rejects(&set(&format!("{ok}\npoint = [0, 0, 0]")), &["joint_sets[0].point", "[[joints]]"]);
+    rejects(&set(&format!("{ok}\ngroup = \"x\"")), &["joint_sets[0]", "remove group"]);
+    rejects(&set(&format!("{ok}\nfriction = -1")), &["joint_sets[0].friction", "-1"]);
+    rejects(&set(&format!("{ok}\nbodies = [\"nope\"]")), &["joint_sets[0].bodies[0]", "\"nope\"", "\"b1\""]);
+    rejects(&set(&format!("{ok}\npersistence = 2")), &["joint_sets[0].gap", "missing"]);
+    rejects(&set(&format!("{ok}\ngap = 2")), &["joint_sets[0]", "persistence"]);
+    rejects(&set(&format!("{ok}\npersistence = 0\ngap = 1")), &["joint_sets[0].persistence", "= 0"]);
+    rejects(
+        &set(&format!("{ok}\nextent = {{ from = [0, 0, 0], to = [1, -1, 1] }}")),
+        &["joint_sets[0].extent.to", "y must exceed"],
+    );
+    rejects(&set(&format!("{ok}\nsnap = -1")), &["joint_sets[0].snap", "-1"]);
+    let m = rejects(&set(&format!("{ok}\nspacin = 2")), &["spacin", "joint_sets[0]", "Unknown keys are errors"]);
+    assert!(m.contains("`friction`") && m.contains("\"dip_direction\""), "{m}");
+    rejects(&set(&ok.replace("J1", "b1")).replace("\"J1\"", "\"b1\""), &["joint_sets[0].name", "bodies[0]"]);
+    let two = minimal_solid(&format!(
+        "[[joint_sets]]\nname = \"J\"\n{ok}\n[[joints]]\nname = \"J\"\ndip = 1\ndip_direction = 0\npoint = [0, 0, 0]\n"
+    ));
+    rejects(&two, &["joints[0].name", "joint_sets[0]"]);
+    let single =
+        |body: &str| minimal_solid(&format!("[[joints]]\nname = \"F\"\ndip = 60\ndip_direction = 30\n{body}\n"));
+    rejects(&single("spacing = 3\npoint = [0, 0, 0]"), &["joints[0]", "[[joint_sets]]"]);
+    rejects(&single(""), &["joints[0].point", "missing"]);
+    rejects(&single("point = [0, 0, 0]\npersistence = 2\ngap = 1"), &["joints[0].gap", "does not apply"]);
+    rejects(&minimal(&format!("[[joint_sets]]\nname = \"J\"\n{ok}")), &["joint_sets[0]", "angle"]);
+    rejects(&("max_blocks = 0\n".to_string() + &minimal_solid("")), &["max_blocks", "at least 1"]);
+    rejects(
+        &minimal_solid(&format!("[[joint_sets]]\nname = \"J\"\n{ok}")).replace("cylinder.geo", "cylinder.msh"),
+        &["joint_sets[0]", "ready mesh"],
+    );
+}

@@ -16,6 +16,7 @@ use super::{
 
 mod analytic;
 mod groups;
+mod joints;
 mod safety;
 mod water;
 
@@ -197,6 +198,16 @@ impl Checker<'_> {
         let mut raw_contacts = raw.contacts;
         let waters: Vec<_> = raw_contacts.iter_mut().map(|c| c.water.take()).collect();
         let mut contacts = self.contacts(raw_contacts, &bodies)?;
+        let (joints, joint_contacts) = self.joints(raw.joint_sets, raw.joints, &bodies, &contacts, analysis)?;
+        if let (Some(j), MeshSource::Msh(p)) = (joints.first(), &mesh) {
+            return Err(self.err(
+                &j.key,
+                format!("joints are cut into the bodies of a .geo, but mesh is the ready mesh {}; point mesh at the .geo (with SetFactory(\"OpenCASCADE\")), or give the joints as [[contacts]] groups of the mesh.", p.display()),
+            ));
+        }
+        contacts.extend(joint_contacts);
+        let max_blocks =
+            self.at_least(raw.max_blocks, 1000, 1, "max_blocks", "the most blocks the joints may cut the bodies into")?;
         let supports =
             raw.supports.into_iter().enumerate().map(|(i, s)| self.support(i, s, analysis)).collect::<R<Vec<_>>>()?;
         let loads = raw.loads.into_iter().enumerate().map(|(i, l)| self.load(i, l, analysis)).collect::<R<Vec<_>>>()?;
@@ -284,6 +295,8 @@ impl Checker<'_> {
             output,
             bonded: false,
             safety,
+            joints,
+            max_blocks,
         })
     }
 

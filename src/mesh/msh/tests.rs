@@ -27,6 +27,7 @@ fn gmsh(dir: &TestDir, geo: &str, name: &str, dim: usize, order: usize, binary: 
         clscale: None,
         timeout: super::super::gmsh::DEFAULT_TIMEOUT,
         allow_commands: false,
+        cut: None,
     };
     mesh_with(&job, binary).unwrap();
     job.msh

@@ -99,13 +99,16 @@ impl Stage {
             return false;
         }
         let Ok(mesh) = self.mesh_dir() else { return false };
-        let linked = [file, key_file.as_str()].iter().all(|f| cache.link(OsStr::new(f), &mesh, OsStr::new(f)).is_ok());
+        let mut files = vec![file.to_string(), key_file.clone()];
+        // what the mesher kept beside the mesh (the joints' cut report)
+        files.extend(MESH_COMPANIONS.iter().map(|c| format!("{file}{c}")).filter(|f| is_file(&cache, f)));
+        let linked = files.iter().all(|f| cache.link(OsStr::new(f), &mesh, OsStr::new(f)).is_ok());
         // the key read is the key linked (a commit may have replaced it)
         let mut again = String::new();
         let same = mesh.read_file(OsStr::new(&key_file)).and_then(|mut f| f.read_to_string(&mut again)).is_ok()
             && again == key;
         if linked && same && is_file(&mesh, file) {
-            self.early.extend([format!("{MESH_DIR}/{file}"), format!("{MESH_DIR}/{key_file}")]);
+            self.early.extend(files.iter().map(|f| format!("{MESH_DIR}/{f}")));
             return true;
         }
         let _ = self.dir.remove_tree(OsStr::new(MESH_DIR));
@@ -120,6 +123,8 @@ impl Stage {
         mesh.create(OsStr::new(&key_file), key.as_bytes())
             .map_err(|source| OutputError::Write { path: self.out().join(MESH_DIR).join(&key_file), source })?;
         self.early.extend([format!("{MESH_DIR}/{file}"), format!("{MESH_DIR}/{key_file}")]);
+        let companions = MESH_COMPANIONS.iter().map(|c| format!("{file}{c}")).filter(|f| is_file(&mesh, f));
+        self.early.extend(companions.map(|f| format!("{MESH_DIR}/{f}")).collect::<Vec<_>>());
         Ok(())
     }
 
@@ -217,6 +222,10 @@ impl Drop for Stage {
         }
     }
 }
+
+/// Files a mesher may keep beside the mesh `<file>`, as `<file><suffix>`:
+/// cached, reused and committed with it.
+const MESH_COMPANIONS: &[&str] = &[".cut.json"];
 
 fn is_file(d: &Dir, name: &str) -> bool {
     d.stat(OsStr::new(name)).ok().flatten().is_some_and(|s| kind(&s) == FileType::RegularFile)

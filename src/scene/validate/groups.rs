@@ -91,9 +91,9 @@ impl Checker<'_> {
     pub(super) fn contacts(&self, raw: Vec<RawContact>, bodies: &[Body]) -> R<Vec<Contact>> {
         let mut seen: BTreeMap<Vec<String>, usize> = BTreeMap::new();
         let mut out = Vec::new();
-        for (i, c) in raw.into_iter().enumerate() {
+        for (i, mut c) in raw.into_iter().enumerate() {
             let k = format!("contacts[{i}]");
-            let groups = match (c.group, c.groups) {
+            let groups = match (c.group.take(), c.groups.take()) {
                 (Some(_), Some(_)) => {
                     return Err(self.err(
                         &k,
@@ -150,31 +150,44 @@ impl Checker<'_> {
                 return Err(self
                     .err(&gkey, format!("the same interface is already contacts[{j}]; define each interface once.")));
             }
-            let friction = self.non_negative(c.friction, &format!("{k}.friction"), "the friction coefficient")?;
-            let cohesion = self.non_negative(c.cohesion, &format!("{k}.cohesion"), "the cohesion")?;
-            let tensile_strength =
-                self.non_negative(c.tensile_strength, &format!("{k}.tensile_strength"), "the tensile strength")?;
-            let residual_cohesion =
-                self.non_negative(c.residual_cohesion, &format!("{k}.residual_cohesion"), "the residual cohesion")?;
-            if residual_cohesion > cohesion {
-                return Err(self.bad(
-                    format!("{k}.residual_cohesion"),
-                    residual_cohesion,
-                    format!("the cohesion kept after opening cannot exceed the cohesion ({cohesion}); lower it or raise cohesion."),
-                ));
-            }
-            out.push(Contact {
-                groups,
-                friction,
-                cohesion,
-                tensile_strength,
-                slip: c.slip.unwrap_or_default(),
-                residual_cohesion,
-                traction: c.traction.unwrap_or_default(),
-                water: None,
-            });
+            out.push(self.strength(&k, groups, c)?);
         }
         Ok(out)
+    }
+
+    /// The contact of entry `k` (`contacts[1]`, `joint_sets[0]`) on
+    /// `groups`: its strength keys checked, defaults applied.
+    pub(super) fn strength(&self, k: &str, groups: ContactGroups, c: RawContact) -> R<Contact> {
+        // a [[contacts]] entry's water is taken and checked before; a joint's is not supported yet
+        if c.water.is_some() {
+            return Err(self.err(
+                &format!("{k}.water"),
+                "water in the joints of [[joint_sets]] and [[joints]] is not supported yet; remove it, or cut the joints in the .geo and give them as [[contacts]] with water.".to_string(),
+            ));
+        }
+        let friction = self.non_negative(c.friction, &format!("{k}.friction"), "the friction coefficient")?;
+        let cohesion = self.non_negative(c.cohesion, &format!("{k}.cohesion"), "the cohesion")?;
+        let tensile_strength =
+            self.non_negative(c.tensile_strength, &format!("{k}.tensile_strength"), "the tensile strength")?;
+        let residual_cohesion =
+            self.non_negative(c.residual_cohesion, &format!("{k}.residual_cohesion"), "the residual cohesion")?;
+        if residual_cohesion > cohesion {
+            return Err(self.bad(
+                format!("{k}.residual_cohesion"),
+                residual_cohesion,
+                format!("the cohesion kept after opening cannot exceed the cohesion ({cohesion}); lower it or raise cohesion."),
+            ));
+        }
+        Ok(Contact {
+            groups,
+            friction,
+            cohesion,
+            tensile_strength,
+            slip: c.slip.unwrap_or_default(),
+            residual_cohesion,
+            traction: c.traction.unwrap_or_default(),
+            water: None,
+        })
     }
 
     pub(super) fn support(&self, i: usize, s: RawSupport, analysis: Analysis) -> R<Support> {

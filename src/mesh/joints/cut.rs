@@ -1,0 +1,412 @@
+//! The cut itself, in gmsh's model (module header of `joints` for the
+//! steps): lay every joint's patches, fragment, sort the pieces, rebuild
+//! the physical groups, size the new points, mesh and write.
+
+use std::collections::{HashMap, HashSet};
+use std::path::Path;
+
+use super::api::{ApiError, DimTag, PhysicalGroup as Group, Session};
+use super::geometry::{self, Patch};
+use super::sizes::Sizes;
+use super::{
+    trim, BlockReport, CutJob, CutReport, JointError, JointReport, JointSpec, MeshArgs, NearMiss, Placement,
+    PlaneReport,
+};
+
+type R<T> = Result<T, JointError>;
+
+/// A joint's planes as laid: the report of each plane, its patches and
+/// the planes that pass close to a corner.
+struct Laid {
+    planes: Vec<PlaneReport>,
+    patches: Vec<Piece>,
+    near: Vec<NearMiss>,
+}
+
+/// A patch of a joint, or a face of its contact group, and its plane
+/// (index in the joint's planes).
+#[derive(Clone, Copy)]
+struct Piece {
+    plane: usize,
+    entity: DimTag,
+}
+
+pub(super) fn run(s: &Session, args: &MeshArgs, job: &CutJob, out: &Path) -> R<CutReport> {
+    let geo = args.geo;
+    let g = |e: ApiError| JointError::Gmsh { geo: geo.to_path_buf(), detail: e.to_string() };
+    let dim = args.dim as i32;
+    s.open(geo).map_err(g)?;
+    logged(s, geo)?;
+    if s.occ_entities(dim).map_err(g)?.is_empty() {
+        return Err(JointError::NotOcc { geo: geo.to_path_buf() });
+    }
+    let groups = s.physical_groups().map_err(g)?;
+    for j in &job.joints {
+        if groups.iter().any(|grp| grp.name == j.name) {
+            return Err(JointError::NameTaken { key: j.key.clone(), name: j.name.clone(), geo: geo.to_path_buf() });
+        }
+    }
+    let bodies = job.joints.iter().map(|j| body_entities(j, &groups, dim, geo)).collect::<R<Vec<_>>>()?;
+    let sizes = measure(s, dim).map_err(g)?;
+    let all = s.entities(dim).map_err(g)?;
+    let old_points = points(s).map_err(g)?;
+    let laid =
+        job.joints.iter().zip(&bodies).map(|(j, b)| lay(s, j, b, &all, &sizes, (dim, geo))).collect::<R<Vec<_>>>()?;
+
+    // every volume (surface) and every entity a user's group names, cut by every patch
+    let mut objects: Vec<DimTag> = all.clone();
+    let mut lower: Vec<DimTag> =
+        groups.iter().filter(|grp| grp.dim < dim).flat_map(|grp| grp.tags.iter().map(|&t| (grp.dim, t))).collect();
+    lower.sort_unstable();
+    lower.dedup();
+    objects.extend(lower);
+    let tools: Vec<DimTag> = laid.iter().flat_map(|l| l.patches.iter().map(|p| p.entity)).collect();
+    let (_, map) = s.fragment(&objects, &tools).map_err(g)?;
+    s.synchronize().map_err(g)?;
+    let children: HashMap<DimTag, Vec<DimTag>> = objects.iter().chain(&tools).copied().zip(map).collect();
+
+    let kept = sort_pieces(s, dim, &objects, &laid, &children).map_err(g)?;
+    for (j, (l, k)) in job.joints.iter().zip(laid.iter().zip(&kept)) {
+        if k.is_empty() {
+            return Err(nothing(j, &format!("its {} plane(s) inside the bounding box of its bodies miss the bodies themselves (they pass through openings or outside); change offset, spacing or extent", l.planes.len())));
+        }
+    }
+    let blocks = s.entities(dim).map_err(g)?;
+    if blocks.len() > job.max_blocks {
+        return Err(JointError::TooManyBlocks { count: blocks.len(), max: job.max_blocks });
+    }
+    regroup(s, dim, &groups, &children, job, &kept).map_err(g)?;
+    size_new_points(s, &old_points, &sizes).map_err(g)?;
+
+    s.set_option("Mesh.ElementOrder", args.order as f64).map_err(g)?;
+    s.generate(dim).map_err(g)?;
+    logged(s, geo)?;
+    s.set_option("Mesh.MshFileVersion", 4.1).map_err(g)?;
+    s.set_option("Mesh.Binary", 1.0).map_err(g)?;
+    s.write(out).map_err(g)?;
+    logged(s, geo)?;
+    report(s, (dim, &sizes), job, laid, &kept, &blocks).map_err(g)
+}
+
+/// Any `Error` gmsh logged so far is a failure (gmsh may carry on after one).
+fn logged(s: &Session, geo: &Path) -> R<()> {
+    let errors = s.errors();
+    if errors.is_empty() {
+        Ok(())
+    } else {
+        Err(JointError::Gmsh { geo: geo.to_path_buf(), detail: errors.join("; ") })
+    }
+}
+
+fn nothing(j: &JointSpec, why: &str) -> JointError {
+    JointError::CutsNothing {
+        key: j.key.clone(),
+        name: j.name.clone(),
+        label: j.orientation.label(),
+        why: why.to_string(),
+    }
+}
+
+/// The volumes (surfaces in 2D) of the joint's body groups.
+fn body_entities(j: &JointSpec, groups: &[Group], dim: i32, geo: &Path) -> R<Vec<DimTag>> {
+    let mut out = Vec::new();
+    for b in &j.bodies {
+        let Some(grp) = groups.iter().find(|grp| grp.dim == dim && &grp.name == b) else {
+            return Err(JointError::NoBody {
+                key: j.key.clone(),
+                geo: geo.to_path_buf(),
+                what: if dim == 3 { "volume" } else { "surface" },
+                group: b.clone(),
+            });
+        };
+        out.extend(grp.tags.iter().map(|&t| (dim, t)));
+    }
+    out.sort_unstable();
+    out.dedup();
+    Ok(out)
+}
+
+/// The sizes the uncut model's boundary mesh has (linear, then cleared).
+fn measure(s: &Session, dim: i32) -> Result<Sizes, ApiError> {
+    let order = s.option("Mesh.ElementOrder")?;
+    s.set_option("Mesh.ElementOrder", 1.0)?;
+    s.generate(dim - 1)?;
+    let (tags, coords) = s.nodes()?;
+    let index: HashMap<usize, usize> = tags.iter().enumerate().map(|(i, &t)| (t, i)).collect();
+    let mut groups = Vec::new();
+    let kinds: &[(i32, usize)] = if dim == 3 { &[(2, 3), (3, 4)] } else { &[(1, 2)] };
+    for &(kind, per) in kinds {
+        let nodes: Vec<usize> = s.element_nodes(kind)?.iter().filter_map(|t| index.get(t).copied()).collect();
+        groups.push((per, nodes));
+    }
+    s.clear_mesh()?;
+    s.set_option("Mesh.ElementOrder", order)?;
+    Ok(Sizes::measure(&coords, &groups))
+}
+
+/// Every geometric point and where it is.
+fn points(s: &Session) -> Result<HashMap<i32, [f64; 3]>, ApiError> {
+    s.entities(0)?.into_iter().map(|(_, t)| Ok((t, s.point(t)?))).collect()
+}
+
+/// The union of the entities' bounding boxes.
+fn bounding_box(s: &Session, ents: &[DimTag]) -> Result<geometry::Bbox, ApiError> {
+    let mut b = [f64::INFINITY, f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY];
+    for &e in ents {
+        let x = s.bounding_box(e)?;
+        for d in 0..3 {
+            b[d] = b[d].min(x[d]);
+            b[d + 3] = b[d + 3].max(x[d + 3]);
+        }
+    }
+    Ok(b)
+}
+
+/// Lays a joint's patches in gmsh: its planes (snapped where asked), each
+/// covered or tiled with finite joints, clipped to `extent` and to its
+/// bodies when it does not cut every body.
+fn lay(
+    s: &Session,
+    j: &JointSpec,
+    bodies: &[DimTag],
+    all: &[DimTag],
+    sizes: &Sizes,
+    (dim, geo): (i32, &Path),
+) -> R<Laid> {
+    let g = |e: ApiError| JointError::Gmsh { geo: geo.to_path_buf(), detail: e.to_string() };
+    let d = dim as usize;
+    let b = bounding_box(s, bodies).map_err(g)?;
+    let diag =
+        ((b[3] - b[0]).powi(2) + (b[4] - b[1]).powi(2) + if d == 3 { (b[5] - b[2]).powi(2) } else { 0.0 }).sqrt();
+    let tol = 1e-6 * diag;
+    let n = j.orientation.normal();
+    let (lo, hi) = geometry::range_over(n, &b, d);
+    let planes: Vec<(Option<i64>, f64)> = match j.placement {
+        Placement::Set { spacing, offset } => {
+            geometry::offsets(offset, spacing, (lo, hi), tol).into_iter().map(|(k, v)| (Some(k), v)).collect()
+        }
+        Placement::Single { point } => {
+            let v = geometry::dot(n, point);
+            if v > lo + tol && v < hi - tol {
+                vec![(None, v)]
+            } else {
+                vec![]
+            }
+        }
+    };
+    if planes.is_empty() {
+        let why = match j.placement {
+            Placement::Set { spacing, offset } => format!("no plane n . x = {} + k {} lies inside its bodies, where n . x runs from {} to {} (n = [{}]); change offset or spacing", trim(offset), trim(spacing), trim(lo), trim(hi), n.map(trim).join(", ")),
+            Placement::Single { point } => format!("its plane through [{}] misses the bounding box of its bodies, where n . x runs from {} to {} against {} at the point; move the point", point.map(trim).join(", "), trim(lo), trim(hi), trim(geometry::dot(n, point))),
+        };
+        return Err(nothing(j, &why));
+    }
+    let mut corners: Vec<[f64; 3]> = Vec::new();
+    for (pd, p) in s.boundary(bodies, true).map_err(g)? {
+        if pd == 0 {
+            corners.push(s.point(p).map_err(g)?);
+        }
+    }
+    let mut laid = Laid { planes: Vec::new(), patches: Vec::new(), near: Vec::new() };
+    let centre = j.persistence.as_ref().and_then(|p| p.centre).unwrap_or(match j.placement {
+        Placement::Single { point } => point,
+        Placement::Set { .. } => {
+            [(b[0] + b[3]) / 2.0, (b[1] + b[4]) / 2.0, if d == 3 { (b[2] + b[5]) / 2.0 } else { 0.0 }]
+        }
+    });
+    for (k, mut v) in planes {
+        let mut snapped = None;
+        if let Some((c, dist)) = geometry::nearest(n, v, &corners) {
+            if dist > tol && dist < j.snap {
+                snapped = Some((c, dist));
+                v = geometry::dot(n, c);
+            } else if dist > tol {
+                let size = sizes.at(c).unwrap_or(f64::INFINITY);
+                if dist < size / 4.0 {
+                    laid.near.push(NearMiss {
+                        key: j.key.clone(),
+                        name: j.name.clone(),
+                        k,
+                        offset: v,
+                        corner: c,
+                        distance: dist,
+                        size,
+                    });
+                }
+            }
+        }
+        let patches = match &j.persistence {
+            None => vec![geometry::covering(n, v, &b, d)],
+            Some(p) => match j.placement {
+                Placement::Single { .. } => vec![geometry::one(geometry::project(n, v, centre), n, p.size, p.shape, d)],
+                Placement::Set { .. } => {
+                    let tiling = geometry::Tiling { size: p.size, gap: p.gap, shape: p.shape, centre };
+                    geometry::finite(n, v, &tiling, &b, d)
+                }
+            },
+        };
+        let mut made = patches.iter().map(|p| add_patch(s, p)).collect::<Result<Vec<DimTag>, ApiError>>().map_err(g)?;
+        if let Some((from, to)) = j.extent {
+            let bx = s.add_box(dim, from, to).map_err(g)?;
+            made = s.intersect(&made, &[bx], true).map_err(g)?;
+        }
+        if bodies.len() < all.len() && !made.is_empty() {
+            made = s.intersect(&made, bodies, false).map_err(g)?;
+        }
+        let i = laid.planes.len();
+        laid.patches.extend(made.into_iter().map(|entity| Piece { plane: i, entity }));
+        laid.planes.push(PlaneReport { k, offset: v, area: 0.0, snapped });
+    }
+    Ok(laid)
+}
+
+fn add_patch(s: &Session, p: &Patch) -> Result<DimTag, ApiError> {
+    Ok(match p {
+        Patch::Polygon(c) => (2, s.add_polygon(c)?),
+        Patch::Disc { centre, radius, normal } => (2, s.add_disc(*centre, *radius, *normal)?),
+        Patch::Segment(a, b) => {
+            let (p, q) = (s.add_point(*a)?, s.add_point(*b)?);
+            (1, s.add_line(p, q)?)
+        }
+    })
+}
+
+/// The pieces of every joint that lie between two blocks or inside one, a
+/// piece in two joints going to the first; pieces outside every body are
+/// removed from the model.
+fn sort_pieces(
+    s: &Session,
+    dim: i32,
+    objects: &[DimTag],
+    laid: &[Laid],
+    children: &HashMap<DimTag, Vec<DimTag>>,
+) -> Result<Vec<Vec<Piece>>, ApiError> {
+    let mut embedded: HashSet<i32> = HashSet::new();
+    for (_, v) in s.entities(dim)? {
+        embedded.extend(s.embedded(dim, v)?.into_iter().filter(|&(d, _)| d == dim - 1).map(|(_, t)| t));
+    }
+    let of_objects: HashSet<DimTag> = objects.iter().flat_map(|o| children[o].iter().copied()).collect();
+    let mut taken: HashSet<i32> = HashSet::new();
+    let mut dangling: Vec<DimTag> = Vec::new();
+    let mut kept = Vec::with_capacity(laid.len());
+    for l in laid {
+        let mut mine = Vec::new();
+        for patch in &l.patches {
+            for &(cd, c) in &children[&patch.entity] {
+                if cd != dim - 1 || taken.contains(&c) || dangling.contains(&(cd, c)) {
+                    continue;
+                }
+                let up = s.upward(cd, c)?;
+                if up.len() >= 2 || embedded.contains(&c) {
+                    taken.insert(c);
+                    mine.push(Piece { plane: patch.plane, entity: (cd, c) });
+                } else if up.is_empty() && !of_objects.contains(&(cd, c)) {
+                    dangling.push((cd, c));
+                }
+            }
+        }
+        kept.push(mine);
+    }
+    if !dangling.is_empty() {
+        s.remove(&dangling, true)?;
+        s.synchronize()?;
+    }
+    Ok(kept)
+}
+
+/// The user's groups on the pieces of what they named, with their own
+/// tags, and one group per joint on its pieces.
+fn regroup(
+    s: &Session,
+    dim: i32,
+    groups: &[Group],
+    children: &HashMap<DimTag, Vec<DimTag>>,
+    job: &CutJob,
+    kept: &[Vec<Piece>],
+) -> Result<(), ApiError> {
+    s.remove_physical_groups()?;
+    for grp in groups {
+        let d = grp.dim;
+        let mut tags: Vec<i32> = grp
+            .tags
+            .iter()
+            .flat_map(|&e| children.get(&(d, e)).into_iter().flatten())
+            .filter(|&&(cd, _)| cd == d)
+            .map(|&(_, c)| c)
+            .collect();
+        tags.sort_unstable();
+        tags.dedup();
+        s.add_physical_group(d, &tags, grp.tag, &grp.name)?;
+    }
+    for (j, k) in job.joints.iter().zip(kept) {
+        let mut tags: Vec<i32> = k.iter().map(|p| p.entity.1).collect();
+        tags.sort_unstable();
+        s.add_physical_group(dim - 1, &tags, -1, &j.name)?;
+    }
+    Ok(())
+}
+
+/// Each point the cut made takes the size measured at the nearest node of
+/// the uncut boundary mesh.
+fn size_new_points(s: &Session, old: &HashMap<i32, [f64; 3]>, sizes: &Sizes) -> Result<(), ApiError> {
+    for (_, p) in s.entities(0)? {
+        let x = s.point(p)?;
+        if old.get(&p).is_some_and(|o| (0..3).all(|d| (o[d] - x[d]).abs() <= 1e-12 * (1.0 + x[d].abs()))) {
+            continue;
+        }
+        if let Some(size) = sizes.at(x) {
+            s.set_size(&[p], size)?;
+        }
+    }
+    Ok(())
+}
+
+/// What the cut made: the planes with their areas, the blocks.
+fn report(
+    s: &Session,
+    (dim, sizes): (i32, &Sizes),
+    job: &CutJob,
+    laid: Vec<Laid>,
+    kept: &[Vec<Piece>],
+    blocks: &[DimTag],
+) -> Result<CutReport, ApiError> {
+    let mut out = CutReport::default();
+    for ((j, mut l), k) in job.joints.iter().zip(laid).zip(kept) {
+        for p in k {
+            l.planes[p.plane].area += s.mass(p.entity)?;
+        }
+        out.near_misses.append(&mut l.near);
+        out.joints.push(JointReport {
+            key: j.key.clone(),
+            name: j.name.clone(),
+            label: j.orientation.label(),
+            normal: j.orientation.normal(),
+            planes: l.planes,
+            faces: k.len(),
+        });
+    }
+    let body_of: HashMap<i32, String> = s
+        .physical_groups()?
+        .into_iter()
+        .filter(|grp| grp.dim == dim)
+        .flat_map(|grp| grp.tags.into_iter().map(move |t| (t, grp.name.clone())))
+        .collect();
+    for &b in blocks {
+        let (_, tag) = b;
+        let volume = s.mass(b)?;
+        let mut area = 0.0;
+        for f in s.boundary(&[b], false)? {
+            area += s.mass(f)?;
+        }
+        let factor = if dim == 3 { 6.0 } else { 4.0 };
+        let centre = s.centre(b)?;
+        out.blocks.push(BlockReport {
+            body: body_of.get(&tag).cloned().unwrap_or_default(),
+            volume,
+            thickness: factor * volume / area.max(f64::MIN_POSITIVE),
+            centre,
+            size: sizes.at(centre).unwrap_or(f64::INFINITY),
+        });
+    }
+    Ok(out)
+}
