@@ -19,7 +19,7 @@ pub fn solve_fails(case: &Case, scene: &str, out: &str) -> String {
 
 /// Exit status 1, stderr one paragraph starting with `error: `, no panic or
 /// backtrace, empty stdout, and nothing but mesh caches (`[<name>/]mesh/*.msh`,
-/// `.msh.key`, the manifest that lists them, and the locks `.<name>.lock`
+/// `.msh.key`, `.msh.cut.json`, the manifest that lists them, and the locks `.<name>.lock`
 /// beside them) in `results`. Returns the message, trimmed.
 pub fn clean_failure(case: &Case, out: &Output, results: &Path) -> String {
     let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
@@ -50,8 +50,10 @@ pub fn clean_failure(case: &Case, out: &Output, results: &Path) -> String {
 /// Whether `f` (relative to `dir`) is part of a mesh cache: `mesh/*.msh`,
 /// its key, a manifest listing nothing but those, or a lock.
 pub fn mesh_cache(dir: &Path, f: &str) -> bool {
-    let mesh =
-        |f: &str| (f.starts_with("mesh/") || f.contains("/mesh/")) && (f.ends_with(".msh") || f.ends_with(".msh.key"));
+    let mesh = |f: &str| {
+        (f.starts_with("mesh/") || f.contains("/mesh/"))
+            && [".msh", ".msh.key", ".msh.cut.json"].iter().any(|e| f.ends_with(e))
+    };
     let name = f.rsplit('/').next().unwrap_or(f);
     if name == ".subcontact-manifest.json" {
         let m = super::json(&dir.join(f));

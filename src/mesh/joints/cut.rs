@@ -61,7 +61,12 @@ pub(super) fn run(s: &Session, args: &MeshArgs, job: &CutJob, out: &Path) -> R<C
     lower.dedup();
     objects.extend(lower);
     let tools: Vec<DimTag> = laid.iter().flat_map(|l| l.patches.iter().map(|p| p.entity)).collect();
-    let (_, map) = s.fragment(&objects, &tools).map_err(g)?;
+    // (without joints, nothing is cut: the model's own blocks are reported)
+    let map = if tools.is_empty() {
+        objects.iter().map(|&o| vec![o]).collect()
+    } else {
+        s.fragment(&objects, &tools).map_err(g)?.1
+    };
     s.synchronize().map_err(g)?;
     let children: HashMap<DimTag, Vec<DimTag>> = objects.iter().chain(&tools).copied().zip(map).collect();
 

@@ -1,0 +1,293 @@
+//! Joint sets by orientation (issue 31): the rock mass the tool cuts from
+//! `[[joint_sets]]` against the same rock mass built by hand in gmsh, the
+//! user's groups through the cut, and the input it refuses.
+//!
+//! Reference: the `.geo` a user had to write before (`tests/geo/
+//! joint_sets_by_hand.geo`: each plane built from its dip and dip
+//! direction, the rock fragmented, every face sorted into its group by its
+//! corner points) against 15 lines of box minus a tunnel and three
+//! `[[joint_sets]]` (60/030, 70/150, 10/270; 5, 5 and 4 m apart).
+//!
+//! ```text
+//!        z                      a 20 m cube, x -10..10, y 0..20, z -10..10,
+//!        |   .------------.     minus a tunnel of radius 3 along y;
+//!        |  /  /   /   / /|     cut by three sets into 171 blocks
+//!        | .--/---/---/-. |
+//!        | |   .----.   | |     groups: rock, top, base, sides, ends, wall
+//!        | |  (      )  | .
+//!        | |   `----'   |/
+//!        | '------------'
+//!        o-------------------- x
+//! ```
+
+mod common;
+
+use common::cli::{clean_failure, says};
+use common::Case;
+use subcontact::mesh::joints::{cut_and_mesh, read_report, CutJob, CutReport, MeshArgs};
+use subcontact::mesh::Mesh;
+use subcontact::model::Model;
+use subcontact::scene::Scene;
+
+/// The user's rock: 15 lines.
+const ROCK_GEO: &str = r#"// A 20 m cube of rock with a tunnel of radius 3 m along y.
+SetFactory("OpenCASCADE");
+DefineConstant[ lc = {2.0, Name "Parameters/element size"} ];
+Box(1) = {-10, 0, -10, 20, 20, 20};
+Cylinder(2) = {0, -1, 0, 0, 22, 0, 3};
+BooleanDifference{ Volume{1}; Delete; }{ Volume{2}; Delete; }
+MeshSize{ PointsOf{ Volume{:}; } } = lc;
+e = 1e-3;
+Physical Volume("rock") = {1};
+Physical Surface("top") = Surface In BoundingBox{-10 - e, -e, 10 - e, 10 + e, 20 + e, 10 + e};
+Physical Surface("base") = Surface In BoundingBox{-10 - e, -e, -10 - e, 10 + e, 20 + e, -10 + e};
+Physical Surface("sides") = Surface In BoundingBox{-10 - e, -e, -10 - e, -10 + e, 20 + e, 10 + e};
+Physical Surface("sides") += Surface In BoundingBox{10 - e, -e, -10 - e, 10 + e, 20 + e, 10 + e};
+Physical Surface("ends") = Surface In BoundingBox{-10 - e, -e, -10 - e, 10 + e, e, 10 + e};
+Physical Surface("ends") += Surface In BoundingBox{-10 - e, 20 - e, -10 - e, 10 + e, 20 + e, 10 + e};
+Physical Surface("wall") = Surface In BoundingBox{-3 - e, -e, -3 - e, 3 + e, 20 + e, 3 + e};
+"#;
+
+/// What both scenes share: rock, gravity, supports.
+const HEAD: &str = r#"analysis = "solid"
+[materials.rock]
+E = 5000.0
+nu = 0.25
+[[bodies]]
+group = "rock"
+material = "rock"
+[[supports]]
+group = "base"
+fix = ["x", "y", "z"]
+[[loads]]
+group = "top"
+pressure = 1.0
+"#;
+
+const SETS: &str = r#"
+[[joint_sets]]
+name = "J1"
+dip = 60.0
+dip_direction = 30.0
+spacing = 5.0
+offset = 1.3
+friction = 0.7
+[[joint_sets]]
+name = "J2"
+dip = 70.0
+dip_direction = 150.0
+spacing = 5.0
+friction = 0.7
+[[joint_sets]]
+name = "J3"
+dip = 10.0
+dip_direction = 270.0
+spacing = 4.0
+offset = 0.5
+friction = 0.7
+"#;
+
+/// The mesh and model of a scene of the case (meshed into its results).
+fn model_of(case: &Case, scene: &std::path::Path) -> (Mesh, Model) {
+    let scene = Scene::load(scene).expect("scene");
+    let (mesh, _, _) = subcontact::driver::load_mesh(&scene, &case.out(&scene.name)).expect("mesh");
+    let model = Model::build(&mesh, &scene.model_spec()).expect("model");
+    (mesh, model)
+}
+
+/// Volume of a linear tetrahedron.
+fn tet_volume(p: [[f64; 3]; 4]) -> f64 {
+    let d = |a: [f64; 3], b: [f64; 3]| [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let (u, v, w) = (d(p[0], p[1]), d(p[0], p[2]), d(p[0], p[3]));
+    (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0])).abs()
+        / 6.0
+}
+
+/// Every block's volume (from its tetrahedra's corners), sorted.
+fn block_volumes(model: &Model) -> Vec<f64> {
+    let mut v: Vec<f64> = model
+        .bodies
+        .iter()
+        .map(|b| b.cells.iter().map(|c| tet_volume([0, 1, 2, 3].map(|i| model.coords[c.nodes[i]]))).sum::<f64>())
+        .collect();
+    v.sort_by(f64::total_cmp);
+    v
+}
+
+/// The area of a group's triangles (their corners).
+fn area(mesh: &Mesh, group: &str) -> f64 {
+    let g = mesh.group(group).unwrap_or_else(|| panic!("group {group}"));
+    g.cells
+        .iter()
+        .map(|c| {
+            let p: Vec<[f64; 3]> = c.nodes[..3].iter().map(|&n| mesh.coords[n]).collect();
+            let u = [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]];
+            let v = [p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]];
+            let w = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+            0.5 * (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt()
+        })
+        .sum()
+}
+
+/// Done-when 1 of issue 31: the same blocks (count, and every block's
+/// volume to 1 %) and the same joint areas (1 %) from 15 lines and three
+/// [[joint_sets]] as from the .geo built by hand; and the user's groups
+/// keep their areas through the cut.
+#[test]
+fn joint_sets_give_the_rock_mass_built_by_hand() {
+    let case = Case::new("joint-sets-by-hand");
+    case.write("rock.geo", ROCK_GEO);
+    let sets = case.write("sets.toml", &format!("mesh = \"rock.geo\"\n{HEAD}{SETS}"));
+    case.copy("tests/geo/joint_sets_by_hand.geo");
+    let contacts: String =
+        ["J1", "J2", "J3"].iter().map(|j| format!("[[contacts]]\ngroup = \"{j}\"\nfriction = 0.7\n")).collect();
+    let hand = case.write("hand.toml", &format!("mesh = \"joint_sets_by_hand.geo\"\n{HEAD}{contacts}"));
+    let (mesh_s, model_s) = model_of(&case, &sets);
+    // the by-hand .geo through the cutter without joints: its mesh, and its
+    // blocks' exact volumes (OpenCASCADE's) as the joint sets' report has them
+    let hand_geo = case.dir.join("joint_sets_by_hand.geo");
+    let args = MeshArgs { geo: &hand_geo, dim: 3, order: 1, setnumber: &[], clscale: None };
+    let hand_msh = case.dir.join("hand.msh");
+    let by_hand = cut_and_mesh(&args, &CutJob { joints: vec![], max_blocks: 1000 }, &hand_msh).expect("by hand");
+    let mesh_h = subcontact::mesh::msh::read_msh(&hand_msh).expect("the by-hand mesh");
+    let model_h = Model::build(&mesh_h, &Scene::load(&hand).expect("scene").model_spec()).expect("model");
+
+    assert_eq!(model_s.bodies.len(), model_h.bodies.len(), "blocks: joint sets against by hand");
+    assert_eq!(model_s.bodies.len(), 171);
+    let exact = |r: CutReport| {
+        let mut v: Vec<f64> = r.blocks.iter().map(|b| b.volume).collect();
+        v.sort_by(f64::total_cmp);
+        v
+    };
+    let report = read_report(&case.out("sets").join("mesh/sets.msh")).expect("the cut's report");
+    let (vs, vh) = (exact(report), exact(by_hand));
+    assert_eq!(vs.len(), vh.len());
+    let worst = vs.iter().zip(&vh).map(|(a, b)| (a - b).abs() / b).fold(0.0, f64::max);
+    let total: f64 = vs.iter().sum();
+    eprintln!("171 blocks, volume {total:.6} (8000 - 180 pi = {:.6}); largest relative difference of a block's volume {worst:.1e}, smallest block {:.2e}", 8000.0 - 180.0 * std::f64::consts::PI, vs[0]);
+    assert!(worst < 1e-6, "a block's volume differs by {worst:.2e}");
+    // and as meshed: the same within the chords that cut the tunnel's wall
+    let (ms, mh) = (block_volumes(&model_s), block_volumes(&model_h));
+    let worst = ms.iter().zip(&mh).map(|(a, b)| (a - b).abs() / b).fold(0.0, f64::max);
+    eprintln!("as meshed: largest relative difference {worst:.1e}");
+    assert!(worst < 0.03, "a meshed block's volume differs by {worst:.2e}");
+    for j in ["J1", "J2", "J3"] {
+        let (a, b) = (area(&mesh_s, j), area(&mesh_h, j));
+        eprintln!("{j}: area {a:.3} (joint sets) against {b:.3} (by hand)");
+        assert!((a - b).abs() < 0.01 * b, "{j}: {a} against {b}");
+    }
+    for (g, exact) in [("top", 400.0), ("base", 400.0), ("sides", 800.0)] {
+        let a = area(&mesh_s, g);
+        assert!((a - exact).abs() < 1e-9 * exact, "{g}: {a} against {exact}");
+    }
+    assert!((area(&mesh_s, "wall") - area(&mesh_h, "wall")).abs() < 0.01 * area(&mesh_h, "wall"));
+}
+
+/// A 10 m cube whose every face is a group.
+const CUBE_GEO: &str = r#"SetFactory("OpenCASCADE");
+DefineConstant[ lc = {2.5, Name "Parameters/element size"} ];
+Box(1) = {0, 0, 0, 10, 10, 10};
+MeshSize{ PointsOf{ Volume{1}; } } = lc;
+e = 1e-3;
+Physical Volume("rock") = {1};
+Physical Surface("x0") = Surface In BoundingBox{-e, -e, -e, e, 10 + e, 10 + e};
+Physical Surface("x1") = Surface In BoundingBox{10 - e, -e, -e, 10 + e, 10 + e, 10 + e};
+Physical Surface("y0") = Surface In BoundingBox{-e, -e, -e, 10 + e, e, 10 + e};
+Physical Surface("y1") = Surface In BoundingBox{-e, 10 - e, -e, 10 + e, 10 + e, 10 + e};
+Physical Surface("base") = Surface In BoundingBox{-e, -e, -e, 10 + e, 10 + e, e};
+Physical Surface("top") = Surface In BoundingBox{-e, -e, 10 - e, 10 + e, 10 + e, 10 + e};
+"#;
+
+/// The cube cut by two oblique sets and a horizontal one, strong joints.
+fn cube_scene(case: &Case, extra: &str) -> std::path::PathBuf {
+    case.write("cube.geo", CUBE_GEO);
+    let joint = |name: &str, dip: f64, dd: f64, spacing: f64| {
+        format!("[[joint_sets]]\nname = \"{name}\"\ndip = {dip}\ndip_direction = {dd}\nspacing = {spacing}\noffset = 0.37\nfriction = 0.6\ncohesion = 1e3\ntensile_strength = 1e3\n")
+    };
+    let text = format!(
+        "mesh = \"cube.geo\"\nanalysis = \"solid\"\n{extra}[materials.rock]\nE = 1000.0\nnu = 0.25\n[[bodies]]\ngroup = \"rock\"\nmaterial = \"rock\"\n{}{}{}[[supports]]\ngroup = \"base\"\nfix = [\"z\"]\n[[supports]]\ngroup = \"x0\"\nfix = [\"x\"]\n[[supports]]\ngroup = \"y0\"\nfix = [\"y\"]\n[[loads]]\ngroup = \"top\"\npressure = 1.0\n[[loads]]\ngroup = \"x1\"\npressure = 0.5\n",
+        joint("A", 45.0, 45.0, 4.0),
+        joint("B", 60.0, 200.0, 5.0),
+        joint("C", 0.0, 0.0, 3.3)
+    );
+    case.write("cube.toml", &text)
+}
+
+/// Done-when 2 of issue 31: the user's support and load groups survive
+/// the cutting. Every face of the cube is a group; the joints cut each
+/// into pieces, which keep its area, and the supports and loads on them
+/// act as on the intact cube: with joints that hold (cohesion and tensile
+/// strength 1e3), pressure p = 1 on top and q = 0.5 on x = 10 give the
+/// uniform stress sigma_zz = -p, sigma_xx = -q, so (E = 1000, nu = 0.25,
+/// L = 10) u_z(top) = L (-p + nu q) / E, u_x(x = 10) = L (-q + nu p) / E,
+/// u_y(y = 10) = L nu (p + q) / E, which linear tetrahedra reproduce
+/// exactly.
+#[test]
+fn the_users_groups_survive_the_cutting() {
+    let case = Case::new("joint-sets-groups");
+    let scene = cube_scene(&case, "");
+    let run = case.run(&scene).expect("the jointed cube solves");
+    let mesh = subcontact::mesh::msh::read_msh(&case.out("cube").join("mesh/cube.msh")).expect("mesh");
+    for g in ["x0", "x1", "y0", "y1", "base", "top"] {
+        let a = area(&mesh, g);
+        let pieces = mesh.group(g).map_or(0, |grp| grp.cells.len());
+        assert!((a - 100.0).abs() < 1e-9, "{g}: area {a} in {pieces} facets");
+    }
+    let blocks = run.model.bodies.len();
+    assert!(blocks > 20, "the sets cut the cube into {blocks} blocks");
+    let c = run.contact().expect("contacts");
+    assert!(c.states.iter().all(|s| *s == subcontact::contact::law::ContactState::Stick), "every joint holds");
+    let (e, nu, l, p, q) = (1000.0, 0.25, 10.0, 1.0, 0.5);
+    let exact = [l * (-q + nu * p) / e, l * nu * (p + q) / e, l * (-p + nu * q) / e];
+    let u = &run.last().u;
+    let mut worst = 0.0f64;
+    for (m, x) in run.model.coords.iter().enumerate() {
+        for d in 0..3 {
+            worst = worst.max((u[m * 3 + d] - exact[d] * x[d] / l).abs());
+        }
+    }
+    eprintln!(
+        "{blocks} blocks, {} pairs: largest displacement error {worst:.1e} of {:.1e}",
+        c.states.len(),
+        exact[2].abs()
+    );
+    assert!(worst < 1e-9 * exact[2].abs(), "uniform strain: error {worst:e}");
+}
+
+/// Done-when 4 of issue 31: a set that cuts nothing, and more blocks than
+/// max_blocks, each one clear paragraph from the binary, exit status 1,
+/// no result file.
+#[test]
+fn joints_that_cut_nothing_or_too_much_are_refused() {
+    let case = Case::new("joint-sets-refused");
+    cube_scene(&case, "");
+    let text = common::read(&case.dir.join("cube.toml"));
+    case.write(
+        "nothing.toml",
+        &text.replacen("spacing = 4\n", "spacing = 400\n", 1).replacen("offset = 0.37", "offset = 50", 1),
+    );
+    let msg = clean_failure(&case, &case.cli(&["solve", "nothing.toml", "--quiet"]), &case.out("nothing"));
+    says(
+        &msg,
+        &[
+            "nothing.toml: joint_sets[0] (\"A\", 45/045) cuts nothing",
+            "n . x = 50 + k 400",
+            "runs from 0 to 17.071068",
+            "change offset or spacing",
+        ],
+    );
+    case.write("many.toml", &format!("max_blocks = 7\n{text}"));
+    let msg = clean_failure(&case, &case.cli(&["solve", "many.toml", "--quiet"]), &case.out("many"));
+    says(
+        &msg,
+        &["many.toml: the joints cut the bodies into", "more than max_blocks = 7", "raise the top-level `max_blocks`"],
+    );
+    let built_in = "Point(1) = {0, 0, 0}; Point(2) = {1, 0, 0}; Point(3) = {1, 1, 0}; Point(4) = {0, 1, 0};\nLine(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};\nCurve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};\nPhysical Surface(\"rock\") = {1};\nPhysical Curve(\"base\") = {1};\n";
+    case.write("square.geo", built_in);
+    case.write("square.toml", "mesh = \"square.geo\"\nanalysis = \"plane_strain\"\n[materials.rock]\nE = 1.0\nnu = 0.2\n[[bodies]]\ngroup = \"rock\"\nmaterial = \"rock\"\n[[joint_sets]]\nname = \"J\"\nangle = 30\nspacing = 0.3\n[[supports]]\ngroup = \"base\"\nfix = [\"x\", \"y\"]\n");
+    let msg = clean_failure(&case, &case.cli(&["solve", "square.toml", "--quiet"]), &case.out("square"));
+    says(&msg, &["square.geo` is not an OpenCASCADE model", "SetFactory(\"OpenCASCADE\");"]);
+    case.write("taken.toml", &text.replacen("name = \"A\"", "name = \"top\"", 1));
+    let msg = clean_failure(&case, &case.cli(&["solve", "taken.toml", "--quiet"]), &case.out("taken"));
+    says(&msg, &["taken.toml: joint_sets[0]: the joint name \"top\" is already a physical group", "another name"]);
+}
