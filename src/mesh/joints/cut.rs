@@ -61,6 +61,7 @@ pub(super) fn run(s: &Session, args: &MeshArgs, job: &CutJob, out: &Path) -> R<C
     lower.dedup();
     objects.extend(lower);
     let tools: Vec<DimTag> = laid.iter().flat_map(|l| l.patches.iter().map(|p| p.entity)).collect();
+    let before = objects.iter().map(|&o| s.bounding_box(o)).collect::<Result<Vec<_>, _>>().map_err(g)?;
     // (without joints, nothing is cut: the model's own blocks are reported)
     let map = if tools.is_empty() {
         objects.iter().map(|&o| vec![o]).collect()
@@ -68,7 +69,8 @@ pub(super) fn run(s: &Session, args: &MeshArgs, job: &CutJob, out: &Path) -> R<C
         s.fragment(&objects, &tools).map_err(g)?.1
     };
     s.synchronize().map_err(g)?;
-    let children: HashMap<DimTag, Vec<DimTag>> = objects.iter().chain(&tools).copied().zip(map).collect();
+    let mut children: HashMap<DimTag, Vec<DimTag>> = objects.iter().chain(&tools).copied().zip(map).collect();
+    unchanged(s, &objects, &before, &mut children).map_err(g)?;
 
     let kept = sort_pieces(s, dim, &objects, &laid, &children).map_err(g)?;
     for (j, (l, k)) in job.joints.iter().zip(laid.iter().zip(&kept)) {
@@ -80,7 +82,9 @@ pub(super) fn run(s: &Session, args: &MeshArgs, job: &CutJob, out: &Path) -> R<C
     if blocks.len() > job.max_blocks {
         return Err(JointError::TooManyBlocks { count: blocks.len(), max: job.max_blocks });
     }
-    regroup(s, dim, &groups, &children, job, &kept).map_err(g)?;
+    if let Some(group) = regroup(s, dim, &groups, &children, job, &kept).map_err(g)?.into_iter().next() {
+        return Err(JointError::LostGroup { geo: geo.to_path_buf(), group });
+    }
     size_new_points(s, &old_points, &sizes).map_err(g)?;
 
     s.set_option("Mesh.ElementOrder", args.order as f64).map_err(g)?;
@@ -91,6 +95,48 @@ pub(super) fn run(s: &Session, args: &MeshArgs, job: &CutJob, out: &Path) -> R<C
     s.write(out).map_err(g)?;
     logged(s, geo)?;
     report(s, (dim, &sizes), job, laid, &kept, &blocks).map_err(g)
+}
+
+/// gmsh 4.8 maps an object the fragment left as it was (a side of a
+/// rectangle no joint reaches) to nothing, and may have renumbered it
+/// (measured: the four sides and corners of a rectangle cut by an inner
+/// crack): such an object is the entity of its dimension with its bounding
+/// box (among several, the one with its old tag, else the first).
+fn unchanged(
+    s: &Session,
+    objects: &[DimTag],
+    before: &[geometry::Bbox],
+    children: &mut HashMap<DimTag, Vec<DimTag>>,
+) -> Result<(), ApiError> {
+    let mut boxes: HashMap<i32, Vec<(DimTag, geometry::Bbox)>> = HashMap::new();
+    for (o, b) in objects.iter().zip(before) {
+        if children.get(o).is_some_and(|k| !k.is_empty()) {
+            continue;
+        }
+        let (d, _) = *o;
+        let all = match boxes.entry(d) {
+            std::collections::hash_map::Entry::Occupied(e) => e.into_mut(),
+            std::collections::hash_map::Entry::Vacant(v) => v.insert(
+                s.entities(d)?
+                    .into_iter()
+                    .map(|e| Ok((e, s.bounding_box(e)?)))
+                    .collect::<Result<Vec<_>, ApiError>>()?,
+            ),
+        };
+        let scale = b.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+        let same: Vec<DimTag> = all
+            .iter()
+            .filter(|(_, x)| x.iter().zip(b).all(|(x, y)| (x - y).abs() <= 1e-9 * scale))
+            .map(|&(e, _)| e)
+            .collect();
+        let pick = match same.as_slice() {
+            [] => None,
+            [one] => Some(*one),
+            several => several.iter().copied().find(|e| e == o).or(several.first().copied()),
+        };
+        children.insert(*o, pick.into_iter().collect());
+    }
+    Ok(())
 }
 
 /// Any `Error` gmsh logged so far is a failure (gmsh may carry on after one).
@@ -320,7 +366,8 @@ fn sort_pieces(
 }
 
 /// The user's groups on the pieces of what they named, with their own
-/// tags, and one group per joint on its pieces.
+/// tags, and one group per joint on its pieces; returns the user's groups
+/// that found no piece (none should).
 fn regroup(
     s: &Session,
     dim: i32,
@@ -328,8 +375,9 @@ fn regroup(
     children: &HashMap<DimTag, Vec<DimTag>>,
     job: &CutJob,
     kept: &[Vec<Piece>],
-) -> Result<(), ApiError> {
+) -> Result<Vec<String>, ApiError> {
     s.remove_physical_groups()?;
+    let mut lost = Vec::new();
     for grp in groups {
         let d = grp.dim;
         let mut tags: Vec<i32> = grp
@@ -341,6 +389,9 @@ fn regroup(
             .collect();
         tags.sort_unstable();
         tags.dedup();
+        if tags.is_empty() && !grp.tags.is_empty() {
+            lost.push(grp.name.clone());
+        }
         s.add_physical_group(d, &tags, grp.tag, &grp.name)?;
     }
     for (j, k) in job.joints.iter().zip(kept) {
@@ -348,7 +399,7 @@ fn regroup(
         tags.sort_unstable();
         s.add_physical_group(dim - 1, &tags, -1, &j.name)?;
     }
-    Ok(())
+    Ok(lost)
 }
 
 /// Each point the cut made takes the size measured at the nearest node of

@@ -127,6 +127,9 @@ pub struct JointSpec {
     pub snap: f64,
 }
 
+/// Changes whenever the cutter would make another mesh of the same input.
+const CUTTER_VERSION: u32 = 2;
+
 /// Every joint of a scene and the most blocks it may make.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CutJob {
@@ -135,9 +138,11 @@ pub struct CutJob {
 }
 
 impl CutJob {
-    /// The job as text for the mesh cache's key (`{:?}` keeps every bit of the numbers).
+    /// The job as text for the mesh cache's key (`{:?}` keeps every bit of
+    /// the numbers), with the cutter's version: a cutter that cuts
+    /// differently makes new meshes.
     pub fn key_text(&self) -> String {
-        format!("{self:?}")
+        format!("cutter {CUTTER_VERSION} {self:?}")
     }
 }
 
@@ -238,6 +243,9 @@ pub enum JointError {
 
     #[error("the joints cut the bodies into {count} blocks, more than max_blocks = {max}: a mesh and a contact solve of that many blocks take long. Widen the spacing, limit sets with `bodies` or `extent`, or raise the top-level `max_blocks` to at least {count} if you mean it")]
     TooManyBlocks { count: usize, max: usize },
+
+    #[error("cutting the joints into `{}` lost every entity of its physical group \"{group}\", which the cutter should have kept on the pieces: please report it with the .geo and the scene; meanwhile build the joints in the .geo and name them in [[contacts]]", geo.display())]
+    LostGroup { geo: PathBuf, group: String },
 
     #[error("{what} `{}`: {source}", path.display())]
     Io {
