@@ -85,12 +85,14 @@ dam3d: deps build
 dam3d-joints: deps build
 	$(BIN) solve geo/dam3d_joints.toml
 
-# A jointed rock mass: a 10 m cube cut by three joint sets into 64 blocks
-# (hex20), one body group and a contact group per joint set; gravity, then
-# pressure and shear on the top: joints near the top slip and open
-# (results/rockmass/: joints.png, plan_*.png, faces.csv, report.md).
+# A jointed rock mass: a 10 m cube and three joint sets by orientation and
+# spacing ([[joint_sets]]), which the tool cuts into 64 blocks (hex20,
+# `structured`); gravity, then pressure and shear on top: joints slip and
+# open near the top (results/rockmass_sets/: joints.png, plan_*.png,
+# faces.csv, report.md). geo/rockmass.toml is the same rock mass built by
+# hand in the .geo, which the benchmarks scale up.
 rockmass: deps build
-	$(BIN) solve geo/rockmass.toml
+	$(BIN) solve geo/rockmass_sets.toml
 
 # A rock wedge in a V-groove (Hoek & Bray) under its weight, then its factor
 # of safety against sliding by strength reduction of the joints ([safety]):

@@ -24,6 +24,7 @@ mod common;
 
 use common::cli::{clean_failure, says};
 use common::Case;
+use subcontact::contact::law::ContactState;
 use subcontact::mesh::joints::{cut_and_mesh, read_report, CutJob, CutReport, MeshArgs};
 use subcontact::mesh::Mesh;
 use subcontact::model::Model;
@@ -148,7 +149,8 @@ fn joint_sets_give_the_rock_mass_built_by_hand() {
     let hand_geo = case.dir.join("joint_sets_by_hand.geo");
     let args = MeshArgs { geo: &hand_geo, dim: 3, order: 1, setnumber: &[], clscale: None };
     let hand_msh = case.dir.join("hand.msh");
-    let by_hand = cut_and_mesh(&args, &CutJob { joints: vec![], max_blocks: 1000 }, &hand_msh).expect("by hand");
+    let by_hand = cut_and_mesh(&args, &CutJob { joints: vec![], max_blocks: 1000, structured: false }, &hand_msh)
+        .expect("by hand");
     let mesh_h = subcontact::mesh::msh::read_msh(&hand_msh).expect("the by-hand mesh");
     let model_h = Model::build(&mesh_h, &Scene::load(&hand).expect("scene").model_spec()).expect("model");
 
@@ -236,7 +238,7 @@ fn the_users_groups_survive_the_cutting() {
     let blocks = run.model.bodies.len();
     assert!(blocks > 20, "the sets cut the cube into {blocks} blocks");
     let c = run.contact().expect("contacts");
-    assert!(c.states.iter().all(|s| *s == subcontact::contact::law::ContactState::Stick), "every joint holds");
+    assert!(c.states.iter().all(|s| *s == ContactState::Stick), "every joint holds");
     let (e, nu, l, p, q) = (1000.0, 0.25, 10.0, 1.0, 0.5);
     let exact = [l * (-q + nu * p) / e, l * nu * (p + q) / e, l * (-p + nu * q) / e];
     let u = &run.last().u;
@@ -290,4 +292,81 @@ fn joints_that_cut_nothing_or_too_much_are_refused() {
     case.write("taken.toml", &text.replacen("name = \"A\"", "name = \"top\"", 1));
     let msg = clean_failure(&case, &case.cli(&["solve", "taken.toml", "--quiet"]), &case.out("taken"));
     says(&msg, &["taken.toml: joint_sets[0]: the joint name \"top\" is already a physical group", "another name"]);
+}
+
+/// contact.csv's rows keyed by contact group, position and normal (a
+/// crossing line holds several pairs at one place: their values sorted),
+/// with the state and sigma_n, tau_t, tau_b.
+fn pair_rows(path: &std::path::Path) -> std::collections::BTreeMap<String, Vec<(i64, [f64; 3])>> {
+    let mut out: std::collections::BTreeMap<String, Vec<(i64, [f64; 3])>> = Default::default();
+    for r in common::csv_rows(path) {
+        let num = |k: &str| common::csv_num(&r, k);
+        let key = format!(
+            "{} {}",
+            r["contact"],
+            ["x", "y", "z", "n_x", "n_y", "n_z"]
+                .map(|k| format!("{:.6}", (num(k) * 1e6).round() / 1e6 + 0.0))
+                .join(" ")
+        );
+        let status = num("status") as i64;
+        out.entry(key).or_default().push((status, [num("sigma_n"), num("tau_t"), num("tau_b")]));
+    }
+    for v in out.values_mut() {
+        v.sort_by(|a, b| a.0.cmp(&b.0).then(a.1[0].total_cmp(&b.1[0])));
+    }
+    out
+}
+
+/// `make rockmass` as an engineer writes it (geo/rockmass_sets.toml: a cube
+/// and three [[joint_sets]], `structured`) solves as the rock mass built by
+/// hand (geo/rockmass.toml on geo/rockmass.geo), here at 2 x 2 x 2 blocks
+/// of 3 x 3 x 3 hex20: the same mesh, so every pair in the same state with
+/// the same stresses, to the contact solve's tolerance.
+#[test]
+fn joint_sets_solve_as_the_rockmass_built_by_hand() {
+    let case = Case::new("joint-sets-rockmass");
+    case.copy("geo/rockmass.geo");
+    case.copy("geo/rockmass_sets.geo");
+    let hand = common::scenes::edited(
+        "geo/rockmass.toml",
+        &[(
+            "setnumber = { n = 4, m = 2, hex = 1, serendipity = 1 }",
+            "setnumber = { n = 2, m = 3, hex = 1, serendipity = 1 }",
+        )],
+    );
+    let sets = common::scenes::edited("geo/rockmass_sets.toml", &[("lc = 1.25,", "lc = 2.5,")])
+        .replace("spacing = 2.5", "spacing = 5.0");
+    let (a, b) = (
+        case.run(&case.write("hand.toml", &hand)).expect("by hand"),
+        case.run(&case.write("sets.toml", &sets)).expect("sets"),
+    );
+    assert_eq!(a.model.bodies.len(), 8);
+    assert_eq!((a.stats.dofs.total, a.model.pairs.len()), (b.stats.dofs.total, b.model.pairs.len()), "the same mesh");
+    let (ra, rb) = (pair_rows(&case.out("hand").join("contact.csv")), pair_rows(&case.out("sets").join("contact.csv")));
+    let only: Vec<&String> =
+        ra.keys().filter(|k| !rb.contains_key(*k)).chain(rb.keys().filter(|k| !ra.contains_key(*k))).collect();
+    assert!(only.is_empty(), "{} pair places in one run only, e.g. {:?}", only.len(), only.first());
+    let mut worst = 0.0f64;
+    for (k, va) in &ra {
+        let vb = &rb[k];
+        assert_eq!(
+            va.iter().map(|v| v.0).collect::<Vec<_>>(),
+            vb.iter().map(|v| v.0).collect::<Vec<_>>(),
+            "states at {k}"
+        );
+        for (x, y) in va.iter().zip(vb) {
+            worst = (0..3).map(|i| (x.1[i] - y.1[i]).abs()).fold(worst, f64::max);
+        }
+    }
+    let c = b.contact().expect("contact");
+    let k = |s| common::measure::count(c, s);
+    eprintln!(
+        "8 blocks, {} pairs ({} stick / {} slip / {} open), {} DOFs: largest difference of a stress {worst:.1e} (loads 1 MPa)",
+        c.states.len(),
+        k(ContactState::Stick),
+        k(ContactState::Slip),
+        k(ContactState::Open),
+        b.stats.dofs.total
+    );
+    assert!(worst < 1e-6, "stresses differ by {worst:e}");
 }

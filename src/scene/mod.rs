@@ -217,11 +217,13 @@ pub struct GmshOptions {
     pub clscale: Option<f64>,
     /// gmsh's time limit in seconds (default 600).
     pub timeout: f64,
+    /// With joints: mesh the blocks structured where gmsh can (default false).
+    pub structured: bool,
 }
 
 impl Default for GmshOptions {
     fn default() -> Self {
-        GmshOptions { order: 1, setnumber: Vec::new(), clscale: None, timeout: 600.0 }
+        GmshOptions { order: 1, setnumber: Vec::new(), clscale: None, timeout: 600.0, structured: false }
     }
 }
 
@@ -355,7 +357,11 @@ impl Scene {
 
     /// What the mesher cuts the bodies by, when the scene has joints.
     pub fn cut_job(&self) -> Option<CutJob> {
-        (!self.joints.is_empty()).then(|| CutJob { joints: self.joints.clone(), max_blocks: self.max_blocks })
+        (!self.joints.is_empty()).then(|| CutJob {
+            joints: self.joints.clone(),
+            max_blocks: self.max_blocks,
+            structured: self.gmsh.structured,
+        })
     }
 
     /// The key path that defined contact `i`: `contacts[i]`, or the

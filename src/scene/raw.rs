@@ -49,6 +49,7 @@ pub(super) struct RawGmsh {
     pub(super) setnumber: Option<BTreeMap<String, f64>>,
     pub(super) clscale: Option<f64>,
     pub(super) timeout: Option<f64>,
+    pub(super) structured: Option<bool>,
 }
 
 #[derive(Deserialize)]

@@ -129,7 +129,10 @@ fn design_example_parses() {
     assert_eq!(s.analysis, Analysis::PlaneStrain);
     assert_eq!(s.analysis.dim(), 2);
     assert_eq!(s.thickness, 1.0);
-    assert_eq!(s.gmsh, GmshOptions { order: 2, setnumber: vec![("lc".into(), 0.2)], clscale: None, timeout: 600.0 });
+    assert_eq!(
+        s.gmsh,
+        GmshOptions { order: 2, setnumber: vec![("lc".into(), 0.2)], clscale: None, timeout: 600.0, structured: false }
+    );
     assert_eq!(s.materials["rock"], Material { e: 2.0e5, nu: 0.167, density: 0.0 });
     assert_eq!(s.bodies, vec![Body { group: "body_1".into(), material: "rock".into(), initial: None }]);
     assert_eq!(s.material_of(&s.bodies[0]).e, 2.0e5);
@@ -169,7 +172,7 @@ fn defaults_applied() {
     assert_eq!(s.title, "cyl");
     assert_eq!(s.thickness, 1.0);
     assert_eq!(s.gravity, [0.0; 3]);
-    assert_eq!(s.gmsh, GmshOptions { order: 1, setnumber: vec![], clscale: None, timeout: 600.0 });
+    assert_eq!(s.gmsh, GmshOptions { order: 1, setnumber: vec![], clscale: None, timeout: 600.0, structured: false });
     assert_eq!(s.materials["rock"].density, 0.0);
     let c = &s.contacts[0];
     assert_eq!((c.friction, c.cohesion, c.tensile_strength, c.residual_cohesion), (0.0, 0.0, 0.0, 0.0));
@@ -535,6 +538,7 @@ fn joint_rules() {
     rejects(&single("point = [0, 0, 0]\npersistence = 2\ngap = 1"), &["joints[0].gap", "does not apply"]);
     rejects(&minimal(&format!("[[joint_sets]]\nname = \"J\"\n{ok}")), &["joint_sets[0]", "angle"]);
     rejects(&("max_blocks = 0\n".to_string() + &minimal_solid("")), &["max_blocks", "at least 1"]);
+    rejects(&minimal_solid("[gmsh]\nstructured = true\n"), &["gmsh.structured", "Transfinite"]);
     rejects(
         &minimal_solid(&format!("[[joint_sets]]\nname = \"J\"\n{ok}")).replace("cylinder.geo", "cylinder.msh"),
         &["joint_sets[0]", "ready mesh"],

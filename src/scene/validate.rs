@@ -205,6 +205,13 @@ impl Checker<'_> {
                 format!("joints are cut into the bodies of a .geo, but mesh is the ready mesh {}; point mesh at the .geo (with SetFactory(\"OpenCASCADE\")), or give the joints as [[contacts]] groups of the mesh.", p.display()),
             ));
         }
+        if gmsh.structured && joints.is_empty() {
+            return Err(self.bad(
+                "gmsh.structured",
+                true,
+                "structured meshes the blocks the joints cut ([[joint_sets]], [[joints]]); without joints, give Transfinite and Recombine in the .geo.",
+            ));
+        }
         contacts.extend(joint_contacts);
         let max_blocks =
             self.at_least(raw.max_blocks, 1000, 1, "max_blocks", "the most blocks the joints may cut the bodies into")?;
@@ -386,7 +393,7 @@ impl Checker<'_> {
                 ))
             }
         };
-        Ok(GmshOptions { order, setnumber, clscale, timeout })
+        Ok(GmshOptions { order, setnumber, clscale, timeout, structured: g.structured.unwrap_or(false) })
     }
 
     fn materials(&self, raw: BTreeMap<String, RawMaterial>) -> R<BTreeMap<String, Material>> {

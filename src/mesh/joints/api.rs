@@ -296,6 +296,16 @@ impl Session {
         self.check("gmshModelMeshSetSize", |e| unsafe { (lib.gmshModelMeshSetSize)(f.as_mut_ptr(), f.len(), size, e) })
     }
 
+    /// Structured meshing wherever gmsh can: every four-sided surface and
+    /// six-sided volume transfinite and recombined (quadrangles, hexahedra),
+    /// the number of nodes from the sizes.
+    pub(super) fn structured(&self) -> R<()> {
+        let lib = self.lib;
+        self.check("gmshModelMeshSetTransfiniteAutomatic", |e| unsafe {
+            (lib.gmshModelMeshSetTransfiniteAutomatic)(std::ptr::null_mut(), 0, 2.35, 1, e)
+        })
+    }
+
     pub(super) fn add_point(&self, x: [f64; 3]) -> R<i32> {
         let lib = self.lib;
         self.check("gmshModelOccAddPoint", |e| unsafe { (lib.gmshModelOccAddPoint)(x[0], x[1], x[2], 0.0, -1, e) })

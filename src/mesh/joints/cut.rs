@@ -88,6 +88,9 @@ pub(super) fn run(s: &Session, args: &MeshArgs, job: &CutJob, out: &Path) -> R<C
     size_new_points(s, &old_points, &sizes).map_err(g)?;
 
     s.set_option("Mesh.ElementOrder", args.order as f64).map_err(g)?;
+    if job.structured {
+        s.structured().map_err(g)?;
+    }
     s.generate(dim).map_err(g)?;
     logged(s, geo)?;
     s.set_option("Mesh.MshFileVersion", 4.1).map_err(g)?;

@@ -135,6 +135,10 @@ const CUTTER_VERSION: u32 = 2;
 pub struct CutJob {
     pub joints: Vec<JointSpec>,
     pub max_blocks: usize,
+    /// Mesh the blocks structured where gmsh can (`[gmsh] structured`):
+    /// hexahedra in six-sided blocks of four-sided faces, quadrangles in
+    /// four-sided 2D blocks.
+    pub structured: bool,
 }
 
 impl CutJob {
