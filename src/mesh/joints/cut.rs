@@ -229,7 +229,12 @@ fn lay(
 ) -> R<Laid> {
     let g = |e: ApiError| JointError::Gmsh { geo: geo.to_path_buf(), detail: e.to_string() };
     let d = dim as usize;
-    let b = bounding_box(s, bodies).map_err(g)?;
+    let mut b = bounding_box(s, bodies).map_err(g)?;
+    if d == 2 {
+        // OpenCASCADE's boxes are a little larger than the shape: a 2D
+        // model lies in z = 0, and so must the traces
+        (b[2], b[5]) = (0.0, 0.0);
+    }
     let diag =
         ((b[3] - b[0]).powi(2) + (b[4] - b[1]).powi(2) + if d == 3 { (b[5] - b[2]).powi(2) } else { 0.0 }).sqrt();
     let tol = 1e-6 * diag;
