@@ -49,8 +49,12 @@ Physical Surface("ends") += Surface In BoundingBox{-10 - e, 20 - e, -10 - e, 10 
 Physical Surface("wall") = Surface In BoundingBox{-3 - e, -e, -3 - e, 3 + e, 20 + e, 3 + e};
 "#;
 
-/// What both scenes share: rock, gravity, supports.
+/// What both scenes share: rock, gravity, supports; the element size
+/// given, not left to the .geo's default (in one process gmsh's API keeps
+/// an earlier session's -setnumber for a DefineConstant of the same name).
 const HEAD: &str = r#"analysis = "solid"
+[gmsh]
+setnumber = { lc = 2.0 }
 [materials.rock]
 E = 5000.0
 nu = 0.25
@@ -91,7 +95,7 @@ friction = 0.7
 /// The mesh and model of a scene of the case (meshed into its results).
 fn model_of(case: &Case, scene: &std::path::Path) -> (Mesh, Model) {
     let scene = Scene::load(scene).expect("scene");
-    let (mesh, _, _) = subcontact::driver::load_mesh(&scene, &case.out(&scene.name)).expect("mesh");
+    let (mesh, _, _) = subcontact::driver::load_mesh(&scene, &case.out(&scene.name), false).expect("mesh");
     let model = Model::build(&mesh, &scene.model_spec()).expect("model");
     (mesh, model)
 }
@@ -147,7 +151,7 @@ fn joint_sets_give_the_rock_mass_built_by_hand() {
     // the by-hand .geo through the cutter without joints: its mesh, and its
     // blocks' exact volumes (OpenCASCADE's) as the joint sets' report has them
     let hand_geo = case.dir.join("joint_sets_by_hand.geo");
-    let args = MeshArgs { geo: &hand_geo, dim: 3, order: 1, setnumber: &[], clscale: None };
+    let args = MeshArgs { geo: &hand_geo, dim: 3, order: 1, setnumber: &[("lc".into(), 2.0)], clscale: None };
     let hand_msh = case.dir.join("hand.msh");
     let by_hand = cut_and_mesh(&args, &CutJob { joints: vec![], max_blocks: 1000, structured: false }, &hand_msh)
         .expect("by hand");
