@@ -440,7 +440,11 @@ impl Scene {
                 .contacts
                 .iter()
                 .enumerate()
-                .map(|(i, c)| ContactSpec { key: self.contact_key(i), groups: c.groups.clone(), water: c.water.clone() })
+                .map(|(i, c)| ContactSpec {
+                    key: self.contact_key(i),
+                    groups: c.groups.clone(),
+                    water: c.water.clone(),
+                })
                 .collect(),
             supports: self
                 .supports

@@ -515,6 +515,7 @@ fn joint_rules() {
     rejects(&set(&format!("{ok}\npoint = [0, 0, 0]")), &["joint_sets[0].point", "[[joints]]"]);
     rejects(&set(&format!("{ok}\ngroup = \"x\"")), &["joint_sets[0]", "remove group"]);
     rejects(&set(&format!("{ok}\nfriction = -1")), &["joint_sets[0].friction", "-1"]);
+    rejects(&set(&format!("{ok}\nwater = {{ pressure = 0.1 }}")), &["joint_sets[0].water", "not supported yet"]);
     rejects(&set(&format!("{ok}\nbodies = [\"nope\"]")), &["joint_sets[0].bodies[0]", "\"nope\"", "\"b1\""]);
     rejects(&set(&format!("{ok}\npersistence = 2")), &["joint_sets[0].gap", "missing"]);
     rejects(&set(&format!("{ok}\ngap = 2")), &["joint_sets[0]", "persistence"]);

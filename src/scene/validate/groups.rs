@@ -161,7 +161,7 @@ impl Checker<'_> {
         // a [[contacts]] entry's water is taken and checked before; a joint's is not supported yet
         if c.water.is_some() {
             return Err(self.err(
-                &format!("{k}.water"),
+                format!("{k}.water"),
                 "water in the joints of [[joint_sets]] and [[joints]] is not supported yet; remove it, or cut the joints in the .geo and give them as [[contacts]] with water.".to_string(),
             ));
         }
