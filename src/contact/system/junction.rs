@@ -68,6 +68,12 @@ const MARGIN: f64 = 1e-9;
 const CUT_TOL: f64 = 1e-12;
 const CUT_ROUNDS: usize = 12;
 
+/// The rounds and the tolerance (of the largest carried force) of the
+/// fixed point of a loop's locked slipping pairs' pressures (see
+/// `Junction::settle_locked`).
+const SETTLE_ROUNDS: usize = 200;
+const SETTLED: f64 = 1e-13;
+
 /// The pairs that are solved as junctions: every pair of a cluster (copies
 /// joined through pairs) of more than one pair, and the pairs `general`
 /// asks for (a pair whose supports do not lie along its frame). Returns
@@ -650,13 +656,19 @@ impl Junction {
             (Some(pr), Some(p)) => &tied.f + &pr.r * p,
             _ => tied.f.clone(),
         };
-        let carried = g - (&tied.k * r + friction);
+        let mut carried = g - (&tied.k * r + friction);
         let limits: Vec<Limit> = self.pairs.iter().map(|&p| rel[p].limit).collect();
-        let lambda = tied.split.forces(&carried, &limits);
+        let mut lambda = tied.split.forces(&carried, &limits);
         let mut pressure: Vec<f64> = self.pairs.iter().map(|&p| rel[p].pressure).collect();
         if let (Some(pr), Some(p)) = (&tied.pressure, &pressures) {
             for (&j, &pj) in pr.pairs.iter().zip(p.iter()) {
                 pressure[j] = pj;
+            }
+        }
+        if tied.pressure.is_none() {
+            let stuck = self.locked_slipping(tied, rel, &rels);
+            if !stuck.is_empty() {
+                (carried, lambda) = self.settle_locked(tied, rel, &stuck, carried, lambda, &limits, &mut pressure);
             }
         }
         let slipping = |j: usize| rel[self.pairs[j]].state == ContactState::Slip;
@@ -736,6 +748,89 @@ impl Junction {
             out[j].2 = Some(as_tied[j]);
         }
         out
+    }
+
+    /// The slipping pairs (junction indices) with a friction coupled to
+    /// their pressure whose shear the loop's ties lock: they have not
+    /// slipped, and no free direction moves them along their shear.
+    fn locked_slipping(&self, tied: &Tied, rel: &[Relation], rels: &[[f64; 3]]) -> Vec<usize> {
+        let nd = self.nd;
+        let scale = rels.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
+        let locked = |row: Row| {
+            let row = DVector::from_vec(self.c_row(row).0);
+            tied.z.ncols() == 0 || (tied.z.transpose() * &row).norm() <= 1e-9 * row.norm()
+        };
+        let along = |v: [f64; 3], dir: [f64; 3]| (0..nd).map(|a| v[a] * dir[a]).sum::<f64>();
+        (0..self.pairs.len())
+            .filter(|&j| {
+                let rl = &rel[self.pairs[j]];
+                if rl.state != ContactState::Slip || rl.coupling.iter().all(|&c| c == 0.0) {
+                    return false;
+                }
+                let shear = self.shear_dirs(j, |q| rel[q].state != ContactState::Open);
+                !shear.is_empty()
+                    && shear.iter().all(|&dir| along(sub(rels[j], rl.target), dir).abs() <= 1e-10 * scale)
+                    && shear.iter().all(|&dir| locked((j, dir)))
+            })
+            .collect()
+    }
+
+    /// The pressures of the slipping pairs `stuck` whose shear the loop
+    /// locks, where they are the last solve's: their friction
+    /// `force + coupling p` moves no displacement (their shear has no part
+    /// along Z), only the share of the loop's forces, which gives them
+    /// their pressure back. That fixed point is the junction's own, so it is
+    /// iterated here, r held, instead of over contact iterations (a 3D
+    /// tunnel through three joint sets took 20 contact iterations a time
+    /// creeping along it). Returns the carried force and its share at the
+    /// pressures found, which it writes into `pressure`.
+    #[allow(clippy::too_many_arguments)]
+    fn settle_locked(
+        &self,
+        tied: &Tied,
+        rel: &[Relation],
+        stuck: &[usize],
+        carried: DVector<f64>,
+        mut lambda: DVector<f64>,
+        limits: &[Limit],
+        pressure: &mut [f64],
+    ) -> (DVector<f64>, DVector<f64>) {
+        let nd = self.nd;
+        let Some(normal) = stuck
+            .iter()
+            .map(|&j| tied.split.rows.iter().position(|&row| row == (j, NORMAL)))
+            .collect::<Option<Vec<usize>>>()
+        else {
+            return (carried, lambda);
+        };
+        // the friction per unit pressure of each over r, and the pressure it was linearised at
+        let per: Vec<DVector<f64>> = stuck
+            .iter()
+            .map(|&j| {
+                let rl = &rel[self.pairs[j]];
+                (1..nd).fold(DVector::zeros(self.r.len()), |acc, a| {
+                    acc + DVector::from_column_slice(&self.rows[j][a]) * rl.coupling[a]
+                })
+            })
+            .collect();
+        let base: Vec<f64> = stuck.iter().map(|&j| rel[self.pairs[j]].pressure).collect();
+        let mut p: Vec<f64> = normal.iter().map(|&i| (-lambda[i]).max(0.0)).collect();
+        let scale = carried.amax().max(f64::MIN_POSITIVE);
+        let mut now = carried.clone();
+        for _ in 0..SETTLE_ROUNDS {
+            now = per.iter().zip(&p).zip(&base).fold(carried.clone(), |acc, ((v, &pj), &b)| acc - v * (pj - b));
+            lambda = tied.split.forces(&now, limits);
+            let next: Vec<f64> = normal.iter().map(|&i| (-lambda[i]).max(0.0)).collect();
+            let change = next.iter().zip(&p).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+            p = next;
+            if change <= SETTLED * scale {
+                break;
+            }
+        }
+        for (&j, &pj) in stuck.iter().zip(&p) {
+            pressure[j] = pj;
+        }
+        (now, lambda)
     }
 }
 
