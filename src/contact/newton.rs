@@ -50,6 +50,12 @@ const FORCE_ROUND_OFF: f64 = 1e-12;
 /// Relative tolerance on the friction force of slipping pairs.
 const FORCE_TOL: f64 = 1e-12;
 
+/// Once the states have cycled, they change only when the slipping
+/// pairs' friction is within this fraction of the largest force of the
+/// law, or after this many iterations in a row that kept them.
+const SETTLE_FIRST: f64 = 1e-8;
+const MAX_HOLDS: usize = 4;
+
 /// The robust rule through one load step: what it carries from solve to solve.
 pub(super) struct Newton<'p> {
     problem: &'p InterfaceProblem<'p>,
@@ -66,6 +72,8 @@ pub(super) struct Newton<'p> {
     rel: Vec<[f64; 3]>,
     /// A cycle was met: from then on only the most violated pair changes.
     one_at_a_time: bool,
+    /// Iterations in a row that kept the states for the friction to settle.
+    holds: usize,
     /// The last solve's forces of junction pairs as if their locked axes
     /// were tied (what they are judged by: see `InterfaceSolution::as_tied`).
     as_tied: Vec<Option<[f64; 3]>>,
@@ -101,6 +109,7 @@ impl<'p> Newton<'p> {
             force: h.force.clone(),
             rel: h.rel_start.clone(),
             one_at_a_time: false,
+            holds: 0,
             as_tied: vec![None; laws.len()],
             judged_from: Vec::new(),
             violation: Vec::new(),
@@ -231,24 +240,29 @@ impl<'p> Newton<'p> {
         Judged { next, violation, residual, scale_f }
     }
 
-    /// A state set met before: from now on change only the most violated
-    /// pair (2. of the iteration); true when this iteration met the cycle.
+    /// A state set met before (a cycle): from then on only the most
+    /// violated pair changes, once the slipping pairs' friction has
+    /// settled under the current states (at most [`MAX_HOLDS`] iterations
+    /// in a row keep them): a change judged from a linearisation that has
+    /// not settled is as likely to be undone by the next one (2. of the
+    /// iteration). True when this iteration met the cycle.
     fn break_cycle(&mut self, h: &History, judged: &mut Judged, seen: &[Vec<ContactState>]) -> bool {
-        let changed = judged.next != h.states;
-        if !changed || !(self.one_at_a_time || seen.contains(&judged.next)) {
+        let changing: Vec<usize> = (0..judged.next.len()).filter(|&p| judged.next[p] != h.states[p]).collect();
+        if changing.is_empty() || !(self.one_at_a_time || seen.contains(&judged.next)) {
             return false;
         }
         let first = !self.one_at_a_time;
         self.one_at_a_time = true;
+        if judged.residual > SETTLE_FIRST * judged.scale_f && self.holds < MAX_HOLDS {
+            self.holds += 1;
+            judged.next.clone_from(&h.states);
+            return first;
+        }
+        self.holds = 0;
         let v = &judged.violation;
-        let worst = (0..v.len())
-            .filter(|&p| judged.next[p] != h.states[p])
-            .max_by(|&a, &b| v[a].total_cmp(&v[b]).then(b.cmp(&a)));
-        let keep = worst.expect("some pair changes");
-        for p in 0..v.len() {
-            if p != keep {
-                judged.next[p] = h.states[p];
-            }
+        let worst = changing.iter().copied().max_by(|&a, &b| v[a].total_cmp(&v[b]).then(b.cmp(&a)));
+        for &p in changing.iter().filter(|&&p| Some(p) != worst) {
+            judged.next[p] = h.states[p];
         }
         first
     }
