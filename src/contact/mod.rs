@@ -30,6 +30,7 @@
 //! solid-to-solid one and the law judges the effective normal stress.
 
 pub mod basis;
+pub mod cutting;
 pub mod frame;
 mod iteration;
 pub mod law;
@@ -102,6 +103,13 @@ pub struct Summary {
     pub apex_openings: usize,
     /// State sets of every iteration (the ones solved with).
     pub history: Vec<Vec<ContactState>>,
+    /// Halvings of the load step ([`cutting`]): 0 when it was solved whole.
+    pub cuts: usize,
+    /// Where the pieces of a cut step that converged ended, as fractions
+    /// of the step (empty when it was not cut).
+    pub pieces: Vec<f64>,
+    /// The piece of a cut step that did not converge at the deepest cut.
+    pub stopped_at: Option<(f64, f64)>,
 }
 
 /// How the state iteration of one step ended: the states it ended with,

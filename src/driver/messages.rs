@@ -60,12 +60,14 @@ pub enum ContactError {
     },
     /// A load step's iteration did not converge after `iterations`
     /// (`cycled`: its states cycle) under `rule`; `results`: where the last
-    /// iteration's results were written.
+    /// iteration's results were written; `cuts`: the halvings of the step
+    /// that were tried ([solver] max_cuts).
     NotConverged {
         scene: PathBuf,
         step: Option<usize>,
         iterations: usize,
         cycled: bool,
+        cuts: usize,
         rule: StateRule,
         results: Option<PathBuf>,
     },
@@ -238,15 +240,18 @@ impl fmt::Display for ContactError {
                     write!(f, " — loss of equilibrium: the load along the contact exceeds what friction and cohesion can carry. Reduce the load, add a support that holds {} tangentially, or raise the friction or cohesion of {its} contacts", if bodies.len() > 1 { "them" } else { "it" })
                 }
             }
-            ContactError::NotConverged { scene, step, iterations, cycled, rule, results } => {
+            ContactError::NotConverged { scene, step, iterations, cycled, cuts, rule, results } => {
                 write!(f, "{}: the contact iteration did not converge", scene.display())?;
                 if let Some(k) = step {
                     write!(f, " at load step {k}")?;
                 }
                 write!(f, " after {iterations} iteration(s){}", if *cycled { " (the states cycle)" } else { "" })?;
+                if *cuts > 0 {
+                    write!(f, ", the step cut {cuts} time(s) in halves ([solver] max_cuts)")?;
+                }
                 if let Some(out) = results {
                     let other = if *rule == StateRule::Paper { ", or the default rule = \"robust\"" } else { "" };
-                    write!(f, "; the results in {} are those of the last iteration (summary.json contact.converged = false, report.md lists the last two state sets). Try more [solver] max_iterations or more load steps{other}", out.display())?;
+                    write!(f, "; the results in {} are those of the last iteration (summary.json contact.converged = false, report.md says where the states kept changing, contact.csv and the contact VTU mark those pairs: `changes`). Look there for a block held by a few pairs, a joint at its strength, or a support missing; or try more [solver] max_iterations{other}", out.display())?;
                 }
                 Ok(())
             }

@@ -329,6 +329,7 @@ fn not_converged(run: &Run, results: Option<PathBuf>) -> Option<ContactError> {
         step,
         iterations: c.summary.iterations,
         cycled: c.summary.cycled,
+        cuts: c.summary.cuts,
         rule: run.scene.solver.rule,
         results,
     })

@@ -21,7 +21,7 @@ use crate::contact::{self, History, Outcome, PairLaw};
 use crate::model::Model;
 use crate::recover;
 use crate::results::{ContactRun, Counters, PairWater, StepResult};
-use crate::scene::{Scene, TractionRecovery};
+use crate::scene::{Scene, StateRule, TractionRecovery};
 
 /// What the load steps did: the steps (on rank 0), and what they cost.
 #[derive(Default)]
@@ -100,9 +100,10 @@ pub(super) fn run(this: &Step, parts: &Parts, opts: &RunOptions, ranks: &Ranks) 
     let bytes_before = ranks.bytes_sent();
     for step in 1..=n_steps {
         let lambda: Vec<f64> = model.cases.iter().map(|c| c[step - 1]).collect();
+        let from: Vec<f64> = model.cases.iter().map(|c| if step > 1 { c[step - 2] } else { 0.0 }).collect();
         // 5. iterate: the contact states, on rank 0 (the others apply their S)
         let (t, bytes) = (Instant::now(), ranks.bytes_sent());
-        let answer = ranks.on_root(&parts.mine, || this.iterate(step, &lambda, &mut history, &mut out));
+        let answer = ranks.on_root(&parts.mine, || this.iterate(step, (&from, &lambda), &mut history, &mut out));
         out.bytes_interface += ranks.bytes_sent() - bytes;
         out.interface_s += t.elapsed().as_secs_f64();
         // 6. recover: the interiors on their owners, the stresses on rank 0
@@ -137,7 +138,7 @@ pub(super) fn run(this: &Step, parts: &Parts, opts: &RunOptions, ranks: &Ranks) 
         }
         out.recover_s += t.elapsed().as_secs_f64();
         if n_steps > 1 {
-            progress(opts, &format!("load step {step}/{n_steps} done"));
+            progress(opts, &format!("load step {step}/{n_steps} {}", if stop { "did not converge" } else { "done" }));
         }
         if ranks.stop(stop) {
             break;
@@ -150,13 +151,14 @@ pub(super) fn run(this: &Step, parts: &Parts, opts: &RunOptions, ranks: &Ranks) 
 }
 
 impl Step<'_> {
-    /// The interface displacements of every part at load step `step` under
-    /// `lambda`, and the contact result: the state iteration, or one solve
+    /// The interface displacements of every part at load step `step` from
+    /// the factors `from` to `lambda`, and the contact result: the state
+    /// iteration (its step cut where it does not converge), or one solve
     /// when the parts are joined by bonded interfaces alone.
     fn iterate(
         &self,
         step: usize,
-        lambda: &[f64],
+        (from, lambda): (&[f64], &[f64]),
         history: &mut History,
         out: &mut LoadSteps,
     ) -> Result<Answer, ContactError> {
@@ -175,7 +177,10 @@ impl Step<'_> {
             return Ok(Answer { d_c: solution.d_c, contact: None });
         }
         let solver = &self.scene.solver;
-        let outcome = contact::iterate(problem, &self.laws, solver.rule, lambda, history, solver.max_iterations)
+        // (the paper's rule is kept as the paper has it: no cutting)
+        let cuts = if solver.rule == StateRule::Paper { 0 } else { solver.max_cuts };
+        let (rule, most) = (solver.rule, solver.max_iterations);
+        let outcome = contact::cutting::iterate_cutting(problem, &self.laws, rule, from, lambda, history, most, cuts)
             .map_err(|f| ContactError::failed(self.model, &self.plan.parts, self.scene, step, f))?;
         out.residual_interface = out.residual_interface.max(outcome.solution.residual);
         out.counters.interface_solves += outcome.summary.iterations;

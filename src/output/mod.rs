@@ -13,6 +13,7 @@ pub mod plot;
 pub mod report;
 pub mod resultants;
 mod safety;
+mod unsettled;
 pub mod vtu;
 mod water;
 
@@ -272,6 +273,7 @@ fn contact_vtu(model: &Model, c: &ContactRun) -> Result<Vec<u8>> {
     let shear: Vec<f64> = pairs.iter().flat_map(|&p| if p == usize::MAX { [0.0; 3] } else { c.shear(p) }).collect();
     let area = get(&|p| c.areas[p]);
     let status_f: Vec<f64> = status.iter().map(|&s| s as f64).collect();
+    let changes = unsettled::changes(c).map(|k| get(&|p| k[p] as f64));
     let mut point_data = vec![
         Field { name: "status", n_comp: 1, values: &status_f },
         Field { name: "sigma_n", n_comp: 1, values: &sigma_n },
@@ -284,6 +286,9 @@ fn contact_vtu(model: &Model, c: &ContactRun) -> Result<Vec<u8>> {
     if c.water.is_some() {
         point_data.push(Field { name: "water_pressure", n_comp: 1, values: &water });
         point_data.push(Field { name: "sigma_n_eff", n_comp: 1, values: &sigma_n_eff });
+    }
+    if let Some(k) = &changes {
+        point_data.push(Field { name: "changes", n_comp: 1, values: k });
     }
     Ok(vtu::vtu_bytes(
         &points,
@@ -300,10 +305,14 @@ fn contact_vtu(model: &Model, c: &ContactRun) -> Result<Vec<u8>> {
 /// + u` the law judges.
 fn contact_csv(model: &Model, c: &ContactRun) -> String {
     let body = model.body_of_node();
+    let changes = unsettled::changes(c);
     let mut s = String::from(
         "pair,x,y,z,status,sigma_n,tau_t,tau_b,gap,slip,area,tau_x,tau_y,tau_z,n_x,n_y,n_z,contact,block_i,block_ii",
     );
-    s += if c.water.is_some() { ",water_pressure,sigma_n_eff\n" } else { "\n" };
+    if c.water.is_some() {
+        s += ",water_pressure,sigma_n_eff";
+    }
+    s += if changes.is_some() { ",changes\n" } else { "\n" };
     for (i, (p, r)) in model.pairs.iter().zip(&c.pairs).enumerate() {
         let x = model.coords[p.k];
         let t = c.shear(i);
@@ -333,6 +342,10 @@ fn contact_csv(model: &Model, c: &ContactRun) -> String {
         if c.water.is_some() {
             s.pop();
             s += &format!(",{:.12e},{:.12e}\n", c.water_pressure(i), r.sigma_n);
+        }
+        if let Some(k) = &changes {
+            s.pop();
+            s += &format!(",{}\n", k[i]);
         }
     }
     s
@@ -395,6 +408,9 @@ fn summary(run: &Run) -> serde_json::Value {
             "cycled": it.cycled,
             "states": { "stick": counts[2], "slip": counts[1], "open": counts[0] },
             "cycles_broken": it.cycles_broken,
+            "cuts": it.cuts,
+            "pieces": it.pieces,
+            "unsettled_pairs": unsettled::changes(c).map(|k| k.iter().filter(|&&n| n > 0).count()),
             "history": it.history.iter().map(|h| { let k = state_counts(h); json!({"stick": k[2], "slip": k[1], "open": k[0]}) }).collect::<Vec<_>>(),
         });
         if let Some(r) = resultants::of_run(run) {
@@ -411,7 +427,7 @@ fn summary(run: &Run) -> serde_json::Value {
             if let Some(c) = &st.contact {
                 let k = state_counts(&c.states);
                 j["contact"] = json!({ "iterations": c.summary.iterations, "converged": c.summary.converged, "cycled": c.summary.cycled,
-                    "states": { "stick": k[2], "slip": k[1], "open": k[0] } });
+                    "states": { "stick": k[2], "slip": k[1], "open": k[0] }, "cuts": c.summary.cuts, "pieces": c.summary.pieces });
             }
             j
         })

@@ -88,27 +88,10 @@ pub fn report(run: &Run) -> String {
         if it.cycles_broken > 0 {
             let _ = writeln!(s, "\nThe state iteration cycled {} time(s); each cycle was broken by changing only the most violated pair per iteration.", it.cycles_broken);
         }
-        if !it.converged {
-            let _ = writeln!(s, "\n## Last two state sets\n");
-            let _ = writeln!(
-                s,
-                "| pair | {} |",
-                it.history
-                    .iter()
-                    .rev()
-                    .take(2)
-                    .rev()
-                    .enumerate()
-                    .map(|(i, _)| format!("iteration {}", it.iterations - 1 + i))
-                    .collect::<Vec<_>>()
-                    .join(" | ")
-            );
-            let _ = writeln!(s, "|---|---|---|");
-            for p in 0..c.states.len() {
-                let cols: Vec<&str> = it.history.iter().rev().take(2).rev().map(|h| h[p].name()).collect();
-                let _ = writeln!(s, "| {p} | {} |", cols.join(" | "));
-            }
+        if it.cuts > 0 {
+            let _ = writeln!(s, "\n{}", cut_sentence(it));
         }
+        s += &super::unsettled::report(&run.model, c);
     }
     let _ = writeln!(
         s,
@@ -195,9 +178,10 @@ fn load_steps(s: &mut String, run: &Run) {
                 let k = state_counts(&c.states);
                 let _ = writeln!(
                     s,
-                    "| {} | {factors}{} | {} / {} / {} | {} |",
+                    "| {} | {factors}{}{} | {} / {} / {} | {} |",
                     st.step,
                     c.summary.iterations,
+                    if c.summary.cuts > 0 { format!(" (cut {} time(s))", c.summary.cuts) } else { String::new() },
                     k[2],
                     k[1],
                     k[0],
@@ -209,6 +193,26 @@ fn load_steps(s: &mut String, run: &Run) {
             }
         }
     }
+}
+
+/// What load-step cutting did in a step (`it.cuts` > 0).
+fn cut_sentence(it: &crate::contact::Summary) -> String {
+    let ends: Vec<String> = it.pieces.iter().map(|&t| factor(Some(t))).collect();
+    let mut s = format!(
+        "The load step did not converge whole and was cut {} time(s) ([solver] max_cuts); its pieces converged up to {} of the step",
+        it.cuts,
+        if ends.is_empty() { "none".to_string() } else { ends.join(", ") }
+    );
+    if let Some((a, b)) = it.stopped_at {
+        let _ = write!(
+            s,
+            ", and the piece from {} to {} did not converge at the deepest cut",
+            factor(Some(a)),
+            factor(Some(b))
+        );
+    }
+    s.push('.');
+    s
 }
 
 /// A load factor as the user would write it: up to 4 decimals, no trailing

@@ -133,6 +133,9 @@ pub struct Solver {
     pub load_steps: usize,
     /// Contact state iterations per step (default 100), >= 1.
     pub max_iterations: usize,
+    /// Halvings of a load step that does not converge (default 3: down to
+    /// an eighth of it), >= 0; 0 turns load-step cutting off.
+    pub max_cuts: usize,
     /// How pair states are updated between iterations (default robust).
     pub rule: StateRule,
     /// Factor of the gravity load at each step (default the ramp k / load_steps).
@@ -148,6 +151,7 @@ impl Default for Solver {
         Solver {
             load_steps: 1,
             max_iterations: 100,
+            max_cuts: 3,
             rule: StateRule::Robust,
             gravity_factors: None,
             substructures: 1,

@@ -207,6 +207,7 @@ pub(super) struct RawSeismic {
 pub(super) struct RawSolver {
     pub(super) load_steps: Option<i64>,
     pub(super) max_iterations: Option<i64>,
+    pub(super) max_cuts: Option<i64>,
     pub(super) rule: Option<StateRule>,
     pub(super) gravity_factors: Option<Vec<f64>>,
     pub(super) substructures: Option<i64>,

@@ -234,6 +234,13 @@ impl Checker<'_> {
                     "solver.max_iterations",
                     "the contact iteration limit",
                 )?,
+                max_cuts: self.at_least(
+                    s.max_cuts,
+                    3,
+                    0,
+                    "solver.max_cuts",
+                    "the number of halvings of a load step that does not converge",
+                )?,
                 rule: s.rule.unwrap_or_default(),
                 interface: s.interface.unwrap_or_default(),
                 substructures: self.at_least(

@@ -772,14 +772,7 @@ fn a_joint_set_of_many_planes_gets_a_plan_per_plane_and_one_overview() {
         areas: vec![0.1; n],
         states,
         water: None,
-        summary: crate::contact::Summary {
-            iterations: 1,
-            converged: true,
-            cycled: false,
-            cycles_broken: 0,
-            apex_openings: 0,
-            history: Vec::new(),
-        },
+        summary: crate::contact::Summary { iterations: 1, converged: true, ..Default::default() },
     };
     let plans = plan_files(&model);
     let files: Vec<&str> = plans.iter().map(|p| p.file.as_str()).collect();

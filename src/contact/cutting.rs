@@ -1,0 +1,73 @@
+//! Load-step cutting, as CalculiX's increment control: a load step whose
+//! state iteration does not converge is solved again in two halves from
+//! where the last converged step ended, a half that does not converge in
+//! two quarters, and so on down to `max_cuts` halvings. Each piece that
+//! converges is committed ([`super::commit`]) and carries its states,
+//! cracks and slip into the next, so a path-dependent law follows the
+//! finer load path. A piece that still does not converge at the deepest
+//! cut ends the step unconverged, as an uncut step would.
+//!
+//! A failure other than non-convergence (a body held by nothing, a
+//! singular interface) is the scene's, not the step size's: it is
+//! returned at once.
+//!
+//! Under proportional loading a cohesionless joint's states do not depend
+//! on the load's size (the problem is homogeneous), so cutting only helps
+//! where the path matters: cohesion and tension that crack, load cases
+//! that do not grow together, slip that accumulates.
+
+use super::{iterate, Failed, History, Outcome, PairLaw, StateRule};
+use crate::contact::system::InterfaceProblem;
+
+/// Runs the load step from the factors `from` (where `h` ended) to `to`,
+/// cutting it in halves down to `max_cuts` times where the iteration does
+/// not converge. The outcome is the last piece's; its summary counts the
+/// iterations of every attempt and lists the pieces taken
+/// ([`super::Summary::pieces`]) when the step was cut.
+#[allow(clippy::too_many_arguments)]
+pub fn iterate_cutting(
+    problem: &InterfaceProblem,
+    laws: &[PairLaw],
+    rule: StateRule,
+    from: &[f64],
+    to: &[f64],
+    h: &mut History,
+    max_iterations: usize,
+    max_cuts: usize,
+) -> Result<Outcome, Failed> {
+    let at = |t: f64| -> Vec<f64> { from.iter().zip(to).map(|(a, b)| a + t * (b - a)).collect() };
+    // pieces still to solve, the next on top: (start, end, depth) as fractions of the step
+    let mut todo = vec![(0.0, 1.0, 0usize)];
+    let mut iterations = 0;
+    let mut pieces = Vec::new();
+    let mut cuts = 0;
+    loop {
+        let (a, b, depth) = todo.pop().expect("a piece is left until the last one ends the loop");
+        let saved = (depth < max_cuts).then(|| h.clone());
+        let mut outcome = iterate(problem, laws, rule, &at(b), h, max_iterations).map_err(|mut f| {
+            f.iteration += iterations;
+            f
+        })?;
+        iterations += outcome.summary.iterations;
+        let ended = outcome.summary.converged || saved.is_none();
+        if outcome.summary.converged {
+            pieces.push(b);
+        }
+        if ended && (todo.is_empty() || !outcome.summary.converged) {
+            outcome.summary.iterations = iterations;
+            outcome.summary.cuts = cuts;
+            if cuts > 0 {
+                outcome.summary.pieces = pieces;
+                outcome.summary.stopped_at = (!outcome.summary.converged).then_some((a, b));
+            }
+            return Ok(outcome);
+        }
+        if let Some(saved) = saved.filter(|_| !outcome.summary.converged) {
+            *h = saved;
+            cuts += 1;
+            let mid = 0.5 * (a + b);
+            todo.push((mid, b, depth + 1));
+            todo.push((a, mid, depth + 1));
+        }
+    }
+}
