@@ -173,6 +173,7 @@ deps-strace:
 stress: deps deps-strace
 	$(CARGO) test --release --test stress -- --ignored --nocapture
 	$(CARGO) test --release --test transaction -- --ignored --nocapture
+	$(CARGO) test --release --test convergence -- --ignored --nocapture
 
 test: deps deps-strace
 	$(CARGO) test --release

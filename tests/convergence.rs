@@ -1,0 +1,147 @@
+//! The contact iteration on the scenes engineers build (issue 28): a load
+//! step that does not converge is cut and converges to the uncut answer;
+//! one that still does not converge says where its states kept changing,
+//! in a report that stays readable; and (make stress) a 3D tunnel through
+//! three oblique joint sets on tet10 converges to states that keep the law.
+
+mod common;
+
+use common::{csv_num, csv_rows, json, read, Case};
+use serde_json::Value;
+
+/// The dam of geo/dam.toml with a base of cohesion 0.1 kept once it slips,
+/// every load applied in one step, `solver` the `[solver]` table's keys.
+/// Solved whole, it takes 9 iterations.
+fn dam(case: &Case, name: &str, solver: &str) {
+    case.copy("geo/dam.geo");
+    let text = common::scenes::edited(
+        "geo/dam.toml",
+        &[
+            (
+                "group = \"base\"\nfriction = 0.75\ncohesion = 0.0",
+                "group = \"base\"\nfriction = 0.75\ncohesion = 0.1\nresidual_cohesion = 0.1",
+            ),
+            ("factors = [0.0, 0.5, 1.0]", "factors = [1.0]"),
+            ("factors = [0.0, 0.5, 1.0]", "factors = [1.0]"),
+            ("load_steps = 3\ngravity_factors = [1.0, 1.0, 1.0]", solver),
+        ],
+    );
+    case.write(name, &text);
+}
+
+#[test]
+fn a_step_that_does_not_converge_is_cut_and_converges_to_the_uncut_answer() {
+    let case = Case::new("conv-cut");
+    dam(&case, "whole.toml", "max_iterations = 100");
+    dam(&case, "cut.toml", "max_iterations = 8\nmax_cuts = 4");
+    for (scene, out) in [("whole.toml", "whole"), ("cut.toml", "cut")] {
+        let o = case.cli(&["solve", scene, "--out", out, "--quiet"]);
+        assert!(o.status.success(), "{scene}: {}", String::from_utf8_lossy(&o.stderr));
+    }
+    let (whole, cut) = (json(&case.dir.join("whole/summary.json")), json(&case.dir.join("cut/summary.json")));
+    let its = whole["contact"]["iterations"].as_u64().expect("iterations");
+    assert!(its > 8, "solved whole, the step needs more than the cut scene's 8 iterations: {its}");
+    assert_eq!(whole["contact"]["cuts"], 0);
+    let c = &cut["contact"];
+    eprintln!(
+        "dam in one step: {its} iterations whole; cut {} times, pieces {}, {} iterations",
+        c["cuts"], c["pieces"], c["iterations"]
+    );
+    assert_eq!(c["converged"], Value::Bool(true));
+    let cuts = c["cuts"].as_u64().expect("cuts");
+    assert!((1..=4).contains(&cuts), "cut {cuts} times");
+    let pieces: Vec<f64> = c["pieces"].as_array().expect("pieces").iter().filter_map(Value::as_f64).collect();
+    assert_eq!(pieces.last(), Some(&1.0), "the last piece ends the step: {pieces:?}");
+    assert!(pieces.windows(2).all(|w| w[0] < w[1]) && pieces[0] > 0.0, "{pieces:?}");
+    // the same states and stresses (cohesion kept once slipping: no path)
+    let (a, b) = (csv_rows(&case.dir.join("whole/contact.csv")), csv_rows(&case.dir.join("cut/contact.csv")));
+    assert!(a.len() > 100 && a.len() == b.len(), "every pair a row: {} and {}", a.len(), b.len());
+    let scale = a.iter().map(|r| csv_num(r, "sigma_n").abs()).fold(0.0, f64::max);
+    for (ra, rb) in a.iter().zip(&b) {
+        assert_eq!(ra["status"], rb["status"], "pair {}", ra["pair"]);
+        for key in ["sigma_n", "tau_t"] {
+            let d = (csv_num(ra, key) - csv_num(rb, key)).abs();
+            assert!(d <= 1e-8 * scale, "pair {} {key}: {d:e}", ra["pair"]);
+        }
+    }
+    let report = read(&case.dir.join("cut/report.md"));
+    assert!(report.contains(&format!("was cut {cuts} time(s)")), "report says the cuts:\n{report}");
+}
+
+#[test]
+fn a_step_that_still_does_not_converge_says_where_its_states_kept_changing() {
+    let case = Case::new("conv-unsettled");
+    dam(&case, "short.toml", "max_iterations = 4\nmax_cuts = 0");
+    let o = case.cli(&["solve", "short.toml", "--out", "out", "--quiet"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    common::cli::says(&err, &["short.toml", "did not converge after 4 iteration(s)", "`changes`"]);
+    assert!(!err.contains("cut"), "no cut was tried: {err}");
+    let out = case.dir.join("out");
+    let s = json(&out.join("summary.json"));
+    assert_eq!(s["contact"]["converged"], Value::Bool(false));
+    let unsettled = s["contact"]["unsettled_pairs"].as_u64().expect("unsettled_pairs");
+    let rows = csv_rows(&out.join("contact.csv"));
+    assert_eq!(rows.len() as u64, s["contact"]["pairs"].as_u64().expect("pairs"), "every pair a row");
+    let changed = rows.iter().filter(|r| csv_num(r, "changes") > 0.0).count();
+    assert!(changed > 0 && changed as u64 == unsettled, "contact.csv marks {changed}, summary {unsettled}");
+    assert!(read(&out.join("short_contact.vtu")).contains("Name=\"changes\""), "the contact VTU has the field");
+    let report = read(&out.join("report.md"));
+    for want in [
+        "## Where the iteration did not settle",
+        "| contact group | pairs that changed |",
+        "| blocks | pairs that changed |",
+    ] {
+        assert!(report.contains(want), "report.md lacks {want:?}:\n{report}");
+    }
+    assert!(report.lines().count() < 150, "the report stays readable: {} lines", report.lines().count());
+    // a converged run writes none of it
+    dam(&case, "long.toml", "max_iterations = 100");
+    assert!(case.cli(&["solve", "long.toml", "--out", "long", "--quiet"]).status.success());
+    assert!(!read(&case.dir.join("long/contact.csv")).lines().next().unwrap_or("").contains("changes"));
+    assert!(!read(&case.dir.join("long/report.md")).contains("did not settle"));
+}
+
+#[test]
+fn max_cuts_takes_a_count() {
+    let case = Case::new("conv-bad-cuts");
+    dam(&case, "bad.toml", "max_cuts = -1");
+    let msg = common::cli::solve_fails(&case, "bad.toml", "out");
+    common::cli::says(&msg, &["solver.max_cuts", "-1", "at least 0"]);
+}
+
+/// The 3D tunnel of tests/geo/tunnel3d_joints.geo, 44k DOFs, 7,160 pairs,
+/// 148 blocks: before issue 28 the sparse interface wandered for 85
+/// iterations (and 100+ at 47k DOFs); it converges in 55, to states that
+/// keep Coulomb's law pair by pair.
+#[test]
+#[ignore = "make stress: about 40 s"]
+fn a_tunnel_through_three_oblique_joint_sets_converges_to_states_that_keep_the_law() {
+    let case = Case::new("conv-tunnel3d");
+    case.copy("tests/geo/tunnel3d_joints.geo");
+    case.copy("tests/geo/tunnel3d_joints_coarse.toml");
+    let o = case.cli(&["solve", "tunnel3d_joints_coarse.toml", "--out", "out", "--quiet"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let s = json(&case.dir.join("out/summary.json"));
+    let its = s["contact"]["iterations"].as_u64().expect("iterations");
+    let rows = csv_rows(&case.dir.join("out/contact.csv"));
+    assert_eq!(rows.len() as u64, s["contact"]["pairs"].as_u64().expect("pairs"), "every pair a row");
+    let f = 0.7002;
+    let scale = rows
+        .iter()
+        .map(|r| csv_num(r, "sigma_n").hypot(csv_num(r, "tau_t").hypot(csv_num(r, "tau_b"))))
+        .fold(0.0, f64::max);
+    let mut worst: f64 = 0.0;
+    for r in &rows {
+        let (sn, tau) = (csv_num(r, "sigma_n"), csv_num(r, "tau_t").hypot(csv_num(r, "tau_b")));
+        let residual = match r["status"].as_str() {
+            "2" => (tau - f * (-sn).max(0.0)).max(0.0) + sn.max(0.0),
+            "1" => (tau - f * (-sn).max(0.0)).abs() + sn.max(0.0),
+            _ => sn.abs() + tau,
+        };
+        worst = worst.max(residual / scale);
+    }
+    eprintln!("tunnel3d, 3 joint sets: {its} iterations, {} pairs, law residual {worst:.1e}", rows.len());
+    assert!(its <= 60, "{its} iterations");
+    assert!(worst < 1e-8, "law residual {worst:e}");
+}
