@@ -52,6 +52,7 @@ fn solved(run: Option<Run>, opts: &RunOptions) -> Result<()> {
     if !run.scene.bonded {
         warn(&crate::model::warnings::warnings(&run.model));
     }
+    warn(&crate::output::insitu_warnings(&run.scene, &run.model));
     print_summary(&run, &opts.out_dir(&run.scene));
     Ok(())
 }
@@ -161,6 +162,7 @@ pub fn check(scene_path: &Path, allow_geo_commands: bool) -> Result<()> {
     }
     warn(&scene.warnings());
     warn(&crate::model::warnings::warnings(&model));
+    warn(&crate::output::insitu_warnings(&scene, &model));
     Ok(())
 }
 

@@ -145,3 +145,43 @@ fn a_tunnel_through_three_oblique_joint_sets_converges_to_states_that_keep_the_l
     assert!(its <= 60, "{its} iterations");
     assert!(worst < 1e-8, "law residual {worst:e}");
 }
+
+/// geo/tunnel_joints.toml (k0 = 0.25) with the set dipping 60 degrees
+/// given f = 0.5 and no cohesion: Mohr's circle puts every pair of it at
+/// tau / sigma_n = (1 - k0) sin 60 cos 60 / (cos^2 60 + k0 sin^2 60) =
+/// 0.74231 of the in-situ stress, 1.4846 times what f = 0.5 carries; the
+/// other sets (cohesion 0.1, f = 0.85) hold, and so does the scene as given.
+#[test]
+fn in_situ_stress_beyond_a_joints_strength_is_named_before_solving() {
+    let case = Case::new("conv-insitu");
+    case.copy("geo/tunnel_joints.geo");
+    let scene = common::repo_text("geo/tunnel_joints.toml");
+    case.write("as_given.toml", &scene);
+    let weak = scene.replacen(
+        "name = \"joints_a\"\nangle = 60.0\nspacing = 4.0\noffset = 3.5\nfriction = 0.85\ncohesion = 0.1",
+        "name = \"joints_a\"\nangle = 60.0\nspacing = 4.0\noffset = 3.5\nfriction = 0.5",
+        1,
+    );
+    assert_ne!(weak, scene, "the edit applies");
+    case.write("weak.toml", &weak);
+    let given = case.cli(&["check", "as_given.toml"]);
+    assert!(given.status.success());
+    assert!(!String::from_utf8_lossy(&given.stderr).contains("in-situ"), "the scene as given holds");
+    let o = case.cli(&["check", "weak.toml"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "a warning, not an error: {err}");
+    let lines: Vec<&str> = err.lines().filter(|l| l.contains("in-situ stress")).collect();
+    assert_eq!(lines.len(), 1, "one warning, for joints_a alone: {err}");
+    common::cli::says(lines[0], &["weak.toml", "contact \"joints_a\"", "mobilised up to 1.485 of it", "k0"]);
+    let (n, of) = {
+        let w: Vec<&str> = lines[0].split_whitespace().collect();
+        let at = w.iter().position(|&x| x == "puts").expect("puts N of the M pairs");
+        (w[at + 1].to_string(), w[at + 4].to_string())
+    };
+    assert_eq!(n, of, "every pair of the set is beyond: {}", lines[0]);
+    // and the results say it too (whether the opening then holds is not the point here)
+    case.cli(&["solve", "weak.toml", "--out", "out", "--quiet"]);
+    let s = json(&case.dir.join("out/summary.json"));
+    let warnings = s["warnings"].as_array().expect("warnings");
+    assert!(warnings.iter().any(|w| w.as_str().is_some_and(|w| w.contains("in-situ stress"))), "{warnings:?}");
+}

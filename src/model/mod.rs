@@ -32,6 +32,7 @@ mod builder;
 mod contacts;
 mod facet_cells;
 mod held;
+pub mod insitu;
 mod joint_water;
 mod normals;
 pub mod quality;

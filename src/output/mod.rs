@@ -156,7 +156,24 @@ pub fn warnings(run: &Run) -> Vec<String> {
     if !run.scene.bonded {
         w.extend(crate::model::warnings::warnings(&run.model));
     }
+    w.extend(insitu_warnings(&run.scene, &run.model));
     w
+}
+
+/// The contact groups the in-situ stress puts beyond their strength
+/// ([`crate::model::insitu`]), one paragraph each.
+pub fn insitu_warnings(scene: &crate::scene::Scene, model: &Model) -> Vec<String> {
+    let strengths: Vec<crate::model::insitu::JointStrength> = scene
+        .contacts
+        .iter()
+        .map(|c| crate::model::insitu::JointStrength {
+            friction: c.friction,
+            cohesion: c.cohesion,
+            tensile_strength: c.tensile_strength,
+            skip: c.slip == crate::scene::SlipLaw::Frictionless || c.water.is_some(),
+        })
+        .collect();
+    crate::model::insitu::warnings(model, &strengths)
 }
 
 /// The bodies' VTU: each body's own nodes as points, so stresses averaged
