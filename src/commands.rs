@@ -91,29 +91,37 @@ fn print_summary(run: &Run, out: &Path) {
     outln!("  results in {}", out.display());
 }
 
-/// The factor of safety in one line, and a warning when the search
-/// reached its bound.
+/// The factor of safety in a line saying what it is (strength reduction
+/// with which strength, or a load factor; decided or only bracketed), the
+/// mechanism, the factor with the other strength where it differs, and
+/// warnings: a search that reached its bound, a headline the scene's
+/// silence chose.
 fn print_safety(run: &Run, s: &crate::results::SafetyRun) {
-    match (s.fails_at, &s.failure) {
-        (Some(f), Some(fail)) => {
-            let who = if fail.blocks.is_empty() {
-                String::new()
-            } else {
-                format!(": {} ({})", run.model.body_names(&fail.blocks), fail.kind.key())
-            };
-            let g = |v: f64| format!("{v:.6}").trim_end_matches('0').trim_end_matches('.').to_string();
-            outln!(
-                "  factor of safety against sliding F = {:.4} (holds at {}, fails at {}){who}",
-                s.factor,
-                g(s.factor),
-                g(f)
-            );
+    let g = |v: f64| format!("{v:.6}").trim_end_matches('0').trim_end_matches('.').to_string();
+    let what = crate::output::safety_label(run, s);
+    let factor = s.factor.unwrap_or(0.0);
+    match (s.fails_at, s.decided) {
+        (Some(f), true) => outln!("  {what} F = {factor:.4} (holds at {}, fails at {})", g(factor), g(f)),
+        (Some(f), false) => outln!(
+            "  {what}: NOT DECIDED, between F = {} (holds) and {} (fails): trials between did not converge",
+            g(factor),
+            g(f)
+        ),
+        (None, true) => {
+            outln!("  {what} F > {factor} (the search reached its bound)");
+            warn(&[format!("{}: the safety search reached its bound safety.max_factor = {factor} and the scene still holds there: F is at least that. Raise max_factor in [safety] to find F", run.scene.path.display())]);
         }
-        _ => {
-            outln!("  factor of safety against sliding F > {} (the search reached its bound)", s.factor);
-            warn(&[format!("{}: the safety search reached its bound safety.max_factor = {} and the scene still holds there: F is at least that. Raise max_factor in [safety] to find F", run.scene.path.display(), s.factor)]);
+        (None, false) => outln!("  {what}: NOT DECIDED, at least F = {} (holds): no trial above converged", g(factor)),
+    }
+    if let Some(m) = s.failure.as_ref().and_then(|f| f.mechanism.as_ref()) {
+        outln!("  mechanism: {} ({})", crate::contact::mechanism::describe(&run.model, m), m.kind.key());
+    }
+    if let Some(o) = &s.other {
+        if let Some(line) = crate::output::other_factor_line(run, s, o) {
+            outln!("  {line}");
         }
     }
+    warn(&crate::output::safety_warnings(run));
 }
 
 pub fn check(scene_path: &Path, allow_geo_commands: bool) -> Result<()> {

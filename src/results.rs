@@ -12,7 +12,7 @@
 use std::path::PathBuf;
 
 mod safety;
-pub use safety::{Failure, FailureKind, SafetyRun, SearchCost, Trial};
+pub use safety::{Failure, FailureKind, OtherFactor, SafetyRun, SearchCost, SearchKind, Trial, Undecided};
 
 use crate::analytic::{Check, Solution};
 use crate::contact::law::{ContactState, PairResult};

@@ -166,7 +166,12 @@ fn a_block_on_an_inclined_plane_slides_at_the_limit_equilibrium_factor_in_2d_and
         let report = read(&dir.join("report.md"));
         says(
             &report,
-            &["## Factor of safety against sliding", "none in the search", "(safety_deformed_displacement.png)"],
+            &[
+                "## Factor of safety",
+                "none in the search",
+                "(safety_deformed_displacement.png)",
+                "**Mechanism: sliding.**",
+            ],
         );
 
         // cohesion kept while slipping: (c A + W cos tan phi) / (W sin)
@@ -200,17 +205,27 @@ fn the_block_of_design_section_5_and_an_unsafe_one() {
 
     case.write("slides.toml", &incline(false, 0.3, 0.0, ""));
     let o = case.cli(&["safety", "slides.toml", "--out", "slides", "--quiet"]);
-    let msg = clean_failure(&case, &o, &case.dir.join("slides"));
+    let msg = failed_with_results(&o);
     says(
         &msg,
         &[
             "slides.toml: unsafe as given",
             "(F = 1)",
-            "body \"top\" slides or rotates freely",
+            "\"top\" slides along \"joint\"",
             "below 1: F = 0.",
-            "no result files were written",
+            "the results in slides are",
+            "raise the friction or cohesion",
         ],
     );
+    // what exists is written: the failing step's last iterate, flagged
+    // (not in equilibrium), and the mechanism
+    let summary = json(&case.dir.join("slides/summary.json"));
+    assert_eq!(summary["contact"]["converged"].as_bool(), Some(false), "the last iterate is not in equilibrium");
+    assert_eq!(summary["safety"]["below_one"].as_bool(), Some(true));
+    assert_eq!(summary["safety"]["failure"]["mechanism"]["kind"], "sliding");
+    for f in ["slides.vtu", "mechanism.png", "safety.csv", "slides_safety.vtu", "report.md"] {
+        assert!(case.dir.join("slides").join(f).is_file(), "{f} written");
+    }
     let f: f64 = msg
         .split("below 1: F = ")
         .nth(1)
@@ -311,6 +326,16 @@ fn a_search_that_reaches_its_bound_says_so() {
         (Some(true), Some(1.5), None)
     );
     says(&read(&case.dir.join("bound/report.md")), &["**F > 1.5**: the search reached its bound"]);
+}
+
+/// The one-paragraph error of a run that ends with exit status 1 after
+/// writing its results.
+fn failed_with_results(o: &std::process::Output) -> String {
+    let stderr = String::from_utf8_lossy(&o.stderr).trim().to_string();
+    assert_eq!(o.status.code(), Some(1), "exit status 1:\n{stderr}");
+    assert!(stderr.starts_with("error: ") && !stderr.contains("panicked"), "{stderr}");
+    assert!(!stderr.contains("\n\n"), "one paragraph:\n{stderr}");
+    stderr
 }
 
 /// A misspelt key of [safety] is named, as everywhere in a scene.

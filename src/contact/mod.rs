@@ -34,6 +34,7 @@ pub mod cutting;
 pub mod frame;
 mod iteration;
 pub mod law;
+pub mod mechanism;
 pub mod newton;
 pub mod options;
 pub mod paper;

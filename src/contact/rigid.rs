@@ -202,45 +202,9 @@ fn free_in(
     group: &[usize],
     nm: usize,
 ) -> Free {
-    let mut index = std::collections::HashMap::new();
-    for (i, &p) in group.iter().enumerate() {
-        index.insert(p, i);
-    }
-    let mut m = DMatrix::<f64>::zeros(nm * group.len(), nm * group.len());
-    for (i, &p) in group.iter().enumerate() {
-        m.view_mut((i * nm, i * nm), (nm, nm)).copy_from(&gram[p]);
-    }
-    for t in ties {
-        let w = t.weight();
-        let (rp, rq) = (parts[t.parts[0]].modes.along(t.x, t.dir), parts[t.parts[1]].modes.along(t.x, t.dir));
-        let row: Vec<(usize, f64)> = match (index.get(&t.parts[0]), index.get(&t.parts[1])) {
-            (Some(&i), Some(&j)) => {
-                (0..nm).map(|a| (i * nm + a, rp[a])).chain((0..nm).map(|a| (j * nm + a, -rq[a]))).collect()
-            }
-            // a held part's side acts as a support (exact ties are in `gram`)
-            (Some(&i), None) if held[t.parts[1]] && t.kind != TieKind::Exact => {
-                (0..nm).map(|a| (i * nm + a, rp[a])).collect()
-            }
-            (None, Some(&j)) if held[t.parts[0]] && t.kind != TieKind::Exact => {
-                (0..nm).map(|a| (j * nm + a, rq[a])).collect()
-            }
-            _ => continue,
-        };
-        for &(r, a) in &row {
-            for &(c, b) in &row {
-                m[(r, c)] += w * a * b;
-            }
-        }
-    }
-    let eig = m.symmetric_eigen();
-    let big = eig.eigenvalues.iter().fold(0.0f64, |a, &v| a.max(v.abs()));
     // the free motions, and each part's share of them
     let mut shares: Vec<Vec<Vec<f64>>> = vec![Vec::new(); group.len()];
-    for (k, &lambda) in eig.eigenvalues.iter().enumerate() {
-        if lambda > 1e-12 * big && big > 0.0 {
-            continue;
-        }
-        let v = eig.eigenvectors.column(k);
+    for v in null_space(group_matrix(parts, gram, ties, held, group, nm)) {
         for (i, share) in shares.iter_mut().enumerate() {
             let part: Vec<f64> = (0..nm).map(|a| v[i * nm + a]).collect();
             if part.iter().map(|x| x * x).sum::<f64>().sqrt() > 1e-6 {
@@ -254,6 +218,66 @@ fn free_in(
         free.motions.extend(echelon(share, nm).iter().map(|a| (p, parts[p].modes.motion(a))));
     }
     free
+}
+
+/// `C^T C` over the parts of `group` (`nm` modes each, in the group's
+/// order): each part's `gram`, the ties between two parts of the group,
+/// and the ties with slack to a part `held` (exact ones are in `gram`).
+/// Ties to parts neither in the group nor in `held` are left out.
+fn group_matrix(
+    parts: &[PartModes],
+    gram: &[DMatrix<f64>],
+    ties: &[Tie],
+    held: &[bool],
+    group: &[usize],
+    nm: usize,
+) -> DMatrix<f64> {
+    let mut index = std::collections::HashMap::new();
+    for (i, &p) in group.iter().enumerate() {
+        index.insert(p, i);
+    }
+    let mut m = DMatrix::<f64>::zeros(nm * group.len(), nm * group.len());
+    for (i, &p) in group.iter().enumerate() {
+        m.view_mut((i * nm, i * nm), (nm, nm)).copy_from(&gram[p]);
+    }
+    let is_held = |p: usize| held.get(p).copied().unwrap_or(false);
+    for t in ties {
+        let w = t.weight();
+        let along = |s: usize| parts[t.parts[s]].modes.along(t.x, t.dir);
+        let row: Vec<(usize, f64)> = match (index.get(&t.parts[0]), index.get(&t.parts[1])) {
+            (Some(&i), Some(&j)) => {
+                let (rp, rq) = (along(0), along(1));
+                (0..nm).map(|a| (i * nm + a, rp[a])).chain((0..nm).map(|a| (j * nm + a, -rq[a]))).collect()
+            }
+            // a held part's side acts as a support (exact ties are in `gram`)
+            (Some(&i), None) if is_held(t.parts[1]) && t.kind != TieKind::Exact => {
+                let rp = along(0);
+                (0..nm).map(|a| (i * nm + a, rp[a])).collect()
+            }
+            (None, Some(&j)) if is_held(t.parts[0]) && t.kind != TieKind::Exact => {
+                let rq = along(1);
+                (0..nm).map(|a| (j * nm + a, rq[a])).collect()
+            }
+            _ => continue,
+        };
+        for &(r, a) in &row {
+            for &(c, b) in &row {
+                m[(r, c)] += w * a * b;
+            }
+        }
+    }
+    m
+}
+
+/// The unit vectors of a symmetric matrix's null space and negative side
+/// (eigenvalues below 1e-12 of the largest in magnitude).
+fn null_space(m: DMatrix<f64>) -> Vec<nalgebra::DVector<f64>> {
+    let eig = m.symmetric_eigen();
+    let big = eig.eigenvalues.iter().fold(0.0f64, |a, &v| a.max(v.abs()));
+    (eig.eigenvalues.iter().enumerate())
+        .filter(|(_, &lambda)| !(lambda > 1e-12 * big && big > 0.0))
+        .map(|(k, _)| eig.eigenvectors.column(k).into_owned())
+        .collect()
 }
 
 /// A basis of the span of `rows` (vectors of length `nm`), each along as
@@ -278,6 +302,36 @@ fn echelon(rows: Vec<Vec<f64>>, nm: usize) -> Vec<Vec<f64>> {
         basis.push(pivot);
     }
     basis
+}
+
+/// The rigid motion of the parts of `group` that their supports and
+/// `ties` leave free, driven by `load` (for each part of the group, the
+/// work its loads do in each of its modes, [`PartModes`]' scaled modes):
+/// the loads projected onto the free motions, or the first free motion
+/// where they do no work on any (its sign arbitrary). Parts outside the
+/// group are held: a tie to one acts as a support. Each part's mode
+/// amplitudes in the group's order (scaled by the largest); None when
+/// nothing in the group is free.
+pub fn free_motion(parts: &[PartModes], ties: &[Tie], group: &[usize], load: &[[f64; 6]]) -> Option<Vec<[f64; 6]>> {
+    let nm = n_modes(parts.first()?.modes.analysis());
+    let inside = |p: usize| group.contains(&p);
+    let mut gram: Vec<DMatrix<f64>> = parts.iter().map(|p| p.gram.clone()).collect();
+    for t in ties.iter().filter(|t| inside(t.parts[0]) != inside(t.parts[1])) {
+        let p = if inside(t.parts[0]) { t.parts[0] } else { t.parts[1] };
+        add_outer(&mut gram[p], &parts[p].modes.along(t.x, t.dir)[..nm], t.weight());
+    }
+    let null = null_space(group_matrix(parts, &gram, ties, &[], group, nm));
+    let first = null.first()?;
+    let g = nalgebra::DVector::from_iterator(nm * group.len(), load.iter().flat_map(|l| l[..nm].to_vec()));
+    let mut v = nalgebra::DVector::<f64>::zeros(nm * group.len());
+    for n in &null {
+        v += n * n.dot(&g);
+    }
+    if v.norm() <= 1e-9 * g.norm() || g.norm() == 0.0 {
+        v = first.clone();
+    }
+    let big = v.amax();
+    Some((0..group.len()).map(|i| std::array::from_fn(|a| if a < nm { v[i * nm + a] / big } else { 0.0 })).collect())
 }
 
 /// Whether a part's Gram matrix stops all its rigid motions.

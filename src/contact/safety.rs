@@ -67,6 +67,57 @@ pub fn reduced(laws: &[PairLaw], chosen: &[bool], reduce: Reduce, factor: f64) -
         .collect()
 }
 
+/// Which strength a pair has during the search once it has slipped or
+/// opened. Limit equilibrium (Hoek & Bray, USACE, RocPlane, Swedge) keeps
+/// each joint's peak strength over the whole sliding surface; the load
+/// steps' crack memory gives a pair that slips its residual cohesion
+/// (0 unless the scene says), which brittle joints may want.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Strengths {
+    /// The cohesion a pair keeps once it slips or opens is its peak
+    /// cohesion (the tensile strength is lost where it cracks, as in the
+    /// load steps): the limit-equilibrium convention, the default.
+    Peak,
+    /// The scene's residual cohesion, as in the load steps.
+    Residual,
+}
+
+impl Strengths {
+    /// The scene-file spelling (`[safety] strength`).
+    pub fn key(self) -> &'static str {
+        match self {
+            Strengths::Peak => "peak",
+            Strengths::Residual => "residual",
+        }
+    }
+
+    /// The other one.
+    pub fn other(self) -> Strengths {
+        match self {
+            Strengths::Peak => Strengths::Residual,
+            Strengths::Residual => Strengths::Peak,
+        }
+    }
+
+    /// The laws the search starts from: the scene's, with the peak
+    /// cohesion kept where a pair cracks for [`Strengths::Peak`].
+    pub fn laws(self, laws: &[PairLaw]) -> Vec<PairLaw> {
+        match self {
+            Strengths::Residual => laws.to_vec(),
+            Strengths::Peak => laws
+                .iter()
+                .map(|l| PairLaw { strength: Strength { residual_cohesion: l.strength.cohesion, ..l.strength }, ..*l })
+                .collect(),
+        }
+    }
+
+    /// Whether the two differ for these laws: some pair loses cohesion
+    /// where it cracks.
+    pub fn differ(laws: &[PairLaw]) -> bool {
+        laws.iter().any(|l| l.strength.residual_cohesion < l.strength.cohesion)
+    }
+}
+
 /// How the factors are chosen.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Steps {
@@ -78,70 +129,107 @@ pub struct Steps {
     pub max_factor: f64,
 }
 
+/// What a trial found: a state that holds, a loss of equilibrium found by
+/// a converged iteration, or neither (the iteration did not converge even
+/// when retried): such a trial decides nothing.
+pub enum Verdict<S, E> {
+    Holds(S),
+    Fails(E),
+    Undecided(E),
+}
+
 /// Where a search ended: the largest factor that held (with the caller's
-/// state there) and the smallest that failed (with why). `fails` is None
-/// when the search reached `max_factor` and it held; `holds` is None when
-/// a search below 1 reached 1 / max_factor and it failed.
+/// state there) and the smallest that failed (with why), both from
+/// converged trials, and the trials that decided nothing. `fails` is None
+/// when the search reached `max_factor` and it held (or when no trial
+/// above the last hold was decided); `holds` is None when a search below 1
+/// reached 1 / max_factor and it failed.
 pub struct Bracket<S, E> {
     pub holds: Option<(f64, S)>,
     pub fails: Option<(f64, E)>,
+    pub undecided: Vec<(f64, E)>,
+}
+
+impl<S, E> Bracket<S, E> {
+    /// Whether converged trials alone closed the bracket to the tolerance
+    /// (or reached the bound holding): the factor is decided.
+    pub fn decided(&self, steps: &Steps) -> bool {
+        match (&self.holds, &self.fails) {
+            (Some((h, _)), Some((f, _))) => f - h <= steps.tolerance * h * (1.0 + 1e-9),
+            (Some((h, _)), None) => self.undecided.iter().all(|u| u.0 < *h) && *h >= steps.max_factor,
+            (None, Some((f, _))) => self.undecided.iter().all(|u| u.0 > *f),
+            (None, None) => false,
+        }
+    }
 }
 
 /// F from 1 up: `trial(F, from)` runs the trial at F from the state `from`
-/// of the last factor that held (`start` at F = 1) and returns the state it
-/// reached or why it failed.
-pub fn upward<S, E>(steps: &Steps, start: S, mut trial: impl FnMut(f64, &S) -> Result<S, E>) -> Bracket<S, E> {
+/// of the last factor that held (`start` at F = 1). A trial that decides
+/// nothing is passed over while bracketing (the next factor is tried from
+/// the same hold) and ends the bisection.
+pub fn upward<S, E>(steps: &Steps, start: S, mut trial: impl FnMut(f64, &S) -> Verdict<S, E>) -> Bracket<S, E> {
     let mut holds = (1.0, start);
+    let mut undecided = Vec::new();
     let mut k = 0;
     let fails = loop {
         k += 1;
         let f = (1.0 + k as f64 * steps.step).min(steps.max_factor);
         match trial(f, &holds.1) {
-            Ok(s) => holds = (f, s),
-            Err(e) => break (f, e),
+            Verdict::Holds(s) => holds = (f, s),
+            Verdict::Fails(e) => break (f, e),
+            Verdict::Undecided(e) => undecided.push((f, e)),
         }
         if f >= steps.max_factor {
-            return Bracket { holds: Some(holds), fails: None };
+            return Bracket { holds: Some(holds), fails: None, undecided };
         }
     };
-    let (holds, fails) = bisect(steps, holds, fails, |f, from: &S| trial(f, from));
-    Bracket { holds: Some(holds), fails: Some(fails) }
+    let (holds, fails) = bisect(steps, holds, fails, &mut undecided, |f, from: &S| trial(f, from));
+    Bracket { holds: Some(holds), fails: Some(fails), undecided }
 }
 
 /// F from 1 down, when F = 1 fails with `at_one`: `trial(F)` runs the whole
 /// load path at F from its start.
-pub fn downward<S, E>(steps: &Steps, at_one: E, mut trial: impl FnMut(f64) -> Result<S, E>) -> Bracket<S, E> {
+pub fn downward<S, E>(steps: &Steps, at_one: E, mut trial: impl FnMut(f64) -> Verdict<S, E>) -> Bracket<S, E> {
     let lowest = 1.0 / steps.max_factor;
     let mut fails = (1.0, at_one);
+    let mut undecided = Vec::new();
     let mut k = 0;
     let holds = loop {
         k += 1;
         let f = (1.0 - k as f64 * steps.step).max(lowest);
         match trial(f) {
-            Ok(s) => break (f, s),
-            Err(e) => fails = (f, e),
+            Verdict::Holds(s) => break (f, s),
+            Verdict::Fails(e) => fails = (f, e),
+            Verdict::Undecided(e) => undecided.push((f, e)),
         }
         if f <= lowest {
-            return Bracket { holds: None, fails: Some(fails) };
+            return Bracket { holds: None, fails: Some(fails), undecided };
         }
     };
-    let (holds, fails) = bisect(steps, holds, fails, |f, _: &S| trial(f));
-    Bracket { holds: Some(holds), fails: Some(fails) }
+    let (holds, fails) = bisect(steps, holds, fails, &mut undecided, |f, _: &S| trial(f));
+    Bracket { holds: Some(holds), fails: Some(fails), undecided }
 }
 
 /// Halves the bracket (`holds` below `fails`) until it is within the
-/// tolerance, each trial from the state of the last factor that held.
+/// tolerance, each trial from the state of the last factor that held; a
+/// trial that decides nothing ends it (the bracket stays as converged
+/// trials left it).
 fn bisect<S, E>(
     steps: &Steps,
     mut holds: (f64, S),
     mut fails: (f64, E),
-    mut trial: impl FnMut(f64, &S) -> Result<S, E>,
+    undecided: &mut Vec<(f64, E)>,
+    mut trial: impl FnMut(f64, &S) -> Verdict<S, E>,
 ) -> ((f64, S), (f64, E)) {
     while fails.0 - holds.0 > steps.tolerance * holds.0 {
         let f = 0.5 * (holds.0 + fails.0);
         match trial(f, &holds.1) {
-            Ok(s) => holds = (f, s),
-            Err(e) => fails = (f, e),
+            Verdict::Holds(s) => holds = (f, s),
+            Verdict::Fails(e) => fails = (f, e),
+            Verdict::Undecided(e) => {
+                undecided.push((f, e));
+                break;
+            }
         }
     }
     (holds, fails)
@@ -188,9 +276,9 @@ mod tests {
         let b = upward(steps, vec![1.0], |f, from: &Vec<f64>| {
             log.push((f, from.last().copied()));
             if f <= limit {
-                Ok([&from[..], &[f]].concat())
+                Verdict::Holds([&from[..], &[f]].concat())
             } else {
-                Err(f)
+                Verdict::Fails(f)
             }
         });
         (b, log)
@@ -233,17 +321,63 @@ mod tests {
         let b = downward(&STEPS, 1.0, |f| {
             tried.push(f);
             if f <= 0.6789 {
-                Ok(f)
+                Verdict::Holds(f)
             } else {
-                Err(f)
+                Verdict::Fails(f)
             }
         });
         let (h, s) = b.holds.expect("holds");
         let (f, _) = b.fails.expect("fails");
         assert!(h <= 0.6789 && f > 0.6789 && f - h <= 1e-3 * h && s == h, "[{h}, {f}]");
         assert!((tried[0] - 0.9).abs() < 1e-12 && (tried[3] - 0.6).abs() < 1e-12);
-        let b = downward(&STEPS, 1.0, Err::<f64, f64>);
+        let b = downward(&STEPS, 1.0, Verdict::<f64, f64>::Fails);
         assert!(b.holds.is_none());
         assert!((b.fails.expect("fails").0 - 0.1).abs() < 1e-12, "down to 1 / max_factor");
+    }
+
+    #[test]
+    fn a_trial_that_decides_nothing_is_passed_over_and_leaves_the_bracket_open() {
+        // holds up to 1.2345, but the iteration does not converge at 1.3
+        let b = upward(&STEPS, 1.0, |f, _: &f64| {
+            if (f - 1.3).abs() < 1e-9 {
+                Verdict::Undecided(f)
+            } else if f <= 1.2345 {
+                Verdict::Holds(f)
+            } else {
+                Verdict::Fails(f)
+            }
+        });
+        // 1.3 passed over, 1.4 fails: the bisection tries 1.3 again and stops
+        let (h, f) = (b.holds.as_ref().expect("holds").0, b.fails.as_ref().expect("fails").0);
+        assert!((h - 1.2).abs() < 1e-12 && (f - 1.4).abs() < 1e-12, "[{h}, {f}]");
+        assert_eq!(b.undecided.len(), 2);
+        assert!(!b.decided(&STEPS));
+        // undecided only where converged trials bracket anyway: decided
+        let b = upward(&STEPS, 1.0, |f, _: &f64| {
+            if (f - 1.5).abs() < 1e-9 {
+                Verdict::Undecided(f)
+            } else if f <= 1.2345 {
+                Verdict::Holds(f)
+            } else {
+                Verdict::Fails(f)
+            }
+        });
+        assert!(b.decided(&STEPS) && b.undecided.is_empty());
+        // nothing decided above the last hold up to the bound: open
+        let b = upward(&STEPS, 1.0, |f, _: &f64| if f <= 1.1 { Verdict::Holds(f) } else { Verdict::Undecided(f) });
+        assert!(b.fails.is_none() && !b.decided(&STEPS));
+        assert!((b.holds.expect("holds").0 - 1.1).abs() < 1e-12);
+    }
+
+    #[test]
+    fn peak_strength_keeps_the_cohesion_where_a_pair_cracks_and_residual_the_scenes() {
+        let s = Strength { friction: 0.7, cohesion: 25.0, tensile_strength: 5.0, residual_cohesion: 0.0 };
+        let law = PairLaw { strength: s, slip: SlipLaw::Coulomb };
+        let peak = Strengths::Peak.laws(&[law]);
+        assert_eq!(peak[0].strength, Strength { residual_cohesion: 25.0, ..s });
+        assert_eq!(peak[0].strength.effective(true), (0.0, 25.0), "cracked: no tension, the peak cohesion");
+        assert_eq!(Strengths::Residual.laws(&[law])[0].strength, s);
+        assert!(Strengths::differ(&[law]) && !Strengths::differ(&peak));
+        assert_eq!(Strengths::Peak.other(), Strengths::Residual);
     }
 }

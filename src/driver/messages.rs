@@ -9,6 +9,7 @@ use std::fmt;
 use std::path::PathBuf;
 
 use crate::contact::law::ContactState;
+use crate::contact::mechanism::Motion as BlockMotion;
 use crate::contact::system::SolveFailure;
 use crate::contact::{Failed, SlipLaw, StateRule};
 use crate::fem::rigid::Motion;
@@ -78,14 +79,47 @@ pub enum ContactError {
     Traction { scene: PathBuf, reason: String },
 }
 
-/// Why a safety search could not be made.
+/// Why a safety search ends the run non-zero.
 #[derive(Clone, Debug, PartialEq)]
 pub enum SafetyError {
-    /// The load steps lose equilibrium at full strength (`at_one`): the
-    /// scene is unsafe as given. F was sought below 1, each trial running
-    /// the load steps from the start: `holds` the largest factor that held
-    /// (None: none down to 1 / `max_factor`), `fails` the smallest that failed.
-    Unsafe { scene: PathBuf, at_one: ContactError, holds: Option<f64>, fails: f64, max_factor: f64 },
+    /// The load steps lose equilibrium as given (`at_one`): the scene is
+    /// unsafe. F was sought below 1, each trial running the load steps
+    /// from the start: `holds` the largest factor that held (None: none
+    /// down to 1 / `max_factor`), `fails` the smallest that failed.
+    /// `mechanism`: how the blocks move at F = 1, for a reader, and the
+    /// advice for it; `load`: a load factor search; `results`: where the
+    /// results that exist were written.
+    Unsafe {
+        scene: PathBuf,
+        at_one: ContactError,
+        holds: Option<f64>,
+        fails: f64,
+        max_factor: f64,
+        mechanism: Option<(String, BlockMotion)>,
+        load: bool,
+        results: Option<PathBuf>,
+    },
+    /// Converged trials did not decide the factor: they hold at `holds`
+    /// and fail at `fails` (None: none converged above), and the trials at
+    /// `undecided` did not converge, even when retried.
+    Undecided {
+        scene: PathBuf,
+        holds: f64,
+        fails: Option<f64>,
+        undecided: Vec<f64>,
+        load: bool,
+        results: Option<PathBuf>,
+    },
+}
+
+impl SafetyError {
+    /// The error with the results written to `out`.
+    pub fn written(mut self, out: PathBuf) -> SafetyError {
+        match &mut self {
+            SafetyError::Unsafe { results, .. } | SafetyError::Undecided { results, .. } => *results = Some(out),
+        }
+        self
+    }
 }
 
 /// Why the parts cannot be spread over the MPI ranks.
@@ -284,39 +318,78 @@ impl fmt::Display for PlanError {
 
 impl fmt::Display for SafetyError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let SafetyError::Unsafe { scene, at_one, holds, fails, max_factor } = self;
-        let (cause, no_shear) = match at_one {
-            ContactError::Sliding { at, bodies, no_shear, motions, .. } => {
-                let who = if bodies.is_empty() { "a body".to_string() } else { bodies_named(bodies) };
-                let verb = if bodies.len() > 1 { "slide or rotate" } else { "slides or rotates" };
-                (
-                    format!(
-                        "the scene loses equilibrium at {at}: {who} {verb} freely{} on {} contacts",
-                        motions_named(motions),
-                        if bodies.len() > 1 { "their" } else { "its" }
-                    ),
-                    *no_shear,
-                )
+        match self {
+            SafetyError::Unsafe { .. } => unsafe_message(self, f),
+            SafetyError::Undecided { scene, holds, fails, undecided, load, results } => {
+                let what = if *load { "load factor" } else { "factor of safety" };
+                let tried: Vec<String> = undecided.iter().map(|u| format!("{u:.4}")).collect();
+                write!(f, "{}: the {what} is not decided: the contact iteration did not converge at F = {} even when retried in smaller steps with more iterations, so those trials neither hold nor fail. Converged trials hold at F = {holds:.4}", scene.display(), tried.join(", "))?;
+                match fails {
+                    Some(x) => write!(f, " and fail at F = {x:.4}: F lies between them")?,
+                    None => write!(f, " and none above converged: F is at least {holds:.4}")?,
+                }
+                if let Some(out) = results {
+                    write!(f, "; the results in {} are those of the last state that holds", out.display())?;
+                }
+                write!(f, ". Try more [solver] max_iterations, a smaller safety.step, or the other [solver] rule")
             }
-            ContactError::NotHeld { at, bodies, .. } => {
-                let one = bodies.len() == 1;
-                (
-                    format!(
-                        "{} {} held by nothing at {at} once {} contacts open",
-                        bodies_named(bodies),
-                        if one { "is" } else { "are" },
-                        if one { "its" } else { "their" }
-                    ),
-                    false,
-                )
-            }
-            other => (other.to_string(), false),
-        };
-        write!(f, "{}: unsafe as given: with the full strength of its contacts (F = 1) {cause}. Its factor of safety against sliding is below 1: ", scene.display())?;
-        match holds {
-            Some(h) => write!(f, "F = {h:.4} (the load steps hold with the reduced strength parameters multiplied by 1/F = {:.4} and fail from F = {fails:.4} up; each trial ran the load steps from the start)", 1.0 / h)?,
-            None => write!(f, "F < {:.4}: the load steps fail even with the reduced strength parameters multiplied by {max_factor} (safety.max_factor){}", 1.0 / max_factor, if no_shear { ", since the contacts the blocks slide on carry no shear (no friction and no cohesion, or slip = \"frictionless\")" } else { "" })?,
         }
-        write!(f, ". A search upward needs a state that holds at F = 1, so none was made and no result files were written. Raise the friction or cohesion of those contacts, lower the loads, or hold the blocks that slide")
+    }
+}
+
+/// The paragraph of [`SafetyError::Unsafe`].
+fn unsafe_message(e: &SafetyError, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+    let SafetyError::Unsafe { scene, at_one, holds, fails, max_factor, mechanism, load, results } = e else {
+        return Ok(());
+    };
+    let (cause, no_shear) = match at_one {
+        ContactError::Sliding { at, bodies, no_shear, motions, .. } => {
+            let who = if bodies.is_empty() { "a body".to_string() } else { bodies_named(bodies) };
+            let verb = if bodies.len() > 1 { "move" } else { "moves" };
+            (
+                format!(
+                    "the scene loses equilibrium at {at}: {who} {verb} freely{} on {} contacts",
+                    motions_named(motions),
+                    if bodies.len() > 1 { "their" } else { "its" }
+                ),
+                *no_shear,
+            )
+        }
+        ContactError::NotHeld { at, bodies, .. } => {
+            let one = bodies.len() == 1;
+            (
+                format!(
+                    "the scene loses equilibrium at {at}: {} {} held by nothing once {} contacts open",
+                    bodies_named(bodies),
+                    if one { "is" } else { "are" },
+                    if one { "its" } else { "their" }
+                ),
+                false,
+            )
+        }
+        other => (other.to_string(), false),
+    };
+    let given = if *load { "its loads as given (F = 1)" } else { "the full strength of its contacts (F = 1)" };
+    write!(f, "{}: unsafe as given: with {given} {cause}", scene.display())?;
+    if let Some((how, _)) = mechanism {
+        write!(f, ": {how}")?;
+    }
+    let what = if *load { "load factor" } else { "factor of safety (strength reduction)" };
+    write!(f, ". Its {what} is below 1: ")?;
+    let by = if *load { "the raised loads multiplied by" } else { "the reduced strength parameters multiplied by" };
+    match holds {
+        Some(h) => write!(f, "F = {h:.4} (the load steps hold with {by} {} = {:.4} and fail from F = {fails:.4} up; each trial ran the load steps from the start)", if *load { "F" } else { "1/F" }, if *load { *h } else { 1.0 / h })?,
+        None => write!(f, "F < {:.4}: the load steps fail even with {by} {} (safety.max_factor){}", 1.0 / max_factor, if *load { 1.0 / max_factor } else { *max_factor }, if no_shear { ", since the contacts the blocks slide on carry no shear (no friction and no cohesion, or slip = \"frictionless\")" } else { "" })?,
+    }
+    match results {
+        Some(out) => write!(f, ". A search upward needs a state that holds at F = 1, so none was made; the results in {} are the last load step that held (if any), the failing step's last iterate (not in equilibrium: summary.json contact.converged = false) and the mechanism (blocks.csv, report.md)", out.display())?,
+        None => write!(f, ". A search upward needs a state that holds at F = 1, so none was made and no result files were written")?,
+    }
+    match mechanism {
+        Some((_, motion)) => write!(f, ". To hold it: {}", motion.helps()),
+        None => write!(
+            f,
+            ". Raise the friction or cohesion of those contacts, lower the loads, or hold the blocks that move"
+        ),
     }
 }

@@ -27,6 +27,7 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 
 mod condense;
+mod mechanism;
 mod memory;
 mod messages;
 mod plan;
@@ -45,7 +46,7 @@ use crate::mesh::{gmsh, msh, Mesh};
 use crate::model::Model;
 use crate::output;
 use crate::output::files::{Stage, Staged};
-use crate::parallel::{Comm, Serial};
+use crate::parallel::{Comm, CommExt, Serial};
 use crate::recover;
 use crate::scene::{MeshSource, Scene};
 
@@ -235,9 +236,21 @@ fn solve(
     // search when the scene asks for one (a scene that fails at full
     // strength is unsafe as given).
     let step = steps::Step::new(&scene, &model, &plan, &parts, &ranks)?;
-    let mut done =
-        steps::run(&step, &parts, opts, &ranks).map_err(|e| safety::unsafe_as_given(&step, &parts, opts, &ranks, e))?;
-    let safety = safety::run(&step, &parts, opts, &ranks, &mut done)?;
+    let (mut done, safety, failed) = match steps::run(&step, &parts, opts, &ranks) {
+        Ok(done) => (done, None, None),
+        Err(e) => {
+            let below = safety::below_one(&step, &parts, opts, &ranks, e)?;
+            // with no result at all (no step held, no iterate), nothing to write
+            if !ranks.comm().broadcast(&below.safety.as_ref().is_some_and(|_| !below.done.steps.is_empty())) {
+                return Err(below.error);
+            }
+            (below.done, below.safety, Some(below.error))
+        }
+    };
+    let safety = match failed {
+        Some(_) => safety,
+        None => safety::run(&step, &parts, opts, &ranks, &mut done)?,
+    };
     drop(step);
     let gathered = ranks.gather(&stats::rank(&ranks, &parts, &done));
     stats::add_timings(&mut timings, &parts, &done);
@@ -262,7 +275,7 @@ fn solve(
     let t = Instant::now();
     run.checks = checks(&run);
     run.stats.timings.recover += t.elapsed().as_secs_f64();
-    write(run, opts, to).map(Some)
+    write(run, opts, to, failed).map(Some)
 }
 
 /// Errors against the scene's closed form (body by body, each in its own
@@ -280,14 +293,16 @@ fn checks(run: &Run) -> Checks {
 }
 
 /// Writes every result file of `run` to `out` at once (with the scene's
-/// `[analytic]` check), or none with `skip_output`; a last step that did
-/// not converge is an error after its results are written.
-fn write(mut run: Run, opts: &RunOptions, to: &mut Writing) -> Result<Run> {
+/// `[analytic]` check), or none with `skip_output`; then the run's error,
+/// if any: `failed` (the load steps lost equilibrium, the scene is unsafe
+/// as given), a safety factor that converged trials did not decide, or a
+/// last step that did not converge.
+fn write(mut run: Run, opts: &RunOptions, to: &mut Writing, failed: Option<anyhow::Error>) -> Result<Run> {
     let (out, t0) = (to.out.as_path(), to.t0);
     if opts.skip_output {
         run.stats.timings.total = t0.elapsed().as_secs_f64();
-        return match not_converged(&run, None) {
-            Some(e) => Err(e.into()),
+        return match ended(&run, None, failed) {
+            Some(e) => Err(e),
             None => Ok(run),
         };
     }
@@ -313,10 +328,29 @@ fn write(mut run: Run, opts: &RunOptions, to: &mut Writing) -> Result<Run> {
         None => staged.commit_with(&mut |m| say(m)),
     };
     committed.with_context(|| format!("writing results to {}", out.display()))?;
-    match not_converged(&run, Some(out.to_path_buf())) {
-        Some(e) => Err(e.into()),
+    match ended(&run, Some(out.to_path_buf()), failed) {
+        Some(e) => Err(e),
         None => Ok(run),
     }
+}
+
+/// The error a run ends with once its results are written (to `results`):
+/// `failed`, the safety search's, or a last step that did not converge.
+fn ended(run: &Run, results: Option<PathBuf>, failed: Option<anyhow::Error>) -> Option<anyhow::Error> {
+    let written = |e: SafetyError| match &results {
+        Some(out) => e.written(out.clone()),
+        None => e,
+    };
+    if let Some(e) = failed {
+        return Some(match e.downcast::<SafetyError>() {
+            Ok(s) => written(s).into(),
+            Err(e) => e,
+        });
+    }
+    if let Some(e) = safety::undecided_error(run) {
+        return Some(written(e).into());
+    }
+    not_converged(run, results).map(Into::into)
 }
 
 /// The error of a run whose last step did not converge; `results`: where

@@ -158,6 +158,28 @@ impl RigidModes {
         Motion::Rotation { axis, point }
     }
 
+    /// The length the rotations' amplitudes are measured in.
+    pub fn scale(&self) -> f64 {
+        self.scale
+    }
+
+    /// The centre the rotations are about.
+    pub fn center(&self) -> [f64; 3] {
+        self.center
+    }
+
+    /// The motion of amplitudes `a` (in the order of [`RigidModes::along`])
+    /// as vectors: the translation of the centre, and the rotation
+    /// (radians); [`RigidModes::motion`] names it.
+    pub fn velocity(&self, a: &[f64; 6]) -> ([f64; 3], [f64; 3]) {
+        let s = self.scale;
+        match self.analysis {
+            Analysis::PlaneStrain | Analysis::PlaneStress => ([a[0], a[1], 0.0], [0.0, 0.0, a[2] / s]),
+            Analysis::Axisymmetric => ([0.0, a[0], 0.0], [0.0; 3]),
+            Analysis::Solid => ([a[0], a[1], a[2]], [a[3] / s, a[4] / s, a[5] / s]),
+        }
+    }
+
     /// `sum r r^T` over the held directions, `r = dir . R(x)` for each
     /// (point, direction): singular exactly when some rigid motion moves
     /// none of them.
@@ -189,6 +211,18 @@ impl RigidModes {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_motions_amplitudes_give_its_translation_and_rotation_in_radians() {
+        // a rotation of 0.01 rad about z, about (1, 2) with lengths in 4: the
+        // scaled mode moves (1 + 4, 2) by 0.04 along y, so its amplitude is 0.04
+        let rm = RigidModes::new(Analysis::PlaneStrain, [1.0, 2.0, 0.0], 4.0);
+        assert_eq!(rm.along([5.0, 2.0, 0.0], [0.0, 1.0, 0.0])[2], 1.0);
+        let (t, w) = rm.velocity(&[0.5, 0.0, 0.04, 0.0, 0.0, 0.0]);
+        assert_eq!((t, w), ([0.5, 0.0, 0.0], [0.0, 0.0, 0.01]));
+        let rm = RigidModes::new(Analysis::Solid, [0.0; 3], 2.0);
+        assert_eq!(rm.velocity(&[1.0, 2.0, 3.0, 0.2, 0.0, -0.4]), ([1.0, 2.0, 3.0], [0.1, 0.0, -0.2]));
+    }
 
     #[test]
     fn rotation_mode_is_a_rigid_motion() {

@@ -55,6 +55,7 @@ impl Model {
             interfaces: split.interfaces,
             mesh_node: split.mesh_node,
             cases: cases.factors,
+            load_cases: cases.of_load.clone(),
             gravity_case: cases.gravity,
             initial_case: cases.initial,
             water: Vec::new(),

@@ -144,6 +144,8 @@ pub struct Model {
     /// Load factor of each load case at each load step. Case 0 is the ramp
     /// k / load_steps, which also scales prescribed displacements.
     pub cases: Vec<Vec<f64>>,
+    /// The load case of each of the description's loads (`[[loads]]`).
+    pub load_cases: Vec<usize>,
     /// The load case of gravity.
     pub gravity_case: usize,
     /// The load case of the initial stresses: factor 1 at every step (they

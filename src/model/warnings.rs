@@ -145,6 +145,7 @@ mod tests {
             interfaces: Vec::new(),
             mesh_node: (0..7).collect(),
             cases: vec![vec![1.0]],
+            load_cases: Vec::new(),
             gravity_case: 0,
             initial_case: 0,
             water: Vec::new(),

@@ -17,6 +17,8 @@ mod unsettled;
 pub mod vtu;
 mod water;
 
+pub use safety::{label as safety_label, other_factor_line, warnings as safety_warnings};
+
 use anyhow::Result;
 use serde_json::json;
 

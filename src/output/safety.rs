@@ -1,18 +1,27 @@
 //! The results of a safety search ([`SafetyRun`]), beside the run's own:
 //!
 //! - `safety.csv`: one row per trial (factor, the factor it started from,
-//!   whether it held, contact iterations, states, seconds, why it failed);
+//!   whether it held, contact iterations, states, seconds, why it failed,
+//!   whether it was a step of a retry);
 //! - the last converged state at F: `<name>_safety.vtu`,
 //!   `<name>_safety_contact.vtu` and `safety_contact.csv` (the columns of
 //!   the run's own), and its pictures with the prefix `safety_`: the model
 //!   deformed by the displacement since F = 1 (the mechanism as it starts),
 //!   the contact stresses along each interface, and in 3D the plan of every
 //!   joint by state with the slip directions;
-//! - `summary.json`'s `safety` object and report.md's section, which set
-//!   the search's F beside each reduced contact's own limit equilibrium
-//!   from its resultants, `F_joint = (c A + N f) / T` (N the normal force,
-//!   T the magnitude of the summed shear force, A the closed area, c and f
-//!   the scene's): the hand check of a joint that slides as one plane.
+//! - `mechanism.png`: the blocks of the failing trial's mechanism moved by
+//!   their rigid motion and coloured by it (the others still);
+//! - `summary.json`'s `safety` object and report.md's section
+//!   ([`report`]), which say what F is (strength reduction with peak or
+//!   residual strength, or a load factor; decided by converged trials or
+//!   only bracketed), name the mechanism and what can help it, set F beside
+//!   the factor with the other strength convention, and beside each reduced
+//!   contact's own limit equilibrium from its resultants, `F_joint = (c A +
+//!   N f) / T` (N the normal force, T the magnitude of the summed shear
+//!   force, A the closed area, c and f the scene's): the hand check of a
+//!   joint that slides as one plane.
+
+mod report;
 
 use std::fmt::Write;
 
@@ -22,39 +31,54 @@ use serde_json::{json, Value};
 use super::files::Staged;
 use super::picture::{self, Snapshot};
 use crate::contact::law::ContactState;
-use crate::results::{state_counts, ContactRun, Run, SafetyRun};
+use crate::contact::mechanism::{describe, Mechanism};
+use crate::results::{state_counts, ContactRun, OtherFactor, Run, SafetyRun, SearchKind};
 use crate::scene::Safety;
+
+pub use report::report;
+
+/// Factors that differ by more than this are both reported.
+pub const DIFFER: f64 = 0.01;
 
 /// The safety search's files, when the run made one.
 pub(super) fn stage(run: &Run, staged: &mut Staged, drawn: &mut picture::Drawn) -> Result<()> {
     let Some(s) = &run.safety else { return Ok(()) };
-    let (model, name) = (&run.model, &run.scene.name);
     staged.add("safety.csv", trials_csv(s).into_bytes());
+    if let Some(m) = s.failure.as_ref().and_then(|f| f.mechanism.as_ref()) {
+        let u = mechanism_field(run, m);
+        let title = format!("{}: the mechanism, {}", run.scene.title, m.kind.key());
+        let snap = Snapshot { title: &title, model: &run.model, u: &u, stresses: &[], contact: None, region: None };
+        drawn.draw("mechanism.png", || picture::deformed_png(&snap, picture::Field::Displacement, None));
+    }
+    let Some(last) = &s.last else { return Ok(()) };
+    let (model, name) = (&run.model, &run.scene.name);
     staged.add(
         &format!("{name}_safety.vtu"),
-        super::bodies_vtu(model, &s.last.u, &s.last.stresses, run.scene.output.wants("displacement"))?,
+        super::bodies_vtu(model, &last.u, &last.stresses, run.scene.output.wants("displacement"))?,
     );
-    if let Some(c) = &s.last.contact {
+    if let Some(c) = &last.contact {
         staged.add(&format!("{name}_safety_contact.vtu"), super::contact_vtu(model, c)?);
         staged.add("safety_contact.csv", super::contact_csv(model, c).into_bytes());
     }
-    // the mechanism: the model deformed and coloured by the displacement since F = 1
-    let title =
-        format!("{}: F = {}, the last state that holds; displacement since F = 1", run.scene.title, fmt_f(s.factor));
+    // the mechanism as it starts: the model deformed and coloured by the
+    // displacement since F = 1 (below 1: since the start)
+    let f = s.factor.map_or("-".into(), fmt_f);
+    let since = if s.below_one { "the displacement of the load steps at F" } else { "displacement since F = 1" };
+    let title = format!("{}: F = {f}, the last state that holds; {since}", run.scene.title);
     let snap = Snapshot {
         title: &title,
         model,
         u: &s.du,
         stresses: &[],
-        contact: s.last.contact.as_ref(),
+        contact: last.contact.as_ref(),
         region: run.scene.output.frame.as_ref(),
     };
     drawn.draw(&format!("safety_{}", picture::deformed_file(&[])), || {
         picture::deformed_png(&snap, picture::Field::Displacement, None)
     });
     // the joints at F: along each interface, and in 3D in plan by state
-    let Some(c) = &s.last.contact else { return Ok(()) };
-    let title = format!("{}: F = {}, the last state that holds", run.scene.title, fmt_f(s.factor));
+    let Some(c) = &last.contact else { return Ok(()) };
+    let title = format!("{}: F = {f}, the last state that holds", run.scene.title);
     drawn.draw("safety_interfaces.svg", || Ok(picture::interface_plot_svg(model, c)?.into_bytes()));
     let plans = drawn.plans(model);
     for p in &plans {
@@ -66,14 +90,30 @@ pub(super) fn stage(run: &Run, staged: &mut Staged, drawn: &mut picture::Drawn) 
     Ok(())
 }
 
+/// Every node moved by its block's motion in the mechanism (still where
+/// its block is not in it).
+pub fn mechanism_field(run: &Run, m: &Mechanism) -> Vec<f64> {
+    let (model, nd) = (&run.model, run.model.nd);
+    let body_of = model.body_of_node();
+    let mut u = vec![0.0; model.n_nodes() * nd];
+    for (n, &b) in body_of.iter().enumerate() {
+        if b == usize::MAX {
+            continue;
+        }
+        let d = m.at(b, model.coords[n]);
+        u[n * nd..n * nd + nd].copy_from_slice(&d[..nd]);
+    }
+    u
+}
+
 /// One row per trial.
 fn trials_csv(s: &SafetyRun) -> String {
-    let mut out = String::from("trial,factor,from,holds,iterations,stick,slip,open,seconds,failure\n");
+    let mut out = String::from("trial,factor,from,holds,iterations,stick,slip,open,seconds,failure,retry\n");
     for (i, t) in s.trials.iter().enumerate() {
         let k = t.states;
         let _ = writeln!(
             out,
-            "{},{:.9},{:.9},{},{},{},{},{},{:.6},{}",
+            "{},{:.9},{:.9},{},{},{},{},{},{:.6},{},{}",
             i + 1,
             t.factor,
             t.from,
@@ -83,8 +123,98 @@ fn trials_csv(s: &SafetyRun) -> String {
             k[1],
             k[0],
             t.seconds,
-            t.failed.map_or("", |f| f.key())
+            t.failed.map_or("", |f| f.key()),
+            t.retry
         );
+    }
+    out
+}
+
+/// What F is, for a reader: "factor of safety (strength reduction, peak
+/// strength)" or "load factor (raising \"water\")".
+pub fn label(run: &Run, s: &SafetyRun) -> String {
+    match s.kind {
+        SearchKind::Strength(st) => format!("factor of safety (strength reduction, {} strength)", st.key()),
+        SearchKind::Load => format!("load factor (raising {})", raised(run)),
+    }
+}
+
+/// The loads a load factor search raises, quoted.
+fn raised(run: &Run) -> String {
+    let Some(r) = run.scene.safety.as_ref().and_then(|o| o.raise.as_ref()) else { return String::new() };
+    let mut names: Vec<String> = r.loads.iter().map(|&i| format!("\"{}\"", run.scene.loads[i].group)).collect();
+    if r.gravity {
+        names.push("gravity".into());
+    }
+    names.join(", ")
+}
+
+/// What a strength convention means.
+fn meaning(st: crate::contact::safety::Strengths) -> &'static str {
+    match st {
+        crate::contact::safety::Strengths::Peak => {
+            "each joint keeps its peak cohesion where its pairs slip or open, as limit equilibrium assumes"
+        }
+        crate::contact::safety::Strengths::Residual => {
+            "a pair that slips or opens keeps only its residual_cohesion, as in the load steps"
+        }
+    }
+}
+
+/// Whether two factors differ by more than [`DIFFER`].
+fn differ(a: Option<f64>, b: Option<f64>) -> bool {
+    match (a, b) {
+        (Some(a), Some(b)) => (a / b - 1.0).abs() > DIFFER,
+        (None, None) => false,
+        _ => true,
+    }
+}
+
+/// The line on the other strength's factor, where it differs from the
+/// headline by more than 1 %.
+pub fn other_factor_line(_run: &Run, s: &SafetyRun, o: &OtherFactor) -> Option<String> {
+    if !differ(s.factor, o.factor) {
+        return None;
+    }
+    let f = match (o.factor, o.decided) {
+        (Some(f), true) => format!("F = {}", fmt_f(f)),
+        (Some(f), false) => format!("F not decided (holds at {})", fmt_g(f)),
+        (None, _) => "no factor held".into(),
+    };
+    Some(format!("with {} strength ({}): {f}", o.strengths.key(), meaning(o.strengths)))
+}
+
+/// Warnings on the search: a headline the scene's silence chose where the
+/// conventions differ, and a residual strength taken from a default.
+pub fn warnings(run: &Run) -> Vec<String> {
+    let (Some(s), Some(o)) = (&run.safety, &run.scene.safety) else { return Vec::new() };
+    let SearchKind::Strength(st) = s.kind else { return Vec::new() };
+    let silent: Vec<String> = (run.scene.contacts.iter().enumerate())
+        .filter(|(_, c)| !c.residual_given && c.cohesion > 0.0)
+        .map(|(i, _)| format!("\"{}\"", run.model.interfaces[i].name))
+        .collect();
+    let mut out = Vec::new();
+    if let (Some(other), false) = (&s.other, o.strength_given) {
+        if differ(s.factor, other.factor) {
+            let residual = if silent.is_empty() {
+                "the scene's residual_cohesion".to_string()
+            } else {
+                format!("residual_cohesion, 0 by default and not given for {}", silent.join(", "))
+            };
+            out.push(format!(
+                "{}: the factor of safety F = {} keeps each joint's {} strength ([safety] strength = \"{}\" by default: {}); with {} strength ({residual}) F = {}. The scene does not say which holds for its joints: set [safety] strength = \"peak\" or \"residual\" (and residual_cohesion where joints keep some cohesion once they slip)",
+                run.scene.path.display(),
+                s.factor.map_or("-".into(), fmt_f),
+                st.key(),
+                st.key(),
+                meaning(st),
+                other.strengths.key(),
+                other.factor.map_or("-".into(), fmt_f),
+            ));
+        }
+    }
+    if st == crate::contact::safety::Strengths::Residual && !silent.is_empty() {
+        out.push(format!("{}: [safety] strength = \"residual\", and {} give no residual_cohesion: 0 by default, so their cohesion is lost wherever a pair slips or opens", run.scene.path.display(), silent.join(", ")));
     }
     out
 }
@@ -126,35 +256,70 @@ pub(super) fn summary(run: &Run) -> Option<Value> {
     let (s, o) = (run.safety.as_ref()?, run.scene.safety.as_ref()?);
     let model = &run.model;
     let failure = s.failure.as_ref().map(|f| {
-        json!({ "kind": f.kind.key(), "iteration": f.iteration, "blocks": blocks(run, &f.blocks), "contacts": o.contacts.iter().map(|&i| {
+        json!({ "kind": f.kind.key(), "iteration": f.iteration, "blocks": blocks(run, &f.blocks),
+            "mechanism": f.mechanism.as_ref().map(|m| mechanism_json(run, m)),
+            "contacts": o.contacts.iter().map(|&i| {
             let k = state_counts(&model.pairs.iter().zip(&f.states).filter(|(p, _)| p.contact == i).map(|(_, &st)| st).collect::<Vec<_>>());
             json!({ "contact": model.interfaces[i].name, "stick": k[2], "slip": k[1], "open": k[0] })
         }).collect::<Vec<_>>() })
     });
-    let joints: Vec<Value> = o.contacts.iter().map(|&i| {
+    let (kind, strength) = match s.kind {
+        SearchKind::Strength(st) => ("strength", Some(st.key())),
+        SearchKind::Load => ("load", None),
+    };
+    Some(json!({
+        "kind": kind,
+        "label": label(run, s),
+        "strength": strength,
+        "strength_given": o.strength_given,
+        "factor": s.factor,
+        "fails_at": s.fails_at,
+        "decided": s.decided,
+        "found": s.fails_at.is_some() && s.decided,
+        "bound_reached": s.fails_at.is_none() && s.decided,
+        "below_one": s.below_one,
+        "undecided": s.undecided.iter().map(|u| json!({ "factor": u.factor, "iterations": u.iterations, "cycled": u.cycled })).collect::<Vec<_>>(),
+        "other": s.other.as_ref().map(|x| json!({ "strength": x.strengths.key(), "factor": x.factor, "fails_at": x.fails_at, "decided": x.decided, "trials": x.trials, "differs": differ(s.factor, x.factor) })),
+        "reduced": if s.kind == SearchKind::Load { Vec::new() } else { o.reduce.names() },
+        "raised": o.raise.as_ref().map(|_| raised(run)),
+        "contacts": o.contacts.iter().map(|&i| model.interfaces[i].name.clone()).collect::<Vec<_>>(),
+        "step": o.step, "tolerance": o.tolerance, "max_factor": o.max_factor,
+        "failure": failure,
+        "joints": joints_json(run, s, o),
+        "trials": s.trials.iter().map(|t| json!({ "factor": t.factor, "from": t.from, "holds": t.holds, "iterations": t.iterations,
+            "states": { "stick": t.states[2], "slip": t.states[1], "open": t.states[0] }, "seconds": t.seconds, "failure": t.failed.map(|f| f.key()), "retry": t.retry })).collect::<Vec<_>>(),
+        "cost": s.cost,
+        "cost_per_trial": { "contact_iterations": s.cost.contact_iterations as f64 / s.cost.trials.max(1) as f64, "seconds": s.cost.search_s / s.cost.trials.max(1) as f64 },
+    }))
+}
+
+/// Each reduced contact at F = 1 and at F.
+fn joints_json(run: &Run, s: &SafetyRun, o: &Safety) -> Vec<Value> {
+    o.contacts.iter().map(|&i| {
         let sc = &run.scene.contacts[i];
         let at = |c: Option<&ContactRun>| c.map(|c| {
             let j = Joint::of(run, c, i);
             json!({ "normal_force": j.normal, "shear_force": j.shear, "closed_area": j.area, "factor_from_resultants": finite(j.factor(sc.cohesion, sc.friction)),
                     "states": { "stick": j.states[2], "slip": j.states[1], "open": j.states[0] } })
         });
-        json!({ "contact": model.interfaces[i].name, "friction": sc.friction, "cohesion": sc.cohesion, "at_1": at(run.contact()), "at_factor": at(s.last.contact.as_ref()) })
-    }).collect();
-    Some(json!({
-        "factor": s.factor,
-        "fails_at": s.fails_at,
-        "found": s.fails_at.is_some(),
-        "bound_reached": s.fails_at.is_none(),
-        "reduced": o.reduce.names(),
-        "contacts": o.contacts.iter().map(|&i| model.interfaces[i].name.clone()).collect::<Vec<_>>(),
-        "step": o.step, "tolerance": o.tolerance, "max_factor": o.max_factor,
-        "failure": failure,
-        "joints": joints,
-        "trials": s.trials.iter().map(|t| json!({ "factor": t.factor, "from": t.from, "holds": t.holds, "iterations": t.iterations,
-            "states": { "stick": t.states[2], "slip": t.states[1], "open": t.states[0] }, "seconds": t.seconds, "failure": t.failed.map(|f| f.key()) })).collect::<Vec<_>>(),
-        "cost": s.cost,
-        "cost_per_trial": { "contact_iterations": s.cost.contact_iterations as f64 / s.cost.trials.max(1) as f64, "seconds": s.cost.search_s / s.cost.trials.max(1) as f64 },
-    }))
+        let at_1 = if s.below_one { None } else { run.contact() };
+        json!({ "contact": run.model.interfaces[i].name, "friction": sc.friction, "cohesion": sc.cohesion, "residual_cohesion": sc.residual_cohesion,
+                "at_1": at(at_1), "at_factor": at(s.last.as_ref().and_then(|l| l.contact.as_ref())) })
+    }).collect()
+}
+
+/// The mechanism for summary.json.
+fn mechanism_json(run: &Run, m: &Mechanism) -> Value {
+    json!({
+        "kind": m.kind.key(),
+        "description": describe(&run.model, m),
+        "helps": m.kind.helps(),
+        "blocks": m.blocks.iter().map(|b| json!({
+            "block": b.block, "name": super::faces::block_name(&run.model, b.block), "motion": b.motion.key(),
+            "translation": b.translation, "rotation": b.rotation, "pivot": b.pivot,
+            "on": b.on.iter().map(|&c| run.model.interfaces[c].name.clone()).collect::<Vec<_>>(), "along_line": b.along_line,
+        })).collect::<Vec<_>>(),
+    })
 }
 
 /// The blocks for summary.json: body group, block (1-based) of how many.
@@ -179,135 +344,4 @@ fn fmt_f(v: f64) -> String {
 fn fmt_g(v: f64) -> String {
     let t = format!("{v:.6}");
     t.trim_end_matches('0').trim_end_matches('.').to_string()
-}
-
-/// report.md's section (empty without a search).
-pub fn report(run: &Run) -> String {
-    let (Some(s), Some(o)) = (&run.safety, &run.scene.safety) else { return String::new() };
-    let mut r = String::from("\n## Factor of safety against sliding\n\n");
-    let what = format!("{} divided by F on {}", o.reduce.names().join(", "), contacts(run, o));
-    match (s.fails_at, &s.failure) {
-        (Some(f), Some(fail)) => {
-            let _ = writeln!(r, "**F = {}** by strength reduction ({what}), from the state of the last load step: it holds at F = {} and fails at F = {} (tolerance {} × F).\n", fmt_f(s.factor), fmt_g(s.factor), fmt_g(f), o.tolerance);
-            let who = if fail.blocks.is_empty() {
-                "the solver named no block".to_string()
-            } else {
-                run.model.body_names(&fail.blocks)
-            };
-            let _ = writeln!(
-                r,
-                "At F = {} (contact iteration {}): {}: {who}.\n",
-                fmt_g(f),
-                fail.iteration,
-                fail.kind.describe()
-            );
-        }
-        _ => {
-            let _ = writeln!(r, "**F > {}**: the search reached its bound (safety.max_factor = {}) and the scene still holds there ({what}). Raise max_factor to find F.\n", fmt_f(s.factor), o.max_factor);
-        }
-    }
-    joints_table(&mut r, run, s, o);
-    let c = &s.cost;
-    let per = |x: f64| x / c.trials.max(1) as f64;
-    let _ = writeln!(
-        r,
-        "\nThe search: {} trials, {} contact iterations ({:.1} per trial), {:.3} s on the condensed interface ({:.4} s per trial), {:.3} s to recover the last state that holds; sparse factorisations: {} for the whole run (one per part), none in the search.\n",
-        c.trials, c.contact_iterations, per(c.contact_iterations as f64), c.search_s, per(c.search_s), c.recover_s, run.stats.counters.factorisations
-    );
-    let _ = writeln!(
-        r,
-        "| trial | F | from F | holds | contact iterations | stick / slip / open |\n|---|---|---|---|---|---|"
-    );
-    for (i, t) in s.trials.iter().enumerate() {
-        let k = t.states;
-        let _ = writeln!(
-            r,
-            "| {} | {} | {} | {} | {} | {} / {} / {} |",
-            i + 1,
-            fmt_f(t.factor),
-            fmt_f(t.from),
-            if t.holds { "yes" } else { t.failed.map_or("no", |f| f.key()) },
-            t.iterations,
-            k[2],
-            k[1],
-            k[0]
-        );
-    }
-    pictures(&mut r, run, s);
-    r
-}
-
-/// The chosen contacts: "all contacts" or their names.
-fn contacts(run: &Run, o: &Safety) -> String {
-    let names: Vec<String> = o.contacts.iter().map(|&i| format!("`{}`", run.model.interfaces[i].name)).collect();
-    if o.contacts.len() == run.scene.contacts.len() {
-        format!("all contacts ({})", names.join(", "))
-    } else {
-        names.join(", ")
-    }
-}
-
-/// Each reduced contact at F = 1, at F and at failure, with its own limit
-/// equilibrium from its resultants.
-fn joints_table(r: &mut String, run: &Run, s: &SafetyRun, o: &Safety) {
-    let _ = writeln!(r, "Each reduced contact: its pairs stick / slip / open at F = 1, at F and at failure; its normal force N and shear force T at F = 1, and its own limit equilibrium from them, F_joint = (c A + N f) / T (A its closed area; the factor of a joint that slides as one plane).\n");
-    let _ = writeln!(
-        r,
-        "| contact | F = 1 | F = {} | failure | N | T | F_joint |\n|---|---|---|---|---|---|---|",
-        fmt_f(s.factor)
-    );
-    let fmt_k = |k: [usize; 3]| format!("{} / {} / {}", k[2], k[1], k[0]);
-    for &i in &o.contacts {
-        let sc = &run.scene.contacts[i];
-        let at_1 = run.contact().map(|c| Joint::of(run, c, i));
-        let at_f = s.last.contact.as_ref().map(|c| Joint::of(run, c, i));
-        let failed = s.failure.as_ref().map(|f| {
-            state_counts(
-                &run.model
-                    .pairs
-                    .iter()
-                    .zip(&f.states)
-                    .filter(|(p, _)| p.contact == i)
-                    .map(|(_, &st)| st)
-                    .collect::<Vec<_>>(),
-            )
-        });
-        let (n, t, fj) = at_1.as_ref().map_or(("–".into(), "–".into(), "–".into()), |j| {
-            (format!("{:.4e}", j.normal), format!("{:.4e}", j.shear), fmt_f(j.factor(sc.cohesion, sc.friction)))
-        });
-        let _ = writeln!(
-            r,
-            "| `{}` | {} | {} | {} | {n} | {t} | {fj} |",
-            run.model.interfaces[i].name,
-            at_1.map_or("–".into(), |j| fmt_k(j.states)),
-            at_f.map_or("–".into(), |j| fmt_k(j.states)),
-            failed.map_or("–".into(), fmt_k)
-        );
-    }
-}
-
-/// The pictures of the last state that holds.
-fn pictures(r: &mut String, run: &Run, s: &SafetyRun) {
-    let f = fmt_f(s.factor);
-    let _ = writeln!(
-        r,
-        "\n![the model deformed by the displacement from F = 1 to F = {f}: the mechanism as it starts](safety_{})",
-        picture::deformed_file(&[])
-    );
-    if s.last.contact.is_none() {
-        return;
-    }
-    let _ = writeln!(r, "\n![contact normal and shear stress along each interface at F = {f}](safety_interfaces.svg)");
-    let plans = picture::plan_files(&run.model);
-    if let Some(j) = picture::joints_file(&plans) {
-        let _ = writeln!(r, "\n![every contact surface by state at F = {f}](safety_{j})");
-    }
-    for p in plans.iter().take(6) {
-        let name = &run.model.interfaces[p.interface].name;
-        let _ = writeln!(
-            r,
-            "\n![plan view of {name} at F = {f}: where it sticks, slips and opens; sigma_n](safety_{})",
-            p.file
-        );
-    }
 }

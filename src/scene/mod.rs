@@ -57,7 +57,7 @@ mod validate;
 pub use errors::SceneError;
 
 pub use crate::analytic::Analytic;
-pub use crate::contact::safety::Reduce;
+pub use crate::contact::safety::{Reduce, Strengths};
 pub use crate::contact::{InterfaceSolver, SlipLaw, StateRule, TractionRecovery};
 pub use crate::fem::Analysis;
 pub use crate::model::water::{Drain, JointWater, Levels, WaterFace, WaterPressure};
@@ -99,6 +99,9 @@ pub struct Contact {
     pub slip: SlipLaw,
     /// Cohesion kept once the pair has opened (default 0, <= cohesion).
     pub residual_cohesion: f64,
+    /// Whether the scene gives `residual_cohesion` (the safety search
+    /// says when its default decided something).
+    pub residual_given: bool,
     /// Contact stress recovery (default lumped).
     pub traction: TractionRecovery,
     /// The water in the joint (`water = {..}`), if any.
@@ -170,6 +173,14 @@ pub struct Safety {
     /// The `[[contacts]]` entries reduced, as indices (`contacts = [group
     /// names]`, default all).
     pub contacts: Vec<usize>,
+    /// Peak (default) or the scene's residual strengths during the search
+    /// (`strength = "peak" | "residual"`).
+    pub strengths: Strengths,
+    /// Whether the scene chose `strength` (else the default decided).
+    pub strength_given: bool,
+    /// `load = [..]`: a load factor search, which raises these loads
+    /// instead of dividing the strength (None: strength reduction).
+    pub raise: Option<Raise>,
     /// The increase of F from trial to trial before the bracket closes (default 0.1).
     pub step: f64,
     /// F is found when the last factor that holds and the first that
@@ -182,7 +193,16 @@ pub struct Safety {
 impl Safety {
     /// The defaults on a scene of `contacts` contacts: all reduced.
     pub fn all(contacts: usize) -> Safety {
-        Safety { reduce: Reduce::ALL, contacts: (0..contacts).collect(), step: 0.1, tolerance: 1e-3, max_factor: 10.0 }
+        Safety {
+            reduce: Reduce::ALL,
+            contacts: (0..contacts).collect(),
+            strengths: Strengths::Peak,
+            strength_given: false,
+            raise: None,
+            step: 0.1,
+            tolerance: 1e-3,
+            max_factor: 10.0,
+        }
     }
 }
 
@@ -208,6 +228,14 @@ fn read_scene(path: &Path) -> Result<String, SceneError> {
         )));
     }
     Ok(text)
+}
+
+/// The loads a load factor search raises (`[safety] load = [..]`): the
+/// `[[loads]]` entries (indices) and gravity.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Raise {
+    pub loads: Vec<usize>,
+    pub gravity: bool,
 }
 
 /// `[gmsh]`: options for meshing a `.geo` with the gmsh CLI.
@@ -353,8 +381,12 @@ impl Scene {
     /// as the table would be (a scene without contacts has nothing to reduce).
     pub fn with_safety(mut self) -> Result<Scene, SceneError> {
         if self.safety.is_none() {
-            self.safety =
-                Some(validate::Checker { path: &self.path }.safety(raw::RawSafety::default(), &self.contacts)?);
+            self.safety = Some(validate::Checker { path: &self.path }.safety(
+                raw::RawSafety::default(),
+                &self.contacts,
+                &self.loads,
+                self.gravity,
+            )?);
         }
         Ok(self)
     }
@@ -414,10 +446,19 @@ impl Scene {
         out
     }
 
+    /// A load's factors per step; a load the safety search raises (`own`)
+    /// gets the ramp k / load_steps as its own when it has none, so that
+    /// its load case is its own to raise.
+    fn own_case(&self, factors: Option<&Vec<f64>>, own: bool) -> Option<Vec<f64>> {
+        let n = self.solver.load_steps;
+        factors.cloned().or_else(|| own.then(|| (1..=n).map(|k| k as f64 / n as f64).collect()))
+    }
+
     /// The model's description: the bodies with their materials, contacts,
     /// supports and loads, each with the key path that defined it (for the
     /// model builder's messages).
     pub fn model_spec(&self) -> ModelSpec {
+        let raise = self.safety.as_ref().and_then(|s| s.raise.as_ref());
         ModelSpec {
             source: self.path.display().to_string(),
             mesh: self.mesh.path().display().to_string(),
@@ -469,11 +510,11 @@ impl Scene {
                     key: format!("loads[{i}]"),
                     group: l.group.clone(),
                     kind: l.kind.clone(),
-                    factors: l.factors.clone(),
+                    factors: self.own_case(l.factors.as_ref(), raise.is_some_and(|r| r.loads.contains(&i))),
                 })
                 .collect(),
             load_steps: self.solver.load_steps,
-            gravity_factors: self.solver.gravity_factors.clone(),
+            gravity_factors: self.own_case(self.solver.gravity_factors.as_ref(), raise.is_some_and(|r| r.gravity)),
         }
     }
 }

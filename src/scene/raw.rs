@@ -262,4 +262,6 @@ pub(super) struct RawSafety {
     pub(super) step: Option<f64>,
     pub(super) tolerance: Option<f64>,
     pub(super) max_factor: Option<f64>,
+    pub(super) strength: Option<String>,
+    pub(super) load: Option<Vec<String>>,
 }

@@ -145,6 +145,7 @@ fn design_example_parses() {
             tensile_strength: 3.0e5,
             slip: SlipLaw::Coulomb,
             residual_cohesion: 0.0,
+            residual_given: false,
             traction: TractionRecovery::Lumped,
             water: None,
         }]

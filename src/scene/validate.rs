@@ -287,7 +287,7 @@ impl Checker<'_> {
         let probes = self.probes(raw.probes, analysis)?;
         let analytic = raw.analytic.map(|a| self.analytic(a, analysis, &bodies, &materials)).transpose()?;
         let output = self.output(raw.output, analysis, &bodies)?;
-        let safety = raw.safety.map(|s| self.safety(s, &contacts)).transpose()?;
+        let safety = raw.safety.map(|s| self.safety(s, &contacts, &loads, gravity)).transpose()?;
 
         Ok(Scene {
             path: self.path.to_path_buf(),

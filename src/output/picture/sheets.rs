@@ -602,6 +602,7 @@ pub(super) mod tests {
             }],
             mesh_node: (0..n).collect(),
             cases: vec![vec![1.0]],
+            load_cases: Vec::new(),
             gravity_case: 0,
             initial_case: 0,
             water: Vec::new(),

@@ -185,6 +185,7 @@ impl Checker<'_> {
             tensile_strength,
             slip: c.slip.unwrap_or_default(),
             residual_cohesion,
+            residual_given: c.residual_cohesion.is_some(),
             traction: c.traction.unwrap_or_default(),
             water: None,
         })

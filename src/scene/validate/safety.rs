@@ -1,23 +1,53 @@
 //! Checks of `[safety]`: what is reduced (`reduce`, names of the contact
 //! strength keys), which contacts (`contacts`, their group names; either
-//! group of a `groups = [a, b]` entry names it), and the search's `step`,
-//! `tolerance` and `max_factor`. A search that would reduce nothing (every
-//! chosen parameter zero on every chosen contact) is an error: its F would
-//! be the bound whatever the scene.
+//! group of a `groups = [a, b]` entry names it), which strength the pairs
+//! keep once they crack (`strength`, peak or residual), or instead the
+//! loads a load factor search raises (`load`, `[[loads]]` groups and
+//! "gravity"), and the search's `step`, `tolerance` and `max_factor`. A
+//! search that would reduce nothing (every chosen parameter zero on every
+//! chosen contact) or raise nothing is an error: its F would be the bound
+//! whatever the scene.
 
 use super::{quoted_list, Checker, R};
 use crate::scene::raw::RawSafety;
-use crate::scene::{Contact, ContactGroups, Reduce, Safety};
+use crate::scene::{Contact, ContactGroups, Load, Raise, Reduce, Safety, Strengths};
 
 /// The names `reduce` accepts.
 const REDUCIBLE: &[&str] = &["friction", "cohesion", "tensile_strength"];
 
 impl Checker<'_> {
-    pub(in crate::scene) fn safety(&self, s: RawSafety, contacts: &[Contact]) -> R<Safety> {
+    pub(in crate::scene) fn safety(
+        &self,
+        s: RawSafety,
+        contacts: &[Contact],
+        loads: &[Load],
+        gravity: [f64; 3],
+    ) -> R<Safety> {
         if contacts.is_empty() {
             return Err(self.err("safety", "the safety search divides the strength of the [[contacts]] by a factor, and this scene has none; add the contacts whose sliding you want to check, or remove [safety]."));
         }
         let defaults = Safety::all(contacts.len());
+        let raise = match s.load {
+            None => None,
+            Some(names) => {
+                for (key, given) in [
+                    ("reduce", s.reduce.is_some()),
+                    ("contacts", s.contacts.is_some()),
+                    ("strength", s.strength.is_some()),
+                ] {
+                    if given {
+                        return Err(self.err(format!("safety.{key}"), "belongs to a search that divides the strength of the contacts, and this [safety] raises loads (safety.load): a search does one or the other. Remove one of them (run the other search from a copy of the scene)."));
+                    }
+                }
+                Some(self.raise(&names, loads, gravity)?)
+            }
+        };
+        let (strengths, strength_given) = match s.strength.as_deref() {
+            None => (defaults.strengths, false),
+            Some("peak") => (Strengths::Peak, true),
+            Some("residual") => (Strengths::Residual, true),
+            Some(other) => return Err(self.bad("safety.strength", format!("{other:?}"), "use \"peak\" (each joint keeps its peak cohesion over the whole sliding surface, as limit equilibrium assumes; the default) or \"residual\" (a pair that slips or opens keeps only its residual_cohesion, as in the load steps).")),
+        };
         let reduce = match s.reduce {
             None => defaults.reduce,
             Some(names) => self.reduce(&names)?,
@@ -63,13 +93,56 @@ impl Checker<'_> {
                 || (reduce.cohesion && (c.cohesion > 0.0 || c.residual_cohesion > 0.0))
                 || (reduce.tensile_strength && c.tensile_strength > 0.0)
         };
-        if !chosen.iter().any(|&i| reduces(&contacts[i])) {
+        if raise.is_none() && !chosen.iter().any(|&i| reduces(&contacts[i])) {
             return Err(self.err(
                 "safety",
                 format!("reduces nothing: {} of the chosen contacts ({}) is zero everywhere, so no factor would change the scene. Reduce a parameter they have (safety.reduce), or choose other contacts (safety.contacts).", reduce.names().join(", "), quoted_list(chosen.iter().map(|&i| name(&contacts[i])))),
             ));
         }
-        Ok(Safety { reduce, contacts: chosen, step, tolerance, max_factor })
+        Ok(Safety { reduce, contacts: chosen, strengths, strength_given, raise, step, tolerance, max_factor })
+    }
+
+    /// `load = [..]`: `[[loads]]` groups and "gravity", each once, at least
+    /// one that loads something.
+    fn raise(&self, names: &[String], loads: &[Load], gravity: [f64; 3]) -> R<Raise> {
+        let known = || quoted_list(loads.iter().map(|l| l.group.as_str()).chain(["gravity"]));
+        if names.is_empty() {
+            return Err(
+                self.err("safety.load", format!("is empty: name the loads the search raises, any of {}.", known()))
+            );
+        }
+        let mut raise = Raise { loads: Vec::new(), gravity: false };
+        for (j, n) in names.iter().enumerate() {
+            let key = format!("safety.load[{j}]");
+            let twice = || self.bad(&key, format!("{n:?}"), "listed twice; give each load once.");
+            if n == "gravity" {
+                if raise.gravity {
+                    return Err(twice());
+                }
+                if gravity.iter().all(|&g| g == 0.0) {
+                    return Err(self.bad(
+                        &key,
+                        format!("{n:?}"),
+                        "the scene has no gravity (top-level gravity = [..]) to raise.",
+                    ));
+                }
+                raise.gravity = true;
+                continue;
+            }
+            let Some(i) = loads.iter().position(|l| &l.group == n) else {
+                return Err(self.bad(
+                    &key,
+                    format!("{n:?}"),
+                    format!("is not the group of a [[loads]] entry; the loads are {}.", known()),
+                ));
+            };
+            if raise.loads.contains(&i) {
+                return Err(twice());
+            }
+            raise.loads.push(i);
+        }
+        raise.loads.sort_unstable();
+        Ok(raise)
     }
 
     /// `reduce = [..]`: a non-empty list of the strength keys, each once.

@@ -1,0 +1,245 @@
+//! A scene whose load steps lose equilibrium as given (at F = 1) with a
+//! safety search: unsafe as given. F is sought below 1 ([`downward`], every
+//! trial running the load steps from the start with the strength raised to
+//! 1 / F, or the raised loads multiplied by F), the blocks' mechanism at
+//! F = 1 is named, and the results that exist are kept for the output:
+//!
+//! - the last load step that held at F = 1, and the failing step's last
+//!   iterate (the step run again, stopped one iteration before the solve
+//!   that found no equilibrium), which is not in equilibrium: its contact
+//!   summary says it did not converge;
+//! - the last state that holds below 1 as the safety search's state.
+//!
+//! With peak strengths (the search's default) the load path may hold at
+//! F = 1 although the load steps, which lose cohesion where pairs crack,
+//! did not: the search then goes upward from there, and the run still ends
+//! with the load steps' error.
+
+use anyhow::Result;
+
+use super::{mechanism, steps, trials, undecided, Held, SafetyRun, Trials};
+use crate::contact::safety::{self as reduction, Verdict};
+use crate::contact::{self, History, Outcome};
+use crate::driver::condense::Parts;
+use crate::driver::messages::{ContactError, SafetyError};
+use crate::driver::ranks::Ranks;
+use crate::driver::steps::{LoadSteps, Step};
+use crate::driver::RunOptions;
+use crate::parallel::CommExt;
+use crate::recover;
+use crate::results::{Failure, SearchCost, StepResult};
+
+/// What a run that fails at F = 1 keeps: the steps whose results exist,
+/// the search below 1, and the error to end with once they are written.
+pub(in crate::driver) struct Below {
+    pub done: LoadSteps,
+    pub safety: Option<SafetyRun>,
+    pub error: anyhow::Error,
+}
+
+/// The load steps' error `err` of a scene with a safety search: when they
+/// lost equilibrium at F = 1, the search below 1 and the results that
+/// exist ([`Below`]); any other failure (or a scene without `[safety]`)
+/// is passed on. On ranks other than 0 `safety` is None.
+pub(in crate::driver) fn below_one(
+    step: &Step,
+    parts: &Parts,
+    opts: &RunOptions,
+    ranks: &Ranks,
+    err: anyhow::Error,
+) -> Result<Below, anyhow::Error> {
+    let Some(options) = &step.scene.safety else { return Err(err) };
+    let at_one = err
+        .downcast_ref::<ContactError>()
+        .filter(|e| matches!(e, ContactError::Sliding { .. } | ContactError::NotHeld { .. }))
+        .cloned();
+    if !ranks.comm().broadcast(&at_one.is_some()) {
+        return Err(err);
+    }
+    let t = std::time::Instant::now();
+    let searched = ranks.on_root(&parts.mine, || {
+        let mut t = trials(step, options, options.strengths, opts, "safety");
+        let replay = replay(step);
+        let found = search(&mut t, options, step);
+        (found, replay, t.trials, t.iterations)
+    });
+    let search_s = t.elapsed().as_secs_f64();
+    // the results that exist: the last step that held, the failing
+    // step's last iterate, the last hold below 1 (every rank recovers)
+    let (found, replay, trials_run, iterations) = match searched {
+        Some((f, r, t, i)) => (Some(f), Some(r), t, i),
+        None => (None, None, Vec::new(), 0),
+    };
+    let mut done = LoadSteps::default();
+    let mut outcomes: Vec<Option<Replayed>> = replay.map_or_else(Vec::new, |r| r.into_iter().map(Some).collect());
+    let n = ranks.comm().broadcast(&outcomes.len());
+    for k in 0..n {
+        let o = outcomes.get_mut(k).and_then(Option::take).map(|o| (o.step, o.lambda, o.outcome));
+        if let Some(r) = recovered(step, parts, ranks, o, &mut done)? {
+            done.steps.push(r);
+        }
+    }
+    let mut found = found;
+    let hold = found.as_mut().and_then(|f| f.held.as_mut()).map(|h| (0, h.lambda.clone(), h.outcome.take()));
+    let has_hold = ranks.comm().broadcast(&hold.as_ref().is_some_and(|h| h.2.is_some()));
+    let last = if has_hold {
+        let hold = hold.and_then(|(s, l, o)| o.map(|o| (s, l, o)));
+        recovered(step, parts, ranks, hold, &mut done)?
+    } else {
+        None
+    };
+    let Some(found) = found else {
+        return Ok(Below { done, safety: None, error: err });
+    };
+    let error = found.error(step, options, at_one.expect("rank 0 knows the failure"));
+    let du = last.as_ref().map_or_else(Vec::new, |l| l.u.clone());
+    let safety = SafetyRun {
+        kind: super::kind(options),
+        factor: found.held.as_ref().map(|h| h.factor),
+        fails_at: found.fails.as_ref().map(|f| f.0),
+        failure: found.fails.map(|f| f.1),
+        decided: found.decided,
+        undecided: found.undecided,
+        below_one: true,
+        other: None,
+        last,
+        du,
+        cost: SearchCost {
+            trials: trials_run.len(),
+            contact_iterations: iterations,
+            interface_applications: 0,
+            search_s,
+            recover_s: 0.0,
+            factorisations: 0,
+        },
+        trials: trials_run,
+    };
+    Ok(Below { done, safety: Some(safety), error })
+}
+
+/// What the search below 1 found on rank 0.
+struct Found {
+    held: Option<Held>,
+    fails: Option<(f64, Failure)>,
+    decided: bool,
+    undecided: Vec<crate::results::Undecided>,
+    /// How the blocks move at F = 1, for a reader.
+    at_one: Option<(String, crate::contact::mechanism::Motion)>,
+}
+
+impl Found {
+    /// The error the run ends with.
+    fn error(&self, step: &Step, options: &crate::scene::Safety, at_one: ContactError) -> anyhow::Error {
+        SafetyError::Unsafe {
+            scene: step.scene.path.clone(),
+            at_one,
+            holds: self.held.as_ref().map(|h| h.factor),
+            fails: self.fails.as_ref().map_or(f64::INFINITY, |f| f.0),
+            max_factor: options.max_factor,
+            mechanism: self.at_one.clone(),
+            load: options.raise.is_some(),
+            results: None,
+        }
+        .into()
+    }
+}
+
+/// The load path at F = 1 again (with the search's strength convention),
+/// then F below 1; the mechanism of each failure named.
+fn search(t: &mut Trials, options: &crate::scene::Safety, step: &Step) -> Found {
+    t.say("the load steps fail at F = 1: seeking F below 1, each trial running the load steps from the start");
+    let at_one = match t.path(1.0) {
+        Verdict::Fails(e) | Verdict::Undecided(e) => e,
+        Verdict::Holds(h) => {
+            t.say("the load path holds at F = 1 with the search's peak strengths (the load steps lost cohesion where pairs cracked): seeking F upward from there");
+            return upward_from(t, options, step, h);
+        }
+    };
+    let mut at_one = at_one;
+    at_one.mechanism = mechanism::of(step.model, &at_one.blocks, &at_one.states, &at_one.lambda);
+    let told = at_one.mechanism.as_ref().map(|m| (crate::contact::mechanism::describe(step.model, m), m.kind));
+    let b = reduction::downward(&steps(options), at_one, |f| t.path(f));
+    let decided = b.decided(&steps(options));
+    let (f, mut e) = b.fails.expect("a search below 1 keeps a failure");
+    if e.mechanism.is_none() {
+        e.mechanism = mechanism::of(step.model, &e.blocks, &e.states, &e.lambda);
+    }
+    Found { held: b.holds.map(|h| h.1), fails: Some((f, e)), decided, undecided: undecided(&b.undecided), at_one: told }
+}
+
+/// The search upward from a load path that holds at F = 1 (`start`, with
+/// peak strengths where the load steps lost cohesion): its bracket as a
+/// [`Found`].
+fn upward_from(t: &mut Trials, options: &crate::scene::Safety, step: &Step, start: Held) -> Found {
+    let b = reduction::upward(&steps(options), start, |f, from: &Held| t.up(f, from));
+    let decided = b.decided(&steps(options));
+    let fails = b.fails.map(|(f, mut e)| {
+        e.mechanism = mechanism::of(step.model, &e.blocks, &e.states, &e.lambda);
+        (f, e)
+    });
+    Found { held: b.holds.map(|h| h.1), fails, decided, undecided: undecided(&b.undecided), at_one: None }
+}
+
+/// A replayed load step on rank 0: its number, load factors and outcome.
+struct Replayed {
+    step: usize,
+    lambda: Vec<f64>,
+    outcome: Outcome,
+}
+
+/// The scene's load steps again with its own laws: the last that held,
+/// and the failing step's last iterate when it had one.
+fn replay(step: &Step) -> Vec<Replayed> {
+    let (model, solver) = (step.model, &step.scene.solver);
+    let problem = step.problem.expect("a search has an interface");
+    let mut h = History::new(model.pairs.len());
+    let mut held: Option<Replayed> = None;
+    for k in 1..=solver.load_steps {
+        let lambda: Vec<f64> = model.cases.iter().map(|c| c[k - 1]).collect();
+        let before = h.clone();
+        match contact::iterate(problem, &step.laws, solver.rule, &lambda, &mut h, solver.max_iterations) {
+            Ok(o) if o.summary.converged => held = Some(Replayed { step: k, lambda, outcome: o }),
+            Ok(o) => {
+                return held.into_iter().chain([Replayed { step: k, lambda, outcome: o }]).collect();
+            }
+            Err(f) => {
+                let mut h = before;
+                let iterate = (f.iteration > 1)
+                    .then(|| contact::iterate(problem, &step.laws, solver.rule, &lambda, &mut h, f.iteration - 1).ok())
+                    .flatten()
+                    .map(|outcome| Replayed { step: k, lambda, outcome });
+                return held.into_iter().chain(iterate).collect();
+            }
+        }
+    }
+    held.into_iter().collect()
+}
+
+/// The recovered result of an outcome on rank 0 (`step` its load step, 0
+/// for the search's hold), every rank taking part; None elsewhere.
+fn recovered(
+    step: &Step,
+    parts: &Parts,
+    ranks: &Ranks,
+    o: Option<(usize, Vec<f64>, Outcome)>,
+    done: &mut LoadSteps,
+) -> Result<Option<StepResult>> {
+    let (need_stress, need_u) = step.needs();
+    let problem = step.problem.expect("a search has an interface");
+    let (k, lambda, answer) = match o {
+        Some((k, lambda, o)) => {
+            let answer = step.contact_run(problem, o, &lambda);
+            (k, lambda, Some(answer))
+        }
+        None => (0, Vec::new(), None),
+    };
+    let (contact, d_c) = answer.unzip();
+    let u = ranks.recover(step.model, &step.plan.parts, &parts.mine, d_c.map(Ok), &lambda, need_u)?;
+    let Some((c, u)) = contact.zip(u) else { return Ok(None) };
+    done.counters.interior_recoveries += usize::from(need_u) * step.plan.parts.len();
+    done.counters.stress_recoveries += usize::from(need_stress);
+    let stresses = if need_stress { recover::nodal_stresses(step.model, &u) } else { Vec::new() };
+    let k = if k > 0 { k } else { step.scene.solver.load_steps };
+    let load_factor = lambda.first().copied().unwrap_or(1.0);
+    Ok(Some(StepResult { step: k, load_factor, case_factors: lambda, u, stresses, contact: Some(c) }))
+}

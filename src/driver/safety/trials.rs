@@ -1,0 +1,295 @@
+//! The trials of one safety search on rank 0: what a factor F does to the
+//! scene ([`Varied`]: the strength of the chosen contacts divided by F, or
+//! the chosen loads multiplied by F), the contact iteration at F from the
+//! last state that held (or the load steps from their start, below 1), and
+//! the verdict only converged iterations give.
+//!
+//! A trial whose iteration does not converge decides nothing yet: it is
+//! retried from the same state in [`RETRY_STEPS`] smaller increments of F,
+//! each with [`RETRY_ITERATIONS`] times `[solver] max_iterations` (below 1:
+//! the load steps again with more iterations). A converged loss of
+//! equilibrium on the way fails the trial; if a step still does not
+//! converge, the trial stays undecided ([`Verdict::Undecided`]).
+
+use std::time::Instant;
+
+use crate::contact::safety::{Reduce, Verdict};
+use crate::contact::system::{InterfaceProblem, SolveFailure};
+use crate::contact::{self, Failed, History, Outcome, PairLaw};
+use crate::driver::progress;
+use crate::driver::steps::Step;
+use crate::driver::RunOptions;
+use crate::results::{state_counts, Failure, FailureKind, Trial};
+
+/// Increments a trial that did not converge is retried in.
+pub(super) const RETRY_STEPS: usize = 4;
+/// The retry's iterations per step, in `[solver] max_iterations`.
+pub(super) const RETRY_ITERATIONS: usize = 4;
+
+/// What F changes.
+pub(super) enum Varied {
+    /// The strength of the pairs `chosen` divided by F as `reduce` says.
+    Strength { chosen: Vec<bool>, reduce: Reduce },
+    /// The load cases `cases` multiplied by F.
+    Load { cases: Vec<usize> },
+}
+
+impl Varied {
+    /// The laws at F, from the search's own `laws`.
+    fn laws(&self, laws: &[PairLaw], f: f64) -> Vec<PairLaw> {
+        match self {
+            Varied::Strength { chosen, reduce } => contact::safety::reduced(laws, chosen, *reduce, f),
+            Varied::Load { .. } => laws.to_vec(),
+        }
+    }
+
+    /// The load factors at F, from those of the scene `lambda`.
+    pub(super) fn lambda(&self, lambda: &[f64], f: f64) -> Vec<f64> {
+        match self {
+            Varied::Strength { .. } => lambda.to_vec(),
+            Varied::Load { cases } => {
+                (lambda.iter().enumerate()).map(|(c, &l)| if cases.contains(&c) { l * f } else { l }).collect()
+            }
+        }
+    }
+}
+
+/// A state that held: its factor and load factors, where the states and
+/// slips stand, and the iteration's outcome (None at F = 1: the last load
+/// step's).
+pub(super) struct Held {
+    pub factor: f64,
+    pub lambda: Vec<f64>,
+    pub history: History,
+    pub outcome: Option<Outcome>,
+}
+
+/// The trials of one search, and their log.
+pub(super) struct Trials<'s, 'a> {
+    step: &'s Step<'a>,
+    problem: &'s InterfaceProblem<'s>,
+    pub varied: Varied,
+    /// The pair laws the factors apply to (the scene's, with the search's
+    /// strength convention).
+    laws: Vec<PairLaw>,
+    /// The last load step's load factors.
+    pub lambda: Vec<f64>,
+    opts: &'s RunOptions,
+    /// What the progress lines start with ("safety", or the other strength's).
+    label: String,
+    pub trials: Vec<Trial>,
+    pub iterations: usize,
+    pub residual: f64,
+}
+
+impl<'s, 'a> Trials<'s, 'a> {
+    /// No trial yet.
+    pub fn new(
+        step: &'s Step<'a>,
+        varied: Varied,
+        laws: Vec<PairLaw>,
+        opts: &'s RunOptions,
+        label: String,
+    ) -> Trials<'s, 'a> {
+        let problem = step.problem.expect("a search has an interface");
+        let n = step.scene.solver.load_steps;
+        let lambda = step.model.cases.iter().map(|c| c[n - 1]).collect();
+        Trials { step, problem, varied, laws, lambda, opts, label, trials: Vec::new(), iterations: 0, residual: 0.0 }
+    }
+
+    /// One trial upward: the contact iteration at `f` from a copy of
+    /// `from`, retried in smaller steps when it does not converge.
+    pub fn up(&mut self, f: f64, from: &Held) -> Verdict<Held, Failure> {
+        let max = self.step.scene.solver.max_iterations;
+        match self.attempt(f, from, max, false) {
+            Verdict::Undecided(e) => {
+                let step = (f - from.factor) / RETRY_STEPS as f64;
+                self.say(&format!(
+                    "F = {f:.4} did not converge ({}): retrying from F = {:.4} in {RETRY_STEPS} steps of {step:.4} with up to {} contact iterations each",
+                    e.kind.describe(),
+                    from.factor,
+                    max * RETRY_ITERATIONS
+                ));
+                self.retry(f, from)
+            }
+            v => v,
+        }
+    }
+
+    /// The retry of `up`: `f` reached from `from` in smaller steps.
+    fn retry(&mut self, f: f64, from: &Held) -> Verdict<Held, Failure> {
+        let max = self.step.scene.solver.max_iterations * RETRY_ITERATIONS;
+        let mut at: Option<Held> = None;
+        for j in 1..=RETRY_STEPS {
+            let fj = from.factor + (f - from.factor) * j as f64 / RETRY_STEPS as f64;
+            match self.attempt(fj, at.as_ref().unwrap_or(from), max, true) {
+                Verdict::Holds(h) => at = Some(h),
+                other => return other,
+            }
+        }
+        at.map_or_else(|| Verdict::Undecided(self.no_steps()), Verdict::Holds)
+    }
+
+    /// The failure of a retry with no step (never: RETRY_STEPS >= 1).
+    fn no_steps(&self) -> Failure {
+        Failure {
+            kind: FailureKind::NotConverged { cycled: false },
+            blocks: Vec::new(),
+            states: Vec::new(),
+            iteration: 0,
+            lambda: self.lambda.clone(),
+            mechanism: None,
+        }
+    }
+
+    /// The contact iteration at `f` from a copy of `from`, with at most `max` iterations.
+    fn attempt(&mut self, f: f64, from: &Held, max: usize, retry: bool) -> Verdict<Held, Failure> {
+        let t = Instant::now();
+        let mut h = from.history.clone();
+        let (laws, lambda) = (self.varied.laws(&self.laws, f), self.varied.lambda(&self.lambda, f));
+        let verdict = self.iterate(&laws, &lambda, &mut h, max);
+        self.log(f, from.factor, t, verdict.as_ref(), retry);
+        match verdict {
+            Ok(outcome) => Verdict::Holds(Held { factor: f, lambda, history: h, outcome: Some(outcome) }),
+            Err(e) => verdict_of(e),
+        }
+    }
+
+    /// One trial of the load path at `f` from its start (below 1): every
+    /// load step at `f`, a step that does not converge retried with more
+    /// iterations. Holds with where the last step ended.
+    pub fn path(&mut self, f: f64) -> Verdict<Held, Failure> {
+        let t = Instant::now();
+        let mut h = History::new(self.step.model.pairs.len());
+        let laws = self.varied.laws(&self.laws, f);
+        let solver = &self.step.scene.solver;
+        let mut last = None;
+        let mut lambda = Vec::new();
+        for k in 0..solver.load_steps {
+            let scene_lambda: Vec<f64> = self.step.model.cases.iter().map(|c| c[k]).collect();
+            lambda = self.varied.lambda(&scene_lambda, f);
+            let mut result = self.iterate(&laws, &lambda, &mut h, solver.max_iterations);
+            if matches!(&result, Err(e) if matches!(e.kind, FailureKind::NotConverged { .. })) {
+                let max = solver.max_iterations * RETRY_ITERATIONS;
+                self.say(&format!(
+                    "F = {f:.4}: load step {} did not converge: retrying it with up to {max} contact iterations",
+                    k + 1
+                ));
+                result = self.iterate(&laws, &lambda, &mut h, max);
+            }
+            match result {
+                Ok(o) => last = Some(o),
+                Err(e) => {
+                    self.log(f, 0.0, t, Err(&e), false);
+                    return verdict_of(e);
+                }
+            }
+        }
+        let outcome = last.expect("at least one load step");
+        self.log(f, 0.0, t, Ok(&outcome), false);
+        Verdict::Holds(Held { factor: f, lambda, history: h, outcome: Some(outcome) })
+    }
+
+    /// The contact iteration under `laws` and `lambda` from `h`, judged.
+    fn iterate(&mut self, laws: &[PairLaw], lambda: &[f64], h: &mut History, max: usize) -> Result<Outcome, Failure> {
+        let rule = self.step.scene.solver.rule;
+        let r = contact::iterate(self.problem, laws, rule, lambda, h, max);
+        self.judge(r, lambda)
+    }
+
+    /// A converged iteration, or how it failed under `lambda` (the blocks
+    /// it names).
+    fn judge(&mut self, r: Result<Outcome, Failed>, lambda: &[f64]) -> Result<Outcome, Failure> {
+        match r {
+            Ok(o) => {
+                self.iterations += o.summary.iterations;
+                if o.summary.converged {
+                    self.residual = self.residual.max(o.solution.residual);
+                    return Ok(o);
+                }
+                Err(Failure {
+                    kind: FailureKind::NotConverged { cycled: o.summary.cycled },
+                    blocks: Vec::new(),
+                    states: o.states,
+                    iteration: o.summary.iterations,
+                    lambda: lambda.to_vec(),
+                    mechanism: None,
+                })
+            }
+            Err(f) => {
+                self.iterations += f.iteration;
+                let (kind, parts) = match f.failure {
+                    SolveFailure::Sliding(ids) => (FailureKind::Sliding, ids),
+                    SolveFailure::NotHeld(ids) => (FailureKind::NotHeld, ids),
+                };
+                let mut blocks: Vec<usize> =
+                    parts.iter().flat_map(|&i| self.step.plan.parts[i].bodies.iter().copied()).collect();
+                blocks.sort_unstable();
+                blocks.dedup();
+                Err(Failure {
+                    kind,
+                    blocks,
+                    states: f.states,
+                    iteration: f.iteration,
+                    lambda: lambda.to_vec(),
+                    mechanism: None,
+                })
+            }
+        }
+    }
+
+    /// A progress line of this search.
+    pub fn say(&self, what: &str) {
+        progress(self.opts, &format!("{}: {what}", self.label));
+    }
+
+    /// Records a trial and says how it went.
+    fn log(&mut self, f: f64, from: f64, t: Instant, r: Result<&Outcome, &Failure>, retry: bool) {
+        let (holds, iterations, states, failed) = match r {
+            Ok(o) => (true, o.summary.iterations, state_counts(&o.states), None),
+            Err(e) => (false, e.iteration, state_counts(&e.states), Some(e.kind)),
+        };
+        let k = states;
+        let what = match r {
+            Ok(_) => {
+                format!("holds: {iterations} contact iteration(s), {} stick / {} slip / {} open", k[2], k[1], k[0])
+            }
+            Err(e) if matches!(e.kind, FailureKind::NotConverged { .. }) => {
+                format!("decides nothing: {} ({iterations} contact iterations)", e.kind.describe())
+            }
+            Err(e) => format!(
+                "fails at contact iteration {iterations}: {}{}",
+                e.kind.describe(),
+                named(self.step.model, &e.blocks)
+            ),
+        };
+        self.say(&format!("F = {f:.4}{} {what}", if retry { " (retry)" } else { "" }));
+        self.trials.push(Trial {
+            factor: f,
+            from,
+            holds,
+            iterations,
+            states,
+            seconds: t.elapsed().as_secs_f64(),
+            failed,
+            retry,
+        });
+    }
+}
+
+/// A failed trial's verdict: undecided when its iteration did not converge.
+fn verdict_of<S>(e: Failure) -> Verdict<S, Failure> {
+    match e.kind {
+        FailureKind::NotConverged { .. } => Verdict::Undecided(e),
+        _ => Verdict::Fails(e),
+    }
+}
+
+/// " (\"a\", \"b\")" naming blocks, or nothing.
+fn named(model: &crate::model::Model, blocks: &[usize]) -> String {
+    if blocks.is_empty() {
+        String::new()
+    } else {
+        format!(" ({})", model.body_names(blocks))
+    }
+}
