@@ -220,7 +220,9 @@ pub fn toppling_margin(centroid: [f64; 3], action: [f64; 3], points: &[[f64; 3]]
 pub fn describe(model: &Model, m: &Mechanism) -> String {
     let nd = model.nd;
     let point = |x: [f64; 3]| {
-        let c: Vec<String> = x[..nd.clamp(2, 3)].iter().map(|v| format!("{v:.3}")).collect();
+        // (no "-0.000" for a round-off below the last digit)
+        let c: Vec<String> =
+            x[..nd.clamp(2, 3)].iter().map(|&v| format!("{:.3}", if v.abs() < 5e-4 { 0.0 } else { v })).collect();
         format!("({})", c.join(", "))
     };
     let dir = |v: [f64; 3]| {

@@ -375,11 +375,12 @@ fn unsafe_message(e: &SafetyError, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, ": {how}")?;
     }
     let what = if *load { "load factor" } else { "factor of safety (strength reduction)" };
-    write!(f, ". Its {what} is below 1: ")?;
     let by = if *load { "the raised loads multiplied by" } else { "the reduced strength parameters multiplied by" };
+    let unhelped = mechanism.as_ref().is_some_and(|m| matches!(m.1, Motion::Toppling | Motion::Lifting | Motion::Free));
     match holds {
-        Some(h) => write!(f, "F = {h:.4} (the load steps hold with {by} {} = {:.4} and fail from F = {fails:.4} up; each trial ran the load steps from the start)", if *load { "F" } else { "1/F" }, if *load { *h } else { 1.0 / h })?,
-        None => write!(f, "F < {:.4}: the load steps fail even with {by} {} (safety.max_factor){}", 1.0 / max_factor, if *load { 1.0 / max_factor } else { *max_factor }, if no_shear { ", since the contacts the blocks slide on carry no shear (no friction and no cohesion, or slip = \"frictionless\")" } else { "" })?,
+        None if unhelped && !*load => write!(f, ". No strength of its contacts makes it stand (the load steps fail even with the reduced strength parameters multiplied by {max_factor}, safety.max_factor): strength reduction has no factor for a block that {}", match mechanism.as_ref().map(|m| m.1) { Some(Motion::Toppling) => "topples", Some(Motion::Lifting) => "lifts off", _ => "falls free" })?,
+        Some(h) => write!(f, ". Its {what} is below 1: F = {h:.4} (the load steps hold with {by} {} = {:.4} and fail from F = {fails:.4} up; each trial ran the load steps from the start)", if *load { "F" } else { "1/F" }, if *load { *h } else { 1.0 / h })?,
+        None => write!(f, ". Its {what} is below 1: F < {:.4}: the load steps fail even with {by} {} (safety.max_factor){}", 1.0 / max_factor, if *load { 1.0 / max_factor } else { *max_factor }, if no_shear { ", since the contacts the blocks slide on carry no shear (no friction and no cohesion, or slip = \"frictionless\")" } else { "" })?,
     }
     match results {
         Some(out) => write!(f, ". A search upward needs a state that holds at F = 1, so none was made; the results in {} are the last load step that held (if any), the failing step's last iterate (not in equilibrium: summary.json contact.converged = false) and the mechanism (blocks.csv, report.md)", out.display())?,

@@ -54,7 +54,10 @@ pub(super) fn undecided_error(run: &crate::results::Run) -> Option<SafetyError> 
         scene: run.scene.path.clone(),
         holds: s.factor.unwrap_or(1.0),
         fails: s.fails_at,
-        undecided: s.undecided.iter().map(|u| u.factor).collect(),
+        // those that left the bracket open: above the last hold, below the failure
+        undecided: (s.undecided.iter().map(|u| u.factor))
+            .filter(|&u| u > s.factor.unwrap_or(1.0) && s.fails_at.is_none_or(|x| u < x))
+            .collect(),
         load: s.kind == SearchKind::Load,
         results: None,
     })

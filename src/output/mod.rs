@@ -5,6 +5,7 @@
 //! then (once the output stage is timed) `summary.json` and `report.md`,
 //! which embeds the pictures.
 
+pub mod blocks;
 pub mod cut;
 pub mod faces;
 pub mod files;
@@ -41,7 +42,16 @@ pub fn stage(run: &Run, out: &std::path::Path) -> Result<(Staged, Vec<String>)> 
     let model = &run.model;
     let last = run.last();
     let displacement = run.scene.output.wants("displacement");
-    staged.add(&format!("{name}.vtu"), bodies_vtu(model, &last.u, &last.stresses, displacement)?);
+    // the blocks: what each does, and its state as a cell field
+    let blocks = blocks::of_run(run);
+    let states: Vec<i32> = blocks.iter().flatten().map(|b| b.state.code()).collect();
+    if let Some(b) = &blocks {
+        staged.add("blocks.csv", blocks::blocks_csv(model, b).into_bytes());
+    }
+    if let Some(b) = blocks::at_safety(run) {
+        staged.add("safety_blocks.csv", blocks::blocks_csv(model, &b).into_bytes());
+    }
+    staged.add(&format!("{name}.vtu"), bodies_vtu(model, &last.u, &last.stresses, displacement, &states)?);
     if let Some(c) = &last.contact {
         staged.add(&format!("{name}_contact.vtu"), contact_vtu(model, c)?);
         staged.add("contact.csv", contact_csv(model, c).into_bytes());
@@ -58,7 +68,7 @@ pub fn stage(run: &Run, out: &std::path::Path) -> Result<(Staged, Vec<String>)> 
         for st in &run.steps {
             let time = times.get(st.step.wrapping_sub(1)).copied().unwrap_or(st.step as f64);
             let f = format!("{name}_step{:03}.vtu", st.step);
-            staged.add(&f, bodies_vtu(model, &st.u, &st.stresses, displacement)?);
+            staged.add(&f, bodies_vtu(model, &st.u, &st.stresses, displacement, &[])?);
             bodies.push((time, f));
             if let Some(c) = &st.contact {
                 let f = format!("{name}_contact_step{:03}.vtu", st.step);
@@ -181,7 +191,15 @@ pub fn insitu_warnings(scene: &crate::scene::Scene, model: &Model) -> Vec<String
 /// The bodies' VTU: each body's own nodes as points, so stresses averaged
 /// per body stay apart where bodies share nodes; the displacement when
 /// `displacement`, the stresses when there are some.
-fn bodies_vtu(model: &Model, u: &[f64], stresses: &[BodyStress], displacement: bool) -> Result<Vec<u8>> {
+/// The bodies; `block_state`: each block's [`crate::contact::mechanism::Motion`]
+/// code as cell data (left out when empty).
+fn bodies_vtu(
+    model: &Model,
+    u: &[f64],
+    stresses: &[BodyStress],
+    displacement: bool,
+    block_state: &[i32],
+) -> Result<Vec<u8>> {
     let nd = model.nd;
     let mut points = Vec::new();
     let mut disp = Vec::new();
@@ -190,6 +208,7 @@ fn bodies_vtu(model: &Model, u: &[f64], stresses: &[BodyStress], displacement: b
     let mut cells = Vec::new();
     let mut body_id = Vec::new();
     let mut block_id = Vec::new();
+    let mut state = Vec::new();
     let mut local = vec![usize::MAX; model.n_nodes()];
     for (b, body) in model.bodies.iter().enumerate() {
         let base = points.len();
@@ -214,6 +233,9 @@ fn bodies_vtu(model: &Model, u: &[f64], stresses: &[BodyStress], displacement: b
             cells.push(Cell { kind: c.kind, nodes: c.nodes.iter().map(|&n| local[n]).collect(), tag: c.tag });
             body_id.push(body.group as i32);
             block_id.push(b as i32);
+            if let Some(&s) = block_state.get(b) {
+                state.push(s);
+            }
         }
     }
     let mut point_data = Vec::new();
@@ -229,7 +251,11 @@ fn bodies_vtu(model: &Model, u: &[f64], stresses: &[BodyStress], displacement: b
         &cells,
         &point_data,
         &[],
-        &[IntField { name: "body", values: &body_id }, IntField { name: "block", values: &block_id }],
+        &[
+            IntField { name: "body", values: &body_id },
+            IntField { name: "block", values: &block_id },
+            IntField { name: "block_state", values: &state },
+        ][..if state.is_empty() { 2 } else { 3 }],
     )?)
 }
 
@@ -436,6 +462,9 @@ fn summary(run: &Run) -> serde_json::Value {
             let (groups, faces) = faces::summary(&run.model, &r);
             v["contact"]["groups"] = groups;
             v["contact"]["faces"] = faces;
+        }
+        if let Some(b) = blocks::of_run(run) {
+            v["blocks"] = blocks::summary(&run.model, &b);
         }
     }
     v["steps"] = json!(run

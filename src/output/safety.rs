@@ -52,9 +52,10 @@ pub(super) fn stage(run: &Run, staged: &mut Staged, drawn: &mut picture::Drawn) 
     }
     let Some(last) = &s.last else { return Ok(()) };
     let (model, name) = (&run.model, &run.scene.name);
+    let states: Vec<i32> = super::blocks::at_safety(run).iter().flatten().map(|b| b.state.code()).collect();
     staged.add(
         &format!("{name}_safety.vtu"),
-        super::bodies_vtu(model, &last.u, &last.stresses, run.scene.output.wants("displacement"))?,
+        super::bodies_vtu(model, &last.u, &last.stresses, run.scene.output.wants("displacement"), &states)?,
     );
     if let Some(c) = &last.contact {
         staged.add(&format!("{name}_safety_contact.vtu"), super::contact_vtu(model, c)?);
