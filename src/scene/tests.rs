@@ -546,3 +546,33 @@ fn joint_rules() {
         &["joint_sets[0]", "ready mesh"],
     );
 }
+
+/// `[safety] strength` (peak by default, residual on request) and `load`,
+/// the load factor search (issue 29, issue 34 item 3): the loads it
+/// raises get a load case of their own; misnamed loads and a table that
+/// both reduces and raises are errors.
+#[test]
+fn safety_strength_and_load_rules() {
+    let base = "[[contacts]]\ngroup = \"base\"\nfriction = 0.75\ncohesion = 1.0\n[[loads]]\ngroup = \"back\"\ntraction = [1.0, 0.0]\n[[loads]]\ngroup = \"top\"\npressure = 1.0\nfactors = [1.0]\n";
+    let with = |table: &str| {
+        minimal(&format!("{base}[safety]\n{table}")).replacen("analysis", "gravity = [0.0, -9.81]\nanalysis", 1)
+    };
+    let s = load(&with("")).expect("defaults").safety.expect("a table");
+    assert_eq!((s.strengths, s.strength_given, s.raise.is_none()), (Strengths::Peak, false, true));
+    let s = load(&with("strength = \"residual\"\n")).expect("residual").safety.expect("a table");
+    assert_eq!((s.strengths, s.strength_given), (Strengths::Residual, true));
+    rejects(&with("strength = \"soft\"\n"), &["safety.strength = \"soft\"", "\"peak\"", "\"residual\""]);
+    let scene = load(&with("load = [\"gravity\", \"back\"]\n")).expect("a load search");
+    assert_eq!(scene.safety.as_ref().and_then(|s| s.raise.clone()), Some(Raise { loads: vec![0], gravity: true }));
+    // the raised loads get the ramp as factors of their own; the others keep theirs
+    let spec = scene.model_spec();
+    assert_eq!(spec.loads[0].factors, Some(vec![1.0]));
+    assert_eq!(spec.loads[1].factors, Some(vec![1.0]));
+    assert_eq!(spec.gravity_factors, Some(vec![1.0]));
+    assert_eq!(load(&with("")).expect("no load search").model_spec().loads[0].factors, None);
+    rejects(&with("load = [\"front\"]\n"), &["safety.load[0] = \"front\"", "\"back\", \"top\", \"gravity\""]);
+    rejects(&with("load = [\"back\", \"back\"]\n"), &["safety.load[1]", "twice"]);
+    rejects(&with("load = []\n"), &["safety.load", "empty"]);
+    rejects(&with("load = [\"back\"]\nstrength = \"peak\"\n"), &["safety.strength", "one or the other"]);
+    rejects(&minimal(&format!("{base}[safety]\nload = [\"gravity\"]\n")), &["safety.load[0]", "no gravity"]);
+}
