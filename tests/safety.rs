@@ -383,6 +383,42 @@ fn the_planar_slope_keeps_its_peak_cohesion_as_limit_equilibrium_does() {
     );
 }
 
+/// geo/dam.toml with a cohesive base (c = 0.1 MPa kept where pairs slip,
+/// residual_cohesion = c): every trial converges, and the search finds
+/// its base's own limit equilibrium over the closed (compressed) length,
+/// F = (c A + N tan(phi)) / T, by hand from contact.csv at F = 1, as
+/// USACE's cracked-base analysis takes it.
+#[test]
+fn the_dam_with_cohesion_kept_slides_at_its_bases_factor_every_trial_converged() {
+    let case = Case::new("safety-dam-cohesion");
+    case.copy("geo/dam.geo");
+    let base = "group = \"base\"\nfriction = 0.75\ncohesion = 0.0";
+    case.write(
+        "dam.toml",
+        &edited(
+            "geo/dam.toml",
+            &[(base, "group = \"base\"\nfriction = 0.75\ncohesion = 0.1\nresidual_cohesion = 0.1")],
+        ),
+    );
+    let (s, summary, _) = safety_run(&case, &["safety", "dam.toml", "--quiet"], "dam");
+    let rows = common::csv_rows(&case.dir.join("dam/contact.csv"));
+    let (mut n, mut t, mut area) = (0.0, [0.0; 2], 0.0);
+    for r in rows.iter().filter(|r| r["contact"] == "base" && r["status"] != "0") {
+        let x = |k: &str| common::csv_num(r, k);
+        n -= x("sigma_n") * x("area");
+        t[0] += x("tau_x") * x("area");
+        t[1] += x("tau_y") * x("area");
+        area += x("area");
+    }
+    let hand = (0.1 * area + 0.75 * n) / t[0].hypot(t[1]);
+    eprintln!("dam base with c = 0.1: closed length {area:.3} m, N = {n:.4}, F = (c A + N f) / T = {hand:.5}");
+    assert_factor("dam, c kept", &s, hand, 0.005);
+    assert_cost("dam, c kept", &s, &summary);
+    let trials = s["trials"].as_array().expect("trials");
+    assert!(trials.iter().all(|t| t["failure"] != "not_converged"), "every trial converged");
+    assert_eq!(s["decided"].as_bool(), Some(true));
+}
+
 /// A trial whose contact iteration does not converge decides nothing: with
 /// the paper's rule, which cycles once the stout block's heel opens (the
 /// block of tests/topple.rs, b/h = 0.5 on a 20 degree plane), trials cycle

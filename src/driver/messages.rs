@@ -376,9 +376,11 @@ fn unsafe_message(e: &SafetyError, f: &mut fmt::Formatter<'_>) -> fmt::Result {
     }
     let what = if *load { "load factor" } else { "factor of safety (strength reduction)" };
     let by = if *load { "the raised loads multiplied by" } else { "the reduced strength parameters multiplied by" };
-    let unhelped = mechanism.as_ref().is_some_and(|m| matches!(m.1, Motion::Toppling | Motion::Lifting | Motion::Free));
+    let unhelped = mechanism
+        .as_ref()
+        .is_some_and(|m| matches!(m.1, BlockMotion::Toppling | BlockMotion::Lifting | BlockMotion::Free));
     match holds {
-        None if unhelped && !*load => write!(f, ". No strength of its contacts makes it stand (the load steps fail even with the reduced strength parameters multiplied by {max_factor}, safety.max_factor): strength reduction has no factor for a block that {}", match mechanism.as_ref().map(|m| m.1) { Some(Motion::Toppling) => "topples", Some(Motion::Lifting) => "lifts off", _ => "falls free" })?,
+        None if unhelped && !*load => write!(f, ". No strength of its contacts makes it stand (the load steps fail even with the reduced strength parameters multiplied by {max_factor}, safety.max_factor): strength reduction has no factor for a block that {}", match mechanism.as_ref().map(|m| m.1) { Some(BlockMotion::Toppling) => "topples", Some(BlockMotion::Lifting) => "lifts off", _ => "falls free" })?,
         Some(h) => write!(f, ". Its {what} is below 1: F = {h:.4} (the load steps hold with {by} {} = {:.4} and fail from F = {fails:.4} up; each trial ran the load steps from the start)", if *load { "F" } else { "1/F" }, if *load { *h } else { 1.0 / h })?,
         None => write!(f, ". Its {what} is below 1: F < {:.4}: the load steps fail even with {by} {} (safety.max_factor){}", 1.0 / max_factor, if *load { 1.0 / max_factor } else { *max_factor }, if no_shear { ", since the contacts the blocks slide on carry no shear (no friction and no cohesion, or slip = \"frictionless\")" } else { "" })?,
     }

@@ -19,7 +19,9 @@
 //! the pairs of its faces ([`super::resultants::mobilised`]), its open
 //! fraction the share of its faces' area that is open, and its toppling
 //! margin ([`toppling_margin`]) the smallest over the faces it rests on
-//! (its outward normal there along gravity) that carry compression: d / e,
+//! (its outward normal there along gravity) that carry a share of its
+//! weight in compression, from a tenth to twice it (a block clamped by
+//! the stress of the rock round it does not rest on a face): d / e,
 //! e the eccentricity of the normal force's point of action from the
 //! face's centroid, d the distance from the centroid to the face's edge
 //! that way (Goodman & Bray's (b/h) / tan θ for a block on a plane).
@@ -145,7 +147,7 @@ pub fn blocks(
                 relative,
                 mobilised: faces.mobilised[b],
                 open: if faces.area[b] > 0.0 { faces.open[b] / faces.area[b] } else { 0.0 },
-                toppling_margin: faces.margin(model, b),
+                toppling_margin: faces.margin(model, b, model.bodies[b].density * norm(model.gravity) * w[b].volume),
                 state: mechanism.map_or(Motion::Held, |m| m.of(b)),
             }
         })
@@ -222,8 +224,11 @@ impl Faces {
         })
     }
 
-    /// The smallest toppling margin of the faces block `b` rests on.
-    fn margin(&self, model: &Model, b: usize) -> Option<f64> {
+    /// The smallest toppling margin of the faces block `b` (of weight
+    /// `weight`) rests on: those below it (its outward normal along
+    /// gravity) that carry a share of its weight, not a multiple of it (a
+    /// block clamped by the stress of the rock round it does not rest).
+    fn margin(&self, model: &Model, b: usize, weight: f64) -> Option<f64> {
         let supported = |blk: usize| {
             crate::recover::body_nodes(&model.bodies[blk])
                 .iter()
@@ -243,7 +248,9 @@ impl Faces {
             };
             // it rests on the face where its outward normal is along gravity
             let rests = norm(self.gravity) == 0.0 || sign * dot(face.normal, self.gravity) > 0.0;
-            if !rests || face.pressure <= 0.0 || face.area <= 0.0 {
+            // it carries a share of the block's weight, not a multiple of it
+            let carries = weight <= 0.0 || (0.1 * weight..=2.0 * weight).contains(&face.pressure);
+            if !rests || !carries || face.pressure <= 0.0 || face.area <= 0.0 {
                 continue;
             }
             let centre = face.centre.map(|v| v / face.area);
@@ -287,7 +294,12 @@ pub fn blocks_csv(model: &Model, blocks: &[Block]) -> String {
 /// relative to their neighbours.
 pub fn ranked(blocks: &[Block]) -> Vec<&Block> {
     let mut v: Vec<&Block> = blocks.iter().collect();
-    v.sort_by(|a, b| (b.state != Motion::Held).cmp(&(a.state != Motion::Held)).then(b.relative.total_cmp(&a.relative)));
+    v.sort_by(|a, b| {
+        (b.state != Motion::Held)
+            .cmp(&(a.state != Motion::Held))
+            .then(b.relative.total_cmp(&a.relative))
+            .then(norm(b.displacement).total_cmp(&norm(a.displacement)))
+    });
     v
 }
 

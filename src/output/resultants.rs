@@ -62,6 +62,9 @@ pub struct PairRecord {
     pub state: ContactState,
     /// Its mobilised friction ([`mobilised`]).
     pub mobilised: f64,
+    /// A node of it is held by a support (where a joint meets a supported
+    /// boundary: the support takes part of what the pair would carry).
+    pub supported: bool,
 }
 
 /// The sums over the pairs of a group or face pair.
@@ -81,6 +84,10 @@ pub struct Resultant {
     /// The largest mobilised friction, and the position of that pair.
     pub mobilised: f64,
     pub mobilised_at: [f64; 3],
+    /// Its pairs with a supported node, and the largest mobilised friction
+    /// of the others (0 when every pair is supported).
+    pub supported: usize,
+    pub mobilised_free: f64,
 }
 
 impl Resultant {
@@ -129,6 +136,11 @@ impl Resultant {
             self.mobilised = p.mobilised;
             self.mobilised_at = p.x;
         }
+        if p.supported {
+            self.supported += 1;
+        } else {
+            self.mobilised_free = self.mobilised_free.max(p.mobilised);
+        }
     }
 
     fn finish(&mut self, weighted_normal: [f64; 3]) {
@@ -169,6 +181,67 @@ impl Resultants {
         v.sort_by(|a, b| {
             let (ra, rb) = (&a.resultant, &b.resultant);
             rb.mobilised.total_cmp(&ra.mobilised).then(rb.failed_fraction().total_cmp(&ra.failed_fraction()))
+        });
+        v.truncate(n);
+        v
+    }
+}
+
+/// Face pairs below this fraction of their contact group's median face
+/// area are slivers: report.md's ranking leaves them out.
+pub const SLIVER: f64 = 0.1;
+
+/// Why a face pair is left out of report.md's ranking.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LeftOut {
+    /// Every pair of it has a supported node: the supports carry it.
+    Supported,
+    /// Below [`SLIVER`] of its group's median face area.
+    Sliver,
+}
+
+impl LeftOut {
+    pub fn key(self) -> &'static str {
+        match self {
+            LeftOut::Supported => "supported",
+            LeftOut::Sliver => "sliver",
+        }
+    }
+}
+
+impl Resultants {
+    /// Why each face pair is left out of the ranking (None: it ranks).
+    pub fn left_out(&self) -> Vec<Option<LeftOut>> {
+        let mut median = vec![0.0; self.groups.len()];
+        for (g, m) in median.iter_mut().enumerate() {
+            let mut a: Vec<f64> = self.faces.iter().filter(|f| f.contact == g).map(|f| f.resultant.area()).collect();
+            a.sort_by(f64::total_cmp);
+            *m = a.get(a.len() / 2).copied().unwrap_or(0.0);
+        }
+        (self.faces.iter())
+            .map(|f| {
+                let q = &f.resultant;
+                if q.pairs > 0 && q.supported == q.pairs {
+                    Some(LeftOut::Supported)
+                } else if q.area() < SLIVER * median[f.contact] {
+                    Some(LeftOut::Sliver)
+                } else {
+                    None
+                }
+            })
+            .collect()
+    }
+
+    /// The `n` most mobilised face pairs that matter (neither slivers nor
+    /// supported all along), most first by their largest mobilised friction
+    /// away from supported nodes, then by the fraction of their area that
+    /// slips or opens.
+    pub fn ranked(&self, n: usize) -> Vec<&FacePair> {
+        let out = self.left_out();
+        let mut v: Vec<&FacePair> = self.faces.iter().zip(&out).filter(|(_, o)| o.is_none()).map(|(f, _)| f).collect();
+        v.sort_by(|a, b| {
+            let (ra, rb) = (&a.resultant, &b.resultant);
+            rb.mobilised_free.total_cmp(&ra.mobilised_free).then(rb.failed_fraction().total_cmp(&ra.failed_fraction()))
         });
         v.truncate(n);
         v
@@ -235,6 +308,7 @@ pub fn of_run(run: &Run) -> Option<Resultants> {
     let m = &run.model;
     let strength = strengths(run);
     let body = m.body_of_node();
+    let held = |n: usize| (0..m.nd).any(|c| m.prescribed[n * m.nd + c].is_some());
     let n_steps = run.steps.len();
     // cracked: open or slipping at the end of an earlier step (crack memory)
     let cracked = |p: usize| {
@@ -251,6 +325,7 @@ pub fn of_run(run: &Run) -> Option<Resultants> {
             water: c.water.as_ref().map_or([0.0; 3], |w| w.force[p]),
             state: c.states[p],
             mobilised: mobilised(c.states[p], &c.pairs[p], &strength[pair.contact], cracked(p)),
+            supported: held(pair.k) || held(pair.l),
         })
         .collect();
     Some(sum(&records, m.interfaces.len()))
@@ -272,7 +347,7 @@ mod tests {
         state: ContactState,
         mobilised: f64,
     ) -> PairRecord {
-        PairRecord { contact, blocks, x, normal, area, force, water: [0.0; 3], state, mobilised }
+        PairRecord { contact, blocks, x, normal, area, force, water: [0.0; 3], state, mobilised, supported: false }
     }
 
     /// Two groups: "a" (z = 0) between blocks 0 | 1 and 0 | 2, "b" (x = 1)
@@ -324,6 +399,35 @@ mod tests {
         let order: Vec<[usize; 2]> = r.most_mobilised(10).iter().map(|f| f.blocks).collect();
         assert_eq!(order, vec![[1, 2], [0, 1], [0, 2]]);
         assert_eq!(r.most_mobilised(1).len(), 1);
+    }
+
+    /// The ranking leaves out faces supported all along and slivers, and
+    /// ranks by the mobilised friction away from supported nodes.
+    #[test]
+    fn the_ranking_leaves_out_supported_faces_and_slivers() {
+        let z = [0.0, 0.0, 1.0];
+        let at = |blocks, area, mobilised, supported| PairRecord {
+            supported,
+            ..record(0, blocks, [0.0; 3], z, area, [0.0, 0.0, -1.0], ContactState::Stick, mobilised)
+        };
+        let pairs = [
+            // 0 | 1: most mobilised at its supported node, 0.3 elsewhere
+            at([0, 1], 1.0, 0.9, true),
+            at([0, 1], 1.0, 0.3, false),
+            // 0 | 2: supported all along
+            at([0, 2], 2.0, 1.0, true),
+            // 0 | 3: a sliver (0.04 against the median 2)
+            at([0, 3], 0.04, 1.0, false),
+            // 1 | 2 and 2 | 3
+            at([1, 2], 2.0, 0.5, false),
+            at([2, 3], 3.0, 0.2, false),
+        ];
+        let r = sum(&pairs, 1);
+        let out: Vec<Option<&str>> = r.left_out().iter().map(|o| o.map(LeftOut::key)).collect();
+        assert_eq!(out, vec![None, Some("supported"), Some("sliver"), None, None]);
+        let order: Vec<[usize; 2]> = r.ranked(10).iter().map(|f| f.blocks).collect();
+        assert_eq!(order, vec![[1, 2], [0, 1], [2, 3]]);
+        assert_eq!((r.faces[0].resultant.supported, r.faces[0].resultant.mobilised_free), (1, 0.3));
     }
 
     /// The mean normal of a face whose pairs' normals differ (a crease):
