@@ -100,10 +100,13 @@ rockmass: deps build
 wedge: deps build
 	$(BIN) solve geo/wedge.toml
 
-# The factor of safety against sliding beside the closed forms
-# (docs/safety.md): the wedge in a V-groove on two meshes against Hoek &
-# Bray's rigid block, the gravity dam against its base's resultants by hand;
-# the table in results/safety/safety.md. About half a minute.
+# The factor of safety and the load factor beside the closed forms, the
+# mechanism named (docs/safety.md): the wedge in a V-groove on two meshes
+# against Hoek & Bray's rigid block, Hoek & Bray's planar slope with
+# cohesion, the gravity dam against its base's resultants by hand (also
+# with a cohesive base), Goodman & Bray's toppling block in 2D and 3D, the
+# gravity wall's overturning and sliding load factors; the tables in
+# results/safety/safety.md. About a minute.
 safety: deps build
 	$(PYTHON) scripts/safety/safety.py
 
