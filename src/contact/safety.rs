@@ -10,6 +10,10 @@
 //! factor at which it is lost. Since c / f and f_t / c are left as they
 //! are, the Coulomb apex c / f does not move.
 //!
+//! During the search a pair that cracks keeps its peak cohesion, the
+//! limit-equilibrium convention, or the scene's residual cohesion
+//! ([`Strengths`]).
+//!
 //! The search ([`upward`]) starts from the state that holds at F = 1 and
 //! raises F step by step, every trial starting from the last state that
 //! held (friction depends on the path), until a trial fails or F reaches
@@ -17,9 +21,12 @@
 //! that failed until they differ by at most `tolerance × F`. A scene that
 //! already fails at F = 1 is searched below 1 ([`downward`]): every trial
 //! there runs the load path from its start with the strengths raised to
-//! 1 / F of the scene's. What a trial is (one more contact iteration on the
-//! condensed interface) is the caller's: these functions only choose the
-//! factors, from what each trial returns.
+//! 1 / F of the scene's. Only converged trials decide ([`Verdict`]): one
+//! that neither holds nor fails is passed over while bracketing and ends
+//! the bisection, and [`Bracket::decided`] says whether the factor is
+//! closed all the same. What a trial is (one more contact iteration on the
+//! condensed interface, or raised loads) is the caller's: these functions
+//! only choose the factors, from what each trial returns.
 
 use super::law::Strength;
 use super::PairLaw;

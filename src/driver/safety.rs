@@ -38,7 +38,7 @@ use super::ranks::Ranks;
 use super::steps::{LoadSteps, Step};
 use super::{mechanism, RunOptions};
 use crate::contact::safety::{self as reduction, Bracket, Steps, Strengths};
-use crate::contact::History;
+use crate::contact::{History, Outcome};
 use crate::parallel::CommExt;
 use crate::recover;
 use crate::results::{Failure, OtherFactor, SafetyRun, SearchCost, SearchKind, StepResult, Trial, Undecided};
@@ -117,31 +117,11 @@ fn recover_held(
     held: Option<&mut Held>,
     done: &mut LoadSteps,
 ) -> Result<Option<StepResult>> {
-    let mut held = held;
     if !ranks.comm().broadcast(&held.as_ref().is_some_and(|h| h.outcome.is_some())) {
         return Ok(None);
     }
-    let (need_stress, need_u) = step.needs();
-    let lambda = held.as_ref().map(|h| h.lambda.clone()).unwrap_or_default();
-    let answer = held
-        .as_mut()
-        .and_then(|h| h.outcome.take())
-        .map(|o| step.contact_run(step.problem.expect("a search has an interface"), o, &lambda));
-    let (contact, d_c) = answer.unzip();
-    let u = ranks.recover(step.model, &step.plan.parts, &parts.mine, d_c.map(Ok), &lambda, need_u)?;
-    let Some((c, u)) = contact.zip(u) else { return Ok(None) };
-    done.counters.interior_recoveries += usize::from(need_u) * step.plan.parts.len();
-    done.counters.stress_recoveries += usize::from(need_stress);
-    let stresses = if need_stress { recover::nodal_stresses(step.model, &u) } else { Vec::new() };
-    let last = done.steps.last().expect("rank 0 keeps the steps");
-    Ok(Some(StepResult {
-        step: last.step,
-        load_factor: last.load_factor,
-        case_factors: lambda,
-        u,
-        stresses,
-        contact: Some(c),
-    }))
+    let o = held.and_then(|h| h.outcome.take().map(|o| (0, h.lambda.clone(), o)));
+    recovered(step, parts, ranks, o, done)
 }
 
 /// A copy of a step's result.
@@ -349,4 +329,33 @@ fn raised_names(step: &Step, r: &crate::scene::Raise) -> String {
         names.push("gravity".into());
     }
     names.join(", ")
+}
+
+/// The recovered result of an outcome on rank 0 (`step` its load step, 0
+/// for the search's hold), every rank taking part; None elsewhere.
+fn recovered(
+    step: &Step,
+    parts: &Parts,
+    ranks: &Ranks,
+    o: Option<(usize, Vec<f64>, Outcome)>,
+    done: &mut LoadSteps,
+) -> Result<Option<StepResult>> {
+    let (need_stress, need_u) = step.needs();
+    let problem = step.problem.expect("a search has an interface");
+    let (k, lambda, answer) = match o {
+        Some((k, lambda, o)) => {
+            let answer = step.contact_run(problem, o, &lambda);
+            (k, lambda, Some(answer))
+        }
+        None => (0, Vec::new(), None),
+    };
+    let (contact, d_c) = answer.unzip();
+    let u = ranks.recover(step.model, &step.plan.parts, &parts.mine, d_c.map(Ok), &lambda, need_u)?;
+    let Some((c, u)) = contact.zip(u) else { return Ok(None) };
+    done.counters.interior_recoveries += usize::from(need_u) * step.plan.parts.len();
+    done.counters.stress_recoveries += usize::from(need_stress);
+    let stresses = if need_stress { recover::nodal_stresses(step.model, &u) } else { Vec::new() };
+    let k = if k > 0 { k } else { step.scene.solver.load_steps };
+    let load_factor = lambda.first().copied().unwrap_or(1.0);
+    Ok(Some(StepResult { step: k, load_factor, case_factors: lambda, u, stresses, contact: Some(c) }))
 }

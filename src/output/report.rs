@@ -58,6 +58,8 @@ pub fn report(run: &Run) -> String {
             it.iterations,
             if it.converged {
                 "converged"
+            } else if run.safety.as_ref().is_some_and(|s| s.below_one) {
+                "NOT in equilibrium: the last iterate of the load step that lost it (the scene is unsafe as given, see the safety section)"
             } else if it.cycled {
                 "NOT converged: the states cycle"
             } else {

@@ -17,7 +17,7 @@
 
 use anyhow::Result;
 
-use super::{mechanism, steps, trials, undecided, Held, SafetyRun, Trials};
+use super::{mechanism, recovered, steps, trials, undecided, Held, SafetyRun, Trials};
 use crate::contact::safety::{self as reduction, Verdict};
 use crate::contact::{self, History, Outcome};
 use crate::driver::condense::Parts;
@@ -26,8 +26,7 @@ use crate::driver::ranks::Ranks;
 use crate::driver::steps::{LoadSteps, Step};
 use crate::driver::RunOptions;
 use crate::parallel::CommExt;
-use crate::recover;
-use crate::results::{Failure, SearchCost, StepResult};
+use crate::results::{Failure, SearchCost};
 
 /// What a run that fails at F = 1 keeps: the steps whose results exist,
 /// the search below 1, and the error to end with once they are written.
@@ -213,33 +212,4 @@ fn replay(step: &Step) -> Vec<Replayed> {
         }
     }
     held.into_iter().collect()
-}
-
-/// The recovered result of an outcome on rank 0 (`step` its load step, 0
-/// for the search's hold), every rank taking part; None elsewhere.
-fn recovered(
-    step: &Step,
-    parts: &Parts,
-    ranks: &Ranks,
-    o: Option<(usize, Vec<f64>, Outcome)>,
-    done: &mut LoadSteps,
-) -> Result<Option<StepResult>> {
-    let (need_stress, need_u) = step.needs();
-    let problem = step.problem.expect("a search has an interface");
-    let (k, lambda, answer) = match o {
-        Some((k, lambda, o)) => {
-            let answer = step.contact_run(problem, o, &lambda);
-            (k, lambda, Some(answer))
-        }
-        None => (0, Vec::new(), None),
-    };
-    let (contact, d_c) = answer.unzip();
-    let u = ranks.recover(step.model, &step.plan.parts, &parts.mine, d_c.map(Ok), &lambda, need_u)?;
-    let Some((c, u)) = contact.zip(u) else { return Ok(None) };
-    done.counters.interior_recoveries += usize::from(need_u) * step.plan.parts.len();
-    done.counters.stress_recoveries += usize::from(need_stress);
-    let stresses = if need_stress { recover::nodal_stresses(step.model, &u) } else { Vec::new() };
-    let k = if k > 0 { k } else { step.scene.solver.load_steps };
-    let load_factor = lambda.first().copied().unwrap_or(1.0);
-    Ok(Some(StepResult { step: k, load_factor, case_factors: lambda, u, stresses, contact: Some(c) }))
 }

@@ -27,27 +27,7 @@ impl Checker<'_> {
             return Err(self.err("safety", "the safety search divides the strength of the [[contacts]] by a factor, and this scene has none; add the contacts whose sliding you want to check, or remove [safety]."));
         }
         let defaults = Safety::all(contacts.len());
-        let raise = match s.load {
-            None => None,
-            Some(names) => {
-                for (key, given) in [
-                    ("reduce", s.reduce.is_some()),
-                    ("contacts", s.contacts.is_some()),
-                    ("strength", s.strength.is_some()),
-                ] {
-                    if given {
-                        return Err(self.err(format!("safety.{key}"), "belongs to a search that divides the strength of the contacts, and this [safety] raises loads (safety.load): a search does one or the other. Remove one of them (run the other search from a copy of the scene)."));
-                    }
-                }
-                Some(self.raise(&names, loads, gravity)?)
-            }
-        };
-        let (strengths, strength_given) = match s.strength.as_deref() {
-            None => (defaults.strengths, false),
-            Some("peak") => (Strengths::Peak, true),
-            Some("residual") => (Strengths::Residual, true),
-            Some(other) => return Err(self.bad("safety.strength", format!("{other:?}"), "use \"peak\" (each joint keeps its peak cohesion over the whole sliding surface, as limit equilibrium assumes; the default) or \"residual\" (a pair that slips or opens keeps only its residual_cohesion, as in the load steps).")),
-        };
+        let (raise, strengths, strength_given) = self.search_kind(&s, loads, gravity)?;
         let reduce = match s.reduce {
             None => defaults.reduce,
             Some(names) => self.reduce(&names)?,
@@ -100,6 +80,33 @@ impl Checker<'_> {
             ));
         }
         Ok(Safety { reduce, contacts: chosen, strengths, strength_given, raise, step, tolerance, max_factor })
+    }
+
+    /// What the search varies: the loads of `load` (which excludes the
+    /// strength keys), or the strength, peak or residual.
+    fn search_kind(&self, s: &RawSafety, loads: &[Load], gravity: [f64; 3]) -> R<(Option<Raise>, Strengths, bool)> {
+        let raise = match &s.load {
+            None => None,
+            Some(names) => {
+                for (key, given) in [
+                    ("reduce", s.reduce.is_some()),
+                    ("contacts", s.contacts.is_some()),
+                    ("strength", s.strength.is_some()),
+                ] {
+                    if given {
+                        return Err(self.err(format!("safety.{key}"), "belongs to a search that divides the strength of the contacts, and this [safety] raises loads (safety.load): a search does one or the other. Remove one of them (run the other search from a copy of the scene)."));
+                    }
+                }
+                Some(self.raise(names, loads, gravity)?)
+            }
+        };
+        let (strengths, strength_given) = match s.strength.as_deref() {
+            None => (Strengths::Peak, false),
+            Some("peak") => (Strengths::Peak, true),
+            Some("residual") => (Strengths::Residual, true),
+            Some(other) => return Err(self.bad("safety.strength", format!("{other:?}"), "use \"peak\" (each joint keeps its peak cohesion over the whole sliding surface, as limit equilibrium assumes; the default) or \"residual\" (a pair that slips or opens keeps only its residual_cohesion, as in the load steps).")),
+        };
+        Ok((raise, strengths, strength_given))
     }
 
     /// `load = [..]`: `[[loads]]` groups and "gravity", each once, at least
