@@ -341,9 +341,10 @@ fn recovered(
     done: &mut LoadSteps,
 ) -> Result<Option<StepResult>> {
     let (need_stress, need_u) = step.needs();
-    let problem = step.problem.expect("a search has an interface");
+    // only rank 0 holds the interface problem (and an outcome)
     let (k, lambda, answer) = match o {
         Some((k, lambda, o)) => {
+            let problem = step.problem.expect("rank 0's search has an interface");
             let answer = step.contact_run(problem, o, &lambda);
             (k, lambda, Some(answer))
         }
