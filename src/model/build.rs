@@ -11,7 +11,7 @@ use super::builder::{dim_name, Builder};
 use super::contacts::{self, facet_sign, RawPair, Split};
 use super::held::check_held;
 use super::topology::Topology;
-use super::{Block, Body, FacetLoad, InitialStress, LoadKind, Model, ModelError, ModelSpec, Pair};
+use super::{Block, Body, FacetLoad, InitialStress, LoadKind, Model, ModelError, ModelSpec, Pair, SupportDofs};
 use crate::fem::element::{self, dofs_per_node};
 use crate::fem::Analysis;
 use crate::mesh::{Cell, Mesh};
@@ -34,12 +34,13 @@ impl Model {
         let split = contacts::split(&b, &topo, size)?;
         let bodies = blocks(spec, &topo, &split.block, &split.cells, &split.coords);
         // 3. Supports, and 3b. every rigid-body motion held by one.
-        let prescribed = supports(&b, &topo, &split)?;
+        let (prescribed, support_dofs) = supports(&b, &topo, &split)?;
         let links: Vec<(usize, usize)> = split.pairs.iter().map(|p| (p.k, p.l)).collect();
         check_held(&b, &split.coords, &bodies, &links, &prescribed)?;
         // 4. Load cases, and loads, each facet on the copy of the cell it bounds.
         let cases = Cases::new(spec);
         let loads = loads(&b, &topo, &split, &bodies, &cases.of_load)?;
+        let nodal_loads = super::forces::nodal_loads(&b, &topo, &split, &bodies, &cases.of_load)?;
         // 5. Pair normals and areas from their facets on side I.
         let mut model = Model {
             scene: spec.source.clone(),
@@ -50,6 +51,8 @@ impl Model {
             coords: split.coords,
             bodies,
             loads,
+            nodal_loads,
+            supports: support_dofs,
             prescribed,
             pairs: Vec::new(),
             interfaces: split.interfaces,
@@ -121,20 +124,23 @@ fn body_groups<'a>(b: &Builder<'a>) -> Result<Vec<&'a [Cell]>, ModelError> {
     Ok(groups)
 }
 
-/// The prescribed value of every DOF (`node * nd + c`), None where free.
+/// The prescribed value of every DOF (`node * nd + c`), None where free,
+/// and the DOFs each support holds (a DOF two supports hold is the later
+/// one's, whose value it takes).
 /// A point support holds every copy of its node; a support on a curve or
 /// surface holds the copies of the cells its facets bound, so a support on
 /// one body's face next to a contact does not drag the other body's copy
 /// of the shared corner node (a symmetry line crossing a contact bounds
 /// both bodies: both held).
-fn supports(b: &Builder, topo: &Topology, split: &Split) -> Result<Vec<Option<f64>>, ModelError> {
+fn supports(b: &Builder, topo: &Topology, split: &Split) -> Result<(Vec<Option<f64>>, Vec<SupportDofs>), ModelError> {
     let (sd, nd) = (b.spec.analysis.dim(), dofs_per_node(b.spec.analysis));
     let mut copies_of: Vec<Vec<usize>> = vec![Vec::new(); b.mesh.coords.len()];
     for (m, &n) in split.mesh_node.iter().enumerate() {
         copies_of[n].push(m);
     }
     let mut prescribed: Vec<Option<f64>> = vec![None; split.coords.len() * nd];
-    for s in &b.spec.supports {
+    let mut owner: Vec<usize> = vec![usize::MAX; split.coords.len() * nd];
+    for (si, s) in b.spec.supports.iter().enumerate() {
         let g = b.group(&format!("{}.group", s.key), &s.group, &(0..=sd).collect::<Vec<_>>())?;
         let mut held: Vec<usize> = Vec::new();
         for cell in &g.cells {
@@ -151,15 +157,24 @@ fn supports(b: &Builder, topo: &Topology, split: &Split) -> Result<Vec<Option<f6
         held.dedup();
         for m in held {
             for c in 0..nd {
-                if let Some(v) = s.prescribed[c] {
-                    prescribed[m * nd + c] = Some(v);
-                } else if s.fix[c] {
-                    prescribed[m * nd + c] = Some(0.0);
-                }
+                let value = match s.prescribed[c] {
+                    Some(v) => v,
+                    None if s.fix[c] => 0.0,
+                    None => continue,
+                };
+                prescribed[m * nd + c] = Some(value);
+                owner[m * nd + c] = si;
             }
         }
     }
-    Ok(prescribed)
+    let mut groups: Vec<SupportDofs> =
+        b.spec.supports.iter().map(|s| SupportDofs { group: s.group.clone(), dofs: Vec::new() }).collect();
+    for (dof, &o) in owner.iter().enumerate() {
+        if o != usize::MAX {
+            groups[o].dofs.push(dof);
+        }
+    }
+    Ok((prescribed, groups))
 }
 
 /// The load cases, numbered as the model numbers them.
@@ -209,7 +224,9 @@ impl Cases {
 
 /// Every facet of every load group on the copy of the cell it bounds, with
 /// the sign that makes its normal outward and its load case (`of_load`);
-/// a facet on no body's boundary, or between two bodies, is an error.
+/// a facet on no body's boundary, or between two bodies, is an error, and
+/// so is a pressure or traction on a point. Forces (`force = [..]`) are
+/// spread onto nodes instead ([`super::forces`]).
 fn loads(
     b: &Builder,
     topo: &Topology,
@@ -217,47 +234,28 @@ fn loads(
     bodies: &[Body],
     of_load: &[usize],
 ) -> Result<Vec<FacetLoad>, ModelError> {
-    let placed = placed(&split.block, bodies.len());
     let mut loads = Vec::new();
     for (load, &case) in b.spec.loads.iter().zip(of_load) {
-        if let LoadKind::Seismic { .. } = load.kind {
+        if matches!(load.kind, LoadKind::Force(_) | LoadKind::Seismic { .. }) {
             continue;
         }
         let key = format!("{}.group", load.key);
+        if b.mesh.group(&load.group).is_some_and(|g| g.dim == 0) {
+            return Err(b.invalid(
+                key,
+                format!(
+                    "\"{}\" is a physical point, which a pressure or traction (per unit area) cannot load: give the point a force = [..] instead, or load a small patch (a short curve in 2D, a small surface in 3D) with a traction",
+                    load.group
+                ),
+            ));
+        }
         let g = b.group(&key, &load.group, &[b.spec.analysis.dim() - 1])?;
-        for f in &g.cells {
-            let c = match topo.bounding(f).as_slice() {
-                [one] => *one,
-                [] => {
-                    return Err(b.invalid(
-                        key.clone(),
-                        format!("element {} of group \"{}\" is not on the boundary of any body", f.tag, load.group),
-                    ))
-                }
-                owners => {
-                    let names: Vec<String> = owners.iter().map(|&c| bodies[split.block[c]].label()).collect();
-                    return Err(b.invalid(
-                        key.clone(),
-                        format!(
-                            "element {} of group \"{}\" lies between bodies {}: loads go on outer boundaries{}",
-                            f.tag,
-                            load.group,
-                            names.join(" and "),
-                            if load.kind.pressure_at([0.0; 3], 1).is_some() {
-                                ". For water in a joint between bodies, make the group a [[contacts]] entry and give it water = { .. } (a uniform pressure, a level, or an uplift diagram): the water then pushes on both its faces"
-                            } else {
-                                ""
-                            }
-                        ),
-                    ));
-                }
-            };
-            let mut cell = f.clone();
-            for n in &mut cell.nodes {
-                *n = topo.node_in(&split.cells, c, *n);
-            }
-            let (body, element) = placed[c];
-            let sign = facet_sign(&split.coords, &cell, &split.cells[c]);
+        let hint = if load.kind.pressure_at([0.0; 3], 1).is_some() {
+            ". For water in a joint between bodies, make the group a [[contacts]] entry and give it water = { .. } (a uniform pressure, a level, or an uplift diagram): the water then pushes on both its faces"
+        } else {
+            ""
+        };
+        for (cell, sign, body, element) in placed_facets(b, topo, split, bodies, &key, g, hint)? {
             loads.push(FacetLoad { cell, sign, kind: load.kind.clone(), body, element, case });
         }
     }
@@ -283,9 +281,58 @@ fn seismic(b: &Builder, of_load: &[usize]) -> Result<Vec<([f64; 3], usize)>, Mod
     Ok(out)
 }
 
+/// The facets of a boundary group `g` on the copies of the cells they
+/// bound: (facet in model nodes, the sign that makes its normal outward,
+/// body, index in the body's cells). A facet on no body's boundary, or
+/// between two bodies, is an error about `key` (the latter ending with
+/// `hint`).
+pub(super) fn placed_facets(
+    b: &Builder,
+    topo: &Topology,
+    split: &Split,
+    bodies: &[Body],
+    key: &str,
+    g: &crate::mesh::Group,
+    hint: &str,
+) -> Result<Vec<(Cell, f64, usize, usize)>, ModelError> {
+    let placed = placed(&split.block, bodies.len());
+    let mut out = Vec::new();
+    for f in &g.cells {
+        let c = match topo.bounding(f).as_slice() {
+            [one] => *one,
+            [] => {
+                return Err(b.invalid(
+                    key.to_string(),
+                    format!("element {} of group \"{}\" is not on the boundary of any body", f.tag, g.name),
+                ))
+            }
+            owners => {
+                let names: Vec<String> = owners.iter().map(|&c| bodies[split.block[c]].label()).collect();
+                return Err(b.invalid(
+                    key.to_string(),
+                    format!(
+                        "element {} of group \"{}\" lies between bodies {}: loads go on outer boundaries{hint}",
+                        f.tag,
+                        g.name,
+                        names.join(" and ")
+                    ),
+                ));
+            }
+        };
+        let mut cell = f.clone();
+        for n in &mut cell.nodes {
+            *n = topo.node_in(&split.cells, c, *n);
+        }
+        let (body, element) = placed[c];
+        let sign = facet_sign(&split.coords, &cell, &split.cells[c]);
+        out.push((cell, sign, body, element));
+    }
+    Ok(out)
+}
+
 /// Where each cell went: (its body, its index in the body's cells), as
 /// [`blocks`] puts the cells of every block in order.
-fn placed(block: &[usize], n_bodies: usize) -> Vec<(usize, usize)> {
+pub(super) fn placed(block: &[usize], n_bodies: usize) -> Vec<(usize, usize)> {
     let mut placed = vec![(0, 0); block.len()];
     let mut count = vec![0; n_bodies];
     for (c, &bl) in block.iter().enumerate() {

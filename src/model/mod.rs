@@ -31,6 +31,7 @@ mod build;
 mod builder;
 mod contacts;
 mod facet_cells;
+mod forces;
 mod held;
 pub mod insitu;
 mod joint_water;
@@ -41,9 +42,12 @@ mod topology;
 pub mod water;
 
 pub use contacts::CREASE_ANGLE;
+pub use forces::NodalLoad;
 pub mod warnings;
 
-pub use spec::{BodySpec, ContactGroups, ContactSpec, InitialStress, LoadKind, LoadSpec, ModelSpec, SupportSpec};
+pub use spec::{
+    BodySpec, ContactGroups, ContactSpec, ForceLoad, InitialStress, LoadKind, LoadSpec, ModelSpec, SupportSpec,
+};
 pub use water::{GroupWater, JointWater};
 
 use crate::fem::Analysis;
@@ -91,6 +95,14 @@ pub struct FacetLoad {
     pub case: usize,
 }
 
+/// The DOFs (`node * nd + c`) one support group holds.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SupportDofs {
+    /// The support's group.
+    pub group: String,
+    pub dofs: Vec<usize>,
+}
+
 /// One contact node pair: k on body I, l on body II.
 #[derive(Clone, Debug)]
 pub struct Pair {
@@ -135,6 +147,11 @@ pub struct Model {
     pub coords: Vec<[f64; 3]>,
     pub bodies: Vec<Body>,
     pub loads: Vec<FacetLoad>,
+    /// Point loads, and forces spread over a group or a body (`force = [..]`).
+    pub nodal_loads: Vec<NodalLoad>,
+    /// The DOFs each `[[supports]]` entry holds, in the scene's order (a
+    /// DOF two entries hold counts for the later one, whose value it has).
+    pub supports: Vec<SupportDofs>,
     /// Prescribed value of each DOF (`node * nd + c`), None when free.
     pub prescribed: Vec<Option<f64>>,
     pub pairs: Vec<Pair>,

@@ -140,6 +140,10 @@ pub enum LoadKind {
     /// as fractions of |g|: `kh` along the horizontal `direction`, `kv`
     /// upwards (against gravity). A body load: the entry names no group.
     Seismic { kh: f64, kv: f64, direction: [f64; 3] },
+    /// A force and a moment at a point, spread over the group's nodes
+    /// (a physical point), facets (a curve or surface) or cells (a body)
+    /// so that they carry exactly that resultant (`model/forces.rs`).
+    Force(ForceLoad),
 }
 
 impl LoadKind {
@@ -154,7 +158,32 @@ impl LoadKind {
                 let depth = (surface - x[vertical]).clamp(0.0, h.max(0.0));
                 Some(0.875 * kh * unit_weight * (h * depth).sqrt())
             }
-            LoadKind::Traction(_) | LoadKind::Seismic { .. } => None,
+            LoadKind::Traction(_) | LoadKind::Seismic { .. } | LoadKind::Force(_) => None,
         }
     }
+
+    /// The traction on a facet at x whose outward unit normal is n: a
+    /// pressure ([`LoadKind::pressure_at`], its level y in 2D, z in 3D)
+    /// presses against n; a traction is itself; a seismic load (a body
+    /// load) and a force (spread onto nodes when the model is built) are
+    /// no facet traction: zero.
+    pub fn traction(&self, x: [f64; 3], n: [f64; 3], analysis: Analysis) -> [f64; 3] {
+        let vertical = if analysis == Analysis::Solid { 2 } else { 1 };
+        match (self, self.pressure_at(x, vertical)) {
+            (_, Some(p)) => [-p * n[0], -p * n[1], -p * n[2]],
+            (LoadKind::Traction(t), None) => *t,
+            (_, None) => [0.0; 3],
+        }
+    }
+}
+
+/// `force = [..]`, `moment = ..`, `point = [..]` of a load: the force and
+/// the moment (about z in 2D) acting at `point` (default: the centroid of
+/// what they are spread over), totals on the model (over `thickness` in
+/// plane analyses).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ForceLoad {
+    pub force: [f64; 3],
+    pub moment: [f64; 3],
+    pub point: Option<[f64; 3]>,
 }

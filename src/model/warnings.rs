@@ -140,6 +140,8 @@ mod tests {
             coords: vec![[0.0; 3]; 7],
             bodies: vec![body("a", &[[0, 1, 2]]), body("b", &[[1, 3, 2], [2, 3, 4]]), body("c", &[[5, 6, 0]])],
             loads: Vec::new(),
+            nodal_loads: Vec::new(),
+            supports: Vec::new(),
             prescribed: vec![None; 14],
             pairs: if pairs { vec![pair(3, 5), pair(4, 6)] } else { Vec::new() },
             interfaces: Vec::new(),

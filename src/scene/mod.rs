@@ -61,7 +61,7 @@ pub use crate::contact::safety::{Reduce, Strengths};
 pub use crate::contact::{InterfaceSolver, SlipLaw, StateRule, TractionRecovery};
 pub use crate::fem::Analysis;
 pub use crate::model::water::{Drain, JointWater, Levels, WaterFace, WaterPressure};
-pub use crate::model::{ContactGroups, InitialStress, LoadKind};
+pub use crate::model::{ContactGroups, ForceLoad, InitialStress, LoadKind};
 pub use crate::recover::Probe;
 
 /// `[materials.NAME]`: linear isotropic elasticity.
@@ -119,7 +119,8 @@ pub struct Support {
     pub prescribed: [Option<f64>; 3],
 }
 
-/// `[[loads]]`: a surface load on a physical group.
+/// `[[loads]]`: a surface load on a physical group, or a force and moment
+/// on a physical point, a boundary group or a body.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Load {
     pub group: String,

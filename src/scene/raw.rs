@@ -190,6 +190,17 @@ pub(super) struct RawLoad {
     pub(super) traction: Option<Vec<f64>>,
     pub(super) seismic: Option<RawSeismic>,
     pub(super) factors: Option<Vec<f64>>,
+    pub(super) force: Option<Vec<f64>>,
+    pub(super) moment: Option<RawMoment>,
+    pub(super) point: Option<Vec<f64>>,
+}
+
+/// `moment = M` (about z, 2D) or `moment = [mx, my, mz]` (3D).
+#[derive(Deserialize)]
+#[serde(untagged)]
+pub(super) enum RawMoment {
+    Scalar(f64),
+    Vector(Vec<f64>),
 }
 
 /// `seismic = { kh = .., kv = .., direction = [..] }`: a pseudo-static

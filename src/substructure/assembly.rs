@@ -1,5 +1,6 @@
 //! Assembly of one part (a set of bodies joined by shared nodes): stiffness
-//! and load vector over a given DOF numbering.
+//! and load vector (body forces, initial stresses, facet loads, nodal
+//! forces) over a given DOF numbering.
 //!
 //! `dof_of[node * nd + c]` is the equation of a DOF or [`NONE`]. A DOF with a
 //! prescribed value (`Model::prescribed`) that is not numbered moves its
@@ -11,7 +12,6 @@ use crate::fem::material::d_matrix;
 use crate::fem::quadrature;
 use crate::fem::sparse::{SymMatrix, NONE};
 use crate::mesh::CellKind;
-use crate::model::LoadKind;
 use crate::model::{Model, ModelError};
 
 /// Stiffness (lower triangle) and right-hand sides of a part, one per load
@@ -117,18 +117,21 @@ pub fn assemble(model: &Model, cells: &[(usize, usize)], dof_of: &[usize], n: us
         element_dofs(&load.cell.nodes, nd, dof_of, &mut dofs);
         let xe = cell_coords(model, &load.cell.nodes);
         let mut fe = vec![0.0; dofs.len()];
-        let kind = load.kind.clone();
-        // the level of a hydrostatic pressure is y in 2D, z in 3D
-        let vertical = if model.analysis == crate::fem::Analysis::Solid { 2 } else { 1 };
-        let traction = move |x: [f64; 3], n: [f64; 3]| -> [f64; 3] {
-            match (&kind, kind.pressure_at(x, vertical)) {
-                (_, Some(p)) => [-p * n[0], -p * n[1], -p * n[2]],
-                (LoadKind::Traction(t), None) => *t,
-                (_, None) => [0.0; 3],
-            }
-        };
+        let (kind, analysis) = (&load.kind, model.analysis);
+        let traction = |x: [f64; 3], n: [f64; 3]| kind.traction(x, n, analysis);
         element::facet_force(model.analysis, load.cell.kind, &xe, load.sign, model.thickness, &traction, &mut fe);
         scatter(&dofs, &fe, &mut f[load.case]);
+    }
+    // point loads and forces spread onto nodes, with the cell that owns each
+    for load in &model.nodal_loads {
+        if cells.binary_search(&(load.body, load.element)).is_ok() {
+            for c in 0..nd {
+                let d = dof_of[load.node * nd + c];
+                if d != NONE {
+                    f[load.case][d] += load.force[c];
+                }
+            }
+        }
     }
     Ok(Assembled { k, f })
 }

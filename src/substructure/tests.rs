@@ -124,6 +124,8 @@ fn two_body_model() -> Model {
             },
         ],
         loads,
+        nodal_loads: Vec::new(),
+        supports: Vec::new(),
         prescribed,
         pairs,
         interfaces: vec![Interface {
@@ -376,6 +378,8 @@ fn stacked_blocks(m: usize, h: usize) -> Model {
         coords,
         bodies,
         loads: Vec::new(),
+        nodal_loads: Vec::new(),
+        supports: Vec::new(),
         prescribed,
         pairs,
         interfaces: vec![Interface {

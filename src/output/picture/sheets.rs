@@ -590,6 +590,8 @@ pub(super) mod tests {
                 initial: None,
             }],
             loads: Vec::new(),
+            nodal_loads: Vec::new(),
+            supports: Vec::new(),
             prescribed: vec![None; 3 * n],
             pairs: Vec::new(),
             interfaces: vec![Interface {

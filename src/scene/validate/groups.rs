@@ -7,8 +7,10 @@
 use std::collections::BTreeMap;
 
 use super::{quoted_list, Checker, R};
-use crate::scene::raw::{RawBody, RawContact, RawLoad, RawPressure, RawSeismic, RawSupport};
-use crate::scene::{Analysis, Body, Contact, ContactGroups, InitialStress, Load, LoadKind, Material, Support};
+use crate::scene::raw::{RawBody, RawContact, RawLoad, RawMoment, RawPressure, RawSeismic, RawSupport};
+use crate::scene::{
+    Analysis, Body, Contact, ContactGroups, ForceLoad, InitialStress, Load, LoadKind, Material, Support,
+};
 
 impl Checker<'_> {
     pub(super) fn bodies(
@@ -265,25 +267,36 @@ impl Checker<'_> {
     pub(super) fn load(&self, i: usize, l: RawLoad, analysis: Analysis) -> R<Load> {
         let k = format!("loads[{i}]");
         if let Some(sm) = l.seismic {
-            if l.group.is_some() || l.pressure.is_some() || l.traction.is_some() {
+            let forced = l.force.is_some() || l.moment.is_some() || l.point.is_some();
+            if l.group.is_some() || l.pressure.is_some() || l.traction.is_some() || forced {
                 return Err(self.err(
                     k,
-                    "a seismic load acts on every body with a density and names no group, pressure or traction: give it an entry of its own, [[loads]] seismic = { kh = .., kv = .. } with its factors.",
+                    "a seismic load acts on every body with a density and names no group, pressure, traction or force: give it an entry of its own, [[loads]] seismic = { kh = .., kv = .. } with its factors.",
                 ));
             }
             let kind = self.seismic(&format!("{k}.seismic"), sm, analysis)?;
             let factors = self.factors(&k, l.factors)?;
             return Ok(Load { group: String::new(), kind, factors });
         }
-        let group = self.group(l.group, &format!("{k}.group"), "a physical curve (2D) or surface (3D)")?;
+        let group = self.group(
+            l.group,
+            &format!("{k}.group"),
+            "a physical curve (2D) or surface (3D); with force = [..], also a physical point or a body",
+        )?;
+        let forced = l.force.is_some() || l.moment.is_some();
+        let has_point = l.point.is_some();
         let kind = match (l.pressure, l.traction) {
             (Some(_), Some(_)) => {
                 return Err(self.err(k, "both pressure and traction are given; a load is one or the other: split it into two [[loads]] entries."))
             }
+            (Some(_), None) | (None, Some(_)) if forced => {
+                return Err(self.err(k, "a load is a pressure, a traction or a force (with its moment): split it into several [[loads]] entries."))
+            }
+            (None, None) if forced => LoadKind::Force(self.force_load(&k, l.force, l.moment, l.point, analysis)?),
             (None, None) => {
                 return Err(self.err(
                     k,
-                    format!("the load on {group:?} has no value; add pressure = P (positive presses into the body) or traction = [tx, ty(, tz)]."),
+                    format!("the load on {group:?} has no value; add pressure = P (positive presses into the body), traction = [tx, ty(, tz)], or force = [fx, fy(, fz)] (a point, a patch or a body)."),
                 ))
             }
             (Some(RawPressure::Value(p)), None) => LoadKind::Pressure(self.finite(p, &format!("{k}.pressure"))?),
@@ -309,6 +322,9 @@ impl Checker<'_> {
             }
             (None, Some(t)) => LoadKind::Traction(self.vec3(&t, &format!("{k}.traction"), analysis)?),
         };
+        if has_point && !forced {
+            return Err(self.err(format!("{k}.point"), "point is where a force or moment acts: it goes with force = [..] or moment = .., not with a pressure or traction."));
+        }
         let factors = self.factors(&k, l.factors)?;
         Ok(Load { group, kind, factors })
     }
@@ -340,5 +356,51 @@ impl Checker<'_> {
             }
         };
         Ok(LoadKind::Seismic { kh, kv, direction })
+    }
+
+    /// `force`, `moment` and `point` of a load: 2 or 3 components as the
+    /// analysis has; the moment a number about z in 2D, three in 3D. Not in
+    /// axisymmetry, where a point is a ring and a moment has no meaning.
+    fn force_load(
+        &self,
+        k: &str,
+        force: Option<Vec<f64>>,
+        moment: Option<RawMoment>,
+        point: Option<Vec<f64>>,
+        analysis: Analysis,
+    ) -> R<ForceLoad> {
+        if analysis == Analysis::Axisymmetric {
+            return Err(self.err(
+                format!("{k}.force"),
+                "an axisymmetric model has no points to load (a point is a ring round the axis): give a traction = [..] on a short curve instead.",
+            ));
+        }
+        let force = match force {
+            Some(f) => self.vec3(&f, &format!("{k}.force"), analysis)?,
+            None => [0.0; 3],
+        };
+        let moment = match (moment, analysis.dim()) {
+            (None, _) => [0.0; 3],
+            (Some(RawMoment::Scalar(m)), 2) => [0.0, 0.0, self.finite(m, &format!("{k}.moment"))?],
+            (Some(RawMoment::Vector(v)), 3) if v.len() == 3 => self.vec3(&v, &format!("{k}.moment"), analysis)?,
+            (Some(RawMoment::Scalar(m)), _) => {
+                return Err(self.bad(
+                    format!("{k}.moment"),
+                    m,
+                    "a solid analysis needs the moment's 3 components [mx, my, mz].",
+                ))
+            }
+            (Some(RawMoment::Vector(v)), _) => {
+                let shown = format!("{v:?}");
+                let what = if analysis.dim() == 2 {
+                    format!("a {analysis} analysis turns about z only: give the moment as one number (counterclockwise positive).")
+                } else {
+                    "give the moment's 3 components [mx, my, mz].".to_string()
+                };
+                return Err(self.bad(format!("{k}.moment"), shown, what));
+            }
+        };
+        let point = point.map(|p| self.vec3(&p, &format!("{k}.point"), analysis)).transpose()?;
+        Ok(ForceLoad { force, moment, point })
     }
 }
