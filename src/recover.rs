@@ -1,6 +1,11 @@
 //! Recovery after the solve: stresses at quadrature points, extrapolated to
 //! the nodes and averaged per body (never across bodies), error norms
-//! against a closed form, and values sampled along probe lines.
+//! against a closed form, and values sampled along probe lines; the
+//! nodal forces of a step and the supports' reactions ([`forces`],
+//! [`reactions`]).
+
+pub mod forces;
+pub mod reactions;
 
 use crate::analytic::Exact;
 use crate::fem::element::{self, dofs_per_node};

@@ -18,6 +18,7 @@ use crate::analytic::{Check, Solution};
 use crate::contact::law::{ContactState, PairResult};
 use crate::contact::Summary;
 use crate::model::Model;
+use crate::recover::reactions::Reactions;
 use crate::recover::{BodyStress, Errors, Sample};
 use crate::scene::Scene;
 
@@ -134,7 +135,7 @@ pub struct Residuals {
 }
 
 /// What the last load step is measured by: errors against the scene's
-/// closed form, the probes, and what its `[analytic]` check adds to
+/// closed form, the probes, the supports' reactions, and what its `[analytic]` check adds to
 /// report.md and summary.json (computed with the result files: empty when
 /// the run writes none).
 #[derive(Default)]
@@ -144,6 +145,8 @@ pub struct Checks {
     pub contact_error_max: Option<f64>,
     pub probes: Vec<(String, Vec<Sample>)>,
     pub analytic: Check,
+    /// The supports' reactions and every body's balance (None without supports).
+    pub reactions: Option<Reactions>,
 }
 
 /// How often the expensive things were done: what a scene does not need is skipped.

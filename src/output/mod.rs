@@ -9,8 +9,10 @@ pub mod blocks;
 pub mod cut;
 pub mod faces;
 pub mod files;
+pub mod number;
 pub mod picture;
 pub mod plot;
+pub mod reactions;
 pub mod report;
 pub mod resultants;
 mod safety;
@@ -495,6 +497,9 @@ fn summary(run: &Run) -> serde_json::Value {
     }
     if let Some(w) = water::summary(run) {
         v["water"] = w;
+    }
+    if let Some(r) = reactions::summary(run) {
+        v["reactions"] = r;
     }
     v
 }
