@@ -1,11 +1,13 @@
 //! Recovery after the solve: stresses at quadrature points, extrapolated to
 //! the nodes and averaged per body (never across bodies), error norms
 //! against a closed form, and values sampled along probe lines; the
-//! nodal forces of a step and the supports' reactions ([`forces`],
-//! [`reactions`]).
+//! nodal forces of a step, the supports' reactions and the section
+//! forces of cuts through the bodies ([`forces`], [`reactions`],
+//! [`sections`]).
 
 pub mod forces;
 pub mod reactions;
+pub mod sections;
 
 use crate::analytic::Exact;
 use crate::fem::element::{self, dofs_per_node};

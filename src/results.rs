@@ -19,6 +19,7 @@ use crate::contact::law::{ContactState, PairResult};
 use crate::contact::Summary;
 use crate::model::Model;
 use crate::recover::reactions::Reactions;
+use crate::recover::sections::SectionForces;
 use crate::recover::{BodyStress, Errors, Sample};
 use crate::scene::Scene;
 
@@ -135,7 +136,7 @@ pub struct Residuals {
 }
 
 /// What the last load step is measured by: errors against the scene's
-/// closed form, the probes, the supports' reactions, and what its `[analytic]` check adds to
+/// closed form, the probes, the supports' reactions, the section forces, and what its `[analytic]` check adds to
 /// report.md and summary.json (computed with the result files: empty when
 /// the run writes none).
 #[derive(Default)]
@@ -147,6 +148,8 @@ pub struct Checks {
     pub analytic: Check,
     /// The supports' reactions and every body's balance (None without supports).
     pub reactions: Option<Reactions>,
+    /// The forces of every `[[sections]]` entry.
+    pub sections: Vec<SectionForces>,
 }
 
 /// How often the expensive things were done: what a scene does not need is skipped.

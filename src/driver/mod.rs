@@ -279,7 +279,8 @@ fn solve(
 }
 
 /// Errors against the scene's closed form (body by body, each in its own
-/// material), the probes and the reactions, on the last load step.
+/// material), the probes, the reactions and the section forces, on the
+/// last load step.
 fn checks(run: &Run) -> Checks {
     let (model, last) = (&run.model, run.last());
     let exact = run.scene.analytic.as_ref().map(|a| analytic::exact(a, model));
@@ -291,7 +292,8 @@ fn checks(run: &Run) -> Checks {
     let probes = run.scene.probes.iter().map(|p| (p.name.clone(), recover::probe(model, &last.u, p))).collect();
     let groups: Vec<String> = run.scene.bodies.iter().map(|b| b.group.clone()).collect();
     let reactions = (!model.supports.is_empty()).then(|| recover::reactions::reactions(model, last, &groups));
-    Checks { errors, contact_error_max, probes, analytic: Default::default(), reactions }
+    let sections = recover::sections::section_forces(model, &last.u, &run.scene.sections);
+    Checks { errors, contact_error_max, probes, analytic: Default::default(), reactions, sections }
 }
 
 /// Writes every result file of `run` to `out` at once (with the scene's

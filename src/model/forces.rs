@@ -69,9 +69,7 @@ pub(super) fn nodal_loads(
         let spread = spread(&spots, force, sd == 2).map_err(|e| {
             let what = match e {
                 SpreadError::Empty => format!("the {} \"{}\" has no extent to spread the force over", dim_name(g.dim), g.name),
-                SpreadError::NoLever if g.dim == 0 && spots.len() == 1 => format!(
-                    "a single point carries no moment: give the moment to a small patch (a short curve in 2D, a small surface in 3D) or to the body (group = its [[bodies]] group), with point = [..] where it acts"
-                ),
+                SpreadError::NoLever if g.dim == 0 && spots.len() == 1 => "a single point carries no moment: give the moment to a small patch (a short curve in 2D, a small surface in 3D) or to the body (group = its [[bodies]] group), with point = [..] where it acts".to_string(),
                 SpreadError::NoLever => format!(
                     "the nodes of \"{}\" lie on one line, which carries no moment about itself: give that moment to a patch or to the body",
                     g.name

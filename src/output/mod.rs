@@ -1,7 +1,8 @@
 //! Result files of a run, staged in memory and written together:
 //! `<name>.vtu` (bodies), `<name>_contact.vtu` (interfaces), `contact.csv`,
 //! `faces.csv` (the resultants per block face pair, [`faces`]),
-//! `probes.csv`, the pictures, the safety search's files (`safety.rs`),
+//! `probes.csv`, `sections.csv` (with a picture per beam or ring,
+//! [`sections`]), the pictures, the safety search's files (`safety.rs`),
 //! then (once the output stage is timed) `summary.json` and `report.md`,
 //! which embeds the pictures.
 
@@ -16,6 +17,7 @@ pub mod reactions;
 pub mod report;
 pub mod resultants;
 mod safety;
+pub mod sections;
 mod unsettled;
 pub mod vtu;
 mod water;
@@ -85,6 +87,12 @@ pub fn stage(run: &Run, out: &std::path::Path) -> Result<(Staged, Vec<String>)> 
     }
     if !run.checks.probes.is_empty() {
         staged.add("probes.csv", probes_csv(&run.checks.probes).into_bytes());
+    }
+    if let Some(csv) = sections::csv(run) {
+        staged.add("sections.csv", csv.into_bytes());
+    }
+    for (file, bytes) in run.checks.sections.iter().filter_map(|s| sections::picture(run, s)) {
+        staged.add(&file, bytes);
     }
     // pictures a person would rather look at than read (embedded in report.md)
     let snap = picture::Snapshot {
@@ -500,6 +508,9 @@ fn summary(run: &Run) -> serde_json::Value {
     }
     if let Some(r) = reactions::summary(run) {
         v["reactions"] = r;
+    }
+    if let Some(s) = sections::summary(run) {
+        v["sections"] = s;
     }
     v
 }

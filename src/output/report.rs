@@ -134,6 +134,7 @@ pub fn report(run: &Run) -> String {
     s += &super::water::report(run);
     s += &super::faces::report(run);
     s += &super::blocks::run_report(run);
+    s += &super::sections::report(run);
     s += &super::reactions::report(run);
     s += &run.checks.analytic.report;
     s += &super::safety::report(run);

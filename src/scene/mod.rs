@@ -62,6 +62,7 @@ pub use crate::contact::{InterfaceSolver, SlipLaw, StateRule, TractionRecovery};
 pub use crate::fem::Analysis;
 pub use crate::model::water::{Drain, JointWater, Levels, WaterFace, WaterPressure};
 pub use crate::model::{ContactGroups, ForceLoad, InitialStress, LoadKind};
+pub use crate::recover::sections::{Cut, SectionSpec};
 pub use crate::recover::Probe;
 
 /// `[materials.NAME]`: linear isotropic elasticity.
@@ -353,6 +354,8 @@ pub struct Scene {
     pub joints: Vec<JointSpec>,
     /// The most blocks the joints may make (`max_blocks`, default 1000).
     pub max_blocks: usize,
+    /// Where section forces are reported (`[[sections]]`).
+    pub sections: Vec<SectionSpec>,
 }
 
 impl Scene {

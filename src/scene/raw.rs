@@ -40,6 +40,8 @@ pub(super) struct RawScene {
     #[serde(default)]
     pub(super) joints: Vec<RawJoint>,
     pub(super) max_blocks: Option<i64>,
+    #[serde(default)]
+    pub(super) sections: Vec<RawSection>,
 }
 
 #[derive(Deserialize)]
@@ -275,4 +277,22 @@ pub(super) struct RawSafety {
     pub(super) max_factor: Option<f64>,
     pub(super) strength: Option<String>,
     pub(super) load: Option<Vec<String>>,
+}
+
+/// `[[sections]]`: a line or plane across members, or a beam or ring body
+/// cut at stations.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawSection {
+    pub(super) name: Option<String>,
+    pub(super) from: Option<Vec<f64>>,
+    pub(super) to: Option<Vec<f64>>,
+    pub(super) point: Option<Vec<f64>>,
+    pub(super) normal: Option<Vec<f64>>,
+    pub(super) bodies: Option<Vec<String>>,
+    pub(super) beam: Option<String>,
+    pub(super) ring: Option<String>,
+    pub(super) stations: Option<i64>,
+    pub(super) axis: Option<Vec<f64>>,
+    pub(super) centre: Option<Vec<f64>>,
 }

@@ -3,7 +3,7 @@
 //! naming the key path, the value as written and what to do. The checks of
 //! the entries that name the mesh's groups (bodies, contacts, supports,
 //! loads) are in `validate/groups.rs`, those of `[analytic]` in
-//! `validate/analytic.rs`.
+//! `validate/analytic.rs`, of `[[sections]]` in `validate/sections.rs`.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
@@ -18,6 +18,7 @@ mod analytic;
 mod groups;
 mod joints;
 mod safety;
+mod sections;
 mod water;
 
 /// The Young's moduli a scene may give: beyond them the stiffness entries
@@ -288,6 +289,7 @@ impl Checker<'_> {
         let analytic = raw.analytic.map(|a| self.analytic(a, analysis, &bodies, &materials)).transpose()?;
         let output = self.output(raw.output, analysis, &bodies)?;
         let safety = raw.safety.map(|s| self.safety(s, &contacts, &loads, gravity)).transpose()?;
+        let sections = self.sections(raw.sections, analysis, &bodies)?;
 
         Ok(Scene {
             path: self.path.to_path_buf(),
@@ -311,6 +313,7 @@ impl Checker<'_> {
             safety,
             joints,
             max_blocks,
+            sections,
         })
     }
 

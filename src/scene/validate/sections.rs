@@ -1,0 +1,161 @@
+//! Checks of `[[sections]]`: a unique name and one way to cut — a line
+//! `from`, `to` (2D) or a plane `point`, `normal` (3D) across members
+//! (with the `bodies` it cuts), or a body named as a `beam` or a `ring`
+//! cut at `stations` (with the beam's `axis`, the ring's `centre` and, in
+//! 3D, its `axis`).
+
+use std::collections::BTreeMap;
+
+use super::{fmt_vec, quoted_list, Checker, R};
+use crate::recover::sections::{Cut, SectionSpec};
+use crate::scene::raw::RawSection;
+use crate::scene::{Analysis, Body};
+
+/// Stations of a beam or ring when `stations` is not given.
+const DEFAULT_STATIONS: usize = 25;
+
+impl Checker<'_> {
+    pub(super) fn sections(&self, raw: Vec<RawSection>, analysis: Analysis, bodies: &[Body]) -> R<Vec<SectionSpec>> {
+        let mut seen: BTreeMap<String, usize> = BTreeMap::new();
+        let mut out = Vec::new();
+        for (i, r) in raw.into_iter().enumerate() {
+            let k = format!("sections[{i}]");
+            let name = self.required(r.name.clone(), &format!("{k}.name"), "a name for the section")?;
+            if name.trim().is_empty() || name.contains([',', '"', '\n', '/']) {
+                return Err(self.bad(
+                    format!("{k}.name"),
+                    format!("{name:?}"),
+                    "give the section a non-empty name without commas, quotes or slashes (it names rows of sections.csv and a picture).",
+                ));
+            }
+            if let Some(j) = seen.insert(name.clone(), i) {
+                return Err(self.bad(
+                    format!("{k}.name"),
+                    format!("{name:?}"),
+                    format!("the name is already used by sections[{j}]; section names must be unique."),
+                ));
+            }
+            if analysis == Analysis::Axisymmetric {
+                return Err(self.err(k, "section forces are for plane and solid models: an axisymmetric cut is a cone or disc round the axis, whose forces this tool does not report; remove [[sections]]."));
+            }
+            let cut = self.cut(&k, r, analysis, bodies)?;
+            out.push(SectionSpec { name, cut });
+        }
+        Ok(out)
+    }
+
+    fn cut(&self, k: &str, r: RawSection, analysis: Analysis, bodies: &[Body]) -> R<Cut> {
+        let solid = analysis == Analysis::Solid;
+        let ways = [
+            r.from.is_some() || r.to.is_some(),
+            r.point.is_some() || r.normal.is_some(),
+            r.beam.is_some(),
+            r.ring.is_some(),
+        ];
+        if ways.iter().filter(|&&w| w).count() != 1 {
+            let line = if solid {
+                "point = [..] and normal = [..] (a plane)"
+            } else {
+                "from = [..] and to = [..] (a line across the member)"
+            };
+            return Err(self.err(k, format!("give one way to cut: {line}, beam = \"<body>\" (cut across its axis at `stations`), or ring = \"<body>\" (cut round its centre at `stations`).")));
+        }
+        let body_of = |key: &str, name: String| -> R<String> {
+            if bodies.iter().any(|b| b.group == name) {
+                return Ok(name);
+            }
+            Err(self.bad(
+                format!("{k}.{key}"),
+                format!("{name:?}"),
+                format!(
+                    "no [[bodies]] entry has this group; the bodies are {}.",
+                    quoted_list(bodies.iter().map(|b| &b.group))
+                ),
+            ))
+        };
+        let listed = |names: Option<Vec<String>>| -> R<Vec<String>> {
+            names.unwrap_or_default().into_iter().map(|n| body_of("bodies", n)).collect()
+        };
+        let only = |present: bool, key: &str, with: &str| -> R<()> {
+            if present {
+                return Err(self.err(format!("{k}.{key}"), format!("{key} goes with {with}; remove it.")));
+            }
+            Ok(())
+        };
+        let stations = || -> R<usize> {
+            self.at_least(
+                r.stations,
+                DEFAULT_STATIONS,
+                2,
+                &format!("{k}.stations"),
+                "the number of cuts along the body",
+            )
+        };
+        if r.from.is_some() || r.to.is_some() {
+            if solid {
+                return Err(self.err(k, "a solid model is cut by a plane: give point = [x, y, z] and normal = [nx, ny, nz] instead of from and to."));
+            }
+            only(r.stations.is_some(), "stations", "beam or ring")?;
+            only(
+                r.axis.is_some() || r.centre.is_some(),
+                if r.axis.is_some() { "axis" } else { "centre" },
+                "beam or ring",
+            )?;
+            let from = self.required(r.from, &format!("{k}.from"), "one end of the line [x, y]")?;
+            let from = self.vec3(&from, &format!("{k}.from"), analysis)?;
+            let to = self.required(r.to, &format!("{k}.to"), "the other end of the line [x, y]")?;
+            let to = self.vec3(&to, &format!("{k}.to"), analysis)?;
+            if from == to {
+                return Err(self.bad(
+                    format!("{k}.to"),
+                    fmt_vec(&to[..2]),
+                    "the line has no length: give its two ends on either side of the member.",
+                ));
+            }
+            return Ok(Cut::Line { from, to, bodies: listed(r.bodies)? });
+        }
+        if r.point.is_some() || r.normal.is_some() {
+            if !solid {
+                return Err(self.err(k, "a plane model is cut by a line: give from = [x, y] and to = [x, y] across the member instead of point and normal."));
+            }
+            only(r.stations.is_some(), "stations", "beam or ring")?;
+            only(
+                r.axis.is_some() || r.centre.is_some(),
+                if r.axis.is_some() { "axis" } else { "centre" },
+                "beam or ring",
+            )?;
+            let point = self.required(r.point, &format!("{k}.point"), "a point of the plane [x, y, z]")?;
+            let point = self.vec3(&point, &format!("{k}.point"), analysis)?;
+            let normal = self.required(r.normal, &format!("{k}.normal"), "the plane's normal [nx, ny, nz]")?;
+            let normal = self.direction(&normal, &format!("{k}.normal"), analysis)?;
+            return Ok(Cut::Plane { point, normal, bodies: listed(r.bodies)? });
+        }
+        only(r.bodies.is_some(), "bodies", "a line or plane (a beam or ring names its one body)")?;
+        let axis = r.axis.as_ref().map(|a| self.direction(a, &format!("{k}.axis"), analysis)).transpose()?;
+        if let Some(body) = r.beam {
+            only(r.centre.is_some(), "centre", "ring")?;
+            return Ok(Cut::Beam { body: body_of("beam", body)?, stations: stations()?, axis });
+        }
+        let body = body_of("ring", r.ring.unwrap_or_default())?;
+        let centre = match &r.centre {
+            Some(c) => self.vec3(c, &format!("{k}.centre"), analysis)?,
+            None => [0.0; 3],
+        };
+        let axis = match (axis, solid) {
+            (Some(a), true) => a,
+            (None, true) => return Err(self.err(format!("{k}.axis"), "missing; a ring in a solid model turns about an axis: give axis = [ax, ay, az] (the tunnel's direction).")),
+            (Some(_), false) => return Err(self.err(format!("{k}.axis"), "a ring in a plane model turns about z; remove axis.")),
+            (None, false) => [0.0, 0.0, 1.0],
+        };
+        Ok(Cut::Ring { body, stations: stations()?, centre, axis })
+    }
+
+    /// A direction: a vector of the analysis's components, not zero.
+    fn direction(&self, v: &[f64], key: &str, analysis: Analysis) -> R<[f64; 3]> {
+        let d = self.vec3(v, key, analysis)?;
+        if d.iter().all(|&c| c == 0.0) {
+            return Err(self.bad(key, fmt_vec(v), "a direction cannot be zero."));
+        }
+        Ok(d)
+    }
+}
