@@ -475,9 +475,19 @@ fn sections_that_cannot_be_cut_are_refused_with_what_to_do() {
         let msg = solve_fails(&case, &format!("{name}.toml"), &format!("results/{name}"));
         says(&msg, needles);
     };
-    refused("two_ways", 2, "name = \"a\"\nbeam = \"beam\"\nfrom = [1.0, 0.0]\nto = [1.0, 1.0]\n", &["sections[0]", "one way to cut"]);
+    refused(
+        "two_ways",
+        2,
+        "name = \"a\"\nbeam = \"beam\"\nfrom = [1.0, 0.0]\nto = [1.0, 1.0]\n",
+        &["sections[0]", "one way to cut"],
+    );
     refused("unknown_body", 2, "name = \"a\"\nbeam = \"girder\"\n", &["sections[0].beam", "\"girder\"", "\"beam\""]);
-    refused("line_in_3d", 3, "name = \"a\"\nfrom = [1.0, 0.0, 0.0]\nto = [1.0, 1.0, 0.0]\n", &["sections[0]", "point = [x, y, z]"]);
+    refused(
+        "line_in_3d",
+        3,
+        "name = \"a\"\nfrom = [1.0, 0.0, 0.0]\nto = [1.0, 1.0, 0.0]\n",
+        &["sections[0]", "point = [x, y, z]"],
+    );
     refused("ring_axis_3d", 3, "name = \"a\"\nring = \"beam\"\n", &["sections[0].axis", "axis = [ax, ay, az]"]);
     refused("one_station", 2, "name = \"a\"\nbeam = \"beam\"\nstations = 1\n", &["sections[0].stations", "at least 2"]);
     refused("no_name", 2, "beam = \"beam\"\n", &["sections[0].name"]);

@@ -298,7 +298,8 @@ mod tests {
         let quarter: Vec<f64> = (0..=18).map(|k| (k as f64 * 5.0).to_radians()).collect();
         assert_eq!(deg(arc(quarter, 4)), vec![0.0, 30.0, 60.0, 90.0]);
         // an arc across the wrap of atan2: 150 .. 210 degrees
-        let back: Vec<f64> = (0..=12).map(|k| (150.0 + k as f64 * 5.0 - 360.0 * f64::from(k > 6)).to_radians()).collect();
+        let back: Vec<f64> =
+            (0..=12).map(|k| (150.0 + k as f64 * 5.0 - 360.0 * f64::from(k > 6)).to_radians()).collect();
         assert_eq!(deg(arc(back, 3)), vec![150.0, 180.0, 210.0]);
     }
 
