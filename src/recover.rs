@@ -2,9 +2,10 @@
 //! the nodes and averaged per body (never across bodies), error norms
 //! against a closed form, and values sampled along probe lines; the
 //! nodal forces of a step, the supports' reactions and the section
-//! forces of cuts through the bodies ([`forces`], [`reactions`],
-//! [`sections`]).
+//! forces of cuts through the bodies, and the bearing pressure of a
+//! contact face ([`forces`], [`reactions`], [`sections`], [`bearing`]).
 
+pub mod bearing;
 pub mod forces;
 pub mod reactions;
 pub mod sections;

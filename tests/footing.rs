@@ -161,6 +161,7 @@ fn solve(case: &Case, name: &str, e: f64, depth: f64) -> Footing {
         }
     }
     let length = B / 2.0 - x_min;
+    assert_bearing(&run, name, e, length);
     let (slip, open) = (count(c, ContactState::Slip), count(c, ContactState::Open));
     eprintln!(
         "{name}: depth {depth}, e = {e:.4}: L = {length:.4} m; {} pairs ({slip} slip, {open} open), {} iterations, {} cycles broken; balance {en:.1e} / {ey:.1e} / moment {em:.1e}; {} DOFs ({} interface), {:.2} s",
@@ -172,6 +173,32 @@ fn solve(case: &Case, name: &str, e: f64, depth: f64) -> Footing {
         run.stats.timings.total
     );
     Footing { e, depth, run, length, pairs }
+}
+
+/// The bearing pressure summary of the base (issue 34) says what the
+/// engineer found by hand: the load V, acting at x = e (the beam balances
+/// V and the contact alone, so to round-off), e about the base's centre,
+/// in the middle third when e <= B/6, the length in contact within a pair
+/// spacing of the closed pairs' extent (each closed pair counts the length
+/// it controls), the largest pressure at the loaded edge, and a design
+/// pressure over B/10 between the mean and the singular edge value.
+fn assert_bearing(run: &Run, name: &str, e: f64, length: f64) {
+    let all = subcontact::output::bearing::of_run(run).expect("a bearing summary");
+    assert_eq!(all.len(), 1, "{name}: one group, one face pair");
+    let b = &all[0].bearing;
+    let ends = b.from_ends();
+    eprintln!(
+        "  bearing: N {:.6} at x {:.6} (e {:+.6}), in contact {:.4} (closed extent {length:.4}), p max {:.3}, mean {:.3}, over {} {:.3}",
+        b.force, b.at[0], b.eccentricity[0], b.contact_area, b.max_pressure, b.mean_pressure, b.window, b.design_pressure
+    );
+    assert!((b.force - V).abs() < 1e-8 * V, "{name}: N = {}", b.force);
+    assert!((b.at[0] - e).abs() < 1e-8 * B && b.at[1].abs() < 1e-12, "{name}: acts at {:?}", b.at);
+    // t runs from the loaded edge x = B/2 towards -x
+    assert!((b.eccentricity[0] + e).abs() < 1e-8 * B && (ends[0] - (B / 2.0 - e)).abs() < 1e-8 * B, "{name}: {ends:?}");
+    assert_eq!(b.in_kern(true), e <= B / 6.0, "{name}: middle third");
+    assert!((b.contact_area - length).abs() <= LC / 2.0 + 1e-9, "{name}: contact {}", b.contact_area);
+    assert!((b.max_at[0] - B / 2.0).abs() < 1e-9 && (b.window - 0.1 * B).abs() < 1e-12, "{name}: {b:?}");
+    assert!(b.mean_pressure < b.design_pressure && b.design_pressure < b.max_pressure, "{name}: {b:?}");
 }
 
 impl Footing {
@@ -406,6 +433,20 @@ fn square_footing_on_layers_of_prisms_lifts_its_far_corner_and_carries_the_load(
         resultant[0].abs() < 1e-8 * v && resultant[1].abs() < 1e-8 * v && (resultant[2] - v).abs() < 1e-8 * v,
         "the base carries the load: {resultant:?}"
     );
+    // the bearing summary (issue 34): V at the plate's centre (e, e), out
+    // of the kern, the far corner open, in summary.json and report.md
+    let bearing = &common::json(&res.join("summary.json"))["bearing"][0];
+    let at = common::json_vec3(&bearing["at"]);
+    let f = bearing["force"].as_f64().expect("force");
+    eprintln!("    bearing: N {f:.6} at {at:?}, {} of {} m2 in contact", bearing["contact_area"], bearing["area"]);
+    assert!((f - v).abs() < 1e-8 * v, "N = {f}");
+    assert!((at[0] - 0.6).abs() < 1e-8 && (at[1] - 0.6).abs() < 1e-8 && at[2].abs() < 1e-12, "acts at {at:?}");
+    assert_eq!(bearing["in_kern"], false);
+    let area = |k: &str| bearing[k].as_f64().expect("area");
+    assert!((area("area") - 4.0).abs() < 1e-9 && area("contact_area") < area("area"), "{bearing}");
+    let report = read(&res.join("report.md"));
+    assert!(report.contains("## Bearing pressure") && report.contains("### `base`"), "report.md: the bearing table");
+    assert!(read(&res.join("bearing.csv")).lines().count() == 2, "bearing.csv: a header and the group");
     // meshio (as ParaView) reads the results: wedge18 cells, tri6 facets and the pairs
     let types = |file: &str| -> String {
         let script =

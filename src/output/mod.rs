@@ -1,12 +1,14 @@
 //! Result files of a run, staged in memory and written together:
 //! `<name>.vtu` (bodies), `<name>_contact.vtu` (interfaces), `contact.csv`,
 //! `faces.csv` (the resultants per block face pair, [`faces`]),
+//! `bearing.csv` (the bearing pressure of every contact face, [`bearing`]),
 //! `probes.csv`, `sections.csv` (with a picture per beam or ring,
 //! [`sections`]), the pictures, the safety search's files (`safety.rs`),
 //! then (once the output stage is timed) `summary.json` and `report.md`,
 //! which embeds the pictures.
 
 pub mod blocks;
+pub mod bearing;
 pub mod cut;
 pub mod faces;
 pub mod files;
@@ -63,6 +65,9 @@ pub fn stage(run: &Run, out: &std::path::Path) -> Result<(Staged, Vec<String>)> 
     if let Some(r) = resultants::of_run(run) {
         staged.add("faces.csv", faces::faces_csv(model, &r).into_bytes());
     }
+    if let Some(b) = bearing::of_run(run) {
+        staged.add("bearing.csv", bearing::csv(run, &b).into_bytes());
+    }
     if run.steps.len() > 1 {
         // one file per load step and ParaView collections over them, the
         // time of a step its load factor
@@ -102,6 +107,7 @@ pub fn stage(run: &Run, out: &std::path::Path) -> Result<(Staged, Vec<String>)> 
         stresses: &last.stresses,
         contact: last.contact.as_ref(),
         region: run.scene.output.frame.as_ref(),
+        one_scale: run.scene.output.colour_scale == crate::scene::ColourScale::One,
     };
     let mut drawn = picture::pictures(&snap);
     safety::stage(run, &mut staged, &mut drawn)?;
@@ -475,6 +481,9 @@ fn summary(run: &Run) -> serde_json::Value {
         }
         if let Some(b) = blocks::of_run(run) {
             v["blocks"] = blocks::summary(&run.model, &b);
+        }
+        if let Some(b) = bearing::of_run(run) {
+            v["bearing"] = bearing::summary(run, &b);
         }
     }
     v["steps"] = json!(run

@@ -134,6 +134,9 @@ pub fn report(run: &Run) -> String {
     s += &super::water::report(run);
     s += &super::faces::report(run);
     s += &super::blocks::run_report(run);
+    if let Some(b) = super::bearing::of_run(run) {
+        s += &super::bearing::report(run, &b);
+    }
     s += &super::sections::report(run);
     s += &super::reactions::report(run);
     s += &run.checks.analytic.report;

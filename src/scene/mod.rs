@@ -303,6 +303,22 @@ pub struct Output {
     /// `frame = { bodies }`); None: the contacts, when they are a small part
     /// of the model.
     pub frame: Option<Region>,
+    /// The width over which the design bearing pressure is averaged
+    /// (`pressure_window`, > 0); None: a tenth of each face's width.
+    pub pressure_window: Option<f64>,
+    /// The deformed picture's colour scales (`colour_scale`).
+    pub colour_scale: ColourScale,
+}
+
+/// `[output] colour_scale`: a scale per body whose stresses lie far from the
+/// others' (`per_body`, the default: the blocks of one body always share
+/// one), or one for the whole model (`one`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ColourScale {
+    #[default]
+    PerBody,
+    One,
 }
 
 impl Output {
@@ -314,7 +330,12 @@ impl Output {
 
 impl Default for Output {
     fn default() -> Self {
-        Output { fields: OUTPUT_FIELDS.iter().map(|s| s.to_string()).collect(), frame: None }
+        Output {
+            fields: OUTPUT_FIELDS.iter().map(|s| s.to_string()).collect(),
+            frame: None,
+            pressure_window: None,
+            colour_scale: ColourScale::PerBody,
+        }
     }
 }
 

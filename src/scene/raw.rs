@@ -7,7 +7,7 @@
 use serde::Deserialize;
 use std::collections::BTreeMap;
 
-use super::{Analysis, InterfaceSolver, SlipLaw, StateRule, TractionRecovery};
+use super::{Analysis, ColourScale, InterfaceSolver, SlipLaw, StateRule, TractionRecovery};
 use crate::mesh::joints::Shape;
 
 #[derive(Deserialize)]
@@ -256,6 +256,8 @@ pub(super) struct RawAnalytic {
 pub(super) struct RawOutput {
     pub(super) fields: Option<Vec<String>>,
     pub(super) frame: Option<RawFrame>,
+    pub(super) pressure_window: Option<f64>,
+    pub(super) colour_scale: Option<ColourScale>,
 }
 
 /// `frame = { from = [..], to = [..] }` or `frame = { bodies = [..] }`.

@@ -492,8 +492,19 @@ impl Checker<'_> {
             return Ok(Output::default());
         };
         let frame = raw.frame.map(|f| self.frame(f, analysis, bodies)).transpose()?;
+        let pressure_window = match raw.pressure_window {
+            Some(w) if !(w.is_finite() && w > 0.0) => {
+                return Err(self.bad(
+                    "output.pressure_window",
+                    w,
+                    "the width over which the design bearing pressure is averaged must be a finite length > 0.",
+                ))
+            }
+            w => w,
+        };
+        let colour_scale = raw.colour_scale.unwrap_or_default();
         let Some(fields) = raw.fields else {
-            return Ok(Output { frame, ..Output::default() });
+            return Ok(Output { frame, pressure_window, colour_scale, ..Output::default() });
         };
         let mut seen = BTreeSet::new();
         for (i, f) in fields.iter().enumerate() {
@@ -509,7 +520,7 @@ impl Checker<'_> {
                 return Err(self.bad(key, format!("{f:?}"), "listed twice; list each field once."));
             }
         }
-        Ok(Output { fields, frame })
+        Ok(Output { fields, frame, pressure_window, colour_scale })
     }
 
     /// `[output] frame`: a box (`from`, `to`: the analysis's coordinates,

@@ -59,7 +59,8 @@ pub(super) fn deformed_canvas(snap: &Snapshot, field: Field, scale: Option<f64>)
             }
         }
     }
-    let scales = scales(field, &shown);
+    let group: Vec<usize> = model.bodies.iter().map(|b| b.group).collect();
+    let scales = scales(field, &shown, &group, snap.one_scale);
     let mut cv = Canvas::new(W, H);
     draw_bodies(&mut cv, snap, &frame, &values, &scales);
     draw_contacts(&mut cv, snap, &frame);
@@ -121,33 +122,41 @@ const APART: f64 = 5.0;
 const MOST_SCALES: usize = 3;
 
 /// The colour scales of a picture: one for every drawn body, except that
-/// for stresses, bodies whose typical magnitudes (the 99.5 % quantile of
-/// |value|) differ by more than [`APART`] get a scale each, largest first,
-/// at most [`MOST_SCALES`] (the smallest ones share the last). The
-/// displacement is continuous across bodies and keeps one scale.
-pub(super) fn scales(field: Field, values: &[Vec<f32>]) -> Vec<Scale> {
+/// for stresses, body groups (`group[b]`: the `[[bodies]]` entry of model
+/// body b; the blocks of one entry always share a scale) whose typical
+/// magnitudes (the 99.5 % quantile of |value|) differ by more than
+/// [`APART`] get a scale each, largest first, at most [`MOST_SCALES`] (the
+/// smallest ones share the last). The displacement is continuous across
+/// bodies and keeps one scale, and so does every field with `one`
+/// (`[output] colour_scale = "one"`).
+pub(super) fn scales(field: Field, values: &[Vec<f32>], group: &[usize], one: bool) -> Vec<Scale> {
     let signed = field.component().is_some();
     let drawn: Vec<usize> = (0..values.len()).filter(|&b| values[b].iter().any(|v| v.is_finite())).collect();
+    let mut ids: Vec<usize> = drawn.iter().map(|&b| group.get(b).copied().unwrap_or(b)).collect();
+    ids.sort_unstable();
+    ids.dedup();
     let mut groups: Vec<Vec<usize>> = Vec::new();
-    if field == Field::Displacement || drawn.len() < 2 {
+    if field == Field::Displacement || ids.len() < 2 || one {
         groups.push(drawn);
     } else {
-        let typical = |b: usize| -> f64 {
-            let mut a: Vec<f32> = values[b].iter().filter(|v| v.is_finite()).map(|v| v.abs()).collect();
+        let members = |g: usize| drawn.iter().copied().filter(move |&b| group.get(b).copied().unwrap_or(b) == g);
+        let typical = |g: usize| -> f64 {
+            let mut a: Vec<f32> =
+                members(g).flat_map(|b| values[b].iter()).filter(|v| v.is_finite()).map(|v| v.abs()).collect();
             let n = a.len();
             let i = ((n - 1) as f64 * 0.995).round() as usize;
             *a.select_nth_unstable_by(i, |x, y| x.total_cmp(y)).1 as f64
         };
-        let mut by: Vec<(usize, f64)> = drawn.iter().map(|&b| (b, typical(b))).collect();
+        let mut by: Vec<(usize, f64)> = ids.iter().map(|&g| (g, typical(g))).collect();
         by.sort_by(|x, y| y.1.total_cmp(&x.1).then(x.0.cmp(&y.0)));
         let mut top = f64::NAN;
-        for (b, t) in by {
+        for (g, t) in by {
             if groups.is_empty() || (t * APART < top && groups.len() < MOST_SCALES) {
                 groups.push(Vec::new());
                 top = t;
             }
-            if let Some(g) = groups.last_mut() {
-                g.push(b);
+            if let Some(last) = groups.last_mut() {
+                last.extend(members(g));
             }
         }
         for g in &mut groups {

@@ -1,9 +1,12 @@
 //! What the deformed picture frames: a box that the model is cut to
-//! ([`Cut`]). By default the box of the contacts, grown by half its size on
-//! every side, when that is less than half the model's size (a tunnel
-//! lining in a large block of rock, a footing on wide ground: the structure
-//! fills the picture, not the ground around it); else the whole model. The
-//! scene may name a box or bodies instead (`[output] frame`, [`Region`]).
+//! ([`Cut`]). By default the structure: the bodies at least [`STIFFER`]
+//! times stiffer than the softest body (a lining in rock, a beam or footing
+//! on soil), their box grown by half its size on every side, when that is
+//! less than half the model's size; else the box of the contacts grown so
+//! (the joints around a bare opening); else the whole model. A tunnel
+//! lining in jointed rock is framed on the lining, not on the joints that
+//! fill the box. The scene may name a box or bodies instead (`[output]
+//! frame`, [`Region`]).
 
 use super::cutaway::Cut;
 use super::num;
@@ -22,6 +25,10 @@ pub(super) struct Focus {
 /// model's largest extent to be framed instead of the whole model.
 const MARGIN: f64 = 0.5;
 const SMALLER_THAN: f64 = 0.5;
+
+/// How much stiffer than the softest body a body must be to be the
+/// structure the picture frames.
+const STIFFER: f64 = 10.0;
 
 /// The box the deformed picture is cut to (see the module header).
 pub(super) fn focus(model: &Model, region: Option<&Region>) -> Focus {
@@ -43,18 +50,27 @@ pub(super) fn focus(model: &Model, region: Option<&Region>) -> Focus {
             (grow(b, 0.25, dim), format!("{} ([output] frame)", names.join(", ")))
         }
         None => {
-            let Some(b) = node_box(
+            let small = |b: ([f64; 3], [f64; 3])| {
+                let grown = grow(b, MARGIN, dim);
+                let clipped: Vec<f64> = (0..dim).map(|d| grown.1[d].min(hi[d]) - grown.0[d].max(lo[d])).collect();
+                (clipped.iter().copied().fold(0.0, f64::max) < SMALLER_THAN * size && size > 0.0).then_some(grown)
+            };
+            let structure = structure(model);
+            let structure_box = node_box(model, structure.iter().flat_map(|&b| body_nodes(model, b)));
+            let contacts = node_box(
                 model,
                 model.interfaces.iter().flat_map(|i| i.facets.iter().flat_map(|f| f.nodes.iter().copied())),
-            ) else {
-                return whole();
-            };
-            let grown = grow(b, MARGIN, dim);
-            let clipped: Vec<f64> = (0..dim).map(|d| grown.1[d].min(hi[d]) - grown.0[d].max(lo[d])).collect();
-            if clipped.iter().copied().fold(0.0, f64::max) >= SMALLER_THAN * size || size <= 0.0 {
+            );
+            if let Some(grown) = structure_box.and_then(small) {
+                let mut names: Vec<String> =
+                    structure.iter().map(|&b| format!("\"{}\"", model.bodies[b].name)).collect();
+                names.dedup();
+                (grown, format!("the structure {} ([output] frame chooses another region)", names.join(", ")))
+            } else if let Some(grown) = contacts.and_then(small) {
+                (grown, "the contacts ([output] frame chooses another region)".to_string())
+            } else {
                 return whole();
             }
-            (grown, "the contacts ([output] frame chooses another region)".to_string())
         }
     };
     // the box within the model's: a side beyond the model cuts nothing
@@ -74,6 +90,17 @@ pub(super) fn focus(model: &Model, region: Option<&Region>) -> Focus {
         cut: Some(Cut { lo: bx.0, hi: bx.1, dim }),
         note: Some(format!("Framed on {why}: cut to {}.", range.join(", "))),
     }
+}
+
+/// The bodies at least [`STIFFER`] times stiffer than the softest (none
+/// when all are alike).
+fn structure(model: &Model) -> Vec<usize> {
+    let soft = model.bodies.iter().map(|b| b.e).fold(f64::INFINITY, f64::min);
+    (0..model.bodies.len()).filter(|&b| model.bodies[b].e >= STIFFER * soft).collect()
+}
+
+fn body_nodes(model: &Model, b: usize) -> impl Iterator<Item = usize> + '_ {
+    model.bodies[b].cells.iter().flat_map(|c| c.nodes.iter().copied())
 }
 
 /// The box of some nodes (None without any).

@@ -292,6 +292,23 @@ fn size(p: &Panels) -> (u32, u32) {
     (1000, 420 * p.list.len().max(1) as u32 + if p.left_out > 0 { 40 } else { 0 })
 }
 
+/// What a robust range leaves out, for the caption: "; beyond the scale:
+/// down to -2337" (empty when nothing is).
+fn beyond(r: &super::legend::Robust) -> String {
+    let mut parts = Vec::new();
+    if r.min < r.lo {
+        parts.push(format!("down to {}", super::num(r.min)));
+    }
+    if r.max > r.hi {
+        parts.push(format!("up to {}", super::num(r.max)));
+    }
+    if parts.is_empty() {
+        String::new()
+    } else {
+        format!("; beyond the scale (on its edge): {}", parts.join(", "))
+    }
+}
+
 fn plot_err(e: &dyn std::fmt::Debug) -> PictureError {
     PictureError::Plot(format!("{e:?}"))
 }
@@ -350,15 +367,17 @@ fn interface_panel<DB: DrawingBackend>(
     let smax = all().map(|q| q.1).fold(f64::NEG_INFINITY, f64::max);
     let (smin, smax) = if smin <= smax { (smin, smax) } else { (0.0, 1.0) };
     let span = (smax - smin).max(1e-300);
-    let (mut ylo, mut yhi) = (0.0f64, 0.0f64);
-    for &(p, _) in all() {
-        for v in [sn(p), tau(p), minus_u(p)].into_iter().filter(|v| v.is_finite()) {
-            ylo = ylo.min(v);
-            yhi = yhi.max(v);
-        }
-    }
+    // a robust range: a singular corner does not set the scale; its
+    // points sit on the frame's edge, and the caption says how far they go
+    let values: Vec<f64> = all().flat_map(|&(p, _)| [sn(p), tau(p), minus_u(p)]).filter(|v| v.is_finite()).collect();
+    let range = super::legend::robust(values);
+    let (ylo, yhi) = (range.lo.min(0.0), range.hi.max(0.0));
     let pad = 0.08 * (yhi - ylo).max(1e-30);
     let (ylo, yhi) = (ylo - pad, yhi + pad);
+    let sn = |p: usize| sn(p).clamp(ylo, yhi);
+    let tau = |p: usize| tau(p).clamp(ylo, yhi);
+    let minus_u = |p: usize| minus_u(p).clamp(ylo, yhi);
+    let beyond = beyond(&range);
     let (xlo, xhi) = (smin - 0.02 * span, smax + 0.02 * span);
     let pairs: Vec<usize> = all().map(|q| q.0).collect();
     let [bi, bii] = sides(model, &pairs);
@@ -367,7 +386,7 @@ fn interface_panel<DB: DrawingBackend>(
         _ => String::new(),
     };
     let caption = format!(
-        "{}{which}: {} | {}, {} pairs: {} stick, {} slip, {} open",
+        "{}{which}: {} | {}, {} pairs: {} stick, {} slip, {} open{beyond}",
         iface.name,
         bi.0,
         bii.0,

@@ -24,31 +24,23 @@ pub(super) struct Limits {
 impl Limits {
     /// Limits from the nodal values: the field's range, except that a few
     /// outlying nodes (a stress singularity at a corner or a point support)
-    /// do not take the whole colour bar: beyond the 0.5 % and 99.5 %
-    /// quantiles by more than half their spread, the bar stops at the
-    /// quantile and those nodes take its end colour. Signed fields (stress
+    /// do not take the whole colour bar ([`robust`]): those nodes take its
+    /// end colour, and the bar says how far they go. Signed fields (stress
     /// components) spanning zero get limits symmetric about it, so that grey
     /// is zero; round-off of the other sign (below 1e-3 of the largest
     /// value) is zero.
     pub(super) fn of(signed: bool, values: &[Vec<f32>]) -> Limits {
-        let mut all: Vec<f64> = values.iter().flatten().filter(|v| v.is_finite()).map(|&v| v as f64).collect();
-        if all.is_empty() {
-            all.push(0.0);
-        }
-        let n = all.len();
-        let mut quantile =
-            |q: f64| *all.select_nth_unstable_by(((n - 1) as f64 * q).round() as usize, |a, b| a.total_cmp(b)).1;
-        let (mut min, mut max, q_lo, q_hi) = (quantile(0.0), quantile(1.0), quantile(0.005), quantile(0.995));
+        let all: Vec<f64> = values.iter().flatten().filter(|v| v.is_finite()).map(|&v| v as f64).collect();
+        let Robust { mut lo, mut hi, mut min, mut max } = robust(all);
         let big = min.abs().max(max.abs());
         if min < 0.0 && min > -1e-3 * big {
             min = 0.0;
+            lo = lo.max(0.0);
         }
         if max > 0.0 && max < 1e-3 * big {
             max = 0.0;
+            hi = hi.min(0.0);
         }
-        let spread = q_hi - q_lo;
-        let mut lo = if q_lo - min > 0.5 * spread { q_lo } else { min };
-        let mut hi = if max - q_hi > 0.5 * spread { q_hi } else { max };
         if signed && lo < 0.0 && hi > 0.0 {
             let m = lo.abs().max(hi);
             (lo, hi) = (-m, m);
@@ -64,6 +56,34 @@ impl Limits {
     pub(super) fn norm(&self, v: f32) -> f32 {
         ((v as f64 - self.lo) / (self.hi - self.lo)) as f32
     }
+}
+
+/// The range a picture scales to, and the values' own.
+pub(crate) struct Robust {
+    pub(crate) lo: f64,
+    pub(crate) hi: f64,
+    pub(crate) min: f64,
+    pub(crate) max: f64,
+}
+
+/// The values' range, except where a few of them stand far out (a
+/// singular corner of a footing, a point support): with the k = n/200
+/// (at least 2, at most n/5) most extreme values at each end set aside, an
+/// end stops at the k-th value when the values beyond it lie further out
+/// than half the spread of the rest. A bearing diagram of 0..1,100 with a
+/// corner of 2,337 scales to 0..1,100, not to the corner.
+pub(crate) fn robust(mut all: Vec<f64>) -> Robust {
+    if all.is_empty() {
+        all.push(0.0);
+    }
+    let n = all.len();
+    all.sort_by(f64::total_cmp);
+    let k = (n / 200).max(2).min(n / 5);
+    let (min, max, q_lo, q_hi) = (all[0], all[n - 1], all[k], all[n - 1 - k]);
+    let spread = q_hi - q_lo;
+    let lo = if q_lo - min > 0.5 * spread { q_lo } else { min };
+    let hi = if max - q_hi > 0.5 * spread { q_hi } else { max };
+    Robust { lo, hi, min, max }
 }
 
 /// Colour maps as 256-entry tables: viridis for magnitudes; cool-to-warm

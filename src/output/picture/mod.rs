@@ -146,6 +146,8 @@ pub struct Snapshot<'a> {
     pub stresses: &'a [BodyStress],
     pub contact: Option<&'a ContactRun>,
     pub region: Option<&'a Region>,
+    /// One colour scale for every body (`[output] colour_scale = "one"`).
+    pub one_scale: bool,
 }
 
 /// The file name of the deformed picture of [`pictures`]: coloured by von
@@ -272,8 +274,8 @@ fn num(v: f64) -> String {
 /// A magnification with two significant digits.
 fn sig2(v: f64) -> String {
     if (1.0..1e4).contains(&v) {
-        let p = 10f64.powf(v.log10().floor() - 1.0);
-        return format!("{}", (v / p).round() * p);
+        // 9.6, not 96 × 0.1 = 9.600000000000001
+        return crate::output::number::sig(v, 2);
     }
     if (0.01..1.0).contains(&v) {
         return num((v * 100.0).round() / 100.0);
