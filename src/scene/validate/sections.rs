@@ -82,6 +82,15 @@ impl Checker<'_> {
             }
             Ok(())
         };
+        // a line or a plane takes none of a beam's or ring's keys
+        let not_beam_keys = || -> R<()> {
+            only(r.stations.is_some(), "stations", "beam or ring")?;
+            only(
+                r.axis.is_some() || r.centre.is_some(),
+                if r.axis.is_some() { "axis" } else { "centre" },
+                "beam or ring",
+            )
+        };
         let stations = || -> R<usize> {
             self.at_least(
                 r.stations,
@@ -95,12 +104,7 @@ impl Checker<'_> {
             if solid {
                 return Err(self.err(k, "a solid model is cut by a plane: give point = [x, y, z] and normal = [nx, ny, nz] instead of from and to."));
             }
-            only(r.stations.is_some(), "stations", "beam or ring")?;
-            only(
-                r.axis.is_some() || r.centre.is_some(),
-                if r.axis.is_some() { "axis" } else { "centre" },
-                "beam or ring",
-            )?;
+            not_beam_keys()?;
             let from = self.required(r.from, &format!("{k}.from"), "one end of the line [x, y]")?;
             let from = self.vec3(&from, &format!("{k}.from"), analysis)?;
             let to = self.required(r.to, &format!("{k}.to"), "the other end of the line [x, y]")?;
@@ -118,12 +122,7 @@ impl Checker<'_> {
             if !solid {
                 return Err(self.err(k, "a plane model is cut by a line: give from = [x, y] and to = [x, y] across the member instead of point and normal."));
             }
-            only(r.stations.is_some(), "stations", "beam or ring")?;
-            only(
-                r.axis.is_some() || r.centre.is_some(),
-                if r.axis.is_some() { "axis" } else { "centre" },
-                "beam or ring",
-            )?;
+            not_beam_keys()?;
             let point = self.required(r.point, &format!("{k}.point"), "a point of the plane [x, y, z]")?;
             let point = self.vec3(&point, &format!("{k}.point"), analysis)?;
             let normal = self.required(r.normal, &format!("{k}.normal"), "the plane's normal [nx, ny, nz]")?;
