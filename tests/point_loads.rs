@@ -133,6 +133,36 @@ fn point_force_patch_force_and_body_moment_carry_their_resultant_in_3d() {
     assert_reactions(&s, &[("A", [0.0, 0.0, -2.0 / l]), ("B", [0.0; 3]), ("C", [0.0, 0.0, 2.0 / l])], tol);
 }
 
+/// A probe's history over load steps (probes_history.csv): the point force
+/// ramped in four steps on the linear beam moves every probe point by
+/// k/4 of its last displacement, and the last step's rows are probes.csv's.
+#[test]
+fn a_probe_history_follows_the_load_ramp() {
+    let case = Case::new("point-loads-history");
+    case.copy("tests/geo/beam2d.geo");
+    let loads = "[[loads]]\ngroup = \"load\"\nforce = [0.0, -10.0]\n\n[solver]\nload_steps = 4\n\n[[probes]]\nname = \"bottom\"\nfrom = [0.5, 0.0]\nto = [3.5, 0.0]\npoints = 7\n";
+    solve(&case, "ramp", &beam(2, loads));
+    let out = case.out("ramp");
+    let rows = |file: &str| -> Vec<Vec<f64>> {
+        let text = common::read(&out.join(file));
+        text.lines().skip(1).map(|l| l.split(',').map(|v| v.parse().unwrap_or(f64::NAN)).collect()).collect()
+    };
+    let (history, last) = (rows("probes_history.csv"), rows("probes.csv"));
+    assert_eq!(history.len(), 4 * 7, "seven points at four steps");
+    // columns: step, load_factor, then probes.csv's (uy the 8th of those)
+    let uy = |r: &Vec<f64>, off: usize| r[off + 6];
+    let (mut worst, mut sag) = (0.0f64, 0.0f64);
+    for (i, r) in history.iter().enumerate() {
+        let (k, factor) = (r[0], r[1]);
+        assert_eq!((k as usize, factor), (i / 7 + 1, (i / 7 + 1) as f64 / 4.0), "row {i}: step and factor");
+        let end = uy(&last[i % 7], 0);
+        worst = worst.max((uy(r, 2) - factor * end).abs() / end.abs());
+        sag = sag.min(end);
+    }
+    eprintln!("probe history: 4 steps x 7 points, uy against the ramp within {worst:.1e}; largest sag {sag:.4e}");
+    assert!(sag < 0.0 && worst < 1e-9, "uy follows the load factor: {worst:e}");
+}
+
 /// What cannot carry a load says what to do instead, before anything is
 /// solved: a moment on one point, a pressure on a point, a force in
 /// axisymmetry, a moment of the wrong shape.

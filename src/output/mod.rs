@@ -2,7 +2,8 @@
 //! `<name>.vtu` (bodies), `<name>_contact.vtu` (interfaces), `contact.csv`,
 //! `faces.csv` (the resultants per block face pair, [`faces`]),
 //! `bearing.csv` (the bearing pressure of every contact face, [`bearing`]),
-//! `probes.csv`, `sections.csv` (with a picture per beam or ring,
+//! `probes.csv` (and `probes_history.csv` over the load steps),
+//! `sections.csv` (with a picture per beam or ring,
 //! [`sections`]), the pictures, the safety search's files (`safety.rs`),
 //! then (once the output stage is timed) `summary.json` and `report.md`,
 //! which embeds the pictures.
@@ -92,6 +93,9 @@ pub fn stage(run: &Run, out: &std::path::Path) -> Result<(Staged, Vec<String>)> 
     }
     if !run.checks.probes.is_empty() {
         staged.add("probes.csv", probes_csv(&run.checks.probes).into_bytes());
+        if run.steps.len() > 1 {
+            staged.add("probes_history.csv", probes_history_csv(run).into_bytes());
+        }
     }
     if let Some(csv) = sections::csv(run) {
         staged.add("sections.csv", csv.into_bytes());
@@ -422,9 +426,30 @@ pub(crate) fn csv_field(v: &str) -> String {
     }
 }
 
+const PROBE_COLUMNS: &str = "probe,point,x,y,z,ux,uy,uz,sxx,syy,szz,sxy,syz,sxz,von_mises,found\n";
+
 /// One row per probe point.
 pub(crate) fn probes_csv(probes: &[(String, Vec<Sample>)]) -> String {
-    let mut s = String::from("probe,point,x,y,z,ux,uy,uz,sxx,syy,szz,sxy,syz,sxz,von_mises,found\n");
+    let mut s = String::from(PROBE_COLUMNS);
+    probe_rows(&mut s, "", probes);
+    s
+}
+
+/// `probes_history.csv` (probes and more than one load step): the rows of
+/// probes.csv at every step, after the step and its load factor; a
+/// load–settlement curve is a point's uy (3D uz) against `load_factor`.
+pub(crate) fn probes_history_csv(run: &Run) -> String {
+    let mut s = format!("step,load_factor,{PROBE_COLUMNS}");
+    for step in &run.steps {
+        let probes: Vec<(String, Vec<Sample>)> = (run.scene.probes.iter())
+            .map(|p| (p.name.clone(), crate::recover::probe(&run.model, &step.u, p)))
+            .collect();
+        probe_rows(&mut s, &format!("{},{:.12e},", step.step, step.load_factor), &probes);
+    }
+    s
+}
+
+fn probe_rows(s: &mut String, prefix: &str, probes: &[(String, Vec<Sample>)]) {
     for (name, samples) in probes {
         for (i, p) in samples.iter().enumerate() {
             let vals: Vec<String> =
@@ -434,10 +459,9 @@ pub(crate) fn probes_csv(probes: &[(String, Vec<Sample>)]) -> String {
                     .chain(std::iter::once(&p.von_mises))
                     .map(|v| format!("{v:.12e}"))
                     .collect();
-            s += &format!("{},{i},{},{}\n", csv_field(name), vals.join(","), p.found);
+            *s += &format!("{prefix}{},{i},{},{}\n", csv_field(name), vals.join(","), p.found);
         }
     }
-    s
 }
 
 fn summary(run: &Run) -> serde_json::Value {
