@@ -106,6 +106,26 @@ fn point_force_patch_force_and_body_moment_carry_their_resultant_in_2d() {
     assert_reactions(&s, &[("pin", [0.0, 5.0 / l, 0.0]), ("roller", [0.0, -5.0 / l, 0.0])], 1e-9 * 10.0);
 }
 
+/// 2D: the beam's weight and a pseudo-static earthquake (kh = 0.2 along x,
+/// kv = 0.1 up) on it: the body forces' resultant at the beam's centroid
+/// gives the statics' reactions, and the balance counts the seismic part.
+#[test]
+fn weight_and_a_seismic_load_give_the_statics_reactions() {
+    let case = Case::new("point-loads-seismic");
+    case.copy("tests/geo/beam2d.geo");
+    let (l, h, rho, g) = (4.0, 0.4, 2.0, 10.0);
+    let quake = "[[loads]]\nseismic = { kh = 0.2, kv = 0.1 }\n";
+    let text = beam(2, quake)
+        .replace("analysis = \"plane_strain\"\n", "analysis = \"plane_strain\"\ngravity = [0.0, -10.0]\n")
+        .replace("nu = 0.25\n", "nu = 0.25\ndensity = 2.0\n");
+    let s = solve(&case, "quake", &text);
+    // the body force rho L h (kh g, -g + kv g) at (L/2, h/2)
+    let m = rho * l * h;
+    let (fx, fy) = (m * 0.2 * g, m * (0.1 * g - g));
+    let roller = (0.5 * h * fx - 0.5 * l * fy) / l;
+    assert_reactions(&s, &[("pin", [-fx, -fy - roller, 0.0]), ("roller", [0.0, roller, 0.0])], 1e-9 * m * g);
+}
+
 /// 3D: a point force on the top, a force with a moment on the top face and
 /// a moment on the whole beam, on three point supports.
 #[test]

@@ -250,6 +250,13 @@ fn a_dam_base_undrained_drained_and_under_an_earthquake() {
         let exact = (0.3 * a + 0.75 * (W - u)) / t;
         eprintln!("{name}: A' = {a:.2}, crack {tip:.2}, U = {u:.4}");
         assert_close(name, run.safety.as_ref().and_then(|s| s.factor).expect("a factor"), exact, 0.01);
+        // every body's balance closes with the water's push and the quake's body forces
+        let stem = name.trim_end_matches(".toml");
+        let summary = json(&case.out(stem).join("summary.json"));
+        for b in summary["reactions"]["bodies"].as_array().expect("reactions.bodies") {
+            let r = common::json_vec3(&b["remainder"]);
+            assert!(r.iter().all(|v| v.abs() < 1e-9 * W), "{name}: {} is left with {r:?}", b["group"]);
+        }
     }
 }
 

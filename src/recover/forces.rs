@@ -13,14 +13,17 @@
 //! reaction = Σ_cells r_e − (body forces + facet loads + nodal loads) − contact
 //! ```
 //!
-//! each load scaled by its case's factor at the step. Contact forces are the
-//! pairs' `(sigma_n n + tau_t t + tau_b b) A` (the forces themselves with
-//! `traction = "lumped"`; with `"consistent"` their sum, not each node's).
+//! each load scaled by its case's factor at the step (body forces: gravity
+//! and the seismic accelerations). Contact forces are the pairs'
+//! `(sigma_n n + tau_t t + tau_b b) A` (the forces themselves with
+//! `traction = "lumped"`; with `"consistent"` their sum, not each node's),
+//! and the water's push where a joint holds water (`sigma_n` is the
+//! effective, solid-to-solid stress: the water loads both faces besides it).
 
 use crate::fem::element::{self, dofs_per_node};
 use crate::fem::material::d_matrix;
 use crate::model::{Body, Model};
-use crate::results::StepResult;
+use crate::results::{ContactRun, StepResult};
 
 /// Forces per model node, global components (zero where not asked for).
 #[derive(Clone, Debug)]
@@ -76,16 +79,37 @@ pub fn cell_internal(model: &Model, body: &Body, cell: &crate::mesh::Cell, u: &[
     r
 }
 
-/// The cell's weight `∫ N ρ g dV` at the step's gravity factor.
-fn cell_weight(model: &Model, body: &Body, cell: &crate::mesh::Cell, factor: f64) -> Vec<f64> {
+/// The acceleration of a body's loads at the step: gravity at its case's
+/// factor and, on a body with a density, every seismic acceleration at its
+/// own (as the solve assembled them).
+fn acceleration(model: &Model, body: &Body, factor: &dyn Fn(usize) -> f64) -> [f64; 3] {
+    let mut a = model.gravity.map(|v| v * factor(model.gravity_case));
+    for &(s, case) in model.seismic.iter().filter(|_| body.density > 0.0) {
+        (0..3).for_each(|i| a[i] += s[i] * factor(case));
+    }
+    a
+}
+
+/// The cell's body force `∫ N ρ a dV` under the acceleration `a`.
+fn cell_weight(model: &Model, body: &Body, cell: &crate::mesh::Cell, a: [f64; 3]) -> Vec<f64> {
     let nd = model.nd;
     let mut fe = vec![0.0; cell.nodes.len() * nd];
-    let g = model.gravity.map(|v| v * body.density * factor);
+    let g = a.map(|v| v * body.density);
     if g.iter().any(|&v| v != 0.0) {
         let xe: Vec<[f64; 3]> = cell.nodes.iter().map(|&n| model.coords[n]).collect();
         let _ = element::body_force(model.analysis, cell.kind, &xe, g, model.thickness, &mut fe);
     }
     fe
+}
+
+/// The force of pair `p` on body I (its opposite on body II): the contact's
+/// solid-to-solid force and the water's push in the joint, if any.
+pub fn pair_force(c: &ContactRun, p: usize) -> [f64; 3] {
+    let f = c.force(p);
+    match &c.water {
+        Some(w) => std::array::from_fn(|i| f[i] + w.force[p][i]),
+        None => f,
+    }
 }
 
 /// A facet load's nodal forces at factor `f` (`nd` per node of the facet).
@@ -114,9 +138,10 @@ pub fn node_forces(model: &Model, step: &StepResult, wanted: &[bool]) -> NodeFor
     let factor = |case: usize| step.case_factors.get(case).copied().unwrap_or(step.load_factor);
     let mut out = NodeForces { internal: vec![[0.0; 3]; n], applied: vec![[0.0; 3]; n], contact: vec![[0.0; 3]; n] };
     for body in &model.bodies {
+        let a = acceleration(model, body, &factor);
         for cell in body.cells.iter().filter(|c| c.nodes.iter().any(|&k| wanted[k])) {
             add(&mut out.internal, &cell.nodes, &cell_internal(model, body, cell, &step.u), nd);
-            add(&mut out.applied, &cell.nodes, &cell_weight(model, body, cell, factor(model.gravity_case)), nd);
+            add(&mut out.applied, &cell.nodes, &cell_weight(model, body, cell, a), nd);
         }
     }
     for load in model.loads.iter().filter(|l| l.cell.nodes.iter().any(|&k| wanted[k])) {
@@ -127,7 +152,7 @@ pub fn node_forces(model: &Model, step: &StepResult, wanted: &[bool]) -> NodeFor
     }
     if let Some(c) = &step.contact {
         for (p, pair) in model.pairs.iter().enumerate() {
-            let f = c.force(p);
+            let f = pair_force(c, p);
             (0..3).for_each(|i| {
                 out.contact[pair.k][i] += f[i];
                 out.contact[pair.l][i] -= f[i];
@@ -152,8 +177,9 @@ pub fn applied_per_body(model: &Model, step: &StepResult) -> Vec<[f64; 3]> {
     let nd = model.nd;
     let mut out = vec![[0.0; 3]; model.bodies.len()];
     for (b, body) in model.bodies.iter().enumerate() {
+        let a = acceleration(model, body, &factor);
         for cell in &body.cells {
-            let fe = cell_weight(model, body, cell, factor(model.gravity_case));
+            let fe = cell_weight(model, body, cell, a);
             (0..fe.len()).for_each(|i| out[b][i % nd] += fe[i]);
         }
     }

@@ -5,7 +5,7 @@
 //! found). The balance's remainder, and the largest force left at the free
 //! DOFs of the cells around the supports, say how well that holds.
 
-use super::forces::{applied_per_body, node_forces};
+use super::forces::{applied_per_body, node_forces, pair_force};
 use crate::fem::vec3::{cross, sub};
 use crate::model::Model;
 use crate::results::StepResult;
@@ -23,8 +23,9 @@ pub struct SupportReaction {
     pub about: [f64; 3],
 }
 
-/// One body group's forces (all its blocks): the loads, the contact forces
-/// and the supports' reactions on it, and their sum.
+/// One body group's forces (all its blocks): the loads (seismic body
+/// forces included), the contact forces (with the water's push in its
+/// joints) and the supports' reactions on it, and their sum.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct BodyBalance {
     pub group: String,
@@ -98,7 +99,7 @@ fn balances(model: &Model, step: &StepResult, groups: &[String], supports: &[[f6
     let mut contact = vec![[0.0; 3]; model.bodies.len()];
     if let Some(c) = &step.contact {
         for (p, pair) in model.pairs.iter().enumerate() {
-            let f = c.force(p);
+            let f = pair_force(c, p);
             (0..3).for_each(|i| {
                 contact[body_of[pair.k]][i] += f[i];
                 contact[body_of[pair.l]][i] -= f[i];
