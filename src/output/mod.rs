@@ -8,8 +8,8 @@
 //! then (once the output stage is timed) `summary.json` and `report.md`,
 //! which embeds the pictures.
 
-pub mod blocks;
 pub mod bearing;
+pub mod blocks;
 pub mod cut;
 pub mod faces;
 pub mod files;

@@ -47,7 +47,15 @@ pub(super) fn stage(run: &Run, staged: &mut Staged, drawn: &mut picture::Drawn) 
     if let Some(m) = s.failure.as_ref().and_then(|f| f.mechanism.as_ref()) {
         let u = mechanism_field(run, m);
         let title = format!("{}: the mechanism, {}", run.scene.title, m.kind.key());
-        let snap = Snapshot { title: &title, model: &run.model, u: &u, stresses: &[], contact: None, region: None, one_scale: false };
+        let snap = Snapshot {
+            title: &title,
+            model: &run.model,
+            u: &u,
+            stresses: &[],
+            contact: None,
+            region: None,
+            one_scale: false,
+        };
         drawn.draw("mechanism.png", || picture::deformed_png(&snap, picture::Field::Displacement, None));
     }
     let Some(last) = &s.last else { return Ok(()) };
