@@ -11,14 +11,15 @@
 
 use std::path::PathBuf;
 
+mod reactions;
 mod safety;
+pub use reactions::{BodyBalance, Reactions, SupportReaction};
 pub use safety::{Failure, FailureKind, OtherFactor, SafetyRun, SearchCost, SearchKind, Trial, Undecided};
 
 use crate::analytic::{Check, Solution};
 use crate::contact::law::{ContactState, PairResult};
 use crate::contact::Summary;
 use crate::model::Model;
-use crate::recover::reactions::Reactions;
 use crate::recover::sections::SectionForces;
 use crate::recover::{BodyStress, Errors, Sample};
 use crate::scene::Scene;

@@ -8,43 +8,7 @@
 use super::forces::{applied_per_body, node_forces, pair_force};
 use crate::fem::vec3::{cross, sub};
 use crate::model::Model;
-use crate::results::StepResult;
-
-/// One support group's reaction, the force the support applies to the model.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
-pub struct SupportReaction {
-    pub group: String,
-    /// The DOFs it holds.
-    pub dofs: usize,
-    pub force: [f64; 3],
-    /// The moment of its nodal reactions about `about` (z only in 2D).
-    pub moment: [f64; 3],
-    /// The centroid of its held nodes.
-    pub about: [f64; 3],
-}
-
-/// One body group's forces (all its blocks): the loads (seismic body
-/// forces included), the contact forces (with the water's push in its
-/// joints) and the supports' reactions on it, and their sum.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
-pub struct BodyBalance {
-    pub group: String,
-    pub applied: [f64; 3],
-    pub contact: [f64; 3],
-    pub supports: [f64; 3],
-    pub remainder: [f64; 3],
-}
-
-/// The reactions of a step.
-#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
-pub struct Reactions {
-    pub supports: Vec<SupportReaction>,
-    pub bodies: Vec<BodyBalance>,
-    /// The largest |force| left at a free DOF of a node next to a support,
-    /// relative to the largest internal force there: the round-off of the
-    /// balance (1e-10 or below when the solve is exact).
-    pub free_residual: f64,
-}
+use crate::results::{BodyBalance, Reactions, StepResult, SupportReaction};
 
 /// Every support group's reaction and every body group's balance at `step`.
 pub fn reactions(model: &Model, step: &StepResult, body_groups: &[String]) -> Reactions {
