@@ -100,9 +100,6 @@ pub fn stage(run: &Run, out: &std::path::Path) -> Result<(Staged, Vec<String>)> 
     if let Some(csv) = sections::csv(run) {
         staged.add("sections.csv", csv.into_bytes());
     }
-    for (file, bytes) in run.checks.sections.iter().filter_map(|s| sections::picture(run, s)) {
-        staged.add(&file, bytes);
-    }
     // pictures a person would rather look at than read (embedded in report.md)
     let snap = picture::Snapshot {
         title: &run.scene.title,
@@ -114,6 +111,7 @@ pub fn stage(run: &Run, out: &std::path::Path) -> Result<(Staged, Vec<String>)> 
         one_scale: run.scene.output.colour_scale == crate::scene::ColourScale::One,
     };
     let mut drawn = picture::pictures(&snap);
+    sections::pictures(run, &mut drawn);
     safety::stage(run, &mut staged, &mut drawn)?;
     for (file, bytes) in drawn.files {
         staged.add(&file, bytes);

@@ -1,12 +1,14 @@
 //! The section forces of `[[sections]]` ([`crate::recover::sections`]) as
 //! people read them: `sections.csv` (one row per cut), summary.json's
 //! `sections`, report.md's "Section forces" and, for a beam or ring cut at
-//! several stations, `section_<name>.svg` (N, V and M along it).
+//! several stations, `section_<name>.svg` (N, V and M along it; skipped
+//! with a warning when it cannot be drawn, [`pictures`]).
 
 use std::fmt::Write;
 
 use super::csv_field;
 use super::number::{clean, num};
+use super::picture::{Drawn, PictureError};
 use super::plot::{self, Panel, Series};
 use crate::recover::sections::{SectionForces, Sides, Station};
 use crate::results::Run;
@@ -110,12 +112,53 @@ pub fn summary(run: &Run) -> Option<serde_json::Value> {
     Some(serde_json::Value::Array(secs.iter().map(one).collect()))
 }
 
-/// The picture of a section cut at several stations: N, V and M along it.
-pub fn picture(run: &Run, sec: &SectionForces) -> Option<(String, Vec<u8>)> {
-    if sec.stations.len() < 2 {
-        return None;
-    }
+/// The pictures of the sections cut along a beam or round a ring, through
+/// the pictures' skip-on-failure path: one that cannot be drawn (fewer
+/// than two of its cuts meet the body, or they all lie at one place) is
+/// left out with a warning, every other file written. A line or plane is
+/// one cut: its forces are in the tables alone.
+pub fn pictures(run: &Run, drawn: &mut Drawn) {
     let dim = run.scene.analysis.dim();
+    for sec in run.checks.sections.iter().filter(|s| along(s)) {
+        drawn.draw(&file(sec), || picture(dim, sec));
+    }
+}
+
+/// Whether a section is cut at stations along a member (a beam or ring).
+fn along(sec: &SectionForces) -> bool {
+    matches!(sec.kind, "beam" | "ring")
+}
+
+/// Why a section along a member has no picture (None: it can be drawn).
+fn undrawable(sec: &SectionForces) -> Option<String> {
+    let n = sec.stations.len();
+    let all = n + sec.missed;
+    if n < 2 {
+        return Some(format!(
+            "section `{}`: {n} of its {all} cuts meet{} its body, and a diagram along it needs two: check the body and `stations`",
+            sec.name,
+            if n == 1 { "s" } else { "" }
+        ));
+    }
+    let (lo, hi) = sec
+        .stations
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), st| (lo.min(st.position), hi.max(st.position)));
+    let span = hi - lo;
+    if !(span.is_finite() && span > 1e-12 * hi.abs().max(lo.abs())) {
+        return Some(format!(
+            "section `{}`: its {n} cuts all lie at one place, so there is nothing to draw along it",
+            sec.name
+        ));
+    }
+    None
+}
+
+/// The picture of a section cut at several stations: N, V and M along it.
+pub fn picture(dim: usize, sec: &SectionForces) -> Result<Vec<u8>, PictureError> {
+    if let Some(why) = undrawable(sec) {
+        return Err(PictureError::Empty(why));
+    }
     let series = |k: usize| {
         let name = values(&sec.stations[0], dim)[k].0;
         let points = sec.stations.iter().map(|st| (st.position, values(st, dim)[k].1)).collect();
@@ -130,8 +173,7 @@ pub fn picture(run: &Run, sec: &SectionForces) -> Option<(String, Vec<u8>)> {
         Panel { title: &tv, x_label: x, y_label: "V", log_x: false, log_y: false, series: &v },
         Panel { title: &tm, x_label: x, y_label: "M", log_x: false, log_y: false, series: &m },
     ];
-    let svg = plot::svg(&panels, 420, 320).ok()?;
-    Some((file(sec), svg.into_bytes()))
+    Ok(plot::svg(&panels, 420, 320).map_err(PictureError::Plot)?.into_bytes())
 }
 
 /// The picture's file name.
@@ -188,8 +230,8 @@ pub fn report(run: &Run) -> String {
         if sec.missed > 0 {
             let _ = writeln!(s, "\n{} of its cuts meet no cell.", sec.missed);
         }
-        if let Some((f, _)) = picture(run, sec) {
-            let _ = writeln!(s, "\n![N, V and M along `{}`]({f})", sec.name);
+        if along(sec) && undrawable(sec).is_none() {
+            let _ = writeln!(s, "\n![N, V and M along `{}`]({})", sec.name, file(sec));
         }
         s.push('\n');
     }
@@ -204,5 +246,47 @@ fn describe(sec: &SectionForces) -> String {
         "beam" => format!("a beam cut at {n} stations"),
         "plane" => "a plane cut".into(),
         _ => "a line across the member".into(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn at(position: f64, m: f64) -> Station {
+        let mut st = dummy();
+        st.position = position;
+        st.frame = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        st.moment = [0.0, 0.0, m];
+        st
+    }
+
+    fn beam(name: &str, stations: Vec<Station>, missed: usize) -> SectionForces {
+        SectionForces { name: name.into(), kind: "beam", stations, missed }
+    }
+
+    /// A beam cut at one point, and one whose cuts all lie at one place,
+    /// are skipped with a warning naming them; a good one beside them is
+    /// drawn.
+    #[test]
+    fn an_odd_section_is_skipped_with_a_warning_and_the_rest_drawn() {
+        let secs = [
+            beam("good", vec![at(0.0, 0.0), at(1.0, 2.0), at(2.0, 0.0)], 0),
+            beam("one point", vec![at(0.5, 1.0)], 24),
+            beam("no length", vec![at(3.0, 1.0), at(3.0, 1.0)], 0),
+        ];
+        let mut d = Drawn::default();
+        for sec in &secs {
+            d.draw(&file(sec), || picture(2, sec));
+        }
+        let drawn: Vec<&str> = d.files.iter().map(|f| f.0.as_str()).collect();
+        assert_eq!(drawn, ["section_good.svg"]);
+        assert_eq!(d.skipped.len(), 2, "{:?}", d.skipped);
+        assert!(
+            d.skipped[0].starts_with("section_one_point.svg was not drawn")
+                && d.skipped[0].contains("1 of its 25 cuts")
+        );
+        assert!(d.skipped[1].contains("section `no length`") && d.skipped[1].contains("at one place"));
+        assert!(d.skipped.iter().all(|w| w.contains("the other result files are written")));
     }
 }
