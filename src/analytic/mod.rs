@@ -54,6 +54,28 @@ pub enum Analytic {
     LinedTunnel(LinedTunnel),
 }
 
+impl Analytic {
+    /// The closed form and the assumptions it rests on, for report.md's
+    /// labels.
+    pub fn assumes(&self) -> &'static str {
+        match self {
+            Analytic::LameCylinder { .. } => "Lamé's thick-walled cylinder (exact plane elasticity)",
+            Analytic::LinedTunnel(_) => "Einstein & Schwartz's thin ring in an infinite elastic plane",
+        }
+    }
+
+    /// What the model's departure from the closed form is: its "error"
+    /// where the closed form solves the model's problem exactly, a
+    /// "difference" where the closed form idealises it (a thin ring in an
+    /// infinite plane against a thick lining in a finite box).
+    pub fn departure(&self) -> &'static str {
+        match self {
+            Analytic::LameCylinder { .. } => "error",
+            Analytic::LinedTunnel(_) => "difference",
+        }
+    }
+}
+
 /// The closed form a scene's `[analytic]` names, body by body (indexed as
 /// `model.bodies`), each in its own material: Lamé's cylinder with the
 /// body's E and nu; the lined tunnel carries its own two materials (lining
