@@ -6,7 +6,9 @@
 //! (a group whose mean normal is within 30 degrees of the vertical, y in
 //! 2D, z in 3D) the group and its pads with their forces, where they act,
 //! and the pressures, so that a footing group's reaction per pad needs no
-//! contact split by hand.
+//! contact split by hand. With water in a group's joint the bearing is
+//! the effective (solid-to-solid) stress's, and the total (effective plus
+//! water) is given beside it ([`WATER_COLUMNS`]).
 
 use std::fmt::Write;
 
@@ -29,6 +31,10 @@ pub struct FaceBearing {
     pub blocks: Option<[usize; 2]>,
     pub bearing: Bearing,
     pub resultant: Resultant,
+    /// With water in the group: the bearing of the total normal stress
+    /// (effective plus water, `sigma_n' - u`, over the whole face: the
+    /// water presses open parts too), and the water's force Σ u A.
+    pub total: Option<(Bearing, f64)>,
 }
 
 /// Every group's bearing, each followed by its face pairs' (None without
@@ -47,23 +53,37 @@ pub fn of_run(run: &Run) -> Option<Vec<FaceBearing>> {
         sigma_n: c.pairs[p].sigma_n,
         open: c.states[p] == ContactState::Open,
     };
+    let wet: Vec<bool> = (0..r.groups.len()).map(|g| m.water.iter().any(|w| w.contact == g)).collect();
+    // the total (effective plus water) of a wet group's pairs
+    let total = |ps: &[usize]| -> Option<(Bearing, f64)> {
+        let pairs: Vec<BearingPair> =
+            ps.iter().map(|&p| BearingPair { sigma_n: c.sigma_n_total(p), open: false, ..record(p) }).collect();
+        Some((bearing(&pairs, plane, window)?, ps.iter().map(|&p| c.water_pressure(p) * c.areas[p]).sum()))
+    };
     let mut out = Vec::new();
     for (g, group) in r.groups.iter().enumerate() {
         let of_group: Vec<usize> = (0..m.pairs.len()).filter(|&p| m.pairs[p].contact == g).collect();
         let pairs: Vec<BearingPair> = of_group.iter().map(|&p| record(p)).collect();
         let Some(b) = bearing(&pairs, plane, window) else { continue };
-        out.push(FaceBearing { contact: g, blocks: None, bearing: b, resultant: *group });
+        let t = if wet[g] { total(&of_group) } else { None };
+        out.push(FaceBearing { contact: g, blocks: None, bearing: b, resultant: *group, total: t });
         let faces: Vec<_> = r.faces.iter().filter(|f| f.contact == g).collect();
         if faces.len() < 2 {
             continue;
         }
         for f in faces {
-            let pairs: Vec<BearingPair> = (of_group.iter())
-                .filter(|&&p| [body[m.pairs[p].k], body[m.pairs[p].l]] == f.blocks)
-                .map(|&p| record(p))
-                .collect();
+            let ps: Vec<usize> =
+                of_group.iter().copied().filter(|&p| [body[m.pairs[p].k], body[m.pairs[p].l]] == f.blocks).collect();
+            let pairs: Vec<BearingPair> = ps.iter().map(|&p| record(p)).collect();
             if let Some(b) = bearing(&pairs, plane, window) {
-                out.push(FaceBearing { contact: g, blocks: Some(f.blocks), bearing: b, resultant: f.resultant });
+                let t = if wet[g] { total(&ps) } else { None };
+                out.push(FaceBearing {
+                    contact: g,
+                    blocks: Some(f.blocks),
+                    bearing: b,
+                    resultant: f.resultant,
+                    total: t,
+                });
             }
         }
     }
@@ -78,10 +98,23 @@ fn face_name(run: &Run, f: &FaceBearing) -> String {
     }
 }
 
+/// The columns `bearing.csv` adds when a group has water in its joint:
+/// the water's force Σ u A and the bearing of the total normal stress
+/// (effective plus water); the columns before them are the effective
+/// (solid-to-solid) stress's, as in a dry scene.
+pub const WATER_COLUMNS: &str =
+    "water_force,normal_force_total,x_p_total,y_p_total,z_p_total,e_1_total,e_2_total,p_max_total,p_mean_total,p_design_total";
+
 /// `bearing.csv`: one row per group (empty blocks) and per face pair of a
-/// group of several.
+/// group of several; with water in some group, [`WATER_COLUMNS`] after
+/// the others (empty in a dry group's rows).
 pub fn csv(run: &Run, all: &[FaceBearing]) -> String {
-    let mut s = String::from("contact,block_i,block_ii,pairs,normal_force,shear_force,x_p,y_p,z_p,e_1,e_2,width_1,width_2,t1_x,t1_y,t1_z,area,contact_area,p_max,p_max_x,p_max_y,p_max_z,p_mean,p_design,window,in_kern\n");
+    let wet = all.iter().any(|f| f.total.is_some());
+    let mut s = String::from("contact,block_i,block_ii,pairs,normal_force,shear_force,x_p,y_p,z_p,e_1,e_2,width_1,width_2,t1_x,t1_y,t1_z,area,contact_area,p_max,p_max_x,p_max_y,p_max_z,p_mean,p_design,window,in_kern");
+    if wet {
+        s = format!("{s},{WATER_COLUMNS}");
+    }
+    s.push('\n');
     let plane = run.scene.analysis.dim() == 2;
     for f in all {
         let b = &f.bearing;
@@ -97,7 +130,7 @@ pub fn csv(run: &Run, all: &[FaceBearing]) -> String {
             .chain(&[b.mean_pressure, b.design_pressure, b.window])
             .map(|v| format!("{v:.12e}"))
             .collect();
-        let _ = writeln!(
+        let _ = write!(
             s,
             "{},{bi},{bii},{},{},{}",
             super::csv_field(&run.model.interfaces[f.contact].name),
@@ -105,8 +138,24 @@ pub fn csv(run: &Run, all: &[FaceBearing]) -> String {
             nums.join(","),
             b.in_kern(plane)
         );
+        if wet {
+            s += &water_cells(f);
+        }
+        s.push('\n');
     }
     s
+}
+
+/// A row's [`WATER_COLUMNS`], each after a comma (empty when dry).
+fn water_cells(f: &FaceBearing) -> String {
+    let Some((t, water)) = &f.total else { return ",".repeat(WATER_COLUMNS.split(',').count()) };
+    [*water, t.force]
+        .iter()
+        .chain(&t.at)
+        .chain(&t.eccentricity)
+        .chain(&[t.max_pressure, t.mean_pressure, t.design_pressure])
+        .map(|v| format!(",{v:.12e}"))
+        .collect()
 }
 
 /// summary.json's `bearing`: every group, with its face pairs when it has
@@ -119,6 +168,10 @@ pub fn summary(run: &Run, all: &[FaceBearing]) -> serde_json::Value {
         v["in_kern"] = json!(f.bearing.in_kern(plane));
         if plane {
             v["from_ends"] = json!(f.bearing.from_ends());
+        }
+        if let Some((t, water)) = &f.total {
+            v["water_force"] = json!(water);
+            v["total"] = serde_json::to_value(t).unwrap_or_default();
         }
         if let Some([a, b]) = f.blocks {
             v["block_i"] = json!(a);
@@ -195,6 +248,20 @@ pub fn report(run: &Run, all: &[FaceBearing]) -> String {
         let more = all.iter().filter(|f| f.contact == g.contact && f.blocks.is_some()).count();
         if more > FACES_LISTED {
             let _ = writeln!(s, "\n{FACES_LISTED} of its {more} face pairs; all in `bearing.csv`.");
+        }
+        if let Some((t, water)) = &g.total {
+            let dim = if plane { 2 } else { 3 };
+            let _ = writeln!(
+                s,
+                "\nWith water in the joint, N and the pressures above are the effective ones (solid to solid). The water pushes the faces apart with U = {}; the total normal force N + U = {} acts at ({}), e = {}; total pressure (effective plus water) largest {}, mean {}, over d {}. All in `bearing.csv`'s `*_total` columns.",
+                num(*water),
+                num(t.force),
+                point(t.at, dim),
+                t.eccentricity[..dim - 1].iter().map(|&e| num(clean(e, t.widths[0]))).collect::<Vec<_>>().join(", "),
+                num(t.max_pressure),
+                num(t.mean_pressure),
+                num(t.design_pressure)
+            );
         }
         s.push('\n');
     }
