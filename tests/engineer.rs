@@ -1,4 +1,5 @@
 //! What a foundation engineer reads besides the contact states: the
+//! load–settlement picture of the probes over the load steps, and the
 //! bearing pressure of a base with water in its joint, effective and total.
 //!
 //! Reference: the statics of a rigid block (any statics text). A block of
@@ -7,7 +8,9 @@
 //! x = B/2 + H_w h / (3 W) from the heel (H_w = gw h^2 / 2, at h/3); the
 //! effective force is W - U (U = u B, the uplift of a uniform u).
 //!
-//! Goal: `bearing.csv` of a wet base has the total columns:
+//! Goal: (1) `settlement.svg` is written for a scene with probes and
+//! several load steps, one curve per probe, at its stated size, and not
+//! for one step; (2) `bearing.csv` of a wet base has the total columns:
 //! total = effective + water to round-off, the total force W and its
 //! point of action the statics' to 1e-6; a dry scene keeps its header.
 //!
@@ -92,4 +95,44 @@ fn a_wet_base_reports_effective_water_and_total_bearing() {
     let text = common::read(&case.out("dry").join("bearing.csv"));
     let head = text.lines().next().expect("header");
     assert!(head.ends_with(",p_mean,p_design,window,in_kern") && !head.contains("total"), "{head}");
+}
+
+/// The beam of tests/point_loads.rs with a point load ramped over
+/// `steps` load steps and two probes.
+fn beam(steps: usize) -> String {
+    format!(
+        "title = \"beam\"\nmesh = \"beam2d.geo\"\nanalysis = \"plane_strain\"\n\n[gmsh]\norder = 2\n\n[materials.m]\nE = 1000.0\nnu = 0.25\n\n\
+         [[bodies]]\ngroup = \"beam\"\nmaterial = \"m\"\n\n[[supports]]\ngroup = \"pin\"\nfix = [\"x\", \"y\"]\n\n\
+         [[supports]]\ngroup = \"roller\"\nfix = [\"y\"]\n\n[[loads]]\ngroup = \"load\"\nforce = [0.0, -10.0]\n\n\
+         [solver]\nload_steps = {steps}\n\n[[probes]]\nname = \"bottom\"\nfrom = [0.5, 0.0]\nto = [3.5, 0.0]\npoints = 7\n\n\
+         [[probes]]\nname = \"quarter\"\nfrom = [1.0, 0.0]\nto = [1.0, 0.4]\npoints = 3\n"
+    )
+}
+
+/// (1) settlement.svg: written with several load steps, one curve per
+/// probe at the stated size; not written for one step.
+#[test]
+fn the_load_settlement_picture_has_a_curve_per_probe() {
+    let case = Case::new("engineer-settlement");
+    case.copy("tests/geo/beam2d.geo");
+    let scene = case.write("ramp.toml", &beam(4));
+    case.run(&scene).expect("the beam solves");
+    let svg = common::read(&case.out("ramp").join("settlement.svg"));
+    assert!(svg.contains("width=\"640\"") && svg.contains("height=\"420\""), "its size");
+    // a curve: a polyline through the four steps' points
+    let curves = svg
+        .split("<polyline")
+        .skip(1)
+        .filter(|p| {
+            let points = p.split("points=\"").nth(1).and_then(|q| q.split('"').next()).unwrap_or("");
+            points.split_whitespace().count() == 4
+        })
+        .count();
+    eprintln!("settlement.svg: {} bytes, {curves} curves of four points", svg.len());
+    assert_eq!(curves, 2, "one curve per probe");
+    assert!(svg.contains("bottom (point") && svg.contains("quarter (point"), "the legend names the probes");
+    let one = case.write("once.toml", &beam(1));
+    case.run(&one).expect("the beam solves in one step");
+    assert!(!case.out("once").join("settlement.svg").exists(), "one load step: no curve to draw");
+    assert!(case.out("once").join("probes.csv").exists());
 }

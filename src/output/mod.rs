@@ -2,7 +2,8 @@
 //! `<name>.vtu` (bodies), `<name>_contact.vtu` (interfaces), `contact.csv`,
 //! `faces.csv` (the resultants per block face pair, [`faces`]),
 //! `bearing.csv` (the bearing pressure of every contact face, [`bearing`]),
-//! `probes.csv` (and `probes_history.csv` over the load steps),
+//! `probes.csv` (and `probes_history.csv` over the load steps, with the
+//! load–settlement picture `settlement.svg`, [`settlement`]),
 //! `sections.csv` (with a picture per beam or ring,
 //! [`sections`]), the pictures, the safety search's files (`safety.rs`),
 //! then (once the output stage is timed) `summary.json` and `report.md`,
@@ -21,6 +22,7 @@ pub mod report;
 pub mod resultants;
 mod safety;
 pub mod sections;
+pub mod settlement;
 mod unsettled;
 pub mod vtu;
 mod water;
@@ -91,12 +93,6 @@ pub fn stage(run: &Run, out: &std::path::Path) -> Result<(Staged, Vec<String>)> 
             staged.add(&format!("{name}_contact.pvd"), vtu::pvd_bytes(&contacts));
         }
     }
-    if !run.checks.probes.is_empty() {
-        staged.add("probes.csv", probes_csv(&run.checks.probes).into_bytes());
-        if run.steps.len() > 1 {
-            staged.add("probes_history.csv", probes_history_csv(run).into_bytes());
-        }
-    }
     if let Some(csv) = sections::csv(run) {
         staged.add("sections.csv", csv.into_bytes());
     }
@@ -111,6 +107,14 @@ pub fn stage(run: &Run, out: &std::path::Path) -> Result<(Staged, Vec<String>)> 
         one_scale: run.scene.output.colour_scale == crate::scene::ColourScale::One,
     };
     let mut drawn = picture::pictures(&snap);
+    if !run.checks.probes.is_empty() {
+        staged.add("probes.csv", probes_csv(&run.checks.probes).into_bytes());
+        if run.steps.len() > 1 {
+            let history = settlement::history(run);
+            staged.add("probes_history.csv", probes_history_csv(&history).into_bytes());
+            drawn.draw(settlement::FILE, || settlement::svg(run, &history));
+        }
+    }
     sections::pictures(run, &mut drawn);
     safety::stage(run, &mut staged, &mut drawn)?;
     for (file, bytes) in drawn.files {
@@ -436,13 +440,10 @@ pub(crate) fn probes_csv(probes: &[(String, Vec<Sample>)]) -> String {
 /// `probes_history.csv` (probes and more than one load step): the rows of
 /// probes.csv at every step, after the step and its load factor; a
 /// load–settlement curve is a point's uy (3D uz) against `load_factor`.
-pub(crate) fn probes_history_csv(run: &Run) -> String {
+pub(crate) fn probes_history_csv(history: &settlement::History) -> String {
     let mut s = format!("step,load_factor,{PROBE_COLUMNS}");
-    for step in &run.steps {
-        let probes: Vec<(String, Vec<Sample>)> = (run.scene.probes.iter())
-            .map(|p| (p.name.clone(), crate::recover::probe(&run.model, &step.u, p)))
-            .collect();
-        probe_rows(&mut s, &format!("{},{:.12e},", step.step, step.load_factor), &probes);
+    for (step, factor, probes) in history {
+        probe_rows(&mut s, &format!("{step},{factor:.12e},"), probes);
     }
     s
 }
