@@ -204,6 +204,9 @@ pub struct ContactRun {
     /// axes) pushing the faces apart. `pairs` holds the solid-to-solid
     /// stresses, the effective `sigma_n'`; the total is `sigma_n' - u`.
     pub water: Option<PairWater>,
+    /// How far each pair's stresses are from the contact law in its state
+    /// (stress units; `contact::law::law_residual` over the pair's area).
+    pub law_residual: Vec<f64>,
 }
 
 /// The water at every pair of a step (zero on dry pairs).
@@ -214,6 +217,15 @@ pub struct PairWater {
 }
 
 impl ContactRun {
+    /// The pair farthest from the contact law and its residual relative to
+    /// the largest traction `|(sigma_n, tau)|` of any pair (None without
+    /// pairs or residuals).
+    pub fn worst_law_residual(&self) -> Option<(usize, f64)> {
+        let scale = self.pairs.iter().map(|r| r.sigma_n.hypot(r.tau())).fold(0.0, f64::max);
+        let (p, r) = self.law_residual.iter().copied().enumerate().max_by(|a, b| a.1.total_cmp(&b.1))?;
+        Some((p, if scale > 0.0 { r / scale } else { r }))
+    }
+
     /// The shear traction of pair `p` on body I in global axes.
     pub fn shear(&self, p: usize) -> [f64; 3] {
         let (f, r) = (&self.frames[p], &self.pairs[p]);

@@ -95,11 +95,46 @@ fn a_step_that_still_does_not_converge_says_where_its_states_kept_changing() {
         assert!(report.contains(want), "report.md lacks {want:?}:\n{report}");
     }
     assert!(report.lines().count() < 150, "the report stays readable: {} lines", report.lines().count());
-    // a converged run writes none of it
+    let worst = base_law_residual(&rows);
+    assert!(worst > 1e-6, "the unsettled base is off its law: {worst:e}");
+    let reported = s["contact"]["law_residual"]["relative"].as_f64().expect("contact.law_residual");
+    assert!(reported >= worst * (1.0 - 1e-9), "summary {reported:e} below the base's {worst:e}");
+    assert!(report.contains("| contact law residual"), "report.md gives the law residual:\n{report}");
+    // a converged run writes none of it, and keeps the law to round-off
     dam(&case, "long.toml", "max_iterations = 100");
     assert!(case.cli(&["solve", "long.toml", "--out", "long", "--quiet"]).status.success());
+    let worst = base_law_residual(&csv_rows(&case.dir.join("long/contact.csv")));
+    assert!(worst < 1e-9, "converged base off its law by {worst:e}");
     assert!(!read(&case.dir.join("long/contact.csv")).lines().next().unwrap_or("").contains("changes"));
     assert!(!read(&case.dir.join("long/report.md")).contains("did not settle"));
+}
+
+/// The worst distance of the dam's base pairs from their law (friction
+/// 0.75, cohesion and residual cohesion 0.1, no tension), computed here
+/// from contact.csv's stresses, relative to the largest traction; checks
+/// that the `law_residual` column says the same pair by pair.
+fn base_law_residual(rows: &[std::collections::HashMap<String, String>]) -> f64 {
+    let traction = |r| csv_num(r, "sigma_n").hypot(csv_num(r, "tau_t").hypot(csv_num(r, "tau_b")));
+    let scale = rows.iter().map(traction).fold(0.0, f64::max);
+    let mut worst: f64 = 0.0;
+    for r in rows.iter().filter(|r| r["contact"] == "base" && csv_num(r, "gap") >= 0.0) {
+        let (sn, tau) = (csv_num(r, "sigma_n"), csv_num(r, "tau_t").hypot(csv_num(r, "tau_b")));
+        let bound = (0.1 - 0.75 * sn).max(0.0);
+        let residual = match csv_num(r, "status") as i64 {
+            2 => sn.max(0.0).max(tau - bound),
+            1 => sn.max(0.0).max((tau - bound).abs()),
+            _ => sn.hypot(tau),
+        };
+        // (written to 7 digits)
+        let column = csv_num(r, "law_residual");
+        assert!(
+            (residual - column).abs() <= 1e-6 * residual + 1e-9 * scale,
+            "pair {}: {residual:e} here, {column:e} written",
+            r["pair"]
+        );
+        worst = worst.max(residual / scale);
+    }
+    worst
 }
 
 #[test]

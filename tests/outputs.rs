@@ -268,7 +268,7 @@ fn contact_csv_has_the_promised_header_and_one_row_per_pair() {
     // shear vector; the pair's normal, its contact group and its two blocks)
     assert_eq!(
         r.csv_header,
-        "pair,x,y,z,status,sigma_n,tau_t,tau_b,gap,slip,area,tau_x,tau_y,tau_z,n_x,n_y,n_z,contact,block_i,block_ii"
+        "pair,x,y,z,status,sigma_n,tau_t,tau_b,gap,slip,area,tau_x,tau_y,tau_z,n_x,n_y,n_z,contact,block_i,block_ii,law_residual"
     );
     let text = std::fs::read_to_string(r.dir.join("contact.csv")).expect("contact.csv");
     assert!(text.lines().skip(1).all(|l| l.split(',').nth(17) == Some("A-A")), "every pair is on contact A-A");

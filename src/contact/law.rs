@@ -234,6 +234,29 @@ pub fn judge(
     }
 }
 
+/// How far a pair's force is from the contact law in its state, in force
+/// units (the pair's stresses times its area): for a closed pair the
+/// tension beyond `f_t`, and beyond the Coulomb bound `b(p)` when it
+/// sticks or off it when it slips (`| |λ_T| - b(p) |`, or `|λ_T|` for
+/// frictionless slip); for an open pair the force it carries and the
+/// overlap `-gap` times its stiffness. Zero where the law holds exactly:
+/// what a converged iteration reaches to round-off, and what a run that
+/// did not converge reports pair by pair.
+pub fn law_residual(state: ContactState, t: &Trial, s: &Strength, cracked: bool, coulomb: bool) -> f64 {
+    let lam_t = t.force[1].hypot(t.force[2]);
+    if state == ContactState::Open {
+        return t.force[0].hypot(lam_t) + (-t.gap).max(0.0) * t.stiffness;
+    }
+    let tension = (t.force[0] - s.tensile_limit(cracked) * t.area).max(0.0);
+    let (b, _) = friction_bound(s, cracked, t.area, -t.force[0]);
+    let shear = match state {
+        ContactState::Stick => (lam_t - b).max(0.0),
+        _ if coulomb => (lam_t - b).abs(),
+        _ => lam_t,
+    };
+    tension.max(shear)
+}
+
 #[cfg(test)]
 mod tests {
     use super::ContactState::*;
@@ -272,6 +295,23 @@ mod tests {
         assert_eq!(judge(Stick, &diag, &S, false, true, 0.0, 0.0), Stick);
         let diag = Trial { force: [-4.0, 2.2, 2.2], ..diag };
         assert_eq!(judge(Stick, &diag, &S, false, true, 0.0, 0.0), Slip);
+    }
+
+    #[test]
+    fn law_residual_is_the_distance_to_the_law_in_each_state() {
+        // bound at sigma_n = -4: c + f p = 1 + 2 = 3; f_t = 2 (uncracked)
+        let res = |st, tr: Trial| law_residual(st, &tr, &S, false, true);
+        assert_eq!(res(Stick, t(-4.0, 2.5, 0.0, 0.0)), 0.0, "inside the cone");
+        assert_eq!(res(Stick, t(-4.0, 3.5, 0.0, 0.0)), 0.5, "beyond the bound");
+        assert_eq!(res(Slip, t(-4.0, 3.0, 0.1, 0.0)), 0.0, "on the cone");
+        assert_eq!(res(Slip, t(-4.0, 2.0, 0.1, 0.0)), 1.0, "below it");
+        assert_eq!(res(Stick, t(2.5, 0.0, 0.0, 0.0)), 0.5, "tension beyond f_t");
+        assert_eq!(res(Open, t(0.0, 0.0, 0.0, 1e-3)), 0.0);
+        assert_eq!(res(Open, t(-3.0, 4.0, 0.0, 1e-3)), 5.0, "an open pair carries nothing");
+        assert_eq!(res(Open, t(0.0, 0.0, 0.0, -0.1)), 1.0, "nor overlaps (stiffness 10)");
+        // frictionless slip carries no shear; cracked pairs have no f_t
+        assert_eq!(law_residual(Slip, &t(-4.0, 0.25, 0.1, 0.0), &S, false, false), 0.25);
+        assert_eq!(law_residual(Stick, &t(0.5, 0.0, 0.0, 0.0), &S, true, true), 0.5);
     }
 
     #[test]

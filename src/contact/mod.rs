@@ -119,6 +119,10 @@ pub struct Outcome {
     pub states: Vec<ContactState>,
     pub solution: InterfaceSolution,
     pub summary: Summary,
+    /// How far each pair's stresses are from the law in its state
+    /// ([`law::law_residual`] over its area): round-off where the
+    /// iteration converged.
+    pub law_residual: Vec<f64>,
 }
 
 /// A failed iteration: the failure and the states it happened with.
@@ -139,10 +143,27 @@ pub fn iterate(
     h: &mut History,
     max_iterations: usize,
 ) -> Result<Outcome, Failed> {
-    match rule {
+    let mut outcome = match rule {
         StateRule::Robust => iteration::run(newton::Newton::new(problem, laws, h), problem, lambda, h, max_iterations),
         StateRule::Paper => iteration::run(paper::Paper::new(problem, laws), problem, lambda, h, max_iterations),
-    }
+    }?;
+    outcome.law_residual = law_residuals(problem, laws, &h.cracked, &outcome);
+    Ok(outcome)
+}
+
+/// Every pair's [`law::law_residual`] in the outcome's states, over its
+/// area (stress units); `cracked`: cracked in an earlier step.
+fn law_residuals(problem: &InterfaceProblem, laws: &[PairLaw], cracked: &[bool], o: &Outcome) -> Vec<f64> {
+    (0..laws.len())
+        .map(|p| {
+            let (force, rel, area) = (o.solution.forces[p], o.solution.rel[p], problem.area(p));
+            let trial = law::Trial { force, area, slip: [0.0; 3], gap: rel[0], stiffness: problem.stiffness(p) };
+            let state = o.states[p];
+            let cracked = cracked[p] || state != ContactState::Stick;
+            let coulomb = laws[p].slip == SlipLaw::Coulomb;
+            law::law_residual(state, &trial, &laws[p].strength, cracked, coulomb) / area
+        })
+        .collect()
 }
 
 /// The tangential part of a vector in a pair's local axes (n, t, b).

@@ -198,7 +198,7 @@ impl Step<'_> {
         outcome: Outcome,
         lambda: &[f64],
     ) -> (ContactRun, Vec<Vec<f64>>) {
-        let Outcome { states, solution, summary } = outcome;
+        let Outcome { states, solution, summary, law_residual } = outcome;
         let mut pairs = solution.pairs;
         if let Some(tr) = &self.traction {
             let t = tr.recover(&solution.forces, problem.basis());
@@ -215,7 +215,8 @@ impl Step<'_> {
             pressure: w.pressures(self.model, &states, lambda),
             force: w.forces(&states, lambda),
         });
-        (ContactRun { states, pairs, frames: problem.frames().to_vec(), areas, summary, water }, solution.d_c)
+        let frames = problem.frames().to_vec();
+        (ContactRun { states, pairs, frames, areas, summary, water, law_residual }, solution.d_c)
     }
 }
 

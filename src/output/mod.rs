@@ -357,6 +357,8 @@ fn contact_vtu(model: &Model, c: &ContactRun) -> Result<Vec<u8>> {
     if let Some(k) = &changes {
         point_data.push(Field { name: "changes", n_comp: 1, values: k });
     }
+    let law_residual = get(&|p| c.law_residual.get(p).copied().unwrap_or(0.0));
+    point_data.push(Field { name: "law_residual", n_comp: 1, values: &law_residual });
     Ok(vtu::vtu_bytes(
         &points,
         &cells,
@@ -379,7 +381,7 @@ fn contact_csv(model: &Model, c: &ContactRun) -> String {
     if c.water.is_some() {
         s += ",water_pressure,sigma_n_eff";
     }
-    s += if changes.is_some() { ",changes\n" } else { "\n" };
+    s += if changes.is_some() { ",changes,law_residual\n" } else { ",law_residual\n" };
     for (i, (p, r)) in model.pairs.iter().zip(&c.pairs).enumerate() {
         let x = model.coords[p.k];
         let t = c.shear(i);
@@ -414,6 +416,8 @@ fn contact_csv(model: &Model, c: &ContactRun) -> String {
             s.pop();
             s += &format!(",{}\n", k[i]);
         }
+        s.pop();
+        s += &format!(",{:.6e}\n", c.law_residual.get(i).copied().unwrap_or(0.0));
     }
     s
 }
@@ -495,6 +499,7 @@ fn summary(run: &Run) -> serde_json::Value {
             "cuts": it.cuts,
             "pieces": it.pieces,
             "unsettled_pairs": unsettled::changes(c).map(|k| k.iter().filter(|&&n| n > 0).count()),
+            "law_residual": c.worst_law_residual().map(|(p, r)| json!({ "pair": p, "relative": r, "stress": c.law_residual[p] })),
             "history": it.history.iter().map(|h| { let k = state_counts(h); json!({"stick": k[2], "slip": k[1], "open": k[0]}) }).collect::<Vec<_>>(),
         });
         if let Some(r) = resultants::of_run(run) {

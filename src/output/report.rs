@@ -68,6 +68,11 @@ pub fn report(run: &Run) -> String {
         );
         let _ = writeln!(s, "| states stick / slip / open | {} / {} / {} |", k[2], k[1], k[0]);
         let _ = writeln!(s, "| interface residual | {:.2e} |", st.residuals.interface);
+        if let Some((p, r)) = c.worst_law_residual() {
+            let group = &run.model.interfaces[run.model.pairs[p].contact].name;
+            let _ =
+                writeln!(s, "| contact law residual (worst pair / largest traction) | {r:.2e} (pair {p}, {group}) |");
+        }
     }
     let t = &st.timings;
     let _ = writeln!(
