@@ -318,9 +318,10 @@ fn contact_vtu_has_the_promised_fields_and_matches_contact_csv() {
     assert_eq!(m.cells[1].1.len(), r.csv.len());
     let mut names: Vec<&str> = m.point_data.keys().map(|k| k.as_str()).collect();
     names.sort();
-    assert_eq!(names, ["area", "gap", "shear", "sigma_n", "slip", "status", "tau"]);
+    assert_eq!(names, ["area", "gap", "law_residual", "shear", "sigma_n", "slip", "status", "tau"]);
     let (status, sigma_n, tau, gap, slip) =
         (m.field("status", 1), m.field("sigma_n", 1), m.field("tau", 1), m.field("gap", 1), m.field("slip", 1));
+    let law = m.field("law_residual", 1);
     assert_eq!(m.points.len(), r.csv.len(), "one point per pair");
     let close = |a: f64, b: f64| (a - b).abs() <= 1e-11 * (1.0 + a.abs().max(b.abs()));
     for (i, x) in m.points.iter().enumerate() {
@@ -340,6 +341,9 @@ fn contact_vtu_has_the_promised_fields_and_matches_contact_csv() {
         );
         assert!(close(tau[i][0], row["tau_t"].hypot(row["tau_b"])), "tau at {x:?}");
         assert!(close(gap[i][0], row["gap"]) && close(slip[i][0], row["slip"]), "gap/slip at {x:?}");
+        // (the CSV keeps 7 digits of the residual)
+        let (a, b) = (law[i][0], row["law_residual"]);
+        assert!((a - b).abs() <= 1e-6 * a.abs().max(b.abs()), "law_residual at {x:?}: VTU {a:e} vs CSV {b:e}");
     }
 }
 
