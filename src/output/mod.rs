@@ -116,6 +116,9 @@ pub fn stage(run: &Run, out: &std::path::Path) -> Result<(Staged, Vec<String>)> 
         }
     }
     sections::pictures(run, &mut drawn);
+    if let Some(f) = picture::stereonet_file(&run.scene.joints) {
+        drawn.draw(f, || picture::stereonet_png(&run.scene.title, &run.scene.joints));
+    }
     safety::stage(run, &mut staged, &mut drawn)?;
     for (file, bytes) in drawn.files {
         staged.add(&file, bytes);

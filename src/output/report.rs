@@ -107,6 +107,9 @@ pub fn report(run: &Run) -> String {
         "\n![the deformed shape, contact pairs coloured by state]({})",
         super::picture::deformed_file(&run.last().stresses)
     );
+    if let Some(f) = super::picture::stereonet_file(&run.scene.joints) {
+        let _ = writeln!(s, "\n![the joints on a stereonet]({f})\n\n*The joints: poles and great circles, lower hemisphere, equal area.*");
+    }
     if run.contact().is_some() {
         let _ = writeln!(s, "\n![contact normal and shear stress along each interface](interfaces.svg)");
         let plans = super::picture::plan_files(&run.model);

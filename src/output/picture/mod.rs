@@ -3,7 +3,8 @@
 //! (PNG, [`deformed`]), the contact stresses along each interface (SVG,
 //! [`interfaces`]) and, in 3D, each contact surface laid flat (PNG, one per
 //! plane or unrolled surface, [`plan`]) and all of them together by state
-//! (PNG, [`joints`]). This file chooses which pictures a run gets and holds
+//! (PNG, [`joints`]); with joints by orientation, their stereonet (PNG,
+//! [`stereonet`]). This file chooses which pictures a run gets and holds
 //! what they share: the field names, the state colours, number formats and
 //! the error type.
 //!
@@ -30,6 +31,7 @@ mod legend;
 mod plan;
 mod raster;
 mod sheets;
+mod stereonet;
 mod surface;
 #[cfg(test)]
 mod tests;
@@ -39,6 +41,7 @@ pub use deformed::deformed_png;
 pub use interfaces::interface_plot_svg;
 pub use joints::{joints_file, joints_png};
 pub use plan::{plan_files, plan_png, plan_pngs, PlanFile};
+pub use stereonet::{stereonet_file, stereonet_png};
 
 use crate::contact::law::ContactState;
 use crate::fem::Analysis;
