@@ -374,3 +374,42 @@ fn joint_sets_solve_as_the_rockmass_built_by_hand() {
     );
     assert!(worst < 1e-6, "stresses differ by {worst:e}");
 }
+
+/// Water on a joint the tool cuts (issue 31): `water` on a `[[joints]]`
+/// entry acts on the contact group the cut makes of its faces. A 4 m x 4 m
+/// square of rock on a fixed base, held on frictionless rollers at its
+/// sides, cut at y = 2 by a horizontal joint holding water at u = 0.02
+/// (uniform): the block above the joint weighs W = rho g 4 x 2 = 0.21189,
+/// the water lifts it by U = 4 u = 0.08 and the joint carries the rest:
+/// the effective normal force N = U - W = -0.13189 (per metre, tension
+/// positive), and the level form (water up to y = 4.0387, u = gw (h - 2))
+/// gives the same. Without the water, N = -W.
+#[test]
+fn water_on_a_cut_joint_lifts_the_block_above_it() {
+    let case = Case::new("joint-sets-water");
+    case.write(
+        "square.geo",
+        "SetFactory(\"OpenCASCADE\");\nRectangle(1) = {-2, 0, 0, 4, 4};\nMeshSize{ PointsOf{ Surface{1}; } } = 0.5;\ne = 1e-3;\nPhysical Surface(\"rock\") = {1};\nPhysical Curve(\"base\") = Curve In BoundingBox{-2 - e, -e, -e, 2 + e, e, e};\nPhysical Curve(\"sides\") = Curve In BoundingBox{-2 - e, -e, -e, -2 + e, 4 + e, e};\nPhysical Curve(\"sides\") += Curve In BoundingBox{2 - e, -e, -e, 2 + e, 4 + e, e};\n",
+    );
+    let scene = |water: &str| {
+        format!("mesh = \"square.geo\"\nanalysis = \"plane_strain\"\ngravity = [0.0, -9.81]\n[materials.rock]\nE = 5000.0\nnu = 0.25\ndensity = 2.7e-3\n[[bodies]]\ngroup = \"rock\"\nmaterial = \"rock\"\n[[joints]]\nname = \"lift\"\nangle = 0.0\npoint = [0.0, 2.0]\nfriction = 0.6\n{water}[[supports]]\ngroup = \"base\"\nfix = [\"x\", \"y\"]\n[[supports]]\ngroup = \"sides\"\nfix = [\"x\"]\n")
+    };
+    let w = 2.7e-3 * 9.81 * 8.0;
+    let level = 2.0 + 0.02 / 0.00981;
+    for (name, water, u) in [
+        ("dry", String::new(), 0.0),
+        ("uniform", "water = { pressure = 0.02 }\n".to_string(), 0.08),
+        ("level", format!("water = {{ level = {level}, unit_weight = 0.00981 }}\n"), 0.08),
+    ] {
+        case.write(&format!("{name}.toml"), &scene(&water));
+        let o = case.cli(&["solve", &format!("{name}.toml"), "--quiet"]);
+        assert!(o.status.success(), "{name}: {}", String::from_utf8_lossy(&o.stderr));
+        let s = common::json(&case.out(name).join("summary.json"));
+        let g = &s["contact"]["groups"][0];
+        assert_eq!(g["name"], "lift");
+        let (n, uplift) = (g["normal_force"].as_f64().expect("N"), g["uplift"].as_f64().expect("U"));
+        eprintln!("{name}: U = {uplift:.6} (exact {u}), N = {n:.6} (exact {:.6})", u - w);
+        assert!((uplift - u).abs() < 1e-9, "{name}: U = {uplift}, exact {u}");
+        assert!((n - (u - w)).abs() < 1e-6 * w, "{name}: N = {n}, exact U - W = {}", u - w);
+    }
+}

@@ -516,7 +516,12 @@ fn joint_rules() {
     rejects(&set(&format!("{ok}\npoint = [0, 0, 0]")), &["joint_sets[0].point", "[[joints]]"]);
     rejects(&set(&format!("{ok}\ngroup = \"x\"")), &["joint_sets[0]", "remove group"]);
     rejects(&set(&format!("{ok}\nfriction = -1")), &["joint_sets[0].friction", "-1"]);
-    rejects(&set(&format!("{ok}\nwater = {{ pressure = 0.1 }}")), &["joint_sets[0].water", "not supported yet"]);
+    let wet = load(&set(&format!("{ok}\nwater = {{ pressure = 0.1 }}"))).expect("water on a joint set");
+    let water = wet.contacts.last().and_then(|c| c.water.as_ref()).expect("the set's contact is wet");
+    assert_eq!(water.pressure, crate::scene::WaterPressure::Uniform(0.1));
+    rejects(&set(&format!("{ok}\nwater = {{ pressure = -0.1 }}")), &["joint_sets[0].water", "-0.1", ">= 0"]);
+    rejects(&set(&format!("{ok}\nwater = {{ presure = 0.1 }}")), &["joint_sets[0].water", "presure"]);
+    rejects(&set(&format!("{ok}\nwater = {{ level = 1, face = \"up\" }}")), &["joint_sets[0].water.face", "up"]);
     rejects(&set(&format!("{ok}\nbodies = [\"nope\"]")), &["joint_sets[0].bodies[0]", "\"nope\"", "\"b1\""]);
     rejects(&set(&format!("{ok}\npersistence = 2")), &["joint_sets[0].gap", "missing"]);
     rejects(&set(&format!("{ok}\ngap = 2")), &["joint_sets[0]", "persistence"]);

@@ -199,7 +199,9 @@ impl Checker<'_> {
         let mut raw_contacts = raw.contacts;
         let waters: Vec<_> = raw_contacts.iter_mut().map(|c| c.water.take()).collect();
         let mut contacts = self.contacts(raw_contacts, &bodies)?;
-        let (joints, joint_contacts) = self.joints(raw.joint_sets, raw.joints, &bodies, &contacts, analysis)?;
+        let mut raw_joints = (raw.joint_sets, raw.joints);
+        let joint_waters = self.joint_waters(&mut raw_joints.0, &mut raw_joints.1)?;
+        let (joints, joint_contacts) = self.joints(raw_joints.0, raw_joints.1, &bodies, &contacts, analysis)?;
         if let (Some(j), MeshSource::Msh(p)) = (joints.first(), &mesh) {
             return Err(self.err(
                 &j.key,
@@ -213,6 +215,7 @@ impl Checker<'_> {
                 "structured meshes the blocks the joints cut ([[joint_sets]], [[joints]]); without joints, give Transfinite and Recombine in the .geo.",
             ));
         }
+        let first_joint = contacts.len();
         contacts.extend(joint_contacts);
         let max_blocks =
             self.at_least(raw.max_blocks, 1000, 1, "max_blocks", "the most blocks the joints may cut the bodies into")?;
@@ -283,6 +286,12 @@ impl Checker<'_> {
         for (i, w) in waters.into_iter().enumerate() {
             if let Some(w) = w {
                 contacts[i].water = Some(self.water(&format!("contacts[{i}].water"), w, &loads, analysis, steps)?);
+            }
+        }
+        // a joint's water acts on the contact group the cutter makes of its faces
+        for (j, (k, w)) in joint_waters.into_iter().enumerate() {
+            if let Some(w) = w {
+                contacts[first_joint + j].water = Some(self.water(&k, w, &loads, analysis, steps)?);
             }
         }
         let probes = self.probes(raw.probes, analysis)?;

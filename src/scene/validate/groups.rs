@@ -160,13 +160,8 @@ impl Checker<'_> {
     /// The contact of entry `k` (`contacts[1]`, `joint_sets[0]`) on
     /// `groups`: its strength keys checked, defaults applied.
     pub(super) fn strength(&self, k: &str, groups: ContactGroups, c: RawContact) -> R<Contact> {
-        // a [[contacts]] entry's water is taken and checked before; a joint's is not supported yet
-        if c.water.is_some() {
-            return Err(self.err(
-                format!("{k}.water"),
-                "water in the joints of [[joint_sets]] and [[joints]] is not supported yet; remove it, or cut the joints in the .geo and give them as [[contacts]] with water.".to_string(),
-            ));
-        }
+        // the water of a [[contacts]] entry or a joint is taken before and checked with the loads
+        debug_assert!(c.water.is_none());
         let friction = self.non_negative(c.friction, &format!("{k}.friction"), "the friction coefficient")?;
         let cohesion = self.non_negative(c.cohesion, &format!("{k}.cohesion"), "the cohesion")?;
         let tensile_strength =

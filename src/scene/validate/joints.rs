@@ -3,14 +3,14 @@
 //! direction in [0, 360) in 3D, the trace's angle in 2D), the placement
 //! (a set's spacing > 0 and offset, a single joint's point), the bodies it
 //! cuts, persistence (size, gap, shape, centre), extent, snap, and every
-//! `[[contacts]]` strength key. Whether the planes cut anything is the
+//! `[[contacts]]` strength key and its `water`. Whether the planes cut anything is the
 //! cutter's check (it needs the geometry).
 
 use std::collections::BTreeMap;
 
 use super::{fmt_vec, quoted_list, Checker, R};
 use crate::mesh::joints::{JointSpec, Orientation, Persistence, Placement, Shape};
-use crate::scene::raw::{RawContact, RawFrame, RawJoint, JOINT_KEYS};
+use crate::scene::raw::{RawContact, RawFrame, RawJoint, RawWater, JOINT_KEYS};
 use crate::scene::{Analysis, Body, Contact, ContactGroups};
 
 /// Which table an entry is in.
@@ -50,6 +50,28 @@ impl Checker<'_> {
             out.1.push(contact);
         }
         Ok(out)
+    }
+
+    /// The `water` of each joint, sets first, taken out of its entry with
+    /// the key it had (`joint_sets[0].water`): checked once the loads are
+    /// (a `face` names one), it acts on the joint's contact group.
+    pub(super) fn joint_waters(
+        &self,
+        sets: &mut [RawJoint],
+        singles: &mut [RawJoint],
+    ) -> R<Vec<(String, Option<RawWater>)>> {
+        let keys = (0..sets.len()).map(|i| format!("joint_sets[{i}].water"));
+        let keys = keys.chain((0..singles.len()).map(|i| format!("joints[{i}].water")));
+        keys.zip(sets.iter_mut().chain(singles.iter_mut()))
+            .map(|(k, raw)| {
+                let w = raw.contact.remove("water").map(|v| v.try_into()).transpose().map_err(
+                    |e: toml::de::Error| {
+                        self.err(&k, format!("{}.", e.message().trim().trim_end_matches('.')))
+                    },
+                )?;
+                Ok((k, w))
+            })
+            .collect()
     }
 
     fn joint(
