@@ -153,7 +153,7 @@ fn joint_sets_give_the_rock_mass_built_by_hand() {
     let hand_geo = case.dir.join("joint_sets_by_hand.geo");
     let args = MeshArgs { geo: &hand_geo, dim: 3, order: 1, setnumber: &[("lc".into(), 2.0)], clscale: None };
     let hand_msh = case.dir.join("hand.msh");
-    let by_hand = cut_and_mesh(&args, &CutJob { joints: vec![], max_blocks: 1000, structured: false }, &hand_msh)
+    let by_hand = cut_and_mesh(&args, &CutJob { joints: vec![], max_blocks: 1000, structured: false, merge_slivers: false }, &hand_msh)
         .expect("by hand");
     let mesh_h = subcontact::mesh::msh::read_msh(&hand_msh).expect("the by-hand mesh");
     let model_h = Model::build(&mesh_h, &Scene::load(&hand).expect("scene").model_spec()).expect("model");
@@ -412,4 +412,41 @@ fn water_on_a_cut_joint_lifts_the_block_above_it() {
         assert!((uplift - u).abs() < 1e-9, "{name}: U = {uplift}, exact {u}");
         assert!((n - (u - w)).abs() < 1e-6 * w, "{name}: N = {n}, exact U - W = {}", u - w);
     }
+}
+
+/// `merge_slivers = true` (issue 31): geo/tunnel_joints.toml in a 10 m box
+/// (W = 5) makes 27 blocks of which 3 are slivers (the thinnest 0.068 thick
+/// where the mesh size is 2); merged, each is bonded to a neighbour across
+/// its largest joint face, so the model has 27 - 3 = 24 blocks and the
+/// contact groups lose those faces' pairs; by default nothing changes.
+/// That variant still does not converge with or without the merge: one
+/// pair of joints_a at (-1.44, 4.5), away from the slivers (x < -4.9),
+/// cycles between stick and slip (report.md: "did not settle").
+#[test]
+fn slivers_merge_into_a_neighbour_when_asked() {
+    let case = Case::new("joint-sets-slivers");
+    case.copy("geo/tunnel_joints.geo");
+    let small = common::scenes::edited(
+        "geo/tunnel_joints.toml",
+        &[("setnumber = { lc = 0.6, lc_far = 2.0 }", "setnumber = { lc = 0.6, lc_far = 2.0, W = 5 }")],
+    );
+    let mut counts = Vec::new();
+    for (name, text) in [("as_cut", small.clone()), ("merged", format!("merge_slivers = true\n{small}"))] {
+        let scene = case.write(&format!("{name}.toml"), &text);
+        let (_, model) = model_of(&case, &scene);
+        let report = read_report(&case.out(name).join(format!("mesh/{name}.msh"))).expect("the cut's report");
+        let slivers = report.blocks.iter().filter(|b| b.is_sliver()).count();
+        eprintln!(
+            "{name}: {} blocks, {slivers} slivers, {} merged: {} bodies, {} pairs",
+            report.blocks.len(),
+            report.merged,
+            model.bodies.len(),
+            model.pairs.len()
+        );
+        assert_eq!((report.blocks.len(), slivers), (27, 3), "{name}");
+        counts.push((report.merged, model.bodies.len(), model.pairs.len()));
+    }
+    assert_eq!((counts[0].0, counts[0].1), (0, 27), "by default every block is a body");
+    assert_eq!((counts[1].0, counts[1].1), (3, 24), "each sliver bonded to one neighbour");
+    assert!(counts[1].2 < counts[0].2, "the bonded faces have no pairs: {counts:?}");
 }

@@ -86,6 +86,12 @@ pub fn summary(report: &CutReport, joints: &[JointSpec], dim: usize) -> Vec<Stri
             at(t.centre, dim)
         ));
     }
+    if report.merged > 0 {
+        out.push(format!(
+            "merge_slivers: {} sliver block(s) bonded to a neighbour across their largest joint face",
+            report.merged
+        ));
+    }
     out
 }
 
@@ -99,11 +105,16 @@ pub fn warnings(report: &CutReport, dim: usize) -> Vec<String> {
     let slivers: Vec<_> = report.blocks.iter().filter(|b| b.is_sliver()).collect();
     let sliver = slivers.iter().min_by(|a, b| a.thickness.total_cmp(&b.thickness)).map(|b| {
         format!(
-            "{} block(s) are slivers, thinner than a tenth of the mesh size there: the thinnest is {} thick (6 V / A) at {} where the mesh size is {}. Two joints meet close to a face or to each other there; move the offset of a set that cuts it (check lists the planes)",
+            "{} block(s) are slivers, thinner than a tenth of the mesh size there: the thinnest is {} thick (6 V / A) at {} where the mesh size is {}. Two joints meet close to a face or to each other there; move the offset of a set that cuts it (check lists the planes){}",
             slivers.len(),
             g4(b.thickness),
             at(b.centre, dim),
-            g4(b.size)
+            g4(b.size),
+            if report.merged > 0 {
+                format!("; {} are bonded to a neighbour (merge_slivers)", report.merged)
+            } else {
+                ", or give merge_slivers = true to bond each to a neighbour".to_string()
+            }
         )
     });
     report

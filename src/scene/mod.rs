@@ -375,6 +375,8 @@ pub struct Scene {
     pub joints: Vec<JointSpec>,
     /// The most blocks the joints may make (`max_blocks`, default 1000).
     pub max_blocks: usize,
+    /// Bond each sliver block the joints cut to a neighbour (`merge_slivers`).
+    pub merge_slivers: bool,
     /// Where section forces are reported (`[[sections]]`).
     pub sections: Vec<SectionSpec>,
 }
@@ -421,6 +423,7 @@ impl Scene {
         (!self.joints.is_empty()).then(|| CutJob {
             joints: self.joints.clone(),
             max_blocks: self.max_blocks,
+            merge_slivers: self.merge_slivers,
             structured: self.gmsh.structured,
         })
     }

@@ -40,6 +40,7 @@ pub(super) struct RawScene {
     #[serde(default)]
     pub(super) joints: Vec<RawJoint>,
     pub(super) max_blocks: Option<i64>,
+    pub(super) merge_slivers: Option<bool>,
     #[serde(default)]
     pub(super) sections: Vec<RawSection>,
 }

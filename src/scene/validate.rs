@@ -322,6 +322,7 @@ impl Checker<'_> {
             safety,
             joints,
             max_blocks,
+            merge_slivers: raw.merge_slivers.unwrap_or(false),
             sections,
         })
     }

@@ -8,6 +8,7 @@ use std::path::Path;
 use super::api::{ApiError, DimTag, PhysicalGroup as Group, Session};
 use super::geometry::{self, Patch};
 use super::sizes::Sizes;
+use super::slivers;
 use super::{
     trim, BlockReport, CutJob, CutReport, JointError, JointReport, JointSpec, MeshArgs, NearMiss, Placement,
     PlaneReport,
@@ -72,12 +73,13 @@ pub(super) fn run(s: &Session, args: &MeshArgs, job: &CutJob, out: &Path) -> R<C
     let mut children: HashMap<DimTag, Vec<DimTag>> = objects.iter().chain(&tools).copied().zip(map).collect();
     unchanged(s, &objects, &before, &mut children).map_err(g)?;
 
-    let kept = sort_pieces(s, dim, &objects, &laid, &children).map_err(g)?;
+    let mut kept = sort_pieces(s, dim, &objects, &laid, &children).map_err(g)?;
     for (j, (l, k)) in job.joints.iter().zip(laid.iter().zip(&kept)) {
         if k.is_empty() {
             return Err(nothing(j, &format!("its {} plane(s) inside the bounding box of its bodies miss the bodies themselves (they pass through openings or outside); change offset, spacing or extent", l.planes.len())));
         }
     }
+    let merged = if job.merge_slivers { merge(s, dim, &sizes, &mut kept).map_err(g)? } else { 0 };
     let blocks = s.entities(dim).map_err(g)?;
     if blocks.len() > job.max_blocks {
         return Err(JointError::TooManyBlocks { count: blocks.len(), max: job.max_blocks });
@@ -97,7 +99,19 @@ pub(super) fn run(s: &Session, args: &MeshArgs, job: &CutJob, out: &Path) -> R<C
     s.set_option("Mesh.Binary", 1.0).map_err(g)?;
     s.write(out).map_err(g)?;
     logged(s, geo)?;
-    report(s, (dim, &sizes), job, laid, &kept, &blocks).map_err(g)
+    let mut made = report(s, (dim, &sizes), job, laid, &kept, &blocks).map_err(g)?;
+    made.merged = merged;
+    Ok(made)
+}
+
+/// [`slivers::merge`] on the joints' pieces.
+fn merge(s: &Session, dim: i32, sizes: &Sizes, kept: &mut [Vec<Piece>]) -> Result<usize, ApiError> {
+    let mut faces: Vec<Vec<DimTag>> = kept.iter().map(|k| k.iter().map(|p| p.entity).collect()).collect();
+    let n = slivers::merge(s, dim, sizes, &mut faces)?;
+    for (k, f) in kept.iter_mut().zip(&faces) {
+        k.retain(|p| f.contains(&p.entity));
+    }
+    Ok(n)
 }
 
 /// gmsh 4.8 maps an object the fragment left as it was (a side of a
@@ -458,16 +472,11 @@ fn report(
     for &b in blocks {
         let (_, tag) = b;
         let volume = s.mass(b)?;
-        let mut area = 0.0;
-        for f in s.boundary(&[b], false)? {
-            area += s.mass(f)?;
-        }
-        let factor = if dim == 3 { 6.0 } else { 4.0 };
         let centre = s.centre(b)?;
         out.blocks.push(BlockReport {
             body: body_of.get(&tag).cloned().unwrap_or_default(),
             volume,
-            thickness: factor * volume / area.max(f64::MIN_POSITIVE),
+            thickness: slivers::thickness(s, dim, b)?,
             centre,
             size: sizes.at(centre).unwrap_or(f64::INFINITY),
         });

@@ -26,7 +26,8 @@
 //! ([`geometry`]); fragment every volume (surface in 2D) and every entity
 //! of the user's groups with the patches; keep the pieces of each joint
 //! that lie between two blocks or inside one, drop those outside; rebuild
-//! the groups from the pieces; give the new points their sizes; mesh and
+//! the groups from the pieces (with `merge_slivers`, a sliver's largest
+//! joint face leaves its group: [`slivers`]); give the new points their sizes; mesh and
 //! write MSH 4.1. What it made (planes, areas, blocks, planes passing close
 //! to a corner) is a [`CutReport`], kept beside the mesh.
 //!
@@ -40,6 +41,7 @@ mod cut;
 mod ffi;
 pub mod geometry;
 mod sizes;
+mod slivers;
 #[cfg(test)]
 mod tests;
 
@@ -139,6 +141,8 @@ pub struct CutJob {
     /// hexahedra in six-sided blocks of four-sided faces, quadrangles in
     /// four-sided 2D blocks.
     pub structured: bool,
+    /// Bond each sliver block to a neighbour (`merge_slivers`, [`slivers`]).
+    pub merge_slivers: bool,
 }
 
 impl CutJob {
@@ -222,6 +226,9 @@ pub struct CutReport {
     pub joints: Vec<JointReport>,
     pub blocks: Vec<BlockReport>,
     pub near_misses: Vec<NearMiss>,
+    /// Slivers bonded to a neighbour (`merge_slivers`).
+    #[serde(default)]
+    pub merged: usize,
 }
 
 /// Why the joints could not be cut.
