@@ -187,8 +187,8 @@ mod tests {
         // a horizontal joint's pole is vertical: the centre
         assert!(close(pole(0.0, 123.0), [0.0, 0.0], 1e-12));
         // a vertical joint's pole is horizontal: the rim, at dd + 180
-        for dd in [0.0, 30.0, 135.0, 270.0, 359.0] {
-            let az = ((dd + 180.0) as f64).to_radians();
+        for dd in [0.0f64, 30.0, 135.0, 270.0, 359.0] {
+            let az = (dd + 180.0f64).to_radians();
             assert!(close(pole(90.0, dd), [az.sin(), az.cos()], 1e-12), "dd {dd}: {:?}", pole(90.0, dd));
         }
         // dip 60 / 030: plunge 30 towards 210, r = sqrt(2) sin(60° / 2) = sqrt(1 - sin 30°)
