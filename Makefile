@@ -6,7 +6,7 @@ CARGO   ?= cargo
 BIN     := target/release/subcontact
 PYTHON  ?= python3
 
-.PHONY: all deps deps-mpi deps-strace build lint cylinder tunnel tunnel-joints footing footing-layers dam blocks3d dam3d dam3d-joints rockmass wedge safety slope water test test-mpi fuzz bench bench3d bench-blocks bench-ccx bench-interface scaling stress clean
+.PHONY: all deps deps-mpi deps-strace build lint cylinder tunnel tunnel-joints footing footing-layers dam blocks3d dam3d dam3d-joints tunnel3d rockmass wedge safety slope water test test-mpi fuzz bench bench3d bench-blocks bench-ccx bench-interface scaling stress clean
 
 all: build
 
@@ -79,11 +79,19 @@ dam3d: deps build
 	$(BIN) solve geo/dam3d_uplift.toml
 
 # A gravity dam in 3D whose contraction joints cross its lift joints: three
-# monoliths in a stepped valley, each cut into three lifts; self-weight,
-# then the reservoir in two steps (results/dam3d_joints/: joints.png with
-# every joint by state, the contact groups and block faces in report.md).
+# monoliths in a stepped valley, each cut into three lifts by a horizontal
+# joint set ([[joint_sets]] "lifts"); self-weight, then the reservoir in two
+# steps (results/dam3d_joints/: joints.png with every joint by state, the
+# contact groups and block faces in report.md).
 dam3d-joints: deps build
 	$(BIN) solve geo/dam3d_joints.toml
+
+# A tunnel in 3D through three oblique joint sets by dip / dip direction
+# ([[joint_sets]]): the tool cuts the box minus the opening into about 150
+# blocks; in-situ stress, bare opening: which blocks loosen round it
+# (results/tunnel3d/: stereonet.png, joints.png, blocks.csv, report.md).
+tunnel3d: deps build
+	$(BIN) solve geo/tunnel3d.toml
 
 # A jointed rock mass: a 10 m cube and three joint sets by orientation and
 # spacing ([[joint_sets]]), which the tool cuts into 64 blocks (hex20,

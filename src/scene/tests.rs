@@ -495,8 +495,11 @@ fn joint_sets_and_joints_parse() {
     assert_eq!(s.joints[0].orientation, crate::mesh::joints::Orientation::Angle(0.0));
     assert_eq!(s.max_blocks, 5);
     assert!(!s.merge_slivers && !s.cut_job().expect("a cut").merge_slivers, "merge_slivers is off by default");
-    let merged = load(&("merge_slivers = true\n".to_string() + &minimal_solid("[[joint_sets]]\nname = \"J\"\ndip = 0\ndip_direction = 0\nspacing = 1\n")))
-        .expect("merge_slivers");
+    let merged = load(
+        &("merge_slivers = true\n".to_string()
+            + &minimal_solid("[[joint_sets]]\nname = \"J\"\ndip = 0\ndip_direction = 0\nspacing = 1\n")),
+    )
+    .expect("merge_slivers");
     assert!(merged.cut_job().expect("a cut").merge_slivers);
     assert!(load(&minimal_solid("")).expect("valid").cut_job().is_none());
 }

@@ -44,7 +44,8 @@ fn run(
     let geo = dir.write("model.geo", geo);
     let out = dir.0.join("model.msh");
     let args = MeshArgs { geo: &geo, dim, order: 1, setnumber: &[], clscale: None };
-    let report = cut_and_mesh(&args, &CutJob { joints, max_blocks: 1000, structured: false, merge_slivers: false }, &out)?;
+    let report =
+        cut_and_mesh(&args, &CutJob { joints, max_blocks: 1000, structured: false, merge_slivers: false }, &out)?;
     Ok((read_msh(&out).expect("the cut mesh reads"), report))
 }
 

@@ -64,11 +64,10 @@ impl Checker<'_> {
         let keys = keys.chain((0..singles.len()).map(|i| format!("joints[{i}].water")));
         keys.zip(sets.iter_mut().chain(singles.iter_mut()))
             .map(|(k, raw)| {
-                let w = raw.contact.remove("water").map(|v| v.try_into()).transpose().map_err(
-                    |e: toml::de::Error| {
+                let w =
+                    raw.contact.remove("water").map(|v| v.try_into()).transpose().map_err(|e: toml::de::Error| {
                         self.err(&k, format!("{}.", e.message().trim().trim_end_matches('.')))
-                    },
-                )?;
+                    })?;
                 Ok((k, w))
             })
             .collect()
