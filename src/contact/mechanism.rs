@@ -9,7 +9,9 @@
 //! |v| at the closed pairs < 0.3 |t|   toppling: it turns about them (ω: the axis)
 //! -v . n > 0.5 |v| on the closed area lifting: it leaves them
 //! otherwise                           sliding along their joint(s); on two planes
-//!                                     or more, along their line of intersection
+//!                                     or more, along their line of intersection;
+//!                                     turning as it slides (|ω| size > 0.5 |t|):
+//!                                     round a curved joint, about a point
 //! ```
 //!
 //! A toppling block turns about the edge where its last pairs stay closed
@@ -93,7 +95,9 @@ pub struct BlockMotion {
     pub centre: [f64; 3],
     pub translation: [f64; 3],
     pub rotation: [f64; 3],
-    /// Toppling: the mean position of the pairs it turns about.
+    /// Toppling: the mean position of the pairs it turns about; sliding
+    /// round a curved contact: the point it turns about (on the axis, the
+    /// point nearest its centre).
     pub pivot: Option<[f64; 3]>,
     /// The contact groups of the closed pairs it moves on, ascending.
     pub on: Vec<usize>,
@@ -187,11 +191,23 @@ pub fn classify(
         out.motion = Motion::Lifting;
         return out;
     }
-    // two face directions more than ~15 degrees apart: a line of intersection
+    if norm(omega) * size > TURNING * norm(t) {
+        // sliding round a curved contact: about the axis's point nearest the centroid
+        let ww = dot(omega, omega);
+        out.pivot = Some(std::array::from_fn(|i| centre[i] + cross(omega, t)[i] / ww));
+        return out;
+    }
+    // translating on face directions more than ~15 degrees apart: along
+    // their line of intersection
     let n0 = closed[0].normal;
     out.along_line = closed.iter().any(|c| norm(cross(c.normal, n0)) > 0.26);
     out
 }
+
+/// A sliding block whose rotation moves its farthest point by more than
+/// this many times its centroid's motion turns as it slides (round a
+/// curved contact) rather than translating.
+const TURNING: f64 = 0.5;
 
 /// A face's margin against toppling about its edge: `d / e` with e the
 /// eccentricity of the normal force's point of action from the face's
@@ -249,7 +265,16 @@ pub fn describe(model: &Model, m: &Mechanism) -> String {
                     joints(&b.on),
                     dir(b.translation)
                 ),
-                Motion::Sliding => format!("{who} slides along {}, towards {}", joints(&b.on), dir(b.translation)),
+                Motion::Sliding => match b.pivot {
+                    Some(at) if nd == 3 => format!(
+                        "{who} slides round {}, turning about the axis along {} through {}",
+                        joints(&b.on),
+                        dir(b.rotation),
+                        point(at)
+                    ),
+                    Some(at) => format!("{who} slides round {}, turning about {}", joints(&b.on), point(at)),
+                    None => format!("{who} slides along {}, towards {}", joints(&b.on), dir(b.translation)),
+                },
                 Motion::Toppling => {
                     let at = b.pivot.map_or(String::new(), point);
                     if nd == 3 {
@@ -304,6 +329,24 @@ mod tests {
         assert_eq!(b.motion, Motion::Lifting);
         assert_eq!(classify(7, c, 2.1, ([0.0, -1.0, 0.0], [0.0; 3]), &[], DOWN).motion, Motion::Free);
         assert_eq!(classify(7, c, 2.1, ([0.0, 1.0, 0.0], [0.0; 3]), &[], DOWN).motion, Motion::Lifting);
+    }
+
+    #[test]
+    fn a_block_turning_in_a_round_seat_slides_round_it_about_its_centre() {
+        // a half-disc below y = 0 turning about the arc's centre (0, 0):
+        // its pairs on the arc move along it, none leaves it
+        let c = [0.0, -4.0 / (3.0 * std::f64::consts::PI), 0.0];
+        let w = [0.0, 0.0, 0.2];
+        let arc: Vec<Closed> = (1..8)
+            .map(|i| {
+                let a = std::f64::consts::PI * (1.0 + i as f64 / 8.0);
+                Closed { x: [a.cos(), a.sin(), 0.0], normal: [a.cos(), a.sin(), 0.0], area: 0.4, contact: 2 }
+            })
+            .collect();
+        let b = classify(1, c, 1.1, (cross(w, sub(c, [0.0; 3])), w), &arc, DOWN);
+        assert_eq!((b.motion, b.along_line), (Motion::Sliding, false));
+        let p = b.pivot.expect("the point it turns about");
+        assert!(norm(p) < 1e-12, "{p:?}");
     }
 
     #[test]

@@ -26,7 +26,9 @@ use std::ops::Deref;
 
 use nalgebra::DMatrix;
 
+use super::frame::Frame;
 use crate::fem::rigid::{n_modes, Motion, RigidModes};
+use crate::fem::vec3::{dot, norm};
 use crate::model::Model;
 
 /// The rigid motions of one part and what its supports make of them.
@@ -114,6 +116,52 @@ impl Deref for Free {
     fn deref(&self) -> &[usize] {
         &self.parts
     }
+}
+
+/// The ties of a pair at `x` between `parts` along `dirs` (unit; the
+/// pair's normal `frame[0]` first, when it holds along it), `frame` its
+/// local axes (the first `nd` used) and `spread` its facets' spread
+/// ([`crate::model::Model::normal_spreads`]): exact, unless the pair holds
+/// along its normal alone in some tangential direction and its facets'
+/// normals spread; then its normal comes with its slack across each
+/// direction it leaves free (module header). The one rule for the
+/// solver's check of free parts and for the mechanism of a failure.
+pub fn pair_ties(parts: [usize; 2], x: [f64; 3], frame: &Frame, nd: usize, dirs: &[[f64; 3]], spread: f64) -> Vec<Tie> {
+    let across = match dirs.split_first() {
+        Some((&n, held)) if spread > 0.0 && n == frame[0] => loose(&frame[1..nd], held),
+        _ => Vec::new(),
+    };
+    if across.is_empty() {
+        return dirs.iter().map(|&dir| Tie::exact(parts, x, dir)).collect();
+    }
+    let normal = Tie { parts, x, dir: frame[0], kind: TieKind::Normal };
+    let held = dirs[1..].iter().map(|&dir| Tie::exact(parts, x, dir));
+    let slack = across.into_iter().map(|dir| Tie { parts, x, dir, kind: TieKind::Slack(spread) });
+    std::iter::once(normal).chain(held).chain(slack).collect()
+}
+
+/// The unit directions in the span of `tangents` (orthonormal) that no
+/// direction of `held` (unit, within that span) holds: an orthonormal
+/// basis of what is left.
+fn loose(tangents: &[[f64; 3]], held: &[[f64; 3]]) -> Vec<[f64; 3]> {
+    let mut basis: Vec<[f64; 3]> = Vec::new();
+    let mut left = Vec::new();
+    for (i, &d) in held.iter().chain(tangents).enumerate() {
+        let mut v = d;
+        for b in &basis {
+            let c = dot(v, *b);
+            v = std::array::from_fn(|i| v[i] - c * b[i]);
+        }
+        let len = norm(v);
+        if len > 1e-6 {
+            let v = v.map(|x| x / len);
+            basis.push(v);
+            if i >= held.len() {
+                left.push(v);
+            }
+        }
+    }
+    left
 }
 
 /// The parts that some rigid motion left free by supports and `ties`

@@ -2,15 +2,17 @@
 //! ([`crate::contact::mechanism`]), from the pairs' states when it was
 //! lost. Each failing block's rigid motions ([`PartModes`], with its
 //! supports) are tied where its pairs hold (a stuck pair in every
-//! direction, a slipping one along its normal only, an open one not at
-//! all) and where it shares nodes with another block; blocks that did not
-//! fail hold what is tied to them. The motion nothing stops, driven by the
+//! direction, a slipping one along its normal only, with the slack of its
+//! facets' normals on a curved contact as in the solver's own check, an
+//! open one not at all) and where it shares nodes with another block;
+//! blocks that did not fail hold what is tied to them. The motion nothing stops, driven by the
 //! blocks' own loads at the failing trial's load factors
 //! ([`free_motion`]), is named block by block.
 
+use crate::contact::frame::frame;
 use crate::contact::law::ContactState;
 use crate::contact::mechanism::{classify, Closed, Mechanism};
-use crate::contact::rigid::{free_motion, PartModes, Tie};
+use crate::contact::rigid::{free_motion, pair_ties, PartModes, Tie};
 use crate::fem::sparse::NONE;
 use crate::fem::vec3::unit;
 use crate::model::Model;
@@ -49,10 +51,13 @@ pub(super) fn of(model: &Model, blocks: &[usize], states: &[ContactState], lambd
     Mechanism::new(named, &sizes)
 }
 
-/// The ties of the failing blocks: their pairs by state, and the nodes
-/// they share with other blocks (every direction).
+/// The ties of the failing blocks: their pairs by state, as the solver's
+/// check of free parts ties them ([`pair_ties`]: a slipping pair on a
+/// curved contact holds along its normal with its facets' slack), and the
+/// nodes they share with other blocks (every direction).
 fn ties(model: &Model, blocks: &[usize], states: &[ContactState], index: &dyn Fn(usize) -> usize) -> Vec<Tie> {
     let nd = model.nd;
+    let spreads = model.normal_spreads();
     let body_of = model.body_of_node();
     let axes: Vec<[f64; 3]> = (0..nd).map(unit).collect();
     let mut ties = Vec::new();
@@ -61,12 +66,13 @@ fn ties(model: &Model, blocks: &[usize], states: &[ContactState], index: &dyn Fn
         if i == HELD && j == HELD {
             continue;
         }
-        let dirs: &[[f64; 3]] = match states[p] {
-            ContactState::Stick => &axes,
-            ContactState::Slip => std::slice::from_ref(&pair.normal),
+        let frame = frame(nd, pair.normal, [false; 3]);
+        let dirs = match states[p] {
+            ContactState::Stick => &frame[..nd],
+            ContactState::Slip => &frame[..1],
             ContactState::Open => &[],
         };
-        ties.extend(dirs.iter().map(|&dir| Tie::exact([i, j], model.coords[pair.k], dir)));
+        ties.extend(pair_ties([i, j], model.coords[pair.k], &frame, nd, dirs, spreads[p]));
     }
     // nodes a failing block shares with another block
     let mut first = vec![usize::MAX; model.n_nodes()];

@@ -59,7 +59,7 @@ use sparse::Sparse;
 use super::basis::FaceBasis;
 use super::frame::Frame;
 use super::law::{ContactState, PairResult};
-use super::rigid::{free_parts, Free, PartModes, Tie, TieKind};
+use super::rigid::{free_parts, pair_ties, Free, PartModes, Tie};
 use super::water::Water;
 use crate::model::{Model, ModelError};
 use crate::substructure::{OperatorRef, SchurRef};
@@ -749,48 +749,10 @@ impl Holds<'_> {
     }
 
     /// The ties of pair `p` (between `parts`) along `dirs` (its normal
-    /// first, when it holds): exact, unless the pair holds along its normal
-    /// alone in some tangential direction and its facets' normals spread
-    /// ([`crate::model::Model::normal_spreads`]); then its normal comes
-    /// with its slack across each direction it leaves free.
+    /// first, when it holds): [`pair_ties`], with its facets' spread.
     fn ties(&self, parts: [usize; 2], p: usize, dirs: &[[f64; 3]]) -> Vec<Tie> {
-        let (nd, frame, x, spread) = (self.layout.nd, &self.layout.frames[p], self.positions[p], self.spreads[p]);
-        let across = match dirs.split_first() {
-            Some((&n, held)) if spread > 0.0 && n == frame[0] => loose(&frame[1..nd], held),
-            _ => Vec::new(),
-        };
-        if across.is_empty() {
-            return dirs.iter().map(|&dir| Tie::exact(parts, x, dir)).collect();
-        }
-        let normal = Tie { parts, x, dir: frame[0], kind: TieKind::Normal };
-        let held = dirs[1..].iter().map(|&dir| Tie::exact(parts, x, dir));
-        let slack = across.into_iter().map(|dir| Tie { parts, x, dir, kind: TieKind::Slack(spread) });
-        std::iter::once(normal).chain(held).chain(slack).collect()
+        pair_ties(parts, self.positions[p], &self.layout.frames[p], self.layout.nd, dirs, self.spreads[p])
     }
-}
-
-/// The unit directions in the span of `tangents` (orthonormal) that no
-/// direction of `held` (unit, within that span) holds: an orthonormal
-/// basis of what is left.
-fn loose(tangents: &[[f64; 3]], held: &[[f64; 3]]) -> Vec<[f64; 3]> {
-    let mut basis: Vec<[f64; 3]> = Vec::new();
-    let mut left = Vec::new();
-    for (i, &d) in held.iter().chain(tangents).enumerate() {
-        let mut v = d;
-        for b in &basis {
-            let c = crate::fem::vec3::dot(v, *b);
-            v = std::array::from_fn(|i| v[i] - c * b[i]);
-        }
-        let len = crate::fem::vec3::norm(v);
-        if len > 1e-6 {
-            let v = v.map(|x| x / len);
-            basis.push(v);
-            if i >= held.len() {
-                left.push(v);
-            }
-        }
-    }
-    left
 }
 
 /// What a slipping pair holds in the check for parts that move freely.
