@@ -34,7 +34,7 @@ use common::Case;
 use subcontact::analytic::lining::{self, Comparison};
 use subcontact::contact::law::ContactState;
 use subcontact::driver::{ContactError, Run};
-use subcontact::fem::rigid::Motion;
+use subcontact::fem::rigid::RigidMotion;
 use subcontact::scene::Analytic;
 
 /// What a scene varies: the mesh and the interface.
@@ -167,7 +167,7 @@ fn a_frictionless_lining_in_jointed_rock_is_refused_naming_its_rotation_at_every
         assert_eq!(bodies, ["lining"], "{name}");
         assert!(no_shear, "{name}: the interface carries no shear");
         // one motion: the lining turning about the tunnel's centre
-        let [(body, Motion::Turn { point })] = &motions[..] else { panic!("{name}: {motions:?}") };
+        let [(body, RigidMotion::Turn { point })] = &motions[..] else { panic!("{name}: {motions:?}") };
         assert_eq!(body, "lining");
         assert!(point[0].hypot(point[1]) < 1e-3, "{name}: about {point:?}");
         assert!(text.contains("body \"lining\" slides or rotates freely (rotation about ("), "{name}: {text}");

@@ -18,7 +18,7 @@
 //! (Goodman & Bray: a block of width b and height h on a plane at θ topples
 //! when b/h < tan θ, whatever its friction, and slides when tan φ < tan θ),
 //! so friction or cohesion cannot stop it: only what holds its heel down or
-//! its toe in place. [`Motion::helps`] says what can.
+//! its toe in place. [`BlockState::helps`] says what can.
 //!
 //! A block that stands carries its load through faces in compression; the
 //! normal force's point of action on a face (its centre of pressure) lies
@@ -34,9 +34,11 @@
 use crate::fem::vec3::{cross, dot, norm, sub};
 use crate::model::Model;
 
-/// What a block does: it stands, or how it moves once nothing holds it.
+/// What a block does: it stands, or how it moves once nothing holds it
+/// (blocks.csv's `state`; the geometry of a free part's motion is
+/// [`crate::fem::rigid::RigidMotion`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Motion {
+pub enum BlockState {
     Held,
     Sliding,
     Toppling,
@@ -44,15 +46,15 @@ pub enum Motion {
     Free,
 }
 
-impl Motion {
+impl BlockState {
     /// The spelling in blocks.csv and summary.json.
     pub fn key(self) -> &'static str {
         match self {
-            Motion::Held => "held",
-            Motion::Sliding => "sliding",
-            Motion::Toppling => "toppling",
-            Motion::Lifting => "lifting",
-            Motion::Free => "free",
+            BlockState::Held => "held",
+            BlockState::Sliding => "sliding",
+            BlockState::Toppling => "toppling",
+            BlockState::Lifting => "lifting",
+            BlockState::Free => "free",
         }
     }
 
@@ -64,11 +66,11 @@ impl Motion {
     /// What can hold a block that moves this way.
     pub fn helps(self) -> &'static str {
         match self {
-            Motion::Held => "",
-            Motion::Sliding => "raise the friction or cohesion of the joints it slides on, lower the load along them, or hold the block (a support or bolts across the joints)",
-            Motion::Toppling => "friction and cohesion cannot stop it (its toe stays put while it turns): hold its heel down (tensile strength of the joint, bolts, a support), buttress it, widen its base or lower the load that turns it",
-            Motion::Lifting => "hold it down (tensile strength of the joint, bolts, a support) or lower the load that lifts it; friction and cohesion carry nothing once a joint opens",
-            Motion::Free => "support it (bolts into stable rock, a support): its joints are open and nothing carries it; friction and cohesion carry nothing once a joint opens",
+            BlockState::Held => "",
+            BlockState::Sliding => "raise the friction or cohesion of the joints it slides on, lower the load along them, or hold the block (a support or bolts across the joints)",
+            BlockState::Toppling => "friction and cohesion cannot stop it (its toe stays put while it turns): hold its heel down (tensile strength of the joint, bolts, a support), buttress it, widen its base or lower the load that turns it",
+            BlockState::Lifting => "hold it down (tensile strength of the joint, bolts, a support) or lower the load that lifts it; friction and cohesion carry nothing once a joint opens",
+            BlockState::Free => "support it (bolts into stable rock, a support): its joints are open and nothing carries it; friction and cohesion carry nothing once a joint opens",
         }
     }
 }
@@ -90,7 +92,7 @@ pub struct Closed {
 #[derive(Clone, Debug, PartialEq)]
 pub struct BlockMotion {
     pub block: usize,
-    pub motion: Motion,
+    pub state: BlockState,
     /// The point `translation` is the motion of (the block's centre).
     pub centre: [f64; 3],
     pub translation: [f64; 3],
@@ -110,7 +112,7 @@ pub struct BlockMotion {
 /// moves most first; `kind` is its motion.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Mechanism {
-    pub kind: Motion,
+    pub kind: BlockState,
     pub blocks: Vec<BlockMotion>,
 }
 
@@ -123,7 +125,7 @@ impl Mechanism {
             blocks.drain(..).zip(sizes).map(|(b, &s)| (amount(&b, s), b)).collect();
         order.sort_by(|a, b| b.0.total_cmp(&a.0));
         let blocks: Vec<BlockMotion> = order.into_iter().map(|(_, b)| b).collect();
-        Some(Mechanism { kind: blocks.first()?.motion, blocks })
+        Some(Mechanism { kind: blocks.first()?.state, blocks })
     }
 
     /// The displacement of the point `x` of block `block` (zero for a block
@@ -135,8 +137,8 @@ impl Mechanism {
     }
 
     /// The motion of a block of the mechanism (Held for one not in it).
-    pub fn of(&self, block: usize) -> Motion {
-        self.blocks.iter().find(|b| b.block == block).map_or(Motion::Held, |b| b.motion)
+    pub fn of(&self, block: usize) -> BlockState {
+        self.blocks.iter().find(|b| b.block == block).map_or(BlockState::Held, |b| b.state)
     }
 }
 
@@ -159,7 +161,7 @@ pub fn classify(
     let scale = norm(t).max(norm(omega) * size);
     let mut out = BlockMotion {
         block,
-        motion: Motion::Sliding,
+        state: BlockState::Sliding,
         centre,
         translation: t,
         rotation: omega,
@@ -169,7 +171,7 @@ pub fn classify(
     };
     if closed.is_empty() || scale == 0.0 {
         let falls = norm(gravity) > 0.0 && dot(t, gravity) > 0.5 * norm(t) * norm(gravity);
-        out.motion = if falls { Motion::Free } else { Motion::Lifting };
+        out.state = if falls { BlockState::Free } else { BlockState::Lifting };
         return out;
     }
     let mut on: Vec<usize> = closed.iter().map(|c| c.contact).collect();
@@ -181,14 +183,14 @@ pub fn classify(
         let a: f64 = closed.iter().map(|c| c.area).sum();
         let w = |c: &Closed| if a > 0.0 { c.area / a } else { 1.0 / closed.len() as f64 };
         out.pivot = Some(std::array::from_fn(|i| closed.iter().map(|c| w(c) * c.x[i]).sum()));
-        out.motion = Motion::Toppling;
+        out.state = BlockState::Toppling;
         return out;
     }
     let area: f64 = closed.iter().map(|c| c.area).sum::<f64>().max(f64::MIN_POSITIVE);
     // moving against its outward normal, a block leaves the face
     let leaving: f64 = closed.iter().map(|c| -c.area * dot(v(c.x), c.normal) / norm(v(c.x)).max(1e-300)).sum::<f64>();
     if leaving > 0.5 * area {
-        out.motion = Motion::Lifting;
+        out.state = BlockState::Lifting;
         return out;
     }
     if norm(omega) * size > TURNING * norm(t) {
@@ -259,13 +261,13 @@ pub fn describe(model: &Model, m: &Mechanism) -> String {
         .take(5)
         .map(|b| {
             let who = model.bodies[b.block].label();
-            match b.motion {
-                Motion::Sliding if b.along_line => format!(
+            match b.state {
+                BlockState::Sliding if b.along_line => format!(
                     "{who} slides along the line of intersection of {}, towards {}",
                     joints(&b.on),
                     dir(b.translation)
                 ),
-                Motion::Sliding => match b.pivot {
+                BlockState::Sliding => match b.pivot {
                     Some(at) if nd == 3 => format!(
                         "{who} slides round {}, turning about the axis along {} through {}",
                         joints(&b.on),
@@ -275,7 +277,7 @@ pub fn describe(model: &Model, m: &Mechanism) -> String {
                     Some(at) => format!("{who} slides round {}, turning about {}", joints(&b.on), point(at)),
                     None => format!("{who} slides along {}, towards {}", joints(&b.on), dir(b.translation)),
                 },
-                Motion::Toppling => {
+                BlockState::Toppling => {
                     let at = b.pivot.map_or(String::new(), point);
                     if nd == 3 {
                         format!(
@@ -287,9 +289,13 @@ pub fn describe(model: &Model, m: &Mechanism) -> String {
                         format!("{who} topples about its corner at {at} (on {})", joints(&b.on))
                     }
                 }
-                Motion::Lifting => format!("{who} lifts off {}, moving towards {}", joints(&b.on), dir(b.translation)),
-                Motion::Free => format!("{who} falls free, held by none of its joints, towards {}", dir(b.translation)),
-                Motion::Held => format!("{who} holds"),
+                BlockState::Lifting => {
+                    format!("{who} lifts off {}, moving towards {}", joints(&b.on), dir(b.translation))
+                }
+                BlockState::Free => {
+                    format!("{who} falls free, held by none of its joints, towards {}", dir(b.translation))
+                }
+                BlockState::Held => format!("{who} holds"),
             }
         })
         .collect();
@@ -318,17 +324,17 @@ mod tests {
         let w = [0.0, 0.0, -0.01];
         let t = cross(w, sub(c, [1.0, 0.0, 0.0]));
         let b = classify(7, c, 2.1, (t, w), &base(&[1.0]), DOWN);
-        assert_eq!(b.motion, Motion::Toppling);
+        assert_eq!(b.state, BlockState::Toppling);
         assert_eq!(b.pivot, Some([1.0, 0.0, 0.0]));
         assert_eq!(b.on, vec![3]);
         // along the base, every pair closed: sliding on one plane
         let b = classify(7, c, 2.1, ([1.0, 0.0, 0.0], [0.0; 3]), &base(&[0.0, 0.5, 1.0]), DOWN);
-        assert_eq!((b.motion, b.along_line, b.pivot), (Motion::Sliding, false, None));
+        assert_eq!((b.state, b.along_line, b.pivot), (BlockState::Sliding, false, None));
         // leaving its base: lifting; nothing closed: falling or lifting
         let b = classify(7, c, 2.1, ([0.0, 1.0, 0.0], [0.0; 3]), &base(&[0.0, 1.0]), DOWN);
-        assert_eq!(b.motion, Motion::Lifting);
-        assert_eq!(classify(7, c, 2.1, ([0.0, -1.0, 0.0], [0.0; 3]), &[], DOWN).motion, Motion::Free);
-        assert_eq!(classify(7, c, 2.1, ([0.0, 1.0, 0.0], [0.0; 3]), &[], DOWN).motion, Motion::Lifting);
+        assert_eq!(b.state, BlockState::Lifting);
+        assert_eq!(classify(7, c, 2.1, ([0.0, -1.0, 0.0], [0.0; 3]), &[], DOWN).state, BlockState::Free);
+        assert_eq!(classify(7, c, 2.1, ([0.0, 1.0, 0.0], [0.0; 3]), &[], DOWN).state, BlockState::Lifting);
     }
 
     #[test]
@@ -344,7 +350,7 @@ mod tests {
             })
             .collect();
         let b = classify(1, c, 1.1, (cross(w, sub(c, [0.0; 3])), w), &arc, DOWN);
-        assert_eq!((b.motion, b.along_line), (Motion::Sliding, false));
+        assert_eq!((b.state, b.along_line), (BlockState::Sliding, false));
         let p = b.pivot.expect("the point it turns about");
         assert!(norm(p) < 1e-12, "{p:?}");
     }
@@ -357,7 +363,7 @@ mod tests {
             Closed { x: [1.0, 0.0, 1.0], normal: [s, 0.0, -s], area: 1.0, contact: 1 },
         ];
         let b = classify(0, [0.0, 0.0, 1.5], 2.0, ([0.0, 1.0, -0.3], [0.0; 3]), &planes, [0.0, 0.0, -1.0]);
-        assert_eq!((b.motion, b.along_line, b.on.clone()), (Motion::Sliding, true, vec![0, 1]));
+        assert_eq!((b.state, b.along_line, b.on.clone()), (BlockState::Sliding, true, vec![0, 1]));
     }
 
     #[test]
@@ -377,7 +383,7 @@ mod tests {
         let slide = |block, x: f64| BlockMotion {
             block,
             centre: [0.0; 3],
-            motion: if block == 1 { Motion::Toppling } else { Motion::Sliding },
+            state: if block == 1 { BlockState::Toppling } else { BlockState::Sliding },
             translation: [x, 0.0, 0.0],
             rotation: [0.0; 3],
             pivot: None,
@@ -385,9 +391,9 @@ mod tests {
             along_line: false,
         };
         let m = Mechanism::new(vec![slide(0, 0.2), slide(1, 1.0)], &[1.0, 1.0]).expect("blocks");
-        assert_eq!((m.kind, m.blocks[0].block), (Motion::Toppling, 1));
-        assert_eq!((m.of(0), m.of(5)), (Motion::Sliding, Motion::Held));
-        assert!(Motion::Toppling.helps().contains("cannot"));
+        assert_eq!((m.kind, m.blocks[0].block), (BlockState::Toppling, 1));
+        assert_eq!((m.of(0), m.of(5)), (BlockState::Sliding, BlockState::Held));
+        assert!(BlockState::Toppling.helps().contains("cannot"));
         assert!(Mechanism::new(vec![], &[]).is_none());
     }
 }

@@ -27,7 +27,7 @@ use std::ops::Deref;
 use nalgebra::DMatrix;
 
 use super::frame::Frame;
-use crate::fem::rigid::{n_modes, Motion, RigidModes};
+use crate::fem::rigid::{n_modes, RigidModes, RigidMotion};
 use crate::fem::vec3::{dot, norm};
 use crate::model::Model;
 
@@ -108,7 +108,7 @@ pub struct Free {
     /// Each free part's motions, in the order of `parts`: one where a
     /// single motion is left (a ring turning in its hole), else a basis of
     /// those left, each along as few of the part's modes as it can be.
-    pub motions: Vec<(usize, Motion)>,
+    pub motions: Vec<(usize, RigidMotion)>,
 }
 
 impl Deref for Free {
@@ -484,7 +484,7 @@ mod tests {
         assert_eq!(ring(24, off, 0.0).parts, Vec::<usize>::new(), "exact rows hold it");
         let free = ring(24, off, 15f64.to_radians());
         assert_eq!(free.parts, vec![1]);
-        let [(1, Motion::Turn { point })] = free.motions[..] else { panic!("{:?}", free.motions) };
+        let [(1, RigidMotion::Turn { point })] = free.motions[..] else { panic!("{:?}", free.motions) };
         assert!(point[0].hypot(point[1]) < 1e-3, "about the centre: {point:?}");
         // exactly radial normals: free either way
         assert_eq!(ring(24, |_| 0.0, 0.0).motions.len(), 1);
@@ -518,7 +518,7 @@ mod tests {
         assert_eq!(free_parts(&parts, one.into_iter()).parts, vec![1]);
         // the motions: the slipping top slides along x
         let free = free_parts(&parts, joint(&[n]).into_iter());
-        assert_eq!(free.motions, vec![(1, Motion::Translation { dir: [1.0, 0.0, 0.0], solid: false })]);
+        assert_eq!(free.motions, vec![(1, RigidMotion::Translation { dir: [1.0, 0.0, 0.0], solid: false })]);
         // without the x support the bottom slides too, and the stuck top with it
         let loose = plane([1.0, 0.5, 0.0], &[([0.0, 0.0, 0.0], 1), ([2.0, 0.0, 0.0], 1)]);
         let top = plane([1.0, 1.5, 0.0], &[]);

@@ -9,10 +9,10 @@ use std::fmt;
 use std::path::PathBuf;
 
 use crate::contact::law::ContactState;
-use crate::contact::mechanism::Motion as BlockMotion;
+use crate::contact::mechanism::BlockState;
 use crate::contact::system::SolveFailure;
 use crate::contact::{Failed, SlipLaw, StateRule};
-use crate::fem::rigid::Motion;
+use crate::fem::rigid::RigidMotion;
 use crate::model::Model;
 use crate::results::state_counts;
 use crate::scene::Scene;
@@ -57,7 +57,7 @@ pub enum ContactError {
         bodies: Vec<String>,
         no_shear: bool,
         rule: StateRule,
-        motions: Vec<(String, Motion)>,
+        motions: Vec<(String, RigidMotion)>,
     },
     /// A load step's iteration did not converge after `iterations`
     /// (`cycled`: its states cycle) under `rule`; `results`: where the last
@@ -95,7 +95,7 @@ pub enum SafetyError {
         holds: Option<f64>,
         fails: f64,
         max_factor: f64,
-        mechanism: Option<(String, BlockMotion)>,
+        mechanism: Option<(String, BlockState)>,
         load: bool,
         results: Option<PathBuf>,
     },
@@ -197,7 +197,7 @@ fn no_shear(model: &Model, scene: &Scene, states: &[ContactState], bodies: &[Str
 /// The motions that nothing holds, for a message: " (rotation about
 /// (0.0000, 0.0000))", by body where there are several; empty when none
 /// is known.
-fn motions_named(motions: &[(String, Motion)]) -> String {
+fn motions_named(motions: &[(String, RigidMotion)]) -> String {
     let mut bodies: Vec<&String> = motions.iter().map(|(b, _)| b).collect();
     bodies.dedup();
     let each: Vec<String> =
@@ -378,9 +378,9 @@ fn unsafe_message(e: &SafetyError, f: &mut fmt::Formatter<'_>) -> fmt::Result {
     let by = if *load { "the raised loads multiplied by" } else { "the reduced strength parameters multiplied by" };
     let unhelped = mechanism
         .as_ref()
-        .is_some_and(|m| matches!(m.1, BlockMotion::Toppling | BlockMotion::Lifting | BlockMotion::Free));
+        .is_some_and(|m| matches!(m.1, BlockState::Toppling | BlockState::Lifting | BlockState::Free));
     match holds {
-        None if unhelped && !*load => write!(f, ". No strength of its contacts makes it stand (the load steps fail even with the reduced strength parameters multiplied by {max_factor}, safety.max_factor): strength reduction has no factor for a block that {}", match mechanism.as_ref().map(|m| m.1) { Some(BlockMotion::Toppling) => "topples", Some(BlockMotion::Lifting) => "lifts off", _ => "falls free" })?,
+        None if unhelped && !*load => write!(f, ". No strength of its contacts makes it stand (the load steps fail even with the reduced strength parameters multiplied by {max_factor}, safety.max_factor): strength reduction has no factor for a block that {}", match mechanism.as_ref().map(|m| m.1) { Some(BlockState::Toppling) => "topples", Some(BlockState::Lifting) => "lifts off", _ => "falls free" })?,
         Some(h) => write!(f, ". Its {what} is below 1: F = {h:.4} (the load steps hold with {by} {} = {:.4} and fail from F = {fails:.4} up; each trial ran the load steps from the start)", if *load { "F" } else { "1/F" }, if *load { *h } else { 1.0 / h })?,
         None => write!(f, ". Its {what} is below 1: F < {:.4}: the load steps fail even with {by} {} (safety.max_factor){}", 1.0 / max_factor, if *load { 1.0 / max_factor } else { *max_factor }, if no_shear { ", since the contacts the blocks slide on carry no shear (no friction and no cohesion, or slip = \"frictionless\")" } else { "" })?,
     }

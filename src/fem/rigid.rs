@@ -12,7 +12,7 @@
 //! every contact closed, [`crate::contact::rigid`] of the parts under a set
 //! of contact states.
 //!
-//! A motion nothing stops is named as a person would ([`Motion`]): a
+//! A motion nothing stops is named as a person would ([`RigidMotion`]): a
 //! rotation about a point (an axis through it in 3D), or, when that point
 //! lies far outside the part, a translation along the direction it moves.
 
@@ -48,8 +48,10 @@ const FAR: f64 = 10.0;
 
 /// A rigid motion of a part, named: what [`RigidModes::motion`] makes of
 /// amplitudes along its modes (their sign is arbitrary: so is the sense).
+/// Geometry only; what a failing block does (sliding, toppling, ...) is
+/// [`crate::contact::mechanism::BlockState`].
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Motion {
+pub enum RigidMotion {
     /// Along a unit direction (`solid`: in 3D, else in the plane).
     Translation { dir: [f64; 3], solid: bool },
     /// In a plane analysis: about a point (about z).
@@ -58,7 +60,7 @@ pub enum Motion {
     Rotation { axis: [f64; 3], point: [f64; 3] },
 }
 
-impl std::fmt::Display for Motion {
+impl std::fmt::Display for RigidMotion {
     /// "translation along (1.0000, 0.0000)", "rotation about (0.0000,
     /// 0.0000)" in a plane, "rotation about the axis (..) through (..)" in 3D.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -68,11 +70,11 @@ impl std::fmt::Display for Motion {
             format!("({})", c.join(", "))
         };
         match *self {
-            Motion::Translation { dir, solid } => {
+            RigidMotion::Translation { dir, solid } => {
                 write!(f, "translation along {}", xyz(dir, if solid { 3 } else { 2 }))
             }
-            Motion::Turn { point } => write!(f, "rotation about {}", xyz(point, 2)),
-            Motion::Rotation { axis, point } => {
+            RigidMotion::Turn { point } => write!(f, "rotation about {}", xyz(point, 2)),
+            RigidMotion::Rotation { axis, point } => {
                 write!(f, "rotation about the axis {} through {}", xyz(axis, 3), xyz(point, 3))
             }
         }
@@ -123,7 +125,7 @@ impl RigidModes {
     /// leaves in place (the axis's point nearest the centre in 3D, where a
     /// slide along the axis is left unsaid), or a translation when that
     /// point is further than [`FAR`] sizes away or there is no rotation.
-    pub fn motion(&self, a: &[f64]) -> Motion {
+    pub fn motion(&self, a: &[f64]) -> RigidMotion {
         let (c, s) = (self.center, self.scale);
         let t = match self.analysis {
             Analysis::PlaneStrain | Analysis::PlaneStress => [a[0], a[1], 0.0],
@@ -143,11 +145,11 @@ impl RigidModes {
         };
         let (wn, tn, solid) = (norm(w), norm(t), self.analysis == Analysis::Solid);
         if wn == 0.0 || norm(p) > FAR || !p.iter().all(|x| x.is_finite()) {
-            return Motion::Translation { dir: if tn > 0.0 { t.map(|x| x / tn) } else { unit(1) }, solid };
+            return RigidMotion::Translation { dir: if tn > 0.0 { t.map(|x| x / tn) } else { unit(1) }, solid };
         }
         let point = std::array::from_fn(|i| c[i] + s * p[i]);
         if !solid {
-            return Motion::Turn { point };
+            return RigidMotion::Turn { point };
         }
         let mut axis = w.map(|x| x / wn);
         // one sense for the axis: its largest component positive
@@ -155,7 +157,7 @@ impl RigidModes {
         if axis[big] < 0.0 {
             axis = axis.map(|x| -x);
         }
-        Motion::Rotation { axis, point }
+        RigidMotion::Rotation { axis, point }
     }
 
     /// The length the rotations' amplitudes are measured in.
@@ -239,22 +241,22 @@ mod tests {
         let rm = RigidModes::new(Analysis::PlaneStrain, [2.0, 1.0, 0.0], 4.0);
         // turning about (0, 0): d = (-0.5, -0.25), so a0 = -0.25 a2, a1 = 0.5 a2
         let m = rm.motion(&[-0.25 * 3.0, 0.5 * 3.0, 3.0]);
-        let Motion::Turn { point } = m else { panic!("{m:?}") };
+        let RigidMotion::Turn { point } = m else { panic!("{m:?}") };
         assert!(point.iter().all(|x| x.abs() < 1e-15), "{point:?}");
         assert_eq!(m.to_string(), "rotation about (0.0000, 0.0000)");
         // a translation, and a rotation about a point 100 sizes away
-        assert_eq!(rm.motion(&[0.6, -0.8, 0.0]), Motion::Translation { dir: [0.6, -0.8, 0.0], solid: false });
+        assert_eq!(rm.motion(&[0.6, -0.8, 0.0]), RigidMotion::Translation { dir: [0.6, -0.8, 0.0], solid: false });
         assert_eq!(rm.motion(&[0.6, -0.8, 0.01]).to_string(), "translation along (0.6000, -0.8000)");
         // in 3D about the axis x = 1, y = 2 (along z), with a slide along it
         let rm = RigidModes::new(Analysis::Solid, [0.0; 3], 2.0);
         // u = t + w x d, w = (0, 0, -1): at d = (0.5, 1, 0) u = (0, 0, t_z)
         let m = rm.motion(&[-1.0, 0.5, 0.3, 0.0, 0.0, -1.0]);
-        let Motion::Rotation { axis, point } = m else { panic!("{m:?}") };
+        let RigidMotion::Rotation { axis, point } = m else { panic!("{m:?}") };
         assert_eq!(axis, [0.0, 0.0, 1.0]);
         assert!((point[0] - 1.0).abs() < 1e-15 && (point[1] - 2.0).abs() < 1e-15 && point[2].abs() < 1e-15);
         assert_eq!(m.to_string(), "rotation about the axis (0.0000, 0.0000, 1.0000) through (1.0000, 2.0000, 0.0000)");
         let ax = RigidModes::new(Analysis::Axisymmetric, [3.0, 0.0, 0.0], 1.0);
-        assert_eq!(ax.motion(&[-2.0]), Motion::Translation { dir: [0.0, -1.0, 0.0], solid: false });
+        assert_eq!(ax.motion(&[-2.0]), RigidMotion::Translation { dir: [0.0, -1.0, 0.0], solid: false });
     }
 
     #[test]

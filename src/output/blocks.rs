@@ -26,7 +26,7 @@
 //! face's centroid, d the distance from the centroid to the face's edge
 //! that way (Goodman & Bray's (b/h) / tan θ for a block on a plane).
 //! Its state: held, or how it moves in the mechanism of a loss of
-//! equilibrium ([`Motion`]).
+//! equilibrium ([`BlockState`]).
 
 use std::fmt::Write;
 
@@ -34,7 +34,7 @@ use nalgebra::{Matrix3, Vector3};
 
 use super::resultants::mobilised;
 use crate::contact::law::{ContactState, Strength};
-use crate::contact::mechanism::{toppling_margin, Mechanism, Motion};
+use crate::contact::mechanism::{toppling_margin, BlockState, Mechanism};
 use crate::fem::element::body_force;
 use crate::fem::vec3::{cross, dot, norm, sub};
 use crate::model::Model;
@@ -57,7 +57,7 @@ pub struct Block {
     /// The open share of its faces' area.
     pub open: f64,
     pub toppling_margin: Option<f64>,
-    pub state: Motion,
+    pub state: BlockState,
 }
 
 /// Each block's nodes and their weights ∫ N dV, its volume and centroid.
@@ -148,7 +148,7 @@ pub fn blocks(
                 mobilised: faces.mobilised[b],
                 open: if faces.area[b] > 0.0 { faces.open[b] / faces.area[b] } else { 0.0 },
                 toppling_margin: faces.margin(model, b, model.bodies[b].density * norm(model.gravity) * w[b].volume),
-                state: mechanism.map_or(Motion::Held, |m| m.of(b)),
+                state: mechanism.map_or(BlockState::Held, |m| m.of(b)),
             }
         })
         .collect()
@@ -295,8 +295,8 @@ pub fn blocks_csv(model: &Model, blocks: &[Block]) -> String {
 pub fn ranked(blocks: &[Block]) -> Vec<&Block> {
     let mut v: Vec<&Block> = blocks.iter().collect();
     v.sort_by(|a, b| {
-        (b.state != Motion::Held)
-            .cmp(&(a.state != Motion::Held))
+        (b.state != BlockState::Held)
+            .cmp(&(a.state != BlockState::Held))
             .then(b.relative.total_cmp(&a.relative))
             .then(norm(b.displacement).total_cmp(&norm(a.displacement)))
     });

@@ -216,7 +216,7 @@ pub fn insitu_warnings(scene: &crate::scene::Scene, model: &Model) -> Vec<String
 /// The bodies' VTU: each body's own nodes as points, so stresses averaged
 /// per body stay apart where bodies share nodes; the displacement when
 /// `displacement`, the stresses when there are some.
-/// The bodies; `block_state`: each block's [`crate::contact::mechanism::Motion`]
+/// The bodies; `block_state`: each block's [`crate::contact::mechanism::BlockState`]
 /// code as cell data (left out when empty).
 fn bodies_vtu(
     model: &Model,

@@ -325,7 +325,7 @@ fn mechanism_json(run: &Run, m: &Mechanism) -> Value {
         "description": describe(&run.model, m),
         "helps": m.kind.helps(),
         "blocks": m.blocks.iter().map(|b| json!({
-            "block": b.block, "name": super::faces::block_name(&run.model, b.block), "motion": b.motion.key(),
+            "block": b.block, "name": super::faces::block_name(&run.model, b.block), "motion": b.state.key(),
             "translation": b.translation, "rotation": b.rotation, "pivot": b.pivot,
             "on": b.on.iter().map(|&c| run.model.interfaces[c].name.clone()).collect::<Vec<_>>(), "along_line": b.along_line,
         })).collect::<Vec<_>>(),

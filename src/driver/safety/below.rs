@@ -123,7 +123,7 @@ struct Found {
     decided: bool,
     undecided: Vec<crate::results::Undecided>,
     /// How the blocks move at F = 1, for a reader.
-    at_one: Option<(String, crate::contact::mechanism::Motion)>,
+    at_one: Option<(String, crate::contact::mechanism::BlockState)>,
 }
 
 impl Found {
