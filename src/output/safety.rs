@@ -10,7 +10,8 @@
 //!   the contact stresses along each interface, and in 3D the plan of every
 //!   joint by state with the slip directions;
 //! - `mechanism.png`: the blocks of the failing trial's mechanism moved by
-//!   their rigid motion and coloured by it (the others still);
+//!   their rigid motion and coloured by it (the others still), the largest
+//!   motion drawn 10 % of the picture's region;
 //! - `summary.json`'s `safety` object and report.md's section
 //!   ([`report`]), which say what F is (strength reduction with peak or
 //!   residual strength, or a load factor; decided by converged trials or
@@ -56,7 +57,7 @@ pub(super) fn stage(run: &Run, staged: &mut Staged, drawn: &mut picture::Drawn) 
             region: None,
             one_scale: false,
         };
-        drawn.draw("mechanism.png", || picture::deformed_png(&snap, picture::Field::Displacement, None));
+        drawn.draw("mechanism.png", || picture::mechanism_png(&snap));
     }
     let Some(last) = &s.last else { return Ok(()) };
     let (model, name) = (&run.model, &run.scene.name);

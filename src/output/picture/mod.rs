@@ -37,7 +37,7 @@ mod surface;
 mod tests;
 mod view;
 
-pub use deformed::deformed_png;
+pub use deformed::{deformed_png, mechanism_png};
 pub use interfaces::interface_plot_svg;
 pub use joints::{joints_file, joints_png};
 pub use plan::{plan_files, plan_png, plan_pngs, PlanFile};
