@@ -19,7 +19,10 @@
 //! the F of its base's resultants; (4) DESIGN.md §5's block on a 20 degree
 //! slope with f = 0.3645 has F = f / tan 20; (5) a scene that fails at F = 1
 //! is unsafe as given: a clean failure naming the block, with its F < 1 (the
-//! same closed form); a search that reaches max_factor says so.
+//! same closed form); a search that reaches max_factor says so; (6) a
+//! wedge with cohesion near the limit (tet10, F = 1.048) slides at Hoek &
+//! Bray's factor with cohesion within 1 %, silent on residual_cohesion (the
+//! load steps fail, the search says F >= 1 with peak strength) or not.
 //!
 //! ```text
 //!   2D and 3D (tests/geo/contact_stack*.geo)    wedge (geo/wedge.geo), section
@@ -484,4 +487,55 @@ fn a_misspelt_safety_key_is_named() {
     let o = case.cli(&["safety", "typo.toml", "--out", "typo", "--quiet"]);
     let msg = clean_failure(&case, &o, &case.dir.join("typo"));
     says(&msg, &["typo.toml", "(in safety)", "unknown field `tolerence`", "`tolerance`", "Unknown keys are errors"]);
+}
+
+/// A wedge in a V-groove (geo/wedge.geo, tet10 at lc = 2: xi = 90 degrees,
+/// d = 4, crevice h0 = 0.25, L = 12, the line of intersection plunging at
+/// psi = 30 degrees) on joints with cohesion, near the limit, written as a
+/// user would: tan(phi) = tan 20 degrees, c = 3 kPa. Hoek & Bray's rigid
+/// wedge with cohesion on both planes (beta = 90 degrees),
+/// `F = (c A + W cos(psi) tan(phi) / sin(xi / 2)) / (W sin(psi))` with A
+/// the two joint faces' area and W the wedge's weight: 1.0481, of which the
+/// cohesion gives 0.157 (friction alone: 0.892). Silent on
+/// residual_cohesion, the load steps lose the cohesion where pairs slip and
+/// the scene fails as given; the search keeps the peak strength and finds
+/// F >= 1, said so (not "below 1"). With residual_cohesion = c the load
+/// steps hold and the search finds the same F.
+#[test]
+fn a_cohesive_wedge_near_the_limit_slides_at_hoek_and_brays_factor() {
+    let case = Case::new("safety-cohesive-wedge");
+    case.copy("geo/wedge.geo");
+    let (xi, psi, tan_phi, c) = (90f64.to_radians(), 30f64.to_radians(), 20f64.to_radians().tan(), 0.003);
+    let (d, h0, l, gamma) = (4.0, 0.25, 12.0, 2.6e-3 * 9.81);
+    let (b, bc) = (d * (xi / 2.0).tan(), d * (xi / 2.0).tan() * h0 / d);
+    let area = 2.0 * (b - bc).hypot(d - h0) * l;
+    let w = gamma * (b + bc) * (d - h0) * l;
+    let exact = (c * area + w * psi.cos() * tan_phi / (xi / 2.0).sin()) / (w * psi.sin());
+    let scene = |residual: &str| {
+        format!(
+            "title = \"a cohesive wedge near the limit\"\nmesh = \"wedge.geo\"\nanalysis = \"solid\"\n\
+             gravity = [0.0, {}, {}]\n\n[gmsh]\norder = 2\n\
+             setnumber = {{ lc = 2.0, xi = 90, d = {d}, h0 = {h0}, L = {l} }}\n\n\
+             [materials.rock]\nE = 1.0e4\nnu = 0.25\ndensity = 2.6e-3\n\n\
+             [[bodies]]\ngroup = \"rock\"\nmaterial = \"rock\"\n\n[[bodies]]\ngroup = \"wedge\"\nmaterial = \"rock\"\n\n\
+             [[contacts]]\ngroup = \"groove\"\nfriction = {tan_phi}\ncohesion = {c}\n{residual}\n\
+             [[supports]]\ngroup = \"rock_base\"\nfix = [\"x\", \"y\", \"z\"]\n\n\
+             [[supports]]\ngroup = \"rock_sides\"\nfix = [\"x\"]\n\n\
+             [[supports]]\ngroup = \"rock_ends\"\nfix = [\"y\"]\n\n[safety]\ntolerance = 1.0e-4\n",
+            -9.81 * psi.sin(),
+            -9.81 * psi.cos()
+        )
+    };
+    // silent on residual_cohesion: unsafe as given, F >= 1 with peak strength
+    case.write("silent.toml", &scene(""));
+    let msg = failed_with_results(&case.cli(&["solve", "silent.toml", "--out", "silent", "--quiet"]));
+    says(&msg, &["unsafe as given", "with the peak strength kept", "is F = 1.048", "residual_cohesion"]);
+    assert!(!msg.contains("below 1") && !msg.contains("none was made"), "{msg}");
+    let s = json(&case.dir.join("silent/summary.json"))["safety"].clone();
+    assert_factor("cohesive wedge, silent", &s, exact, 0.01);
+    // the cohesion kept in the load steps too: they hold, the same F
+    case.write("kept.toml", &scene(&format!("residual_cohesion = {c}\n")));
+    let (s, _, _) = safety_run(&case, &["solve", "kept.toml", "--quiet"], "kept");
+    assert_factor("cohesive wedge, residual_cohesion = c", &s, exact, 0.01);
+    assert_eq!(s["failure"]["mechanism"]["kind"], "sliding");
 }

@@ -381,10 +381,12 @@ fn unsafe_message(e: &SafetyError, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         .is_some_and(|m| matches!(m.1, BlockState::Toppling | BlockState::Lifting | BlockState::Free));
     match holds {
         None if unhelped && !*load => write!(f, ". No strength of its contacts makes it stand (the load steps fail even with the reduced strength parameters multiplied by {max_factor}, safety.max_factor): strength reduction has no factor for a block that {}", match mechanism.as_ref().map(|m| m.1) { Some(BlockState::Toppling) => "topples", Some(BlockState::Lifting) => "lifts off", _ => "falls free" })?,
+        Some(h) if *h >= 1.0 && !*load => write!(f, ". The load steps lose cohesion where pairs slip or open (residual_cohesion, 0 where the scene is silent); with the peak strength kept over the whole sliding surface, as limit equilibrium keeps it, its {what} is F = {h:.4} (holds; fails from F = {fails:.4}): it stands by limit equilibrium, not with the residual strength the load steps use")?,
         Some(h) => write!(f, ". Its {what} is below 1: F = {h:.4} (the load steps hold with {by} {} = {:.4} and fail from F = {fails:.4} up; each trial ran the load steps from the start)", if *load { "F" } else { "1/F" }, if *load { *h } else { 1.0 / h })?,
         None => write!(f, ". Its {what} is below 1: F < {:.4}: the load steps fail even with {by} {} (safety.max_factor){}", 1.0 / max_factor, if *load { 1.0 / max_factor } else { *max_factor }, if no_shear { ", since the contacts the blocks slide on carry no shear (no friction and no cohesion, or slip = \"frictionless\")" } else { "" })?,
     }
     match results {
+        Some(out) if holds.is_some_and(|h| h >= 1.0) && !*load => write!(f, ". The results in {} are the last load step that held (if any), the failing step's last iterate (not in equilibrium: summary.json contact.converged = false), the state at F (the safety_ files) and the mechanism (blocks.csv, report.md)", out.display())?,
         Some(out) => write!(f, ". A search upward needs a state that holds at F = 1, so none was made; the results in {} are the last load step that held (if any), the failing step's last iterate (not in equilibrium: summary.json contact.converged = false) and the mechanism (blocks.csv, report.md)", out.display())?,
         None => write!(f, ". A search upward needs a state that holds at F = 1, so none was made and no result files were written")?,
     }

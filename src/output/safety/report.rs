@@ -61,7 +61,10 @@ fn headline(r: &mut String, run: &Run, s: &SafetyRun, o: &Safety) {
         SearchKind::Load => "the raised loads multiplied by F".to_string(),
         SearchKind::Strength(_) => format!("{} divided by F on {}", o.reduce.names().join(", "), contacts(run, o)),
     };
-    let from = if s.below_one {
+    let peak_holds = s.factor.is_some_and(|h| h >= 1.0) && matches!(s.kind, SearchKind::Strength(_));
+    let from = if s.below_one && peak_holds {
+        "The load steps lose equilibrium as given (F = 1), with the residual strength they keep where pairs slip or open; each trial ran the load steps from the start with the search's strength"
+    } else if s.below_one {
         "The scene loses equilibrium as given (F = 1), so F was sought below 1, each trial running the load steps from the start"
     } else {
         "From the state of the last load step"
