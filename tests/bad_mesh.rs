@@ -293,3 +293,102 @@ fn gravity_without_any_density_is_warned_of() {
     let summary = solve_ok(&case);
     assert!(!summary["warnings"].to_string().contains("gravity"), "{}", summary["warnings"]);
 }
+
+/// A block on a base, one quad4 each, in contact along y = 1; `edit` moves
+/// the nodes (0-3 the base, 2-5 the block: 3 2 4 5 counter-clockwise).
+fn two_quads(case: &Case, edit: impl FnOnce(&mut [[f64; 3]])) {
+    let mut x =
+        vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0], [1.0, 2.0, 0.0], [0.0, 2.0, 0.0]];
+    edit(&mut x);
+    let g = |name: &str, dim: usize, gmsh_type: i32, cells: Vec<Vec<usize>>| MshGroup {
+        name: name.into(),
+        dim,
+        gmsh_type,
+        cells,
+    };
+    let groups = [
+        g("base", 2, 3, vec![vec![0, 1, 2, 3]]),
+        g("block", 2, 3, vec![vec![3, 2, 4, 5]]),
+        g("joint", 1, 1, vec![vec![2, 3]]),
+        g("bottom", 1, 1, vec![vec![0, 1]]),
+        g("top", 1, 1, vec![vec![4, 5]]),
+    ];
+    write_msh41(&case.dir.join("quads.msh"), &x, &groups);
+    let scene = "title = \"quads\"\nmesh = \"quads.msh\"\nanalysis = \"plane_strain\"\n\n[materials.m]\nE = 1000.0\nnu = 0.3\n\n\
+        [[bodies]]\ngroup = \"base\"\nmaterial = \"m\"\n\n[[bodies]]\ngroup = \"block\"\nmaterial = \"m\"\n\n\
+        [[contacts]]\ngroup = \"joint\"\nfriction = 0.5\n\n[[supports]]\ngroup = \"bottom\"\nfix = [\"x\", \"y\"]\n\n\
+        [[loads]]\ngroup = \"top\"\npressure = 1.0\n";
+    case.write("quads.toml", scene);
+}
+
+#[test]
+fn a_quad_with_a_collapsed_edge_is_refused_naming_it_not_the_contact_or_the_supports() {
+    let case = Case::new("bad-mesh-collapsed-quad");
+    // the block's top edge collapsed: a triangle in a quad's clothes, solved
+    // without a word before (det J zero at the corner, positive inside)
+    two_quads(&case, |x| x[4] = x[5]);
+    let o = case.cli(&["solve", "quads.toml", "--out", "out", "--quiet"]);
+    let msg = clean_failure(&case, &o, &case.dir.join("out"));
+    says(
+        &msg,
+        &[
+            "element 2 (quad4) of body \"block\" is degenerate",
+            "corner nodes 3 and 4 (gmsh order) lie at the same point (0.000000, 2.000000, 0.000000)",
+            "Remesh it",
+            "node order",
+        ],
+    );
+    // the base's edge on the joint collapsed: it blamed the supports ("not held")
+    two_quads(&case, |x| x[2] = x[3]);
+    let o = case.cli(&["solve", "quads.toml", "--out", "out", "--quiet"]);
+    let msg = clean_failure(&case, &o, &case.dir.join("out"));
+    says(&msg, &["element 1 (quad4) of body \"base\" is degenerate", "corner nodes 3 and 4"]);
+    assert!(!msg.contains("not held") && !msg.contains("joint"), "{msg}");
+    // a bow tie (corners crossed): det J negative at a corner
+    two_quads(&case, |x| x.swap(4, 5));
+    let msg = clean_failure(&case, &case.cli(&["check", "quads.toml"]), &case.dir.join("results"));
+    says(&msg, &["element 2 (quad4) of body \"block\" is folded or inverted", "corner nodes in the wrong order"]);
+}
+
+/// The unit cube as one hex8 (gmsh order: 0-3 at z = 0, 4-7 at z = 1),
+/// after `edit`, held at its base, pressed on its top.
+fn one_hex(case: &Case, edit: impl FnOnce(&mut Vec<[f64; 3]>, &mut Vec<usize>)) {
+    let mut x: Vec<[f64; 3]> = (0..8)
+        .map(|i| {
+            let (b, z) = (i % 4, (i / 4) as f64);
+            [f64::from(u8::from(b == 1 || b == 2)), f64::from(u8::from(b >= 2)), z]
+        })
+        .collect();
+    let mut hex: Vec<usize> = (0..8).collect();
+    edit(&mut x, &mut hex);
+    let g = vec![
+        MshGroup { name: "body".into(), dim: 3, gmsh_type: 5, cells: vec![hex] },
+        MshGroup { name: "base".into(), dim: 2, gmsh_type: 3, cells: vec![vec![0, 3, 2, 1]] },
+        MshGroup { name: "top".into(), dim: 2, gmsh_type: 3, cells: vec![vec![4, 5, 6, 7]] },
+    ];
+    write_msh41(&case.dir.join("cubes.msh"), &x, &g);
+    case.write("cubes.toml", SCENE);
+}
+
+#[test]
+fn a_hex_with_a_collapsed_edge_or_turned_inside_out_is_refused_naming_it() {
+    let case = Case::new("bad-mesh-hex");
+    one_hex(&case, |_, _| {});
+    solve_ok(&case);
+    // the top edge 6-7 collapsed onto node 7: a prism in a hex's clothes
+    one_hex(&case, |x, _| x[6] = x[7]);
+    let o = case.cli(&["solve", "cubes.toml", "--out", "out2", "--quiet"]);
+    let msg = clean_failure(&case, &o, &case.dir.join("out2"));
+    says(
+        &msg,
+        &["element 1 (hex8) of body \"body\" is degenerate", "corner nodes 7 and 8", "(0.000000, 1.000000, 1.000000)"],
+    );
+    // base and top swapped: det J negative everywhere
+    one_hex(&case, |_, hex| hex.rotate_left(4));
+    let o = case.cli(&["solve", "cubes.toml", "--out", "out2", "--quiet"]);
+    let msg = clean_failure(&case, &o, &case.dir.join("out2"));
+    says(
+        &msg,
+        &["element 1 (hex8) of body \"body\" is folded or inverted", "Jacobian determinant is -", "wrong order"],
+    );
+}

@@ -215,6 +215,8 @@ pub enum ModelError {
     Inverted { body: String, tag: u64, det_j: f64 },
     #[error("element {tag} ({kind}) of body {body} is folded or inverted: its Jacobian determinant is {det_j:.3e} {}, where it must be positive over the whole element, not only at the integration points. Fix the mesh: corner nodes in the wrong order, or a mid-side node beyond the opposite side (with gmsh: Mesh.HighOrderOptimize = 2, or a finer mesh where the boundary curves)", match node { Some(k) => format!("at its node {k} (gmsh order)"), None => "at its centre".to_string() })]
     Folded { body: String, tag: u64, kind: &'static str, node: Option<usize>, det_j: f64 },
+    #[error("element {tag} ({kind}) of body {body} is degenerate: its corner nodes {} and {} (gmsh order) lie at the same point ({:.6}, {:.6}, {:.6}), a collapsed edge where its Jacobian determinant is zero. Remesh it: a {kind} must keep its corners apart (a quadrangle or hexahedron collapsed into a triangle, prism or pyramid is not one; let gmsh make triangles, tetrahedra or prisms there), or check the element's node order in the .msh", corners.0, corners.1, at[0], at[1], at[2])]
+    Collapsed { body: String, tag: u64, kind: &'static str, corners: (usize, usize), at: [f64; 3] },
 }
 
 impl Model {
