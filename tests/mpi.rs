@@ -187,6 +187,43 @@ fn a_failure_on_any_rank_ends_every_rank_with_one_message_and_no_results() {
     }
 }
 
+/// The mesh cache under MPI (issue 32): rank 0 runs gmsh into the run's
+/// staging directory; a `.geo` that gmsh refuses ends every rank with one
+/// message and leaves no `mesh/`, no result and no staging directory, and
+/// the next good run into the same directory meshes and commits.
+#[test]
+fn a_failed_geo_on_two_ranks_leaves_no_mesh_and_no_stage() {
+    let case = Case::new("mpi-bad-geo");
+    let geo = common::repo_text("geo/blocks3d.geo");
+    case.write("blocks3d.geo", &geo);
+    case.write("broken.geo", &format!("{geo}\nLine(9999) = {{1, 2\n"));
+    let scene = common::scenes::edited(
+        "geo/blocks3d.toml",
+        &[("setnumber = { lc = 0.1, hex = 0 }", "setnumber = { lc = 0.25, hex = 0 }")],
+    );
+    case.write("good.toml", &scene);
+    case.write("bad.toml", &scene.replace("mesh = \"blocks3d.geo\"", "mesh = \"broken.geo\""));
+    let o = mpirun(&case, 2, &["solve", "bad.toml", "--out", "out", "--quiet", "--substructures", "2"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "{err}");
+    assert_eq!(err.matches("error:").count(), 1, "one message: {err}");
+    common::cli::says(&err, &["gmsh failed on", "broken.geo", "fix the .geo"]);
+    assert!(!err.contains("panicked"), "{err}");
+    let out = case.dir.join("out");
+    assert!(case.files_in(&out).is_empty(), "left in out/: {:?}", case.files_in(&out));
+    assert!(!out.join("mesh").exists(), "out/mesh left");
+    let beside = |case: &Case| -> Vec<String> {
+        (std::fs::read_dir(&case.dir).expect("dir").flatten())
+            .map(|e| e.file_name().to_string_lossy().into_owned())
+            .filter(|n| n.starts_with(".out.") && n != ".out.lock")
+            .collect()
+    };
+    assert!(beside(&case).is_empty(), "staging directories left: {:?}", beside(&case));
+    solve_ok(&case, 2, "good.toml", "out", &["--substructures", "2"]);
+    assert!(out.join("mesh/good.msh").is_file(), "{:?}", case.files_in(&out));
+    assert!(beside(&case).is_empty(), "staging directories left: {:?}", beside(&case));
+}
+
 /// The safety search (issue 18) on ranks: rank 0 runs the trials while the
 /// others apply their parts' S (iterative) or wait (dense); the factor and
 /// the last state that holds are the serial ones, and a scene unsafe as
