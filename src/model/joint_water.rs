@@ -1,14 +1,16 @@
 //! Step 5b of [`Model::build`](super::Model::build): the water of every
 //! contact group that has some, on the model's pairs ([`GroupWater`]): the
 //! uplift diagram's ends read off the joint, and for a joint whose cracks
-//! fill, the pairs on the face it connects to (where a crack starts) and
-//! which pairs share a facet (how a crack runs along the joint).
+//! fill, its sheets (smooth pieces, which a crease ends), the pairs of
+//! each on the face it connects to (where a crack starts) and which pairs
+//! share a facet of the sheet (how a crack runs along it).
 
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 
 use super::builder::Builder;
-use super::water::{Diagram, Field, Fill, GroupWater, JointWater, Levels, WaterFace, WaterPressure};
-use super::{Model, ModelError};
+use super::water::{Diagram, Field, Fill, GroupWater, JointWater, Levels, Sheet, WaterFace, WaterPressure};
+use super::{Model, ModelError, CREASE_ANGLE};
+use crate::fem::vec3::{cross, dot, normalized, sub};
 use crate::fem::Analysis;
 
 /// The water of every contact of the description that has some; `signs`:
@@ -89,7 +91,7 @@ fn fill(
     let g = b.group(&format!("{key}.face"), face, &[model.analysis.dim() - 1])?;
     let on_face: HashSet<usize> = g.cells.iter().flat_map(|c| c.nodes.iter().copied()).collect();
     let name = &model.interfaces[group.contact].name;
-    let index_of: std::collections::HashMap<usize, usize> = pairs.iter().enumerate().map(|(i, &p)| (p, i)).collect();
+    let index_of: HashMap<usize, usize> = pairs.iter().enumerate().map(|(i, &p)| (p, i)).collect();
     let seeds: Vec<usize> =
         (0..pairs.len()).filter(|&i| on_face.contains(&model.mesh_node[model.pairs[pairs[i]].k])).collect();
     if seeds.is_empty() {
@@ -117,16 +119,121 @@ fn fill(
             ),
         ));
     }
-    let mut neighbours: Vec<Vec<usize>> = vec![Vec::new(); pairs.len()];
-    for facet in &model.facet_pairs()[group.contact] {
-        let here: Vec<usize> = facet.iter().filter_map(|p| index_of.get(p).copied()).collect();
+    let (facet_sheet, sheets) = sheets(model, group.contact, &index_of, &seeds);
+    Ok(Fill { surface: water.surface, unit_weight: water.unit_weight, pairs: pairs.to_vec(), facet_sheet, sheets })
+}
+
+/// The sheet of every facet of contact `ci` and every sheet's pairs, seeds
+/// and neighbours (`index_of`: a model pair's index in the group's pairs;
+/// `seeds`: the group's pairs on the face, by that index).
+fn sheets(model: &Model, ci: usize, index_of: &HashMap<usize, usize>, seeds: &[usize]) -> (Vec<usize>, Vec<Sheet>) {
+    let facet_sheet = sheets_of(model, ci);
+    let n_sheets = facet_sheet.iter().map(|&k| k + 1).max().unwrap_or(0);
+    let is_seed: HashSet<usize> = seeds.iter().copied().collect();
+    let mut sheets: Vec<Sheet> = Vec::with_capacity(n_sheets);
+    let mut local: Vec<HashMap<usize, usize>> = Vec::with_capacity(n_sheets);
+    for _ in 0..n_sheets {
+        sheets.push(Sheet { pairs: Vec::new(), seeds: Vec::new(), neighbours: Vec::new(), normal: [0.0; 3] });
+        local.push(HashMap::new());
+    }
+    let facets = &model.interfaces[ci].facets;
+    for ((facet, &k), cell) in model.facet_pairs()[ci].iter().zip(&facet_sheet).zip(facets) {
+        let (sheet, index) = (&mut sheets[k], &mut local[k]);
+        let n = facet_normal(model, cell);
+        let sign = if dot(n, sheet.normal) < 0.0 { -1.0 } else { 1.0 };
+        sheet.normal = std::array::from_fn(|d| sheet.normal[d] + sign * n[d]);
+        let here: Vec<usize> = (facet.iter().filter_map(|p| index_of.get(p)))
+            .map(|&i| {
+                *index.entry(i).or_insert_with(|| {
+                    sheet.pairs.push(i);
+                    sheet.neighbours.push(Vec::new());
+                    if is_seed.contains(&i) {
+                        sheet.seeds.push(sheet.pairs.len() - 1);
+                    }
+                    sheet.pairs.len() - 1
+                })
+            })
+            .collect();
         for &i in &here {
-            neighbours[i].extend(here.iter().copied().filter(|&j| j != i));
+            sheet.neighbours[i].extend(here.iter().copied().filter(|&j| j != i));
         }
     }
-    for n in &mut neighbours {
-        n.sort_unstable();
-        n.dedup();
+    for sheet in &mut sheets {
+        for n in &mut sheet.neighbours {
+            n.sort_unstable();
+            n.dedup();
+        }
+        let n = normalized(sheet.normal);
+        let big = (0..3).max_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs())).unwrap_or(0);
+        sheet.normal = n.map(|c| if n[big] < 0.0 { -c } else { c });
     }
-    Ok(Fill { surface: water.surface, unit_weight: water.unit_weight, seeds, pairs: pairs.to_vec(), neighbours })
+    (facet_sheet, sheets)
+}
+
+/// The sheet of every facet of contact `ci`: facets that share an edge (a
+/// node in 2D) and whose normals turn by less than [`CREASE_ANGLE`] are
+/// one sheet, so a crease, a step's side or a crossing joint ends one.
+fn sheets_of(model: &Model, ci: usize) -> Vec<usize> {
+    let facets = &model.interfaces[ci].facets;
+    let normals: Vec<[f64; 3]> = facets.iter().map(|f| facet_normal(model, f)).collect();
+    let mut edges: Vec<(usize, usize, usize)> = Vec::new();
+    for (i, f) in facets.iter().enumerate() {
+        let corners: Vec<usize> = f.nodes[..f.kind.n_corners()].iter().map(|&n| model.mesh_node[n]).collect();
+        if corners.len() == 2 {
+            edges.extend(corners.iter().map(|&a| (a, a, i)));
+        } else {
+            edges.extend((0..corners.len()).map(|c| {
+                let (a, b) = (corners[c], corners[(c + 1) % corners.len()]);
+                (a.min(b), a.max(b), i)
+            }));
+        }
+    }
+    edges.sort_unstable();
+    let smooth = CREASE_ANGLE.to_radians().cos();
+    let mut parent: Vec<usize> = (0..facets.len()).collect();
+    for (k, e) in edges.iter().enumerate() {
+        for o in edges[k + 1..].iter().take_while(|o| (o.0, o.1) == (e.0, e.1)) {
+            if dot(normals[e.2], normals[o.2]).abs() >= smooth {
+                let (x, y) = (root(&mut parent, e.2), root(&mut parent, o.2));
+                parent[x.max(y)] = x.min(y);
+            }
+        }
+    }
+    let mut sheet_of_root = vec![usize::MAX; facets.len()];
+    let mut n = 0;
+    (0..facets.len())
+        .map(|i| {
+            let r = root(&mut parent, i);
+            if sheet_of_root[r] == usize::MAX {
+                sheet_of_root[r] = n;
+                n += 1;
+            }
+            sheet_of_root[r]
+        })
+        .collect()
+}
+
+fn root(parent: &mut [usize], mut i: usize) -> usize {
+    while parent[i] != i {
+        parent[i] = parent[parent[i]];
+        i = parent[i];
+    }
+    i
+}
+
+/// A facet's unit normal from its corners (its area vector in 3D, the
+/// segment turned a quarter in 2D).
+fn facet_normal(model: &Model, f: &crate::mesh::Cell) -> [f64; 3] {
+    let x: Vec<[f64; 3]> = f.nodes[..f.kind.n_corners()].iter().map(|&n| model.coords[n]).collect();
+    if x.len() == 2 {
+        return normalized([x[1][1] - x[0][1], x[0][0] - x[1][0], 0.0]);
+    }
+    let mut m = [0.0; 3];
+    for i in 0..x.len() {
+        let w = cross(sub(x[i], x[0]), sub(x[(i + 1) % x.len()], x[0]));
+        for d in 0..3 {
+            m[d] += w[d];
+        }
+    }
+    normalized(m)
 }

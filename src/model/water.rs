@@ -128,17 +128,34 @@ pub struct Diagram {
 }
 
 /// Where a crack of the group fills from: the free water's level and unit
-/// weight, and where on the joint a crack starts and how it runs.
+/// weight, and where on the joint a crack starts and how it runs. A crack
+/// stays in the sheet it starts in (a smooth piece of the group: a crease
+/// or a crossing joint ends it), so a group of many faces, a dam's base
+/// with the sides of its foundation's steps, has one crack per sheet.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Fill {
     pub surface: f64,
     pub unit_weight: f64,
     /// Every pair of the group (model pair indices).
     pub pairs: Vec<usize>,
-    /// Those on the face the joint connects to (indices into `pairs`).
+    /// The sheet of each facet of the group (indices into `sheets`).
+    pub facet_sheet: Vec<usize>,
+    pub sheets: Vec<Sheet>,
+}
+
+/// One sheet of a group whose cracks fill: its pairs, where a crack starts
+/// in it and how it runs through it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sheet {
+    /// Its pairs (indices into [`Fill::pairs`]).
+    pub pairs: Vec<usize>,
+    /// Those on the face the joint connects to (indices into `pairs` here).
     pub seeds: Vec<usize>,
-    /// The pairs that share a facet with each (indices into `pairs`).
+    /// The pairs that share one of the sheet's facets with each (indices
+    /// into `pairs` here).
     pub neighbours: Vec<Vec<usize>>,
+    /// Its mean unit normal (the sign of its largest component positive).
+    pub normal: [f64; 3],
 }
 
 /// A crack that has filled: it reaches `tip` (in s) with the free water at

@@ -19,9 +19,10 @@ struct Row {
     factor: f64,
     max_pressure: f64,
     uplift: f64,
-    /// Whether its cracks fill from a face, and how far one has.
+    /// Whether its cracks fill from a face, and how far one has in each
+    /// sheet that has one (with the sheet's normal), farthest first.
     fills: bool,
-    crack: Option<Crack>,
+    cracks: Vec<(Crack, [f64; 3])>,
 }
 
 fn rows(run: &Run) -> Vec<Row> {
@@ -61,7 +62,19 @@ fn rows(run: &Run) -> Vec<Row> {
             let name = m.interfaces[w.contact].name.clone();
             let max_pressure = pressures(m, c, w.contact).fold(0.0, f64::max);
             let uplift = groups.get(w.contact).map_or(0.0, |g| g.uplift());
-            Row { name, given, factor: last.case_factors[w.case], max_pressure, uplift, fills: w.fill.is_some(), crack }
+            let mut cracks: Vec<(Crack, [f64; 3])> = (crack.into_iter().zip(w.fill.iter().flat_map(|f| &f.sheets)))
+                .filter_map(|(c, sheet)| c.map(|c| (c, sheet.normal)))
+                .collect();
+            cracks.sort_by(|a, b| b.0.tip.total_cmp(&a.0.tip));
+            Row {
+                name,
+                given,
+                factor: last.case_factors[w.case],
+                max_pressure,
+                uplift,
+                fills: w.fill.is_some(),
+                cracks,
+            }
         })
         .collect()
 }
@@ -81,10 +94,18 @@ pub fn report(run: &Run) -> String {
     let _ = writeln!(s, "| contact | water | factor | largest u | U | crack filled from the face |");
     let _ = writeln!(s, "|---|---|---|---|---|---|");
     for r in rows {
-        let crack = match (r.crack, r.fills) {
-            (Some(c), _) => format!("to s = {:.4} (level {})", c.tip, c.level),
-            (None, true) => "none open".into(),
-            (None, false) => "–".into(),
+        let crack = match (r.cracks.as_slice(), r.fills) {
+            ([(c, _)], _) => format!("to s = {:.4} (level {})", c.tip, c.level),
+            ([], true) => "none open".into(),
+            ([], false) => "–".into(),
+            (many, _) => {
+                let each: Vec<String> = (many.iter())
+                    .map(|(c, n)| {
+                        format!("to s = {:.4} on the sheet of normal ({:.3}, {:.3}, {:.3})", c.tip, n[0], n[1], n[2])
+                    })
+                    .collect();
+                format!("{} (level {})", each.join("; "), many[0].0.level)
+            }
         };
         let _ = writeln!(
             s,
@@ -107,7 +128,8 @@ pub fn summary(run: &Run) -> Option<serde_json::Value> {
                 "factor": r.factor,
                 "max_pressure": r.max_pressure,
                 "uplift": r.uplift,
-                "crack_tip": r.crack.map(|c| c.tip),
+                "crack_tip": r.cracks.first().map(|c| c.0.tip),
+                "cracks": r.cracks.iter().map(|(c, n)| json!({ "tip": c.tip, "normal": n })).collect::<Vec<_>>(),
             }))
             .collect::<Vec<_>>())
     })
