@@ -47,6 +47,12 @@ const BETA_MAX: f64 = 0.999;
 /// stuck pair does not start slipping on them (see [`judge`]).
 const FORCE_ROUND_OFF: f64 = 1e-12;
 
+/// Below this part of the water's force on a pair, the effective normal
+/// force a junction pair would carry closed is zero: the loop's forces are
+/// solved with the water's as a right-hand side and resolve them to about
+/// 1e-9 of it (3e-9 measured at the heel of geo/dam3d_joints_uplift.toml).
+const WATER_ROUND_OFF: f64 = 1e-6;
+
 /// Relative tolerance on the friction force of slipping pairs.
 const FORCE_TOL: f64 = 1e-12;
 
@@ -77,6 +83,9 @@ pub(super) struct Newton<'p> {
     /// The last solve's forces of junction pairs as if their locked axes
     /// were tied (what they are judged by: see `InterfaceSolution::as_tied`).
     as_tied: Vec<Option<[f64; 3]>>,
+    /// The size of the water's force on each pair at the last solve (empty
+    /// when dry).
+    water: Vec<f64>,
     /// The states the last verdict was judged from, and how far each pair
     /// it changed was from its state (what [`Rule::hold_back`] picks by).
     judged_from: Vec<ContactState>,
@@ -111,6 +120,7 @@ impl<'p> Newton<'p> {
             one_at_a_time: false,
             holds: 0,
             as_tied: vec![None; laws.len()],
+            water: Vec::new(),
             judged_from: Vec::new(),
             violation: Vec::new(),
             swapped: vec![false; laws.len()],
@@ -212,8 +222,17 @@ impl<'p> Newton<'p> {
                 _ if self.problem.held(p) => ContactState::Stick,
                 // an open junction pair its loop keeps shut: it closes (as
                 // a closing pair does, where it is) unless the force it would
-                // carry closed is tension beyond its strength
-                (Some(f), ContactState::Open) if f[0] >= law.strength.tensile_limit(cr) * area => ContactState::Open,
+                // carry closed is tension beyond its strength; a force that
+                // is zero to round-off of the water it balances (sigma_n' =
+                // 0 where the water pressure is the contact pressure) keeps
+                // it open, or it flips open and shut from solve to solve
+                (Some(f), ContactState::Open)
+                    if f[0]
+                        >= law.strength.tensile_limit(cr) * area
+                            - WATER_ROUND_OFF * self.water.get(p).unwrap_or(&0.0) =>
+                {
+                    ContactState::Open
+                }
                 (Some(_), ContactState::Open) => {
                     judge(st, &Trial { gap: f64::NEG_INFINITY, ..trial }, &law.strength, cr, coulomb, tol_u, tol_f)
                 }
@@ -376,6 +395,7 @@ impl Rule for Newton<'_> {
         self.force.clone_from(&solution.forces);
         self.rel.clone_from(&solution.rel);
         self.as_tied.clone_from(&solution.as_tied);
+        self.water.clone_from(&solution.water);
         for p in 0..self.laws.len() {
             if h.states[p] == ContactState::Open && self.start[p] == ContactState::Open {
                 self.reference[p] = tangential(self.rel[p]);

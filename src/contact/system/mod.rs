@@ -290,6 +290,9 @@ pub struct InterfaceSolution {
     /// [`junction::Junction::forces`]): its force as if those were tied,
     /// which is what it is judged by.
     pub as_tied: Vec<Option<[f64; 3]>>,
+    /// The size of the water's force on each pair (empty when dry): what
+    /// a force it balances is resolved to.
+    pub water: Vec<f64>,
 }
 
 /// Why an interface solve failed.
@@ -525,8 +528,11 @@ impl<'a> InterfaceProblem<'a> {
             }
         }
         let mut freedom = self.freedom(rel, lambda[0]);
+        let mut water_forces = Vec::new();
         if let Some(water) = &self.water {
-            freedom.pushed = self.pushed(&water.forces(&states, lambda));
+            let push = water.forces(&states, lambda);
+            water_forces = push.iter().map(|f| crate::fem::vec3::norm(*f)).collect();
+            freedom.pushed = self.pushed(&push);
         }
         let answer = self.solver.solve(&freedom, &states, lambda).ok_or_else(|| self.diagnose(rel))?;
         let (forces, rels, as_tied) = self.forces(rel, &answer, &freedom, lambda[0]);
@@ -553,6 +559,7 @@ impl<'a> InterfaceProblem<'a> {
             accuracy: answer.accuracy,
             loose: answer.loose,
             as_tied,
+            water: water_forces,
         })
     }
 
