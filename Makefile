@@ -83,8 +83,12 @@ dam3d: deps build
 # joint set ([[joint_sets]] "lifts"); self-weight, then the reservoir in two
 # steps (results/dam3d_joints/: joints.png with every joint by state, the
 # contact groups and block faces in report.md).
+# Then with the water under the base (geo/dam3d_joints_uplift.toml): the
+# reservoir at 42 m, uplift through a drain line, cracks filling each in
+# its own sheet of the base (results/dam3d_joints_uplift/; about 30 s).
 dam3d-joints: deps build
 	$(BIN) solve geo/dam3d_joints.toml
+	$(BIN) solve geo/dam3d_joints_uplift.toml
 
 # A tunnel in 3D through three oblique joint sets by dip / dip direction
 # ([[joint_sets]]): the tool cuts the box minus the opening into about 150

@@ -163,3 +163,62 @@ fn the_base_and_every_lift_joint_carry_the_dam_above_them_and_the_water() {
     assert!(heel.iter().all(|&p| states(0)[p] != ContactState::Open), "self-weight keeps the heel closed");
     assert!(heel.iter().any(|&p| states(2)[p] == ContactState::Open), "the full reservoir opens the heel");
 }
+
+/// geo/dam3d_joints_uplift.toml at the coarse mesh: the reservoir at 42 m,
+/// the base's uplift through a drain line and its cracks filling. Every
+/// step converges (before the crack stayed in its sheet and an open pair
+/// with sigma_n' = 0 at the heel's corner kept open, step 2 did not); the
+/// base's solid-to-solid force and its water's force together carry the
+/// dam's weight and the water's thrust, F + W_u = (T(0), 0, -W(0)), to
+/// 1e-5 (the level cuts facets of the upstream face: 6e-6 measured); the floors' cracks (sheets of normal z) stay short, as in 2D
+/// (geo/dam_uplift.toml: 1 m of the 28 m base; none here at lc = 6 m), and
+/// the steps' sides (normal y), which open along their length, fill on
+/// their own sheets.
+#[test]
+fn with_uplift_the_base_carries_the_dam_and_its_cracks_stay_in_their_sheets() {
+    let case = Case::new("dam3d-joints-uplift");
+    case.copy("geo/dam3d_joints.geo");
+    let text = common::scenes::edited(
+        "geo/dam3d_joints_uplift.toml",
+        &[("setnumber = { lc = 4.0 }", "setnumber = { lc = 6.0, lc_rock = 25.0 }")],
+    );
+    let scene = case.write("dam3d_joints_uplift.toml", &text);
+    let run = case.run(&scene).unwrap_or_else(|e| panic!("dam3d_joints_uplift: {e:#}"));
+    let m = &run.model;
+    let base = m.interfaces.iter().position(|i| i.name == "base").expect("base");
+    for (s, k) in [(0, 0.0), (1, 0.5), (2, 1.0)] {
+        let c = run.steps[s].contact.as_ref().expect("contact");
+        assert!(c.summary.converged, "step {}: converged", s + 1);
+        assert!(c.summary.iterations <= 30, "step {}: {} contact iterations", s + 1, c.summary.iterations);
+        let water = c.water.as_ref().expect("the base's water");
+        let f = (0..m.pairs.len()).filter(|&p| m.pairs[p].contact == base).fold([0.0; 3], |f, p| {
+            let (fp, wp) = (c.force(p), water.force[p]);
+            [f[0] + fp[0] + wp[0], f[1] + fp[1] + wp[1], f[2] + fp[2] + wp[2]]
+        });
+        let (w, _) = above(0.0, k);
+        // the thrust of a reservoir at 42 m: T = k gamma_w sum w_m (42 - base_m)^2 / 2
+        let t42: f64 = MONOLITHS.iter().map(|&(width, b)| k * GAMMA_W * width * (42.0 - b).powi(2) / 2.0).sum();
+        let want = [t42, 0.0, -w];
+        let err = (0..3).map(|i| (f[i] - want[i]).abs()).fold(0.0, f64::max) / w.hypot(t42);
+        eprintln!("step {}: the base carries {f:?} against {want:?} ({err:.1e})", s + 1);
+        // the level at 42 m cuts facets of the upstream face, whose
+        // pressure's kink the quadrature integrates to 6e-6
+        assert!(err < 1e-5, "step {}: the base carries {f:?}, not {want:?}", s + 1);
+    }
+
+    let out = case.out("dam3d_joints_uplift");
+    let summary = common::json(&out.join("summary.json"));
+    let cracks = summary["water"][0]["cracks"].as_array().expect("water.cracks").clone();
+    eprintln!("cracks: {cracks:?}");
+    for c in &cracks {
+        let n = common::json_vec3(&c["normal"]);
+        let tip = c["tip"].as_f64().expect("tip");
+        if n[2].abs() > 0.99 {
+            assert!(tip <= 6.0, "a floor's heel crack reaches s = {tip}: at most one element (6 m) here");
+        } else {
+            assert!(n[1].abs() > 0.99, "a crack on the sheet of normal {n:?}: only floors and steps' sides");
+        }
+    }
+    let uplift = summary["water"][0]["uplift"].as_f64().expect("uplift");
+    assert!(uplift > 0.0, "the base's water pushes the dam up: U = {uplift}");
+}
