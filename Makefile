@@ -114,7 +114,7 @@ wedge: deps build
 
 # The factor of safety and the load factor beside the closed forms, the
 # mechanism named (docs/safety.md): the wedge in a V-groove on two meshes
-# against Hoek & Bray's rigid block, Hoek & Bray's planar slope with
+# against Hoek & Bray's rigid block (and with water on its planes), Hoek & Bray's planar slope with
 # cohesion, the gravity dam against its base's resultants by hand (also
 # with a cohesive base), Goodman & Bray's toppling block in 2D and 3D, the
 # gravity wall's overturning and sliding load factors; the tables in

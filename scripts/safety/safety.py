@@ -11,6 +11,10 @@ named (issue 29), for docs/safety.md and the README.
   the symmetric wedge; xi = 90 degrees, the .geo's default; phi from the
   joints' friction; psi, the plunge of the line of intersection, from the
   turned gravity vector).
+- The same wedge (lc = 2) with a uniform water pressure u = 0.01 MPa on
+  both planes (issue 30), the water held while the strength is reduced,
+  against Hoek & Bray's factor with the uplift: scripts/water/water.py's
+  scene and closed form (tests/water.rs asserts it within 1 %).
 - The gravity dam (geo/dam.toml, `subcontact safety`: the scene has no
   [safety] table, so the defaults) against its base's limit equilibrium by
   hand from the base pairs of its own contact.csv at F = 1:
@@ -51,6 +55,8 @@ import tomllib
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 BIN = ROOT / "target/release/subcontact"
 OUT = ROOT / "results/safety"
+sys.path.insert(0, str(ROOT / "scripts/water"))
+import water  # noqa: E402  (the wedge's water and its closed form, as make water has them)
 
 
 def run(args: list[str], fails: bool = False) -> dict:
@@ -212,6 +218,9 @@ def main() -> None:
         rows.append(row(f"wedge in a V-groove, tet10 lc = {lc:g}", summary, rigid, "Hoek & Bray"))
     summary = run(["solve", wedge_scene(1.0, crease=True)])
     rows.append(row("wedge on its sharp crease (h0 = 0), tet10 lc = 1", summary, rigid, "Hoek & Bray"))
+    wet = scene_copy("geo/wedge.toml", "wedge_water", [('mesh = "wedge.geo"', 'mesh = "../../geo/wedge.geo"'), *water.WEDGE_EDITS])
+    u = water.WEDGE_U
+    rows.append(row(f"wedge with water u = {u} MPa on both planes, tet10 lc = 2", run(["solve", wet]), water.wedge_closed(u), "Hoek & Bray, with U"))
     dam = run(["safety", scene_copy("geo/dam.toml", "dam", [('mesh = "dam.geo"', 'mesh = "../../geo/dam.geo"')])])
     rows.append(row("gravity dam, base", dam, dam_by_hand("results/safety/dam.toml"), "f N / T by hand"))
     cohesive = scene_copy(

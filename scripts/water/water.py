@@ -122,22 +122,26 @@ def slope_cases() -> list[tuple[str, float, float]]:
 
 # --- the wedge --------------------------------------------------------------
 
+WEDGE_U = 0.01
+# geo/wedge.toml at lc = 2 with the water u on both planes (also make safety's)
+WEDGE_EDITS = [("lc = 1.0 }", "lc = 2.0 }"), ("tensile_strength = 0.0\n", f"tensile_strength = 0.0\nwater = {{ pressure = {WEDGE_U} }}\n")]
+
+
 def wedge_case() -> tuple[str, float, float]:
-    u = 0.01
-    path = scene(
-        "wedge_water",
-        "geo/wedge.toml",
-        [("lc = 1.0 }", "lc = 2.0 }"), ("tensile_strength = 0.0\n", f"tensile_strength = 0.0\nwater = {{ pressure = {u} }}\n")],
-    )
-    summary, _ = run(path)
+    summary, _ = run(scene("wedge_water", "geo/wedge.toml", WEDGE_EDITS))
+    return (f"wedge, u = {WEDGE_U} on both planes", summary["safety"]["factor"], wedge_closed(WEDGE_U))
+
+
+def wedge_closed(u: float) -> float:
+    """Hoek & Bray's F of geo/wedge.toml's symmetric wedge with a uniform
+    water pressure u on both its planes."""
     d, h0, xi, length = 4.0, 0.25, 90.0, 12.0
     b = d * math.tan(math.radians(xi / 2))
     c = b * h0 / d
     w = length * (b + c) * (d - h0) * 2.6e-3 * 9.81
     a_plane = math.hypot(b - c, d - h0) * length
     psi, phi = math.radians(30.0), 0.700208
-    f = (w * math.cos(psi) / math.sin(math.radians(xi / 2)) - 2 * u * a_plane) * phi / (w * math.sin(psi))
-    return (f"wedge, u = {u} on both planes", summary["safety"]["factor"], f)
+    return (w * math.cos(psi) / math.sin(math.radians(xi / 2)) - 2 * u * a_plane) * phi / (w * math.sin(psi))
 
 
 # --- the dam ----------------------------------------------------------------
