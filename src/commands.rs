@@ -24,6 +24,7 @@ macro_rules! errln {
 use anyhow::{Context, Result};
 
 use crate::analytic::{self, paper};
+use crate::contact::system::InterfaceKind;
 use crate::driver::{self, RunOptions};
 use crate::model::Model;
 use crate::parallel::Comm;
@@ -132,12 +133,12 @@ pub fn check(scene_path: &Path, allow_geo_commands: bool) -> Result<()> {
     let parts = substructure::cut(&model, substructure::parts(&model), scene.solver.substructures);
     let dofs = substructure::parts::dof_counts(&model, &parts);
     // a run that would not fit in memory fails the check, before it says anything
-    let (how, sparse) = driver::interface_plan(scene.solver.interface, &parts, model.nd);
+    let kind = InterfaceKind::choose(scene.solver.interface, &parts, model.nd);
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     let need = crate::memory::estimate(
         &model,
         &parts.iter().collect::<Vec<_>>(),
-        (how, sparse),
+        kind,
         threads,
         true,
         dofs.interface,

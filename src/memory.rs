@@ -51,6 +51,7 @@ use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::SymbolicSparseColMatRef;
 use faer::Side;
 
+use crate::contact::system::InterfaceKind;
 use crate::fem::sparse::{SymMatrix, NONE};
 use crate::model::Model;
 use crate::substructure::ordering::{self, Ordering};
@@ -111,17 +112,14 @@ pub fn check(scene: &str, need: Estimate, dofs: [usize; 2], parts: usize) -> Res
     Ok(available)
 }
 
-/// The sparse interface's factor holds about this times nm^(4/3) values.
-const SPARSE_FILL: f64 = 50.0;
-
-/// Estimates the peak memory of condensing `parts` (this rank's) `how`
-/// (and whether the interface is the sparse one), `threads` at a time, the
+/// Estimates the peak memory of condensing `parts` (this rank's) for the
+/// interface `kind`, `threads` at a time, the
 /// interface of `interface_dofs` DOFs solved here when `solves_interface`,
 /// over `steps` load steps.
 pub fn estimate(
     model: &Model,
     parts: &[&Part],
-    (how, sparse): (Condensation, bool),
+    kind: InterfaceKind,
     threads: usize,
     solves_interface: bool,
     interface_dofs: usize,
@@ -131,6 +129,7 @@ pub fn estimate(
     let mut factors = 0.0;
     let mut schur = 0.0;
     let mut busiest: f64 = 0.0;
+    let how = kind.condensation();
     for part in parts {
         let (fill, k_nnz, nc) = part_fill(model, part, how);
         let nc = nc as f64 * nd;
@@ -140,25 +139,8 @@ pub fn estimate(
         busiest = busiest.max(24.0 * k_nnz * nd * nd + s);
     }
     let condensing = factors + schur + threads.clamp(1, parts.len().max(1)) as f64 * busiest;
-    let w = match (how, sparse && solves_interface) {
-        // the means' sparse factor: 50 nm^(4/3) values in 3D, measured on
-        // the jointed cubes of make bench-blocks (nm = 3.6e4: 5.4e7, 7.1e4: 1.5e8).
-        // Their peaks (VmHWM) against the estimate: 64 blocks of 5^3
-        // hex20 4.62 GB (3.5 GB without K_mm and the scratch, now 4.7),
-        // 512 blocks 1.95 (1.7, now 2.9), 1,000 blocks 5.14 (3.8, now 6.5).
-        // The factor is now kept in single precision (4.05, 1.68 and 4.43
-        // GB measured); 8 bytes a value stays, for K_mm that single
-        // precision cannot hold, factorised in double
-        (Condensation::Dense, true) => 8.0 * SPARSE_FILL * (interface_dofs as f64 / 2.0).powf(4.0 / 3.0),
-        (Condensation::Dense, false) if solves_interface => 3.0 * 8.0 * (interface_dofs as f64 / 2.0).powi(2),
-        _ => 0.0,
-    };
     let kept = if factors > 0.3 * physical() { 0.0 } else { factors };
-    // each S is also copied into the pairs' frames while W is assembled;
-    // the sparse interface then holds K_mm (a clique of means per part,
-    // 16 bytes an entry: 0.7 schur measured) and factorises it, the
-    // factorisation's scratch beside the factor (up to 0.8 of it)
-    let interface = if sparse && solves_interface { kept + 3.0 * schur + 2.0 * w } else { kept + 2.0 * schur + w };
+    let (w, interface) = kind.memory(interface_dofs, solves_interface, schur, kept);
     // displacements, stresses (6 per body node) and the files, per step
     let results = (steps.max(1) as f64 + 1.0) * model.n_nodes() as f64 * 8.0 * (nd + 6.0 + 8.0);
     Estimate {

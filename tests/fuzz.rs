@@ -214,11 +214,11 @@ fn check(path: &Path, out: &Path) {
         scene.solver.substructures.min(4),
     );
     let dofs = subcontact::substructure::parts::dof_counts(&model, &parts);
-    let how = subcontact::driver::interface_plan(scene.solver.interface, &parts, model.nd);
+    let kind = subcontact::contact::system::InterfaceKind::choose(scene.solver.interface, &parts, model.nd);
     let _ = subcontact::memory::estimate(
         &model,
         &parts.iter().collect::<Vec<_>>(),
-        how,
+        kind,
         1,
         true,
         dofs.interface,

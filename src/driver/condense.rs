@@ -87,8 +87,8 @@ pub(super) fn condense<'r>(model: &Model, plan: &Plan, opts: &RunOptions, ranks:
         String::new()
     };
     progress(opts, &format!("assembling and factorising {n_parts} part(s){on}"));
-    if plan.how == Condensation::Applied {
-        progress(opts, &format!("{} interface DOFs over the parts: no S formed, the interface solved by GMRES through the parts' interior factors", plan.interface_dofs));
+    if let Some(note) = plan.kind.note(plan.interface_dofs) {
+        progress(opts, &note);
     }
     let (index, own): (Vec<usize>, Vec<_>) = (plan.parts.iter().enumerate())
         .filter(|(i, _)| plan.owner[*i] == ranks.rank())
@@ -96,7 +96,7 @@ pub(super) fn condense<'r>(model: &Model, plan: &Plan, opts: &RunOptions, ranks:
         .unzip();
     let condensed = agree(
         ranks.comm(),
-        substructure::condense_parts(model, own, plan.threads, plan.how).map_err(anyhow::Error::from),
+        substructure::condense_parts(model, own, plan.threads, plan.kind.condensation()).map_err(anyhow::Error::from),
     )?;
     let mut mine: Vec<(usize, Condensed)> = index.into_iter().zip(condensed).collect();
     // the wall time, split between assembly and condensation as the parts spent it
@@ -104,7 +104,7 @@ pub(super) fn condense<'r>(model: &Model, plan: &Plan, opts: &RunOptions, ranks:
     let spent: f64 = mine.iter().map(|(_, c)| c.assemble_s + c.condense_s).sum();
     let share = if spent > 0.0 { wall_s / spent } else { 0.0 };
     let assemble_s = mine.iter().map(|(_, c)| c.assemble_s).sum::<f64>() * share;
-    free_factors(&mut mine, plan.how, opts);
+    free_factors(&mut mine, plan.kind.condensation(), opts);
 
     let t = Instant::now();
     let local = PartStats::of(&mine);
@@ -132,15 +132,7 @@ fn memory(model: &Model, plan: &Plan, opts: &RunOptions, rank: usize) -> Result<
     let mine: Vec<&substructure::Part> =
         (plan.parts.iter().enumerate()).filter(|(i, _)| plan.owner[*i] == rank).map(|(_, p)| p).collect();
     let steps = model.cases.first().map_or(1, |c| c.len());
-    let need = crate::memory::estimate(
-        model,
-        &mine,
-        (plan.how, plan.sparse),
-        plan.threads,
-        rank == 0,
-        plan.interface_dofs,
-        steps,
-    );
+    let need = crate::memory::estimate(model, &mine, plan.kind, plan.threads, rank == 0, plan.interface_dofs, steps);
     let dofs = substructure::parts::dof_counts(model, &plan.parts);
     let checked = crate::memory::check(&model.scene, need, [dofs.total, dofs.interface], mine.len());
     let available = match &checked {
@@ -173,7 +165,7 @@ fn interface<'r>(
     if ops.iter().all(|o| o.nc == 0) {
         return Ok(None);
     }
-    let problem = InterfaceProblem::new(model, ops, remote, plan.threads, plan.sparse)?;
+    let problem = InterfaceProblem::new(model, ops, remote, plan.threads, plan.kind)?;
     Ok(Some(problem.with_water(Water::new(model))))
 }
 

@@ -37,7 +37,6 @@ mod stats;
 mod steps;
 
 pub use messages::{Apex, At, ContactError, PlanError, SafetyError};
-pub use plan::interface as interface_plan;
 
 use crate::analytic;
 use crate::contact::law::PairResult;
@@ -229,7 +228,7 @@ fn solve(
 
     // 4. Parts, owners, condensation, the interface.
     let plan = plan::plan(&scene, &model, opts, comm.size())?;
-    let ranks = ranks::Ranks::new(comm, plan.owner.clone(), plan.how == Condensation::Applied);
+    let ranks = ranks::Ranks::new(comm, plan.owner.clone(), plan.kind.condensation() == Condensation::Applied);
     let parts = condense::condense(&model, &plan, opts, &ranks)?;
 
     // 5.–6. The load steps: contact iteration, recovery; then the safety
@@ -255,7 +254,7 @@ fn solve(
     let gathered = ranks.gather(&stats::rank(&ranks, &parts, &done));
     stats::add_timings(&mut timings, &parts, &done);
     let all = parts.all;
-    let interface_solver = if parts.problem.is_some() { plan.interface_solver() } else { "none" };
+    let interface_solver = if parts.problem.is_some() { plan.kind.name() } else { "none" };
     // the factors go before the results are written
     drop(parts);
     let Some(rank_stats) = gathered else { return Ok(None) };

@@ -1,16 +1,15 @@
 //! Stage 4's plan, the same on every rank: the parts (bodies joined by
 //! shared nodes, each cut into `substructures` pieces), the rank that owns
-//! each, the threads a rank condenses its parts in, and how they are
-//! condensed, which decides how the interface is solved (the one place that
-//! turns `[solver] interface` into a condensation).
+//! each, the threads a rank condenses its parts in, and how the interface
+//! is solved (the one place that turns `[solver] interface` into an
+//! [`InterfaceKind`], which decides how the parts are condensed).
 
 use super::messages::PlanError;
 use super::{progress, RunOptions};
-use crate::contact::system::ITERATIVE_FROM;
-use crate::contact::InterfaceSolver;
+use crate::contact::system::InterfaceKind;
 use crate::model::Model;
 use crate::scene::Scene;
-use crate::substructure::{self, Condensation, Part};
+use crate::substructure::{self, Part};
 
 /// What stage 4 does, part by part.
 pub(super) struct Plan {
@@ -19,25 +18,10 @@ pub(super) struct Plan {
     pub owner: Vec<usize>,
     /// Parts a rank condenses at once.
     pub threads: usize,
-    /// Dense S for the dense and the sparse interface, or applied S for the
-    /// iterative one.
-    pub how: Condensation,
-    /// The interface means factorised sparse (many small parts) instead of
-    /// the dense reduction (with `how` dense).
-    pub sparse: bool,
-    /// Interface DOFs summed over the parts (what decides `how` by default).
+    /// How the interface is solved, and so how the parts are condensed.
+    pub kind: InterfaceKind,
+    /// Interface DOFs summed over the parts (what decides `kind` by default).
     pub interface_dofs: usize,
-}
-
-impl Plan {
-    /// How the interface is solved, as `[solver] interface` names it.
-    pub fn interface_solver(&self) -> &'static str {
-        match (self.how, self.sparse) {
-            (Condensation::Applied, _) => "iterative",
-            (_, true) => "sparse",
-            _ => "dense",
-        }
-    }
 }
 
 /// The plan of a run on `ranks` MPI ranks (1 without MPI).
@@ -52,36 +36,9 @@ pub(super) fn plan(scene: &Scene, model: &Model, opts: &RunOptions, ranks: usize
         opts.threads.unwrap_or_else(|| (std::thread::available_parallelism().map_or(1, |n| n.get()) / ranks).max(1));
     let nd = model.nd;
     let interface_dofs: usize = parts.iter().map(|p| p.interface.len() * nd).sum();
-    let (how, sparse) = interface(opts.interface.unwrap_or(scene.solver.interface), &parts, nd);
-    Ok(Plan { parts, owner, threads, how, sparse, interface_dofs })
+    let kind = InterfaceKind::choose(opts.interface.unwrap_or(scene.solver.interface), &parts, nd);
+    Ok(Plan { parts, owner, threads, kind, interface_dofs })
 }
-
-/// How `parts` are condensed and their interface solved when `[solver]
-/// interface` says `choice`: (dense or applied S, the sparse interface).
-/// Auto takes the sparse interface for many small parts, the iterative one
-/// from [`ITERATIVE_FROM`] interface DOFs, else the dense one.
-pub fn interface(choice: InterfaceSolver, parts: &[Part], nd: usize) -> (Condensation, bool) {
-    let interface_dofs: usize = parts.iter().map(|p| p.interface.len() * nd).sum();
-    match choice {
-        InterfaceSolver::Iterative => (Condensation::Applied, false),
-        InterfaceSolver::Sparse => (Condensation::Dense, true),
-        InterfaceSolver::Dense => (Condensation::Dense, false),
-        InterfaceSolver::Auto if blocky(parts, nd) => (Condensation::Dense, true),
-        InterfaceSolver::Auto if interface_dofs >= ITERATIVE_FROM => (Condensation::Applied, false),
-        InterfaceSolver::Auto => (Condensation::Dense, false),
-    }
-}
-
-/// Whether the parts are many and small, as the blocks of a rock mass:
-/// then the sparse interface pays (see [`crate::contact::system::sparse`]).
-fn blocky(parts: &[Part], nd: usize) -> bool {
-    parts.len() >= BLOCKY_PARTS && parts.iter().all(|p| p.interface.len() * nd <= BLOCKY_PART_INTERFACE)
-}
-
-/// From how many parts, each with at most [`BLOCKY_PART_INTERFACE`]
-/// interface DOFs, `interface = "auto"` takes the sparse interface.
-const BLOCKY_PARTS: usize = 16;
-const BLOCKY_PART_INTERFACE: usize = 6_000;
 
 /// The model's parts, each cut into `k` pieces where it has the cells for
 /// them (and a note of the parts left whole).

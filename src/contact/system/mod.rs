@@ -6,7 +6,7 @@
 //! sparse factorisation, when they outnumber the contact unknowns:
 //! [`joins`]) or [`iterative`] (S applied through the parts' interior
 //! factors, GMRES). A new way of solving the interface is one more
-//! implementation of [`Solver`], chosen in [`InterfaceProblem::new`].
+//! implementation of [`Solver`] and one variant of [`InterfaceKind`].
 //!
 //! Where joints cross, copies of one node are in several pairs whose ties
 //! close loops: those pairs are solved as junctions ([`junction`]), on the
@@ -44,17 +44,17 @@ pub mod gmres;
 pub mod iterative;
 pub mod joins;
 pub mod junction;
+pub mod kind;
 mod layout;
 mod ldp;
 pub mod reduce;
 pub mod sparse;
 
 use coords::{Axis, Var};
-use dense::Dense;
-use iterative::{Iterative, Remote};
+use iterative::Remote;
 use junction::Tied;
+pub use kind::InterfaceKind;
 use layout::Layout;
-use sparse::Sparse;
 
 use super::basis::FaceBasis;
 use super::frame::Frame;
@@ -62,7 +62,7 @@ use super::law::{ContactState, PairResult};
 use super::rigid::{free_parts, pair_ties, Free, PartModes, Tie};
 use super::water::Water;
 use crate::model::{Model, ModelError};
-use crate::substructure::{OperatorRef, SchurRef};
+use crate::substructure::OperatorRef;
 
 /// Interface DOFs summed over the parts (a joint counted once per side)
 /// from which `[solver] interface = "auto"` solves the interface
@@ -215,7 +215,7 @@ pub struct SlipRow {
 }
 
 /// A way of solving the interface system: the seam between
-/// [`InterfaceProblem`] and its solvers ([`Dense`], [`Iterative`]).
+/// [`InterfaceProblem`] and its solvers ([`dense::Dense`], [`sparse::Sparse`], [`iterative::Iterative`]).
 pub trait Solver {
     /// Solves one set of relations, given by the free directions `fr` of
     /// the relative displacements (`states`: the state set, to tell whether
@@ -308,15 +308,15 @@ pub enum SolveFailure {
 
 impl<'a> InterfaceProblem<'a> {
     /// The interface of the condensed `parts` (every part of the model, in
-    /// order); `remote` applies the S of parts condensed for the iterative
-    /// interface on other MPI ranks, `threads` this rank's ones; `sparse`:
-    /// densely condensed parts solved by [`Sparse`] instead of [`Dense`].
+    /// order), solved the `kind`'s way; `remote` applies the S of parts
+    /// condensed for the iterative interface on other MPI ranks, `threads`
+    /// this rank's ones.
     pub fn new(
         model: &Model,
         parts: &[OperatorRef],
         remote: Option<&'a dyn Remote>,
         threads: usize,
-        sparse: bool,
+        kind: InterfaceKind,
     ) -> Result<InterfaceProblem<'a>, ModelError> {
         let basis = FaceBasis::new(model);
         let layout = Layout::new(model, parts, &basis);
@@ -330,14 +330,7 @@ impl<'a> InterfaceProblem<'a> {
             msg: format!("the bodies are not held even with every contact stuck (the bonded interface system is singular): add a support{}", crate::model::quality::why_not_held(model)),
         }
         };
-        let solver: Box<dyn Solver + 'a> = if parts.iter().any(|p| matches!(p.s, SchurRef::Applied { .. }) && p.nc > 0)
-        {
-            Box::new(Iterative::build(model, &layout, parts, &rigid, remote, threads))
-        } else if sparse {
-            Box::new(Sparse::new(&layout, parts, threads).map_err(not_held)?)
-        } else {
-            Box::new(Dense::new(&layout, parts).map_err(not_held)?)
-        };
+        let solver = kind.build(model, &layout, parts, &rigid, remote, threads).map_err(not_held)?;
         Ok(InterfaceProblem {
             layout,
             basis,

@@ -1,0 +1,135 @@
+//! How the interface system is solved, decided once per run
+//! ([`InterfaceKind::choose`], from `[solver] interface`), and everything
+//! that follows from it: how the parts are condensed, which [`Solver`] is
+//! built, what the interface matrices cost in memory and the name the
+//! results give it. A new way of solving the interface is one more
+//! [`Solver`] file and one more variant here.
+
+use super::dense::Dense;
+use super::iterative::{Iterative, Remote};
+use super::layout::Layout;
+use super::reduce::NotHeld;
+use super::sparse::Sparse;
+use super::{Solver, ITERATIVE_FROM};
+use crate::contact::options::InterfaceSolver;
+use crate::contact::rigid::PartModes;
+use crate::model::Model;
+use crate::substructure::{Condensation, OperatorRef, Part};
+
+/// The interface solver of a run: `[solver] interface` with `auto` decided.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum InterfaceKind {
+    /// Each part's dense S; the interface reduced to the contact unknowns
+    /// once and factorised densely at every iteration ([`Dense`]).
+    Dense,
+    /// Each part's dense S; the interface means factorised once, sparse,
+    /// and each state set solved by GMRES ([`Sparse`]).
+    Sparse,
+    /// No S formed: S applied through the parts' interior factors, GMRES
+    /// ([`Iterative`]).
+    Iterative,
+}
+
+/// From how many parts, each with at most [`BLOCKY_PART_INTERFACE`]
+/// interface DOFs, `interface = "auto"` takes the sparse interface.
+const BLOCKY_PARTS: usize = 16;
+const BLOCKY_PART_INTERFACE: usize = 6_000;
+
+/// The sparse interface's factor holds about this times nm^(4/3) values.
+const SPARSE_FILL: f64 = 50.0;
+
+impl InterfaceKind {
+    /// The kind `[solver] interface` names for these `parts`. Auto takes
+    /// the sparse interface for many small parts, the iterative one from
+    /// [`ITERATIVE_FROM`] interface DOFs (summed over the parts), else the
+    /// dense one.
+    pub fn choose(choice: InterfaceSolver, parts: &[Part], nd: usize) -> InterfaceKind {
+        let interface_dofs: usize = parts.iter().map(|p| p.interface.len() * nd).sum();
+        match choice {
+            InterfaceSolver::Iterative => InterfaceKind::Iterative,
+            InterfaceSolver::Sparse => InterfaceKind::Sparse,
+            InterfaceSolver::Dense => InterfaceKind::Dense,
+            InterfaceSolver::Auto if blocky(parts, nd) => InterfaceKind::Sparse,
+            InterfaceSolver::Auto if interface_dofs >= ITERATIVE_FROM => InterfaceKind::Iterative,
+            InterfaceSolver::Auto => InterfaceKind::Dense,
+        }
+    }
+
+    /// The name `[solver] interface` gives it (and the results).
+    pub fn name(self) -> &'static str {
+        match self {
+            InterfaceKind::Dense => "dense",
+            InterfaceKind::Sparse => "sparse",
+            InterfaceKind::Iterative => "iterative",
+        }
+    }
+
+    /// How the parts are condensed for it: a dense S, or S applied.
+    pub fn condensation(self) -> Condensation {
+        match self {
+            InterfaceKind::Dense | InterfaceKind::Sparse => Condensation::Dense,
+            InterfaceKind::Iterative => Condensation::Applied,
+        }
+    }
+
+    /// What the run says of it before the parts are condensed, if anything.
+    pub fn note(self, interface_dofs: usize) -> Option<String> {
+        (self == InterfaceKind::Iterative).then(|| {
+            format!("{interface_dofs} interface DOFs over the parts: no S formed, the interface solved by GMRES through the parts' interior factors")
+        })
+    }
+
+    /// Its solver of the condensed `parts`.
+    pub(super) fn build<'a>(
+        self,
+        model: &Model,
+        layout: &Layout,
+        parts: &[OperatorRef],
+        rigid: &[PartModes],
+        remote: Option<&'a dyn Remote>,
+        threads: usize,
+    ) -> Result<Box<dyn Solver + 'a>, NotHeld> {
+        Ok(match self {
+            InterfaceKind::Dense => Box::new(Dense::new(layout, parts)?),
+            InterfaceKind::Sparse => Box::new(Sparse::new(layout, parts, threads)?),
+            InterfaceKind::Iterative => Box::new(Iterative::build(model, layout, parts, rigid, remote, threads)),
+        })
+    }
+
+    /// The interface system's own matrices in bytes when this rank
+    /// `solves` the interface of `interface_dofs` DOFs, and the peak while
+    /// it is built from the parts' S (`schur` bytes) beside the factors
+    /// `kept`: (matrices, peak).
+    pub fn memory(self, interface_dofs: usize, solves: bool, schur: f64, kept: f64) -> (f64, f64) {
+        let nm = interface_dofs as f64 / 2.0;
+        match self {
+            // the means' sparse factor: 50 nm^(4/3) values in 3D, measured on
+            // the jointed cubes of make bench-blocks (nm = 3.6e4: 5.4e7, 7.1e4: 1.5e8).
+            // Their peaks (VmHWM) against the estimate: 64 blocks of 5^3
+            // hex20 4.62 GB (3.5 GB without K_mm and the scratch, now 4.7),
+            // 512 blocks 1.95 (1.7, now 2.9), 1,000 blocks 5.14 (3.8, now 6.5).
+            // The factor is now kept in single precision (4.05, 1.68 and 4.43
+            // GB measured); 8 bytes a value stays, for K_mm that single
+            // precision cannot hold, factorised in double. Each S is also
+            // copied into the pairs' frames while W is assembled; the sparse
+            // interface then holds K_mm (a clique of means per part, 16 bytes
+            // an entry: 0.7 schur measured) and factorises it, the
+            // factorisation's scratch beside the factor (up to 0.8 of it)
+            InterfaceKind::Sparse if solves => {
+                let w = 8.0 * SPARSE_FILL * nm.powf(4.0 / 3.0);
+                (w, kept + 3.0 * schur + 2.0 * w)
+            }
+            InterfaceKind::Dense if solves => {
+                let w = 3.0 * 8.0 * nm.powi(2);
+                (w, kept + 2.0 * schur + w)
+            }
+            _ => (0.0, kept + 2.0 * schur + 0.0),
+        }
+    }
+}
+
+/// Whether the parts are many and small, as the blocks of a rock mass:
+/// then the sparse interface pays (see [`super::sparse`]).
+fn blocky(parts: &[Part], nd: usize) -> bool {
+    parts.len() >= BLOCKY_PARTS && parts.iter().all(|p| p.interface.len() * nd <= BLOCKY_PART_INTERFACE)
+}
