@@ -113,6 +113,23 @@ fn at_least_one(s: &str) -> Result<usize, String> {
     }
 }
 
+/// The spellings of `--interface`, those of `[solver] interface`.
+const INTERFACE_SOLVERS: [&str; 4] = ["auto", "dense", "iterative", "sparse"];
+
+/// `--interface`: one of [`INTERFACE_SOLVERS`], read as the scene reads
+/// `[solver] interface` (the kernel's enum knows no command line).
+fn interface_solver() -> impl clap::builder::TypedValueParser<Value = InterfaceSolver> {
+    use clap::builder::TypedValueParser;
+    clap::builder::PossibleValuesParser::new(INTERFACE_SOLVERS).map(|s| scene_spelling(&s).unwrap_or_default())
+}
+
+/// The interface solver the scene file spells `s`.
+fn scene_spelling(s: &str) -> Option<InterfaceSolver> {
+    use serde::de::{value, Deserialize, IntoDeserializer};
+    let d: value::StrDeserializer<value::Error> = s.into_deserializer();
+    InterfaceSolver::deserialize(d).ok()
+}
+
 /// What `solve` and `safety` take alike: the scene, where the results go,
 /// and how the run is spread and solved.
 #[derive(clap::Args, Debug)]
@@ -139,7 +156,7 @@ pub struct RunArgs {
     /// parts' interior factors, GMRES) or auto (sparse from 16 blocks of at most 6,000
     /// interface DOFs, dense below 20,000 interface DOFs, iterative above). Overrides
     /// [solver] interface.
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = interface_solver())]
     pub interface: Option<InterfaceSolver>,
     /// Run even when the estimated peak memory exceeds the memory available
     /// (the estimate errs high; the run may still be stopped by the system).
@@ -150,4 +167,21 @@ pub struct RunArgs {
     /// otherwise: a .geo is a program, and these reach outside the mesh with your rights.
     #[arg(long)]
     pub allow_geo_commands: bool,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_interface_spelling_of_the_command_line_is_one_of_the_scene() {
+        let read: Vec<_> = INTERFACE_SOLVERS.iter().map(|s| scene_spelling(s)).collect();
+        use InterfaceSolver::*;
+        assert_eq!(read, [Some(Auto), Some(Dense), Some(Iterative), Some(Sparse)]);
+        assert_eq!(scene_spelling("fast"), None);
+        let cli = Cli::try_parse_from(["subcontact", "solve", "s.toml", "--interface", "sparse"]).expect("parses");
+        let Command::Solve { run, .. } = cli.command else { panic!("solve") };
+        assert_eq!(run.interface, Some(Sparse));
+        assert!(Cli::try_parse_from(["subcontact", "solve", "s.toml", "--interface", "fast"]).is_err());
+    }
 }

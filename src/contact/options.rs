@@ -68,7 +68,7 @@ pub enum StateRule {
 }
 
 /// How the interface system is solved (`[solver] interface = "..."`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Deserialize, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum InterfaceSolver {
     /// Sparse for many small parts (a rock mass of blocks), else dense below
