@@ -200,9 +200,11 @@ pub fn classify(
         return out;
     }
     // translating on face directions more than ~15 degrees apart: along
-    // their line of intersection
+    // their line of intersection (in 3D: traces in a plane meet at a
+    // point, and a block slides along one of them)
     let n0 = closed[0].normal;
-    out.along_line = closed.iter().any(|c| norm(cross(c.normal, n0)) > 0.26);
+    let planar = t[2] == 0.0 && closed.iter().all(|c| c.normal[2] == 0.0);
+    out.along_line = !planar && closed.iter().any(|c| norm(cross(c.normal, n0)) > 0.26);
     out
 }
 
@@ -364,6 +366,20 @@ mod tests {
         ];
         let b = classify(0, [0.0, 0.0, 1.5], 2.0, ([0.0, 1.0, -0.3], [0.0; 3]), &planes, [0.0, 0.0, -1.0]);
         assert_eq!((b.state, b.along_line, b.on.clone()), (BlockState::Sliding, true, vec![0, 1]));
+    }
+
+    #[test]
+    fn a_block_in_a_plane_on_two_traces_slides_along_one_not_a_line() {
+        // bedding dipping 35 degrees and a cross joint at 60: the block moves
+        // down the bedding, touching the cross joint where it leaves it
+        let (a, b) = (35f64.to_radians(), 60f64.to_radians());
+        let traces = [
+            Closed { x: [0.0, 0.0, 0.0], normal: [-a.sin(), -a.cos(), 0.0], area: 1.0, contact: 0 },
+            Closed { x: [1.0, 1.0, 0.0], normal: [-b.sin(), b.cos(), 0.0], area: 0.2, contact: 1 },
+        ];
+        let down = [a.cos(), -a.sin(), 0.0];
+        let m = classify(0, [0.5, 0.5, 0.0], 1.0, (down, [0.0; 3]), &traces, DOWN);
+        assert_eq!((m.state, m.along_line), (BlockState::Sliding, false));
     }
 
     #[test]
