@@ -16,6 +16,8 @@
 //! When a quarter of the variance or more is left, the panel says so and
 //! points to the sheet's plan view, which maps both directions.
 
+use plotters::coord::cartesian::Cartesian2d;
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -337,6 +339,112 @@ fn interface_plot_on<DB: DrawingBackend>(
     root.present().map_err(|e| plot_err(&e))
 }
 
+/// One panel's data: the pairs in order along the interface, how many are
+/// in each state, and the frame the stresses are drawn in.
+struct PanelData<'a> {
+    c: &'a ContactRun,
+    al: Along,
+    solid: bool,
+    /// Water in the joint: -u is drawn beside sigma_n' (they add up to the total).
+    wet: bool,
+    /// Pairs open, slipping, sticking (by state code).
+    counts: [usize; 3],
+    x: (f64, f64),
+    y: (f64, f64),
+    /// What the robust range leaves out, for the caption.
+    beyond: String,
+}
+
+impl<'a> PanelData<'a> {
+    fn new(model: &Model, c: &'a ContactRun, ii: usize, plan: Option<&PlanFile>) -> PanelData<'a> {
+        let solid = model.analysis == Analysis::Solid;
+        let al = match plan {
+            Some(p) => Along::of_sheet(model, &p.sheet, c),
+            None => along(model, ii),
+        };
+        let mut d =
+            PanelData { c, al, solid, wet: false, counts: [0; 3], x: (0.0, 1.0), y: (0.0, 1.0), beyond: String::new() };
+        let wet = d.all().any(|&(p, _)| c.water_pressure(p) > 0.0);
+        let mut counts = [0usize; 3];
+        for &(p, _) in d.all() {
+            counts[c.states[p].code() as usize] += 1;
+        }
+        (d.wet, d.counts) = (wet, counts);
+        let smin = d.all().map(|q| q.1).fold(f64::INFINITY, f64::min);
+        let smax = d.all().map(|q| q.1).fold(f64::NEG_INFINITY, f64::max);
+        let (smin, smax) = if smin <= smax { (smin, smax) } else { (0.0, 1.0) };
+        let span = (smax - smin).max(1e-300);
+        // a robust range: a singular corner does not set the scale; its
+        // points sit on the frame's edge, and the caption says how far they go
+        let values: Vec<f64> = d
+            .all()
+            .flat_map(|&(p, _)| [d.raw_sn(p), d.raw_tau(p), d.raw_minus_u(p)])
+            .filter(|v| v.is_finite())
+            .collect();
+        let range = super::legend::robust(values);
+        let (ylo, yhi) = (range.lo.min(0.0), range.hi.max(0.0));
+        let pad = 0.08 * (yhi - ylo).max(1e-30);
+        d.y = (ylo - pad, yhi + pad);
+        d.beyond = beyond(&range);
+        d.x = (smin - 0.02 * span, smax + 0.02 * span);
+        d
+    }
+
+    fn all(&self) -> impl Iterator<Item = &(usize, f64)> + Clone {
+        self.al.runs.iter().flatten()
+    }
+
+    fn raw_sn(&self, p: usize) -> f64 {
+        self.c.pairs[p].sigma_n
+    }
+
+    /// In 2D the shear keeps its sign (along the tangent t).
+    fn raw_tau(&self, p: usize) -> f64 {
+        if self.solid {
+            self.c.pairs[p].tau()
+        } else {
+            self.c.pairs[p].tau_t
+        }
+    }
+
+    fn raw_minus_u(&self, p: usize) -> f64 {
+        -self.c.water_pressure(p)
+    }
+
+    /// sigma_n on the frame (clamped to its edge).
+    fn sn(&self, p: usize) -> f64 {
+        self.raw_sn(p).clamp(self.y.0, self.y.1)
+    }
+
+    fn tau(&self, p: usize) -> f64 {
+        self.raw_tau(p).clamp(self.y.0, self.y.1)
+    }
+
+    fn minus_u(&self, p: usize) -> f64 {
+        self.raw_minus_u(p).clamp(self.y.0, self.y.1)
+    }
+
+    fn sn_label(&self) -> &'static str {
+        if self.wet {
+            "σn' (effective, tension > 0)"
+        } else {
+            "σn (normal, tension > 0)"
+        }
+    }
+
+    fn colour(&self, p: usize) -> RGBColor {
+        rgb(state_colour(self.c.states[p]))
+    }
+}
+
+type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+const BLUE: RGBColor = RGBColor(31, 90, 180);
+const PURPLE: RGBColor = RGBColor(150, 60, 170);
+const CYAN: RGBColor = RGBColor(0, 160, 190);
+
+/// One interface's panel: the frame, the state bands (2D), the stresses,
+/// the legend.
 fn interface_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     model: &Model,
@@ -344,68 +452,67 @@ fn interface_panel<DB: DrawingBackend>(
     ii: usize,
     plan: Option<&PlanFile>,
 ) -> Result<(), PictureError> {
-    let err = |e: &dyn std::fmt::Debug| plot_err(e);
-    let iface = &model.interfaces[ii];
-    let solid = model.analysis == Analysis::Solid;
-    let al = match plan {
-        Some(p) => Along::of_sheet(model, &p.sheet, c),
-        None => along(model, ii),
-    };
-    let all = || al.runs.iter().flatten();
-    let sn = |p: usize| c.pairs[p].sigma_n;
-    // in 2D the shear keeps its sign (along the tangent t)
-    let tau = |p: usize| if solid { c.pairs[p].tau() } else { c.pairs[p].tau_t };
-    // the water in the joint, drawn as -u: sigma_n' and -u add up to the total
-    let wet = all().any(|&(p, _)| c.water_pressure(p) > 0.0);
-    let minus_u = |p: usize| -c.water_pressure(p);
-    let sn_label = if wet { "σn' (effective, tension > 0)" } else { "σn (normal, tension > 0)" };
-    let mut counts = [0usize; 3];
-    for &(p, _) in all() {
-        counts[c.states[p].code() as usize] += 1;
+    let d = PanelData::new(model, c, ii, plan);
+    let mut chart = frame(area, model, &d, ii, plan)?;
+    if !d.solid {
+        draw_state_bands(&mut chart, &d)?;
     }
-    let smin = all().map(|q| q.1).fold(f64::INFINITY, f64::min);
-    let smax = all().map(|q| q.1).fold(f64::NEG_INFINITY, f64::max);
-    let (smin, smax) = if smin <= smax { (smin, smax) } else { (0.0, 1.0) };
-    let span = (smax - smin).max(1e-300);
-    // a robust range: a singular corner does not set the scale; its
-    // points sit on the frame's edge, and the caption says how far they go
-    let values: Vec<f64> = all().flat_map(|&(p, _)| [sn(p), tau(p), minus_u(p)]).filter(|v| v.is_finite()).collect();
-    let range = super::legend::robust(values);
-    let (ylo, yhi) = (range.lo.min(0.0), range.hi.max(0.0));
-    let pad = 0.08 * (yhi - ylo).max(1e-30);
-    let (ylo, yhi) = (ylo - pad, yhi + pad);
-    let sn = |p: usize| sn(p).clamp(ylo, yhi);
-    let tau = |p: usize| tau(p).clamp(ylo, yhi);
-    let minus_u = |p: usize| minus_u(p).clamp(ylo, yhi);
-    let beyond = beyond(&range);
-    let (xlo, xhi) = (smin - 0.02 * span, smax + 0.02 * span);
-    let pairs: Vec<usize> = all().map(|q| q.0).collect();
+    chart.draw_series(LineSeries::new(vec![(d.x.0, 0.0), (d.x.1, 0.0)], BLACK.mix(0.5))).map_err(|e| plot_err(&e))?;
+    if d.solid {
+        draw_markers(&mut chart, &d)?;
+    } else {
+        draw_lines(&mut chart, &d)?;
+    }
+    draw_state_keys(&mut chart, &d)?;
+    let place = legend_corner(&d, area.dim_in_pixel().1 as f64);
+    chart
+        .configure_series_labels()
+        .position(place)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.mix(0.4))
+        .label_font(("sans-serif", 14))
+        .draw()
+        .map_err(|e| plot_err(&e))?;
+    Ok(())
+}
+
+/// The panel's chart: caption (interface, sides, pairs by state), axes.
+fn frame<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    model: &Model,
+    d: &PanelData,
+    ii: usize,
+    plan: Option<&PlanFile>,
+) -> Result<Chart<'a, DB>, PictureError> {
+    let pairs: Vec<usize> = d.all().map(|q| q.0).collect();
     let [bi, bii] = sides(model, &pairs);
     let which = match plan {
         Some(p) if p.of > 1 => format!(" {} of {}, {}", p.index + 1, p.of, p.sheet.short(model)),
         _ => String::new(),
     };
+    let counts = d.counts;
     let caption = format!(
-        "{}{which}: {} | {}, {} pairs: {} stick, {} slip, {} open{beyond}",
-        iface.name,
+        "{}{which}: {} | {}, {} pairs: {} stick, {} slip, {} open{}",
+        model.interfaces[ii].name,
         bi.0,
         bii.0,
         counts.iter().sum::<usize>(),
         counts[2],
         counts[1],
-        counts[0]
+        counts[0],
+        d.beyond
     );
     let axis = match plan {
-        Some(p) if al.left >= 0.25 => format!("{}; σn and τ also vary across it: see {}", al.axis, p.file),
-        _ => al.axis.clone(),
+        Some(p) if d.al.left >= 0.25 => format!("{}; σn and τ also vary across it: see {}", d.al.axis, p.file),
+        _ => d.al.axis.clone(),
     };
     let mut chart = ChartBuilder::on(area)
         .caption(caption, ("sans-serif", 18))
         .margin(14)
         .x_label_area_size(46)
         .y_label_area_size(78)
-        .build_cartesian_2d(xlo..xhi, ylo..yhi)
-        .map_err(|e| err(&e))?;
+        .build_cartesian_2d(d.x.0..d.x.1, d.y.0..d.y.1)
+        .map_err(|e| plot_err(&e))?;
     chart
         .configure_mesh()
         .x_desc(axis.as_str())
@@ -414,91 +521,110 @@ fn interface_panel<DB: DrawingBackend>(
         .axis_desc_style(("sans-serif", 15))
         .light_line_style(RGBColor(238, 238, 238))
         .draw()
-        .map_err(|e| err(&e))?;
-    let blue = RGBColor(31, 90, 180);
-    let purple = RGBColor(150, 60, 170);
-    let cyan = RGBColor(0, 160, 190);
-    if !solid {
-        // each pair's state over the half-way points to its neighbours
-        let mut bands = Vec::new();
-        for r in &al.runs {
-            for (i, &(p, s)) in r.iter().enumerate() {
-                let a = if i == 0 { s } else { 0.5 * (s + r[i - 1].1) };
-                let b = if i + 1 == r.len() { s } else { 0.5 * (s + r[i + 1].1) };
-                bands.push(Rectangle::new([(a, ylo), (b, yhi)], rgb(state_colour(c.states[p])).mix(0.22).filled()));
-            }
-        }
-        chart.draw_series(bands).map_err(|e| err(&e))?;
-    }
-    chart.draw_series(LineSeries::new(vec![(xlo, 0.0), (xhi, 0.0)], BLACK.mix(0.5))).map_err(|e| err(&e))?;
-    if solid {
-        let dots = all().map(|&(p, s)| Circle::new((s, sn(p)), 4, rgb(state_colour(c.states[p])).filled()));
-        chart
-            .draw_series(dots)
-            .map_err(|e| err(&e))?
-            .label(sn_label)
-            .legend(|(x, y)| Circle::new((x + 9, y), 4, BLACK.filled()));
-        let tris =
-            all().map(|&(p, s)| TriangleMarker::new((s, tau(p)), 5, rgb(state_colour(c.states[p])).stroke_width(2)));
-        chart
-            .draw_series(tris)
-            .map_err(|e| err(&e))?
-            .label("τ (shear, magnitude)")
-            .legend(|(x, y)| TriangleMarker::new((x + 9, y), 5, BLACK.stroke_width(2)));
-        if wet {
-            let marks = all().map(|&(p, s)| Cross::new((s, minus_u(p)), 4, cyan.stroke_width(2)));
-            chart
-                .draw_series(marks)
-                .map_err(|e| err(&e))?
-                .label("-u (water pressure)")
-                .legend(move |(x, y)| Cross::new((x + 9, y), 4, cyan.stroke_width(2)));
-        }
-    } else {
-        for (i, r) in al.runs.iter().enumerate() {
-            let pts: Vec<(f64, f64)> = r.iter().map(|&(p, s)| (s, sn(p))).collect();
-            let a = chart.draw_series(LineSeries::new(pts.clone(), blue.stroke_width(2))).map_err(|e| err(&e))?;
-            if i == 0 {
-                a.label(sn_label)
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], blue.stroke_width(2)));
-            }
-            chart.draw_series(pts.iter().map(|&q| Circle::new(q, 3, blue.filled()))).map_err(|e| err(&e))?;
-            let pts: Vec<(f64, f64)> = r.iter().map(|&(p, s)| (s, tau(p))).collect();
-            let a = chart.draw_series(LineSeries::new(pts.clone(), purple.stroke_width(2))).map_err(|e| err(&e))?;
-            if i == 0 {
-                a.label("τ (shear, along the tangent)")
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], purple.stroke_width(2)));
-            }
-            chart.draw_series(pts.iter().map(|&q| TriangleMarker::new(q, 4, purple.filled()))).map_err(|e| err(&e))?;
-            if wet {
-                let pts: Vec<(f64, f64)> = r.iter().map(|&(p, s)| (s, minus_u(p))).collect();
-                let a = chart.draw_series(LineSeries::new(pts, cyan.stroke_width(2))).map_err(|e| err(&e))?;
-                if i == 0 {
-                    a.label("-u (water pressure)")
-                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], cyan.stroke_width(2)));
-                }
-            }
+        .map_err(|e| plot_err(&e))?;
+    Ok(chart)
+}
+
+/// 2D: each pair's state over the half-way points to its neighbours.
+fn draw_state_bands<DB: DrawingBackend>(chart: &mut Chart<DB>, d: &PanelData) -> Result<(), PictureError> {
+    let (ylo, yhi) = d.y;
+    let mut bands = Vec::new();
+    for r in &d.al.runs {
+        for (i, &(p, s)) in r.iter().enumerate() {
+            let a = if i == 0 { s } else { 0.5 * (s + r[i - 1].1) };
+            let b = if i + 1 == r.len() { s } else { 0.5 * (s + r[i + 1].1) };
+            bands.push(Rectangle::new([(a, ylo), (b, yhi)], d.colour(p).mix(0.22).filled()));
         }
     }
+    chart.draw_series(bands).map_err(|e| plot_err(&e))?;
+    Ok(())
+}
+
+/// 3D: markers coloured by state (circles sigma_n, triangles |tau|,
+/// crosses -u).
+fn draw_markers<DB: DrawingBackend>(chart: &mut Chart<DB>, d: &PanelData) -> Result<(), PictureError> {
+    let dots = d.all().map(|&(p, s)| Circle::new((s, d.sn(p)), 4, d.colour(p).filled()));
+    chart
+        .draw_series(dots)
+        .map_err(|e| plot_err(&e))?
+        .label(d.sn_label())
+        .legend(|(x, y)| Circle::new((x + 9, y), 4, BLACK.filled()));
+    let tris = d.all().map(|&(p, s)| TriangleMarker::new((s, d.tau(p)), 5, d.colour(p).stroke_width(2)));
+    chart
+        .draw_series(tris)
+        .map_err(|e| plot_err(&e))?
+        .label("τ (shear, magnitude)")
+        .legend(|(x, y)| TriangleMarker::new((x + 9, y), 5, BLACK.stroke_width(2)));
+    if d.wet {
+        let marks = d.all().map(|&(p, s)| Cross::new((s, d.minus_u(p)), 4, CYAN.stroke_width(2)));
+        chart
+            .draw_series(marks)
+            .map_err(|e| plot_err(&e))?
+            .label("-u (water pressure)")
+            .legend(move |(x, y)| Cross::new((x + 9, y), 4, CYAN.stroke_width(2)));
+    }
+    Ok(())
+}
+
+/// 2D: one line per run for sigma_n, tau and -u.
+fn draw_lines<DB: DrawingBackend>(chart: &mut Chart<DB>, d: &PanelData) -> Result<(), PictureError> {
+    for (i, r) in d.al.runs.iter().enumerate() {
+        let pts: Vec<(f64, f64)> = r.iter().map(|&(p, s)| (s, d.sn(p))).collect();
+        let a = chart.draw_series(LineSeries::new(pts.clone(), BLUE.stroke_width(2))).map_err(|e| plot_err(&e))?;
+        if i == 0 {
+            a.label(d.sn_label())
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLUE.stroke_width(2)));
+        }
+        chart.draw_series(pts.iter().map(|&q| Circle::new(q, 3, BLUE.filled()))).map_err(|e| plot_err(&e))?;
+        let pts: Vec<(f64, f64)> = r.iter().map(|&(p, s)| (s, d.tau(p))).collect();
+        let a = chart.draw_series(LineSeries::new(pts.clone(), PURPLE.stroke_width(2))).map_err(|e| plot_err(&e))?;
+        if i == 0 {
+            a.label("τ (shear, along the tangent)")
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], PURPLE.stroke_width(2)));
+        }
+        chart.draw_series(pts.iter().map(|&q| TriangleMarker::new(q, 4, PURPLE.filled()))).map_err(|e| plot_err(&e))?;
+        if d.wet {
+            let pts: Vec<(f64, f64)> = r.iter().map(|&(p, s)| (s, d.minus_u(p))).collect();
+            let a = chart.draw_series(LineSeries::new(pts, CYAN.stroke_width(2))).map_err(|e| plot_err(&e))?;
+            if i == 0 {
+                a.label("-u (water pressure)")
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], CYAN.stroke_width(2)));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Legend entries for the states present (no series of their own).
+fn draw_state_keys<DB: DrawingBackend>(chart: &mut Chart<DB>, d: &PanelData) -> Result<(), PictureError> {
+    let counts = d.counts;
     for (s, count) in
         [(ContactState::Stick, counts[2]), (ContactState::Slip, counts[1]), (ContactState::Open, counts[0])]
     {
         if count > 0 {
             let col = rgb(state_colour(s));
-            let style = if solid { col.filled() } else { col.mix(0.35).filled() };
+            let style = if d.solid { col.filled() } else { col.mix(0.35).filled() };
             chart
                 .draw_series(std::iter::empty::<Rectangle<(f64, f64)>>())
-                .map_err(|e| err(&e))?
+                .map_err(|e| plot_err(&e))?
                 .label(s.name())
                 .legend(move |(x, y)| Rectangle::new([(x + 2, y - 6), (x + 16, y + 6)], style));
         }
     }
-    // the legend goes in the corner with the fewest points under it
-    let entries = 2 + usize::from(wet) + counts.iter().filter(|&&c| c > 0).count();
-    let (lw, lh) = (0.34, (entries as f64 * 22.0 + 12.0) / (area.dim_in_pixel().1 as f64 - 90.0));
+    Ok(())
+}
+
+/// The legend goes in the corner with the fewest points under it
+/// (`height`: the panel's height in pixels).
+fn legend_corner(d: &PanelData, height: f64) -> SeriesLabelPosition {
+    let (xlo, xhi) = d.x;
+    let (ylo, yhi) = d.y;
+    let entries = 2 + usize::from(d.wet) + d.counts.iter().filter(|&&c| c > 0).count();
+    let (lw, lh) = (0.34, (entries as f64 * 22.0 + 12.0) / (height - 90.0));
     let under = |fx: f64, fy: f64| {
         let (bx, by) = (fx * (1.0 - lw), fy * (1.0 - lh));
-        all()
-            .flat_map(|&(p, s)| [(s, sn(p)), (s, tau(p))])
+        d.all()
+            .flat_map(|&(p, s)| [(s, d.sn(p)), (s, d.tau(p))])
             .map(|(s, v)| ((s - xlo) / (xhi - xlo), (v - ylo) / (yhi - ylo)))
             .filter(|&(x, y)| x >= bx && x <= bx + lw && y >= by && y <= by + lh)
             .count()
@@ -511,18 +637,5 @@ fn interface_panel<DB: DrawingBackend>(
         (SeriesLabelPosition::UpperMiddle, 0.5, 1.0),
         (SeriesLabelPosition::LowerMiddle, 0.5, 0.0),
     ];
-    let place = corners
-        .into_iter()
-        .min_by_key(|&(_, fx, fy)| under(fx, fy))
-        .map(|c| c.0)
-        .unwrap_or(SeriesLabelPosition::UpperRight);
-    chart
-        .configure_series_labels()
-        .position(place)
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK.mix(0.4))
-        .label_font(("sans-serif", 14))
-        .draw()
-        .map_err(|e| err(&e))?;
-    Ok(())
+    corners.into_iter().min_by_key(|&(_, fx, fy)| under(fx, fy)).map(|c| c.0).unwrap_or(SeriesLabelPosition::UpperRight)
 }
