@@ -9,9 +9,10 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
 use std::path::Path;
 
-use super::raw::{RawFrame, RawGmsh, RawMaterial, RawOutput, RawProbe, RawScene};
+use super::raw::{RawFrame, RawGmsh, RawMaterial, RawOutput, RawProbe, RawScene, RawSolver, RawWater};
 use super::{
-    Analysis, Body, GmshOptions, Material, MeshSource, Output, Probe, Region, Scene, SceneError, Solver, OUTPUT_FIELDS,
+    Analysis, Body, Contact, GmshOptions, JointSpec, Load, Material, MeshSource, Output, Probe, Region, Scene,
+    SceneError, Solver, OUTPUT_FIELDS,
 };
 
 mod analytic;
@@ -151,13 +152,9 @@ impl Checker<'_> {
         Ok([v[0], v[1], z])
     }
 
+    /// The scene, key by key, in the order the errors are reported.
     pub(super) fn scene(&self, raw: RawScene) -> R<Scene> {
-        let name = self
-            .path
-            .file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .filter(|s| !s.is_empty())
-            .unwrap_or_else(|| "scene".to_string());
+        let name = self.name();
         let title = raw.title.unwrap_or_else(|| name.clone());
 
         let analysis = self.required(
@@ -167,7 +164,80 @@ impl Checker<'_> {
         )?;
         let mesh = self.mesh(raw.mesh)?;
 
-        let thickness = match raw.thickness {
+        let thickness = self.thickness(raw.thickness, analysis)?;
+        let gravity = match &raw.gravity {
+            None => [0.0; 3],
+            Some(g) => self.vec3(g, "gravity", analysis)?,
+        };
+
+        let gmsh = self.gmsh(raw.gmsh, &mesh)?;
+        let materials = self.materials(raw.materials)?;
+        let bodies = self.bodies(raw.bodies, &materials, analysis)?;
+        let mut raw_contacts = raw.contacts;
+        let contact_waters: Vec<_> = raw_contacts.iter_mut().map(|c| c.water.take()).collect();
+        let mut contacts = self.contacts(raw_contacts, &bodies)?;
+        let mut raw_joints = (raw.joint_sets, raw.joints);
+        let joint_waters = self.joint_waters(&mut raw_joints.0, &mut raw_joints.1)?;
+        let (joints, joint_contacts) = self.joints(raw_joints.0, raw_joints.1, &bodies, &contacts, analysis)?;
+        self.joints_fit(&joints, &mesh, &gmsh)?;
+        let first_joint = contacts.len();
+        contacts.extend(joint_contacts);
+        // a joint's water acts on the contact group the cutter makes of its faces
+        let waters = contact_waters.into_iter().enumerate().map(|(i, w)| (i, format!("contacts[{i}].water"), w));
+        let waters = waters.chain(joint_waters.into_iter().enumerate().map(|(j, (k, w))| (first_joint + j, k, w)));
+        let max_blocks =
+            self.at_least(raw.max_blocks, 1000, 1, "max_blocks", "the most blocks the joints may cut the bodies into")?;
+        let supports =
+            raw.supports.into_iter().enumerate().map(|(i, s)| self.support(i, s, analysis)).collect::<R<Vec<_>>>()?;
+        let loads = raw.loads.into_iter().enumerate().map(|(i, l)| self.load(i, l, analysis)).collect::<R<Vec<_>>>()?;
+        let solver = self.solver(raw.solver)?;
+        self.factor_tables(&loads, &solver)?;
+        self.attach_waters(&mut contacts, waters, &loads, analysis, solver.load_steps)?;
+        let probes = self.probes(raw.probes, analysis)?;
+        let analytic = raw.analytic.map(|a| self.analytic(a, analysis, &bodies, &materials)).transpose()?;
+        let output = self.output(raw.output, analysis, &bodies)?;
+        let safety = raw.safety.map(|s| self.safety(s, &contacts, &loads, gravity)).transpose()?;
+        let sections = self.sections(raw.sections, analysis, &bodies)?;
+
+        Ok(Scene {
+            path: self.path.to_path_buf(),
+            name,
+            title,
+            mesh,
+            analysis,
+            thickness,
+            gravity,
+            gmsh,
+            materials,
+            bodies,
+            contacts,
+            supports,
+            loads,
+            solver,
+            probes,
+            analytic,
+            output,
+            bonded: false,
+            safety,
+            joints,
+            max_blocks,
+            merge_slivers: raw.merge_slivers.unwrap_or(false),
+            sections,
+        })
+    }
+
+    /// The scene's name: its file's stem.
+    fn name(&self) -> String {
+        self.path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .filter(|s| !s.is_empty())
+            .unwrap_or_else(|| "scene".to_string())
+    }
+
+    /// The out-of-plane thickness (plane analyses only), 1 by default.
+    fn thickness(&self, raw: Option<f64>, analysis: Analysis) -> R<f64> {
+        Ok(match raw {
             None => 1.0,
             Some(t) if !analysis.has_thickness() => {
                 return Err(self.bad(
@@ -187,22 +257,12 @@ impl Checker<'_> {
                 ))
             }
             Some(t) => return Err(self.bad("thickness", t, "the out-of-plane thickness must be a finite number > 0.")),
-        };
-        let gravity = match &raw.gravity {
-            None => [0.0; 3],
-            Some(g) => self.vec3(g, "gravity", analysis)?,
-        };
+        })
+    }
 
-        let gmsh = self.gmsh(raw.gmsh, &mesh)?;
-        let materials = self.materials(raw.materials)?;
-        let bodies = self.bodies(raw.bodies, &materials, analysis)?;
-        let mut raw_contacts = raw.contacts;
-        let waters: Vec<_> = raw_contacts.iter_mut().map(|c| c.water.take()).collect();
-        let mut contacts = self.contacts(raw_contacts, &bodies)?;
-        let mut raw_joints = (raw.joint_sets, raw.joints);
-        let joint_waters = self.joint_waters(&mut raw_joints.0, &mut raw_joints.1)?;
-        let (joints, joint_contacts) = self.joints(raw_joints.0, raw_joints.1, &bodies, &contacts, analysis)?;
-        if let (Some(j), MeshSource::Msh(p)) = (joints.first(), &mesh) {
+    /// Joints are cut into a .geo, and a structured mesh needs joints.
+    fn joints_fit(&self, joints: &[JointSpec], mesh: &MeshSource, gmsh: &GmshOptions) -> R<()> {
+        if let (Some(j), MeshSource::Msh(p)) = (joints.first(), mesh) {
             return Err(self.err(
                 &j.key,
                 format!("joints are cut into the bodies of a .geo, but mesh is the ready mesh {}; point mesh at the .geo (with SetFactory(\"OpenCASCADE\")), or give the joints as [[contacts]] groups of the mesh.", p.display()),
@@ -215,14 +275,12 @@ impl Checker<'_> {
                 "structured meshes the blocks the joints cut ([[joint_sets]], [[joints]]); without joints, give Transfinite and Recombine in the .geo.",
             ));
         }
-        let first_joint = contacts.len();
-        contacts.extend(joint_contacts);
-        let max_blocks =
-            self.at_least(raw.max_blocks, 1000, 1, "max_blocks", "the most blocks the joints may cut the bodies into")?;
-        let supports =
-            raw.supports.into_iter().enumerate().map(|(i, s)| self.support(i, s, analysis)).collect::<R<Vec<_>>>()?;
-        let loads = raw.loads.into_iter().enumerate().map(|(i, l)| self.load(i, l, analysis)).collect::<R<Vec<_>>>()?;
-        let solver = match raw.solver {
+        Ok(())
+    }
+
+    /// `[solver]`, with its defaults.
+    fn solver(&self, raw: Option<RawSolver>) -> R<Solver> {
+        Ok(match raw {
             None => Solver::default(),
             Some(s) => Solver {
                 load_steps: self.at_most(
@@ -264,8 +322,11 @@ impl Checker<'_> {
                     ),
                 },
             },
-        };
-        // load factor tables have one entry per load step
+        })
+    }
+
+    /// Load factor tables have one entry per load step.
+    fn factor_tables(&self, loads: &[Load], solver: &Solver) -> R<()> {
         let steps = solver.load_steps;
         let tables = loads
             .iter()
@@ -283,48 +344,25 @@ impl Checker<'_> {
                 ));
             }
         }
-        for (i, w) in waters.into_iter().enumerate() {
-            if let Some(w) = w {
-                contacts[i].water = Some(self.water(&format!("contacts[{i}].water"), w, &loads, analysis, steps)?);
-            }
-        }
-        // a joint's water acts on the contact group the cutter makes of its faces
-        for (j, (k, w)) in joint_waters.into_iter().enumerate() {
-            if let Some(w) = w {
-                contacts[first_joint + j].water = Some(self.water(&k, w, &loads, analysis, steps)?);
-            }
-        }
-        let probes = self.probes(raw.probes, analysis)?;
-        let analytic = raw.analytic.map(|a| self.analytic(a, analysis, &bodies, &materials)).transpose()?;
-        let output = self.output(raw.output, analysis, &bodies)?;
-        let safety = raw.safety.map(|s| self.safety(s, &contacts, &loads, gravity)).transpose()?;
-        let sections = self.sections(raw.sections, analysis, &bodies)?;
+        Ok(())
+    }
 
-        Ok(Scene {
-            path: self.path.to_path_buf(),
-            name,
-            title,
-            mesh,
-            analysis,
-            thickness,
-            gravity,
-            gmsh,
-            materials,
-            bodies,
-            contacts,
-            supports,
-            loads,
-            solver,
-            probes,
-            analytic,
-            output,
-            bonded: false,
-            safety,
-            joints,
-            max_blocks,
-            merge_slivers: raw.merge_slivers.unwrap_or(false),
-            sections,
-        })
+    /// The water of each contact `(index, key, water)`, checked once the
+    /// loads are (a `face` names one).
+    fn attach_waters(
+        &self,
+        contacts: &mut [Contact],
+        waters: impl Iterator<Item = (usize, String, Option<RawWater>)>,
+        loads: &[Load],
+        analysis: Analysis,
+        steps: usize,
+    ) -> R<()> {
+        for (i, k, w) in waters {
+            if let Some(w) = w {
+                contacts[i].water = Some(self.water(&k, w, loads, analysis, steps)?);
+            }
+        }
+        Ok(())
     }
 
     fn mesh(&self, mesh: Option<String>) -> R<MeshSource> {
