@@ -17,9 +17,36 @@ const MOST_EMBEDDED: usize = 6;
 /// The report of one run.
 pub fn report(run: &Run) -> String {
     let mut s = String::new();
+    header(&mut s, run);
+    size_rows(&mut s, run);
+    contact_rows(&mut s, run);
+    time_and_error_rows(&mut s, run);
+    if run.steps.len() > 1 {
+        load_steps(&mut s, run);
+    }
+    iteration_notes(&mut s, run);
+    pictures(&mut s, run);
+    s += &super::water::report(run);
+    s += &super::faces::report(run);
+    s += &super::blocks::run_report(run);
+    if let Some(b) = super::bearing::of_run(run) {
+        s += &super::bearing::report(run, &b);
+    }
+    s += &super::sections::report(run);
+    s += &super::reactions::report(run);
+    s += &run.checks.analytic.report;
+    s += &super::safety::report(run);
+    probes(&mut s, run);
     let sc = &run.scene;
-    let _ = writeln!(s, "# {}\n", sc.title);
+    let _ = writeln!(s, "\nOpen `{}.vtu`{} in ParaView (File > Open), colour by `von_mises` or `displacement`; `Warp By Vector` on `displacement` shows the deformed shape.", sc.name, if run.contact().is_some() { format!(" and `{}_contact.vtu`", sc.name) } else { String::new() });
+    s
+}
+
+/// The title, the scene line and the warnings.
+fn header(s: &mut String, run: &Run) {
+    let sc = &run.scene;
     let st = &run.stats;
+    let _ = writeln!(s, "# {}\n", sc.title);
     let _ = writeln!(
         s,
         "Scene `{}`, analysis {}, mesh `{}`{}.\n",
@@ -31,6 +58,11 @@ pub fn report(run: &Run) -> String {
     for w in super::warnings(run) {
         let _ = writeln!(s, "**Warning:** {w}.\n");
     }
+}
+
+/// The table's head and the model's size.
+fn size_rows(s: &mut String, run: &Run) {
+    let st = &run.stats;
     let _ = writeln!(s, "| quantity | value |\n|---|---|");
     let _ = writeln!(s, "| bodies | {} |", body_groups(&run.model));
     let _ = writeln!(s, "| elements | {} |", run.model.bodies.iter().map(|b| b.cells.len()).sum::<usize>());
@@ -49,6 +81,11 @@ pub fn report(run: &Run) -> String {
                 .join(", ")
         );
     }
+}
+
+/// The contact iteration's rows: pairs, iterations, states, residuals.
+fn contact_rows(s: &mut String, run: &Run) {
+    let st = &run.stats;
     if let Some(c) = run.contact() {
         let (k, it) = (state_counts(&c.states), &c.summary);
         let _ = writeln!(s, "| contact pairs | {} |", c.states.len());
@@ -74,7 +111,12 @@ pub fn report(run: &Run) -> String {
                 writeln!(s, "| contact law residual (worst pair / largest traction) | {r:.2e} (pair {p}, {group}) |");
         }
     }
-    let t = &st.timings;
+}
+
+/// The timings and the errors against the closed form.
+fn time_and_error_rows(s: &mut String, run: &Run) {
+    let sc = &run.scene;
+    let t = &run.stats.timings;
     let _ = writeln!(
         s,
         "| time mesh / model / assemble / condense / interface / recover / output / total (s) | {:.3} / {:.3} / {:.3} / {:.3} / {:.3} / {:.3} / {:.3} / {:.3} |",
@@ -89,9 +131,10 @@ pub fn report(run: &Run) -> String {
             let _ = writeln!(s, "| contact sigma_n error (max, relative) | {:.3e} |", c);
         }
     }
-    if run.steps.len() > 1 {
-        load_steps(&mut s, run);
-    }
+}
+
+/// How the contact iteration went: cycles broken, load steps cut, pairs unsettled.
+fn iteration_notes(s: &mut String, run: &Run) {
     if let Some(c) = run.contact() {
         let it = &c.summary;
         if it.cycles_broken > 0 {
@@ -100,8 +143,12 @@ pub fn report(run: &Run) -> String {
         if it.cuts > 0 {
             let _ = writeln!(s, "\n{}", cut_sentence(it));
         }
-        s += &super::unsettled::report(&run.model, c);
+        *s += &super::unsettled::report(&run.model, c);
     }
+}
+
+/// The pictures: the deformed shape, the stereonet, the interface plot and the plan views.
+fn pictures(s: &mut String, run: &Run) {
     let _ = writeln!(
         s,
         "\n![the deformed shape, contact pairs coloured by state]({})",
@@ -112,45 +159,44 @@ pub fn report(run: &Run) -> String {
     }
     if run.contact().is_some() {
         let _ = writeln!(s, "\n![contact normal and shear stress along each interface](interfaces.svg)");
-        let plans = super::picture::plan_files(&run.model);
-        if let Some(f) = super::picture::joints_file(&plans) {
-            let _ = writeln!(s, "\n![every contact surface by state]({f})\n\n*Every contact surface laid flat, by state: {} sheets (planes and unrolled surfaces).*", plans.len());
+        plan_views(s, run);
+    }
+}
+
+/// The plan views, embedded (a few) or listed (a joint set of many planes).
+fn plan_views(s: &mut String, run: &Run) {
+    let plans = super::picture::plan_files(&run.model);
+    if let Some(f) = super::picture::joints_file(&plans) {
+        let _ = writeln!(s, "\n![every contact surface by state]({f})\n\n*Every contact surface laid flat, by state: {} sheets (planes and unrolled surfaces).*", plans.len());
+    }
+    if plans.len() > MOST_EMBEDDED {
+        // a joint set of many planes: a list, not a wall of pictures
+        let _ = writeln!(s, "\nThe plan views, one per sheet: where it sticks, slips and opens; sigma_n.\n\n| file | contact | sheet |\n|---|---|---|");
+        for p in &plans {
+            let _ = writeln!(
+                s,
+                "| [{}]({}) | {} | {} |",
+                p.file,
+                p.file,
+                run.model.interfaces[p.interface].name,
+                p.describe(&run.model)
+            );
         }
-        if plans.len() > MOST_EMBEDDED {
-            // a joint set of many planes: a list, not a wall of pictures
-            let _ = writeln!(s, "\nThe plan views, one per sheet: where it sticks, slips and opens; sigma_n.\n\n| file | contact | sheet |\n|---|---|---|");
-            for p in &plans {
-                let _ = writeln!(
-                    s,
-                    "| [{}]({}) | {} | {} |",
-                    p.file,
-                    p.file,
-                    run.model.interfaces[p.interface].name,
-                    p.describe(&run.model)
-                );
-            }
-        } else {
-            for p in &plans {
-                let name = &run.model.interfaces[p.interface].name;
-                let (what, which) = if p.of > 1 {
-                    (format!("{name} ({})", p.describe(&run.model)), format!(", {}", p.describe(&run.model)))
-                } else {
-                    (name.clone(), String::new())
-                };
-                let _ = writeln!(s, "\n![plan view of {what}: where it sticks, slips and opens; sigma_n]({})\n\n*Plan view of `{name}`{which}: where it sticks, slips and opens (left); sigma_n (right).*", p.file);
-            }
+    } else {
+        for p in &plans {
+            let name = &run.model.interfaces[p.interface].name;
+            let (what, which) = if p.of > 1 {
+                (format!("{name} ({})", p.describe(&run.model)), format!(", {}", p.describe(&run.model)))
+            } else {
+                (name.clone(), String::new())
+            };
+            let _ = writeln!(s, "\n![plan view of {what}: where it sticks, slips and opens; sigma_n]({})\n\n*Plan view of `{name}`{which}: where it sticks, slips and opens (left); sigma_n (right).*", p.file);
         }
     }
-    s += &super::water::report(run);
-    s += &super::faces::report(run);
-    s += &super::blocks::run_report(run);
-    if let Some(b) = super::bearing::of_run(run) {
-        s += &super::bearing::report(run, &b);
-    }
-    s += &super::sections::report(run);
-    s += &super::reactions::report(run);
-    s += &run.checks.analytic.report;
-    s += &super::safety::report(run);
+}
+
+/// A table of each probe's samples.
+fn probes(s: &mut String, run: &Run) {
     for (name, samples) in &run.checks.probes {
         let _ = writeln!(s, "\n## Probe `{name}`\n");
         let _ = writeln!(s, "| x | y | z | ux | uy | uz | sxx | syy | szz | sxy | von Mises |\n|---|---|---|---|---|---|---|---|---|---|---|");
@@ -176,8 +222,6 @@ pub fn report(run: &Run) -> String {
             );
         }
     }
-    let _ = writeln!(s, "\nOpen `{}.vtu`{} in ParaView (File > Open), colour by `von_mises` or `displacement`; `Warp By Vector` on `displacement` shows the deformed shape.", sc.name, if run.contact().is_some() { format!(" and `{}_contact.vtu`", sc.name) } else { String::new() });
-    s
 }
 
 /// The load-step table: the factor each load actually had at each step
