@@ -232,16 +232,6 @@ pub(super) fn plan_canvas(
         [a[0] as f64 - 0.5, b[1] as f64 - 0.5, b[0] as f64 + 1.5, a[1] as f64 + 1.5]
     });
     let alpha = mesh_alpha(&patches, &pos[0]);
-    let lines = |cv: &mut Canvas, pos: &[[f32; 2]]| {
-        for p in &patches {
-            edges(cv, p, pos, &|outline, first| {
-                (!outline && first && alpha > 0.0).then_some((0.8, [0, 0, 0], 0.6 * alpha))
-            });
-        }
-        for p in &patches {
-            edges(cv, p, pos, &|outline, _| outline.then_some((1.3, INK, 1.0)));
-        }
-    };
 
     // (a) the states as regions, the slip directions
     let code = |i: usize| match pair_of[node[i]] {
@@ -250,16 +240,9 @@ pub(super) fn plan_canvas(
     };
     cv.clip(Some(clips[0]));
     paint_states(&mut cv, &patches, &pos[0], &code);
-    lines(&mut cv, &pos[0]);
+    mesh_lines(&mut cv, &patches, &pos[0], alpha);
     cv.clip(None);
-    let area_px: f64 = patches
-        .iter()
-        .flat_map(|p| pieces(p, &pos[0]))
-        .map(|(q, _)| {
-            0.5 * ((q[1][0] - q[0][0]) * (q[2][1] - q[0][1]) - (q[1][1] - q[0][1]) * (q[2][0] - q[0][0])).abs() as f64
-        })
-        .sum();
-    let arrows = slip_arrows(&mut cv, model, contact, sheet, &pairs, &fits[0], area_px);
+    let arrows = slip_arrows(&mut cv, model, contact, sheet, &pairs, &fits[0], pixel_area(&patches, &pos[0]));
     let mut counts = [0usize; 3];
     for &p in &pairs {
         counts[contact.states[p].code() as usize] += 1;
@@ -268,20 +251,13 @@ pub(super) fn plan_canvas(
     state_legend(&mut cv, &mut labels, layout.column[0], layout.boxes[0][1], counts, unpaired, arrows > 0);
 
     // (b) sigma_n
-    let sigma: Vec<f32> = node
-        .iter()
-        .map(|&k| match pair_of[k] {
-            usize::MAX => f32::NAN,
-            p => contact.pairs[p].sigma_n as f32,
-        })
-        .collect();
-    let lim = Limits::of(true, &[pairs.iter().map(|&p| contact.pairs[p].sigma_n as f32).collect()]);
+    let (sigma, lim) = sigma_n_at(contact, &node, &pair_of, &pairs);
     let lut = colour_map(true, lim.lo, lim.hi);
     cv.clip(Some(clips[1]));
     for p in &patches {
         fill(&mut cv, p, &pos[1], &|p| centred(p, |i| lim.norm(sigma[i])), &|t| lut_colour(&lut, t));
     }
-    lines(&mut cv, &pos[1]);
+    mesh_lines(&mut cv, &patches, &pos[1], alpha);
     cv.clip(None);
     let b = layout.boxes[1];
     colour_bar(&mut cv, &mut labels, &lut, &lim, &["σn".to_string()], [layout.column[1], b[1] + 52.0, b[3] - 44.0]);
@@ -293,7 +269,19 @@ pub(super) fn plan_canvas(
     let heading = |b: [f64; 4], text: &str| label(text, (b[0], b[1] - 22.0), 17.0, (HPos::Left, VPos::Center));
     labels.push(heading(layout.boxes[0], "(a) contact state: where it sticks, slips and opens"));
     labels.push(heading(layout.boxes[1], "(b) σn, contact normal stress (tension > 0)"));
-    let [bi, bii] = sides(model, &pairs);
+    labels.push(label(title, (24.0, 14.0), 24.0, (HPos::Left, VPos::Top)));
+    labels.push(label(subtitle(model, plan, &pairs), (24.0, 50.0), 17.0, (HPos::Left, VPos::Top)));
+    let note = slip_note(model, &pairs, counts[1], arrows);
+    labels.push(label(note, (24.0, layout.h as f64 - 18.0), 14.0, (HPos::Left, VPos::Center)));
+    cv.text(&labels)?;
+    Ok((cv, layout.boxes))
+}
+
+/// The line under the title: what is seen, between which bodies, from where.
+fn subtitle(model: &Model, plan: &PlanFile, pairs: &[usize]) -> String {
+    let sheet = &plan.sheet;
+    let iface = &model.interfaces[sheet.interface];
+    let [bi, bii] = sides(model, pairs);
     let what = match plan.of {
         1 => String::new(),
         n => format!(", {} ({} of {n})", plan.describe(model), plan.index + 1),
@@ -304,24 +292,18 @@ pub(super) fn plan_canvas(
             let e = sheet.eye().unwrap_or([0.0, 0.0, 1.0]);
             let up = super::view::model_up(model);
             let above = if dot(e, up) > 0.9 { ", above" } else { "" };
-            format!("seen from {}{above} (the side of {})", direction(e, true), viewer_side(model, &pairs, e))
+            format!("seen from {}{above} (the side of {})", direction(e, true), viewer_side(model, pairs, e))
         }
     };
     let view = if matches!(sheet.shape, Shape::Cylinder { .. }) { "unrolled view" } else { "plan view" };
-    labels.push(label(title, (24.0, 14.0), 24.0, (HPos::Left, VPos::Top)));
-    labels.push(label(
-        format!(
-            "{view} of contact \"{}\"{what} between {} and {} ({} pairs), {seen}",
-            iface.name,
-            bi.0,
-            bii.0,
-            pairs.len()
-        ),
-        (24.0, 50.0),
-        17.0,
-        (HPos::Left, VPos::Top),
-    ));
-    let note = match (counts[1], arrows) {
+    format!("{view} of contact \"{}\"{what} between {} and {} ({} pairs), {seen}", iface.name, bi.0, bii.0, pairs.len())
+}
+
+/// The note under the panels: which way the slip arrows point, or why
+/// there are none.
+fn slip_note(model: &Model, pairs: &[usize], slipping: usize, arrows: usize) -> String {
+    let [bi, bii] = sides(model, pairs);
+    match (slipping, arrows) {
         (0, _) => "No pair slips.".to_string(),
         (_, 0) => "The slipping pairs carry no shear (frictionless slip): no slip directions to draw.".to_string(),
         _ => format!(
@@ -331,10 +313,44 @@ pub(super) fn plan_canvas(
             bi.0,
             bi.0
         ),
-    };
-    labels.push(label(note, (24.0, layout.h as f64 - 18.0), 14.0, (HPos::Left, VPos::Center)));
-    cv.text(&labels)?;
-    Ok((cv, layout.boxes))
+    }
+}
+
+/// The mesh's lines over a panel: the facets' edges faintly (`alpha`),
+/// then the outlines.
+fn mesh_lines(cv: &mut Canvas, patches: &[Patch], pos: &[[f32; 2]], alpha: f32) {
+    for p in patches {
+        edges(cv, p, pos, &|outline, first| {
+            (!outline && first && alpha > 0.0).then_some((0.8, [0, 0, 0], 0.6 * alpha))
+        });
+    }
+    for p in patches {
+        edges(cv, p, pos, &|outline, _| outline.then_some((1.3, INK, 1.0)));
+    }
+}
+
+/// The area the patches cover on screen, in pixels.
+fn pixel_area(patches: &[Patch], pos: &[[f32; 2]]) -> f64 {
+    patches
+        .iter()
+        .flat_map(|p| pieces(p, pos))
+        .map(|(q, _)| {
+            0.5 * ((q[1][0] - q[0][0]) * (q[2][1] - q[0][1]) - (q[1][1] - q[0][1]) * (q[2][0] - q[0][0])).abs() as f64
+        })
+        .sum()
+}
+
+/// sigma_n at each flat point (NaN where no pair is) and its colour range.
+fn sigma_n_at(contact: &ContactRun, node: &[usize], pair_of: &[usize], pairs: &[usize]) -> (Vec<f32>, Limits) {
+    let sigma: Vec<f32> = node
+        .iter()
+        .map(|&k| match pair_of[k] {
+            usize::MAX => f32::NAN,
+            p => contact.pairs[p].sigma_n as f32,
+        })
+        .collect();
+    let lim = Limits::of(true, &[pairs.iter().map(|&p| contact.pairs[p].sigma_n as f32).collect()]);
+    (sigma, lim)
 }
 
 /// Body names as `"a", "b" and "c"`, at most `most` of them and how many
