@@ -450,24 +450,54 @@ fn fill_polygon(
 /// Patches across a cut are clipped to it (without their mesh lines).
 fn draw_bodies(cv: &mut Canvas, snap: &Snapshot, frame: &Frame, values: &[Vec<f32>], scales: &[Scale]) {
     let model = snap.model;
-    let (sd, su) = (&frame.sd, &frame.su);
     let coords = &model.coords;
     let all = patches(model, None);
     let place = |p: &Patch| frame.cut.map_or(Place::Inside, |c| c.classify(p, coords));
-    let mut patches: Vec<Patch> = all.iter().copied().filter(|p| place(p) == Place::Inside).collect();
+    let patches: Vec<Patch> = all.iter().copied().filter(|p| place(p) == Place::Inside).collect();
     let across: Vec<Patch> = all.iter().copied().filter(|p| place(p) == Place::Across).collect();
-    let mesh_alpha = mesh_alpha(&patches, sd);
-    let mut scale_of = vec![0; model.bodies.len()];
-    for (i, s) in scales.iter().enumerate() {
-        for &b in &s.bodies {
-            scale_of[b] = i;
-        }
+    let paint = Paint::new(model.bodies.len(), values, scales);
+    let clipped = clipped_pieces(snap, frame, &across, values);
+    match &frame.view {
+        None => draw_plane(cv, frame, &patches, &clipped, &paint),
+        Some(view) => draw_far_to_near(cv, snap, frame, view, patches, &clipped, &paint),
     }
-    let colour = |body: usize, t: f32| lut_colour(&scales[scale_of[body]].lut, t);
-    let norm = |body: usize, v: f32| scales.get(scale_of[body]).map_or(f32::NAN, |s| s.lim.norm(v));
+}
+
+/// A piece of a patch across the cut: its body, its polygon, its normal.
+type Clipped = (usize, Vec<Vertex>, [f64; 3]);
+
+/// How a body's values are coloured: the scale each body is on.
+struct Paint<'a> {
+    values: &'a [Vec<f32>],
+    scales: &'a [Scale],
+    scale_of: Vec<usize>,
+}
+
+impl<'a> Paint<'a> {
+    fn new(bodies: usize, values: &'a [Vec<f32>], scales: &'a [Scale]) -> Paint<'a> {
+        let mut scale_of = vec![0; bodies];
+        for (i, s) in scales.iter().enumerate() {
+            for &b in &s.bodies {
+                scale_of[b] = i;
+            }
+        }
+        Paint { values, scales, scale_of }
+    }
+
+    fn colour(&self, body: usize, t: f32) -> [u8; 3] {
+        lut_colour(&self.scales[self.scale_of[body]].lut, t)
+    }
+
+    fn norm(&self, body: usize, v: f32) -> f32 {
+        self.scales.get(self.scale_of[body]).map_or(f32::NAN, |s| s.lim.norm(v))
+    }
+}
+
+/// The pieces of the patches `across` the frame's cut (none without one).
+fn clipped_pieces(snap: &Snapshot, frame: &Frame, across: &[Patch], values: &[Vec<f32>]) -> Vec<Clipped> {
+    let coords = &snap.model.coords;
     let vert = |body: usize| move |k: usize| Vertex { x: coords[k], u: displacement(snap, k), v: values[body][k] };
-    // the pieces of the patches across the cut
-    let clipped: Vec<(usize, Vec<Vertex>, [f64; 3])> = match frame.cut {
+    match frame.cut {
         Some(cut) => across
             .iter()
             .flat_map(|p| {
@@ -478,46 +508,65 @@ fn draw_bodies(cv: &mut Canvas, snap: &Snapshot, frame: &Frame, values: &[Vec<f3
             .filter(|(_, poly, _)| !poly.is_empty())
             .collect(),
         None => Vec::new(),
-    };
-    let Some(view) = &frame.view else {
-        if frame.moved() {
-            for p in &patches {
-                fill(cv, p, su, &|_| [0.0; 9], &|_| GHOST);
-            }
-            for (_, poly, _) in &clipped {
-                fill_polygon(cv, frame, poly, false, &|_| GHOST, &|_| 0.0);
-            }
-            for p in &patches {
-                edges(cv, p, su, &|outline, _| outline.then_some((1.0, [175, 175, 175], 1.0)));
-            }
+    }
+}
+
+/// 2D: the undeformed ghost (when the shape moved), the bodies coloured,
+/// the mesh lines and outlines over them.
+fn draw_plane(cv: &mut Canvas, frame: &Frame, patches: &[Patch], clipped: &[Clipped], paint: &Paint) {
+    let (sd, su) = (&frame.sd, &frame.su);
+    let mesh_alpha = mesh_alpha(patches, sd);
+    if frame.moved() {
+        for p in patches {
+            fill(cv, p, su, &|_| [0.0; 9], &|_| GHOST);
         }
-        for p in &patches {
-            let v = &values[p.body];
-            fill(cv, p, sd, &|p| centred(p, |k| norm(p.body, v[k])), &|t| colour(p.body, t));
+        for (_, poly, _) in clipped {
+            fill_polygon(cv, frame, poly, false, &|_| GHOST, &|_| 0.0);
         }
-        for (b, poly, _) in &clipped {
-            fill_polygon(cv, frame, poly, true, &|t| colour(*b, t), &|v| norm(*b, v));
+        for p in patches {
+            edges(cv, p, su, &|outline, _| outline.then_some((1.0, [175, 175, 175], 1.0)));
         }
-        // each mesh line once (from the first cell that has it), outlines over them
-        for p in &patches {
-            edges(cv, p, sd, &|outline, first| {
-                (!outline && first && mesh_alpha > 0.0).then_some((0.8, [0, 0, 0], mesh_alpha))
-            });
-        }
-        for p in &patches {
-            edges(cv, p, sd, &|outline, _| outline.then_some((1.3, INK, 1.0)));
-        }
-        return;
-    };
-    // 3D: whole patches, clipped pieces and sections far to near
+    }
+    for p in patches {
+        let v = &paint.values[p.body];
+        fill(cv, p, sd, &|p| centred(p, |k| paint.norm(p.body, v[k])), &|t| paint.colour(p.body, t));
+    }
+    for (b, poly, _) in clipped {
+        fill_polygon(cv, frame, poly, true, &|t| paint.colour(*b, t), &|v| paint.norm(*b, v));
+    }
+    // each mesh line once (from the first cell that has it), outlines over them
+    for p in patches {
+        edges(cv, p, sd, &|outline, first| {
+            (!outline && first && mesh_alpha > 0.0).then_some((0.8, [0, 0, 0], mesh_alpha))
+        });
+    }
+    for p in patches {
+        edges(cv, p, sd, &|outline, _| outline.then_some((1.3, INK, 1.0)));
+    }
+}
+
+/// A piece of a 3D picture, drawn in depth order.
+enum Piece<'a> {
+    Whole(&'a Patch),
+    Cut(&'a Clipped),
+}
+
+/// 3D: whole patches, clipped pieces and sections far to near, shaded.
+fn draw_far_to_near(
+    cv: &mut Canvas,
+    snap: &Snapshot,
+    frame: &Frame,
+    view: &View,
+    mut patches: Vec<Patch>,
+    clipped: &[Clipped],
+    paint: &Paint,
+) {
+    let (model, coords, sd) = (snap.model, &snap.model.coords, &frame.sd);
+    let mesh_alpha = mesh_alpha(&patches, sd);
     let sections = match frame.cut {
-        Some(cut) => cut.sections(model, &|k| displacement(snap, k), &|b, k| values[b][k]),
+        Some(cut) => cut.sections(model, &|k| displacement(snap, k), &|b, k| paint.values[b][k]),
         None => Vec::new(),
     };
-    enum Piece<'a> {
-        Whole(&'a Patch),
-        Cut(&'a (usize, Vec<Vertex>, [f64; 3])),
-    }
     let depth_of = |piece: &Piece| -> f64 {
         match piece {
             Piece::Whole(p) => p.nodes().iter().map(|&k| frame.depth[k]).sum::<f64>() / p.kind.n_nodes() as f64,
@@ -538,9 +587,9 @@ fn draw_bodies(cv: &mut Canvas, snap: &Snapshot, frame: &Frame, values: &[Vec<f3
             Piece::Whole(p) => {
                 // faces lit from over the viewer's shoulder, either side alike
                 let shade = (0.62 + 0.38 * dot(p.normal(coords), light).abs()) as f32;
-                let v = &values[p.body];
-                fill(cv, p, sd, &|p| centred(p, |k| norm(p.body, v[k])), &|t| {
-                    colour(p.body, t).map(|c| (c as f32 * shade) as u8)
+                let v = &paint.values[p.body];
+                fill(cv, p, sd, &|p| centred(p, |k| paint.norm(p.body, v[k])), &|t| {
+                    paint.colour(p.body, t).map(|c| (c as f32 * shade) as u8)
                 });
                 edges(cv, p, sd, &|outline, _| match outline {
                     true => Some((1.2, [0, 0, 0], 0.85)),
@@ -549,9 +598,8 @@ fn draw_bodies(cv: &mut Canvas, snap: &Snapshot, frame: &Frame, values: &[Vec<f3
             }
             Piece::Cut((b, poly, normal)) => {
                 let shade = (0.62 + 0.38 * dot(*normal, light).abs()) as f32;
-                fill_polygon(cv, frame, poly, true, &|t| colour(*b, t).map(|c| (c as f32 * shade) as u8), &|v| {
-                    norm(*b, v)
-                });
+                let colour = |t: f32| paint.colour(*b, t).map(|c| (c as f32 * shade) as u8);
+                fill_polygon(cv, frame, poly, true, &colour, &|v| paint.norm(*b, v));
             }
         }
     }
