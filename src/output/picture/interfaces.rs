@@ -16,6 +16,8 @@
 //! When a quarter of the variance or more is left, the panel says so and
 //! points to the sheet's plan view, which maps both directions.
 
+use std::collections::HashMap;
+
 use plotters::coord::cartesian::Cartesian2d;
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
@@ -30,7 +32,7 @@ use super::{num, state_colour, PictureError};
 use crate::contact::law::ContactState;
 use crate::fem::vec3::{dot, sub};
 use crate::fem::Analysis;
-use crate::model::Model;
+use crate::model::{Interface, Model};
 use crate::results::ContactRun;
 
 /// The most panels an interface plot shows (a joint set of many planes
@@ -148,79 +150,93 @@ fn unexplained(s: &[f64], values: &[[f64; 2]]) -> f64 {
 /// position along the direction in which the pairs spread most.
 pub(super) fn along(model: &Model, ii: usize) -> Along {
     let iface = &model.interfaces[ii];
-    let mut pair_of = std::collections::HashMap::new();
+    let mut pair_of = HashMap::new();
     for (i, p) in model.pairs.iter().enumerate() {
         pair_of.insert(p.k, i);
+    }
+    if model.analysis != Analysis::Solid {
+        if let Some(al) = walk_chains(model, iface, &pair_of) {
+            return al;
+        }
     }
     let mut nodes: Vec<usize> =
         iface.facets.iter().flat_map(|f| f.nodes.iter().copied()).filter(|k| pair_of.contains_key(k)).collect();
     nodes.sort_unstable();
     nodes.dedup();
+    principal(model, &nodes, &pair_of)
+}
+
+/// A 2D interface's pairs by arc length, walking its chains of facets
+/// from the end nearest the model's lower-left corner; None when the
+/// facets branch (a node on more than two links).
+fn walk_chains(model: &Model, iface: &Interface, pair_of: &HashMap<usize, usize>) -> Option<Along> {
     let x = |k: usize| model.coords[k];
-    let corner = {
-        let mut lo = [f64::INFINITY; 3];
-        for &k in model.bodies.iter().flat_map(|b| &b.cells).flat_map(|c| &c.nodes) {
-            for (l, x) in lo.iter_mut().zip(model.coords[k]) {
-                *l = l.min(x);
-            }
-        }
-        lo
-    };
+    let corner = lower_corner(model);
     let dist = |a: [f64; 3], b: [f64; 3]| dot(sub(a, b), sub(a, b)).sqrt();
-    if model.analysis != Analysis::Solid {
-        // links between consecutive nodes of each facet (corner, mid, corner),
-        // in node order: of two ends equally near the corner, the first node
-        // starts the walk, the same in every run
-        let mut links: std::collections::BTreeMap<usize, Vec<usize>> = std::collections::BTreeMap::new();
-        for f in &iface.facets {
-            let chain: Vec<usize> =
-                if f.nodes.len() == 3 { vec![f.nodes[0], f.nodes[2], f.nodes[1]] } else { f.nodes.clone() };
-            for w in chain.windows(2) {
-                links.entry(w[0]).or_default().push(w[1]);
-                links.entry(w[1]).or_default().push(w[0]);
-            }
-        }
-        if links.values().all(|v| v.len() <= 2) {
-            let mut seen = std::collections::HashSet::new();
-            let mut runs = Vec::new();
-            let mut s = 0.0;
-            let mut origin = None;
-            loop {
-                // open chains start at an end, closed ones anywhere; nearest the corner first
-                let left = links.keys().copied().filter(|k| !seen.contains(k));
-                let ends: Vec<usize> = left.clone().filter(|k| links[k].len() == 1).collect();
-                let pool: Vec<usize> = if ends.is_empty() { left.collect() } else { ends };
-                let Some(&start) = pool.iter().min_by(|&&a, &&b| dist(x(a), corner).total_cmp(&dist(x(b), corner)))
-                else {
-                    break;
-                };
-                origin.get_or_insert(start);
-                let mut run_pairs = Vec::new();
-                let (mut prev, mut at) = (usize::MAX, start);
-                loop {
-                    seen.insert(at);
-                    if let Some(&p) = pair_of.get(&at) {
-                        run_pairs.push((p, s));
-                    }
-                    let Some(&next) = links[&at].iter().find(|&&m| m != prev && !seen.contains(&m)) else { break };
-                    s += dist(x(at), x(next));
-                    (prev, at) = (at, next);
-                }
-                runs.push(run_pairs);
-            }
-            let o = origin.map(x).unwrap_or_default();
-            return Along {
-                runs,
-                axis: format!("distance along the interface from ({}, {})", num(o[0]), num(o[1])),
-                left: 0.0,
-            };
+    // links between consecutive nodes of each facet (corner, mid, corner),
+    // in node order: of two ends equally near the corner, the first node
+    // starts the walk, the same in every run
+    let mut links: std::collections::BTreeMap<usize, Vec<usize>> = std::collections::BTreeMap::new();
+    for f in &iface.facets {
+        let chain: Vec<usize> =
+            if f.nodes.len() == 3 { vec![f.nodes[0], f.nodes[2], f.nodes[1]] } else { f.nodes.clone() };
+        for w in chain.windows(2) {
+            links.entry(w[0]).or_default().push(w[1]);
+            links.entry(w[1]).or_default().push(w[0]);
         }
     }
-    // the principal direction of the pairs' positions
+    if !links.values().all(|v| v.len() <= 2) {
+        return None;
+    }
+    let mut seen = std::collections::HashSet::new();
+    let mut runs = Vec::new();
+    let mut s = 0.0;
+    let mut origin = None;
+    loop {
+        // open chains start at an end, closed ones anywhere; nearest the corner first
+        let left = links.keys().copied().filter(|k| !seen.contains(k));
+        let ends: Vec<usize> = left.clone().filter(|k| links[k].len() == 1).collect();
+        let pool: Vec<usize> = if ends.is_empty() { left.collect() } else { ends };
+        let Some(&start) = pool.iter().min_by(|&&a, &&b| dist(x(a), corner).total_cmp(&dist(x(b), corner))) else {
+            break;
+        };
+        origin.get_or_insert(start);
+        let mut run_pairs = Vec::new();
+        let (mut prev, mut at) = (usize::MAX, start);
+        loop {
+            seen.insert(at);
+            if let Some(&p) = pair_of.get(&at) {
+                run_pairs.push((p, s));
+            }
+            let Some(&next) = links[&at].iter().find(|&&m| m != prev && !seen.contains(&m)) else { break };
+            s += dist(x(at), x(next));
+            (prev, at) = (at, next);
+        }
+        runs.push(run_pairs);
+    }
+    let o = origin.map(x).unwrap_or_default();
+    Some(Along { runs, axis: format!("distance along the interface from ({}, {})", num(o[0]), num(o[1])), left: 0.0 })
+}
+
+/// The lower-left corner of the model's box.
+fn lower_corner(model: &Model) -> [f64; 3] {
+    let mut lo = [f64::INFINITY; 3];
+    for &k in model.bodies.iter().flat_map(|b| &b.cells).flat_map(|c| &c.nodes) {
+        for (l, x) in lo.iter_mut().zip(model.coords[k]) {
+            *l = l.min(x);
+        }
+    }
+    lo
+}
+
+/// The pairs at `nodes` by their position along the principal direction
+/// of the nodes' positions.
+fn principal(model: &Model, nodes: &[usize], pair_of: &HashMap<usize, usize>) -> Along {
+    let x = |k: usize| model.coords[k];
     let n = nodes.len().max(1) as f64;
     let mean: [f64; 3] = std::array::from_fn(|d| nodes.iter().map(|&k| x(k)[d]).sum::<f64>() / n);
     let mut cov = nalgebra::Matrix3::<f64>::zeros();
-    for &k in &nodes {
+    for &k in nodes {
         let r = sub(x(k), mean);
         for i in 0..3 {
             for j in 0..3 {
