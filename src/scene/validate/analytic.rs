@@ -82,7 +82,7 @@ impl Checker<'_> {
         bodies: &[Body],
         materials: &BTreeMap<String, Material>,
     ) -> R<crate::analytic::LinedTunnel> {
-        use crate::analytic::{LinedTunnel, TunnelBody, TunnelSlip};
+        use crate::analytic::{LinedTunnel, TunnelSlip};
         if analysis != Analysis::PlaneStrain {
             return Err(self.bad(
                 "analytic.kind",
@@ -90,20 +90,7 @@ impl Checker<'_> {
                 format!("Einstein & Schwartz's lined tunnel is a plane strain solution, but analysis = \"{analysis}\"; use analysis = \"plane_strain\"."),
             ));
         }
-        let radius = self.required(a.radius, "analytic.radius", "the radius of the lining's middle surface")?;
-        let radius = self.finite(radius, "analytic.radius")?;
-        if radius <= 0.0 {
-            return Err(self.bad("analytic.radius", radius, "the lining's radius must be > 0."));
-        }
-        let thickness = self.required(a.thickness, "analytic.thickness", "the lining's thickness")?;
-        let thickness = self.finite(thickness, "analytic.thickness")?;
-        if thickness <= 0.0 || thickness >= 2.0 * radius {
-            return Err(self.bad(
-                "analytic.thickness",
-                thickness,
-                format!("the lining's thickness must be > 0 and < 2 radius = {}.", 2.0 * radius),
-            ));
-        }
+        let (radius, thickness) = self.tunnel_size(&a)?;
         let p = self.required(a.p, "analytic.p", "the vertical far-field stress P, compression positive")?;
         let p = self.finite(p, "analytic.p")?;
         let k = self.required(a.k, "analytic.k", "the ratio K of horizontal to vertical far-field stress")?;
@@ -122,24 +109,8 @@ impl Checker<'_> {
                 ))
             }
         };
-        let body = |key: &str, group: Option<String>, what: &str| -> R<(usize, TunnelBody)> {
-            let key = format!("analytic.{key}");
-            let g = self.group(group, &key, what)?;
-            let i = bodies.iter().position(|b| b.group == g).ok_or_else(|| {
-                self.bad(
-                    &key,
-                    format!("{g:?}"),
-                    format!(
-                        "no [[bodies]] entry has this group; the bodies are {}.",
-                        quoted_list(bodies.iter().map(|b| b.group.as_str()))
-                    ),
-                )
-            })?;
-            let m = &materials[&bodies[i].material];
-            Ok((i, TunnelBody { group: g, e: m.e, nu: m.nu }))
-        };
-        let (il, lining) = body("lining", a.lining, "the lining's [[bodies]] group")?;
-        let (ig, ground) = body("ground", a.ground, "the ground's [[bodies]] group")?;
+        let (il, lining) = self.tunnel_body("lining", a.lining, "the lining's [[bodies]] group", bodies, materials)?;
+        let (ig, ground) = self.tunnel_body("ground", a.ground, "the ground's [[bodies]] group", bodies, materials)?;
         if il == ig {
             return Err(self.bad(
                 "analytic.ground",
@@ -153,7 +124,60 @@ impl Checker<'_> {
                 "the lined tunnel's lining is installed stress-free (excavation loading): remove its initial stress.",
             ));
         }
-        let szz0 = match bodies[ig].initial {
+        let szz0 = self.far_field_szz(ig, &bodies[ig], p, k)?;
+        Ok(LinedTunnel { radius, thickness, p, k, slip, lining, ground, szz0 })
+    }
+
+    /// The lining's radius (of its middle surface) and thickness.
+    fn tunnel_size(&self, a: &RawAnalytic) -> R<(f64, f64)> {
+        let radius = self.required(a.radius, "analytic.radius", "the radius of the lining's middle surface")?;
+        let radius = self.finite(radius, "analytic.radius")?;
+        if radius <= 0.0 {
+            return Err(self.bad("analytic.radius", radius, "the lining's radius must be > 0."));
+        }
+        let thickness = self.required(a.thickness, "analytic.thickness", "the lining's thickness")?;
+        let thickness = self.finite(thickness, "analytic.thickness")?;
+        if thickness <= 0.0 || thickness >= 2.0 * radius {
+            return Err(self.bad(
+                "analytic.thickness",
+                thickness,
+                format!("the lining's thickness must be > 0 and < 2 radius = {}.", 2.0 * radius),
+            ));
+        }
+        Ok((radius, thickness))
+    }
+
+    /// The `[[bodies]]` entry `analytic.key` names (its index) and its
+    /// elastic constants.
+    fn tunnel_body(
+        &self,
+        key: &str,
+        group: Option<String>,
+        what: &str,
+        bodies: &[Body],
+        materials: &BTreeMap<String, Material>,
+    ) -> R<(usize, crate::analytic::TunnelBody)> {
+        use crate::analytic::TunnelBody;
+        let key = format!("analytic.{key}");
+        let g = self.group(group, &key, what)?;
+        let i = bodies.iter().position(|b| b.group == g).ok_or_else(|| {
+            self.bad(
+                &key,
+                format!("{g:?}"),
+                format!(
+                    "no [[bodies]] entry has this group; the bodies are {}.",
+                    quoted_list(bodies.iter().map(|b| b.group.as_str()))
+                ),
+            )
+        })?;
+        let m = &materials[&bodies[i].material];
+        Ok((i, TunnelBody { group: g, e: m.e, nu: m.nu }))
+    }
+
+    /// The ground's out-of-plane far-field stress szz: its uniform initial
+    /// stress must be the far field [-K P, -P, szz, 0] of `[analytic]`.
+    fn far_field_szz(&self, ig: usize, ground: &Body, p: f64, k: f64) -> R<f64> {
+        Ok(match ground.initial {
             None => 0.0,
             Some(InitialStress::Uniform(s)) => {
                 let want = [-k * p, -p, s[2], 0.0];
@@ -173,7 +197,6 @@ impl Checker<'_> {
                     "the lined tunnel needs a uniform far field: give the ground initial_stress = [-K P, -P, szz, 0] instead of k0 and surface.",
                 ))
             }
-        };
-        Ok(LinedTunnel { radius, thickness, p, k, slip, lining, ground, szz0 })
+        })
     }
 }
