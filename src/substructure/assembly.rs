@@ -91,25 +91,40 @@ pub fn assemble(model: &Model, cells: &[(usize, usize)], dof_of: &[usize], n: us
                 fe.iter_mut().for_each(|v| *v = 0.0);
             }
             // prescribed displacements: f -= K_e[:, j] u_j
-            for (j, &node) in cell.nodes.iter().enumerate() {
-                for c in 0..nd {
-                    let jj = j * nd + c;
-                    if dofs[jj] != NONE {
-                        continue;
-                    }
-                    if let Some(u) = model.prescribed[node * nd + c] {
-                        if u != 0.0 {
-                            for i in 0..m {
-                                fe[i] -= ke[i * m + jj] * u;
-                            }
-                        }
-                    }
-                }
-            }
+            prescribed_force(model, &cell.nodes, &dofs, &ke, &mut fe);
             scatter(&dofs, &fe, &mut f[0]);
         }
     }
-    // boundary loads on facets of these bodies
+    face_and_point_loads(model, cells, dof_of, &mut f);
+    Ok(Assembled { k, f })
+}
+
+/// `fe -= K_e[:, j] u_j` for each prescribed displacement u_j of the cell
+/// at `nodes` (its `dofs` NONE there).
+fn prescribed_force(model: &Model, nodes: &[usize], dofs: &[usize], ke: &[f64], fe: &mut [f64]) {
+    let (nd, m) = (model.nd, dofs.len());
+    for (j, &node) in nodes.iter().enumerate() {
+        for c in 0..nd {
+            let jj = j * nd + c;
+            if dofs[jj] != NONE {
+                continue;
+            }
+            if let Some(u) = model.prescribed[node * nd + c] {
+                if u != 0.0 {
+                    for i in 0..m {
+                        fe[i] -= ke[i * m + jj] * u;
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The loads on the facets of the `cells` and the point loads and forces
+/// spread onto nodes whose owning cell is one of them, into `f`.
+fn face_and_point_loads(model: &Model, cells: &[(usize, usize)], dof_of: &[usize], f: &mut [Vec<f64>]) {
+    let nd = model.nd;
+    let mut dofs = Vec::new();
     for load in &model.loads {
         if cells.binary_search(&(load.body, load.element)).is_err() {
             continue;
@@ -133,7 +148,6 @@ pub fn assemble(model: &Model, cells: &[(usize, usize)], dof_of: &[usize], n: us
             }
         }
     }
-    Ok(Assembled { k, f })
 }
 
 fn scatter(dofs: &[usize], fe: &[f64], f: &mut [f64]) {
