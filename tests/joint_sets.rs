@@ -25,6 +25,7 @@ mod common;
 use common::cli::{clean_failure, says};
 use common::Case;
 use subcontact::contact::law::ContactState;
+use subcontact::fem::vec3::{cross, norm, sub};
 use subcontact::mesh::joints::{cut_and_mesh, read_report, CutJob, CutReport, MeshArgs};
 use subcontact::mesh::Mesh;
 use subcontact::model::Model;
@@ -125,11 +126,8 @@ fn area(mesh: &Mesh, group: &str) -> f64 {
     g.cells
         .iter()
         .map(|c| {
-            let p: Vec<[f64; 3]> = c.nodes[..3].iter().map(|&n| mesh.coords[n]).collect();
-            let u = [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]];
-            let v = [p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]];
-            let w = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
-            0.5 * (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt()
+            let [a, b, d] = [0, 1, 2].map(|k| mesh.coords[c.nodes[k]]);
+            0.5 * norm(cross(sub(b, a), sub(d, a)))
         })
         .sum()
 }

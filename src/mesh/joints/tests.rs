@@ -2,6 +2,7 @@
 //! reports, and what is refused.
 
 use super::*;
+use crate::fem::vec3::{cross, norm, sub};
 use crate::mesh::gmsh::tests::TestDir;
 use crate::mesh::msh::read_msh;
 
@@ -85,11 +86,8 @@ fn facet_area(mesh: &crate::mesh::Mesh, group: &str) -> f64 {
     g.cells
         .iter()
         .map(|c| {
-            let p: Vec<[f64; 3]> = c.nodes[..3].iter().map(|&n| mesh.coords[n]).collect();
-            let u = [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]];
-            let v = [p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]];
-            let w = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
-            0.5 * (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt()
+            let [a, b, d] = [0, 1, 2].map(|k| mesh.coords[c.nodes[k]]);
+            0.5 * norm(cross(sub(b, a), sub(d, a)))
         })
         .sum()
 }
