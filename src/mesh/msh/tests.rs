@@ -1,5 +1,7 @@
-//! Tests of the MSH reader. Files written by the real gmsh CLI (order 1 and
-//! 2, ASCII and binary, triangles, quadrangles, hexahedra, parametric nodes)
+//! Tests of the MSH reader. Files written by gmsh 4.8.4 (order 1 and 2,
+//! ASCII and binary, triangles, quadrangles, hexahedra, prisms, pyramids,
+//! parametric nodes; committed in tests/fixtures/msh/, made by its
+//! `make.sh`, which tests/gmsh_cli.rs re-runs against the installed gmsh)
 //! are read and every cell is checked against mshio's reading of the same
 //! file; a hand-written file covers what gmsh does not write (node tags out
 //! of file order, an entity with several physical tags, sparse tags, CRLF);
@@ -7,39 +9,21 @@
 //! unsupported elements, files cut or corrupted anywhere) gives its message,
 //! never a panic.
 
-use super::super::gmsh::tests::{TestDir, BOX_GEO, QUAD_GEO, TWO_RECT_GEO};
-use super::super::gmsh::{mesh_with, GmshJob};
 use super::*;
 use crate::mesh::{Cell, Group};
 
-/// `-setnumber` pairs.
-type Set<'a> = &'a [(&'a str, f64)];
-
-/// Meshes `geo` with the real gmsh CLI and returns the .msh path.
-fn gmsh(dir: &TestDir, geo: &str, name: &str, dim: usize, order: usize, binary: bool, set: Set) -> PathBuf {
-    let geo_path = dir.write(&format!("{name}.geo"), geo);
-    let job = GmshJob {
-        geo: geo_path,
-        msh: dir.0.join(format!("{name}.msh")),
-        dim,
-        order,
-        setnumber: set.iter().map(|(k, v)| (k.to_string(), *v)).collect(),
-        clscale: None,
-        timeout: super::super::gmsh::DEFAULT_TIMEOUT,
-        allow_commands: false,
-        cut: None,
-    };
-    mesh_with(&job, binary).unwrap();
-    job.msh
+/// A mesh of tests/fixtures/msh/ by name (without `.msh`).
+fn fixture(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/msh").join(format!("{name}.msh"))
 }
 
-/// Runs gmsh with arbitrary arguments (for formats `mesh` does not write).
-fn gmsh_raw(dir: &TestDir, geo: &str, name: &str, args: &[&str]) -> PathBuf {
-    let geo_path = dir.write(&format!("{name}.geo"), geo);
-    let msh = dir.0.join(format!("{name}.msh"));
-    let out = std::process::Command::new("gmsh").arg(&geo_path).args(args).arg("-o").arg(&msh).output().unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    msh
+/// `bin` or `ascii`, as the fixtures are named.
+fn encoding(binary: bool) -> &'static str {
+    if binary {
+        "bin"
+    } else {
+        "ascii"
+    }
 }
 
 /// Checks every cell against mshio's reading of the same file: same element
@@ -104,12 +88,10 @@ fn tri_area(mesh: &Mesh, g: &Group) -> f64 {
 
 #[test]
 fn two_rectangles_order_1_and_2_ascii_and_binary() {
-    let dir = TestDir::new("two");
     for order in [1, 2] {
         let mut by_format = Vec::new();
         for binary in [true, false] {
-            let name = format!("two-o{order}-{}", if binary { "bin" } else { "ascii" });
-            let path = gmsh(&dir, TWO_RECT_GEO, &name, 2, order, binary, &[]);
+            let path = fixture(&format!("two-o{order}-{}", encoding(binary)));
             assert_eq!(std::fs::read(&path).unwrap()[12..19] == *b"4.1 1 8", binary);
             let mesh = read_msh(&path).unwrap();
             check_against_mshio(&path, &mesh);
@@ -174,15 +156,14 @@ fn two_rectangles_order_1_and_2_ascii_and_binary() {
 
 #[test]
 fn hex_box_order_1_and_2() {
-    let dir = TestDir::new("box");
-    let cases: [(usize, Set, CellKind, CellKind, usize); 3] = [
-        (1, &[], CellKind::Hex8, CellKind::Quad4, 27),
-        (2, &[], CellKind::Hex27, CellKind::Quad9, 125),
-        (2, &[("Mesh.SecondOrderIncomplete", 1.0)], CellKind::Hex20, CellKind::Quad8, 125 - 8 - 36),
+    let cases = [
+        ("o1", CellKind::Hex8, CellKind::Quad4, 27),
+        ("o2", CellKind::Hex27, CellKind::Quad9, 125),
+        ("o2i", CellKind::Hex20, CellKind::Quad8, 125 - 8 - 36),
     ];
-    for (i, (order, set, hex, quad, n_nodes)) in cases.into_iter().enumerate() {
+    for (order, hex, quad, n_nodes) in cases {
         for binary in [true, false] {
-            let path = gmsh(&dir, BOX_GEO, &format!("box{i}-{binary}"), 3, order, binary, set);
+            let path = fixture(&format!("box-{order}-{}", encoding(binary)));
             let mesh = read_msh(&path).unwrap();
             check_against_mshio(&path, &mesh);
             let summary: Vec<(&str, usize)> = mesh.groups.iter().map(|g| (g.name.as_str(), g.dim)).collect();
@@ -207,14 +188,13 @@ fn hex_box_order_1_and_2() {
 
 #[test]
 fn quads_order_1_and_2() {
-    let dir = TestDir::new("quad");
-    let cases: [(usize, Set, CellKind, CellKind); 3] = [
-        (1, &[], CellKind::Quad4, CellKind::Line2),
-        (2, &[], CellKind::Quad9, CellKind::Line3),
-        (2, &[("Mesh.SecondOrderIncomplete", 1.0)], CellKind::Quad8, CellKind::Line3),
+    let cases = [
+        ("o1", CellKind::Quad4, CellKind::Line2),
+        ("o2", CellKind::Quad9, CellKind::Line3),
+        ("o2i", CellKind::Quad8, CellKind::Line3),
     ];
-    for (i, (order, set, quad, line)) in cases.into_iter().enumerate() {
-        let path = gmsh(&dir, QUAD_GEO, &format!("quad{i}"), 2, order, true, set);
+    for (order, quad, line) in cases {
+        let path = fixture(&format!("quad-{order}"));
         let mesh = read_msh(&path).unwrap();
         check_against_mshio(&path, &mesh);
         assert_eq!(kinds(mesh.group("square").unwrap()), [quad]);
@@ -225,14 +205,11 @@ fn quads_order_1_and_2() {
 
 #[test]
 fn parametric_nodes_are_read() {
-    let dir = TestDir::new("param");
     for binary in [true, false] {
-        let plain = read_msh(&gmsh(&dir, TWO_RECT_GEO, &format!("plain{binary}"), 2, 2, binary, &[])).unwrap();
-        let path = gmsh(&dir, TWO_RECT_GEO, &format!("param{binary}"), 2, 2, binary, &[("Mesh.SaveParametric", 1.0)]);
-        assert!(
-            std::fs::read(&path).unwrap().len()
-                > std::fs::read(dir.0.join(format!("plain{binary}.msh"))).unwrap().len()
-        );
+        let plain_path = fixture(&format!("two-o2-{}", encoding(binary)));
+        let plain = read_msh(&plain_path).unwrap();
+        let path = fixture(&format!("param-{}", encoding(binary)));
+        assert!(std::fs::read(&path).unwrap().len() > std::fs::read(&plain_path).unwrap().len());
         assert_eq!(read_msh(&path).unwrap(), plain);
     }
 }
@@ -331,8 +308,7 @@ fn mshio_would_misplace_these_nodes() {
 
 #[test]
 fn missing_file() {
-    let dir = TestDir::new("missing");
-    let p = dir.0.join("nothere.msh");
+    let p = fixture("nothere");
     let e = read_msh(&p).unwrap_err();
     assert!(matches!(e, MshError::NotFound { .. }));
     assert_eq!(e.to_string(), format!("mesh file `{}` does not exist: check `mesh =` in the scene", p.display()));
@@ -386,13 +362,8 @@ fn missing_node() {
 
 #[test]
 fn old_formats_are_named() {
-    let dir = TestDir::new("old");
-    for (args, version) in [
-        (&["-2", "-format", "msh22"][..], "2.2"),
-        (&["-2", "-format", "msh22", "-bin"][..], "2.2"),
-        (&["-2", "-format", "msh40"][..], "4"),
-    ] {
-        let path = gmsh_raw(&dir, TWO_RECT_GEO, "old", args);
+    for (name, version) in [("old-msh22", "2.2"), ("old-msh22-bin", "2.2"), ("old-msh40", "4")] {
+        let path = fixture(name);
         let e = read_msh(&path).unwrap_err();
         assert!(matches!(&e, MshError::Version { version: v, .. } if v == version), "{e:?}");
         assert_eq!(
@@ -404,9 +375,7 @@ fn old_formats_are_named() {
 
 #[test]
 fn no_physical_groups() {
-    let dir = TestDir::new("nophys");
-    let geo: String = TWO_RECT_GEO.lines().filter(|l| !l.starts_with("Physical")).collect::<Vec<_>>().join("\n");
-    let path = gmsh(&dir, &geo, "nophys", 2, 1, true, &[]);
+    let path = fixture("nophys");
     let e = read_msh(&path).unwrap_err();
     assert!(matches!(e, MshError::NoPhysicalGroups { .. }), "{e:?}");
     assert_eq!(
@@ -418,31 +387,6 @@ fn no_physical_groups() {
         )
     );
 }
-
-const PRISM_GEO: &str = r#"
-Point(1) = {0, 0, 0, 0.5}; Point(2) = {1, 0, 0, 0.5}; Point(3) = {0, 1, 0, 0.5};
-Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 1};
-Curve Loop(1) = {1, 2, 3}; Plane Surface(1) = {1};
-out[] = Extrude {0.1, 0.2, 1} { Surface{1}; Layers{2}; Recombine; };
-Physical Volume("wedge") = {out[1]};
-Physical Surface("base") = {1};
-Physical Surface("side") = {out[2]};
-"#;
-
-/// A hexahedral block glued to a tetrahedral one: gmsh puts pyramids on the
-/// quadrangles between them.
-const PYRAMID_GEO: &str = r#"
-SetFactory("OpenCASCADE");
-Box(1) = {0, 0, 0, 1, 1, 1};
-Box(2) = {1, 0, 0, 1, 1, 1};
-BooleanFragments{ Volume{1, 2}; Delete; }{}
-Transfinite Curve{:} = 3;
-Transfinite Surface{:};
-Recombine Surface{:};
-Transfinite Volume{1};
-Physical Volume("hexes") = {1};
-Physical Volume("tets") = {2};
-"#;
 
 /// Every node of every cell sits where the cell's corners put its
 /// reference node (straight-sided meshes): checks the node tables against
@@ -474,19 +418,17 @@ fn check_nodes_on_reference_positions(mesh: &Mesh, kind: CellKind) -> usize {
 
 #[test]
 fn prisms_and_pyramids_of_order_1_and_2_are_read_in_gmsh_order() {
-    let dir = TestDir::new("prism");
-    let incomplete: Set = &[("Mesh.SecondOrderIncomplete", 1.0)];
-    let cases: [(&str, usize, Set, &[CellKind]); 6] = [
-        (PRISM_GEO, 1, &[], &[CellKind::Prism6]),
-        (PRISM_GEO, 2, &[], &[CellKind::Prism18]),
-        (PRISM_GEO, 2, incomplete, &[CellKind::Prism15]),
-        (PYRAMID_GEO, 1, &[], &[CellKind::Tet4, CellKind::Hex8, CellKind::Pyramid5]),
-        (PYRAMID_GEO, 2, &[], &[CellKind::Tet10, CellKind::Hex27, CellKind::Pyramid14]),
-        (PYRAMID_GEO, 2, incomplete, &[CellKind::Tet10, CellKind::Hex20, CellKind::Pyramid13]),
+    let cases: [(&str, usize, &[CellKind]); 6] = [
+        ("prism-o1", 1, &[CellKind::Prism6]),
+        ("prism-o2", 2, &[CellKind::Prism18]),
+        ("prism-o2i", 2, &[CellKind::Prism15]),
+        ("pyramid-o1", 1, &[CellKind::Tet4, CellKind::Hex8, CellKind::Pyramid5]),
+        ("pyramid-o2", 2, &[CellKind::Tet10, CellKind::Hex27, CellKind::Pyramid14]),
+        ("pyramid-o2i", 2, &[CellKind::Tet10, CellKind::Hex20, CellKind::Pyramid13]),
     ];
-    for (i, (geo, order, set, want)) in cases.into_iter().enumerate() {
+    for (i, (name, order, want)) in cases.into_iter().enumerate() {
         for binary in [true, false] {
-            let path = gmsh(&dir, geo, &format!("case{i}-{binary}"), 3, order, binary, set);
+            let path = fixture(&format!("{name}-{}", encoding(binary)));
             let mesh = read_msh(&path).unwrap_or_else(|e| panic!("case {i}: {e}"));
             let mut found: Vec<CellKind> = mesh.groups.iter().filter(|g| g.dim == 3).flat_map(kinds).collect();
             found.sort();
@@ -505,13 +447,8 @@ fn prisms_and_pyramids_of_order_1_and_2_are_read_in_gmsh_order() {
 
 #[test]
 fn unsupported_elements_name_type_and_group() {
-    let dir = TestDir::new("order3");
     for binary in [true, false] {
-        let mut args = vec!["-3", "-order", "3", "-format", "msh41"];
-        if binary {
-            args.push("-bin");
-        }
-        let path = gmsh_raw(&dir, PRISM_GEO, &format!("order3{binary}"), &args);
+        let path = fixture(&format!("prism-o3-{}", encoding(binary)));
         let e = read_msh(&path).unwrap_err();
         // the first block of a physical group met: the base's order-3 triangles
         assert!(matches!(&e, MshError::UnsupportedElement { code: 21, .. }), "{e:?}");
@@ -520,10 +457,7 @@ fn unsupported_elements_name_type_and_group() {
         assert!(msg.contains("order 1 or 2") && msg.contains("prisms or pyramids"), "{msg}");
         assert!(msg.contains("`base`") && msg.contains(&path.display().to_string()), "{msg}");
         // the volume alone: its order-3 prisms
-        let volume_only = PRISM_GEO
-            .replace("Physical Surface(\"base\") = {1};", "")
-            .replace("Physical Surface(\"side\") = {out[2]};", "");
-        let path = gmsh_raw(&dir, &volume_only, &format!("order3v{binary}"), &args);
+        let path = fixture(&format!("prism-volume-o3-{}", encoding(binary)));
         let msg = read_msh(&path).unwrap_err().to_string();
         assert!(msg.contains("gmsh type 90 (prism40)") && msg.contains("`wedge`"), "{msg}");
     }
@@ -550,12 +484,10 @@ fn cut_lengths(n: usize) -> Vec<usize> {
 
 #[test]
 fn truncated_and_corrupted_files_never_panic() {
-    let dir = TestDir::new("trunc");
     let mut files = vec![HAND.as_bytes().to_vec()];
     for binary in [true, false] {
-        for (geo, dim, name) in [(TWO_RECT_GEO, 2, "two"), (BOX_GEO, 3, "box")] {
-            let path = gmsh(&dir, geo, &format!("{name}{binary}"), dim, 2, binary, &[]);
-            files.push(std::fs::read(path).unwrap());
+        for name in ["two", "box"] {
+            files.push(std::fs::read(fixture(&format!("{name}-o2-{}", encoding(binary)))).unwrap());
         }
     }
     for bytes in &files {
