@@ -42,8 +42,6 @@ mod ffi;
 pub mod geometry;
 mod sizes;
 mod slivers;
-#[cfg(test)]
-mod tests;
 
 use std::path::{Path, PathBuf};
 
