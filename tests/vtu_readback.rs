@@ -1,14 +1,22 @@
-//! The written files read back: by meshio (and by VTK's own reader, the one
-//! ParaView uses, when `SUBCONTACT_VTK_PYTHON` names a Python with `vtk`)
-//! for every kind and a mixed mesh, large and odd arrays; the compressed
-//! format, errors naming the inconsistent input, and the PVD collection.
+//! The written VTU files read back: by meshio through python3 (and by
+//! VTK's own reader, the one ParaView uses, when `SUBCONTACT_VTK_PYTHON`
+//! names a Python with `vtk`) for every kind and a mixed mesh, large and
+//! odd arrays, non-finite values; and the PVD collection, by Python's XML
+//! parser. The VTU writer's unit tests (node order, header, errors) are in
+//! src/output/vtu/tests.rs, whose oracle this file shares.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use super::super::*;
-use super::{gmsh_reference, vtk_geometry_error};
-use crate::output::files::Staged;
+use subcontact::mesh::{Cell, CellKind};
+use subcontact::output::files::Staged;
+use subcontact::output::vtu::{pvd_bytes, vtk_n_nodes, vtu_bytes, Field, IntField};
+
+/// The unit tests' oracle (reference cells, VTK's node positions) and test mesh.
+#[path = "../src/output/vtu/tests/reference.rs"]
+mod reference;
+
+use reference::{gmsh_reference, vtk_geometry_error, TestMesh};
 
 #[test]
 fn tet10_swaps_nodes_8_and_9() {
@@ -113,21 +121,42 @@ for tag, data in (("PD", g.GetPointData()), ("CD", g.GetCellData())):
 print("\n".join(out))
 "#;
 
-/// Runs a dump script and parses its output.
-fn dump(python: &str, script: &str, path: &Path) -> ReadBack {
+/// Runs a dump script (which reads the file `sys.argv[1]`) on each of
+/// `paths` in one Python (importing meshio takes a second), and parses each
+/// output.
+fn dump_all(python: &str, script: &str, paths: &[PathBuf]) -> Vec<ReadBack> {
+    const EACH: &str = r#"
+import sys
+script, paths = sys.argv[1], sys.argv[2:]
+for p in paths:
+    sys.argv = [sys.argv[0], p]
+    exec(compile(script, "dump", "exec"), {"__name__": "__main__"})
+    print("END", flush=True)
+"#;
     let out = Command::new(python)
         .arg("-c")
+        .arg(EACH)
         .arg(script)
-        .arg(path)
+        .args(paths)
         .output()
         .unwrap_or_else(|e| panic!("cannot run {python}: {e}"));
-    assert!(
-        out.status.success(),
-        "{python} could not read {}: {}",
-        path.display(),
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert!(out.status.success(), "{python} could not read {paths:?}: {}", String::from_utf8_lossy(&out.stderr));
     let text = String::from_utf8(out.stdout).unwrap();
+    let mut chunks = vec![String::new()];
+    for line in text.lines() {
+        if line == "END" {
+            chunks.push(String::new());
+        } else if let Some(c) = chunks.last_mut() {
+            c.extend([line, "\n"]);
+        }
+    }
+    assert_eq!(chunks.pop().as_deref(), Some(""), "{python}'s output ends with END");
+    assert_eq!(chunks.len(), paths.len(), "{python} read every file");
+    chunks.iter().map(|c| parse(python, c)).collect()
+}
+
+/// One file's dump, as [`ReadBack`].
+fn parse(python: &str, text: &str) -> ReadBack {
     let mut m = ReadBack::default();
     let nums = |it: std::str::SplitWhitespace<'_>| -> Vec<f64> { it.map(|x| x.parse().unwrap()).collect() };
     for line in text.lines() {
@@ -165,17 +194,21 @@ fn dump(python: &str, script: &str, path: &Path) -> ReadBack {
     m
 }
 
-/// VTK's reading of the file, when `SUBCONTACT_VTK_PYTHON` names a Python
+/// VTK's reading of the files, when `SUBCONTACT_VTK_PYTHON` names a Python
 /// with the `vtk` package (an optional cross-check: the tests need only meshio).
-fn vtk_read(path: &Path) -> Option<ReadBack> {
+fn vtk_read_all(paths: &[PathBuf]) -> Option<Vec<ReadBack>> {
     let python = std::env::var("SUBCONTACT_VTK_PYTHON").ok().filter(|p| !p.is_empty())?;
-    Some(dump(&python, VTK_DUMP, path))
+    Some(dump_all(&python, VTK_DUMP, paths))
 }
 
-/// meshio's reading of the file (and, if available, the same from VTK).
-fn meshio_read(path: &Path) -> ReadBack {
-    let m = dump("python3", MESHIO_DUMP, path);
-    if let Some(v) = vtk_read(path) {
+fn vtk_read(path: &Path) -> Option<ReadBack> {
+    vtk_read_all(&[path.to_path_buf()]).map(|mut v| v.remove(0))
+}
+
+/// meshio's reading of the files (and, if available, the same from VTK).
+fn meshio_read_all(paths: &[PathBuf]) -> Vec<ReadBack> {
+    let read = dump_all("python3", MESHIO_DUMP, paths);
+    for (v, (m, path)) in vtk_read_all(paths).unwrap_or_default().iter().zip(read.iter().zip(paths)) {
         // Compared as text so that NaN equals NaN.
         assert_eq!(
             format!("{:?}", (&v.points, &v.cells, &v.point_data, &v.cell_data)),
@@ -184,7 +217,7 @@ fn meshio_read(path: &Path) -> ReadBack {
             path.display()
         );
     }
-    m
+    read
 }
 
 fn meshio_read_bytes(bytes: &[u8], tag: &str) -> ReadBack {
@@ -192,7 +225,7 @@ fn meshio_read_bytes(bytes: &[u8], tag: &str) -> ReadBack {
     let mut staged = Staged::new(&dir, "readback");
     staged.add("mesh.vtu", bytes.to_vec());
     let paths = staged.commit().unwrap();
-    let m = meshio_read(&paths[0]);
+    let m = meshio_read_all(&paths).remove(0);
     std::fs::remove_dir_all(&dir).unwrap();
     m
 }
@@ -220,60 +253,7 @@ fn meshio_name(kind: CellKind) -> &'static str {
     }
 }
 
-/// A mesh of the given kinds, one reference cell each, moved apart, and
-/// its fields: point `displacement` (3), `stress` (6), `von_mises` (1);
-/// cell `stress` (6), `von_mises` (1) and int `body`.
-struct TestMesh {
-    points: Vec<[f64; 3]>,
-    cells: Vec<Cell>,
-    displacement: Vec<f64>,
-    stress: Vec<f64>,
-    von_mises: Vec<f64>,
-    cell_stress: Vec<f64>,
-    cell_von_mises: Vec<f64>,
-    body: Vec<i32>,
-}
-
 impl TestMesh {
-    fn new(kinds: &[CellKind]) -> Self {
-        let mut points = Vec::new();
-        let mut cells = Vec::new();
-        for (c, &kind) in kinds.iter().enumerate() {
-            let first = points.len();
-            for p in gmsh_reference(kind) {
-                points.push([p[0] + 3.0 * c as f64, p[1], p[2]]);
-            }
-            cells.push(Cell { kind, nodes: (first..points.len()).collect(), tag: 100 + c as u64 });
-        }
-        let np = points.len();
-        let nc = cells.len();
-        let displacement = (0..3 * np).map(|i| 1e-3 * i as f64 - 0.1).collect();
-        let stress = (0..6 * np).map(|i| (i as f64).sin() * 1e8).collect();
-        let von_mises = (0..np).map(|i| 1.0 / (i as f64 + 3.0)).collect();
-        let cell_stress = (0..6 * nc).map(|i| -(i as f64) * 0.5e6 + 1.0 / 3.0).collect();
-        let cell_von_mises = (0..nc).map(|i| 2.5e7 * (i as f64 + 1.0)).collect();
-        let body = (0..nc as i32).map(|i| i % 2 - 7).collect();
-        TestMesh { points, cells, displacement, stress, von_mises, cell_stress, cell_von_mises, body }
-    }
-
-    fn bytes(&self) -> Vec<u8> {
-        vtu_bytes(
-            &self.points,
-            &self.cells,
-            &[
-                Field { name: "displacement", n_comp: 3, values: &self.displacement },
-                Field { name: "stress", n_comp: 6, values: &self.stress },
-                Field { name: "von_mises", n_comp: 1, values: &self.von_mises },
-            ],
-            &[
-                Field { name: "stress", n_comp: 6, values: &self.cell_stress },
-                Field { name: "von_mises", n_comp: 1, values: &self.cell_von_mises },
-            ],
-            &[IntField { name: "body", values: &self.body }],
-        )
-        .unwrap()
-    }
-
     /// Checks what meshio read against what was written.
     fn check(&self, m: &ReadBack) {
         assert_eq!(m.points.len(), self.points.len(), "point count");
@@ -351,8 +331,7 @@ fn each_kind_round_trips_through_meshio() {
     }
     let paths = staged.commit().unwrap();
     let mut version = String::new();
-    for ((kind, mesh), path) in meshes.iter().zip(&paths) {
-        let m = meshio_read(path);
+    for ((kind, mesh), m) in meshes.iter().zip(meshio_read_all(&paths)) {
         mesh.check(&m);
         assert_eq!(m.cells[0].0, meshio_name(*kind));
         version = m.version;
@@ -448,58 +427,6 @@ fn non_finite_values_are_written_as_they_are() {
     for (g, v) in got.iter().zip(&values) {
         assert!(g.to_bits() == v.to_bits() || (g.is_nan() && v.is_nan()), "{g} != {v}");
     }
-}
-
-#[test]
-fn file_is_zlib_compressed_vtu() {
-    let bytes = TestMesh::new(&[CellKind::Hex27]).bytes();
-    let text = String::from_utf8(bytes).unwrap();
-    assert!(text.contains("type=\"UnstructuredGrid\""), "{text}");
-    assert!(text.contains("compressor=\"vtkZLibDataCompressor\""), "{text}");
-    assert!(text.contains("header_type=\"UInt64\""), "{text}");
-    assert!(text.contains("<Piece NumberOfPoints=\"27\" NumberOfCells=\"1\">"), "{text}");
-}
-
-#[test]
-fn inconsistent_input_is_an_error_naming_it() {
-    let mesh = TestMesh::new(&[CellKind::Quad4]);
-    let short = [0.0; 11];
-    let err =
-        vtu_bytes(&mesh.points, &mesh.cells, &[Field { name: "displacement", n_comp: 3, values: &short }], &[], &[])
-            .unwrap_err();
-    let msg = err.to_string();
-    assert!(msg.contains("displacement") && msg.contains("11") && msg.contains("12"), "{msg}");
-
-    let err = vtu_bytes(&mesh.points, &mesh.cells, &[], &[Field { name: "stress", n_comp: 6, values: &[0.0; 7] }], &[])
-        .unwrap_err();
-    assert!(err.to_string().contains("stress"), "{err}");
-
-    let err = vtu_bytes(&mesh.points, &mesh.cells, &[], &[], &[IntField { name: "body", values: &[] }]).unwrap_err();
-    assert!(err.to_string().contains("body"), "{err}");
-
-    let err = vtu_bytes(&mesh.points, &mesh.cells, &[Field { name: "nothing", n_comp: 0, values: &[] }], &[], &[])
-        .unwrap_err();
-    assert!(err.to_string().contains("nothing"), "{err}");
-
-    let err = vtu_bytes(
-        &mesh.points,
-        &mesh.cells,
-        &[Field { name: "huge", n_comp: usize::MAX, values: &[0.0; 4] }],
-        &[],
-        &[],
-    )
-    .unwrap_err();
-    assert!(err.to_string().contains("huge"), "{err}");
-
-    let mut bad = mesh.cells.clone();
-    bad[0].nodes.pop();
-    let err = vtu_bytes(&mesh.points, &bad, &[], &[], &[]).unwrap_err();
-    assert!(err.to_string().contains("quad4") && err.to_string().contains("100"), "{err}");
-
-    let mut bad = mesh.cells.clone();
-    bad[0].nodes[2] = 4;
-    let err = vtu_bytes(&mesh.points, &bad, &[], &[], &[]).unwrap_err();
-    assert!(err.to_string().contains("node 4"), "{err}");
 }
 
 #[test]
