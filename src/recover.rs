@@ -44,7 +44,13 @@ fn total_stress(
     ue: &[f64],
     mean: Option<f64>,
 ) -> [f64; 6] {
-    let mut s = full_stress(model.analysis, body.e, body.nu, d, &element::strain(model.analysis, p, ue, mean));
+    let mut s = full_stress(
+        model.analysis,
+        body.material.e,
+        body.material.nu,
+        d,
+        &element::strain(model.analysis, p, ue, mean),
+    );
     if body.initial.is_some() {
         let s0 = body.initial_at(p.x, model.analysis, model.gravity);
         for (a, b) in s.iter_mut().zip(s0) {
@@ -67,7 +73,7 @@ pub fn nodal_stresses(model: &Model, u: &[f64]) -> Vec<BodyStress> {
         .bodies
         .iter()
         .map(|body| {
-            let d = d_matrix(model.analysis, body.e, body.nu);
+            let d = d_matrix(model.analysis, body.material.e, body.material.nu);
             let nodes = body_nodes(body);
             for (i, &n) in nodes.iter().enumerate() {
                 local[n] = i;
@@ -84,7 +90,7 @@ pub fn nodal_stresses(model: &Model, u: &[f64]) -> Vec<BodyStress> {
                 let (_, rule, ex) = cache.iter().find(|(k, _, _)| *k == cell.kind).expect("cached");
                 let xe = coords(model, &cell.nodes);
                 let ue = element_u(model, &cell.nodes, u);
-                let mean = element::mean_dilatation(model.analysis, cell.kind, body.nu, &xe, &ue);
+                let mean = element::mean_dilatation(model.analysis, cell.kind, body.material.nu, &xe, &ue);
                 let at_points: Vec<[f64; 6]> = rule
                     .iter()
                     .map(|q| match element::point(cell.kind, &xe, q.xi) {
@@ -121,11 +127,11 @@ pub fn errors(model: &Model, u: &[f64], exact: &[Box<dyn Exact>]) -> Errors {
     let (mut eu, mut nu_, mut es, mut ns) = (0.0, 0.0, 0.0, 0.0);
     let nd = dofs_per_node(model.analysis);
     for (body, exact) in model.bodies.iter().zip(exact) {
-        let d = d_matrix(model.analysis, body.e, body.nu);
+        let d = d_matrix(model.analysis, body.material.e, body.material.nu);
         for cell in &body.cells {
             let xe = coords(model, &cell.nodes);
             let ue = element_u(model, &cell.nodes, u);
-            let mean = element::mean_dilatation(model.analysis, cell.kind, body.nu, &xe, &ue);
+            let mean = element::mean_dilatation(model.analysis, cell.kind, body.material.nu, &xe, &ue);
             let rule = quadrature::rule(cell.kind, 2 * cell.kind.order() + 2);
             for q in &rule {
                 let Ok(p) = element::point(cell.kind, &xe, q.xi) else { continue };
@@ -181,7 +187,7 @@ pub fn probe(model: &Model, u: &[f64], probe: &Probe) -> Vec<Sample> {
             let mut stress = [0.0; 6];
             let mut hits = 0.0;
             for body in &model.bodies {
-                let d = d_matrix(model.analysis, body.e, body.nu);
+                let d = d_matrix(model.analysis, body.material.e, body.material.nu);
                 for cell in &body.cells {
                     let xe = coords(model, &cell.nodes);
                     if !in_box(&xe, x) {
@@ -199,7 +205,7 @@ pub fn probe(model: &Model, u: &[f64], probe: &Probe) -> Vec<Sample> {
                         &d,
                         &p,
                         &ue,
-                        element::mean_dilatation(model.analysis, cell.kind, body.nu, &xe, &ue),
+                        element::mean_dilatation(model.analysis, cell.kind, body.material.nu, &xe, &ue),
                     );
                     for c in 0..6 {
                         stress[c] += sh[c];

@@ -53,7 +53,7 @@ fn assert_all(run: &Run, state: ContactState) {
 
 fn lame(run: &Run) -> Lame {
     let b = &run.model.bodies[0];
-    Lame { a: 3.0, b: 5.0, p: 0.1, e: b.e, nu: b.nu, analysis: Analysis::PlaneStrain }
+    Lame { a: 3.0, b: 5.0, p: 0.1, e: b.material.e, nu: b.material.nu, analysis: Analysis::PlaneStrain }
 }
 
 /// Model nodes used by the bodies' cells.

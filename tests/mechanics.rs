@@ -768,7 +768,7 @@ fn consistent_recovery_is_exact_for_exact_forces_but_not_closer_on_the_paper_mes
         ))
         .expect("consistent run");
     let b = &lumped.model.bodies[0];
-    let lame = Lame { a: 3.0, b: 5.0, p: 0.1, e: b.e, nu: b.nu, analysis: Analysis::PlaneStrain };
+    let lame = Lame { a: 3.0, b: 5.0, p: 0.1, e: b.material.e, nu: b.material.nu, analysis: Analysis::PlaneStrain };
     let err =
         |run: &Run, r: f64| contact_sigma_n_at(&run.solution(), r).expect("a pair at r") / lame.sigma_theta(r) - 1.0;
     let (l3, l5, c3, c5) = (err(&lumped, 3.0), err(&lumped, 5.0), err(&consistent, 3.0), err(&consistent, 5.0));
@@ -864,7 +864,7 @@ fn stack_scene_opens_its_upper_joint_and_the_lower_joint_sticks_carrying_the_mid
     assert!(n_upper >= 9 && n_lower >= 9, "{n_upper} and {n_lower} pairs");
     // the middle block hangs on nothing but the lower joint: it carries its weight
     let mid = run.model.bodies.iter().find(|b| b.name == "middle").expect("middle block");
-    let weight = mid.density * run.model.gravity[1].abs() * 2.0 * 1.0 * run.model.thickness;
+    let weight = mid.material.density * run.model.gravity[1].abs() * 2.0 * 1.0 * run.model.thickness;
     assert!(weight > 0.0);
     let (sn, st) = resultants(&run, c, |p| run.model.pairs[p].contact == lower);
     eprintln!(

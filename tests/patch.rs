@@ -272,17 +272,22 @@ fn deviation(run: &Run, sigma: &[f64; 6], u_exact: &dyn Fn(Vec3) -> Vec3, probe:
     // every Gauss point of the stiffness rule
     let mut n_points = 0;
     for body in &m.bodies {
-        let d = material::d_matrix(m.analysis, body.e, body.nu);
+        let d = material::d_matrix(m.analysis, body.material.e, body.material.nu);
         for cell in &body.cells {
             let xe: Vec<Vec3> = cell.nodes.iter().map(|&n| m.coords[n]).collect();
             let ue: Vec<f64> =
                 cell.nodes.iter().flat_map(|&n| (0..nd).map(move |c| run.last().u[n * nd + c])).collect();
             // the strain the stiffness used: B-bar's where the cell has it
-            let mean = element::mean_dilatation(m.analysis, cell.kind, body.nu, &xe, &ue);
+            let mean = element::mean_dilatation(m.analysis, cell.kind, body.material.nu, &xe, &ue);
             for q in quadrature::stiffness_rule(cell.kind) {
                 let p = element::point(cell.kind, &xe, q.xi).expect("cell not inverted");
-                let s =
-                    material::full_stress(m.analysis, body.e, body.nu, &d, &element::strain(m.analysis, &p, &ue, mean));
+                let s = material::full_stress(
+                    m.analysis,
+                    body.material.e,
+                    body.material.nu,
+                    &d,
+                    &element::strain(m.analysis, &p, &ue, mean),
+                );
                 dev.gauss = worst(dev.gauss, stress_dev(&s, sigma, scale));
                 n_points += 1;
             }

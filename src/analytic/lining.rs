@@ -53,7 +53,7 @@ pub struct Section {
 /// at x, averaged over its cells containing x; None outside the body.
 fn sample_body(model: &Model, u: &[f64], body: usize, x: [f64; 3]) -> Option<([f64; 3], [f64; 6])> {
     let b = &model.bodies[body];
-    let d = d_matrix(model.analysis, b.e, b.nu);
+    let d = d_matrix(model.analysis, b.material.e, b.material.nu);
     let nd = model.nd;
     let mut sum = [0.0; 6];
     let mut disp = [0.0; 3];
@@ -72,8 +72,14 @@ fn sample_body(model: &Model, u: &[f64], body: usize, x: [f64; 3]) -> Option<([f
         let Some(xi) = shape::locate(cell.kind, &xe, x) else { continue };
         let Ok(p) = element::point(cell.kind, &xe, xi) else { continue };
         let ue: Vec<f64> = cell.nodes.iter().flat_map(|&n| (0..nd).map(move |c| u[n * nd + c])).collect();
-        let mean = element::mean_dilatation(model.analysis, cell.kind, b.nu, &xe, &ue);
-        let mut s = full_stress(model.analysis, b.e, b.nu, &d, &element::strain(model.analysis, &p, &ue, mean));
+        let mean = element::mean_dilatation(model.analysis, cell.kind, b.material.nu, &xe, &ue);
+        let mut s = full_stress(
+            model.analysis,
+            b.material.e,
+            b.material.nu,
+            &d,
+            &element::strain(model.analysis, &p, &ue, mean),
+        );
         let s0 = b.initial_at(p.x, model.analysis, model.gravity);
         for c in 0..6 {
             s[c] += s0[c];

@@ -96,7 +96,7 @@ pub fn exact(analytic: &Analytic, model: &Model) -> Vec<Box<dyn Exact>> {
         .map(|body| -> Box<dyn Exact> {
             match analytic {
                 &Analytic::LameCylinder { a, b, p } => {
-                    Box::new(Lame { a, b, p, e: body.e, nu: body.nu, analysis: model.analysis })
+                    Box::new(Lame { a, b, p, e: body.material.e, nu: body.material.nu, analysis: model.analysis })
                 }
                 Analytic::LinedTunnel(t) => Box::new(t.clone()),
             }
@@ -106,7 +106,7 @@ pub fn exact(analytic: &Analytic, model: &Model) -> Vec<Box<dyn Exact>> {
 
 /// Whether the bodies of a model have different elastic constants (E, nu).
 pub fn materials_differ(model: &Model) -> bool {
-    model.bodies.windows(2).any(|w| w[0].e != w[1].e || w[0].nu != w[1].nu)
+    model.bodies.windows(2).any(|w| w[0].material.e != w[1].material.e || w[0].material.nu != w[1].material.nu)
 }
 
 /// Lamé's cylinder of a `lame_cylinder` `[analytic]`, in the model's
@@ -117,7 +117,7 @@ pub fn lame(analytic: &Analytic, model: &Model) -> Option<Lame> {
     match *analytic {
         Analytic::LameCylinder { a, b, p } => {
             let b0 = &model.bodies[0];
-            Some(Lame { a, b, p, e: b0.e, nu: b0.nu, analysis: model.analysis })
+            Some(Lame { a, b, p, e: b0.material.e, nu: b0.material.nu, analysis: model.analysis })
         }
         Analytic::LinedTunnel(_) => None,
     }

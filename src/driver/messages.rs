@@ -170,8 +170,11 @@ fn apex(scene: &Scene) -> Vec<Apex> {
         return Vec::new();
     }
     (scene.contacts.iter().enumerate())
-        .filter(|(_, c)| c.friction > 0.0 && c.tensile_strength > c.cohesion / c.friction)
-        .map(|(i, c)| Apex { contact: i, opens_at: c.cohesion / c.friction, tensile_strength: c.tensile_strength })
+        .filter(|(_, c)| c.strength.above_apex())
+        .map(|(i, c)| {
+            let s = &c.strength;
+            Apex { contact: i, opens_at: s.cohesion / s.friction, tensile_strength: s.tensile_strength }
+        })
         .collect()
 }
 
@@ -190,7 +193,7 @@ fn no_shear(model: &Model, scene: &Scene, states: &[ContactState], bodies: &[Str
     slipping.peek().is_some()
         && slipping.all(|(p, _)| {
             let c = &scene.contacts[p.contact];
-            c.slip == SlipLaw::Frictionless || (c.friction == 0.0 && c.residual_cohesion == 0.0)
+            c.slip == SlipLaw::Frictionless || (c.strength.friction == 0.0 && c.strength.residual_cohesion == 0.0)
         })
 }
 

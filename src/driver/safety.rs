@@ -37,7 +37,7 @@ use super::messages::SafetyError;
 use super::ranks::Ranks;
 use super::steps::{LoadSteps, Step};
 use super::{mechanism, RunOptions};
-use crate::contact::safety::{self as reduction, Bracket, Steps, Strengths};
+use crate::contact::safety::{self as reduction, Bracket, Strengths};
 use crate::contact::{History, Outcome};
 use crate::parallel::CommExt;
 use crate::recover;
@@ -217,7 +217,7 @@ fn search(step: &Step, options: &Safety, history: &History, opts: &RunOptions) -
     let mut t = trials(step, options, options.strengths, opts, "safety");
     t.say(&what(step, options));
     let b = upward(&mut t, options, history);
-    let decided = b.decided(&steps(options));
+    let decided = b.decided(&options.steps);
     let held = b.holds.map(|h| h.1).expect("the search upward starts from a state that holds");
     let fails = b.fails.map(|(f, mut e)| {
         e.mechanism = mechanism::of(step.model, &e.blocks, &e.states, &e.lambda);
@@ -230,7 +230,7 @@ fn search(step: &Step, options: &Safety, history: &History, opts: &RunOptions) -
         let mut o = trials(step, options, s, opts, &format!("safety ({} strength)", s.key()));
         let b = upward(&mut o, options, history);
         let factor = b.holds.as_ref().map(|h| h.0);
-        let decided = b.decided(&steps(options));
+        let decided = b.decided(&options.steps);
         let fails_at = b.fails.as_ref().map(|f| f.0);
         say_end(&o, factor.unwrap_or(1.0), fails_at, decided, options);
         OtherFactor { strengths: s, factor, fails_at, decided, trials: o.trials.len() }
@@ -251,7 +251,7 @@ fn search(step: &Step, options: &Safety, history: &History, opts: &RunOptions) -
 fn upward(t: &mut Trials, options: &Safety, history: &History) -> Bracket<Held, Failure> {
     let lambda = t.lambda.clone();
     let start = Held { factor: 1.0, history: history.clone(), outcome: None, lambda };
-    reduction::upward(&steps(options), start, |f, from: &Held| t.up(f, from))
+    reduction::upward(&options.steps, start, |f, from: &Held| t.up(f, from))
 }
 
 /// The trials that decided nothing, for the results.
@@ -269,7 +269,7 @@ fn undecided(u: &[(f64, Failure)]) -> Vec<Undecided> {
 fn what(step: &Step, options: &Safety) -> String {
     let how = format!(
         "from 1 in steps of {} (tolerance {} x F, at most F = {})",
-        options.step, options.tolerance, options.max_factor
+        options.steps.step, options.steps.tolerance, options.steps.max_factor
     );
     match &options.raise {
         Some(r) => format!("raising {} by F {how}", raised_names(step, r)),
@@ -297,15 +297,10 @@ fn say_end(t: &Trials, held: f64, fails: Option<f64>, decided: bool, options: &S
         (None, false) => format!(
             "F is not decided: converged trials hold at {}, and no trial above converged up to max_factor = {}",
             six(held),
-            options.max_factor
+            options.steps.max_factor
         ),
     };
     t.say(&format!("{what} after {n} trials, {} contact iterations, {secs:.2} s", t.iterations));
-}
-
-/// How the scene's `[safety]` chooses the factors.
-fn steps(options: &Safety) -> Steps {
-    Steps { step: options.step, tolerance: options.tolerance, max_factor: options.max_factor }
 }
 
 /// A factor with six decimals, trailing zeros dropped.

@@ -14,7 +14,6 @@ use super::messages::ContactError;
 use super::plan::Plan;
 use super::ranks::{agree, Ranks};
 use super::{progress, RunOptions};
-use crate::contact::law::Strength;
 use crate::contact::system::InterfaceProblem;
 use crate::contact::traction::ConsistentTraction;
 use crate::contact::{self, History, Outcome, PairLaw};
@@ -225,15 +224,7 @@ fn laws(model: &Model, scene: &Scene) -> Vec<PairLaw> {
     (model.pairs.iter())
         .map(|p| {
             let c = &scene.contacts[p.contact];
-            PairLaw {
-                strength: Strength {
-                    friction: c.friction,
-                    cohesion: c.cohesion,
-                    tensile_strength: c.tensile_strength,
-                    residual_cohesion: c.residual_cohesion,
-                },
-                slip: c.slip,
-            }
+            PairLaw { strength: c.strength, slip: c.slip }
         })
         .collect()
 }

@@ -109,7 +109,7 @@ fn body_groups<'a>(b: &Builder<'a>) -> Result<Vec<&'a [Cell]>, ModelError> {
     for body in &spec.bodies {
         let g = b.group(&format!("{}.group", body.key), &body.group, &[spec.analysis.dim()])?;
         if let Some(InitialStress::Geostatic { .. }) = body.initial {
-            if body.density <= 0.0 || spec.gravity.iter().all(|&g| g == 0.0) {
+            if body.material.density <= 0.0 || spec.gravity.iter().all(|&g| g == 0.0) {
                 return Err(b.invalid(
                     format!("{}.k0", body.key),
                     format!(
@@ -442,16 +442,7 @@ fn blocks(spec: &ModelSpec, topo: &Topology, block: &[usize], cells: &[Cell], co
                 Block { index: seen[g], of: per_group[g], centre }
             });
             seen[g] += 1;
-            Body {
-                name: body.group.clone(),
-                group: g,
-                block,
-                e: body.e,
-                nu: body.nu,
-                density: body.density,
-                cells,
-                initial: body.initial,
-            }
+            Body { name: body.group.clone(), group: g, block, material: body.material, cells, initial: body.initial }
         })
         .collect()
 }

@@ -53,7 +53,7 @@ pub fn beyond(model: &Model, strengths: &[JointStrength]) -> Vec<Beyond> {
         let Some(s) = strengths.get(pair.contact).filter(|s| !s.skip) else { continue };
         let Some(b) = model.bodies.get(body[pair.k]) else { continue };
         let Some(initial) = b.initial else { continue };
-        let sigma = initial.at(model.coords[pair.k], model.analysis, b.density, model.gravity);
+        let sigma = initial.at(model.coords[pair.k], model.analysis, b.material.density, model.gravity);
         let t = traction(&sigma, pair.normal);
         let n = pair.normal;
         let sn = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];

@@ -46,7 +46,8 @@ pub use forces::NodalLoad;
 pub mod warnings;
 
 pub use spec::{
-    BodySpec, ContactGroups, ContactSpec, ForceLoad, InitialStress, LoadKind, LoadSpec, ModelSpec, SupportSpec,
+    BodySpec, ContactGroups, ContactSpec, ForceLoad, InitialStress, LoadKind, LoadSpec, Material, ModelSpec,
+    SupportSpec,
 };
 pub use water::{GroupWater, JointWater};
 
@@ -64,9 +65,7 @@ pub struct Body {
     /// cells' nodes), to name it in messages.
     pub group: usize,
     pub block: Option<Block>,
-    pub e: f64,
-    pub nu: f64,
-    pub density: f64,
+    pub material: Material,
     pub cells: Vec<Cell>,
     /// In-situ stress the body carries before any load.
     pub initial: Option<InitialStress>,
@@ -197,7 +196,7 @@ impl Body {
 
     /// The initial stress at x (zero without one).
     pub fn initial_at(&self, x: [f64; 3], analysis: Analysis, gravity: [f64; 3]) -> [f64; 6] {
-        self.initial.map_or([0.0; 6], |i| i.at(x, analysis, self.density, gravity))
+        self.initial.map_or([0.0; 6], |i| i.at(x, analysis, self.material.density, gravity))
     }
 }
 

@@ -39,14 +39,20 @@ pub struct BodySpec {
     /// Where the input defined it, e.g. `bodies[0]`.
     pub key: String,
     pub group: String,
-    /// Young's modulus.
-    pub e: f64,
-    /// Poisson's ratio.
-    pub nu: f64,
-    /// Mass density (with `gravity`).
-    pub density: f64,
+    pub material: Material,
     /// Stress carried before any load; None: stress-free.
     pub initial: Option<InitialStress>,
+}
+
+/// Linear isotropic elasticity and the mass a body weighs with.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Material {
+    /// Young's modulus (> 0).
+    pub e: f64,
+    /// Poisson's ratio (-1 < nu < 0.5).
+    pub nu: f64,
+    /// Mass density (with `gravity`; 0 for a weightless body).
+    pub density: f64,
 }
 
 /// One contact interface, by its physical group(s).

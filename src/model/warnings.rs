@@ -15,7 +15,7 @@ use super::Model;
 pub fn warnings(model: &Model) -> Vec<String> {
     let mut out = bonds(model);
     out.extend(mesh(model));
-    if model.gravity.iter().any(|&g| g != 0.0) && model.bodies.iter().all(|b| b.density == 0.0) {
+    if model.gravity.iter().any(|&g| g != 0.0) && model.bodies.iter().all(|b| b.material.density == 0.0) {
         out.push(format!(
             "{}: gravity = {:?} is given, but no body has a density, so gravity loads nothing. Give the materials a density (in the scene's units: density * |g| is the unit weight), or leave gravity out",
             model.scene,
@@ -111,16 +111,14 @@ mod tests {
     use super::*;
     use crate::fem::Analysis;
     use crate::mesh::{Cell, CellKind};
-    use crate::model::{Body, Pair};
+    use crate::model::{Body, Material, Pair};
 
     fn body(name: &str, cells: &[[usize; 3]]) -> Body {
         Body {
             name: name.into(),
             group: 0,
             block: None,
-            e: 1.0,
-            nu: 0.2,
-            density: 0.0,
+            material: Material { e: 1.0, nu: 0.2, density: 0.0 },
             cells: cells.iter().map(|n| Cell { kind: CellKind::Tri3, nodes: n.to_vec(), tag: 0 }).collect(),
             initial: None,
         }

@@ -147,7 +147,11 @@ pub fn blocks(
                 relative,
                 mobilised: faces.mobilised[b],
                 open: if faces.area[b] > 0.0 { faces.open[b] / faces.area[b] } else { 0.0 },
-                toppling_margin: faces.margin(model, b, model.bodies[b].density * norm(model.gravity) * w[b].volume),
+                toppling_margin: faces.margin(
+                    model,
+                    b,
+                    model.bodies[b].material.density * norm(model.gravity) * w[b].volume,
+                ),
                 state: mechanism.map_or(BlockState::Held, |m| m.of(b)),
             }
         })

@@ -204,9 +204,9 @@ pub fn insitu_warnings(scene: &crate::scene::Scene, model: &Model) -> Vec<String
         .contacts
         .iter()
         .map(|c| crate::model::insitu::JointStrength {
-            friction: c.friction,
-            cohesion: c.cohesion,
-            tensile_strength: c.tensile_strength,
+            friction: c.strength.friction,
+            cohesion: c.strength.cohesion,
+            tensile_strength: c.strength.tensile_strength,
             skip: c.slip == crate::scene::SlipLaw::Frictionless || c.water.is_some(),
         })
         .collect();

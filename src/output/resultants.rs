@@ -292,14 +292,7 @@ pub fn sum(pairs: &[PairRecord], n_contacts: usize) -> Resultants {
 
 /// The strength of every contact group of the run's scene.
 pub fn strengths(run: &Run) -> Vec<Strength> {
-    (run.scene.contacts.iter())
-        .map(|c| Strength {
-            friction: c.friction,
-            cohesion: c.cohesion,
-            tensile_strength: c.tensile_strength,
-            residual_cohesion: c.residual_cohesion,
-        })
-        .collect()
+    run.scene.contacts.iter().map(|c| c.strength).collect()
 }
 
 /// The resultants of the run's last load step (None without contacts).

@@ -201,7 +201,7 @@ pub fn warnings(run: &Run) -> Vec<String> {
     let (Some(s), Some(o)) = (&run.safety, &run.scene.safety) else { return Vec::new() };
     let SearchKind::Strength(st) = s.kind else { return Vec::new() };
     let silent: Vec<String> = (run.scene.contacts.iter().enumerate())
-        .filter(|(_, c)| !c.residual_given && c.cohesion > 0.0)
+        .filter(|(_, c)| !c.residual_given && c.strength.cohesion > 0.0)
         .map(|(i, _)| format!("\"{}\"", run.model.interfaces[i].name))
         .collect();
     let mut out = Vec::new();
@@ -294,7 +294,7 @@ pub(super) fn summary(run: &Run) -> Option<Value> {
         "reduced": if s.kind == SearchKind::Load { Vec::new() } else { o.reduce.names() },
         "raised": o.raise.as_ref().map(|_| raised(run)),
         "contacts": o.contacts.iter().map(|&i| model.interfaces[i].name.clone()).collect::<Vec<_>>(),
-        "step": o.step, "tolerance": o.tolerance, "max_factor": o.max_factor,
+        "step": o.steps.step, "tolerance": o.steps.tolerance, "max_factor": o.steps.max_factor,
         "failure": failure,
         "joints": joints_json(run, s, o),
         "trials": s.trials.iter().map(|t| json!({ "factor": t.factor, "from": t.from, "holds": t.holds, "iterations": t.iterations,
@@ -310,11 +310,11 @@ fn joints_json(run: &Run, s: &SafetyRun, o: &Safety) -> Vec<Value> {
         let sc = &run.scene.contacts[i];
         let at = |c: Option<&ContactRun>| c.map(|c| {
             let j = Joint::of(run, c, i);
-            json!({ "normal_force": j.normal, "shear_force": j.shear, "closed_area": j.area, "factor_from_resultants": finite(j.factor(sc.cohesion, sc.friction)),
+            json!({ "normal_force": j.normal, "shear_force": j.shear, "closed_area": j.area, "factor_from_resultants": finite(j.factor(sc.strength.cohesion, sc.strength.friction)),
                     "states": { "stick": j.states[2], "slip": j.states[1], "open": j.states[0] } })
         });
         let at_1 = if s.below_one { None } else { run.contact() };
-        json!({ "contact": run.model.interfaces[i].name, "friction": sc.friction, "cohesion": sc.cohesion, "residual_cohesion": sc.residual_cohesion,
+        json!({ "contact": run.model.interfaces[i].name, "friction": sc.strength.friction, "cohesion": sc.strength.cohesion, "residual_cohesion": sc.strength.residual_cohesion,
                 "at_1": at(at_1), "at_factor": at(s.last.as_ref().and_then(|l| l.contact.as_ref())) })
     }).collect()
 }

@@ -61,14 +61,14 @@ pub fn cell_internal(model: &Model, body: &Body, cell: &crate::mesh::Cell, u: &[
     let (xe, ue) = cell_data(model, &cell.nodes, u);
     let m = ue.len();
     let rule = element::stiffness_rule(analysis, cell.kind);
-    let d = d_matrix(analysis, body.e, body.nu);
+    let d = d_matrix(analysis, body.material.e, body.material.nu);
     let mut ke = Vec::new();
-    if element::stiffness(analysis, cell.kind, body.nu, &xe, &d, model.thickness, &rule, &mut ke).is_err() {
+    if element::stiffness(analysis, cell.kind, body.material.nu, &xe, &d, model.thickness, &rule, &mut ke).is_err() {
         return vec![0.0; m];
     }
     let mut r: Vec<f64> = (0..m).map(|i| (0..m).map(|j| ke[i * m + j] * ue[j]).sum()).collect();
     if let Some(init) = body.initial {
-        let sigma0 = |x: [f64; 3]| init.at(x, analysis, body.density, model.gravity);
+        let sigma0 = |x: [f64; 3]| init.at(x, analysis, body.material.density, model.gravity);
         let mut f0 = vec![0.0; m];
         if element::initial_stress_force(analysis, cell.kind, &xe, &sigma0, model.thickness, &rule, &mut f0).is_ok() {
             // f0 = -∫ Bᵀ σ0: the initial stress's share of the internal forces is -f0
@@ -84,7 +84,7 @@ pub fn cell_internal(model: &Model, body: &Body, cell: &crate::mesh::Cell, u: &[
 /// own (as the solve assembled them).
 fn acceleration(model: &Model, body: &Body, factor: &dyn Fn(usize) -> f64) -> [f64; 3] {
     let mut a = model.gravity.map(|v| v * factor(model.gravity_case));
-    for &(s, case) in model.seismic.iter().filter(|_| body.density > 0.0) {
+    for &(s, case) in model.seismic.iter().filter(|_| body.material.density > 0.0) {
         (0..3).for_each(|i| a[i] += s[i] * factor(case));
     }
     a
@@ -94,7 +94,7 @@ fn acceleration(model: &Model, body: &Body, factor: &dyn Fn(usize) -> f64) -> [f
 fn cell_weight(model: &Model, body: &Body, cell: &crate::mesh::Cell, a: [f64; 3]) -> Vec<f64> {
     let nd = model.nd;
     let mut fe = vec![0.0; cell.nodes.len() * nd];
-    let g = a.map(|v| v * body.density);
+    let g = a.map(|v| v * body.material.density);
     if g.iter().any(|&v| v != 0.0) {
         let xe: Vec<[f64; 3]> = cell.nodes.iter().map(|&n| model.coords[n]).collect();
         let _ = element::body_force(model.analysis, cell.kind, &xe, g, model.thickness, &mut fe);

@@ -31,11 +31,14 @@
 //! pressure = 0.1
 //! ```
 //!
-//! Validated values are stored in the public types below with defaults
-//! applied; vectors are always 3 components (z = 0 for the 2D analyses).
-//! The physics owns its vocabulary ([`Analysis`] in fem, [`SlipLaw`] in
-//! contact, [`LoadKind`] in model, ...): the scene maps the TOML onto it and
-//! [`Scene::model_spec`] hands the model builder its description.
+//! Validated values are stored with defaults applied; vectors are always 3
+//! components (z = 0 for the 2D analyses). The physics owns its vocabulary
+//! and the scene holds it as is: a body is a [`BodySpec`] with its
+//! [`Material`], a support a [`SupportSpec`], a load a [`LoadSpec`] (model),
+//! a contact's strength a [`Strength`] and the safety search's factors
+//! [`Steps`] (contact). The TOML as written is `raw.rs`, converted once by
+//! the checker; [`Scene::model_spec`] hands the model builder its
+//! description.
 //!
 //! Here: the validated types and [`Scene::load`]. `raw.rs` is the TOML as
 //! written (serde, unknown keys rejected), `errors.rs` the error type and the
@@ -46,7 +49,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use crate::mesh::joints::{CutJob, JointSpec};
-use crate::model::{BodySpec, ContactSpec, LoadSpec, ModelSpec, SupportSpec};
+use crate::model::{ContactSpec, ModelSpec};
 
 mod errors;
 mod raw;
@@ -57,49 +60,23 @@ mod validate;
 pub use errors::SceneError;
 
 pub use crate::analytic::Analytic;
-pub use crate::contact::safety::{Reduce, Strengths};
+pub use crate::contact::law::Strength;
+pub use crate::contact::safety::{Reduce, Steps, Strengths};
 pub use crate::contact::{InterfaceSolver, SlipLaw, StateRule, TractionRecovery};
 pub use crate::fem::Analysis;
 pub use crate::model::water::{Drain, JointWater, Levels, WaterFace, WaterPressure};
-pub use crate::model::{ContactGroups, ForceLoad, InitialStress, LoadKind};
+pub use crate::model::{BodySpec, ContactGroups, ForceLoad, InitialStress, LoadKind, LoadSpec, Material, SupportSpec};
 pub use crate::recover::sections::{Cut, SectionSpec};
 pub use crate::recover::Probe;
-
-/// `[materials.NAME]`: linear isotropic elasticity.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Material {
-    /// Young's modulus (key `E`), > 0.
-    pub e: f64,
-    /// Poisson's ratio, -1 < nu < 0.5.
-    pub nu: f64,
-    /// Mass density (default 0), used with the top-level `gravity`.
-    pub density: f64,
-}
-
-/// `[[bodies]]`: one substructure, a physical surface (2D) or volume (3D).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Body {
-    pub group: String,
-    /// A key of [`Scene::materials`] (checked).
-    pub material: String,
-    /// Stress the body carries before any load (in-situ stress); reported
-    /// stresses are totals. None: the body starts stress-free.
-    pub initial: Option<InitialStress>,
-}
 
 /// `[[contacts]]`: an interface and its strength.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Contact {
     pub groups: ContactGroups,
-    /// Friction coefficient f (default 0).
-    pub friction: f64,
-    /// Cohesion c (default 0).
-    pub cohesion: f64,
-    /// Tensile strength f_t (default 0).
-    pub tensile_strength: f64,
+    /// `friction`, `cohesion`, `tensile_strength` and `residual_cohesion`
+    /// (each default 0; the residual cohesion at most the cohesion).
+    pub strength: Strength,
     pub slip: SlipLaw,
-    /// Cohesion kept once the pair has opened (default 0, <= cohesion).
-    pub residual_cohesion: f64,
     /// Whether the scene gives `residual_cohesion` (the safety search
     /// says when its default decided something).
     pub residual_given: bool,
@@ -107,28 +84,6 @@ pub struct Contact {
     pub traction: TractionRecovery,
     /// The water in the joint (`water = {..}`), if any.
     pub water: Option<JointWater>,
-}
-
-/// `[[supports]]`: displacement conditions on a physical group.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Support {
-    pub group: String,
-    /// Components (x, y, z) held at zero (`fix = ["x", "y"]`).
-    pub fix: [bool; 3],
-    /// Prescribed displacements (`ux`, `uy`, `uz`). A component is never both
-    /// in `fix` and prescribed (that is rejected).
-    pub prescribed: [Option<f64>; 3],
-}
-
-/// `[[loads]]`: a surface load on a physical group, or a force and moment
-/// on a physical point, a boundary group or a body.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Load {
-    pub group: String,
-    pub kind: LoadKind,
-    /// Load factor at each load step (`factors = [..]`, one per step);
-    /// None: the ramp k / load_steps.
-    pub factors: Option<Vec<f64>>,
 }
 
 /// `[solver]`.
@@ -183,13 +138,9 @@ pub struct Safety {
     /// `load = [..]`: a load factor search, which raises these loads
     /// instead of dividing the strength (None: strength reduction).
     pub raise: Option<Raise>,
-    /// The increase of F from trial to trial before the bracket closes (default 0.1).
-    pub step: f64,
-    /// F is found when the last factor that holds and the first that
-    /// fails differ by at most `tolerance × F` (default 1e-3).
-    pub tolerance: f64,
-    /// The largest F tried (default 10).
-    pub max_factor: f64,
+    /// `step` (default 0.1), `tolerance` (default 1e-3) and `max_factor`
+    /// (default 10).
+    pub steps: Steps,
 }
 
 impl Safety {
@@ -201,9 +152,7 @@ impl Safety {
             strengths: Strengths::Peak,
             strength_given: false,
             raise: None,
-            step: 0.1,
-            tolerance: 1e-3,
-            max_factor: 10.0,
+            steps: Steps { step: 0.1, tolerance: 1e-3, max_factor: 10.0 },
         }
     }
 }
@@ -356,10 +305,16 @@ pub struct Scene {
     pub gravity: [f64; 3],
     pub gmsh: GmshOptions,
     pub materials: BTreeMap<String, Material>,
-    pub bodies: Vec<Body>,
+    /// `[[bodies]]`, each with its material (`material = NAME` looked up).
+    pub bodies: Vec<BodySpec>,
     pub contacts: Vec<Contact>,
-    pub supports: Vec<Support>,
-    pub loads: Vec<Load>,
+    /// `[[supports]]`: the components held (`fix = [..]`) and prescribed
+    /// (`ux`, `uy`, `uz`; never both on one component).
+    pub supports: Vec<SupportSpec>,
+    /// `[[loads]]`: a surface load on a physical group, a force and moment
+    /// on a point, a boundary group or a body, or a seismic body load (no
+    /// group); `factors = [..]` (None: the ramp k / load_steps).
+    pub loads: Vec<LoadSpec>,
     pub solver: Solver,
     pub probes: Vec<Probe>,
     pub analytic: Option<Analytic>,
@@ -438,22 +393,17 @@ impl Scene {
         }
     }
 
-    /// The material of `body`. Panics only if `body` was not validated
-    /// against this scene (validation guarantees the material exists).
-    pub fn material_of(&self, body: &Body) -> &Material {
-        &self.materials[&body.material]
-    }
-
     /// What is legal but probably not what the user meant: a tensile
     /// strength above the Coulomb apex c / f (a joint in tension above c / f
     /// has no shear strength left, so the robust rule opens it there).
     pub fn warnings(&self) -> Vec<String> {
         let mut out = Vec::new();
         for (i, c) in self.contacts.iter().enumerate() {
-            if c.friction > 0.0 && c.tensile_strength > c.cohesion / c.friction {
+            let s = &c.strength;
+            if s.above_apex() {
                 // six significant digits, no trailing zeros
                 let apex =
-                    format!("{:.6}", c.cohesion / c.friction).trim_end_matches('0').trim_end_matches('.').to_string();
+                    format!("{:.6}", s.cohesion / s.friction).trim_end_matches('0').trim_end_matches('.').to_string();
                 let name = match &c.groups {
                     ContactGroups::Shared(g) => g.clone(),
                     ContactGroups::Pair(a, b) => format!("{a}|{b}"),
@@ -465,9 +415,9 @@ impl Scene {
                 out.push(format!(
                     "{}: contacts[{i}] (\"{name}\"): tensile_strength = {} exceeds the Coulomb apex c / f = {} / {} = {apex}: a joint in tension above c / f has no shear strength left, so {then}. Lower tensile_strength to at most c / f, or raise the cohesion, if that is not what you mean",
                     self.path.display(),
-                    c.tensile_strength,
-                    c.cohesion,
-                    c.friction,
+                    s.tensile_strength,
+                    s.cohesion,
+                    s.friction,
                 ));
             }
         }
@@ -493,22 +443,7 @@ impl Scene {
             analysis: self.analysis,
             thickness: self.thickness,
             gravity: self.gravity,
-            bodies: self
-                .bodies
-                .iter()
-                .enumerate()
-                .map(|(i, b)| {
-                    let m = self.material_of(b);
-                    BodySpec {
-                        key: format!("bodies[{i}]"),
-                        group: b.group.clone(),
-                        e: m.e,
-                        nu: m.nu,
-                        density: m.density,
-                        initial: b.initial,
-                    }
-                })
-                .collect(),
+            bodies: self.bodies.clone(),
             contacts: self
                 .contacts
                 .iter()
@@ -519,26 +454,11 @@ impl Scene {
                     water: c.water.clone(),
                 })
                 .collect(),
-            supports: self
-                .supports
-                .iter()
-                .enumerate()
-                .map(|(i, s)| SupportSpec {
-                    key: format!("supports[{i}]"),
-                    group: s.group.clone(),
-                    fix: s.fix,
-                    prescribed: s.prescribed,
-                })
-                .collect(),
-            loads: self
-                .loads
-                .iter()
-                .enumerate()
+            supports: self.supports.clone(),
+            loads: (self.loads.iter().enumerate())
                 .map(|(i, l)| LoadSpec {
-                    key: format!("loads[{i}]"),
-                    group: l.group.clone(),
-                    kind: l.kind.clone(),
                     factors: self.own_case(l.factors.as_ref(), raise.is_some_and(|r| r.loads.contains(&i))),
+                    ..l.clone()
                 })
                 .collect(),
             load_steps: self.solver.load_steps,

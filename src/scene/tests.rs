@@ -133,18 +133,16 @@ fn design_example_parses() {
         s.gmsh,
         GmshOptions { order: 2, setnumber: vec![("lc".into(), 0.2)], clscale: None, timeout: 600.0, structured: false }
     );
-    assert_eq!(s.materials["rock"], Material { e: 2.0e5, nu: 0.167, density: 0.0 });
-    assert_eq!(s.bodies, vec![Body { group: "body_1".into(), material: "rock".into(), initial: None }]);
-    assert_eq!(s.material_of(&s.bodies[0]).e, 2.0e5);
+    let rock = Material { e: 2.0e5, nu: 0.167, density: 0.0 };
+    assert_eq!(s.materials["rock"], rock);
+    let body_1 = BodySpec { key: "bodies[0]".into(), group: "body_1".into(), material: rock, initial: None };
+    assert_eq!(s.bodies, vec![body_1]);
     assert_eq!(
         s.contacts,
         vec![Contact {
             groups: ContactGroups::Shared("A-A".into()),
-            friction: 0.8,
-            cohesion: 2.0e4,
-            tensile_strength: 3.0e5,
+            strength: Strength { friction: 0.8, cohesion: 2.0e4, tensile_strength: 3.0e5, residual_cohesion: 0.0 },
             slip: SlipLaw::Coulomb,
-            residual_cohesion: 0.0,
             residual_given: false,
             traction: TractionRecovery::Lumped,
             water: None,
@@ -152,9 +150,20 @@ fn design_example_parses() {
     );
     assert_eq!(
         s.supports,
-        vec![Support { group: "symmetry_x0".into(), fix: [true, false, false], prescribed: [None; 3] }]
+        vec![SupportSpec {
+            key: "supports[0]".into(),
+            group: "symmetry_x0".into(),
+            fix: [true, false, false],
+            prescribed: [None; 3]
+        }]
     );
-    assert_eq!(s.loads, vec![Load { group: "inner_surface".into(), kind: LoadKind::Pressure(0.1), factors: None }]);
+    let inner = LoadSpec {
+        key: "loads[0]".into(),
+        group: "inner_surface".into(),
+        kind: LoadKind::Pressure(0.1),
+        factors: None,
+    };
+    assert_eq!(s.loads, vec![inner]);
     assert_eq!(s.solver, Solver::default());
     assert_eq!(
         s.probes,
@@ -176,7 +185,7 @@ fn defaults_applied() {
     assert_eq!(s.gmsh, GmshOptions { order: 1, setnumber: vec![], clscale: None, timeout: 600.0, structured: false });
     assert_eq!(s.materials["rock"].density, 0.0);
     let c = &s.contacts[0];
-    assert_eq!((c.friction, c.cohesion, c.tensile_strength, c.residual_cohesion), (0.0, 0.0, 0.0, 0.0));
+    assert_eq!(c.strength, Strength { friction: 0.0, cohesion: 0.0, tensile_strength: 0.0, residual_cohesion: 0.0 });
     assert_eq!(c.slip, SlipLaw::Coulomb);
     assert_eq!(s.solver, Solver::default());
     assert!(s.supports.is_empty() && s.loads.is_empty() && s.probes.is_empty());
@@ -424,12 +433,13 @@ fn safety_rules() {
     let s = load(&with("")).expect("defaults").safety.expect("a table");
     assert_eq!(s, Safety::all(2));
     assert_eq!(
-        (s.reduce, s.contacts.as_slice(), s.step, s.tolerance, s.max_factor),
-        (Reduce::ALL, &[0, 1][..], 0.1, 1e-3, 10.0)
+        (s.reduce, s.contacts.as_slice(), s.steps),
+        (Reduce::ALL, &[0, 1][..], Steps { step: 0.1, tolerance: 1e-3, max_factor: 10.0 })
     );
     let s = load(&with("reduce = [\"cohesion\", \"friction\"]\ncontacts = [\"j_b\"]\nstep = 0.05\ntolerance = 1e-4\nmax_factor = 3.0\n")).expect("choices").safety.expect("a table");
     assert_eq!(s.reduce, Reduce { friction: true, cohesion: true, tensile_strength: false });
-    assert_eq!((s.contacts.as_slice(), s.step, s.tolerance, s.max_factor), (&[1][..], 0.05, 1e-4, 3.0));
+    let steps = Steps { step: 0.05, tolerance: 1e-4, max_factor: 3.0 };
+    assert_eq!((s.contacts.as_slice(), s.steps), (&[1][..], steps));
     assert_eq!(
         load(&with("contacts = [\"j_a|j_b\", \"base\"]\n"))
             .expect("a pair by both names")
@@ -473,8 +483,8 @@ fn joint_sets_and_joints_parse() {
     assert_eq!(s.joints.len(), 2);
     assert_eq!(s.contacts.len(), 3, "the joints are the last contacts");
     assert_eq!(s.contacts[1].groups, ContactGroups::Shared("J1".to_string()));
-    assert_eq!((s.contacts[1].friction, s.contacts[1].cohesion), (0.7, 0.1));
-    assert_eq!(s.contacts[2].friction, 0.0);
+    assert_eq!((s.contacts[1].strength.friction, s.contacts[1].strength.cohesion), (0.7, 0.1));
+    assert_eq!(s.contacts[2].strength.friction, 0.0);
     assert_eq!(s.joints[0].bodies, vec!["b1".to_string()], "default: every body");
     assert_eq!(s.joints[0].placement, crate::mesh::joints::Placement::Set { spacing: 5.0, offset: 1.3 });
     assert_eq!(s.joints[1].persistence.as_ref().map(|p| p.shape), Some(crate::mesh::joints::Shape::Disc));

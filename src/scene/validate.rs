@@ -11,7 +11,7 @@ use std::path::Path;
 
 use super::raw::{RawFrame, RawGmsh, RawMaterial, RawOutput, RawProbe, RawScene, RawSolver, RawWater};
 use super::{
-    Analysis, Body, Contact, GmshOptions, JointSpec, Load, Material, MeshSource, Output, Probe, Region, Scene,
+    Analysis, BodySpec, Contact, GmshOptions, JointSpec, LoadSpec, Material, MeshSource, Output, Probe, Region, Scene,
     SceneError, Solver, OUTPUT_FIELDS,
 };
 
@@ -194,7 +194,7 @@ impl Checker<'_> {
         self.factor_tables(&loads, &solver)?;
         self.attach_waters(&mut contacts, waters, &loads, analysis, solver.load_steps)?;
         let probes = self.probes(raw.probes, analysis)?;
-        let analytic = raw.analytic.map(|a| self.analytic(a, analysis, &bodies, &materials)).transpose()?;
+        let analytic = raw.analytic.map(|a| self.analytic(a, analysis, &bodies)).transpose()?;
         let output = self.output(raw.output, analysis, &bodies)?;
         let safety = raw.safety.map(|s| self.safety(s, &contacts, &loads, gravity)).transpose()?;
         let sections = self.sections(raw.sections, analysis, &bodies)?;
@@ -326,7 +326,7 @@ impl Checker<'_> {
     }
 
     /// Load factor tables have one entry per load step.
-    fn factor_tables(&self, loads: &[Load], solver: &Solver) -> R<()> {
+    fn factor_tables(&self, loads: &[LoadSpec], solver: &Solver) -> R<()> {
         let steps = solver.load_steps;
         let tables = loads
             .iter()
@@ -353,7 +353,7 @@ impl Checker<'_> {
         &self,
         contacts: &mut [Contact],
         waters: impl Iterator<Item = (usize, String, Option<RawWater>)>,
-        loads: &[Load],
+        loads: &[LoadSpec],
         analysis: Analysis,
         steps: usize,
     ) -> R<()> {
@@ -535,7 +535,7 @@ impl Checker<'_> {
         Ok(out)
     }
 
-    fn output(&self, raw: Option<RawOutput>, analysis: Analysis, bodies: &[Body]) -> R<Output> {
+    fn output(&self, raw: Option<RawOutput>, analysis: Analysis, bodies: &[BodySpec]) -> R<Output> {
         let Some(raw) = raw else {
             return Ok(Output::default());
         };
@@ -573,7 +573,7 @@ impl Checker<'_> {
 
     /// `[output] frame`: a box (`from`, `to`: the analysis's coordinates,
     /// `from` below `to` in each) or bodies (groups of `[[bodies]]`).
-    fn frame(&self, raw: RawFrame, analysis: Analysis, bodies: &[Body]) -> R<Region> {
+    fn frame(&self, raw: RawFrame, analysis: Analysis, bodies: &[BodySpec]) -> R<Region> {
         let k = "output.frame";
         match (raw.from, raw.to, raw.bodies) {
             (Some(from), Some(to), None) => {

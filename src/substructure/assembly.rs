@@ -47,9 +47,9 @@ pub fn assemble(model: &Model, cells: &[(usize, usize)], dof_of: &[usize], n: us
     // the part's cells body by body (their cells are listed that way)
     for run in cells.chunk_by(|a, b| a.0 == b.0) {
         let body = &model.bodies[run[0].0];
-        let d = d_matrix(model.analysis, body.e, body.nu);
+        let d = d_matrix(model.analysis, body.material.e, body.material.nu);
         let g = model.gravity;
-        let weight = [g[0] * body.density, g[1] * body.density, g[2] * body.density];
+        let weight = [g[0] * body.material.density, g[1] * body.material.density, g[2] * body.material.density];
         let has_weight = weight.iter().any(|&w| w != 0.0);
         for cell in run.iter().map(|&(_, c)| &body.cells[c]) {
             let rule = match rules.iter().find(|(kind, _)| *kind == cell.kind) {
@@ -62,7 +62,7 @@ pub fn assemble(model: &Model, cells: &[(usize, usize)], dof_of: &[usize], n: us
             let xe = cell_coords(model, &cell.nodes);
             let inverted =
                 |e: Inverted| ModelError::Inverted { body: body.name.clone(), tag: cell.tag, det_j: e.det_j };
-            element::stiffness(model.analysis, cell.kind, body.nu, &xe, &d, model.thickness, rule, &mut ke)
+            element::stiffness(model.analysis, cell.kind, body.material.nu, &xe, &d, model.thickness, rule, &mut ke)
                 .map_err(inverted)?;
             element_dofs(&cell.nodes, nd, dof_of, &mut dofs);
             k.add(&dofs, &ke);
@@ -75,8 +75,8 @@ pub fn assemble(model: &Model, cells: &[(usize, usize)], dof_of: &[usize], n: us
                 fe.iter_mut().for_each(|v| *v = 0.0);
             }
             // pseudo-static seismic accelerations, on bodies with a density
-            for &(a, case) in model.seismic.iter().filter(|_| body.density > 0.0) {
-                let force = a.map(|c| c * body.density);
+            for &(a, case) in model.seismic.iter().filter(|_| body.material.density > 0.0) {
+                let force = a.map(|c| c * body.material.density);
                 element::body_force(model.analysis, cell.kind, &xe, force, model.thickness, &mut fe)
                     .map_err(inverted)?;
                 scatter(&dofs, &fe, &mut f[case]);
@@ -84,7 +84,7 @@ pub fn assemble(model: &Model, cells: &[(usize, usize)], dof_of: &[usize], n: us
             }
             if let Some(init) = body.initial {
                 fe.iter_mut().for_each(|v| *v = 0.0);
-                let sigma0 = |x: [f64; 3]| init.at(x, model.analysis, body.density, model.gravity);
+                let sigma0 = |x: [f64; 3]| init.at(x, model.analysis, body.material.density, model.gravity);
                 element::initial_stress_force(model.analysis, cell.kind, &xe, &sigma0, model.thickness, rule, &mut fe)
                     .map_err(inverted)?;
                 scatter(&dofs, &fe, &mut f[model.initial_case]);

@@ -24,7 +24,7 @@ use super::{assembly, condense, condense_parts, interior_nodes, numbering, parts
 use crate::fem::sparse::NONE;
 use crate::fem::Analysis;
 use crate::mesh::{Cell, CellKind};
-use crate::model::{Body, FacetLoad, Interface, LoadKind, Model, Pair};
+use crate::model::{Body, FacetLoad, Interface, LoadKind, Material, Model, Pair};
 
 /// Node `(i, j)` of a grid of `nx + 1` by `ny + 1` nodes starting at `first`.
 fn quads(first: usize, nx: usize, ny: usize, tag0: u64) -> Vec<Cell> {
@@ -106,9 +106,7 @@ fn two_body_model() -> Model {
                 name: "left".into(),
                 group: 0,
                 block: None,
-                e: 1000.0,
-                nu: 0.3,
-                density: 0.02,
+                material: Material { e: 1000.0, nu: 0.3, density: 0.02 },
                 cells: quads(0, 2, ny, 1),
                 initial: None,
             },
@@ -116,9 +114,7 @@ fn two_body_model() -> Model {
                 name: "right".into(),
                 group: 0,
                 block: None,
-                e: 3000.0,
-                nu: 0.2,
-                density: 0.01,
+                material: Material { e: 3000.0, nu: 0.2, density: 0.01 },
                 cells: quads(first1, 1, ny, 100),
                 initial: None,
             },
@@ -343,9 +339,7 @@ fn stacked_blocks(m: usize, h: usize) -> Model {
             name: format!("block{b}"),
             group: b,
             block: None,
-            e: 1000.0 * (b + 1) as f64,
-            nu: 0.25,
-            density: 0.01,
+            material: Material { e: 1000.0 * (b + 1) as f64, nu: 0.25, density: 0.01 },
             cells,
             initial: None,
         });

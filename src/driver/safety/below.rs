@@ -17,7 +17,7 @@
 
 use anyhow::Result;
 
-use super::{mechanism, recovered, steps, trials, undecided, Held, SafetyRun, Trials};
+use super::{mechanism, recovered, trials, undecided, Held, SafetyRun, Trials};
 use crate::contact::safety::{self as reduction, Verdict};
 use crate::contact::{self, History, Outcome};
 use crate::driver::condense::Parts;
@@ -134,7 +134,7 @@ impl Found {
             at_one,
             holds: self.held.as_ref().map(|h| h.factor),
             fails: self.fails.as_ref().map_or(f64::INFINITY, |f| f.0),
-            max_factor: options.max_factor,
+            max_factor: options.steps.max_factor,
             mechanism: self.at_one.clone(),
             load: options.raise.is_some(),
             results: None,
@@ -157,8 +157,8 @@ fn search(t: &mut Trials, options: &crate::scene::Safety, step: &Step) -> Found 
     let mut at_one = at_one;
     at_one.mechanism = mechanism::of(step.model, &at_one.blocks, &at_one.states, &at_one.lambda);
     let told = at_one.mechanism.as_ref().map(|m| (crate::contact::mechanism::describe(step.model, m), m.kind));
-    let b = reduction::downward(&steps(options), at_one, |f| t.path(f));
-    let decided = b.decided(&steps(options));
+    let b = reduction::downward(&options.steps, at_one, |f| t.path(f));
+    let decided = b.decided(&options.steps);
     let (f, mut e) = b.fails.expect("a search below 1 keeps a failure");
     if e.mechanism.is_none() {
         e.mechanism = mechanism::of(step.model, &e.blocks, &e.states, &e.lambda);
@@ -170,8 +170,8 @@ fn search(t: &mut Trials, options: &crate::scene::Safety, step: &Step) -> Found 
 /// peak strengths where the load steps lost cohesion): its bracket as a
 /// [`Found`].
 fn upward_from(t: &mut Trials, options: &crate::scene::Safety, step: &Step, start: Held) -> Found {
-    let b = reduction::upward(&steps(options), start, |f, from: &Held| t.up(f, from));
-    let decided = b.decided(&steps(options));
+    let b = reduction::upward(&options.steps, start, |f, from: &Held| t.up(f, from));
+    let decided = b.decided(&options.steps);
     let fails = b.fails.map(|(f, mut e)| {
         e.mechanism = mechanism::of(step.model, &e.blocks, &e.states, &e.lambda);
         (f, e)

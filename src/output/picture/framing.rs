@@ -95,8 +95,8 @@ pub(super) fn focus(model: &Model, region: Option<&Region>) -> Focus {
 /// The bodies at least [`STIFFER`] times stiffer than the softest (none
 /// when all are alike).
 fn structure(model: &Model) -> Vec<usize> {
-    let soft = model.bodies.iter().map(|b| b.e).fold(f64::INFINITY, f64::min);
-    (0..model.bodies.len()).filter(|&b| model.bodies[b].e >= STIFFER * soft).collect()
+    let soft = model.bodies.iter().map(|b| b.material.e).fold(f64::INFINITY, f64::min);
+    (0..model.bodies.len()).filter(|&b| model.bodies[b].material.e >= STIFFER * soft).collect()
 }
 
 fn body_nodes(model: &Model, b: usize) -> impl Iterator<Item = usize> + '_ {

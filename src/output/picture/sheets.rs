@@ -560,7 +560,7 @@ pub(super) mod tests {
     use super::*;
     use crate::fem::Analysis;
     use crate::mesh::CellKind;
-    use crate::model::{Body, Interface};
+    use crate::model::{Body, Interface, Material};
 
     /// A model whose only contact is `facets` (quad4) over `coords`, with a
     /// body cell so that the model has a size, z up by gravity.
@@ -583,9 +583,7 @@ pub(super) mod tests {
                 name: "a".into(),
                 group: 0,
                 block: None,
-                e: 1.0,
-                nu: 0.2,
-                density: 0.0,
+                material: Material { e: 1.0, nu: 0.2, density: 0.0 },
                 cells: vec![cell],
                 initial: None,
             }],

@@ -71,9 +71,9 @@ fn headline(r: &mut String, run: &Run, s: &SafetyRun, o: &Safety) {
     };
     let f = s.factor.map_or("–".into(), fmt_f);
     let _ = match (s.factor, s.fails_at, s.decided) {
-        (Some(h), Some(x), true) => writeln!(r, "**F = {f}**: {what}, with {varied}. {from}: it holds at F = {} and fails at F = {} (tolerance {} × F).\n", fmt_g(h), fmt_g(x), o.tolerance),
+        (Some(h), Some(x), true) => writeln!(r, "**F = {f}**: {what}, with {varied}. {from}: it holds at F = {} and fails at F = {} (tolerance {} × F).\n", fmt_g(h), fmt_g(x), o.steps.tolerance),
         (Some(h), Some(x), false) => writeln!(r, "**F not decided**: {what}, with {varied}. {from}: converged trials hold at F = {} and fail at F = {}; trials between did not converge, even retried in smaller steps with more iterations ({}), so F lies between them and the run ends with an error.\n", fmt_g(h), fmt_g(x), undecided(s)),
-        (Some(_), None, true) => writeln!(r, "**F > {f}**: the search reached its bound (safety.max_factor = {}) and the scene still holds there ({what}, with {varied}). Raise max_factor to find F.\n", o.max_factor),
+        (Some(_), None, true) => writeln!(r, "**F > {f}**: the search reached its bound (safety.max_factor = {}) and the scene still holds there ({what}, with {varied}). Raise max_factor to find F.\n", o.steps.max_factor),
         (Some(h), None, false) => writeln!(r, "**F not decided**, at least {}: {what}, with {varied}; no trial above converged ({}).\n", fmt_g(h), undecided(s)),
         (None, x, _) => writeln!(r, "**F < {}**: {what}, with {varied}. {from}: no factor held down to 1 / max_factor.\n", x.map_or("–".into(), fmt_g)),
     };
@@ -127,7 +127,11 @@ fn joints_table(r: &mut String, run: &Run, s: &SafetyRun, o: &Safety) {
             state_counts(&of)
         });
         let (n, t, fj) = at_1.as_ref().map_or(("–".into(), "–".into(), "–".into()), |j| {
-            (format!("{:.4e}", j.normal), format!("{:.4e}", j.shear), fmt_f(j.factor(sc.cohesion, sc.friction)))
+            (
+                format!("{:.4e}", j.normal),
+                format!("{:.4e}", j.shear),
+                fmt_f(j.factor(sc.strength.cohesion, sc.strength.friction)),
+            )
         });
         let _ = writeln!(
             r,

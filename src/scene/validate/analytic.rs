@@ -3,23 +3,15 @@
 //! (keys of another kind are errors), and for the lined tunnel the bodies it
 //! names and the far field their initial stress must agree with.
 
-use std::collections::BTreeMap;
-
 use super::{fmt_vec, quoted_list, Checker, R};
 use crate::scene::raw::RawAnalytic;
-use crate::scene::{Analysis, Analytic, Body, InitialStress, Material};
+use crate::scene::{Analysis, Analytic, BodySpec, InitialStress};
 
 /// The `kind` values `[analytic]` accepts.
 const ANALYTIC_KINDS: &[&str] = &["lame_cylinder", "lined_tunnel"];
 
 impl Checker<'_> {
-    pub(super) fn analytic(
-        &self,
-        a: RawAnalytic,
-        analysis: Analysis,
-        bodies: &[Body],
-        materials: &BTreeMap<String, Material>,
-    ) -> R<Analytic> {
+    pub(super) fn analytic(&self, a: RawAnalytic, analysis: Analysis, bodies: &[BodySpec]) -> R<Analytic> {
         let known = quoted_list(ANALYTIC_KINDS);
         let kind = self.required(a.kind.clone(), "analytic.kind", &format!("one of {known}"))?;
         // keys of the other kind are errors, not ignored
@@ -46,7 +38,7 @@ impl Checker<'_> {
             ));
         }
         match kind.as_str() {
-            "lined_tunnel" => self.lined_tunnel(a, analysis, bodies, materials).map(Analytic::LinedTunnel),
+            "lined_tunnel" => self.lined_tunnel(a, analysis, bodies).map(Analytic::LinedTunnel),
             "lame_cylinder" => {
                 let ra = self.required(a.a, "analytic.a", "the inner radius")?;
                 let rb = self.required(a.b, "analytic.b", "the outer radius")?;
@@ -75,13 +67,7 @@ impl Checker<'_> {
     }
 
     /// `[analytic] kind = "lined_tunnel"` (see [`crate::analytic::Analytic::LinedTunnel`]).
-    fn lined_tunnel(
-        &self,
-        a: RawAnalytic,
-        analysis: Analysis,
-        bodies: &[Body],
-        materials: &BTreeMap<String, Material>,
-    ) -> R<crate::analytic::LinedTunnel> {
+    fn lined_tunnel(&self, a: RawAnalytic, analysis: Analysis, bodies: &[BodySpec]) -> R<crate::analytic::LinedTunnel> {
         use crate::analytic::{LinedTunnel, TunnelSlip};
         if analysis != Analysis::PlaneStrain {
             return Err(self.bad(
@@ -109,8 +95,8 @@ impl Checker<'_> {
                 ))
             }
         };
-        let (il, lining) = self.tunnel_body("lining", a.lining, "the lining's [[bodies]] group", bodies, materials)?;
-        let (ig, ground) = self.tunnel_body("ground", a.ground, "the ground's [[bodies]] group", bodies, materials)?;
+        let (il, lining) = self.tunnel_body("lining", a.lining, "the lining's [[bodies]] group", bodies)?;
+        let (ig, ground) = self.tunnel_body("ground", a.ground, "the ground's [[bodies]] group", bodies)?;
         if il == ig {
             return Err(self.bad(
                 "analytic.ground",
@@ -154,8 +140,7 @@ impl Checker<'_> {
         key: &str,
         group: Option<String>,
         what: &str,
-        bodies: &[Body],
-        materials: &BTreeMap<String, Material>,
+        bodies: &[BodySpec],
     ) -> R<(usize, crate::analytic::TunnelBody)> {
         use crate::analytic::TunnelBody;
         let key = format!("analytic.{key}");
@@ -170,13 +155,13 @@ impl Checker<'_> {
                 ),
             )
         })?;
-        let m = &materials[&bodies[i].material];
+        let m = bodies[i].material;
         Ok((i, TunnelBody { group: g, e: m.e, nu: m.nu }))
     }
 
     /// The ground's out-of-plane far-field stress szz: its uniform initial
     /// stress must be the far field [-K P, -P, szz, 0] of `[analytic]`.
-    fn far_field_szz(&self, ig: usize, ground: &Body, p: f64, k: f64) -> R<f64> {
+    fn far_field_szz(&self, ig: usize, ground: &BodySpec, p: f64, k: f64) -> R<f64> {
         Ok(match ground.initial {
             None => 0.0,
             Some(InitialStress::Uniform(s)) => {

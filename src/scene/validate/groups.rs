@@ -9,7 +9,8 @@ use std::collections::BTreeMap;
 use super::{quoted_list, Checker, R};
 use crate::scene::raw::{RawBody, RawContact, RawLoad, RawMoment, RawPressure, RawSeismic, RawSupport};
 use crate::scene::{
-    Analysis, Body, Contact, ContactGroups, ForceLoad, InitialStress, Load, LoadKind, Material, Support,
+    Analysis, BodySpec, Contact, ContactGroups, ForceLoad, InitialStress, LoadKind, LoadSpec, Material, Strength,
+    SupportSpec,
 };
 
 impl Checker<'_> {
@@ -18,7 +19,7 @@ impl Checker<'_> {
         raw: Vec<RawBody>,
         materials: &BTreeMap<String, Material>,
         analysis: Analysis,
-    ) -> R<Vec<Body>> {
+    ) -> R<Vec<BodySpec>> {
         if raw.is_empty() {
             return Err(self.err(
                 "bodies",
@@ -85,12 +86,12 @@ impl Checker<'_> {
                     return Err(self.err(k, "give either initial_stress = [..] or k0 with surface, not both."));
                 }
             };
-            out.push(Body { group, material, initial });
+            out.push(BodySpec { key: k, group, material: materials[&material], initial });
         }
         Ok(out)
     }
 
-    pub(super) fn contacts(&self, raw: Vec<RawContact>, bodies: &[Body]) -> R<Vec<Contact>> {
+    pub(super) fn contacts(&self, raw: Vec<RawContact>, bodies: &[BodySpec]) -> R<Vec<Contact>> {
         let mut seen: BTreeMap<Vec<String>, usize> = BTreeMap::new();
         let mut out = Vec::new();
         for (i, mut c) in raw.into_iter().enumerate() {
@@ -177,18 +178,15 @@ impl Checker<'_> {
         }
         Ok(Contact {
             groups,
-            friction,
-            cohesion,
-            tensile_strength,
+            strength: Strength { friction, cohesion, tensile_strength, residual_cohesion },
             slip: c.slip.unwrap_or_default(),
-            residual_cohesion,
             residual_given: c.residual_cohesion.is_some(),
             traction: c.traction.unwrap_or_default(),
             water: None,
         })
     }
 
-    pub(super) fn support(&self, i: usize, s: RawSupport, analysis: Analysis) -> R<Support> {
+    pub(super) fn support(&self, i: usize, s: RawSupport, analysis: Analysis) -> R<SupportSpec> {
         let k = format!("supports[{i}]");
         let group = self.group(s.group, &format!("{k}.group"), "a physical point, curve or surface")?;
         let mut fix = [false; 3];
@@ -256,10 +254,10 @@ impl Checker<'_> {
                 ),
             ));
         }
-        Ok(Support { group, fix, prescribed })
+        Ok(SupportSpec { key: k, group, fix, prescribed })
     }
 
-    pub(super) fn load(&self, i: usize, l: RawLoad, analysis: Analysis) -> R<Load> {
+    pub(super) fn load(&self, i: usize, l: RawLoad, analysis: Analysis) -> R<LoadSpec> {
         let k = format!("loads[{i}]");
         if let Some(sm) = l.seismic {
             let forced = l.force.is_some() || l.moment.is_some() || l.point.is_some();
@@ -271,7 +269,7 @@ impl Checker<'_> {
             }
             let kind = self.seismic(&format!("{k}.seismic"), sm, analysis)?;
             let factors = self.factors(&k, l.factors)?;
-            return Ok(Load { group: String::new(), kind, factors });
+            return Ok(LoadSpec { key: k, group: String::new(), kind, factors });
         }
         let group = self.group(
             l.group,
@@ -321,7 +319,7 @@ impl Checker<'_> {
             return Err(self.err(format!("{k}.point"), "point is where a force or moment acts: it goes with force = [..] or moment = .., not with a pressure or traction."));
         }
         let factors = self.factors(&k, l.factors)?;
-        Ok(Load { group, kind, factors })
+        Ok(LoadSpec { key: k, group, kind, factors })
     }
 
     /// `factors = [..]` of a load: finite numbers (their count is checked with the load steps).

@@ -11,7 +11,7 @@ use std::collections::BTreeMap;
 use super::{fmt_vec, quoted_list, Checker, R};
 use crate::mesh::joints::{JointSpec, Orientation, Persistence, Placement, Shape};
 use crate::scene::raw::{RawContact, RawFrame, RawJoint, RawWater, JOINT_KEYS};
-use crate::scene::{Analysis, Body, Contact, ContactGroups};
+use crate::scene::{Analysis, BodySpec, Contact, ContactGroups};
 
 /// Which table an entry is in.
 #[derive(Clone, Copy, PartialEq)]
@@ -26,7 +26,7 @@ impl Checker<'_> {
         &self,
         sets: Vec<RawJoint>,
         singles: Vec<RawJoint>,
-        bodies: &[Body],
+        bodies: &[BodySpec],
         contacts: &[Contact],
         analysis: Analysis,
     ) -> R<(Vec<JointSpec>, Vec<Contact>)> {
@@ -78,7 +78,7 @@ impl Checker<'_> {
         k: &str,
         kind: Kind,
         mut raw: RawJoint,
-        bodies: &[Body],
+        bodies: &[BodySpec],
         contacts: &[Contact],
         analysis: Analysis,
     ) -> R<(JointSpec, Contact)> {
@@ -187,7 +187,7 @@ impl Checker<'_> {
         }
     }
 
-    fn joint_bodies(&self, k: &str, list: &[String], bodies: &[Body]) -> R<Vec<String>> {
+    fn joint_bodies(&self, k: &str, list: &[String], bodies: &[BodySpec]) -> R<Vec<String>> {
         let key = format!("{k}.bodies");
         if list.is_empty() {
             return Err(self.bad(

@@ -10,7 +10,7 @@
 
 use super::{quoted_list, Checker, R};
 use crate::scene::raw::RawSafety;
-use crate::scene::{Contact, ContactGroups, Load, Raise, Reduce, Safety, Strengths};
+use crate::scene::{Contact, ContactGroups, LoadSpec, Raise, Reduce, Safety, Steps, Strengths};
 
 /// The names `reduce` accepts.
 const REDUCIBLE: &[&str] = &["friction", "cohesion", "tensile_strength"];
@@ -20,7 +20,7 @@ impl Checker<'_> {
         &self,
         s: RawSafety,
         contacts: &[Contact],
-        loads: &[Load],
+        loads: &[LoadSpec],
         gravity: [f64; 3],
     ) -> R<Safety> {
         if contacts.is_empty() {
@@ -38,13 +38,13 @@ impl Checker<'_> {
         };
         let step = self.positive(
             s.step,
-            defaults.step,
+            defaults.steps.step,
             "safety.step",
             "the increase of F from trial to trial must be a finite number > 0.",
         )?;
         let tolerance = self.positive(
             s.tolerance,
-            defaults.tolerance,
+            defaults.steps.tolerance,
             "safety.tolerance",
             "the relative tolerance on F must be a finite number > 0.",
         )?;
@@ -57,7 +57,7 @@ impl Checker<'_> {
         }
         let max_factor = self.positive(
             s.max_factor,
-            defaults.max_factor,
+            defaults.steps.max_factor,
             "safety.max_factor",
             "the largest F tried must be a finite number > 1.",
         )?;
@@ -69,9 +69,10 @@ impl Checker<'_> {
             ));
         }
         let reduces = |c: &Contact| {
-            (reduce.friction && c.friction > 0.0)
-                || (reduce.cohesion && (c.cohesion > 0.0 || c.residual_cohesion > 0.0))
-                || (reduce.tensile_strength && c.tensile_strength > 0.0)
+            let s = &c.strength;
+            (reduce.friction && s.friction > 0.0)
+                || (reduce.cohesion && (s.cohesion > 0.0 || s.residual_cohesion > 0.0))
+                || (reduce.tensile_strength && s.tensile_strength > 0.0)
         };
         if raise.is_none() && !chosen.iter().any(|&i| reduces(&contacts[i])) {
             return Err(self.err(
@@ -79,12 +80,13 @@ impl Checker<'_> {
                 format!("reduces nothing: {} of the chosen contacts ({}) is zero everywhere, so no factor would change the scene. Reduce a parameter they have (safety.reduce), or choose other contacts (safety.contacts).", reduce.names().join(", "), quoted_list(chosen.iter().map(|&i| name(&contacts[i])))),
             ));
         }
-        Ok(Safety { reduce, contacts: chosen, strengths, strength_given, raise, step, tolerance, max_factor })
+        let steps = Steps { step, tolerance, max_factor };
+        Ok(Safety { reduce, contacts: chosen, strengths, strength_given, raise, steps })
     }
 
     /// What the search varies: the loads of `load` (which excludes the
     /// strength keys), or the strength, peak or residual.
-    fn search_kind(&self, s: &RawSafety, loads: &[Load], gravity: [f64; 3]) -> R<(Option<Raise>, Strengths, bool)> {
+    fn search_kind(&self, s: &RawSafety, loads: &[LoadSpec], gravity: [f64; 3]) -> R<(Option<Raise>, Strengths, bool)> {
         let raise = match &s.load {
             None => None,
             Some(names) => {
@@ -111,7 +113,7 @@ impl Checker<'_> {
 
     /// `load = [..]`: `[[loads]]` groups and "gravity", each once, at least
     /// one that loads something.
-    fn raise(&self, names: &[String], loads: &[Load], gravity: [f64; 3]) -> R<Raise> {
+    fn raise(&self, names: &[String], loads: &[LoadSpec], gravity: [f64; 3]) -> R<Raise> {
         let known = || quoted_list(loads.iter().map(|l| l.group.as_str()).chain(["gravity"]));
         if names.is_empty() {
             return Err(

@@ -9,13 +9,18 @@ use std::collections::BTreeMap;
 use super::{fmt_vec, quoted_list, Checker, R};
 use crate::recover::sections::{Cut, SectionSpec};
 use crate::scene::raw::RawSection;
-use crate::scene::{Analysis, Body};
+use crate::scene::{Analysis, BodySpec};
 
 /// Stations of a beam or ring when `stations` is not given.
 const DEFAULT_STATIONS: usize = 25;
 
 impl Checker<'_> {
-    pub(super) fn sections(&self, raw: Vec<RawSection>, analysis: Analysis, bodies: &[Body]) -> R<Vec<SectionSpec>> {
+    pub(super) fn sections(
+        &self,
+        raw: Vec<RawSection>,
+        analysis: Analysis,
+        bodies: &[BodySpec],
+    ) -> R<Vec<SectionSpec>> {
         let mut seen: BTreeMap<String, usize> = BTreeMap::new();
         let mut out = Vec::new();
         for (i, r) in raw.into_iter().enumerate() {
@@ -46,7 +51,7 @@ impl Checker<'_> {
 
     /// The cut of `[[sections]]` entry `k`: a line (2D), a plane (3D), or
     /// stations along a beam or round a ring.
-    fn cut(&self, k: &str, r: RawSection, analysis: Analysis, bodies: &[Body]) -> R<Cut> {
+    fn cut(&self, k: &str, r: RawSection, analysis: Analysis, bodies: &[BodySpec]) -> R<Cut> {
         let solid = analysis == Analysis::Solid;
         let ways = [
             r.from.is_some() || r.to.is_some(),
@@ -72,7 +77,7 @@ impl Checker<'_> {
     }
 
     /// A line across the member, `from` one end `to` the other (2D).
-    fn line_cut(&self, k: &str, r: RawSection, analysis: Analysis, bodies: &[Body]) -> R<Cut> {
+    fn line_cut(&self, k: &str, r: RawSection, analysis: Analysis, bodies: &[BodySpec]) -> R<Cut> {
         if analysis == Analysis::Solid {
             return Err(self.err(k, "a solid model is cut by a plane: give point = [x, y, z] and normal = [nx, ny, nz] instead of from and to."));
         }
@@ -92,7 +97,7 @@ impl Checker<'_> {
     }
 
     /// A plane through `point` with `normal` (3D).
-    fn plane_cut(&self, k: &str, r: RawSection, analysis: Analysis, bodies: &[Body]) -> R<Cut> {
+    fn plane_cut(&self, k: &str, r: RawSection, analysis: Analysis, bodies: &[BodySpec]) -> R<Cut> {
         if analysis != Analysis::Solid {
             return Err(self.err(k, "a plane model is cut by a line: give from = [x, y] and to = [x, y] across the member instead of point and normal."));
         }
@@ -105,7 +110,7 @@ impl Checker<'_> {
     }
 
     /// Cuts at `stations` along a `beam`, or round a `ring`'s centre.
-    fn round_cut(&self, k: &str, r: RawSection, analysis: Analysis, bodies: &[Body]) -> R<Cut> {
+    fn round_cut(&self, k: &str, r: RawSection, analysis: Analysis, bodies: &[BodySpec]) -> R<Cut> {
         let solid = analysis == Analysis::Solid;
         self.only(k, r.bodies.is_some(), "bodies", "a line or plane (a beam or ring names its one body)")?;
         let axis = r.axis.as_ref().map(|a| self.direction(a, &format!("{k}.axis"), analysis)).transpose()?;
@@ -132,7 +137,7 @@ impl Checker<'_> {
     }
 
     /// A body group named at `k.key`: one of the `[[bodies]]`.
-    fn body_of(&self, k: &str, key: &str, name: String, bodies: &[Body]) -> R<String> {
+    fn body_of(&self, k: &str, key: &str, name: String, bodies: &[BodySpec]) -> R<String> {
         if bodies.iter().any(|b| b.group == name) {
             return Ok(name);
         }
@@ -147,7 +152,7 @@ impl Checker<'_> {
     }
 
     /// The `bodies` a line or plane cuts (all when not given).
-    fn listed(&self, k: &str, names: Option<Vec<String>>, bodies: &[Body]) -> R<Vec<String>> {
+    fn listed(&self, k: &str, names: Option<Vec<String>>, bodies: &[BodySpec]) -> R<Vec<String>> {
         names.unwrap_or_default().into_iter().map(|n| self.body_of(k, "bodies", n, bodies)).collect()
     }
 

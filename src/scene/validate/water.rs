@@ -8,7 +8,7 @@
 
 use super::{fmt_vec, Checker, R};
 use crate::scene::raw::{RawDrain, RawWater};
-use crate::scene::{Analysis, Drain, JointWater, Levels, Load, LoadKind, WaterFace, WaterPressure};
+use crate::scene::{Analysis, Drain, JointWater, Levels, LoadKind, LoadSpec, WaterFace, WaterPressure};
 
 impl Checker<'_> {
     /// The water of a contact at key `k` (`contacts[i].water`), with the
@@ -17,7 +17,7 @@ impl Checker<'_> {
         &self,
         k: &str,
         w: RawWater,
-        loads: &[Load],
+        loads: &[LoadSpec],
         analysis: Analysis,
         steps: usize,
     ) -> R<JointWater> {
@@ -88,7 +88,7 @@ impl Checker<'_> {
     }
 
     /// The `[[loads]]` entry on group `face` with a hydrostatic pressure.
-    fn water_face(&self, k: &str, face: &str, loads: &[Load]) -> R<WaterFace> {
+    fn water_face(&self, k: &str, face: &str, loads: &[LoadSpec]) -> R<WaterFace> {
         let key = format!("{k}.face");
         let on = loads.iter().enumerate().filter(|(_, l)| l.group == face);
         let mut any = false;
