@@ -7,7 +7,6 @@ use std::time::Instant;
 
 use anyhow::Result;
 
-use super::memory::physical_memory;
 use super::plan::Plan;
 use super::ranks::{agree, Ranks};
 use super::{progress, RunOptions};
@@ -173,7 +172,7 @@ fn interface<'r>(
 /// now and made again, a part at a time, to recover the interiors.
 fn free_factors(mine: &mut [(usize, Condensed)], how: Condensation, opts: &RunOptions) {
     let factor_bytes: usize = mine.iter().map(|(_, c)| c.factor_bytes).sum();
-    if how == Condensation::Dense && factor_bytes as f64 > FACTOR_SHARE * physical_memory() as f64 {
+    if how == Condensation::Dense && factor_bytes as f64 > FACTOR_SHARE * crate::memory::physical() {
         for (_, c) in mine.iter_mut() {
             c.drop_factor();
         }

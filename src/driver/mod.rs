@@ -28,7 +28,6 @@ use anyhow::{Context, Result};
 
 mod condense;
 mod mechanism;
-mod memory;
 mod messages;
 mod plan;
 mod ranks;

@@ -7,7 +7,6 @@
 use std::path::PathBuf;
 
 use super::condense::{PartStats, Parts};
-use super::memory::peak_memory;
 use super::ranks::Ranks;
 use super::steps::LoadSteps;
 use crate::model::Model;
@@ -41,7 +40,7 @@ pub(super) fn rank(ranks: &Ranks, parts: &Parts, done: &LoadSteps) -> RankStats 
         parts: parts.mine.iter().map(|(i, _)| *i).collect(),
         dofs: parts.local.interior + parts.local.interface,
         condense_s: parts.wall_s,
-        peak_memory_bytes: peak_memory(),
+        peak_memory_bytes: crate::memory::peak(),
         bytes_sent: ranks.bytes_sent(),
         bytes_sent_per_step: done.bytes / done.done.max(1) as u64,
         bytes_sent_interface: done.bytes_interface,
