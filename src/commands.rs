@@ -24,13 +24,11 @@ macro_rules! errln {
 use anyhow::{Context, Result};
 
 use crate::analytic::{self, paper};
-use crate::contact::system::InterfaceKind;
 use crate::driver::{self, RunOptions};
 use crate::model::Model;
 use crate::parallel::Comm;
 use crate::results::{state_counts, Run};
 use crate::scene::Scene;
-use crate::substructure;
 
 pub fn solve(scene: &Path, opts: &RunOptions, comm: &dyn Comm) -> Result<()> {
     solved(driver::run_on(Scene::load(scene)?, opts, comm)?, opts)
@@ -130,21 +128,9 @@ pub fn check(scene_path: &Path, allow_geo_commands: bool) -> Result<()> {
     let out = Path::new("results").join(&scene.name);
     let (mesh, msh, _) = driver::load_mesh(&scene, &out, allow_geo_commands)?;
     let model = Model::build(&mesh, &scene.model_spec())?;
-    let parts = substructure::cut(&model, substructure::parts(&model), scene.solver.substructures);
-    let dofs = substructure::parts::dof_counts(&model, &parts);
-    // a run that would not fit in memory fails the check, before it says anything
-    let kind = InterfaceKind::choose(scene.solver.interface, &parts, model.nd);
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let need = crate::memory::estimate(
-        &model,
-        &parts.iter().collect::<Vec<_>>(),
-        kind,
-        threads,
-        true,
-        dofs.interface,
-        scene.solver.load_steps,
-    );
-    let available = crate::memory::check(&model.scene, need, [dofs.total, dofs.interface], parts.len())?;
+    // the plan solve would make; a run that would not fit in memory fails the check, before it says anything
+    let driver::Preview { parts, memory } = driver::preview(&scene, &model, &RunOptions::default())?;
+    let (need, dofs, available) = (memory.need, memory.dofs, memory.fits?);
     outln!("{}: scene and mesh `{}` are consistent", scene_path.display(), msh.display());
     outln!(
         "  {} bodies, {} elements, {} model nodes, {} contact pairs, {} part(s)",
@@ -152,7 +138,7 @@ pub fn check(scene_path: &Path, allow_geo_commands: bool) -> Result<()> {
         model.bodies.iter().map(|b| b.cells.len()).sum::<usize>(),
         model.n_nodes(),
         model.pairs.len(),
-        parts.len()
+        parts
     );
     outln!(
         "  {} DOFs ({} interface); estimated peak memory {} of {} available",

@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use anyhow::Result;
 
-use super::plan::Plan;
+use super::plan::{self, Plan};
 use super::ranks::{agree, Ranks};
 use super::{progress, RunOptions};
 use crate::contact::system::iterative::Remote;
@@ -128,13 +128,8 @@ pub(super) fn condense<'r>(model: &Model, plan: &Plan, opts: &RunOptions, ranks:
 /// The DOFs and this rank's estimated peak memory, said before anything
 /// is factorised; more than is available is an error unless ignored.
 fn memory(model: &Model, plan: &Plan, opts: &RunOptions, rank: usize) -> Result<()> {
-    let mine: Vec<&substructure::Part> =
-        (plan.parts.iter().enumerate()).filter(|(i, _)| plan.owner[*i] == rank).map(|(_, p)| p).collect();
-    let steps = model.cases.first().map_or(1, |c| c.len());
-    let need = crate::memory::estimate(model, &mine, plan.kind, plan.threads, rank == 0, plan.interface_dofs, steps);
-    let dofs = substructure::parts::dof_counts(model, &plan.parts);
-    let checked = crate::memory::check(&model.scene, need, [dofs.total, dofs.interface], mine.len());
-    let available = match &checked {
+    let plan::Memory { need, dofs, fits } = plan::memory(model, plan, rank);
+    let available = match &fits {
         Ok(a) => a.clone(),
         Err(e) => e.available.clone(),
     };
@@ -148,7 +143,7 @@ fn memory(model: &Model, plan: &Plan, opts: &RunOptions, rank: usize) -> Result<
             crate::memory::human(available.bytes)
         ),
     );
-    match checked {
+    match fits {
         Err(e) if !opts.ignore_memory_estimate => Err(e.into()),
         _ => Ok(()),
     }

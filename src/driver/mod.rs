@@ -36,6 +36,7 @@ mod stats;
 mod steps;
 
 pub use messages::{Apex, At, ContactError, PlanError, SafetyError};
+pub use plan::{preview, Memory, Preview};
 
 use crate::analytic;
 use crate::contact::law::PairResult;

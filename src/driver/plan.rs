@@ -2,13 +2,17 @@
 //! shared nodes, each cut into `substructures` pieces), the rank that owns
 //! each, the threads a rank condenses its parts in, and how the interface
 //! is solved (the one place that turns `[solver] interface` into an
-//! [`InterfaceKind`], which decides how the parts are condensed).
+//! [`InterfaceKind`], which decides how the parts are condensed); and what
+//! a rank's parts will need of memory ([`memory`]), which `solve` says
+//! before it factorises and `check` ([`preview`]) says instead of running.
 
 use super::messages::PlanError;
 use super::{progress, RunOptions};
 use crate::contact::system::InterfaceKind;
+use crate::memory::{Available, Estimate, TooLarge};
 use crate::model::Model;
 use crate::scene::Scene;
+use crate::substructure::parts::DofCounts;
 use crate::substructure::{self, Part};
 
 /// What stage 4 does, part by part.
@@ -38,6 +42,38 @@ pub(super) fn plan(scene: &Scene, model: &Model, opts: &RunOptions, ranks: usize
     let interface_dofs: usize = parts.iter().map(|p| p.interface.len() * nd).sum();
     let kind = InterfaceKind::choose(opts.interface.unwrap_or(scene.solver.interface), &parts, nd);
     Ok(Plan { parts, owner, threads, kind, interface_dofs })
+}
+
+/// What a rank's parts need of memory at the run's peak, the run's DOFs,
+/// and whether it fits in what the machine has (`Err`: it does not).
+pub struct Memory {
+    pub need: Estimate,
+    pub dofs: DofCounts,
+    pub fits: Result<Available, TooLarge>,
+}
+
+/// The memory of `rank`'s parts of `plan` (rank 0 also solves the interface).
+pub(super) fn memory(model: &Model, plan: &Plan, rank: usize) -> Memory {
+    let mine: Vec<&Part> =
+        (plan.parts.iter().enumerate()).filter(|(i, _)| plan.owner[*i] == rank).map(|(_, p)| p).collect();
+    let steps = model.cases.first().map_or(1, |c| c.len());
+    let need = crate::memory::estimate(model, &mine, plan.kind, plan.threads, rank == 0, plan.interface_dofs, steps);
+    let dofs = substructure::parts::dof_counts(model, &plan.parts);
+    let fits = crate::memory::check(&model.scene, need, [dofs.total, dofs.interface], mine.len());
+    Memory { need, dofs, fits }
+}
+
+/// What `solve` would do with the model, told before doing it: the number
+/// of parts of its plan on one rank, and their memory.
+pub struct Preview {
+    pub parts: usize,
+    pub memory: Memory,
+}
+
+/// The plan of `solve` on one rank, previewed by `check`.
+pub fn preview(scene: &Scene, model: &Model, opts: &RunOptions) -> Result<Preview, PlanError> {
+    let plan = plan(scene, model, opts, 1)?;
+    Ok(Preview { parts: plan.parts.len(), memory: memory(model, &plan, 0) })
 }
 
 /// The model's parts, each cut into `k` pieces where it has the cells for
