@@ -104,12 +104,21 @@ pub enum Command {
     },
 }
 
+/// Why a count given on the command line is not one.
+#[derive(Debug, thiserror::Error)]
+enum CountError {
+    #[error("must be at least 1")]
+    Zero,
+    #[error("{0:?} is not a whole number")]
+    NotWhole(String),
+}
+
 /// A count of at least 1 (pieces, threads).
-fn at_least_one(s: &str) -> Result<usize, String> {
+fn at_least_one(s: &str) -> Result<usize, CountError> {
     match s.parse::<usize>() {
-        Ok(0) => Err("must be at least 1".into()),
+        Ok(0) => Err(CountError::Zero),
         Ok(n) => Ok(n),
-        Err(_) => Err(format!("{s:?} is not a whole number")),
+        Err(_) => Err(CountError::NotWhole(s.to_string())),
     }
 }
 

@@ -518,9 +518,24 @@ fn one_side(
     Ok(out)
 }
 
+/// Why the nodes of two groups could not be paired by position.
+#[derive(Debug, thiserror::Error)]
+enum Unpaired {
+    #[error("node at {at:?} has {partners} partners within {tol:.1e}: the mesh has duplicate nodes")]
+    Duplicate { at: [f64; 3], partners: usize, tol: f64 },
+    #[error("{} node(s) find no partner on the other side within {tol:.1e}, first at {}: the two groups must have coincident nodes (same mesh divisions on both curves/surfaces)", lonely.len(), first(lonely))]
+    Lonely { lonely: Vec<[f64; 3]>, tol: f64 },
+}
+
+/// The first five points of `lonely`, for a message.
+fn first(lonely: &[[f64; 3]]) -> String {
+    let first: Vec<String> = lonely.iter().take(5).map(|p| format!("({:.6}, {:.6}, {:.6})", p[0], p[1], p[2])).collect();
+    first.join(", ")
+}
+
 /// Pairs every node of `a` with the one node of `b` within `tol`; error when
 /// a node has no partner or several.
-fn pair_by_position(coords: &[[f64; 3]], a: &[usize], b: &[usize], tol: f64) -> Result<Vec<(usize, usize)>, String> {
+fn pair_by_position(coords: &[[f64; 3]], a: &[usize], b: &[usize], tol: f64) -> Result<Vec<(usize, usize)>, Unpaired> {
     // Sort b by x and search a window: robust for large offsets because only
     // differences of nearby coordinates are compared.
     let mut sorted: Vec<usize> = b.to_vec();
@@ -542,26 +557,12 @@ fn pair_by_position(coords: &[[f64; 3]], a: &[usize], b: &[usize], tol: f64) -> 
                 pairs.push((k, sorted[*j]));
             }
             [] => lonely.push(x),
-            _ => {
-                return Err(format!(
-                    "node at {:?} has {} partners within {:.1e}: the mesh has duplicate nodes",
-                    x,
-                    hits.len(),
-                    tol
-                ))
-            }
+            _ => return Err(Unpaired::Duplicate { at: x, partners: hits.len(), tol }),
         }
     }
     lonely.extend(sorted.iter().zip(&used).filter(|(_, &u)| !u).map(|(&n, _)| coords[n]));
     if !lonely.is_empty() {
-        let first: Vec<String> =
-            lonely.iter().take(5).map(|p| format!("({:.6}, {:.6}, {:.6})", p[0], p[1], p[2])).collect();
-        return Err(format!(
-            "{} node(s) find no partner on the other side within {:.1e}, first at {}: the two groups must have coincident nodes (same mesh divisions on both curves/surfaces)",
-            lonely.len(),
-            tol,
-            first.join(", ")
-        ));
+        return Err(Unpaired::Lonely { lonely, tol });
     }
     Ok(pairs)
 }
@@ -585,7 +586,7 @@ mod tests {
         assert_eq!(pairs, vec![(0, 9), (1, 8), (2, 7), (3, 6), (4, 5)]);
         coords[5][0] += 0.05;
         let err = pair_by_position(&coords, &[0, 1, 2, 3, 4], &[5, 6, 7, 8, 9], 1e-6 * 2.0).unwrap_err();
-        assert!(err.contains("no partner"), "{err}");
+        assert!(matches!(err, Unpaired::Lonely { .. }) && err.to_string().contains("no partner"), "{err}");
     }
 
     #[test]

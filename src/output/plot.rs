@@ -54,13 +54,28 @@ fn range(values: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
     }
 }
 
-fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, plotters::coord::Shift>, p: &Panel) -> Result<(), String> {
+/// Why plotters could not draw a plot: its error, as plotters describes it
+/// (its error type is generic over the drawing backend).
+#[derive(Debug, thiserror::Error)]
+#[error("{detail}")]
+pub struct PlotError {
+    pub detail: String,
+}
+
+impl PlotError {
+    /// The error of a plotters call.
+    pub fn of(e: &dyn std::fmt::Debug) -> PlotError {
+        PlotError { detail: format!("{e:?}") }
+    }
+}
+
+fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, plotters::coord::Shift>, p: &Panel) -> Result<(), PlotError> {
     let all = || p.series.iter().flat_map(|s| s.points.iter());
     let (x0, x1) = range(all().map(|q| q.0), p.log_x);
     let (y0, y1) = range(all().map(|q| q.1), p.log_y);
     let mut b = ChartBuilder::on(area);
     b.caption(p.title, ("sans-serif", 18)).margin(12).x_label_area_size(42).y_label_area_size(70);
-    let err = |e: &dyn std::fmt::Debug| format!("{e:?}");
+    let err = PlotError::of;
     macro_rules! lines {
         ($chart:expr) => {{
             let mut chart = $chart;
@@ -103,17 +118,17 @@ fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, plotters::coord::Shift>
 }
 
 /// An SVG with the panels side by side.
-pub fn svg(panels: &[Panel], width_each: u32, height: u32) -> Result<String, String> {
+pub fn svg(panels: &[Panel], width_each: u32, height: u32) -> Result<String, PlotError> {
     register_font();
     let mut out = String::new();
     {
         let root = SVGBackend::with_string(&mut out, (width_each * panels.len() as u32, height)).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| format!("{e:?}"))?;
+        root.fill(&WHITE).map_err(|e| PlotError::of(&e))?;
         let areas = root.split_evenly((1, panels.len()));
         for (a, p) in areas.iter().zip(panels) {
             draw_panel(a, p)?;
         }
-        root.present().map_err(|e| format!("{e:?}"))?;
+        root.present().map_err(|e| PlotError::of(&e))?;
     }
     Ok(out)
 }

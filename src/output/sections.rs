@@ -173,7 +173,7 @@ pub fn picture(dim: usize, sec: &SectionForces) -> Result<Vec<u8>, PictureError>
         Panel { title: &tv, x_label: x, y_label: "V", log_x: false, log_y: false, series: &v },
         Panel { title: &tm, x_label: x, y_label: "M", log_x: false, log_y: false, series: &m },
     ];
-    Ok(plot::svg(&panels, 420, 320).map_err(PictureError::Plot)?.into_bytes())
+    Ok(plot::svg(&panels, 420, 320)?.into_bytes())
 }
 
 /// The picture's file name.

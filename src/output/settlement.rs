@@ -75,7 +75,7 @@ pub fn draw(title: &str, comp: &str, series: &[Series]) -> Result<Vec<u8>, Pictu
     let title = format!("{title}: load against displacement");
     let y = format!("{comp} (vertical displacement, up +)");
     let panel = Panel { title: &title, x_label: "load factor", y_label: &y, log_x: false, log_y: false, series };
-    Ok(plot::svg(&[panel], SIZE.0, SIZE.1).map_err(PictureError::Plot)?.into_bytes())
+    Ok(plot::svg(&[panel], SIZE.0, SIZE.1)?.into_bytes())
 }
 
 #[cfg(test)]

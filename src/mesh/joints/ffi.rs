@@ -25,14 +25,15 @@ macro_rules! gmsh_api {
         }
 
         impl Lib {
-            /// Looks every function up in the library `handle`; Err names the first missing one.
-            unsafe fn bind(handle: *mut c_void) -> Result<Lib, String> {
+            /// Looks every function up in the library `handle` (the file
+            /// `library`); Err names the first missing one.
+            unsafe fn bind(handle: *mut c_void, library: &'static str) -> Result<Lib, LoadError> {
                 Ok(Lib {
                     $($name: {
                         let sym = concat!(stringify!($name), "\0");
                         let p = libc::dlsym(handle, sym.as_ptr().cast::<c_char>());
                         if p.is_null() {
-                            return Err(stringify!($name).to_string());
+                            return Err(LoadError::Missing { library, function: stringify!($name) });
                         }
                         std::mem::transmute::<*mut c_void, unsafe extern "C" fn($($arg),*) $(-> $ret)?>(p)
                     },)*
@@ -107,13 +108,24 @@ unsafe impl Sync for Lib {}
 
 impl Lib {
     /// The library, loaded on first use; Err says why it could not be.
-    pub(super) fn get() -> Result<&'static Lib, String> {
-        static LIB: OnceLock<Result<Lib, String>> = OnceLock::new();
+    pub(super) fn get() -> Result<&'static Lib, LoadError> {
+        static LIB: OnceLock<Result<Lib, LoadError>> = OnceLock::new();
         LIB.get_or_init(load).as_ref().map_err(Clone::clone)
     }
 }
 
-fn load() -> Result<Lib, String> {
+/// Why gmsh's library could not be loaded.
+#[derive(Clone, Debug, thiserror::Error)]
+pub enum LoadError {
+    /// No file of [`LIBRARY`] could be opened: dlerror's message for each.
+    #[error("{}", .0.join("; "))]
+    NotFound(Vec<String>),
+    /// The library lacks a function of the API.
+    #[error("{library} has no function {function}: not gmsh 4.8's C API")]
+    Missing { library: &'static str, function: &'static str },
+}
+
+fn load() -> Result<Lib, LoadError> {
     let mut why = Vec::new();
     for name in LIBRARY {
         let cname = format!("{name}\0");
@@ -126,9 +138,9 @@ fn load() -> Result<Lib, String> {
         }
         // SAFETY: the symbols are gmsh 4.8's C API, whose signatures the
         // table declares (the soname pins the version).
-        return unsafe { Lib::bind(handle) }.map_err(|f| format!("{name} has no function {f}: not gmsh 4.8's C API"));
+        return unsafe { Lib::bind(handle, name) };
     }
-    Err(why.join("; "))
+    Err(LoadError::NotFound(why))
 }
 
 /// dlerror's message, or a generic one.

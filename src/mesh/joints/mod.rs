@@ -47,6 +47,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
+pub use ffi::LoadError;
 pub use geometry::Shape;
 
 /// How a joint is oriented.
@@ -233,7 +234,7 @@ pub struct CutReport {
 #[derive(Debug, thiserror::Error)]
 pub enum JointError {
     #[error("the scene has joints, which the tool cuts with gmsh's library libgmsh.so.4.8 (Debian package libgmsh4.8, installed with the gmsh package: `apt-get install -y gmsh`, or `make deps`), but it could not be loaded: {why}")]
-    Library { why: String },
+    Library { why: LoadError },
 
     #[error("gmsh failed on `{}` while cutting the joints: {detail}; fix the .geo (open it in the gmsh GUI to see the problem)", geo.display())]
     Gmsh { geo: PathBuf, detail: String },

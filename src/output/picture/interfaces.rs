@@ -328,7 +328,7 @@ fn beyond(r: &super::legend::Robust) -> String {
 }
 
 fn plot_err(e: &dyn std::fmt::Debug) -> PictureError {
-    PictureError::Plot(format!("{e:?}"))
+    PictureError::Plot(crate::output::plot::PlotError::of(e))
 }
 
 fn interface_plot_on<DB: DrawingBackend>(

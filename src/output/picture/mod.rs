@@ -66,7 +66,7 @@ pub enum PictureError {
     #[error("encoding the PNG: {0}")]
     Png(#[from] png::EncodingError),
     #[error("drawing the interface plot: {0}")]
-    Plot(String),
+    Plot(#[from] crate::output::plot::PlotError),
 }
 
 /// The quantity that colours the deformed picture.
@@ -219,9 +219,16 @@ impl Drawn {
     }
 }
 
+/// Drawing code that panicked: the panic's message and place, on one line.
+#[derive(Debug, thiserror::Error)]
+#[error("{said}")]
+struct Panicked {
+    said: String,
+}
+
 /// Runs `f`, turning a panic into its message (and place) instead of
 /// printing it: the caller reports it as a warning.
-fn quietly<T>(f: impl FnOnce() -> T) -> Result<T, String> {
+fn quietly<T>(f: impl FnOnce() -> T) -> Result<T, Panicked> {
     use std::sync::{Arc, Mutex};
     let said: Arc<Mutex<String>> = Arc::default();
     let slot = Arc::clone(&said);
@@ -233,7 +240,7 @@ fn quietly<T>(f: impl FnOnce() -> T) -> Result<T, String> {
     }));
     let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(f));
     std::panic::set_hook(hook);
-    r.map_err(|_| said.lock().map(|s| s.clone()).unwrap_or_default())
+    r.map_err(|_| Panicked { said: said.lock().map(|s| s.clone()).unwrap_or_default() })
 }
 
 /// Colours: the contact states, pairs without a state, the undeformed
