@@ -9,9 +9,8 @@
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use anyhow::{bail, Result};
-
 use crate::driver::{self, RunOptions};
+use crate::error::{Error, Result};
 use crate::output::files::Staged;
 use crate::output::plot::{self, Panel, Series};
 use crate::recover::Sample;
@@ -120,7 +119,7 @@ pub fn bench(
     // run time against error of the load steps: no safety search
     base.safety = None;
     if !matches!(base.mesh, crate::scene::MeshSource::Geo(_)) {
-        bail!("{}: bench needs `mesh = \"<file>.geo\"` so that gmsh can refine it", scene_path.display());
+        return Err(Error::BenchNeedsGeo { scene: scene_path.to_path_buf() });
     }
     let out = opts.out.clone().unwrap_or_else(|| PathBuf::from("results").join(&base.name));
     let total = opts.orders.len() * opts.levels;
@@ -318,7 +317,7 @@ pub fn write(rows: &[Row], out: &std::path::Path, title: &str) -> Result<Vec<Pat
         560,
         420,
     )
-    .map_err(|e| anyhow::anyhow!("drawing bench.svg: {e}"))?;
+    .map_err(|source| Error::Drawing { file: "bench.svg", source })?;
     let note = if rows
         .iter()
         .any(|r| r.error_displacement_l2.is_nan() && r.order == rows.iter().map(|q| q.order).max().unwrap_or(0))

@@ -21,10 +21,9 @@ macro_rules! errln {
     }};
 }
 
-use anyhow::{Context, Result};
-
 use crate::analytic::{self, paper};
 use crate::driver::{self, RunOptions};
+use crate::error::{Error, Result};
 use crate::model::Model;
 use crate::parallel::Comm;
 use crate::results::{state_counts, Run};
@@ -175,12 +174,12 @@ pub fn paper(fine: &Path, paper: &Path, verbose: bool) -> Result<()> {
     // read and write report.md in one transaction on the directory
     let lock = crate::output::files::Lock::acquire(&fine_out, &mut |m| errln!("subcontact: {m}"))?;
     let path = fine_out.join("report.md");
-    let mut text = std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
+    let mut text = std::fs::read_to_string(&path).map_err(|source| Error::Read { path: path.clone(), source })?;
     text += "\n# The paper's tables: theory, the paper, this tool on the paper's mesh and on the default mesh\n";
     text += &tables;
     let mut staged = crate::output::files::Staged::amend(&fine_out, &run_fine.scene.name);
     staged.add("report.md", text.into_bytes());
-    staged.commit_locked(&lock).with_context(|| format!("writing {}", path.display()))?;
+    staged.commit_locked(&lock).map_err(|source| Error::Write { path: path.clone(), source })?;
     outln!("tables written to {}", path.display());
     Ok(())
 }
@@ -188,7 +187,7 @@ pub fn paper(fine: &Path, paper: &Path, verbose: bool) -> Result<()> {
 pub fn bench(scene: &Path, opts: &crate::bench::BenchOptions) -> Result<()> {
     use indicatif::{ProgressBar, ProgressStyle};
     if opts.orders.iter().any(|&o| o != 1 && o != 2) || opts.levels == 0 || !(opts.ratio > 1.0) {
-        anyhow::bail!("bench: --orders takes 1 and/or 2, --levels at least 1, --ratio above 1");
+        return Err(Error::BenchOptions);
     }
     let total = (opts.orders.len() * opts.levels) as u64;
     let bar = ProgressBar::new(total);

@@ -15,6 +15,7 @@ pub mod cli;
 pub mod commands;
 pub mod contact;
 pub mod driver;
+pub mod error;
 pub mod fem;
 pub mod memory;
 pub mod mesh;
@@ -25,3 +26,5 @@ pub mod recover;
 pub mod results;
 pub mod scene;
 pub mod substructure;
+
+pub use error::{Error, Result};

@@ -60,7 +60,7 @@ fn main() -> ExitCode {
             if root {
                 // a closed stderr (a pipe whose reader left) ends quietly
                 use std::io::Write;
-                let _ = writeln!(std::io::stderr(), "error: {}", chain(&e));
+                let _ = writeln!(std::io::stderr(), "error: {}", chain(&anyhow::Error::from(e)));
             }
             ExitCode::FAILURE
         }

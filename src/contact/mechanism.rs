@@ -37,7 +37,7 @@ use crate::model::Model;
 /// What a block does: it stands, or how it moves once nothing holds it
 /// (blocks.csv's `state`; the geometry of a free part's motion is
 /// [`crate::fem::rigid::RigidMotion`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize, serde::Deserialize)]
 pub enum BlockState {
     Held,
     Sliding,

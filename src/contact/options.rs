@@ -51,7 +51,7 @@ pub enum TractionRecovery {
 }
 
 /// The state update of the contact iteration (`[solver] rule = "..."`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, serde::Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum StateRule {
     /// A semismooth Newton method on the interface (primal-dual active sets

@@ -5,14 +5,13 @@
 
 use std::time::Instant;
 
-use anyhow::Result;
-
 use super::plan::{self, Plan};
 use super::ranks::{agree, Ranks};
 use super::{progress, RunOptions};
 use crate::contact::system::iterative::Remote;
 use crate::contact::system::InterfaceProblem;
 use crate::contact::water::Water;
+use crate::error::Result;
 use crate::model::Model;
 use crate::substructure::{self, Condensation, Condensed, OperatorRef};
 
@@ -95,7 +94,7 @@ pub(super) fn condense<'r>(model: &Model, plan: &Plan, opts: &RunOptions, ranks:
         .unzip();
     let condensed = agree(
         ranks.comm(),
-        substructure::condense_parts(model, own, plan.threads, plan.kind.condensation()).map_err(anyhow::Error::from),
+        substructure::condense_parts(model, own, plan.threads, plan.kind.condensation()).map_err(Into::into),
     )?;
     let mut mine: Vec<(usize, Condensed)> = index.into_iter().zip(condensed).collect();
     // the wall time, split between assembly and condensation as the parts spent it

@@ -19,7 +19,7 @@ use crate::scene::Scene;
 use crate::substructure::Part;
 
 /// Where in a run a contact iteration failed.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct At {
     /// The load step, when the scene has several.
     pub step: Option<usize>,
@@ -30,7 +30,7 @@ pub struct At {
 
 /// A contact whose tensile strength exceeds its Coulomb apex c / f: the
 /// robust rule opens its pairs at c / f already.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Apex {
     /// Its index in the scene's `[[contacts]]`.
     pub contact: usize,
@@ -40,7 +40,7 @@ pub struct Apex {
 }
 
 /// Why the contact iteration of a run failed.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum ContactError {
     /// Bodies held by nothing once their contact pairs opened.
     NotHeld { scene: PathBuf, at: At, bodies: Vec<String>, apex: Vec<Apex> },
@@ -80,7 +80,7 @@ pub enum ContactError {
 }
 
 /// Why a safety search ends the run non-zero.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum SafetyError {
     /// The load steps lose equilibrium as given (`at_one`): the scene is
     /// unsafe. F was sought below 1, each trial running the load steps
@@ -123,7 +123,7 @@ impl SafetyError {
 }
 
 /// Why the parts cannot be spread over the MPI ranks.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum PlanError {
     /// More ranks than parts; `substructures`: the cut the scene asked for.
     TooManyRanks { scene: PathBuf, ranks: usize, parts: usize, substructures: usize },

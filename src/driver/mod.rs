@@ -24,11 +24,9 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use anyhow::{Context, Result};
-
 mod condense;
 mod mechanism;
-mod messages;
+pub(crate) mod messages;
 mod plan;
 mod ranks;
 mod safety;
@@ -41,6 +39,7 @@ pub use plan::{preview, Memory, Preview};
 use crate::analytic;
 use crate::contact::law::PairResult;
 use crate::contact::InterfaceSolver;
+use crate::error::{Error, Result};
 use crate::mesh::{gmsh, msh, Mesh};
 use crate::model::Model;
 use crate::output;
@@ -130,7 +129,7 @@ pub fn gmsh_job(scene: &Scene, geo: &Path, msh: PathBuf, allow_geo_commands: boo
 /// The mesh, its path in the result directory, and whether it was cached.
 pub fn mesh_into(scene: &Scene, stage: Option<&mut Stage>, allow_geo_commands: bool) -> Result<(Mesh, PathBuf, bool)> {
     let (MeshSource::Geo(geo), Some(stage)) = (&scene.mesh, stage) else {
-        let MeshSource::Msh(p) = &scene.mesh else { anyhow::bail!("a .geo scene is meshed into a result directory") };
+        let MeshSource::Msh(p) = &scene.mesh else { return Err(Error::NoStage) };
         return Ok((msh::read_msh(p)?, p.clone(), false));
     };
     let file = format!("{}.msh", scene.name);
@@ -140,25 +139,26 @@ pub fn mesh_into(scene: &Scene, stage: Option<&mut Stage>, allow_geo_commands: b
     let cached = stage.reuse_mesh(&file, &key);
     if !cached {
         gmsh::run_in(&job, stage.mesh_dir()?.fd()).map_err(|e| match e {
-            gmsh::GmshError::Joints(j) if j.is_about_scene() => anyhow::anyhow!("{}: {j}", scene.path.display()),
+            gmsh::GmshError::Joints(j) if j.is_about_scene() => {
+                Error::JointKey { scene: scene.path.clone(), source: j }
+            }
             e => e.into(),
         })?;
         stage.keep_mesh(&file, &key)?;
     }
     let rel = format!("{}/{file}", output::files::MESH_DIR);
-    let bytes = stage.read(&rel).with_context(|| format!("reading the mesh gmsh made of {}", geo.display()))?;
+    let bytes = stage.read(&rel).map_err(|source| Error::ReadMesh { geo: geo.clone(), source })?;
     let mesh = msh::parse_msh(&shown, &bytes).map_err(|e| no_mesh(geo, e))?;
     Ok((mesh, shown, cached))
 }
 
 /// A mesh gmsh made of a .geo that cannot be used: the .geo is to blame.
-fn no_mesh(geo: &Path, e: msh::MshError) -> anyhow::Error {
+fn no_mesh(geo: &Path, e: msh::MshError) -> Error {
     match e {
-        msh::MshError::NoPhysicalGroups { .. } | msh::MshError::Malformed { .. } => anyhow::anyhow!(
-            "gmsh made no mesh of `{}`: the .geo defines no physical groups with elements to mesh. Define the bodies, contacts, supports and loads with Physical Surface/Volume/Curve/Point in the .geo",
-            geo.display()
-        ),
-        e => anyhow::Error::new(e).context(format!("the mesh gmsh made of `{}`", geo.display())),
+        msh::MshError::NoPhysicalGroups { .. } | msh::MshError::Malformed { .. } => {
+            Error::NoMesh { geo: geo.to_path_buf() }
+        }
+        source => Error::BadMesh { geo: geo.to_path_buf(), source },
     }
 }
 
@@ -300,7 +300,7 @@ fn checks(run: &Run) -> Checks {
 /// if any: `failed` (the load steps lost equilibrium, the scene is unsafe
 /// as given), a safety factor that converged trials did not decide, or a
 /// last step that did not converge.
-fn write(mut run: Run, opts: &RunOptions, to: &mut Writing, failed: Option<anyhow::Error>) -> Result<Run> {
+fn write(mut run: Run, opts: &RunOptions, to: &mut Writing, failed: Option<Error>) -> Result<Run> {
     let (out, t0) = (to.out.as_path(), to.t0);
     if opts.skip_output {
         run.stats.timings.total = t0.elapsed().as_secs_f64();
@@ -330,7 +330,7 @@ fn write(mut run: Run, opts: &RunOptions, to: &mut Writing, failed: Option<anyho
         Some(stage) => stage.commit(staged, &mut |m| say(m)),
         None => staged.commit_with(&mut |m| say(m)),
     };
-    committed.with_context(|| format!("writing results to {}", out.display()))?;
+    committed.map_err(|source| Error::Results { out: out.to_path_buf(), source })?;
     match ended(&run, Some(out.to_path_buf()), failed) {
         Some(e) => Err(e),
         None => Ok(run),
@@ -339,15 +339,15 @@ fn write(mut run: Run, opts: &RunOptions, to: &mut Writing, failed: Option<anyho
 
 /// The error a run ends with once its results are written (to `results`):
 /// `failed`, the safety search's, or a last step that did not converge.
-fn ended(run: &Run, results: Option<PathBuf>, failed: Option<anyhow::Error>) -> Option<anyhow::Error> {
+fn ended(run: &Run, results: Option<PathBuf>, failed: Option<Error>) -> Option<Error> {
     let written = |e: SafetyError| match &results {
         Some(out) => e.written(out.clone()),
         None => e,
     };
     if let Some(e) = failed {
-        return Some(match e.downcast::<SafetyError>() {
-            Ok(s) => written(s).into(),
-            Err(e) => e,
+        return Some(match e {
+            Error::Safety(s) => written(s).into(),
+            e => e,
         });
     }
     if let Some(e) = safety::undecided_error(run) {

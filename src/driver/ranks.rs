@@ -21,11 +21,10 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{anyhow, Result};
-
 use super::{mesh_into, RunOptions};
 use crate::contact::system::iterative::Remote;
 use crate::contact::system::InterfaceProblem;
+use crate::error::{Error, Result, Wire};
 use crate::mesh::{msh, Mesh};
 use crate::model::Model;
 use crate::output::files::Stage;
@@ -39,17 +38,20 @@ pub(super) fn options(comm: &dyn Comm, opts: &RunOptions) -> RunOptions {
 }
 
 /// Every rank's result of a stage; the first failure, in rank order, ends
-/// every rank with its message (rank 0 keeps its own error as it was).
+/// every rank with that rank's error ([`Wire`]: the same variant; the rank
+/// that failed keeps its own error as it was).
 pub(super) fn agree<T>(comm: &dyn Comm, r: Result<T>) -> Result<T> {
     if comm.size() == 1 {
         return r;
     }
-    let mine: Option<String> = r.as_ref().err().map(|e| format!("{e:#}"));
-    let first: Option<String> = comm.broadcast(&comm.gather(&mine).into_iter().flatten().next());
+    let mine: Option<Wire> = r.as_ref().err().map(|e| e.to_wire(comm.rank()));
+    let failed: Vec<Option<Wire>> = comm.gather(&mine);
+    let first: Option<(usize, Wire)> =
+        comm.broadcast(&failed.into_iter().enumerate().find_map(|(rank, w)| Some((rank, w?))));
     match (r, first) {
         (Ok(v), None) => Ok(v),
-        (Err(e), Some(msg)) if comm.is_root() && mine.as_deref() == Some(msg.as_str()) => Err(e),
-        (_, Some(msg)) => Err(anyhow!(msg)),
+        (Err(e), Some((rank, _))) if rank == comm.rank() => Err(e),
+        (_, Some((_, wire))) => Err(wire.into()),
         (Err(e), None) => Err(e),
     }
 }
@@ -74,7 +76,7 @@ pub(super) fn mesh(
             let p = match (&scene.mesh, read_at) {
                 (MeshSource::Msh(p), _) => p.clone(),
                 (MeshSource::Geo(_), Some(p)) => p,
-                (MeshSource::Geo(_), None) => anyhow::bail!("rank 0 sent no mesh to read"),
+                (MeshSource::Geo(_), None) => return Err(Error::NoMeshSent),
             };
             Ok((msh::read_msh(&p)?, p, true, None))
         }
@@ -115,8 +117,8 @@ enum Service {
 enum Order {
     /// Recover these parts (index, interface displacements) under these load factors.
     Recover { lambda: Vec<f64>, parts: Vec<(usize, Vec<f64>)> },
-    /// The run failed on rank 0 with this message.
-    Stop(String),
+    /// The run failed on rank 0 with this error.
+    Stop(Wire),
 }
 
 impl<'c> Ranks<'c> {
@@ -230,7 +232,7 @@ impl<'c> Ranks<'c> {
         } else {
             let (orders, failure) = self.orders(answer, lambda, need_u);
             match self.comm.scatter(&orders) {
-                Order::Stop(msg) => return Err(failure.unwrap_or_else(|| anyhow!(msg))),
+                Order::Stop(wire) => return Err(failure.unwrap_or_else(|| wire.into())),
                 Order::Recover { lambda, parts } => {
                     let local = if need_u { recover_parts(model, mine, &parts, &lambda) } else { Vec::new() };
                     self.comm.gather(&local).into_iter().flatten().collect()
@@ -255,11 +257,11 @@ impl<'c> Ranks<'c> {
         answer: Option<Result<Vec<Vec<f64>>>>,
         lambda: &[f64],
         need_u: bool,
-    ) -> (Vec<Order>, Option<anyhow::Error>) {
+    ) -> (Vec<Order>, Option<Error>) {
         let size = self.comm.size();
         match answer {
             None => (Vec::new(), None),
-            Some(Err(e)) => ((0..size).map(|_| Order::Stop(format!("{e:#}"))).collect(), Some(e)),
+            Some(Err(e)) => ((0..size).map(|_| Order::Stop(e.to_wire(0))).collect(), Some(e)),
             Some(Ok(d_c)) => {
                 let parts = |r: usize| {
                     if need_u {
@@ -335,4 +337,113 @@ fn recover_parts(
             (*i, values)
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::{Arc, Barrier, Mutex};
+
+    use super::*;
+    use crate::model::ModelError;
+    use crate::parallel::Comm;
+
+    /// Ranks as threads of one process: each collective meets at a barrier
+    /// and moves the bytes through shared slots, as MPI would.
+    struct Threads {
+        rank: usize,
+        size: usize,
+        slots: Arc<Mutex<Vec<Vec<u8>>>>,
+        barrier: Arc<Barrier>,
+    }
+
+    impl Threads {
+        /// Rank 0's view of every rank's `bytes` (the others get nothing).
+        fn meet(&self, bytes: Vec<u8>) -> Vec<Vec<u8>> {
+            self.slots.lock().expect("slots")[self.rank] = bytes;
+            self.barrier.wait();
+            let all = self.slots.lock().expect("slots").clone();
+            self.barrier.wait();
+            all
+        }
+    }
+
+    impl Comm for Threads {
+        fn rank(&self) -> usize {
+            self.rank
+        }
+        fn size(&self) -> usize {
+            self.size
+        }
+        fn gather_bytes(&self, bytes: Vec<u8>) -> Vec<Vec<u8>> {
+            let all = self.meet(bytes);
+            if self.rank == 0 {
+                all
+            } else {
+                Vec::new()
+            }
+        }
+        fn scatter_bytes(&self, _per_rank: Vec<Vec<u8>>) -> Vec<u8> {
+            unimplemented!("agree does not scatter")
+        }
+        fn broadcast_bytes(&self, bytes: Vec<u8>) -> Vec<u8> {
+            self.meet(bytes).swap_remove(0)
+        }
+        fn bytes_sent(&self) -> u64 {
+            0
+        }
+    }
+
+    /// `agree` on `size` thread ranks, rank r's result being `result(r)`:
+    /// every rank's outcome.
+    fn agree_on(size: usize, result: fn(usize) -> Result<usize>) -> Vec<Result<usize>> {
+        let slots = Arc::new(Mutex::new(vec![Vec::new(); size]));
+        let barrier = Arc::new(Barrier::new(size));
+        std::thread::scope(|s| {
+            let ranks: Vec<_> = (0..size)
+                .map(|rank| {
+                    let comm = Threads { rank, size, slots: slots.clone(), barrier: barrier.clone() };
+                    s.spawn(move || agree(&comm, result(rank)))
+                })
+                .collect();
+            ranks.into_iter().map(|h| h.join().expect("a rank")).collect()
+        })
+    }
+
+    fn not_held(rank: usize) -> ModelError {
+        ModelError::Invalid { scene: "s.toml".into(), key: "supports".into(), msg: format!("part on rank {rank}") }
+    }
+
+    #[test]
+    fn another_ranks_model_error_reaches_rank_0_as_the_same_variant() {
+        let outcomes = agree_on(3, |r| if r == 0 { Ok(0) } else { Err(not_held(r).into()) });
+        for (r, o) in outcomes.into_iter().enumerate() {
+            match o {
+                Err(Error::Model(ModelError::Invalid { msg, .. })) => assert_eq!(msg, "part on rank 1", "rank {r}"),
+                o => panic!("rank {r}: rank 1's model error, not {o:?}"),
+            }
+        }
+    }
+
+    #[test]
+    fn an_error_holding_an_os_error_arrives_as_its_message_and_rank() {
+        fn read(_: usize) -> Result<usize> {
+            let source = std::io::Error::from_raw_os_error(2);
+            Err(crate::mesh::msh::MshError::Io { path: "m.msh".into(), source }.into())
+        }
+        let outcomes = agree_on(2, |r| if r == 1 { read(r) } else { Ok(r) });
+        let text = read(1).expect_err("fails").to_string();
+        match &outcomes[0] {
+            Err(Error::Remote { rank: 1, message }) => assert_eq!(message, &text),
+            o => panic!("rank 0: rank 1's message, not {o:?}"),
+        }
+        // rank 1 keeps its own error, whole
+        assert!(matches!(&outcomes[1], Err(Error::Mesh(_))), "{:?}", outcomes[1]);
+    }
+
+    #[test]
+    fn every_rank_ok_is_ok_and_the_first_failure_wins() {
+        assert!(agree_on(2, Ok).into_iter().all(|o| o.is_ok()));
+        let outcomes = agree_on(3, |r| if r == 0 { Ok(0) } else { Err(not_held(r).into()) });
+        assert!(outcomes.iter().all(|o| matches!(o, Err(Error::Model(_)))));
+    }
 }

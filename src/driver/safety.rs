@@ -30,8 +30,6 @@ mod trials;
 
 use std::time::Instant;
 
-use anyhow::Result;
-
 use super::condense::Parts;
 use super::messages::SafetyError;
 use super::ranks::Ranks;
@@ -39,6 +37,7 @@ use super::steps::{LoadSteps, Step};
 use super::{mechanism, RunOptions};
 use crate::contact::safety::{self as reduction, Bracket, Strengths};
 use crate::contact::{History, Outcome};
+use crate::error::Result;
 use crate::parallel::CommExt;
 use crate::recover;
 use crate::results::{Failure, OtherFactor, SafetyRun, SearchCost, SearchKind, StepResult, Trial, Undecided};

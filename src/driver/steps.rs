@@ -7,8 +7,6 @@
 
 use std::time::Instant;
 
-use anyhow::Result;
-
 use super::condense::Parts;
 use super::messages::ContactError;
 use super::plan::Plan;
@@ -17,6 +15,7 @@ use super::{progress, RunOptions};
 use crate::contact::system::InterfaceProblem;
 use crate::contact::traction::ConsistentTraction;
 use crate::contact::{self, History, Outcome, PairLaw};
+use crate::error::Result;
 use crate::model::Model;
 use crate::recover;
 use crate::results::{ContactRun, Counters, PairWater, StepResult};
@@ -68,8 +67,7 @@ impl<'a> Step<'a> {
         parts: &'a Parts,
         ranks: &Ranks,
     ) -> Result<Step<'a>> {
-        let traction =
-            agree(ranks.comm(), traction(scene, model, parts.problem.as_ref()).map_err(anyhow::Error::from))?;
+        let traction = agree(ranks.comm(), traction(scene, model, parts.problem.as_ref()).map_err(Into::into))?;
         Ok(Step { scene, model, plan, problem: parts.problem.as_ref(), laws: laws(model, scene), traction })
     }
 

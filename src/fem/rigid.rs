@@ -50,7 +50,7 @@ const FAR: f64 = 10.0;
 /// amplitudes along its modes (their sign is arbitrary: so is the sense).
 /// Geometry only; what a failing block does (sliding, toppling, ...) is
 /// [`crate::contact::mechanism::BlockState`].
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum RigidMotion {
     /// Along a unit direction (`solid`: in 3D, else in the plane).
     Translation { dir: [f64; 3], solid: bool },

@@ -50,7 +50,7 @@ const MARGIN: f64 = 1.15;
 const PICTURES: f64 = 72e6;
 
 /// A run's estimated peak, in bytes, and its main terms.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Estimate {
     /// The peak.
     pub total: f64,
@@ -62,7 +62,7 @@ pub struct Estimate {
 }
 
 /// A run whose estimated peak exceeds the memory available.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error, serde::Serialize, serde::Deserialize)]
 #[error(
     "{scene}: this run needs about {} of memory at its peak ({} DOFs, {} interface; {} for the factors of {parts} part(s){}), more than the {} available ({}). Make it smaller: {}--substructures K (smaller factors, K pieces per body), more MPI ranks (mpirun -np N, with the cargo feature mpi), or a coarser mesh (a larger lc in [gmsh] setnumber); or run it where there is more memory (--no-memory-check runs it anyway: the estimate errs high, but the system may stop the run)",
     human(need.total), dofs[0], dofs[1], human(need.factors),

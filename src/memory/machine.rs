@@ -10,7 +10,7 @@
 //! the process's virtual size.
 
 /// What the process may still allocate, and the limit that says so.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Available {
     pub bytes: f64,
     pub what: String,

@@ -529,7 +529,8 @@ enum Unpaired {
 
 /// The first five points of `lonely`, for a message.
 fn first(lonely: &[[f64; 3]]) -> String {
-    let first: Vec<String> = lonely.iter().take(5).map(|p| format!("({:.6}, {:.6}, {:.6})", p[0], p[1], p[2])).collect();
+    let first: Vec<String> =
+        lonely.iter().take(5).map(|p| format!("({:.6}, {:.6}, {:.6})", p[0], p[1], p[2])).collect();
     first.join(", ")
 }
 

@@ -200,7 +200,7 @@ impl Body {
     }
 }
 
-#[derive(Debug, thiserror::Error)]
+#[derive(Clone, Debug, thiserror::Error, serde::Serialize, serde::Deserialize)]
 pub enum ModelError {
     #[error("{scene}: {key} = \"{group}\" is not a physical group of the mesh `{mesh}`; it has: {known}. Check the name in the .geo's Physical statements")]
     UnknownGroup { scene: String, key: String, group: String, mesh: String, known: String },
@@ -213,9 +213,9 @@ pub enum ModelError {
     #[error("element {tag} of body \"{body}\" is inverted or degenerate (Jacobian determinant {det_j:.3e}): fix the mesh (node order or a collapsed element)")]
     Inverted { body: String, tag: u64, det_j: f64 },
     #[error("element {tag} ({kind}) of body {body} is folded or inverted: its Jacobian determinant is {det_j:.3e} {}, where it must be positive over the whole element, not only at the integration points. Fix the mesh: corner nodes in the wrong order, or a mid-side node beyond the opposite side (with gmsh: Mesh.HighOrderOptimize = 2, or a finer mesh where the boundary curves)", match node { Some(k) => format!("at its node {k} (gmsh order)"), None => "at its centre".to_string() })]
-    Folded { body: String, tag: u64, kind: &'static str, node: Option<usize>, det_j: f64 },
+    Folded { body: String, tag: u64, kind: String, node: Option<usize>, det_j: f64 },
     #[error("element {tag} ({kind}) of body {body} is degenerate: its corner nodes {} and {} (gmsh order) lie at the same point ({:.6}, {:.6}, {:.6}), a collapsed edge where its Jacobian determinant is zero. Remesh it: a {kind} must keep its corners apart (a quadrangle or hexahedron collapsed into a triangle, prism or pyramid is not one; let gmsh make triangles, tetrahedra or prisms there), or check the element's node order in the .msh", corners.0, corners.1, at[0], at[1], at[2])]
-    Collapsed { body: String, tag: u64, kind: &'static str, corners: (usize, usize), at: [f64; 3] },
+    Collapsed { body: String, tag: u64, kind: String, corners: (usize, usize), at: [f64; 3] },
 }
 
 impl Model {

@@ -37,7 +37,7 @@ pub fn folded(model: &Model) -> Result<(), ModelError> {
         for cell in &body.cells {
             let xs: Vec<[f64; 3]> = cell.nodes.iter().map(|&n| model.coords[n]).collect();
             if let Some((a, b)) = collapsed(cell.kind, &xs) {
-                let (body, tag, kind, at) = (body.label(), cell.tag, cell.kind.name(), xs[a]);
+                let (body, tag, kind, at) = (body.label(), cell.tag, cell.kind.name().to_string(), xs[a]);
                 return Err(ModelError::Collapsed { body, tag, kind, corners: (a + 1, b + 1), at });
             }
             let c = reference_centre(cell.kind);
@@ -49,7 +49,7 @@ pub fn folded(model: &Model) -> Result<(), ModelError> {
                     return Err(ModelError::Folded {
                         body: body.label(),
                         tag: cell.tag,
-                        kind: cell.kind.name(),
+                        kind: cell.kind.name().to_string(),
                         node,
                         det_j: e.det_j,
                     });

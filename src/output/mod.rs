@@ -29,9 +29,9 @@ mod water;
 
 pub use safety::{label as safety_label, other_factor_line, warnings as safety_warnings};
 
-use anyhow::Result;
 use serde_json::json;
 
+use crate::error::{Error, Result};
 use crate::fem::material::von_mises;
 use crate::mesh::Cell;
 use crate::model::Model;
@@ -151,11 +151,7 @@ fn finite(run: &Run) -> Result<()> {
             })
         };
         if let Some(what) = bad {
-            anyhow::bail!(
-                "{}: the results are not finite numbers at load step {}: {what}. The loads or prescribed displacements are too large for double precision (stresses above ~1e154 overflow the von Mises stress): give them in other units (kN or MPa instead of N or Pa). No result files were written",
-                run.scene.path.display(),
-                st.step
-            );
+            return Err(Error::NotFinite { scene: run.scene.path.clone(), step: st.step, what });
         }
     }
     Ok(())

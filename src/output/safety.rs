@@ -26,13 +26,13 @@ mod report;
 
 use std::fmt::Write;
 
-use anyhow::Result;
 use serde_json::{json, Value};
 
 use super::files::Staged;
 use super::picture::{self, Snapshot};
 use crate::contact::law::ContactState;
 use crate::contact::mechanism::{describe, Mechanism};
+use crate::error::Result;
 use crate::results::{state_counts, ContactRun, OtherFactor, Run, SafetyRun, SearchKind};
 use crate::scene::Safety;
 

@@ -56,12 +56,12 @@ impl Case {
     }
 
     /// Solves a scene file of this case with the library driver.
-    pub fn run(&self, scene: &Path) -> anyhow::Result<Run> {
+    pub fn run(&self, scene: &Path) -> subcontact::Result<Run> {
         self.run_with(scene, false)
     }
 
     /// Solves with every contact bonded (the monolithic solve) or not.
-    pub fn run_with(&self, scene: &Path, bonded: bool) -> anyhow::Result<Run> {
+    pub fn run_with(&self, scene: &Path, bonded: bool) -> subcontact::Result<Run> {
         let stem = scene.file_stem().expect("stem").to_string_lossy().to_string();
         let out = self.out(&format!("{stem}{}", if bonded { "-bonded" } else { "" }));
         driver::run(scene, &RunOptions { out: Some(out), bonded, ..Default::default() })
@@ -71,9 +71,10 @@ impl Case {
     /// fail in the contact iteration: the typed error.
     pub fn contact_error(&self, scene: &Path) -> ContactError {
         let err = self.run(scene).err().unwrap_or_else(|| panic!("{}: the run must fail", scene.display()));
-        err.downcast_ref::<ContactError>()
-            .unwrap_or_else(|| panic!("{}: a contact error, not: {err:#}", scene.display()))
-            .clone()
+        match err {
+            subcontact::Error::Contact(e) => e,
+            err => panic!("{}: a contact error, not: {err:#}", scene.display()),
+        }
     }
 
     /// Runs the real binary in this case's directory.

@@ -15,8 +15,6 @@
 //! did not: the search then goes upward from there, and the run still ends
 //! with the load steps' error.
 
-use anyhow::Result;
-
 use super::{mechanism, recovered, trials, undecided, Held, SafetyRun, Trials};
 use crate::contact::safety::{self as reduction, Verdict};
 use crate::contact::{self, History, Outcome};
@@ -25,6 +23,7 @@ use crate::driver::messages::{ContactError, SafetyError};
 use crate::driver::ranks::Ranks;
 use crate::driver::steps::{LoadSteps, Step};
 use crate::driver::RunOptions;
+use crate::error::{Error, Result};
 use crate::parallel::CommExt;
 use crate::results::{Failure, SearchCost};
 
@@ -33,7 +32,7 @@ use crate::results::{Failure, SearchCost};
 pub(in crate::driver) struct Below {
     pub done: LoadSteps,
     pub safety: Option<SafetyRun>,
-    pub error: anyhow::Error,
+    pub error: Error,
 }
 
 /// The load steps' error `err` of a scene with a safety search: when they
@@ -45,13 +44,13 @@ pub(in crate::driver) fn below_one(
     parts: &Parts,
     opts: &RunOptions,
     ranks: &Ranks,
-    err: anyhow::Error,
-) -> Result<Below, anyhow::Error> {
+    err: Error,
+) -> Result<Below> {
     let Some(options) = &step.scene.safety else { return Err(err) };
-    let at_one = err
-        .downcast_ref::<ContactError>()
-        .filter(|e| matches!(e, ContactError::Sliding { .. } | ContactError::NotHeld { .. }))
-        .cloned();
+    let at_one = match &err {
+        Error::Contact(e @ (ContactError::Sliding { .. } | ContactError::NotHeld { .. })) => Some(e.clone()),
+        _ => None,
+    };
     if !ranks.comm().broadcast(&at_one.is_some()) {
         return Err(err);
     }
@@ -128,7 +127,7 @@ struct Found {
 
 impl Found {
     /// The error the run ends with.
-    fn error(&self, step: &Step, options: &crate::scene::Safety, at_one: ContactError) -> anyhow::Error {
+    fn error(&self, step: &Step, options: &crate::scene::Safety, at_one: ContactError) -> Error {
         SafetyError::Unsafe {
             scene: step.scene.path.clone(),
             at_one,

@@ -1,0 +1,248 @@
+//! The library's error ([`Error`]): what a run, `check`, `bench` or `paper`
+//! ends with when it fails. Each stage keeps its own typed error (the
+//! scene's, the mesh's, the model's, the contact iteration's, the result
+//! files', ...), which comes through whole as a variant; the variants of
+//! their own say what the driver adds: which file it was reading or
+//! writing. `Display` is the one paragraph a user reads, its source
+//! included (`context: source`), so a caller that prints the chain of
+//! sources leaves out the causes the message already quotes.
+//!
+//! Between MPI ranks an error travels as [`Wire`]: the variants that are
+//! plain data (the model's, the contact iteration's, the memory check's,
+//! ...) arrive as the same variant; those that hold an operating-system
+//! error (reading and writing files, running gmsh: rank 0's work) arrive
+//! as their message, [`Error::Remote`].
+
+use std::path::PathBuf;
+
+use crate::driver::messages::{ContactError, PlanError, SafetyError};
+use crate::fem::sparse::FactorError;
+use crate::memory::TooLarge;
+use crate::mesh::gmsh::GmshError;
+use crate::mesh::joints::JointError;
+use crate::mesh::msh::MshError;
+use crate::model::ModelError;
+use crate::output::files::OutputError;
+use crate::output::picture::PictureError;
+use crate::output::plot::PlotError;
+use crate::scene::SceneError;
+
+/// A result of the library's surface.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// Why a run (or `check`, `bench`, `paper`) failed.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    #[error(transparent)]
+    Mesh(#[from] MshError),
+    #[error(transparent)]
+    Gmsh(#[from] GmshError),
+    /// A `[[joints]]` key of the scene `scene` the cutter cannot follow.
+    #[error("{}: {source}", scene.display())]
+    JointKey {
+        scene: PathBuf,
+        #[source]
+        source: JointError,
+    },
+    /// gmsh meshed the .geo `geo` into nothing a run can use: the .geo
+    /// names no physical group with elements.
+    #[error("gmsh made no mesh of `{}`: the .geo defines no physical groups with elements to mesh. Define the bodies, contacts, supports and loads with Physical Surface/Volume/Curve/Point in the .geo", geo.display())]
+    NoMesh { geo: PathBuf },
+    /// The mesh gmsh made of `geo` is not one a run can read.
+    #[error("the mesh gmsh made of `{}`: {source}", geo.display())]
+    BadMesh {
+        geo: PathBuf,
+        #[source]
+        source: MshError,
+    },
+    /// The mesh gmsh made of `geo` could not be read back.
+    #[error("reading the mesh gmsh made of {}: {source}", geo.display())]
+    ReadMesh {
+        geo: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    /// A .geo scene meshed with no result directory to mesh into (a
+    /// caller's mistake).
+    #[error("a .geo scene is meshed into a result directory")]
+    NoStage,
+    /// Rank 0 meshed the scene but said nowhere to read the mesh (a bug).
+    #[error("rank 0 sent no mesh to read")]
+    NoMeshSent,
+    #[error(transparent)]
+    Model(#[from] ModelError),
+    #[error(transparent)]
+    Plan(#[from] PlanError),
+    #[error(transparent)]
+    Memory(#[from] TooLarge),
+    #[error(transparent)]
+    Factor(#[from] FactorError),
+    #[error(transparent)]
+    Contact(#[from] ContactError),
+    #[error(transparent)]
+    Safety(#[from] SafetyError),
+    /// Results that are not finite numbers (an overflow), at load step
+    /// `step` of the scene `scene`: `what` and where.
+    #[error("{}: the results are not finite numbers at load step {step}: {what}. The loads or prescribed displacements are too large for double precision (stresses above ~1e154 overflow the von Mises stress): give them in other units (kN or MPa instead of N or Pa). No result files were written", scene.display())]
+    NotFinite { scene: PathBuf, step: usize, what: String },
+    /// summary.json could not be encoded.
+    #[error(transparent)]
+    Summary(#[from] serde_json::Error),
+    #[error(transparent)]
+    Output(#[from] OutputError),
+    #[error(transparent)]
+    Picture(#[from] PictureError),
+    /// The result files of a run could not be written into `out`.
+    #[error("writing results to {}: {source}", out.display())]
+    Results {
+        out: PathBuf,
+        #[source]
+        source: OutputError,
+    },
+    /// A file the command reads, `path`, could not be.
+    #[error("reading {}: {source}", path.display())]
+    Read {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    /// A file the command writes, `path`, could not be.
+    #[error("writing {}: {source}", path.display())]
+    Write {
+        path: PathBuf,
+        #[source]
+        source: OutputError,
+    },
+    /// `bench` options out of their range.
+    #[error("bench: --orders takes 1 and/or 2, --levels at least 1, --ratio above 1")]
+    BenchOptions,
+    /// `bench` refines the mesh with gmsh: the scene `scene` must mesh a .geo.
+    #[error("{}: bench needs `mesh = \"<file>.geo\"` so that gmsh can refine it", scene.display())]
+    BenchNeedsGeo { scene: PathBuf },
+    /// A plot, `file`, could not be drawn.
+    #[error("drawing {file}: {source}")]
+    Drawing {
+        file: &'static str,
+        #[source]
+        source: PlotError,
+    },
+    /// The error of another MPI rank, `rank`, that travels only as its
+    /// message (it holds an operating-system error).
+    #[error("{message}")]
+    Remote { rank: usize, message: String },
+}
+
+/// An [`Error`] as it travels between MPI ranks.
+#[derive(Debug, serde::Serialize, serde::Deserialize)]
+pub enum Wire {
+    Model(ModelError),
+    Plan(PlanError),
+    Memory(TooLarge),
+    Factor(FactorError),
+    Contact(ContactError),
+    Safety(SafetyError),
+    NotFinite {
+        scene: PathBuf,
+        step: usize,
+        what: String,
+    },
+    /// Any other error, of rank `rank`, as its message.
+    Message {
+        rank: usize,
+        message: String,
+    },
+}
+
+impl Error {
+    /// The error to send from rank `rank` to the others.
+    pub fn to_wire(&self, rank: usize) -> Wire {
+        match self {
+            Error::Model(e) => Wire::Model(e.clone()),
+            Error::Plan(e) => Wire::Plan(e.clone()),
+            Error::Memory(e) => Wire::Memory(e.clone()),
+            Error::Factor(e) => Wire::Factor(e.clone()),
+            Error::Contact(e) => Wire::Contact(e.clone()),
+            Error::Safety(e) => Wire::Safety(e.clone()),
+            Error::NotFinite { scene, step, what } => {
+                Wire::NotFinite { scene: scene.clone(), step: *step, what: what.clone() }
+            }
+            Error::Remote { rank, message } => Wire::Message { rank: *rank, message: message.clone() },
+            e => Wire::Message { rank, message: e.to_string() },
+        }
+    }
+}
+
+impl From<Wire> for Error {
+    fn from(w: Wire) -> Error {
+        match w {
+            Wire::Model(e) => Error::Model(e),
+            Wire::Plan(e) => Error::Plan(e),
+            Wire::Memory(e) => Error::Memory(e),
+            Wire::Factor(e) => Error::Factor(e),
+            Wire::Contact(e) => Error::Contact(e),
+            Wire::Safety(e) => Error::Safety(e),
+            Wire::NotFinite { scene, step, what } => Error::NotFinite { scene, step, what },
+            Wire::Message { rank, message } => Error::Remote { rank, message },
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::driver::messages::At;
+
+    /// The error after a trip through the bytes that go between ranks.
+    fn sent(e: &Error) -> Error {
+        let bytes = bincode::serialize(&e.to_wire(2)).expect("encodes");
+        bincode::deserialize::<Wire>(&bytes).expect("decodes").into()
+    }
+
+    #[test]
+    fn plain_data_errors_travel_as_the_same_variant_with_the_same_text() {
+        let at = At { step: Some(2), iteration: 7, states: [1, 2, 3] };
+        let contact =
+            ContactError::NotHeld { scene: "dam.toml".into(), at, bodies: vec!["block".into()], apex: vec![] };
+        let e: Error = contact.clone().into();
+        let back = sent(&e);
+        assert!(matches!(&back, Error::Contact(c) if *c == contact), "{back:?}");
+        assert_eq!(back.to_string(), e.to_string());
+
+        let folded =
+            ModelError::Folded { body: "b".into(), tag: 12, kind: "tet10".into(), node: Some(3), det_j: -1e-3 };
+        let e: Error = folded.into();
+        let back = sent(&e);
+        assert!(matches!(&back, Error::Model(ModelError::Folded { tag: 12, node: Some(3), .. })), "{back:?}");
+        assert_eq!(back.to_string(), e.to_string());
+
+        let e: Error = PlanError::TooManyRanks { scene: "s.toml".into(), ranks: 4, parts: 2, substructures: 1 }.into();
+        assert!(matches!(sent(&e), Error::Plan(PlanError::TooManyRanks { ranks: 4, parts: 2, .. })));
+        assert!(matches!(
+            sent(&FactorError::NotPositiveDefinite.into()),
+            Error::Factor(FactorError::NotPositiveDefinite)
+        ));
+    }
+
+    #[test]
+    fn an_error_holding_an_os_error_travels_as_its_text() {
+        let source = std::io::Error::from_raw_os_error(13);
+        let e: Error = SceneError::Read { path: "s.toml".into(), source }.into();
+        let back = sent(&e);
+        assert!(matches!(&back, Error::Remote { rank: 2, message } if *message == e.to_string()), "{back:?}");
+        // and travels on as it came
+        assert!(matches!(sent(&back), Error::Remote { rank: 2, .. }));
+    }
+
+    #[test]
+    fn a_context_variant_says_the_context_then_its_source() {
+        let source = std::io::Error::from_raw_os_error(2);
+        let e = Error::Read { path: "results/x/report.md".into(), source };
+        assert_eq!(e.to_string(), "reading results/x/report.md: No such file or directory (os error 2)");
+        assert_eq!(
+            std::error::Error::source(&e).map(|s| s.to_string()).as_deref(),
+            Some("No such file or directory (os error 2)")
+        );
+    }
+}
