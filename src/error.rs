@@ -44,7 +44,7 @@ pub enum Error {
     JointKey {
         scene: PathBuf,
         #[source]
-        source: JointError,
+        source: Box<JointError>,
     },
     /// gmsh meshed the .geo `geo` into nothing a run can use: the .geo
     /// names no physical group with elements.
@@ -72,7 +72,7 @@ pub enum Error {
     #[error("rank 0 sent no mesh to read")]
     NoMeshSent,
     #[error(transparent)]
-    Model(#[from] ModelError),
+    Model(Box<ModelError>),
     #[error(transparent)]
     Plan(#[from] PlanError),
     #[error(transparent)]
@@ -80,9 +80,9 @@ pub enum Error {
     #[error(transparent)]
     Factor(#[from] FactorError),
     #[error(transparent)]
-    Contact(#[from] ContactError),
+    Contact(Box<ContactError>),
     #[error(transparent)]
-    Safety(#[from] SafetyError),
+    Safety(Box<SafetyError>),
     /// Results that are not finite numbers (an overflow), at load step
     /// `step` of the scene `scene`: `what` and where.
     #[error("{}: the results are not finite numbers at load step {step}: {what}. The loads or prescribed displacements are too large for double precision (stresses above ~1e154 overflow the von Mises stress): give them in other units (kN or MPa instead of N or Pa). No result files were written", scene.display())]
@@ -134,6 +134,20 @@ pub enum Error {
     Remote { rank: usize, message: String },
 }
 
+/// The errors large enough to be boxed (an error is rare, a `Result` of
+/// every stage carries its size).
+macro_rules! boxed {
+    ($($variant:ident($error:ty)),*) => {$(
+        impl From<$error> for Error {
+            fn from(e: $error) -> Error {
+                Error::$variant(Box::new(e))
+            }
+        }
+    )*};
+}
+
+boxed!(Model(ModelError), Contact(ContactError), Safety(SafetyError));
+
 /// An [`Error`] as it travels between MPI ranks.
 #[derive(Debug, serde::Serialize, serde::Deserialize)]
 pub enum Wire {
@@ -159,12 +173,12 @@ impl Error {
     /// The error to send from rank `rank` to the others.
     pub fn to_wire(&self, rank: usize) -> Wire {
         match self {
-            Error::Model(e) => Wire::Model(e.clone()),
+            Error::Model(e) => Wire::Model(e.as_ref().clone()),
             Error::Plan(e) => Wire::Plan(e.clone()),
             Error::Memory(e) => Wire::Memory(e.clone()),
             Error::Factor(e) => Wire::Factor(e.clone()),
-            Error::Contact(e) => Wire::Contact(e.clone()),
-            Error::Safety(e) => Wire::Safety(e.clone()),
+            Error::Contact(e) => Wire::Contact(e.as_ref().clone()),
+            Error::Safety(e) => Wire::Safety(e.as_ref().clone()),
             Error::NotFinite { scene, step, what } => {
                 Wire::NotFinite { scene: scene.clone(), step: *step, what: what.clone() }
             }
@@ -177,12 +191,12 @@ impl Error {
 impl From<Wire> for Error {
     fn from(w: Wire) -> Error {
         match w {
-            Wire::Model(e) => Error::Model(e),
+            Wire::Model(e) => e.into(),
             Wire::Plan(e) => Error::Plan(e),
             Wire::Memory(e) => Error::Memory(e),
             Wire::Factor(e) => Error::Factor(e),
-            Wire::Contact(e) => Error::Contact(e),
-            Wire::Safety(e) => Error::Safety(e),
+            Wire::Contact(e) => e.into(),
+            Wire::Safety(e) => e.into(),
             Wire::NotFinite { scene, step, what } => Error::NotFinite { scene, step, what },
             Wire::Message { rank, message } => Error::Remote { rank, message },
         }
@@ -207,14 +221,17 @@ mod tests {
             ContactError::NotHeld { scene: "dam.toml".into(), at, bodies: vec!["block".into()], apex: vec![] };
         let e: Error = contact.clone().into();
         let back = sent(&e);
-        assert!(matches!(&back, Error::Contact(c) if *c == contact), "{back:?}");
+        assert!(matches!(&back, Error::Contact(c) if **c == contact), "{back:?}");
         assert_eq!(back.to_string(), e.to_string());
 
         let folded =
             ModelError::Folded { body: "b".into(), tag: 12, kind: "tet10".into(), node: Some(3), det_j: -1e-3 };
         let e: Error = folded.into();
         let back = sent(&e);
-        assert!(matches!(&back, Error::Model(ModelError::Folded { tag: 12, node: Some(3), .. })), "{back:?}");
+        assert!(
+            matches!(&back, Error::Model(m) if matches!(**m, ModelError::Folded { tag: 12, node: Some(3), .. })),
+            "{back:?}"
+        );
         assert_eq!(back.to_string(), e.to_string());
 
         let e: Error = PlanError::TooManyRanks { scene: "s.toml".into(), ranks: 4, parts: 2, substructures: 1 }.into();

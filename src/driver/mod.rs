@@ -140,7 +140,7 @@ pub fn mesh_into(scene: &Scene, stage: Option<&mut Stage>, allow_geo_commands: b
     if !cached {
         gmsh::run_in(&job, stage.mesh_dir()?.fd()).map_err(|e| match e {
             gmsh::GmshError::Joints(j) if j.is_about_scene() => {
-                Error::JointKey { scene: scene.path.clone(), source: j }
+                Error::JointKey { scene: scene.path.clone(), source: Box::new(j) }
             }
             e => e.into(),
         })?;
@@ -346,7 +346,7 @@ fn ended(run: &Run, results: Option<PathBuf>, failed: Option<Error>) -> Option<E
     };
     if let Some(e) = failed {
         return Some(match e {
-            Error::Safety(s) => written(s).into(),
+            Error::Safety(s) => written(*s).into(),
             e => e,
         });
     }

@@ -418,7 +418,7 @@ mod tests {
         let outcomes = agree_on(3, |r| if r == 0 { Ok(0) } else { Err(not_held(r).into()) });
         for (r, o) in outcomes.into_iter().enumerate() {
             match o {
-                Err(Error::Model(ModelError::Invalid { msg, .. })) => assert_eq!(msg, "part on rank 1", "rank {r}"),
+                Err(Error::Model(m)) if matches!(&*m, ModelError::Invalid { msg, .. } if msg == "part on rank 1") => {}
                 o => panic!("rank {r}: rank 1's model error, not {o:?}"),
             }
         }

@@ -72,7 +72,7 @@ impl Case {
     pub fn contact_error(&self, scene: &Path) -> ContactError {
         let err = self.run(scene).err().unwrap_or_else(|| panic!("{}: the run must fail", scene.display()));
         match err {
-            subcontact::Error::Contact(e) => e,
+            subcontact::Error::Contact(e) => *e,
             err => panic!("{}: a contact error, not: {err:#}", scene.display()),
         }
     }

@@ -48,7 +48,9 @@ pub(in crate::driver) fn below_one(
 ) -> Result<Below> {
     let Some(options) = &step.scene.safety else { return Err(err) };
     let at_one = match &err {
-        Error::Contact(e @ (ContactError::Sliding { .. } | ContactError::NotHeld { .. })) => Some(e.clone()),
+        Error::Contact(e) if matches!(**e, ContactError::Sliding { .. } | ContactError::NotHeld { .. }) => {
+            Some(e.as_ref().clone())
+        }
         _ => None,
     };
     if !ranks.comm().broadcast(&at_one.is_some()) {
