@@ -72,26 +72,7 @@ pub fn stage(run: &Run, out: &std::path::Path) -> Result<(Staged, Vec<String>)> 
         staged.add("bearing.csv", bearing::csv(run, &b).into_bytes());
     }
     if run.steps.len() > 1 {
-        // one file per load step and ParaView collections over them, the
-        // time of a step its load factor
-        let mut bodies = Vec::new();
-        let mut contacts = Vec::new();
-        let times = step_times(&run.scene);
-        for st in &run.steps {
-            let time = times.get(st.step.wrapping_sub(1)).copied().unwrap_or(st.step as f64);
-            let f = format!("{name}_step{:03}.vtu", st.step);
-            staged.add(&f, bodies_vtu(model, &st.u, &st.stresses, displacement, &[])?);
-            bodies.push((time, f));
-            if let Some(c) = &st.contact {
-                let f = format!("{name}_contact_step{:03}.vtu", st.step);
-                staged.add(&f, contact_vtu(model, c)?);
-                contacts.push((time, f));
-            }
-        }
-        staged.add(&format!("{name}.pvd"), vtu::pvd_bytes(&bodies));
-        if !contacts.is_empty() {
-            staged.add(&format!("{name}_contact.pvd"), vtu::pvd_bytes(&contacts));
-        }
+        stage_steps(run, &mut staged, displacement)?;
     }
     if let Some(csv) = sections::csv(run) {
         staged.add("sections.csv", csv.into_bytes());
@@ -124,6 +105,31 @@ pub fn stage(run: &Run, out: &std::path::Path) -> Result<(Staged, Vec<String>)> 
         staged.add(&file, bytes);
     }
     Ok((staged, drawn.skipped))
+}
+
+/// One file per load step and ParaView collections over them, the time of
+/// a step its load factor (a run of several steps).
+fn stage_steps(run: &Run, staged: &mut Staged, displacement: bool) -> Result<()> {
+    let (name, model) = (&run.scene.name, &run.model);
+    let mut bodies = Vec::new();
+    let mut contacts = Vec::new();
+    let times = step_times(&run.scene);
+    for st in &run.steps {
+        let time = times.get(st.step.wrapping_sub(1)).copied().unwrap_or(st.step as f64);
+        let f = format!("{name}_step{:03}.vtu", st.step);
+        staged.add(&f, bodies_vtu(model, &st.u, &st.stresses, displacement, &[])?);
+        bodies.push((time, f));
+        if let Some(c) = &st.contact {
+            let f = format!("{name}_contact_step{:03}.vtu", st.step);
+            staged.add(&f, contact_vtu(model, c)?);
+            contacts.push((time, f));
+        }
+    }
+    staged.add(&format!("{name}.pvd"), vtu::pvd_bytes(&bodies));
+    if !contacts.is_empty() {
+        staged.add(&format!("{name}_contact.pvd"), vtu::pvd_bytes(&contacts));
+    }
+    Ok(())
 }
 
 /// Results that are not numbers (an overflow: a traction of -1e300 gives
@@ -280,11 +286,18 @@ fn bodies_vtu(
     )?)
 }
 
-/// The interfaces, as body I's facets, with the pair values at their
-/// nodes, then one vertex cell per pair (at its node k) whose cell data
-/// `pair_status` is its state (0 open, 1 slip, 2 stick; -1 on the facets);
-/// cell data `interface` is the contact of every cell.
-fn contact_vtu(model: &Model, c: &ContactRun) -> Result<Vec<u8>> {
+/// The contact VTU's points and cells: every interface facet, then a
+/// vertex cell per pair; the pair at each point (`usize::MAX`: none), and
+/// each cell's interface and pair state (-1 for a facet).
+struct ContactMesh {
+    points: Vec<[f64; 3]>,
+    pairs: Vec<usize>,
+    cells: Vec<Cell>,
+    iface_id: Vec<i32>,
+    pair_status: Vec<i32>,
+}
+
+fn contact_mesh(model: &Model, c: &ContactRun) -> ContactMesh {
     let mut pair_of = vec![usize::MAX; model.n_nodes()];
     for (i, p) in model.pairs.iter().enumerate() {
         pair_of[p.k] = i;
@@ -326,6 +339,15 @@ fn contact_vtu(model: &Model, c: &ContactRun) -> Result<Vec<u8>> {
         iface_id.push(p.contact as i32);
         pair_status.push(c.states[i].code());
     }
+    ContactMesh { points, pairs, cells, iface_id, pair_status }
+}
+
+/// The interfaces, as body I's facets, with the pair values at their
+/// nodes, then one vertex cell per pair (at its node k) whose cell data
+/// `pair_status` is its state (0 open, 1 slip, 2 stick; -1 on the facets);
+/// cell data `interface` is the contact of every cell.
+fn contact_vtu(model: &Model, c: &ContactRun) -> Result<Vec<u8>> {
+    let ContactMesh { points, pairs, cells, iface_id, pair_status } = contact_mesh(model, c);
     let get = |f: &dyn Fn(usize) -> f64| -> Vec<f64> {
         pairs.iter().map(|&p| if p == usize::MAX { 0.0 } else { f(p) }).collect()
     };
@@ -466,6 +488,23 @@ fn probe_rows(s: &mut String, prefix: &str, probes: &[(String, Vec<Sample>)]) {
     }
 }
 
+/// summary.json's `steps`: each load step's factors and contact iteration.
+fn steps_summary(run: &Run) -> serde_json::Value {
+    json!(run
+        .steps
+        .iter()
+        .map(|st| {
+            let mut j = json!({ "step": st.step, "ramp": st.load_factor, "case_factors": st.case_factors });
+            if let Some(c) = &st.contact {
+                let k = state_counts(&c.states);
+                j["contact"] = json!({ "iterations": c.summary.iterations, "converged": c.summary.converged, "cycled": c.summary.cycled,
+                    "states": { "stick": k[2], "slip": k[1], "open": k[0] }, "cuts": c.summary.cuts, "pieces": c.summary.pieces });
+            }
+            j
+        })
+        .collect::<Vec<_>>())
+}
+
 fn summary(run: &Run) -> serde_json::Value {
     let st = &run.stats;
     let mut v = json!({
@@ -513,19 +552,7 @@ fn summary(run: &Run) -> serde_json::Value {
             v["bearing"] = bearing::summary(run, &b);
         }
     }
-    v["steps"] = json!(run
-        .steps
-        .iter()
-        .map(|st| {
-            let mut j = json!({ "step": st.step, "ramp": st.load_factor, "case_factors": st.case_factors });
-            if let Some(c) = &st.contact {
-                let k = state_counts(&c.states);
-                j["contact"] = json!({ "iterations": c.summary.iterations, "converged": c.summary.converged, "cycled": c.summary.cycled,
-                    "states": { "stick": k[2], "slip": k[1], "open": k[0] }, "cuts": c.summary.cuts, "pieces": c.summary.pieces });
-            }
-            j
-        })
-        .collect::<Vec<_>>());
+    v["steps"] = steps_summary(run);
     let checks = &run.checks;
     if let Some(e) = &checks.errors {
         v["errors"] = json!({ "displacement_l2": e.displacement_l2, "stress_l2": e.stress_l2, "contact_max": checks.contact_error_max });
