@@ -168,8 +168,9 @@ pub fn paper(fine: &Path, paper: &Path, verbose: bool) -> Result<()> {
     let fine_out = opts.out_dir(&run_fine.scene);
     print_summary(&run_fine, &fine_out);
     let lame = run_paper.scene.analytic.as_ref().and_then(|a| analytic::lame(a, &run_paper.model));
-    let runs = [("paper mesh (30 hex8)", &run_paper.solution()), ("default mesh", &run_fine.solution())];
-    let tables = lame.map(|l| paper::tables(&l, &runs, true)).unwrap_or_default();
+    let (on_paper, on_fine) = (paper::tables(&run_paper.solution()), paper::tables(&run_fine.solution()));
+    let runs = [("paper mesh (30 hex8)", &on_paper), ("default mesh", &on_fine)];
+    let tables = lame.map(|l| crate::output::closed_form::paper_tables(&l, &runs, true)).unwrap_or_default();
     outln!("{tables}");
     // read and write report.md in one transaction on the directory
     let lock = crate::output::files::Lock::acquire(&fine_out, &mut |m| errln!("subcontact: {m}"))?;

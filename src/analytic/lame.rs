@@ -14,6 +14,7 @@ use super::Exact;
 use crate::fem::Analysis;
 
 /// Lamé's cylinder for one analysis and material.
+#[derive(Clone, Debug)]
 pub struct Lame {
     pub a: f64,
     pub b: f64,

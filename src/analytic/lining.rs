@@ -1,7 +1,8 @@
 //! Thrust and bending moment of a tunnel lining from its finite element
 //! stresses, and their comparison with Einstein & Schwartz's closed form
-//! ([`super::LinedTunnel`]): the check of `[analytic] kind = "lined_tunnel"`,
-//! a section of report.md and the `lining` entry of summary.json.
+//! ([`super::LinedTunnel`]): the check of `[analytic] kind = "lined_tunnel"`
+//! (numbers; `output::closed_form` writes them as a section of report.md
+//! and the `lining` entry of summary.json).
 //!
 //! A lining is a ring-shaped body between radii ri and ro about the origin.
 //! On the radial line at angle theta (from +x, the springline, towards +y)
@@ -19,16 +20,11 @@
 //! the lining's elements at each point (averaged where it lies on an edge
 //! shared by several).
 
-use std::fmt::Write;
-
-use serde_json::json;
-
-use super::{Check, Exact, LinedTunnel, Solution, TunnelSlip};
+use super::{Exact, LinedTunnel, Solution};
 use crate::fem::element;
 use crate::fem::material::{d_matrix, full_stress};
 use crate::fem::{quadrature, shape};
 use crate::model::Model;
-use crate::output::number::sig;
 
 /// Gauss points across the whole thickness (over several elements, whose
 /// stresses jump slightly at their edges): 16 points change T and M by
@@ -196,118 +192,19 @@ pub fn compare(tunnel: &LinedTunnel, sol: &Solution) -> Option<Comparison> {
     })
 }
 
-/// The check: the report section, and the comparison in summary.json's
-/// `lining` (when the lining covers some of the angles).
-pub(super) fn check(tunnel: &LinedTunnel, sol: &Solution) -> Check {
-    let c = compare(tunnel, sol);
-    let mut report = report_section(tunnel, c.as_ref());
-    if c.is_some() {
-        report += &caveat(tunnel, reach(sol.model));
-    }
-    let mut check = Check { report, ..Default::default() };
-    if let Some(c) = &c {
-        check.summary.insert("lining".into(), summary(c));
-    }
-    check
+/// The check of a lined tunnel: the closed form, this run's lining against
+/// it (None when the lining covers none of the angles) and how far the
+/// model reaches from the tunnel's centre ([`reach`]).
+#[derive(Clone, Debug)]
+pub struct TunnelCheck {
+    pub tunnel: LinedTunnel,
+    pub comparison: Option<Comparison>,
+    pub reach: f64,
 }
 
-/// summary.json's `lining`: the errors, their scales and the rows.
-pub fn summary(c: &Comparison) -> serde_json::Value {
-    json!({
-        "thrust_error": c.thrust_error, "moment_error": c.moment_error,
-        "published_moment_error": c.published_moment_error, "displacement_error": c.displacement_error,
-        "thrust_scale": c.thrust_scale, "moment_scale": c.moment_scale,
-        "rows": c.rows.iter().map(|r| json!({ "theta_deg": r.theta_deg, "thrust": r.thrust, "thrust_theory": r.thrust_theory,
-            "moment": r.moment, "moment_theory": r.moment_theory })).collect::<Vec<_>>(),
-    })
-}
-
-/// The report section: the tunnel's data, its coefficients, and the table of
-/// thrust and moment against theory (`c`, None when the lining covers none
-/// of the angles).
-pub fn report_section(tu: &LinedTunnel, c: Option<&Comparison>) -> String {
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        "\n## Lining: thrust and moment against Einstein & Schwartz (1979), a thin ring in an infinite elastic plane\n"
-    );
-    let co = tu.coefficients();
-    let (ri, ro) = tu.lining_radii();
-    let _ = writeln!(
-        s,
-        "Lining `{}` (E = {}, nu = {}) in ground `{}` (E = {}, nu = {}); middle-surface radius R = {}, thickness t = {} (r = {} .. {}); far field P = {} (vertical), K P = {} (horizontal); interface: {}.",
-        tu.lining.group,
-        tu.lining.e,
-        tu.lining.nu,
-        tu.ground.group,
-        tu.ground.e,
-        tu.ground.nu,
-        tu.radius,
-        tu.thickness,
-        ri,
-        ro,
-        tu.p,
-        tu.k * tu.p,
-        match tu.slip {
-            TunnelSlip::None => "no slip (bonded)",
-            TunnelSlip::Full => "full slip (no shear)",
-        }
-    );
-    let _ = writeln!(
-        s,
-        "C* = {:.5}, F* = {:.5}, a0* = {:.6}, a2* = {:.6}{}.",
-        co.c,
-        co.f,
-        co.a0,
-        co.a2,
-        co.b2.map(|b| format!(", b2* = {b:.6}")).unwrap_or_default()
-    );
-    let (_, _, m2) = tu.modes();
-    let m0 = tu.uniform_moment();
-    let _ = writeln!(
-        s,
-        "\nThrust T (compression positive) and moment M about the middle surface (positive: tension on the outer fibre) per unit length; theta from the springline (+x) towards the crown (+y). FE: the hoop stress integrated through the thickness at {THICKNESS_POINTS} Gauss points. Theory: T as published; M = M0 + M2 cos 2theta, the published M2 = {m2:.5} plus the uniform moment M0 = T0 R I/(A R^2 + I) = {m0:.5} of the same thin ring (its curvature change under the uniform shortening, which the published formula leaves out). Errors relative to the largest |T| and |M| of the theory.\n"
-    );
-    let Some(c) = c else {
-        let _ = writeln!(s, "The lining body `{}` covers none of the angles 0, {STEP_DEG}, ... degrees between r = {ri} and {ro}: check radius and thickness in [analytic].", tu.lining.group);
-        return s;
-    };
-    let _ = writeln!(
-        s,
-        "| theta (deg) | T FE | T thin ring | FE - thin ring | M FE | M thin ring | FE - thin ring |\n|---|---|---|---|---|---|---|"
-    );
-    for r in &c.rows {
-        let _ = writeln!(
-            s,
-            "| {:.1} | {:.5} | {:.5} | {:+.2} % | {:.5} | {:.5} | {:+.2} % |",
-            r.theta_deg,
-            r.thrust,
-            r.thrust_theory,
-            100.0 * (r.thrust - r.thrust_theory) / c.thrust_scale,
-            r.moment,
-            r.moment_theory,
-            100.0 * (r.moment - r.moment_theory) / c.moment_scale.max(f64::MIN_POSITIVE)
-        );
-    }
-    let _ = writeln!(
-        s,
-        "\nLargest difference from the thin ring: thrust {:.2} % of max |T| = {:.5}, moment {:.2} % of max |M| = {:.5}.",
-        100.0 * c.thrust_error,
-        c.thrust_scale,
-        100.0 * c.moment_error,
-        c.moment_scale
-    );
-    let _ = writeln!(
-        s,
-        "Against the published moment M2 cos 2theta alone: {:.2} % of |M2|.",
-        100.0 * c.published_moment_error
-    );
-    let _ = writeln!(
-        s,
-        "Displacement of the lining's middle surface against the thin ring's: largest difference {:.2} % of max |u|. (The displacement L2 difference above covers the whole block, whose far part departs from the closed form's infinite plane.)",
-        100.0 * c.displacement_error
-    );
-    s
+/// The check: the comparison, and the model's reach for the caveat on it.
+pub(super) fn check(tunnel: &LinedTunnel, sol: &Solution) -> TunnelCheck {
+    TunnelCheck { tunnel: tunnel.clone(), comparison: compare(tunnel, sol), reach: reach(sol.model) }
 }
 
 /// How far the model reaches from the tunnel's centre (the origin): the
@@ -320,17 +217,4 @@ pub fn reach(model: &Model) -> f64 {
         y = y.max(c[1].abs());
     }
     x.min(y)
-}
-
-/// What the comparison's differences are made of besides the model's own
-/// error: the closed form's thin ring (`t/R`) and infinite plane (the
-/// model reaching `reach` from the centre).
-pub fn caveat(tu: &LinedTunnel, reach: f64) -> String {
-    let ratio = tu.thickness / tu.radius;
-    format!(
-        "\nThe differences are not the model's error alone: Einstein & Schwartz's ring is thin (its thrust and moment act on the middle surface, the ring's own shear and thickness are left out), and this lining has t/R = {}{}; their ground is an infinite plane, and this model's reaches {} R from the centre (its boundary stiffens or softens the ground by an amount that falls with the distance). A difference of the order of t/R is the closed form's, not the mesh's.\n",
-        sig(ratio, 3),
-        if ratio > 0.05 { ", beyond the thin ring's range (t/R well below 0.05)" } else { "" },
-        sig(reach / tu.radius, 3),
-    )
 }

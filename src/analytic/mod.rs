@@ -7,8 +7,8 @@
 //! kind compares what its application is about ([`check`]): the paper's
 //! Tables 1 and 2 for the cylinder ([`paper`]), the lining's thrust and
 //! moment for the tunnel ([`lining`]). A check reads the solved run
-//! ([`Solution`]) and returns report sections and summary entries
-//! ([`Check`]), which the output writers include as they are.
+//! ([`Solution`]) and returns numbers ([`Check`]); `output::closed_form`
+//! formats them for report.md and summary.json.
 
 pub mod lame;
 pub mod lining;
@@ -52,28 +52,6 @@ pub enum Analytic {
     /// The ground's `initial_stress`, when given, must be the far field
     /// `[-K P, -P, szz, 0]`; the lining starts stress-free.
     LinedTunnel(LinedTunnel),
-}
-
-impl Analytic {
-    /// The closed form and the assumptions it rests on, for report.md's
-    /// labels.
-    pub fn assumes(&self) -> &'static str {
-        match self {
-            Analytic::LameCylinder { .. } => "Lamé's thick-walled cylinder (exact plane elasticity)",
-            Analytic::LinedTunnel(_) => "Einstein & Schwartz's thin ring in an infinite elastic plane",
-        }
-    }
-
-    /// What the model's departure from the closed form is: its "error"
-    /// where the closed form solves the model's problem exactly, a
-    /// "difference" where the closed form idealises it (a thin ring in an
-    /// infinite plane against a thick lining in a finite box).
-    pub fn departure(&self) -> &'static str {
-        match self {
-            Analytic::LameCylinder { .. } => "error",
-            Analytic::LinedTunnel(_) => "difference",
-        }
-    }
 }
 
 /// The closed form a scene's `[analytic]` names, body by body (indexed as
@@ -134,20 +112,26 @@ pub struct Solution<'a> {
     pub pairs: Option<&'a [PairResult]>,
 }
 
-/// What a check adds to the results, beyond the error norms.
+/// What a check adds to the results, beyond the error norms: numbers,
+/// which `output::closed_form` formats.
 #[derive(Clone, Debug, Default)]
-pub struct Check {
-    /// Markdown sections for report.md.
-    pub report: String,
-    /// Entries of summary.json.
-    pub summary: serde_json::Map<String, serde_json::Value>,
+pub enum Check {
+    /// No `[analytic]` check (or no result files written).
+    #[default]
+    None,
+    /// The paper's tables of Lamé's cylinder for this run.
+    Cylinder(paper::CylinderCheck),
+    /// The lining's thrust and moment against Einstein & Schwartz.
+    Tunnel(lining::TunnelCheck),
 }
 
 /// The check a scene's `[analytic]` asks for: the paper's tables for Lamé's
 /// cylinder, the lining's thrust and moment for the lined tunnel.
 pub fn check(analytic: &Analytic, sol: &Solution) -> Check {
     match analytic {
-        Analytic::LameCylinder { .. } => lame(analytic, sol.model).map(|l| paper::check(&l, sol)).unwrap_or_default(),
-        Analytic::LinedTunnel(t) => lining::check(t, sol),
+        Analytic::LameCylinder { .. } => {
+            lame(analytic, sol.model).map_or(Check::None, |l| Check::Cylinder(paper::check(l, sol)))
+        }
+        Analytic::LinedTunnel(t) => Check::Tunnel(lining::check(t, sol)),
     }
 }

@@ -4,11 +4,10 @@
 //! the 45-degree cut (Table 2, interpolated between the pairs), theory
 //! against each run, and for the paper's own cylinder (a = 3, b = 5, p = 0.1)
 //! the paper's numbers beside them. `subcontact paper` prints them for the
-//! paper's mesh and the default one side by side.
+//! paper's mesh and the default one side by side. Numbers only:
+//! `output::closed_form` writes the tables.
 
-use std::fmt::Write;
-
-use super::{Check, Lame, Solution};
+use super::{Lame, Solution};
 use crate::fem::Analysis;
 
 /// The paper's Table 1 (r, sigma_r, sigma_theta; units 1e-2 MPa) and Table 2
@@ -82,93 +81,19 @@ pub fn table1_values(sol: &Solution) -> Vec<Option<(f64, f64)>> {
         .collect()
 }
 
-fn pct(v: f64, exact: f64) -> String {
-    format!("{:+.2} %", 100.0 * (v - exact) / exact.abs())
+/// One run's values for the paper's tables: (sigma_r, sigma_theta) at the
+/// Table 1 radii, and the contact sigma_n at the Table 2 radii (None
+/// without contact); None where the run has no value at a radius.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Tables {
+    pub table1: Vec<Option<(f64, f64)>>,
+    pub table2: Option<Vec<Option<f64>>>,
 }
 
-/// Table 1 and Table 2 of Lamé's cylinder `l` with one column group per run,
-/// in units of 1e-2 MPa; the paper's values beside theory when `with_paper`.
-/// Table 2 only when some run has contact.
-pub fn tables(l: &Lame, runs: &[(&str, &Solution)], with_paper: bool) -> String {
-    let mut s = String::new();
-    let u = 100.0; // 1e-2 MPa
-    let _ = writeln!(s, "\n## Table 1: stresses along a radius (1e-2 MPa)\n");
-    let mut head = String::from("| r (m) | sigma_r theory |");
-    let mut rule = String::from("|---|---|");
-    if with_paper {
-        head += " paper | error |";
-        rule += "---|---|";
-    }
-    for (name, _) in runs {
-        head += &format!(" {name} | error |");
-        rule += "---|---|";
-    }
-    head += " sigma_theta theory |";
-    rule += "---|";
-    if with_paper {
-        head += " paper | error |";
-        rule += "---|---|";
-    }
-    for (name, _) in runs {
-        head += &format!(" {name} | error |");
-        rule += "---|---|";
-    }
-    let _ = writeln!(s, "{head}\n{rule}");
-    let values: Vec<Vec<Option<(f64, f64)>>> = runs.iter().map(|(_, r)| table1_values(r)).collect();
-    for (i, &r) in TABLE1_R.iter().enumerate() {
-        let (sr, st) = (l.sigma_r(r) * u, l.sigma_theta(r) * u);
-        let mut row = format!("| {r:.1} | {sr:.2} |");
-        if with_paper {
-            row += &format!(" {:.2} | {} |", TABLE1_SR_PAPER[i], pct(TABLE1_SR_PAPER[i], sr));
-        }
-        for v in &values {
-            row += &match v[i] {
-                Some((a, _)) => format!(" {:.3} | {} |", a * u, pct(a * u, sr)),
-                None => " – | – |".into(),
-            };
-        }
-        row += &format!(" {st:.2} |");
-        if with_paper {
-            row += &format!(" {:.2} | {} |", TABLE1_ST_PAPER[i], pct(TABLE1_ST_PAPER[i], st));
-        }
-        for v in &values {
-            row += &match v[i] {
-                Some((_, b)) => format!(" {:.3} | {} |", b * u, pct(b * u, st)),
-                None => " – | – |".into(),
-            };
-        }
-        let _ = writeln!(s, "{row}");
-    }
-    if runs.iter().all(|(_, r)| r.pairs.is_none()) {
-        return s;
-    }
-    let _ = writeln!(s, "\n## Table 2: contact normal stress on the 45-degree cut (1e-2 MPa)\n");
-    let mut head = String::from("| r (m) | theory (sigma_theta) |");
-    let mut rule = String::from("|---|---|");
-    if with_paper {
-        head += " paper | error |";
-        rule += "---|---|";
-    }
-    for (name, _) in runs {
-        head += &format!(" {name} | error |");
-        rule += "---|---|";
-    }
-    let _ = writeln!(s, "{head}\n{rule}");
-    for (i, &r) in TABLE2_R.iter().enumerate() {
-        let th = l.sigma_theta(r) * u;
-        let mut row = format!("| {r:.1} | {th:.2} |");
-        if with_paper {
-            row += &format!(" {:.2} | {} |", TABLE2_PAPER[i], pct(TABLE2_PAPER[i], th));
-        }
-        for (_, run) in runs {
-            row += &match contact_sigma_n_at(run, r) {
-                Some(v) => format!(" {:.3} | {} |", v * u, pct(v * u, th)),
-                None => " – | – |".into(),
-            };
-        }
-        let _ = writeln!(s, "{row}");
-    }
-    s
+/// The values of one run for both tables.
+pub fn tables(sol: &Solution) -> Tables {
+    let table2 = sol.pairs.map(|_| TABLE2_R.iter().map(|&r| contact_sigma_n_at(sol, r)).collect());
+    Tables { table1: table1_values(sol), table2 }
 }
 
 /// Whether `l` is the paper's cylinder (a = 3, b = 5, p = 0.1), whose
@@ -177,17 +102,19 @@ pub fn is_paper_cylinder(l: &Lame) -> bool {
     l.a == 3.0 && l.b == 5.0 && (l.p - 0.1).abs() < 1e-12
 }
 
-/// The tables of one run for report.md, and a word on the error norms
-/// when the bodies' materials differ (see [`super::exact`]).
-pub(super) fn check(l: &Lame, sol: &Solution) -> Check {
-    let mut report = tables(l, &[("this run", sol)], is_paper_cylinder(l));
-    if super::materials_differ(sol.model) {
-        let _ = writeln!(
-            report,
-            "\nThe bodies have different materials: the error norms compare each body with Lamé's cylinder of its own E and nu, \
-             which is the solution only where the bodies do not hold each other's radial displacement (free sliding along radial cuts), \
-             not across a bonded change of material. The tables' sigma_r and sigma_theta do not depend on the material."
-        );
-    }
-    Check { report, ..Default::default() }
+/// The check of Lamé's cylinder: the cylinder, this run's tables, whether
+/// the paper's values go beside them ([`is_paper_cylinder`]) and whether
+/// the bodies' materials differ (see [`super::exact`]).
+#[derive(Clone, Debug)]
+pub struct CylinderCheck {
+    pub lame: Lame,
+    pub tables: Tables,
+    pub with_paper: bool,
+    pub materials_differ: bool,
+}
+
+/// The tables of one run, for report.md.
+pub(super) fn check(lame: Lame, sol: &Solution) -> CylinderCheck {
+    let with_paper = is_paper_cylinder(&lame);
+    CylinderCheck { lame, tables: tables(sol), with_paper, materials_differ: super::materials_differ(sol.model) }
 }

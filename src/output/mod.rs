@@ -11,6 +11,7 @@
 
 pub mod bearing;
 pub mod blocks;
+pub mod closed_form;
 pub mod cut;
 pub mod faces;
 pub mod files;
@@ -557,8 +558,8 @@ fn summary(run: &Run) -> serde_json::Value {
     if let Some(e) = &checks.errors {
         v["errors"] = json!({ "displacement_l2": e.displacement_l2, "stress_l2": e.stress_l2, "contact_max": checks.contact_error_max });
     }
-    for (key, value) in &checks.analytic.summary {
-        v[key] = value.clone();
+    for (key, value) in closed_form::summary(&checks.analytic) {
+        v[key] = value;
     }
     let probes: serde_json::Map<String, serde_json::Value> =
         checks.probes.iter().map(|(name, s)| (name.clone(), serde_json::to_value(s).unwrap_or_default())).collect();

@@ -34,7 +34,7 @@ pub fn report(run: &Run) -> String {
     }
     s += &super::sections::report(run);
     s += &super::reactions::report(run);
-    s += &run.checks.analytic.report;
+    s += &super::closed_form::report(&run.checks.analytic);
     s += &super::safety::report(run);
     probes(&mut s, run);
     let sc = &run.scene;
@@ -123,8 +123,7 @@ fn time_and_error_rows(s: &mut String, run: &Run) {
         t.mesh, t.model, t.assemble, t.condense, t.interface, t.recover, t.output, t.total
     );
     if let Some(e) = &run.checks.errors {
-        let (what, against) =
-            sc.analytic.as_ref().map_or(("error", "the closed form"), |a| (a.departure(), a.assumes()));
+        let (what, against) = sc.analytic.as_ref().map_or(("error", "the closed form"), super::closed_form::labels);
         let _ = writeln!(s, "| displacement {what} against {against} (relative L2) | {:.3e} |", e.displacement_l2);
         let _ = writeln!(s, "| stress {what} against {against} (relative L2) | {:.3e} |", e.stress_l2);
         if let Some(c) = run.checks.contact_error_max {
