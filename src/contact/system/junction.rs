@@ -319,32 +319,26 @@ impl Split {
 /// (local axes), and its force as if tied where it is locked.
 type PairForces = ([f64; 3], [f64; 3], Option<[f64; 3]>);
 
-impl Junction {
-    /// The junction of `pairs` (their (k, l) and frames given by `pair`),
-    /// with the prescribed value per unit ramp of each model DOF
-    /// (`prescribed[node * nd + c]`); numbers its means and relative
-    /// displacements from `nm` and `nr` on.
-    pub fn new(
-        pairs: Vec<usize>,
-        pair: impl Fn(usize) -> (usize, usize, Frame),
-        prescribed: &[Option<f64>],
-        nd: usize,
-        nm: &mut usize,
-        nr: &mut usize,
-    ) -> Junction {
-        let mut copies: Vec<usize> = pairs
-            .iter()
-            .flat_map(|&p| {
-                let (k, l, _) = pair(p);
-                [k, l]
-            })
-            .collect();
-        copies.sort_unstable();
-        copies.dedup();
+/// How a junction's copies are numbered: each copy's displacement in
+/// terms of means and relative displacements, the r index of each (copy,
+/// component) (None where the copy is held or is the reference), and the
+/// model's numbers of its r and m.
+struct Numbering {
+    terms: Vec<[Terms; 3]>,
+    r_of: Vec<[Option<usize>; 3]>,
+    r: Vec<usize>,
+    m: Vec<usize>,
+}
+
+impl Numbering {
+    /// Component by component: held copies take their prescribed value,
+    /// the others the held value (or a new mean, numbered from `nm`) plus
+    /// a new relative displacement (numbered from `nr`), but for the first
+    /// copy of a component held nowhere, which is the mean alone.
+    fn new(copies: &[usize], prescribed: &[Option<f64>], nd: usize, nm: &mut usize, nr: &mut usize) -> Numbering {
         let q = copies.len();
         let none = || Terms { vars: [(Var::M(0), 0.0); 2], n: 0, constant: 0.0 };
         let mut terms: Vec<[Terms; 3]> = (0..q).map(|_| [none(), none(), none()]).collect();
-        // r index of (copy, component), or None where the copy is held or is the reference
         let mut r_of = vec![[None; 3]; q];
         let (mut r, mut m) = (Vec::new(), Vec::new());
         for c in 0..nd {
@@ -378,33 +372,80 @@ impl Junction {
                 *nm += 1;
             }
         }
-        let n_r = r.len();
-        let mut rows = Vec::with_capacity(pairs.len());
-        let mut consts = Vec::with_capacity(pairs.len());
-        for &p in &pairs {
-            let (k, l, f) = pair(p);
-            let (jk, jl) = (copies.binary_search(&k).expect("a copy"), copies.binary_search(&l).expect("a copy"));
-            let mut row: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; n_r]);
-            let mut cst = [0.0; 3];
-            for (a, row_a) in row.iter_mut().enumerate().take(nd) {
-                for c in 0..nd {
-                    let w = f[a][c];
-                    if w == 0.0 {
-                        continue;
-                    }
-                    // d_l - d_k along global c
-                    if let Some(i) = r_of[jl][c] {
-                        row_a[i] += w;
-                    }
-                    if let Some(i) = r_of[jk][c] {
-                        row_a[i] -= w;
-                    }
-                    cst[a] += w * (terms[jl][c].constant - terms[jk][c].constant);
+        Numbering { terms, r_of, r, m }
+    }
+}
+
+/// Each pair's relative displacement d_l - d_k along its local axes as
+/// rows over the junction's `n_r` relative displacements, plus the
+/// constants of the held copies.
+fn pair_rows(
+    pairs: &[usize],
+    pair: &impl Fn(usize) -> (usize, usize, Frame),
+    copies: &[usize],
+    terms: &[[Terms; 3]],
+    r_of: &[[Option<usize>; 3]],
+    n_r: usize,
+    nd: usize,
+) -> (Vec<[Vec<f64>; 3]>, Vec<[f64; 3]>) {
+    let mut rows = Vec::with_capacity(pairs.len());
+    let mut consts = Vec::with_capacity(pairs.len());
+    for &p in pairs {
+        let (k, l, f) = pair(p);
+        let (jk, jl) = (copies.binary_search(&k).expect("a copy"), copies.binary_search(&l).expect("a copy"));
+        let mut row: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; n_r]);
+        let mut cst = [0.0; 3];
+        for (a, row_a) in row.iter_mut().enumerate().take(nd) {
+            for c in 0..nd {
+                let w = f[a][c];
+                if w == 0.0 {
+                    continue;
                 }
+                // d_l - d_k along global c
+                if let Some(i) = r_of[jl][c] {
+                    row_a[i] += w;
+                }
+                if let Some(i) = r_of[jk][c] {
+                    row_a[i] -= w;
+                }
+                cst[a] += w * (terms[jl][c].constant - terms[jk][c].constant);
             }
-            rows.push(row);
-            consts.push(cst);
         }
+        rows.push(row);
+        consts.push(cst);
+    }
+    (rows, consts)
+}
+
+/// The part of v along the unit direction dir, over the first nd axes.
+fn along(nd: usize, v: [f64; 3], dir: [f64; 3]) -> f64 {
+    (0..nd).map(|a| v[a] * dir[a]).sum()
+}
+
+impl Junction {
+    /// The junction of `pairs` (their (k, l) and frames given by `pair`),
+    /// with the prescribed value per unit ramp of each model DOF
+    /// (`prescribed[node * nd + c]`); numbers its means and relative
+    /// displacements from `nm` and `nr` on.
+    pub fn new(
+        pairs: Vec<usize>,
+        pair: impl Fn(usize) -> (usize, usize, Frame),
+        prescribed: &[Option<f64>],
+        nd: usize,
+        nm: &mut usize,
+        nr: &mut usize,
+    ) -> Junction {
+        let mut copies: Vec<usize> = pairs
+            .iter()
+            .flat_map(|&p| {
+                let (k, l, _) = pair(p);
+                [k, l]
+            })
+            .collect();
+        copies.sort_unstable();
+        copies.dedup();
+        let Numbering { terms, r_of, r, m } = Numbering::new(&copies, prescribed, nd, nm, nr);
+        let (rows, consts) = pair_rows(&pairs, &pair, &copies, &terms, &r_of, r.len(), nd);
         let frames: Vec<Frame> = pairs.iter().map(|&p| pair(p).2).collect();
         let ends: Vec<(usize, usize)> = pairs.iter().map(|&p| pair(p)).map(|(k, l, _)| (k.min(l), k.max(l))).collect();
         let partners =
@@ -637,8 +678,24 @@ impl Junction {
         g: &DVector<f64>,
         ramp: f64,
     ) -> Vec<PairForces> {
+        let rels = self.relative(r, ramp);
+        let limits: Vec<Limit> = self.pairs.iter().map(|&p| rel[p].limit).collect();
+        let mut out = self.carried_forces(tied, rel, &rels, r, g, &limits);
+        let locked = self.locked_rows(tied, rel, &rels);
+        if locked.is_empty() {
+            return out;
+        }
+        let as_tied = self.forces_as_tied(tied, &out, &locked, g, &limits);
+        for &(j, _) in &locked {
+            out[j].2 = Some(as_tied[j]);
+        }
+        out
+    }
+
+    /// Each pair's relative displacement (local axes) at r.
+    fn relative(&self, r: &DVector<f64>, ramp: f64) -> Vec<[f64; 3]> {
         let nd = self.nd;
-        let rels: Vec<[f64; 3]> = (0..self.pairs.len())
+        (0..self.pairs.len())
             .map(|j| {
                 std::array::from_fn(|a| {
                     if a < nd {
@@ -648,7 +705,22 @@ impl Junction {
                     }
                 })
             })
-            .collect();
+            .collect()
+    }
+
+    /// The pairs' forces from the tied rows' share of g and the slipping
+    /// pairs' relations, with their relative displacements (`rels`) and no
+    /// forces as tied yet.
+    fn carried_forces(
+        &self,
+        tied: &Tied,
+        rel: &[Relation],
+        rels: &[[f64; 3]],
+        r: &DVector<f64>,
+        g: &DVector<f64>,
+        limits: &[Limit],
+    ) -> Vec<PairForces> {
+        let nd = self.nd;
         // the slipping pairs' pressures, and what the tied rows carry: g
         // less the slipping pairs' friction
         let pressures = tied.pressure.as_ref().map(|pr| pr.at(&(&tied.k * r + &tied.f - g)));
@@ -657,8 +729,7 @@ impl Junction {
             _ => tied.f.clone(),
         };
         let mut carried = g - (&tied.k * r + friction);
-        let limits: Vec<Limit> = self.pairs.iter().map(|&p| rel[p].limit).collect();
-        let mut lambda = tied.split.forces(&carried, &limits);
+        let mut lambda = tied.split.forces(&carried, limits);
         let mut pressure: Vec<f64> = self.pairs.iter().map(|&p| rel[p].pressure).collect();
         if let (Some(pr), Some(p)) = (&tied.pressure, &pressures) {
             for (&j, &pj) in pr.pairs.iter().zip(p.iter()) {
@@ -666,9 +737,9 @@ impl Junction {
             }
         }
         if tied.pressure.is_none() {
-            let stuck = self.locked_slipping(tied, rel, &rels);
+            let stuck = self.locked_slipping(tied, rel, rels);
             if !stuck.is_empty() {
-                (carried, lambda) = self.settle_locked(tied, rel, &stuck, carried, lambda, &limits, &mut pressure);
+                (carried, lambda) = self.settle_locked(tied, rel, &stuck, carried, lambda, limits, &mut pressure);
             }
         }
         let slipping = |j: usize| rel[self.pairs[j]].state == ContactState::Slip;
@@ -690,15 +761,19 @@ impl Junction {
                     + (1..nd).map(|c| rl.spring[a][c] * rels[j][c]).sum::<f64>();
             }
         }
-        // free rows the ties lock (no part along Z): open pairs' normals,
-        // and slipping pairs' shear where they have not slipped (a slip the
-        // loop had locked elsewhere could not be tied back: their shear is
-        // judged by their slip, as any other pair's)
+        out
+    }
+
+    /// The free rows the ties lock (no part along Z): open pairs' normals,
+    /// and slipping pairs' shear where they have not slipped (a slip the
+    /// loop had locked elsewhere could not be tied back: their shear is
+    /// judged by their slip, as any other pair's).
+    fn locked_rows(&self, tied: &Tied, rel: &[Relation], rels: &[[f64; 3]]) -> Vec<Row> {
+        let nd = self.nd;
         let is_locked = |row: Row| {
             let row = DVector::from_vec(self.c_row(row).0);
             tied.z.ncols() == 0 || (tied.z.transpose() * &row).norm() <= 1e-9 * row.norm()
         };
-        let along = |v: [f64; 3], dir: [f64; 3]| (0..nd).map(|a| v[a] * dir[a]).sum::<f64>();
         let scale = rels.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
         let mut locked: Vec<Row> = Vec::new();
         for (j, &p) in self.pairs.iter().enumerate() {
@@ -707,7 +782,7 @@ impl Junction {
                 ContactState::Slip => {
                     let shear = self.shear_dirs(j, |q| rel[q].state != ContactState::Open);
                     let unmoved =
-                        shear.iter().all(|&dir| along(sub(rels[j], rel[p].target), dir).abs() <= 1e-10 * scale);
+                        shear.iter().all(|&dir| along(nd, sub(rels[j], rel[p].target), dir).abs() <= 1e-10 * scale);
                     if unmoved && shear.iter().all(|&dir| is_locked((j, dir))) {
                         locked.extend(shear.iter().map(|&dir| (j, dir)));
                     }
@@ -715,17 +790,26 @@ impl Junction {
                 _ => {}
             }
         }
-        if locked.is_empty() {
-            return out;
-        }
-        // the least-norm forces with the locked axes tied too; the other
-        // free axes keep what their relations give them
-        let mut rows: Vec<Row> = tied.rows.iter().chain(&locked).copied().collect();
+        locked
+    }
+
+    /// The least-norm forces with the `locked` axes tied too; the other
+    /// free axes keep what their relations give them (`out`).
+    fn forces_as_tied(
+        &self,
+        tied: &Tied,
+        out: &[PairForces],
+        locked: &[Row],
+        g: &DVector<f64>,
+        limits: &[Limit],
+    ) -> Vec<[f64; 3]> {
+        let nd = self.nd;
+        let mut rows: Vec<Row> = tied.rows.iter().chain(locked).copied().collect();
         rows.sort_by_key(|&(j, dir)| (j, dir.iter().position(|&x| x != 0.0)));
         // each pair's force less its parts along the rows: what stays
         let mut kept: Vec<[f64; 3]> = out.iter().map(|o| o.0).collect();
         for &(j, dir) in &rows {
-            let f = along(kept[j], dir);
+            let f = along(nd, kept[j], dir);
             for a in (0..nd).filter(|&a| dir[a] != 0.0) {
                 kept[j][a] -= f * dir[a];
             }
@@ -737,17 +821,14 @@ impl Junction {
             }
         }
         let c_rows: Vec<Vec<f64>> = rows.iter().map(|&row| self.c_row(row).0).collect();
-        let lambda = Split::new(&c_rows, &rows, &tied.areas, g.len()).forces(&carried, &limits);
+        let lambda = Split::new(&c_rows, &rows, &tied.areas, g.len()).forces(&carried, limits);
         let mut as_tied = kept;
         for (&(j, dir), &l) in rows.iter().zip(lambda.iter()) {
             for a in (0..nd).filter(|&a| dir[a] != 0.0) {
                 as_tied[j][a] += l * dir[a];
             }
         }
-        for &(j, _) in &locked {
-            out[j].2 = Some(as_tied[j]);
-        }
-        out
+        as_tied
     }
 
     /// The slipping pairs (junction indices) with a friction coupled to
@@ -760,7 +841,6 @@ impl Junction {
             let row = DVector::from_vec(self.c_row(row).0);
             tied.z.ncols() == 0 || (tied.z.transpose() * &row).norm() <= 1e-9 * row.norm()
         };
-        let along = |v: [f64; 3], dir: [f64; 3]| (0..nd).map(|a| v[a] * dir[a]).sum::<f64>();
         (0..self.pairs.len())
             .filter(|&j| {
                 let rl = &rel[self.pairs[j]];
@@ -769,7 +849,7 @@ impl Junction {
                 }
                 let shear = self.shear_dirs(j, |q| rel[q].state != ContactState::Open);
                 !shear.is_empty()
-                    && shear.iter().all(|&dir| along(sub(rels[j], rl.target), dir).abs() <= 1e-10 * scale)
+                    && shear.iter().all(|&dir| along(nd, sub(rels[j], rl.target), dir).abs() <= 1e-10 * scale)
                     && shear.iter().all(|&dir| locked((j, dir)))
             })
             .collect()
