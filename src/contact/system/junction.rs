@@ -635,7 +635,15 @@ impl Junction {
             let (j, rl) = (coupled[s], &rel[self.pairs[coupled[s]]]);
             (1..nd).map(|a| self.rows[j][a][i] * rl.coupling[a]).sum()
         });
-        let pressure = if self.memo.looped() { None } else { Pressure::new(coupled, per_pressure, &split) };
+        // where the loops have carried part of a pressure, through the
+        // tangent of the last solve's share if it tied the same rows; else
+        // the last solve's pressures (see `pressure`)
+        let pressure = if !self.memo.looped() {
+            Pressure::new(coupled, per_pressure, &split, None)
+        } else {
+            let tangent = self.memo.tangent(&rows);
+            tangent.and_then(|t| Pressure::new(coupled, per_pressure, &split, Some(&t)))
+        };
         for &j in &slipping {
             let rl = &rel[self.pairs[j]];
             let lagged = if pressure.is_some() { 0.0 } else { rl.pressure };
@@ -743,7 +751,9 @@ impl Junction {
             }
         }
         let slipping = |j: usize| rel[self.pairs[j]].state == ContactState::Slip;
-        self.memo.set_looped(pressure::looped(&tied.split, &lambda, &tied.split.plain(&carried), slipping));
+        let looped = pressure::looped(&tied.split, &lambda, &tied.split.plain(&carried), slipping);
+        self.memo.set_looped(looped);
+        self.memo.set_tangent(if looped { Tangent::at(&tied.split, &carried, &lambda, &limits) } else { None });
         let mut out: Vec<PairForces> = rels.iter().map(|&x| ([0.0; 3], x, None)).collect();
         for (&(j, dir), &l) in tied.rows.iter().zip(lambda.iter()) {
             for a in (0..nd).filter(|&a| dir[a] != 0.0) {
@@ -916,8 +926,10 @@ impl Junction {
 
 mod memo;
 pub mod pressure;
+mod tangent;
 use memo::Memo;
 use pressure::Pressure;
+use tangent::Tangent;
 
 #[cfg(test)]
 mod tests;

@@ -461,7 +461,7 @@ impl<'a> InterfaceProblem<'a> {
             let lift = tied.pressure.as_ref().map(|pr| {
                 // L = Z^T R M A; its constant part L (f + k r0)
                 let on_w = tied.z.transpose() * &pr.r * &pr.ma;
-                fz += &on_w * &at_r0;
+                fz += &on_w * &at_r0 + tied.z.transpose() * (&pr.r * &pr.base);
                 Lift { on_y: &on_w * &tied.k * &tied.z, on_w }
             });
             (tied, kz, fz, lift)

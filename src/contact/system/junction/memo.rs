@@ -16,12 +16,14 @@ use std::sync::Mutex;
 
 use nalgebra::DMatrix;
 
+use super::tangent::Tangent;
 use super::{Junction, Row, Split};
 
-/// The last [`Tying`] of a junction, and whether its last solve's loops
-/// carried part of a slipping pair's pressure (empty, false, when cloned).
+/// The last [`Tying`] of a junction, whether its last solve's loops
+/// carried part of a slipping pair's pressure, and the [`Tangent`] of that
+/// solve's share where it met a limit (empty, false, none, when cloned).
 #[derive(Default)]
-pub(super) struct Memo(Mutex<Option<Tying>>, Mutex<bool>);
+pub(super) struct Memo(Mutex<Option<Tying>>, Mutex<bool>, Mutex<Option<Tangent>>);
 
 impl Clone for Memo {
     fn clone(&self) -> Memo {
@@ -80,6 +82,18 @@ impl Memo {
 
     pub fn reset_looped(&self) {
         *self.1.lock().unwrap_or_else(|e| e.into_inner()) = false;
+        *self.2.lock().unwrap_or_else(|e| e.into_inner()) = None;
+    }
+
+    /// The last solve's share's tangent, if it met a limit.
+    pub fn set_tangent(&self, tangent: Option<Tangent>) {
+        *self.2.lock().unwrap_or_else(|e| e.into_inner()) = tangent;
+    }
+
+    /// The last solve's share's tangent, if it tied `rows` and met a limit.
+    pub fn tangent(&self, rows: &[Row]) -> Option<Tangent> {
+        let last = self.2.lock().unwrap_or_else(|e| e.into_inner());
+        last.as_ref().filter(|t| t.rows == rows).cloned()
     }
 
     /// `f` of the junction `jn` with `rows` tied, from the last call's if

@@ -25,9 +25,12 @@
 //!
 //! which is what the interface solvers take ([`super::super::Lift`]).
 //! Once the least-norm share has broken a limit at a slipping pair's normal
-//! (the loops then carry part of its pressure, chosen after the solve), the
-//! junction's pressures are the last solve's (`Relation::pressure`) until
-//! the load changes:
+//! (the loops then carry part of its pressure, chosen after the solve),
+//! the junction's pressures are solved for through the tangent of the last
+//! solve's share ([`super::tangent`]: `A` its rows, plus a constant) while
+//! the junction ties the same rows, and are the last solve's
+//! (`Relation::pressure`) in the solve after its tied rows change; it
+//! stays so until the load changes:
 //! - taking the loops' part from the last solve and the rest implicitly
 //!   kept the 2D jointed tunnel (`make tunnel-joints`) cycling between five
 //!   state sets for 100 iterations;
@@ -38,6 +41,7 @@
 
 use nalgebra::{DMatrix, DVector};
 
+use super::tangent::Tangent;
 use super::{Split, NORMAL};
 
 /// A junction's friction in its slipping pairs' pressures.
@@ -47,8 +51,10 @@ pub struct Pressure {
     pub pairs: Vec<usize>,
     /// The friction per unit pressure of each, over r (n_r x pairs).
     pub r: DMatrix<f64>,
-    /// `M A` (pairs x n_r): `p = M A u`.
+    /// `M A` (pairs x n_r) and `M p0`: `p = M A u + M p0` (p0 the
+    /// pressures at u = 0 of a share that meets a limit, see [`Tangent`]).
     pub ma: DMatrix<f64>,
+    pub base: DVector<f64>,
 }
 
 /// The largest gain `||A R||_inf` at which the friction feeds the
@@ -65,26 +71,42 @@ const GAIN: f64 = 0.75;
 
 impl Pressure {
     /// The pressures of `pairs` (junction indices, each with its friction
-    /// per unit pressure over r in `r`'s columns) under `split`. None where
-    /// the split does not tie a pair's normal, or the feedback is beyond
-    /// [`GAIN`].
-    pub(super) fn new(pairs: Vec<usize>, r: DMatrix<f64>, split: &Split) -> Option<Pressure> {
+    /// per unit pressure over r in `r`'s columns) under `split`, or under
+    /// the `tangent` of its share where its loops carry part of them. None
+    /// where the split does not tie a pair's normal, or the feedback is
+    /// beyond [`GAIN`].
+    pub(super) fn new(
+        pairs: Vec<usize>,
+        r: DMatrix<f64>,
+        split: &Split,
+        tangent: Option<&Tangent>,
+    ) -> Option<Pressure> {
         let n_r = r.nrows();
         let rows: Vec<usize> =
             pairs.iter().map(|&j| split.rows.iter().position(|&row| row == (j, NORMAL))).collect::<Option<_>>()?;
-        let a = DMatrix::<f64>::from_fn(pairs.len(), n_r, |s, c| split.d[rows[s]] * split.pinv[(rows[s], c)]);
+        // p = -λ_n of the share of -u: A u + p0
+        let (a, p0) = match tangent {
+            Some(t) => (
+                DMatrix::<f64>::from_fn(pairs.len(), n_r, |s, c| t.j[(rows[s], c)]),
+                DVector::<f64>::from_fn(pairs.len(), |s, _| -t.offset[rows[s]]),
+            ),
+            None => (
+                DMatrix::<f64>::from_fn(pairs.len(), n_r, |s, c| split.d[rows[s]] * split.pinv[(rows[s], c)]),
+                DVector::zeros(pairs.len()),
+            ),
+        };
         let ar = &a * &r;
         let gain = (0..ar.nrows()).map(|i| ar.row(i).iter().map(|v| v.abs()).sum::<f64>()).fold(0.0, f64::max);
         if !(gain <= GAIN) {
             return None;
         }
         let m = (DMatrix::<f64>::identity(pairs.len(), pairs.len()) - ar).try_inverse()?;
-        Some(Pressure { ma: m * a, pairs, r })
+        Some(Pressure { ma: &m * a, base: m * p0, pairs, r })
     }
 
     /// The pressures at `u` (over the junction's r).
     pub fn at(&self, u: &DVector<f64>) -> DVector<f64> {
-        &self.ma * u
+        &self.ma * u + &self.base
     }
 }
 

@@ -3,7 +3,7 @@
 //! slipping pair in a stuck loop is locked and carries its friction, open
 //! pairs free everything, and a crease (two faces between the same two
 //! copies) slides only along its line and shares a stuck force within both
-//! Coulomb cones.
+//! Coulomb cones, whose change with the force its tangent predicts.
 
 use super::*;
 
@@ -209,6 +209,27 @@ fn a_stuck_crease_shares_its_force_within_both_coulomb_cones() {
         }
     }
     assert!((carried - &g).norm() < 1e-12, "the faces carry the push");
+}
+
+/// The stuck crease of the test above: its share within the cones moves
+/// with the push as the tangent of the share says, to second order, where
+/// the least-norm share's derivative is wrong at first order.
+#[test]
+fn the_tangent_of_a_share_within_the_cones_predicts_its_change() {
+    let j = crease();
+    let limits = [Limit { tension: 0.0, cohesion: 0.0, friction: 0.6 }; 2];
+    let rel: Vec<Relation> = stuck(2).into_iter().map(|r| r.within(limits[0])).collect();
+    let tied = j.tie(&rel, 1.0, |_| 1.0);
+    let g = DVector::from_column_slice(&[0.0, -2.0 * 0.5f64.sqrt(), 0.3]);
+    let lambda = tied.split.forces(&g, &limits);
+    let t = Tangent::at(&tied.split, &g, &lambda, &limits).expect("the share meets the cones");
+    assert!((&t.j * &g + &t.offset - &lambda).norm() < 1e-14, "the tangent passes through the share");
+    let dg = DVector::from_column_slice(&[0.02, -0.01, 0.015]) * 1e-3;
+    let change = tied.split.forces(&(&g + &dg), &limits) - &lambda;
+    let by_tangent = (&change - &t.j * &dg).norm();
+    let by_plain = (&change - (tied.split.plain(&(&g + &dg)) - tied.split.plain(&g))).norm();
+    assert!(by_tangent < 1e-3 * change.norm(), "tangent off by {by_tangent:e} of {:e}", change.norm());
+    assert!(by_plain > 0.1 * change.norm(), "the least-norm derivative is off by {by_plain:e}");
 }
 
 #[test]
