@@ -204,8 +204,10 @@ fn the_tunnel_meshed_coarser_away_from_the_opening_converges_without_cuts() {
     let scene = common::repo_text("tests/geo/tunnel3d_joints_coarse.toml");
     let coarser = scene.replacen("lc_far = 4.0", "lc_far = 6.0", 1);
     assert_ne!(coarser, scene, "the edit applies");
-    let (its, worst) =
-        tunnel_through_joints("conv-tunnel3d-34k", &format!("{coarser}\n[solver]\nmax_cuts = 0\nmax_iterations = 300\n"));
+    let (its, worst) = tunnel_through_joints(
+        "conv-tunnel3d-34k",
+        &format!("{coarser}\n[solver]\nmax_cuts = 0\nmax_iterations = 300\n"),
+    );
     assert!(its <= 50, "{its} iterations");
     assert!(worst < 1e-7, "law residual {worst:e}");
 }
