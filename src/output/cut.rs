@@ -92,6 +92,12 @@ pub fn summary(report: &CutReport, joints: &[JointSpec], dim: usize) -> Vec<Stri
             report.merged
         ));
     }
+    if report.straightened > 0 {
+        out.push(format!(
+            "Mesh.HighOrderOptimize: {} quadratic element(s) that folded or distorted on a curved face made straight",
+            report.straightened
+        ));
+    }
     out
 }
 

@@ -291,6 +291,14 @@ impl Session {
         Ok(nodes)
     }
 
+    /// Moves node `tag` to `x` (its parametric place, if any, left as it was).
+    pub(super) fn set_node(&self, tag: usize, x: [f64; 3]) -> R<()> {
+        let (lib, mut c) = (self.lib, x);
+        self.check("gmshModelMeshSetNode", |e| unsafe {
+            (lib.gmshModelMeshSetNode)(tag, c.as_mut_ptr(), 3, std::ptr::null_mut(), 0, e)
+        })
+    }
+
     pub(super) fn set_size(&self, points: &[i32], size: f64) -> R<()> {
         let (lib, mut f) = (self.lib, flat(&points.iter().map(|&p| (0, p)).collect::<Vec<_>>()));
         self.check("gmshModelMeshSetSize", |e| unsafe { (lib.gmshModelMeshSetSize)(f.as_mut_ptr(), f.len(), size, e) })

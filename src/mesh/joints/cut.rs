@@ -5,7 +5,10 @@
 use std::collections::{HashMap, HashSet};
 use std::path::Path;
 
+use crate::mesh::CellKind;
+
 use super::api::{ApiError, DimTag, PhysicalGroup as Group, Session};
+use super::curved;
 use super::geometry::{self, Patch};
 use super::sizes::Sizes;
 use super::slivers;
@@ -89,11 +92,10 @@ pub(super) fn run(s: &Session, args: &MeshArgs, job: &CutJob, out: &Path) -> R<C
     }
     size_new_points(s, &old_points, &sizes).map_err(g)?;
 
-    s.set_option("Mesh.ElementOrder", args.order as f64).map_err(g)?;
     if job.structured {
         s.structured().map_err(g)?;
     }
-    s.generate(dim).map_err(g)?;
+    let straightened = generate(s, dim, args.order).map_err(g)?;
     logged(s, geo)?;
     s.set_option("Mesh.MshFileVersion", 4.1).map_err(g)?;
     s.set_option("Mesh.Binary", 1.0).map_err(g)?;
@@ -101,7 +103,32 @@ pub(super) fn run(s: &Session, args: &MeshArgs, job: &CutJob, out: &Path) -> R<C
     logged(s, geo)?;
     let mut made = report(s, (dim, &sizes), job, laid, &kept, &blocks).map_err(g)?;
     made.merged = merged;
+    made.straightened = straightened;
     Ok(made)
+}
+
+/// Meshes the model at `order`. gmsh's own high-order optimisation is
+/// off (it depends on memory addresses: module header of [`curved`]);
+/// where the .geo asked for it, the folded or distorted quadratic elements
+/// are made straight instead. Returns how many.
+fn generate(s: &Session, dim: i32, order: usize) -> Result<usize, ApiError> {
+    let optimise = s.option("Mesh.HighOrderOptimize")?;
+    s.set_option("Mesh.HighOrderOptimize", 0.0)?;
+    s.set_option("Mesh.ElementOrder", order as f64)?;
+    s.generate(dim)?;
+    if order < 2 || optimise == 0.0 {
+        return Ok(0);
+    }
+    let threshold = s.option("Mesh.HighOrderThresholdMin")?;
+    let (tags, xyz) = s.nodes()?;
+    let mut coords: HashMap<usize, [f64; 3]> = tags.into_iter().zip(xyz).collect();
+    let kind = if dim == 3 { CellKind::Tet10 } else { CellKind::Tri6 };
+    let elements = s.element_nodes(kind.gmsh_code())?;
+    let (done, moved) = curved::straighten(kind, &elements, &mut coords, threshold);
+    for t in moved {
+        s.set_node(t, coords[&t])?;
+    }
+    Ok(done.elements)
 }
 
 /// [`slivers::merge`] on the joints' pieces.

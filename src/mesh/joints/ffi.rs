@@ -74,6 +74,7 @@ gmsh_api! {
     gmshModelMeshGetElementsByType: fn(c_int, *mut *mut usize, *mut usize, *mut *mut usize, *mut usize, c_int, usize, usize, Ierr);
     gmshModelMeshGetEmbedded: fn(c_int, c_int, *mut *mut c_int, *mut usize, Ierr);
     gmshModelMeshSetSize: fn(*mut c_int, usize, f64, Ierr);
+    gmshModelMeshSetNode: fn(usize, *mut f64, usize, *mut f64, usize, Ierr);
     gmshModelMeshSetTransfiniteAutomatic: fn(*mut c_int, usize, f64, c_int, Ierr);
     gmshModelOccAddPoint: fn(f64, f64, f64, f64, c_int, Ierr) -> c_int;
     gmshModelOccAddLine: fn(c_int, c_int, c_int, Ierr) -> c_int;

@@ -37,6 +37,7 @@
 //! from +x has n = (-sin angle, cos angle).
 
 mod api;
+mod curved;
 mod cut;
 mod ffi;
 pub mod geometry;
@@ -228,6 +229,10 @@ pub struct CutReport {
     /// Slivers bonded to a neighbour (`merge_slivers`).
     #[serde(default)]
     pub merged: usize,
+    /// Quadratic elements made straight where they folded on a curved
+    /// face (the .geo's `Mesh.HighOrderOptimize`, done deterministically).
+    #[serde(default)]
+    pub straightened: usize,
 }
 
 /// Why the joints could not be cut.
