@@ -30,6 +30,7 @@
 //! solid-to-solid one and the law judges the effective normal stress.
 
 pub mod basis;
+pub mod capacity;
 pub mod cutting;
 pub mod frame;
 mod iteration;

@@ -62,6 +62,14 @@ impl PartModes {
     }
 }
 
+impl PartModes {
+    /// The modes `modes` held along each (point, direction) of `supports`.
+    pub fn supported(modes: RigidModes, supports: impl IntoIterator<Item = ([f64; 3], [f64; 3])>) -> PartModes {
+        let gram = modes.gram(supports);
+        PartModes { modes, gram }
+    }
+}
+
 /// One row between two parts: the pair's position and a direction.
 pub struct Tie {
     pub parts: [usize; 2],
@@ -213,6 +221,13 @@ pub fn free_parts(parts: &[PartModes], ties: impl Iterator<Item = Tie>) -> Free 
     free.parts.sort_unstable();
     free.motions.sort_by_key(|m| m.0);
     free
+}
+
+/// The parts `free` (of `np`), in groups joined by `ties` between them.
+pub fn free_groups(np: usize, free: &[usize], ties: &[Tie]) -> Vec<Vec<usize>> {
+    let mut held = vec![true; np];
+    free.iter().filter(|&&p| p < np).for_each(|&p| held[p] = false);
+    groups(&held, ties)
 }
 
 /// The parts not held, in groups joined by ties between them.

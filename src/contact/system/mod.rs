@@ -371,6 +371,23 @@ impl<'a> InterfaceProblem<'a> {
         self.layout.nd
     }
 
+    /// The rigid motions of every part, with its supports.
+    pub fn part_modes(&self) -> &[PartModes] {
+        &self.rigid
+    }
+
+    /// Where each pair is (its node on side k).
+    pub fn positions(&self) -> &[[f64; 3]] {
+        &self.positions
+    }
+
+    /// The rows of the check for parts that slide freely under the
+    /// relations `rel` (a slipping pair holding along its normal and its
+    /// friction springs): what [`InterfaceProblem::solve`] refuses a set by.
+    pub fn sliding_ties(&self, rel: &[Relation]) -> Vec<Tie> {
+        self.holds().all_ties(rel, SlipHolds::Spring, &self.slip_stiffness(rel))
+    }
+
     /// The parts of pair `p`'s two sides (k, l).
     pub fn parts_of(&self, p: usize) -> [usize; 2] {
         let [(pk, _), (pl, _)] = self.layout.at[p];
@@ -724,6 +741,12 @@ impl Holds<'_> {
     /// tied as `slip` says leave free (`stiffness`: each slipping pair's,
     /// read only for [`SlipHolds::Spring`]).
     fn free(&self, rel: &[Relation], slip: SlipHolds, stiffness: &[f64]) -> Free {
+        free_parts(self.rigid, self.all_ties(rel, slip, stiffness).into_iter())
+    }
+
+    /// The ties of every pair as `slip` says, and those of the joins of
+    /// parts of one body: the rows of [`Holds::free`]'s check.
+    fn all_ties(&self, rel: &[Relation], slip: SlipHolds, stiffness: &[f64]) -> Vec<Tie> {
         let (nd, layout) = (self.layout.nd, self.layout);
         let ties = rel.iter().enumerate().flat_map(|(p, rl)| {
             let frame = &layout.frames[p];
@@ -745,7 +768,7 @@ impl Holds<'_> {
         let joined = layout.join_parts.iter().flat_map(|(ps, x)| {
             ps[1..].iter().flat_map(move |&q| (0..nd).map(move |a| Tie::exact([ps[0], q], *x, IDENTITY[a])))
         });
-        free_parts(self.rigid, ties.chain(joined))
+        ties.chain(joined).collect()
     }
 
     /// The ties of pair `p` (between `parts`) along `dirs` (its normal
