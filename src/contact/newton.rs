@@ -30,8 +30,11 @@
 //! violated pair from then on. In 2D, a set that lets a block slide on a
 //! joint that slips both ways (outwards from a point that sticks) keeps a
 //! pair of it stuck ([`Newton::held_back`]): a Newton step's overshoot, not
-//! a loss of equilibrium.
+//! a loss of equilibrium; so does, in 2D and 3D, a set under which the
+//! free parts' slipping pairs carry more along their free motion than the
+//! loads do there ([`super::capacity`]).
 
+use super::capacity::{capacities, PairLoad};
 use super::iteration::{Rule, Verdict};
 use super::law::{friction_bound, judge, ContactState, Trial};
 use super::options::SlipLaw;
@@ -61,6 +64,10 @@ const FORCE_TOL: f64 = 1e-12;
 /// law, or after this many iterations in a row that kept them.
 const SETTLE_FIRST: f64 = 1e-8;
 const MAX_HOLDS: usize = 4;
+
+/// How many times a step keeps a pair stuck under parts a set left free
+/// to slide that their slipping pairs hold ([`Newton::overshoot`]).
+const MAX_OVERSHOOTS: usize = 8;
 
 /// The robust rule through one load step: what it carries from solve to solve.
 pub(super) struct Newton<'p> {
@@ -93,6 +100,9 @@ pub(super) struct Newton<'p> {
     /// Pairs kept stuck this step in place of a pair that let go (see
     /// [`Newton::held_back`], 2.).
     swapped: Vec<bool>,
+    /// Times this step kept a pair stuck under parts their slipping
+    /// pairs hold ([`Newton::overshoot`]).
+    overshoots: usize,
 }
 
 /// Every pair's next state, and how far each changing pair is from its
@@ -124,6 +134,7 @@ impl<'p> Newton<'p> {
             judged_from: Vec::new(),
             violation: Vec::new(),
             swapped: vec![false; laws.len()],
+            overshoots: 0,
         }
     }
 
@@ -318,10 +329,17 @@ impl Newton<'_> {
     ///    to sticking (smallest `|ξ| - b`) sticks in its place, each pair
     ///    once a step.
     ///
-    /// Otherwise none: every pair pulls the part one way (or none can), a
-    /// loss of equilibrium. In 3D a slipping pair's friction holds across
-    /// its slip (see `InterfaceProblem::free`), and the states are left as
-    /// they are.
+    /// In 3D a slipping pair's friction holds across its slip (see
+    /// `InterfaceProblem::free`): neither applies. Then, in 2D and 3D,
+    ///
+    /// 3. where the slipping pairs of the free parts can carry more along
+    ///    their free motion than the loads do there ([`capacities`]), the
+    ///    set is an overshoot too, and the pair of theirs that moves in that
+    ///    motion and is nearest to sticking sticks ([`Newton::overshoot`],
+    ///    [`Rule::hold_back`]).
+    ///
+    /// Otherwise none: the loads exceed what the contacts carry, a loss of
+    /// equilibrium.
     fn held_back(&self, h: &History, sliding: &[usize]) -> Option<(usize, Hold)> {
         let (before, n) = (&self.judged_from, h.states.len());
         if before.len() != n || self.problem.nd() != 2 {
@@ -355,22 +373,68 @@ impl Newton<'_> {
         }
         let &[q] = released.as_slice() else { return None };
         let part = *parts.iter().find(|&&part| on(q, part))?;
-        let excess = |p: usize| {
-            let slip = sub(tangential(self.rel[p]), self.reference[p]);
-            let trial = Trial {
-                force: self.force[p],
-                area: self.problem.area(p),
-                slip,
-                gap: self.rel[p][0],
-                stiffness: self.stiffness[p],
-            };
-            norm(trial.xi()) - friction_bound(&self.laws[p].strength, cracked(h, p), trial.area, -trial.force[0]).0
-        };
         let shear = self.pull(q, part);
         let against = (0..n).filter(|&p| {
             h.states[p] == ContactState::Slip && before[p] == ContactState::Slip && !self.swapped[p] && on(p, part)
         });
-        least(against.filter(|&p| dot(self.pull(p, part), shear) < 0.0), excess).map(|p| (p, Hold::InPlace))
+        least(against.filter(|&p| dot(self.pull(p, part), shear) < 0.0), |p| self.excess(h, p))
+            .map(|p| (p, Hold::InPlace))
+    }
+
+    /// How far slipping pair `p`'s last force is past its bound, `|ξ| - b`.
+    fn excess(&self, h: &History, p: usize) -> f64 {
+        let slip = sub(tangential(self.rel[p]), self.reference[p]);
+        let trial = Trial {
+            force: self.force[p],
+            area: self.problem.area(p),
+            slip,
+            gap: self.rel[p][0],
+            stiffness: self.stiffness[p],
+        };
+        norm(trial.xi()) - friction_bound(&self.laws[p].strength, cracked(h, p), trial.area, -trial.force[0]).0
+    }
+
+    /// Rule 3 of [`Newton::held_back`]: the pair to keep stuck where the
+    /// slipping pairs of a group of the parts `sliding` carry more along
+    /// the group's free motion than its loads do there ([`capacities`]):
+    /// of its slipping pairs that move in that motion and have a strength,
+    /// the one nearest to sticking. None where no group is held so (a loss
+    /// of equilibrium), or after [`MAX_OVERSHOOTS`] such holds this step.
+    fn overshoot(&self, h: &History, sliding: &[usize]) -> Option<usize> {
+        if self.overshoots >= MAX_OVERSHOOTS {
+            return None;
+        }
+        let pairs = self.pair_loads(h);
+        let pb = self.problem;
+        let ties = pb.sliding_ties(&self.relations(h));
+        let groups = capacities(pb.part_modes(), &ties, sliding, &pairs);
+        groups.iter().filter(|g| g.holds()).find_map(|g| {
+            let fast = g.slip.iter().fold(0.0, |a: f64, &b| a.max(b));
+            let moving = (0..pairs.len()).filter(|&p| pairs[p].bound > 0.0 && g.slip[p] > 1e-6 * fast);
+            least(moving, |p| self.excess(h, p))
+        })
+    }
+
+    /// Every pair as [`capacities`] reads it under the states in `h`: its
+    /// last force, and its bound at its last normal force where it slips.
+    fn pair_loads(&self, h: &History) -> Vec<PairLoad> {
+        let pb = self.problem;
+        let frames = pb.frames();
+        (0..h.states.len())
+            .map(|p| {
+                let (f, fr, law) = (self.force[p], &frames[p], &self.laws[p]);
+                let coulomb = law.slip == SlipLaw::Coulomb;
+                let bound = |cracked| friction_bound(&law.strength, cracked, pb.area(p), (-f[0]).max(0.0)).0;
+                let slips = coulomb && h.states[p] == ContactState::Slip;
+                PairLoad {
+                    parts: pb.parts_of(p),
+                    x: pb.positions()[p],
+                    normal: fr[0],
+                    force: std::array::from_fn(|i| (0..3).map(|a| f[a] * fr[a][i]).sum()),
+                    bound: if slips { bound(cracked(h, p)) } else { 0.0 },
+                }
+            })
+            .collect()
     }
 
     /// The tangential force of pair `p` on `part` (one of its sides) in the
@@ -432,14 +496,18 @@ impl Rule for Newton<'_> {
     /// [`Newton::held_back`]): one pair of theirs sticks instead, and the
     /// step is solved again; false when none may, the parts do slide.
     fn hold_back(&mut self, h: &mut History, sliding: &[usize]) -> bool {
-        match self.held_back(h, sliding) {
-            Some((p, how)) => {
-                h.states[p] = ContactState::Stick;
-                self.swapped[p] |= how == Hold::InPlace;
-                true
-            }
-            None => false,
+        if let Some((p, how)) = self.held_back(h, sliding) {
+            h.states[p] = ContactState::Stick;
+            self.swapped[p] |= how == Hold::InPlace;
+            return true;
         }
+        if self.judged_from.len() != h.states.len() {
+            return false;
+        }
+        let Some(p) = self.overshoot(h, sliding) else { return false };
+        h.states[p] = ContactState::Stick;
+        self.overshoots += 1;
+        true
     }
 
     /// The stick references of this step are where its pairs are tied from now on.
