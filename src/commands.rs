@@ -21,7 +21,7 @@ macro_rules! errln {
     }};
 }
 
-use crate::analytic::{self, paper};
+use crate::analytic::{self, paper_tables as paper};
 use crate::driver::{self, RunOptions};
 use crate::error::{Error, Result};
 use crate::model::Model;

@@ -23,7 +23,7 @@ use common::cli::{clean_failure, says};
 use common::measure::{body_nodes, diff_to_bonded, max_abs};
 use common::scenes::{self, two_blocks};
 use common::Case;
-use subcontact::analytic::paper::{contact_sigma_n_at, TABLE2_R};
+use subcontact::analytic::paper_tables::{contact_sigma_n_at, TABLE2_R};
 use subcontact::analytic::Lame;
 use subcontact::contact::law::ContactState;
 use subcontact::driver::{At, ContactError, Run};

@@ -9,7 +9,7 @@
 //! of a node on the crease are tied by two pairs at once (one per face),
 //! so their forces are a junction's (src/contact/system/junction.rs): the
 //! least-norm share within every pair's Coulomb cone, found by least
-//! distance programming (system/ldp.rs).
+//! distance programming (system/least_distance.rs).
 //!
 //! Goals, each asserted, for f in {0.3, 0.6, 0.8}, the rock held at its base
 //! and then at its base and ends:

@@ -67,7 +67,7 @@ use std::time::Instant;
 use common::measure::loglog_slope;
 use common::scenes::lame_cylinder;
 use common::Case;
-use subcontact::analytic::paper::table1_values;
+use subcontact::analytic::paper_tables::table1_values;
 use subcontact::analytic::Lame;
 use subcontact::driver::Run;
 use subcontact::mesh::CellKind;

@@ -54,7 +54,7 @@ use common::measure::{count, force_on_body_i, tangent};
 use common::scenes::{self, two_blocks};
 use common::{json, read, repo_text, Case};
 use serde_json::Value;
-use subcontact::analytic::paper::contact_sigma_n_at;
+use subcontact::analytic::paper_tables::contact_sigma_n_at;
 use subcontact::analytic::Lame;
 use subcontact::contact::law::ContactState;
 use subcontact::contact::traction::ConsistentTraction;

@@ -8,7 +8,7 @@
 //! the solver's own check of free parts saw it. The facets' normals are a
 //! few 1e-4 off the radius, so tying the slipping pairs by their normals
 //! exactly held the rotation (weakly) and no mechanism was named; with the
-//! facets' slack ([`pair_ties`] in src/contact/rigid.rs, one rule for both)
+//! facets' slack ([`pair_ties`] in src/contact/mobility.rs, one rule for both)
 //! the block slides round "seat", turning about O.
 //!
 //! ```text

@@ -12,7 +12,7 @@
 
 pub mod lame;
 pub mod lining;
-pub mod paper;
+pub mod paper_tables;
 pub mod tunnel;
 
 pub use lame::Lame;
@@ -120,7 +120,7 @@ pub enum Check {
     #[default]
     None,
     /// The paper's tables of Lamé's cylinder for this run.
-    Cylinder(paper::CylinderCheck),
+    Cylinder(paper_tables::CylinderCheck),
     /// The lining's thrust and moment against Einstein & Schwartz.
     Tunnel(lining::TunnelCheck),
 }
@@ -130,7 +130,7 @@ pub enum Check {
 pub fn check(analytic: &Analytic, sol: &Solution) -> Check {
     match analytic {
         Analytic::LameCylinder { .. } => {
-            lame(analytic, sol.model).map_or(Check::None, |l| Check::Cylinder(paper::check(l, sol)))
+            lame(analytic, sol.model).map_or(Check::None, |l| Check::Cylinder(paper_tables::check(l, sol)))
         }
         Analytic::LinedTunnel(t) => Check::Tunnel(lining::check(t, sol)),
     }

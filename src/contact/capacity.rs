@@ -24,7 +24,7 @@
 //! is an overshoot: a pair must stick. Otherwise the loads exceed what
 //! the contacts carry, a loss of equilibrium.
 
-use super::rigid::{free_groups, free_motion, PartModes, Tie};
+use super::mobility::{free_groups, free_motion, PartModes, Tie};
 use crate::fem::vec3::{dot, norm, sub, unit};
 
 /// A pair as the capacity test reads it.

@@ -1,6 +1,6 @@
 //! What a block does when equilibrium is lost, named from its rigid
 //! motion: the motion that nothing holds, driven by its loads
-//! ([`super::rigid::free_motion`]), `v(x) = t + ω × (x - c)` with t the
+//! ([`super::mobility::free_motion`]), `v(x) = t + ω × (x - c)` with t the
 //! motion of its centroid c and ω its rotation. Against the pairs of its
 //! faces that stay closed (outward normal n of the block at each):
 //!

@@ -36,10 +36,10 @@ pub mod frame;
 mod iteration;
 pub mod law;
 pub mod mechanism;
+pub mod mobility;
 pub mod newton;
 pub mod options;
-pub mod paper;
-pub mod rigid;
+pub mod paper_rule;
 pub mod safety;
 pub mod system;
 pub mod traction;
@@ -146,7 +146,7 @@ pub fn iterate(
 ) -> Result<Outcome, Failed> {
     let mut outcome = match rule {
         StateRule::Robust => iteration::run(newton::Newton::new(problem, laws, h), problem, lambda, h, max_iterations),
-        StateRule::Paper => iteration::run(paper::Paper::new(problem, laws), problem, lambda, h, max_iterations),
+        StateRule::Paper => iteration::run(paper_rule::Paper::new(problem, laws), problem, lambda, h, max_iterations),
     }?;
     outcome.law_residual = law_residuals(problem, laws, &h.cracked, &outcome);
     Ok(outcome)

@@ -12,7 +12,7 @@
 use crate::contact::frame::frame;
 use crate::contact::law::ContactState;
 use crate::contact::mechanism::{classify, Closed, Mechanism};
-use crate::contact::rigid::{free_motion, pair_ties, PartModes, Tie};
+use crate::contact::mobility::{free_motion, pair_ties, PartModes, Tie};
 use crate::fem::sparse::NONE;
 use crate::fem::vec3::unit;
 use crate::model::Model;

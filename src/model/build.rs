@@ -7,7 +7,7 @@
 
 use std::collections::HashMap;
 
-use super::builder::{dim_name, Builder};
+use super::build_input::{dim_name, Builder};
 use super::contacts::{self, facet_sign, RawPair, Split};
 use super::held::check_held;
 use super::topology::Topology;

@@ -32,7 +32,7 @@
 
 use std::collections::{HashMap, HashSet};
 
-use super::builder::Builder;
+use super::build_input::Builder;
 use super::facet_cells::two_cells;
 use super::topology::{corner_key, FaceKey, Topology};
 use super::{ContactGroups, Interface, ModelError};

@@ -8,7 +8,7 @@
 
 use std::collections::{HashMap, HashSet};
 
-use super::builder::Builder;
+use super::build_input::Builder;
 use super::topology::Topology;
 use super::{ContactGroups, ModelError};
 use crate::fem::element;

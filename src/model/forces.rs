@@ -23,7 +23,7 @@
 //! 3D) a group of points on one line about that line: both are refused.
 
 use super::build::{placed, placed_facets};
-use super::builder::{dim_name, Builder};
+use super::build_input::{dim_name, Builder};
 use super::contacts::Split;
 use super::topology::Topology;
 use super::{Body, ForceLoad, LoadKind, ModelError};

@@ -6,7 +6,7 @@
 //! the motion, and, where they lie on another body without sharing its
 //! nodes (volumes that were not fused), saying so and how to fuse them.
 
-use super::builder::Builder;
+use super::build_input::Builder;
 use super::quality;
 use super::topology::UnionFind;
 use super::{Body, ModelError};

@@ -7,7 +7,7 @@
 
 use std::collections::{HashMap, HashSet};
 
-use super::builder::Builder;
+use super::build_input::Builder;
 use super::water::{Diagram, Field, Fill, GroupWater, JointWater, Levels, Sheet, WaterFace, WaterPressure};
 use super::{Model, ModelError, CREASE_ANGLE};
 use crate::fem::vec3::{cross, dot, normalized, sub};

@@ -23,12 +23,12 @@
 //! contact facet; contacts.rs: the split and the pairs),
 //! supports, the rigid-motion check (held.rs), loads, pair normals
 //! (normals.rs: a copy in several pairs takes its surface's normal) and
-//! areas. builder.rs holds what every step reads and its messages.
+//! areas. build_input.rs holds what every step reads and its messages.
 //! What the built model makes legal but a user may not mean (bodies bonded
 //! by shared nodes without a contact) is in warnings.rs.
 
 mod build;
-mod builder;
+mod build_input;
 mod contacts;
 mod facet_cells;
 mod forces;

@@ -14,7 +14,7 @@ use serde_json::json;
 
 use super::number::sig;
 use crate::analytic::lining::{Comparison, TunnelCheck, STEP_DEG, THICKNESS_POINTS};
-use crate::analytic::paper::{self, CylinderCheck, Tables};
+use crate::analytic::paper_tables::{self as paper, CylinderCheck, Tables};
 use crate::analytic::{Analytic, Check, Lame, LinedTunnel, TunnelSlip};
 
 /// The tables' unit: stresses in 1e-2 MPa.

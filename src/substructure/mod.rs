@@ -26,8 +26,8 @@ pub mod interior;
 pub mod ordering;
 pub mod parts;
 pub mod schur;
-pub mod single;
-pub mod twofold;
+pub mod single_precision;
+pub mod two_threads;
 
 pub use parts::{cut, parts, Part};
 

@@ -51,7 +51,7 @@ use super::{coords, in_runs, Answer, Freedom, Solver};
 use crate::contact::basis;
 use crate::contact::frame::Frame;
 use crate::contact::law::ContactState;
-use crate::contact::rigid::PartModes;
+use crate::contact::mobility::PartModes;
 use crate::fem::rigid::n_modes;
 use crate::fem::vec3::length;
 use crate::model::Model;

@@ -49,7 +49,7 @@
 use nalgebra::{DMatrix, DVector};
 
 use super::coords::{Terms, Var};
-use super::ldp::least_norm_point;
+use super::least_distance::least_norm_point;
 use super::{Limit, Relation};
 use crate::contact::frame::Frame;
 use crate::contact::law::ContactState;
@@ -924,12 +924,12 @@ impl Junction {
     }
 }
 
-mod memo;
 pub mod pressure;
 mod tangent;
-use memo::Memo;
+mod tie_cache;
 use pressure::Pressure;
 use tangent::Tangent;
+use tie_cache::Memo;
 
 #[cfg(test)]
 mod tests;

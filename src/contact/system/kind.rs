@@ -11,8 +11,8 @@ use super::layout::Layout;
 use super::reduce::NotHeld;
 use super::sparse::Sparse;
 use super::{Solver, ITERATIVE_FROM};
+use crate::contact::mobility::PartModes;
 use crate::contact::options::InterfaceSolver;
-use crate::contact::rigid::PartModes;
 use crate::model::Model;
 use crate::substructure::{Condensation, OperatorRef, Part};
 

@@ -28,7 +28,7 @@
 //! part is condensed again.
 //!
 //! Before solving, the parts nothing holds are found from the relations'
-//! geometry ([`super::rigid`]): every tied axis holds, and so does a
+//! geometry ([`super::mobility`]): every tied axis holds, and so does a
 //! slipping pair across its slip where the robust rule's linearised
 //! friction has a spring (its force turns as the pair moves across it: a
 //! wedge slipping along a V-groove while its friction still holds it
@@ -36,7 +36,7 @@
 //! along its normal alone on a curved contact holds only what its facets'
 //! normals agree on: a lining whose interface carries no shear turns in
 //! its round hole, however its facets' lengths tilt the pairs' normals
-//! (see [`super::rigid`]); what moves is named ([`Free::motions`]).
+//! (see [`super::mobility`]); what moves is named ([`Free::motions`]).
 
 pub mod coords;
 pub mod dense;
@@ -46,7 +46,7 @@ pub mod joins;
 pub mod junction;
 pub mod kind;
 mod layout;
-mod ldp;
+mod least_distance;
 pub mod reduce;
 pub mod sparse;
 
@@ -59,7 +59,7 @@ use layout::Layout;
 use super::basis::FaceBasis;
 use super::frame::Frame;
 use super::law::{ContactState, PairResult};
-use super::rigid::{free_parts, pair_ties, Free, PartModes, Tie};
+use super::mobility::{free_parts, pair_ties, Free, PartModes, Tie};
 use super::water::Water;
 use crate::model::{Model, ModelError};
 use crate::substructure::OperatorRef;

@@ -51,7 +51,7 @@ use crate::fem::sparse::{Cholesky, SymMatrix};
 use crate::fem::vec3::length;
 use crate::substructure::ordering::Ordering;
 use crate::substructure::schur::PartialCholesky;
-use crate::substructure::single::SingleCholesky;
+use crate::substructure::single_precision::SingleCholesky;
 use crate::substructure::{OperatorRef, SchurRef};
 
 const RESTART: usize = 200;

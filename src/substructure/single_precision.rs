@@ -23,7 +23,7 @@ use faer::{Conj, MatMut, Par, Side, Spec};
 
 use super::ordering::Ordering;
 use super::schur::symbolic;
-use super::twofold::Twofold;
+use super::two_threads::Twofold;
 use crate::fem::sparse::{FactorError, SymMatrix};
 use crate::fem::vec3::to_one;
 

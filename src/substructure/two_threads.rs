@@ -22,7 +22,7 @@
 //!
 //! Each thread adds the same updates in the same order as a sequential
 //! substitution; only the sums over both threads are formed in another
-//! order (single-precision round-off, `single.rs`'s unit test).
+//! order (single-precision round-off, `single_precision.rs`'s unit test).
 //!
 //! Measured on the means of `make bench-blocks` (a substitution, forwards
 //! and back): 512 blocks (5.4e7 values) 0.0152 s against faer's 0.0235 s
