@@ -62,15 +62,7 @@ pub fn solve(
                 axpy(-hk[i], vi, &mut w);
             }
             hk[k + 1] = length(&w);
-            // the rotations so far, then the one that zeroes hk[k + 1]
-            for i in 0..k {
-                let t = cs[i] * hk[i] + sn[i] * hk[i + 1];
-                hk[i + 1] = -sn[i] * hk[i] + cs[i] * hk[i + 1];
-                hk[i] = t;
-            }
-            let d = hk[k].hypot(hk[k + 1]);
-            let (c, s) = if d == 0.0 { (1.0, 0.0) } else { (hk[k] / d, hk[k + 1] / d) };
-            hk[k] = d;
+            let (c, s) = rotate(&mut hk, &cs, &sn, k);
             g.push(-s * g[k]);
             g[k] *= c;
             cs.push(c);
@@ -86,11 +78,7 @@ pub fn solve(
             v.push(next);
         }
         // y = H^-1 g (upper triangular after the rotations), x += M^-1 V y
-        let mut y = vec![0.0; k];
-        for i in (0..k).rev() {
-            let s: f64 = (i + 1..k).map(|j| h[j][i] * y[j]).sum();
-            y[i] = (g[i] - s) / h[i][i];
-        }
+        let y = back_substitute(&h, &g, k);
         let mut z = vec![0.0; n];
         for (vi, yi) in v.iter().zip(&y) {
             axpy(*yi, vi, &mut z);
@@ -106,6 +94,32 @@ pub fn solve(
         }
     }
     (x, Convergence { iterations, residual: beta, converged: beta <= tol })
+}
+
+/// Applies the Givens rotations so far (`cs`, `sn`) to the new column
+/// `hk` of the Hessenberg matrix, then the one that zeroes `hk[k + 1]`,
+/// which it returns as (cos, sin).
+fn rotate(hk: &mut [f64], cs: &[f64], sn: &[f64], k: usize) -> (f64, f64) {
+    for i in 0..k {
+        let t = cs[i] * hk[i] + sn[i] * hk[i + 1];
+        hk[i + 1] = -sn[i] * hk[i] + cs[i] * hk[i + 1];
+        hk[i] = t;
+    }
+    let d = hk[k].hypot(hk[k + 1]);
+    let (c, s) = if d == 0.0 { (1.0, 0.0) } else { (hk[k] / d, hk[k + 1] / d) };
+    hk[k] = d;
+    (c, s)
+}
+
+/// `y = H^-1 g` for the first `k` columns `h` of the rotated (upper
+/// triangular) Hessenberg matrix.
+fn back_substitute(h: &[Vec<f64>], g: &[f64], k: usize) -> Vec<f64> {
+    let mut y = vec![0.0; k];
+    for i in (0..k).rev() {
+        let s: f64 = (i + 1..k).map(|j| h[j][i] * y[j]).sum();
+        y[i] = (g[i] - s) / h[i][i];
+    }
+    y
 }
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {
