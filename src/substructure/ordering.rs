@@ -98,11 +98,26 @@ pub(crate) fn metis_lock() -> std::sync::MutexGuard<'static, ()> {
 
 /// METIS nested dissection of the interior node graph, expanded to equations.
 fn nested_dissection(k: &SymMatrix, ni: usize, node_of: &[usize]) -> Result<Vec<usize>, FactorError> {
-    use metis_sys::idx_t;
-    // compress node ids to 0..nn in order of first appearance
+    let node = compressed_nodes(&node_of[..ni]);
+    let nn = node.iter().map(|&g| g + 1).max().unwrap_or(0);
+    let (eq_ptr, eqs) = equations_of_nodes(&node, nn);
+    let (mut xadj, mut adjncy) = node_graph(k, &node, nn)?;
+    let perm = metis_node_nd(&mut xadj, &mut adjncy, nn)?;
+    // perm[new] = old node: emit each node's equations in that order
+    let mut fwd = Vec::with_capacity(ni);
+    for &g in &perm {
+        fwd.extend_from_slice(&eqs[eq_ptr[g as usize]..eq_ptr[g as usize + 1]]);
+    }
+    debug_assert_eq!(fwd.len(), ni);
+    Ok(fwd)
+}
+
+/// The node of each equation, its id compressed to 0..nn in order of first
+/// appearance.
+fn compressed_nodes(node_of: &[usize]) -> Vec<usize> {
     let mut id = vec![usize::MAX; node_of.iter().map(|&v| v + 1).max().unwrap_or(0)];
     let mut nn = 0;
-    let node: Vec<usize> = node_of[..ni]
+    node_of
         .iter()
         .map(|&v| {
             if id[v] == usize::MAX {
@@ -111,22 +126,37 @@ fn nested_dissection(k: &SymMatrix, ni: usize, node_of: &[usize]) -> Result<Vec<
             }
             id[v]
         })
-        .collect();
-    // the equations of each node, in CSR
+        .collect()
+}
+
+/// The equations of each of the `nn` nodes, in CSR (pointers, equations).
+fn equations_of_nodes(node: &[usize], nn: usize) -> (Vec<usize>, Vec<usize>) {
     let mut eq_ptr = vec![0usize; nn + 1];
-    for &g in &node {
+    for &g in node {
         eq_ptr[g + 1] += 1;
     }
     for g in 0..nn {
         eq_ptr[g + 1] += eq_ptr[g];
     }
-    let mut eqs = vec![0usize; ni];
+    let mut eqs = vec![0usize; node.len()];
     let mut fill = eq_ptr.clone();
     for (e, &g) in node.iter().enumerate() {
         eqs[fill[g]] = e;
         fill[g] += 1;
     }
-    // the node graph: both directions, no self loops, no duplicates
+    (eq_ptr, eqs)
+}
+
+/// The node graph of the interior block of `k` (the first `node.len()`
+/// equations), in METIS's CSR (xadj, adjncy): both directions, no self
+/// loops, no duplicates.
+fn node_graph(
+    k: &SymMatrix,
+    node: &[usize],
+    nn: usize,
+) -> Result<(Vec<metis_sys::idx_t>, Vec<metis_sys::idx_t>), FactorError> {
+    use metis_sys::idx_t;
+    let ni = node.len();
     let mut adj: Vec<Vec<idx_t>> = vec![Vec::new(); nn];
     for c in 0..ni {
         let gc = node[c];
@@ -149,7 +179,16 @@ fn nested_dissection(k: &SymMatrix, ni: usize, node_of: &[usize]) -> Result<Vec<
                 .map_err(|_| FactorError::Resource(String::from("node graph too large for METIS (32-bit indices)")))?,
         );
     }
-    drop(adj);
+    Ok((xadj, adjncy))
+}
+
+/// METIS_NodeND on a graph of `nn` vertices: perm[new] = old vertex.
+fn metis_node_nd(
+    xadj: &mut [metis_sys::idx_t],
+    adjncy: &mut [metis_sys::idx_t],
+    nn: usize,
+) -> Result<Vec<metis_sys::idx_t>, FactorError> {
+    use metis_sys::idx_t;
     let mut nvtxs = nn as idx_t;
     let mut perm: Vec<idx_t> = vec![0; nn];
     let mut iperm: Vec<idx_t> = vec![0; nn];
@@ -173,11 +212,5 @@ fn nested_dissection(k: &SymMatrix, ni: usize, node_of: &[usize]) -> Result<Vec<
     if status != metis_sys::rstatus_et_METIS_OK {
         return Err(FactorError::Resource(format!("METIS_NodeND failed (status {status})")));
     }
-    // perm[new] = old node: emit each node's equations in that order
-    let mut fwd = Vec::with_capacity(ni);
-    for &g in &perm {
-        fwd.extend_from_slice(&eqs[eq_ptr[g as usize]..eq_ptr[g as usize + 1]]);
-    }
-    debug_assert_eq!(fwd.len(), ni);
-    Ok(fwd)
+    Ok(perm)
 }
