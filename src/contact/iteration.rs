@@ -5,12 +5,14 @@
 //! rule that reports cycles) or after `max_iterations`. A state set that
 //! leaves parts free to slide is put back to the rule first, which may keep
 //! one of their pairs stuck (a Newton step that overshot) before it is a
-//! loss of equilibrium. A converged step is committed once, by
+//! loss of equilibrium. A pair solved slipping or open in an iteration
+//! after the first has cracked in the step ([`super::cracked`]) and stays
+//! so to its end. A converged step is committed once, by
 //! [`super::commit`]: where it ended, and the cracks it made.
 
 use super::law::ContactState;
 use super::system::{InterfaceProblem, InterfaceSolution, Relation, SolveFailure};
-use super::{commit, Failed, History, Outcome, Summary};
+use super::{commit, mark_cracks, start_step, Failed, History, Outcome, Summary};
 
 /// A state rule: the relations each iteration solves with, and the verdict
 /// on what came out.
@@ -52,6 +54,7 @@ pub(super) fn run(
     max_iterations: usize,
 ) -> Result<Outcome, Failed> {
     let mut summary = Summary::default();
+    start_step(h);
     loop {
         summary.iterations += 1;
         let solution = loop {
@@ -63,6 +66,9 @@ pub(super) fn run(
                 }
             }
         };
+        if summary.iterations > 1 {
+            mark_cracks(h);
+        }
         summary.history.push(h.states.clone());
         let Verdict { next, settled } = rule.judge(h, &solution, &mut summary);
         // (a loose interface solve is never the answer: the next, with the

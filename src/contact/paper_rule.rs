@@ -7,7 +7,9 @@
 //! until that shear has settled. A state set that comes back after others is
 //! a cycle: it is reported, not resolved (the robust rule resolves it).
 //! Pairs that opened or slipped in a converged step are judged cracked in
-//! the steps after it (f_t = 0, the residual cohesion), as by the robust rule.
+//! the steps after it (f_t = 0, the residual cohesion), and so are those
+//! solved slipping or open earlier in this step ([`super::cracked`]), as by
+//! the robust rule.
 
 use super::iteration::{Rule, Verdict};
 use super::law::{judge_paper, ContactState, PairResult};
@@ -66,7 +68,7 @@ impl Rule for Paper<'_> {
             None => r[p],
         };
         let next: Vec<ContactState> =
-            (0..n).map(|p| judge_paper(&judged(p), &self.laws[p].strength, h.cracked[p])).collect();
+            (0..n).map(|p| judge_paper(&judged(p), &self.laws[p].strength, h.cracked[p] || h.cracking[p])).collect();
         summary.cycled = next != h.states && summary.history.contains(&next);
 
         // carry the new states: friction directions, offsets; and how far
