@@ -48,7 +48,7 @@ fn solved(run: Option<Run>, opts: &RunOptions) -> Result<()> {
         warn(&run.scene.warnings());
     }
     if !run.scene.bonded {
-        warn(&crate::model::warnings::warnings(&run.model));
+        warn(&crate::output::model_warnings(&run.scene, &run.model));
     }
     warn(&crate::output::insitu_warnings(&run.scene, &run.model));
     print_summary(&run, &opts.out_dir(&run.scene));
@@ -126,10 +126,12 @@ pub fn check(scene_path: &Path, allow_geo_commands: bool) -> Result<()> {
     let scene = Scene::load(scene_path)?;
     let out = Path::new("results").join(&scene.name);
     let (mesh, msh, _) = driver::load_mesh(&scene, &out, allow_geo_commands)?;
-    let model = Model::build(&mesh, &scene.model_spec())?;
+    let in_scene = |e: crate::Error| e.in_scene(&scene.path);
+    let model = Model::build(&mesh, &scene.model_spec()).map_err(|e| in_scene(e.into()))?;
     // the plan solve would make; a run that would not fit in memory fails the check, before it says anything
     let driver::Preview { parts, memory } = driver::preview(&scene, &model, &RunOptions::default())?;
-    let (need, dofs, available) = (memory.need, memory.dofs, memory.fits?);
+    let (need, dofs) = (memory.need, memory.dofs);
+    let available = memory.fits.map_err(|e| in_scene(e.into()))?;
     outln!("{}: scene and mesh `{}` are consistent", scene_path.display(), msh.display());
     outln!(
         "  {} bodies, {} elements, {} model nodes, {} contact pairs, {} part(s)",
@@ -155,7 +157,7 @@ pub fn check(scene_path: &Path, allow_geo_commands: bool) -> Result<()> {
         warn(&crate::output::cut::warnings(&cut, dim));
     }
     warn(&scene.warnings());
-    warn(&crate::model::warnings::warnings(&model));
+    warn(&crate::output::model_warnings(&scene, &model));
     warn(&crate::output::insitu_warnings(&scene, &model));
     Ok(())
 }

@@ -3,7 +3,9 @@
 //! scene's, the mesh's, the model's, the contact iteration's, the result
 //! files', ...), which comes through whole as a variant; the variants of
 //! their own say what the driver adds: which file it was reading or
-//! writing. `Display` is the one paragraph a user reads, its source
+//! writing. The stages' errors about the scene (the model's, the memory
+//! check's) do not name its file: the driver adds it once, at the end of a
+//! run ([`Error::in_scene`]). `Display` is the one paragraph a user reads, its source
 //! included (`context: source`), so a caller that prints the chain of
 //! sources leaves out the causes the message already quotes.
 //!
@@ -13,7 +15,7 @@
 //! error (reading and writing files, running gmsh: rank 0's work) arrive
 //! as their message, [`Error::Remote`].
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use crate::driver::messages::{ContactError, PlanError, SafetyError};
 use crate::fem::sparse::FactorError;
@@ -128,6 +130,10 @@ pub enum Error {
         #[source]
         source: PlotError,
     },
+    /// An error about the scene `scene` (the model's, the memory check's),
+    /// with the scene's file name in front.
+    #[error("{}: {source}", scene.display())]
+    InScene { scene: PathBuf, source: Box<Error> },
     /// The error of another MPI rank, `rank`, that travels only as its
     /// message (it holds an operating-system error).
     #[error("{message}")]
@@ -170,6 +176,17 @@ pub enum Wire {
 }
 
 impl Error {
+    /// The error with the file context of the scene `scene` when it is
+    /// about the scene and does not name it: the model's errors about the
+    /// input and the memory check's. Others come back as they were.
+    pub fn in_scene(self, scene: &Path) -> Error {
+        match self {
+            Error::Model(ref m) if !m.about_input() => self,
+            Error::Model(_) | Error::Memory(_) => Error::InScene { scene: scene.to_path_buf(), source: Box::new(self) },
+            e => e,
+        }
+    }
+
     /// The error to send from rank `rank` to the others.
     pub fn to_wire(&self, rank: usize) -> Wire {
         match self {

@@ -193,9 +193,10 @@ pub fn run_on(mut scene: Scene, opts: &RunOptions, comm: &dyn Comm) -> Result<Op
     let t = Instant::now();
     let (mesh, msh, mesh_cached, stage) = ranks::mesh(comm, &scene, &out, opts)?;
     let timings = Timings { mesh: t.elapsed().as_secs_f64(), ..Default::default() };
-    let writer = scene.name.clone();
+    let (writer, path) = (scene.name.clone(), scene.path.clone());
     let mut to = Writing { out, t0, stage };
-    let result = solve(scene, opts, comm, (mesh, msh, mesh_cached), timings, &mut to);
+    // the file context of the stages' errors about the scene, added once
+    let result = solve(scene, opts, comm, (mesh, msh, mesh_cached), timings, &mut to).map_err(|e| e.in_scene(&path));
     // a run that ends without committing its results keeps its mesh
     if let Some(stage) = to.stage.filter(Stage::has_files) {
         let _ = stage.commit(Staged::amend(&to.out, &writer), &mut |m| say(m));

@@ -59,7 +59,7 @@ pub(super) fn memory(model: &Model, plan: &Plan, rank: usize) -> Memory {
     let steps = model.cases.first().map_or(1, |c| c.len());
     let need = crate::memory::estimate(model, &mine, plan.kind, plan.threads, rank == 0, plan.interface_dofs, steps);
     let dofs = substructure::parts::dof_counts(model, &plan.parts);
-    let fits = crate::memory::check(&model.scene, need, [dofs.total, dofs.interface], mine.len());
+    let fits = crate::memory::check(need, [dofs.total, dofs.interface], mine.len());
     Memory { need, dofs, fits }
 }
 

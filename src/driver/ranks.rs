@@ -410,7 +410,7 @@ mod tests {
     }
 
     fn not_held(rank: usize) -> ModelError {
-        ModelError::Invalid { scene: "s.toml".into(), key: "supports".into(), msg: format!("part on rank {rank}") }
+        ModelError::PartNotHeld { part: format!("part on rank {rank}") }
     }
 
     #[test]
@@ -418,7 +418,8 @@ mod tests {
         let outcomes = agree_on(3, |r| if r == 0 { Ok(0) } else { Err(not_held(r).into()) });
         for (r, o) in outcomes.into_iter().enumerate() {
             match o {
-                Err(Error::Model(m)) if matches!(&*m, ModelError::Invalid { msg, .. } if msg == "part on rank 1") => {}
+                Err(Error::Model(m)) if matches!(&*m, ModelError::PartNotHeld { part } if part == "part on rank 1") => {
+                }
                 o => panic!("rank {r}: rank 1's model error, not {o:?}"),
             }
         }

@@ -10,11 +10,11 @@
 //! names them. serde is a data-model trait, not a file format: nothing here
 //! knows TOML.
 
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use std::fmt;
 
 /// Kind of analysis.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Analysis {
     PlaneStrain,

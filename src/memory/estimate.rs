@@ -61,17 +61,17 @@ pub struct Estimate {
     pub interface: f64,
 }
 
-/// A run whose estimated peak exceeds the memory available.
+/// A run whose estimated peak exceeds the memory available (the driver
+/// puts the scene file's name in front of the message).
 #[derive(Clone, Debug, PartialEq, thiserror::Error, serde::Serialize, serde::Deserialize)]
 #[error(
-    "{scene}: this run needs about {} of memory at its peak ({} DOFs, {} interface; {} for the factors of {parts} part(s){}), more than the {} available ({}). Make it smaller: {}--substructures K (smaller factors, K pieces per body), more MPI ranks (mpirun -np N, with the cargo feature mpi), or a coarser mesh (a larger lc in [gmsh] setnumber); or run it where there is more memory (--no-memory-check runs it anyway: the estimate errs high, but the system may stop the run)",
+    "this run needs about {} of memory at its peak ({} DOFs, {} interface; {} for the factors of {parts} part(s){}), more than the {} available ({}). Make it smaller: {}--substructures K (smaller factors, K pieces per body), more MPI ranks (mpirun -np N, with the cargo feature mpi), or a coarser mesh (a larger lc in [gmsh] setnumber); or run it where there is more memory (--no-memory-check runs it anyway: the estimate errs high, but the system may stop the run)",
     human(need.total), dofs[0], dofs[1], human(need.factors),
     if need.interface > 0.0 { format!(", {} for the interface matrices", human(need.interface)) } else { String::new() },
     human(available.bytes), available.what,
     if need.interface > 0.0 { "--interface iterative (no dense interface matrices), " } else { "" }
 )]
 pub struct TooLarge {
-    pub scene: String,
     pub need: Estimate,
     pub available: Available,
     /// DOFs in all and on the interface.
@@ -80,10 +80,10 @@ pub struct TooLarge {
 }
 
 /// Fails when `need` exceeds what is available.
-pub fn check(scene: &str, need: Estimate, dofs: [usize; 2], parts: usize) -> Result<Available, TooLarge> {
+pub fn check(need: Estimate, dofs: [usize; 2], parts: usize) -> Result<Available, TooLarge> {
     let available = available();
     if need.total > available.bytes {
-        return Err(TooLarge { scene: scene.to_string(), need, available, dofs, parts });
+        return Err(TooLarge { need, available, dofs, parts });
     }
     Ok(available)
 }

@@ -7,7 +7,7 @@
 
 use std::collections::HashMap;
 
-use super::build_input::{dim_name, Builder};
+use super::build_input::Builder;
 use super::contacts::{self, facet_sign, RawPair, Split};
 use super::held::check_held;
 use super::topology::Topology;
@@ -43,7 +43,6 @@ impl Model {
         let nodal_loads = super::forces::nodal_loads(&b, &topo, &split, &bodies, &cases.of_load)?;
         // 5. Pair normals and areas from their facets on side I.
         let mut model = Model {
-            scene: spec.source.clone(),
             analysis: spec.analysis,
             nd: dofs_per_node(spec.analysis),
             thickness: spec.thickness,
@@ -82,21 +81,12 @@ fn check_dimension(b: &Builder) -> Result<(), ModelError> {
     let (mesh, spec) = (b.mesh, b.spec);
     let (sd, mesh_dim) = (spec.analysis.dim(), mesh.dim());
     if mesh_dim != sd {
-        return Err(b.invalid(
-            "analysis".into(),
-            format!(
-                "analysis = \"{}\" needs a {sd}D mesh with the bodies as physical {}s, but the mesh `{}` is {mesh_dim}D (it has physical {}s): {}",
-                spec.analysis,
-                dim_name(sd),
-                spec.mesh,
-                dim_name(mesh_dim),
-                if mesh_dim == 3 {
-                    "use analysis = \"solid\"".to_string()
-                } else {
-                    "use a plane analysis (plane_strain, plane_stress, axisymmetric), or give the .geo physical volumes".to_string()
-                }
-            ),
-        ));
+        return Err(ModelError::MeshDimension {
+            analysis: spec.analysis,
+            needs: sd,
+            mesh: spec.mesh.clone(),
+            has: mesh_dim,
+        });
     }
     Ok(())
 }
@@ -110,13 +100,7 @@ fn body_groups<'a>(b: &Builder<'a>) -> Result<Vec<&'a [Cell]>, ModelError> {
         let g = b.group(&format!("{}.group", body.key), &body.group, &[spec.analysis.dim()])?;
         if let Some(InitialStress::Geostatic { .. }) = body.initial {
             if body.material.density <= 0.0 || spec.gravity.iter().all(|&g| g == 0.0) {
-                return Err(b.invalid(
-                    format!("{}.k0", body.key),
-                    format!(
-                        "a geostatic initial stress needs the weight of body \"{}\": give its material a density > 0 and the scene a gravity = [..]",
-                        body.group
-                    ),
-                ));
+                return Err(ModelError::Weightless { key: format!("{}.k0", body.key), body: body.group.clone() });
             }
         }
         groups.push(&g.cells);
@@ -241,21 +225,11 @@ fn loads(
         }
         let key = format!("{}.group", load.key);
         if b.mesh.group(&load.group).is_some_and(|g| g.dim == 0) {
-            return Err(b.invalid(
-                key,
-                format!(
-                    "\"{}\" is a physical point, which a pressure or traction (per unit area) cannot load: give the point a force = [..] instead, or load a small patch (a short curve in 2D, a small surface in 3D) with a traction",
-                    load.group
-                ),
-            ));
+            return Err(ModelError::TractionOnPoint { key, group: load.group.clone() });
         }
         let g = b.group(&key, &load.group, &[b.spec.analysis.dim() - 1])?;
-        let hint = if load.kind.pressure_at([0.0; 3], 1).is_some() {
-            ". For water in a joint between bodies, make the group a [[contacts]] entry and give it water = { .. } (a uniform pressure, a level, or an uplift diagram): the water then pushes on both its faces"
-        } else {
-            ""
-        };
-        for (cell, sign, body, element) in placed_facets(b, topo, split, bodies, &key, g, hint)? {
+        let pressure = load.kind.pressure_at([0.0; 3], 1).is_some();
+        for (cell, sign, body, element) in placed_facets(topo, split, bodies, &key, g, pressure)? {
             loads.push(FacetLoad { cell, sign, kind: load.kind.clone(), body, element, case });
         }
     }
@@ -271,10 +245,7 @@ fn seismic(b: &Builder, of_load: &[usize]) -> Result<Vec<([f64; 3], usize)>, Mod
     for (load, &case) in b.spec.loads.iter().zip(of_load) {
         let LoadKind::Seismic { kh, kv, direction } = load.kind else { continue };
         if size == 0.0 {
-            return Err(b.invalid(
-                format!("{}.seismic", load.key),
-                "kh and kv are fractions of the acceleration of gravity, but the scene has none: give it gravity = [..] and its materials a density".into(),
-            ));
+            return Err(ModelError::SeismicWithoutGravity { key: format!("{}.seismic", load.key) });
         }
         out.push((std::array::from_fn(|i| size * kh * direction[i] - kv * g[i]), case));
     }
@@ -284,39 +255,30 @@ fn seismic(b: &Builder, of_load: &[usize]) -> Result<Vec<([f64; 3], usize)>, Mod
 /// The facets of a boundary group `g` on the copies of the cells they
 /// bound: (facet in model nodes, the sign that makes its normal outward,
 /// body, index in the body's cells). A facet on no body's boundary, or
-/// between two bodies, is an error about `key` (the latter ending with
-/// `hint`).
+/// between two bodies, is an error about `key` (the latter with a hint on
+/// water in joints when the load is a `pressure`).
 pub(super) fn placed_facets(
-    b: &Builder,
     topo: &Topology,
     split: &Split,
     bodies: &[Body],
     key: &str,
     g: &crate::mesh::Group,
-    hint: &str,
+    pressure: bool,
 ) -> Result<Vec<(Cell, f64, usize, usize)>, ModelError> {
     let placed = placed(&split.block, bodies.len());
     let mut out = Vec::new();
     for f in &g.cells {
         let c = match topo.bounding(f).as_slice() {
             [one] => *one,
-            [] => {
-                return Err(b.invalid(
-                    key.to_string(),
-                    format!("element {} of group \"{}\" is not on the boundary of any body", f.tag, g.name),
-                ))
-            }
+            [] => return Err(ModelError::LoadOffBoundary { key: key.to_string(), tag: f.tag, group: g.name.clone() }),
             owners => {
-                let names: Vec<String> = owners.iter().map(|&c| bodies[split.block[c]].label()).collect();
-                return Err(b.invalid(
-                    key.to_string(),
-                    format!(
-                        "element {} of group \"{}\" lies between bodies {}: loads go on outer boundaries{hint}",
-                        f.tag,
-                        g.name,
-                        names.join(" and ")
-                    ),
-                ));
+                return Err(ModelError::LoadBetweenBodies {
+                    key: key.to_string(),
+                    tag: f.tag,
+                    group: g.name.clone(),
+                    bodies: owners.iter().map(|&c| bodies[split.block[c]].label()).collect(),
+                    pressure,
+                });
             }
         };
         let mut cell = f.clone();
@@ -392,25 +354,13 @@ fn check_plane(b: &Builder, groups: &[&[Cell]], size: f64) -> Result<(), ModelEr
     if spec.analysis.dim() == 2 {
         let tol = 1e-9 * size.max(1.0);
         if let Some((body, cell)) = cells().find(|(_, c)| c.nodes.iter().any(|&n| mesh.coords[n][2].abs() > tol)) {
-            return Err(b.invalid(
-                "analysis".into(),
-                format!(
-                    "plane and axisymmetric analyses need a mesh in the plane z = 0, but element {} of body \"{}\" is not; use analysis = \"solid\" for a 3D mesh",
-                    cell.tag, spec.bodies[body].group
-                ),
-            ));
+            return Err(ModelError::NotInPlane { tag: cell.tag, body: spec.bodies[body].group.clone() });
         }
     }
     if spec.analysis == Analysis::Axisymmetric {
         let tol = 1e-9 * size;
         if let Some((body, cell)) = cells().find(|(_, c)| c.nodes.iter().any(|&n| mesh.coords[n][0] < -tol)) {
-            return Err(b.invalid(
-                "analysis".into(),
-                format!(
-                    "axisymmetric models lie in x = r >= 0, but element {} of body \"{}\" has x < 0",
-                    cell.tag, spec.bodies[body].group
-                ),
-            ));
+            return Err(ModelError::NegativeRadius { tag: cell.tag, body: spec.bodies[body].group.clone() });
         }
     }
     Ok(())

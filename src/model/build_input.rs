@@ -19,7 +19,6 @@ pub(super) struct Builder<'a> {
 impl<'a> Builder<'a> {
     pub(super) fn group(&self, key: &str, name: &str, dims: &[usize]) -> Result<&'a Group, ModelError> {
         let g = self.mesh.group(name).ok_or_else(|| ModelError::UnknownGroup {
-            scene: self.spec.source.clone(),
             key: key.to_string(),
             group: name.to_string(),
             mesh: self.spec.mesh.clone(),
@@ -33,7 +32,6 @@ impl<'a> Builder<'a> {
         })?;
         if !dims.contains(&g.dim) {
             return Err(ModelError::WrongDimension {
-                scene: self.spec.source.clone(),
                 key: key.to_string(),
                 group: name.to_string(),
                 found: dim_name(g.dim).to_string(),
@@ -42,7 +40,6 @@ impl<'a> Builder<'a> {
         }
         if g.cells.is_empty() {
             return Err(ModelError::EmptyGroup {
-                scene: self.spec.source.clone(),
                 key: key.to_string(),
                 group: name.to_string(),
                 dim: dim_name(g.dim).to_string(),
@@ -50,9 +47,5 @@ impl<'a> Builder<'a> {
             });
         }
         Ok(g)
-    }
-
-    pub(super) fn invalid(&self, key: String, msg: String) -> ModelError {
-        ModelError::Invalid { scene: self.spec.source.clone(), key, msg }
     }
 }

@@ -35,7 +35,7 @@ use std::collections::{HashMap, HashSet};
 use super::build_input::Builder;
 use super::facet_cells::two_cells;
 use super::topology::{corner_key, FaceKey, Topology};
-use super::{ContactGroups, Interface, ModelError};
+use super::{ContactGroups, Interface, ModelError, Unpaired};
 use crate::fem::{element, shape};
 use crate::mesh::Cell;
 
@@ -135,13 +135,13 @@ fn cuts<'a>(b: &Builder<'a>) -> Result<Cuts<'a>, ModelError> {
                 Some(&other) if shared[other].0 == ci => continue,
                 Some(&other) => {
                     let (oc, of) = shared[other];
-                    return Err(b.invalid(
+                    return Err(ModelError::FaceInTwoContacts {
                         key,
-                        format!(
-                            "element {} of group \"{name}\" is also element {} of contacts[{oc}]'s group: a face can be in one contact only; remove it from one of the two Physical groups",
-                            f.tag, of.tag
-                        ),
-                    ));
+                        tag: f.tag,
+                        group: name.clone(),
+                        other_tag: of.tag,
+                        other: oc,
+                    });
                 }
                 None => {
                     cut.insert(fk, shared.len());
@@ -324,13 +324,12 @@ impl<'a> Sides<'a> {
         let sa = one_side(b, topo, block, &ka, na, &ga.cells)?;
         let sb = one_side(b, topo, block, &kb, nb, &gb.cells)?;
         if block[sa[0]] == block[sb[0]] {
-            return Err(b.invalid(
-                format!("{}.groups", c.key),
-                format!(
-                    "both \"{na}\" and \"{nb}\" bound {}: a contact between a body and itself is not supported; split the body into two physical groups",
-                    describe_cell(b, topo, block, sa[0])
-                ),
-            ));
+            return Err(ModelError::SelfContact {
+                key: format!("{}.groups", c.key),
+                a: na.to_string(),
+                b: nb.to_string(),
+                bound: describe_cell(b, topo, block, sa[0]),
+            });
         }
         let ((gi, ci_cells), (gii, cii_cells)) =
             if block[sa[0]] < block[sb[0]] { ((ga, sa), (gb, sb)) } else { ((gb, sb), (ga, sa)) };
@@ -338,11 +337,13 @@ impl<'a> Sides<'a> {
             side_map(topo, &copies.cells, &gi.cells, &ci_cells),
             side_map(topo, &copies.cells, &gii.cells, &cii_cells),
         );
-        let pairs = pair_by_position(&b.mesh.coords, &gi.nodes(), &gii.nodes(), 1e-6 * size).map_err(|msg| {
-            b.invalid(
-                format!("{}.groups", c.key),
-                format!("pairing the nodes of \"{}\" with those of \"{}\": {msg}", gi.name, gii.name),
-            )
+        let pairs = pair_by_position(&b.mesh.coords, &gi.nodes(), &gii.nodes(), 1e-6 * size).map_err(|why| {
+            ModelError::Unpaired {
+                key: format!("{}.groups", c.key),
+                a: gi.name.clone(),
+                b: gii.name.clone(),
+                why: Box::new(why),
+            }
         })?;
         let partner: HashMap<usize, usize> = pairs.into_iter().collect();
         let (mut facets, mut sides, mut sg) = (Vec::new(), Vec::new(), Vec::new());
@@ -489,49 +490,29 @@ fn one_side(
             [one] => {
                 if let Some(&first) = out.first() {
                     if block[first] != block[*one] {
-                        return Err(b.invalid(
-                            key.to_string(),
-                            format!(
-                                "group \"{name}\" bounds {} and {}: with groups = [..] each group is the face of one body (or block)",
-                                describe_cell(b, topo, block, first),
-                                describe_cell(b, topo, block, *one)
-                            ),
-                        ));
+                        return Err(ModelError::SideOfTwo {
+                            key: key.to_string(),
+                            group: name.to_string(),
+                            first: describe_cell(b, topo, block, first),
+                            second: describe_cell(b, topo, block, *one),
+                        });
                     }
                 }
                 out.push(*one);
             }
-            [] => return Err(b.invalid(key.to_string(), format!("element {} of group \"{name}\" is not a face of any element of the [[bodies]] groups", f.tag))),
+            [] => return Err(ModelError::SideOffBodies { key: key.to_string(), tag: f.tag, group: name.to_string() }),
             [x, y, ..] => {
-                return Err(b.invalid(
-                    key.to_string(),
-                    format!(
-                        "element {} of group \"{name}\" lies between {} and {}, which share its nodes: with groups = [..] each group is the face of one body. For a surface the two bodies share, use group = \"{name}\" instead",
-                        f.tag,
-                        describe_cell(b, topo, block, *x),
-                        describe_cell(b, topo, block, *y)
-                    ),
-                ))
+                return Err(ModelError::SideBetween {
+                    key: key.to_string(),
+                    tag: f.tag,
+                    group: name.to_string(),
+                    first: describe_cell(b, topo, block, *x),
+                    second: describe_cell(b, topo, block, *y),
+                })
             }
         }
     }
     Ok(out)
-}
-
-/// Why the nodes of two groups could not be paired by position.
-#[derive(Debug, thiserror::Error)]
-enum Unpaired {
-    #[error("node at {at:?} has {partners} partners within {tol:.1e}: the mesh has duplicate nodes")]
-    Duplicate { at: [f64; 3], partners: usize, tol: f64 },
-    #[error("{} node(s) find no partner on the other side within {tol:.1e}, first at {}: the two groups must have coincident nodes (same mesh divisions on both curves/surfaces)", lonely.len(), first(lonely))]
-    Lonely { lonely: Vec<[f64; 3]>, tol: f64 },
-}
-
-/// The first five points of `lonely`, for a message.
-fn first(lonely: &[[f64; 3]]) -> String {
-    let first: Vec<String> =
-        lonely.iter().take(5).map(|p| format!("({:.6}, {:.6}, {:.6})", p[0], p[1], p[2])).collect();
-    first.join(", ")
 }
 
 /// Pairs every node of `a` with the one node of `b` within `tol`; error when

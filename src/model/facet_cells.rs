@@ -10,7 +10,7 @@ use std::collections::{HashMap, HashSet};
 
 use super::build_input::Builder;
 use super::topology::Topology;
-use super::{ContactGroups, ModelError};
+use super::{ContactGroups, ModelError, Near};
 use crate::fem::element;
 use crate::mesh::Cell;
 
@@ -36,8 +36,8 @@ pub(super) fn two_cells(
                 lone.push((ci, f, *one));
                 cells_of.push([*one, *one]);
             }
-            [] => return Err(b.invalid(key, format!("element {} of group \"{name}\" touches no body: it is not a face of any element of the [[bodies]] groups", f.tag))),
-            many => return Err(b.invalid(key, format!("element {} of group \"{name}\" is a face of {} elements; a face separates two", f.tag, many.len()))),
+            [] => return Err(ModelError::ContactOffBodies { key, tag: f.tag, group: name.to_string() }),
+            many => return Err(ModelError::FaceOfMany { key, tag: f.tag, group: name.to_string(), count: many.len() }),
         }
     }
     if let Some(&(ci, ..)) = lone.first() {
@@ -59,36 +59,18 @@ fn touches_one(b: &Builder, topo: &Topology, ci: usize, lone: &[(&Cell, usize)],
     let name = group_name(b.spec, ci);
     let (f, cell) = lone[0];
     let own = &b.spec.bodies[topo.body[cell]].group;
-    let surface = if f.kind.dim() == 1 { "curve" } else { "surface" };
+    let (group, tag, body, dim) = (name.to_string(), f.tag, own.clone(), f.kind.dim());
     if between > 0 {
-        return b.invalid(
-            key,
-            format!(
-                "group \"{name}\" takes in {} element(s) that touch only one body (element {} of body \"{own}\" the first) besides the {between} between two bodies: a contact is the {surface} the bodies share. Leave its outer faces out of the Physical group",
-                lone.len(),
-                f.tag
-            ),
-        );
+        return ModelError::OuterFaces { key, group, lone: lone.len(), tag, body, between, dim };
     }
-    let hint = match against(b, topo, lone) {
-        Some((i, dist, other)) => format!(
-            "; its element {} lies against body \"{}\" ({dist:.3e} away), which does not share its nodes: the two were meshed apart. Make the mesh conformal (OpenCASCADE: BooleanFragments{{ Volume{{..}}; Delete; }}{{ Volume{{..}}; Delete; }}, or Coherence), or give each side its own group and pair them with groups = [..]",
-            lone[i].0.tag,
-            b.spec.bodies[other].group
-        ),
-        None => match nearest(b, topo, centre(b, f), topo.body[cell]) {
-            Some((dist, other)) => format!("; the nearest other body is \"{}\", {dist:.3e} away", b.spec.bodies[other].group),
-            None => String::new(),
-        },
+    let near = match against(b, topo, lone) {
+        Some((i, dist, other)) => {
+            Some(Box::new(Near::Against { tag: lone[i].0.tag, body: b.spec.bodies[other].group.clone(), dist }))
+        }
+        None => nearest(b, topo, centre(b, f), topo.body[cell])
+            .map(|(dist, other)| Box::new(Near::Nearest { body: b.spec.bodies[other].group.clone(), dist })),
     };
-    b.invalid(
-        key,
-        format!(
-            "group \"{name}\" touches only body \"{own}\" (element {}{}){hint}. A contact needs a body on each side sharing the {surface} (group = ..), or two coincident groups (groups = [..])",
-            f.tag,
-            if lone.len() > 1 { format!(" and {} more", lone.len() - 1) } else { String::new() }
-        ),
-    )
+    ModelError::OneSided { key, group, body, tag, lone: lone.len(), near, dim }
 }
 
 /// The centre of a facet's corners.

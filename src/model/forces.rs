@@ -23,7 +23,7 @@
 //! 3D) a group of points on one line about that line: both are refused.
 
 use super::build::{placed, placed_facets};
-use super::build_input::{dim_name, Builder};
+use super::build_input::Builder;
 use super::contacts::Split;
 use super::topology::Topology;
 use super::{Body, ForceLoad, LoadKind, ModelError};
@@ -67,15 +67,12 @@ pub(super) fn nodal_loads(
             _ => facet_spots(b, topo, split, bodies, &key, g)?,
         };
         let spread = spread(&spots, force, sd == 2).map_err(|e| {
-            let what = match e {
-                SpreadError::Empty => format!("the {} \"{}\" has no extent to spread the force over", dim_name(g.dim), g.name),
-                SpreadError::NoLever if g.dim == 0 && spots.len() == 1 => "a single point carries no moment: give the moment to a small patch (a short curve in 2D, a small surface in 3D) or to the body (group = its [[bodies]] group), with point = [..] where it acts".to_string(),
-                SpreadError::NoLever => format!(
-                    "the nodes of \"{}\" lie on one line, which carries no moment about itself: give that moment to a patch or to the body",
-                    g.name
-                ),
-            };
-            b.invalid(format!("{}.moment", load.key), what)
+            let (key, group) = (format!("{}.moment", load.key), g.name.clone());
+            match e {
+                SpreadError::Empty => ModelError::NoExtent { key, group, dim: g.dim },
+                SpreadError::NoLever if g.dim == 0 && spots.len() == 1 => ModelError::MomentOnPoint { key },
+                SpreadError::NoLever => ModelError::MomentOnLine { key, group },
+            }
         })?;
         // the cell each node is assembled with
         let mut cell_of: std::collections::HashMap<usize, (usize, usize)> = Default::default();
@@ -99,16 +96,18 @@ fn point_spots(b: &Builder, topo: &Topology, split: &Split, key: &str, g: &Group
     for n in g.nodes() {
         let copies: Vec<usize> = (0..split.mesh_node.len()).filter(|&m| split.mesh_node[m] == n).collect();
         if topo.at(n).is_empty() {
-            return Err(b.invalid(
-                key.to_string(),
-                format!("the point of \"{}\" at {:?} is no node of any body: put it on a body (a point of its geometry, or `Point{{..}} In Surface{{..}}` in the .geo)", g.name, b.mesh.coords[n]),
-            ));
+            return Err(ModelError::PointOffBodies {
+                key: key.to_string(),
+                group: g.name.clone(),
+                at: b.mesh.coords[n],
+            });
         }
         if copies.len() != 1 {
-            return Err(b.invalid(
-                key.to_string(),
-                format!("the point of \"{}\" at {:?} lies on a contact, where each body has its own copy of the node: move it off the contact, or load a small patch of one body's boundary", g.name, b.mesh.coords[n]),
-            ));
+            return Err(ModelError::PointOnContact {
+                key: key.to_string(),
+                group: g.name.clone(),
+                at: b.mesh.coords[n],
+            });
         }
         spots.push(Spot { w: 1.0, x: split.coords[copies[0]], nodes: vec![(copies[0], 1.0)] });
     }
@@ -127,7 +126,7 @@ fn facet_spots(
 ) -> Result<Vec<Spot>, ModelError> {
     let (analysis, thickness) = (b.spec.analysis, b.spec.thickness);
     let mut spots = Vec::new();
-    for (cell, _, _, _) in placed_facets(b, topo, split, bodies, key, g, "")? {
+    for (cell, _, _, _) in placed_facets(topo, split, bodies, key, g, false)? {
         let xe: Vec<[f64; 3]> = cell.nodes.iter().map(|&n| split.coords[n]).collect();
         for q in quadrature::rule(cell.kind, 2 * cell.kind.order() + 1) {
             let (n, _, da, x) = element::facet_point(cell.kind, &xe, q.xi);
@@ -144,15 +143,7 @@ fn body_spots(b: &Builder, split: &Split, bodies: &[Body], key: &str, g: &Group)
     let (analysis, thickness) = (b.spec.analysis, b.spec.thickness);
     let mine: Vec<&Body> = bodies.iter().filter(|body| body.name == g.name).collect();
     if mine.is_empty() {
-        return Err(b.invalid(
-            key.to_string(),
-            format!(
-                "\"{}\" is a physical {} but no [[bodies]] entry: a force on a {} goes on a body's group",
-                g.name,
-                dim_name(g.dim),
-                dim_name(g.dim)
-            ),
-        ));
+        return Err(ModelError::ForceOffBodies { key: key.to_string(), group: g.name.clone(), dim: g.dim });
     }
     let mut spots = Vec::new();
     for cell in mine.iter().flat_map(|body| &body.cells) {

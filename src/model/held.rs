@@ -9,7 +9,7 @@
 use super::build_input::Builder;
 use super::quality;
 use super::topology::UnionFind;
-use super::{Body, ModelError};
+use super::{Body, ModelError, Unfused};
 use crate::fem::element::dofs_per_node;
 use crate::fem::rigid::{self, RigidModes};
 
@@ -73,46 +73,20 @@ pub(super) fn check_held(
         free.sort_unstable();
         free.dedup();
         if !free.is_empty() {
-            let one = members.len() == 1;
-            let (it, its) = if one { ("it", "its") } else { ("them", "their") };
-            let what = format!(
-                "{} {} not held: no support stops {its} {} (contacts counted as closed), so the stiffness matrix is singular",
-                if one { "body" } else { "bodies" },
-                members.iter().map(|&i| bodies[i].label()).collect::<Vec<_>>().join(", "),
-                free.join(", ")
-            );
             let others: Vec<usize> =
                 (0..coords.len()).filter(|&n| body_of[n] != usize::MAX && sets.root(body_of[n]) != r).collect();
-            let advice = match quality::lying_on(coords, &nodes, &others) {
-                Some(on) => unfused(bodies, &body_of, coords, analysis.dim(), on, it),
-                None => format!("Add a support that stops {it} (fix = [..] on a physical point, curve or surface)"),
-            };
-            return Err(b.invalid("supports".into(), format!("{what}. {advice}")));
+            let lying = quality::lying_on(coords, &nodes, &others).map(|(nodes, first, on)| Unfused {
+                nodes,
+                at: coords[first],
+                on: bodies[body_of[on]].label(),
+                dim: analysis.dim(),
+            });
+            return Err(ModelError::NotHeld {
+                bodies: members.iter().map(|&i| bodies[i].label()).collect(),
+                free: free.into_iter().map(String::from).collect(),
+                lying,
+            });
         }
     }
     Ok(())
-}
-
-/// What to do when bodies nothing holds lie on another without sharing
-/// nodes with it (`on`: how many of their nodes, the first, and the node it
-/// lies on): volumes (surfaces in 2D) that were not fused, which were most
-/// likely meant as one body.
-fn unfused(
-    bodies: &[Body],
-    body_of: &[usize],
-    coords: &[[f64; 3]],
-    dim: usize,
-    (n, a, b): (usize, usize, usize),
-    it: &str,
-) -> String {
-    let (entities, entity) = if dim == 3 { ("volumes", "Volume") } else { ("surfaces", "Surface") };
-    let x = coords[a];
-    format!(
-        "{} on body {} at {n} node(s) without sharing them (the first at ({:.6}, {:.6}, {:.6})): the {entities} were not fused there, so nothing joins {it} to that body. Fuse them in the .geo so that they share their nodes (OpenCASCADE: BooleanFragments{{ {entity}{{:}}; Delete; }}{{}}; the built-in kernel: Coherence;), give the touching faces a [[contacts]] entry if they should slip or open there, or add a support that stops {it}",
-        if it == "it" { "It lies" } else { "They lie" },
-        bodies[body_of[b]].label(),
-        x[0],
-        x[1],
-        x[2]
-    )
 }

@@ -94,7 +94,8 @@ fn traction(s: &[f64; 6], n: [f64; 3]) -> [f64; 3] {
     ]
 }
 
-/// One paragraph per contact group beyond its strength.
+/// One paragraph per contact group beyond its strength (the caller puts
+/// the scene file's name in front).
 pub fn warnings(model: &Model, strengths: &[JointStrength]) -> Vec<String> {
     beyond(model, strengths)
         .iter()
@@ -108,8 +109,7 @@ pub fn warnings(model: &Model, strengths: &[JointStrength]) -> Vec<String> {
                 what.push(format!("{} in tension beyond f_t", e.tension));
             }
             format!(
-                "{}: the in-situ stress puts {} of the {} pairs of contact \"{name}\" beyond its strength: {}. The rock mass is not in equilibrium with this joint as given, so the first load step slips or opens it under the in-situ stress alone. Check k0 / initial_stress against the joint's friction and cohesion, or give the joint the strength it has in situ",
-                model.scene,
+                "the in-situ stress puts {} of the {} pairs of contact \"{name}\" beyond its strength: {}. The rock mass is not in equilibrium with this joint as given, so the first load step slips or opens it under the in-situ stress alone. Check k0 / initial_stress against the joint's friction and cohesion, or give the joint the strength it has in situ",
                 e.shear + e.tension,
                 e.judged,
                 what.join(", ")

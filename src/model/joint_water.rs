@@ -28,7 +28,7 @@ pub(super) fn resolve(
         let (Some(water), Some(case)) = (&c.water, cases[ci]) else { continue };
         let key = format!("{}.water", c.key);
         let pairs: Vec<usize> = (0..model.pairs.len()).filter(|&p| model.pairs[p].contact == ci).collect();
-        let field = field(b, model, ci, water, &key)?;
+        let field = field(model, ci, water, &key)?;
         let mut group = GroupWater { contact: ci, field, fill: None, case, signs: signs[ci].clone(), vertical };
         if let Some(face) = &water.face {
             group.fill = Some(fill(b, model, &group, &pairs, face, &key)?);
@@ -40,7 +40,7 @@ pub(super) fn resolve(
 
 /// The pressure field of contact `ci`'s water, the ends of an uplift
 /// diagram given by its heads read off the joint's extent along the flow.
-fn field(b: &Builder, model: &Model, ci: usize, water: &JointWater, key: &str) -> Result<Field, ModelError> {
+fn field(model: &Model, ci: usize, water: &JointWater, key: &str) -> Result<Field, ModelError> {
     let (unit_weight, along, levels, drain) = match &water.pressure {
         WaterPressure::Uniform(u) => return Ok(Field::Uniform(*u)),
         WaterPressure::Level { unit_weight, along, levels, drain } => (*unit_weight, *along, levels, *drain),
@@ -52,13 +52,12 @@ fn field(b: &Builder, model: &Model, ci: usize, water: &JointWater, key: &str) -
         Levels::Ends { upstream, downstream } => {
             let (lo, hi) = extent(model, ci, along);
             if hi - lo <= 1e-9 * (hi.abs() + lo.abs()).max(1.0) {
-                return Err(b.invalid(
-                    format!("{key}.upstream"),
-                    format!(
-                        "the joint \"{}\" has no length along the flow direction along = [{}, {}, {}] (its nodes all lie at s = {lo}), so it has no upstream and downstream ends: give `along` as the horizontal direction in which the water flows under the joint",
-                        model.interfaces[ci].name, along[0], along[1], along[2]
-                    ),
-                ));
+                return Err(ModelError::JointNoLength {
+                    key: format!("{key}.upstream"),
+                    joint: model.interfaces[ci].name.clone(),
+                    along,
+                    s: lo,
+                });
             }
             vec![[lo, *upstream], [hi, *downstream]]
         }
@@ -95,12 +94,7 @@ fn fill(
     let seeds: Vec<usize> =
         (0..pairs.len()).filter(|&i| on_face.contains(&model.mesh_node[model.pairs[pairs[i]].k])).collect();
     if seeds.is_empty() {
-        return Err(b.invalid(
-            format!("{key}.face"),
-            format!(
-                "the joint \"{name}\" does not meet the face \"{face}\" (they have no node in common), so no crack of it can fill from that face's water: name the loaded face the joint ends on (a dam's upstream face at the heel, a slope's tension crack)"
-            ),
-        ));
+        return Err(ModelError::FaceOffJoint { key: format!("{key}.face"), joint: name.clone(), face: face.clone() });
     }
     let s = |i: usize| group.s(model.coords[model.pairs[pairs[i]].k]);
     let mean = |ix: &mut dyn Iterator<Item = usize>| {
@@ -110,14 +104,12 @@ fn fill(
     let at_face = mean(&mut seeds.iter().copied());
     let middle = mean(&mut (0..pairs.len()));
     if at_face > middle {
-        let a = group.along();
-        return Err(b.invalid(
-            format!("{key}.face"),
-            format!(
-                "the face \"{face}\" is at the downstream end of the joint \"{name}\" along the flow direction [{}, {}, {}]: s = x . along must grow away from the face the cracks fill from; turn `along` round",
-                a[0], a[1], a[2]
-            ),
-        ));
+        return Err(ModelError::FaceDownstream {
+            key: format!("{key}.face"),
+            face: face.clone(),
+            joint: name.clone(),
+            along: group.along(),
+        });
     }
     let (facet_sheet, sheets) = sheets(model, group.contact, &index_of, &seeds);
     Ok(Fill { surface: water.surface, unit_weight: water.unit_weight, pairs: pairs.to_vec(), facet_sheet, sheets })

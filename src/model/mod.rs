@@ -23,13 +23,15 @@
 //! contact facet; contacts.rs: the split and the pairs),
 //! supports, the rigid-motion check (held.rs), loads, pair normals
 //! (normals.rs: a copy in several pairs takes its surface's normal) and
-//! areas. build_input.rs holds what every step reads and its messages.
+//! areas. build_input.rs holds what every step reads, errors.rs what can be
+//! wrong ([`ModelError`]).
 //! What the built model makes legal but a user may not mean (bodies bonded
 //! by shared nodes without a contact) is in warnings.rs.
 
 mod build;
 mod build_input;
 mod contacts;
+mod errors;
 mod facet_cells;
 mod forces;
 mod held;
@@ -42,6 +44,7 @@ mod topology;
 pub mod water;
 
 pub use contacts::CREASE_ANGLE;
+pub use errors::{ModelError, Near, Unfused, Unpaired};
 pub use forces::NodalLoad;
 pub mod warnings;
 
@@ -137,8 +140,6 @@ pub struct Interface {
 
 #[derive(Clone, Debug)]
 pub struct Model {
-    /// The scene file, for messages.
-    pub scene: String,
     pub analysis: Analysis,
     pub nd: usize,
     pub thickness: f64,
@@ -198,24 +199,6 @@ impl Body {
     pub fn initial_at(&self, x: [f64; 3], analysis: Analysis, gravity: [f64; 3]) -> [f64; 6] {
         self.initial.map_or([0.0; 6], |i| i.at(x, analysis, self.material.density, gravity))
     }
-}
-
-#[derive(Clone, Debug, thiserror::Error, serde::Serialize, serde::Deserialize)]
-pub enum ModelError {
-    #[error("{scene}: {key} = \"{group}\" is not a physical group of the mesh `{mesh}`; it has: {known}. Check the name in the .geo's Physical statements")]
-    UnknownGroup { scene: String, key: String, group: String, mesh: String, known: String },
-    #[error("{scene}: {key} = \"{group}\" is a physical {found}, but a {wanted} is needed here")]
-    WrongDimension { scene: String, key: String, group: String, found: String, wanted: String },
-    #[error("{scene}: {key}: {msg}")]
-    Invalid { scene: String, key: String, msg: String },
-    #[error("{scene}: {key} = \"{group}\" is a physical {dim} of the mesh `{mesh}` without elements: its Physical statement names no entity that exists (gmsh keeps such a group without a word). Check the entity numbers in the .geo's Physical statement for \"{group}\"")]
-    EmptyGroup { scene: String, key: String, group: String, dim: String, mesh: String },
-    #[error("element {tag} of body \"{body}\" is inverted or degenerate (Jacobian determinant {det_j:.3e}): fix the mesh (node order or a collapsed element)")]
-    Inverted { body: String, tag: u64, det_j: f64 },
-    #[error("element {tag} ({kind}) of body {body} is folded or inverted: its Jacobian determinant is {det_j:.3e} {}, where it must be positive over the whole element, not only at the integration points. Fix the mesh: corner nodes in the wrong order, or a mid-side node beyond the opposite side (with gmsh: Mesh.HighOrderOptimize = 2, or a finer mesh where the boundary curves)", match node { Some(k) => format!("at its node {k} (gmsh order)"), None => "at its centre".to_string() })]
-    Folded { body: String, tag: u64, kind: String, node: Option<usize>, det_j: f64 },
-    #[error("element {tag} ({kind}) of body {body} is degenerate: its corner nodes {} and {} (gmsh order) lie at the same point ({:.6}, {:.6}, {:.6}), a collapsed edge where its Jacobian determinant is zero. Remesh it: a {kind} must keep its corners apart (a quadrangle or hexahedron collapsed into a triangle, prism or pyramid is not one; let gmsh make triangles, tetrahedra or prisms there), or check the element's node order in the .msh", corners.0, corners.1, at[0], at[1], at[2])]
-    Collapsed { body: String, tag: u64, kind: String, corners: (usize, usize), at: [f64; 3] },
 }
 
 impl Model {

@@ -4,9 +4,10 @@
 //! way to write it (`Scene::model_spec`); the model builder knows only this.
 //!
 //! Messages about a group name the input the way its author wrote it:
-//! `source` is the input file, and every entry carries `key`, where the input
-//! defined it (`bodies[0]`, `contacts[2]`). The builder appends the field it
-//! is about (`bodies[0].group`, `contacts[2].groups[1]`).
+//! every entry carries `key`, where the input defined it (`bodies[0]`,
+//! `contacts[2]`). The builder appends the field it is about
+//! (`bodies[0].group`, `contacts[2].groups[1]`); the driver puts the
+//! input file's name in front.
 
 use super::water::JointWater;
 use crate::fem::Analysis;
@@ -14,8 +15,6 @@ use crate::fem::Analysis;
 /// The model's description, independent of the file format it came from.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ModelSpec {
-    /// The input file (the scene), first in every message.
-    pub source: String,
     /// The mesh file, for messages.
     pub mesh: String,
     pub analysis: Analysis,

@@ -6,7 +6,8 @@
 //! sliver elements, and nodes that coincide inside one body group (volumes
 //! not fused); and gravity that loads nothing, no body having a density.
 //! Read from the model alone, after it is built; the writers put the
-//! warnings in summary.json and report.md, the commands on stderr.
+//! warnings in summary.json and report.md, the commands on stderr, each
+//! with the scene file's name in front.
 
 use super::Model;
 
@@ -17,8 +18,7 @@ pub fn warnings(model: &Model) -> Vec<String> {
     out.extend(mesh(model));
     if model.gravity.iter().any(|&g| g != 0.0) && model.bodies.iter().all(|b| b.material.density == 0.0) {
         out.push(format!(
-            "{}: gravity = {:?} is given, but no body has a density, so gravity loads nothing. Give the materials a density (in the scene's units: density * |g| is the unit weight), or leave gravity out",
-            model.scene,
+            "gravity = {:?} is given, but no body has a density, so gravity loads nothing. Give the materials a density (in the scene's units: density * |g| is the unit weight), or leave gravity out",
             &model.gravity[..model.nd]
         ));
     }
@@ -31,16 +31,15 @@ fn mesh(model: &Model) -> Vec<String> {
     let slivers = super::quality::slivers(model);
     if let Some((body, tag, q)) = slivers.first() {
         out.push(format!(
-            "{}: {} element(s) are nearly flat (slivers: scaled Jacobian below {:e} at a corner), the worst element {tag} of body {body} (scaled Jacobian {q:.1e}): their stiffness is ill-conditioned and their stresses unreliable. Re-mesh them (gmsh: Mesh.Optimize = 1, Mesh.OptimizeNetgen = 1)",
-            model.scene,
+            "{} element(s) are nearly flat (slivers: scaled Jacobian below {:e} at a corner), the worst element {tag} of body {body} (scaled Jacobian {q:.1e}): their stiffness is ill-conditioned and their stresses unreliable. Re-mesh them (gmsh: Mesh.Optimize = 1, Mesh.OptimizeNetgen = 1)",
             slivers.len(),
             super::quality::SLIVER
         ));
     }
     for (group, n, x) in super::quality::coincident(model) {
         out.push(format!(
-            "{}: body \"{group}\" has {n} nodes that lie on another node of the same body (the first at ({:.6}, {:.6}, {:.6})): its mesh is not joined there, as when volumes are not fused, so the pieces move apart. Fuse them in the .geo (BooleanFragments, or Coherence), or give them a [[contacts]] entry if they should touch",
-            model.scene, x[0], x[1], x[2]
+            "body \"{group}\" has {n} nodes that lie on another node of the same body (the first at ({:.6}, {:.6}, {:.6})): its mesh is not joined there, as when volumes are not fused, so the pieces move apart. Fuse them in the .geo (BooleanFragments, or Coherence), or give them a [[contacts]] entry if they should touch",
+            x[0], x[1], x[2]
         ));
     }
     out
@@ -54,8 +53,7 @@ fn bonds(model: &Model) -> Vec<String> {
             let (a, c) = (&model.bodies[b.bodies[0]].name, &model.bodies[b.bodies[1]].name);
             let shared = if b.nodes == 1 { "1 node".to_string() } else { format!("{} nodes", b.nodes) };
             format!(
-                "{}: bodies \"{a}\" and \"{c}\" share {shared} and no contact lies between them, so they are bonded there: they move as one, like one body of two materials. If they should be able to open or slip, add a [[contacts]] entry for the physical group between them",
-                model.scene
+                "bodies \"{a}\" and \"{c}\" share {shared} and no contact lies between them, so they are bonded there: they move as one, like one body of two materials. If they should be able to open or slip, add a [[contacts]] entry for the physical group between them"
             )
         })
         .collect()
@@ -130,7 +128,6 @@ mod tests {
     fn model(pairs: bool) -> Model {
         let pair = |k, l| Pair { k, l, contact: 0, normal: [1.0, 0.0, 0.0], area: 1.0, shares: Vec::new() };
         Model {
-            scene: "row.toml".into(),
             analysis: Analysis::PlaneStrain,
             nd: 2,
             thickness: 1.0,

@@ -194,10 +194,21 @@ pub fn restage_summary(mut staged: Staged, run: &Run) -> Result<Staged> {
 pub fn warnings(run: &Run) -> Vec<String> {
     let mut w = run.scene.warnings();
     if !run.scene.bonded {
-        w.extend(crate::model::warnings::warnings(&run.model));
+        w.extend(model_warnings(&run.scene, &run.model));
     }
     w.extend(insitu_warnings(&run.scene, &run.model));
     w
+}
+
+/// The model's warnings ([`crate::model::warnings`]), each with the scene
+/// file's name in front.
+pub fn model_warnings(scene: &crate::scene::Scene, model: &Model) -> Vec<String> {
+    in_scene(scene, crate::model::warnings::warnings(model))
+}
+
+/// The paragraphs `w`, each with the scene file's name in front.
+fn in_scene(scene: &crate::scene::Scene, w: Vec<String>) -> Vec<String> {
+    w.into_iter().map(|w| format!("{}: {w}", scene.path.display())).collect()
 }
 
 /// The contact groups the in-situ stress puts beyond their strength
@@ -213,7 +224,7 @@ pub fn insitu_warnings(scene: &crate::scene::Scene, model: &Model) -> Vec<String
             skip: c.slip == crate::scene::SlipLaw::Frictionless || c.water.is_some(),
         })
         .collect();
-    crate::model::insitu::warnings(model, &strengths)
+    in_scene(scene, crate::model::insitu::warnings(model, &strengths))
 }
 
 /// The bodies' VTU: each body's own nodes as points, so stresses averaged

@@ -438,7 +438,6 @@ impl Scene {
     pub fn model_spec(&self) -> ModelSpec {
         let raise = self.safety.as_ref().and_then(|s| s.raise.as_ref());
         ModelSpec {
-            source: self.path.display().to_string(),
             mesh: self.mesh.path().display().to_string(),
             analysis: self.analysis,
             thickness: self.thickness,

@@ -141,14 +141,11 @@ struct Factored {
 
 /// Why a part could not be solved.
 pub fn not_held(model: &Model, part: &Part, e: FactorError) -> ModelError {
-    let msg = match e {
-        FactorError::NotPositiveDefinite => format!(
-            "{} not held: the stiffness matrix is singular. Add a support (or more supports: every rigid-body motion must be stopped) or a contact that stays closed",
-            part.describe(model)
-        ),
-        FactorError::Resource(r) => format!("{}: {r}", part.describe(model)),
-    };
-    ModelError::Invalid { scene: model.scene.clone(), key: String::from("supports"), msg }
+    let part = part.describe(model);
+    match e {
+        FactorError::NotPositiveDefinite => ModelError::PartNotHeld { part },
+        FactorError::Resource(why) => ModelError::PartFactor { part, why },
+    }
 }
 
 /// Number the interior free DOFs (0..ni) and the interface DOFs (ni..ni+nc).

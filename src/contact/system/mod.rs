@@ -323,13 +323,7 @@ impl<'a> InterfaceProblem<'a> {
         let rigid: Vec<PartModes> = parts.iter().map(|p| PartModes::new(model, &p.part.nodes(model))).collect();
         let positions = model.pairs.iter().map(|p| model.coords[p.k]).collect();
         let spreads = model.normal_spreads();
-        let not_held = |_| {
-            ModelError::Invalid {
-            scene: model.scene.clone(),
-            key: "supports".into(),
-            msg: format!("the bodies are not held even with every contact stuck (the bonded interface system is singular): add a support{}", crate::model::quality::why_not_held(model)),
-        }
-        };
+        let not_held = |_| ModelError::InterfaceNotHeld { why: crate::model::quality::why_not_held(model) };
         let solver = kind.build(model, &layout, parts, &rigid, remote, threads).map_err(not_held)?;
         Ok(InterfaceProblem {
             layout,

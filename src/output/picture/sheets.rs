@@ -573,7 +573,6 @@ pub(super) mod tests {
             .collect();
         let cell = Cell { kind: CellKind::Tet4, nodes: (0..4.min(n)).collect(), tag: 0 };
         Model {
-            scene: "test.toml".into(),
             analysis: Analysis::Solid,
             nd: 3,
             thickness: 1.0,
