@@ -270,6 +270,28 @@ mod tests {
     }
 
     #[test]
+    fn the_scene_is_named_once_in_front_of_the_errors_about_it() {
+        let scene = Path::new("geo/dam.toml");
+        let weightless = ModelError::Weightless { key: "bodies[0].k0".into(), body: "rock".into() };
+        let e = Error::from(weightless.clone()).in_scene(scene);
+        assert!(
+            matches!(&e, Error::InScene { source, .. } if matches!(&**source, Error::Model(m) if matches!(**m, ModelError::Weightless { .. }))),
+            "{e:?}"
+        );
+        assert_eq!(e.to_string(), format!("geo/dam.toml: {weightless}"));
+        assert!(e
+            .to_string()
+            .starts_with("geo/dam.toml: bodies[0].k0: a geostatic initial stress needs the weight of body \"rock\""));
+        // the mesh's own faults name the element, not the scene
+        let folded = ModelError::Folded { body: "b".into(), tag: 12, kind: "tet10".into(), node: None, det_j: -1e-3 };
+        let e = Error::from(folded).in_scene(scene);
+        assert!(matches!(&e, Error::Model(_)) && e.to_string().starts_with("element 12 (tet10) of body b"), "{e}");
+        // errors that name their own file are left as they were
+        let e = Error::NoMesh { geo: "x.geo".into() }.in_scene(scene);
+        assert!(matches!(e, Error::NoMesh { .. }));
+    }
+
+    #[test]
     fn a_context_variant_says_the_context_then_its_source() {
         let source = std::io::Error::from_raw_os_error(2);
         let e = Error::Read { path: "results/x/report.md".into(), source };

@@ -158,7 +158,13 @@ mod tests {
         // (the row's nodes all sit at the origin: the mesh warnings are another test's)
         let w = bonds(&m);
         assert_eq!(w.len(), 2);
-        assert!(w[0].starts_with("row.toml: bodies \"a\" and \"b\" share 2 nodes and no contact lies between them, so they are bonded there"), "{}", w[0]);
+        assert!(
+            w[0].starts_with(
+                "bodies \"a\" and \"b\" share 2 nodes and no contact lies between them, so they are bonded there"
+            ),
+            "{}",
+            w[0]
+        );
         assert!(w[1].contains("\"a\" and \"c\" share 1 node and"), "{}", w[1]);
         assert!(w[0].contains("add a [[contacts]] entry"));
     }
