@@ -32,6 +32,7 @@
 
 pub mod basis;
 pub mod capacity;
+mod cluster;
 pub mod cutting;
 pub mod frame;
 mod iteration;
@@ -108,6 +109,9 @@ pub struct Summary {
     pub cycled: bool,
     /// Cycles broken by changing one pair at a time (robust rule).
     pub cycles_broken: usize,
+    /// Stalls or cycles ended by solving the cluster of pairs they were
+    /// on set by set (robust rule, [`cluster`]).
+    pub clusters_solved: usize,
     /// Pairs opened in tension between the Coulomb apex c / f and f_t.
     pub apex_openings: usize,
     /// State sets of every iteration (the ones solved with).

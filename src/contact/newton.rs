@@ -35,6 +35,7 @@
 //! loads do there ([`super::capacity`]).
 
 use super::capacity::{capacities, PairLoad};
+use super::cluster::{Search, Step, Watch};
 use super::iteration::{Rule, Verdict};
 use super::law::{friction_bound, judge, ContactState, Trial};
 use super::options::SlipLaw;
@@ -103,6 +104,10 @@ pub(super) struct Newton<'p> {
     /// Times this step kept a pair stuck under parts their slipping
     /// pairs hold ([`Newton::overshoot`]).
     overshoots: usize,
+    /// Where in the step's history the cycle breaker came on, and the
+    /// fallback for a stall or a cycle it does not end ([`super::cluster`]).
+    breaking_from: Option<usize>,
+    search: Search,
 }
 
 /// Every pair's next state, and how far each changing pair is from its
@@ -110,8 +115,9 @@ pub(super) struct Newton<'p> {
 struct Judged {
     next: Vec<ContactState>,
     violation: Vec<f64>,
-    /// The largest friction residual of pairs that keep slipping.
+    /// The largest friction residual of pairs that keep slipping, and each one's.
     residual: f64,
+    residuals: Vec<f64>,
     scale_f: f64,
 }
 
@@ -135,6 +141,8 @@ impl<'p> Newton<'p> {
             violation: Vec::new(),
             swapped: vec![false; laws.len()],
             overshoots: 0,
+            breaking_from: None,
+            search: Search::default(),
         }
     }
 
@@ -151,7 +159,7 @@ impl<'p> Newton<'p> {
         }
         // (a pair that has just closed has p = 0 up to round-off: its bound
         // grows with the pressure it is about to get)
-        let pk = (-force[0]).max(0.0);
+        let pk = self.search.pressure(p).unwrap_or((-force[0]).max(0.0));
         let (bk, db) = friction_bound(&law.strength, cracked(h, p), area, pk);
         let s = sub(tangential(rel), reference);
         let xi = along([0.0, force[1] + c * s[1], force[2] + c * s[2]], line);
@@ -213,7 +221,7 @@ impl<'p> Newton<'p> {
         let tol_f = FORCE_ROUND_OFF * scale_f;
         let mut next = h.states.clone();
         let mut violation = vec![0.0; n];
-        let mut residual: f64 = 0.0;
+        let mut residuals = vec![0.0; n];
         for p in 0..n {
             let (st, law) = (h.states[p], &self.laws[p]);
             let area = self.problem.area(p);
@@ -255,7 +263,7 @@ impl<'p> Newton<'p> {
                 (None, _) => judge(st, &trial, &law.strength, cr, coulomb, tol_u, tol_f),
             };
             if st == ContactState::Slip && next[p] == ContactState::Slip {
-                residual = residual.max(friction_residual(law, cr, area, self.stiffness[p], trial.force, slip));
+                residuals[p] = friction_residual(law, cr, area, self.stiffness[p], trial.force, slip);
             }
             if next[p] != st {
                 let (b, _) = friction_bound(&law.strength, cr, area, -force[p][0]);
@@ -267,7 +275,8 @@ impl<'p> Newton<'p> {
                 } / scale_f;
             }
         }
-        Judged { next, violation, residual, scale_f }
+        let residual = residuals.iter().fold(0.0, |a: f64, &b| a.max(b));
+        Judged { next, violation, residual, residuals, scale_f }
     }
 
     /// A state set met before (a cycle): from then on only the most
@@ -295,6 +304,30 @@ impl<'p> Newton<'p> {
             judged.next[p] = h.states[p];
         }
         first
+    }
+
+    /// Step 2 of the iteration: a cycle broken ([`Newton::break_cycle`]),
+    /// or, where the states stall or cycle all the same, the fallback of
+    /// [`super::cluster`] set going.
+    fn break_or_pin(&mut self, h: &History, judged: &mut Judged, summary: &mut Summary, tolerance: f64, loose: bool) {
+        if self.break_cycle(h, judged, &summary.history) {
+            summary.cycles_broken += 1;
+            self.breaking_from = Some(summary.history.len().saturating_sub(1));
+        }
+        let problem = self.problem;
+        let w = Watch {
+            current: &h.states,
+            start: &self.start,
+            history: &summary.history,
+            breaking_from: self.breaking_from,
+            residuals: &judged.residuals,
+            residual: judged.residual,
+            tolerance,
+            loose,
+            forces: &self.force,
+            fixed: &|p| problem.held(p),
+        };
+        self.search.watch(&w, &mut judged.next);
     }
 
     /// Pairs that open in tension below their f_t: the Coulomb apex c / f
@@ -465,11 +498,19 @@ impl Rule for Newton<'_> {
                 self.reference[p] = tangential(self.rel[p]);
             }
         }
-        // 1. the next state of every pair; 2. a cycle broken
+        // 1. the next state of every pair; 2. a cycle broken, or a cluster's
+        // set held (an iterative solve resolves the forces only to its residual)
         let lines = self.problem.slip_lines(&h.states);
         let mut judged = self.next_states(h, &lines);
-        if self.break_cycle(h, &mut judged, &summary.history) {
-            summary.cycles_broken += 1;
+        let tolerance = (FORCE_TOL * judged.scale_f).max(solution.accuracy);
+        let settled = judged.residual <= tolerance;
+        if self.search.feed(&h.states, &judged.next, &solution.forces, settled && !solution.loose) {
+            summary.clusters_solved += 1;
+        }
+        match self.search.judge(&h.states, &mut judged.next, settled && !solution.loose) {
+            Some(Step::Solved) => summary.clusters_solved += 1,
+            Some(Step::Held) => {}
+            Some(Step::GaveUp) | None => self.break_or_pin(h, &mut judged, summary, tolerance, solution.loose),
         }
         summary.apex_openings += self.apex_openings(h, &judged.next);
         // 3. directions of slipping pairs (a fallback where ξ vanishes)
@@ -487,8 +528,6 @@ impl Rule for Newton<'_> {
         }
         self.judged_from.clone_from(&h.states);
         self.violation = judged.violation;
-        // (an iterative solve resolves the forces only to its residual)
-        let settled = judged.residual <= (FORCE_TOL * judged.scale_f).max(solution.accuracy);
         Verdict { settled, next: judged.next }
     }
 
@@ -496,18 +535,21 @@ impl Rule for Newton<'_> {
     /// [`Newton::held_back`]): one pair of theirs sticks instead, and the
     /// step is solved again; false when none may, the parts do slide.
     fn hold_back(&mut self, h: &mut History, sliding: &[usize]) -> bool {
-        if let Some((p, how)) = self.held_back(h, sliding) {
+        // (a pair of a cluster's set held is not kept stuck: the set is rejected)
+        let free = |p: &usize| !self.search.pins(*p);
+        if let Some((p, how)) = self.held_back(h, sliding).filter(|(p, _)| free(p)) {
             h.states[p] = ContactState::Stick;
             self.swapped[p] |= how == Hold::InPlace;
             return true;
         }
-        if self.judged_from.len() != h.states.len() {
-            return false;
+        if self.judged_from.len() == h.states.len() {
+            if let Some(p) = self.overshoot(h, sliding).filter(free) {
+                h.states[p] = ContactState::Stick;
+                self.overshoots += 1;
+                return true;
+            }
         }
-        let Some(p) = self.overshoot(h, sliding) else { return false };
-        h.states[p] = ContactState::Stick;
-        self.overshoots += 1;
-        true
+        self.search.reject(&mut h.states)
     }
 
     /// The stick references of this step are where its pairs are tied from now on.

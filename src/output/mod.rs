@@ -546,6 +546,7 @@ fn summary(run: &Run) -> serde_json::Value {
             "cycled": it.cycled,
             "states": { "stick": counts[2], "slip": counts[1], "open": counts[0] },
             "cycles_broken": it.cycles_broken,
+            "clusters_solved": it.clusters_solved,
             "cuts": it.cuts,
             "pieces": it.pieces,
             "unsettled_pairs": unsettled::changes(c).map(|k| k.iter().filter(|&&n| n > 0).count()),

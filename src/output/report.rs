@@ -139,6 +139,9 @@ fn iteration_notes(s: &mut String, run: &Run) {
         if it.cycles_broken > 0 {
             let _ = writeln!(s, "\nThe state iteration cycled {} time(s); each cycle was broken by changing only the most violated pair per iteration.", it.cycles_broken);
         }
+        if it.clusters_solved > 0 {
+            let _ = writeln!(s, "\nThe state iteration stalled or cycled on a few pairs {} time(s) and the cluster fallback ended it: the pressures of a stall's slipping pairs solved for (multisecant steps), or the cluster's stick / slip / open sets tried, fewest changes from the load step's start first, until one met the law at every pair.", it.clusters_solved);
+        }
         if it.cuts > 0 {
             let _ = writeln!(s, "\n{}", cut_sentence(it));
         }
