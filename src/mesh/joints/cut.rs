@@ -257,6 +257,17 @@ fn bounding_box(s: &Session, ents: &[DimTag]) -> Result<geometry::Bbox, ApiError
     Ok(b)
 }
 
+/// The frame a joint's planes are laid in: its bodies' box (flat in z in
+/// 2D), the geometric tolerance, the plane normal and the range of n . x
+/// over the box.
+struct Frame {
+    b: geometry::Bbox,
+    d: usize,
+    tol: f64,
+    n: [f64; 3],
+    range: (f64, f64),
+}
+
 /// Lays a joint's patches in gmsh: its planes (snapped where asked), each
 /// covered or tiled with finite joints, clipped to `extent` and to its
 /// bodies when it does not cut every body.
@@ -269,8 +280,33 @@ fn lay(
     (dim, geo): (i32, &Path),
 ) -> R<Laid> {
     let g = |e: ApiError| JointError::Gmsh { geo: geo.to_path_buf(), detail: e.to_string() };
-    let d = dim as usize;
-    let mut b = bounding_box(s, bodies).map_err(g)?;
+    // 1. the frame: box, tolerance, normal, range of n . x
+    let f = frame(s, j, bodies, dim as usize).map_err(g)?;
+    // 2. the planes' offsets inside the bodies
+    let planes = plane_offsets(j, &f)?;
+    // 3. the corners a plane may snap to, and the centre of a tiling
+    let mut corners: Vec<[f64; 3]> = Vec::new();
+    for (pd, p) in s.boundary(bodies, true).map_err(g)? {
+        if pd == 0 {
+            corners.push(s.point(p).map_err(g)?);
+        }
+    }
+    let centre = tiling_centre(j, &f);
+    // 4. each plane: snap, cut into patches, clip
+    let mut laid = Laid { planes: Vec::new(), patches: Vec::new(), near: Vec::new() };
+    for (k, v) in planes {
+        let (v, snapped) = snap(j, &f, (k, v), &corners, sizes, &mut laid.near);
+        let made = place(s, j, &patches(j, &f, v, centre), (dim, bodies, all)).map_err(g)?;
+        let i = laid.planes.len();
+        laid.patches.extend(made.into_iter().map(|entity| Piece { plane: i, entity }));
+        laid.planes.push(PlaneReport { k, offset: v, area: 0.0, snapped });
+    }
+    Ok(laid)
+}
+
+/// The frame of a joint over its bodies.
+fn frame(s: &Session, j: &JointSpec, bodies: &[DimTag], d: usize) -> Result<Frame, ApiError> {
+    let mut b = bounding_box(s, bodies)?;
     if d == 2 {
         // OpenCASCADE's boxes are a little larger than the shape: a 2D
         // model lies in z = 0, and so must the traces
@@ -278,9 +314,15 @@ fn lay(
     }
     let diag =
         ((b[3] - b[0]).powi(2) + (b[4] - b[1]).powi(2) + if d == 3 { (b[5] - b[2]).powi(2) } else { 0.0 }).sqrt();
-    let tol = 1e-6 * diag;
     let n = j.orientation.normal();
-    let (lo, hi) = geometry::range_over(n, &b, d);
+    let range = geometry::range_over(n, &b, d);
+    Ok(Frame { b, d, tol: 1e-6 * diag, n, range })
+}
+
+/// The offsets (and set indices) of a joint's planes that lie inside its
+/// bodies; none is an error naming the joint and what to change.
+fn plane_offsets(j: &JointSpec, f: &Frame) -> R<Vec<(Option<i64>, f64)>> {
+    let (n, (lo, hi), tol) = (f.n, f.range, f.tol);
     let planes: Vec<(Option<i64>, f64)> = match j.placement {
         Placement::Set { spacing, offset } => {
             geometry::offsets(offset, spacing, (lo, hi), tol).into_iter().map(|(k, v)| (Some(k), v)).collect()
@@ -301,63 +343,86 @@ fn lay(
         };
         return Err(nothing(j, &why));
     }
-    let mut corners: Vec<[f64; 3]> = Vec::new();
-    for (pd, p) in s.boundary(bodies, true).map_err(g)? {
-        if pd == 0 {
-            corners.push(s.point(p).map_err(g)?);
-        }
-    }
-    let mut laid = Laid { planes: Vec::new(), patches: Vec::new(), near: Vec::new() };
-    let centre = j.persistence.as_ref().and_then(|p| p.centre).unwrap_or(match j.placement {
+    Ok(planes)
+}
+
+/// The centre finite joints are tiled about: the persistence's, else the
+/// single plane's point, else the middle of the box.
+fn tiling_centre(j: &JointSpec, f: &Frame) -> [f64; 3] {
+    let b = &f.b;
+    j.persistence.as_ref().and_then(|p| p.centre).unwrap_or(match j.placement {
         Placement::Single { point } => point,
         Placement::Set { .. } => {
-            [(b[0] + b[3]) / 2.0, (b[1] + b[4]) / 2.0, if d == 3 { (b[2] + b[5]) / 2.0 } else { 0.0 }]
+            [(b[0] + b[3]) / 2.0, (b[1] + b[4]) / 2.0, if f.d == 3 { (b[2] + b[5]) / 2.0 } else { 0.0 }]
         }
-    });
-    for (k, mut v) in planes {
-        let mut snapped = None;
-        if let Some((c, dist)) = geometry::nearest(n, v, &corners) {
-            if dist > tol && dist < j.snap {
-                snapped = Some((c, dist));
-                v = geometry::dot(n, c);
-            } else if dist > tol {
-                let size = sizes.at(c).unwrap_or(f64::INFINITY);
-                if dist < size / 4.0 {
-                    laid.near.push(NearMiss {
-                        key: j.key.clone(),
-                        name: j.name.clone(),
-                        k,
-                        offset: v,
-                        corner: c,
-                        distance: dist,
-                        size,
-                    });
-                }
-            }
-        }
-        let patches = match &j.persistence {
-            None => vec![geometry::covering(n, v, &b, d)],
-            Some(p) => match j.placement {
-                Placement::Single { .. } => vec![geometry::one(geometry::project(n, v, centre), n, p.size, p.shape, d)],
-                Placement::Set { .. } => {
-                    let tiling = geometry::Tiling { size: p.size, gap: p.gap, shape: p.shape, centre };
-                    geometry::finite(n, v, &tiling, &b, d)
-                }
-            },
-        };
-        let mut made = patches.iter().map(|p| add_patch(s, p)).collect::<Result<Vec<DimTag>, ApiError>>().map_err(g)?;
-        if let Some((from, to)) = j.extent {
-            let bx = s.add_box(dim, from, to).map_err(g)?;
-            made = s.intersect(&made, &[bx], true).map_err(g)?;
-        }
-        if bodies.len() < all.len() && !made.is_empty() {
-            made = s.intersect(&made, bodies, false).map_err(g)?;
-        }
-        let i = laid.planes.len();
-        laid.patches.extend(made.into_iter().map(|entity| Piece { plane: i, entity }));
-        laid.planes.push(PlaneReport { k, offset: v, area: 0.0, snapped });
+    })
+}
+
+/// Snaps plane `(k, v)` onto the nearest corner within `j.snap`; a corner
+/// closer than a quarter of the local mesh size that is not snapped to is
+/// noted in `near`. Returns the offset and the snap, if any.
+fn snap(
+    j: &JointSpec,
+    f: &Frame,
+    (k, v): (Option<i64>, f64),
+    corners: &[[f64; 3]],
+    sizes: &Sizes,
+    near: &mut Vec<NearMiss>,
+) -> (f64, Option<([f64; 3], f64)>) {
+    let Some((c, dist)) = geometry::nearest(f.n, v, corners) else { return (v, None) };
+    if dist > f.tol && dist < j.snap {
+        return (geometry::dot(f.n, c), Some((c, dist)));
     }
-    Ok(laid)
+    if dist > f.tol {
+        let size = sizes.at(c).unwrap_or(f64::INFINITY);
+        if dist < size / 4.0 {
+            near.push(NearMiss {
+                key: j.key.clone(),
+                name: j.name.clone(),
+                k,
+                offset: v,
+                corner: c,
+                distance: dist,
+                size,
+            });
+        }
+    }
+    (v, None)
+}
+
+/// The patches of the plane n . x = v: one covering the box, or finite
+/// joints (one at a single plane's point, a tiling on a set's planes).
+fn patches(j: &JointSpec, f: &Frame, v: f64, centre: [f64; 3]) -> Vec<Patch> {
+    let (n, d) = (f.n, f.d);
+    match &j.persistence {
+        None => vec![geometry::covering(n, v, &f.b, d)],
+        Some(p) => match j.placement {
+            Placement::Single { .. } => vec![geometry::one(geometry::project(n, v, centre), n, p.size, p.shape, d)],
+            Placement::Set { .. } => {
+                let tiling = geometry::Tiling { size: p.size, gap: p.gap, shape: p.shape, centre };
+                geometry::finite(n, v, &tiling, &f.b, d)
+            }
+        },
+    }
+}
+
+/// Adds the patches to gmsh, clipped to the joint's `extent` and, when
+/// the joint does not cut every body, to its bodies.
+fn place(
+    s: &Session,
+    j: &JointSpec,
+    patches: &[Patch],
+    (dim, bodies, all): (i32, &[DimTag], &[DimTag]),
+) -> Result<Vec<DimTag>, ApiError> {
+    let mut made = patches.iter().map(|p| add_patch(s, p)).collect::<Result<Vec<DimTag>, ApiError>>()?;
+    if let Some((from, to)) = j.extent {
+        let bx = s.add_box(dim, from, to)?;
+        made = s.intersect(&made, &[bx], true)?;
+    }
+    if bodies.len() < all.len() && !made.is_empty() {
+        made = s.intersect(&made, bodies, false)?;
+    }
+    Ok(made)
 }
 
 fn add_patch(s: &Session, p: &Patch) -> Result<DimTag, ApiError> {
