@@ -42,8 +42,56 @@ fn quads(first: usize, nx: usize, ny: usize, tag0: u64) -> Vec<Cell> {
     cells
 }
 
-fn two_body_model() -> Model {
-    let (ny, h) = (2usize, 1.0);
+/// Two bodies joined by one interface (`body_i` 0, `body_ii` 1), with a
+/// gravity case and an initial case and no loads, supports, water or
+/// seismic.
+fn joined(
+    iface: &str,
+    (analysis, nd, gravity): (Analysis, usize, [f64; 3]),
+    coords: Vec<[f64; 3]>,
+    bodies: Vec<Body>,
+    prescribed: Vec<Option<f64>>,
+    pairs: Vec<Pair>,
+) -> Model {
+    Model {
+        analysis,
+        nd,
+        thickness: 1.0,
+        gravity,
+        mesh_node: (0..coords.len()).collect(),
+        coords,
+        bodies,
+        loads: Vec::new(),
+        nodal_loads: Vec::new(),
+        supports: Vec::new(),
+        prescribed,
+        pairs,
+        interfaces: vec![Interface {
+            name: iface.into(),
+            body_i: 0,
+            body_ii: 1,
+            side_i: vec![0],
+            facets: Vec::new(),
+            sides: Vec::new(),
+        }],
+        cases: vec![vec![1.0], vec![1.0]],
+        load_cases: Vec::new(),
+        gravity_case: 0,
+        initial_case: 1,
+        water: Vec::new(),
+        seismic: Vec::new(),
+    }
+}
+
+/// A body of the condensation tests: no block, no initial stress.
+fn body(name: &str, group: usize, material: Material, cells: Vec<Cell>) -> Body {
+    Body { name: name.into(), group, block: None, material, cells, initial: None }
+}
+
+/// The nodes of the two-body model (sketch in the header): body 0's 3 x 3
+/// grid, then body 1's 2 x 3 grid from the returned index, whose left
+/// column copies body 0's right one.
+fn two_body_coords(ny: usize, h: f64) -> (Vec<[f64; 3]>, usize) {
     let wobble = |x: f64, y: f64| {
         [x + 0.05 * (3.0 * y).sin() * (x * (1.2 - x)), y + 0.04 * (2.0 * x).cos() * (y * (h - y)), 0.0]
     };
@@ -63,21 +111,14 @@ fn two_body_model() -> Model {
             coords.push([if i == 0 { p[0] } else { x }, p[1], 0.0]);
         }
     }
-    let n = coords.len();
-    let nd = 2;
-    let iface0: Vec<usize> = (0..=ny).map(|j| j * 3 + 2).collect();
-    let iface1: Vec<usize> = (0..=ny).map(|j| first1 + j * 2).collect();
-    let mut prescribed = vec![None; n * nd];
-    for j in 0..=ny {
-        prescribed[(j * 3) * nd] = Some(0.0); // x = 0: ux held
-    }
-    prescribed[1] = Some(0.0); // the origin: uy held
-    prescribed[(2 * 3) * nd + 1] = Some(-2e-3); // top left node moved down
-    prescribed[iface0[0] * nd + 1] = Some(0.0); // the lower pair held in y
-    prescribed[iface1[0] * nd + 1] = Some(0.0);
+    (coords, first1)
+}
+
+/// The traction on body 1's right edge (nodes from `first1`).
+fn two_body_loads(first1: usize) -> Vec<FacetLoad> {
     let right = Cell { kind: CellKind::Line2, nodes: vec![first1 + 1, first1 + 3], tag: 900 };
     let right2 = Cell { kind: CellKind::Line2, nodes: vec![first1 + 3, first1 + 5], tag: 901 };
-    let loads = [right, right2]
+    [right, right2]
         .into_iter()
         .map(|cell| FacetLoad {
             cell,
@@ -87,57 +128,39 @@ fn two_body_model() -> Model {
             element: 0,
             case: 0,
         })
-        .collect();
+        .collect()
+}
+
+fn two_body_model() -> Model {
+    let (ny, h, nd) = (2usize, 1.0, 2);
+    // 1. the nodes and the interface's node pairs
+    let (coords, first1) = two_body_coords(ny, h);
+    let n = coords.len();
+    let iface0: Vec<usize> = (0..=ny).map(|j| j * 3 + 2).collect();
+    let iface1: Vec<usize> = (0..=ny).map(|j| first1 + j * 2).collect();
+    // 2. the prescribed displacements
+    let mut prescribed = vec![None; n * nd];
+    for j in 0..=ny {
+        prescribed[(j * 3) * nd] = Some(0.0); // x = 0: ux held
+    }
+    prescribed[1] = Some(0.0); // the origin: uy held
+    prescribed[(2 * 3) * nd + 1] = Some(-2e-3); // top left node moved down
+    prescribed[iface0[0] * nd + 1] = Some(0.0); // the lower pair held in y
+    prescribed[iface1[0] * nd + 1] = Some(0.0);
+    // 3. the pairs and the bodies
     let pairs = iface0
         .iter()
         .zip(&iface1)
         .map(|(&k, &l)| Pair { k, l, contact: 0, normal: [1.0, 0.0, 0.0], area: 0.5, shares: Vec::new() })
         .collect();
-    Model {
-        analysis: Analysis::PlaneStrain,
-        nd,
-        thickness: 1.0,
-        gravity: [0.0, -9.81, 0.0],
-        mesh_node: (0..n).collect(),
-        coords,
-        bodies: vec![
-            Body {
-                name: "left".into(),
-                group: 0,
-                block: None,
-                material: Material { e: 1000.0, nu: 0.3, density: 0.02 },
-                cells: quads(0, 2, ny, 1),
-                initial: None,
-            },
-            Body {
-                name: "right".into(),
-                group: 0,
-                block: None,
-                material: Material { e: 3000.0, nu: 0.2, density: 0.01 },
-                cells: quads(first1, 1, ny, 100),
-                initial: None,
-            },
-        ],
-        loads,
-        nodal_loads: Vec::new(),
-        supports: Vec::new(),
-        prescribed,
-        pairs,
-        interfaces: vec![Interface {
-            name: "cut".into(),
-            body_i: 0,
-            body_ii: 1,
-            side_i: vec![0],
-            facets: Vec::new(),
-            sides: Vec::new(),
-        }],
-        cases: vec![vec![1.0], vec![1.0]],
-        load_cases: Vec::new(),
-        gravity_case: 0,
-        initial_case: 1,
-        water: Vec::new(),
-        seismic: Vec::new(),
-    }
+    let bodies = vec![
+        body("left", 0, Material { e: 1000.0, nu: 0.3, density: 0.02 }, quads(0, 2, ny, 1)),
+        body("right", 0, Material { e: 3000.0, nu: 0.2, density: 0.01 }, quads(first1, 1, ny, 100)),
+    ];
+    // 4. the model, with the traction on the right edge
+    let kind = (Analysis::PlaneStrain, nd, [0.0, -9.81, 0.0]);
+    let model = joined("cut", kind, coords, bodies, prescribed, pairs);
+    Model { loads: two_body_loads(first1), ..model }
 }
 
 /// The dense reference of one part: interior DOFs numbered in reverse
@@ -302,55 +325,19 @@ fn condensed_floating_body_keeps_its_rigid_body_modes() {
 /// contact plane of `(m + 1)^2` node pairs; the lower block's base is held,
 /// the upper block floats (S singular). Slightly skewed, under gravity.
 fn stacked_blocks(m: usize, h: usize) -> Model {
-    let (nx, nz) = (m + 1, h + 1);
+    let nx = m + 1;
+    // 1. the two blocks, lower (0) then upper (1)
     let mut coords = Vec::new();
-    let mut bodies = Vec::new();
-    for b in 0..2 {
-        let first = coords.len();
-        for k in 0..nz {
-            for j in 0..nx {
-                for i in 0..nx {
-                    let (x, y, z) = (i as f64 / m as f64, j as f64 / m as f64, (b * h + k) as f64 / h as f64);
-                    coords.push([x + 0.03 * (2.0 * y).sin() * z, y + 0.02 * (3.0 * x).cos() * z, z + 0.01 * x * y]);
-                }
-            }
-        }
-        let id = |i: usize, j: usize, k: usize| first + (k * nx + j) * nx + i;
-        let mut cells = Vec::new();
-        for k in 0..h {
-            for j in 0..m {
-                for i in 0..m {
-                    let nodes = vec![
-                        id(i, j, k),
-                        id(i + 1, j, k),
-                        id(i + 1, j + 1, k),
-                        id(i, j + 1, k),
-                        id(i, j, k + 1),
-                        id(i + 1, j, k + 1),
-                        id(i + 1, j + 1, k + 1),
-                        id(i, j + 1, k + 1),
-                    ];
-                    cells.push(Cell { kind: CellKind::Hex8, nodes, tag: (b * 10_000 + cells.len()) as u64 });
-                }
-            }
-        }
-        bodies.push(Body {
-            name: format!("block{b}"),
-            group: b,
-            block: None,
-            material: Material { e: 1000.0 * (b + 1) as f64, nu: 0.25, density: 0.01 },
-            cells,
-            initial: None,
-        });
-    }
-    let n = coords.len();
-    let per = nx * nx * nz;
-    let mut prescribed = vec![None; n * 3];
+    let bodies = (0..2).map(|b| hex_block(b, m, h, &mut coords)).collect();
+    // 2. the lower base held
+    let mut prescribed = vec![None; coords.len() * 3];
     for q in 0..nx * nx {
         for c in 0..3 {
             prescribed[q * 3 + c] = Some(0.0); // the lower base
         }
     }
+    // 3. the lower block's top paired with the upper block's base
+    let per = nx * nx * (h + 1);
     let pairs = (0..nx * nx)
         .map(|q| Pair {
             k: h * nx * nx + q,
@@ -361,34 +348,44 @@ fn stacked_blocks(m: usize, h: usize) -> Model {
             shares: Vec::new(),
         })
         .collect();
-    Model {
-        analysis: Analysis::Solid,
-        nd: 3,
-        thickness: 1.0,
-        gravity: [0.0, 0.0, -9.81],
-        mesh_node: (0..n).collect(),
-        coords,
-        bodies,
-        loads: Vec::new(),
-        nodal_loads: Vec::new(),
-        supports: Vec::new(),
-        prescribed,
-        pairs,
-        interfaces: vec![Interface {
-            name: "joint".into(),
-            body_i: 0,
-            body_ii: 1,
-            side_i: vec![0],
-            facets: Vec::new(),
-            sides: Vec::new(),
-        }],
-        cases: vec![vec![1.0], vec![1.0]],
-        load_cases: Vec::new(),
-        gravity_case: 0,
-        initial_case: 1,
-        water: Vec::new(),
-        seismic: Vec::new(),
+    let kind = (Analysis::Solid, 3, [0.0, 0.0, -9.81]);
+    joined("joint", kind, coords, bodies, prescribed, pairs)
+}
+
+/// Block `b` of the stacked blocks: its skewed nodes appended to `coords`
+/// and its `m x m x h` hex8 cells.
+fn hex_block(b: usize, m: usize, h: usize, coords: &mut Vec<[f64; 3]>) -> Body {
+    let (nx, nz) = (m + 1, h + 1);
+    let first = coords.len();
+    for k in 0..nz {
+        for j in 0..nx {
+            for i in 0..nx {
+                let (x, y, z) = (i as f64 / m as f64, j as f64 / m as f64, (b * h + k) as f64 / h as f64);
+                coords.push([x + 0.03 * (2.0 * y).sin() * z, y + 0.02 * (3.0 * x).cos() * z, z + 0.01 * x * y]);
+            }
+        }
     }
+    let id = |i: usize, j: usize, k: usize| first + (k * nx + j) * nx + i;
+    let mut cells = Vec::new();
+    for k in 0..h {
+        for j in 0..m {
+            for i in 0..m {
+                let nodes = vec![
+                    id(i, j, k),
+                    id(i + 1, j, k),
+                    id(i + 1, j + 1, k),
+                    id(i, j + 1, k),
+                    id(i, j, k + 1),
+                    id(i + 1, j, k + 1),
+                    id(i + 1, j + 1, k + 1),
+                    id(i, j + 1, k + 1),
+                ];
+                cells.push(Cell { kind: CellKind::Hex8, nodes, tag: (b * 10_000 + cells.len()) as u64 });
+            }
+        }
+    }
+    let material = Material { e: 1000.0 * (b + 1) as f64, nu: 0.25, density: 0.01 };
+    body(&format!("block{b}"), b, material, cells)
 }
 
 /// Both orderings give the dense Schur complement, in
