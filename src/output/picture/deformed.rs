@@ -24,6 +24,7 @@ use super::{num, sig2, state_colour, Field, PictureError, Snapshot, GHOST, INK, 
 use crate::fem::material::von_mises;
 use crate::fem::vec3::{dot, normalized};
 use crate::fem::Analysis;
+use crate::model::Model;
 
 pub(super) const W: usize = 1200;
 pub(super) const H: usize = 800;
@@ -223,43 +224,59 @@ pub(super) struct Frame {
     pub(super) view: Option<View>,
 }
 
+/// Whether each node is drawn: a node of a cell, inside the cut if any.
+fn drawn(model: &Model, focus: &Focus) -> Vec<bool> {
+    let mut used = vec![false; model.n_nodes()];
+    for &k in model.bodies.iter().flat_map(|b| &b.cells).flat_map(|c| &c.nodes) {
+        used[k] = focus.cut.is_none_or(|c| c.contains(model.coords[k]));
+    }
+    used
+}
+
+/// The box of the drawn nodes and their largest displacement.
+fn drawn_box(snap: &Snapshot, used: &[bool]) -> ([f64; 3], [f64; 3], f64) {
+    let coords = &snap.model.coords;
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    let mut umax: f64 = 0.0;
+    for k in (0..used.len()).filter(|&k| used[k]) {
+        for d in 0..3 {
+            lo[d] = lo[d].min(coords[k][d]);
+            hi[d] = hi[d].max(coords[k][d]);
+        }
+        let u = displacement(snap, k);
+        umax = umax.max(dot(u, u).sqrt());
+    }
+    (lo, hi, umax)
+}
+
+/// The corners of a cut, at `lo` in the directions it does not cut.
+fn cut_corners(c: &Cut, lo: [f64; 3]) -> Vec<[f64; 3]> {
+    (0..8)
+        .map(|m| {
+            std::array::from_fn(|d| {
+                if d < c.dim {
+                    if m >> d & 1 == 0 {
+                        c.lo[d]
+                    } else {
+                        c.hi[d]
+                    }
+                } else {
+                    lo[d]
+                }
+            })
+        })
+        .collect()
+}
+
 impl Frame {
     fn new(snap: &Snapshot, focus: &Focus, scale: Magnify) -> Result<Frame, PictureError> {
         let model = snap.model;
         let n = model.n_nodes();
-        let mut used = vec![false; n];
-        for &k in model.bodies.iter().flat_map(|b| &b.cells).flat_map(|c| &c.nodes) {
-            used[k] = focus.cut.is_none_or(|c| c.contains(model.coords[k]));
-        }
-        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-        let mut umax: f64 = 0.0;
-        for k in (0..n).filter(|&k| used[k]) {
-            for d in 0..3 {
-                lo[d] = lo[d].min(model.coords[k][d]);
-                hi[d] = hi[d].max(model.coords[k][d]);
-            }
-            let u = displacement(snap, k);
-            umax = umax.max(dot(u, u).sqrt());
-        }
-        // a cut's corners frame the picture too (a box round a hole)
-        let corners: Vec<[f64; 3]> = match &focus.cut {
-            Some(c) => (0..8)
-                .map(|m| {
-                    std::array::from_fn(|d| {
-                        if d < c.dim {
-                            if m >> d & 1 == 0 {
-                                c.lo[d]
-                            } else {
-                                c.hi[d]
-                            }
-                        } else {
-                            lo[d]
-                        }
-                    })
-                })
-                .collect(),
-            None => Vec::new(),
-        };
+        // 1. the nodes drawn, their box and the largest displacement
+        let used = drawn(model, focus);
+        let (mut lo, mut hi, umax) = drawn_box(snap, &used);
+        // 2. a cut's corners frame the picture too (a box round a hole)
+        let corners = focus.cut.as_ref().map_or_else(Vec::new, |c| cut_corners(c, lo));
         for x in &corners {
             for d in 0..3 {
                 lo[d] = lo[d].min(x[d]);
@@ -269,6 +286,7 @@ impl Frame {
         if lo[0] > hi[0] {
             return Err(PictureError::Empty("the model has no cells to draw".into()));
         }
+        // 3. the magnification of the displacements
         let extent: [f64; 3] = std::array::from_fn(|d| hi[d] - lo[d]);
         let size = extent.iter().copied().fold(0.0, f64::max);
         let mag = match scale {
@@ -276,7 +294,7 @@ impl Frame {
             Magnify::Share(share) if umax > 0.0 && umax.is_finite() => share * size / umax,
             Magnify::Share(_) => 0.0,
         };
-        // the view of the whole model, so that a framed picture keeps its orientation
+        // 4. the view of the whole model, so that a framed picture keeps its orientation
         let (mlo, mhi) = super::view::model_box(model);
         let view = (model.analysis == Analysis::Solid)
             .then(|| View::new(std::array::from_fn(|d| mhi[d] - mlo[d]), model.gravity));
@@ -292,6 +310,16 @@ impl Frame {
             cut: focus.cut,
             view,
         };
+        // 5. every node placed, and the picture fitted to the drawn ones
+        frame.fit(snap, &corners);
+        Ok(frame)
+    }
+
+    /// Places every node deformed and undeformed, and fits the drawn nodes
+    /// and the cut's corners to the plot area.
+    fn fit(&mut self, snap: &Snapshot, corners: &[[f64; 3]]) {
+        let (model, mag) = (snap.model, self.mag);
+        let n = model.n_nodes();
         let mut flat = vec![[[0.0f64; 2]; 2]; n];
         let (mut plo, mut phi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
         let mut widen = |p: [f64; 2]| {
@@ -302,24 +330,23 @@ impl Frame {
         };
         for k in 0..n {
             let (u, x) = (displacement(snap, k), model.coords[k]);
-            let (pd, dd) = frame.place(std::array::from_fn(|d| x[d] + mag * u[d]));
-            flat[k] = [pd, frame.place(x).0];
-            frame.depth[k] = dd;
-            if frame.used[k] {
+            let (pd, dd) = self.place(std::array::from_fn(|d| x[d] + mag * u[d]));
+            flat[k] = [pd, self.place(x).0];
+            self.depth[k] = dd;
+            if self.used[k] {
                 widen(pd);
                 widen(flat[k][1]);
             }
         }
-        for x in &corners {
-            widen(frame.place(*x).0);
+        for x in corners {
+            widen(self.place(*x).0);
         }
         let [x0, y0, x1, y1] = PLOT;
         let px = ((x1 - x0) / (phi[0] - plo[0])).min((y1 - y0) / (phi[1] - plo[1]));
-        frame.px = if px.is_finite() && px > 0.0 { px } else { 1.0 };
-        frame.centre = [0.5 * (plo[0] + phi[0]), 0.5 * (plo[1] + phi[1])];
-        frame.sd = flat.iter().map(|p| frame.screen(p[0])).collect();
-        frame.su = flat.iter().map(|p| frame.screen(p[1])).collect();
-        Ok(frame)
+        self.px = if px.is_finite() && px > 0.0 { px } else { 1.0 };
+        self.centre = [0.5 * (plo[0] + phi[0]), 0.5 * (plo[1] + phi[1])];
+        self.sd = flat.iter().map(|p| self.screen(p[0])).collect();
+        self.su = flat.iter().map(|p| self.screen(p[1])).collect();
     }
 
     /// A model point on the picture's plane, and its depth.

@@ -8,8 +8,8 @@
 use plotters::style::text_anchor::{HPos, VPos};
 
 use super::plan::{paint_states, sheet_pairs, Fit, PlanFile};
-use super::raster::{encode_png, label, register_font, Canvas};
-use super::sheets::Shape;
+use super::raster::{encode_png, label, register_font, Canvas, Label};
+use super::sheets::{Flat, Shape};
 use super::surface::edges;
 use super::{state_colour, PictureError, INK};
 use crate::contact::law::ContactState;
@@ -61,17 +61,40 @@ pub fn joints_png(
     if contact.states.len() != model.pairs.len() {
         return Err(PictureError::Mismatch { what: "contact results" });
     }
+    // 1. every sheet laid flat, and the one scale of the tiles
     let flats: Vec<_> = plans.iter().map(|p| p.sheet.flat(model)).collect();
     let sizes: Vec<[f64; 2]> =
         flats.iter().map(|f| [(f.hi[0] - f.lo[0]).max(1e-300), (f.hi[1] - f.lo[1]).max(1e-300)]).collect();
-    // the largest scale whose rows fit the height, no tile over MOST_SIDE
+    let px = scale(&sizes);
+    let (corners, used) = pack(&sizes, px);
+    // 2. a canvas as wide as the tiles and the legend need
+    let right = corners.iter().zip(&sizes).map(|(c, s)| c[0] + (s[0] * px).max(210.0)).fold(900.0, f64::max);
+    let mut cv = Canvas::new((right + MARGIN).min(WIDTH).round() as usize, (used + 40.0).round() as usize);
+    // 3. the tiles, counting the states
+    let mut labels = Vec::new();
+    let mut totals = [0usize; 3];
+    for ((plan, flat), at) in plans.iter().zip(&flats).zip(&corners) {
+        let counts = tile(&mut cv, &mut labels, (model, contact), (plan, flat), *at, px);
+        for s in 0..3 {
+            totals[s] += counts[s];
+        }
+    }
+    // 4. the headings and the legend
+    legend(&mut cv, &mut labels, title, plans.len(), totals);
+    cv.text(&labels)?;
+    encode_png(cv.w, cv.h, &cv.rgb)
+}
+
+/// The largest scale (pixels per model unit) whose rows of tiles fit the
+/// height, no tile over MOST_SIDE.
+fn scale(sizes: &[[f64; 2]]) -> f64 {
     let biggest = sizes.iter().map(|s| s[0].max(s[1])).fold(0.0, f64::max);
     let widest = sizes.iter().map(|s| s[0]).fold(0.0, f64::max);
     let (mut lo, mut hi) = (0.0, (MOST_SIDE / biggest).min((WIDTH - 2.0 * MARGIN) / widest));
-    if pack(&sizes, hi).1 > MOST_HEIGHT {
+    if pack(sizes, hi).1 > MOST_HEIGHT {
         for _ in 0..50 {
             let mid = 0.5 * (lo + hi);
-            if pack(&sizes, mid).1 > MOST_HEIGHT {
+            if pack(sizes, mid).1 > MOST_HEIGHT {
                 hi = mid
             } else {
                 lo = mid
@@ -79,60 +102,67 @@ pub fn joints_png(
         }
         hi = lo;
     }
-    let px = hi;
-    let (corners, used) = pack(&sizes, px);
-    // as wide as the tiles and the legend need
-    let right = corners.iter().zip(&sizes).map(|(c, s)| c[0] + (s[0] * px).max(210.0)).fold(900.0, f64::max);
-    let mut cv = Canvas::new((right + MARGIN).min(WIDTH).round() as usize, (used + 40.0).round() as usize);
-    let mut labels = Vec::new();
-    let mut totals = [0usize; 3];
-    for ((plan, flat), at) in plans.iter().zip(&flats).zip(&corners) {
-        let (x0, y0) = (at[0], at[1]);
-        let (w, h) = ((flat.hi[0] - flat.lo[0]) * px, (flat.hi[1] - flat.lo[1]) * px);
-        let fit = Fit::new(flat.lo, flat.hi, [x0, y0, x0 + w.max(1.0), y0 + h.max(1.0)], 0.0);
-        let pos: Vec<[f32; 2]> = flat.points.iter().map(|&q| fit.screen(q)).collect();
-        let (pair_of, pairs) = sheet_pairs(model, &plan.sheet);
-        let code = |j: usize| match pair_of[flat.node[j]] {
-            usize::MAX => 3,
-            p => contact.states[p].code() as usize,
-        };
-        let (a, z) = (fit.screen(flat.lo), fit.screen(flat.hi));
-        cv.clip(Some([a[0] as f64 - 0.5, z[1] as f64 - 0.5, z[0] as f64 + 1.5, a[1] as f64 + 1.5]));
-        paint_states(&mut cv, &flat.patches, &pos, &code);
-        for p in &flat.patches {
-            edges(&mut cv, p, &pos, &|outline, _| outline.then_some((1.0, INK, 1.0)));
-        }
-        cv.clip(None);
-        let mut counts = [0usize; 3];
-        for &p in &pairs {
-            counts[contact.states[p].code() as usize] += 1;
-        }
-        for s in 0..3 {
-            totals[s] += counts[s];
-        }
-        let iface = &model.interfaces[plan.interface].name;
-        let what = if matches!(plan.sheet.shape, Shape::Cylinder { .. }) { " (unrolled)" } else { "" };
-        labels.push(label(
-            format!("{}{what}: {} / {} / {}", plan.file, counts[2], counts[1], counts[0]),
-            (x0, y0 - 30.0),
-            13.0,
-            (HPos::Left, VPos::Center),
-        ));
-        labels.push(label(
-            format!("\"{iface}\": {}", plan.sheet.short(model)),
-            (x0, y0 - 12.0),
-            12.0,
-            (HPos::Left, VPos::Center),
-        ));
+    hi
+}
+
+/// One sheet's tile with its top-left corner at `at`: painted by state,
+/// outlined, and headed by its file, its counts and its interface. Returns
+/// the sheet's open, slip and stick counts.
+fn tile(
+    cv: &mut Canvas,
+    labels: &mut Vec<Label>,
+    (model, contact): (&Model, &ContactRun),
+    (plan, flat): (&PlanFile, &Flat),
+    at: [f64; 2],
+    px: f64,
+) -> [usize; 3] {
+    let (x0, y0) = (at[0], at[1]);
+    let (w, h) = ((flat.hi[0] - flat.lo[0]) * px, (flat.hi[1] - flat.lo[1]) * px);
+    let fit = Fit::new(flat.lo, flat.hi, [x0, y0, x0 + w.max(1.0), y0 + h.max(1.0)], 0.0);
+    let pos: Vec<[f32; 2]> = flat.points.iter().map(|&q| fit.screen(q)).collect();
+    let (pair_of, pairs) = sheet_pairs(model, &plan.sheet);
+    let code = |j: usize| match pair_of[flat.node[j]] {
+        usize::MAX => 3,
+        p => contact.states[p].code() as usize,
+    };
+    let (a, z) = (fit.screen(flat.lo), fit.screen(flat.hi));
+    cv.clip(Some([a[0] as f64 - 0.5, z[1] as f64 - 0.5, z[0] as f64 + 1.5, a[1] as f64 + 1.5]));
+    paint_states(cv, &flat.patches, &pos, &code);
+    for p in &flat.patches {
+        edges(cv, p, &pos, &|outline, _| outline.then_some((1.0, INK, 1.0)));
     }
+    cv.clip(None);
+    let mut counts = [0usize; 3];
+    for &p in &pairs {
+        counts[contact.states[p].code() as usize] += 1;
+    }
+    let iface = &model.interfaces[plan.interface].name;
+    let what = if matches!(plan.sheet.shape, Shape::Cylinder { .. }) { " (unrolled)" } else { "" };
+    labels.push(label(
+        format!("{}{what}: {} / {} / {}", plan.file, counts[2], counts[1], counts[0]),
+        (x0, y0 - 30.0),
+        13.0,
+        (HPos::Left, VPos::Center),
+    ));
+    labels.push(label(
+        format!("\"{iface}\": {}", plan.sheet.short(model)),
+        (x0, y0 - 12.0),
+        12.0,
+        (HPos::Left, VPos::Center),
+    ));
+    counts
+}
+
+/// The title, the line under it and the legend: the states with the
+/// model's totals, and what the numbers are.
+fn legend(cv: &mut Canvas, labels: &mut Vec<Label>, title: &str, sheets: usize, totals: [usize; 3]) {
     labels.push(label(title, (24.0, 14.0), 24.0, (HPos::Left, VPos::Top)));
     labels.push(label(
-        format!("every contact surface by state: {} sheets (planes and unrolled surfaces), each laid flat as in its plan view, all at one scale", plans.len()),
+        format!("every contact surface by state: {sheets} sheets (planes and unrolled surfaces), each laid flat as in its plan view, all at one scale"),
         (24.0, 50.0),
         17.0,
         (HPos::Left, VPos::Top),
     ));
-    // the legend: the states with the model's totals, and what the numbers are
     let mut x = 24.0;
     for (s, n) in [(ContactState::Stick, totals[2]), (ContactState::Slip, totals[1]), (ContactState::Open, totals[0])] {
         cv.rect(x, 84.0, x + 22.0, 100.0, state_colour(s));
@@ -145,6 +175,4 @@ pub fn joints_png(
         13.0,
         (HPos::Left, VPos::Center),
     ));
-    cv.text(&labels)?;
-    encode_png(cv.w, cv.h, &cv.rgb)
 }

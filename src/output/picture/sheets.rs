@@ -274,7 +274,7 @@ pub(super) fn direction(d: [f64; 3], plus: bool) -> String {
 
 /// A facet's unit normal (from its corners; zero when degenerate), area
 /// (of its corners' polygon) and centroid.
-fn facet_geometry(f: &Cell, coords: &[[f64; 3]]) -> ([f64; 3], f64, [f64; 3]) {
+fn facet_geometry(f: &Cell, coords: &[[f64; 3]]) -> FacetGeometry {
     let nc = f.kind.n_corners();
     let x: Vec<[f64; 3]> = f.nodes[..nc].iter().map(|&k| coords[k]).collect();
     let c: [f64; 3] = std::array::from_fn(|d| x.iter().map(|p| p[d]).sum::<f64>() / nc as f64);
@@ -316,18 +316,54 @@ fn find(p: &mut [usize], mut i: usize) -> usize {
     i
 }
 
+/// A facet's unit normal, area and centroid.
+type FacetGeometry = ([f64; 3], f64, [f64; 3]);
+
 /// The sheets of interface `ii` of a solid model (see the module header).
 pub(super) fn sheets(model: &Model, ii: usize) -> Vec<Sheet> {
     let iface = &model.interfaces[ii];
-    let geo: Vec<([f64; 3], f64, [f64; 3])> = iface.facets.iter().map(|f| facet_geometry(f, &model.coords)).collect();
-    let nf = geo.len();
-    if nf == 0 {
+    let geo: Vec<FacetGeometry> = iface.facets.iter().map(|f| facet_geometry(f, &model.coords)).collect();
+    if geo.is_empty() {
         return Vec::new();
     }
     // 1. smooth pieces: facets joined across edges that bend less than 35 degrees
+    let pieces = smooth_pieces(&iface.facets, &geo);
+    let up = model_up(model);
+    let extent = {
+        let (lo, hi) = super::view::model_box(model);
+        (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max).max(f64::MIN_POSITIVE)
+    };
+    // 2. flat pieces, merged into planes; 3.-4. the others as they are
+    let flat_tol = 3f64.to_radians().cos();
+    let mut planes: Vec<(Vec<usize>, [f64; 3], f64)> = Vec::new();
+    let mut others: Vec<Sheet> = Vec::new();
+    for piece in pieces {
+        let Some((n, offset)) = flat_plane(&piece, &geo, flat_tol) else {
+            others.push(curved(model, ii, piece, &geo, up));
+            continue;
+        };
+        // the same plane: parallel, and offsets within 1e-4 of the model's size
+        let same = |pn: [f64; 3], po: f64| {
+            dot(pn, n).abs() >= flat_tol && (po - dot(pn, n).signum() * offset).abs() <= 1e-4 * extent
+        };
+        match planes.iter_mut().find(|(_, pn, po)| same(*pn, *po)) {
+            Some(p) => p.0.extend(piece),
+            None => planes.push((piece, n, offset)),
+        }
+    }
+    let mut out = plane_sheets(planes, ii, up);
+    out.extend(others);
+    out
+}
+
+/// The facets joined into smooth pieces: across shared edges whose
+/// normals differ by less than 35 degrees; pieces and their facets in the
+/// order of their first facet.
+fn smooth_pieces(facets: &[Cell], geo: &[FacetGeometry]) -> Vec<Vec<usize>> {
+    let nf = geo.len();
     let mut parent: Vec<usize> = (0..nf).collect();
     let mut edges: Vec<(usize, usize, usize)> = Vec::new();
-    for (i, f) in iface.facets.iter().enumerate() {
+    for (i, f) in facets.iter().enumerate() {
         let nc = f.kind.n_corners();
         for c in 0..nc {
             let (a, b) = (f.nodes[c], f.nodes[(c + 1) % nc]);
@@ -352,45 +388,36 @@ pub(super) fn sheets(model: &Model, ii: usize) -> Vec<Sheet> {
         }
         pieces[piece_of_root[r]].push(i);
     }
+    pieces
+}
 
-    let up = model_up(model);
-    let extent = {
-        let (lo, hi) = super::view::model_box(model);
-        (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max).max(f64::MIN_POSITIVE)
-    };
-    // 2. flat pieces, merged into planes; 3.-4. the others as they are
-    let flat_tol = 3f64.to_radians().cos();
-    let mut planes: Vec<(Vec<usize>, [f64; 3], f64)> = Vec::new();
-    let mut others: Vec<Sheet> = Vec::new();
-    for piece in pieces {
-        // the area-weighted mean of the normals turned to agree with the largest facet's
-        let big = *piece.iter().max_by(|&&a, &&b| geo[a].1.total_cmp(&geo[b].1)).unwrap_or(&piece[0]);
-        let refn = geo[big].0;
-        let mut m = [0.0; 3];
-        for &f in &piece {
-            let s = if dot(geo[f].0, refn) < 0.0 { -1.0 } else { 1.0 };
-            for d in 0..3 {
-                m[d] += s * geo[f].1 * geo[f].0[d];
-            }
+/// The plane of a flat piece, `(n, offset)` with n canonical and offset
+/// the area-weighted mean of `n . x`; None when a facet normal leaves the
+/// mean normal by more than `flat_tol` (a cosine).
+fn flat_plane(piece: &[usize], geo: &[FacetGeometry], flat_tol: f64) -> Option<([f64; 3], f64)> {
+    // the area-weighted mean of the normals turned to agree with the largest facet's
+    let big = *piece.iter().max_by(|&&a, &&b| geo[a].1.total_cmp(&geo[b].1)).unwrap_or(&piece[0]);
+    let refn = geo[big].0;
+    let mut m = [0.0; 3];
+    for &f in piece {
+        let s = if dot(geo[f].0, refn) < 0.0 { -1.0 } else { 1.0 };
+        for d in 0..3 {
+            m[d] += s * geo[f].1 * geo[f].0[d];
         }
-        let mean = normalized(m);
-        if piece.iter().all(|&f| dot(geo[f].0, mean).abs() >= flat_tol) {
-            let n = canonical(mean);
-            let area: f64 = piece.iter().map(|&f| geo[f].1).sum();
-            let offset = piece.iter().map(|&f| geo[f].1 * dot(geo[f].2, n)).sum::<f64>() / area.max(f64::MIN_POSITIVE);
-            // the same plane: parallel, and offsets within 1e-4 of the model's size
-            let same = |pn: [f64; 3], po: f64| {
-                dot(pn, n).abs() >= flat_tol && (po - dot(pn, n).signum() * offset).abs() <= 1e-4 * extent
-            };
-            match planes.iter_mut().find(|(_, pn, po)| same(*pn, *po)) {
-                Some(p) => p.0.extend(piece),
-                None => planes.push((piece, n, offset)),
-            }
-            continue;
-        }
-        others.push(curved(model, ii, piece, &geo, up));
     }
-    // sets of parallel planes (normals within 10 degrees), by first appearance
+    let mean = normalized(m);
+    if !piece.iter().all(|&f| dot(geo[f].0, mean).abs() >= flat_tol) {
+        return None;
+    }
+    let n = canonical(mean);
+    let area: f64 = piece.iter().map(|&f| geo[f].1).sum();
+    let offset = piece.iter().map(|&f| geo[f].1 * dot(geo[f].2, n)).sum::<f64>() / area.max(f64::MIN_POSITIVE);
+    Some((n, offset))
+}
+
+/// The planes as sheets: in sets of parallel planes (normals within 10
+/// degrees) by first appearance, and by offset within a set.
+fn plane_sheets(planes: Vec<(Vec<usize>, [f64; 3], f64)>, ii: usize, up: [f64; 3]) -> Vec<Sheet> {
     let set_tol = 10f64.to_radians().cos();
     let mut sets: Vec<[f64; 3]> = Vec::new();
     let mut out: Vec<Sheet> = planes
@@ -411,7 +438,6 @@ pub(super) fn sheets(model: &Model, ii: usize) -> Vec<Sheet> {
         let off = |s: &Sheet| if let Shape::Plane { offset, .. } = s.shape { offset } else { 0.0 };
         a.set.cmp(&b.set).then(off(a).total_cmp(&off(b))).then(a.facets[0].cmp(&b.facets[0]))
     });
-    out.extend(others);
     out
 }
 
@@ -442,7 +468,7 @@ fn axes(n: [f64; 3], up: [f64; 3]) -> ([f64; 3], [f64; 3], [f64; 3]) {
 
 /// A piece that is not flat: a cylinder when its normals are all across one
 /// axis, else a curved surface seen along its mean normal.
-fn curved(model: &Model, ii: usize, piece: Vec<usize>, geo: &[([f64; 3], f64, [f64; 3])], up: [f64; 3]) -> Sheet {
+fn curved(model: &Model, ii: usize, piece: Vec<usize>, geo: &[FacetGeometry], up: [f64; 3]) -> Sheet {
     let mut m = nalgebra::Matrix3::<f64>::zeros();
     let mut total = 0.0;
     for &f in &piece {
