@@ -45,8 +45,25 @@ pub fn locate(kind: CellKind, coords: &[[f64; 3]], x: [f64; 3]) -> Option<[f64; 
     if d == 0 || coords.len() != kind.n_nodes() {
         return None;
     }
-    let nn = kind.n_nodes();
-    // Length scale of the cell, for the residual tolerance.
+    // 1. the cell's length scale, for the residual tolerance
+    let h = cell_size(coords, d)?;
+    // 2. Newton from the reference centre
+    let mut residual = Residual::new(kind, coords, x);
+    let (xi, rn) = newton(&mut residual, h)?;
+    // 3. a converged point inside the cell
+    if rn > 1e-10 * h {
+        return None;
+    }
+    if inside_reference(kind, xi, LOCATE_TOL) {
+        Some(xi)
+    } else {
+        None
+    }
+}
+
+/// The diagonal of the cell's box in its `d` dimensions; None when it is
+/// zero or not finite.
+fn cell_size(coords: &[[f64; 3]], d: usize) -> Option<f64> {
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
     for c in coords {
@@ -56,30 +73,44 @@ pub fn locate(kind: CellKind, coords: &[[f64; 3]], x: [f64; 3]) -> Option<[f64; 
         }
     }
     let h = (0..d).map(|i| (hi[i] - lo[i]).powi(2)).sum::<f64>().sqrt();
-    if !h.is_finite() || h <= 0.0 {
-        return None;
+    (h.is_finite() && h > 0.0).then_some(h)
+}
+
+/// The residual r = x - x(xi) of the inverse map and its Jacobian
+/// J[i][j] = dx_i/dxi_j, everything relative to the cell's first node.
+struct Residual {
+    kind: CellKind,
+    d: usize,
+    nn: usize,
+    rel: [[f64; 3]; 27],
+    x: [f64; 3],
+    n: [f64; 27],
+    dn: [[f64; 3]; 27],
+}
+
+impl Residual {
+    fn new(kind: CellKind, coords: &[[f64; 3]], x: [f64; 3]) -> Residual {
+        let o = coords[0];
+        let mut rel = [[0.0; 3]; 27];
+        for (r, c) in rel.iter_mut().zip(coords) {
+            *r = std::array::from_fn(|i| c[i] - o[i]);
+        }
+        let x: [f64; 3] = std::array::from_fn(|i| x[i] - o[i]);
+        Residual { kind, d: kind.dim(), nn: kind.n_nodes(), rel, x, n: [0.0; 27], dn: [[0.0; 3]; 27] }
     }
 
-    let mut n = [0.0; 27];
-    let mut dn = [[0.0; 3]; 27];
-    // Everything relative to the first node.
-    let o = coords[0];
-    let mut rel = [[0.0; 3]; 27];
-    for (r, c) in rel.iter_mut().zip(coords) {
-        *r = std::array::from_fn(|i| c[i] - o[i]);
-    }
-    let x: [f64; 3] = std::array::from_fn(|i| x[i] - o[i]);
-    // Residual r = x - x(xi) and Jacobian J[i][j] = dx_i/dxi_j at xi.
-    let mut residual = |xi: [f64; 3], jac: Option<&mut [[f64; 3]; 3]>| -> [f64; 3] {
-        eval(kind, xi, &mut n[..nn], &mut dn[..nn]);
+    /// r at `xi`, and J into `jac` when asked.
+    fn at(&mut self, xi: [f64; 3], jac: Option<&mut [[f64; 3]; 3]>) -> [f64; 3] {
+        let (d, nn) = (self.d, self.nn);
+        eval(self.kind, xi, &mut self.n[..nn], &mut self.dn[..nn]);
         let mut r = [0.0; 3];
-        r[..d].copy_from_slice(&x[..d]);
+        r[..d].copy_from_slice(&self.x[..d]);
         let mut j = [[0.0; 3]; 3];
         for a in 0..nn {
             for i in 0..d {
-                r[i] -= n[a] * rel[a][i];
+                r[i] -= self.n[a] * self.rel[a][i];
                 for k in 0..d {
-                    j[i][k] += dn[a][k] * rel[a][i];
+                    j[i][k] += self.dn[a][k] * self.rel[a][i];
                 }
             }
         }
@@ -87,38 +118,29 @@ pub fn locate(kind: CellKind, coords: &[[f64; 3]], x: [f64; 3]) -> Option<[f64; 
             *out = j;
         }
         r
-    };
-    let norm = |r: &[f64; 3]| r[..d].iter().map(|v| v * v).sum::<f64>().sqrt();
+    }
 
-    let mut xi = reference_centre(kind);
+    fn norm(&self, r: &[f64; 3]) -> f64 {
+        r[..self.d].iter().map(|v| v * v).sum::<f64>().sqrt()
+    }
+}
+
+/// Newton on the residual from the reference centre, at most 50 steps,
+/// each backtracked: the last iterate and its residual norm; None when the
+/// Jacobian turns singular or the residual not finite.
+fn newton(residual: &mut Residual, h: f64) -> Option<([f64; 3], f64)> {
+    let d = residual.d;
+    let mut xi = reference_centre(residual.kind);
     let mut jac = [[0.0; 3]; 3];
-    let mut r = residual(xi, Some(&mut jac));
-    let mut rn = norm(&r);
+    let mut r = residual.at(xi, Some(&mut jac));
+    let mut rn = residual.norm(&r);
     for _ in 0..50 {
         let step = solve_small(d, jac, r)?;
         let step_norm = step[..d].iter().map(|v| v * v).sum::<f64>().sqrt();
-        // Backtracking: halve the step while the residual grows.
-        let mut t = 1.0;
-        let mut trial;
-        let mut trial_r;
-        let mut trial_n;
-        loop {
-            trial = xi;
-            for j in 0..d {
-                // Keep the iterate in a generous box around the reference cell
-                // so that the polynomial map cannot blow up.
-                trial[j] = (xi[j] + t * step[j]).clamp(-3.0, 3.0);
-            }
-            trial_r = residual(trial, None);
-            trial_n = norm(&trial_r);
-            if trial_n <= rn || t < 1e-3 {
-                break;
-            }
-            t *= 0.5;
-        }
-        xi = trial;
-        r = residual(xi, Some(&mut jac));
-        rn = norm(&r);
+        let t;
+        (xi, t) = backtrack(residual, xi, step, rn);
+        r = residual.at(xi, Some(&mut jac));
+        rn = residual.norm(&r);
         if !rn.is_finite() {
             return None;
         }
@@ -126,13 +148,25 @@ pub fn locate(kind: CellKind, coords: &[[f64; 3]], x: [f64; 3]) -> Option<[f64; 
             break;
         }
     }
-    if rn > 1e-10 * h {
-        return None;
-    }
-    if inside_reference(kind, xi, LOCATE_TOL) {
-        Some(xi)
-    } else {
-        None
+    Some((xi, rn))
+}
+
+/// Backtracking: the step from `xi` halved while the residual grows above
+/// `rn` (down to 1/1024): the new iterate and the step's fraction.
+fn backtrack(residual: &mut Residual, xi: [f64; 3], step: [f64; 3], rn: f64) -> ([f64; 3], f64) {
+    let mut t = 1.0;
+    loop {
+        let mut trial = xi;
+        for j in 0..residual.d {
+            // Keep the iterate in a generous box around the reference cell
+            // so that the polynomial map cannot blow up.
+            trial[j] = (xi[j] + t * step[j]).clamp(-3.0, 3.0);
+        }
+        let trial_r = residual.at(trial, None);
+        if residual.norm(&trial_r) <= rn || t < 1e-3 {
+            return (trial, t);
+        }
+        t *= 0.5;
     }
 }
 
