@@ -159,16 +159,46 @@ pub fn vtu_bytes(
     cell_data: &[Field<'_>],
     cell_int_data: &[IntField<'_>],
 ) -> Result<Vec<u8>, OutputError> {
-    let n_points = points.len();
-    let n_cells = cells.len();
-    // vtkio writes NumberOfPoints and NumberOfCells as u32.
+    let (n_points, n_cells) = (points.len(), cells.len());
+    // 1. the counts fit vtkio and every field has its length
+    check_sizes(n_points, n_cells, point_data, cell_data, cell_int_data)?;
+    // 2. the cells in VTK order and type
+    let cells = vtk_cells(cells, n_points)?;
+    // 3. the grid with its fields, written compressed
+    let coords: Vec<f64> = points.iter().flatten().copied().collect();
+    let vtk = Vtk {
+        version: Version::new_xml(1, 0),
+        title: String::new(),
+        byte_order: ByteOrder::LittleEndian,
+        file_path: None,
+        data: DataSet::inline(UnstructuredGridPiece {
+            points: coords.into(),
+            cells,
+            data: attributes(point_data, cell_data, cell_int_data),
+        }),
+    };
+    let file = vtk.try_into_xml_format(Compressor::ZLib, ZLIB_LEVEL).map_err(|e| OutputError::Vtk(e.to_string()))?;
+    let mut bytes = Vec::new();
+    file.write(&mut bytes).map_err(|e| OutputError::Vtk(e.to_string()))?;
+    with_piece_counts(bytes, n_points, n_cells)
+}
+
+/// The counts fit the u32 vtkio writes `NumberOfPoints` and
+/// `NumberOfCells` as, and every field has `n_comp` values per point or
+/// cell.
+fn check_sizes(
+    n_points: usize,
+    n_cells: usize,
+    point_data: &[Field<'_>],
+    cell_data: &[Field<'_>],
+    cell_int_data: &[IntField<'_>],
+) -> Result<(), OutputError> {
     if u32::try_from(n_points).is_err() {
         return Err(OutputError::TooLarge { what: "points", count: n_points });
     }
     if u32::try_from(n_cells).is_err() {
         return Err(OutputError::TooLarge { what: "cells", count: n_cells });
     }
-
     for f in point_data {
         check_len("point", f.name, f.n_comp, n_points, f.values.len())?;
     }
@@ -178,11 +208,16 @@ pub fn vtu_bytes(
     for f in cell_int_data {
         check_len("cell", f.name, 1, n_cells, f.values.len())?;
     }
+    Ok(())
+}
 
+/// The cells' connectivity in VTK node order, offsets and types; an error
+/// names a cell with the wrong number of nodes or a node out of range.
+fn vtk_cells(cells: &[Cell], n_points: usize) -> Result<Cells, OutputError> {
     let n_conn: usize = cells.iter().map(|c| c.nodes.len()).sum();
     let mut connectivity = Vec::with_capacity(n_conn);
-    let mut offsets = Vec::with_capacity(n_cells);
-    let mut types = Vec::with_capacity(n_cells);
+    let mut offsets = Vec::with_capacity(cells.len());
+    let mut types = Vec::with_capacity(cells.len());
     for (index, cell) in cells.iter().enumerate() {
         let expected = cell.kind.n_nodes();
         if cell.nodes.len() != expected {
@@ -216,36 +251,23 @@ pub fn vtu_bytes(
         offsets.push(connectivity.len() as u64);
         types.push(vtkio_cell_type(cell.kind));
     }
+    Ok(Cells { cell_verts: VertexNumbers::XML { connectivity, offsets }, types })
+}
 
-    let coords: Vec<f64> = points.iter().flatten().copied().collect();
+/// The point data, then the cell data and the integer cell data.
+fn attributes(point_data: &[Field<'_>], cell_data: &[Field<'_>], cell_int_data: &[IntField<'_>]) -> Attributes {
     let attribute = |f: &Field<'_>| {
-        // n_comp fits in u32: checked above.
+        // n_comp fits in u32: checked in check_sizes.
         Attribute::generic(f.name, f.n_comp as u32).with_data(f.values.to_vec())
     };
-    let data = Attributes {
+    Attributes {
         point: point_data.iter().map(attribute).collect(),
         cell: cell_data
             .iter()
             .map(attribute)
             .chain(cell_int_data.iter().map(|f| Attribute::generic(f.name, 1).with_data(f.values.to_vec())))
             .collect(),
-    };
-
-    let vtk = Vtk {
-        version: Version::new_xml(1, 0),
-        title: String::new(),
-        byte_order: ByteOrder::LittleEndian,
-        file_path: None,
-        data: DataSet::inline(UnstructuredGridPiece {
-            points: coords.into(),
-            cells: Cells { cell_verts: VertexNumbers::XML { connectivity, offsets }, types },
-            data,
-        }),
-    };
-    let file = vtk.try_into_xml_format(Compressor::ZLib, ZLIB_LEVEL).map_err(|e| OutputError::Vtk(e.to_string()))?;
-    let mut bytes = Vec::new();
-    file.write(&mut bytes).map_err(|e| OutputError::Vtk(e.to_string()))?;
-    with_piece_counts(bytes, n_points, n_cells)
+    }
 }
 
 /// vtkio leaves out `NumberOfPoints` and `NumberOfCells` when they are zero,
