@@ -135,86 +135,21 @@ pub fn parse_msh(path: &Path, bytes: &[u8]) -> Result<Mesh, MshError> {
     if bytes.iter().all(|b| b.is_ascii_whitespace()) {
         return Err(r.malformed("the file is empty"));
     }
+    // 1. the header
     read_header(&mut r)?;
-
-    let mut names: Vec<(i32, i32, String)> = Vec::new();
-    // (dim, entity tag) -> physical tags
-    let mut entities: Option<HashMap<(i32, i32), Vec<i32>>> = None;
-    let mut nodes: Option<(Vec<[f64; 3]>, Vec<u64>)> = None;
-    let mut blocks: Option<Vec<Block>> = None;
-
-    loop {
-        r.section = "";
-        r.skip_ws();
-        if r.at_end() {
-            break;
-        }
-        let line = r.line();
-        let name = match line.trim_ascii().strip_prefix(b"$") {
-            Some(n) if !n.is_empty() && !n.starts_with(b"End") => String::from_utf8_lossy(n).into_owned(),
-            _ => {
-                return Err(r.malformed("expected the start of a section such as `$Nodes`"));
-            }
-        };
-        match name.as_str() {
-            "PhysicalNames" => {
-                r.section = "PhysicalNames";
-                names = read_physical_names(&mut r)?;
-                r.end_section("PhysicalNames")?;
-            }
-            "Entities" => {
-                r.section = "Entities";
-                if entities.is_some() {
-                    return Err(r.malformed("a second $Entities section"));
-                }
-                if blocks.is_some() {
-                    return Err(r.malformed("$Entities after $Elements"));
-                }
-                entities = Some(read_entities(&mut r)?);
-                r.end_section("Entities")?;
-            }
-            "PartitionedEntities" => {
-                return Err(MshError::Partitioned { path: path.to_path_buf() });
-            }
-            "Nodes" => {
-                r.section = "Nodes";
-                if nodes.is_some() {
-                    return Err(r.malformed("a second $Nodes section"));
-                }
-                nodes = Some(read_nodes(&mut r)?);
-                r.end_section("Nodes")?;
-            }
-            "Elements" => {
-                r.section = "Elements";
-                if blocks.is_some() {
-                    return Err(r.malformed("a second $Elements section"));
-                }
-                let empty = HashMap::new();
-                let ents = entities.as_ref().unwrap_or(&empty);
-                blocks = Some(read_elements(&mut r, ents, &names)?);
-                r.end_section("Elements")?;
-            }
-            other => {
-                // Skip an unknown section up to its end marker.
-                let marker = format!("$End{other}");
-                match find(&bytes[r.pos..], marker.as_bytes()) {
-                    Some(at) => {
-                        r.pos += at;
-                        r.end_section(other)?;
-                    }
-                    None => return Err(r.malformed(format!("no `{marker}` after `${other}`"))),
-                }
-            }
-        }
+    // 2. the sections, in the file's order
+    let mut read = Sections::default();
+    while let Some(name) = next_section(&mut r)? {
+        read.section(&mut r, &name)?;
     }
-
-    let Some((coords, node_tags)) = nodes else {
+    // 3. nodes and elements there, every coordinate in range
+    let Some((coords, node_tags)) = read.nodes else {
         return Err(r.malformed("no $Nodes section"));
     };
-    let Some(blocks) = blocks else {
+    let Some(blocks) = read.blocks else {
         return Err(r.malformed("no $Elements section"));
     };
-    let entities = entities.unwrap_or_default();
+    let entities = read.entities.unwrap_or_default();
     if let Some((i, x)) = coords.iter().enumerate().find(|(_, x)| x.iter().any(|v| !(v.abs() <= MAX_COORDINATE))) {
         return Err(MshError::NotFinite {
             path: path.to_path_buf(),
@@ -222,7 +157,93 @@ pub fn parse_msh(path: &Path, bytes: &[u8]) -> Result<Mesh, MshError> {
             x: *x,
         });
     }
-    build_mesh(path, coords, node_tags, &names, &entities, blocks)
+    // 4. the mesh, its cells grouped by physical group
+    build_mesh(path, coords, node_tags, &read.names, &entities, blocks)
+}
+
+/// The name of the next section (`Nodes` of `$Nodes`), or None at the end
+/// of the file.
+fn next_section(r: &mut Reader<'_>) -> Result<Option<String>, MshError> {
+    r.section = "";
+    r.skip_ws();
+    if r.at_end() {
+        return Ok(None);
+    }
+    let line = r.line();
+    match line.trim_ascii().strip_prefix(b"$") {
+        Some(n) if !n.is_empty() && !n.starts_with(b"End") => Ok(Some(String::from_utf8_lossy(n).into_owned())),
+        _ => Err(r.malformed("expected the start of a section such as `$Nodes`")),
+    }
+}
+
+/// The sections read so far.
+#[derive(Default)]
+struct Sections {
+    names: Vec<(i32, i32, String)>,
+    /// (dim, entity tag) -> physical tags
+    entities: Option<HashMap<(i32, i32), Vec<i32>>>,
+    nodes: Option<(Vec<[f64; 3]>, Vec<u64>)>,
+    blocks: Option<Vec<Block>>,
+}
+
+impl Sections {
+    /// Reads section `name` up to its end marker; an unknown one is
+    /// skipped, a repeated or misplaced one is an error.
+    fn section(&mut self, r: &mut Reader<'_>, name: &str) -> Result<(), MshError> {
+        match name {
+            "PhysicalNames" => {
+                r.section = "PhysicalNames";
+                self.names = read_physical_names(r)?;
+                r.end_section("PhysicalNames")?;
+            }
+            "Entities" => {
+                r.section = "Entities";
+                if self.entities.is_some() {
+                    return Err(r.malformed("a second $Entities section"));
+                }
+                if self.blocks.is_some() {
+                    return Err(r.malformed("$Entities after $Elements"));
+                }
+                self.entities = Some(read_entities(r)?);
+                r.end_section("Entities")?;
+            }
+            "PartitionedEntities" => {
+                return Err(MshError::Partitioned { path: r.path.to_path_buf() });
+            }
+            "Nodes" => {
+                r.section = "Nodes";
+                if self.nodes.is_some() {
+                    return Err(r.malformed("a second $Nodes section"));
+                }
+                self.nodes = Some(read_nodes(r)?);
+                r.end_section("Nodes")?;
+            }
+            "Elements" => {
+                r.section = "Elements";
+                if self.blocks.is_some() {
+                    return Err(r.malformed("a second $Elements section"));
+                }
+                let empty = HashMap::new();
+                let ents = self.entities.as_ref().unwrap_or(&empty);
+                self.blocks = Some(read_elements(r, ents, &self.names)?);
+                r.end_section("Elements")?;
+            }
+            other => skip_section(r, other)?,
+        }
+        Ok(())
+    }
+}
+
+/// Skips an unknown section up to its end marker.
+fn skip_section(r: &mut Reader<'_>, name: &str) -> Result<(), MshError> {
+    let marker = format!("$End{name}");
+    match find(&r.buf[r.pos..], marker.as_bytes()) {
+        Some(at) => {
+            r.pos += at;
+            r.end_section(name)
+        }
+        None => Err(r.malformed(format!("no `{marker}` after `${name}`"))),
+    }
 }
 
 /// Where `needle` first occurs in `haystack`.
