@@ -38,6 +38,7 @@
 //! Φ holds means only, which are unknowns under every relation, so `J Φ`
 //! comes from the stored `K Φ` without applying S again.
 
+use std::collections::HashMap;
 use std::sync::Mutex;
 
 use faer::linalg::solvers::Solve;
@@ -293,18 +294,8 @@ impl<'a> Iterative<'a> {
         threads: usize,
     ) -> Iterative<'a> {
         let n = nm + nr;
-        let idx = |v: Var| match v {
-            Var::M(i) => i,
-            Var::R(i) => nm + i,
-        };
-        let cases = parts.iter().map(|p| p.g.len()).max().unwrap_or(1);
-        let mut b = vec![vec![0.0; n]; cases];
-        for part in &parts {
-            for (case, g) in part.g.iter().enumerate() {
-                let y = part.to_unknowns(g.clone());
-                for_each_load(&y, &part.terms, |v, x| b[case][idx(v)] += x);
-            }
-        }
+        // 1. the right-hand sides, one application of S per part
+        let b = loads(&parts, nm, n);
         let mut it = Iterative {
             nd,
             nm,
@@ -322,25 +313,34 @@ impl<'a> Iterative<'a> {
             last: Mutex::new(None),
             iterations: Mutex::new(Vec::new()),
         };
-        // -K w0: the prescribed values at ramp 1
+        // 2. -K w0: the prescribed values at ramp 1
         if it.parts.iter().any(|p| p.terms.iter().any(|t| t.constant != 0.0)) {
             let kw0 = it.apply_with(&vec![0.0; n], 1.0);
             it.b_fixed = kw0.iter().map(|v| -v).collect();
         }
+        // 3. K Φ, once
         if !it.phi.is_empty() {
             let cols: Vec<&[f64]> = it.phi.iter().map(|c| c.as_slice()).collect();
             it.k_phi = it.apply_many(&cols, 0.0);
         }
-        // the preconditioner's blocks
+        // 4. the preconditioner's blocks
         for (bi, vars) in groups.iter().enumerate() {
-            let members: Vec<usize> = vars.iter().map(|&v| idx(v)).collect();
+            let members: Vec<usize> = vars.iter().map(|&v| index(v, nm)).collect();
             for (at, &u) in members.iter().enumerate() {
                 it.place[u] = Place { block: bi, at };
             }
             let k = members.len();
             it.blocks.push((members, vec![0.0; k * k]));
         }
-        for part in &it.parts {
+        it.fill_blocks();
+        it
+    }
+
+    /// Adds every part's diagonal blocks `F D F^T`, turned into the
+    /// unknowns by its terms, into the preconditioner's blocks.
+    fn fill_blocks(&mut self) {
+        let nd = self.nd;
+        for part in &self.parts {
             for (q, f) in part.frames.iter().enumerate() {
                 let d = &part.diag[q * nd * nd..(q + 1) * nd * nd];
                 // F D F^T
@@ -357,9 +357,9 @@ impl<'a> Iterative<'a> {
                         let tc = &part.terms[q * nd + c];
                         for &(vi, ci) in &ta.vars[..ta.n] {
                             for &(vj, cj) in &tc.vars[..tc.n] {
-                                let (pi, pj) = (it.place[idx(vi)], it.place[idx(vj)]);
+                                let (pi, pj) = (self.place[index(vi, self.nm)], self.place[index(vj, self.nm)]);
                                 if pi.block == pj.block && pi.block != usize::MAX {
-                                    let (members, m) = &mut it.blocks[pi.block];
+                                    let (members, m) = &mut self.blocks[pi.block];
                                     let k = members.len();
                                     m[pi.at * k + pj.at] += ci * cj * local[a][c];
                                 }
@@ -369,7 +369,6 @@ impl<'a> Iterative<'a> {
                 }
             }
         }
-        it
     }
 
     /// `K x`.
@@ -592,75 +591,15 @@ impl<'a> Iterative<'a> {
     /// the slipping rows as in [`Self::solve_gmres`] and the junctions'
     /// springs, factorised once per solve.
     fn preconditioner(&self, fr: &Freedom) -> impl Fn(&[f64]) -> Vec<f64> + '_ {
-        let nm = self.nm;
-        // the unknowns of each block, with their entries over its members
-        let mut touching: Vec<Vec<Entries>> = vec![Vec::new(); self.blocks.len()];
-        for i in 0..nm {
-            let p = self.place[i];
-            if p.block != usize::MAX {
-                touching[p.block].push((i, vec![(p.at, 1.0)]));
-            }
-        }
-        for (a, col) in fr.cols.iter().enumerate() {
-            let p = self.place[nm + col[0].0];
-            touching[p.block].push((nm + a, col.iter().map(|&(i, zi)| (self.place[nm + i].at, zi)).collect()));
-        }
-        let unknown_of_row: std::collections::HashMap<usize, usize> = (fr.cols.iter().enumerate())
-            .filter_map(|(a, col)| match col.as_slice() {
-                [(i, _)] => Some((*i, nm + a)),
-                _ => None,
-            })
+        // 1. the unknowns each block touches
+        let touching = self.touching(fr);
+        // 2. what couples them beyond the blocks: slipping rows, junctions
+        let couplings = Couplings::of(fr, self.nm);
+        // 3. each block over its unknowns, factorised
+        let factors: Vec<BlockFactor> = (self.blocks.iter().zip(&touching))
+            .map(|((members, m), us)| couplings.factor((members, m), us, fr))
             .collect();
-        let slip_of: std::collections::HashMap<usize, &super::SlipRow> =
-            fr.slips.iter().map(|s| (nm + fr.pos[s.row], s)).collect();
-        let mut junction_of = std::collections::HashMap::new();
-        for (bi, jb) in fr.junctions.iter().enumerate() {
-            for (a, fa) in jb.cols.clone().enumerate() {
-                junction_of.insert(nm + fa, (bi, a));
-            }
-        }
-        let factors: Vec<(Vec<usize>, Option<faer::linalg::solvers::PartialPivLu<f64>>)> = self
-            .blocks
-            .iter()
-            .zip(&touching)
-            .map(|((members, m), us)| {
-                let k = members.len();
-                // B P: the block times each unknown's entries
-                let bp: Vec<Vec<f64>> = us
-                    .iter()
-                    .map(|(_, e)| (0..k).map(|row| e.iter().map(|&(at, z)| m[row * k + at] * z).sum()).collect())
-                    .collect();
-                let mut local =
-                    Mat::<f64>::from_fn(us.len(), us.len(), |i, j| us[i].1.iter().map(|&(at, z)| z * bp[j][at]).sum());
-                for (li, (u, _)) in us.iter().enumerate() {
-                    if let Some(s) = slip_of.get(u) {
-                        if let Some(pn) = s.normal.and_then(|rn| members.iter().position(|&x| x == nm + rn)) {
-                            for (lj, bpj) in bp.iter().enumerate() {
-                                local[(li, lj)] += s.coupling * bpj[pn];
-                            }
-                        }
-                        for &(c, sp) in &s.springs {
-                            let uc = unknown_of_row.get(&c);
-                            if let Some(lj) = us.iter().position(|(v, _)| Some(v) == uc) {
-                                local[(li, lj)] += sp;
-                            }
-                        }
-                    }
-                    if let Some(&(bi, a)) = junction_of.get(u) {
-                        for (lj, (v, _)) in us.iter().enumerate() {
-                            if let Some(&(bj, c)) = junction_of.get(v) {
-                                if bi == bj {
-                                    local[(li, lj)] += fr.junctions[bi].kz[(a, c)];
-                                }
-                            }
-                        }
-                    }
-                }
-                let unknowns: Vec<usize> = us.iter().map(|(u, _)| *u).collect();
-                let lu = (!unknowns.is_empty()).then(|| local.partial_piv_lu());
-                (unknowns, lu)
-            })
-            .collect();
+        // 4. M^-1: the blocks solved, a non-finite value left as it came
         move |v: &[f64]| {
             let mut out = v.to_vec();
             for (unknowns, lu) in &factors {
@@ -674,6 +613,98 @@ impl<'a> Iterative<'a> {
             }
             out
         }
+    }
+
+    /// The unknowns of each block, with their entries over its members:
+    /// the means in it, and the free columns whose first row is in it.
+    fn touching(&self, fr: &Freedom) -> Vec<Vec<Entries>> {
+        let nm = self.nm;
+        let mut touching: Vec<Vec<Entries>> = vec![Vec::new(); self.blocks.len()];
+        for i in 0..nm {
+            let p = self.place[i];
+            if p.block != usize::MAX {
+                touching[p.block].push((i, vec![(p.at, 1.0)]));
+            }
+        }
+        for (a, col) in fr.cols.iter().enumerate() {
+            let p = self.place[nm + col[0].0];
+            touching[p.block].push((nm + a, col.iter().map(|&(i, zi)| (self.place[nm + i].at, zi)).collect()));
+        }
+        touching
+    }
+}
+
+/// A block's unknowns and the LU factors of the block over them (None
+/// when it touches none).
+type BlockFactor = (Vec<usize>, Option<faer::linalg::solvers::PartialPivLu<f64>>);
+
+/// What couples a solve's unknowns beyond the parts' blocks, by unknown:
+/// the unknown of each row that is a column alone, the slipping rows, and
+/// the junctions' columns (junction, column in it).
+struct Couplings<'f> {
+    nm: usize,
+    unknown_of_row: HashMap<usize, usize>,
+    slip_of: HashMap<usize, &'f super::SlipRow>,
+    junction_of: HashMap<usize, (usize, usize)>,
+}
+
+impl<'f> Couplings<'f> {
+    fn of(fr: &'f Freedom, nm: usize) -> Couplings<'f> {
+        let unknown_of_row = (fr.cols.iter().enumerate())
+            .filter_map(|(a, col)| match col.as_slice() {
+                [(i, _)] => Some((*i, nm + a)),
+                _ => None,
+            })
+            .collect();
+        let slip_of = fr.slips.iter().map(|s| (nm + fr.pos[s.row], s)).collect();
+        let mut junction_of = HashMap::new();
+        for (bi, jb) in fr.junctions.iter().enumerate() {
+            for (a, fa) in jb.cols.clone().enumerate() {
+                junction_of.insert(nm + fa, (bi, a));
+            }
+        }
+        Couplings { nm, unknown_of_row, slip_of, junction_of }
+    }
+
+    /// Block `(members, m)` as `P^T B P` over the unknowns `us` it
+    /// touches, with the slipping rows' coupling and springs and the
+    /// junctions' stiffness added, factorised.
+    fn factor(&self, (members, m): (&[usize], &[f64]), us: &[Entries], fr: &Freedom) -> BlockFactor {
+        let k = members.len();
+        // B P: the block times each unknown's entries
+        let bp: Vec<Vec<f64>> = us
+            .iter()
+            .map(|(_, e)| (0..k).map(|row| e.iter().map(|&(at, z)| m[row * k + at] * z).sum()).collect())
+            .collect();
+        let mut local =
+            Mat::<f64>::from_fn(us.len(), us.len(), |i, j| us[i].1.iter().map(|&(at, z)| z * bp[j][at]).sum());
+        for (li, (u, _)) in us.iter().enumerate() {
+            if let Some(s) = self.slip_of.get(u) {
+                if let Some(pn) = s.normal.and_then(|rn| members.iter().position(|&x| x == self.nm + rn)) {
+                    for (lj, bpj) in bp.iter().enumerate() {
+                        local[(li, lj)] += s.coupling * bpj[pn];
+                    }
+                }
+                for &(c, sp) in &s.springs {
+                    let uc = self.unknown_of_row.get(&c);
+                    if let Some(lj) = us.iter().position(|(v, _)| Some(v) == uc) {
+                        local[(li, lj)] += sp;
+                    }
+                }
+            }
+            if let Some(&(bi, a)) = self.junction_of.get(u) {
+                for (lj, (v, _)) in us.iter().enumerate() {
+                    if let Some(&(bj, c)) = self.junction_of.get(v) {
+                        if bi == bj {
+                            local[(li, lj)] += fr.junctions[bi].kz[(a, c)];
+                        }
+                    }
+                }
+            }
+        }
+        let unknowns: Vec<usize> = us.iter().map(|(u, _)| *u).collect();
+        let lu = (!unknowns.is_empty()).then(|| local.partial_piv_lu());
+        (unknowns, lu)
     }
 }
 
@@ -691,6 +722,28 @@ impl Solver for Iterative<'_> {
 
     fn counts(&self) -> Vec<usize> {
         self.iterations.lock().map(|v| v.clone()).unwrap_or_default()
+    }
+}
+
+/// The right-hand side of each load case over `[m; r]` (`n` unknowns, the
+/// first `nm` means): every part's `g` turned into the unknowns.
+fn loads(parts: &[AppliedPart], nm: usize, n: usize) -> Vec<Vec<f64>> {
+    let cases = parts.iter().map(|p| p.g.len()).max().unwrap_or(1);
+    let mut b = vec![vec![0.0; n]; cases];
+    for part in parts {
+        for (case, g) in part.g.iter().enumerate() {
+            let y = part.to_unknowns(g.clone());
+            for_each_load(&y, &part.terms, |v, x| b[case][index(v, nm)] += x);
+        }
+    }
+    b
+}
+
+/// The position of an unknown in `[m; r]`, the first `nm` means.
+fn index(v: Var, nm: usize) -> usize {
+    match v {
+        Var::M(i) => i,
+        Var::R(i) => nm + i,
     }
 }
 
