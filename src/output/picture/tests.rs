@@ -266,18 +266,13 @@ fn stacked_blocks_pushed_sideways_show_the_states_they_reach() {
             ),
         ),
     ];
-    for (name, order, set, (geo, analysis, supports, traction, joint)) in cases {
-        let toml = format!(
-            "title = \"Two blocks, the top one pushed sideways ({name})\"\nmesh = \"{geo}\"\nanalysis = \"{analysis}\"\n\
-             [gmsh]\norder = {order}\nsetnumber = {{ {set} }}\n[materials.m]\nE = 1000.0\nnu = 0.25\n\
-             [[bodies]]\ngroup = \"bottom\"\nmaterial = \"m\"\n[[bodies]]\ngroup = \"top\"\nmaterial = \"m\"\n\
-             [[contacts]]\ngroup = \"joint\"\n{joint}\n\
-             {supports}[[loads]]\ngroup = \"top_face\"\ntraction = {traction}\n"
-        );
+    for (name, order, set, case) in cases {
+        // 1. the scene, run
         let path = dir.join(format!("stack_{name}.toml"));
-        std::fs::write(&path, toml).expect("scene");
+        std::fs::write(&path, stack_scene(name, order, set, case)).expect("scene");
         let opts = RunOptions { out: Some(dir.join(name)), skip_output: true, ..Default::default() };
         let run = driver::run(&path, &opts).expect("stack run");
+        // 2. the states it reaches
         let c = run.contact().expect("contact");
         let counts = state_counts(&c.states);
         eprintln!(
@@ -285,38 +280,57 @@ fn stacked_blocks_pushed_sideways_show_the_states_they_reach() {
             counts[2], counts[1], counts[0], c.summary.iterations
         );
         assert!(c.summary.converged, "{name}");
-        if joint == weak {
+        if case.4 == weak {
             assert!(
                 counts[0] > 0 && counts[2] > 0,
                 "{name}: the joint opens at one end and sticks at the other: {counts:?}"
             );
         }
-        let t = std::time::Instant::now();
-        let cv = deformed_canvas(&snap(&run), Field::VonMises, None).expect("canvas");
-        eprintln!("{name}: rendered in {:.3} s", t.elapsed().as_secs_f64());
-        for (state, colour, n) in [("open", OPEN, counts[0]), ("slip", SLIP, counts[1]), ("stick", STICK, counts[2])] {
-            assert_eq!(count(&cv, colour) > 0, n > 0, "{name}: {state} drawn exactly when present ({n} pairs)");
-        }
-        keep(&format!("stack_{name}_von_mises.png"), &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
-        if analysis == "solid" {
-            let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, c, &plan_files(&run.model)[0])
-                .expect("plan view");
-            for (state, colour, n) in
-                [("open", OPEN, counts[0]), ("slip", SLIP, counts[1]), ("stick", STICK, counts[2])]
-            {
-                assert_eq!(
-                    !in_box(&cv, boxes[0], colour).is_empty(),
-                    n > 0,
-                    "{name}: {state} in plan exactly when present ({n} pairs)"
-                );
-            }
-            keep(&format!("stack_{name}_plan.png"), &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
-        }
-        keep(&format!("stack_{name}_syy.png"), &deformed_png(&snap(&run), Field::Syy, None).expect("picture"));
-        keep(&format!("stack_{name}_interfaces.png"), &interface_plot_png(&run.model, contact(&run)).expect("plot"));
-        let svg = interface_plot_svg(&run.model, contact(&run)).expect("plot");
-        assert!(svg.contains(&format!("{} stick, {} slip, {} open", counts[2], counts[1], counts[0])));
+        // 3. every state drawn exactly when present
+        stack_pictures(name, &run, counts, case.1 == "solid");
     }
+}
+
+/// The scene of a stacked-blocks case: `(geo, analysis, supports,
+/// traction, joint)` meshed at `order` with the `set` numbers.
+fn stack_scene(name: &str, order: usize, set: &str, case: (&str, &str, &str, &str, &str)) -> String {
+    let (geo, analysis, supports, traction, joint) = case;
+    format!(
+        "title = \"Two blocks, the top one pushed sideways ({name})\"\nmesh = \"{geo}\"\nanalysis = \"{analysis}\"\n\
+         [gmsh]\norder = {order}\nsetnumber = {{ {set} }}\n[materials.m]\nE = 1000.0\nnu = 0.25\n\
+         [[bodies]]\ngroup = \"bottom\"\nmaterial = \"m\"\n[[bodies]]\ngroup = \"top\"\nmaterial = \"m\"\n\
+         [[contacts]]\ngroup = \"joint\"\n{joint}\n\
+         {supports}[[loads]]\ngroup = \"top_face\"\ntraction = {traction}\n"
+    )
+}
+
+/// The pictures of a stacked-blocks run (deformed, plan view in 3D,
+/// interface plots) show each state exactly when it has pairs.
+fn stack_pictures(name: &str, run: &Run, counts: [usize; 3], solid: bool) {
+    let c = run.contact().expect("contact");
+    let t = std::time::Instant::now();
+    let cv = deformed_canvas(&snap(run), Field::VonMises, None).expect("canvas");
+    eprintln!("{name}: rendered in {:.3} s", t.elapsed().as_secs_f64());
+    for (state, colour, n) in [("open", OPEN, counts[0]), ("slip", SLIP, counts[1]), ("stick", STICK, counts[2])] {
+        assert_eq!(count(&cv, colour) > 0, n > 0, "{name}: {state} drawn exactly when present ({n} pairs)");
+    }
+    keep(&format!("stack_{name}_von_mises.png"), &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
+    if solid {
+        let (cv, boxes) =
+            super::plan::plan_canvas(&run.scene.title, &run.model, c, &plan_files(&run.model)[0]).expect("plan view");
+        for (state, colour, n) in [("open", OPEN, counts[0]), ("slip", SLIP, counts[1]), ("stick", STICK, counts[2])] {
+            assert_eq!(
+                !in_box(&cv, boxes[0], colour).is_empty(),
+                n > 0,
+                "{name}: {state} in plan exactly when present ({n} pairs)"
+            );
+        }
+        keep(&format!("stack_{name}_plan.png"), &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
+    }
+    keep(&format!("stack_{name}_syy.png"), &deformed_png(&snap(run), Field::Syy, None).expect("picture"));
+    keep(&format!("stack_{name}_interfaces.png"), &interface_plot_png(&run.model, contact(run)).expect("plot"));
+    let svg = interface_plot_svg(&run.model, contact(run)).expect("plot");
+    assert!(svg.contains(&format!("{} stick, {} slip, {} open", counts[2], counts[1], counts[0])));
 }
 
 /// Regression: thin triangles sharing edges left unpainted pixels
