@@ -183,3 +183,176 @@ fn no_two_files_import_each_other_around_a_circle() {
     let listed: Vec<String> = circles.iter().map(|c| format!("{} -> {}", c.join(" -> "), c[0])).collect();
     assert!(circles.is_empty(), "import circles between files:\n{}", listed.join("\n"));
 }
+
+/// Every `.rs` file under `root`, test files included.
+fn rust_files(root: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let mut dirs = vec![root.to_path_buf()];
+    while let Some(dir) = dirs.pop() {
+        for entry in std::fs::read_dir(&dir).expect("a source folder").flatten() {
+            let path = entry.path();
+            if path.is_dir() {
+                dirs.push(path);
+            } else if path.extension().is_some_and(|e| e == "rs") {
+                out.push(path);
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+/// The source with comments, strings and character literals blanked out
+/// (newlines kept), so that the braces left are the code's own. Knows
+/// nested block comments, escapes, raw strings (`r#"..."#`, `br"..."`) and
+/// tells a character literal (`'{'`, `'\''`) from a lifetime (`'a`).
+fn blanked(text: &str) -> String {
+    let c: Vec<char> = text.chars().collect();
+    let mut out = String::with_capacity(text.len());
+    // blanks c[from..to] into `out`, keeping its newlines
+    let blank = |out: &mut String, from: usize, to: usize| {
+        out.extend(c[from..to.min(c.len())].iter().map(|&x| if x == '\n' { '\n' } else { ' ' }))
+    };
+    let mut i = 0;
+    while i < c.len() {
+        let at = |k: usize| c.get(i + k).copied().unwrap_or('\0');
+        let end = if at(0) == '/' && at(1) == '/' {
+            (i..c.len()).find(|&k| c[k] == '\n').unwrap_or(c.len())
+        } else if at(0) == '/' && at(1) == '*' {
+            let (mut k, mut depth) = (i + 2, 1);
+            while k < c.len() && depth > 0 {
+                match (c[k], c.get(k + 1).copied().unwrap_or('\0')) {
+                    ('/', '*') => (depth, k) = (depth + 1, k + 1),
+                    ('*', '/') => (depth, k) = (depth - 1, k + 1),
+                    _ => {}
+                }
+                k += 1;
+            }
+            k
+        } else if let Some(k) = raw_string_end(&c, i) {
+            k
+        } else if at(0) == '"' {
+            let mut k = i + 1;
+            while k < c.len() && c[k] != '"' {
+                k += if c[k] == '\\' { 2 } else { 1 };
+            }
+            k + 1
+        } else if at(0) == '\'' && (at(1) == '\\' || (at(2) == '\'' && at(1) != '\'')) {
+            let mut k = i + 1;
+            while k < c.len() && c[k] != '\'' {
+                k += if c[k] == '\\' { 2 } else { 1 };
+            }
+            k + 1
+        } else {
+            out.push(c[i]);
+            i += 1;
+            continue;
+        };
+        blank(&mut out, i, end);
+        i = end;
+    }
+    out
+}
+
+/// The end of a raw string starting at `i` (`r"`, `r#"`, `br"`, ... not
+/// inside an identifier), if one starts there.
+fn raw_string_end(c: &[char], i: usize) -> Option<usize> {
+    if i > 0 && (c[i - 1].is_alphanumeric() || c[i - 1] == '_') {
+        return None;
+    }
+    let mut k = i + usize::from(c.get(i) == Some(&'b'));
+    if c.get(k) != Some(&'r') {
+        return None;
+    }
+    k += 1;
+    let hashes = c[k..].iter().take_while(|&&x| x == '#').count();
+    k += hashes;
+    if c.get(k) != Some(&'"') {
+        return None;
+    }
+    let close: Vec<char> = std::iter::once('"').chain(std::iter::repeat_n('#', hashes)).collect();
+    (k + 1..c.len()).find(|&e| c[e..].starts_with(&close)).map(|e| e + close.len())
+}
+
+/// Every function with a body in `code` (blanked): its name, the line of
+/// its `fn` (from 1) and its length in lines, from the `fn` line to the
+/// line of its closing brace.
+fn functions(code: &str) -> Vec<(String, usize, usize)> {
+    let bytes = code.as_bytes();
+    let line_at = |p: usize| code[..p].matches('\n').count() + 1;
+    let mut out = Vec::new();
+    let mut from = 0;
+    while let Some(found) = code[from..].find("fn ") {
+        let at = from + found;
+        from = at + 3;
+        if at > 0 && (bytes[at - 1].is_ascii_alphanumeric() || bytes[at - 1] == b'_') {
+            continue;
+        }
+        let rest = code[from..].trim_start();
+        let name: String = rest.chars().take_while(|x| x.is_alphanumeric() || *x == '_').collect();
+        if name.is_empty() {
+            continue;
+        }
+        // the body: the first `{` outside brackets, unless a `;` (a
+        // declaration's end, not one of `[f64; 3]`) comes first
+        let mut nest = 0i32;
+        let Some(open) = (from..bytes.len()).find(|&k| {
+            match bytes[k] {
+                b'(' | b'[' => nest += 1,
+                b')' | b']' => nest -= 1,
+                _ => {}
+            }
+            nest == 0 && matches!(bytes[k], b'{' | b';')
+        }) else {
+            break;
+        };
+        if bytes[open] == b';' {
+            continue;
+        }
+        let mut depth = 0usize;
+        let Some(close) = (open..bytes.len()).find(|&k| {
+            match bytes[k] {
+                b'{' => depth += 1,
+                b'}' => depth -= 1,
+                _ => {}
+            }
+            depth == 0
+        }) else {
+            break;
+        };
+        out.push((name, line_at(at), line_at(close) - line_at(at) + 1));
+    }
+    out
+}
+
+/// The longest a function may be, in lines (issue 33).
+const MOST_LINES: usize = 80;
+
+#[test]
+fn the_counter_sees_braces_only_in_code() {
+    let src = "fn a() {\n    let s = \"}}\"; // }\n    let c = '}';\n    let r = r#\"{\"#;\n    /* { /* } */ */\n    \
+               let t: &'static str = \"\\\"}\";\n    fn inner(x: [u8; 2]) -> u8 {\n        x[0]\n    }\n}\nfn b();\nfn c() {}\n";
+    let found = functions(&blanked(src));
+    let names: Vec<(&str, usize, usize)> = found.iter().map(|(n, l, k)| (n.as_str(), *l, *k)).collect();
+    assert_eq!(names, [("a", 1, 10), ("inner", 7, 3), ("c", 12, 1)], "{src}");
+}
+
+#[test]
+fn no_function_in_src_is_over_80_lines() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let files = rust_files(&root);
+    let mut long = Vec::new();
+    let mut seen = 0;
+    for path in &files {
+        let text = std::fs::read_to_string(path).expect("a source file");
+        for (name, line, lines) in functions(&blanked(&text)) {
+            seen += 1;
+            if lines > MOST_LINES {
+                let rel = path.strip_prefix(&root).unwrap_or(path);
+                long.push(format!("src/{}:{line} fn {name}: {lines} lines", rel.display()));
+            }
+        }
+    }
+    assert!(files.len() > 50 && seen > 1000, "the source was read: {} files, {seen} functions", files.len());
+    assert!(long.is_empty(), "functions over {MOST_LINES} lines (split each into named steps):\n{}", long.join("\n"));
+}
