@@ -73,6 +73,39 @@ pub struct Run {
     pub checks: Checks,
     /// The safety search after the load steps, when the run made one.
     pub safety: Option<SafetyRun>,
+    /// The initial equilibrium stage before the load steps (`[solver]
+    /// initial_stage`), when the run made one.
+    pub initial_stage: Option<InitialStage>,
+}
+
+/// The initial equilibrium stage: the step 0 that brings the bodies to
+/// equilibrium with their in-situ stress and their contacts active. Its
+/// displacements are taken off every load step's (`StepResult::u`);
+/// stresses and pair forces stay totals.
+#[derive(Clone, Debug, Default)]
+pub struct InitialStage {
+    /// Its contact iteration: iterations, whether it converged, the
+    /// halvings of the stage, and how many pairs ended open, slipping and
+    /// stuck (`state_counts` order).
+    pub iterations: usize,
+    pub converged: bool,
+    pub cuts: usize,
+    pub states: [usize; 3],
+    /// The factor of every load case in the stage.
+    pub case_factors: Vec<f64>,
+    /// Its displacements (every node), and the largest of them (length)
+    /// with its model node.
+    pub u: Vec<f64>,
+    pub largest: f64,
+    pub largest_at: usize,
+}
+
+impl InitialStage {
+    /// `u` plus the stage's displacements: the total displacements a
+    /// step's stresses and forces come from.
+    pub fn total(&self, u: &[f64]) -> Vec<f64> {
+        u.iter().zip(&self.u).map(|(a, b)| a + b).collect()
+    }
 }
 
 impl Run {

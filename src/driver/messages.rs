@@ -138,7 +138,7 @@ impl ContactError {
     /// parts in the interface's order.
     pub(super) fn failed(model: &Model, parts: &[Part], scene: &Scene, step: usize, f: Failed) -> ContactError {
         let at = At {
-            step: (scene.solver.load_steps > 1).then_some(step),
+            step: (scene.solver.load_steps > 1 || step == 0).then_some(step),
             iteration: f.iteration,
             states: state_counts(&f.states),
         };
@@ -221,8 +221,10 @@ fn bodies_named(bodies: &[String]) -> String {
 impl fmt::Display for At {
     /// "[load step k, ]contact iteration i (s stick, l slip, o open)".
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if let Some(k) = self.step {
-            write!(f, "load step {k}, ")?;
+        match self.step {
+            Some(0) => write!(f, "the initial equilibrium stage, ")?,
+            Some(k) => write!(f, "load step {k}, ")?,
+            None => {}
         }
         write!(
             f,
@@ -279,8 +281,10 @@ impl fmt::Display for ContactError {
             }
             ContactError::NotConverged { scene, step, iterations, cycled, cuts, rule, results } => {
                 write!(f, "{}: the contact iteration did not converge", scene.display())?;
-                if let Some(k) = step {
-                    write!(f, " at load step {k}")?;
+                match step {
+                    Some(0) => write!(f, " in the initial equilibrium stage ([solver] initial_stage: the in-situ stress with the contacts active, before any load)")?,
+                    Some(k) => write!(f, " at load step {k}")?,
+                    None => {}
                 }
                 write!(f, " after {iterations} iteration(s){}", if *cycled { " (the states cycle)" } else { "" })?;
                 if *cuts > 0 {

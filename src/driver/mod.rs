@@ -269,7 +269,8 @@ fn solve(
         interface_solver,
     };
     let stats = stats::stats(&model, &plan.parts, all, measured);
-    let mut run = Run { scene, model, steps: done.steps, stats, checks: Checks::default(), safety };
+    let initial_stage = done.stage;
+    let mut run = Run { scene, model, steps: done.steps, stats, checks: Checks::default(), safety, initial_stage };
 
     // 7. What the last step is checked against, then the output, all at once.
     let t = Instant::now();
@@ -280,16 +281,34 @@ fn solve(
 
 /// Errors against the scene's closed form (body by body, each in its own
 /// material), the probes, the reactions and the section forces, on the
-/// last load step.
+/// last load step (after an initial stage, from its total displacements;
+/// the probes' displacements those of the loads alone).
 fn checks(run: &Run) -> Checks {
     let (model, last) = (&run.model, run.last());
+    let total = run.initial_stage.as_ref().map(|s| StepResult {
+        u: s.total(&last.u),
+        stresses: Vec::new(),
+        case_factors: last.case_factors.clone(),
+        contact: last.contact.clone(),
+        ..*last
+    });
+    let (last, stage) = (total.as_ref().unwrap_or(last), run.initial_stage.as_ref());
     let exact = run.scene.analytic.as_ref().map(|a| analytic::exact(a, model));
     let errors = exact.as_ref().map(|e| recover::errors(model, &last.u, e));
     let contact_error_max = match (&exact, &last.contact) {
         (Some(e), Some(c)) => Some(contact_error(model, e, &c.pairs)),
         _ => None,
     };
-    let probes = run.scene.probes.iter().map(|p| (p.name.clone(), recover::probe(model, &last.u, p))).collect();
+    let probe = |p: &crate::scene::Probe| {
+        let mut samples = recover::probe(model, &last.u, p);
+        if let Some(stage) = stage {
+            for (s, s0) in samples.iter_mut().zip(recover::probe(model, &stage.u, p)) {
+                (0..3).for_each(|c| s.displacement[c] -= s0.displacement[c]);
+            }
+        }
+        samples
+    };
+    let probes = run.scene.probes.iter().map(|p| (p.name.clone(), probe(p))).collect();
     let groups: Vec<String> = run.scene.bodies.iter().map(|b| b.group.clone()).collect();
     let reactions = (!model.supports.is_empty()).then(|| recover::reactions::reactions(model, last, &groups));
     let sections = recover::sections::section_forces(model, &last.u, &run.scene.sections);

@@ -346,10 +346,13 @@ fn recovered(
     };
     let (contact, d_c) = answer.unzip();
     let u = ranks.recover(step.model, &step.plan.parts, &parts.mine, d_c.map(Ok), &lambda, need_u)?;
-    let Some((c, u)) = contact.zip(u) else { return Ok(None) };
+    let Some((c, mut u)) = contact.zip(u) else { return Ok(None) };
     done.counters.interior_recoveries += usize::from(need_u) * step.plan.parts.len();
     done.counters.stress_recoveries += usize::from(need_stress);
     let stresses = if need_stress { recover::nodal_stresses(step.model, &u) } else { Vec::new() };
+    if need_u {
+        super::steps::reset(&mut u, done.stage.as_ref());
+    }
     let k = if k > 0 { k } else { step.scene.solver.load_steps };
     let load_factor = lambda.first().copied().unwrap_or(1.0);
     Ok(Some(StepResult { step: k, load_factor, case_factors: lambda, u, stresses, contact: Some(c) }))

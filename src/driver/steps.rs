@@ -4,6 +4,13 @@
 //! recovers the stresses and records the step, and a step that did not
 //! converge stops the run. States, cracks and slip carry over from step to
 //! step ([`History`]).
+//!
+//! With `[solver] initial_stage` a step 0 comes first: gravity, the
+//! initial stresses and the hold load at 1, every other load at 0
+//! ([`Model::stage_factors`]), through the same iteration and History; the
+//! load steps then start from its factors and state, and its displacements
+//! are taken off theirs once their stresses are recovered (stresses and
+//! pair forces stay totals).
 
 use std::time::Instant;
 
@@ -18,7 +25,7 @@ use crate::contact::{self, History, Outcome, PairLaw};
 use crate::error::Result;
 use crate::model::Model;
 use crate::recover;
-use crate::results::{ContactRun, Counters, PairWater, StepResult};
+use crate::results::{state_counts, ContactRun, Counters, InitialStage, PairWater, StepResult};
 use crate::scene::{Scene, StateRule, TractionRecovery};
 
 /// What the load steps did: the steps (on rank 0), and what they cost.
@@ -38,6 +45,8 @@ pub(super) struct LoadSteps {
     pub bytes_interface: u64,
     /// States, cracks and slips where the last step ended (on rank 0).
     pub history: History,
+    /// The initial equilibrium stage, when the scene asks for one (on rank 0).
+    pub stage: Option<InitialStage>,
 }
 
 /// One step's interface answer on rank 0.
@@ -95,9 +104,11 @@ pub(super) fn run(this: &Step, parts: &Parts, opts: &RunOptions, ranks: &Ranks) 
     let mut out = LoadSteps::default();
     let mut history = History::new(model.pairs.len());
     let bytes_before = ranks.bytes_sent();
+    out.stage = stage(this, parts, opts, ranks, &mut history, &mut out)?;
+    let start = model.stage_factors().unwrap_or_else(|| vec![0.0; model.cases.len()]);
     for step in 1..=n_steps {
         let lambda: Vec<f64> = model.cases.iter().map(|c| c[step - 1]).collect();
-        let from: Vec<f64> = model.cases.iter().map(|c| if step > 1 { c[step - 2] } else { 0.0 }).collect();
+        let from: Vec<f64> = (model.cases.iter().zip(&start)).map(|(c, s)| if step > 1 { c[step - 2] } else { *s }).collect();
         // 5. iterate: the contact states, on rank 0 (the others apply their S)
         let (t, bytes) = (Instant::now(), ranks.bytes_sent());
         let answer = ranks.on_root(&parts.mine, || this.iterate(step, (&from, &lambda), &mut history, &mut out));
@@ -117,13 +128,14 @@ pub(super) fn run(this: &Step, parts: &Parts, opts: &RunOptions, ranks: &Ranks) 
         out.done += 1;
         // record the step; one that did not converge ends the run
         let stop = contact.as_ref().is_some_and(|c| !c.summary.converged);
-        if let Some(u) = u {
+        if let Some(mut u) = u {
             let stresses = if need_stress {
                 out.counters.stress_recoveries += 1;
                 recover::nodal_stresses(model, &u)
             } else {
                 Vec::new()
             };
+            reset(&mut u, out.stage.as_ref());
             out.steps.push(StepResult {
                 step,
                 load_factor: lambda[0],
@@ -145,6 +157,75 @@ pub(super) fn run(this: &Step, parts: &Parts, opts: &RunOptions, ranks: &Ranks) 
     out.history = history;
     out.counters.interface_applications_per_solve = parts.problem.as_ref().map_or_else(Vec::new, |p| p.applications());
     Ok(out)
+}
+
+/// The initial equilibrium stage, when the model has one: its contact
+/// iteration from nothing to [`Model::stage_factors`] in `history`, and its
+/// displacements (recovered whatever the output needs: every step's are
+/// taken off by them). One that does not converge ends the run: no load
+/// step can start from it.
+fn stage(
+    this: &Step,
+    parts: &Parts,
+    opts: &RunOptions,
+    ranks: &Ranks,
+    history: &mut History,
+    out: &mut LoadSteps,
+) -> Result<Option<InitialStage>> {
+    let model = this.model;
+    let Some(factors) = model.stage_factors() else { return Ok(None) };
+    progress(opts, "initial equilibrium stage: the in-situ stress with the contacts active");
+    let zero = vec![0.0; factors.len()];
+    let (t, bytes) = (Instant::now(), ranks.bytes_sent());
+    let answer = ranks.on_root(&parts.mine, || this.iterate(0, (&zero, &factors), history, out));
+    out.bytes_interface += ranks.bytes_sent() - bytes;
+    out.interface_s += t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let (d_c, contact) = match answer {
+        Some(Ok(a)) => (Some(Ok(a.d_c)), a.contact),
+        Some(Err(e)) => (Some(Err(e.into())), None),
+        None => (None, None),
+    };
+    let u = ranks.recover(model, &this.plan.parts, &parts.mine, d_c, &factors, true)?;
+    out.counters.interior_recoveries += this.plan.parts.len();
+    out.recover_s += t.elapsed().as_secs_f64();
+    let summary = contact.as_ref().map(|c| c.summary.clone()).unwrap_or_else(|| crate::contact::Summary {
+        converged: true,
+        ..Default::default()
+    });
+    if ranks.stop(!summary.converged) {
+        return Err(ContactError::NotConverged {
+            scene: this.scene.path.clone(),
+            step: Some(0),
+            iterations: summary.iterations,
+            cycled: summary.cycled,
+            cuts: summary.cuts,
+            rule: this.scene.solver.rule,
+            results: None,
+        }
+        .into());
+    }
+    let Some(u) = u else { return Ok(None) };
+    let nd = model.nd;
+    let length = |k: usize| u[k * nd..k * nd + nd].iter().map(|v| v * v).sum::<f64>().sqrt();
+    let largest_at = (0..model.n_nodes()).max_by(|&a, &b| length(a).total_cmp(&length(b))).unwrap_or(0);
+    Ok(Some(InitialStage {
+        iterations: summary.iterations,
+        converged: summary.converged,
+        cuts: summary.cuts,
+        states: contact.as_ref().map_or([0; 3], |c| state_counts(&c.states)),
+        case_factors: factors,
+        largest: if model.n_nodes() > 0 { length(largest_at) } else { 0.0 },
+        largest_at,
+        u,
+    }))
+}
+
+/// Takes the initial stage's displacements off a step's.
+pub(super) fn reset(u: &mut [f64], stage: Option<&InitialStage>) {
+    if let Some(s) = stage {
+        u.iter_mut().zip(&s.u).for_each(|(a, b)| *a -= b);
+    }
 }
 
 impl Step<'_> {

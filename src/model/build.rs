@@ -60,10 +60,16 @@ impl Model {
             load_cases: cases.of_load.clone(),
             gravity_case: cases.gravity,
             initial_case: cases.initial,
+            hold_case: cases.hold,
             water: Vec::new(),
             seismic: Vec::new(),
         };
         model.pairs = pair_normals(&model, &split.pairs, &split.signs);
+        // 5a. The initial stage's hold load on the bodies' outer faces.
+        if let Some(case) = cases.hold {
+            let hold = super::hold::loads(&model, case);
+            model.loads.extend(hold);
+        }
         // 5b. The water in the joints, on the pairs.
         model.water = super::joint_water::resolve(&b, &model, &split.signs, &cases.of_water)?;
         model.seismic = seismic(&b, &cases.of_load)?;
@@ -172,6 +178,8 @@ struct Cases {
     /// The case of gravity, and of the initial stresses.
     gravity: usize,
     initial: usize,
+    /// The case of the initial stage's hold load (0 at every step).
+    hold: Option<usize>,
 }
 
 impl Cases {
@@ -179,7 +187,10 @@ impl Cases {
     /// own), then each load's own factors, each joint water's, gravity's,
     /// and the initial stresses' (1 at every step: they are there before
     /// the first load). Joint water without factors takes the case of the
-    /// face it connects to, or the ramp.
+    /// face it connects to, or the ramp. With the initial stage, gravity
+    /// without factors has a case of its own at 1 throughout (it is there
+    /// in full from the stage on), and the hold load one at 0 throughout
+    /// (the stage's factors are [`Model::stage_factors`]).
     fn new(spec: &ModelSpec) -> Cases {
         let steps = spec.load_steps;
         let mut factors: Vec<Vec<f64>> = vec![(1..=steps).map(|k| k as f64 / steps as f64).collect()];
@@ -199,10 +210,15 @@ impl Cases {
                 })
             })
             .collect();
-        let gravity = case_of(&spec.gravity_factors);
+        let full = (spec.initial_stage && spec.gravity_factors.is_none()).then(|| vec![1.0; steps]);
+        let gravity = case_of(if full.is_some() { &full } else { &spec.gravity_factors });
         factors.push(vec![1.0; steps]);
         let initial = factors.len() - 1;
-        Cases { factors, of_load, of_water, gravity, initial }
+        let hold = spec.initial_stage.then(|| {
+            factors.push(vec![0.0; steps]);
+            factors.len() - 1
+        });
+        Cases { factors, of_load, of_water, gravity, initial, hold }
     }
 }
 

@@ -14,6 +14,7 @@
 //! no shear by definition), nor one with water in it (its effective stress
 //! depends on the water the check does not read).
 
+use super::spec::stress_times as traction;
 use super::Model;
 
 /// What a contact group can carry, from its `[[contacts]]` entry.
@@ -85,15 +86,6 @@ pub fn beyond(model: &Model, strengths: &[JointStrength]) -> Vec<Beyond> {
     out
 }
 
-/// `σ n` for the stress `[xx, yy, zz, xy, yz, xz]`.
-fn traction(s: &[f64; 6], n: [f64; 3]) -> [f64; 3] {
-    [
-        s[0] * n[0] + s[3] * n[1] + s[5] * n[2],
-        s[3] * n[0] + s[1] * n[1] + s[4] * n[2],
-        s[5] * n[0] + s[4] * n[1] + s[2] * n[2],
-    ]
-}
-
 /// One paragraph per contact group beyond its strength (the caller puts
 /// the scene file's name in front).
 pub fn warnings(model: &Model, strengths: &[JointStrength]) -> Vec<String> {
@@ -108,8 +100,13 @@ pub fn warnings(model: &Model, strengths: &[JointStrength]) -> Vec<String> {
             if e.tension > 0 {
                 what.push(format!("{} in tension beyond f_t", e.tension));
             }
+            let then = if model.hold_case.is_some() {
+                "The initial equilibrium stage ([solver] initial_stage) slips or opens it under the in-situ stress alone, before the loads, and the displacements it makes are taken off every load step's (summary.json initial_stage says how far it moved). Check k0 / initial_stress against the joint's friction and cohesion if the joint is not meant to move in situ"
+            } else {
+                "The rock mass is not in equilibrium with this joint as given, so the first load step slips or opens it under the in-situ stress alone, mixed with the loads. Check k0 / initial_stress against the joint's friction and cohesion, give the joint the strength it has in situ, or let [solver] initial_stage = true bring the rock mass to equilibrium with its joints before the loads (its displacements then reset)"
+            };
             format!(
-                "the in-situ stress puts {} of the {} pairs of contact \"{name}\" beyond its strength: {}. The rock mass is not in equilibrium with this joint as given, so the first load step slips or opens it under the in-situ stress alone. Check k0 / initial_stress against the joint's friction and cohesion, or give the joint the strength it has in situ",
+                "the in-situ stress puts {} of the {} pairs of contact \"{name}\" beyond its strength: {}. {then}",
                 e.shear + e.tension,
                 e.judged,
                 what.join(", ")

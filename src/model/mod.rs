@@ -35,6 +35,7 @@ mod errors;
 mod facet_cells;
 mod forces;
 mod held;
+mod hold;
 pub mod insitu;
 mod joint_water;
 mod normals;
@@ -168,6 +169,10 @@ pub struct Model {
     /// The load case of the initial stresses: factor 1 at every step (they
     /// are there before the first load).
     pub initial_case: usize,
+    /// The load case of the initial equilibrium stage's hold load (the
+    /// in-situ traction on the bodies' outer faces, [`hold`]): 0 at every
+    /// load step, 1 in the stage. None without the stage.
+    pub hold_case: Option<usize>,
     /// The water in the joints: one entry per contact group that has some.
     pub water: Vec<GroupWater>,
     /// Pseudo-static seismic accelerations (global axes; times a body's
@@ -233,6 +238,16 @@ impl Model {
             }
         }
         out
+    }
+
+    /// The factor of every load case in the initial equilibrium stage
+    /// (None without it): gravity, the initial stresses and the hold load
+    /// at 1, every other case (the loads, joint water, prescribed
+    /// displacements) at 0.
+    pub fn stage_factors(&self) -> Option<Vec<f64>> {
+        let hold = self.hold_case?;
+        let on = [self.gravity_case, self.initial_case, hold];
+        Some((0..self.cases.len()).map(|c| if on.contains(&c) { 1.0 } else { 0.0 }).collect())
     }
 
     /// Names of the bodies, for messages.

@@ -30,6 +30,9 @@ pub struct ModelSpec {
     pub load_steps: usize,
     /// Gravity's factor at each load step; None: the ramp.
     pub gravity_factors: Option<Vec<f64>>,
+    /// Run the initial equilibrium stage (a step 0 that holds the bodies'
+    /// outer faces at their in-situ traction, `[solver] initial_stage`).
+    pub initial_stage: bool,
 }
 
 /// One body: a physical surface (2D) or volume (3D) of one material.
@@ -149,6 +152,11 @@ pub enum LoadKind {
     /// (a physical point), facets (a curve or surface) or cells (a body)
     /// so that they carry exactly that resultant (`model/forces.rs`).
     Force(ForceLoad),
+    /// The in-situ traction `σ0(x) n` of a body's initial stress on its
+    /// boundary (the initial equilibrium stage's hold load): `stress` of a
+    /// body of `density` under `gravity`. The model makes it; no scene
+    /// key names it.
+    InSitu { stress: InitialStress, density: f64, gravity: [f64; 3] },
 }
 
 impl LoadKind {
@@ -163,13 +171,14 @@ impl LoadKind {
                 let depth = (surface - x[vertical]).clamp(0.0, h.max(0.0));
                 Some(0.875 * kh * unit_weight * (h * depth).sqrt())
             }
-            LoadKind::Traction(_) | LoadKind::Seismic { .. } | LoadKind::Force(_) => None,
+            LoadKind::Traction(_) | LoadKind::Seismic { .. } | LoadKind::Force(_) | LoadKind::InSitu { .. } => None,
         }
     }
 
     /// The traction on a facet at x whose outward unit normal is n: a
     /// pressure ([`LoadKind::pressure_at`], its level y in 2D, z in 3D)
-    /// presses against n; a traction is itself; a seismic load (a body
+    /// presses against n; a traction is itself; the in-situ traction is
+    /// `σ0(x) n`; a seismic load (a body
     /// load) and a force (spread onto nodes when the model is built) are
     /// no facet traction: zero.
     pub fn traction(&self, x: [f64; 3], n: [f64; 3], analysis: Analysis) -> [f64; 3] {
@@ -177,9 +186,21 @@ impl LoadKind {
         match (self, self.pressure_at(x, vertical)) {
             (_, Some(p)) => [-p * n[0], -p * n[1], -p * n[2]],
             (LoadKind::Traction(t), None) => *t,
+            (LoadKind::InSitu { stress, density, gravity }, None) => {
+                stress_times(&stress.at(x, analysis, *density, *gravity), n)
+            }
             (_, None) => [0.0; 3],
         }
     }
+}
+
+/// `σ n` for the stress `[xx, yy, zz, xy, yz, xz]`.
+pub fn stress_times(s: &[f64; 6], n: [f64; 3]) -> [f64; 3] {
+    [
+        s[0] * n[0] + s[3] * n[1] + s[5] * n[2],
+        s[3] * n[0] + s[1] * n[1] + s[4] * n[2],
+        s[5] * n[0] + s[4] * n[1] + s[2] * n[2],
+    ]
 }
 
 /// `force = [..]`, `moment = ..`, `point = [..]` of a load: the force and

@@ -517,6 +517,20 @@ fn steps_summary(run: &Run) -> serde_json::Value {
         .collect::<Vec<_>>())
 }
 
+/// The initial equilibrium stage in summary.json: its iteration, states,
+/// factors and largest displacement (taken off every step's).
+fn initial_stage(run: &Run, s: &crate::results::InitialStage) -> serde_json::Value {
+    json!({
+        "iterations": s.iterations,
+        "converged": s.converged,
+        "cuts": s.cuts,
+        "states": { "stick": s.states[2], "slip": s.states[1], "open": s.states[0] },
+        "case_factors": s.case_factors,
+        "largest_displacement": s.largest,
+        "largest_at": run.model.coords.get(s.largest_at),
+    })
+}
+
 fn summary(run: &Run) -> serde_json::Value {
     let st = &run.stats;
     let mut v = json!({
@@ -566,6 +580,9 @@ fn summary(run: &Run) -> serde_json::Value {
         }
     }
     v["steps"] = steps_summary(run);
+    if let Some(s) = &run.initial_stage {
+        v["initial_stage"] = initial_stage(run, s);
+    }
     let checks = &run.checks;
     if let Some(e) = &checks.errors {
         v["errors"] = json!({ "displacement_l2": e.displacement_l2, "stress_l2": e.stress_l2, "contact_max": checks.contact_error_max });

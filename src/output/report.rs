@@ -104,6 +104,13 @@ fn contact_rows(s: &mut String, run: &Run) {
             }
         );
         let _ = writeln!(s, "| states stick / slip / open | {} / {} / {} |", k[2], k[1], k[0]);
+        if let Some(i) = &run.initial_stage {
+            let _ = writeln!(
+                s,
+                "| initial equilibrium stage (taken off the displacements) | {} iterations, {} / {} / {} stick / slip / open, largest displacement {:.3e} |",
+                i.iterations, i.states[2], i.states[1], i.states[0], i.largest
+            );
+        }
         let _ = writeln!(s, "| interface residual | {:.2e} |", st.residuals.interface);
         if let Some((p, r)) = c.worst_law_residual() {
             let group = &run.model.interfaces[run.model.pairs[p].contact].name;

@@ -104,6 +104,10 @@ pub struct Solver {
     pub substructures: usize,
     /// How the interface system is solved (default auto).
     pub interface: InterfaceSolver,
+    /// Bring the bodies to equilibrium with their in-situ stress and their
+    /// contacts active before the loads, displacements then reset (a
+    /// step 0; default false).
+    pub initial_stage: bool,
 }
 
 impl Default for Solver {
@@ -116,6 +120,7 @@ impl Default for Solver {
             gravity_factors: None,
             substructures: 1,
             interface: InterfaceSolver::Auto,
+            initial_stage: false,
         }
     }
 }
@@ -462,6 +467,7 @@ impl Scene {
                 .collect(),
             load_steps: self.solver.load_steps,
             gravity_factors: self.own_case(self.solver.gravity_factors.as_ref(), raise.is_some_and(|r| r.gravity)),
+            initial_stage: self.solver.initial_stage,
         }
     }
 }

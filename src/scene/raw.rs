@@ -226,6 +226,7 @@ pub(super) struct RawSolver {
     pub(super) gravity_factors: Option<Vec<f64>>,
     pub(super) substructures: Option<i64>,
     pub(super) interface: Option<InterfaceSolver>,
+    pub(super) initial_stage: Option<bool>,
 }
 
 #[derive(Deserialize)]

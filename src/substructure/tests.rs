@@ -78,6 +78,7 @@ fn joined(
         load_cases: Vec::new(),
         gravity_case: 0,
         initial_case: 1,
+        hold_case: None,
         water: Vec::new(),
         seismic: Vec::new(),
     }

@@ -630,6 +630,7 @@ pub(super) mod tests {
             load_cases: Vec::new(),
             gravity_case: 0,
             initial_case: 0,
+            hold_case: None,
             water: Vec::new(),
             seismic: Vec::new(),
         }
