@@ -8,8 +8,13 @@
 //! dipping 60 degrees from the base to the top. Geostatic stress: sigma_v
 //! = -rho g depth, sigma_h = k0 sigma_v. On the joint (Mohr) sigma_n =
 //! sigma_v (cos^2 60 + k0 sin^2 60) and tau = (1 - k0) sigma_v sin 60 cos
-//! 60: tau / |sigma_n| = 0.3849 with k0 = 0.5 (below tan 35 = 0.7002: the
-//! joint carries it), 0.7423 with k0 = 0.25 (beyond: it slips).
+//! 60: tau / |sigma_n| = 0.3464 with k0 = 0.5 (below tan 35 = 0.7002: the
+//! joint carries it), 0.7423 with k0 = 0.25 (beyond: it slips; the in-situ
+//! warning's "mobilised up to 1.060"). The same box extruded 4 m (tet10)
+//! checks the 3D faces. Closed forms: nothing moves where the joint
+//! carries the stress; a pressure p on the top after the stage settles the
+//! confined column by `p y / M` (M the constrained modulus), the stage's
+//! own displacements taken off.
 
 mod common;
 
@@ -33,6 +38,29 @@ Physical Curve("base") = {1, 2};
 Physical Curve("left") = {6};
 Physical Curve("right") = {3};
 Physical Curve("top") = {4, 5};
+"#;
+
+/// The same box in 3D: the section above extruded 4 m along y (tet10),
+/// rollers on its four sides.
+const GEO_3D: &str = r#"
+DefineConstant[ lc = {2.0, Name "lc"} ];
+x0 = 2.0; x1 = 2.0 + 8.0 / Tan(Pi / 3);
+Point(1) = {0, 0, 0, lc}; Point(2) = {x0, 0, 0, lc}; Point(3) = {10, 0, 0, lc};
+Point(4) = {10, 0, 8, lc}; Point(5) = {x1, 0, 8, lc}; Point(6) = {0, 0, 8, lc};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 5};
+Line(5) = {5, 6}; Line(6) = {6, 1}; Line(7) = {2, 5};
+Curve Loop(1) = {1, 7, 5, 6}; Plane Surface(1) = {1};
+Curve Loop(2) = {2, 3, 4, -7}; Plane Surface(2) = {2};
+out[] = Extrude {0, 4, 0} { Surface{1, 2}; };
+Physical Volume("foot") = {out[1]};
+Physical Volume("hanging") = {out[7]};
+Physical Surface("joint") = {out[3]};
+Physical Surface("base") = {out[2], out[8]};
+Physical Surface("left") = {out[5]};
+Physical Surface("right") = {out[9]};
+Physical Surface("front") = {1, 2};
+Physical Surface("back") = {out[0], out[6]};
+Physical Surface("top") = {out[4], out[10]};
 "#;
 
 const RHO_G: f64 = 2.7e-3 * 9.81;
@@ -81,9 +109,17 @@ fields = ["displacement", "stress"]
     )
 }
 
+/// `scene` in 3D: gravity along -z, the front and back on rollers too.
+fn scene_3d(k0: f64, loads: &str) -> String {
+    scene(k0, true, loads).replace("plane_strain", "solid").replace("[0.0, -9.81]", "[0.0, 0.0, -9.81]").replace(
+        "fix = [\"x\", \"y\"]",
+        "fix = [\"x\", \"y\", \"z\"]\n[[supports]]\ngroup = \"front\"\nfix = [\"y\"]\n[[supports]]\ngroup = \"back\"\nfix = [\"y\"]",
+    )
+}
+
 fn run(name: &str, toml: &str) -> (Case, Run) {
     let case = Case::new(name);
-    case.write("box.geo", GEO);
+    case.write("box.geo", if toml.contains("solid") { GEO_3D } else { GEO });
     let run = case.run(&case.write("box.toml", toml)).expect("run");
     (case, run)
 }
@@ -159,23 +195,62 @@ fn a_joint_beyond_its_strength_slips_in_the_stage_and_the_loads_start_from_there
     assert!(warned, "the in-situ warning does not say the stage was used: {}", s["warnings"]);
 }
 
+/// The largest departure of `u` from the confined column's settlement
+/// under a pressure p on its top, `u_v = -p v / M` along the vertical axis
+/// `v`, nothing across it.
+fn from_column(run: &Run, u: &[f64], p: f64) -> f64 {
+    let (model, nd) = (&run.model, run.model.nd);
+    let v = nd - 1;
+    let m = E * 0.75 / (1.25 * 0.5);
+    (0..model.n_nodes())
+        .map(|k| {
+            let x = model.coords[k][v];
+            (0..nd)
+                .map(|c| if c == v { (u[k * nd + c] + p * x / m).abs() } else { u[k * nd + c].abs() })
+                .fold(0.0, f64::max)
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The column's settlement at the top under the pressure of `PRESSURE`.
+fn settlement() -> f64 {
+    0.05 * 8.0 / (E * 0.75 / (1.25 * 0.5))
+}
+
 #[test]
 fn after_the_stage_a_load_reports_its_own_displacements_alone() {
-    // with the joint slipped in the stage, a surface pressure: what is
-    // reported is the pressure's own displacement, the stage's taken off
-    let (_, with_load) = run("stage-load", &scene(0.25, true, PRESSURE));
-    let stage = with_load.initial_stage.as_ref().expect("the stage ran");
-    let total: Vec<f64> = stage.total(&with_load.last().u);
-    let (_, off) = run("stage-load-off", &scene(0.25, false, PRESSURE));
-    // the two-step path (stage, then load) ends where the one step does
-    // when the joint slips the same way in both
-    let c = (with_load.contact().expect("contact"), off.contact().expect("contact"));
-    if c.0.states == c.1.states {
-        let scale = max_abs(off.last().u.iter().copied());
-        let diff = max_abs(total.iter().zip(&off.last().u).map(|(a, b)| a - b));
-        assert!(diff < 1e-6 * scale, "total after the stage {diff:e} from the one-step run ({scale:e})");
-    }
-    // the top settles under the pressure: downward, and less than the total
-    let reported = max_abs(with_load.last().u.iter().copied());
-    assert!(reported > 0.0 && reported < max_abs(total.iter().copied()) + 1e-30);
+    // the joint slipped in the stage, then a pressure p on the top: its
+    // increment on the joint, d tau / d sigma_n = (1 - nu / (1 - nu)) sin 60
+    // cos 60 / (cos^2 60 + nu / (1 - nu) sin^2 60) = 0.577 < tan 35, sticks
+    // it, so what is reported is the confined column's own settlement
+    // u_y = -p y / M, u_x = 0 (the stage's displacements taken off)
+    let (_, run) = run("stage-load", &scene(0.25, true, PRESSURE));
+    let stage = run.initial_stage.as_ref().expect("the stage ran");
+    assert!(stage.states[1] > 0, "the stage slips the joint: {:?}", stage.states);
+    let reported = from_column(&run, &run.last().u, 0.05);
+    let total = from_column(&run, &stage.total(&run.last().u), 0.05);
+    let scale = settlement();
+    assert!(reported < 0.005 * scale, "reported: {reported:e} from -p y / M ({scale:e}); with the stage's {total:e}");
+    assert!(total > 0.02 * scale, "the stage moved too little to tell: {total:e} of {scale:e}");
+}
+
+#[test]
+fn in_3d_the_stage_holds_a_joint_that_carries_the_stress_and_slips_one_that_cannot() {
+    // k0 = 0.5: the tet10 faces take the hold load, nothing moves
+    let (_, held) = run("stage-3d-holds", &scene_3d(0.5, ""));
+    let stage = held.initial_stage.as_ref().expect("the stage ran");
+    let pairs = held.model.pairs.len();
+    assert!(pairs > 20, "{pairs} pairs");
+    assert_eq!(stage.states, [0, 0, pairs], "every pair sticks in the stage");
+    assert!(stage.largest < 1e-12 * reference(), "stage moved {:e} of {:e}", stage.largest, reference());
+    // k0 = 0.25: it slips in the stage; a pressure then settles the column
+    let (_, run) = run("stage-3d-load", &scene_3d(0.25, PRESSURE));
+    let stage = run.initial_stage.as_ref().expect("the stage ran");
+    assert!(stage.states[1] > pairs / 2, "the stage slips the joint: {:?}", stage.states);
+    let reported = from_column(&run, &run.last().u, 0.05);
+    let total = from_column(&run, &stage.total(&run.last().u), 0.05);
+    let scale = settlement();
+    // (every pair sticks under the load: the column exactly)
+    assert!(reported < 1e-9 * scale, "reported: {reported:e} from -p z / M ({scale:e}); with the stage's {total:e}");
+    assert!(total > 0.02 * scale, "the stage moved too little to tell: {total:e} of {scale:e}");
 }

@@ -108,7 +108,8 @@ pub(super) fn run(this: &Step, parts: &Parts, opts: &RunOptions, ranks: &Ranks) 
     let start = model.stage_factors().unwrap_or_else(|| vec![0.0; model.cases.len()]);
     for step in 1..=n_steps {
         let lambda: Vec<f64> = model.cases.iter().map(|c| c[step - 1]).collect();
-        let from: Vec<f64> = (model.cases.iter().zip(&start)).map(|(c, s)| if step > 1 { c[step - 2] } else { *s }).collect();
+        let from: Vec<f64> =
+            (model.cases.iter().zip(&start)).map(|(c, s)| if step > 1 { c[step - 2] } else { *s }).collect();
         // 5. iterate: the contact states, on rank 0 (the others apply their S)
         let (t, bytes) = (Instant::now(), ranks.bytes_sent());
         let answer = ranks.on_root(&parts.mine, || this.iterate(step, (&from, &lambda), &mut history, &mut out));
@@ -189,10 +190,10 @@ fn stage(
     let u = ranks.recover(model, &this.plan.parts, &parts.mine, d_c, &factors, true)?;
     out.counters.interior_recoveries += this.plan.parts.len();
     out.recover_s += t.elapsed().as_secs_f64();
-    let summary = contact.as_ref().map(|c| c.summary.clone()).unwrap_or_else(|| crate::contact::Summary {
-        converged: true,
-        ..Default::default()
-    });
+    let summary = contact
+        .as_ref()
+        .map(|c| c.summary.clone())
+        .unwrap_or_else(|| crate::contact::Summary { converged: true, ..Default::default() });
     if ranks.stop(!summary.converged) {
         return Err(ContactError::NotConverged {
             scene: this.scene.path.clone(),

@@ -85,7 +85,8 @@ fn contact_keys(model: &Model) -> HashSet<Vec<usize>> {
 /// the cell's tag.
 fn local_facets(cell: &Cell) -> Vec<Cell> {
     let (kind, tag) = (cell.kind, cell.tag);
-    let of = |kind: CellKind, local: &[usize]| Cell { kind, nodes: local.iter().map(|&a| cell.nodes[a]).collect(), tag };
+    let of =
+        |kind: CellKind, local: &[usize]| Cell { kind, nodes: local.iter().map(|&a| cell.nodes[a]).collect(), tag };
     let edges = |table: &[[usize; 2]], first_mid: usize| -> Vec<Cell> {
         (table.iter().enumerate())
             .map(|(i, e)| match kind.order() {
