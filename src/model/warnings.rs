@@ -145,6 +145,7 @@ mod tests {
             load_cases: Vec::new(),
             gravity_case: 0,
             initial_case: 0,
+            hold_case: None,
             water: Vec::new(),
             seismic: Vec::new(),
         }
