@@ -94,7 +94,7 @@ impl<'a> Step<'a> {
 
 /// Runs every load step of the scene.
 pub(super) fn run(this: &Step, parts: &Parts, opts: &RunOptions, ranks: &Ranks) -> Result<LoadSteps> {
-    let (scene, model, plan) = (this.scene, this.model, this.plan);
+    let (scene, model) = (this.scene, this.model);
     // skip what the scene does not ask for
     let (need_stress, need_u) = this.needs();
     let n_steps = scene.solver.load_steps;
@@ -110,22 +110,10 @@ pub(super) fn run(this: &Step, parts: &Parts, opts: &RunOptions, ranks: &Ranks) 
         let lambda: Vec<f64> = model.cases.iter().map(|c| c[step - 1]).collect();
         let from: Vec<f64> =
             (model.cases.iter().zip(&start)).map(|(c, s)| if step > 1 { c[step - 2] } else { *s }).collect();
-        // 5. iterate: the contact states, on rank 0 (the others apply their S)
-        let (t, bytes) = (Instant::now(), ranks.bytes_sent());
-        let answer = ranks.on_root(&parts.mine, || this.iterate(step, (&from, &lambda), &mut history, &mut out));
-        out.bytes_interface += ranks.bytes_sent() - bytes;
-        out.interface_s += t.elapsed().as_secs_f64();
-        // 6. recover: the interiors on their owners, the stresses on rank 0
+        // 5. and 6. iterate and recover the interiors
+        let (u, contact) = solve(this, parts, ranks, (step, &from, &lambda), need_u, &mut history, &mut out)?;
+        // the stresses on rank 0
         let t = Instant::now();
-        let (d_c, contact) = match answer {
-            Some(Ok(a)) => (Some(Ok(a.d_c)), a.contact),
-            Some(Err(e)) => (Some(Err(e.into())), None),
-            None => (None, None),
-        };
-        let u = ranks.recover(model, &plan.parts, &parts.mine, d_c, &lambda, need_u)?;
-        if need_u {
-            out.counters.interior_recoveries += plan.parts.len();
-        }
         out.done += 1;
         // record the step; one that did not converge ends the run
         let stop = contact.as_ref().is_some_and(|c| !c.summary.converged);
@@ -177,19 +165,7 @@ fn stage(
     let Some(factors) = model.stage_factors() else { return Ok(None) };
     progress(opts, "initial equilibrium stage: the in-situ stress with the contacts active");
     let zero = vec![0.0; factors.len()];
-    let (t, bytes) = (Instant::now(), ranks.bytes_sent());
-    let answer = ranks.on_root(&parts.mine, || this.iterate(0, (&zero, &factors), history, out));
-    out.bytes_interface += ranks.bytes_sent() - bytes;
-    out.interface_s += t.elapsed().as_secs_f64();
-    let t = Instant::now();
-    let (d_c, contact) = match answer {
-        Some(Ok(a)) => (Some(Ok(a.d_c)), a.contact),
-        Some(Err(e)) => (Some(Err(e.into())), None),
-        None => (None, None),
-    };
-    let u = ranks.recover(model, &this.plan.parts, &parts.mine, d_c, &factors, true)?;
-    out.counters.interior_recoveries += this.plan.parts.len();
-    out.recover_s += t.elapsed().as_secs_f64();
+    let (u, contact) = solve(this, parts, ranks, (0, &zero, &factors), true, history, out)?;
     let summary = contact
         .as_ref()
         .map(|c| c.summary.clone())
@@ -220,6 +196,37 @@ fn stage(
         largest_at,
         u,
     }))
+}
+
+/// Step `step` from the factors `from` to `lambda`: the contact states
+/// iterated on rank 0 (the other ranks apply their S), then the interiors
+/// recovered on their owners when `need_u`. The displacements (on rank 0)
+/// and the contact result.
+fn solve(
+    this: &Step,
+    parts: &Parts,
+    ranks: &Ranks,
+    (step, from, lambda): (usize, &[f64], &[f64]),
+    need_u: bool,
+    history: &mut History,
+    out: &mut LoadSteps,
+) -> Result<(Option<Vec<f64>>, Option<ContactRun>)> {
+    let (t, bytes) = (Instant::now(), ranks.bytes_sent());
+    let answer = ranks.on_root(&parts.mine, || this.iterate(step, (from, lambda), history, out));
+    out.bytes_interface += ranks.bytes_sent() - bytes;
+    out.interface_s += t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let (d_c, contact) = match answer {
+        Some(Ok(a)) => (Some(Ok(a.d_c)), a.contact),
+        Some(Err(e)) => (Some(Err(e.into())), None),
+        None => (None, None),
+    };
+    let u = ranks.recover(this.model, &this.plan.parts, &parts.mine, d_c, lambda, need_u)?;
+    if need_u {
+        out.counters.interior_recoveries += this.plan.parts.len();
+    }
+    out.recover_s += t.elapsed().as_secs_f64();
+    Ok((u, contact))
 }
 
 /// Takes the initial stage's displacements off a step's.
