@@ -240,6 +240,11 @@ pub struct ContactRun {
     /// How far each pair's stresses are from the contact law in its state
     /// (stress units; `contact::law::law_residual` over the pair's area).
     pub law_residual: Vec<f64>,
+    /// Whether each pair has cracked by the step's end (the contact
+    /// iteration's crack memory: in an earlier step, on the way through
+    /// this one, or open or slipping now): it has no tensile strength and
+    /// its residual cohesion. Empty: none cracked.
+    pub cracked: Vec<bool>,
 }
 
 /// The water at every pair of a step (zero on dry pairs).
@@ -250,6 +255,11 @@ pub struct PairWater {
 }
 
 impl ContactRun {
+    /// Whether pair `p` has cracked by the step's end ([`ContactRun::cracked`]).
+    pub fn is_cracked(&self, p: usize) -> bool {
+        self.cracked.get(p).copied().unwrap_or(false)
+    }
+
     /// The pair farthest from the contact law and its residual relative to
     /// the largest traction `|(sigma_n, tau)|` of any pair (None without
     /// pairs or residuals).

@@ -11,12 +11,20 @@
 //! stuck again got its peak cohesion back: pair 1079 of joints_a ended
 //! stuck at tau = 0.1002, four times its cracked bound 0.0234 (and under
 //! its peak bound 0.1246).
+//!
+//! The outputs judge strength by the same cracks (`ContactRun::cracked`,
+//! from the iteration): a face's or block's mobilised friction is its
+//! pairs' largest `|tau| / (c - f sigma_n)` with the residual cohesion on
+//! every pair that cracked in the step, so no stuck pair reports more
+//! than 1. Before, the writers took the cracks from the earlier steps'
+//! end states alone and judged such a pair against its peak strength.
 
 mod common;
 
 use common::Case;
 use subcontact::contact::law::ContactState;
-use subcontact::output::resultants::strengths;
+use subcontact::output::resultants::{self, strengths};
+use subcontact::results::Run;
 
 #[test]
 fn a_pair_that_slipped_in_the_step_ends_it_within_its_cracked_strength() {
@@ -53,4 +61,41 @@ fn a_pair_that_slipped_in_the_step_ends_it_within_its_cracked_strength() {
             s.shear_limit(r.sigma_n, false),
         );
     }
+    reported_within_the_cracked_bound(&run, &cracked);
+}
+
+/// The faces and blocks the outputs report (faces.csv, report.md,
+/// blocks.csv): every pair in `cracked` (and every one open or slipping at
+/// the end) is cracked in the contact run, and each face's mobilised
+/// friction is its pairs' largest, with the residual cohesion on those.
+fn reported_within_the_cracked_bound(run: &Run, cracked: &[usize]) {
+    let c = run.contact().expect("contact");
+    let strength = strengths(run);
+    let body = run.model.body_of_node();
+    let mut want: std::collections::BTreeMap<(usize, [usize; 2]), f64> = Default::default();
+    let mut stuck_cracked = 0;
+    for (p, pair) in run.model.pairs.iter().enumerate() {
+        let was = cracked.binary_search(&p).is_ok() || c.states[p] != ContactState::Stick;
+        assert_eq!(c.is_cracked(p), was, "pair {p}: the run's crack is the iteration's");
+        let (r, s) = (&c.pairs[p], &strength[pair.contact]);
+        let cohesion = if was { s.residual_cohesion } else { s.cohesion };
+        let limit = cohesion - s.friction * r.sigma_n;
+        let m = match c.states[p] {
+            ContactState::Stick if limit > 0.0 => r.tau() / limit,
+            _ => 1.0,
+        };
+        stuck_cracked += usize::from(was && c.states[p] == ContactState::Stick);
+        let w = want.entry((pair.contact, [body[pair.k], body[pair.l]])).or_insert(0.0);
+        *w = w.max(m);
+    }
+    assert!(stuck_cracked >= 1, "stuck pairs that cracked in the step: {stuck_cracked}");
+    let faces = resultants::of_run(run).expect("resultants").faces;
+    assert_eq!(faces.len(), want.len());
+    for f in &faces {
+        let (got, w) = (f.resultant.mobilised, want[&(f.contact, f.blocks)]);
+        assert!(got <= 1.0 + 1e-9, "face {:?} of contact {}: mobilised {got} above 1", f.blocks, f.contact);
+        assert!((got - w).abs() <= 1e-12 * w.max(1.0), "face {:?}: mobilised {got}, cracked bound gives {w}", f.blocks);
+    }
+    let blocks = subcontact::output::blocks::of_run(run).expect("blocks");
+    assert!(blocks.iter().all(|b| b.mobilised <= 1.0 + 1e-9), "a block mobilised above 1");
 }

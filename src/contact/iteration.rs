@@ -80,7 +80,7 @@ pub(super) fn run(
                 rule.commit(h);
             }
             let states = std::mem::replace(&mut h.states, next);
-            return Ok(Outcome { states, solution, summary, law_residual: Vec::new() });
+            return Ok(Outcome { states, solution, summary, law_residual: Vec::new(), cracked: Vec::new() });
         }
         h.states = next;
     }

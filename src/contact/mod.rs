@@ -135,6 +135,11 @@ pub struct Outcome {
     /// ([`law::law_residual`] over its area): round-off where the
     /// iteration converged.
     pub law_residual: Vec<f64>,
+    /// Every pair that has cracked by the step's end ([`cracked`]): in an
+    /// earlier step, on the way through this one, or open or slipping at
+    /// its end. What the outputs judge strength by (the residual cohesion,
+    /// no tension).
+    pub cracked: Vec<bool>,
 }
 
 /// A failed iteration: the failure and the states it happened with.
@@ -161,6 +166,7 @@ pub fn iterate(
     }?;
     let before: Vec<bool> = (h.cracked.iter().zip(&h.cracking)).map(|(a, b)| *a || *b).collect();
     outcome.law_residual = law_residuals(problem, laws, &before, &outcome);
+    outcome.cracked = (before.iter().zip(&outcome.states)).map(|(c, s)| *c || *s != ContactState::Stick).collect();
     Ok(outcome)
 }
 

@@ -284,7 +284,7 @@ impl Step<'_> {
         outcome: Outcome,
         lambda: &[f64],
     ) -> (ContactRun, Vec<Vec<f64>>) {
-        let Outcome { states, solution, summary, law_residual } = outcome;
+        let Outcome { states, solution, summary, law_residual, cracked } = outcome;
         let mut pairs = solution.pairs;
         if let Some(tr) = &self.traction {
             let t = tr.recover(&solution.forces, problem.basis());
@@ -302,7 +302,7 @@ impl Step<'_> {
             force: w.forces(&states, lambda),
         });
         let frames = problem.frames().to_vec();
-        (ContactRun { states, pairs, frames, areas, summary, water, law_residual }, solution.d_c)
+        (ContactRun { states, pairs, frames, areas, summary, water, law_residual, cracked }, solution.d_c)
     }
 }
 

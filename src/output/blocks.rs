@@ -115,20 +115,19 @@ fn kinematics(model: &Model, w: &Weights, u: &[f64]) -> ([f64; 3], [f64; 3]) {
 }
 
 /// Every block of the model in the state `u`, `c` (pair strengths
-/// `strength` per contact group, `cracked` per pair), with the states of a
-/// `mechanism` where one was found.
+/// `strength` per contact group, cracked where `c` says so), with the
+/// states of a `mechanism` where one was found.
 pub fn blocks(
     model: &Model,
     u: &[f64],
     c: Option<&ContactRun>,
     strength: &[Strength],
-    cracked: &dyn Fn(usize) -> bool,
     mechanism: Option<&Mechanism>,
 ) -> Vec<Block> {
     let nb = model.bodies.len();
     let w: Vec<Weights> = (0..nb).map(|b| weights(model, b)).collect();
     let kin: Vec<([f64; 3], [f64; 3])> = w.iter().map(|w| kinematics(model, w, u)).collect();
-    let faces = c.map(|c| Faces::of(model, c, strength, cracked)).unwrap_or_default();
+    let faces = c.map(|c| Faces::of(model, c, strength)).unwrap_or_default();
     (0..nb)
         .map(|b| {
             let (uc, omega) = kin[b];
@@ -183,7 +182,7 @@ struct Face {
 }
 
 impl Faces {
-    fn of(model: &Model, c: &ContactRun, strength: &[Strength], cracked: &dyn Fn(usize) -> bool) -> Faces {
+    fn of(model: &Model, c: &ContactRun, strength: &[Strength]) -> Faces {
         let nb = model.bodies.len();
         let body = model.body_of_node();
         let mut f = Faces {
@@ -196,7 +195,7 @@ impl Faces {
         for (p, pair) in model.pairs.iter().enumerate() {
             let (i, ii) = (body[pair.k], body[pair.l]);
             let a = c.areas[p];
-            let m = mobilised(c.states[p], &c.pairs[p], &strength[pair.contact], cracked(p));
+            let m = mobilised(c.states[p], &c.pairs[p], &strength[pair.contact], c.is_cracked(p));
             for b in [i, ii] {
                 f.mobilised[b] = f.mobilised[b].max(m);
                 f.area[b] += a;
@@ -350,20 +349,13 @@ fn point(x: [f64; 3], nd: usize) -> String {
     format!("({})", c.join(", "))
 }
 
-/// Whether pair `p` cracked before the last of `steps` (open or slipping
-/// at the end of an earlier step: crack memory).
-fn cracked_before<'r>(steps: &'r [crate::results::StepResult]) -> impl Fn(usize) -> bool + 'r {
-    let earlier = &steps[..steps.len().saturating_sub(1)];
-    move |p| earlier.iter().filter_map(|s| s.contact.as_ref()).any(|c| c.states[p] != ContactState::Stick)
-}
-
 /// The blocks of the run's last load step (None without contacts); when
 /// the scene is unsafe as given, with the states of its mechanism.
 pub fn of_run(run: &Run) -> Option<Vec<Block>> {
     let c = run.contact()?;
     let mechanism = run.safety.as_ref().filter(|s| s.below_one).and_then(|s| s.failure.as_ref()?.mechanism.as_ref());
     let strength = super::resultants::strengths(run);
-    Some(blocks(&run.model, &run.last().u, Some(c), &strength, &cracked_before(&run.steps), mechanism))
+    Some(blocks(&run.model, &run.last().u, Some(c), &strength, mechanism))
 }
 
 /// The blocks at the safety search's F (its last state that holds), with
@@ -381,7 +373,7 @@ pub fn at_safety(run: &Run) -> Option<Vec<Block>> {
         }
     }
     let mechanism = s.failure.as_ref().and_then(|f| f.mechanism.as_ref());
-    Some(blocks(&run.model, &last.u, Some(c), &strength, &cracked_before(&run.steps[..]), mechanism))
+    Some(blocks(&run.model, &last.u, Some(c), &strength, mechanism))
 }
 
 /// summary.json's `blocks`: how many, in which state, the file, and the

@@ -22,8 +22,9 @@
 //!
 //! The mobilised friction of a pair is `|tau| / (c - f sigma_n)`, its shear
 //! over its Mohr–Coulomb limit, with the cohesion it has at the end of the
-//! step (the residual cohesion once it has opened or slipped, in this or an
-//! earlier step). A stuck pair is below 1. A slipping or open pair counts
+//! step (the residual cohesion once it has cracked: opened or slipped in an
+//! earlier step or on the way through this one, as the contact iteration
+//! judged it, `ContactRun::cracked`). A stuck pair is at most 1. A slipping or open pair counts
 //! as 1, fully mobilised, whatever it carries (a frictionless slip carries
 //! no shear, an open pair nothing): the joint has failed there. So does a
 //! stuck pair whose limit `c - f sigma_n` is not positive (in tension at or
@@ -302,11 +303,6 @@ pub fn of_run(run: &Run) -> Option<Resultants> {
     let strength = strengths(run);
     let body = m.body_of_node();
     let held = |n: usize| (0..m.nd).any(|c| m.prescribed[n * m.nd + c].is_some());
-    let n_steps = run.steps.len();
-    // cracked: open or slipping at the end of an earlier step (crack memory)
-    let cracked = |p: usize| {
-        run.steps[..n_steps - 1].iter().filter_map(|s| s.contact.as_ref()).any(|s| s.states[p] != ContactState::Stick)
-    };
     let records: Vec<PairRecord> = (m.pairs.iter().enumerate())
         .map(|(p, pair)| PairRecord {
             contact: pair.contact,
@@ -317,7 +313,7 @@ pub fn of_run(run: &Run) -> Option<Resultants> {
             force: c.force(p),
             water: c.water.as_ref().map_or([0.0; 3], |w| w.force[p]),
             state: c.states[p],
-            mobilised: mobilised(c.states[p], &c.pairs[p], &strength[pair.contact], cracked(p)),
+            mobilised: mobilised(c.states[p], &c.pairs[p], &strength[pair.contact], c.is_cracked(p)),
             supported: held(pair.k) || held(pair.l),
         })
         .collect();
