@@ -10,7 +10,7 @@
 //!   u_r = k / E ((1 - nu) r + (1 + nu) b^2 / r),    sigma_axial = 0
 //! ```
 
-use super::Exact;
+use super::exact::Exact;
 use crate::fem::Analysis;
 
 /// Lamé's cylinder for one analysis and material.

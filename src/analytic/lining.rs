@@ -20,7 +20,9 @@
 //! the lining's elements at each point (averaged where it lies on an edge
 //! shared by several).
 
-use super::{Exact, LinedTunnel, Solution};
+use super::exact::Exact;
+use super::solution::Solution;
+use super::tunnel::LinedTunnel;
 use crate::fem::element;
 use crate::fem::material::{d_matrix, full_stress};
 use crate::fem::{quadrature, shape};

@@ -10,22 +10,19 @@
 //! ([`Solution`]) and returns numbers ([`Check`]); `output::closed_form`
 //! formats them for report.md and summary.json.
 
+pub mod exact;
 pub mod lame;
 pub mod lining;
 pub mod paper_tables;
+pub mod solution;
 pub mod tunnel;
 
+pub use exact::Exact;
 pub use lame::Lame;
+pub use solution::Solution;
 pub use tunnel::{LinedTunnel, TunnelBody, TunnelCoefficients, TunnelSlip};
 
-use crate::contact::law::PairResult;
 use crate::model::Model;
-
-/// Displacement and stress `[xx, yy, zz, xy, yz, xz]` of a closed form at a point.
-pub trait Exact {
-    fn displacement(&self, x: [f64; 3]) -> [f64; 3];
-    fn stress(&self, x: [f64; 3]) -> [f64; 6];
-}
 
 /// `[analytic]`: a known solution used for error norms.
 #[derive(Debug, Clone, PartialEq)]
@@ -99,17 +96,6 @@ pub fn lame(analytic: &Analytic, model: &Model) -> Option<Lame> {
         }
         Analytic::LinedTunnel(_) => None,
     }
-}
-
-/// What a check reads of a solved run (its last load step).
-pub struct Solution<'a> {
-    pub model: &'a Model,
-    pub u: &'a [f64],
-    /// The probe points inside the model: position and stress
-    /// `[xx, yy, zz, xy, yz, xz]`, probe after probe.
-    pub probed: Vec<([f64; 3], [f64; 6])>,
-    /// The contact pairs' results (None without contact).
-    pub pairs: Option<&'a [PairResult]>,
 }
 
 /// What a check adds to the results, beyond the error norms: numbers,

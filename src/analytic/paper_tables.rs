@@ -7,7 +7,8 @@
 //! paper's mesh and the default one side by side. Numbers only:
 //! `output::closed_form` writes the tables.
 
-use super::{Lame, Solution};
+use super::lame::Lame;
+use super::solution::Solution;
 use crate::fem::Analysis;
 
 /// The paper's Table 1 (r, sigma_r, sigma_theta; units 1e-2 MPa) and Table 2

@@ -49,7 +49,7 @@
 //! face to the interface, and it moves as the ring: radially with the ground
 //! at r = R, tangentially with the ground in no slip, past it in full slip.
 
-use super::Exact;
+use super::exact::Exact;
 
 /// The lining–ground interface of the lined tunnel (`slip = "none" | "full"`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
