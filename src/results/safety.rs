@@ -7,7 +7,7 @@
 //! the search cost ([`SearchCost`]: contact iterations, not
 //! factorisations). Plain data, like the rest of [`crate::results`].
 
-use super::StepResult;
+use super::step::StepResult;
 use crate::contact::law::ContactState;
 use crate::contact::mechanism::Mechanism;
 use crate::contact::safety::Strengths;
