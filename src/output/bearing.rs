@@ -133,7 +133,7 @@ pub fn csv(run: &Run, all: &[FaceBearing]) -> String {
         let _ = write!(
             s,
             "{},{bi},{bii},{},{},{}",
-            super::csv_field(&run.model.interfaces[f.contact].name),
+            super::csv::csv_field(&run.model.interfaces[f.contact].name),
             b.pairs,
             nums.join(","),
             b.in_kern(plane)

@@ -284,8 +284,8 @@ pub fn blocks_csv(model: &Model, blocks: &[Block]) -> String {
             s,
             "{},{},{},{},{margin},{}",
             b.block,
-            super::csv_field(&model.bodies[b.block].name),
-            super::csv_field(&super::faces::block_name(model, b.block)),
+            super::csv::csv_field(&model.bodies[b.block].name),
+            super::csv::csv_field(&super::faces::block_name(model, b.block)),
             nums.join(","),
             b.state.key()
         );

@@ -12,6 +12,7 @@
 pub mod bearing;
 pub mod blocks;
 pub mod closed_form;
+mod csv;
 pub mod cut;
 pub mod faces;
 pub mod files;
@@ -38,6 +39,7 @@ use crate::mesh::Cell;
 use crate::model::Model;
 use crate::recover::{BodyStress, Sample};
 use crate::results::{state_counts, ContactRun, Run};
+use csv::csv_field;
 use files::Staged;
 use vtu::{Field, IntField};
 
@@ -453,16 +455,6 @@ fn contact_csv(model: &Model, c: &ContactRun) -> String {
         s += &format!(",{:.6e}\n", c.law_residual.get(i).copied().unwrap_or(0.0));
     }
     s
-}
-
-/// A CSV field (RFC 4180): quoted when it holds a comma, a quote or a
-/// line break, or starts or ends with a space.
-pub(crate) fn csv_field(v: &str) -> String {
-    if v.contains([',', '"', '\n', '\r']) || v.starts_with(' ') || v.ends_with(' ') {
-        format!("\"{}\"", v.replace('"', "\"\""))
-    } else {
-        v.to_string()
-    }
 }
 
 const PROBE_COLUMNS: &str = "probe,point,x,y,z,ux,uy,uz,sxx,syy,szz,sxy,syz,sxz,von_mises,found\n";

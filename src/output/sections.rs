@@ -6,7 +6,7 @@
 
 use std::fmt::Write;
 
-use super::csv_field;
+use super::csv::csv_field;
 use super::number::{clean, num};
 use super::picture::{Drawn, PictureError};
 use super::plot::{self, Panel, Series};
