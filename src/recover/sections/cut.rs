@@ -25,10 +25,22 @@
 //! body ahead); on a symmetry plane (those nodes held along n alone) only
 //! their components along n, the rest being shared with the mirror half.
 
-use super::{Plane, Sides, Station};
+use super::station::{Sides, Station};
 use crate::fem::vec3::{cross, dot, sub};
 use crate::model::Model;
 use crate::recover::forces::cell_internal;
+
+/// One cut: origin, axes, which cells it considers (a half-plane window
+/// on their centres: `(x - o)·dir` within `lo..=hi`), whether it is a
+/// ring's ray from `o` (positions round it by angle, the reference point
+/// by radius), and where it lies along the section.
+pub(super) struct Plane {
+    pub(super) o: [f64; 3],
+    pub(super) frame: [[f64; 3]; 3],
+    pub(super) window: Option<([f64; 3], f64, f64)>,
+    pub(super) ring: bool,
+    pub(super) position: f64,
+}
 
 /// A cell the cut meets: (body, cell, the least and largest distance of
 /// its nodes from the cut).
