@@ -16,6 +16,9 @@ use crate::fem::vec3::{cross, normalized};
 
 pub type Frame = [[f64; 3]; 3];
 
+/// The global axes as a frame.
+pub const IDENTITY: Frame = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+
 /// The frame of a pair with normal `n` whose nodes have the global
 /// directions `fixed` supported; `nd` is 2 or 3.
 pub fn frame(nd: usize, n: [f64; 3], fixed: [bool; 3]) -> Frame {

@@ -13,10 +13,11 @@ use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
 
 use super::coords::{self, Axis, Blocks};
+use super::freedom::Freedom;
 use super::joins::{self, JoinElimination, SparseBlocks};
 use super::layout::Layout;
 use super::reduce::{NotHeld, Reduced};
-use super::{Answer, Freedom, Solver};
+use super::solver::{Answer, Solver};
 use crate::contact::law::ContactState;
 use crate::substructure::{OperatorRef, SchurRef};
 

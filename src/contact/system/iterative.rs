@@ -44,11 +44,14 @@ use std::sync::Mutex;
 use faer::linalg::solvers::Solve;
 use faer::Mat;
 
+use super::coords;
 use super::coords::{for_each_load, Terms, Var};
+use super::freedom::Freedom;
 use super::gmres;
 use super::layout::Layout;
 use super::reduce::combine;
-use super::{coords, in_runs, Answer, Freedom, Solver};
+use super::solver::{Answer, Solver};
+use super::threads::in_runs;
 use crate::contact::basis;
 use crate::contact::frame::Frame;
 use crate::contact::law::ContactState;

@@ -9,12 +9,24 @@ use super::dense::Dense;
 use super::iterative::{Iterative, Remote};
 use super::layout::Layout;
 use super::reduce::NotHeld;
+use super::solver::Solver;
 use super::sparse::Sparse;
-use super::{Solver, ITERATIVE_FROM};
 use crate::contact::mobility::PartModes;
 use crate::contact::options::InterfaceSolver;
 use crate::model::Model;
 use crate::substructure::{Condensation, OperatorRef, Part};
+
+/// Interface DOFs summed over the parts (a joint counted once per side)
+/// from which `[solver] interface = "auto"` solves the interface
+/// iteratively (the `--help` of `InterfaceSolver::Auto` says the number
+/// too). Measured (docs/bench3d.md, 2 threads): below it the dense
+/// interface is 1.2-2.4 times faster (6,534 interface DOFs: 8.0 s against
+/// 18.6 s; 11,790: 32.1 s against 39.3 s, but 4.1 GB against 1.5 GB); at
+/// 24,426 the iterative one takes 229 s and 15.5 GB against 552 s and 21.9
+/// GB; a column cut into 4 pieces (41,550 summed) 98 s and 4.7 GB against
+/// 115 s and 16.5 GB, into 8 pieces (94,905) 94 s and 3.2 GB where the
+/// dense interface ran out of 24 GB.
+pub const ITERATIVE_FROM: usize = 20_000;
 
 /// The interface solver of a run: `[solver] interface` with `auto` decided.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -18,8 +18,8 @@ use std::collections::HashMap;
 
 use super::coords::{number_pair, Axis, Terms, Var};
 use super::junction::{clusters, Junction};
-use super::IDENTITY;
 use crate::contact::basis::{self, FaceBasis};
+use crate::contact::frame::IDENTITY;
 use crate::contact::frame::{aligned_axis, frame, Frame};
 use crate::fem::sparse::NONE;
 use crate::model::Model;

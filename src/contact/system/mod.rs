@@ -40,6 +40,7 @@
 
 pub mod coords;
 pub mod dense;
+pub mod freedom;
 pub mod gmres;
 pub mod iterative;
 pub mod joins;
@@ -48,204 +49,32 @@ pub mod kind;
 mod layout;
 mod least_distance;
 pub mod reduce;
+pub mod relation;
+pub mod solver;
 pub mod sparse;
+mod threads;
 
 use coords::{Axis, Var};
+pub use freedom::{Freedom, JunctionBlock, Lift, SlipRow};
 use iterative::Remote;
-use junction::Tied;
-pub use kind::InterfaceKind;
+pub use kind::{InterfaceKind, ITERATIVE_FROM};
 use layout::Layout;
+pub use relation::{Limit, Relation};
+pub use solver::{Answer, Solver};
+use threads::in_threads;
 
 use super::basis::FaceBasis;
-use super::frame::Frame;
+use super::frame::{Frame, IDENTITY};
 use super::law::{ContactState, PairResult};
 use super::mobility::{free_parts, pair_ties, Free, PartModes, Tie};
 use super::water::Water;
 use crate::model::{Model, ModelError};
 use crate::substructure::OperatorRef;
 
-/// Interface DOFs summed over the parts (a joint counted once per side)
-/// from which `[solver] interface = "auto"` solves the interface
-/// iteratively (the `--help` of `InterfaceSolver::Auto` says the number
-/// too). Measured (docs/bench3d.md, 2 threads): below it the dense
-/// interface is 1.2-2.4 times faster (6,534 interface DOFs: 8.0 s against
-/// 18.6 s; 11,790: 32.1 s against 39.3 s, but 4.1 GB against 1.5 GB); at
-/// 24,426 the iterative one takes 229 s and 15.5 GB against 552 s and 21.9
-/// GB; a column cut into 4 pieces (41,550 summed) 98 s and 4.7 GB against
-/// 115 s and 16.5 GB, into 8 pieces (94,905) 94 s and 3.2 GB where the
-/// dense interface ran out of 24 GB.
-pub const ITERATIVE_FROM: usize = 20_000;
-
 /// A slipping pair's friction spring holds it across its slip (in the
 /// check for bodies that slide freely) from this share of the pair's own
 /// stiffness ([`InterfaceProblem::stiffness`]) on.
 const SPRING_HOLDS: f64 = 1e-6;
-
-const IDENTITY: Frame = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-
-/// What a pair's unknowns are asked to satisfy in one solve.
-#[derive(Clone, Copy, Debug)]
-pub struct Relation {
-    pub state: ContactState,
-    /// `r` on tied axes: stick ties all axes, slip the normal one (its
-    /// target is 0: the pair touches).
-    pub target: [f64; 3],
-    /// On free tangential axes of slipping pairs, the force on body I is
-    /// `force + coupling * p + spring * r` (local t, b components; p = -λ_n
-    /// the normal pressure force), so that a Newton step can linearise the
-    /// Coulomb law; zero for the paper's fixed friction force.
-    pub force: [f64; 3],
-    pub coupling: [f64; 3],
-    pub spring: [[f64; 3]; 3],
-    /// The normal pressure force p the relation was linearised at: a pair
-    /// at a junction whose pressure is not solved for (see
-    /// [`junction::pressure`]) takes `force + coupling * pressure`.
-    pub pressure: f64,
-    /// What the pair can carry, for a junction choosing its tied forces.
-    pub limit: Limit,
-}
-
-/// What a pair can carry in force, `λ_n <= tension` and `|λ_T| <= cohesion
-/// - friction λ_n` (λ on body I, tension positive; cohesion and tension are
-/// strengths times the pair's area): where a junction's tied forces are not
-/// unique, it takes the least-norm ones within these (see [`junction`]).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Limit {
-    pub tension: f64,
-    pub cohesion: f64,
-    pub friction: f64,
-}
-
-impl Limit {
-    /// No limit.
-    pub const NONE: Limit = Limit { tension: f64::INFINITY, cohesion: f64::INFINITY, friction: 0.0 };
-}
-
-impl Relation {
-    /// Stuck at `target`, open, or slipping with a known tangential force.
-    pub fn simple(state: ContactState, target: [f64; 3], force: [f64; 3]) -> Relation {
-        Relation { state, target, force, coupling: [0.0; 3], spring: [[0.0; 3]; 3], pressure: 0.0, limit: Limit::NONE }
-    }
-
-    /// The same relation with what the pair can carry.
-    pub fn within(self, limit: Limit) -> Relation {
-        Relation { limit, ..self }
-    }
-
-    pub fn free_axis(&self, a: usize) -> bool {
-        match self.state {
-            ContactState::Stick => false,
-            ContactState::Slip => a > 0,
-            ContactState::Open => true,
-        }
-    }
-}
-
-/// The free directions of the relative displacements r under one set of
-/// relations: `r = r0 + sum_a y_a col_a`. A lone pair's free axis is a
-/// column of one entry; a junction's free directions are the columns of its
-/// null space (see [`junction`]).
-pub struct Freedom {
-    /// r where every y is 0: the tied axes' targets, the junctions' r0.
-    pub r0: Vec<f64>,
-    /// The columns, orthonormal, each over r.
-    pub cols: Vec<Vec<(usize, f64)>>,
-    /// The column of each lone pair's free r (NONE where tied or in a junction).
-    pub pos: Vec<usize>,
-    pub junctions: Vec<JunctionBlock>,
-    /// The lone slipping pairs' free tangential rows.
-    pub slips: Vec<SlipRow>,
-    /// What the states add to the right-hand side on the rows of r: the
-    /// water in the joints pushing the pairs' sides apart (empty when dry).
-    pub pushed: Vec<f64>,
-}
-
-impl Freedom {
-    /// Adds [`Freedom::pushed`] to a right-hand side over r.
-    pub fn push(&self, b_r: &mut [f64]) {
-        for (b, p) in b_r.iter_mut().zip(&self.pushed) {
-            *b += p;
-        }
-    }
-}
-
-/// A junction's part of a solve: its columns, and what its slipping pairs
-/// add on them (`Z^T k Z`, `Z^T (f + k r0)`; and the lift of their
-/// implicit pressures, when they have them).
-pub struct JunctionBlock {
-    pub cols: std::ops::Range<usize>,
-    pub kz: nalgebra::DMatrix<f64>,
-    pub fz: nalgebra::DVector<f64>,
-    /// The junction's relative displacements (indices into r).
-    pub r: Vec<usize>,
-    pub lift: Option<Lift>,
-    pub tied: Tied,
-}
-
-/// What a junction's slipping pairs' implicit pressures add to its rows
-/// ([`junction::pressure`]): `on_w` times `W r - c` on the junction's r,
-/// `on_y` times its own free columns' y (`L` and `L k Z` there; the
-/// constant part is in [`JunctionBlock::fz`]).
-pub struct Lift {
-    pub on_w: nalgebra::DMatrix<f64>,
-    pub on_y: nalgebra::DMatrix<f64>,
-}
-
-impl JunctionBlock {
-    /// The lift's part of the block's rows (one per column) at `w` (`W r -
-    /// c`, by r index) and `y` (the free columns' coordinates); None
-    /// without a lift.
-    pub fn lifted(&self, w: impl Fn(usize) -> f64, y: &[f64]) -> Option<nalgebra::DVector<f64>> {
-        let lift = self.lift.as_ref()?;
-        let wj = nalgebra::DVector::from_iterator(self.r.len(), self.r.iter().map(|&i| w(i)));
-        let yj = nalgebra::DVector::from_column_slice(&y[self.cols.clone()]);
-        Some(&lift.on_w * wj + &lift.on_y * yj)
-    }
-}
-
-/// A lone slipping pair's free tangential row (r index), whose equation is
-/// the friction law's (see [`Relation`]):
-/// `(W r - c)_row + force + coupling (W r - c)_normal + sum_c spring_c r_c = 0`.
-pub struct SlipRow {
-    pub row: usize,
-    pub normal: Option<usize>,
-    pub coupling: f64,
-    pub springs: Vec<(usize, f64)>,
-    pub force: f64,
-}
-
-/// A way of solving the interface system: the seam between
-/// [`InterfaceProblem`] and its solvers ([`dense::Dense`], [`sparse::Sparse`], [`iterative::Iterative`]).
-pub trait Solver {
-    /// Solves one set of relations, given by the free directions `fr` of
-    /// the relative displacements (`states`: the state set, to tell whether
-    /// it changed since the last solve), under the load factors `lambda`;
-    /// `None` when the system is singular (the problem then finds out why).
-    fn solve(&self, fr: &Freedom, states: &[ContactState], lambda: &[f64]) -> Option<Answer>;
-    /// The system's diagonal at relative displacement `r` (the scale that
-    /// turns a pair's slip into a force).
-    fn diagonal(&self, r: usize) -> f64;
-    /// Applications of the parts' S by each solve so far (empty for a
-    /// solver that formed S).
-    fn counts(&self) -> Vec<usize>;
-}
-
-/// What a [`Solver`] gives the interface problem.
-pub struct Answer {
-    /// The means and the relative displacements.
-    pub m: Vec<f64>,
-    pub r: Vec<f64>,
-    /// `W r - c` (`K x - b` on the relative rows): `-λ`.
-    pub residual_r: Vec<f64>,
-    /// Relative residual of the solve.
-    pub residual: f64,
-    /// The residual of an iterative solve in force units (2-norm over the
-    /// rows it solved; 0 for a direct solve): the forces are not resolved
-    /// more finely than this.
-    pub accuracy: f64,
-    /// Solved to a loose tolerance (see [`InterfaceSolution::loose`]).
-    pub loose: bool,
-}
 
 /// The interface problem, set up once; solved for any set of relations.
 pub struct InterfaceProblem<'a> {
@@ -798,27 +627,4 @@ fn spring_range(spring: &[[f64; 3]; 3], frame: &Frame, nd: usize, floor: f64) ->
             (len > 0.0 && len >= floor).then(|| dir.map(|x| x / len))
         })
         .collect()
-}
-
-/// `f` of `items` in consecutive runs, one run per thread (of `threads`),
-/// in order: one result per run; a single run for one thread or item.
-fn in_runs<T: Sync, R: Send>(items: &[T], threads: usize, f: impl Fn(&[T]) -> R + Sync) -> Vec<R> {
-    if threads < 2 || items.len() < 2 {
-        return vec![f(items)];
-    }
-    let run = items.len().div_ceil(threads);
-    std::thread::scope(|scope| {
-        let f = &f;
-        let handles: Vec<_> = items.chunks(run).map(|c| scope.spawn(move || f(c))).collect();
-        handles.into_iter().map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e))).collect()
-    })
-}
-
-/// `f` of each of `items`, in order, in [`in_runs`] where there are two
-/// items a thread or more (a junction's tie and its forces are small dense
-/// problems of its own: 0.01-0.03 s of a contact iteration at 512 to 1,000
-/// blocks).
-fn in_threads<T: Sync, R: Send>(items: &[T], threads: usize, f: impl Fn(&T) -> R + Sync) -> Vec<R> {
-    let threads = if items.len() < 2 * threads { 1 } else { threads };
-    in_runs(items, threads, |run| run.iter().map(&f).collect::<Vec<R>>()).into_iter().flatten().collect()
 }

@@ -41,11 +41,13 @@
 use std::sync::Mutex;
 
 use super::coords::{add_clique, fixed_load, for_each_load, localise, CliqueScratch, Terms, Var};
+use super::freedom::Freedom;
 use super::gmres;
 use super::iterative::{LastStates, LOOSE_TOLERANCE, TOLERANCE};
 use super::layout::Layout;
 use super::reduce::{combine, NotHeld};
-use super::{in_runs, Answer, Freedom, Solver};
+use super::solver::{Answer, Solver};
+use super::threads::in_runs;
 use crate::contact::law::ContactState;
 use crate::fem::sparse::{Cholesky, SymMatrix};
 use crate::fem::vec3::length;

@@ -41,8 +41,9 @@
 
 use nalgebra::{DMatrix, DVector};
 
+use super::row::NORMAL;
+use super::split::Split;
 use super::tangent::Tangent;
-use super::{Split, NORMAL};
 
 /// A junction's friction in its slipping pairs' pressures.
 #[derive(Clone, Debug)]

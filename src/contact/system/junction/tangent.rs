@@ -23,8 +23,9 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use super::{Row, Split};
-use crate::contact::system::Limit;
+use super::row::Row;
+use super::split::Split;
+use crate::contact::system::relation::Limit;
 
 /// A limit is met by a share within this fraction of its largest force
 /// (the cuts keep the share 1e-9 inside them, to 1e-12).

@@ -16,8 +16,10 @@ use std::sync::Mutex;
 
 use nalgebra::DMatrix;
 
+use super::row::Row;
+use super::split::Split;
 use super::tangent::Tangent;
-use super::{Junction, Row, Split};
+use super::Junction;
 
 /// The last [`Tying`] of a junction, whether its last solve's loops
 /// carried part of a slipping pair's pressure, and the [`Tangent`] of that

@@ -1,0 +1,39 @@
+//! The seam between the interface problem and its solvers: [`Solver`]
+//! solves one set of relations and gives an [`Answer`].
+
+use super::freedom::Freedom;
+use crate::contact::law::ContactState;
+
+/// A way of solving the interface system: the seam between
+/// [`super::InterfaceProblem`] and its solvers ([`super::dense::Dense`],
+/// [`super::sparse::Sparse`], [`super::iterative::Iterative`]).
+pub trait Solver {
+    /// Solves one set of relations, given by the free directions `fr` of
+    /// the relative displacements (`states`: the state set, to tell whether
+    /// it changed since the last solve), under the load factors `lambda`;
+    /// `None` when the system is singular (the problem then finds out why).
+    fn solve(&self, fr: &Freedom, states: &[ContactState], lambda: &[f64]) -> Option<Answer>;
+    /// The system's diagonal at relative displacement `r` (the scale that
+    /// turns a pair's slip into a force).
+    fn diagonal(&self, r: usize) -> f64;
+    /// Applications of the parts' S by each solve so far (empty for a
+    /// solver that formed S).
+    fn counts(&self) -> Vec<usize>;
+}
+
+/// What a [`Solver`] gives the interface problem.
+pub struct Answer {
+    /// The means and the relative displacements.
+    pub m: Vec<f64>,
+    pub r: Vec<f64>,
+    /// `W r - c` (`K x - b` on the relative rows): `-λ`.
+    pub residual_r: Vec<f64>,
+    /// Relative residual of the solve.
+    pub residual: f64,
+    /// The residual of an iterative solve in force units (2-norm over the
+    /// rows it solved; 0 for a direct solve): the forces are not resolved
+    /// more finely than this.
+    pub accuracy: f64,
+    /// Solved to a loose tolerance (see [`super::InterfaceSolution::loose`]).
+    pub loose: bool,
+}
