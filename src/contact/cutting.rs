@@ -2,7 +2,7 @@
 //! state iteration does not converge is solved again in two halves from
 //! where the last converged step ended, a half that does not converge in
 //! two quarters, and so on down to `max_cuts` halvings. Each piece that
-//! converges is committed ([`super::commit`]) and carries its states,
+//! converges is committed ([`super::history::commit`]) and carries its states,
 //! cracks and slip into the next, so a path-dependent law follows the
 //! finer load path. A piece that still does not converge at the deepest
 //! cut ends the step unconverged, as an uncut step would.
@@ -16,7 +16,11 @@
 //! where the path matters: cohesion and tension that crack, load cases
 //! that do not grow together, slip that accumulates.
 
-use super::{iterate, Failed, History, Outcome, PairLaw, StateRule};
+use super::history::History;
+use super::iterate;
+use super::options::StateRule;
+use super::outcome::{Failed, Outcome};
+use super::pair_law::PairLaw;
 use crate::contact::system::InterfaceProblem;
 
 /// Runs the load step from the factors `from` (where `h` ended) to `to`,

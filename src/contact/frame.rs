@@ -59,6 +59,11 @@ pub fn aligned_axis(frame: &Frame, nd: usize, c: usize) -> Option<(usize, f64)> 
     (0..nd).find(|&a| (frame[a][c].abs() - 1.0).abs() < 1e-9).map(|a| (a, frame[a][c].signum()))
 }
 
+/// The tangential part of a vector in a pair's local axes (n, t, b).
+pub(crate) fn tangential(v: [f64; 3]) -> [f64; 3] {
+    [0.0, v[1], v[2]]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

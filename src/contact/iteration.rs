@@ -8,11 +8,12 @@
 //! loss of equilibrium. A pair solved slipping or open in an iteration
 //! after the first has cracked in the step ([`super::cracked`]) and stays
 //! so to its end. A converged step is committed once, by
-//! [`super::commit`]: where it ended, and the cracks it made.
+//! [`super::history::commit`]: where it ended, and the cracks it made.
 
+use super::history::{commit, mark_cracks, start_step, History};
 use super::law::ContactState;
+use super::outcome::{Failed, Outcome, Summary};
 use super::system::{InterfaceProblem, InterfaceSolution, Relation, SolveFailure};
-use super::{commit, mark_cracks, start_step, Failed, History, Outcome, Summary};
 
 /// A state rule: the relations each iteration solves with, and the verdict
 /// on what came out.

@@ -36,11 +36,14 @@
 
 use super::capacity::{capacities, PairLoad};
 use super::cluster::{Search, Step, Watch};
+use super::frame::tangential;
+use super::history::{cracked, History};
 use super::iteration::{Rule, Verdict};
 use super::law::{friction_bound, judge, ContactState, Trial};
 use super::options::SlipLaw;
+use super::outcome::Summary;
+use super::pair_law::{limit, PairLaw};
 use super::system::{InterfaceProblem, InterfaceSolution, Limit, Relation};
-use super::{cracked, limit, tangential, History, PairLaw, Summary};
 use crate::fem::vec3::{dot, norm, sub};
 
 /// The largest β = b / |ξ| the linearisation uses: k⊥ stays below 1000 c_p

@@ -11,11 +11,14 @@
 //! solved slipping or open earlier in this step ([`super::cracked`]), as by
 //! the robust rule.
 
+use super::frame::tangential;
+use super::history::{cracked, History};
 use super::iteration::{Rule, Verdict};
 use super::law::{judge_paper, ContactState, PairResult};
 use super::options::SlipLaw;
+use super::outcome::Summary;
+use super::pair_law::{limit, PairLaw};
 use super::system::{InterfaceProblem, InterfaceSolution, Relation};
-use super::{cracked, limit, tangential, History, PairLaw, Summary};
 use crate::fem::vec3::{norm, sub};
 
 /// The paper's rule through one load step.

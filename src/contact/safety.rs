@@ -29,7 +29,7 @@
 //! only choose the factors, from what each trial returns.
 
 use super::law::Strength;
-use super::PairLaw;
+use super::pair_law::PairLaw;
 
 /// Which strength parameters are divided by F.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

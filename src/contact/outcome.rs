@@ -1,0 +1,56 @@
+//! How the state iteration of one step ended: its [`Outcome`] and
+//! [`Summary`], or the [`Failed`] solve that stopped it.
+
+use super::law::ContactState;
+use super::system::{InterfaceSolution, SolveFailure};
+
+/// How the state iteration of one step went.
+#[derive(Clone, Debug, Default)]
+pub struct Summary {
+    pub iterations: usize,
+    pub converged: bool,
+    /// A state set came back after other ones in between (paper rule: the
+    /// iteration stops there).
+    pub cycled: bool,
+    /// Cycles broken by changing one pair at a time (robust rule).
+    pub cycles_broken: usize,
+    /// Stalls or cycles ended by solving the cluster of pairs they were
+    /// on set by set (robust rule, [`cluster`]).
+    pub clusters_solved: usize,
+    /// Pairs opened in tension between the Coulomb apex c / f and f_t.
+    pub apex_openings: usize,
+    /// State sets of every iteration (the ones solved with).
+    pub history: Vec<Vec<ContactState>>,
+    /// Halvings of the load step ([`super::cutting`]): 0 when it was solved whole.
+    pub cuts: usize,
+    /// Where the pieces of a cut step that converged ended, as fractions
+    /// of the step (empty when it was not cut).
+    pub pieces: Vec<f64>,
+    /// The piece of a cut step that did not converge at the deepest cut.
+    pub stopped_at: Option<(f64, f64)>,
+}
+
+/// How the state iteration of one step ended: the states it ended with,
+/// the last solve, and how it went.
+pub struct Outcome {
+    pub states: Vec<ContactState>,
+    pub solution: InterfaceSolution,
+    pub summary: Summary,
+    /// How far each pair's stresses are from the law in its state
+    /// ([`super::law::law_residual`] over its area): round-off where the
+    /// iteration converged.
+    pub law_residual: Vec<f64>,
+    /// Every pair that has cracked by the step's end
+    /// ([`super::history::cracked`]): in an earlier step, on the way
+    /// through this one, or open or slipping at its end. What the outputs
+    /// judge strength by (the residual cohesion, no tension).
+    pub cracked: Vec<bool>,
+}
+
+/// A failed iteration: the failure and the states it happened with.
+#[derive(Clone, Debug)]
+pub struct Failed {
+    pub failure: SolveFailure,
+    pub states: Vec<ContactState>,
+    pub iteration: usize,
+}
