@@ -19,7 +19,7 @@
 use std::collections::{BTreeSet, HashMap};
 
 use crate::fem::shape;
-use crate::mesh::CellKind;
+use crate::mesh::cell_kind::CellKind;
 
 /// Passes over the elements whose nodes moved.
 const PASSES: usize = 4;

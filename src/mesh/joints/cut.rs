@@ -5,17 +5,16 @@
 use std::collections::{HashMap, HashSet};
 use std::path::Path;
 
-use crate::mesh::CellKind;
+use crate::mesh::cell_kind::CellKind;
 
 use super::api::{ApiError, DimTag, PhysicalGroup as Group, Session};
 use super::curved;
+use super::cut_report::{BlockReport, CutReport, JointReport, NearMiss, PlaneReport};
 use super::geometry::{self, Patch};
+use super::job::{trim, CutJob, JointSpec, MeshArgs, Placement};
+use super::joint_error::JointError;
 use super::sizes::Sizes;
 use super::slivers;
-use super::{
-    trim, BlockReport, CutJob, CutReport, JointError, JointReport, JointSpec, MeshArgs, NearMiss, Placement,
-    PlaneReport,
-};
 
 type R<T> = Result<T, JointError>;
 

@@ -9,9 +9,9 @@
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
+use super::msh_error::MshError;
 use super::sections::{group_name, Block};
-use super::MshError;
-use crate::mesh::{Cell, Group, Mesh};
+use crate::mesh::cells::{Cell, Group, Mesh};
 
 /// Node tag -> index: a table when the tags are compact (gmsh numbers nodes
 /// 1..n), a hash map otherwise.

@@ -12,7 +12,7 @@
 
 use std::path::Path;
 
-use super::MshError;
+use super::msh_error::MshError;
 
 /// A cursor over the file's bytes that reads the MSH value types in ASCII or
 /// binary form.

@@ -10,9 +10,9 @@
 
 use std::collections::HashMap;
 
+use super::msh_error::MshError;
 use super::reader::Reader;
-use super::MshError;
-use crate::mesh::CellKind;
+use crate::mesh::cell_kind::CellKind;
 
 /// A group's name from `$PhysicalNames`, or its tag when it has none.
 pub(super) fn group_name(names: &[(i32, i32, String)], dim: i32, tag: i32) -> String {

@@ -10,7 +10,8 @@
 //! never a panic.
 
 use super::*;
-use crate::mesh::{Cell, Group};
+use crate::mesh::{Cell, CellKind, Group};
+use std::path::PathBuf;
 
 /// A mesh of tests/fixtures/msh/ by name (without `.msh`).
 fn fixture(name: &str) -> PathBuf {
