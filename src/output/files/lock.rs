@@ -23,8 +23,8 @@ use std::path::Path;
 
 use rustix::fs::{FileType, Mode, OFlags};
 
+use super::output_error::OutputError;
 use super::target::Target;
-use super::OutputError;
 
 /// A held lock on a result directory; released when dropped.
 #[derive(Debug)]

@@ -24,8 +24,9 @@ use rustix::fs::FileType;
 use super::at::{kind, Dir};
 use super::lock::Lock;
 use super::manifest::{Manifest, MANIFEST};
+use super::output_error::OutputError;
 use super::target::Target;
-use super::{swap, OutputError, Staged};
+use super::{swap, Staged};
 
 /// The mesh cache's directory inside a result directory.
 pub const MESH_DIR: &str = "mesh";

@@ -25,8 +25,8 @@ use rustix::fs::FileType;
 
 use super::at::{kind, Dir};
 use super::manifest::{Manifest, MANIFEST};
+use super::output_error::OutputError;
 use super::target::Target;
-use super::OutputError;
 
 /// Whether a path relative to the result directory is replaced by the commit.
 pub type Replaced<'a> = &'a dyn Fn(&Path) -> bool;

@@ -10,7 +10,7 @@ use std::fs;
 use std::path::{Path, PathBuf};
 
 use super::at::Dir;
-use super::OutputError;
+use super::output_error::OutputError;
 
 /// A result directory, resolved, with its parent open.
 #[derive(Debug)]
