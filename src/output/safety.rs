@@ -22,7 +22,9 @@
 //!   force, A the closed area, c and f the scene's): the hand check of a
 //!   joint that slides as one plane.
 
+mod joint;
 mod report;
+mod sentences;
 
 use std::fmt::Write;
 
@@ -30,16 +32,15 @@ use serde_json::{json, Value};
 
 use super::files::Staged;
 use super::picture::{self, Snapshot};
-use crate::contact::law::ContactState;
 use crate::contact::mechanism::{describe, Mechanism};
 use crate::error::Result;
-use crate::results::{state_counts, ContactRun, OtherFactor, Run, SafetyRun, SearchKind};
+use crate::results::{state_counts, ContactRun, Run, SafetyRun, SearchKind};
 use crate::scene::Safety;
 
+use joint::Joint;
 pub use report::report;
-
-/// Factors that differ by more than this are both reported.
-pub const DIFFER: f64 = 0.01;
+use sentences::{differ, fmt_f, raised};
+pub use sentences::{label, other_factor_line, warnings};
 
 /// The safety search's files, when the run made one.
 pub(super) fn stage(run: &Run, staged: &mut Staged, drawn: &mut picture::Drawn) -> Result<()> {
@@ -141,127 +142,6 @@ fn trials_csv(s: &SafetyRun) -> String {
     out
 }
 
-/// What F is, for a reader: "factor of safety (strength reduction, peak
-/// strength)" or "load factor (raising \"water\")".
-pub fn label(run: &Run, s: &SafetyRun) -> String {
-    match s.kind {
-        SearchKind::Strength(st) => format!("factor of safety (strength reduction, {} strength)", st.key()),
-        SearchKind::Load => format!("load factor (raising {})", raised(run)),
-    }
-}
-
-/// The loads a load factor search raises, quoted.
-fn raised(run: &Run) -> String {
-    let Some(r) = run.scene.safety.as_ref().and_then(|o| o.raise.as_ref()) else { return String::new() };
-    let mut names: Vec<String> = r.loads.iter().map(|&i| format!("\"{}\"", run.scene.loads[i].group)).collect();
-    if r.gravity {
-        names.push("gravity".into());
-    }
-    names.join(", ")
-}
-
-/// What a strength convention means.
-fn meaning(st: crate::contact::safety::Strengths) -> &'static str {
-    match st {
-        crate::contact::safety::Strengths::Peak => {
-            "each joint keeps its peak cohesion where its pairs slip or open, as limit equilibrium assumes"
-        }
-        crate::contact::safety::Strengths::Residual => {
-            "a pair that slips or opens keeps only its residual_cohesion, as in the load steps"
-        }
-    }
-}
-
-/// Whether two factors differ by more than [`DIFFER`].
-fn differ(a: Option<f64>, b: Option<f64>) -> bool {
-    match (a, b) {
-        (Some(a), Some(b)) => (a / b - 1.0).abs() > DIFFER,
-        (None, None) => false,
-        _ => true,
-    }
-}
-
-/// The line on the other strength's factor, where it differs from the
-/// headline by more than 1 %.
-pub fn other_factor_line(_run: &Run, s: &SafetyRun, o: &OtherFactor) -> Option<String> {
-    if !differ(s.factor, o.factor) {
-        return None;
-    }
-    let f = match (o.factor, o.decided) {
-        (Some(f), true) => format!("F = {}", fmt_f(f)),
-        (Some(f), false) => format!("F not decided (holds at {})", fmt_g(f)),
-        (None, _) => "no factor held".into(),
-    };
-    Some(format!("with {} strength ({}): {f}", o.strengths.key(), meaning(o.strengths)))
-}
-
-/// Warnings on the search: a headline the scene's silence chose where the
-/// conventions differ, and a residual strength taken from a default.
-pub fn warnings(run: &Run) -> Vec<String> {
-    let (Some(s), Some(o)) = (&run.safety, &run.scene.safety) else { return Vec::new() };
-    let SearchKind::Strength(st) = s.kind else { return Vec::new() };
-    let silent: Vec<String> = (run.scene.contacts.iter().enumerate())
-        .filter(|(_, c)| !c.residual_given && c.strength.cohesion > 0.0)
-        .map(|(i, _)| format!("\"{}\"", run.model.interfaces[i].name))
-        .collect();
-    let mut out = Vec::new();
-    if let (Some(other), false) = (&s.other, o.strength_given) {
-        if differ(s.factor, other.factor) {
-            let residual = if silent.is_empty() {
-                "the scene's residual_cohesion".to_string()
-            } else {
-                format!("residual_cohesion, 0 by default and not given for {}", silent.join(", "))
-            };
-            out.push(format!(
-                "{}: the factor of safety F = {} keeps each joint's {} strength ([safety] strength = \"{}\" by default: {}); with {} strength ({residual}) F = {}. The scene does not say which holds for its joints: set [safety] strength = \"peak\" or \"residual\" (and residual_cohesion where joints keep some cohesion once they slip)",
-                run.scene.path.display(),
-                s.factor.map_or("-".into(), fmt_f),
-                st.key(),
-                st.key(),
-                meaning(st),
-                other.strengths.key(),
-                other.factor.map_or("-".into(), fmt_f),
-            ));
-        }
-    }
-    if st == crate::contact::safety::Strengths::Residual && !silent.is_empty() {
-        out.push(format!("{}: [safety] strength = \"residual\", and {} give no residual_cohesion: 0 by default, so their cohesion is lost wherever a pair slips or opens", run.scene.path.display(), silent.join(", ")));
-    }
-    out
-}
-
-/// A reduced contact's resultants in one state: normal force N
-/// (compression positive), the magnitude T of its summed shear force, its
-/// closed area and its pairs' states.
-struct Joint {
-    normal: f64,
-    shear: f64,
-    area: f64,
-    states: [usize; 3],
-}
-
-impl Joint {
-    fn of(run: &Run, c: &ContactRun, contact: usize) -> Joint {
-        let (mut normal, mut shear, mut area, mut states) = (0.0, [0.0; 3], 0.0, Vec::new());
-        for (p, _) in run.model.pairs.iter().enumerate().filter(|(_, q)| q.contact == contact) {
-            states.push(c.states[p]);
-            if c.states[p] == ContactState::Open {
-                continue;
-            }
-            normal -= c.pairs[p].sigma_n * c.areas[p];
-            let t = c.shear(p);
-            (0..3).for_each(|i| shear[i] += t[i] * c.areas[p]);
-            area += c.areas[p];
-        }
-        Joint { normal, shear: shear.iter().map(|x| x * x).sum::<f64>().sqrt(), area, states: state_counts(&states) }
-    }
-
-    /// `(c A + N f) / T` with the scene's c and f (infinite without shear).
-    fn factor(&self, cohesion: f64, friction: f64) -> f64 {
-        (cohesion * self.area + self.normal.max(0.0) * friction) / self.shear
-    }
-}
-
 /// `summary.json`'s `safety` object.
 pub(super) fn summary(run: &Run) -> Option<Value> {
     let (s, o) = (run.safety.as_ref()?, run.scene.safety.as_ref()?);
@@ -343,16 +223,4 @@ fn blocks(run: &Run, ids: &[usize]) -> Vec<Value> {
 
 fn finite(v: f64) -> Option<f64> {
     v.is_finite().then_some(v)
-}
-
-/// A factor as the report writes it: four decimals, trailing zeros kept short.
-fn fmt_f(v: f64) -> String {
-    let t = format!("{v:.4}");
-    t.trim_end_matches('0').trim_end_matches('.').to_string()
-}
-
-/// A factor of the bracket: six decimals, trailing zeros dropped.
-fn fmt_g(v: f64) -> String {
-    let t = format!("{v:.6}");
-    t.trim_end_matches('0').trim_end_matches('.').to_string()
 }

@@ -5,7 +5,8 @@
 
 use std::fmt::Write;
 
-use super::{fmt_f, fmt_g, label, other_factor_line, warnings, Joint};
+use super::joint::Joint;
+use super::sentences::{fmt_f, fmt_g, label, other_factor_line, warnings};
 use crate::contact::mechanism::describe;
 use crate::output::picture;
 use crate::results::{state_counts, Run, SafetyRun, SearchKind};
