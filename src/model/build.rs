@@ -7,11 +7,16 @@
 
 use std::collections::HashMap;
 
+use super::body::{Block, Body};
+use super::boundary::{FacetLoad, SupportDofs};
 use super::build_input::Builder;
 use super::contacts::{self, facet_sign, RawPair, Split};
+use super::errors::ModelError;
 use super::held::check_held;
+use super::mechanical::Model;
+use super::pairs::Pair;
+use super::spec::{InitialStress, LoadKind, ModelSpec};
 use super::topology::Topology;
-use super::{Block, Body, FacetLoad, InitialStress, LoadKind, Model, ModelError, ModelSpec, Pair, SupportDofs};
 use crate::fem::element::{self, dofs_per_node};
 use crate::fem::Analysis;
 use crate::mesh::{Cell, Mesh};

@@ -2,7 +2,8 @@
 //! and the description), and the messages that name the input's key and the
 //! mesh when a physical group is missing, empty or of the wrong dimension.
 
-use super::{ModelError, ModelSpec};
+use super::errors::ModelError;
+use super::spec::ModelSpec;
 use crate::mesh::{Group, Mesh};
 
 /// "point", "curve", "surface" or "volume".

@@ -33,9 +33,11 @@
 use std::collections::{HashMap, HashSet};
 
 use super::build_input::Builder;
+use super::errors::{ModelError, Unpaired};
 use super::facet_cells::two_cells;
+use super::pairs::Interface;
+use super::spec::ContactGroups;
 use super::topology::{corner_key, FaceKey, Topology};
-use super::{ContactGroups, Interface, ModelError, Unpaired};
 use crate::fem::{element, shape};
 use crate::mesh::Cell;
 

@@ -9,8 +9,9 @@
 use std::collections::{HashMap, HashSet};
 
 use super::build_input::Builder;
+use super::errors::{ModelError, Near};
+use super::spec::ContactGroups;
 use super::topology::Topology;
-use super::{ContactGroups, ModelError, Near};
 use crate::fem::element;
 use crate::mesh::Cell;
 

@@ -22,28 +22,18 @@
 //! about z and J is `∫ |r|² dw`; a single point carries no moment, nor (in
 //! 3D) a group of points on one line about that line: both are refused.
 
+use super::body::Body;
+use super::boundary::NodalLoad;
 use super::build::{placed, placed_facets};
 use super::build_input::Builder;
 use super::contacts::Split;
+use super::errors::ModelError;
+use super::spec::{ForceLoad, LoadKind};
 use super::topology::Topology;
-use super::{Body, ForceLoad, LoadKind, ModelError};
 use crate::fem::element::{self, measure};
 use crate::fem::quadrature;
 use crate::fem::vec3::{cross, dot, sub};
 use crate::mesh::Group;
-
-/// A force on one model node, in one load case, owned by one cell (for the
-/// part that assembles it).
-#[derive(Clone, Debug, PartialEq)]
-pub struct NodalLoad {
-    pub node: usize,
-    pub force: [f64; 3],
-    /// Its load case (index into `Model::cases`).
-    pub case: usize,
-    /// A cell that has the node: (body, index in its cells).
-    pub body: usize,
-    pub element: usize,
-}
 
 /// Every force load of the description spread onto the model's nodes, each
 /// node with a cell that has it; `of_load`: the load case of every load.

@@ -6,10 +6,11 @@
 //! the motion, and, where they lie on another body without sharing its
 //! nodes (volumes that were not fused), saying so and how to fuse them.
 
+use super::body::Body;
 use super::build_input::Builder;
+use super::errors::{ModelError, Unfused};
 use super::quality;
 use super::topology::UnionFind;
-use super::{Body, ModelError, Unfused};
 use crate::fem::element::dofs_per_node;
 use crate::fem::rigid::{self, RigidModes};
 

@@ -14,8 +14,8 @@
 //! no shear by definition), nor one with water in it (its effective stress
 //! depends on the water the check does not read).
 
+use super::mechanical::Model;
 use super::spec::stress_times as traction;
-use super::Model;
 
 /// What a contact group can carry, from its `[[contacts]]` entry.
 #[derive(Clone, Copy, Debug)]

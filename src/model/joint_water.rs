@@ -8,8 +8,10 @@
 use std::collections::{HashMap, HashSet};
 
 use super::build_input::Builder;
+use super::contacts::CREASE_ANGLE;
+use super::errors::ModelError;
+use super::mechanical::Model;
 use super::water::{Diagram, Field, Fill, GroupWater, JointWater, Levels, Sheet, WaterFace, WaterPressure};
-use super::{Model, ModelError, CREASE_ANGLE};
 use crate::fem::vec3::{cross, dot, normalized, sub};
 use crate::fem::Analysis;
 

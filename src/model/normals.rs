@@ -36,7 +36,7 @@
 use std::collections::HashMap;
 
 use super::contacts::CREASE_ANGLE;
-use super::Model;
+use super::mechanical::Model;
 use crate::fem::element::{self, dot, norm};
 use crate::fem::shape;
 use crate::fem::vec3::cross;

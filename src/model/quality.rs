@@ -23,7 +23,8 @@
 
 use std::collections::HashMap;
 
-use super::{Model, ModelError};
+use super::errors::ModelError;
+use super::mechanical::Model;
 use crate::fem::element;
 use crate::fem::shape::{self, linear_sibling, reference_centre, reference_nodes};
 

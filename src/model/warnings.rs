@@ -9,7 +9,7 @@
 //! warnings in summary.json and report.md, the commands on stderr, each
 //! with the scene file's name in front.
 
-use super::Model;
+use super::mechanical::Model;
 
 /// One paragraph per pair of bodies that share nodes with no contact pair
 /// between them, in body order.
