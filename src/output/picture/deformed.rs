@@ -14,13 +14,17 @@
 
 use plotters::style::text_anchor::{HPos, VPos};
 
+use super::colours::{state_colour, GHOST, INK, NO_PAIR};
 use super::cutaway::{Cut, Place, Vertex};
+use super::field::Field;
 use super::framing::{focus, Focus};
+use super::label_numbers::{num, sig2};
 use super::legend::{colour_bar, colour_map_of, legend, lut_colour, triad, LegendOf, Limits, PANEL_X};
+use super::picture_error::PictureError;
 use super::raster::{encode_png, label, register_font, Canvas};
+use super::snapshot::Snapshot;
 use super::surface::{centred, edges, fill, mesh_alpha, patches, sub_triangles, with_centre, Patch};
 use super::view::View;
-use super::{num, sig2, state_colour, Field, PictureError, Snapshot, GHOST, INK, NO_PAIR};
 use crate::fem::material::von_mises;
 use crate::fem::vec3::{dot, normalized};
 use crate::fem::Analysis;

@@ -9,7 +9,7 @@
 //! frame`, [`Region`]).
 
 use super::cutaway::Cut;
-use super::num;
+use super::label_numbers::num;
 use crate::model::Model;
 use crate::scene::Region;
 

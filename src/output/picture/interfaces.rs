@@ -23,12 +23,14 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
+use super::colours::state_colour;
+use super::label_numbers::num;
+use super::picture_error::PictureError;
 use super::plan::{plan_files, sheet_pairs, sides, PlanFile};
 #[cfg(test)]
 use super::raster::encode_png;
 use super::raster::{register_font, rgb};
 use super::sheets::{direction, Shape, Sheet};
-use super::{num, state_colour, PictureError};
 use crate::contact::law::ContactState;
 use crate::fem::vec3::{dot, sub};
 use crate::fem::Analysis;
@@ -315,10 +317,10 @@ fn size(p: &Panels) -> (u32, u32) {
 fn beyond(r: &super::legend::Robust) -> String {
     let mut parts = Vec::new();
     if r.min < r.lo {
-        parts.push(format!("down to {}", super::num(r.min)));
+        parts.push(format!("down to {}", super::label_numbers::num(r.min)));
     }
     if r.max > r.hi {
-        parts.push(format!("up to {}", super::num(r.max)));
+        parts.push(format!("up to {}", super::label_numbers::num(r.max)));
     }
     if parts.is_empty() {
         String::new()

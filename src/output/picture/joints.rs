@@ -7,11 +7,12 @@
 
 use plotters::style::text_anchor::{HPos, VPos};
 
+use super::colours::{state_colour, INK};
+use super::picture_error::PictureError;
 use super::plan::{paint_states, sheet_pairs, Fit, PlanFile};
 use super::raster::{encode_png, label, register_font, Canvas, Label};
 use super::sheets::{Flat, Shape};
 use super::surface::edges;
-use super::{state_colour, PictureError, INK};
 use crate::contact::law::ContactState;
 use crate::model::Model;
 use crate::results::ContactRun;

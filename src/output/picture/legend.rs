@@ -4,9 +4,10 @@
 
 use plotters::style::text_anchor::{HPos, VPos};
 
+use super::colours::{state_colour, GHOST, INK};
+use super::label_numbers::num;
 use super::raster::{label, Canvas, Label};
 use super::view::View;
-use super::{num, state_colour, GHOST, INK};
 use crate::contact::law::ContactState;
 
 /// The left edge of the right-hand panel of the deformed picture: colour

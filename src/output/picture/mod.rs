@@ -22,15 +22,20 @@
 //! Colours: viridis for magnitudes, blue (compression) to red (tension)
 //! through grey for stress components; stick green, slip orange, open red.
 
+mod colours;
 mod cutaway;
 mod deformed;
+mod field;
 mod framing;
 mod interfaces;
 mod joints;
+mod label_numbers;
 mod legend;
+mod picture_error;
 mod plan;
 mod raster;
 mod sheets;
+mod snapshot;
 mod stereonet;
 mod surface;
 #[cfg(test)]
@@ -38,120 +43,16 @@ mod tests;
 mod view;
 
 pub use deformed::{deformed_png, mechanism_png};
+pub use field::Field;
 pub use interfaces::interface_plot_svg;
 pub use joints::{joints_file, joints_png};
+pub use picture_error::PictureError;
 pub use plan::{plan_files, plan_png, plan_pngs, PlanFile};
+pub use snapshot::Snapshot;
 pub use stereonet::{stereonet_file, stereonet_png};
 
-use crate::contact::law::ContactState;
-use crate::fem::Analysis;
 use crate::model::Model;
 use crate::recover::BodyStress;
-use crate::results::ContactRun;
-use crate::scene::Region;
-
-/// Why a picture could not be drawn.
-#[derive(Debug, thiserror::Error)]
-pub enum PictureError {
-    /// The results handed over do not belong to the model (a caller's bug).
-    #[error("the run's {what} do not match its model")]
-    Mismatch { what: &'static str },
-    /// Nothing to draw.
-    #[error("{0}")]
-    Empty(String),
-    #[error("the embedded font has no readable metrics")]
-    Font,
-    #[error("writing \"{text}\" on the picture: {reason}")]
-    Text { text: String, reason: String },
-    #[error("encoding the PNG: {0}")]
-    Png(#[from] png::EncodingError),
-    #[error("drawing the interface plot: {0}")]
-    Plot(#[from] crate::output::plot::PlotError),
-}
-
-/// The quantity that colours the deformed picture.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Field {
-    VonMises,
-    /// Magnitude of the displacement.
-    Displacement,
-    Sxx,
-    Syy,
-    Szz,
-    Sxy,
-    Syz,
-    Sxz,
-}
-
-impl Field {
-    pub const ALL: [Field; 8] =
-        [Field::VonMises, Field::Displacement, Field::Sxx, Field::Syy, Field::Szz, Field::Sxy, Field::Syz, Field::Sxz];
-
-    /// Spelling for file names and command lines (`von_mises`, `sxx`, ...).
-    pub fn key(self) -> &'static str {
-        match self {
-            Field::VonMises => "von_mises",
-            Field::Displacement => "displacement",
-            Field::Sxx => "sxx",
-            Field::Syy => "syy",
-            Field::Szz => "szz",
-            Field::Sxy => "sxy",
-            Field::Syz => "syz",
-            Field::Sxz => "sxz",
-        }
-    }
-
-    pub fn parse(s: &str) -> Option<Field> {
-        Field::ALL.into_iter().find(|f| f.key() == s)
-    }
-
-    /// Name for a reader; axisymmetric models have x = r and y = z (the axis).
-    pub fn label(self, analysis: Analysis) -> &'static str {
-        let axi = analysis == Analysis::Axisymmetric;
-        match self {
-            Field::VonMises => "von Mises stress",
-            Field::Displacement => "displacement |u|",
-            Field::Sxx if axi => "σrr (radial stress)",
-            Field::Syy if axi => "σzz (axial stress)",
-            Field::Szz if axi => "σθθ (hoop stress)",
-            Field::Sxy if axi => "σrz (shear stress)",
-            Field::Sxx => "σxx (normal stress)",
-            Field::Syy => "σyy (normal stress)",
-            Field::Szz => "σzz (normal stress)",
-            Field::Sxy => "σxy (shear stress)",
-            Field::Syz => "σyz (shear stress)",
-            Field::Sxz => "σxz (shear stress)",
-        }
-    }
-
-    /// Index in the stress vector `[xx, yy, zz, xy, yz, xz]`.
-    fn component(self) -> Option<usize> {
-        match self {
-            Field::VonMises | Field::Displacement => None,
-            Field::Sxx => Some(0),
-            Field::Syy => Some(1),
-            Field::Szz => Some(2),
-            Field::Sxy => Some(3),
-            Field::Syz => Some(4),
-            Field::Sxz => Some(5),
-        }
-    }
-}
-
-/// One state of a model to draw: its displacements, nodal stresses (empty
-/// when they were not recovered) and contact states and stresses, and the
-/// region the scene asks the deformed picture to frame.
-pub struct Snapshot<'a> {
-    /// The picture's title.
-    pub title: &'a str,
-    pub model: &'a Model,
-    pub u: &'a [f64],
-    pub stresses: &'a [BodyStress],
-    pub contact: Option<&'a ContactRun>,
-    pub region: Option<&'a Region>,
-    /// One colour scale for every body (`[output] colour_scale = "one"`).
-    pub one_scale: bool,
-}
 
 /// The file name of the deformed picture of [`pictures`]: coloured by von
 /// Mises stress when stresses were recovered, else by the displacement.
@@ -241,54 +142,4 @@ fn quietly<T>(f: impl FnOnce() -> T) -> Result<T, Panicked> {
     let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(f));
     std::panic::set_hook(hook);
     r.map_err(|_| Panicked { said: said.lock().map(|s| s.clone()).unwrap_or_default() })
-}
-
-/// Colours: the contact states, pairs without a state, the undeformed
-/// ghost, text and frames.
-const STICK: [u8; 3] = [20, 170, 60];
-const SLIP: [u8; 3] = [255, 140, 0];
-const OPEN: [u8; 3] = [225, 20, 30];
-const NO_PAIR: [u8; 3] = [120, 120, 120];
-const GHOST: [u8; 3] = [228, 228, 228];
-const INK: [u8; 3] = [40, 40, 40];
-
-/// The colour of a contact state in both pictures.
-fn state_colour(s: ContactState) -> [u8; 3] {
-    match s {
-        ContactState::Stick => STICK,
-        ContactState::Slip => SLIP,
-        ContactState::Open => OPEN,
-    }
-}
-
-/// A number with four significant digits, scientific outside [1e-3, 1e5).
-fn num(v: f64) -> String {
-    if !v.is_finite() {
-        return "n/a".into();
-    }
-    let a = v.abs();
-    if a == 0.0 {
-        return "0".into();
-    }
-    if (1e-3..1e5).contains(&a) {
-        let decimals = (3 - a.log10().floor() as i32).clamp(0, 6) as usize;
-        let s = format!("{v:.decimals$}");
-        if s.contains('.') {
-            return s.trim_end_matches('0').trim_end_matches('.').to_string();
-        }
-        return s;
-    }
-    format!("{v:.2e}")
-}
-
-/// A magnification with two significant digits.
-fn sig2(v: f64) -> String {
-    if (1.0..1e4).contains(&v) {
-        // 9.6, not 96 × 0.1 = 9.600000000000001
-        return crate::output::number::sig(v, 2);
-    }
-    if (0.01..1.0).contains(&v) {
-        return num((v * 100.0).round() / 100.0);
-    }
-    format!("{v:.1e}")
 }

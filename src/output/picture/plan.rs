@@ -22,11 +22,13 @@
 
 use plotters::style::text_anchor::{HPos, VPos};
 
+use super::colours::{state_colour, INK, NO_PAIR};
+use super::label_numbers::num;
 use super::legend::{colour_bar, colour_map, lut_colour, nice_step, Limits};
+use super::picture_error::PictureError;
 use super::raster::{encode_png, label, register_font, Canvas, Label};
 use super::sheets::{direction, sheets, Flat, Shape, Sheet};
 use super::surface::{centred, edges, fill, mesh_alpha, pieces, Patch};
-use super::{num, state_colour, PictureError, INK, NO_PAIR};
 use crate::contact::law::ContactState;
 use crate::fem::vec3::dot;
 use crate::fem::Analysis;

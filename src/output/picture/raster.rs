@@ -7,7 +7,8 @@
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use super::{PictureError, INK};
+use super::colours::INK;
+use super::picture_error::PictureError;
 
 /// Text to write once the raster is done.
 pub(super) struct Label {

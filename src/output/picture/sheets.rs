@@ -25,7 +25,7 @@
 //! Planes come first, by set (normals within 10 degrees) in the order the
 //! facets first meet them, and by offset within a set.
 
-use super::num;
+use super::label_numbers::num;
 use super::surface::{facet_patches, Patch};
 use super::view::model_up;
 use crate::fem::vec3::{cross, dot, normalized, sub};

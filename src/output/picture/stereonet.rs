@@ -15,8 +15,9 @@
 
 use plotters::style::text_anchor::{HPos, VPos};
 
+use super::colours::INK;
+use super::picture_error::PictureError;
 use super::raster::{encode_png, label, register_font, Canvas, Label};
-use super::{PictureError, INK};
 use crate::mesh::joints::{geometry, JointSpec, Orientation, Placement};
 
 /// The picture's file name when the scene has joints by dip and dip

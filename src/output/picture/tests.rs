@@ -3,12 +3,15 @@
 //! stacked blocks in every element kind) checked for the colours they must
 //! show; the pictures are kept in the temporary directory to look at.
 
+use super::colours::{OPEN, SLIP, STICK};
 use super::deformed::{deformed_canvas, H, W};
 use super::interfaces::{along, interface_plot_png};
+use super::label_numbers::{num, sig2};
 use super::legend::nice_step;
 use super::legend::PANEL_X;
 use super::raster::{encode_png, register_font, Canvas, FontMetrics};
 use super::*;
+use crate::contact::law::ContactState;
 use crate::driver::{self, RunOptions};
 use crate::fem::vec3::{dot, sub};
 use crate::results::{state_counts, Run};
