@@ -6,8 +6,9 @@
 use std::time::Instant;
 
 use super::plan::{self, Plan};
+use super::progress::progress;
 use super::ranks::{agree, Ranks};
-use super::{progress, RunOptions};
+use super::run_options::RunOptions;
 use crate::contact::system::iterative::Remote;
 use crate::contact::system::InterfaceProblem;
 use crate::contact::water::Water;

@@ -26,141 +26,36 @@ use std::time::Instant;
 
 mod condense;
 mod mechanism;
+mod meshing;
 pub(crate) mod messages;
 mod plan;
+mod progress;
 mod ranks;
+mod run_options;
 mod safety;
 mod stats;
 mod steps;
 
+pub use meshing::{gmsh_job, load_mesh, mesh_into};
 pub use messages::{Apex, At, ContactError, PlanError, SafetyError};
 pub use plan::{preview, Memory, Preview};
+use progress::{progress, say};
+pub use run_options::RunOptions;
 
 use crate::analytic;
 use crate::contact::law::PairResult;
-use crate::contact::InterfaceSolver;
 use crate::error::{Error, Result};
-use crate::mesh::{gmsh, msh, Mesh};
+use crate::mesh::Mesh;
 use crate::model::Model;
 use crate::output;
 use crate::output::files::{Stage, Staged};
 use crate::parallel::{Comm, CommExt, Serial};
 use crate::recover;
-use crate::scene::{MeshSource, Scene};
+use crate::scene::Scene;
 
 // what a run returns, defined in `results` (which the writers read)
 pub use crate::results::{state_counts, Checks, ContactRun, Counters, RankStats, Run, Stats, StepResult, Timings};
 use crate::substructure::Condensation;
-
-/// Options of a run beyond the scene.
-#[derive(Clone, Debug, Default)]
-pub struct RunOptions {
-    pub out: Option<PathBuf>,
-    /// Pieces each part is cut into (overrides `[solver] substructures`).
-    pub substructures: Option<usize>,
-    /// Parts condensed at once on each rank (default: the cores per rank).
-    pub threads: Option<usize>,
-    /// How the interface is solved (overrides `[solver] interface`).
-    pub interface: Option<InterfaceSolver>,
-    /// Treat every contact as bonded (shared nodes): the monolithic solve.
-    pub bonded: bool,
-    /// Print stage progress on stderr.
-    pub verbose: bool,
-    /// Compute everything but write no result files (benchmarks).
-    pub skip_output: bool,
-    /// Run even when the estimated peak memory exceeds what is available.
-    pub ignore_memory_estimate: bool,
-    /// Let the .geo run programs and write files (SystemCall, Save, ...).
-    pub allow_geo_commands: bool,
-}
-
-impl RunOptions {
-    /// Where the results of `scene` go: `out`, or `results/<scene name>`.
-    pub fn out_dir(&self, scene: &Scene) -> PathBuf {
-        self.out.clone().unwrap_or_else(|| PathBuf::from("results").join(&scene.name))
-    }
-}
-
-fn progress(opts: &RunOptions, msg: &str) {
-    if opts.verbose {
-        say(msg);
-    }
-}
-
-/// A line on stderr, whatever `--quiet` says (a wait for another run); a
-/// closed stderr (a pipe whose reader left) is no reason to stop a run.
-fn say(msg: &str) {
-    use std::io::Write;
-    let _ = writeln!(std::io::stderr(), "subcontact: {msg}");
-}
-
-/// Reads the mesh of a scene, running gmsh when it is a .geo: into the
-/// result directory `out`'s mesh cache, committed alone (`check`).
-pub fn load_mesh(scene: &Scene, out: &Path, allow_geo_commands: bool) -> Result<(Mesh, PathBuf, bool)> {
-    let mut stage = match scene.mesh {
-        MeshSource::Msh(_) => None,
-        MeshSource::Geo(_) => Some(Stage::begin(out, &mut |m| say(m))?),
-    };
-    let meshed = mesh_into(scene, stage.as_mut(), allow_geo_commands)?;
-    if let Some(stage) = stage {
-        stage.commit(Staged::amend(out, &scene.name), &mut |m| say(m))?;
-    }
-    Ok(meshed)
-}
-
-/// The gmsh job of a scene whose mesh is a .geo, its mesh at `msh`.
-pub fn gmsh_job(scene: &Scene, geo: &Path, msh: PathBuf, allow_geo_commands: bool) -> gmsh::GmshJob {
-    gmsh::GmshJob {
-        geo: geo.to_path_buf(),
-        msh,
-        dim: scene.analysis.dim(),
-        order: scene.gmsh.order,
-        setnumber: scene.gmsh.setnumber.clone(),
-        clscale: scene.gmsh.clscale,
-        timeout: std::time::Duration::from_secs_f64(scene.gmsh.timeout),
-        allow_commands: allow_geo_commands,
-        cut: scene.cut_job(),
-    }
-}
-
-/// Reads the mesh of a scene: the .msh, or, for a .geo, the cached mesh
-/// of the result directory when its key matches, else gmsh's, made in
-/// `stage` (the run's staging directory: committed with the results).
-/// The mesh, its path in the result directory, and whether it was cached.
-pub fn mesh_into(scene: &Scene, stage: Option<&mut Stage>, allow_geo_commands: bool) -> Result<(Mesh, PathBuf, bool)> {
-    let (MeshSource::Geo(geo), Some(stage)) = (&scene.mesh, stage) else {
-        let MeshSource::Msh(p) = &scene.mesh else { return Err(Error::NoStage) };
-        return Ok((msh::read_msh(p)?, p.clone(), false));
-    };
-    let file = format!("{}.msh", scene.name);
-    let shown = stage.out().join(output::files::MESH_DIR).join(&file);
-    let job = gmsh_job(scene, geo, shown.clone(), allow_geo_commands);
-    let key = gmsh::cache_key(&job)?;
-    let cached = stage.reuse_mesh(&file, &key);
-    if !cached {
-        gmsh::run_in(&job, stage.mesh_dir()?.fd()).map_err(|e| match e {
-            gmsh::GmshError::Joints(j) if j.is_about_scene() => {
-                Error::JointKey { scene: scene.path.clone(), source: Box::new(j) }
-            }
-            e => e.into(),
-        })?;
-        stage.keep_mesh(&file, &key)?;
-    }
-    let rel = format!("{}/{file}", output::files::MESH_DIR);
-    let bytes = stage.read(&rel).map_err(|source| Error::ReadMesh { geo: geo.clone(), source })?;
-    let mesh = msh::parse_msh(&shown, &bytes).map_err(|e| no_mesh(geo, e))?;
-    Ok((mesh, shown, cached))
-}
-
-/// A mesh gmsh made of a .geo that cannot be used: the .geo is to blame.
-fn no_mesh(geo: &Path, e: msh::MshError) -> Error {
-    match e {
-        msh::MshError::NoPhysicalGroups { .. } | msh::MshError::Malformed { .. } => {
-            Error::NoMesh { geo: geo.to_path_buf() }
-        }
-        source => Error::BadMesh { geo: geo.to_path_buf(), source },
-    }
-}
 
 /// Runs a scene file end to end and writes its results.
 pub fn run(scene_path: &Path, opts: &RunOptions) -> Result<Run> {

@@ -7,7 +7,8 @@
 //! before it factorises and `check` ([`preview`]) says instead of running.
 
 use super::messages::PlanError;
-use super::{progress, RunOptions};
+use super::progress::progress;
+use super::run_options::RunOptions;
 use crate::contact::system::InterfaceKind;
 use crate::memory::{Available, Estimate, TooLarge};
 use crate::model::Model;

@@ -21,7 +21,8 @@
 
 use std::path::{Path, PathBuf};
 
-use super::{mesh_into, RunOptions};
+use super::meshing::mesh_into;
+use super::run_options::RunOptions;
 use crate::contact::system::iterative::Remote;
 use crate::contact::system::InterfaceProblem;
 use crate::error::{Error, Result, Wire};

@@ -26,23 +26,25 @@
 //! the load steps.
 
 mod below;
+mod recovery;
 mod trials;
 
 use std::time::Instant;
 
 use super::condense::Parts;
+use super::mechanism;
 use super::messages::SafetyError;
 use super::ranks::Ranks;
+use super::run_options::RunOptions;
 use super::steps::{LoadSteps, Step};
-use super::{mechanism, RunOptions};
 use crate::contact::safety::{self as reduction, Bracket, Strengths};
-use crate::contact::{History, Outcome};
+use crate::contact::History;
 use crate::error::Result;
 use crate::parallel::CommExt;
-use crate::recover;
 use crate::results::{Failure, OtherFactor, SafetyRun, SearchCost, SearchKind, StepResult, Trial, Undecided};
 use crate::scene::Safety;
-use trials::{Held, Trials, Varied};
+use recovery::recovered;
+use trials::{trials, undecided, Held, Trials};
 
 pub(super) use below::below_one;
 
@@ -176,39 +178,6 @@ fn kind(options: &Safety) -> SearchKind {
     }
 }
 
-/// What F varies in the scene's search.
-fn varied(step: &Step, options: &Safety) -> Varied {
-    match &options.raise {
-        Some(r) => {
-            let model = step.model;
-            let mut cases: Vec<usize> = r.loads.iter().map(|&i| model.load_cases[i]).collect();
-            if r.gravity {
-                cases.push(model.gravity_case);
-            }
-            Varied::Load { cases }
-        }
-        None => Varied::Strength {
-            chosen: step.model.pairs.iter().map(|p| options.contacts.contains(&p.contact)).collect(),
-            reduce: options.reduce,
-        },
-    }
-}
-
-/// The trials of a search with the strength convention `strengths`.
-fn trials<'s, 'a>(
-    step: &'s Step<'a>,
-    options: &Safety,
-    strengths: Strengths,
-    opts: &'s RunOptions,
-    label: &str,
-) -> Trials<'s, 'a> {
-    let laws = match options.raise {
-        Some(_) => step.laws.clone(),
-        None => strengths.laws(&step.laws),
-    };
-    Trials::new(step, varied(step, options), laws, opts, label.to_string())
-}
-
 /// Brackets and bisects F from the state at F = 1, names the failing
 /// trial's mechanism and, for strength reduction where the conventions
 /// differ, finds F with the other one too.
@@ -251,17 +220,6 @@ fn upward(t: &mut Trials, options: &Safety, history: &History) -> Bracket<Held, 
     let lambda = t.lambda.clone();
     let start = Held { factor: 1.0, history: history.clone(), outcome: None, lambda };
     reduction::upward(&options.steps, start, |f, from: &Held| t.up(f, from))
-}
-
-/// The trials that decided nothing, for the results.
-fn undecided(u: &[(f64, Failure)]) -> Vec<Undecided> {
-    u.iter()
-        .map(|(f, e)| Undecided {
-            factor: *f,
-            iterations: e.iteration,
-            cycled: matches!(e.kind, crate::results::FailureKind::NotConverged { cycled: true }),
-        })
-        .collect()
 }
 
 /// The first progress line: what the search varies.
@@ -323,37 +281,4 @@ fn raised_names(step: &Step, r: &crate::scene::Raise) -> String {
         names.push("gravity".into());
     }
     names.join(", ")
-}
-
-/// The recovered result of an outcome on rank 0 (`step` its load step, 0
-/// for the search's hold), every rank taking part; None elsewhere.
-fn recovered(
-    step: &Step,
-    parts: &Parts,
-    ranks: &Ranks,
-    o: Option<(usize, Vec<f64>, Outcome)>,
-    done: &mut LoadSteps,
-) -> Result<Option<StepResult>> {
-    let (need_stress, need_u) = step.needs();
-    // only rank 0 holds the interface problem (and an outcome)
-    let (k, lambda, answer) = match o {
-        Some((k, lambda, o)) => {
-            let problem = step.problem.expect("rank 0's search has an interface");
-            let answer = step.contact_run(problem, o, &lambda);
-            (k, lambda, Some(answer))
-        }
-        None => (0, Vec::new(), None),
-    };
-    let (contact, d_c) = answer.unzip();
-    let u = ranks.recover(step.model, &step.plan.parts, &parts.mine, d_c.map(Ok), &lambda, need_u)?;
-    let Some((c, mut u)) = contact.zip(u) else { return Ok(None) };
-    done.counters.interior_recoveries += usize::from(need_u) * step.plan.parts.len();
-    done.counters.stress_recoveries += usize::from(need_stress);
-    let stresses = if need_stress { recover::nodal_stresses(step.model, &u) } else { Vec::new() };
-    if need_u {
-        super::steps::reset(&mut u, done.stage.as_ref());
-    }
-    let k = if k > 0 { k } else { step.scene.solver.load_steps };
-    let load_factor = lambda.first().copied().unwrap_or(1.0);
-    Ok(Some(StepResult { step: k, load_factor, case_factors: lambda, u, stresses, contact: Some(c) }))
 }

@@ -82,6 +82,16 @@ impl Model {
         out
     }
 
+    /// The factor of every load case in the initial equilibrium stage
+    /// (None without it): gravity, the initial stresses and the hold load
+    /// at 1, every other case (the loads, joint water, prescribed
+    /// displacements) at 0.
+    pub fn stage_factors(&self) -> Option<Vec<f64>> {
+        let hold = self.hold_case?;
+        let on = [self.gravity_case, self.initial_case, hold];
+        Some((0..self.cases.len()).map(|c| if on.contains(&c) { 1.0 } else { 0.0 }).collect())
+    }
+
     /// Names of the bodies, for messages.
     pub fn body_names(&self, ids: &[usize]) -> String {
         ids.iter().map(|&b| self.bodies[b].label()).collect::<Vec<_>>().join(", ")

@@ -15,16 +15,19 @@
 //! did not: the search then goes upward from there, and the run still ends
 //! with the load steps' error.
 
-use super::{mechanism, recovered, trials, undecided, Held, SafetyRun, Trials};
+use super::recovery::recovered;
+use super::trials::{trials, undecided, Held, Trials};
 use crate::contact::safety::{self as reduction, Verdict};
 use crate::contact::{self, History, Outcome};
 use crate::driver::condense::Parts;
+use crate::driver::mechanism;
 use crate::driver::messages::{ContactError, SafetyError};
 use crate::driver::ranks::Ranks;
+use crate::driver::run_options::RunOptions;
 use crate::driver::steps::{LoadSteps, Step};
-use crate::driver::RunOptions;
 use crate::error::{Error, Result};
 use crate::parallel::CommExt;
+use crate::results::SafetyRun;
 use crate::results::{Failure, SearchCost};
 
 /// What a run that fails at F = 1 keeps: the steps whose results exist,

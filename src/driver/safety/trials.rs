@@ -13,13 +13,14 @@
 
 use std::time::Instant;
 
-use crate::contact::safety::{Reduce, Verdict};
+use crate::contact::safety::{Reduce, Strengths, Verdict};
 use crate::contact::system::{InterfaceProblem, SolveFailure};
 use crate::contact::{self, Failed, History, Outcome, PairLaw};
-use crate::driver::progress;
+use crate::driver::progress::progress;
+use crate::driver::run_options::RunOptions;
 use crate::driver::steps::Step;
-use crate::driver::RunOptions;
-use crate::results::{state_counts, Failure, FailureKind, Trial};
+use crate::results::{state_counts, Failure, FailureKind, Trial, Undecided};
+use crate::scene::Safety;
 
 /// Increments a trial that did not converge is retried in.
 pub(super) const RETRY_STEPS: usize = 4;
@@ -292,4 +293,48 @@ fn named(model: &crate::model::Model, blocks: &[usize]) -> String {
     } else {
         format!(" ({})", model.body_names(blocks))
     }
+}
+
+/// What F varies in the scene's search.
+pub(super) fn varied(step: &Step, options: &Safety) -> Varied {
+    match &options.raise {
+        Some(r) => {
+            let model = step.model;
+            let mut cases: Vec<usize> = r.loads.iter().map(|&i| model.load_cases[i]).collect();
+            if r.gravity {
+                cases.push(model.gravity_case);
+            }
+            Varied::Load { cases }
+        }
+        None => Varied::Strength {
+            chosen: step.model.pairs.iter().map(|p| options.contacts.contains(&p.contact)).collect(),
+            reduce: options.reduce,
+        },
+    }
+}
+
+/// The trials of a search with the strength convention `strengths`.
+pub(super) fn trials<'s, 'a>(
+    step: &'s Step<'a>,
+    options: &Safety,
+    strengths: Strengths,
+    opts: &'s RunOptions,
+    label: &str,
+) -> Trials<'s, 'a> {
+    let laws = match options.raise {
+        Some(_) => step.laws.clone(),
+        None => strengths.laws(&step.laws),
+    };
+    Trials::new(step, varied(step, options), laws, opts, label.to_string())
+}
+
+/// The trials that decided nothing, for the results.
+pub(super) fn undecided(u: &[(f64, Failure)]) -> Vec<Undecided> {
+    u.iter()
+        .map(|(f, e)| Undecided {
+            factor: *f,
+            iterations: e.iteration,
+            cycled: matches!(e.kind, crate::results::FailureKind::NotConverged { cycled: true }),
+        })
+        .collect()
 }
