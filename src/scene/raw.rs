@@ -7,7 +7,9 @@
 use serde::Deserialize;
 use std::collections::BTreeMap;
 
-use super::{Analysis, ColourScale, InterfaceSolver, SlipLaw, StateRule, TractionRecovery};
+use super::validated::ColourScale;
+use crate::contact::{InterfaceSolver, SlipLaw, StateRule, TractionRecovery};
+use crate::fem::Analysis;
 use crate::mesh::joints::Shape;
 
 #[derive(Deserialize)]

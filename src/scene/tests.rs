@@ -3,6 +3,7 @@
 //! the scene file, the key path and what to do.
 
 use super::*;
+use std::path::PathBuf;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 mod water;

@@ -6,21 +6,25 @@
 //! `validate/analytic.rs`, of `[[sections]]` in `validate/sections.rs`.
 
 use std::collections::{BTreeMap, BTreeSet};
-use std::fmt;
 use std::path::Path;
 
 use super::raw::{RawFrame, RawGmsh, RawMaterial, RawOutput, RawProbe, RawScene, RawSolver, RawWater};
-use super::{
-    Analysis, BodySpec, Contact, GmshOptions, JointSpec, LoadSpec, Material, MeshSource, Output, Probe, Region, Scene,
-    SceneError, Solver, OUTPUT_FIELDS,
-};
+use super::validated::{Contact, GmshOptions, MeshSource, Output, Region, Scene, Solver, OUTPUT_FIELDS};
+use crate::fem::Analysis;
+use crate::mesh::joints::JointSpec;
+use crate::model::{BodySpec, LoadSpec, Material};
+use crate::recover::Probe;
 
 mod analytic;
+mod checker;
 mod groups;
 mod joints;
 mod safety;
 mod sections;
 mod water;
+
+pub(super) use checker::Checker;
+use checker::{fmt_vec, quoted_list, R};
 
 /// The Young's moduli a scene may give: beyond them the stiffness entries
 /// (E times the elements' sizes, and Poisson factors up to ~1e3) leave
@@ -39,119 +43,12 @@ fn key_name(name: &str) -> String {
     }
 }
 
-/// A list of names for messages: `"a", "b"`.
 /// The most load steps a scene may ask for.
 const MAX_STEPS: usize = 100_000;
 /// The most sample points on one probe.
 const MAX_PROBE_POINTS: usize = 1_000_000;
 
-fn quoted_list<S: AsRef<str>>(items: impl IntoIterator<Item = S>) -> String {
-    items.into_iter().map(|s| format!("\"{}\"", s.as_ref())).collect::<Vec<_>>().join(", ")
-}
-
-fn fmt_vec(v: &[f64]) -> String {
-    format!("[{}]", v.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(", "))
-}
-
-/// Checks a raw scene against the rules of each key; `path` is the scene
-/// file every error names.
-pub(super) struct Checker<'a> {
-    pub(super) path: &'a Path,
-}
-
-type R<T> = Result<T, SceneError>;
-
 impl Checker<'_> {
-    /// An error about `key` whose value is `value` (already formatted).
-    fn bad(&self, key: impl Into<String>, value: impl fmt::Display, what: impl fmt::Display) -> SceneError {
-        SceneError::Invalid {
-            path: self.path.to_path_buf(),
-            key: key.into(),
-            value: Some(value.to_string()),
-            message: what.to_string(),
-        }
-    }
-
-    /// An error about `key` without a value (missing, or about a whole table).
-    fn err(&self, key: impl Into<String>, what: impl fmt::Display) -> SceneError {
-        SceneError::Invalid { path: self.path.to_path_buf(), key: key.into(), value: None, message: what.to_string() }
-    }
-
-    fn required<T>(&self, v: Option<T>, key: &str, what: &str) -> R<T> {
-        v.ok_or_else(|| self.err(key, format!("missing; add `{}` ({what}).", key.rsplit('.').next().unwrap_or(key))))
-    }
-
-    fn group(&self, v: Option<String>, key: &str, what: &str) -> R<String> {
-        let g = self.required(v, key, what)?;
-        if g.trim().is_empty() {
-            return Err(self.bad(
-                key,
-                "\"\"",
-                format!("the group name is empty; give the name of {what} as written in the .geo."),
-            ));
-        }
-        Ok(g)
-    }
-
-    fn finite(&self, v: f64, key: &str) -> R<f64> {
-        if v.is_finite() {
-            Ok(v)
-        } else {
-            Err(self.bad(key, v, "must be a finite number."))
-        }
-    }
-
-    fn non_negative(&self, v: Option<f64>, key: &str, what: &str) -> R<f64> {
-        let v = self.finite(v.unwrap_or(0.0), key)?;
-        if v < 0.0 {
-            return Err(self.bad(key, v, format!("{what} must be >= 0 (0 if omitted).")));
-        }
-        Ok(v)
-    }
-
-    /// `n`, unless it is above `max`: then an error naming `key`.
-    fn at_most(&self, n: usize, max: usize, key: &str, what: &str) -> R<usize> {
-        if n > max {
-            return Err(self.bad(key, n, format!("at most {max} {what}.")));
-        }
-        Ok(n)
-    }
-
-    fn at_least(&self, v: Option<i64>, default: usize, min: i64, key: &str, what: &str) -> R<usize> {
-        match v {
-            None => Ok(default),
-            Some(n) if n >= min => usize::try_from(n).map_err(|_| self.bad(key, n, format!("{what} is too large."))),
-            Some(n) => Err(self.bad(key, n, format!("{what} must be at least {min}."))),
-        }
-    }
-
-    /// A 2- or 3-component vector; 3 required for solid, z = 0 for the 2D analyses.
-    fn vec3(&self, v: &[f64], key: &str, analysis: Analysis) -> R<[f64; 3]> {
-        let shown = fmt_vec(v);
-        if analysis == Analysis::Solid && v.len() != 3 {
-            return Err(self.bad(key, shown, "a solid analysis needs 3 components [x, y, z]."));
-        }
-        if v.len() != 2 && v.len() != 3 {
-            return Err(self.bad(
-                key,
-                shown,
-                format!("give 2 components [x, y] (or 3 with z = 0) for a {analysis} analysis."),
-            ));
-        }
-        if v.iter().any(|x| !x.is_finite()) {
-            return Err(self.bad(key, shown, "all components must be finite numbers."));
-        }
-        let z = v.get(2).copied().unwrap_or(0.0);
-        if analysis.dim() == 2 && z != 0.0 {
-            return Err(self.bad(
-                key,
-                shown,
-                format!("a {analysis} analysis lies in the z = 0 plane, so the z component must be 0; drop it or use analysis = \"solid\"."),
-            ));
-        }
-        Ok([v[0], v[1], z])
-    }
-
     /// The scene, key by key, in the order the errors are reported.
     pub(super) fn scene(&self, raw: RawScene) -> R<Scene> {
         let name = self.name();

@@ -3,7 +3,7 @@
 //! (keys of another kind are errors), and for the lined tunnel the bodies it
 //! names and the far field their initial stress must agree with.
 
-use super::{fmt_vec, quoted_list, Checker, R};
+use super::checker::{fmt_vec, quoted_list, Checker, R};
 use crate::scene::raw::RawAnalytic;
 use crate::scene::{Analysis, Analytic, BodySpec, InitialStress};
 

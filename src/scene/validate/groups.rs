@@ -6,7 +6,7 @@
 
 use std::collections::BTreeMap;
 
-use super::{quoted_list, Checker, R};
+use super::checker::{quoted_list, Checker, R};
 use crate::scene::raw::{RawBody, RawContact, RawLoad, RawMoment, RawPressure, RawSeismic, RawSupport};
 use crate::scene::{
     Analysis, BodySpec, Contact, ContactGroups, ForceLoad, InitialStress, LoadKind, LoadSpec, Material, Strength,

@@ -8,7 +8,7 @@
 
 use std::collections::BTreeMap;
 
-use super::{fmt_vec, quoted_list, Checker, R};
+use super::checker::{fmt_vec, quoted_list, Checker, R};
 use crate::mesh::joints::{JointSpec, Orientation, Persistence, Placement, Shape};
 use crate::scene::raw::{RawContact, RawFrame, RawJoint, RawWater, JOINT_KEYS};
 use crate::scene::{Analysis, BodySpec, Contact, ContactGroups};

@@ -8,7 +8,7 @@
 //! chosen contact) or raise nothing is an error: its F would be the bound
 //! whatever the scene.
 
-use super::{quoted_list, Checker, R};
+use super::checker::{quoted_list, Checker, R};
 use crate::scene::raw::RawSafety;
 use crate::scene::{Contact, ContactGroups, LoadSpec, Raise, Reduce, Safety, Steps, Strengths};
 

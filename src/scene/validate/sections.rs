@@ -6,7 +6,7 @@
 
 use std::collections::BTreeMap;
 
-use super::{fmt_vec, quoted_list, Checker, R};
+use super::checker::{fmt_vec, quoted_list, Checker, R};
 use crate::recover::sections::{Cut, SectionSpec};
 use crate::scene::raw::RawSection;
 use crate::scene::{Analysis, BodySpec};

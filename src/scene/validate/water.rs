@@ -6,7 +6,7 @@
 //! on a diagram, a `face` that names a hydrostatic `[[loads]]` entry, and
 //! one factor per load step.
 
-use super::{fmt_vec, Checker, R};
+use super::checker::{fmt_vec, Checker, R};
 use crate::scene::raw::{RawDrain, RawWater};
 use crate::scene::{Analysis, Drain, JointWater, Levels, LoadKind, LoadSpec, WaterFace, WaterPressure};
 
