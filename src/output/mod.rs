@@ -11,7 +11,9 @@
 
 pub mod bearing;
 pub mod blocks;
+mod bodies_vtu;
 pub mod closed_form;
+mod contact_files;
 mod csv;
 pub mod cut;
 pub mod faces;
@@ -22,26 +24,29 @@ pub mod plot;
 pub mod reactions;
 pub mod report;
 pub mod resultants;
+mod run_warnings;
 mod safety;
 pub mod sections;
 pub mod settlement;
+mod step_times;
 mod unsettled;
 pub mod vtu;
 mod water;
 
+pub use run_warnings::{insitu_warnings, model_warnings, warnings};
 pub use safety::{label as safety_label, other_factor_line, warnings as safety_warnings};
+pub use step_times::step_times;
 
 use serde_json::json;
 
 use crate::error::{Error, Result};
 use crate::fem::material::von_mises;
-use crate::mesh::Cell;
-use crate::model::Model;
-use crate::recover::{BodyStress, Sample};
-use crate::results::{state_counts, ContactRun, Run};
+use crate::recover::Sample;
+use crate::results::{state_counts, Run};
+use bodies_vtu::bodies_vtu;
+use contact_files::{contact_csv, contact_vtu};
 use csv::csv_field;
 use files::Staged;
-use vtu::{Field, IntField};
 
 /// Stages every result file of a run except `summary.json` and `report.md`
 /// ([`restage_summary`] adds them with the final timings), for the
@@ -166,295 +171,12 @@ fn finite(run: &Run) -> Result<()> {
     Ok(())
 }
 
-/// The time of each load step in the `.pvd` collections: its load factor.
-/// That is the factor of the one load (or loads sharing factors) that
-/// changes from step to step when it grows at every step (a reservoir
-/// filled in steps under constant self-weight: 0, 0.5, 1), else the ramp
-/// k / load_steps, which always grows (ParaView orders the steps by time).
-pub fn step_times(scene: &crate::scene::Scene) -> Vec<f64> {
-    let n = scene.solver.load_steps;
-    let varying: Vec<Vec<f64>> =
-        report::applied(scene).into_iter().map(|c| c.factors).filter(|f| f.windows(2).any(|w| w[0] != w[1])).collect();
-    match varying.as_slice() {
-        [one] if one.len() == n && one.windows(2).all(|w| w[1] > w[0]) => one.clone(),
-        _ => (1..=n).map(|k| k as f64 / n as f64).collect(),
-    }
-}
-
 /// Adds `summary.json` and `report.md`, both with the run's final timings
 /// (the output stage's own included), so that the two files agree.
 pub fn restage_summary(mut staged: Staged, run: &Run) -> Result<Staged> {
     staged.add("summary.json", serde_json::to_vec_pretty(&summary(run))?);
     staged.add("report.md", report::report(run).into_bytes());
     Ok(staged)
-}
-
-/// What is legal but probably not meant, one paragraph each: the scene's
-/// ([`crate::scene::Scene::warnings`]) and the model's (bodies bonded by
-/// shared nodes, [`crate::model::warnings`], unless the run bonded every
-/// contact on purpose: [`crate::scene::Scene::bonded`]).
-pub fn warnings(run: &Run) -> Vec<String> {
-    let mut w = run.scene.warnings();
-    if !run.scene.bonded {
-        w.extend(model_warnings(&run.scene, &run.model));
-    }
-    w.extend(insitu_warnings(&run.scene, &run.model));
-    w
-}
-
-/// The model's warnings ([`crate::model::warnings`]), each with the scene
-/// file's name in front.
-pub fn model_warnings(scene: &crate::scene::Scene, model: &Model) -> Vec<String> {
-    in_scene(scene, crate::model::warnings::warnings(model))
-}
-
-/// The paragraphs `w`, each with the scene file's name in front.
-fn in_scene(scene: &crate::scene::Scene, w: Vec<String>) -> Vec<String> {
-    w.into_iter().map(|w| format!("{}: {w}", scene.path.display())).collect()
-}
-
-/// The contact groups the in-situ stress puts beyond their strength
-/// ([`crate::model::insitu`]), one paragraph each.
-pub fn insitu_warnings(scene: &crate::scene::Scene, model: &Model) -> Vec<String> {
-    let strengths: Vec<crate::model::insitu::JointStrength> = scene
-        .contacts
-        .iter()
-        .map(|c| crate::model::insitu::JointStrength {
-            friction: c.strength.friction,
-            cohesion: c.strength.cohesion,
-            tensile_strength: c.strength.tensile_strength,
-            skip: c.slip == crate::scene::SlipLaw::Frictionless || c.water.is_some(),
-        })
-        .collect();
-    in_scene(scene, crate::model::insitu::warnings(model, &strengths))
-}
-
-/// The bodies' VTU: each body's own nodes as points, so stresses averaged
-/// per body stay apart where bodies share nodes; the displacement when
-/// `displacement`, the stresses when there are some.
-/// The bodies; `block_state`: each block's [`crate::contact::mechanism::BlockState`]
-/// code as cell data (left out when empty).
-fn bodies_vtu(
-    model: &Model,
-    u: &[f64],
-    stresses: &[BodyStress],
-    displacement: bool,
-    block_state: &[i32],
-) -> Result<Vec<u8>> {
-    let nd = model.nd;
-    let mut points = Vec::new();
-    let mut disp = Vec::new();
-    let mut stress = Vec::new();
-    let mut vm = Vec::new();
-    let mut cells = Vec::new();
-    let mut body_id = Vec::new();
-    let mut block_id = Vec::new();
-    let mut state = Vec::new();
-    let mut local = vec![usize::MAX; model.n_nodes()];
-    for (b, body) in model.bodies.iter().enumerate() {
-        let base = points.len();
-        // the body's own node list (stresses are averaged per body)
-        let own: Vec<usize> = match stresses.get(b) {
-            Some(bs) => bs.nodes.clone(),
-            None => crate::recover::body_nodes(body),
-        };
-        for (i, &n) in own.iter().enumerate() {
-            local[n] = base + i;
-            points.push(model.coords[n]);
-            for c in 0..3 {
-                disp.push(if c < nd { u[n * nd + c] } else { 0.0 });
-            }
-            if let Some(bs) = stresses.get(b) {
-                let s = &bs.stress[i];
-                stress.extend_from_slice(s);
-                vm.push(von_mises(s));
-            }
-        }
-        for c in &body.cells {
-            cells.push(Cell { kind: c.kind, nodes: c.nodes.iter().map(|&n| local[n]).collect(), tag: c.tag });
-            body_id.push(body.group as i32);
-            block_id.push(b as i32);
-            if let Some(&s) = block_state.get(b) {
-                state.push(s);
-            }
-        }
-    }
-    let mut point_data = Vec::new();
-    if displacement {
-        point_data.push(Field { name: "displacement", n_comp: 3, values: &disp });
-    }
-    if !stresses.is_empty() {
-        point_data.push(Field { name: "stress", n_comp: 6, values: &stress });
-        point_data.push(Field { name: "von_mises", n_comp: 1, values: &vm });
-    }
-    Ok(vtu::vtu_bytes(
-        &points,
-        &cells,
-        &point_data,
-        &[],
-        &[
-            IntField { name: "body", values: &body_id },
-            IntField { name: "block", values: &block_id },
-            IntField { name: "block_state", values: &state },
-        ][..if state.is_empty() { 2 } else { 3 }],
-    )?)
-}
-
-/// The contact VTU's points and cells: every interface facet, then a
-/// vertex cell per pair; the pair at each point (`usize::MAX`: none), and
-/// each cell's interface and pair state (-1 for a facet).
-struct ContactMesh {
-    points: Vec<[f64; 3]>,
-    pairs: Vec<usize>,
-    cells: Vec<Cell>,
-    iface_id: Vec<i32>,
-    pair_status: Vec<i32>,
-}
-
-fn contact_mesh(model: &Model, c: &ContactRun) -> ContactMesh {
-    let mut pair_of = vec![usize::MAX; model.n_nodes()];
-    for (i, p) in model.pairs.iter().enumerate() {
-        pair_of[p.k] = i;
-    }
-    let mut local = vec![usize::MAX; model.n_nodes()];
-    let mut points = Vec::new();
-    let mut pairs = Vec::new();
-    let mut cells = Vec::new();
-    let mut iface_id = Vec::new();
-    let mut pair_status = Vec::new();
-    for (ii, iface) in model.interfaces.iter().enumerate() {
-        for f in &iface.facets {
-            let nodes = f
-                .nodes
-                .iter()
-                .map(|&n| {
-                    if local[n] == usize::MAX {
-                        local[n] = points.len();
-                        points.push(model.coords[n]);
-                        pairs.push(pair_of[n]);
-                    }
-                    local[n]
-                })
-                .collect();
-            cells.push(Cell { kind: f.kind, nodes, tag: f.tag });
-            iface_id.push(ii as i32);
-            pair_status.push(-1);
-        }
-    }
-    // a vertex cell per pair with its state as cell data, which ParaView
-    // colours as categories (point data blends between 0, 1 and 2)
-    for (i, p) in model.pairs.iter().enumerate() {
-        if local[p.k] == usize::MAX {
-            local[p.k] = points.len();
-            points.push(model.coords[p.k]);
-            pairs.push(i);
-        }
-        cells.push(Cell { kind: crate::mesh::CellKind::Point1, nodes: vec![local[p.k]], tag: 0 });
-        iface_id.push(p.contact as i32);
-        pair_status.push(c.states[i].code());
-    }
-    ContactMesh { points, pairs, cells, iface_id, pair_status }
-}
-
-/// The interfaces, as body I's facets, with the pair values at their
-/// nodes, then one vertex cell per pair (at its node k) whose cell data
-/// `pair_status` is its state (0 open, 1 slip, 2 stick; -1 on the facets);
-/// cell data `interface` is the contact of every cell.
-fn contact_vtu(model: &Model, c: &ContactRun) -> Result<Vec<u8>> {
-    let ContactMesh { points, pairs, cells, iface_id, pair_status } = contact_mesh(model, c);
-    let get = |f: &dyn Fn(usize) -> f64| -> Vec<f64> {
-        pairs.iter().map(|&p| if p == usize::MAX { 0.0 } else { f(p) }).collect()
-    };
-    let status: Vec<i32> = pairs.iter().map(|&p| if p == usize::MAX { -1 } else { c.states[p].code() }).collect();
-    let sigma_n = get(&|p| c.sigma_n_total(p));
-    let sigma_n_eff = get(&|p| c.pairs[p].sigma_n);
-    let water = get(&|p| c.water_pressure(p));
-    let tau = get(&|p| c.pairs[p].tau());
-    let gap = get(&|p| c.pairs[p].gap);
-    let slip = get(&|p| c.pairs[p].slip);
-    let shear: Vec<f64> = pairs.iter().flat_map(|&p| if p == usize::MAX { [0.0; 3] } else { c.shear(p) }).collect();
-    let area = get(&|p| c.areas[p]);
-    let status_f: Vec<f64> = status.iter().map(|&s| s as f64).collect();
-    let changes = unsettled::changes(c).map(|k| get(&|p| k[p] as f64));
-    let mut point_data = vec![
-        Field { name: "status", n_comp: 1, values: &status_f },
-        Field { name: "sigma_n", n_comp: 1, values: &sigma_n },
-        Field { name: "tau", n_comp: 1, values: &tau },
-        Field { name: "gap", n_comp: 1, values: &gap },
-        Field { name: "slip", n_comp: 1, values: &slip },
-        Field { name: "shear", n_comp: 3, values: &shear },
-        Field { name: "area", n_comp: 1, values: &area },
-    ];
-    if c.water.is_some() {
-        point_data.push(Field { name: "water_pressure", n_comp: 1, values: &water });
-        point_data.push(Field { name: "sigma_n_eff", n_comp: 1, values: &sigma_n_eff });
-    }
-    if let Some(k) = &changes {
-        point_data.push(Field { name: "changes", n_comp: 1, values: k });
-    }
-    let law_residual = get(&|p| c.law_residual.get(p).copied().unwrap_or(0.0));
-    point_data.push(Field { name: "law_residual", n_comp: 1, values: &law_residual });
-    Ok(vtu::vtu_bytes(
-        &points,
-        &cells,
-        &point_data,
-        &[],
-        &[IntField { name: "interface", values: &iface_id }, IntField { name: "pair_status", values: &pair_status }],
-    )?)
-}
-
-/// One row per contact pair: position, state and the pair's values; with
-/// water in the joints, `sigma_n` is the total normal stress and the rows
-/// end with the water pressure u and the effective `sigma_n_eff = sigma_n
-/// + u` the law judges.
-fn contact_csv(model: &Model, c: &ContactRun) -> String {
-    let body = model.body_of_node();
-    let changes = unsettled::changes(c);
-    let mut s = String::from(
-        "pair,x,y,z,status,sigma_n,tau_t,tau_b,gap,slip,area,tau_x,tau_y,tau_z,n_x,n_y,n_z,contact,block_i,block_ii",
-    );
-    if c.water.is_some() {
-        s += ",water_pressure,sigma_n_eff";
-    }
-    s += if changes.is_some() { ",changes,law_residual\n" } else { ",law_residual\n" };
-    for (i, (p, r)) in model.pairs.iter().zip(&c.pairs).enumerate() {
-        let x = model.coords[p.k];
-        let t = c.shear(i);
-        let n = c.frames[i][0];
-        s += &format!(
-            "{i},{:.12e},{:.12e},{:.12e},{},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{},{},{}\n",
-            x[0],
-            x[1],
-            x[2],
-            c.states[i].code(),
-            c.sigma_n_total(i),
-            r.tau_t,
-            r.tau_b,
-            r.gap,
-            r.slip,
-            c.areas[i],
-            t[0],
-            t[1],
-            t[2],
-            n[0],
-            n[1],
-            n[2],
-            csv_field(&model.interfaces[p.contact].name),
-            body[p.k],
-            body[p.l]
-        );
-        if c.water.is_some() {
-            s.pop();
-            s += &format!(",{:.12e},{:.12e}\n", c.water_pressure(i), r.sigma_n);
-        }
-        if let Some(k) = &changes {
-            s.pop();
-            s += &format!(",{}\n", k[i]);
-        }
-        s.pop();
-        s += &format!(",{:.6e}\n", c.law_residual.get(i).copied().unwrap_or(0.0));
-    }
-    s
 }
 
 const PROBE_COLUMNS: &str = "probe,point,x,y,z,ux,uy,uz,sxx,syy,szz,sxy,syz,sxz,von_mises,found\n";

@@ -55,7 +55,7 @@ fn header(s: &mut String, run: &Run) {
         st.msh.display(),
         if st.mesh_cached { " (cached)" } else { "" }
     );
-    for w in super::warnings(run) {
+    for w in super::run_warnings::warnings(run) {
         let _ = writeln!(s, "**Warning:** {w}.\n");
     }
 }

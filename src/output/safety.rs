@@ -65,11 +65,11 @@ pub(super) fn stage(run: &Run, staged: &mut Staged, drawn: &mut picture::Drawn) 
     let states: Vec<i32> = super::blocks::at_safety(run).iter().flatten().map(|b| b.state.code()).collect();
     staged.add(
         &format!("{name}_safety.vtu"),
-        super::bodies_vtu(model, &last.u, &last.stresses, run.scene.output.wants("displacement"), &states)?,
+        super::bodies_vtu::bodies_vtu(model, &last.u, &last.stresses, run.scene.output.wants("displacement"), &states)?,
     );
     if let Some(c) = &last.contact {
-        staged.add(&format!("{name}_safety_contact.vtu"), super::contact_vtu(model, c)?);
-        staged.add("safety_contact.csv", super::contact_csv(model, c).into_bytes());
+        staged.add(&format!("{name}_safety_contact.vtu"), super::contact_files::contact_vtu(model, c)?);
+        staged.add("safety_contact.csv", super::contact_files::contact_csv(model, c).into_bytes());
     }
     // the mechanism as it starts: the model deformed and coloured by the
     // displacement since F = 1 (below 1: since the start)

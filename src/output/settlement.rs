@@ -3,7 +3,7 @@
 //! 3D uz) against the load factor, one curve per probe, from the same
 //! samples as `probes_history.csv`. A probe of several points is drawn at
 //! the point that moves most at the last step (named in the legend). The
-//! load factor is the one of [`super::step_times`]: the factor of the one
+//! load factor is the one of [`super::step_times()`]: the factor of the one
 //! load that grows at every step, else the ramp k / load_steps.
 
 use super::number::num;
@@ -61,7 +61,7 @@ pub fn curves(history: &History, factors: &[f64], c: usize) -> Vec<Series> {
 /// The picture of a run with probes and more than one load step.
 pub fn svg(run: &Run, history: &History) -> Result<Vec<u8>, PictureError> {
     let c = if run.scene.analysis.dim() == 3 { 2 } else { 1 };
-    let times = super::step_times(&run.scene);
+    let times = super::step_times::step_times(&run.scene);
     let factors: Vec<f64> = history.iter().map(|h| times.get(h.0.wrapping_sub(1)).copied().unwrap_or(h.1)).collect();
     let series = curves(history, &factors, c);
     if series.iter().all(|s| s.points.is_empty()) {
