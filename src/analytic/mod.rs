@@ -63,7 +63,7 @@ pub enum Analytic {
 /// other's radial displacement (sectors free to slide along radial cuts;
 /// the stresses of Lamé's cylinder do not depend on E), not for bodies
 /// bonded across a material change (the compound cylinder): the report
-/// says so ([`materials_differ`]).
+/// says so ([`paper_tables::materials_differ`]).
 pub fn exact(analytic: &Analytic, model: &Model) -> Vec<Box<dyn Exact>> {
     model
         .bodies
@@ -77,11 +77,6 @@ pub fn exact(analytic: &Analytic, model: &Model) -> Vec<Box<dyn Exact>> {
             }
         })
         .collect()
-}
-
-/// Whether the bodies of a model have different elastic constants (E, nu).
-pub fn materials_differ(model: &Model) -> bool {
-    model.bodies.windows(2).any(|w| w[0].material.e != w[1].material.e || w[0].material.nu != w[1].material.nu)
 }
 
 /// Lamé's cylinder of a `lame_cylinder` `[analytic]`, in the model's

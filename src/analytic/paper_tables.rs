@@ -10,6 +10,7 @@
 use super::lame::Lame;
 use super::solution::Solution;
 use crate::fem::Analysis;
+use crate::model::Model;
 
 /// The paper's Table 1 (r, sigma_r, sigma_theta; units 1e-2 MPa) and Table 2
 /// (r, contact sigma_n), theory and the paper's numerical values (DESIGN.md §3).
@@ -117,5 +118,10 @@ pub struct CylinderCheck {
 /// The tables of one run, for report.md.
 pub(super) fn check(lame: Lame, sol: &Solution) -> CylinderCheck {
     let with_paper = is_paper_cylinder(&lame);
-    CylinderCheck { lame, tables: tables(sol), with_paper, materials_differ: super::materials_differ(sol.model) }
+    CylinderCheck { lame, tables: tables(sol), with_paper, materials_differ: materials_differ(sol.model) }
+}
+
+/// Whether the bodies of a model have different elastic constants (E, nu).
+pub fn materials_differ(model: &Model) -> bool {
+    model.bodies.windows(2).any(|w| w[0].material.e != w[1].material.e || w[0].material.nu != w[1].material.nu)
 }

@@ -44,7 +44,7 @@ use crate::parallel::CommExt;
 use crate::results::{Failure, OtherFactor, SafetyRun, SearchCost, SearchKind, StepResult, Trial, Undecided};
 use crate::scene::Safety;
 use recovery::recovered;
-use trials::{trials, undecided, Held, Trials};
+use trials::{kind, trials, undecided, Held, Trials};
 
 pub(super) use below::below_one;
 
@@ -168,14 +168,6 @@ struct Searched {
     trials: Vec<Trial>,
     iterations: usize,
     residual: f64,
-}
-
-/// What a scene's `[safety]` searches.
-fn kind(options: &Safety) -> SearchKind {
-    match options.raise {
-        Some(_) => SearchKind::Load,
-        None => SearchKind::Strength(options.strengths),
-    }
 }
 
 /// Brackets and bisects F from the state at F = 1, names the failing

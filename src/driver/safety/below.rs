@@ -16,7 +16,7 @@
 //! with the load steps' error.
 
 use super::recovery::recovered;
-use super::trials::{trials, undecided, Held, Trials};
+use super::trials::{kind, trials, undecided, Held, Trials};
 use crate::contact::safety::{self as reduction, Verdict};
 use crate::contact::{self, History, Outcome};
 use crate::driver::condense::Parts;
@@ -97,7 +97,7 @@ pub(in crate::driver) fn below_one(
     let error = found.error(step, options, at_one.expect("rank 0 knows the failure"));
     let du = last.as_ref().map_or_else(Vec::new, |l| l.u.clone());
     let safety = SafetyRun {
-        kind: super::kind(options),
+        kind: kind(options),
         factor: found.held.as_ref().map(|h| h.factor),
         fails_at: found.fails.as_ref().map(|f| f.0),
         failure: found.fails.map(|f| f.1),

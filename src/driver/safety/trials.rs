@@ -19,7 +19,7 @@ use crate::contact::{self, Failed, History, Outcome, PairLaw};
 use crate::driver::progress::progress;
 use crate::driver::run_options::RunOptions;
 use crate::driver::steps::Step;
-use crate::results::{state_counts, Failure, FailureKind, Trial, Undecided};
+use crate::results::{state_counts, Failure, FailureKind, SearchKind, Trial, Undecided};
 use crate::scene::Safety;
 
 /// Increments a trial that did not converge is retried in.
@@ -337,4 +337,12 @@ pub(super) fn undecided(u: &[(f64, Failure)]) -> Vec<Undecided> {
             cycled: matches!(e.kind, crate::results::FailureKind::NotConverged { cycled: true }),
         })
         .collect()
+}
+
+/// What a scene's `[safety]` searches.
+pub(super) fn kind(options: &Safety) -> SearchKind {
+    match options.raise {
+        Some(_) => SearchKind::Load,
+        None => SearchKind::Strength(options.strengths),
+    }
 }
