@@ -10,6 +10,14 @@
 //! modules, `tests.rs`, files under a `tests/` folder) are left out. A
 //! module and its own `mod.rs` (or `foo.rs` of `foo/`) are not counted: the
 //! parent declares the child. The test fails naming every circle left.
+//!
+//! And no child imports its parent (issue 33): a parent module's file
+//! (`mod.rs`, or `foo.rs` of `foo/`) is the folder's entry point and its
+//! re-exports; what its children share lives in leaf files named for what
+//! it is (`contact/system/relation.rs`), so no import runs back up inside a
+//! folder. An item an ancestor's file defines (not re-exports), named by a
+//! child in a `use` or by a path in code, fails the second test, unless
+//! `CALLS_BACK` says why the child calls back into its parent.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -102,6 +110,30 @@ fn use_tree(chunk: &str) -> Option<&str> {
     })
 }
 
+/// The full module path a `use` path names from the file `here`; None for
+/// paths outside the crate (std, other crates).
+fn resolve(files: &BTreeMap<Vec<String>, PathBuf>, here: &[String], p: &str) -> Option<Vec<String>> {
+    let segs: Vec<&str> = p.split("::").filter(|s| !s.is_empty()).collect();
+    let (mut base, mut rest) = (here.to_vec(), &segs[..]);
+    match rest.first() {
+        Some(&"crate") => {
+            base.clear();
+            rest = &rest[1..];
+        }
+        Some(&"super") | Some(&"self") => {
+            while let Some(&s) = rest.first().filter(|s| **s == "super" || **s == "self") {
+                if s == "super" {
+                    base.pop();
+                }
+                rest = &rest[1..];
+            }
+        }
+        Some(first) if files.contains_key(&[here.to_vec(), vec![first.to_string()]].concat()) => {}
+        _ => return None,
+    }
+    Some(base.into_iter().chain(rest.iter().map(|s| s.to_string())).collect())
+}
+
 /// The file modules each file imports from (parents and children left out).
 fn edges(files: &BTreeMap<Vec<String>, PathBuf>) -> BTreeMap<Vec<String>, BTreeSet<Vec<String>>> {
     let mut out: BTreeMap<Vec<String>, BTreeSet<Vec<String>>> = BTreeMap::new();
@@ -109,25 +141,7 @@ fn edges(files: &BTreeMap<Vec<String>, PathBuf>) -> BTreeMap<Vec<String>, BTreeS
         let text = code(&std::fs::read_to_string(path).expect("a source file"));
         for stmt in text.split(';').filter_map(use_tree) {
             for p in expand(stmt) {
-                let segs: Vec<&str> = p.split("::").filter(|s| !s.is_empty()).collect();
-                let (mut base, mut rest) = (here.clone(), &segs[..]);
-                match rest.first() {
-                    Some(&"crate") => {
-                        base.clear();
-                        rest = &rest[1..];
-                    }
-                    Some(&"super") | Some(&"self") => {
-                        while let Some(&s) = rest.first().filter(|s| **s == "super" || **s == "self") {
-                            if s == "super" {
-                                base.pop();
-                            }
-                            rest = &rest[1..];
-                        }
-                    }
-                    Some(first) if files.contains_key(&[here.clone(), vec![first.to_string()]].concat()) => {}
-                    _ => continue,
-                }
-                let full: Vec<String> = base.iter().cloned().chain(rest.iter().map(|s| s.to_string())).collect();
+                let Some(full) = resolve(files, here, &p) else { continue };
                 // the longest prefix that is a file of its own
                 let Some(target) = (0..=full.len()).rev().map(|k| full[..k].to_vec()).find(|m| files.contains_key(m))
                 else {
@@ -355,4 +369,128 @@ fn no_function_in_src_is_over_80_lines() {
     }
     assert!(files.len() > 50 && seen > 1000, "the source was read: {} files, {seen} functions", files.len());
     assert!(long.is_empty(), "functions over {MOST_LINES} lines (split each into named steps):\n{}", long.join("\n"));
+}
+
+/// Where `code` opens and closes braces: the depth before each line
+/// (string and character literals skipped, so `"{{"` does not count).
+fn line_depths(code: &str) -> Vec<(i32, &str)> {
+    let mut out = Vec::new();
+    let (mut depth, mut in_str, mut raw_hashes): (i32, bool, Option<usize>) = (0, false, None);
+    for line in code.lines() {
+        out.push((if in_str { -1 } else { depth }, line));
+        let chars: Vec<char> = line.chars().collect();
+        let mut i = 0;
+        while i < chars.len() {
+            let c = chars[i];
+            if in_str {
+                match (c, raw_hashes) {
+                    ('\\', None) => i += 1,
+                    ('"', None) => in_str = false,
+                    ('"', Some(h)) if chars[i + 1..].iter().take(h).filter(|&&x| x == '#').count() == h => {
+                        in_str = false;
+                        i += h;
+                    }
+                    _ => {}
+                }
+            } else if c == '"' {
+                let hashes = chars[..i].iter().rev().take_while(|&&x| x == '#').count();
+                let raw = i > hashes && chars[i - hashes - 1] == 'r';
+                (in_str, raw_hashes) = (true, raw.then_some(hashes));
+            } else if c == '\'' && chars.get(i + 1) == Some(&'\\') {
+                i += chars[i + 2..].iter().position(|&x| x == '\'').map_or(chars.len(), |p| p + 2);
+            } else if c == '\'' && chars.get(i + 2) == Some(&'\'') {
+                i += 2;
+            } else if c == '{' {
+                depth += 1;
+            } else if c == '}' {
+                depth -= 1;
+            }
+            i += 1;
+        }
+    }
+    out
+}
+
+/// The items a module's own file defines at its top level: structs, enums,
+/// functions, constants, traits, types (not `pub use`, not child modules).
+fn defined(code: &str) -> BTreeSet<String> {
+    const MODIFIERS: &[&str] = &["pub", "crate", "super", "self", "in", "unsafe", "async", "extern", "C", "mut"];
+    const KINDS: &[&str] = &["struct", "enum", "fn", "const", "static", "trait", "type", "union"];
+    let mut out = BTreeSet::new();
+    for (_, line) in line_depths(code).into_iter().filter(|(d, _)| *d == 0) {
+        let words: Vec<&str> =
+            line.split(|c: char| !c.is_alphanumeric() && c != '_').filter(|w| !w.is_empty()).collect();
+        let mut rest = words.into_iter().skip_while(|w| MODIFIERS.contains(w)).peekable();
+        if rest.peek().is_some_and(|w| KINDS.contains(w)) {
+            // `const fn f`, `static mut X`: the name follows the last keyword
+            out.extend(rest.find(|w| !KINDS.contains(w) && *w != "mut").map(str::to_string));
+        }
+    }
+    out
+}
+
+/// The paths written out in code (`super::num(v)`, `crate::driver::say`),
+/// outside `use` trees as well as in them.
+fn inline_paths(code: &str) -> Vec<String> {
+    let word = |c: char| c.is_alphanumeric() || c == '_' || c == ':';
+    let mut out = Vec::new();
+    for start in ["super::", "crate::"] {
+        for (at, _) in code.match_indices(start) {
+            if code[..at].chars().next_back().is_some_and(word) {
+                continue;
+            }
+            let path: String = code[at..].chars().take_while(|&c| word(c)).collect();
+            out.push(path.trim_end_matches(':').to_string());
+        }
+    }
+    out
+}
+
+/// Files allowed to import an item their parent module's file defines, and
+/// why: the parent's entry point or main type, which the child calls back
+/// into.
+const CALLS_BACK: &[(&str, &str, &str)] = &[
+    ("contact/cutting.rs", "iterate", "each piece of a cut load step is solved by the module's entry point"),
+    ("contact/system/junction/tie_cache.rs", "Junction", "the cache memoises the junction's own null space"),
+    ("fem/shape/inverse.rs", "eval", "the inverse map's Newton steps evaluate the shape functions themselves"),
+    ("output/files/stage.rs", "Staged", "the folder's entry point; in a leaf, staged.rs and stage.rs would circle"),
+];
+
+#[test]
+fn no_child_file_imports_what_its_parent_module_file_defines() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let files = modules(&root);
+    let defs: BTreeMap<&Vec<String>, BTreeSet<String>> =
+        files.iter().map(|(m, p)| (m, defined(&code(&std::fs::read_to_string(p).expect("a source file"))))).collect();
+    let name =
+        |m: &Vec<String>| files[m].strip_prefix(&root).map_or_else(|_| String::new(), |p| p.display().to_string());
+    let (mut found, mut checked) = (BTreeSet::new(), 0);
+    for (here, path) in &files {
+        let text = code(&std::fs::read_to_string(path).expect("a source file"));
+        let trees = text.split(';').filter_map(use_tree).flat_map(expand);
+        for p in trees.chain(inline_paths(&text)) {
+            let Some(full) = resolve(&files, here, &p) else { continue };
+            let Some(target) = (0..full.len()).rev().map(|k| full[..k].to_vec()).find(|m| files.contains_key(m)) else {
+                continue;
+            };
+            if target.len() >= here.len() || !here.starts_with(&target) {
+                continue;
+            }
+            checked += 1;
+            let item = &full[target.len()];
+            let allowed = CALLS_BACK.iter().any(|(f, i, _)| *f == name(here) && i == item);
+            if defs[&target].contains(item) && !allowed {
+                found.insert(format!("{} imports `{item}` from {}", name(here), name(&target)));
+            }
+        }
+    }
+    assert!(checked > 50, "the source was read: {checked} paths into a parent module");
+    let listed: Vec<String> = found.into_iter().collect();
+    assert!(
+        listed.is_empty(),
+        "{} imports of an item a parent module's file defines; move it to a leaf file named for what it is \
+         and import it from there (or, for the parent's entry point, say why in CALLS_BACK):\n{}",
+        listed.len(),
+        listed.join("\n")
+    );
 }
