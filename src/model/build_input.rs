@@ -2,14 +2,9 @@
 //! and the description), and the messages that name the input's key and the
 //! mesh when a physical group is missing, empty or of the wrong dimension.
 
-use super::errors::ModelError;
+use super::errors::{dim_name, ModelError};
 use super::spec::ModelSpec;
 use crate::mesh::{Group, Mesh};
-
-/// "point", "curve", "surface" or "volume".
-pub(super) fn dim_name(d: usize) -> &'static str {
-    ["point", "curve", "surface", "volume"][d.min(3)]
-}
 
 /// What every step reads, and the messages that name the input and the mesh.
 pub(super) struct Builder<'a> {

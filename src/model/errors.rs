@@ -6,8 +6,12 @@
 //! driver's, added once ([`ModelError::about_input`] says which do). Plain
 //! data throughout, so an error travels between MPI ranks intact.
 
-use super::build_input::dim_name;
 use crate::fem::Analysis;
+
+/// "point", "curve", "surface" or "volume".
+pub(super) fn dim_name(d: usize) -> &'static str {
+    ["point", "curve", "surface", "volume"][d.min(3)]
+}
 
 /// Why a model could not be built from its mesh and description, or its
 /// parts not solved.
