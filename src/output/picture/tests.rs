@@ -758,7 +758,6 @@ fn a_wall_is_plotted_across_its_length() {
 #[test]
 fn a_joint_set_of_many_planes_gets_a_plan_per_plane_and_one_overview() {
     use super::sheets::tests::{grid, model_of};
-    use crate::contact::law::PairResult;
     let (mut coords, mut quads) = (Vec::new(), Vec::new());
     for z in 0..5 {
         grid(&mut coords, &mut quads, [6, 3], |s, t| [3.0 * s, 2.0 * t, z as f64]);
@@ -786,15 +785,7 @@ fn a_joint_set_of_many_planes_gets_a_plan_per_plane_and_one_overview() {
         })
         .collect();
     let c = crate::results::ContactRun {
-        pairs: (0..n)
-            .map(|k| PairResult {
-                sigma_n: -1.0 - model.coords[k][2],
-                tau_t: 0.1 * model.coords[k][0],
-                tau_b: 0.0,
-                gap: 0.0,
-                slip: 0.0,
-            })
-            .collect(),
+        pairs: model.coords.iter().map(|x| joint_set_pair(*x)).collect(),
         frames: vec![[[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]; n],
         areas: vec![0.1; n],
         states,
@@ -836,6 +827,12 @@ fn a_joint_set_of_many_planes_gets_a_plan_per_plane_and_one_overview() {
     let svg = interface_plot_svg(&model, &c).expect("plot");
     assert!(svg.contains("joints 1 of 7, z = 0") && svg.contains("joints 7 of 7, x = 2.5"));
     keep("jointset_interfaces.png", &interface_plot_png(&model, &c).expect("plot"));
+}
+
+/// The stresses of the joint-set test's pair at `x`: the pressure grows
+/// with depth, the shear along x.
+fn joint_set_pair(x: [f64; 3]) -> crate::contact::law::PairResult {
+    crate::contact::law::PairResult { sigma_n: -1.0 - x[2], tau_t: 0.1 * x[0], tau_b: 0.0, gap: 0.0, slip: 0.0 }
 }
 
 /// Issue 21: the pictures' errors are typed, and a caller tells them apart
