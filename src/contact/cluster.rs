@@ -39,7 +39,10 @@
 //! [`MAX_SETS`]).
 //!
 //! A candidate is tried on the whole interface: the cluster's pairs are
-//! held at it while every other pair is judged as usual. Once the others
+//! held at it while the other pairs are judged as usual but change one at
+//! a time, the most violated first (as under the cycle breaker: where
+//! they all changed at once, the pairs round a cluster kept changing
+//! whatever set it held). Once the others
 //! keep their states and the friction has settled, the candidate is taken
 //! if every cluster pair is judged to keep its state too (the law holds at
 //! every pair: the iteration has converged), and rejected otherwise, as it

@@ -333,6 +333,19 @@ impl<'p> Newton<'p> {
         self.search.watch(&w, &mut judged.next);
     }
 
+    /// While a cluster's set is held: of the other pairs the verdict
+    /// changes, only the most violated one changes (the cycle breaker's
+    /// rule), so that the pairs round the cluster settle under the set
+    /// rather than cycle round it.
+    fn one_change(&self, h: &History, judged: &mut Judged) {
+        let v = &judged.violation;
+        let changing = (0..judged.next.len()).filter(|&p| !self.search.pins(p) && judged.next[p] != h.states[p]);
+        let worst = changing.clone().max_by(|&a, &b| v[a].total_cmp(&v[b]).then(b.cmp(&a)));
+        for p in changing.filter(|&p| Some(p) != worst).collect::<Vec<_>>() {
+            judged.next[p] = h.states[p];
+        }
+    }
+
     /// Pairs that open in tension below their f_t: the Coulomb apex c / f
     /// opened them.
     fn apex_openings(&self, h: &History, next: &[ContactState]) -> usize {
@@ -512,7 +525,7 @@ impl Rule for Newton<'_> {
         }
         match self.search.judge(&h.states, &mut judged.next, settled && !solution.loose) {
             Some(Step::Solved) => summary.clusters_solved += 1,
-            Some(Step::Held) => {}
+            Some(Step::Held) => self.one_change(h, &mut judged),
             Some(Step::GaveUp) | None => self.break_or_pin(h, &mut judged, summary, tolerance, solution.loose),
         }
         summary.apex_openings += self.apex_openings(h, &judged.next);
