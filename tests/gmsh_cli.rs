@@ -2,7 +2,8 @@
 //! ([`gmsh::run_in`], gmsh working in a directory it is handed): its
 //! version, the file it writes and where, the `.geo` commands it refuses,
 //! its time limit, its errors quoted; and the MSH fixtures that the
-//! reader's unit tests read (tests/fixtures/msh/, made by its `make.sh`)
+//! reader's and the pictures' unit tests read (tests/fixtures/msh/, made
+//! by its `make.sh`)
 //! against what the installed gmsh writes now. What needs no gmsh run (the
 //! cache key, the checks of a job) is unit-tested in src/mesh/gmsh.rs.
 
@@ -136,9 +137,10 @@ fn gmsh_errors_are_quoted_and_leave_no_mesh() {
     assert!(names.is_empty(), "temporary files left: {names:?}");
 }
 
-/// The fixtures of the reader's unit tests are what this gmsh writes from
-/// their `.geo` files: `make.sh` run into a scratch directory gives, file
-/// by file, the same mesh (or the same refusal) as the committed file.
+/// The fixtures of the reader's and the pictures' unit tests are what this
+/// gmsh writes from their `.geo` files: `make.sh` run into a scratch
+/// directory gives, file by file, the same mesh (or the same refusal) as
+/// the committed file.
 #[test]
 fn the_msh_fixtures_are_what_gmsh_writes() {
     let case = Case::new("gmsh-cli-fixtures");
@@ -147,7 +149,7 @@ fn the_msh_fixtures_are_what_gmsh_writes() {
     assert!(out.status.success(), "make.sh: {}", String::from_utf8_lossy(&out.stderr));
     let names: Vec<String> = dir_entries(&fixtures).into_iter().filter(|n| n.ends_with(".msh")).collect();
     assert_eq!(names, dir_entries(&case.dir).into_iter().filter(|n| n.ends_with(".msh")).collect::<Vec<_>>());
-    assert_eq!(names.len(), 35, "{names:?}");
+    assert_eq!(names.len(), 44, "{names:?}");
     for name in &names {
         let committed = read_in(&fixtures, name);
         let fresh = read_in(&case.dir, name);
