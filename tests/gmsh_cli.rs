@@ -149,7 +149,7 @@ fn the_msh_fixtures_are_what_gmsh_writes() {
     assert!(out.status.success(), "make.sh: {}", String::from_utf8_lossy(&out.stderr));
     let names: Vec<String> = dir_entries(&fixtures).into_iter().filter(|n| n.ends_with(".msh")).collect();
     assert_eq!(names, dir_entries(&case.dir).into_iter().filter(|n| n.ends_with(".msh")).collect::<Vec<_>>());
-    assert_eq!(names.len(), 44, "{names:?}");
+    assert_eq!(names.len(), 50, "{names:?}");
     for name in &names {
         let committed = read_in(&fixtures, name);
         let fresh = read_in(&case.dir, name);
