@@ -4,11 +4,12 @@
 //!
 //! The semismooth Newton iteration judges every pair from the last solve.
 //! At a crossing whose slipping pairs wedge it (their friction's gain on
-//! their pressures at or beyond 1) no iterate exists with all of them
-//! slipping: with the states held the friction residual grows from solve
-//! to solve (a stall), or the cycle breaker turns one pair back and forth
-//! for ever (a cycle). One of them must stick, and the iteration, judging
-//! each pair alone, never picks which.
+//! their pressures at or beyond 1) the iterates with all of them slipping
+//! do not settle: with the states held the friction residual grows from
+//! solve to solve (a stall), or the cycle breaker turns one pair back and
+//! forth for ever (a cycle). Either their pressures must be solved
+//! together or one of them must stick, and the iteration, judging each
+//! pair alone, does neither.
 //!
 //! [`Search`] watches the verdicts. It fires when
 //!
@@ -42,8 +43,8 @@
 //! held at it while the other pairs are judged as usual but change one at
 //! a time, the most violated first (as under the cycle breaker: where
 //! they all changed at once, the pairs round a cluster kept changing
-//! whatever set it held). Once the others
-//! keep their states and the friction has settled, the candidate is taken
+//! whatever set it held). Once the others keep their states and the
+//! friction has settled, the candidate is taken
 //! if every cluster pair is judged to keep its state too (the law holds at
 //! every pair: the iteration has converged), and rejected otherwise, as it
 //! is after [`TRIAL`] iterations that do not settle or when it leaves a
