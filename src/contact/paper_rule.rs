@@ -7,12 +7,15 @@
 //! until that shear has settled. A state set that comes back after others is
 //! a cycle: it is reported, not resolved (the robust rule resolves it).
 //! Pairs that opened or slipped in a converged step are judged cracked in
-//! the steps after it (f_t = 0, the residual cohesion), and so are those
-//! solved slipping or open earlier in this step ([`super::cracked`]), as by
-//! the robust rule.
+//! the steps after it (f_t = 0, the residual cohesion), as are those open
+//! or slipping now. Unlike the robust rule, a pair solved open or slipping
+//! earlier in this step is not: the paper's iteration passes through sets
+//! that open a whole joint on its way (a joint pulled below its f_t opens
+//! at the second solve and closes again), and keeping those cracks would
+//! leave it open (tests/contact.rs, the intact joint under a pull).
 
 use super::frame::tangential;
-use super::history::{cracked, History};
+use super::history::History;
 use super::iteration::{Rule, Verdict};
 use super::law::{judge_paper, ContactState, PairResult};
 use super::options::SlipLaw;
@@ -37,7 +40,7 @@ impl<'p> Paper<'p> {
         if h.states[p] != ContactState::Slip || self.laws[p].slip == SlipLaw::Frictionless {
             return [0.0; 3];
         }
-        let t = self.laws[p].strength.shear_limit(h.sigma_n[p], cracked(h, p)) * self.problem.area(p);
+        let t = self.laws[p].strength.shear_limit(h.sigma_n[p], paper_cracked(h, p)) * self.problem.area(p);
         [0.0, t * h.dir[p][1], t * h.dir[p][2]]
     }
 }
@@ -48,7 +51,7 @@ impl Rule for Paper<'_> {
             .map(|p| {
                 Relation::simple(h.states[p], h.offset[p], self.friction(h, p)).within(limit(
                     &self.laws[p],
-                    cracked(h, p),
+                    paper_cracked(h, p),
                     self.problem.area(p),
                 ))
             })
@@ -71,7 +74,7 @@ impl Rule for Paper<'_> {
             None => r[p],
         };
         let next: Vec<ContactState> =
-            (0..n).map(|p| judge_paper(&judged(p), &self.laws[p].strength, h.cracked[p] || h.cracking[p])).collect();
+            (0..n).map(|p| judge_paper(&judged(p), &self.laws[p].strength, h.cracked[p])).collect();
         summary.cycled = next != h.states && summary.history.contains(&next);
 
         // carry the new states: friction directions, offsets; and how far
@@ -80,7 +83,7 @@ impl Rule for Paper<'_> {
         for p in 0..n {
             let (st, nx) = (h.states[p], next[p]);
             let incr = tangential(sub(solution.rel[p], h.rel_start[p]));
-            let cr = cracked(h, p);
+            let cr = paper_cracked(h, p);
             let coulomb = st == ContactState::Slip && self.laws[p].slip == SlipLaw::Coulomb;
             let limit = |sigma_n: f64| self.laws[p].strength.shear_limit(sigma_n, cr);
             if nx == ContactState::Slip {
@@ -117,4 +120,10 @@ impl Rule for Paper<'_> {
         }
         Verdict { next, settled: shear_moved <= 1e-12 * scale_s.max(f64::MIN_POSITIVE) }
     }
+}
+
+/// Whether pair `p` is judged cracked by the paper rule: in a converged
+/// step, or open or slipping now (not the robust rule's in-step cracks).
+fn paper_cracked(h: &History, p: usize) -> bool {
+    h.cracked[p] || h.states[p] != ContactState::Stick
 }
