@@ -65,9 +65,14 @@ const FORCE_TOL: f64 = 1e-12;
 
 /// Once the states have cycled, they change only when the slipping
 /// pairs' friction is within this fraction of the largest force of the
-/// law, or after this many iterations in a row that kept them.
+/// law, or after this many iterations in a row that kept them, or once
+/// a held solve has not cut the friction residual of the one before by
+/// this factor (from the third held solve: the first follows a loose
+/// solve): friction that turns between two residuals does not settle,
+/// and waiting for it is lost.
 const SETTLE_FIRST: f64 = 1e-8;
 const MAX_HOLDS: usize = 4;
+const HOLD_GAIN: f64 = 0.5;
 
 /// How many times a step keeps a pair stuck under parts a set left free
 /// to slide that their slipping pairs hold ([`Newton::overshoot`]).
@@ -89,8 +94,10 @@ pub(super) struct Newton<'p> {
     rel: Vec<[f64; 3]>,
     /// A cycle was met: from then on only the most violated pair changes.
     one_at_a_time: bool,
-    /// Iterations in a row that kept the states for the friction to settle.
+    /// Iterations in a row that kept the states for the friction to settle,
+    /// and the friction residual of the last of them.
     holds: usize,
+    last_hold: f64,
     /// The last solve's forces of junction pairs as if their locked axes
     /// were tied (what they are judged by: see `InterfaceSolution::as_tied`).
     as_tied: Vec<Option<[f64; 3]>>,
@@ -138,6 +145,7 @@ impl<'p> Newton<'p> {
             rel: h.rel_start.clone(),
             one_at_a_time: false,
             holds: 0,
+            last_hold: f64::INFINITY,
             as_tied: vec![None; laws.len()],
             water: Vec::new(),
             judged_from: Vec::new(),
@@ -285,7 +293,8 @@ impl<'p> Newton<'p> {
     /// A state set met before (a cycle): from then on only the most
     /// violated pair changes, once the slipping pairs' friction has
     /// settled under the current states (at most [`MAX_HOLDS`] iterations
-    /// in a row keep them): a change judged from a linearisation that has
+    /// in a row keep them, while the friction residual keeps falling by
+    /// [`HOLD_GAIN`]): a change judged from a linearisation that has
     /// not settled is as likely to be undone by the next one (2. of the
     /// iteration). True when this iteration met the cycle.
     fn break_cycle(&mut self, h: &History, judged: &mut Judged, seen: &[Vec<ContactState>]) -> bool {
@@ -295,12 +304,15 @@ impl<'p> Newton<'p> {
         }
         let first = !self.one_at_a_time;
         self.one_at_a_time = true;
-        if judged.residual > SETTLE_FIRST * judged.scale_f && self.holds < MAX_HOLDS {
+        let settling = self.holds < 2 || judged.residual < HOLD_GAIN * self.last_hold;
+        if judged.residual > SETTLE_FIRST * judged.scale_f && self.holds < MAX_HOLDS && settling {
             self.holds += 1;
+            self.last_hold = judged.residual;
             judged.next.clone_from(&h.states);
             return first;
         }
         self.holds = 0;
+        self.last_hold = f64::INFINITY;
         let v = &judged.violation;
         let worst = changing.iter().copied().max_by(|&a, &b| v[a].total_cmp(&v[b]).then(b.cmp(&a)));
         for &p in changing.iter().filter(|&&p| Some(p) != worst) {
