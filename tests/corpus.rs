@@ -1,0 +1,278 @@
+//! The corpus of scenes engineers build (issue 28): tests/corpus/ holds
+//! scenes written from scratch the way users model (joint sets by
+//! orientation, in-situ stress by k0 and by a full tensor, load steps,
+//! quadratic and linear elements, coarse and fine meshes). Each is solved
+//! with the binary; from its summary.json this asserts convergence, the
+//! law's residual below 1e-6 of the largest traction, at most 30 contact
+//! iterations per load step, and a closed form where one exists (the
+//! dam's base force, the slope's and the cavern's reactions). Every solved
+//! scene adds its row to results/corpus/corpus.md (docs/corpus.md holds a
+//! run of them all). The fast scenes run in `make test`; the rest, and the
+//! scenes that do not converge today (findings, docs/corpus.md), in
+//! `make stress`.
+
+mod common;
+
+use std::path::PathBuf;
+
+use common::{json_vec3, Case};
+use serde_json::Value;
+
+/// Iterations per load step that every corpus scene keeps within.
+const MAX_ITERATIONS_PER_STEP: u64 = 30;
+
+/// g and the densities of the corpus scenes (1e3 t/m^3, m/s^2: forces in MN).
+const G: f64 = 9.81;
+const ROCK: f64 = 2.6e-3;
+const CONCRETE: f64 = 2.4e-3;
+
+/// One corpus scene: its files in tests/corpus/ and its element kind.
+struct Scene {
+    toml: &'static str,
+    geo: &'static str,
+    element: &'static str,
+}
+
+/// What a solved scene's summary.json says, as the table shows it.
+struct Solved {
+    summary: Value,
+    seconds: f64,
+}
+
+fn solve(scene: &Scene) -> Solved {
+    let stem = scene.toml.trim_end_matches(".toml");
+    let case = Case::new(&format!("corpus-{stem}"));
+    for f in [scene.toml, scene.geo] {
+        case.copy(&format!("tests/corpus/{f}"));
+    }
+    let out = format!("results/{stem}");
+    let start = std::time::Instant::now();
+    let run = case.cli(&["solve", scene.toml, "--out", &out, "--quiet"]);
+    let seconds = start.elapsed().as_secs_f64();
+    let summary_path = case.dir.join(&out).join("summary.json");
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(summary_path.exists(), "{stem}: no summary.json; stderr:\n{stderr}");
+    let solved = Solved { summary: common::json(&summary_path), seconds };
+    write_row(stem, scene.element, &solved);
+    assert!(run.status.success(), "{stem}: the run failed:\n{stderr}");
+    solved
+}
+
+fn num(v: &Value) -> f64 {
+    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
+}
+
+/// Iterations of each load step.
+fn per_step(s: &Value) -> Vec<u64> {
+    let steps = s["steps"].as_array().expect("summary.json steps");
+    steps.iter().map(|st| st["contact"]["iterations"].as_u64().expect("iterations")).collect()
+}
+
+/// The contract of every corpus scene: converged, the law met, at most
+/// `bound` iterations in every load step.
+fn assert_converges(stem: &str, s: &Value, bound: u64) {
+    let c = &s["contact"];
+    assert_eq!(c["converged"], Value::Bool(true), "{stem}: not converged: {}", c["states"]);
+    let law = num(&c["law_residual"]["relative"]);
+    assert!(law < 1e-6, "{stem}: the law's residual is {law:e} of the largest traction");
+    let steps = per_step(s);
+    assert!(steps.iter().all(|&k| k <= bound), "{stem}: iterations per step {steps:?} > {bound}");
+}
+
+/// The sum of the support reactions.
+fn total_reaction(s: &Value) -> [f64; 3] {
+    let mut sum = [0.0; 3];
+    for r in s["reactions"]["supports"].as_array().expect("reactions.supports") {
+        let f = r["force"].as_array().expect("force");
+        for (i, v) in f.iter().enumerate() {
+            sum[i] += num(v);
+        }
+    }
+    sum
+}
+
+/// The force a contact group carries.
+fn group_force(s: &Value, name: &str) -> [f64; 3] {
+    let groups = s["contact"]["groups"].as_array().expect("contact.groups");
+    let g = groups.iter().find(|g| g["name"] == name).unwrap_or_else(|| panic!("no contact group {name}"));
+    json_vec3(&g["force"])
+}
+
+fn close(what: &str, got: f64, want: f64, rel: f64) {
+    assert!((got - want).abs() <= rel * want.abs(), "{what}: {got} against the closed form {want} (to {rel:e})");
+}
+
+// ---------------------------------------------------------------- the table
+
+const HEADER: &str = "| scene | element | DOFs (interface) | pairs | steps | iterations per step | time | law residual | stick / slip / open | converged |\n|---|---|---|---|---|---|---|---|---|---|\n";
+
+fn corpus_dir() -> PathBuf {
+    common::repo_root().join("results/corpus")
+}
+
+/// Writes this scene's row beside the others' and the table of them all.
+fn write_row(stem: &str, element: &str, solved: &Solved) {
+    let s = &solved.summary;
+    let c = &s["contact"];
+    let st = &c["states"];
+    let steps: Vec<String> = per_step(s).iter().map(u64::to_string).collect();
+    let row = format!(
+        "| {stem} | {element} | {} ({}) | {} | {} | {} | {:.1} s | {:.1e} | {} / {} / {} | {} |\n",
+        s["dofs"]["total"],
+        s["dofs"]["interface"],
+        c["pairs"],
+        steps.len(),
+        steps.join(", "),
+        solved.seconds,
+        num(&c["law_residual"]["relative"]),
+        st["stick"],
+        st["slip"],
+        st["open"],
+        if c["converged"] == Value::Bool(true) { "yes" } else { "**no**" }
+    );
+    let rows = corpus_dir().join("rows");
+    std::fs::create_dir_all(&rows).expect("results/corpus/rows");
+    std::fs::write(rows.join(format!("{stem}.md")), row).expect("write the row");
+    let mut names: Vec<PathBuf> = std::fs::read_dir(&rows).expect("rows").flatten().map(|e| e.path()).collect();
+    names.sort();
+    let mut table = String::from(HEADER);
+    for p in names {
+        table.push_str(&std::fs::read_to_string(&p).unwrap_or_default());
+    }
+    // written beside, then renamed: tests running at once never leave half a table
+    let tmp = corpus_dir().join(format!(".corpus.md.{stem}"));
+    std::fs::write(&tmp, table).expect("write the table");
+    std::fs::rename(&tmp, corpus_dir().join("corpus.md")).expect("rename the table");
+}
+
+// ---------------------------------------------------------------- 2D
+
+const SLOPE_GEO: &str = "slope2d.geo";
+
+/// The rock cut's section: 70 x 10 below the bench, and the 20 m face at
+/// 65 degrees with 50 m of rock behind its toe.
+fn slope_area() -> f64 {
+    70.0 * 10.0 + 50.0 * 20.0 - 0.5 * 20.0 / 65f64.to_radians().tan() * 20.0
+}
+
+/// The supports carry the rock's weight, and nothing sideways.
+fn assert_slope_reactions(stem: &str, s: &Value) {
+    let weight = ROCK * G * slope_area();
+    let r = total_reaction(s);
+    close(&format!("{stem}: vertical reaction"), r[1], weight, 1e-6);
+    assert!(r[0].abs() <= 1e-6 * weight, "{stem}: horizontal reaction {} of the weight {weight}", r[0]);
+}
+
+fn slope(toml: &'static str, element: &'static str) {
+    let solved = solve(&Scene { toml, geo: SLOPE_GEO, element });
+    let stem = toml.trim_end_matches(".toml");
+    assert_converges(stem, &solved.summary, MAX_ITERATIONS_PER_STEP);
+    assert_eq!(per_step(&solved.summary).len(), 4, "{stem}: gravity in four load steps");
+    assert_slope_reactions(stem, &solved.summary);
+}
+
+#[test]
+fn slope2d_cohesive_bedding_near_its_limit_in_four_steps() {
+    slope("slope2d.toml", "tri6");
+}
+
+#[test]
+fn slope2d_in_linear_elements() {
+    slope("slope2d_linear.toml", "tri3 / quad4");
+}
+
+#[test]
+fn slope2d_on_a_fine_mesh() {
+    slope("slope2d_fine.toml", "tri6");
+}
+
+#[test]
+#[ignore = "issue 28: does not converge: step 4 cycles in the cross set near the east roller (docs/corpus.md)"]
+fn slope2d_on_a_finer_mesh_still() {
+    slope("slope2d_lc07.toml", "tri6");
+}
+
+#[test]
+#[ignore = "issue 28: does not converge: step 4 cycles at the crest and a bedding junction (docs/corpus.md)"]
+fn slope2d_with_less_cohesion() {
+    slope("slope2d_c020.toml", "tri6");
+}
+
+/// The dam's base carries its weight and the reservoir's thrust, exactly:
+/// no uplift, the upstream face vertical.
+fn dam(toml: &'static str) {
+    let solved = solve(&Scene { toml, geo: "dam2d.geo", element: "tri6" });
+    let stem = toml.trim_end_matches(".toml");
+    let s = &solved.summary;
+    assert_converges(stem, s, MAX_ITERATIONS_PER_STEP);
+    let (h, b, crest, lift) = (40.0, 30.0, 5.0, 15.0);
+    let weight = CONCRETE * G * h * (b + crest) / 2.0;
+    let thrust = 0.5 * 0.00981 * h * h;
+    let base = group_force(s, "base");
+    close(&format!("{stem}: the base's vertical force"), base[1].abs(), weight, 1e-6);
+    close(&format!("{stem}: the base's horizontal force"), base[0].abs(), thrust, 1e-6);
+    // the upper lift on the lift joint: its weight, and the water above it
+    let x_lift = b - (b - crest) * lift / h;
+    let upper = CONCRETE * G * (h - lift) * (x_lift + crest) / 2.0;
+    let lift_joint = group_force(s, "lift_joint");
+    close(&format!("{stem}: the lift joint's vertical force"), lift_joint[1].abs(), upper, 1e-6);
+    close(
+        &format!("{stem}: the lift joint's horizontal force"),
+        lift_joint[0].abs(),
+        0.5 * 0.00981 * (h - lift).powi(2),
+        1e-6,
+    );
+}
+
+#[test]
+fn dam2d_on_jointed_rock_with_the_reservoir_in_steps() {
+    dam("dam2d.toml");
+}
+
+#[test]
+#[ignore = "issue 28: does not converge: step 3 cycles in the foundation's joints (docs/corpus.md)"]
+fn dam2d_on_weaker_foundation_joints() {
+    let solved = solve(&Scene { toml: "dam2d_f070.toml", geo: "dam2d.geo", element: "tri6" });
+    assert_converges("dam2d_f070", &solved.summary, MAX_ITERATIONS_PER_STEP);
+}
+
+// ---------------------------------------------------------------- 3D
+
+/// The cavern: the released in-situ traction, uniform stress over a closed
+/// surface, sums to nothing; the held outer faces carry none.
+#[test]
+fn cavern3d_two_oblique_sets_full_tensor_stress() {
+    let scene = Scene { toml: "cavern3d.toml", geo: "cavern3d.geo", element: "tet10" };
+    let solved = solve(&scene);
+    assert_converges("cavern3d", &solved.summary, MAX_ITERATIONS_PER_STEP);
+    // the wall's area (walls 7 m, roof a half circle of radius 5, floor 10 m, 12 m long)
+    let wall = (2.0 * 7.0 + 10.0 + std::f64::consts::PI * 5.0) * 12.0;
+    let scale = 17.0 * wall;
+    for (i, r) in total_reaction(&solved.summary).iter().enumerate() {
+        assert!(r.abs() <= 1e-6 * scale, "cavern3d: reaction component {i} is {r}, scale {scale}");
+    }
+}
+
+/// The unconfined block mass: the ground carries the rock's weight and
+/// the earthquake's kh = 0.1 of it along x (the slab weighs nothing).
+#[test]
+#[ignore = "issue 28: does not converge: the interface system turns singular in step 1 (docs/corpus.md)"]
+fn blocks3d_unconfined_block_mass() {
+    let scene = Scene { toml: "blocks3d.toml", geo: "blocks3d.geo", element: "tet10" };
+    let solved = solve(&scene);
+    assert_converges("blocks3d", &solved.summary, MAX_ITERATIONS_PER_STEP);
+    let weight = ROCK * G * 10.0 * 6.0 * 6.0;
+    let r = total_reaction(&solved.summary);
+    close("blocks3d: vertical reaction", r[2], weight, 1e-6);
+    close("blocks3d: horizontal reaction", -r[0], 0.1 * weight, 1e-6);
+}
+
+/// The tunnel through four sets: the in-situ stress is geostatic, so no
+/// closed form for the excavated state; converged, the law met.
+#[test]
+#[ignore = "issue 28: converges, but in 39 iterations > 30 (docs/corpus.md); make stress: corpus, 60 s"]
+fn tunnel4sets_k0_bare_opening() {
+    let scene = Scene { toml: "tunnel4sets.toml", geo: "tunnel4sets.geo", element: "tet10" };
+    let solved = solve(&scene);
+    assert_converges("tunnel4sets", &solved.summary, MAX_ITERATIONS_PER_STEP);
+}
