@@ -51,7 +51,11 @@ fn solve(scene: &Scene) -> Solved {
     let seconds = start.elapsed().as_secs_f64();
     let summary_path = case.dir.join(&out).join("summary.json");
     let stderr = String::from_utf8_lossy(&run.stderr);
-    assert!(summary_path.exists(), "{stem}: no summary.json; stderr:\n{stderr}");
+    if !summary_path.exists() {
+        let msg: String = stderr.trim().chars().take(200).collect();
+        save_row(stem, &format!("| {stem} | {} | refused in {seconds:.1} s: {msg}… |\n", scene.element));
+        panic!("{stem}: no summary.json; stderr:\n{stderr}");
+    }
     let solved = Solved { summary: common::json(&summary_path), seconds };
     write_row(stem, scene.element, &solved);
     assert!(run.status.success(), "{stem}: the run failed:\n{stderr}");
@@ -130,6 +134,11 @@ fn write_row(stem: &str, element: &str, solved: &Solved) {
         st["open"],
         if c["converged"] == Value::Bool(true) { "yes" } else { "**no**" }
     );
+    save_row(stem, &row);
+}
+
+/// Saves a scene's row and writes the table of every row saved.
+fn save_row(stem: &str, row: &str) {
     let rows = corpus_dir().join("rows");
     std::fs::create_dir_all(&rows).expect("results/corpus/rows");
     std::fs::write(rows.join(format!("{stem}.md")), row).expect("write the row");
@@ -253,18 +262,29 @@ fn cavern3d_two_oblique_sets_full_tensor_stress() {
     }
 }
 
-/// The unconfined block mass: the ground carries the rock's weight and
-/// the earthquake's kh = 0.1 of it along x (the slab weighs nothing).
-#[test]
-#[ignore = "issue 28: does not converge: the interface system turns singular in step 1 (docs/corpus.md)"]
-fn blocks3d_unconfined_block_mass() {
-    let scene = Scene { toml: "blocks3d.toml", geo: "blocks3d.geo", element: "tet10" };
-    let solved = solve(&scene);
-    assert_converges("blocks3d", &solved.summary, MAX_ITERATIONS_PER_STEP);
+/// The block mass: the ground (and the rollers, where the variant has
+/// them) carries the rock's weight and the earthquake's kh = 0.1 of it
+/// along x (the slab weighs nothing).
+fn blocks(toml: &'static str, element: &'static str) {
+    let solved = solve(&Scene { toml, geo: "blocks3d.geo", element });
+    let stem = toml.trim_end_matches(".toml");
+    assert_converges(stem, &solved.summary, MAX_ITERATIONS_PER_STEP);
     let weight = ROCK * G * 10.0 * 6.0 * 6.0;
     let r = total_reaction(&solved.summary);
-    close("blocks3d: vertical reaction", r[2], weight, 1e-6);
-    close("blocks3d: horizontal reaction", -r[0], 0.1 * weight, 1e-6);
+    close(&format!("{stem}: vertical reaction"), r[2], weight, 1e-6);
+    close(&format!("{stem}: horizontal reaction"), -r[0], 0.1 * weight, 1e-6);
+}
+
+#[test]
+#[ignore = "issue 28: does not converge: refused as a loss of equilibrium in step 1 (docs/corpus.md)"]
+fn blocks3d_unconfined_block_mass() {
+    blocks("blocks3d.toml", "tet10");
+}
+
+#[test]
+#[ignore = "issue 28: does not converge: refused as a loss of equilibrium in step 1 (docs/corpus.md)"]
+fn blocks3d_unconfined_in_linear_elements() {
+    blocks("blocks3d_linear.toml", "tet4");
 }
 
 /// The tunnel through four sets: the in-situ stress is geostatic, so no
@@ -275,4 +295,10 @@ fn tunnel4sets_k0_bare_opening() {
     let scene = Scene { toml: "tunnel4sets.toml", geo: "tunnel4sets.geo", element: "tet10" };
     let solved = solve(&scene);
     assert_converges("tunnel4sets", &solved.summary, MAX_ITERATIONS_PER_STEP);
+}
+
+#[test]
+#[ignore = "issue 28: does not converge: refused as held by nothing in step 1 (docs/corpus.md)"]
+fn blocks3d_partly_confined_in_linear_elements() {
+    blocks("blocks3d_confined.toml", "tet4");
 }
