@@ -169,13 +169,19 @@ impl Trial {
 ///   pair that has moved along the joint since its stick reference closes
 ///   slipping that way (it carries no force yet: |ξ| = c |s| >= b(0)),
 ///   otherwise it sticks;
-/// - stick: slipping when `|λ_T| >= b(p)` (eq. 16, `tau >= c - f sigma_n`)
-///   and its shear is more than `force_tol`, or it has no strength at all
-///   (b = 0): a pair that carries nothing (a joint at a free surface, its
-///   forces round-off) stays stuck instead of following the sign of its
-///   round-off from solve to solve;
-/// - slip: stuck again when `|ξ| < b(p)` with `ξ = λ_T + c s`, or when its
-///   slip runs against the friction force it carried.
+/// - stick: slipping when `|λ_T| >= b(p) + force_tol` (eq. 16, `tau >= c -
+///   f sigma_n`) and its shear is more than `force_tol`, or it has no
+///   strength at all (b = 0): a pair that carries nothing (a joint at a
+///   free surface, its forces round-off) stays stuck instead of following
+///   the sign of its round-off from solve to solve;
+/// - slip: stuck again when `|ξ| < b(p) - force_tol` with `ξ = λ_T + c s`,
+///   or when its slip runs against the friction force it carried (a slip
+///   whose force `c |s|` is within `force_tol` has no direction).
+///
+/// A pair at its Coulomb limit to within `force_tol` with no slip in the
+/// step (one that slipped in an earlier step or stage, under a load that
+/// has not changed) is admissible both stuck and slipping: it keeps the
+/// state it is in, or its round-off would flip it from solve to solve.
 ///
 /// Cracked pairs (ever opened or slipped) have `f_t = 0` and the residual
 /// cohesion; `coulomb` is false for frictionless slip, which never sticks
@@ -210,7 +216,7 @@ pub fn judge(
             let (b, _) = friction_bound(s, cracked, t.area, -t.force[0]);
             let lam_t = t.force[1].hypot(t.force[2]);
             let strengthless = s.friction == 0.0 && s.effective(cracked).1 <= 0.0;
-            if lam_t >= b && (lam_t > force_tol || strengthless) {
+            if strengthless || (lam_t >= b + force_tol && lam_t > force_tol) {
                 ContactState::Slip
             } else {
                 ContactState::Stick
@@ -221,11 +227,14 @@ pub fn judge(
             let (b, _) = friction_bound(s, cracked, t.area, -t.force[0]);
             let xi = t.xi();
             // slip that runs against the friction force it was given: the
-            // pair stuck (a force below round-off has no direction)
+            // pair stuck (a force below round-off has no direction, nor has
+            // a slip whose force c |s| is)
             let lam_t = t.force[1].hypot(t.force[2]);
+            let s_t = t.slip[1].hypot(t.slip[2]);
             let along = t.force[1] * t.slip[1] + t.force[2] * t.slip[2];
-            let against = lam_t > 1e-9 * t.force[0].abs() && along < -1e-9 * lam_t * t.slip[1].hypot(t.slip[2]);
-            if against || xi[1].hypot(xi[2]) < b {
+            let against =
+                lam_t > 1e-9 * t.force[0].abs() && t.stiffness * s_t > force_tol && along < -1e-9 * lam_t * s_t;
+            if against || xi[1].hypot(xi[2]) < b - force_tol {
                 ContactState::Stick
             } else {
                 ContactState::Slip
@@ -356,6 +365,22 @@ mod tests {
             Slip,
             "frictionless slip never sticks"
         );
+    }
+
+    #[test]
+    fn a_pair_at_its_limit_to_round_off_keeps_its_state() {
+        // bound 0.5 under sigma_n = -1 (cracked): one ulp either side of it,
+        // with a slip of round-off size in any direction
+        let tol = 1e-12;
+        let (above, below) = (0.5 + 1e-16, 0.5 - 1e-16);
+        for slip in [0.0, 1e-20, -1e-20] {
+            assert_eq!(judge(Stick, &t(-1.0, above, 0.0, 0.0), &S, true, true, 0.0, tol), Stick);
+            assert_eq!(judge(Slip, &t(-1.0, below, slip, 0.0), &S, true, true, 0.0, tol), Slip, "slip {slip:e}");
+        }
+        // beyond the band they change, as without it
+        assert_eq!(judge(Stick, &t(-1.0, 0.5 + 1e-9, 0.0, 0.0), &S, true, true, 0.0, tol), Slip);
+        assert_eq!(judge(Slip, &t(-1.0, 0.5 - 1e-9, 0.0, 0.0), &S, true, true, 0.0, tol), Stick);
+        assert_eq!(judge(Slip, &t(-1.0, 0.5, -1e-9, 0.0), &S, true, true, 0.0, tol), Stick, "a real reversed slip");
     }
 
     #[test]
