@@ -20,7 +20,7 @@ mod common;
 
 use common::measure::max_abs;
 use common::{json, Case};
-use subcontact::driver::Run;
+use subcontact::driver::{state_counts, Run};
 
 const GEO: &str = r#"
 DefineConstant[ lc = {1.0, Name "lc"} ];
@@ -253,4 +253,42 @@ fn in_3d_the_stage_holds_a_joint_that_carries_the_stress_and_slips_one_that_cann
     // (every pair sticks under the load: the column exactly)
     assert!(reported < 1e-9 * scale, "reported: {reported:e} from -p z / M ({scale:e}); with the stage's {total:e}");
     assert!(total > 0.02 * scale, "the stage moved too little to tell: {total:e} of {scale:e}");
+}
+
+/// `scene_3d` with the stage, or without it and gravity in two equal steps.
+fn still_3d(stage: bool) -> String {
+    let toml = scene_3d(0.25, "");
+    if stage {
+        return toml;
+    }
+    toml.replace("initial_stage = true", "initial_stage = false\nload_steps = 2\ngravity_factors = [1.0, 1.0]")
+}
+
+#[test]
+fn in_3d_a_step_that_changes_nothing_after_the_joint_slipped_ends_at_once() {
+    // the pairs the stage slipped sit on their bound with a slip of
+    // round-off in the next step (1e-21 to 1e-19): admissible stuck and
+    // slipping, each keeps its state (they flipped on their round-off: 400
+    // iterations and 3 cuts before)
+    let (_, on) = run("stage-3d-still", &still_3d(true));
+    let stage = on.initial_stage.as_ref().expect("the stage ran");
+    let pairs = on.model.pairs.len();
+    assert!(stage.converged && stage.states[1] > pairs / 2, "the stage slips the joint: {:?}", stage.states);
+    let c = on.contact().expect("contact");
+    let it = (c.summary.iterations, c.summary.cuts);
+    assert!(c.summary.converged && it.0 <= 3 && it.1 == 0, "no load, yet {it:?} iterations and cuts");
+    assert_eq!(state_counts(&c.states), stage.states, "the step keeps the stage's states");
+    let moved = max_abs(on.last().u.iter().copied());
+    assert!(moved < 1e-8 * stage.largest, "no load, yet {moved:e} after the stage ({:e} in it)", stage.largest);
+    // without the stage: gravity in two equal steps, the second the first's
+    let (_, two) = run("two-equal-steps-3d", &still_3d(false));
+    assert_eq!(two.steps.len(), 2);
+    let [first, second] = [0, 1].map(|k| two.steps[k].contact.as_ref().expect("contact"));
+    assert!(first.summary.converged && first.states.iter().filter(|s| s.code() == 1).count() > pairs / 2);
+    let it = (second.summary.iterations, second.summary.cuts);
+    assert!(second.summary.converged && it.0 <= 3 && it.1 == 0, "the same load again: {it:?} iterations and cuts");
+    assert_eq!(first.states, second.states, "the second step keeps the first's states");
+    let (u1, u2) = (&two.steps[0].u, &two.steps[1].u);
+    let diff = max_abs(u1.iter().zip(u2).map(|(a, b)| a - b));
+    assert!(diff < 1e-8 * max_abs(u1.iter().copied()), "the second step moved {diff:e}");
 }
