@@ -292,3 +292,93 @@ fn in_3d_a_step_that_changes_nothing_after_the_joint_slipped_ends_at_once() {
     let diff = max_abs(u1.iter().zip(u2).map(|(a, b)| a - b));
     assert!(diff < 1e-8 * max_abs(u1.iter().copied()), "the second step moved {diff:e}");
 }
+
+/// A circular opening (R = 2 m) in a 16 x 4 x 16 m box (OpenCASCADE,
+/// tet10, its wall curved), the rock cut by `[[joint_sets]]`.
+const TUNNEL_GEO: &str = r#"
+SetFactory("OpenCASCADE");
+W = 16; L = 4; H = 16; R = 2;
+Box(1) = {-W / 2, 0, -H / 2, W, L, H};
+Cylinder(2) = {0, -1, 0, 0, L + 2, 0, R};
+BooleanDifference{ Volume{1}; Delete; }{ Volume{2}; Delete; }
+e = 1e-3;
+Physical Volume("rock") = {1};
+Physical Surface("top") = Surface In BoundingBox{-W / 2 - e, -e, H / 2 - e, W / 2 + e, L + e, H / 2 + e};
+Physical Surface("bottom") = Surface In BoundingBox{-W / 2 - e, -e, -H / 2 - e, W / 2 + e, L + e, -H / 2 + e};
+Physical Surface("sides") = Surface In BoundingBox{-W / 2 - e, -e, -H / 2 - e, -W / 2 + e, L + e, H / 2 + e};
+Physical Surface("sides") += Surface In BoundingBox{W / 2 - e, -e, -H / 2 - e, W / 2 + e, L + e, H / 2 + e};
+Physical Surface("ends") = Surface In BoundingBox{-W / 2 - e, -e, -H / 2 - e, W / 2 + e, e, H / 2 + e};
+Physical Surface("ends") += Surface In BoundingBox{-W / 2 - e, L - e, -H / 2 - e, W / 2 + e, L + e, H / 2 + e};
+wall() = Surface In BoundingBox{-R - e, -e, -R - e, R + e, L + e, R + e};
+Physical Surface("wall") = {wall()};
+MeshSize{ PointsOf{ Volume{1}; } } = 4.0;
+MeshSize{ PointsOf{ Surface{wall()}; } } = 1.5;
+Mesh.HighOrderOptimize = 2;
+"#;
+
+/// The tunnel 50 m deep (its top 42 m down), k0 = 0.5, two joint sets
+/// striking along the tunnel (60/090 and 70/270, tau / sigma_n 0.346 and
+/// 0.288 < tan 35), the sides and base fixed, the ends on rollers (normal
+/// to the sets' strike), the overburden rho g 42 m on the top after the
+/// stage.
+const TUNNEL: &str = r#"
+mesh = "tunnel.geo"
+analysis = "solid"
+gravity = [0.0, 0.0, -9.81]
+[gmsh]
+order = 2
+[materials.rock]
+E = 5000.0
+nu = 0.25
+density = 2.7e-3
+[[bodies]]
+group = "rock"
+material = "rock"
+k0 = 0.5
+surface = 50.0
+[[joint_sets]]
+name = "J1"
+dip = 60.0
+dip_direction = 90.0
+spacing = 5.0
+offset = 1.3
+friction = 0.7002
+[[joint_sets]]
+name = "J2"
+dip = 70.0
+dip_direction = 270.0
+spacing = 5.0
+offset = 0.7
+friction = 0.7002
+[[supports]]
+group = "sides"
+fix = ["x", "y", "z"]
+[[supports]]
+group = "bottom"
+fix = ["x", "y", "z"]
+[[supports]]
+group = "ends"
+fix = ["y"]
+[[loads]]
+group = "top"
+pressure = 1.112454
+[solver]
+initial_stage = true
+"#;
+
+#[test]
+fn a_jointed_tet10_tunnel_stays_put_in_the_stage() {
+    let case = Case::new("stage-tunnel");
+    case.write("tunnel.geo", TUNNEL_GEO);
+    let run = case.run(&case.write("tunnel.toml", TUNNEL)).expect("run");
+    let stage = run.initial_stage.as_ref().expect("the stage ran");
+    let pairs = run.model.pairs.len();
+    assert!(pairs > 500, "{pairs} pairs: the sets cut the rock");
+    assert_eq!(stage.states, [0, 0, pairs], "every pair sticks in the stage");
+    assert!(stage.iterations <= 2, "{} iterations", stage.iterations);
+    // rho g H^2 / 2M of the 16 m box; what is left is the quadrature of
+    // the curved tet10 at the wall (the tunnel without joints: 1.7e-8 m)
+    let m = 5000.0 * 0.75 / (1.25 * 0.5);
+    let scale = RHO_G * 256.0 / (2.0 * m);
+    assert!(stage.largest < 1e-4 * scale, "the stage moved {:e} of {scale:e}", stage.largest);
+}
