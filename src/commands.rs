@@ -48,9 +48,9 @@ fn solved(run: Option<Run>, opts: &RunOptions) -> Result<()> {
         warn(&run.scene.warnings());
     }
     if !run.scene.bonded {
-        warn(&crate::output::model_warnings(&run.scene, &run.model));
+        warn(&crate::driver::model_warnings(&run.scene, &run.model));
     }
-    warn(&crate::output::insitu_warnings(&run.scene, &run.model));
+    warn(&crate::driver::insitu_warnings(&run.scene, &run.model));
     print_summary(&run, &opts.out_dir(&run.scene));
     Ok(())
 }
@@ -157,8 +157,8 @@ pub fn check(scene_path: &Path, allow_geo_commands: bool) -> Result<()> {
         warn(&crate::output::cut::warnings(&cut, dim));
     }
     warn(&scene.warnings());
-    warn(&crate::output::model_warnings(&scene, &model));
-    warn(&crate::output::insitu_warnings(&scene, &model));
+    warn(&crate::driver::model_warnings(&scene, &model));
+    warn(&crate::driver::insitu_warnings(&scene, &model));
     Ok(())
 }
 

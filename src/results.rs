@@ -1,5 +1,7 @@
 //! What a run computed, for the output writers and the callers of
-//! [`crate::driver::run`], in one shape: [`Run`] is the scene and the model,
+//! [`crate::driver::run`], in one shape: [`Run`] is the scene and the model
+//! (with [`About`], what the writers print of the scene: they read it, never
+//! the scene),
 //! the displacements, stresses and contact states of every load step
 //! ([`Run::last`] is the answer), the run's [`Stats`] (sizes, residuals,
 //! timings, counters, ranks) and its [`Checks`] (errors against a closed
@@ -11,9 +13,11 @@
 
 use std::path::PathBuf;
 
+pub mod about;
 mod reactions;
 mod safety;
 mod step;
+pub use about::{About, Applied, ContactLaw};
 pub use reactions::{BodyBalance, Reactions, SupportReaction};
 pub use safety::{Failure, FailureKind, OtherFactor, SafetyRun, SearchCost, SearchKind, Trial, Undecided};
 pub use step::{ContactRun, PairWater, StepResult};
@@ -67,6 +71,8 @@ pub struct RankStats {
 /// against.
 pub struct Run {
     pub scene: Scene,
+    /// What the writers print of the scene (they read this, not `scene`).
+    pub about: About,
     pub model: Model,
     /// Every load step, in order (at least one; the last one is the answer).
     pub steps: Vec<StepResult>,

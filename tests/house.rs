@@ -494,3 +494,36 @@ fn no_child_file_imports_what_its_parent_module_file_defines() {
         listed.join("\n")
     );
 }
+
+/// Writers take data, not the scene: no file under src/output names the
+/// scene module or reads a run's scene (`run.scene`); they read
+/// `run.about`, which the driver makes once. The unit tests (`tests.rs`)
+/// may load a scene to run the driver on it.
+#[test]
+fn no_writer_reads_the_scene() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/output");
+    let files = rust_files(&root);
+    let mut found = Vec::new();
+    for path in files.iter().filter(|p| !p.ends_with("tests.rs")) {
+        let code = blanked(&std::fs::read_to_string(path).expect("a source file"));
+        for (i, line) in code.lines().enumerate() {
+            let reads = line
+                .match_indices(".scene")
+                .any(|(at, w)| line[at + w.len()..].chars().next().is_none_or(|c| !(c.is_alphanumeric() || c == '_')));
+            if reads || line.contains("crate::scene") || line.contains("super::scene") {
+                found.push(format!(
+                    "src/output/{}:{}: {}",
+                    path.strip_prefix(&root).unwrap_or(path).display(),
+                    i + 1,
+                    line.trim()
+                ));
+            }
+        }
+    }
+    assert!(files.len() > 20, "the writers were read: {} files", files.len());
+    assert!(
+        found.is_empty(),
+        "writers that read the scene (give them the data in results::About):\n{}",
+        found.join("\n")
+    );
+}

@@ -24,6 +24,7 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+mod about;
 mod condense;
 mod mechanism;
 mod meshing;
@@ -35,12 +36,14 @@ mod run_options;
 mod safety;
 mod stats;
 mod steps;
+mod warnings;
 
 pub use meshing::{gmsh_job, load_mesh, mesh_into};
 pub use messages::{Apex, At, ContactError, PlanError, SafetyError};
 pub use plan::{preview, Memory, Preview};
 use progress::{progress, say};
 pub use run_options::RunOptions;
+pub use warnings::{insitu_warnings, model_warnings};
 
 use crate::analytic;
 use crate::contact::law::PairResult;
@@ -165,7 +168,9 @@ fn solve(
     };
     let stats = stats::stats(&model, &plan.parts, all, measured);
     let initial_stage = done.stage;
-    let mut run = Run { scene, model, steps: done.steps, stats, checks: Checks::default(), safety, initial_stage };
+    let about = about::about(&scene, &model);
+    let mut run =
+        Run { scene, about, model, steps: done.steps, stats, checks: Checks::default(), safety, initial_stage };
 
     // 7. What the last step is checked against, then the output, all at once.
     let t = Instant::now();

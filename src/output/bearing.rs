@@ -44,8 +44,8 @@ pub fn of_run(run: &Run) -> Option<Vec<FaceBearing>> {
     let r = resultants::of_run(run)?;
     let m = &run.model;
     let body = m.body_of_node();
-    let plane = run.scene.analysis.dim() == 2;
-    let window = run.scene.output.pressure_window;
+    let plane = run.about.analysis.dim() == 2;
+    let window = run.about.output.pressure_window;
     let record = |p: usize| BearingPair {
         x: m.coords[m.pairs[p].k],
         normal: c.frames[p][0],
@@ -115,7 +115,7 @@ pub fn csv(run: &Run, all: &[FaceBearing]) -> String {
         s = format!("{s},{WATER_COLUMNS}");
     }
     s.push('\n');
-    let plane = run.scene.analysis.dim() == 2;
+    let plane = run.about.analysis.dim() == 2;
     for f in all {
         let b = &f.bearing;
         let (bi, bii) = f.blocks.map_or((String::new(), String::new()), |[a, c]| (a.to_string(), c.to_string()));
@@ -161,7 +161,7 @@ fn water_cells(f: &FaceBearing) -> String {
 /// summary.json's `bearing`: every group, with its face pairs when it has
 /// at most [`FACES_LISTED`].
 pub fn summary(run: &Run, all: &[FaceBearing]) -> serde_json::Value {
-    let plane = run.scene.analysis.dim() == 2;
+    let plane = run.about.analysis.dim() == 2;
     let one = |f: &FaceBearing| {
         let mut v = serde_json::to_value(&f.bearing).unwrap_or_default();
         v["shear_force"] = json!(f.resultant.shear_force());
@@ -207,19 +207,19 @@ fn is_base(b: &Bearing, plane: bool) -> bool {
 
 /// report.md's "Bearing pressure" (empty without a base).
 pub fn report(run: &Run, all: &[FaceBearing]) -> String {
-    let plane = run.scene.analysis.dim() == 2;
+    let plane = run.about.analysis.dim() == 2;
     let bases: Vec<&FaceBearing> = all.iter().filter(|f| f.blocks.is_none() && is_base(&f.bearing, plane)).collect();
     if bases.is_empty() {
         return String::new();
     }
-    let t = run.scene.thickness;
+    let t = run.about.thickness;
     let mut s = String::from("\n## Bearing pressure\n\n");
     let _ = writeln!(
         s,
         "Each base (a contact group whose mean normal is within 30 degrees of the vertical) and, where it has several, each block face pair (a footing's pads): the compressive normal force N and the shear force T on it, where N acts (the pressure's centroid), its eccentricity e about the face's centroid {}, the {} in contact, the largest pressure (a singular corner's value is kept here; the pictures scale by a robust range), the mean over the part in contact, and the design pressure: the largest mean over a window of the stated width{}. Pressure compression positive; totals over the thickness in a plane analysis.\n",
         if plane { "along the face (the middle third: |e| <= B/6)" } else { "along t1 and t2 (the kern of a rectangle: |e1|/B1 + |e2|/B2 <= 1/6)" },
         if plane { "length" } else { "area" },
-        if run.scene.output.pressure_window.is_some() { " (`[output] pressure_window`)" } else { " (a tenth of the face's width unless `[output] pressure_window` says)" },
+        if run.about.output.pressure_window.is_some() { " (`[output] pressure_window`)" } else { " (a tenth of the face's width unless `[output] pressure_window` says)" },
     );
     for g in bases {
         let name = &run.model.interfaces[g.contact].name;

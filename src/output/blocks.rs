@@ -365,10 +365,10 @@ pub fn at_safety(run: &Run) -> Option<Vec<Block>> {
     let last = s.last.as_ref()?;
     let c = last.contact.as_ref()?;
     let mut strength = super::resultants::strengths(run);
-    if let (crate::results::SearchKind::Strength(st), Some(o), Some(f)) = (s.kind, run.scene.safety.as_ref(), s.factor)
+    if let (crate::results::SearchKind::Strength(st), Some(o), Some(f)) = (s.kind, run.about.safety.as_ref(), s.factor)
     {
         for &i in &o.contacts {
-            let law = crate::contact::PairLaw { strength: strength[i], slip: run.scene.contacts[i].slip };
+            let law = crate::contact::PairLaw { strength: strength[i], slip: run.about.contacts[i].slip };
             strength[i] = o.reduce.strength(&st.laws(&[law])[0].strength, f);
         }
     }
@@ -398,5 +398,5 @@ pub fn summary(model: &Model, blocks: &[Block]) -> serde_json::Value {
 /// report.md's section on the run's blocks.
 pub fn run_report(run: &Run) -> String {
     let Some(blocks) = of_run(run) else { return String::new() };
-    report(&run.model, &blocks, run.scene.output.wants("displacement") || !run.scene.probes.is_empty())
+    report(&run.model, &blocks, run.about.output.wants("displacement") || !run.about.probes.is_empty())
 }

@@ -24,18 +24,14 @@ pub mod plot;
 pub mod reactions;
 pub mod report;
 pub mod resultants;
-mod run_warnings;
 mod safety;
 pub mod sections;
 pub mod settlement;
-mod step_times;
 mod unsettled;
 pub mod vtu;
 mod water;
 
-pub use run_warnings::{insitu_warnings, model_warnings, warnings};
 pub use safety::{label as safety_label, other_factor_line, warnings as safety_warnings};
-pub use step_times::step_times;
 
 use serde_json::json;
 
@@ -54,11 +50,11 @@ use files::Staged;
 /// drawn (left out: the other files are written).
 pub fn stage(run: &Run, out: &std::path::Path) -> Result<(Staged, Vec<String>)> {
     finite(run)?;
-    let mut staged = Staged::new(out, &run.scene.name);
-    let name = &run.scene.name;
+    let mut staged = Staged::new(out, &run.about.name);
+    let name = &run.about.name;
     let model = &run.model;
     let last = run.last();
-    let displacement = run.scene.output.wants("displacement");
+    let displacement = run.about.output.wants("displacement");
     // the blocks: what each does, and its state as a cell field
     let blocks = blocks::of_run(run);
     let states: Vec<i32> = blocks.iter().flatten().map(|b| b.state.code()).collect();
@@ -87,13 +83,13 @@ pub fn stage(run: &Run, out: &std::path::Path) -> Result<(Staged, Vec<String>)> 
     }
     // pictures a person would rather look at than read (embedded in report.md)
     let snap = picture::Snapshot {
-        title: &run.scene.title,
+        title: &run.about.title,
         model,
         u: &last.u,
         stresses: &last.stresses,
         contact: last.contact.as_ref(),
-        region: run.scene.output.frame.as_ref(),
-        one_scale: run.scene.output.colour_scale == crate::scene::ColourScale::One,
+        region: run.about.output.frame.as_ref(),
+        one_scale: run.about.output.colour_scale == crate::results::about::ColourScale::One,
     };
     let mut drawn = picture::pictures(&snap);
     if !run.checks.probes.is_empty() {
@@ -105,8 +101,8 @@ pub fn stage(run: &Run, out: &std::path::Path) -> Result<(Staged, Vec<String>)> 
         }
     }
     sections::pictures(run, &mut drawn);
-    if let Some(f) = picture::stereonet_file(&run.scene.joints) {
-        drawn.draw(f, || picture::stereonet_png(&run.scene.title, &run.scene.joints));
+    if let Some(f) = picture::stereonet_file(&run.about.joints) {
+        drawn.draw(f, || picture::stereonet_png(&run.about.title, &run.about.joints));
     }
     safety::stage(run, &mut staged, &mut drawn)?;
     for (file, bytes) in drawn.files {
@@ -118,10 +114,10 @@ pub fn stage(run: &Run, out: &std::path::Path) -> Result<(Staged, Vec<String>)> 
 /// One file per load step and ParaView collections over them, the time of
 /// a step its load factor (a run of several steps).
 fn stage_steps(run: &Run, staged: &mut Staged, displacement: bool) -> Result<()> {
-    let (name, model) = (&run.scene.name, &run.model);
+    let (name, model) = (&run.about.name, &run.model);
     let mut bodies = Vec::new();
     let mut contacts = Vec::new();
-    let times = step_times(&run.scene);
+    let times = &run.about.step_times;
     for st in &run.steps {
         let time = times.get(st.step.wrapping_sub(1)).copied().unwrap_or(st.step as f64);
         let f = format!("{name}_step{:03}.vtu", st.step);
@@ -165,7 +161,7 @@ fn finite(run: &Run) -> Result<()> {
             })
         };
         if let Some(what) = bad {
-            return Err(Error::NotFinite { scene: run.scene.path.clone(), step: st.step, what });
+            return Err(Error::NotFinite { scene: run.about.path.clone(), step: st.step, what });
         }
     }
     Ok(())
@@ -248,9 +244,9 @@ fn initial_stage(run: &Run, s: &crate::results::InitialStage) -> serde_json::Val
 fn summary(run: &Run) -> serde_json::Value {
     let st = &run.stats;
     let mut v = json!({
-        "scene": run.scene.path.display().to_string(),
-        "title": run.scene.title,
-        "analysis": run.scene.analysis.as_str(),
+        "scene": run.about.path.display().to_string(),
+        "title": run.about.title,
+        "analysis": run.about.analysis.as_str(),
         "mesh": { "file": st.msh.display().to_string(), "cached": st.mesh_cached, "nodes": run.model.n_nodes(),
                   "elements": run.model.bodies.iter().map(|b| b.cells.len()).sum::<usize>() },
         "bodies": run.model.bodies.iter().map(|b| b.name.clone()).collect::<Vec<_>>(),
@@ -261,8 +257,8 @@ fn summary(run: &Run) -> serde_json::Value {
         "residuals": st.residuals,
         "counters": st.counters,
         "ranks": st.ranks,
-        "fields": run.scene.output.fields,
-        "warnings": warnings(run),
+        "fields": run.about.output.fields,
+        "warnings": run.about.warnings,
     });
     if let Some(c) = run.contact() {
         let counts = state_counts(&c.states);

@@ -35,7 +35,7 @@ fn largest<'a>(vs: impl Iterator<Item = &'a [f64; 3]>) -> f64 {
 /// report.md's section (empty without supports).
 pub fn report(run: &Run) -> String {
     let Some(r) = &run.checks.reactions else { return String::new() };
-    let dim = run.scene.analysis.dim();
+    let dim = run.about.analysis.dim();
     let mut s = String::from("\n## Reactions and balance\n\n");
     let about = if dim == 2 { "its moment (counterclockwise positive)" } else { "its moment" };
     let _ = writeln!(

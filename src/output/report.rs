@@ -37,14 +37,14 @@ pub fn report(run: &Run) -> String {
     s += &super::closed_form::report(&run.checks.analytic);
     s += &super::safety::report(run);
     probes(&mut s, run);
-    let sc = &run.scene;
+    let sc = &run.about;
     let _ = writeln!(s, "\nOpen `{}.vtu`{} in ParaView (File > Open), colour by `von_mises` or `displacement`; `Warp By Vector` on `displacement` shows the deformed shape.", sc.name, if run.contact().is_some() { format!(" and `{}_contact.vtu`", sc.name) } else { String::new() });
     s
 }
 
 /// The title, the scene line and the warnings.
 fn header(s: &mut String, run: &Run) {
-    let sc = &run.scene;
+    let sc = &run.about;
     let st = &run.stats;
     let _ = writeln!(s, "# {}\n", sc.title);
     let _ = writeln!(
@@ -55,7 +55,7 @@ fn header(s: &mut String, run: &Run) {
         st.msh.display(),
         if st.mesh_cached { " (cached)" } else { "" }
     );
-    for w in super::run_warnings::warnings(run) {
+    for w in &run.about.warnings {
         let _ = writeln!(s, "**Warning:** {w}.\n");
     }
 }
@@ -122,7 +122,7 @@ fn contact_rows(s: &mut String, run: &Run) {
 
 /// The timings and the errors against the closed form.
 fn time_and_error_rows(s: &mut String, run: &Run) {
-    let sc = &run.scene;
+    let sc = &run.about;
     let t = &run.stats.timings;
     let _ = writeln!(
         s,
@@ -163,7 +163,7 @@ fn pictures(s: &mut String, run: &Run) {
         "\n![the deformed shape, contact pairs coloured by state]({})",
         super::picture::deformed_file(&run.last().stresses)
     );
-    if let Some(f) = super::picture::stereonet_file(&run.scene.joints) {
+    if let Some(f) = super::picture::stereonet_file(&run.about.joints) {
         let _ = writeln!(s, "\n![the joints on a stereonet]({f})\n\n*The joints: poles and great circles, lower hemisphere, equal area.*");
     }
     if run.contact().is_some() {
@@ -234,9 +234,9 @@ fn probes(s: &mut String, run: &Run) {
 }
 
 /// The load-step table: the factor each load actually had at each step
-/// ([`applied`]), then the contact iteration of the step.
+/// ([`crate::results::Applied`]), then the contact iteration of the step.
 fn load_steps(s: &mut String, run: &Run) {
-    let columns = applied(&run.scene);
+    let columns = &run.about.applied;
     let head: Vec<String> = columns.iter().map(|c| format!("{} | ", c.name)).collect();
     let _ = writeln!(s, "\n## Load steps\n\nThe factor that multiplies each load at each step (as given by `factors`, `gravity_factors`, or the ramp k / load_steps).\n");
     let _ = writeln!(s, "| step | {}iterations | stick / slip / open | converged |", head.concat());
@@ -301,60 +301,6 @@ fn factor(f: Option<f64>) -> String {
         }
         _ => "–".into(),
     }
-}
-
-/// One column of the load-step table: the loads that share a sequence of
-/// factors, and that sequence (one per step).
-#[derive(Debug, PartialEq)]
-pub(crate) struct Applied {
-    pub(crate) name: String,
-    pub(crate) factors: Vec<f64>,
-}
-
-/// The factors the scene applies at each step, read from the scene as the
-/// user wrote it: gravity (when a material has a density) by
-/// `[solver] gravity_factors`, each `[[loads]]` entry by its `factors`,
-/// prescribed displacements, and everything without factors by the ramp
-/// k / load_steps. Loads with the same factors share a column, named by
-/// their groups.
-pub(crate) fn applied(scene: &crate::scene::Scene) -> Vec<Applied> {
-    let n = scene.solver.load_steps;
-    let ramp: Vec<f64> = (1..=n).map(|k| k as f64 / n as f64).collect();
-    let mut named: Vec<(String, Vec<f64>)> = Vec::new();
-    let weighs = scene.gravity.iter().any(|&g| g != 0.0) && scene.materials.values().any(|m| m.density > 0.0);
-    if weighs {
-        named.push(("gravity".into(), scene.solver.gravity_factors.clone().unwrap_or_else(|| ramp.clone())));
-    }
-    for l in &scene.loads {
-        let name = match l.kind {
-            crate::scene::LoadKind::Seismic { kh, kv, .. } => format!("seismic kh = {kh}, kv = {kv}"),
-            _ => format!("\"{}\"", l.group),
-        };
-        named.push((name, l.factors.clone().unwrap_or_else(|| ramp.clone())));
-    }
-    for c in &scene.contacts {
-        let Some(w) = &c.water else { continue };
-        let own = w.factors.clone().or_else(|| w.face.as_ref().and_then(|f| scene.loads[f.load].factors.clone()));
-        let name = match &c.groups {
-            crate::scene::ContactGroups::Shared(g) => g.clone(),
-            crate::scene::ContactGroups::Pair(a, b) => format!("{a}|{b}"),
-        };
-        named.push((format!("water in \"{name}\""), own.unwrap_or_else(|| ramp.clone())));
-    }
-    if scene.supports.iter().any(|sp| sp.prescribed.iter().flatten().any(|&u| u != 0.0)) {
-        named.push(("prescribed u".into(), ramp.clone()));
-    }
-    let mut columns: Vec<Applied> = Vec::new();
-    for (name, factors) in named {
-        match columns.iter_mut().find(|c| c.factors == factors) {
-            Some(c) => {
-                c.name.push_str(", ");
-                c.name.push_str(&name);
-            }
-            None => columns.push(Applied { name, factors }),
-        }
-    }
-    columns
 }
 
 /// The body groups in scene order, each with its count of blocks where its

@@ -293,7 +293,7 @@ pub fn sum(pairs: &[PairRecord], n_contacts: usize) -> Resultants {
 
 /// The strength of every contact group of the run's scene.
 pub fn strengths(run: &Run) -> Vec<Strength> {
-    run.scene.contacts.iter().map(|c| c.strength).collect()
+    run.about.contacts.iter().map(|c| c.strength).collect()
 }
 
 /// The resultants of the run's last load step (None without contacts).

@@ -34,8 +34,8 @@ use super::files::Staged;
 use super::picture::{self, Snapshot};
 use crate::contact::mechanism::{describe, Mechanism};
 use crate::error::Result;
+use crate::results::about::Safety;
 use crate::results::{state_counts, ContactRun, Run, SafetyRun, SearchKind};
-use crate::scene::Safety;
 
 use joint::Joint;
 pub use report::report;
@@ -48,7 +48,7 @@ pub(super) fn stage(run: &Run, staged: &mut Staged, drawn: &mut picture::Drawn) 
     staged.add("safety.csv", trials_csv(s).into_bytes());
     if let Some(m) = s.failure.as_ref().and_then(|f| f.mechanism.as_ref()) {
         let u = mechanism_field(run, m);
-        let title = format!("{}: the mechanism, {}", run.scene.title, m.kind.key());
+        let title = format!("{}: the mechanism, {}", run.about.title, m.kind.key());
         let snap = Snapshot {
             title: &title,
             model: &run.model,
@@ -61,11 +61,11 @@ pub(super) fn stage(run: &Run, staged: &mut Staged, drawn: &mut picture::Drawn) 
         drawn.draw("mechanism.png", || picture::mechanism_png(&snap));
     }
     let Some(last) = &s.last else { return Ok(()) };
-    let (model, name) = (&run.model, &run.scene.name);
+    let (model, name) = (&run.model, &run.about.name);
     let states: Vec<i32> = super::blocks::at_safety(run).iter().flatten().map(|b| b.state.code()).collect();
     staged.add(
         &format!("{name}_safety.vtu"),
-        super::bodies_vtu::bodies_vtu(model, &last.u, &last.stresses, run.scene.output.wants("displacement"), &states)?,
+        super::bodies_vtu::bodies_vtu(model, &last.u, &last.stresses, run.about.output.wants("displacement"), &states)?,
     );
     if let Some(c) = &last.contact {
         staged.add(&format!("{name}_safety_contact.vtu"), super::contact_files::contact_vtu(model, c)?);
@@ -75,14 +75,14 @@ pub(super) fn stage(run: &Run, staged: &mut Staged, drawn: &mut picture::Drawn) 
     // displacement since F = 1 (below 1: since the start)
     let f = s.factor.map_or("-".into(), fmt_f);
     let since = if s.below_one { "the displacement of the load steps at F" } else { "displacement since F = 1" };
-    let title = format!("{}: F = {f}, the last state that holds; {since}", run.scene.title);
+    let title = format!("{}: F = {f}, the last state that holds; {since}", run.about.title);
     let snap = Snapshot {
         title: &title,
         model,
         u: &s.du,
         stresses: &[],
         contact: last.contact.as_ref(),
-        region: run.scene.output.frame.as_ref(),
+        region: run.about.output.frame.as_ref(),
         one_scale: false,
     };
     drawn.draw(&format!("safety_{}", picture::deformed_file(&[])), || {
@@ -90,7 +90,7 @@ pub(super) fn stage(run: &Run, staged: &mut Staged, drawn: &mut picture::Drawn) 
     });
     // the joints at F: along each interface, and in 3D in plan by state
     let Some(c) = &last.contact else { return Ok(()) };
-    let title = format!("{}: F = {f}, the last state that holds", run.scene.title);
+    let title = format!("{}: F = {f}, the last state that holds", run.about.title);
     drawn.draw("safety_interfaces.svg", || Ok(picture::interface_plot_svg(model, c)?.into_bytes()));
     let plans = drawn.plans(model);
     for p in &plans {
@@ -144,7 +144,7 @@ fn trials_csv(s: &SafetyRun) -> String {
 
 /// `summary.json`'s `safety` object.
 pub(super) fn summary(run: &Run) -> Option<Value> {
-    let (s, o) = (run.safety.as_ref()?, run.scene.safety.as_ref()?);
+    let (s, o) = (run.safety.as_ref()?, run.about.safety.as_ref()?);
     let model = &run.model;
     let failure = s.failure.as_ref().map(|f| {
         json!({ "kind": f.kind.key(), "iteration": f.iteration, "blocks": blocks(run, &f.blocks),
@@ -187,7 +187,7 @@ pub(super) fn summary(run: &Run) -> Option<Value> {
 /// Each reduced contact at F = 1 and at F.
 fn joints_json(run: &Run, s: &SafetyRun, o: &Safety) -> Vec<Value> {
     o.contacts.iter().map(|&i| {
-        let sc = &run.scene.contacts[i];
+        let sc = &run.about.contacts[i];
         let at = |c: Option<&ContactRun>| c.map(|c| {
             let j = Joint::of(run, c, i);
             json!({ "normal_force": j.normal, "shear_force": j.shear, "closed_area": j.area, "factor_from_resultants": finite(j.factor(sc.strength.cohesion, sc.strength.friction)),

@@ -37,7 +37,7 @@ pub fn csv(run: &Run) -> Option<String> {
     if secs.is_empty() {
         return None;
     }
-    let dim = run.scene.analysis.dim();
+    let dim = run.about.analysis.dim();
     let names: Vec<&str> = values(&dummy(), dim).iter().map(|v| v.0).collect();
     let mut s =
         format!("section,kind,station,position,x,y,z,n_x,n_y,n_z,e2_x,e2_y,e2_z,depth,sides,{}\n", names.join(","));
@@ -93,7 +93,7 @@ pub fn summary(run: &Run) -> Option<serde_json::Value> {
     if secs.is_empty() {
         return None;
     }
-    let dim = run.scene.analysis.dim();
+    let dim = run.about.analysis.dim();
     let one = |sec: &SectionForces| {
         let stations: Vec<serde_json::Value> = sec
             .stations
@@ -118,7 +118,7 @@ pub fn summary(run: &Run) -> Option<serde_json::Value> {
 /// left out with a warning, every other file written. A line or plane is
 /// one cut: its forces are in the tables alone.
 pub fn pictures(run: &Run, drawn: &mut Drawn) {
-    let dim = run.scene.analysis.dim();
+    let dim = run.about.analysis.dim();
     for sec in run.checks.sections.iter().filter(|s| along(s)) {
         drawn.draw(&file(sec), || picture(dim, sec));
     }
@@ -187,7 +187,7 @@ pub fn report(run: &Run) -> String {
     if secs.is_empty() {
         return String::new();
     }
-    let dim = run.scene.analysis.dim();
+    let dim = run.about.analysis.dim();
     let mut s = String::from("\n## Section forces\n\n");
     let _ = writeln!(
         s,

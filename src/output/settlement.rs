@@ -3,7 +3,7 @@
 //! 3D uz) against the load factor, one curve per probe, from the same
 //! samples as `probes_history.csv`. A probe of several points is drawn at
 //! the point that moves most at the last step (named in the legend). The
-//! load factor is the one of [`super::step_times()`]: the factor of the one
+//! load factor is the one of [`crate::results::About::step_times`]: the factor of the one
 //! load that grows at every step, else the ramp k / load_steps.
 
 use super::number::num;
@@ -26,7 +26,7 @@ pub type History = Vec<(usize, f64, Vec<(String, Vec<Sample>)>)>;
 pub fn history(run: &Run) -> History {
     (run.steps.iter())
         .map(|step| {
-            let probes = (run.scene.probes.iter())
+            let probes = (run.about.probes.iter())
                 .map(|p| (p.name.clone(), crate::recover::probe(&run.model, &step.u, p)))
                 .collect();
             (step.step, step.load_factor, probes)
@@ -60,14 +60,14 @@ pub fn curves(history: &History, factors: &[f64], c: usize) -> Vec<Series> {
 
 /// The picture of a run with probes and more than one load step.
 pub fn svg(run: &Run, history: &History) -> Result<Vec<u8>, PictureError> {
-    let c = if run.scene.analysis.dim() == 3 { 2 } else { 1 };
-    let times = super::step_times::step_times(&run.scene);
+    let c = if run.about.analysis.dim() == 3 { 2 } else { 1 };
+    let times = &run.about.step_times;
     let factors: Vec<f64> = history.iter().map(|h| times.get(h.0.wrapping_sub(1)).copied().unwrap_or(h.1)).collect();
     let series = curves(history, &factors, c);
     if series.iter().all(|s| s.points.is_empty()) {
         return Err(PictureError::Empty("no probe has a point in the model".into()));
     }
-    draw(&run.scene.title, if c == 2 { "uz" } else { "uy" }, &series)
+    draw(&run.about.title, if c == 2 { "uz" } else { "uy" }, &series)
 }
 
 /// The SVG of `series` (vertical displacement `comp` against load factor).

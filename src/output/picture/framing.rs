@@ -11,7 +11,7 @@
 use super::cutaway::Cut;
 use super::label_numbers::num;
 use crate::model::Model;
-use crate::scene::Region;
+use crate::results::about::Region;
 
 /// The box the picture is cut to (None: the whole model) and what the
 /// picture says about it.

@@ -2,8 +2,8 @@
 
 use crate::model::Model;
 use crate::recover::BodyStress;
+use crate::results::about::Region;
 use crate::results::ContactRun;
-use crate::scene::Region;
 
 /// One state of a model to draw: its displacements, nodal stresses (empty
 /// when they were not recovered) and contact states and stresses, and the

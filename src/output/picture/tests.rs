@@ -103,12 +103,12 @@ fn in_box(cv: &Canvas, b: [f64; 4], c: [u8; 3]) -> Vec<usize> {
 /// The last state of a run, to draw.
 fn snap(run: &Run) -> Snapshot<'_> {
     Snapshot {
-        title: &run.scene.title,
+        title: &run.about.title,
         model: &run.model,
         u: &run.last().u,
         stresses: &run.last().stresses,
         contact: run.contact(),
-        region: run.scene.output.frame.as_ref(),
+        region: run.about.output.frame.as_ref(),
         one_scale: false,
     }
 }
@@ -222,7 +222,7 @@ fn paper_mesh_picture_in_3d() {
     keep("paper_interfaces.svg", svg.as_bytes());
     keep("paper_interfaces.png", &interface_plot_png(&run.model, contact(&run)).expect("plot"));
     // the 45-degree cut is vertical: seen along its normal, z up
-    let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, contact(&run), &plan_files(&run.model)[0])
+    let (cv, boxes) = super::plan::plan_canvas(&run.about.title, &run.model, contact(&run), &plan_files(&run.model)[0])
         .expect("plan view");
     let stick = in_box(&cv, boxes[0], STICK).len();
     assert!(stick > 20_000, "the cut sticks: {stick} pixels");
@@ -321,7 +321,7 @@ fn stack_pictures(name: &str, run: &Run, counts: [usize; 3], solid: bool) {
     keep(&format!("stack_{name}_von_mises.png"), &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
     if solid {
         let (cv, boxes) =
-            super::plan::plan_canvas(&run.scene.title, &run.model, c, &plan_files(&run.model)[0]).expect("plan view");
+            super::plan::plan_canvas(&run.about.title, &run.model, c, &plan_files(&run.model)[0]).expect("plan view");
         for (state, colour, n) in [("open", OPEN, counts[0]), ("slip", SLIP, counts[1]), ("stick", STICK, counts[2])] {
             assert_eq!(
                 !in_box(&cv, boxes[0], colour).is_empty(),
@@ -425,7 +425,7 @@ fn plan_view_of_a_3d_joint_shows_where_it_slips() {
 
     let t = std::time::Instant::now();
     let (cv, boxes) =
-        super::plan::plan_canvas(&run.scene.title, &run.model, c, &plan_files(&run.model)[0]).expect("plan view");
+        super::plan::plan_canvas(&run.about.title, &run.model, c, &plan_files(&run.model)[0]).expect("plan view");
     eprintln!("plan view drawn in {:.3} s", t.elapsed().as_secs_f64());
     keep("blocks3d_plan_joint.png", &encode_png(cv.w, cv.h, &cv.rgb).expect("PNG"));
     let pixels = |b: [f64; 4], colour: [u8; 3]| in_box(&cv, b, colour);
@@ -592,7 +592,7 @@ fn a_3d_lining_is_unrolled_from_the_crown() {
                 "the quarter from the crown to the springline: {lo} .. {hi}"
             );
         }
-        let (cv, boxes) = super::plan::plan_canvas(&run.scene.title, &run.model, c, &plans[0]).expect("plan");
+        let (cv, boxes) = super::plan::plan_canvas(&run.about.title, &run.model, c, &plans[0]).expect("plan");
         for (state, colour, n) in [("open", OPEN, counts[0]), ("slip", SLIP, counts[1]), ("stick", STICK, counts[2])] {
             assert_eq!(!in_box(&cv, boxes[0], colour).is_empty(), n > 0, "{state} drawn exactly when present");
         }
@@ -660,7 +660,7 @@ fn a_3d_tunnel_is_framed_on_its_lining_with_a_scale_per_body() {
 
     // the scene names the lining: its box and a quarter of its size round it
     let run = tunnel3d(true, "[output]\nframe = { bodies = [\"lining\"] }\n");
-    let focus = super::framing::focus(&run.model, run.scene.output.frame.as_ref());
+    let focus = super::framing::focus(&run.model, run.about.output.frame.as_ref());
     assert!(
         focus.note.as_deref().is_some_and(|n| n.starts_with("Framed on \"lining\" ([output] frame)")),
         "{:?}",

@@ -9,12 +9,12 @@ use super::joint::Joint;
 use super::sentences::{fmt_f, fmt_g, label, other_factor_line, warnings};
 use crate::contact::mechanism::describe;
 use crate::output::picture;
+use crate::results::about::Safety;
 use crate::results::{state_counts, Run, SafetyRun, SearchKind};
-use crate::scene::Safety;
 
 /// report.md's section (empty without a search).
 pub fn report(run: &Run) -> String {
-    let (Some(s), Some(o)) = (&run.safety, &run.scene.safety) else { return String::new() };
+    let (Some(s), Some(o)) = (&run.safety, &run.about.safety) else { return String::new() };
     let mut r = match s.kind {
         SearchKind::Load => String::from("\n## Load factor\n\n"),
         SearchKind::Strength(_) => String::from("\n## Factor of safety\n\n"),
@@ -103,7 +103,7 @@ fn undecided(s: &SafetyRun) -> String {
 /// The chosen contacts: "all contacts" or their names.
 fn contacts(run: &Run, o: &Safety) -> String {
     let names: Vec<String> = o.contacts.iter().map(|&i| format!("`{}`", run.model.interfaces[i].name)).collect();
-    if o.contacts.len() == run.scene.contacts.len() {
+    if o.contacts.len() == run.about.contacts.len() {
         format!("all contacts ({})", names.join(", "))
     } else {
         names.join(", ")
@@ -119,7 +119,7 @@ fn joints_table(r: &mut String, run: &Run, s: &SafetyRun, o: &Safety) {
     let fmt_k = |k: [usize; 3]| format!("{} / {} / {}", k[2], k[1], k[0]);
     let at_one = if s.below_one { None } else { run.contact() };
     for &i in &o.contacts {
-        let sc = &run.scene.contacts[i];
+        let sc = &run.about.contacts[i];
         let at_1 = at_one.map(|c| Joint::of(run, c, i));
         let at_f = s.last.as_ref().and_then(|l| l.contact.as_ref()).map(|c| Joint::of(run, c, i));
         let failed = s.failure.as_ref().map(|f| {

@@ -18,8 +18,8 @@ pub fn label(run: &Run, s: &SafetyRun) -> String {
 
 /// The loads a load factor search raises, quoted.
 pub(super) fn raised(run: &Run) -> String {
-    let Some(r) = run.scene.safety.as_ref().and_then(|o| o.raise.as_ref()) else { return String::new() };
-    let mut names: Vec<String> = r.loads.iter().map(|&i| format!("\"{}\"", run.scene.loads[i].group)).collect();
+    let Some(r) = run.about.safety.as_ref().and_then(|o| o.raise.as_ref()) else { return String::new() };
+    let mut names: Vec<String> = r.loads.iter().map(|&i| format!("\"{}\"", run.about.loads[i])).collect();
     if r.gravity {
         names.push("gravity".into());
     }
@@ -64,9 +64,9 @@ pub fn other_factor_line(_run: &Run, s: &SafetyRun, o: &OtherFactor) -> Option<S
 /// Warnings on the search: a headline the scene's silence chose where the
 /// conventions differ, and a residual strength taken from a default.
 pub fn warnings(run: &Run) -> Vec<String> {
-    let (Some(s), Some(o)) = (&run.safety, &run.scene.safety) else { return Vec::new() };
+    let (Some(s), Some(o)) = (&run.safety, &run.about.safety) else { return Vec::new() };
     let SearchKind::Strength(st) = s.kind else { return Vec::new() };
-    let silent: Vec<String> = (run.scene.contacts.iter().enumerate())
+    let silent: Vec<String> = (run.about.contacts.iter().enumerate())
         .filter(|(_, c)| !c.residual_given && c.strength.cohesion > 0.0)
         .map(|(i, _)| format!("\"{}\"", run.model.interfaces[i].name))
         .collect();
@@ -80,7 +80,7 @@ pub fn warnings(run: &Run) -> Vec<String> {
             };
             out.push(format!(
                 "{}: the factor of safety F = {} keeps each joint's {} strength ([safety] strength = \"{}\" by default: {}); with {} strength ({residual}) F = {}. The scene does not say which holds for its joints: set [safety] strength = \"peak\" or \"residual\" (and residual_cohesion where joints keep some cohesion once they slip)",
-                run.scene.path.display(),
+                run.about.path.display(),
                 s.factor.map_or("-".into(), fmt_f),
                 st.key(),
                 st.key(),
@@ -91,7 +91,7 @@ pub fn warnings(run: &Run) -> Vec<String> {
         }
     }
     if st == crate::contact::safety::Strengths::Residual && !silent.is_empty() {
-        out.push(format!("{}: [safety] strength = \"residual\", and {} give no residual_cohesion: 0 by default, so their cohesion is lost wherever a pair slips or opens", run.scene.path.display(), silent.join(", ")));
+        out.push(format!("{}: [safety] strength = \"residual\", and {} give no residual_cohesion: 0 by default, so their cohesion is lost wherever a pair slips or opens", run.about.path.display(), silent.join(", ")));
     }
     out
 }
