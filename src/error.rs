@@ -41,13 +41,9 @@ pub enum Error {
     Mesh(#[from] MshError),
     #[error(transparent)]
     Gmsh(#[from] GmshError),
-    /// A `[[joints]]` key of the scene `scene` the cutter cannot follow.
-    #[error("{}: {source}", scene.display())]
-    JointKey {
-        scene: PathBuf,
-        #[source]
-        source: Box<JointError>,
-    },
+    /// A `[[joints]]` key of the scene the cutter cannot follow.
+    #[error(transparent)]
+    Joint(Box<JointError>),
     /// gmsh meshed the .geo `geo` into nothing a run can use: the .geo
     /// names no physical group with elements.
     #[error("gmsh made no mesh of `{}`: the .geo defines no physical groups with elements to mesh. Define the bodies, contacts, supports and loads with Physical Surface/Volume/Curve/Point in the .geo", geo.display())]
@@ -86,9 +82,9 @@ pub enum Error {
     #[error(transparent)]
     Safety(Box<SafetyError>),
     /// Results that are not finite numbers (an overflow), at load step
-    /// `step` of the scene `scene`: `what` and where.
-    #[error("{}: the results are not finite numbers at load step {step}: {what}. The loads or prescribed displacements are too large for double precision (stresses above ~1e154 overflow the von Mises stress): give them in other units (kN or MPa instead of N or Pa). No result files were written", scene.display())]
-    NotFinite { scene: PathBuf, step: usize, what: String },
+    /// `step`: `what` and where.
+    #[error("the results are not finite numbers at load step {step}: {what}. The loads or prescribed displacements are too large for double precision (stresses above ~1e154 overflow the von Mises stress): give them in other units (kN or MPa instead of N or Pa). No result files were written")]
+    NotFinite { step: usize, what: String },
     /// summary.json could not be encoded.
     #[error(transparent)]
     Summary(#[from] serde_json::Error),
@@ -130,7 +126,7 @@ pub enum Error {
         #[source]
         source: PlotError,
     },
-    /// An error about the scene `scene` (the model's, the memory check's),
+    /// An error about the scene `scene` (see [`Error::in_scene`]),
     /// with the scene's file name in front.
     #[error("{}: {source}", scene.display())]
     InScene { scene: PathBuf, source: Box<Error> },
@@ -164,7 +160,6 @@ pub enum Wire {
     Contact(ContactError),
     Safety(SafetyError),
     NotFinite {
-        scene: PathBuf,
         step: usize,
         what: String,
     },
@@ -178,11 +173,28 @@ pub enum Wire {
 impl Error {
     /// The error with the file context of the scene `scene` when it is
     /// about the scene and does not name it: the model's errors about the
-    /// input and the memory check's. Others come back as they were.
+    /// input, the memory check's, the plan's, the contact iteration's, the
+    /// safety search's, results that are not numbers and the joints' keys.
+    /// Others come back as they were.
     pub fn in_scene(self, scene: &Path) -> Error {
         match self {
             Error::Model(ref m) if !m.about_input() => self,
-            Error::Model(_) | Error::Memory(_) => Error::InScene { scene: scene.to_path_buf(), source: Box::new(self) },
+            Error::Model(_)
+            | Error::Memory(_)
+            | Error::Plan(_)
+            | Error::Contact(_)
+            | Error::Safety(_)
+            | Error::NotFinite { .. }
+            | Error::Joint(_) => Error::InScene { scene: scene.to_path_buf(), source: Box::new(self) },
+            e => e,
+        }
+    }
+
+    /// The error without the scene's file context ([`Error::in_scene`]):
+    /// the variant a caller matches.
+    pub fn without_scene(self) -> Error {
+        match self {
+            Error::InScene { source, .. } => *source,
             e => e,
         }
     }
@@ -196,9 +208,7 @@ impl Error {
             Error::Factor(e) => Wire::Factor(e.clone()),
             Error::Contact(e) => Wire::Contact(e.as_ref().clone()),
             Error::Safety(e) => Wire::Safety(e.as_ref().clone()),
-            Error::NotFinite { scene, step, what } => {
-                Wire::NotFinite { scene: scene.clone(), step: *step, what: what.clone() }
-            }
+            Error::NotFinite { step, what } => Wire::NotFinite { step: *step, what: what.clone() },
             Error::Remote { rank, message } => Wire::Message { rank: *rank, message: message.clone() },
             e => Wire::Message { rank, message: e.to_string() },
         }
@@ -214,7 +224,7 @@ impl From<Wire> for Error {
             Wire::Factor(e) => Error::Factor(e),
             Wire::Contact(e) => e.into(),
             Wire::Safety(e) => e.into(),
-            Wire::NotFinite { scene, step, what } => Error::NotFinite { scene, step, what },
+            Wire::NotFinite { step, what } => Error::NotFinite { step, what },
             Wire::Message { rank, message } => Error::Remote { rank, message },
         }
     }
@@ -234,9 +244,11 @@ mod tests {
     #[test]
     fn plain_data_errors_travel_as_the_same_variant_with_the_same_text() {
         let at = At { step: Some(2), iteration: 7, states: [1, 2, 3] };
-        let contact =
-            ContactError::NotHeld { scene: "dam.toml".into(), at, bodies: vec!["block".into()], apex: vec![] };
+        let contact = ContactError::NotHeld { at, bodies: vec!["block".into()], apex: vec![] };
         let e: Error = contact.clone().into();
+        let in_scene = Error::from(contact.clone()).in_scene(Path::new("dam.toml"));
+        assert!(in_scene.to_string().starts_with("dam.toml: body \"block\" is held by nothing at"), "{in_scene}");
+        assert!(matches!(in_scene.without_scene(), Error::Contact(c) if *c == contact));
         let back = sent(&e);
         assert!(matches!(&back, Error::Contact(c) if **c == contact), "{back:?}");
         assert_eq!(back.to_string(), e.to_string());
@@ -251,7 +263,7 @@ mod tests {
         );
         assert_eq!(back.to_string(), e.to_string());
 
-        let e: Error = PlanError::TooManyRanks { scene: "s.toml".into(), ranks: 4, parts: 2, substructures: 1 }.into();
+        let e: Error = PlanError::TooManyRanks { ranks: 4, parts: 2, substructures: 1 }.into();
         assert!(matches!(sent(&e), Error::Plan(PlanError::TooManyRanks { ranks: 4, parts: 2, .. })));
         assert!(matches!(
             sent(&FactorError::NotPositiveDefinite.into()),

@@ -55,9 +55,7 @@ pub fn mesh_into(scene: &Scene, stage: Option<&mut Stage>, allow_geo_commands: b
     let cached = stage.reuse_mesh(&file, &key);
     if !cached {
         gmsh::run_in(&job, stage.mesh_dir()?.fd()).map_err(|e| match e {
-            gmsh::GmshError::Joints(j) if j.is_about_scene() => {
-                Error::JointKey { scene: scene.path.clone(), source: Box::new(j) }
-            }
+            gmsh::GmshError::Joints(j) if j.is_about_scene() => Error::Joint(Box::new(j)).in_scene(&scene.path),
             e => e.into(),
         })?;
         stage.keep_mesh(&file, &key)?;

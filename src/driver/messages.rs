@@ -13,6 +13,7 @@ use crate::contact::mechanism::BlockState;
 use crate::contact::system::SolveFailure;
 use crate::contact::{Failed, SlipLaw, StateRule};
 use crate::fem::rigid::RigidMotion;
+use crate::fem::sparse::FactorError;
 use crate::model::Model;
 use crate::results::state_counts;
 use crate::scene::Scene;
@@ -43,7 +44,7 @@ pub struct Apex {
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum ContactError {
     /// Bodies held by nothing once their contact pairs opened.
-    NotHeld { scene: PathBuf, at: At, bodies: Vec<String>, apex: Vec<Apex> },
+    NotHeld { at: At, bodies: Vec<String>, apex: Vec<Apex> },
     /// Bodies that slide or rotate freely on their slipping pairs (none
     /// named when the cause was not found). `no_shear`: their slipping
     /// contacts carry no shear at all (no friction and no cohesion, or
@@ -51,20 +52,12 @@ pub enum ContactError {
     /// the paper's gives a slipping pair a fixed shear, which holds nothing
     /// across its slip (the robust rule's friction does). `motions`: what
     /// moves, by body (a ring turning in its hole).
-    Sliding {
-        scene: PathBuf,
-        at: At,
-        bodies: Vec<String>,
-        no_shear: bool,
-        rule: StateRule,
-        motions: Vec<(String, RigidMotion)>,
-    },
+    Sliding { at: At, bodies: Vec<String>, no_shear: bool, rule: StateRule, motions: Vec<(String, RigidMotion)> },
     /// A load step's iteration did not converge after `iterations`
     /// (`cycled`: its states cycle) under `rule`; `results`: where the last
     /// iteration's results were written; `cuts`: the halvings of the step
     /// that were tried ([solver] max_cuts).
     NotConverged {
-        scene: PathBuf,
         step: Option<usize>,
         iterations: usize,
         cycled: bool,
@@ -73,10 +66,10 @@ pub enum ContactError {
         results: Option<PathBuf>,
     },
     /// Substructures joined by bonded interfaces alone, and that system singular.
-    BondedNotHeld { scene: PathBuf },
+    BondedNotHeld,
     /// The interface mass matrix of the consistent traction recovery could
     /// not be factorised.
-    Traction { scene: PathBuf, reason: String },
+    Traction { reason: FactorError },
 }
 
 /// Why a safety search ends the run non-zero.
@@ -90,7 +83,6 @@ pub enum SafetyError {
     /// advice for it; `load`: a load factor search; `results`: where the
     /// results that exist were written.
     Unsafe {
-        scene: PathBuf,
         at_one: ContactError,
         holds: Option<f64>,
         fails: f64,
@@ -102,14 +94,7 @@ pub enum SafetyError {
     /// Converged trials did not decide the factor: they hold at `holds`
     /// and fail at `fails` (None: none converged above), and the trials at
     /// `undecided` did not converge, even when retried.
-    Undecided {
-        scene: PathBuf,
-        holds: f64,
-        fails: Option<f64>,
-        undecided: Vec<f64>,
-        load: bool,
-        results: Option<PathBuf>,
-    },
+    Undecided { holds: f64, fails: Option<f64>, undecided: Vec<f64>, load: bool, results: Option<PathBuf> },
 }
 
 impl SafetyError {
@@ -126,7 +111,7 @@ impl SafetyError {
 #[derive(Clone, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum PlanError {
     /// More ranks than parts; `substructures`: the cut the scene asked for.
-    TooManyRanks { scene: PathBuf, ranks: usize, parts: usize, substructures: usize },
+    TooManyRanks { ranks: usize, parts: usize, substructures: usize },
 }
 
 impl std::error::Error for ContactError {}
@@ -148,16 +133,13 @@ impl ContactError {
             bodies.dedup();
             bodies.iter().map(|&b| model.bodies[b].name.clone()).collect()
         };
-        let scene_path = scene.path.clone();
         match f.failure {
-            SolveFailure::NotHeld(ids) => {
-                ContactError::NotHeld { scene: scene_path, at, bodies: names(&ids), apex: apex(scene) }
-            }
+            SolveFailure::NotHeld(ids) => ContactError::NotHeld { at, bodies: names(&ids), apex: apex(scene) },
             SolveFailure::Sliding(free) => {
                 let bodies = names(&free);
                 let no_shear = no_shear(model, scene, &f.states, &bodies);
                 let motions = (free.motions.iter()).map(|&(p, m)| (names(&[p]).join("\", \""), m)).collect();
-                ContactError::Sliding { scene: scene_path, at, bodies, no_shear, rule: scene.solver.rule, motions }
+                ContactError::Sliding { at, bodies, no_shear, rule: scene.solver.rule, motions }
             }
         }
     }
@@ -237,7 +219,7 @@ impl fmt::Display for At {
 impl fmt::Display for ContactError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            ContactError::NotHeld { scene, at, bodies, apex } => {
+            ContactError::NotHeld { at, bodies, apex } => {
                 let one = bodies.len() == 1;
                 let apex = if apex.is_empty() {
                     String::new()
@@ -250,15 +232,14 @@ impl fmt::Display for ContactError {
                 };
                 write!(
                     f,
-                    "{}: {} {} held by nothing at {at}: {} contact pairs opened and no support holds {}{apex}. Add a support, or check the loads that pull the contact apart",
-                    scene.display(),
+                    "{} {} held by nothing at {at}: {} contact pairs opened and no support holds {}{apex}. Add a support, or check the loads that pull the contact apart",
                     bodies_named(bodies),
                     if one { "is" } else { "are" },
                     if one { "its" } else { "their" },
                     if one { "it" } else { "them" },
                 )
             }
-            ContactError::Sliding { scene, at, bodies, no_shear, rule, motions } => {
+            ContactError::Sliding { at, bodies, no_shear, rule, motions } => {
                 let (who, moves, its) = match bodies.len() {
                     0 => ("a body".to_string(), "slides or rotates", "its"),
                     1 => (bodies_named(bodies), "slides or rotates", "its"),
@@ -266,8 +247,7 @@ impl fmt::Display for ContactError {
                 };
                 write!(
                     f,
-                    "{}: the interface system is singular at {at}: {who} {moves} freely{} on {its} contacts",
-                    scene.display(),
+                    "the interface system is singular at {at}: {who} {moves} freely{} on {its} contacts",
                     motions_named(motions)
                 )?;
                 if *no_shear {
@@ -279,8 +259,8 @@ impl fmt::Display for ContactError {
                     write!(f, " — loss of equilibrium: the load along the contact exceeds what friction and cohesion can carry. Reduce the load, add a support that holds {} tangentially, or raise the friction or cohesion of {its} contacts", if bodies.len() > 1 { "them" } else { "it" })
                 }
             }
-            ContactError::NotConverged { scene, step, iterations, cycled, cuts, rule, results } => {
-                write!(f, "{}: the contact iteration did not converge", scene.display())?;
+            ContactError::NotConverged { step, iterations, cycled, cuts, rule, results } => {
+                write!(f, "the contact iteration did not converge")?;
                 match step {
                     Some(0) => write!(f, " in the initial equilibrium stage ([solver] initial_stage: the in-situ stress with the contacts active, before any load)")?,
                     Some(k) => write!(f, " at load step {k}")?,
@@ -296,13 +276,11 @@ impl fmt::Display for ContactError {
                 }
                 Ok(())
             }
-            ContactError::BondedNotHeld { scene } => write!(
-                f,
-                "{}: the bonded interface system of the substructures is singular: a body is not held",
-                scene.display()
-            ),
-            ContactError::Traction { scene, reason } => {
-                write!(f, "{}: consistent contact traction: the interface mass matrix: {reason}", scene.display())
+            ContactError::BondedNotHeld => {
+                write!(f, "the bonded interface system of the substructures is singular: a body is not held")
+            }
+            ContactError::Traction { reason } => {
+                write!(f, "consistent contact traction: the interface mass matrix: {reason}")
             }
         }
     }
@@ -311,12 +289,11 @@ impl fmt::Display for ContactError {
 impl fmt::Display for PlanError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            PlanError::TooManyRanks { scene, ranks, parts, substructures } => {
+            PlanError::TooManyRanks { ranks, parts, substructures } => {
                 let more = ranks.div_ceil((*parts).max(1)) * (*substructures).max(1);
                 write!(
                     f,
-                    "{}: {ranks} MPI ranks but the model has {parts} part(s): every rank needs a part. Cut the bodies into more substructures ([solver] substructures = {more} or --substructures {more}), or run on at most {parts} rank(s)",
-                    scene.display()
+                    "{ranks} MPI ranks but the model has {parts} part(s): every rank needs a part. Cut the bodies into more substructures ([solver] substructures = {more} or --substructures {more}), or run on at most {parts} rank(s)"
                 )
             }
         }
@@ -327,10 +304,10 @@ impl fmt::Display for SafetyError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             SafetyError::Unsafe { .. } => unsafe_message(self, f),
-            SafetyError::Undecided { scene, holds, fails, undecided, load, results } => {
+            SafetyError::Undecided { holds, fails, undecided, load, results } => {
                 let what = if *load { "load factor" } else { "factor of safety" };
                 let tried: Vec<String> = undecided.iter().map(|u| format!("{u:.4}")).collect();
-                write!(f, "{}: the {what} is not decided: the contact iteration did not converge at F = {} even when retried in smaller steps with more iterations, so those trials neither hold nor fail. Converged trials hold at F = {holds:.4}", scene.display(), tried.join(", "))?;
+                write!(f, "the {what} is not decided: the contact iteration did not converge at F = {} even when retried in smaller steps with more iterations, so those trials neither hold nor fail. Converged trials hold at F = {holds:.4}", tried.join(", "))?;
                 match fails {
                     Some(x) => write!(f, " and fail at F = {x:.4}: F lies between them")?,
                     None => write!(f, " and none above converged: F is at least {holds:.4}")?,
@@ -346,7 +323,7 @@ impl fmt::Display for SafetyError {
 
 /// The paragraph of [`SafetyError::Unsafe`].
 fn unsafe_message(e: &SafetyError, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-    let SafetyError::Unsafe { scene, at_one, holds, fails, max_factor, mechanism, load, results } = e else {
+    let SafetyError::Unsafe { at_one, holds, fails, max_factor, mechanism, load, results } = e else {
         return Ok(());
     };
     let (cause, no_shear) = match at_one {
@@ -377,7 +354,7 @@ fn unsafe_message(e: &SafetyError, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         other => (other.to_string(), false),
     };
     let given = if *load { "its loads as given (F = 1)" } else { "the full strength of its contacts (F = 1)" };
-    write!(f, "{}: unsafe as given: with {given} {cause}", scene.display())?;
+    write!(f, "unsafe as given: with {given} {cause}")?;
     if let Some((how, _)) = mechanism {
         write!(f, ": {how}")?;
     }

@@ -282,7 +282,6 @@ fn not_converged(run: &Run, results: Option<PathBuf>) -> Option<ContactError> {
     let c = run.contact().filter(|c| !c.summary.converged)?;
     let step = (run.scene.solver.load_steps > 1).then(|| run.last().step);
     Some(ContactError::NotConverged {
-        scene: run.scene.path.clone(),
         step,
         iterations: c.summary.iterations,
         cycled: c.summary.cycled,

@@ -34,7 +34,7 @@ pub(super) fn plan(scene: &Scene, model: &Model, opts: &RunOptions, ranks: usize
     let k = opts.substructures.unwrap_or(scene.solver.substructures);
     let parts = cut(model, k, opts);
     if ranks > parts.len() {
-        return Err(PlanError::TooManyRanks { scene: scene.path.clone(), ranks, parts: parts.len(), substructures: k });
+        return Err(PlanError::TooManyRanks { ranks, parts: parts.len(), substructures: k });
     }
     let owner = owners(model, &parts, ranks);
     let threads =

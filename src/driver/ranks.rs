@@ -345,7 +345,7 @@ mod tests {
     use std::sync::{Arc, Barrier, Mutex};
 
     use super::*;
-    use crate::model::ModelError;
+    use crate::model::{ModelError, PartName};
     use crate::parallel::Comm;
 
     /// Ranks as threads of one process: each collective meets at a barrier
@@ -411,7 +411,7 @@ mod tests {
     }
 
     fn not_held(rank: usize) -> ModelError {
-        ModelError::PartNotHeld { part: format!("part on rank {rank}") }
+        ModelError::PartNotHeld { part: PartName { bodies: vec![format!("\"on rank {rank}\"")], piece: None } }
     }
 
     #[test]
@@ -419,8 +419,8 @@ mod tests {
         let outcomes = agree_on(3, |r| if r == 0 { Ok(0) } else { Err(not_held(r).into()) });
         for (r, o) in outcomes.into_iter().enumerate() {
             match o {
-                Err(Error::Model(m)) if matches!(&*m, ModelError::PartNotHeld { part } if part == "part on rank 1") => {
-                }
+                Err(Error::Model(m)) if matches!(&*m, ModelError::PartNotHeld { part } if part.to_string() == "body \"on rank 1\"") =>
+                    {}
                 o => panic!("rank {r}: rank 1's model error, not {o:?}"),
             }
         }

@@ -52,7 +52,6 @@ pub(super) use below::below_one;
 pub(super) fn undecided_error(run: &crate::results::Run) -> Option<SafetyError> {
     let s = run.safety.as_ref().filter(|s| !s.decided && !s.below_one)?;
     Some(SafetyError::Undecided {
-        scene: run.scene.path.clone(),
         holds: s.factor.unwrap_or(1.0),
         fails: s.fails_at,
         // those that left the bracket open: above the last hold, below the failure

@@ -173,7 +173,6 @@ fn stage(
         .unwrap_or_else(|| crate::contact::Summary { converged: true, ..Default::default() });
     if ranks.stop(!summary.converged) {
         return Err(ContactError::NotConverged {
-            scene: this.scene.path.clone(),
             step: Some(0),
             iterations: summary.iterations,
             cycled: summary.cycled,
@@ -258,9 +257,7 @@ impl Step<'_> {
             });
         };
         if self.model.pairs.is_empty() {
-            let solution = problem
-                .solve(&[], lambda)
-                .map_err(|_| ContactError::BondedNotHeld { scene: self.scene.path.clone() })?;
+            let solution = problem.solve(&[], lambda).map_err(|_| ContactError::BondedNotHeld)?;
             return Ok(Answer { d_c: solution.d_c, contact: None });
         }
         let solver = &self.scene.solver;
@@ -327,7 +324,5 @@ fn traction(
     if problem.is_none() || !consistent || model.pairs.is_empty() {
         return Ok(None);
     }
-    ConsistentTraction::new(model)
-        .map(Some)
-        .map_err(|e| ContactError::Traction { scene: scene.path.clone(), reason: e.to_string() })
+    ConsistentTraction::new(model).map(Some).map_err(|e| ContactError::Traction { reason: e })
 }

@@ -190,7 +190,7 @@ impl SymMatrix {
 }
 
 /// Why a factorisation failed.
-#[derive(Clone, Debug, thiserror::Error, serde::Serialize, serde::Deserialize)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error, serde::Serialize, serde::Deserialize)]
 pub enum FactorError {
     /// The matrix is not positive definite: some rigid-body motion is free.
     #[error("the stiffness matrix is singular or indefinite (a rigid-body motion is not held)")]

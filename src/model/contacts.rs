@@ -33,7 +33,7 @@
 use std::collections::{HashMap, HashSet};
 
 use super::build_input::Builder;
-use super::errors::{ModelError, Unpaired};
+use super::errors::{Bounded, ModelError, Unpaired};
 use super::facet_cells::two_cells;
 use super::pairs::Interface;
 use super::spec::ContactGroups;
@@ -453,27 +453,20 @@ pub(super) fn facet_sign(coords: &[[f64; 3]], facet: &Cell, cell: &Cell) -> f64 
     element::outward_sign(facet.kind, &fc, cell.kind, &cc)
 }
 
-/// "body "rock"", or "block 3 of body "rock" (centre at (x, y, z))" when
-/// the body is cut into blocks.
-fn describe_cell(b: &Builder, topo: &Topology, block: &[usize], c: usize) -> String {
+/// The body a cell lies in, or its block when the body is cut into blocks.
+fn describe_cell(b: &Builder, topo: &Topology, block: &[usize], c: usize) -> Box<Bounded> {
     let body = topo.body[c];
-    let name = &b.spec.bodies[body].group;
+    let name = b.spec.bodies[body].group.clone();
     let of_body: Vec<usize> = (0..block.len()).filter(|&x| topo.body[x] == body).collect();
     let first = of_body.iter().map(|&x| block[x]).min().unwrap_or(0);
     if of_body.iter().all(|&x| block[x] == first) {
-        return format!("body \"{name}\"");
+        return Box::new(Bounded::Body { name });
     }
     let nodes: Vec<usize> =
         of_body.iter().filter(|&&x| block[x] == block[c]).flat_map(|&x| topo.cells[x].nodes.iter().copied()).collect();
     let centre: [f64; 3] =
         std::array::from_fn(|d| nodes.iter().map(|&n| b.mesh.coords[n][d]).sum::<f64>() / nodes.len().max(1) as f64);
-    format!(
-        "block {} of body \"{name}\" (centre at ({:.4}, {:.4}, {:.4}))",
-        block[c] - first + 1,
-        centre[0],
-        centre[1],
-        centre[2]
-    )
+    Box::new(Bounded::Block { number: block[c] - first + 1, body: name, centre })
 }
 
 /// The one cell each facet of a `groups = [..]` side bounds; all in one block.

@@ -36,15 +36,18 @@ pub enum ModelError {
     /// `free`; `lying`: when they lie on another body without sharing its nodes.
     #[error("supports: {} {} not held: no support stops {} {} (contacts counted as closed), so the stiffness matrix is singular. {}", if bodies.len() == 1 { "body" } else { "bodies" }, bodies.join(", "), if bodies.len() == 1 { "its" } else { "their" }, free.join(", "), unheld_advice(bodies.len() == 1, lying))]
     NotHeld { bodies: Vec<String>, free: Vec<String>, lying: Option<Unfused> },
-    /// A part (`part`, described) whose stiffness matrix is singular.
+    /// A part whose stiffness matrix is singular.
     #[error("supports: {part} not held: the stiffness matrix is singular. Add a support (or more supports: every rigid-body motion must be stopped) or a contact that stays closed")]
-    PartNotHeld { part: String },
-    /// A part (`part`) whose factorisation ran out of a resource (`why`).
+    PartNotHeld { part: PartName },
+    /// A part whose factorisation ran out of a resource (`why`, the
+    /// factorisation's own words).
     #[error("supports: {part}: {why}")]
-    PartFactor { part: String, why: String },
-    /// The bonded interface system is singular; `why`: what may leave bodies free.
-    #[error("supports: the bodies are not held even with every contact stuck (the bonded interface system is singular): add a support{why}")]
-    InterfaceNotHeld { why: String },
+    PartFactor { part: PartName, why: String },
+    /// The bonded interface system is singular: `unsupported`, the bodies
+    /// (labels) no support touches, and `unfused`, the body groups with
+    /// nodes on other nodes of themselves (group, how many, the first).
+    #[error("supports: the bodies are not held even with every contact stuck (the bonded interface system is singular): add a support{}", not_held_hint(unsupported, unfused))]
+    InterfaceNotHeld { unsupported: Vec<String>, unfused: Vec<(String, usize, [f64; 3])> },
     #[error("{key}: \"{group}\" is a physical point, which a pressure or traction (per unit area) cannot load: give the point a force = [..] instead, or load a small patch (a short curve in 2D, a small surface in 3D) with a traction")]
     TractionOnPoint { key: String, group: String },
     #[error("{key}: kh and kv are fractions of the acceleration of gravity, but the scene has none: give it gravity = [..] and its materials a density")]
@@ -83,15 +86,15 @@ pub enum ModelError {
     OneSided { key: String, group: String, body: String, tag: u64, lone: usize, near: Option<Box<Near>>, dim: usize },
     /// Both groups of a `groups = [a, b]` contact bound `bound` (a body or block).
     #[error("{key}: both \"{a}\" and \"{b}\" bound {bound}: a contact between a body and itself is not supported; split the body into two physical groups")]
-    SelfContact { key: String, a: String, b: String, bound: String },
+    SelfContact { key: String, a: String, b: String, bound: Box<Bounded> },
     #[error("{key}: pairing the nodes of \"{a}\" with those of \"{b}\": {why}")]
     Unpaired { key: String, a: String, b: String, why: Box<Unpaired> },
     #[error("{key}: group \"{group}\" bounds {first} and {second}: with groups = [..] each group is the face of one body (or block)")]
-    SideOfTwo { key: String, group: String, first: String, second: String },
+    SideOfTwo { key: String, group: String, first: Box<Bounded>, second: Box<Bounded> },
     #[error("{key}: element {tag} of group \"{group}\" is not a face of any element of the [[bodies]] groups")]
     SideOffBodies { key: String, tag: u64, group: String },
     #[error("{key}: element {tag} of group \"{group}\" lies between {first} and {second}, which share its nodes: with groups = [..] each group is the face of one body. For a surface the two bodies share, use group = \"{group}\" instead")]
-    SideBetween { key: String, tag: u64, group: String, first: String, second: String },
+    SideBetween { key: String, tag: u64, group: String, first: Box<Bounded>, second: Box<Bounded> },
     /// A joint with no length along `along` (its nodes all at `s`).
     #[error("{key}: the joint \"{joint}\" has no length along the flow direction along = [{}, {}, {}] (its nodes all lie at s = {s}), so it has no upstream and downstream ends: give `along` as the horizontal direction in which the water flows under the joint", along[0], along[1], along[2])]
     JointNoLength { key: String, joint: String, along: [f64; 3], s: f64 },
@@ -125,6 +128,60 @@ pub struct Unfused {
     pub at: [f64; 3],
     pub on: String,
     pub dim: usize,
+}
+
+/// What a contact group's facets bound: a whole body (its group name), or
+/// one block (`number`, from 1) of a body cut into blocks, with its centre.
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
+pub enum Bounded {
+    Body { name: String },
+    Block { number: usize, body: String, centre: [f64; 3] },
+}
+
+impl std::fmt::Display for Bounded {
+    /// "body "rock"", or "block 3 of body "rock" (centre at (x, y, z))".
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Bounded::Body { name } => write!(f, "body \"{name}\""),
+            Bounded::Block { number, body, centre: c } => {
+                write!(f, "block {number} of body \"{body}\" (centre at ({:.4}, {:.4}, {:.4}))", c[0], c[1], c[2])
+            }
+        }
+    }
+}
+
+/// A part of the model: its bodies (labels) and, when cut into
+/// substructures, which piece of how many (from 0).
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct PartName {
+    pub bodies: Vec<String>,
+    pub piece: Option<(usize, usize)>,
+}
+
+impl std::fmt::Display for PartName {
+    /// "body "a"" or "bodies "a", "b"", with the piece when cut.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let what = if self.bodies.len() == 1 { "body" } else { "bodies" };
+        write!(f, "{what} {}", self.bodies.join(", "))?;
+        match self.piece {
+            Some((i, k)) => write!(f, " (substructure {} of {k})", i + 1),
+            None => Ok(()),
+        }
+    }
+}
+
+/// What may leave the bodies free when the bonded interface system is
+/// singular: bodies no support touches, bodies not fused where their
+/// volumes meet.
+fn not_held_hint(unsupported: &[String], unfused: &[(String, usize, [f64; 3])]) -> String {
+    let mut s = String::new();
+    if !unsupported.is_empty() {
+        s += &format!(". No support touches {}: each is held only through its contacts", unsupported.join(", "));
+    }
+    for (group, n, x) in unfused {
+        s += &format!(". Body \"{group}\" has {n} nodes on other nodes of itself (the first at ({:.6}, {:.6}, {:.6})): its volumes are not fused there (BooleanFragments or Coherence in the .geo)", x[0], x[1], x[2]);
+    }
+    s
 }
 
 /// The body nearest the facets of a contact group that touches one body.
@@ -185,5 +242,31 @@ fn near_hint(near: &Option<Box<Near>>) -> String {
         ),
         Some(Near::Nearest { body, dist }) => format!("; the nearest other body is \"{body}\", {dist:.3e} away"),
         None => String::new(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Bounded, ModelError, PartName};
+
+    #[test]
+    fn parts_blocks_and_an_unheld_interface_read_as_their_data_says() {
+        let one = PartName { bodies: vec!["\"a\"".into()], piece: None };
+        assert_eq!(one.to_string(), "body \"a\"");
+        let cut = PartName { bodies: vec!["\"a\"".into(), "\"b\"".into()], piece: Some((1, 3)) };
+        assert_eq!(cut.to_string(), "bodies \"a\", \"b\" (substructure 2 of 3)");
+        let block = Bounded::Block { number: 3, body: "rock".into(), centre: [1.0, 2.5, 0.0] };
+        assert_eq!(block.to_string(), "block 3 of body \"rock\" (centre at (1.0000, 2.5000, 0.0000))");
+        let e = ModelError::InterfaceNotHeld {
+            unsupported: vec!["\"b\"".into()],
+            unfused: vec![("g".into(), 4, [0.5; 3])],
+        };
+        assert_eq!(
+            e.to_string(),
+            "supports: the bodies are not held even with every contact stuck (the bonded interface system is \
+             singular): add a support. No support touches \"b\": each is held only through its contacts. Body \"g\" \
+             has 4 nodes on other nodes of itself (the first at (0.500000, 0.500000, 0.500000)): its volumes are not \
+             fused there (BooleanFragments or Coherence in the .geo)"
+        );
     }
 }

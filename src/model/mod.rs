@@ -53,7 +53,7 @@ pub mod warnings;
 pub use body::{Block, Body};
 pub use boundary::{FacetLoad, NodalLoad, SupportDofs};
 pub use contacts::CREASE_ANGLE;
-pub use errors::{ModelError, Near, Unfused, Unpaired};
+pub use errors::{Bounded, ModelError, Near, PartName, Unfused, Unpaired};
 pub use mechanical::Model;
 pub use pairs::{Interface, Pair};
 

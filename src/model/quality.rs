@@ -127,10 +127,10 @@ pub fn slivers(model: &Model) -> Vec<(String, u64, f64)> {
     out
 }
 
-/// What may leave bodies free, for the message of a singular interface:
-/// the bodies (blocks) no support touches, and body groups whose volumes
-/// are not fused.
-pub fn why_not_held(model: &Model) -> String {
+/// The error of a singular bonded interface, with what may leave bodies
+/// free: the bodies (blocks) no support touches, and body groups whose
+/// volumes are not fused.
+pub fn why_not_held(model: &Model) -> ModelError {
     let nd = model.nd;
     let unsupported: Vec<String> = (model.bodies.iter())
         .filter(|b| {
@@ -138,14 +138,7 @@ pub fn why_not_held(model: &Model) -> String {
         })
         .map(|b| b.label())
         .collect();
-    let mut s = String::new();
-    if !unsupported.is_empty() {
-        s += &format!(". No support touches {}: each is held only through its contacts", unsupported.join(", "));
-    }
-    for (group, n, x) in coincident(model) {
-        s += &format!(". Body \"{group}\" has {n} nodes on other nodes of itself (the first at ({:.6}, {:.6}, {:.6})): its volumes are not fused there (BooleanFragments or Coherence in the .geo)", x[0], x[1], x[2]);
-    }
-    s
+    ModelError::InterfaceNotHeld { unsupported, unfused: coincident(model) }
 }
 
 /// Nodes at one place in one body group: (group name, how many nodes have

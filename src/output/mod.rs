@@ -161,7 +161,7 @@ fn finite(run: &Run) -> Result<()> {
             })
         };
         if let Some(what) = bad {
-            return Err(Error::NotFinite { scene: run.about.path.clone(), step: st.step, what });
+            return Err(Error::NotFinite { step: st.step, what });
         }
     }
     Ok(())

@@ -13,7 +13,7 @@
 //! joins with other pieces.
 
 use crate::fem::sparse::NONE;
-use crate::model::Model;
+use crate::model::{Model, PartName};
 
 /// One part: its cells, the bodies they belong to, and the nodes it shares.
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
@@ -39,11 +39,9 @@ impl Part {
         nodes
     }
 
-    /// "body "a"" or "bodies "a", "b"", with the piece when cut.
-    pub fn describe(&self, model: &Model) -> String {
-        let what = if self.bodies.len() == 1 { "body" } else { "bodies" };
-        let piece = self.piece.map_or(String::new(), |(i, k)| format!(" (substructure {} of {k})", i + 1));
-        format!("{what} {}{piece}", model.body_names(&self.bodies))
+    /// Its bodies' labels and its piece, for a message.
+    pub fn describe(&self, model: &Model) -> PartName {
+        PartName { bodies: self.bodies.iter().map(|&b| model.bodies[b].label()).collect(), piece: self.piece }
     }
 }
 

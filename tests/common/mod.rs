@@ -71,7 +71,7 @@ impl Case {
     /// fail in the contact iteration: the typed error.
     pub fn contact_error(&self, scene: &Path) -> ContactError {
         let err = self.run(scene).err().unwrap_or_else(|| panic!("{}: the run must fail", scene.display()));
-        match err {
+        match err.without_scene() {
             subcontact::Error::Contact(e) => *e,
             err => panic!("{}: a contact error, not: {err:#}", scene.display()),
         }

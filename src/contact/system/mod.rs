@@ -152,7 +152,7 @@ impl<'a> InterfaceProblem<'a> {
         let rigid: Vec<PartModes> = parts.iter().map(|p| PartModes::new(model, &p.part.nodes(model))).collect();
         let positions = model.pairs.iter().map(|p| model.coords[p.k]).collect();
         let spreads = model.normal_spreads();
-        let not_held = |_| ModelError::InterfaceNotHeld { why: crate::model::quality::why_not_held(model) };
+        let not_held = |_| crate::model::quality::why_not_held(model);
         let solver = kind.build(model, &layout, parts, &rigid, remote, threads).map_err(not_held)?;
         Ok(InterfaceProblem {
             layout,

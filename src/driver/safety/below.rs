@@ -94,7 +94,7 @@ pub(in crate::driver) fn below_one(
     let Some(found) = found else {
         return Ok(Below { done, safety: None, error: err });
     };
-    let error = found.error(step, options, at_one.expect("rank 0 knows the failure"));
+    let error = found.error(options, at_one.expect("rank 0 knows the failure"));
     let du = last.as_ref().map_or_else(Vec::new, |l| l.u.clone());
     let safety = SafetyRun {
         kind: kind(options),
@@ -132,9 +132,8 @@ struct Found {
 
 impl Found {
     /// The error the run ends with.
-    fn error(&self, step: &Step, options: &crate::scene::Safety, at_one: ContactError) -> Error {
+    fn error(&self, options: &crate::scene::Safety, at_one: ContactError) -> Error {
         SafetyError::Unsafe {
-            scene: step.scene.path.clone(),
             at_one,
             holds: self.held.as_ref().map(|h| h.factor),
             fails: self.fails.as_ref().map_or(f64::INFINITY, |f| f.0),
