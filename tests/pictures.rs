@@ -133,3 +133,43 @@ fn stacked_blocks_pushed_sideways_write_pictures_of_the_states_they_reach() {
         }
     }
 }
+
+/// About 1e5 nodes (the shipped cylinder, quad9, meshed by gmsh at lc =
+/// 0.022): prints the time to draw the deformed picture and the interface
+/// plot; run with `cargo test --release --test pictures -- --ignored
+/// --nocapture`.
+#[test]
+#[ignore = "a timing, not a check: about 1e5 nodes"]
+fn render_time_of_a_fine_mesh() {
+    use subcontact::driver::{self, RunOptions};
+    use subcontact::output::picture::{deformed_png, interface_plot_svg, Field, Snapshot};
+    let case = Case::new("pictures-fine");
+    let mut scene = subcontact::scene::Scene::load(Path::new("geo/cylinder.toml")).expect("scene");
+    scene.gmsh.setnumber = vec![("lc".into(), 0.022)];
+    let opts = RunOptions { out: Some(case.out("cylinder_fine")), skip_output: true, ..Default::default() };
+    let run = driver::run_scene(scene, &opts).expect("cylinder run");
+    eprintln!("{} nodes, {} cells", run.model.n_nodes(), run.model.bodies.iter().map(|b| b.cells.len()).sum::<usize>());
+    let (last, contact) = (run.last(), run.contact().expect("a run with contact"));
+    let snap = Snapshot {
+        title: &run.about.title,
+        model: &run.model,
+        u: &last.u,
+        stresses: &last.stresses,
+        contact: Some(contact),
+        region: None,
+        one_scale: false,
+    };
+    for _ in 0..2 {
+        let t = std::time::Instant::now();
+        let png = deformed_png(&snap, Field::VonMises, None).expect("deformed picture");
+        let deformed = t.elapsed().as_secs_f64();
+        let t = std::time::Instant::now();
+        let svg = interface_plot_svg(&run.model, contact).expect("interface plot");
+        eprintln!(
+            "deformed (PNG): {deformed:.3} s ({} kB); interfaces: {:.3} s",
+            png.len() / 1024,
+            t.elapsed().as_secs_f64()
+        );
+        assert!(png.starts_with(b"\x89PNG") && svg.starts_with("<svg"));
+    }
+}

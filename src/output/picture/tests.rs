@@ -372,34 +372,6 @@ fn triangles_sharing_edges_leave_no_gaps() {
     assert_eq!(white, 0, "unpainted pixels inside the mesh");
 }
 
-/// About 1e5 nodes (quad9, lc = 0.022): prints the render time; run with
-/// `cargo test --release --lib picture -- --ignored --nocapture`.
-#[test]
-#[ignore]
-fn render_time_of_a_fine_mesh() {
-    let mut scene = Scene::load(Path::new("geo/cylinder.toml")).expect("scene");
-    scene.gmsh.setnumber = vec![("lc".into(), 0.022)];
-    let opts = RunOptions { out: Some(out_dir("cylinder_fine")), skip_output: true, ..Default::default() };
-    let run = driver::run_scene(scene, &opts).expect("cylinder run");
-    eprintln!("{} nodes, {} cells", run.model.n_nodes(), run.model.bodies.iter().map(|b| b.cells.len()).sum::<usize>());
-    for _ in 0..2 {
-        let t = std::time::Instant::now();
-        let cv = deformed_canvas(&snap(&run), Field::VonMises, None).expect("canvas");
-        let raster = t.elapsed().as_secs_f64();
-        let bytes = encode_png(cv.w, cv.h, &cv.rgb).expect("PNG");
-        let total = t.elapsed().as_secs_f64();
-        let t = std::time::Instant::now();
-        let svg = interface_plot_svg(&run.model, contact(&run)).expect("plot");
-        eprintln!(
-            "deformed: raster {raster:.3} s, with PNG {total:.3} s ({} kB); interfaces: {:.3} s",
-            bytes.len() / 1024,
-            t.elapsed().as_secs_f64()
-        );
-        keep("fine_von_mises.png", &bytes);
-        keep("fine_interfaces.svg", svg.as_bytes());
-    }
-}
-
 /// The shipped 3D partial-slip scene (`geo/blocks3d.toml`: a tet10 block
 /// pressed onto a block and pushed along +x, f = 0.5), coarser (lc = 0.2):
 /// the plan view of the joint shows the trailing edge (x = 0) slipping and
