@@ -38,22 +38,15 @@ density = 2.0e-3
 group = "ground"
 material = "soil"
 {initial}
-[[supports]]
-group = "bottom"
-fix = ["x", "y"]
-[[supports]]
-group = "left"
-fix = ["x"]
-[[supports]]
-group = "right"
-fix = ["x"]
+{}
 {loads}
 [[probes]]
 name = "depth"
 from = [3.3, 0.5]
 to = [3.3, 7.5]
 points = 8
-"#
+"#,
+        common::scenes::on_rollers("bottom")
     )
 }
 

@@ -92,20 +92,13 @@ surface = 8.0
 [[contacts]]
 group = "joint"
 friction = 0.7002075382097097
-[[supports]]
-group = "base"
-fix = ["x", "y"]
-[[supports]]
-group = "left"
-fix = ["x"]
-[[supports]]
-group = "right"
-fix = ["x"]
+{}
 [solver]
 initial_stage = {stage}
 [output]
 fields = ["displacement", "stress"]
-{loads}"#
+{loads}"#,
+        common::scenes::on_rollers("base")
     )
 }
 

@@ -1,6 +1,16 @@
 //! Scene texts that several test files write: a repository scene with text
-//! edits, two stacked blocks meeting on a joint, and Lamé's cylinder with its
-//! closed form. Each returns the TOML text; the test writes it into its case.
+//! edits, two stacked blocks meeting on a joint, Lamé's cylinder with its
+//! closed form, and the supports of a box of ground. Each returns the TOML
+//! text; the test writes it into its case.
+
+/// The `[[supports]]` of a plane box of ground: its `bottom` group fixed,
+/// its "left" and "right" sides on rollers (x fixed).
+pub fn on_rollers(bottom: &str) -> String {
+    format!(
+        "[[supports]]\ngroup = \"{bottom}\"\nfix = [\"x\", \"y\"]\n[[supports]]\ngroup = \"left\"\nfix = [\"x\"]\n\
+         [[supports]]\ngroup = \"right\"\nfix = [\"x\"]"
+    )
+}
 
 /// geo/blocks3d.toml on its coarse tet10 mesh (lc = 0.2: 918 interface
 /// DOFs, partial slip under the oblique push), written with its geometry
