@@ -38,6 +38,19 @@ pub struct Timings {
     pub assemble: f64,
     pub condense: f64,
     pub interface: f64,
+    /// Of `interface`, with the sparse interface solver: assembling and
+    /// factorising its preconditioner's block of free relative
+    /// displacements, per solve.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub interface_factor: Option<f64>,
+    /// Of `interface`, with the sparse interface solver: GMRES (the
+    /// operator's and the preconditioner's applications).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub interface_gmres: Option<f64>,
+    /// Of `interface`, with the sparse interface solver: refining the
+    /// means to double precision after each GMRES solve.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub interface_refine: Option<f64>,
     pub recover: f64,
     pub output: f64,
     pub total: f64,

@@ -53,6 +53,11 @@ pub(super) fn add_timings(t: &mut Timings, parts: &Parts, done: &LoadSteps) {
     t.assemble = parts.assemble_s;
     t.condense = parts.condense_s;
     t.interface = parts.interface_s + done.interface_s;
+    if let Some(split) = parts.problem.as_ref().and_then(|p| p.split()) {
+        t.interface_factor = Some(split.factor);
+        t.interface_gmres = Some(split.gmres);
+        t.interface_refine = Some(split.refine);
+    }
     t.recover = done.recover_s;
 }
 

@@ -60,7 +60,7 @@ use iterative::Remote;
 pub use kind::{InterfaceKind, ITERATIVE_FROM};
 use layout::Layout;
 pub use relation::{Limit, Relation};
-pub use solver::{Answer, Solver};
+pub use solver::{Answer, Solver, Split};
 use threads::in_threads;
 
 use super::basis::FaceBasis;
@@ -181,6 +181,12 @@ impl<'a> InterfaceProblem<'a> {
     /// was formed.
     pub fn applications(&self) -> Vec<usize> {
         self.solver.counts()
+    }
+
+    /// Where the solves' time went, when the solver times its stages (the
+    /// sparse interface).
+    pub fn split(&self) -> Option<Split> {
+        self.solver.split()
     }
 
     /// The area pair `p` controls (in the interface basis), > 0.

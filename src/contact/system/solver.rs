@@ -19,6 +19,24 @@ pub trait Solver {
     /// Applications of the parts' S by each solve so far (empty for a
     /// solver that formed S).
     fn counts(&self) -> Vec<usize>;
+    /// Where the solves' time went, for a solver that times its stages.
+    fn split(&self) -> Option<Split> {
+        None
+    }
+}
+
+/// Seconds of the sparse interface's solves, by stage (summed over them).
+#[derive(Clone, Debug, Default)]
+pub struct Split {
+    /// Assembling and factorising the preconditioner's block of free
+    /// relative displacements.
+    pub factor: f64,
+    /// GMRES: the operator's and the preconditioner's applications.
+    pub gmres: f64,
+    /// Of `gmres`, the substitutions through K_mm's factor.
+    pub means: f64,
+    /// Refining the means to double precision after GMRES.
+    pub refine: f64,
 }
 
 /// What a [`Solver`] gives the interface problem.

@@ -38,7 +38,9 @@
 //! ([`super::iterative`]), or once it has cut its starting residual a
 //! hundredfold.
 
+use std::cell::Cell;
 use std::sync::Mutex;
+use std::time::Instant;
 
 use super::coords::{add_clique, fixed_load, for_each_load, localise, CliqueScratch, Terms, Var};
 use super::freedom::Freedom;
@@ -46,7 +48,7 @@ use super::gmres;
 use super::iterative::{LastStates, LOOSE_TOLERANCE, TOLERANCE};
 use super::layout::Layout;
 use super::reduce::{combine, NotHeld};
-use super::solver::{Answer, Solver};
+use super::solver::{Answer, Solver, Split};
 use super::threads::in_runs;
 use crate::contact::law::ContactState;
 use crate::fem::sparse::{Cholesky, SymMatrix};
@@ -90,6 +92,8 @@ pub struct Sparse {
     last: Mutex<Option<(Vec<f64>, Vec<f64>)>>,
     last_states: LastStates,
     iterations: Mutex<Vec<usize>>,
+    /// Where the solves' time went.
+    split: Mutex<Split>,
 }
 
 impl Sparse {
@@ -134,6 +138,7 @@ impl Sparse {
             last: Mutex::new(None),
             last_states: LastStates::default(),
             iterations: Mutex::new(Vec::new()),
+            split: Mutex::new(Split::default()),
         };
         solver.k_rr_diag = solver.diagonal_r();
         Ok(solver)
@@ -216,6 +221,35 @@ impl Sparse {
         self.apply(m, r).1
     }
 
+    /// Where a solve starts: the last answer, its r moved onto r0 +
+    /// span(Z), `r_s = r0 + Z y0`; (m_s, y0, r_s, the substitutions it took).
+    fn start(&self, free: &Free, b_m: &[f64]) -> (Vec<f64>, Vec<f64>, Vec<f64>, usize) {
+        let fr = free.fr;
+        let (nm, nr) = (self.nm, self.nr);
+        let last = self.last.lock().ok().and_then(|l| l.clone()).filter(|(m, r)| m.len() == nm && r.len() == nr);
+        let y0 = match &last {
+            Some((_, r)) => free.restrict(&r.iter().zip(&fr.r0).map(|(l, r0)| l - r0).collect::<Vec<_>>()),
+            None => vec![0.0; fr.cols.len()],
+        };
+        let mut r_s = fr.r0.clone();
+        r_s.iter_mut().zip(free.expand(&y0)).for_each(|(r, e)| *r += e);
+        match last {
+            Some((m, _)) => (m, y0, r_s, 0),
+            None => {
+                let k_mr_r = self.k_mr(&r_s);
+                let m = self.solve_means(&b_m.iter().zip(&k_mr_r).map(|(b, k)| b - k).collect::<Vec<_>>());
+                (m, y0, r_s, 1)
+            }
+        }
+    }
+
+    /// Adds a solve's seconds to the split.
+    fn add_split(&self, add: impl FnOnce(&mut Split)) {
+        if let Ok(mut split) = self.split.lock() {
+            add(&mut split);
+        }
+    }
+
     /// The diagonal of `K_rr`, one sweep per part.
     fn diagonal_r(&self) -> Vec<f64> {
         let mut d = vec![0.0; self.nr];
@@ -246,23 +280,7 @@ impl Solver for Sparse {
         fr.push(&mut b[nm..]);
         let (b_m, b_r) = b.split_at(nm);
         let free = Free { fr, nr };
-        // from the last answer, its r moved onto r0 + span(Z): r_s = r0 + Z y0
-        let last = self.last.lock().ok().and_then(|l| l.clone()).filter(|(m, r)| m.len() == nm && r.len() == nr);
-        let y0 = match &last {
-            Some((_, r)) => free.restrict(&r.iter().zip(&fr.r0).map(|(l, r0)| l - r0).collect::<Vec<_>>()),
-            None => vec![0.0; fr.cols.len()],
-        };
-        let mut r_s = fr.r0.clone();
-        r_s.iter_mut().zip(free.expand(&y0)).for_each(|(r, e)| *r += e);
-        let mut substitutions = 0;
-        let m_s = match last {
-            Some((m, _)) => m,
-            None => {
-                substitutions += 1;
-                let k_mr_r = self.k_mr(&r_s);
-                self.solve_means(&b_m.iter().zip(&k_mr_r).map(|(b, k)| b - k).collect::<Vec<_>>())
-            }
-        };
+        let (m_s, y0, r_s, substitutions) = self.start(&free, b_m);
         // what the equations lack at the start: the means' rows, then the free ones
         let (k_m, k_r) = self.apply(&m_s, &r_s);
         let known: Vec<f64> = b_r.iter().zip(&k_r).map(|(b, k)| b - k).collect();
@@ -275,22 +293,34 @@ impl Solver for Sparse {
             out
         };
         // P = [K_mm, K_mr Z; 0, Z^T K_rr Z]: y from the second row, then the means
+        let t = Instant::now();
         let schur = Preconditioner::new(self, fr);
+        let factor_s = t.elapsed().as_secs_f64();
+        let means_s = Cell::new(0.0);
         let precondition = |v: &[f64]| {
             let (v_m, v_y) = v.split_at(nm);
             let dy = schur.apply(v_y);
             let k_mr_z = self.k_mr(&free.expand(&dy));
+            let t = Instant::now();
             let mut out = self.solve_means(&v_m.iter().zip(&k_mr_z).map(|(v, k)| v - k).collect::<Vec<_>>());
+            means_s.set(means_s.get() + t.elapsed().as_secs_f64());
             out.extend(dy);
             out
         };
         let scale = length(&b).max(length(&rhs0)).max(f64::MIN_POSITIVE);
         let loose = self.last_states.loose(states);
         let tolerance = if loose { LOOSE_TOLERANCE * scale } else { TOLERANCE * scale };
+        let t = Instant::now();
         let (dx, conv) = gmres::solve(a, precondition, &rhs0, tolerance, RESTART, MAX_ITERATIONS);
+        self.add_split(|s| {
+            s.factor += factor_s;
+            s.gmres += t.elapsed().as_secs_f64();
+            s.means += means_s.get();
+        });
         if let Ok(mut its) = self.iterations.lock() {
             its.push(conv.iterations + substitutions);
         }
+
         let residual = conv.residual / scale;
         // (a NaN residual is no answer either)
         if !conv.converged && !(residual <= 1e-6) {
@@ -301,7 +331,9 @@ impl Solver for Sparse {
         let y: Vec<f64> = y0.iter().zip(dy).map(|(a, b)| a + b).collect();
         let mut r = fr.r0.clone();
         r.iter_mut().zip(free.expand(&y)).for_each(|(v, e)| *v += e);
+        let t = Instant::now();
         let k_r = self.refine_means(&mut m, &r, b_m, scale);
+        self.add_split(|s| s.refine += t.elapsed().as_secs_f64());
         let residual_r = k_r.iter().zip(b_r).map(|(k, b)| k - b).collect();
         if !residual.is_finite() || m.iter().chain(&r).any(|v| !v.is_finite()) {
             return None;
@@ -309,6 +341,7 @@ impl Solver for Sparse {
         if let Ok(mut last) = self.last.lock() {
             *last = Some((m.clone(), r.clone()));
         }
+
         Some(Answer { m, r, residual_r, residual, accuracy: conv.residual, loose })
     }
 
@@ -318,6 +351,10 @@ impl Solver for Sparse {
 
     fn counts(&self) -> Vec<usize> {
         self.iterations.lock().map(|v| v.clone()).unwrap_or_default()
+    }
+
+    fn split(&self) -> Option<Split> {
+        self.split.lock().ok().map(|s| s.clone())
     }
 }
 
