@@ -540,6 +540,11 @@ impl Rule for Newton<'_> {
             Some(Step::Held) => self.one_change(h, &mut judged),
             Some(Step::GaveUp) | None => self.break_or_pin(h, &mut judged, summary, tolerance, solution.loose),
         }
+        // a cluster's pair held stuck is judged with the cracks of the set
+        // held, not those of the iterates that cycled
+        for p in (0..judged.next.len()).filter(|&p| self.search.pins(p) && judged.next[p] == ContactState::Stick) {
+            h.cracking[p] = false;
+        }
         summary.apex_openings += self.apex_openings(h, &judged.next);
         // 3. directions of slipping pairs (a fallback where ξ vanishes)
         for (p, &line) in lines.iter().enumerate() {
