@@ -19,10 +19,8 @@
 //!
 //! The dense work is faer's: the numeric factorisation's supernodes (the
 //! trailing one is the dense nc x nc block) and the product `L_cc L_cc^T`
-//! (blocked, SIMD triangular matmul, nc^3 / 3 flops). Measured here, one
-//! core: nc = 2,499 in 0.14 s (34-38 GFLOP/s; faer's dense LLT of that size
-//! 45-50 GFLOP/s), nc = 5,928 in 1.7-1.9 s (37-40 GFLOP/s; dense LLT 31-33);
-//! the scalar triple loop it replaces ran at 0.3 GFLOP/s (17 s at 2,499).
+//! (blocked, SIMD triangular matmul, nc^3 / 3 flops); its rate against
+//! faer's dense LLT and the scalar loop it replaced: docs/kernels.md.
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltParams;

@@ -24,9 +24,8 @@
 //! substitution; only the sums over both threads are formed in another
 //! order (single-precision round-off, `single_precision.rs`'s unit test).
 //!
-//! Measured on the means of `make bench-blocks` (a substitution, forwards
-//! and back): 512 blocks (5.4e7 values) 0.0152 s against faer's 0.0235 s
-//! on one thread; 1,000 blocks (1.5e8) 0.036 s against 0.059 s.
+//! What it saves against faer's one-thread substitution is measured in
+//! docs/kernels.md (the means of `make bench-blocks`).
 
 use faer::linalg::matmul::matmul;
 use faer::linalg::triangular_solve::{solve_lower_triangular_in_place, solve_upper_triangular_in_place};

@@ -25,12 +25,8 @@
 //! `K' [x_J; x_c] = [b_J; 0]` gives `b'_c = b_c + (S + alpha I) x_c`, and
 //! `K' [m_J; d_c] = [b_J; b_c - b'_c + (S + alpha I) d_c]` gives `m_J`.
 //!
-//! Measured on the 5.7e5-DOF column of docs/scaling.md cut into 4 pieces
-//! per body (18,252 join DOFs, 5,046 contact DOFs): the dense elimination
-//! took 93 s of the interface stage; here the factorisation is 1.0e12 flops
-//! (AMD's ordering: 1.9e12) and the interface stage 54 s, the whole run
-//! 118 s instead of 157 s, for 16.2 GB peak instead of 14.7 (the sparse
-//! matrix and its factor beside the dense blocks). The pieces' cliques stay
+//! What it saves against the dense elimination, in time and memory, is
+//! measured in docs/kernels.md and docs/scaling.md. The pieces' cliques stay
 //! dense, so this is a constant factor, not a change of order: what would
 //! change the order is not forming the pieces' S at all (docs/scaling.md).
 

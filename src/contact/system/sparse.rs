@@ -24,10 +24,10 @@
 //!
 //! Because K_mm enters only the preconditioner, its factor is kept in
 //! single precision ([`crate::substructure::single`]): half the bytes to
-//! stream per substitution and to factorise (512 blocks: 0.022 s against
-//! 0.042 s, 0.8 s against 1.8 s). The residual GMRES monitors is K's own,
-//! in double precision, and after each solve the means are refined to
-//! double precision for the relative displacements found, so that a stuck
+//! stream per substitution and to factorise (docs/kernels.md). The
+//! residual GMRES monitors is K's own, in double precision, and after
+//! each solve the means are refined to double precision for the
+//! relative displacements found, so that a stuck
 //! pair's force is what K makes of the displacements on both sides: the
 //! round-off of a direct solve, not the tolerance of an iterative one,
 //! where a joint carries nothing (at a free surface).
