@@ -74,6 +74,15 @@ pub(crate) fn mark_cracks(h: &mut History) {
     }
 }
 
+/// Forgets the cracks `pairs` made in the step's iterates (the cluster
+/// search holding them stuck: [`crate::contact::cluster`]); cracks of
+/// earlier steps stay.
+pub(crate) fn forget_step_cracks(h: &mut History, pairs: impl IntoIterator<Item = usize>) {
+    for p in pairs {
+        h.cracking[p] = false;
+    }
+}
+
 /// Commits a converged step: where it ended, and the cracks it made (in
 /// its last states and on the way there).
 pub(crate) fn commit(h: &mut History, solution: &InterfaceSolution) {

@@ -37,7 +37,7 @@
 use super::capacity::{capacities, PairLoad};
 use super::cluster::{Search, Step, Watch};
 use super::frame::tangential;
-use super::history::{cracked, History};
+use super::history::{cracked, forget_step_cracks, History};
 use super::iteration::{Rule, Verdict};
 use super::law::{friction_bound, judge, ContactState, Trial};
 use super::options::SlipLaw;
@@ -542,9 +542,9 @@ impl Rule for Newton<'_> {
         }
         // a cluster's pair held stuck is judged with the cracks of the set
         // held, not those of the iterates that cycled
-        for p in (0..judged.next.len()).filter(|&p| self.search.pins(p) && judged.next[p] == ContactState::Stick) {
-            h.cracking[p] = false;
-        }
+        let held_stuck =
+            (0..judged.next.len()).filter(|&p| self.search.pins(p) && judged.next[p] == ContactState::Stick);
+        forget_step_cracks(h, held_stuck);
         summary.apex_openings += self.apex_openings(h, &judged.next);
         // 3. directions of slipping pairs (a fallback where ξ vanishes)
         for (p, &line) in lines.iter().enumerate() {
