@@ -233,7 +233,12 @@ fn holders(model: &Model, parts: &[OperatorRef]) -> Holders {
 /// Each pair's frame, and each lone pair's prescribed local values per unit
 /// ramp (`held`, in the face basis); None for a pair whose supports do not
 /// lie along its frame: it is a junction of one pair, in global axes, with
-/// the frame of its normal alone.
+/// the frame of its normal alone. That is a joint meeting a roller or a
+/// symmetry plane obliquely (`frame` turns n onto or off a supported axis
+/// only by a few degrees): its gap, its slip and its strength are then the
+/// joint's own, and what the rigid limit leaves undecided between the
+/// joint and the support is the junction's least-norm share within the
+/// joint's Coulomb cone.
 #[allow(clippy::type_complexity)]
 fn frames_and_fixed(model: &Model, held: &[Option<f64>]) -> (Vec<Frame>, Vec<Option<[[Option<f64>; 3]; 2]>>) {
     let nd = model.nd;

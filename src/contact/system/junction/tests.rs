@@ -236,6 +236,35 @@ fn the_tangent_of_a_share_within_the_cones_predicts_its_change() {
     assert!(by_plain > 0.5 * change.norm(), "the least-norm derivative is off by {by_plain:e}");
 }
 
+/// A joint dipping 70 degrees meets a vertical roller: both copies held
+/// in x, n = (0.94, 0.34). In its own frame (a junction of one pair) the
+/// weight its copies carry down the roller (g along y) is taken by the
+/// joint with a pressure, within its Coulomb cone (f = 0.7 < tan 70°: the
+/// least-norm share, (λn, λt) along (n_y, t_y), is not); nothing is left
+/// free to slip. Snapped onto x (before), its normal row was empty: no
+/// pressure, the whole of g on a free slip at zero friction.
+#[test]
+fn a_steep_joint_at_a_roller_carries_a_pressure_and_does_not_slip() {
+    use crate::contact::frame::frame;
+    let a = 70f64.to_radians();
+    let f = frame(2, [a.sin(), a.cos(), 0.0], [true, false, false]);
+    let pairs = [(0, 1, f)];
+    let held = [Some(0.0), None, Some(0.0), None];
+    let (mut nm, mut nr) = (0, 0);
+    let j = Junction::new(vec![0], |p| pairs[p], &held, 2, &mut nm, &mut nr);
+    assert_eq!((nm, nr), (1, 1), "a mean and a relative displacement along y");
+    let limit = Limit { tension: 0.0, cohesion: 0.0, friction: 0.7 };
+    let rel: Vec<Relation> = stuck(1).into_iter().map(|r| r.within(limit)).collect();
+    let tied = j.tie(&rel, 1.0, |_| 1.0);
+    assert_eq!(tied.z.ncols(), 0, "no free slip");
+    let g = DVector::from_column_slice(&[-1.0]);
+    let (force, _, _) = j.forces(&tied, &rel, &DVector::zeros(1), &g, 1.0)[0];
+    assert!(force[0] < -0.3, "a pressure: {force:?}");
+    assert!(force[1].abs() <= 0.7 * -force[0] * (1.0 + 1e-9), "within its cone: {force:?}");
+    let carried = j.rows[0][0][0] * force[0] + j.rows[0][1][0] * force[1];
+    assert!((carried - g[0]).abs() < 1e-12, "the joint carries the weight: {carried}");
+}
+
 #[test]
 fn clusters_are_pairs_sharing_copies() {
     // a lone pair, a crossing, and a lone pair asked to be general
