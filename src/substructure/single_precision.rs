@@ -103,6 +103,31 @@ impl SingleCholesky {
         x.iter().map(|&v| f64::from(v) * back).collect()
     }
 
+    /// `K^-1 b` for each column of `bs`, to single precision, in one pass
+    /// through the factor: many columns read it once, so each costs its
+    /// arithmetic rather than the factor's bytes (the sparse interface's
+    /// columns of W, [`crate::contact::system::sparse`]).
+    pub fn solve_many(&self, bs: &[Vec<f64>]) -> Vec<Vec<f64>> {
+        let (n, k) = (self.symbolic.nrows(), bs.len());
+        let t: Vec<f64> = bs.iter().map(|b| to_one(b)).collect();
+        let mut x = vec![0.0f32; n * k];
+        for ((xc, b), &tc) in x.chunks_exact_mut(n.max(1)).zip(bs).zip(&t) {
+            xc.iter_mut().zip(b).for_each(|(x, &v)| *x = (v * tc) as f32);
+        }
+        let llt = LltRef::new(&self.symbolic, &self.values);
+        let mut buf = MemBuffer::new(self.symbolic.solve_in_place_scratch::<f32>(k, Par::Seq));
+        llt.solve_in_place_with_conj(
+            Conj::No,
+            MatMut::from_column_major_slice_mut(&mut x, n, k),
+            Par::Seq,
+            MemStack::new(&mut buf),
+        );
+        (x.chunks_exact(n.max(1)).zip(&t))
+            .take(k)
+            .map(|(xc, &tc)| xc.iter().map(|&v| f64::from(v) * self.scale / tc).collect())
+            .collect()
+    }
+
     /// Whether substitutions run in two threads (see [`super::twofold`]).
     pub fn twofold(&self) -> bool {
         self.twofold.is_some()
@@ -147,6 +172,27 @@ mod tests {
         let ft = SingleCholesky::factor(&tiny, &node_of, Ordering::Amd, 1).expect("positive definite");
         let xt = ft.solve(&b);
         assert!(xt.iter().zip(&x).all(|(a, b)| *a == b / s), "scaled by 2^-664");
+    }
+
+    /// Many columns at once give each one's own answer, to single
+    /// precision, at its own scale (a zero column stays zero).
+    #[test]
+    fn many_columns_solve_as_one_each() {
+        let n = 50;
+        let k = laplacian(n, 3.0);
+        let node_of: Vec<usize> = (0..n).collect();
+        let f = SingleCholesky::factor(&k, &node_of, Ordering::Amd, 1).expect("positive definite");
+        let bs: Vec<Vec<f64>> =
+            [1.0, 1e-150, 0.0].iter().map(|&s| (0..n).map(|i| s * (1.0 + (i as f64 * 0.7).cos())).collect()).collect();
+        let many = f.solve_many(&bs);
+        assert_eq!(many.len(), 3);
+        for (x, b) in many.iter().zip(&bs) {
+            let one = f.solve(b);
+            let size = one.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let apart = x.iter().zip(&one).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+            assert!(apart <= 1e-6 * size, "apart {apart:e} of {size:e}");
+        }
+        assert!(many[2].iter().all(|&v| v == 0.0));
     }
 
     /// A cube of `n^3` nodes, one equation each, every cell a clique of

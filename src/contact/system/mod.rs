@@ -53,6 +53,7 @@ pub mod relation;
 pub mod solver;
 pub mod sparse;
 mod threads;
+mod w_columns;
 
 use coords::{Axis, Var};
 pub use freedom::{Freedom, JunctionBlock, Lift, SlipRow};

@@ -1,0 +1,67 @@
+//! The sparse interface's memory of W, the interface condensed onto the
+//! relative displacements,
+//!
+//! ```text
+//! W e_i = K_rr e_i - K_rm K_mm^-1 K_mr e_i,
+//! ```
+//!
+//! one column per relative displacement that some solve has left free,
+//! over every row of r, computed the first time it is free
+//! ([`super::sparse`]) and kept in single precision: it only
+//! preconditions, and K_mm^-1 in it is single precision already. A
+//! solve's free block `Z^T W Z` (with the friction law's and the
+//! junctions' rows) is formed from them; the pairs that slip change from
+//! one contact iteration to the next by a few, so most columns are
+//! computed once a step.
+
+use std::collections::HashMap;
+
+use super::freedom::Freedom;
+
+/// At most this many bytes of columns are kept: a solve that would need
+/// more is preconditioned without them.
+const MAX_BYTES: usize = 128 << 20;
+
+/// Columns of W by relative displacement; see the module header.
+pub(super) struct WColumns {
+    nr: usize,
+    slot: HashMap<usize, usize>,
+    cols: Vec<Vec<f32>>,
+}
+
+impl WColumns {
+    /// None kept yet, over `nr` relative displacements.
+    pub fn new(nr: usize) -> WColumns {
+        WColumns { nr, slot: HashMap::new(), cols: Vec::new() }
+    }
+
+    /// The relative displacements of `fr`'s free columns that have no
+    /// column of W yet (ascending), or None when keeping them would pass
+    /// [`MAX_BYTES`].
+    pub fn missing(&self, fr: &Freedom) -> Option<Vec<usize>> {
+        let mut idx: Vec<usize> =
+            fr.cols.iter().flatten().map(|&(i, _)| i).filter(|i| !self.slot.contains_key(i)).collect();
+        idx.sort_unstable();
+        idx.dedup();
+        ((self.cols.len() + idx.len()) * self.nr * 4 <= MAX_BYTES).then_some(idx)
+    }
+
+    /// Keeps `cols[k]`, W's column at relative displacement `idx[k]`.
+    pub fn add(&mut self, idx: &[usize], cols: Vec<Vec<f64>>) {
+        for (&i, c) in idx.iter().zip(cols) {
+            self.slot.insert(i, self.cols.len());
+            self.cols.push(c.iter().map(|&v| v as f32).collect());
+        }
+    }
+
+    /// `W z` over r for a free column `z` (relative displacement,
+    /// coefficient), every one of whose displacements has a column.
+    pub fn times(&self, z: &[(usize, f64)]) -> Vec<f64> {
+        let mut w = vec![0.0; self.nr];
+        for &(i, zi) in z {
+            let col = &self.cols[self.slot[&i]];
+            w.iter_mut().zip(col).for_each(|(w, &c)| *w += zi * f64::from(c));
+        }
+        w
+    }
+}
