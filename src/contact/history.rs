@@ -147,6 +147,7 @@ mod tests {
             residual: 0.0,
             accuracy: 0.0,
             loose: false,
+            inexact: false,
             as_tied: vec![None; 3],
             water: Vec::new(),
         };

@@ -13,7 +13,7 @@
 use super::history::{commit, mark_cracks, start_step, History};
 use super::law::ContactState;
 use super::outcome::{Failed, Outcome, Summary};
-use super::system::{InterfaceProblem, InterfaceSolution, Relation, SolveFailure};
+use super::system::{Accuracy, InterfaceProblem, InterfaceSolution, Relation, SolveFailure};
 
 /// A state rule: the relations each iteration solves with, and the verdict
 /// on what came out.
@@ -44,6 +44,9 @@ pub(super) struct Verdict {
     pub next: Vec<ContactState>,
     /// The slipping pairs' forces agree with the law.
     pub settled: bool,
+    /// How far they are from it (the largest friction residual, a force;
+    /// 0 for a rule that does not linearise the friction).
+    pub law: f64,
 }
 
 /// Runs `rule` under the load factors `lambda` from the states in `h`.
@@ -55,11 +58,12 @@ pub(super) fn run(
     max_iterations: usize,
 ) -> Result<Outcome, Failed> {
     let mut summary = Summary::default();
+    let mut accuracy = Accuracy::Answer;
     start_step(h);
     loop {
         summary.iterations += 1;
         let solution = loop {
-            match problem.solve(&rule.relations(h), lambda) {
+            match problem.solve(&rule.relations(h), lambda, accuracy) {
                 Ok(solution) => break solution,
                 Err(SolveFailure::Sliding(parts)) if rule.hold_back(h, &parts) => {}
                 Err(failure) => {
@@ -71,10 +75,13 @@ pub(super) fn run(
             mark_cracks(h);
         }
         summary.history.push(h.states.clone());
-        let Verdict { next, settled } = rule.judge(h, &solution, &mut summary);
-        // (a loose interface solve is never the answer: the next, with the
-        // same states, is solved tightly)
-        summary.converged = next == h.states && settled && !solution.loose;
+        let Verdict { next, settled, law } = rule.judge(h, &solution, &mut summary);
+        // (a loose or inexact interface solve is never the answer: the
+        // next, with the same states, is solved tightly once the friction
+        // has settled; until then each is a Newton step solved to a
+        // fraction of the law's residual)
+        summary.converged = next == h.states && settled && !solution.loose && !solution.inexact;
+        accuracy = if settled { Accuracy::Answer } else { Accuracy::Step(law) };
         if summary.converged || summary.cycled || summary.iterations >= max_iterations {
             if summary.converged {
                 commit(h, &solution);

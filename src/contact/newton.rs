@@ -532,10 +532,11 @@ impl Rule for Newton<'_> {
         let mut judged = self.next_states(h, &lines);
         let tolerance = (FORCE_TOL * judged.scale_f).max(solution.accuracy);
         let settled = judged.residual <= tolerance;
-        if self.search.feed(&h.states, &judged.next, &solution.forces, settled && !solution.loose) {
+        let tight = !solution.loose && !solution.inexact;
+        if self.search.feed(&h.states, &judged.next, &solution.forces, settled && tight) {
             summary.clusters_solved += 1;
         }
-        match self.search.judge(&h.states, &mut judged.next, settled && !solution.loose) {
+        match self.search.judge(&h.states, &mut judged.next, settled && tight) {
             Some(Step::Solved) => summary.clusters_solved += 1,
             Some(Step::Held) => self.one_change(h, &mut judged),
             Some(Step::GaveUp) | None => self.break_or_pin(h, &mut judged, summary, tolerance, solution.loose),
@@ -561,7 +562,7 @@ impl Rule for Newton<'_> {
         }
         self.judged_from.clone_from(&h.states);
         self.violation = judged.violation;
-        Verdict { settled, next: judged.next }
+        Verdict { settled, next: judged.next, law: judged.residual }
     }
 
     /// A set the last verdict chose leaves `sliding` free to slide (see

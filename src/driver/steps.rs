@@ -20,7 +20,7 @@ use super::plan::Plan;
 use super::progress::progress;
 use super::ranks::{agree, Ranks};
 use super::run_options::RunOptions;
-use crate::contact::system::InterfaceProblem;
+use crate::contact::system::{Accuracy, InterfaceProblem};
 use crate::contact::traction::ConsistentTraction;
 use crate::contact::{self, History, Outcome, PairLaw};
 use crate::error::Result;
@@ -257,7 +257,7 @@ impl Step<'_> {
             });
         };
         if self.model.pairs.is_empty() {
-            let solution = problem.solve(&[], lambda).map_err(|_| ContactError::BondedNotHeld)?;
+            let solution = problem.solve(&[], lambda, Accuracy::Answer).map_err(|_| ContactError::BondedNotHeld)?;
             return Ok(Answer { d_c: solution.d_c, contact: None });
         }
         let solver = &self.scene.solver;

@@ -17,7 +17,7 @@ use super::freedom::Freedom;
 use super::joins::{self, JoinElimination, SparseBlocks};
 use super::layout::Layout;
 use super::reduce::{NotHeld, Reduced};
-use super::solver::{Answer, Solver};
+use super::solver::{Accuracy, Answer, Solver};
 use crate::contact::law::ContactState;
 use crate::substructure::{OperatorRef, SchurRef};
 
@@ -68,7 +68,7 @@ impl Dense {
 }
 
 impl Solver for Dense {
-    fn solve(&self, fr: &Freedom, _states: &[ContactState], lambda: &[f64]) -> Option<Answer> {
+    fn solve(&self, fr: &Freedom, _states: &[ContactState], lambda: &[f64], _: Accuracy) -> Option<Answer> {
         let reduced = &self.reduced;
         let mut c = reduced.c_at(lambda);
         fr.push(&mut c);
@@ -107,7 +107,7 @@ impl Solver for Dense {
             let m_j = joined.means(&m, &r, lambda);
             m.extend(m_j);
         }
-        Some(Answer { m, r, residual_r, residual, accuracy: 0.0, loose: false })
+        Some(Answer { m, r, residual_r, residual, accuracy: 0.0, loose: false, inexact: false })
     }
 
     fn diagonal(&self, r: usize) -> f64 {

@@ -16,7 +16,11 @@
 //! states, so it stops at [`LOOSE_TOLERANCE`]; the contact iteration
 //! accepts only a solve at [`TOLERANCE`], made once the states repeat
 //! (blocks3d_tet10: 345 applications of S in 9 contact iterations instead
-//! of 581 in 8, the answer within 1.4e-10 of the dense interface's).
+//! of 581 in 8, the answer within 1.4e-10 of the dense interface's). While
+//! the states repeat but the friction has not settled, each solve is a
+//! Newton step on the friction, solved to [`STEP_FRACTION`] of the law's
+//! residual ([`tolerance`]); the solve after the friction settles is the
+//! tight one.
 //!
 //! The preconditioner has two levels. The fine one is block Jacobi: per
 //! pair (its means and relative displacements) and per join node, the
@@ -50,7 +54,7 @@ use super::freedom::Freedom;
 use super::gmres;
 use super::layout::Layout;
 use super::reduce::combine;
-use super::solver::{Answer, Solver};
+use super::solver::{Accuracy, Answer, Solver};
 use super::threads::in_runs;
 use crate::contact::basis;
 use crate::contact::frame::Frame;
@@ -68,8 +72,27 @@ pub const TOLERANCE: f64 = 1e-10;
 /// its answer only decides the next states (the contact iteration then
 /// solves the same states again at [`TOLERANCE`] before accepting it).
 pub const LOOSE_TOLERANCE: f64 = 1e-6;
+/// A Newton step under held states ([`Accuracy::Step`]) is solved to this
+/// fraction of the law's residual: the step's error is then a thousandth
+/// of what it corrects, and Newton's rate is kept.
+pub const STEP_FRACTION: f64 = 1e-3;
 const RESTART: usize = 200;
 const MAX_ITERATIONS: usize = 5_000;
+
+/// A solve's tolerance on its residual (a force), `scale` the size of its
+/// load: [`LOOSE_TOLERANCE`] of it where the states changed (`loose`), the
+/// [`STEP_FRACTION`] of the law's residual for a Newton step under held
+/// states (within the loose and the tight tolerance), [`TOLERANCE`] of it
+/// for the answer; and whether that is looser than the answer's.
+pub(super) fn tolerance(loose: bool, accuracy: Accuracy, scale: f64) -> (f64, bool) {
+    let tight = TOLERANCE * scale;
+    let tol = match (loose, accuracy) {
+        (true, _) => LOOSE_TOLERANCE * scale,
+        (false, Accuracy::Step(law)) => (STEP_FRACTION * law).clamp(tight, LOOSE_TOLERANCE * scale),
+        (false, Accuracy::Answer) => tight,
+    };
+    (tol, tol > tight)
+}
 
 /// The state set of the last solve, which tells whether a solve may stop
 /// at [`LOOSE_TOLERANCE`] (the sparse interface keeps one too).
@@ -451,7 +474,7 @@ impl<'a> Iterative<'a> {
     /// the relative displacements, under the load factors `lambda`; `None`
     /// when GMRES does not get below 1e-6 (a singular system: a body
     /// sliding freely). The unknowns are every mean, then the free columns.
-    fn solve_gmres(&self, fr: &Freedom, states: &[ContactState], lambda: &[f64]) -> Option<Answer> {
+    fn solve_gmres(&self, fr: &Freedom, states: &[ContactState], lambda: &[f64], accuracy: Accuracy) -> Option<Answer> {
         let cols = Columns { nm: self.nm, n: self.nm + self.nr, fr };
         let mut b = combine(&self.b, &self.b_fixed, lambda);
         fr.push(&mut b[self.nm..]);
@@ -494,8 +517,8 @@ impl<'a> Iterative<'a> {
             out
         };
         let scale = length(&b).max(length(&rhs)).max(f64::MIN_POSITIVE);
-        let tolerance = if loose { LOOSE_TOLERANCE } else { TOLERANCE };
-        let (dx, conv) = gmres::solve(j, m, &rhs, tolerance * scale, RESTART, MAX_ITERATIONS);
+        let (tolerance, looser) = tolerance(loose, accuracy, scale);
+        let (dx, conv) = gmres::solve(j, m, &rhs, tolerance, RESTART, MAX_ITERATIONS);
         if let Ok(mut its) = self.iterations.lock() {
             its.push(conv.iterations + 2); // and the applications for e0 and the forces
         }
@@ -503,7 +526,7 @@ impl<'a> Iterative<'a> {
         if !conv.converged && !(residual <= 1e-6) {
             return None;
         }
-        Some(self.answer(x0, &cols.expand(&dx), &b, (residual, conv.residual), loose))
+        Some(self.answer(x0, &cols.expand(&dx), &b, (residual, conv.residual), (loose, looser && !loose)))
     }
 
     /// The right-hand side of GMRES: minus the residual of the solve's
@@ -532,7 +555,14 @@ impl<'a> Iterative<'a> {
 
     /// The answer `x = x0 + dx` (`dx` over every unknown), remembered as
     /// the next solve's start, with `K x - b` on the relative rows.
-    fn answer(&self, x0: Vec<f64>, dx: &[f64], b: &[f64], (residual, accuracy): (f64, f64), loose: bool) -> Answer {
+    fn answer(
+        &self,
+        x0: Vec<f64>,
+        dx: &[f64],
+        b: &[f64],
+        (residual, accuracy): (f64, f64),
+        (loose, inexact): (bool, bool),
+    ) -> Answer {
         let (nm, nr) = (self.nm, self.nr);
         let mut x = x0;
         for (xi, d) in x.iter_mut().zip(dx) {
@@ -544,7 +574,7 @@ impl<'a> Iterative<'a> {
         if let Ok(mut last) = self.last.lock() {
             *last = Some(x);
         }
-        Answer { m, r, residual_r, residual, accuracy, loose }
+        Answer { m, r, residual_r, residual, accuracy, loose, inexact }
     }
 
     /// Where GMRES starts: the last answer, its relative displacements
@@ -712,8 +742,8 @@ impl<'f> Couplings<'f> {
 }
 
 impl Solver for Iterative<'_> {
-    fn solve(&self, fr: &Freedom, states: &[ContactState], lambda: &[f64]) -> Option<Answer> {
-        self.solve_gmres(fr, states, lambda)
+    fn solve(&self, fr: &Freedom, states: &[ContactState], lambda: &[f64], accuracy: Accuracy) -> Option<Answer> {
+        self.solve_gmres(fr, states, lambda, accuracy)
     }
 
     /// The diagonal of the preconditioner's block at relative displacement `r`.

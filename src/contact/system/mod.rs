@@ -61,7 +61,7 @@ use iterative::Remote;
 pub use kind::{InterfaceKind, ITERATIVE_FROM};
 use layout::Layout;
 pub use relation::{Limit, Relation};
-pub use solver::{Answer, Solver, Split};
+pub use solver::{Accuracy, Answer, Solver, Split};
 use threads::in_threads;
 
 use super::basis::FaceBasis;
@@ -116,6 +116,9 @@ pub struct InterfaceSolution {
     /// differed from the last solve's): good for judging the states, not
     /// as the answer.
     pub loose: bool,
+    /// Solved as a Newton step on the friction ([`Accuracy::Step`]): its
+    /// forces judge the states and the friction, but it is not the answer.
+    pub inexact: bool,
     /// A junction pair with axes its loop's ties lock (see
     /// [`junction::Junction::forces`]): its force as if those were tied,
     /// which is what it is judged by.
@@ -348,8 +351,14 @@ impl<'a> InterfaceProblem<'a> {
     }
 
     /// Solves the interface system for the relations `rel` of every pair
-    /// under the load factors `lambda` (case 0 also scales prescribed values).
-    pub fn solve(&self, rel: &[Relation], lambda: &[f64]) -> Result<InterfaceSolution, SolveFailure> {
+    /// under the load factors `lambda` (case 0 also scales prescribed values),
+    /// the forces to `accuracy`.
+    pub fn solve(
+        &self,
+        rel: &[Relation],
+        lambda: &[f64],
+        accuracy: Accuracy,
+    ) -> Result<InterfaceSolution, SolveFailure> {
         let states: Vec<ContactState> = rel.iter().map(|r| r.state).collect();
         // A part nothing holds makes the system singular only up to
         // round-off: decide it from the relations and the supports first
@@ -374,7 +383,7 @@ impl<'a> InterfaceProblem<'a> {
             water_forces = push.iter().map(|f| crate::fem::vec3::norm(*f)).collect();
             freedom.pushed = self.pushed(&push);
         }
-        let answer = self.solver.solve(&freedom, &states, lambda).ok_or_else(|| self.diagnose(rel))?;
+        let answer = self.solver.solve(&freedom, &states, lambda, accuracy).ok_or_else(|| self.diagnose(rel))?;
         let (forces, rels, as_tied) = self.forces(rel, &answer, &freedom, lambda[0]);
         let pairs = (0..rel.len())
             .map(|p| {
@@ -398,6 +407,7 @@ impl<'a> InterfaceProblem<'a> {
             residual: answer.residual,
             accuracy: answer.accuracy,
             loose: answer.loose,
+            inexact: answer.inexact,
             as_tied,
             water: water_forces,
         })

@@ -12,7 +12,9 @@ pub trait Solver {
     /// the relative displacements (`states`: the state set, to tell whether
     /// it changed since the last solve), under the load factors `lambda`;
     /// `None` when the system is singular (the problem then finds out why).
-    fn solve(&self, fr: &Freedom, states: &[ContactState], lambda: &[f64]) -> Option<Answer>;
+    /// `accuracy`: how finely the forces must come out (an iterative
+    /// solver's tolerance; a direct one is exact).
+    fn solve(&self, fr: &Freedom, states: &[ContactState], lambda: &[f64], accuracy: Accuracy) -> Option<Answer>;
     /// The system's diagonal at relative displacement `r` (the scale that
     /// turns a pair's slip into a force).
     fn diagonal(&self, r: usize) -> f64;
@@ -39,6 +41,18 @@ pub struct Split {
     pub refine: f64,
 }
 
+/// How finely a solve must resolve the forces.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Accuracy {
+    /// As the answer: the iterative interfaces' tight tolerance.
+    Answer,
+    /// A Newton step on the friction under held states, while the law is
+    /// this far from met (the largest friction residual of a slipping
+    /// pair, a force): a fraction of it is enough, an inexact Newton step
+    /// (see [`super::iterative::tolerance`]).
+    Step(f64),
+}
+
 /// What a [`Solver`] gives the interface problem.
 pub struct Answer {
     /// The means and the relative displacements.
@@ -54,4 +68,7 @@ pub struct Answer {
     pub accuracy: f64,
     /// Solved to a loose tolerance (see [`super::InterfaceSolution::loose`]).
     pub loose: bool,
+    /// Solved as a Newton step, to a fraction of the law's residual
+    /// ([`Accuracy::Step`]) rather than the tight tolerance.
+    pub inexact: bool,
 }
