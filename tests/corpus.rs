@@ -299,7 +299,7 @@ fn tunnel4sets_k0_bare_opening() {
 }
 
 #[test]
-#[ignore = "issue 28: does not converge: refused as held by nothing in step 1 (docs/corpus.md)"]
+#[ignore = "issue 28: does not converge: the steep sets' pairs cycle in step 1 (docs/corpus.md)"]
 fn blocks3d_partly_confined_in_linear_elements() {
     blocks("blocks3d_confined.toml", "tet4");
 }

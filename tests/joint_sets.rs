@@ -25,7 +25,7 @@
 mod common;
 
 use common::cli::{clean_failure, says};
-use common::Case;
+use common::{repo_text, Case};
 use subcontact::contact::law::ContactState;
 use subcontact::fem::vec3::{cross, norm, sub};
 use subcontact::mesh::joints::{
@@ -619,4 +619,28 @@ fn the_3d_cut_meshes_the_same_twice() {
     assert_eq!(meshes[0].coords.len(), meshes[1].coords.len(), "node count");
     let moved = meshes[0].coords.iter().zip(&meshes[1].coords).filter(|(a, b)| a != b).count();
     assert_eq!(moved, 0, "{moved} of {} nodes moved between the runs", meshes[0].coords.len());
+}
+
+/// The corpus' block mass (tests/corpus/blocks3d.geo: a box of rock on a
+/// slab, three sets through the rock only): the slab's bottom face, which
+/// no joint reaches, keeps its group "ground" (12 x 8 m at z = -1), and
+/// the rock's west face its 6 x 6 m at x = 0. gmsh 4.8's fragment map had
+/// given "ground" a piece of a joint inside the rock: its support held
+/// the rock there and left the slab free.
+#[test]
+fn groups_no_joint_reaches_keep_their_faces() {
+    let case = Case::new("joints-untouched-groups");
+    let geo = repo_text("tests/corpus/blocks3d.geo");
+    let mut sets =
+        vec![set("jx", 84.0, 90.0, 2.0, 1.0), set("jy", 88.0, 180.0, 2.5, -1.8), set("jz", 8.0, 200.0, 6.0, 2.5)];
+    sets.iter_mut().for_each(|j| j.snap = 0.3);
+    let (mesh, report) = cut_box(&case, &geo, 3, sets).expect("the cut succeeds");
+    assert_eq!(report.blocks.iter().filter(|b| b.body == "rock").count(), 36, "36 blocks of rock");
+    for (g, exact) in [("ground", 96.0), ("west", 36.0), ("seat", 60.0)] {
+        let a = area(&mesh, g);
+        assert!((a - exact).abs() < 1e-9 * exact, "{g}: area {a}, not {exact}");
+    }
+    let ground = mesh.group("ground").expect("the group ground");
+    let z: Vec<f64> = ground.cells.iter().flat_map(|c| c.nodes.iter().map(|&n| mesh.coords[n][2])).collect();
+    assert!(z.iter().all(|&z| (z + 1.0).abs() < 1e-9), "ground lies at z = -1: {z:?}");
 }
