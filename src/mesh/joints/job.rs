@@ -85,7 +85,7 @@ pub struct JointSpec {
 }
 
 /// Changes whenever the cutter would make another mesh of the same input.
-const CUTTER_VERSION: u32 = 3;
+const CUTTER_VERSION: u32 = 4;
 
 /// Every joint of a scene and the most blocks it may make.
 #[derive(Clone, Debug, PartialEq)]
