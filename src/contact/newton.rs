@@ -99,7 +99,7 @@ pub(super) struct Newton<'p> {
     holds: usize,
     last_hold: f64,
     /// The last solve's forces of junction pairs as if their locked axes
-    /// were tied (what they are judged by: see `InterfaceSolution::as_tied`).
+    /// were tied (whether they stick: see `InterfaceSolution::as_tied`).
     as_tied: Vec<Option<[f64; 3]>>,
     /// The size of the water's force on each pair at the last solve (empty
     /// when dry).
@@ -267,9 +267,15 @@ impl<'p> Newton<'p> {
                     judge(st, &Trial { gap: f64::NEG_INFINITY, ..trial }, &law.strength, cr, coulomb, tol_u, tol_f)
                 }
                 // a slipping one it keeps from slipping: stuck if the loop
-                // can carry its shear within every pair's bound
+                // can carry its shear within every pair's bound; otherwise
+                // judged by the force it carries slipping, the one reported
+                // (slipping in tension, it opens)
                 (Some(f), _) => {
-                    judge(ContactState::Stick, &Trial { force: f, ..trial }, &law.strength, cr, coulomb, tol_u, tol_f)
+                    let tied = Trial { force: f, ..trial };
+                    match judge(ContactState::Stick, &tied, &law.strength, cr, coulomb, tol_u, tol_f) {
+                        ContactState::Stick => ContactState::Stick,
+                        _ => judge(st, &trial, &law.strength, cr, coulomb, tol_u, tol_f),
+                    }
                 }
                 (None, _) => judge(st, &trial, &law.strength, cr, coulomb, tol_u, tol_f),
             };

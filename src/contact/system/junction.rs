@@ -507,7 +507,11 @@ impl Junction {
     /// change no displacement, only the forces, so its gap or slip cannot
     /// tell its state: the forces with every locked axis tied can, the
     /// least-norm ones within every pair's limit (None where nothing is
-    /// locked).
+    /// locked). They tell whether the pair can stick; a slipping pair
+    /// that cannot is judged by its first force, the one the outputs
+    /// report: where the loop can only carry its friction with the pair
+    /// in tension, it opens (a T-junction under a dam's base did so,
+    /// tests/junctions.rs).
     pub fn forces(
         &self,
         tied: &Tied,

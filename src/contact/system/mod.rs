@@ -121,7 +121,8 @@ pub struct InterfaceSolution {
     pub inexact: bool,
     /// A junction pair with axes its loop's ties lock (see
     /// [`junction::Junction::forces`]): its force as if those were tied,
-    /// which is what it is judged by.
+    /// which tells whether it would stick (the robust rule then judges a
+    /// slipping one by its own force, `forces`: what is reported).
     pub as_tied: Vec<Option<[f64; 3]>>,
     /// The size of the water's force on each pair (empty when dry): what
     /// a force it balances is resolved to.
