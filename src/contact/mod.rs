@@ -69,27 +69,14 @@ pub fn iterate(
     max_iterations: usize,
 ) -> Result<Outcome, Failed> {
     let mut outcome = match rule {
-        StateRule::Robust => iteration::run(newton::Newton::new(problem, laws, h), problem, lambda, h, max_iterations),
-        StateRule::Paper => iteration::run(paper_rule::Paper::new(problem, laws), problem, lambda, h, max_iterations),
+        StateRule::Robust => {
+            iteration::run(newton::Newton::new(problem, laws, h), problem, laws, lambda, h, max_iterations)
+        }
+        StateRule::Paper => {
+            iteration::run(paper_rule::Paper::new(problem, laws), problem, laws, lambda, h, max_iterations)
+        }
     }?;
     let before: Vec<bool> = (h.cracked.iter().zip(&h.cracking)).map(|(a, b)| *a || *b).collect();
-    outcome.law_residual = law_residuals(problem, laws, &before, &outcome);
     outcome.cracked = (before.iter().zip(&outcome.states)).map(|(c, s)| *c || *s != ContactState::Stick).collect();
     Ok(outcome)
-}
-
-/// Every pair's [`law::law_residual`] in the outcome's states, over its
-/// area (stress units); `cracked`: cracked in an earlier step or earlier
-/// in this one.
-fn law_residuals(problem: &InterfaceProblem, laws: &[PairLaw], cracked: &[bool], o: &Outcome) -> Vec<f64> {
-    (0..laws.len())
-        .map(|p| {
-            let (force, rel, area) = (o.solution.forces[p], o.solution.rel[p], problem.area(p));
-            let trial = law::Trial { force, area, slip: [0.0; 3], gap: rel[0], stiffness: problem.stiffness(p) };
-            let state = o.states[p];
-            let cracked = cracked[p] || state != ContactState::Stick;
-            let coulomb = laws[p].slip == SlipLaw::Coulomb;
-            law::law_residual(state, &trial, &laws[p].strength, cracked, coulomb) / area
-        })
-        .collect()
 }

@@ -12,6 +12,10 @@ pub struct Summary {
     /// A state set came back after other ones in between (paper rule: the
     /// iteration stops there).
     pub cycled: bool,
+    /// The states settled, but the forces the last solve reports break
+    /// the law at some pair beyond round-off: not converged (see
+    /// [`super::iteration`]).
+    pub law_broken: bool,
     /// Cycles broken by changing one pair at a time (robust rule).
     pub cycles_broken: usize,
     /// Stalls or cycles ended by solving the cluster of pairs they were

@@ -46,6 +46,15 @@ impl<'p> Paper<'p> {
 }
 
 impl Rule for Paper<'_> {
+    /// No: the paper's criteria are not the law the residual measures. They
+    /// keep f_t for a pair they find slipping, which the law cracks (the
+    /// intact joint of tests/contact.rs slips frictionless under a pull of
+    /// about 0.1 below its f_t = 0.3: the law's f_t = 0), and judge a
+    /// locked junction pair by its forces as tied whatever they are.
+    fn answers_to_the_law(&self) -> bool {
+        false
+    }
+
     fn relations(&self, h: &History) -> Vec<Relation> {
         (0..self.laws.len())
             .map(|p| {

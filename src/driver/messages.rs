@@ -54,13 +54,15 @@ pub enum ContactError {
     /// moves, by body (a ring turning in its hole).
     Sliding { at: At, bodies: Vec<String>, no_shear: bool, rule: StateRule, motions: Vec<(String, RigidMotion)> },
     /// A load step's iteration did not converge after `iterations`
-    /// (`cycled`: its states cycle) under `rule`; `results`: where the last
-    /// iteration's results were written; `cuts`: the halvings of the step
-    /// that were tried ([solver] max_cuts).
+    /// (`cycled`: its states cycle; `law_broken`: they settled, but the
+    /// forces of the last solve break the contact law) under `rule`;
+    /// `results`: where the last iteration's results were written; `cuts`:
+    /// the halvings of the step that were tried ([solver] max_cuts).
     NotConverged {
         step: Option<usize>,
         iterations: usize,
         cycled: bool,
+        law_broken: bool,
         cuts: usize,
         rule: StateRule,
         results: Option<PathBuf>,
@@ -259,14 +261,19 @@ impl fmt::Display for ContactError {
                     write!(f, " — loss of equilibrium: the load along the contact exceeds what friction and cohesion can carry. Reduce the load, add a support that holds {} tangentially, or raise the friction or cohesion of {its} contacts", if bodies.len() > 1 { "them" } else { "it" })
                 }
             }
-            ContactError::NotConverged { step, iterations, cycled, cuts, rule, results } => {
+            ContactError::NotConverged { step, iterations, cycled, law_broken, cuts, rule, results } => {
                 write!(f, "the contact iteration did not converge")?;
                 match step {
                     Some(0) => write!(f, " in the initial equilibrium stage ([solver] initial_stage: the in-situ stress with the contacts active, before any load)")?,
                     Some(k) => write!(f, " at load step {k}")?,
                     None => {}
                 }
-                write!(f, " after {iterations} iteration(s){}", if *cycled { " (the states cycle)" } else { "" })?;
+                let why = match (cycled, law_broken) {
+                    (true, _) => " (the states cycle)",
+                    (_, true) => " (the states settled, but their forces break the contact law: see the law residual)",
+                    _ => "",
+                };
+                write!(f, " after {iterations} iteration(s){why}")?;
                 if *cuts > 0 {
                     write!(f, ", the step cut {cuts} time(s) in halves ([solver] max_cuts)")?;
                 }

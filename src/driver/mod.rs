@@ -285,6 +285,7 @@ fn not_converged(run: &Run, results: Option<PathBuf>) -> Option<ContactError> {
         step,
         iterations: c.summary.iterations,
         cycled: c.summary.cycled,
+        law_broken: c.summary.law_broken,
         cuts: c.summary.cuts,
         rule: run.scene.solver.rule,
         results,

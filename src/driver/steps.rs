@@ -176,6 +176,7 @@ fn stage(
             step: Some(0),
             iterations: summary.iterations,
             cycled: summary.cycled,
+            law_broken: summary.law_broken,
             cuts: summary.cuts,
             rule: this.scene.solver.rule,
             results: None,

@@ -99,6 +99,8 @@ fn contact_rows(s: &mut String, run: &Run) {
                 "NOT in equilibrium: the last iterate of the load step that lost it (the scene is unsafe as given, see the safety section)"
             } else if it.cycled {
                 "NOT converged: the states cycle"
+            } else if it.law_broken {
+                "NOT converged: the states settled, but their forces break the contact law (its residual below)"
             } else {
                 "NOT converged"
             }
