@@ -15,11 +15,13 @@
 //!
 //! each load scaled by its case's factor at the step (body forces: gravity
 //! and the seismic accelerations). Contact forces are the pairs'
-//! `(sigma_n n + tau_t t + tau_b b) A` (the forces themselves with
+//! `(sigma_n n + tau_t t + tau_b b) A`, taken from the interface basis to
+//! the nodes ([`pair_forces`]; the forces themselves with
 //! `traction = "lumped"`; with `"consistent"` their sum, not each node's),
 //! and the water's push where a joint holds water (`sigma_n` is the
 //! effective, solid-to-solid stress: the water loads both faces besides it).
 
+use crate::contact::basis::FaceBasis;
 use crate::fem::element::{self, dofs_per_node};
 use crate::fem::material::d_matrix;
 use crate::model::{Body, Model};
@@ -102,14 +104,27 @@ fn cell_weight(model: &Model, body: &Body, cell: &crate::mesh::Cell, a: [f64; 3]
     fe
 }
 
-/// The force of pair `p` on body I (its opposite on body II): the contact's
-/// solid-to-solid force and the water's push in the joint, if any.
-pub fn pair_force(c: &ContactRun, p: usize) -> [f64; 3] {
-    let f = c.force(p);
-    match &c.water {
-        Some(w) => std::array::from_fn(|i| f[i] + w.force[p][i]),
-        None => f,
-    }
+/// The nodal force of every pair on body I (its opposite on body II): the
+/// contact's solid-to-solid force and the water's push in the joint, if
+/// any. The solve's pair forces are in the interface basis
+/// ([`crate::contact::basis`]: on tri6 and quad8 faces `f̃ = Qᵀ f`), so
+/// the nodes' own forces are `Q⁻ᵀ f̃`: the same sum over each face, but
+/// another share at each node, and the share is what a support node's
+/// reaction is found from. The water's push is nodal already.
+pub fn pair_forces(model: &Model, c: &ContactRun) -> Vec<[f64; 3]> {
+    let n = model.pairs.len();
+    let basis = FaceBasis::new(model);
+    let solid: Vec<[f64; 3]> = (0..n).map(|p| c.force(p)).collect();
+    let nodal: [Vec<f64>; 3] = std::array::from_fn(|i| {
+        let component: Vec<f64> = solid.iter().map(|f| f[i]).collect();
+        basis.inverse_transpose_apply(&component)
+    });
+    (0..n)
+        .map(|p| {
+            let water = c.water.as_ref().map_or([0.0; 3], |w| w.force[p]);
+            std::array::from_fn(|i| nodal[i][p] + water[i])
+        })
+        .collect()
 }
 
 /// A facet load's nodal forces at factor `f` (`nd` per node of the facet).
@@ -151,8 +166,7 @@ pub fn node_forces(model: &Model, step: &StepResult, wanted: &[bool]) -> NodeFor
         (0..3).for_each(|c| out.applied[load.node][c] += load.force[c] * factor(load.case));
     }
     if let Some(c) = &step.contact {
-        for (p, pair) in model.pairs.iter().enumerate() {
-            let f = pair_force(c, p);
+        for (pair, f) in model.pairs.iter().zip(pair_forces(model, c)) {
             (0..3).for_each(|i| {
                 out.contact[pair.k][i] += f[i];
                 out.contact[pair.l][i] -= f[i];

@@ -5,7 +5,7 @@
 //! found). The balance's remainder, and the largest force left at the free
 //! DOFs of the cells around the supports, say how well that holds.
 
-use super::forces::{applied_per_body, node_forces, pair_force};
+use super::forces::{applied_per_body, node_forces, pair_forces};
 use crate::fem::vec3::{cross, sub};
 use crate::model::Model;
 use crate::results::{BodyBalance, Reactions, StepResult, SupportReaction};
@@ -62,8 +62,7 @@ fn balances(model: &Model, step: &StepResult, groups: &[String], supports: &[[f6
     let body_of = model.body_of_node();
     let mut contact = vec![[0.0; 3]; model.bodies.len()];
     if let Some(c) = &step.contact {
-        for (p, pair) in model.pairs.iter().enumerate() {
-            let f = pair_force(c, p);
+        for (pair, f) in model.pairs.iter().zip(pair_forces(model, c)) {
             (0..3).for_each(|i| {
                 contact[body_of[pair.k]][i] += f[i];
                 contact[body_of[pair.l]][i] -= f[i];
