@@ -260,6 +260,11 @@ fn in_situ_stress_beyond_a_joints_strength_is_named_before_solving() {
 /// per iteration, 100 iterations (413 with 3 cuts) without converging.
 /// The stall is caught after five held solves and those pressures solved
 /// for by multisecant steps (`contact/cluster.rs`): converged in 16.
+/// Since joints meeting a roller obliquely keep their own frame (655d6a0)
+/// it takes 24, the same states but pair 143, where joints_b (60 degrees)
+/// meets the bottom roller: open along x on the projected frame before,
+/// stuck now on its own plane (sigma_n 0, its shear 0.095 within its
+/// cohesion; law residual 4.4e-11 of the largest traction).
 #[test]
 fn a_crossing_whose_slipping_pairs_wedge_it_converges_once_its_pressures_are_solved_for() {
     let case = Case::new("conv-tunnel-10m");
@@ -273,7 +278,7 @@ fn a_crossing_whose_slipping_pairs_wedge_it_converges_once_its_pressures_are_sol
     let c = &s["contact"];
     assert_eq!(c["converged"], Value::Bool(true));
     let its = c["iterations"].as_u64().expect("iterations");
-    assert!(its <= 20, "{its} iterations");
+    assert!(its <= 25, "{its} iterations");
     assert_eq!(c["clusters_solved"].as_u64(), Some(1), "the stall solved once");
     let worst = c["law_residual"]["relative"].as_f64().expect("law residual");
     assert!(worst < 1e-6, "law residual {worst:e}");
