@@ -8,7 +8,10 @@
 //! one column per relative displacement that some solve has left free,
 //! over every row of r, computed the first time it is free
 //! ([`super::sparse`]) and kept in single precision: it only
-//! preconditions, and K_mm^-1 in it is single precision already. A
+//! preconditions, and K_mm^-1 in it is single precision already. Each
+//! column is kept over its largest entry, which stays in f64: a scene in
+//! units near 1e-200 (tests/wrong_blame.rs) would underflow f32 and leave
+//! the block singular. A
 //! solve's free block `Z^T W Z` (with the friction law's and the
 //! junctions' rows) is formed from them; the pairs that slip change from
 //! one contact iteration to the next by a few, so most columns are
@@ -26,7 +29,8 @@ const MAX_BYTES: usize = 128 << 20;
 pub(super) struct WColumns {
     nr: usize,
     slot: HashMap<usize, usize>,
-    cols: Vec<Vec<f32>>,
+    /// Each column over its largest entry, and that entry.
+    cols: Vec<(f64, Vec<f32>)>,
 }
 
 impl WColumns {
@@ -50,7 +54,9 @@ impl WColumns {
     pub fn add(&mut self, idx: &[usize], cols: Vec<Vec<f64>>) {
         for (&i, c) in idx.iter().zip(cols) {
             self.slot.insert(i, self.cols.len());
-            self.cols.push(c.iter().map(|&v| v as f32).collect());
+            let scale = c.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let scale = if scale > 0.0 { scale } else { 1.0 };
+            self.cols.push((scale, c.iter().map(|&v| (v / scale) as f32).collect()));
         }
     }
 
@@ -59,8 +65,9 @@ impl WColumns {
     pub fn times(&self, z: &[(usize, f64)]) -> Vec<f64> {
         let mut w = vec![0.0; self.nr];
         for &(i, zi) in z {
-            let col = &self.cols[self.slot[&i]];
-            w.iter_mut().zip(col).for_each(|(w, &c)| *w += zi * f64::from(c));
+            let (scale, col) = &self.cols[self.slot[&i]];
+            let zs = zi * scale;
+            w.iter_mut().zip(col).for_each(|(w, &c)| *w += zs * f64::from(c));
         }
         w
     }
