@@ -189,6 +189,7 @@ stress: deps deps-strace
 	$(CARGO) test --release --test stress -- --ignored --nocapture
 	$(CARGO) test --release --test transaction -- --ignored --nocapture
 	$(CARGO) test --release --test convergence -- --ignored --nocapture
+	$(CARGO) test --release --test joint_sets -- --ignored --nocapture
 	$(CARGO) test --release --test corpus -- --ignored --nocapture
 
 test: deps deps-strace
