@@ -51,6 +51,25 @@ pub struct Timings {
     /// means to double precision after each GMRES solve.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub interface_refine: Option<f64>,
+    /// Of `interface_factor`: computing the columns of W it is formed from.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub interface_columns: Option<f64>,
+    /// Of `interface`, with the sparse interface solver: each solve's
+    /// start (K applied to the last answer moved onto the new relations).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub interface_start: Option<f64>,
+    /// Of `interface`, with the sparse interface solver: the checks of
+    /// what holds the parts before each solve.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub interface_checks: Option<f64>,
+    /// Of `interface`, with the sparse interface solver: the free
+    /// directions of each solve's relations (the junctions' ties).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub interface_relations: Option<f64>,
+    /// Of `interface`, with the sparse interface solver: the pairs' forces
+    /// and the parts' displacements from each answer.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub interface_forces: Option<f64>,
     pub recover: f64,
     pub output: f64,
     pub total: f64,

@@ -57,6 +57,11 @@ pub(super) fn add_timings(t: &mut Timings, parts: &Parts, done: &LoadSteps) {
         t.interface_factor = Some(split.factor);
         t.interface_gmres = Some(split.gmres);
         t.interface_refine = Some(split.refine);
+        t.interface_columns = Some(split.columns);
+        t.interface_start = Some(split.start);
+        t.interface_checks = Some(split.checks);
+        t.interface_relations = Some(split.relations);
+        t.interface_forces = Some(split.forces);
     }
     t.recover = done.recover_s;
 }

@@ -96,6 +96,9 @@ pub struct InterfaceProblem<'a> {
     threads: usize,
     /// The water in the joints: a right-hand side that depends on the states.
     water: Option<Water>,
+    /// Seconds of the solves' work outside the solver ([`Split::checks`],
+    /// [`Split::relations`], [`Split::forces`]).
+    around: std::sync::Mutex<Split>,
 }
 
 /// Result of one interface solve.
@@ -169,6 +172,7 @@ impl<'a> InterfaceProblem<'a> {
             load: Default::default(),
             threads,
             water: None,
+            around: Default::default(),
         })
     }
 
@@ -191,7 +195,20 @@ impl<'a> InterfaceProblem<'a> {
     /// Where the solves' time went, when the solver times its stages (the
     /// sparse interface).
     pub fn split(&self) -> Option<Split> {
-        self.solver.split()
+        let around = self.around.lock().map(|a| a.clone()).unwrap_or_default();
+        self.solver.split().map(|s| Split {
+            checks: around.checks,
+            relations: around.relations,
+            forces: around.forces,
+            ..s
+        })
+    }
+
+    /// Adds seconds of work outside the solver to [`InterfaceProblem::split`].
+    fn add_around(&self, add: impl FnOnce(&mut Split)) {
+        if let Ok(mut around) = self.around.lock() {
+            add(&mut around);
+        }
     }
 
     /// The area pair `p` controls (in the interface basis), > 0.
@@ -364,7 +381,9 @@ impl<'a> InterfaceProblem<'a> {
         // A part nothing holds makes the system singular only up to
         // round-off: decide it from the relations and the supports first
         // (as `diagnose` would, without looking for sliding parts).
+        let t = std::time::Instant::now();
         let (not_held, sliding) = self.holding(rel);
+        self.add_around(|a| a.checks += t.elapsed().as_secs_f64());
         if !not_held.is_empty() {
             return Err(SolveFailure::NotHeld(not_held));
         }
@@ -377,7 +396,9 @@ impl<'a> InterfaceProblem<'a> {
                 *load = lambda.to_vec();
             }
         }
+        let t = std::time::Instant::now();
         let mut freedom = self.freedom(rel, lambda[0]);
+        self.add_around(|a| a.relations += t.elapsed().as_secs_f64());
         let mut water_forces = Vec::new();
         if let Some(water) = &self.water {
             let push = water.forces(&states, lambda);
@@ -385,6 +406,7 @@ impl<'a> InterfaceProblem<'a> {
             freedom.pushed = self.pushed(&push);
         }
         let answer = self.solver.solve(&freedom, &states, lambda, accuracy).ok_or_else(|| self.diagnose(rel))?;
+        let t = std::time::Instant::now();
         let (forces, rels, as_tied) = self.forces(rel, &answer, &freedom, lambda[0]);
         let pairs = (0..rel.len())
             .map(|p| {
@@ -400,6 +422,7 @@ impl<'a> InterfaceProblem<'a> {
             })
             .collect();
         let d_c = self.displacements(&answer, lambda[0]);
+        self.add_around(|a| a.forces += t.elapsed().as_secs_f64());
         Ok(InterfaceSolution {
             pairs,
             forces,

@@ -39,6 +39,21 @@ pub struct Split {
     pub means: f64,
     /// Refining the means to double precision after GMRES.
     pub refine: f64,
+    /// Of `factor`, computing W's columns (substitutions through K_mm's
+    /// factor and sweeps of the parts).
+    pub columns: f64,
+    /// Where each solve starts: the last answer moved onto the new
+    /// relations and K applied to it (what the equations lack).
+    pub start: f64,
+    /// Outside the solver, filled by [`super::InterfaceProblem`]: the
+    /// checks of what holds the parts before each solve.
+    pub checks: f64,
+    /// Outside the solver: the free directions of each solve's relations
+    /// (the junctions' ties).
+    pub relations: f64,
+    /// Outside the solver: the pairs' forces and the parts' displacements
+    /// from each answer (the junctions' shares).
+    pub forces: f64,
 }
 
 /// How finely a solve must resolve the forces.

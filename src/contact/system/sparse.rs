@@ -367,10 +367,12 @@ impl Sparse {
         }
         let mut w = self.w.lock().ok()?;
         let missing = w.missing(free.fr)?;
+        let t = Instant::now();
         for batch in missing.chunks(W_BATCH) {
             let cols = self.w_columns_of(batch);
             w.add(batch, cols);
         }
+        self.add_split(|s| s.columns += t.elapsed().as_secs_f64());
         let mut e = vec![0.0; n];
         let mut a = Mat::<f64>::zeros(n, n);
         for (c, z) in free.fr.cols.iter().enumerate() {
@@ -421,12 +423,14 @@ impl Solver for Sparse {
         fr.push(&mut b[nm..]);
         let (b_m, b_r) = b.split_at(nm);
         let free = Free { fr, nr };
+        let t = Instant::now();
         let (m_s, y0, r_s, substitutions) = self.start(&free, b_m);
         // what the equations lack at the start: the means' rows, then the free ones
         let (k_m, k_r) = self.apply(&m_s, &r_s);
         let known: Vec<f64> = b_r.iter().zip(&k_r).map(|(b, k)| b - k).collect();
         let mut rhs0: Vec<f64> = b_m.iter().zip(&k_m).map(|(b, k)| b - k).collect();
         rhs0.extend(free.rhs(&known, &y0));
+        self.add_split(|s| s.start += t.elapsed().as_secs_f64());
         let a = |x: &[f64]| {
             let (dm, dy) = x.split_at(nm);
             let (mut out, k_r) = self.apply(dm, &free.expand(dy));
