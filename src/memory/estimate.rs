@@ -15,6 +15,8 @@
 //! interface   = [Σ factors] + 2 Σ 8 n_c² + 3 · 8 N²  (S and S in the pairs' frames, W, the
 //!                                                    state set's matrix and its factor;
 //!                                                    factors freed above 30 % of the memory)
+//!               (sparse interface: the means' factor, and W's columns, min(128 MB, 4 N²),
+//!                beside it in the contact iteration: [`InterfaceKind::memory`])
 //! peak        = now + 1.15 max(condensing, interface) + results + 72 MB
 //! ```
 //!

@@ -11,6 +11,7 @@ use super::layout::Layout;
 use super::reduce::NotHeld;
 use super::solver::Solver;
 use super::sparse::Sparse;
+use super::w_columns;
 use crate::contact::mobility::PartModes;
 use crate::contact::options::InterfaceSolver;
 use crate::model::Model;
@@ -126,10 +127,14 @@ impl InterfaceKind {
             // copied into the pairs' frames while W is assembled; the sparse
             // interface then holds K_mm (a clique of means per part, 16 bytes
             // an entry: 0.7 schur measured) and factorises it, the
-            // factorisation's scratch beside the factor (up to 0.8 of it)
+            // factorisation's scratch beside the factor (up to 0.8 of it).
+            // During the contact iteration it keeps W's columns beside the
+            // factor and the parts' S in the pairs' frames (at most
+            // [`w_columns::most_bytes`]: 128 MB, or every column of W)
             InterfaceKind::Sparse if solves => {
                 let w = 8.0 * SPARSE_FILL * nm.powf(4.0 / 3.0);
-                (w, kept + 3.0 * schur + 2.0 * w)
+                let columns = w_columns::most_bytes(interface_dofs / 2) as f64;
+                (w + columns, (kept + 3.0 * schur + 2.0 * w).max(kept + schur + w + columns))
             }
             InterfaceKind::Dense if solves => {
                 let w = 3.0 * 8.0 * nm.powi(2);
@@ -144,4 +149,25 @@ impl InterfaceKind {
 /// then the sparse interface pays (see [`super::sparse`]).
 fn blocky(parts: &[Part], nd: usize) -> bool {
     parts.len() >= BLOCKY_PARTS && parts.iter().all(|p| p.interface.len() * nd <= BLOCKY_PART_INTERFACE)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{w_columns, InterfaceKind, SPARSE_FILL};
+
+    /// The sparse interface's matrices are K_mm's factor and W's columns:
+    /// every column of W (4 bytes an entry) on a small interface, 128 MB
+    /// on a large one; the iteration's peak holds them beside the factor.
+    #[test]
+    fn the_sparse_interface_counts_the_columns_of_w() {
+        for (dofs, columns) in [(2_000usize, 4.0 * 1000.0 * 1000.0), (200_000, 128.0 * 1024.0 * 1024.0)] {
+            let factor = 8.0 * SPARSE_FILL * (dofs as f64 / 2.0).powf(4.0 / 3.0);
+            let (matrices, peak) = InterfaceKind::Sparse.memory(dofs, true, 0.0, 0.0);
+            assert!((matrices - factor - columns).abs() <= 1e-9 * matrices, "{dofs}: {matrices} {factor}");
+            assert!(peak >= factor + columns && peak >= 2.0 * factor, "{dofs}: {peak}");
+            assert_eq!(w_columns::most_bytes(dofs / 2) as f64, columns);
+        }
+        // a rank that does not solve the interface keeps no columns
+        assert_eq!(InterfaceKind::Sparse.memory(2_000, false, 0.0, 0.0).0, 0.0);
+    }
 }

@@ -25,6 +25,13 @@ use super::freedom::Freedom;
 /// more is preconditioned without them.
 const MAX_BYTES: usize = 128 << 20;
 
+/// The most bytes the columns over `nr` relative displacements can take:
+/// [`MAX_BYTES`], or all `nr` of them in single precision (what the memory
+/// estimate counts, [`crate::memory::estimate`]).
+pub(crate) fn most_bytes(nr: usize) -> usize {
+    MAX_BYTES.min(4 * nr * nr)
+}
+
 /// Columns of W by relative displacement; see the module header.
 pub(super) struct WColumns {
     nr: usize,
