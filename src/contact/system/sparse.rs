@@ -107,8 +107,8 @@ pub struct Sparse {
     b: Vec<Vec<f64>>,
     b_fixed: Vec<f64>,
     threads: usize,
-    /// The last answer's means and relative displacements.
-    last: Mutex<Option<(Vec<f64>, Vec<f64>)>>,
+    /// The last answer, where the next solve starts.
+    last: Mutex<Option<Last>>,
     last_states: LastStates,
     iterations: Mutex<Vec<usize>>,
     /// Where the solves' time went.
@@ -225,42 +225,56 @@ impl Sparse {
 
     /// The means for the relative displacements `r`, `K_mm m = b_m - K_mr
     /// r`, refined from `m` to double precision (residuals in double, the
-    /// corrections through the means' factor); returns `K_rm m + K_rr r`.
+    /// corrections through the means' factor); returns `K [m; r]` at the
+    /// refined means (its mean rows, its relative rows).
     /// A stuck pair's force is what K makes of the displacements on both
     /// sides: round-off, not the solve's tolerance, where it carries nothing.
-    fn refine_means(&self, m: &mut [f64], r: &[f64], b_m: &[f64], scale: f64) -> Vec<f64> {
+    fn refine_means(&self, m: &mut [f64], r: &[f64], b_m: &[f64], scale: f64) -> (Vec<f64>, Vec<f64>) {
         let mut last = f64::INFINITY;
         for _ in 0..REFINEMENTS {
             let (k_m, k_r) = self.apply(m, r);
             let res: Vec<f64> = b_m.iter().zip(&k_m).map(|(b, k)| b - k).collect();
             let size = length(&res);
             if size <= REFINED * scale || size >= 0.5 * last {
-                return k_r;
+                return (k_m, k_r);
             }
             last = size;
             m.iter_mut().zip(self.solve_means(&res)).for_each(|(m, d)| *m += d);
         }
-        self.apply(m, r).1
+        self.apply(m, r)
     }
 
     /// Where a solve starts: the last answer, its r moved onto r0 +
-    /// span(Z), `r_s = r0 + Z y0`; (m_s, y0, r_s, the substitutions it took).
-    fn start(&self, free: &Free, b_m: &[f64]) -> (Vec<f64>, Vec<f64>, Vec<f64>, usize) {
+    /// span(Z), `r_s = r0 + Z y0`, and `K [m_s; r_s]`; the substitutions it took.
+    fn start(&self, free: &Free, b_m: &[f64]) -> (Start, usize) {
         let fr = free.fr;
         let (nm, nr) = (self.nm, self.nr);
-        let last = self.last.lock().ok().and_then(|l| l.clone()).filter(|(m, r)| m.len() == nm && r.len() == nr);
+        let last = self.last.lock().ok().and_then(|l| l.clone()).filter(|l| l.m.len() == nm && l.r.len() == nr);
         let y0 = match &last {
-            Some((_, r)) => free.restrict(&r.iter().zip(&fr.r0).map(|(l, r0)| l - r0).collect::<Vec<_>>()),
+            Some(l) => free.restrict(&l.r.iter().zip(&fr.r0).map(|(l, r0)| l - r0).collect::<Vec<_>>()),
             None => vec![0.0; fr.cols.len()],
         };
         let mut r_s = fr.r0.clone();
         r_s.iter_mut().zip(free.expand(&y0)).for_each(|(r, e)| *r += e);
         match last {
-            Some((m, _)) => (m, y0, r_s, 0),
+            Some(l) => {
+                // K [m; r_s] = K [m; r] + K [0; r_s - r]: r_s differs from the
+                // last answer's r only where a pair's relation changed, and a
+                // product of few nonzeros sweeps no part's S in whole
+                let dr: Vec<f64> = r_s.iter().zip(&l.r).map(|(a, b)| a - b).collect();
+                let (mut k_m, mut k_r) = (l.k_m, l.k_r);
+                if dr.iter().any(|&d| d != 0.0) {
+                    let (d_m, d_r) = self.apply(&vec![0.0; nm], &dr);
+                    k_m.iter_mut().zip(d_m).for_each(|(k, d)| *k += d);
+                    k_r.iter_mut().zip(d_r).for_each(|(k, d)| *k += d);
+                }
+                (Start { m: l.m, y0, k_m, k_r }, 0)
+            }
             None => {
                 let k_mr_r = self.k_mr(&r_s);
                 let m = self.solve_means(&b_m.iter().zip(&k_mr_r).map(|(b, k)| b - k).collect::<Vec<_>>());
-                (m, y0, r_s, 1)
+                let (k_m, k_r) = self.apply(&m, &r_s);
+                (Start { m, y0, k_m, k_r }, 1)
             }
         }
     }
@@ -424,9 +438,8 @@ impl Solver for Sparse {
         let (b_m, b_r) = b.split_at(nm);
         let free = Free { fr, nr };
         let t = Instant::now();
-        let (m_s, y0, r_s, substitutions) = self.start(&free, b_m);
+        let (Start { m: m_s, y0, k_m, k_r }, substitutions) = self.start(&free, b_m);
         // what the equations lack at the start: the means' rows, then the free ones
-        let (k_m, k_r) = self.apply(&m_s, &r_s);
         let known: Vec<f64> = b_r.iter().zip(&k_r).map(|(b, k)| b - k).collect();
         let mut rhs0: Vec<f64> = b_m.iter().zip(&k_m).map(|(b, k)| b - k).collect();
         rhs0.extend(free.rhs(&known, &y0));
@@ -477,14 +490,14 @@ impl Solver for Sparse {
         let mut r = fr.r0.clone();
         r.iter_mut().zip(free.expand(&y)).for_each(|(v, e)| *v += e);
         let t = Instant::now();
-        let k_r = self.refine_means(&mut m, &r, b_m, scale);
+        let (k_m, k_r) = self.refine_means(&mut m, &r, b_m, scale);
         self.add_split(|s| s.refine += t.elapsed().as_secs_f64());
         let residual_r = k_r.iter().zip(b_r).map(|(k, b)| k - b).collect();
         if !residual.is_finite() || m.iter().chain(&r).any(|v| !v.is_finite()) {
             return None;
         }
         if let Ok(mut last) = self.last.lock() {
-            *last = Some((m.clone(), r.clone()));
+            *last = Some(Last { m: m.clone(), r: r.clone(), k_m, k_r: k_r.clone() });
         }
 
         Some(Answer { m, r, residual_r, residual, accuracy: conv.residual, loose, inexact: looser && !loose })
@@ -501,6 +514,25 @@ impl Solver for Sparse {
     fn split(&self) -> Option<Split> {
         self.split.lock().ok().map(|s| s.clone())
     }
+}
+
+/// A solve's answer kept for the next: the means, the relative
+/// displacements and `K [m; r]` (mean rows, relative rows).
+#[derive(Clone)]
+struct Last {
+    m: Vec<f64>,
+    r: Vec<f64>,
+    k_m: Vec<f64>,
+    k_r: Vec<f64>,
+}
+
+/// Where a solve starts: the means, the free unknowns and `K [m; r]` at
+/// the relative displacements they make.
+struct Start {
+    m: Vec<f64>,
+    y0: Vec<f64>,
+    k_m: Vec<f64>,
+    k_r: Vec<f64>,
 }
 
 /// The free directions of one solve: `Z` and the friction law's rows on them.
