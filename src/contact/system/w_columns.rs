@@ -16,6 +16,24 @@
 //! junctions' rows) is formed from them; the pairs that slip change from
 //! one contact iteration to the next by a few, so most columns are
 //! computed once a step.
+//!
+//! When they pay. A column costs about a tenth of a GMRES application
+//! (one right-hand side of a batched substitution through K_mm's factor
+//! and of a batched product with the parts' S, against one substitution
+//! and two sweeps: 0.1 measured on the 86k tunnel's 245 columns and on
+//! geo/rockmass.toml's 563), and the exact block saves 5-8 applications a
+//! solve (the tunnel capped at 40 contact iterations: 438 applications
+//! without columns, 115 with; rockmass: 64 against 20). So the columns
+//! pay when the solves that use them number more than about a fiftieth of
+//! the columns formed: the tunnel (40 solves, 245 columns) by far,
+//! rockmass (7 solves with free pairs, 563 columns: its slipping set still
+//! moves) not quite, by about 0.1 s of 1.5. Rules on what a solve knows
+//! beforehand (the columns it lacks, the solves so far, the share of its
+//! free set free before), replayed on both runs' per-solve counts, either
+//! left rockmass as it is or cost the tunnel two to four solves without
+//! the block (16-32 applications, 1.3-2.6 s): the number of solves to come
+//! decides, and nothing before them tells it. So every solve forms the
+//! columns it lacks, within [`MAX_BYTES`].
 
 use std::collections::HashMap;
 
