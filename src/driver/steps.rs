@@ -184,19 +184,32 @@ fn stage(
         .into());
     }
     let Some(u) = u else { return Ok(None) };
+    let states = contact.as_ref().map_or([0; 3], |c| state_counts(&c.states));
+    Ok(Some(initial_stage(model, &summary, states, factors, u)))
+}
+
+/// The initial stage's result from its contact `summary`, its `states`
+/// counts, its load factors and its displacements `u`.
+pub(super) fn initial_stage(
+    model: &Model,
+    summary: &crate::contact::Summary,
+    states: [usize; 3],
+    case_factors: Vec<f64>,
+    u: Vec<f64>,
+) -> InitialStage {
     let nd = model.nd;
     let length = |k: usize| u[k * nd..k * nd + nd].iter().map(|v| v * v).sum::<f64>().sqrt();
     let largest_at = (0..model.n_nodes()).max_by(|&a, &b| length(a).total_cmp(&length(b))).unwrap_or(0);
-    Ok(Some(InitialStage {
+    InitialStage {
         iterations: summary.iterations,
         converged: summary.converged,
         cuts: summary.cuts,
-        states: contact.as_ref().map_or([0; 3], |c| state_counts(&c.states)),
-        case_factors: factors,
+        states,
+        case_factors,
         largest: if model.n_nodes() > 0 { length(largest_at) } else { 0.0 },
         largest_at,
         u,
-    }))
+    }
 }
 
 /// Step `step` from the factors `from` to `lambda`: the contact states
@@ -262,15 +275,24 @@ impl Step<'_> {
             return Ok(Answer { d_c: solution.d_c, contact: None });
         }
         let solver = &self.scene.solver;
-        // (the paper's rule is kept as the paper has it: no cutting)
-        let cuts = if solver.rule == StateRule::Paper { 0 } else { solver.max_cuts };
-        let (rule, most) = (solver.rule, solver.max_iterations);
+        let (rule, most, cuts) = (solver.rule, solver.max_iterations, self.cuts());
         let outcome = contact::cutting::iterate_cutting(problem, &self.laws, rule, from, lambda, history, most, cuts)
             .map_err(|f| ContactError::failed(self.model, &self.plan.parts, self.scene, step, f))?;
         out.residual_interface = out.residual_interface.max(outcome.solution.residual);
         out.counters.interface_solves += outcome.summary.iterations;
         let (contact, d_c) = self.contact_run(problem, outcome, lambda);
         Ok(Answer { d_c, contact: Some(contact) })
+    }
+
+    /// How many times a step may be halved where it does not converge
+    /// (the paper's rule is kept as the paper has it: no cutting).
+    pub fn cuts(&self) -> usize {
+        let solver = &self.scene.solver;
+        if solver.rule == StateRule::Paper {
+            0
+        } else {
+            solver.max_cuts
+        }
     }
 
     /// A step's contact result from the iteration's outcome (the stresses

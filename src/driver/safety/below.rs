@@ -10,13 +10,28 @@
 //!   summary says it did not converge;
 //! - the last state that holds below 1 as the safety search's state.
 //!
+//! A scene with an initial stage runs it first in every trial, at the
+//! trial's strength (or loads): the strength divided by F holds from the
+//! start of the path, in situ too, as RS2's shear strength reduction
+//! reduces the strength of every stage. F is then one factor for the
+//! whole path, and a stage that the in-situ stress already fails at full
+//! strength (a block its joints cannot hold) has an F below 1 like any
+//! load step; a stage kept at full strength would have none. The stage is
+//! replayed with the scene's laws too: the load steps kept start from its
+//! state, and its displacements are taken off theirs as in the run. A
+//! stage that fails at F = 1 leaves no load step to write: the run ends
+//! with the search's error alone. The search upward from a path that
+//! holds at F = 1 starts from where the stage and the steps left it, and
+//! reduces the strength from there.
+//!
 //! With peak strengths (the search's default) the load path may hold at
 //! F = 1 although the load steps, which lose cohesion where pairs crack,
 //! did not: the search then goes upward from there, and the run still ends
 //! with the load steps' error.
 
-use super::recovery::recovered;
+use super::recovery::{self, recovered};
 use super::trials::{kind, trials, undecided, Held, Trials};
+use crate::contact::cutting::iterate_cutting;
 use crate::contact::safety::{self as reduction, Verdict};
 use crate::contact::{self, History, Outcome};
 use crate::driver::condense::Parts;
@@ -74,6 +89,11 @@ pub(in crate::driver) fn below_one(
         None => (None, None, Vec::new(), 0),
     };
     let mut done = LoadSteps::default();
+    let (stage, replay) = replay.map(|r| (r.stage, r.steps)).unzip();
+    let stage = stage.flatten();
+    if ranks.comm().broadcast(&stage.is_some()) {
+        done.stage = recovery::stage(step, parts, ranks, stage, &mut done)?;
+    }
     let mut outcomes: Vec<Option<Replayed>> = replay.map_or_else(Vec::new, |r| r.into_iter().map(Some).collect());
     let n = ranks.comm().broadcast(&outcomes.len());
     for k in 0..n {
@@ -149,7 +169,10 @@ impl Found {
 /// The load path at F = 1 again (with the search's strength convention),
 /// then F below 1; the mechanism of each failure named.
 fn search(t: &mut Trials, options: &crate::scene::Safety, step: &Step) -> Found {
-    t.say("the load steps fail at F = 1: seeking F below 1, each trial running the load steps from the start");
+    let stage = if step.model.stage_factors().is_some() { "the initial stage and " } else { "" };
+    t.say(&format!(
+        "the load steps fail at F = 1: seeking F below 1, each trial running {stage}the load steps from the start"
+    ));
     let at_one = match t.path(1.0) {
         Verdict::Fails(e) | Verdict::Undecided(e) => e,
         Verdict::Holds(h) => {
@@ -182,6 +205,13 @@ fn upward_from(t: &mut Trials, options: &crate::scene::Safety, step: &Step, star
     Found { held: b.holds.map(|h| h.1), fails, decided, undecided: undecided(&b.undecided), at_one: None }
 }
 
+/// The replay on rank 0: the initial stage that held (its load factors and
+/// outcome), and the load steps' results that exist.
+struct Replay {
+    stage: Option<(Vec<f64>, Outcome)>,
+    steps: Vec<Replayed>,
+}
+
 /// A replayed load step on rank 0: its number, load factors and outcome.
 struct Replayed {
     step: usize,
@@ -189,12 +219,33 @@ struct Replayed {
     outcome: Outcome,
 }
 
-/// The scene's load steps again with its own laws: the last that held,
-/// and the failing step's last iterate when it had one.
-fn replay(step: &Step) -> Vec<Replayed> {
+/// The scene's initial stage (when it has one) and load steps again with
+/// its own laws: the stage when it held, then the last load step that
+/// held and the failing step's last iterate when it had one (no step when
+/// the stage did not hold).
+fn replay(step: &Step) -> Replay {
     let (model, solver) = (step.model, &step.scene.solver);
     let problem = step.problem.expect("a search has an interface");
     let mut h = History::new(model.pairs.len());
+    let stage = match model.stage_factors() {
+        None => None,
+        Some(factors) => {
+            let zero = vec![0.0; factors.len()];
+            let (rule, most) = (solver.rule, solver.max_iterations);
+            match iterate_cutting(problem, &step.laws, rule, &zero, &factors, &mut h, most, step.cuts()) {
+                Ok(o) if o.summary.converged => Some((factors, o)),
+                _ => return Replay { stage: None, steps: Vec::new() },
+            }
+        }
+    };
+    Replay { stage, steps: replay_steps(step, h) }
+}
+
+/// The scene's load steps again with its own laws from `h`: the last that
+/// held, and the failing step's last iterate when it had one.
+fn replay_steps(step: &Step, mut h: History) -> Vec<Replayed> {
+    let (model, solver) = (step.model, &step.scene.solver);
+    let problem = step.problem.expect("a search has an interface");
     let mut held: Option<Replayed> = None;
     for k in 1..=solver.load_steps {
         let lambda: Vec<f64> = model.cases.iter().map(|c| c[k - 1]).collect();

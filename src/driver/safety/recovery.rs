@@ -1,5 +1,6 @@
 //! The recovered result of a search's outcome: interiors and stresses of
-//! the state that holds, every rank taking part.
+//! the state that holds, every rank taking part; and the initial stage
+//! replayed before a search below 1.
 
 use super::super::condense::Parts;
 use super::super::ranks::Ranks;
@@ -7,7 +8,7 @@ use super::super::steps::{LoadSteps, Step};
 use crate::contact::Outcome;
 use crate::error::Result;
 use crate::recover;
-use crate::results::StepResult;
+use crate::results::{state_counts, InitialStage, StepResult};
 
 /// The recovered result of an outcome on rank 0 (`step` its load step, 0
 /// for the search's hold), every rank taking part; None elsewhere.
@@ -40,4 +41,30 @@ pub(super) fn recovered(
     let k = if k > 0 { k } else { step.scene.solver.load_steps };
     let load_factor = lambda.first().copied().unwrap_or(1.0);
     Ok(Some(StepResult { step: k, load_factor, case_factors: lambda, u, stresses, contact: Some(c) }))
+}
+
+/// The initial stage from its replayed outcome on rank 0 (its load factors
+/// and outcome), its displacements recovered whatever the output needs
+/// (every step's are taken off by them), every rank taking part; None
+/// elsewhere.
+pub(super) fn stage(
+    step: &Step,
+    parts: &Parts,
+    ranks: &Ranks,
+    o: Option<(Vec<f64>, Outcome)>,
+    done: &mut LoadSteps,
+) -> Result<Option<InitialStage>> {
+    let (lambda, answer) = match o {
+        Some((lambda, o)) => {
+            let problem = step.problem.expect("rank 0's search has an interface");
+            let answer = step.contact_run(problem, o, &lambda);
+            (lambda, Some(answer))
+        }
+        None => (Vec::new(), None),
+    };
+    let (contact, d_c) = answer.unzip();
+    let u = ranks.recover(step.model, &step.plan.parts, &parts.mine, d_c.map(Ok), &lambda, true)?;
+    let Some((c, u)) = contact.zip(u) else { return Ok(None) };
+    done.counters.interior_recoveries += step.plan.parts.len();
+    Ok(Some(super::super::steps::initial_stage(step.model, &c.summary, state_counts(&c.states), lambda, u)))
 }

@@ -156,29 +156,24 @@ impl<'s, 'a> Trials<'s, 'a> {
         }
     }
 
-    /// One trial of the load path at `f` from its start (below 1): every
-    /// load step at `f`, a step that does not converge retried with more
-    /// iterations. Holds with where the last step ended.
+    /// One trial of the load path at `f` from its start (below 1): the
+    /// initial stage when the scene has one, then every load step, each at
+    /// `f` (the stage too: see [`super::below`]), a step that does not
+    /// converge retried with more iterations. Holds with where the last
+    /// step ended.
     pub fn path(&mut self, f: f64) -> Verdict<Held, Failure> {
         let t = Instant::now();
         let mut h = History::new(self.step.model.pairs.len());
         let laws = self.varied.laws(&self.laws, f);
-        let solver = &self.step.scene.solver;
+        let model = self.step.model;
+        let stage = model.stage_factors().map(|s| ("the initial stage".to_string(), s));
+        let steps = (0..self.step.scene.solver.load_steps)
+            .map(|k| (format!("load step {}", k + 1), model.cases.iter().map(|c| c[k]).collect()));
         let mut last = None;
         let mut lambda = Vec::new();
-        for k in 0..solver.load_steps {
-            let scene_lambda: Vec<f64> = self.step.model.cases.iter().map(|c| c[k]).collect();
+        for (name, scene_lambda) in stage.into_iter().chain(steps) {
             lambda = self.varied.lambda(&scene_lambda, f);
-            let mut result = self.iterate(&laws, &lambda, &mut h, solver.max_iterations);
-            if matches!(&result, Err(e) if matches!(e.kind, FailureKind::NotConverged { .. })) {
-                let max = solver.max_iterations * RETRY_ITERATIONS;
-                self.say(&format!(
-                    "F = {f:.4}: load step {} did not converge: retrying it with up to {max} contact iterations",
-                    k + 1
-                ));
-                result = self.iterate(&laws, &lambda, &mut h, max);
-            }
-            match result {
+            match self.path_step(f, &name, &laws, &lambda, &mut h) {
                 Ok(o) => last = Some(o),
                 Err(e) => {
                     self.log(f, 0.0, t, Err(&e), false);
@@ -189,6 +184,26 @@ impl<'s, 'a> Trials<'s, 'a> {
         let outcome = last.expect("at least one load step");
         self.log(f, 0.0, t, Ok(&outcome), false);
         Verdict::Holds(Held { factor: f, lambda, history: h, outcome: Some(outcome) })
+    }
+
+    /// One step `name` of the load path at `f` from `h`, retried with more
+    /// iterations when it does not converge.
+    fn path_step(
+        &mut self,
+        f: f64,
+        name: &str,
+        laws: &[PairLaw],
+        lambda: &[f64],
+        h: &mut History,
+    ) -> Result<Outcome, Failure> {
+        let most = self.step.scene.solver.max_iterations;
+        let result = self.iterate(laws, lambda, h, most);
+        if !matches!(&result, Err(e) if matches!(e.kind, FailureKind::NotConverged { .. })) {
+            return result;
+        }
+        let max = most * RETRY_ITERATIONS;
+        self.say(&format!("F = {f:.4}: {name} did not converge: retrying it with up to {max} contact iterations"));
+        self.iterate(laws, lambda, h, max)
     }
 
     /// The contact iteration under `laws` and `lambda` from `h`, judged.

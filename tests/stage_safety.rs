@@ -1,0 +1,147 @@
+//! The factor of safety below 1 of a scene with an initial stage: every
+//! trial runs the stage, then the load steps, from the start, at the
+//! trial's strength (`src/driver/safety/below.rs`).
+//!
+//! Reference: a Coulomb block. A 2 x 1 m block (plane strain, tri6) sits
+//! on a horizontal joint (f = tan 20, c = 0.005) on a base fixed at its
+//! bottom; both carry a uniform in-situ stress σ0 (σxx = σyy = -0.1, τxy)
+//! and their weight. In the stage the hold keeps the block's free faces at
+//! σ0 n (the rock round it), so the joint carries the in-situ traction and
+//! the weight: N = A |σyy| + W, T = A |τxy|, and the block slides once
+//! F > (c A + N f) / T (every pair slipping, the block free).
+//!
+//! ```text
+//!           +-------+        <- block, faces held at σ0 n in the stage
+//!           | block |   p -> (a pressure on its left face in step 1)
+//!   +-------+=======+------+ <- joint (A = 2 m), f = tan 20, c = 0.005
+//!   |        base          |
+//!   +----------------------+ <- fixed
+//! ```
+//!
+//! With τxy = 0.06 the stage itself fails at F = 1 (F = 0.8506): before,
+//! the search below 1 ran the load steps without the stage, they held at
+//! F = 1, and it went upward to max_factor (F = 10). With τxy = 0.02 the
+//! stage holds and step 1, which releases the hold (the block then
+//! carries its weight and the loads alone: the in-situ stress sums to
+//! nothing over it), fails under a pressure p on the block's left face
+//! and q on its top: F = (c A + (q A + W) f) / p.
+
+mod common;
+
+use common::{json, Case};
+use subcontact::driver::SafetyError;
+use subcontact::Error;
+
+const GEO: &str = r#"
+DefineConstant[ lc = {0.25, Name "lc"} ];
+Point(1) = {0, 0, 0, lc}; Point(2) = {4, 0, 0, lc}; Point(3) = {4, 1, 0, lc};
+Point(4) = {3, 1, 0, lc}; Point(5) = {1, 1, 0, lc}; Point(6) = {0, 1, 0, lc};
+Point(7) = {3, 2, 0, lc}; Point(8) = {1, 2, 0, lc};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 5};
+Line(5) = {5, 6}; Line(6) = {6, 1}; Line(7) = {4, 7}; Line(8) = {7, 8}; Line(9) = {8, 5};
+Curve Loop(1) = {1, 2, 3, 4, 5, 6}; Plane Surface(1) = {1};
+Curve Loop(2) = {-4, 7, 8, 9}; Plane Surface(2) = {2};
+Physical Surface("base") = {1};
+Physical Surface("block") = {2};
+Physical Curve("joint") = {4};
+Physical Curve("bottom") = {1};
+Physical Curve("back") = {9};
+Physical Curve("lid") = {8};
+"#;
+
+const FRICTION: f64 = 0.36397023426620234;
+const COHESION: f64 = 0.005;
+const AREA: f64 = 2.0;
+/// The block's weight, ρ g V.
+const WEIGHT: f64 = 2.7e-3 * 9.81 * 2.0;
+const SIGMA: f64 = 0.1;
+
+/// The scene with the in-situ shear `tau` and more TOML (`loads`).
+fn scene(tau: f64, loads: &str) -> String {
+    let stress = format!("initial_stress = [-{SIGMA}, -{SIGMA}, -{SIGMA}, {tau}]");
+    format!(
+        r#"mesh = "block.geo"
+analysis = "plane_strain"
+gravity = [0.0, -9.81]
+[gmsh]
+order = 2
+[materials.rock]
+E = 1.0e3
+nu = 0.25
+density = 2.7e-3
+[[bodies]]
+group = "base"
+material = "rock"
+{stress}
+[[bodies]]
+group = "block"
+material = "rock"
+{stress}
+[[contacts]]
+group = "joint"
+friction = {FRICTION}
+cohesion = {COHESION}
+[[supports]]
+group = "bottom"
+fix = ["x", "y"]
+[solver]
+initial_stage = true
+[safety]
+tolerance = 1e-3
+{loads}"#
+    )
+}
+
+/// Where the search below 1 put F: (holds, fails from), from its error.
+fn bracket(e: Error) -> (f64, f64) {
+    match e.without_scene() {
+        Error::Safety(s) => match *s {
+            SafetyError::Unsafe { holds, fails, .. } => (holds.expect("a factor that holds"), fails),
+            other => panic!("not unsafe as given: {other}"),
+        },
+        other => panic!("not a safety error: {other}"),
+    }
+}
+
+#[test]
+fn a_block_the_in_situ_shear_slides_in_the_stage_has_its_coulomb_factor() {
+    let tau = 0.06;
+    let exact = (COHESION * AREA + (SIGMA * AREA + WEIGHT) * FRICTION) / (tau * AREA);
+    assert!(exact < 0.9, "the stage fails at F = 1: {exact}");
+    let case = Case::new("stage-safety-slides");
+    case.write("block.geo", GEO);
+    let Err(err) = case.run(&case.write("block.toml", &scene(tau, ""))) else { panic!("unsafe as given") };
+    let (holds, fails) = bracket(err);
+    eprintln!("the stage slides: F in [{holds}, {fails}], (c A + N f) / T = {exact}");
+    assert!(holds <= exact && exact <= fails, "F in [{holds}, {fails}], (c A + N f) / T = {exact}");
+    assert!(fails - holds <= 2e-3 * exact, "the bracket [{holds}, {fails}] is wider than the tolerance");
+}
+
+#[test]
+fn a_block_that_holds_in_the_stage_and_slides_under_the_load_has_its_coulomb_factor() {
+    let (p, q) = (0.15, 0.12);
+    // the stage holds: (c A + N f) / T at the in-situ shear 0.02
+    let tau = 0.02;
+    let stage = (COHESION * AREA + (SIGMA * AREA + WEIGHT) * FRICTION) / (tau * AREA);
+    assert!(stage > 2.0, "the stage holds: {stage}");
+    let exact = (COHESION * AREA + (q * AREA + WEIGHT) * FRICTION) / p;
+    assert!(exact < 0.9, "step 1 fails at F = 1: {exact}");
+    let loads = format!("[[loads]]\ngroup = \"back\"\npressure = {p}\n[[loads]]\ngroup = \"lid\"\npressure = {q}\n");
+    let case = Case::new("stage-safety-step");
+    case.write("block.geo", GEO);
+    case.write("block.toml", &scene(tau, &loads));
+    let o = case.cli(&["solve", "block.toml", "--out", "r", "--quiet"]);
+    assert!(!o.status.success(), "unsafe as given");
+    let s = json(&case.dir.join("r/summary.json"));
+    let safety = &s["safety"];
+    assert_eq!(safety["below_one"].as_bool(), Some(true));
+    let (holds, fails) = (safety["factor"].as_f64().expect("factor"), safety["fails_at"].as_f64().expect("fails_at"));
+    eprintln!("step 1 slides: F in [{holds}, {fails}], (c A + N f) / p = {exact}");
+    assert!(holds <= exact && exact <= fails, "F in [{holds}, {fails}], (c A + N f) / p = {exact}");
+    // the stage replayed before the steps that are written: it held, every
+    // pair stuck, and the block settled under its weight in it
+    let stage = &s["initial_stage"];
+    let pairs = s["contact"]["groups"][0]["pairs"].as_u64().expect("pairs");
+    assert_eq!(stage["states"]["stick"].as_u64(), Some(pairs), "{stage}");
+    assert!(stage["largest_displacement"].as_f64().expect("largest") > 1e-6, "{stage}");
+}
