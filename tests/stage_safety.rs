@@ -145,3 +145,25 @@ fn a_block_that_holds_in_the_stage_and_slides_under_the_load_has_its_coulomb_fac
     assert_eq!(stage["states"]["stick"].as_u64(), Some(pairs), "{stage}");
     assert!(stage["largest_displacement"].as_f64().expect("largest") > 1e-6, "{stage}");
 }
+
+/// A stage that fails writes no results, so the in-situ warning that says
+/// why (the set the in-situ stress puts beyond its strength, and how much
+/// of it) goes on stderr with the error. The stress is uniform, so every
+/// pair of the joint is beyond it: τ = 0.06 > c + f σ = 0.0414.
+#[test]
+fn a_stage_that_fails_says_which_set_the_in_situ_stress_is_beyond() {
+    let tau = 0.06;
+    assert!(tau > COHESION + FRICTION * SIGMA);
+    let case = Case::new("stage-fails-says");
+    case.write("block.geo", GEO);
+    case.write("block.toml", &scene(tau, "").replace("[safety]\ntolerance = 1e-3\n", ""));
+    let o = case.cli(&["solve", "block.toml", "--out", "r", "--quiet"]);
+    assert!(!o.status.success(), "the block slides in the stage");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("initial equilibrium stage"), "{err}");
+    let warning = err.lines().find(|l| l.starts_with("warning:") && l.contains("the in-situ stress puts"));
+    let warning = warning.unwrap_or_else(|| panic!("no in-situ warning: {err}"));
+    let counts: Vec<&str> = warning.split("puts ").nth(1).expect("counts").split_whitespace().take(5).collect();
+    assert_eq!(counts[1..4], ["of", "the", counts[0]], "every pair is beyond: {warning}");
+    assert!(warning.contains("pairs of contact \"joint\" beyond its strength"), "{warning}");
+}

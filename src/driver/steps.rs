@@ -166,12 +166,14 @@ fn stage(
     let Some(factors) = model.stage_factors() else { return Ok(None) };
     progress(opts, "initial equilibrium stage: the in-situ stress with the contacts active");
     let zero = vec![0.0; factors.len()];
-    let (u, contact) = solve(this, parts, ranks, (0, &zero, &factors), true, history, out)?;
+    let solved = solve(this, parts, ranks, (0, &zero, &factors), true, history, out);
+    let (u, contact) = solved.inspect_err(|_| insitu_told(this, ranks))?;
     let summary = contact
         .as_ref()
         .map(|c| c.summary.clone())
         .unwrap_or_else(|| crate::contact::Summary { converged: true, ..Default::default() });
     if ranks.stop(!summary.converged) {
+        insitu_told(this, ranks);
         return Err(ContactError::NotConverged {
             step: Some(0),
             iterations: summary.iterations,
@@ -186,6 +188,20 @@ fn stage(
     let Some(u) = u else { return Ok(None) };
     let states = contact.as_ref().map_or([0; 3], |c| state_counts(&c.states));
     Ok(Some(initial_stage(model, &summary, states, factors, u)))
+}
+
+/// The in-situ warnings on stderr (rank 0) when the stage fails: a run
+/// that succeeds says them with its results, one that fails in the stage
+/// writes none, and they name the joint sets the in-situ stress puts
+/// beyond their strength, which is why a stage fails.
+fn insitu_told(this: &Step, ranks: &Ranks) {
+    use std::io::Write;
+    if ranks.rank() != 0 {
+        return;
+    }
+    for w in super::warnings::insitu_warnings(this.scene, this.model) {
+        let _ = writeln!(std::io::stderr(), "warning: {w}");
+    }
 }
 
 /// The initial stage's result from its contact `summary`, its `states`
