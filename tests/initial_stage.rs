@@ -19,7 +19,7 @@
 mod common;
 
 use common::measure::max_abs;
-use common::{json, Case};
+use common::{json, json_vec3, Case};
 use subcontact::driver::{state_counts, Run};
 
 const GEO: &str = r#"
@@ -399,4 +399,51 @@ fn the_jointed_tunnel_on_rollers_stays_put_in_the_stage_too() {
     let m = 5000.0 * 0.75 / (1.25 * 0.5);
     let scale = RHO_G * 256.0 / (2.0 * m);
     assert!(stage.largest < 1e-4 * scale, "the stage moved {:e} of {scale:e}", stage.largest);
+}
+
+/// The tunnel with its top the ground surface (`surface` at the box's
+/// top, no load on it): after the stage, step 1 releases the hold, and
+/// the only face it loads is the opening's wall, so step 1 is the
+/// excavation alone. Its answer is the run without the stage (the joints
+/// carry the k0 = 0.5 stress, so the stage moves 8e-9 m, the quadrature
+/// of the curved wall: the total u is the run's, the reported one that
+/// less the stage's), the same states, and the supports carry the rock's weight, ρ g
+/// (W L H - π R² L): the in-situ stress's nodal forces sum to nothing
+/// and the hold is 0.
+#[test]
+fn after_the_stage_the_excavation_alone_is_the_run_without_it() {
+    let case = Case::new("stage-tunnel-excavation");
+    case.write("tunnel.geo", TUNNEL_GEO);
+    let bare = TUNNEL
+        .replace("surface = 50.0", "surface = 8.0")
+        .replace("[[loads]]\ngroup = \"top\"\npressure = 1.112454\n", "")
+        + "[output]\nfields = [\"displacement\"]\n";
+    assert!(!bare.contains("[[loads]]") && bare.contains("surface = 8.0"), "the top is the ground surface");
+    let on = case.run(&case.write("on.toml", &bare)).expect("run");
+    let off =
+        case.run(&case.write("off.toml", &bare.replace("initial_stage = true", "initial_stage = false"))).expect("run");
+    let stage = on.initial_stage.as_ref().expect("the stage ran");
+    assert_eq!(stage.states, [0, 0, on.model.pairs.len()], "every pair sticks in the stage");
+    let (c_on, c_off) = (on.contact().expect("contact"), off.contact().expect("contact"));
+    assert!(c_on.summary.converged && c_off.summary.converged);
+    assert_eq!(c_on.states, c_off.states, "the excavation after the stage keeps the run's states");
+    let (u_on, u_off) = (&on.last().u, &off.last().u);
+    let scale = max_abs(u_off.iter().copied());
+    assert!(scale > 1e3 * stage.largest, "the excavation moves {scale:e}, the stage {:e}", stage.largest);
+    // the total (the stage's u and the step's) is the run's; what is
+    // reported departs from it by the stage's own 8e-9 m, no more
+    let total = max_abs(stage.total(u_on).iter().zip(u_off).map(|(a, b)| a - b));
+    let diff = max_abs(u_on.iter().zip(u_off).map(|(a, b)| a - b));
+    eprintln!("excavation {scale:e}, stage {:e}: total departs by {total:e}, reported by {diff:e}", stage.largest);
+    assert!(total < 1e-6 * scale, "the total after the stage departs by {total:e} of {scale:e}");
+    assert!(diff < stage.largest + 1e-6 * scale, "the excavation after the stage departs by {diff:e} of {scale:e}");
+    // the supports carry the weight of the rock left
+    let s = json(&case.out("on").join("summary.json"));
+    let body = &s["reactions"]["bodies"][0];
+    let (supports, remainder) = (json_vec3(&body["supports"]), json_vec3(&body["remainder"]));
+    let weight = RHO_G * (16.0 * 4.0 * 16.0 - std::f64::consts::PI * 4.0 * 4.0);
+    assert!((supports[2] / weight - 1.0).abs() < 1e-3, "the supports carry {} of the weight {weight}", supports[2]);
+    for (c, r) in remainder.iter().enumerate() {
+        assert!(r.abs() < 1e-9 * weight, "component {c}: loads + contacts + supports = {r} of {weight}");
+    }
 }
