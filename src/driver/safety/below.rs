@@ -88,20 +88,7 @@ pub(in crate::driver) fn below_one(
         Some((f, r, t, i)) => (Some(f), Some(r), t, i),
         None => (None, None, Vec::new(), 0),
     };
-    let mut done = LoadSteps::default();
-    let (stage, replay) = replay.map(|r| (r.stage, r.steps)).unzip();
-    let stage = stage.flatten();
-    if ranks.comm().broadcast(&stage.is_some()) {
-        done.stage = recovery::stage(step, parts, ranks, stage, &mut done)?;
-    }
-    let mut outcomes: Vec<Option<Replayed>> = replay.map_or_else(Vec::new, |r| r.into_iter().map(Some).collect());
-    let n = ranks.comm().broadcast(&outcomes.len());
-    for k in 0..n {
-        let o = outcomes.get_mut(k).and_then(Option::take).map(|o| (o.step, o.lambda, o.outcome));
-        if let Some(r) = recovered(step, parts, ranks, o, &mut done)? {
-            done.steps.push(r);
-        }
-    }
+    let mut done = replayed(step, parts, ranks, replay)?;
     let mut found = found;
     let hold = found.as_mut().and_then(|f| f.held.as_mut()).map(|h| (0, h.lambda.clone(), h.outcome.take()));
     let has_hold = ranks.comm().broadcast(&hold.as_ref().is_some_and(|h| h.2.is_some()));
@@ -138,6 +125,27 @@ pub(in crate::driver) fn below_one(
         trials: trials_run,
     };
     Ok(Below { done, safety: Some(safety), error })
+}
+
+/// The replayed stage and load steps recovered (on rank 0 `replay`, None
+/// elsewhere), every rank taking part: the stage's displacements, then
+/// the steps whose results exist, reset by them.
+fn replayed(step: &Step, parts: &Parts, ranks: &Ranks, replay: Option<Replay>) -> Result<LoadSteps> {
+    let mut done = LoadSteps::default();
+    let (stage, replay) = replay.map(|r| (r.stage, r.steps)).unzip();
+    let stage = stage.flatten();
+    if ranks.comm().broadcast(&stage.is_some()) {
+        done.stage = recovery::stage(step, parts, ranks, stage, &mut done)?;
+    }
+    let mut outcomes: Vec<Option<Replayed>> = replay.map_or_else(Vec::new, |r| r.into_iter().map(Some).collect());
+    let n = ranks.comm().broadcast(&outcomes.len());
+    for k in 0..n {
+        let o = outcomes.get_mut(k).and_then(Option::take).map(|o| (o.step, o.lambda, o.outcome));
+        if let Some(r) = recovered(step, parts, ranks, o, &mut done)? {
+            done.steps.push(r);
+        }
+    }
+    Ok(done)
 }
 
 /// What the search below 1 found on rank 0.

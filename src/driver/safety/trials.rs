@@ -1,8 +1,8 @@
 //! The trials of one safety search on rank 0: what a factor F does to the
 //! scene ([`Varied`]: the strength of the chosen contacts divided by F, or
 //! the chosen loads multiplied by F), the contact iteration at F from the
-//! last state that held (or the load steps from their start, below 1), and
-//! the verdict only converged iterations give.
+//! last state that held (or the initial stage and the load steps from
+//! their start, below 1), and the verdict only converged iterations give.
 //!
 //! A trial whose iteration does not converge decides nothing yet: it is
 //! retried from the same state in [`RETRY_STEPS`] smaller increments of F,
