@@ -64,9 +64,9 @@ fn headline(r: &mut String, run: &Run, s: &SafetyRun, o: &Safety) {
     };
     let peak_holds = s.factor.is_some_and(|h| h >= 1.0) && matches!(s.kind, SearchKind::Strength(_));
     let from = if s.below_one && peak_holds {
-        "The load steps lose equilibrium as given (F = 1), with the residual strength they keep where pairs slip or open; each trial ran the load steps from the start with the search's strength"
+        "The load steps lose equilibrium as given (F = 1), with the residual strength they keep where pairs slip or open; each trial ran the initial stage, if any, and the load steps from the start with the search's strength"
     } else if s.below_one {
-        "The scene loses equilibrium as given (F = 1), so F was sought below 1, each trial running the load steps from the start"
+        "The scene loses equilibrium as given (F = 1), so F was sought below 1, each trial running the initial stage, if any, and the load steps from the start"
     } else {
         "From the state of the last load step"
     };
