@@ -186,7 +186,6 @@ fn slope2d_cohesive_bedding_near_its_limit_in_four_steps() {
 }
 
 #[test]
-#[ignore = "issue 28: step 2 takes 225 iterations and 2 cuts since the cross set's pairs at the rollers stopped slipping freely: the face's bedding pairs cycle (docs/corpus.md)"]
 fn slope2d_in_linear_elements() {
     slope("slope2d_linear.toml", "tri3 / quad4");
 }
@@ -197,13 +196,11 @@ fn slope2d_on_a_fine_mesh() {
 }
 
 #[test]
-#[ignore = "issue 28: does not converge: step 4 cycles in the cross set near the east roller (docs/corpus.md)"]
 fn slope2d_on_a_finer_mesh_still() {
     slope("slope2d_lc07.toml", "tri6");
 }
 
 #[test]
-#[ignore = "issue 28: does not converge: step 4 cycles at the crest and a bedding junction (docs/corpus.md)"]
 fn slope2d_with_less_cohesion() {
     slope("slope2d_c020.toml", "tri6");
 }

@@ -1,10 +1,12 @@
 //! What carries over from iteration to iteration and from step to step
 //! ([`History`]): the states, the cracks, where each pair ended; whether a
 //! pair is cracked ([`cracked`]), the crack memory of a step
-//! ([`start_step`], [`mark_cracks`]) and the commit of a converged step
+//! ([`start_step`], [`mark_cracks`]), the law of a pair that has parted
+//! ([`law_at`]: no cohesion left) and the commit of a converged step
 //! ([`commit`]).
 
-use super::law::ContactState;
+use super::law::{ContactState, Strength};
+use super::pair_law::PairLaw;
 use super::system::InterfaceSolution;
 
 /// What carries over from iteration to iteration and from step to step.
@@ -18,6 +20,12 @@ pub struct History {
     /// an iteration after its first ([`cracked`]). Cleared at the step's
     /// start, merged into `cracked` when it converges.
     pub cracking: Vec<bool>,
+    /// Pairs that have parted ([`parted`]) in a converged step; how often
+    /// each has been solved open in the current one after being solved
+    /// closed (an opening), and whether it was solved open last.
+    pub parted: Vec<bool>,
+    pub openings: Vec<u32>,
+    pub solved_open: Vec<bool>,
     /// Relative displacement a stuck pair is tied at along the joint (the
     /// slip accumulated before it stuck, or where it touched when it closed).
     pub offset: Vec<[f64; 3]>,
@@ -38,6 +46,9 @@ impl History {
             states: vec![ContactState::Stick; n],
             cracked: vec![false; n],
             cracking: vec![false; n],
+            parted: vec![false; n],
+            openings: vec![0; n],
+            solved_open: vec![false; n],
             offset: vec![[0.0; 3]; n],
             rel_start: vec![[0.0; 3]; n],
             force: vec![[0.0; 3]; n],
@@ -60,10 +71,33 @@ pub(crate) fn cracked(h: &History, p: usize) -> bool {
     h.cracked[p] || h.cracking[p] || h.states[p] != ContactState::Stick
 }
 
+/// Whether a pair has parted: opened, closed and opened again in one
+/// step (this one or an earlier converged one). A single opening that a
+/// later iterate closes costs nothing: the first solve of a step, all
+/// stuck, puts pairs in tension that the answer has closed, and which of
+/// them it does depends on the step's size, not on the load path.
+pub(crate) fn parted(h: &History, p: usize) -> bool {
+    h.parted[p] || h.openings[p] >= 2
+}
+
+/// Pair `p`'s law as it stands in `h`: a pair that has parted has lost
+/// its residual cohesion as well (see `law.rs`: the tension cut-off).
+pub(crate) fn law_at(h: &History, laws: &[PairLaw], p: usize) -> PairLaw {
+    let law = laws[p];
+    if parted(h, p) {
+        PairLaw { strength: Strength { residual_cohesion: 0.0, ..law.strength }, ..law }
+    } else {
+        law
+    }
+}
+
 /// Starts a step's crack memory: nothing cracked in it yet.
 pub(crate) fn start_step(h: &mut History) {
     h.cracking.clear();
     h.cracking.resize(h.states.len(), false);
+    h.openings.clear();
+    h.openings.resize(h.states.len(), 0);
+    h.solved_open = h.states.iter().map(|&s| s == ContactState::Open).collect();
 }
 
 /// Marks the pairs solved slipping or open in an iteration of the step
@@ -71,6 +105,11 @@ pub(crate) fn start_step(h: &mut History) {
 pub(crate) fn mark_cracks(h: &mut History) {
     for (c, s) in h.cracking.iter_mut().zip(&h.states) {
         *c |= *s != ContactState::Stick;
+    }
+    for p in 0..h.states.len() {
+        let open = h.states[p] == ContactState::Open;
+        h.openings[p] += u32::from(open && !h.solved_open[p]);
+        h.solved_open[p] = open;
     }
 }
 
@@ -80,6 +119,7 @@ pub(crate) fn mark_cracks(h: &mut History) {
 pub(crate) fn forget_step_cracks(h: &mut History, pairs: impl IntoIterator<Item = usize>) {
     for p in pairs {
         h.cracking[p] = false;
+        h.openings[p] = 0;
     }
 }
 
@@ -90,6 +130,7 @@ pub(crate) fn commit(h: &mut History, solution: &InterfaceSolution) {
     h.force = solution.forces.clone();
     for p in 0..h.states.len() {
         h.cracked[p] |= h.cracking[p] || h.states[p] != ContactState::Stick;
+        h.parted[p] |= h.openings[p] >= 2;
     }
 }
 
@@ -163,5 +204,55 @@ mod tests {
         start_step(&mut fresh);
         fresh.states[0] = Stick;
         assert!(!cracked(&fresh, 0));
+    }
+    #[test]
+    fn a_pair_that_opens_twice_in_a_step_closes_without_its_residual_cohesion() {
+        // residual cohesion 0.5 (kept once slipping); pair 0 slips, pair 1
+        // opens (solved open, then closed, then open again)
+        let laws = [PairLaw { strength: Strength { residual_cohesion: 0.5, ..S }, slip: SlipLaw::Coulomb }; 2];
+        let mut h = History::new(2);
+        start_step(&mut h);
+        let cohesion = |h: &History, p| law_at(h, &laws, p).strength.effective(cracked(h, p)).1;
+        let solve = |h: &mut History, states: [ContactState; 2]| {
+            h.states = states.to_vec();
+            mark_cracks(h);
+        };
+        solve(&mut h, [Slip, Open]);
+        solve(&mut h, [Slip, Stick]);
+        assert_eq!((cohesion(&h, 0), cohesion(&h, 1)), (0.5, 0.5), "one opening: the iteration feeling its way");
+        solve(&mut h, [Stick, Open]);
+        h.states = vec![Stick, Open];
+        assert_eq!((cohesion(&h, 0), cohesion(&h, 1)), (0.5, 0.0), "slipped: the residual; parted: none");
+        // closing after a move of 0.01 along the joint (force 0.1 < c = 0.5):
+        // the slipped pair's cohesion holds it, the parted one slips
+        let closing = Trial { force: [0.0; 3], area: 1.0, slip: [0.0, 0.01, 0.0], gap: -1e-3, stiffness: 10.0 };
+        let judged = |p| judge(Open, &closing, &law_at(&h, &laws, p).strength, true, true, 1e-12, 0.0);
+        assert_eq!((judged(0), judged(1)), (Stick, Slip));
+        // parted is committed with the step and outlives it
+        let solution = InterfaceSolution {
+            pairs: Vec::new(),
+            forces: vec![[0.0; 3]; 2],
+            rel: vec![[0.0; 3]; 2],
+            d_c: Vec::new(),
+            residual: 0.0,
+            accuracy: 0.0,
+            loose: false,
+            inexact: false,
+            as_tied: vec![None; 2],
+            water: Vec::new(),
+        };
+        h.states = vec![Stick, Slip];
+        commit(&mut h, &solution);
+        start_step(&mut h);
+        assert_eq!((cohesion(&h, 0), cohesion(&h, 1)), (0.5, 0.0));
+        // a cluster's set holding it stuck forgets the step's openings
+        let mut g = History::new(1);
+        start_step(&mut g);
+        for s in [Open, Stick, Open, Stick] {
+            g.states = vec![s];
+            mark_cracks(&mut g);
+        }
+        forget_step_cracks(&mut g, [0]);
+        assert_eq!(law_at(&g, &laws, 0).strength.residual_cohesion, 0.5);
     }
 }

@@ -13,7 +13,7 @@
 //! so to its end. A converged step is committed once, by
 //! [`super::history::commit`]: where it ended, and the cracks it made.
 
-use super::history::{commit, cracked, mark_cracks, start_step, History};
+use super::history::{commit, cracked, law_at, mark_cracks, start_step, History};
 use super::law::{law_residual, ContactState, Trial};
 use super::options::SlipLaw;
 use super::outcome::{Failed, Outcome, Summary};
@@ -129,8 +129,9 @@ fn law_residuals(problem: &InterfaceProblem, laws: &[PairLaw], h: &History, solu
         .map(|p| {
             let (force, rel, area) = (solution.forces[p], solution.rel[p], problem.area(p));
             let trial = Trial { force, area, slip: [0.0; 3], gap: rel[0], stiffness: problem.stiffness(p) };
-            let coulomb = laws[p].slip == SlipLaw::Coulomb;
-            law_residual(h.states[p], &trial, &laws[p].strength, cracked(h, p), coulomb) / area
+            let law = law_at(h, laws, p);
+            let coulomb = law.slip == SlipLaw::Coulomb;
+            law_residual(h.states[p], &trial, &law.strength, cracked(h, p), coulomb) / area
         })
         .collect()
 }

@@ -21,9 +21,32 @@
 //! would interpenetrate. A slipping pair carries the Coulomb force along its
 //! slip and sticks again when the slip turns back against it ([`judge`]).
 //! A pair that has opened or slipped is cracked: from then on its tensile
-//! strength is zero and its cohesion the residual cohesion. The tensile
+//! strength is zero and its cohesion the residual cohesion, but for a pair
+//! that has parted (opened, closed and opened again within a step), which
+//! has lost its cohesion altogether: the residual cohesion is what a joint
+//! keeps once it slips, not once its faces have come apart. The tensile
 //! strength never exceeds the Coulomb apex c / f, where the shear limit
 //! runs out (Mohr–Coulomb with a tension cut-off).
+//!
+//! Why a parting costs the residual cohesion: at the corner of the tension
+//! cut-off (sigma_n = f_t = 0 once cracked, tau up to c) a law in which an
+//! open pair carries nothing and a closed one keeps c has no fixed point
+//! at a pair that carries a shear below c at about zero normal stress,
+//! where that shear puts it in tension. Stuck, it carries its shear and a
+//! little tension, so it opens; open, it carries nothing, the bodies close
+//! on it, and it sticks again, for ever (the crest wedges of
+//! tests/corpus/slope2d_c020.toml and slope2d_linear.toml against their
+//! roller: sigma_n 9e-5 MPa and tau 7e-3 MPa stuck, an overlap of 1.7e-7 m
+//! open; 412 iterations without an answer). Mohr–Coulomb plasticity keeps
+//! the traction at the corner, (0, c), while the pair both opens and slips:
+//! an open pair carrying shear, which parted faces do not. Here the pair
+//! closes again without cohesion, where the cone's apex is at sigma_n =
+//! 0, tau = 0 and the open and closed states meet without a jump: it
+//! slips on its friction or stays open. A single opening that the next
+//! iterate closes costs nothing (`history::parted`): the first solve of a
+//! step, all stuck, puts pairs in tension that its answer has closed, and
+//! which ones depends on the step's size, not on the load path (a step
+//! solved whole and cut in pieces end alike: tests/convergence.rs).
 
 /// State of a contact pair; the number is the `status` code of the outputs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]

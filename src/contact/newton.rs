@@ -37,7 +37,7 @@
 use super::capacity::{capacities, PairLoad};
 use super::cluster::{Search, Step, Watch};
 use super::frame::tangential;
-use super::history::{cracked, forget_step_cracks, History};
+use super::history::{cracked, forget_step_cracks, law_at, History};
 use super::iteration::{Rule, Verdict};
 use super::law::{friction_bound, judge, ContactState, Trial};
 use super::options::SlipLaw;
@@ -161,7 +161,7 @@ impl<'p> Newton<'p> {
     /// one direction its junction leaves it to slip along, if so (its
     /// friction then acts along that line alone).
     fn relation(&self, h: &History, p: usize, line: Option<[f64; 3]>) -> Relation {
-        let (law, area, c) = (&self.laws[p], self.problem.area(p), self.stiffness[p]);
+        let (law, area, c) = (&law_at(h, self.laws, p), self.problem.area(p), self.stiffness[p]);
         let (force, rel, reference) = (self.force[p], self.rel[p], self.reference[p]);
         let state = h.states[p];
         let target = [0.0, reference[1], reference[2]];
@@ -234,7 +234,7 @@ impl<'p> Newton<'p> {
         let mut violation = vec![0.0; n];
         let mut residuals = vec![0.0; n];
         for p in 0..n {
-            let (st, law) = (h.states[p], &self.laws[p]);
+            let (st, law) = (h.states[p], &law_at(h, self.laws, p));
             let area = self.problem.area(p);
             let cr = cracked(h, p);
             let mut slip = sub(tangential(rel[p]), self.reference[p]);
@@ -370,7 +370,7 @@ impl<'p> Newton<'p> {
         (0..next.len())
             .filter(|&p| next[p] == ContactState::Open && h.states[p] != ContactState::Open)
             .filter(|&p| {
-                let (ft, _) = self.laws[p].strength.effective(cracked(h, p));
+                let (ft, _) = law_at(h, self.laws, p).strength.effective(cracked(h, p));
                 self.force[p][0] < ft * self.problem.area(p)
             })
             .count()
@@ -431,7 +431,8 @@ impl Newton<'_> {
         if (0..n).filter(|&p| h.states[p] != before[p]).count() >= 2 {
             // (a pair that carries no shear once cracked holds nothing stuck)
             let strong = released.iter().copied().filter(|&p| {
-                let (law, s) = (&self.laws[p], &self.laws[p].strength);
+                let law = &law_at(h, self.laws, p);
+                let s = &law.strength;
                 law.slip == SlipLaw::Coulomb && (s.friction > 0.0 || s.residual_cohesion > 0.0)
             });
             if let Some(p) = least(strong, |p| self.violation[p]) {
@@ -458,7 +459,8 @@ impl Newton<'_> {
             gap: self.rel[p][0],
             stiffness: self.stiffness[p],
         };
-        norm(trial.xi()) - friction_bound(&self.laws[p].strength, cracked(h, p), trial.area, -trial.force[0]).0
+        norm(trial.xi())
+            - friction_bound(&law_at(h, self.laws, p).strength, cracked(h, p), trial.area, -trial.force[0]).0
     }
 
     /// Rule 3 of [`Newton::held_back`]: the pair to keep stuck where the
@@ -489,7 +491,7 @@ impl Newton<'_> {
         let frames = pb.frames();
         (0..h.states.len())
             .map(|p| {
-                let (f, fr, law) = (self.force[p], &frames[p], &self.laws[p]);
+                let (f, fr, law) = (self.force[p], &frames[p], &law_at(h, self.laws, p));
                 let coulomb = law.slip == SlipLaw::Coulomb;
                 let bound = |cracked| friction_bound(&law.strength, cracked, pb.area(p), (-f[0]).max(0.0)).0;
                 let slips = coulomb && h.states[p] == ContactState::Slip;
@@ -518,7 +520,13 @@ impl Rule for Newton<'_> {
     fn relations(&self, h: &History) -> Vec<Relation> {
         let lines = self.problem.slip_lines(&h.states);
         (0..self.laws.len())
-            .map(|p| self.relation(h, p, lines[p]).within(limit(&self.laws[p], cracked(h, p), self.problem.area(p))))
+            .map(|p| {
+                self.relation(h, p, lines[p]).within(limit(
+                    &law_at(h, self.laws, p),
+                    cracked(h, p),
+                    self.problem.area(p),
+                ))
+            })
             .collect()
     }
 
