@@ -87,6 +87,9 @@ const REFINED: f64 = 1e-13;
 /// Columns of W computed at once (each a vector over the means and one
 /// over r in memory while they are).
 const W_BATCH: usize = 64;
+/// The relative displacements whose W diagonal is found in one pass
+/// through K_mm's factor (two vectors over the means each).
+const W_DIAGONAL_BATCH: usize = 256;
 
 /// A part's condensed matrix in the pairs' local axes, and the unknowns of
 /// each of its interface DOFs.
@@ -101,8 +104,8 @@ pub struct Sparse {
     nr: usize,
     parts: Vec<Local>,
     k_mm: Means,
-    /// K_rr's diagonal: the scale of a pair's slip.
-    k_rr_diag: Vec<f64>,
+    /// W's diagonal: the scale of a pair's slip ([`Sparse::w_diagonal`]).
+    w_diag: Vec<f64>,
     /// The loads over `[m; r]`, per load case and for the prescribed values at ramp 1.
     b: Vec<Vec<f64>>,
     b_fixed: Vec<f64>,
@@ -152,7 +155,7 @@ impl Sparse {
             nr,
             parts: local,
             k_mm: factor,
-            k_rr_diag: Vec::new(),
+            w_diag: Vec::new(),
             b,
             b_fixed,
             threads: threads.max(1),
@@ -162,7 +165,7 @@ impl Sparse {
             split: Mutex::new(Split::default()),
             w: Mutex::new(WColumns::new(nr)),
         };
-        solver.k_rr_diag = solver.diagonal_r();
+        solver.w_diag = solver.w_diagonal();
         Ok(solver)
     }
 
@@ -407,6 +410,35 @@ impl Sparse {
         }
     }
 
+    /// W's diagonal, `K_rr - K_rm K_mm^-1 K_mr` at each relative
+    /// displacement: the pair stiffness the robust rule's friction Newton
+    /// turns slips into forces with (`InterfaceProblem::stiffness`), the
+    /// dense interface's. K_rr's own (the means held, so stiffer) sent the
+    /// jointed tet10 tunnel (tests/geo/tunnel3d_joints_coarse.toml) down
+    /// another Newton path from iteration 3, which cycled for 400
+    /// iterations where the dense interface converged in 38. One substitution per displacement,
+    /// [`W_DIAGONAL_BATCH`] at a time; only the mean rows of each are kept.
+    fn w_diagonal(&self) -> Vec<f64> {
+        let k_rr = self.diagonal_r();
+        let mut d = k_rr.clone();
+        let idx: Vec<usize> = (0..self.nr).collect();
+        for batch in idx.chunks(W_DIAGONAL_BATCH) {
+            let (k_m, _) = self.unit_products(batch);
+            let t = self.k_mm.solve_many(&k_m);
+            for (k, &i) in batch.iter().enumerate() {
+                d[i] -= k_m[k].iter().zip(&t[k]).map(|(a, b)| a * b).sum::<f64>();
+            }
+        }
+        // (K_mm's single-precision factor could lose a W far softer than
+        // K_rr: that keeps K_rr's)
+        d.iter_mut().zip(&k_rr).for_each(|(w, &k)| {
+            if !(*w > 1e-6 * k) {
+                *w = k;
+            }
+        });
+        d
+    }
+
     /// The diagonal of `K_rr`, one sweep per part.
     fn diagonal_r(&self) -> Vec<f64> {
         let mut d = vec![0.0; self.nr];
@@ -504,7 +536,7 @@ impl Solver for Sparse {
     }
 
     fn diagonal(&self, r: usize) -> f64 {
-        self.k_rr_diag[r]
+        self.w_diag[r]
     }
 
     fn counts(&self) -> Vec<usize> {
