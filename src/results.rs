@@ -70,6 +70,10 @@ pub struct Timings {
     /// and the parts' displacements from each answer.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub interface_forces: Option<f64>,
+    /// Of `interface`, with the sparse interface solver: W's diagonal,
+    /// found once at setup (the pairs' stiffness).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub interface_diagonal: Option<f64>,
     pub recover: f64,
     pub output: f64,
     pub total: f64,

@@ -62,6 +62,7 @@ pub(super) fn add_timings(t: &mut Timings, parts: &Parts, done: &LoadSteps) {
         t.interface_checks = Some(split.checks);
         t.interface_relations = Some(split.relations);
         t.interface_forces = Some(split.forces);
+        t.interface_diagonal = Some(split.diagonal);
     }
     t.recover = done.recover_s;
 }

@@ -54,6 +54,9 @@ pub struct Split {
     /// Outside the solver: the pairs' forces and the parts' displacements
     /// from each answer (the junctions' shares).
     pub forces: f64,
+    /// Once, at setup: W's diagonal, the pairs' stiffness (a substitution
+    /// through K_mm's factor per relative displacement).
+    pub diagonal: f64,
 }
 
 /// How finely a solve must resolve the forces.

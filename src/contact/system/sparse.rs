@@ -165,7 +165,9 @@ impl Sparse {
             split: Mutex::new(Split::default()),
             w: Mutex::new(WColumns::new(nr)),
         };
+        let t = Instant::now();
         solver.w_diag = solver.w_diagonal();
+        solver.add_split(|s| s.diagonal = t.elapsed().as_secs_f64());
         Ok(solver)
     }
 
@@ -416,27 +418,77 @@ impl Sparse {
     /// dense interface's. K_rr's own (the means held, so stiffer) sent the
     /// jointed tet10 tunnel (tests/geo/tunnel3d_joints_coarse.toml) down
     /// another Newton path from iteration 3, which cycled for 400
-    /// iterations where the dense interface converged in 38. One substitution per displacement,
-    /// [`W_DIAGONAL_BATCH`] at a time; only the mean rows of each are kept.
+    /// iterations where the dense interface converged in 38.
+    ///
+    /// One substitution through K_mm's factor per displacement,
+    /// [`W_DIAGONAL_BATCH`] at a time, the batches spread over the threads;
+    /// each displacement's mean column `K_mr e_i` is built from the parts
+    /// that hold it alone ([`Sparse::holders`]), and only its mean rows.
     fn w_diagonal(&self) -> Vec<f64> {
         let k_rr = self.diagonal_r();
-        let mut d = k_rr.clone();
+        let holders = self.holders();
         let idx: Vec<usize> = (0..self.nr).collect();
-        for batch in idx.chunks(W_DIAGONAL_BATCH) {
-            let (k_m, _) = self.unit_products(batch);
-            let t = self.k_mm.solve_many(&k_m);
-            for (k, &i) in batch.iter().enumerate() {
-                d[i] -= k_m[k].iter().zip(&t[k]).map(|(a, b)| a * b).sum::<f64>();
-            }
-        }
+        let batches: Vec<&[usize]> = idx.chunks(W_DIAGONAL_BATCH).collect();
+        let threads = self.threads.min(batches.len()).max(1);
+        let lowered = in_runs(&batches, threads, |run| {
+            run.iter()
+                .flat_map(|batch| {
+                    let k_m: Vec<Vec<f64>> = batch.iter().map(|&i| self.mean_column(&holders[i])).collect();
+                    let t = self.k_mm.solve_many(&k_m);
+                    k_m.iter()
+                        .zip(&t)
+                        .map(|(a, b)| a.iter().zip(b).map(|(a, b)| a * b).sum::<f64>())
+                        .collect::<Vec<_>>()
+                })
+                .collect::<Vec<f64>>()
+        });
         // (K_mm's single-precision factor could lose a W far softer than
         // K_rr: that keeps K_rr's)
-        d.iter_mut().zip(&k_rr).for_each(|(w, &k)| {
-            if !(*w > 1e-6 * k) {
-                *w = k;
+        k_rr.iter()
+            .zip(lowered.into_iter().flatten())
+            .map(|(&k, l)| {
+                let w = k - l;
+                if w > 1e-6 * k {
+                    w
+                } else {
+                    k
+                }
+            })
+            .collect()
+    }
+
+    /// For each relative displacement, where the parts hold it: (part,
+    /// its interface DOF, the coefficient of the displacement there).
+    fn holders(&self) -> Vec<Vec<(usize, usize, f64)>> {
+        let mut at = vec![Vec::new(); self.nr];
+        for (q, p) in self.parts.iter().enumerate() {
+            for (u, t) in p.terms.iter().enumerate() {
+                for &(v, c) in &t.vars[..t.n] {
+                    if let Var::R(i) = v {
+                        at[i].push((q, u, c));
+                    }
+                }
             }
-        });
-        d
+        }
+        at
+    }
+
+    /// The mean rows of K's column at a relative displacement held where
+    /// `holders` says, dense over the means.
+    fn mean_column(&self, holders: &[(usize, usize, f64)]) -> Vec<f64> {
+        let mut k_m = vec![0.0; self.nm];
+        for &(q, u, c) in holders {
+            let p = &self.parts[q];
+            let nc = p.terms.len();
+            for (tw, &s) in p.terms.iter().zip(&p.s[u * nc..(u + 1) * nc]) {
+                for &(vw, cw) in &tw.vars[..tw.n] {
+                    if let Var::M(j) = vw {
+                        k_m[j] += c * cw * s;
+                    }
+                }
+            }
+        }
+        k_m
     }
 
     /// The diagonal of `K_rr`, one sweep per part.
