@@ -17,14 +17,13 @@
 //! iterations to the same 7,082 stick / 78 slip.
 //!
 //! The scene here is that tunnel with two of its sets (J1, J2) and a
-//! coarser mesh (lc 3, 1,779 pairs, ~10 s each): the sparse interface took
-//! 31 iterations there with K_rr's diagonal, the dense one 32. With W's it
-//! followed the dense one's states and forces to 1e-13 up to iteration
-//! 32, where its solve was loose (residual 3.2e-11); the next, a Newton
-//! step from the same states, moved a junction's lagged pressure and two
-//! pairs cycled (400 iterations, 3 cuts), until a settled solve that is
-//! not tight was solved again with its own relations
-//! (`contact/iteration.rs`).
+//! coarser mesh (lc 3, 1,779 pairs, ~5 s each). With W's diagonal the
+//! sparse interface followed the dense one's states and forces to 1e-13
+//! up to iteration 32, where its solve was loose (residual 3.2e-11); the
+//! next, a Newton step from the same states, moved a junction's lagged
+//! pressure and two pairs cycled (400 iterations, 3 cuts). Late in a step
+//! a settled answer that was not tight is now solved again with its own
+//! relations (`contact/iteration.rs`, `TIGHTEN_AFTER`).
 
 mod common;
 
@@ -40,32 +39,26 @@ fn solve(case: &Case, scene: &str, interface: InterfaceSolver, name: &str) -> Ru
 }
 
 /// The same states pair by pair on the jointed tunnel with two sets,
-/// dense and sparse, on one mesh (gmsh 4.8 does not mesh this .geo the
-/// same twice: two meshes of it took 7 and 33 dense iterations). The
-/// sparse interface takes more iterations: 99 against the dense one's 33
-/// on one such mesh, measured; the bound catches a cycle (400 and cuts
-/// before the settled solves were tightened with their own relations),
-/// not yet "about as many" (issue 28).
+/// dense and sparse, in about as many iterations, on one mesh of it kept
+/// in tests/geo/tunnel3d_joints_2sets.msh: gmsh 4.8 does not mesh this
+/// .geo the same twice, and the iterations depend on the mesh (7, 26, 32
+/// and 33 dense iterations on four meshes; on a fifth the dense interface
+/// did not converge in 400: issue 28). On this one: dense 32, sparse 33.
 #[test]
-fn the_sparse_interface_reaches_the_dense_ones_states_on_the_jointed_tunnel() {
+fn the_sparse_interface_takes_the_dense_ones_path_on_the_jointed_tunnel() {
     let case = Case::new("interface-paths");
-    case.copy("tests/geo/tunnel3d_joints.geo");
+    case.copy("tests/geo/tunnel3d_joints_2sets.msh");
     let text = edited(
         "tests/geo/tunnel3d_joints_coarse.toml",
         &[
-            ("setnumber = { lc = 2.0, lc_far = 4.0 }", "setnumber = { lc = 3.0, lc_far = 6.0, sets = 2 }"),
+            ("mesh = \"tunnel3d_joints.geo\"", "mesh = \"tunnel3d_joints_2sets.msh\""),
+            ("[gmsh]\norder = 2\nsetnumber = { lc = 2.0, lc_far = 4.0 }\n", ""),
             ("[[contacts]]\ngroup = \"J3\"\nfriction = 0.7002\n\n", ""),
         ],
     );
     case.write("tunnel.toml", &text);
     let dense = solve(&case, "tunnel.toml", InterfaceSolver::Dense, "dense");
-    // the sparse solve on the dense one's mesh
-    std::fs::copy(case.out("dense").join("mesh/tunnel.msh"), case.dir.join("tunnel.msh")).expect("the mesh");
-    let gmsh = text.find("[gmsh]").expect("a [gmsh] table");
-    let end = gmsh + text[gmsh..].find("\n\n").expect("its end");
-    let on_msh = format!("{}{}", &text[..gmsh], &text[end..]).replace("tunnel3d_joints.geo", "tunnel.msh");
-    case.write("tunnel_msh.toml", &on_msh);
-    let sparse = solve(&case, "tunnel_msh.toml", InterfaceSolver::Sparse, "sparse");
+    let sparse = solve(&case, "tunnel.toml", InterfaceSolver::Sparse, "sparse");
     assert_eq!((dense.stats.interface_solver, sparse.stats.interface_solver), ("dense", "sparse"));
     let (d, s) =
         (dense.steps[0].contact.as_ref().expect("contact"), sparse.steps[0].contact.as_ref().expect("contact"));
@@ -74,5 +67,6 @@ fn the_sparse_interface_reaches_the_dense_ones_states_on_the_jointed_tunnel() {
     eprintln!("{} pairs: dense {ds} iterations, sparse {ss}", d.states.len());
     assert!(d.states.iter().any(|&st| st != subcontact::contact::law::ContactState::Stick), "some pairs slip");
     assert_eq!(s.states, d.states, "the same states pair by pair");
-    assert!(ss <= 4 * ds, "dense {ds} iterations, sparse {ss}");
+    // (one more where a settled answer late in the step was loose and is solved again)
+    assert!(ss <= ds + 2, "dense {ds} iterations, sparse {ss}");
 }
