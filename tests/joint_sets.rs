@@ -421,6 +421,26 @@ fn water_on_a_cut_joint_lifts_the_block_above_it() {
     }
 }
 
+/// A block that a joint set cut off and that nothing holds is named by
+/// its number, as blocks.csv names it ("rock #2"), not by its group, which
+/// every block of the cut shares: the square above with water at 0.5 in
+/// the joint, more than the 0.21 the upper block weighs per unit area,
+/// and the sides holding x alone.
+#[test]
+fn a_free_block_is_named_by_its_number() {
+    let case = Case::new("joint-sets-free-block");
+    case.write(
+        "square.geo",
+        "SetFactory(\"OpenCASCADE\");\nRectangle(1) = {-2, 0, 0, 4, 4};\nMeshSize{ PointsOf{ Surface{1}; } } = 1.0;\ne = 1e-3;\nPhysical Surface(\"rock\") = {1};\nPhysical Curve(\"base\") = Curve In BoundingBox{-2 - e, -e, -e, 2 + e, e, e};\nPhysical Curve(\"sides\") = Curve In BoundingBox{-2 - e, -e, -e, -2 + e, 4 + e, e};\nPhysical Curve(\"sides\") += Curve In BoundingBox{2 - e, -e, -e, 2 + e, 4 + e, e};\n",
+    );
+    case.write("lift.toml", "mesh = \"square.geo\"\nanalysis = \"plane_strain\"\ngravity = [0.0, -9.81]\n[materials.rock]\nE = 5000.0\nnu = 0.25\ndensity = 2.7e-3\n[[bodies]]\ngroup = \"rock\"\nmaterial = \"rock\"\n[[joints]]\nname = \"lift\"\nangle = 0.0\npoint = [0.0, 2.0]\nfriction = 0.6\nwater = { pressure = 0.5 }\n[[supports]]\ngroup = \"base\"\nfix = [\"x\", \"y\"]\n[[supports]]\ngroup = \"sides\"\nfix = [\"x\"]\n");
+    let o = case.cli(&["solve", "lift.toml", "--quiet"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "lifted by 0.5 > 0.21, the upper block must be free: {err}");
+    assert!(err.contains("body \"rock #"), "the free block by its number: {err}");
+    assert!(!err.contains("\"rock\""), "not the group every block shares: {err}");
+}
+
 /// `merge_slivers = true` (issue 31): geo/tunnel_joints.toml in a 10 m box
 /// (W = 5) makes 27 blocks of which 3 are slivers (the thinnest 0.068 thick
 /// where the mesh size is 2); merged, each is bonded to a neighbour across

@@ -15,6 +15,7 @@ use crate::contact::{Failed, SlipLaw, StateRule};
 use crate::fem::rigid::RigidMotion;
 use crate::fem::sparse::FactorError;
 use crate::model::Model;
+use crate::output::faces::block_name;
 use crate::results::state_counts;
 use crate::scene::Scene;
 use crate::substructure::Part;
@@ -129,17 +130,21 @@ impl ContactError {
             iteration: f.iteration,
             states: state_counts(&f.states),
         };
-        let names = |ids: &[usize]| -> Vec<String> {
+        // (a block of a group cut by joint sets by its number, "rock #3",
+        // as blocks.csv and faces.csv name it: the group's name alone
+        // would not say which of its blocks)
+        let blocks = |ids: &[usize]| -> Vec<usize> {
             let mut bodies: Vec<usize> = ids.iter().flat_map(|&i| parts[i].bodies.iter().copied()).collect();
             bodies.sort_unstable();
             bodies.dedup();
-            bodies.iter().map(|&b| model.bodies[b].name.clone()).collect()
+            bodies
         };
+        let names = |ids: &[usize]| -> Vec<String> { blocks(ids).iter().map(|&b| block_name(model, b)).collect() };
         match f.failure {
             SolveFailure::NotHeld(ids) => ContactError::NotHeld { at, bodies: names(&ids), apex: apex(scene) },
             SolveFailure::Sliding(free) => {
                 let bodies = names(&free);
-                let no_shear = no_shear(model, scene, &f.states, &bodies);
+                let no_shear = no_shear(model, scene, &f.states, &blocks(&free));
                 let motions = (free.motions.iter()).map(|&(p, m)| (names(&[p]).join("\", \""), m)).collect();
                 ContactError::Sliding { at, bodies, no_shear, rule: scene.solver.rule, motions }
             }
@@ -162,15 +167,15 @@ fn apex(scene: &Scene) -> Vec<Apex> {
         .collect()
 }
 
-/// Whether every slipping pair on the named bodies (all of them when none
-/// is named) belongs to a contact that carries no shear once slipping: no
-/// friction and no residual cohesion, or frictionless slip.
-fn no_shear(model: &Model, scene: &Scene, states: &[ContactState], bodies: &[String]) -> bool {
+/// Whether every slipping pair on the bodies `bodies` (all of them when
+/// none is given) belongs to a contact that carries no shear once
+/// slipping: no friction and no residual cohesion, or frictionless slip.
+fn no_shear(model: &Model, scene: &Scene, states: &[ContactState], bodies: &[usize]) -> bool {
     let mut body_of = vec![usize::MAX; model.n_nodes()];
     for (b, body) in model.bodies.iter().enumerate() {
         body.cells.iter().flat_map(|c| &c.nodes).for_each(|&n| body_of[n] = b);
     }
-    let named = |n: usize| bodies.is_empty() || model.bodies.get(body_of[n]).is_some_and(|b| bodies.contains(&b.name));
+    let named = |n: usize| bodies.is_empty() || bodies.contains(&body_of[n]);
     let mut slipping = (model.pairs.iter().zip(states))
         .filter(|(p, &s)| s == ContactState::Slip && (named(p.k) || named(p.l)))
         .peekable();
