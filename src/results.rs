@@ -70,8 +70,9 @@ pub struct Timings {
     /// and the parts' displacements from each answer.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub interface_forces: Option<f64>,
-    /// Of `interface`, with the sparse interface solver: W's diagonal,
-    /// found once at setup (the pairs' stiffness).
+    /// Of `interface`, with the sparse interface solver: W's diagonal (the
+    /// stiffness of the pairs that slip or open, formed the first time
+    /// they do).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub interface_diagonal: Option<f64>,
     pub recover: f64,

@@ -14,7 +14,7 @@
 //! [`super::history::commit`]: where it ended, and the cracks it made.
 
 use super::history::{commit, cracked, law_at, mark_cracks, start_step, History};
-use super::law::{law_residual, ContactState, Trial};
+use super::law::{law_residual, stiffness_in, ContactState, Trial};
 use super::options::SlipLaw;
 use super::outcome::{Failed, Outcome, Summary};
 use super::pair_law::PairLaw;
@@ -154,7 +154,8 @@ fn law_residuals(problem: &InterfaceProblem, laws: &[PairLaw], h: &History, solu
     (0..laws.len())
         .map(|p| {
             let (force, rel, area) = (solution.forces[p], solution.rel[p], problem.area(p));
-            let trial = Trial { force, area, slip: [0.0; 3], gap: rel[0], stiffness: problem.stiffness(p) };
+            let stiffness = stiffness_in(h.states[p], || problem.stiffness(p));
+            let trial = Trial { force, area, slip: [0.0; 3], gap: rel[0], stiffness };
             let law = law_at(h, laws, p);
             let coulomb = law.slip == SlipLaw::Coulomb;
             law_residual(h.states[p], &trial, &law.strength, cracked(h, p), coulomb) / area

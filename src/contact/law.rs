@@ -182,6 +182,19 @@ impl Trial {
     }
 }
 
+/// The stiffness a pair in `state` is judged with ([`Trial::stiffness`]):
+/// `c()` where the law reads it (a slipping pair's ξ and the slip it runs
+/// against, an open pair's slip as it closes and its overlap, [`judge`],
+/// [`law_residual`]); a stuck pair's verdict and residual read none, and 1
+/// stands for it there, so that a stiffness that is costly to form (W's
+/// diagonal on the sparse interface) is formed only where it is read.
+pub fn stiffness_in(state: ContactState, c: impl FnOnce() -> f64) -> f64 {
+    match state {
+        ContactState::Stick => 1.0,
+        ContactState::Open | ContactState::Slip => c(),
+    }
+}
+
 /// The robust rule's next state of a pair from its current state (the
 /// active-set update of a semismooth Newton method):
 ///
@@ -404,6 +417,30 @@ mod tests {
         assert_eq!(judge(Stick, &t(-1.0, 0.5 + 1e-9, 0.0, 0.0), &S, true, true, 0.0, tol), Slip);
         assert_eq!(judge(Slip, &t(-1.0, 0.5 - 1e-9, 0.0, 0.0), &S, true, true, 0.0, tol), Stick);
         assert_eq!(judge(Slip, &t(-1.0, 0.5, -1e-9, 0.0), &S, true, true, 0.0, tol), Stick, "a real reversed slip");
+    }
+
+    #[test]
+    fn a_stuck_pairs_verdict_and_residual_read_no_stiffness() {
+        // across the stuck rows of the tables above, a slip of round-off
+        // size or not, a cracked pair or not: any stiffness, the same answer
+        let cases = [(2.0, 0.0), (1.5, 0.2499), (1.5, 0.25), (-4.0, 2.9), (-4.0, -3.5), (0.5, 0.0), (-1.0, 0.6)];
+        for (sn, tau) in cases {
+            for slip in [0.0, 1e-20, -1e-3, 1.0] {
+                for cracked in [false, true] {
+                    let at = |c: f64| Trial { stiffness: c, ..t(sn, tau, slip, 0.0) };
+                    let verdict = |c| judge(Stick, &at(c), &S, cracked, true, 1e-12, 1e-12);
+                    let residual = |c| law_residual(Stick, &at(c), &S, cracked, true);
+                    let one = stiffness_in(Stick, || panic!("a stuck pair's stiffness is not formed"));
+                    for c in [1e-9, 10.0, 1e12] {
+                        assert_eq!(verdict(c), verdict(one), "sigma_n {sn} tau {tau} slip {slip} stiffness {c}");
+                        assert_eq!(residual(c), residual(one), "sigma_n {sn} tau {tau} slip {slip} stiffness {c}");
+                    }
+                }
+            }
+        }
+        // where the law reads it, it is the pair's own
+        assert_eq!(stiffness_in(Slip, || 7.0), 7.0);
+        assert_eq!(stiffness_in(Open, || 7.0), 7.0);
     }
 
     #[test]

@@ -39,7 +39,7 @@ use super::cluster::{Search, Step, Watch};
 use super::frame::tangential;
 use super::history::{cracked, forget_step_cracks, law_at, History};
 use super::iteration::{Rule, Verdict};
-use super::law::{friction_bound, judge, ContactState, Trial};
+use super::law::{friction_bound, judge, stiffness_in, ContactState, Trial};
 use super::options::SlipLaw;
 use super::outcome::Summary;
 use super::pair_law::{limit, PairLaw};
@@ -82,7 +82,6 @@ const MAX_OVERSHOOTS: usize = 8;
 pub(super) struct Newton<'p> {
     problem: &'p InterfaceProblem<'p>,
     laws: &'p [PairLaw],
-    stiffness: Vec<f64>,
     /// The stick reference along the joint: where the step starts (no slip
     /// in this step); a pair open when the step began carries it along
     /// while it is open (it touches where it is).
@@ -133,12 +132,10 @@ struct Judged {
 
 impl<'p> Newton<'p> {
     pub fn new(problem: &'p InterfaceProblem<'p>, laws: &'p [PairLaw], h: &History) -> Newton<'p> {
-        let stiffness = (0..laws.len()).map(|p| problem.stiffness(p)).collect();
         let reference = h.rel_start.iter().map(|&r| tangential(r)).collect();
         Newton {
             problem,
             laws,
-            stiffness,
             reference,
             start: h.states.clone(),
             force: h.force.clone(),
@@ -161,13 +158,14 @@ impl<'p> Newton<'p> {
     /// one direction its junction leaves it to slip along, if so (its
     /// friction then acts along that line alone).
     fn relation(&self, h: &History, p: usize, line: Option<[f64; 3]>) -> Relation {
-        let (law, area, c) = (&law_at(h, self.laws, p), self.problem.area(p), self.stiffness[p]);
+        let (law, area) = (&law_at(h, self.laws, p), self.problem.area(p));
         let (force, rel, reference) = (self.force[p], self.rel[p], self.reference[p]);
         let state = h.states[p];
         let target = [0.0, reference[1], reference[2]];
         if state != ContactState::Slip || law.slip == SlipLaw::Frictionless {
             return Relation::simple(state, target, [0.0; 3]);
         }
+        let c = self.stiffness(p);
         // (a pair that has just closed has p = 0 up to round-off: its bound
         // grows with the pressure it is about to get)
         let pk = self.search.pressure(p).unwrap_or((-force[0]).max(0.0));
@@ -221,6 +219,14 @@ impl<'p> Newton<'p> {
         }
     }
 
+    /// Pair `p`'s stiffness c_p ([`InterfaceProblem::stiffness`]), which
+    /// turns its slip into a force: asked for only where the law reads it,
+    /// a slipping pair's and an open one's ([`stiffness_in`]), since the
+    /// sparse interface forms it pair by pair.
+    fn stiffness(&self, p: usize) -> f64 {
+        self.problem.stiffness(p)
+    }
+
     /// Judges every pair (1. of the iteration); `lines` as
     /// [`InterfaceProblem::slip_lines`] for the states solved.
     fn next_states(&self, h: &History, lines: &[Option<[f64; 3]>]) -> Judged {
@@ -245,7 +251,8 @@ impl<'p> Newton<'p> {
                 let t = along(force[p], Some(d));
                 trial_force = [force[p][0], t[1], t[2]];
             }
-            let trial = Trial { force: trial_force, area, slip, gap: rel[p][0], stiffness: self.stiffness[p] };
+            let stiffness = stiffness_in(st, || self.stiffness(p));
+            let trial = Trial { force: trial_force, area, slip, gap: rel[p][0], stiffness };
             let coulomb = law.slip == SlipLaw::Coulomb;
             next[p] = match (self.as_tied[p], st) {
                 // both sides held by supports: the supports carry it, it stays shut
@@ -280,7 +287,7 @@ impl<'p> Newton<'p> {
                 (None, _) => judge(st, &trial, &law.strength, cr, coulomb, tol_u, tol_f),
             };
             if st == ContactState::Slip && next[p] == ContactState::Slip {
-                residuals[p] = friction_residual(law, cr, area, self.stiffness[p], trial.force, slip);
+                residuals[p] = friction_residual(law, cr, area, trial.stiffness, trial.force, slip);
             }
             if next[p] != st {
                 let (b, _) = friction_bound(&law.strength, cr, area, -force[p][0]);
@@ -457,7 +464,7 @@ impl Newton<'_> {
             area: self.problem.area(p),
             slip,
             gap: self.rel[p][0],
-            stiffness: self.stiffness[p],
+            stiffness: self.stiffness(p),
         };
         norm(trial.xi())
             - friction_bound(&law_at(h, self.laws, p).strength, cracked(h, p), trial.area, -trial.force[0]).0
@@ -518,6 +525,8 @@ impl Newton<'_> {
 
 impl Rule for Newton<'_> {
     fn relations(&self, h: &History) -> Vec<Relation> {
+        // the stiffness the relations and the next verdict read, formed together
+        self.problem.prepare_stiffness((0..h.states.len()).filter(|&p| h.states[p] != ContactState::Stick));
         let lines = self.problem.slip_lines(&h.states);
         (0..self.laws.len())
             .map(|p| {
@@ -561,11 +570,13 @@ impl Rule for Newton<'_> {
             (0..judged.next.len()).filter(|&p| self.search.pins(p) && judged.next[p] == ContactState::Stick);
         forget_step_cracks(h, held_stuck);
         summary.apex_openings += self.apex_openings(h, &judged.next);
-        // 3. directions of slipping pairs (a fallback where ξ vanishes)
+        // 3. directions of slipping pairs (a fallback where ξ vanishes),
+        // with the stiffness of those that start slipping formed together
+        self.problem.prepare_stiffness((0..judged.next.len()).filter(|&p| judged.next[p] == ContactState::Slip));
         for (p, &line) in lines.iter().enumerate() {
             if judged.next[p] == ContactState::Slip {
                 let slip = sub(tangential(self.rel[p]), self.reference[p]);
-                let c = self.stiffness[p];
+                let c = self.stiffness(p);
                 let xi = along([0.0, self.force[p][1] + c * slip[1], self.force[p][2] + c * slip[2]], line);
                 let l = norm(xi);
                 if l > 0.0 {

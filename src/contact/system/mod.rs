@@ -264,18 +264,17 @@ impl<'a> InterfaceProblem<'a> {
     /// A stiffness of pair `p`'s relative displacement (the mean diagonal
     /// of W over its axes): the scale that turns a slip into a force. A
     /// junction pair's axis is a row of its junction's r: the diagonal's
-    /// quadratic form on it.
+    /// quadratic form on it. The sparse interface forms W's diagonal only
+    /// where it is asked for (a substitution through its means' factor per
+    /// relative displacement): ask only where the value is read, and
+    /// [`InterfaceProblem::prepare_stiffness`] of the pairs a solve newly
+    /// needs first, so that they are formed together.
     pub fn stiffness(&self, p: usize) -> f64 {
         let d: Vec<f64> = match self.layout.in_junction[p] {
-            Some((j, i)) => {
-                let jn = &self.layout.junctions[j];
-                (0..self.layout.nd)
-                    .map(|a| {
-                        jn.rows[i][a].iter().zip(&jn.r).map(|(x, &r)| x * x * self.solver.diagonal(r)).sum::<f64>()
-                    })
-                    .filter(|&v| v > 0.0)
-                    .collect()
-            }
+            Some(_) => (self.junction_rows(p).iter())
+                .map(|row| row.iter().map(|&(x, r)| x * x * self.solver.diagonal(r)).sum::<f64>())
+                .filter(|&v| v > 0.0)
+                .collect(),
             None => self.layout.axes[p].iter().filter_map(|a| a.r()).map(|r| self.solver.diagonal(r)).collect(),
         };
         if d.is_empty() {
@@ -283,6 +282,30 @@ impl<'a> InterfaceProblem<'a> {
         } else {
             d.iter().sum::<f64>() / d.len() as f64
         }
+    }
+
+    /// Forms the [`InterfaceProblem::stiffness`] of every pair of `pairs`
+    /// that lacks it, together (one pass through the sparse interface's
+    /// means' factor for all their relative displacements).
+    pub fn prepare_stiffness(&self, pairs: impl Iterator<Item = usize>) {
+        let mut rs = Vec::new();
+        for p in pairs {
+            match self.layout.in_junction[p] {
+                Some(_) => rs.extend(self.junction_rows(p).iter().flatten().map(|&(_, r)| r)),
+                None => rs.extend(self.layout.axes[p].iter().filter_map(|a| a.r())),
+            }
+        }
+        self.solver.prepare_diagonal(&rs);
+    }
+
+    /// A junction pair's axes as rows of its junction's r: (coefficient,
+    /// relative displacement) where the coefficient is not zero.
+    fn junction_rows(&self, p: usize) -> Vec<Vec<(f64, usize)>> {
+        let Some((j, i)) = self.layout.in_junction[p] else { return Vec::new() };
+        let jn = &self.layout.junctions[j];
+        (0..self.layout.nd)
+            .map(|a| jn.rows[i][a].iter().zip(&jn.r).filter(|(&x, _)| x != 0.0).map(|(&x, &r)| (x, r)).collect())
+            .collect()
     }
 
     /// The line each pair can slip along under `states`, in its local

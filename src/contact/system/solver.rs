@@ -18,6 +18,11 @@ pub trait Solver {
     /// The system's diagonal at relative displacement `r` (the scale that
     /// turns a pair's slip into a force).
     fn diagonal(&self, r: usize) -> f64;
+    /// The diagonal at the relative displacements `rs` is about to be
+    /// asked for: a solver that forms it on demand (the sparse interface,
+    /// a substitution through its means' factor for each) forms those it
+    /// lacks together.
+    fn prepare_diagonal(&self, _rs: &[usize]) {}
     /// Applications of the parts' S by each solve so far (empty for a
     /// solver that formed S).
     fn counts(&self) -> Vec<usize>;
@@ -54,8 +59,9 @@ pub struct Split {
     /// Outside the solver: the pairs' forces and the parts' displacements
     /// from each answer (the junctions' shares).
     pub forces: f64,
-    /// Once, at setup: W's diagonal, the pairs' stiffness (a substitution
-    /// through K_mm's factor per relative displacement).
+    /// W's diagonal where the pairs' stiffness is read (a substitution
+    /// through K_mm's factor per relative displacement), and what it is
+    /// formed from, at setup.
     pub diagonal: f64,
 }
 

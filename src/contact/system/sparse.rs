@@ -104,8 +104,13 @@ pub struct Sparse {
     nr: usize,
     parts: Vec<Local>,
     k_mm: Means,
-    /// W's diagonal: the scale of a pair's slip ([`Sparse::w_diagonal`]).
-    w_diag: Vec<f64>,
+    /// W's diagonal where a pair's stiffness has been asked for, None
+    /// elsewhere ([`Sparse::w_diagonal`]); K_rr's diagonal and where the
+    /// parts hold each relative displacement ([`Sparse::holders`]), what
+    /// it is formed from.
+    w_diag: Mutex<Vec<Option<f64>>>,
+    k_rr: Vec<f64>,
+    holders: Vec<Vec<(usize, usize, f64)>>,
     /// The loads over `[m; r]`, per load case and for the prescribed values at ramp 1.
     b: Vec<Vec<f64>>,
     b_fixed: Vec<f64>,
@@ -155,7 +160,9 @@ impl Sparse {
             nr,
             parts: local,
             k_mm: factor,
-            w_diag: Vec::new(),
+            w_diag: Mutex::new(vec![None; nr]),
+            k_rr: Vec::new(),
+            holders: Vec::new(),
             b,
             b_fixed,
             threads: threads.max(1),
@@ -166,7 +173,8 @@ impl Sparse {
             w: Mutex::new(WColumns::new(nr)),
         };
         let t = Instant::now();
-        solver.w_diag = solver.w_diagonal();
+        solver.k_rr = solver.diagonal_r();
+        solver.holders = solver.holders();
         solver.add_split(|s| s.diagonal = t.elapsed().as_secs_f64());
         Ok(solver)
     }
@@ -412,28 +420,39 @@ impl Sparse {
         }
     }
 
-    /// W's diagonal, `K_rr - K_rm K_mm^-1 K_mr` at each relative
-    /// displacement: the pair stiffness the robust rule's friction Newton
-    /// turns slips into forces with (`InterfaceProblem::stiffness`), the
-    /// dense interface's. K_rr's own (the means held, so stiffer) sent the
-    /// jointed tet10 tunnel (tests/geo/tunnel3d_joints_coarse.toml) down
-    /// another Newton path from iteration 3, which cycled for 400
-    /// iterations where the dense interface converged in 38.
+    /// W's diagonal, `K_rr - K_rm K_mm^-1 K_mr`, at the relative
+    /// displacements of `idx` that lack it: the pair stiffness the robust
+    /// rule's friction Newton turns slips into forces with
+    /// (`InterfaceProblem::stiffness`), the dense interface's. K_rr's own
+    /// (the means held, so stiffer) sent the jointed tet10 tunnel
+    /// (tests/geo/tunnel3d_joints_coarse.toml) down another Newton path
+    /// from iteration 3, which cycled for 400 iterations where the dense
+    /// interface converged in 38.
     ///
-    /// One substitution through K_mm's factor per displacement,
-    /// [`W_DIAGONAL_BATCH`] at a time, the batches spread over the threads;
-    /// each displacement's mean column `K_mr e_i` is built from the parts
-    /// that hold it alone ([`Sparse::holders`]), and only its mean rows.
-    fn w_diagonal(&self) -> Vec<f64> {
-        let k_rr = self.diagonal_r();
-        let holders = self.holders();
-        let idx: Vec<usize> = (0..self.nr).collect();
-        let batches: Vec<&[usize]> = idx.chunks(W_DIAGONAL_BATCH).collect();
+    /// Formed only where a pair's stiffness is read, a slipping or an open
+    /// pair's (`law::stiffness_in`): a few hundred of the tunnel's 31,704
+    /// relative displacements, which all took the setup's longest stage.
+    /// One substitution through K_mm's factor per displacement, those
+    /// asked for together in one pass (at most [`W_DIAGONAL_BATCH`]
+    /// a batch), the batches spread over the threads; each displacement's
+    /// mean column `K_mr e_i` is built from the parts that hold it alone
+    /// ([`Sparse::holders`]), and only its mean rows.
+    fn w_diagonal(&self, idx: &[usize]) {
+        let mut d = self.w_diag.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        let mut missing: Vec<usize> = idx.iter().copied().filter(|&i| d[i].is_none()).collect();
+        if missing.is_empty() {
+            return;
+        }
+        let t = Instant::now();
+        missing.sort_unstable();
+        missing.dedup();
+        let per = missing.len().div_ceil(self.threads).min(W_DIAGONAL_BATCH);
+        let batches: Vec<&[usize]> = missing.chunks(per).collect();
         let threads = self.threads.min(batches.len()).max(1);
         let lowered = in_runs(&batches, threads, |run| {
             run.iter()
                 .flat_map(|batch| {
-                    let k_m: Vec<Vec<f64>> = batch.iter().map(|&i| self.mean_column(&holders[i])).collect();
+                    let k_m: Vec<Vec<f64>> = batch.iter().map(|&i| self.mean_column(&self.holders[i])).collect();
                     let t = self.k_mm.solve_many(&k_m);
                     k_m.iter()
                         .zip(&t)
@@ -444,17 +463,11 @@ impl Sparse {
         });
         // (K_mm's single-precision factor could lose a W far softer than
         // K_rr: that keeps K_rr's)
-        k_rr.iter()
-            .zip(lowered.into_iter().flatten())
-            .map(|(&k, l)| {
-                let w = k - l;
-                if w > 1e-6 * k {
-                    w
-                } else {
-                    k
-                }
-            })
-            .collect()
+        for (&i, l) in missing.iter().zip(lowered.into_iter().flatten()) {
+            let (k, w) = (self.k_rr[i], self.k_rr[i] - l);
+            d[i] = Some(if w > 1e-6 * k { w } else { k });
+        }
+        self.add_split(|s| s.diagonal += t.elapsed().as_secs_f64());
     }
 
     /// For each relative displacement, where the parts hold it: (part,
@@ -588,7 +601,13 @@ impl Solver for Sparse {
     }
 
     fn diagonal(&self, r: usize) -> f64 {
-        self.w_diag[r]
+        self.w_diagonal(&[r]);
+        let d = self.w_diag.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        d[r].unwrap_or(self.k_rr[r])
+    }
+
+    fn prepare_diagonal(&self, rs: &[usize]) {
+        self.w_diagonal(rs);
     }
 
     fn counts(&self) -> Vec<usize> {
