@@ -49,7 +49,6 @@
 //! took 6-7 applications each to the tight tolerance, now 2.
 
 use std::cell::Cell;
-use std::collections::HashMap;
 use std::sync::Mutex;
 use std::time::Instant;
 
@@ -293,34 +292,33 @@ impl Sparse {
     }
 
     /// `K [0; e_i]` for each relative displacement `i` of `idx`: (its
-    /// mean rows, its relative rows), each part swept for the
-    /// displacements it has.
+    /// mean rows, its relative rows), from the parts that hold it alone.
     fn unit_products(&self, idx: &[usize]) -> (Vec<Vec<f64>>, Vec<Vec<f64>>) {
-        let (nm, nr) = (self.nm, self.nr);
-        let pos: HashMap<usize, usize> = idx.iter().enumerate().map(|(k, &i)| (i, k)).collect();
-        let (mut k_m, mut k_r) = (vec![vec![0.0; nm]; idx.len()], vec![vec![0.0; nr]; idx.len()]);
-        for p in &self.parts {
+        (idx.iter())
+            .map(|&i| {
+                let (mut k_m, mut k_r) = (vec![0.0; self.nm], vec![0.0; self.nr]);
+                self.unit_column(&self.holders[i], |v, x| match v {
+                    Var::M(j) => k_m[j] += x,
+                    Var::R(j) => k_r[j] += x,
+                });
+                (k_m, k_r)
+            })
+            .unzip()
+    }
+
+    /// Each entry of K's column at a relative displacement held where
+    /// `holders` says, handed to `add` (its unknown, its value): what W's
+    /// columns and its diagonal are built from.
+    fn unit_column(&self, holders: &[(usize, usize, f64)], mut add: impl FnMut(Var, f64)) {
+        for &(q, u, c) in holders {
+            let p = &self.parts[q];
             let nc = p.terms.len();
-            for (u, t) in p.terms.iter().enumerate() {
-                for &(v, c) in &t.vars[..t.n] {
-                    let Some(&k) = (match v {
-                        Var::R(i) => pos.get(&i),
-                        Var::M(_) => None,
-                    }) else {
-                        continue;
-                    };
-                    for (tw, &s) in p.terms.iter().zip(&p.s[u * nc..(u + 1) * nc]) {
-                        for &(vw, cw) in &tw.vars[..tw.n] {
-                            match vw {
-                                Var::M(j) => k_m[k][j] += c * cw * s,
-                                Var::R(j) => k_r[k][j] += c * cw * s,
-                            }
-                        }
-                    }
+            for (tw, &s) in p.terms.iter().zip(&p.s[u * nc..(u + 1) * nc]) {
+                for &(vw, cw) in &tw.vars[..tw.n] {
+                    add(vw, c * cw * s);
                 }
             }
         }
-        (k_m, k_r)
     }
 
     /// The relative rows of `K [t; 0]` for every column `t` of `ts`
@@ -490,17 +488,11 @@ impl Sparse {
     /// `holders` says, dense over the means.
     fn mean_column(&self, holders: &[(usize, usize, f64)]) -> Vec<f64> {
         let mut k_m = vec![0.0; self.nm];
-        for &(q, u, c) in holders {
-            let p = &self.parts[q];
-            let nc = p.terms.len();
-            for (tw, &s) in p.terms.iter().zip(&p.s[u * nc..(u + 1) * nc]) {
-                for &(vw, cw) in &tw.vars[..tw.n] {
-                    if let Var::M(j) = vw {
-                        k_m[j] += c * cw * s;
-                    }
-                }
+        self.unit_column(holders, |v, x| {
+            if let Var::M(j) = v {
+                k_m[j] += x;
             }
-        }
+        });
         k_m
     }
 
