@@ -32,7 +32,10 @@
 //! pair of it stuck ([`Newton::held_back`]): a Newton step's overshoot, not
 //! a loss of equilibrium; so does, in 2D and 3D, a set under which the
 //! free parts' slipping pairs carry more along their free motion than the
-//! loads do there ([`super::capacity`]).
+//! loads do there ([`super::capacity`]). A junction pair that has opened
+//! twice in the step is judged by its own gap from then on, not by its
+//! loop's forces, which pressed it shut and pulled it open by turns
+//! ([`junction_parted`]).
 
 use super::capacity::{capacities, PairLoad};
 use super::cluster::{Search, Step, Watch};
@@ -269,6 +272,12 @@ impl<'p> Newton<'p> {
                             - WATER_ROUND_OFF * self.water.get(p).unwrap_or(&0.0) =>
                 {
                     ContactState::Open
+                }
+                // ... but one that has opened twice in the step stays open
+                // while its gap does: closed on its loop's force it went
+                // into tension again (see `junction_parted`)
+                (Some(_), ContactState::Open) if junction_parted(h, p) => {
+                    judge(st, &trial, &law.strength, cr, coulomb, tol_u, tol_f)
                 }
                 (Some(_), ContactState::Open) => {
                     judge(st, &Trial { gap: f64::NEG_INFINITY, ..trial }, &law.strength, cr, coulomb, tol_u, tol_f)
@@ -628,6 +637,23 @@ enum Hold {
 /// The pair of `pairs` with the smallest `value` (the first of equals).
 fn least(pairs: impl Iterator<Item = usize>, value: impl Fn(usize) -> f64) -> Option<usize> {
     pairs.map(|p| (value(p), p)).min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1))).map(|(_, p)| p)
+}
+
+/// Whether an open junction pair has parted in this step (opened twice:
+/// [`super::history::parted`]), and is judged from then on by its own gap
+/// as a lone pair is, not by the force its loop would give it closed. The
+/// loop holds such a pair's gap at zero whatever its state, and its forces
+/// are not unique: the loop's least-norm forces can press the pair open
+/// and pull it stuck, so that judged by them it closes and opens for ever
+/// (tests/corpus/blocks3d_linear.toml, step 2: pair 231, gap +5e-21, closes
+/// on its loop's force and carries 1.5e-4 MN of tension stuck, 1e-3 of the
+/// largest pair force; 240 iterations without end). This ends such a
+/// cycle: after its second opening the pair closes only on an overlap,
+/// which its loop does not let it reach, and open at zero gap with no
+/// force it meets the law exactly (`law_residual`), so the answer the
+/// step ends with is admissible; the loop's other pairs carry the load.
+fn junction_parted(h: &History, p: usize) -> bool {
+    h.openings[p] >= 2
 }
 
 /// The shear of `v` (local axes) along `line`, or all of it without one.
