@@ -266,9 +266,14 @@ fn cavern3d_two_oblique_sets_full_tensor_stress() {
 /// them) carries the rock's weight and the earthquake's kh = 0.1 of it
 /// along x (the slab weighs nothing).
 fn blocks(toml: &'static str, element: &'static str) {
+    blocks_within(toml, element, MAX_ITERATIONS_PER_STEP);
+}
+
+/// [`blocks`] with its own bound on the iterations per step.
+fn blocks_within(toml: &'static str, element: &'static str, bound: u64) {
     let solved = solve(&Scene { toml, geo: "blocks3d.geo", element });
     let stem = toml.trim_end_matches(".toml");
-    assert_converges(stem, &solved.summary, MAX_ITERATIONS_PER_STEP);
+    assert_converges(stem, &solved.summary, bound);
     let weight = ROCK * G * 10.0 * 6.0 * 6.0;
     let r = total_reaction(&solved.summary);
     close(&format!("{stem}: vertical reaction"), r[2], weight, 1e-6);
@@ -281,10 +286,13 @@ fn blocks3d_unconfined_block_mass() {
     blocks("blocks3d.toml", "tet10");
 }
 
+/// Step 2 (kh = 0.1) settles its states in 21 iterations; four slipping
+/// junction pairs' lagged pressures then take 16 more, the last 6 by
+/// multisecant steps (src/contact/cluster.rs): 21 and 37, so the bound
+/// here is 40, not 30.
 #[test]
-#[ignore = "issue 28: does not converge: refused as a loss of equilibrium in step 1 (docs/corpus.md)"]
 fn blocks3d_unconfined_in_linear_elements() {
-    blocks("blocks3d_linear.toml", "tet4");
+    blocks_within("blocks3d_linear.toml", "tet4", 40);
 }
 
 /// The tunnel through four sets: the in-situ stress is geostatic, so no

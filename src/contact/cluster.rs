@@ -15,13 +15,20 @@
 //!
 //! - the states have been held for [`STALL`] tight solves and the slipping
 //!   pairs' friction residual has not decreased over them (a stall), or
+//!   has fallen by less than [`SLOW`] (slow: a first one only solves for
+//!   pressures, below), or
 //! - once the cycle breaker is on, the iteration has gone back [`REVISITS`]
 //!   times to a state set it had already solved with (a cycle).
 //!
 //! A first stall is often no want of a state set: a junction takes its
 //! slipping pairs' pressures from the last solve where its loops carry
 //! none of them, and where their friction's gain on those pressures is 1
-//! or more that fixed point diverges although the set has a solution. The
+//! or more that fixed point diverges although the set has a solution;
+//! below 1 it converges, but only linearly where Newton's steps converge
+//! quadratically (the unconfined block mass in tet4,
+//! tests/corpus/blocks3d_linear.toml, step 2: four pairs' residual fell
+//! by 0.67 a solve, 31 solves after its states settled). A first stall
+//! or slow run solves for those pressures: the
 //! slipping pairs whose friction residual is at least [`SHARE`] of the
 //! worst are linearised at pressures solved for by multisecant (Anderson)
 //! steps on the last solves ([`Secant`]: exact in `m + 1` solves where the
@@ -60,6 +67,12 @@ use nalgebra::{DMatrix, DVector};
 /// Tight solves in a row with the states held over which a friction
 /// residual that has not decreased is a stall.
 const STALL: usize = 4;
+
+/// Tight held solves whose friction residual fell by less than this
+/// factor over [`STALL`] of them are slow: a Newton step's residual falls
+/// by orders of magnitude a solve, a lagged pressure's fixed point by its
+/// gain (0.67 a solve at the block mass: 0.2 over four).
+const SLOW: f64 = 0.1;
 
 /// Returns to an earlier state set, once the cycle breaker is on, that
 /// make a cycle the breaker does not end.
@@ -316,15 +329,16 @@ impl Search {
         }
         let k = self.held.len();
         let stalled = k > STALL && self.held[k - 1] >= self.held[k - 1 - STALL];
+        let slow = k > STALL && self.held[k - 1] > SLOW * self.held[k - 1 - STALL];
         if let Some(from) = w.breaking_from {
             if !kept && w.history[from.min(w.history.len())..].iter().any(|s| s.as_slice() == &next[..]) {
                 self.revisits += 1;
             }
         }
-        if !stalled && self.revisits < REVISITS {
+        if !slow && self.revisits < REVISITS {
             return false;
         }
-        if stalled && !self.solved_pressures {
+        if slow && !self.solved_pressures {
             self.solved_pressures = true;
             let pairs: Vec<usize> =
                 cluster(w, &[], next).into_iter().filter(|&p| w.current[p] == ContactState::Slip).collect();
@@ -333,6 +347,9 @@ impl Search {
                 self.mode = Mode::Secant(Secant { pairs, x, xs: Vec::new(), gs: Vec::new() });
                 return false;
             }
+        }
+        if !stalled && self.revisits < REVISITS {
+            return false;
         }
         // a stall's window is its held solves: nothing changed in them
         let from = if stalled { w.history.len() } else { w.history.len().saturating_sub(WINDOW) };
@@ -469,6 +486,27 @@ mod tests {
         assert_eq!(search.judge(&held, &mut judged, true), Some(Step::Solved));
         assert_eq!(judged, held);
         assert_eq!(search.judge(&held, &mut judged, true), None, "done for the step");
+    }
+
+    #[test]
+    fn a_slow_fall_of_the_friction_residual_solves_for_the_pressures_a_fast_one_does_not() {
+        let current = [Slip, Slip, Stick, Slip];
+        let history = vec![current.to_vec(); 6];
+        let residuals = [1e-2, 2e-3, 0.0, 5e-4];
+        let never = |_| false;
+        // five held solves whose residual falls by `gain` a solve
+        let held = |gain: f64| {
+            let mut search = Search::default();
+            let mut next = current.to_vec();
+            for k in 0..5 {
+                let w = Watch { residual: 1e-2 * gain.powi(k), ..watch(&current, &history, &residuals, &never) };
+                assert!(!search.watch(&w, &mut next), "no cluster is pinned on a fall");
+            }
+            search.pressure(0)
+        };
+        // 0.67 a solve: 0.2 over four, above SLOW; 0.5 a solve: 0.0625, below
+        assert_eq!(held(0.67), Some(0.0), "slow: the pressures are solved for");
+        assert_eq!(held(0.5), None, "a fall as fast as this is left to the rule");
     }
 
     #[test]
