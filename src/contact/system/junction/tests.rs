@@ -3,7 +3,8 @@
 //! slipping pair in a stuck loop is locked and carries its friction, open
 //! pairs free everything, and a crease (two faces between the same two
 //! copies) slides only along its line and shares a stuck force within both
-//! Coulomb cones, whose change with the force its tangent predicts.
+//! Coulomb cones, whose change with the force its tangent predicts; a
+//! slipping joint wedged against a roller keeps finite forces.
 
 use super::*;
 
@@ -271,4 +272,47 @@ fn clusters_are_pairs_sharing_copies() {
     let pairs = [(0, 1), (2, 3), (4, 5), (2, 4), (3, 5), (6, 7)];
     let c = clusters(&pairs, 8, |p| p == 5);
     assert_eq!(c, vec![vec![1, 2, 3, 4], vec![5]]);
+}
+
+/// The steep joint at the roller above, slipping, its friction linearised
+/// in its pressure (`coupling p`, f = 0.7) the way that presses it on: its
+/// slip is locked (the normal's tie fixes the one relative displacement),
+/// and the support takes its friction back into its normal with a gain of
+/// f t_y / n_y = 0.7 x 0.94 / 0.34 = 1.9, a wedge: the fixed point of its
+/// pressure diverges. The forces stay those of the last solve's pressure,
+/// where they went beyond 1e50; they carry the weight, and as tied
+/// (stuck) the joint carries it within its cone.
+#[test]
+fn a_steep_joint_at_a_roller_slipping_keeps_finite_forces() {
+    use crate::contact::frame::frame;
+    let a = 70f64.to_radians();
+    let f = frame(2, [a.sin(), a.cos(), 0.0], [true, false, false]);
+    let gain = 0.7 * f[1][1].abs() / f[0][1].abs();
+    assert!(gain > 1.9, "the support feeds back {gain}");
+    let pairs = [(0, 1, f)];
+    let held = [Some(0.0), None, Some(0.0), None];
+    let (mut nm, mut nr) = (0, 0);
+    let j = Junction::new(vec![0], |p| pairs[p], &held, 2, &mut nm, &mut nr);
+    let limit = Limit { tension: 0.0, cohesion: 0.0, friction: 0.7 };
+    let pk = 0.5;
+    let slip = Relation {
+        state: ContactState::Slip,
+        target: [0.0; 3],
+        force: [0.0; 3],
+        coupling: [0.0, 0.7, 0.0],
+        spring: [[0.0; 3]; 3],
+        pressure: pk,
+        limit,
+    };
+    let rel = [slip];
+    let tied = j.tie(&rel, 1.0, |_| 1.0);
+    assert!(tied.pressure.is_none(), "beyond the gain at which it is solved for");
+    let g = DVector::from_column_slice(&[-1.0]);
+    let (force, _, as_tied) = j.forces(&tied, &rel, &DVector::zeros(1), &g, 1.0)[0];
+    assert!(force.iter().all(|x| x.abs() < 10.0), "finite forces {force:?}");
+    assert!((force[1] - 0.7 * pk).abs() < 1e-12, "the last solve's friction {force:?}");
+    let carried = j.rows[0][0][0] * force[0] + j.rows[0][1][0] * force[1];
+    assert!((carried - g[0]).abs() < 1e-12, "the joint carries the weight: {carried}");
+    let t = as_tied.expect("its slip is locked");
+    assert!(t[0] < 0.0 && t[1].abs() <= 0.7 * -t[0] * (1.0 + 1e-9), "stuck within its cone {t:?}");
 }
