@@ -27,6 +27,7 @@ pub mod ordering;
 pub mod parts;
 pub mod schur;
 pub mod single_precision;
+pub mod sparse_forward;
 pub mod two_threads;
 
 pub use parts::{cut, parts, Part};

@@ -12,6 +12,10 @@
 //! 1 before it is rounded, and every right-hand side likewise: stiffnesses
 //! near 1e-200 or 1e+200 (which single precision cannot hold) give the same
 //! digits as near 1, times that power of two.
+//!
+//! `b^T K^-1 b` of right-hand sides with a few non-zeros (the sparse
+//! interface's W diagonal) takes the forward substitution alone, and of
+//! it only the supernodes the non-zeros reach ([`super::sparse_forward`]).
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltParams;
@@ -22,6 +26,7 @@ use faer::{Conj, MatMut, Par, Side, Spec};
 
 use super::ordering::Ordering;
 use super::schur::symbolic;
+use super::sparse_forward::{self, Paths};
 use super::two_threads::Twofold;
 use crate::fem::sparse::{FactorError, SymMatrix};
 use crate::fem::vec3::to_one;
@@ -34,6 +39,8 @@ pub struct SingleCholesky {
     scale: f64,
     /// The supernodes dealt to two threads, where there are two.
     twofold: Option<Twofold>,
+    /// The supernodal elimination tree, where the factor is supernodal.
+    paths: Option<Paths>,
 }
 
 impl SingleCholesky {
@@ -70,11 +77,13 @@ impl SingleCholesky {
                 Default::default(),
             )
             .map_err(|_| FactorError::NotPositiveDefinite)?;
-        let twofold = match symbolic.raw() {
-            SymbolicCholeskyRaw::Supernodal(sn) if threads >= 2 => Twofold::new(sn),
-            _ => None,
+        let (twofold, paths) = match symbolic.raw() {
+            SymbolicCholeskyRaw::Supernodal(sn) => {
+                ((threads >= 2).then(|| Twofold::new(sn)).flatten(), Some(Paths::new(sn)))
+            }
+            SymbolicCholeskyRaw::Simplicial(_) => (None, None),
         };
-        Ok(SingleCholesky { symbolic, values, scale, twofold })
+        Ok(SingleCholesky { symbolic, values, scale, twofold, paths })
     }
 
     /// `K^-1 b`, to single precision.
@@ -130,10 +139,9 @@ impl SingleCholesky {
 
     /// `b^T K^-1 b` for each column of `bs`, to single precision: with
     /// `K = P^T L L^T P` it is `|L^-1 P b|^2`, the forward substitution
-    /// alone, half of [`SingleCholesky::solve_many`]'s work (the sparse
-    /// interface's W diagonal, which the 1,000-block cube of `make
-    /// bench-blocks` asks of 7,800 displacements). None where the factor
-    /// is not supernodal.
+    /// alone, half of [`SingleCholesky::solve_many`]'s work, on dense
+    /// right-hand sides (what [`SingleCholesky::sparse_energies`] is
+    /// checked against). None where the factor is not supernodal.
     pub fn energies(&self, bs: &[Vec<f64>]) -> Option<Vec<f64>> {
         let SymbolicCholeskyRaw::Supernodal(sn) = self.symbolic.raw() else { return None };
         let (n, k) = (self.symbolic.nrows(), bs.len());
@@ -156,6 +164,32 @@ impl SingleCholesky {
         );
         let squares = |xc: &[f32]| xc.iter().map(|&v| f64::from(v).powi(2)).sum::<f64>();
         Some((x.chunks_exact(n.max(1)).zip(&t)).take(k).map(|(xc, &tc)| squares(xc) * self.scale / (tc * tc)).collect())
+    }
+
+    /// [`SingleCholesky::energies`] of columns given by their non-zeros
+    /// (row, value), through the supernodes they reach alone
+    /// ([`sparse_forward`]): the sparse interface's `K_mr e_i`, non-zero
+    /// on the means of one or two parts. None where the factor is not
+    /// supernodal.
+    pub fn sparse_energies(&self, cols: &[Vec<(usize, f64)>]) -> Option<Vec<f64>> {
+        let (SymbolicCholeskyRaw::Supernodal(sn), Some(paths)) = (self.symbolic.raw(), &self.paths) else {
+            return None;
+        };
+        let t: Vec<f64> = cols.iter().map(|c| to_one(&c.iter().map(|&(_, v)| v).collect::<Vec<f64>>())).collect();
+        let inv = self.symbolic.perm().map(|p| p.arrays().1);
+        let at = |i: usize| inv.map_or(i, |inv| inv[i]);
+        let scaled: Vec<Vec<(usize, f32)>> =
+            cols.iter().zip(&t).map(|(c, &tc)| c.iter().map(|&(i, v)| (at(i), (v * tc) as f32)).collect()).collect();
+        let e = sparse_forward::energies(SupernodalLltRef::new(sn, &self.values), paths, &scaled);
+        Some(e.iter().zip(&t).map(|(e, tc)| e * self.scale / (tc * tc)).collect())
+    }
+
+    /// The lowest supernode of the rows `rows` (K's ordering): a key to
+    /// sort [`SingleCholesky::sparse_energies`]'s columns by, so that a
+    /// batch's paths overlap.
+    pub fn leaf(&self, rows: impl Iterator<Item = usize>) -> usize {
+        let inv = self.symbolic.perm().map(|p| p.arrays().1);
+        self.paths.as_ref().map_or(0, |p| p.leaf(rows.map(|i| inv.map_or(i, |inv| inv[i]))))
     }
 
     /// Whether substitutions run in two threads (see [`super::twofold`]).
@@ -258,6 +292,38 @@ mod tests {
             let want: f64 = b.iter().zip(f.solve(b)).map(|(a, x)| a * x).sum();
             assert!((e - want).abs() <= 1e-5 * want.abs(), "b^T K^-1 b: {e} against {want}");
         }
+    }
+
+    /// Columns of a few non-zeros each (some sharing rows, one at 1e-150,
+    /// one empty) give through the supernodes they reach what the dense
+    /// forward substitution gives, to single precision.
+    #[test]
+    fn sparse_columns_reach_the_energies_of_dense_ones() {
+        let k = cube(9);
+        let n = k.n;
+        let node_of: Vec<usize> = (0..n).collect();
+        let f = SingleCholesky::factor(&k, &node_of, Ordering::NestedDissection, 1).expect("positive definite");
+        let mut cols: Vec<Vec<(usize, f64)>> = (0..40)
+            .map(|c| {
+                (0..1 + c % 5).map(|j| ((c * 37 + j * 101) % n, 1.0 + (c as f64 + j as f64 * 0.3).sin())).collect()
+            })
+            .collect();
+        cols.push(cols[3].iter().map(|&(i, v)| (i, 1e-150 * v)).collect());
+        cols.push(Vec::new());
+        cols.sort_by_key(|c| f.leaf(c.iter().map(|&(i, _)| i)));
+        let dense: Vec<Vec<f64>> = (cols.iter())
+            .map(|c| {
+                let mut b = vec![0.0; n];
+                c.iter().for_each(|&(i, v)| b[i] += v);
+                b
+            })
+            .collect();
+        let want = f.energies(&dense).expect("a supernodal factor");
+        let got = f.sparse_energies(&cols).expect("a supernodal factor");
+        for (g, w) in got.iter().zip(&want) {
+            assert!((g - w).abs() <= 1e-5 * w.abs(), "b^T K^-1 b: {g:e} against {w:e}");
+        }
+        assert!(want.iter().filter(|&&w| w > 0.0).count() == cols.len() - 1, "one empty column");
     }
 
     #[test]

@@ -87,8 +87,15 @@ const REFINED: f64 = 1e-13;
 /// over r in memory while they are).
 const W_BATCH: usize = 64;
 /// The relative displacements whose W diagonal is found in one pass
-/// through K_mm's factor (two vectors over the means each).
-const W_DIAGONAL_BATCH: usize = 256;
+/// through the supernodes of K_mm's factor their columns reach (sorted by
+/// where they begin). The paths to the root separators are most of the
+/// work whatever the batch: at 16, 64 and 256 a column's pass reads 37,
+/// 39 and 45 % of the factor on average (the 512-block cube), and fewer
+/// columns a pass read the top more often.
+const W_DIAGONAL_BATCH: usize = 64;
+
+/// A column over the means by its non-zeros: (mean, value).
+type MeanColumn = Vec<(usize, f64)>;
 
 /// A part's condensed matrix in the pairs' local axes, and the unknowns of
 /// each of its interface DOFs.
@@ -430,38 +437,54 @@ impl Sparse {
     /// Formed only where a pair's stiffness is read, a slipping or an open
     /// pair's (`law::stiffness_in`): a few hundred of the tunnel's 31,704
     /// relative displacements, which all took the setup's longest stage.
-    /// One substitution through K_mm's factor per displacement, those
-    /// asked for together in one pass (at most [`W_DIAGONAL_BATCH`]
-    /// a batch), the batches spread over the threads; each displacement's
-    /// mean column `K_mr e_i` is built from the parts that hold it alone
-    /// ([`Sparse::holders`]), and only its mean rows.
-    fn w_diagonal(&self, idx: &[usize]) {
+    /// One forward substitution through K_mm's factor per displacement
+    /// (`|L^-1 P K_mr e_i|^2`), those asked for together in passes of at
+    /// most [`W_DIAGONAL_BATCH`], the passes spread over the threads. A
+    /// column `K_mr e_i` is non-zero on the means of the one or two parts
+    /// that hold the displacement alone ([`Sparse::holders`]), so a pass
+    /// substitutes only the supernodes on its columns' paths to the root
+    /// ([`crate::substructure::sparse_forward`]: the 1,000-block cube's
+    /// diagonal 145 -> 22 s, docs/blocks.md). Gives W's diagonal at `idx`
+    /// back.
+    fn w_diagonal(&self, idx: &[usize]) -> Vec<f64> {
         let mut d = self.w_diag.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
         let mut missing: Vec<usize> = idx.iter().copied().filter(|&i| d[i].is_none()).collect();
-        if missing.is_empty() {
-            return;
+        if !missing.is_empty() {
+            let t = Instant::now();
+            let k_m = self.mean_columns(&mut missing);
+            let per = missing.len().div_ceil(self.threads).min(W_DIAGONAL_BATCH);
+            let batches: Vec<&[MeanColumn]> = k_m.chunks(per).collect();
+            let threads = self.threads.min(batches.len()).max(1);
+            let lowered = in_runs(&batches, threads, |run| {
+                run.iter().flat_map(|batch| self.k_mm.energies(batch, self.nm)).collect::<Vec<f64>>()
+            });
+            // (K_mm's single-precision factor could lose a W far softer than
+            // K_rr: that keeps K_rr's)
+            for (&i, l) in missing.iter().zip(lowered.into_iter().flatten()) {
+                let (k, w) = (self.k_rr[i], self.k_rr[i] - l);
+                d[i] = Some(if w > 1e-6 * k { w } else { k });
+            }
+            self.add_split(|s| s.diagonal += t.elapsed().as_secs_f64());
         }
-        let t = Instant::now();
+        idx.iter().map(|&i| d[i].unwrap_or(self.k_rr[i])).collect()
+    }
+
+    /// The mean rows of K's columns at the relative displacements
+    /// `missing`, each as its non-zeros; `missing` deduplicated and sorted
+    /// as the columns are, by where their substitutions begin
+    /// ([`Means::leaf`]), so that a batch's share a path through the factor.
+    fn mean_columns(&self, missing: &mut Vec<usize>) -> Vec<MeanColumn> {
         missing.sort_unstable();
         missing.dedup();
-        let per = missing.len().div_ceil(self.threads).min(W_DIAGONAL_BATCH);
-        let batches: Vec<&[usize]> = missing.chunks(per).collect();
-        let threads = self.threads.min(batches.len()).max(1);
-        let lowered = in_runs(&batches, threads, |run| {
-            run.iter()
-                .flat_map(|batch| {
-                    let k_m: Vec<Vec<f64>> = batch.iter().map(|&i| self.mean_column(&self.holders[i])).collect();
-                    self.k_mm.energies(&k_m)
-                })
-                .collect::<Vec<f64>>()
-        });
-        // (K_mm's single-precision factor could lose a W far softer than
-        // K_rr: that keeps K_rr's)
-        for (&i, l) in missing.iter().zip(lowered.into_iter().flatten()) {
-            let (k, w) = (self.k_rr[i], self.k_rr[i] - l);
-            d[i] = Some(if w > 1e-6 * k { w } else { k });
-        }
-        self.add_split(|s| s.diagonal += t.elapsed().as_secs_f64());
+        let mut cols: Vec<(usize, usize, MeanColumn)> = (missing.iter())
+            .map(|&i| {
+                let c = self.mean_column(&self.holders[i]);
+                (self.k_mm.leaf(&c), i, c)
+            })
+            .collect();
+        cols.sort_by_key(|&(leaf, i, _)| (leaf, i));
+        *missing = cols.iter().map(|&(_, i, _)| i).collect();
+        cols.into_iter().map(|(_, _, c)| c).collect()
     }
 
     /// For each relative displacement, where the parts hold it: (part,
@@ -481,13 +504,21 @@ impl Sparse {
     }
 
     /// The mean rows of K's column at a relative displacement held where
-    /// `holders` says, dense over the means.
-    fn mean_column(&self, holders: &[(usize, usize, f64)]) -> Vec<f64> {
-        let mut k_m = vec![0.0; self.nm];
+    /// `holders` says: its non-zeros (mean, value), a mean's terms summed.
+    fn mean_column(&self, holders: &[(usize, usize, f64)]) -> MeanColumn {
+        let mut k_m = Vec::new();
         self.unit_column(holders, |v, x| {
             if let Var::M(j) = v {
-                k_m[j] += x;
+                k_m.push((j, x));
             }
+        });
+        k_m.sort_unstable_by_key(|&(j, _)| j);
+        k_m.dedup_by(|b, a| {
+            let same = a.0 == b.0;
+            if same {
+                a.1 += b.1;
+            }
+            same
         });
         k_m
     }
@@ -589,9 +620,7 @@ impl Solver for Sparse {
     }
 
     fn diagonal(&self, r: usize) -> f64 {
-        self.w_diagonal(&[r]);
-        let d = self.w_diag.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-        d[r].unwrap_or(self.k_rr[r])
+        self.w_diagonal(&[r])[0]
     }
 
     fn prepare_diagonal(&self, rs: &[usize]) {
@@ -883,16 +912,33 @@ impl Means {
         }
     }
 
-    /// `b^T K_mm^-1 b` of every column of `bs`: the forward substitution
-    /// alone where the factor allows it.
-    fn energies(&self, bs: &[Vec<f64>]) -> Vec<f64> {
+    /// `b^T K_mm^-1 b` of every column of `bs`, each given by its
+    /// non-zeros (mean, value; `n` means in all): the forward substitution alone, through
+    /// the supernodes the columns reach, where the factor allows it.
+    fn energies(&self, bs: &[MeanColumn], n: usize) -> Vec<f64> {
         if let Means::Single(f) = self {
-            if let Some(e) = f.energies(bs) {
+            if let Some(e) = f.sparse_energies(bs) {
                 return e;
             }
         }
-        let t = self.solve_many(bs);
-        bs.iter().zip(&t).map(|(a, b)| a.iter().zip(b).map(|(a, b)| a * b).sum::<f64>()).collect()
+        let dense: Vec<Vec<f64>> = (bs.iter())
+            .map(|c| {
+                let mut b = vec![0.0; n];
+                c.iter().for_each(|&(j, v)| b[j] += v);
+                b
+            })
+            .collect();
+        let t = self.solve_many(&dense);
+        dense.iter().zip(&t).map(|(a, b)| a.iter().zip(b).map(|(a, b)| a * b).sum::<f64>()).collect()
+    }
+
+    /// Where the substitution of a column with the non-zeros `b` begins
+    /// (its lowest supernode): what [`Sparse::mean_columns`] sorts by.
+    fn leaf(&self, b: &[(usize, f64)]) -> usize {
+        match self {
+            Means::Single(f) => f.leaf(b.iter().map(|&(j, _)| j)),
+            Means::Double(_) => 0,
+        }
     }
 
     fn solve(&self, v: &[f64]) -> Vec<f64> {
