@@ -145,7 +145,7 @@ bench: deps build
 # Run time against error in 3D (docs/bench3d.md): block on block in partial
 # slip on structured hex8/hex20 (up to 1.1e5 DOFs), on unstructured tet4/tet10
 # (up to 2e5 DOFs) and on the hex27 meshes of issue 10's table:
-# results/bench3d/{hex,tet,hex27}/bench.{csv,md,svg}. About 10 minutes.
+# results/bench3d/{hex,tet,hex27}/bench.{csv,md,svg}. About 2 minutes.
 bench3d: deps build
 	$(BIN) bench geo/blocks3d_hex.toml --orders 1,2 --levels 4 --start 0.25 --max-dofs 150000 --out results/bench3d/hex
 	$(BIN) bench geo/blocks3d.toml --orders 1,2 --levels 3 --start 0.2 --max-dofs 250000 --out results/bench3d/tet
