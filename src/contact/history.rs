@@ -77,7 +77,12 @@ pub(crate) fn cracked(h: &History, p: usize) -> bool {
 /// stuck, puts pairs in tension that the answer has closed, and which of
 /// them it does depends on the step's size, not on the load path.
 pub(crate) fn parted(h: &History, p: usize) -> bool {
-    h.parted[p] || h.openings[p] >= 2
+    h.parted[p] || opened_twice(h, p)
+}
+
+/// Whether pair `p` has opened, closed and opened again in this step.
+pub(crate) fn opened_twice(h: &History, p: usize) -> bool {
+    h.openings[p] >= 2
 }
 
 /// Pair `p`'s law as it stands in `h`: a pair that has parted has lost
@@ -130,7 +135,7 @@ pub(crate) fn commit(h: &mut History, solution: &InterfaceSolution) {
     h.force = solution.forces.clone();
     for p in 0..h.states.len() {
         h.cracked[p] |= h.cracking[p] || h.states[p] != ContactState::Stick;
-        h.parted[p] |= h.openings[p] >= 2;
+        h.parted[p] |= opened_twice(h, p);
     }
 }
 

@@ -34,13 +34,17 @@
 //! free parts' slipping pairs carry more along their free motion than the
 //! loads do there ([`super::capacity`]). A junction pair that has opened
 //! twice in the step is judged by its own gap from then on, not by its
-//! loop's forces, which pressed it shut and pulled it open by turns
-//! ([`junction_parted`]).
+//! loop's forces, which pressed it shut and pulled it open by turns: the
+//! loop holds its gap at zero whatever its state, and its least-norm
+//! forces are not unique (tests/corpus/blocks3d_linear.toml, step 2: pair
+//! 231, gap +5e-21, 1.5e-4 MN of tension stuck, 240 iterations without
+//! end); open at zero gap with no force it meets the law exactly, and the
+//! loop's other pairs carry the load.
 
 use super::capacity::{capacities, PairLoad};
 use super::cluster::{Search, Step, Watch};
 use super::frame::tangential;
-use super::history::{cracked, forget_step_cracks, law_at, History};
+use super::history::{cracked, forget_step_cracks, law_at, opened_twice, History};
 use super::iteration::{Rule, Verdict};
 use super::law::{friction_bound, judge, stiffness_in, ContactState, Trial};
 use super::options::SlipLaw;
@@ -168,7 +172,7 @@ impl<'p> Newton<'p> {
         if state != ContactState::Slip || law.slip == SlipLaw::Frictionless {
             return Relation::simple(state, target, [0.0; 3]);
         }
-        let c = self.stiffness(p);
+        let c = self.problem.stiffness(p);
         // (a pair that has just closed has p = 0 up to round-off: its bound
         // grows with the pressure it is about to get)
         let pk = self.search.pressure(p).unwrap_or((-force[0]).max(0.0));
@@ -222,14 +226,6 @@ impl<'p> Newton<'p> {
         }
     }
 
-    /// Pair `p`'s stiffness c_p ([`InterfaceProblem::stiffness`]), which
-    /// turns its slip into a force: asked for only where the law reads it,
-    /// a slipping pair's and an open one's ([`stiffness_in`]), since the
-    /// sparse interface forms it pair by pair.
-    fn stiffness(&self, p: usize) -> f64 {
-        self.problem.stiffness(p)
-    }
-
     /// Judges every pair (1. of the iteration); `lines` as
     /// [`InterfaceProblem::slip_lines`] for the states solved.
     fn next_states(&self, h: &History, lines: &[Option<[f64; 3]>]) -> Judged {
@@ -254,7 +250,7 @@ impl<'p> Newton<'p> {
                 let t = along(force[p], Some(d));
                 trial_force = [force[p][0], t[1], t[2]];
             }
-            let stiffness = stiffness_in(st, || self.stiffness(p));
+            let stiffness = stiffness_in(st, || self.problem.stiffness(p));
             let trial = Trial { force: trial_force, area, slip, gap: rel[p][0], stiffness };
             let coulomb = law.slip == SlipLaw::Coulomb;
             next[p] = match (self.as_tied[p], st) {
@@ -274,9 +270,9 @@ impl<'p> Newton<'p> {
                     ContactState::Open
                 }
                 // ... but one that has opened twice in the step stays open
-                // while its gap does: closed on its loop's force it went
-                // into tension again (see `junction_parted`)
-                (Some(_), ContactState::Open) if junction_parted(h, p) => {
+                // while its gap does, judged as a lone pair is (see the
+                // module header)
+                (Some(_), ContactState::Open) if opened_twice(h, p) => {
                     judge(st, &trial, &law.strength, cr, coulomb, tol_u, tol_f)
                 }
                 (Some(_), ContactState::Open) => {
@@ -473,7 +469,7 @@ impl Newton<'_> {
             area: self.problem.area(p),
             slip,
             gap: self.rel[p][0],
-            stiffness: self.stiffness(p),
+            stiffness: self.problem.stiffness(p),
         };
         norm(trial.xi())
             - friction_bound(&law_at(h, self.laws, p).strength, cracked(h, p), trial.area, -trial.force[0]).0
@@ -585,7 +581,7 @@ impl Rule for Newton<'_> {
         for (p, &line) in lines.iter().enumerate() {
             if judged.next[p] == ContactState::Slip {
                 let slip = sub(tangential(self.rel[p]), self.reference[p]);
-                let c = self.stiffness(p);
+                let c = self.problem.stiffness(p);
                 let xi = along([0.0, self.force[p][1] + c * slip[1], self.force[p][2] + c * slip[2]], line);
                 let l = norm(xi);
                 if l > 0.0 {
@@ -637,23 +633,6 @@ enum Hold {
 /// The pair of `pairs` with the smallest `value` (the first of equals).
 fn least(pairs: impl Iterator<Item = usize>, value: impl Fn(usize) -> f64) -> Option<usize> {
     pairs.map(|p| (value(p), p)).min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1))).map(|(_, p)| p)
-}
-
-/// Whether an open junction pair has parted in this step (opened twice:
-/// [`super::history::parted`]), and is judged from then on by its own gap
-/// as a lone pair is, not by the force its loop would give it closed. The
-/// loop holds such a pair's gap at zero whatever its state, and its forces
-/// are not unique: the loop's least-norm forces can press the pair open
-/// and pull it stuck, so that judged by them it closes and opens for ever
-/// (tests/corpus/blocks3d_linear.toml, step 2: pair 231, gap +5e-21, closes
-/// on its loop's force and carries 1.5e-4 MN of tension stuck, 1e-3 of the
-/// largest pair force; 240 iterations without end). This ends such a
-/// cycle: after its second opening the pair closes only on an overlap,
-/// which its loop does not let it reach, and open at zero gap with no
-/// force it meets the law exactly (`law_residual`), so the answer the
-/// step ends with is admissible; the loop's other pairs carry the load.
-fn junction_parted(h: &History, p: usize) -> bool {
-    h.openings[p] >= 2
 }
 
 /// The shear of `v` (local axes) along `line`, or all of it without one.
