@@ -284,33 +284,16 @@ fn clusters_are_pairs_sharing_copies() {
 /// (stuck) the joint carries it within its cone.
 #[test]
 fn a_steep_joint_at_a_roller_slipping_keeps_finite_forces() {
-    use crate::contact::frame::frame;
-    let a = 70f64.to_radians();
-    let f = frame(2, [a.sin(), a.cos(), 0.0], [true, false, false]);
+    let f = roller_frame();
     let gain = 0.7 * f[1][1].abs() / f[0][1].abs();
     assert!(gain > 1.9, "the support feeds back {gain}");
-    let pairs = [(0, 1, f)];
-    let held = [Some(0.0), None, Some(0.0), None];
-    let (mut nm, mut nr) = (0, 0);
-    let j = Junction::new(vec![0], |p| pairs[p], &held, 2, &mut nm, &mut nr);
-    let limit = Limit { tension: 0.0, cohesion: 0.0, friction: 0.7 };
-    let pk = 0.5;
-    let slip = Relation {
-        state: ContactState::Slip,
-        target: [0.0; 3],
-        force: [0.0; 3],
-        coupling: [0.0, 0.7, 0.0],
-        spring: [[0.0; 3]; 3],
-        pressure: pk,
-        limit,
-    };
-    let rel = [slip];
+    let (j, rel) = roller_wedge(f, 0.7, PK);
     let tied = j.tie(&rel, 1.0, |_| 1.0);
     assert!(tied.pressure.is_none(), "beyond the gain at which it is solved for");
     let g = DVector::from_column_slice(&[-1.0]);
     let (force, _, as_tied) = j.forces(&tied, &rel, &DVector::zeros(1), &g, 1.0)[0];
     assert!(force.iter().all(|x| x.abs() < 10.0), "finite forces {force:?}");
-    assert!((force[1] - 0.7 * pk).abs() < 1e-12, "the last solve's friction {force:?}");
+    assert!((force[1] - 0.7 * PK).abs() < 1e-12, "the last solve's friction {force:?}");
     let carried = j.rows[0][0][0] * force[0] + j.rows[0][1][0] * force[1];
     assert!((carried - g[0]).abs() < 1e-12, "the joint carries the weight: {carried}");
     let t = as_tied.expect("its slip is locked");
@@ -332,25 +315,7 @@ fn a_steep_joint_at_a_roller_slipping_keeps_finite_forces() {
 #[test]
 #[ignore = "issue 28: a locked slip with no consistent pressure is accepted unbalanced"]
 fn a_steep_joint_at_a_roller_slipping_against_the_wedge_carries_the_load() {
-    use crate::contact::frame::frame;
-    let a = 70f64.to_radians();
-    let f = frame(2, [a.sin(), a.cos(), 0.0], [true, false, false]);
-    let pairs = [(0, 1, f)];
-    let held = [Some(0.0), None, Some(0.0), None];
-    let (mut nm, mut nr) = (0, 0);
-    let j = Junction::new(vec![0], |p| pairs[p], &held, 2, &mut nm, &mut nr);
-    let limit = Limit { tension: 0.0, cohesion: 0.0, friction: 0.7 };
-    let pk = 0.5;
-    let slip = Relation {
-        state: ContactState::Slip,
-        target: [0.0; 3],
-        force: [0.0; 3],
-        coupling: [0.0, -0.7, 0.0],
-        spring: [[0.0; 3]; 3],
-        pressure: pk,
-        limit,
-    };
-    let rel = [slip];
+    let (j, rel) = roller_wedge(roller_frame(), -0.7, PK);
     let tied = j.tie(&rel, 1.0, |_| 1.0);
     assert!(tied.pressure.is_none(), "beyond the gain at which it is solved for");
     let g = DVector::from_column_slice(&[-1.0]);
@@ -358,4 +323,34 @@ fn a_steep_joint_at_a_roller_slipping_against_the_wedge_carries_the_load() {
     let carried = j.rows[0][0][0] * force[0] + j.rows[0][1][0] * force[1];
     assert!(force.iter().all(|x| x.abs() < 10.0), "finite forces {force:?}");
     assert!((carried - g[0]).abs() < 1e-12, "the joint carries the weight: {carried}");
+}
+
+/// The pressure the roller wedge's slipping joint was linearised at.
+const PK: f64 = 0.5;
+
+/// The frame of a 70-degree joint at a roller (2D, x held).
+fn roller_frame() -> Frame {
+    let a = 70f64.to_radians();
+    crate::contact::frame::frame(2, [a.sin(), a.cos(), 0.0], [true, false, false])
+}
+
+/// The steep joint at a roller with frame `f`, x held on both copies,
+/// slipping at pressure `pk` with its friction per unit pressure
+/// `coupling` along its shear (f = 0.7).
+fn roller_wedge(f: Frame, coupling: f64, pk: f64) -> (Junction, [Relation; 1]) {
+    let pairs = [(0, 1, f)];
+    let held = [Some(0.0), None, Some(0.0), None];
+    let (mut nm, mut nr) = (0, 0);
+    let j = Junction::new(vec![0], |p| pairs[p], &held, 2, &mut nm, &mut nr);
+    let limit = Limit { tension: 0.0, cohesion: 0.0, friction: 0.7 };
+    let slip = Relation {
+        state: ContactState::Slip,
+        target: [0.0; 3],
+        force: [0.0; 3],
+        coupling: [0.0, coupling, 0.0],
+        spring: [[0.0; 3]; 3],
+        pressure: pk,
+        limit,
+    };
+    (j, [slip])
 }
