@@ -137,40 +137,12 @@ impl SingleCholesky {
             .collect()
     }
 
-    /// `b^T K^-1 b` for each column of `bs`, to single precision: with
-    /// `K = P^T L L^T P` it is `|L^-1 P b|^2`, the forward substitution
-    /// alone, half of [`SingleCholesky::solve_many`]'s work, on dense
-    /// right-hand sides (what [`SingleCholesky::sparse_energies`] is
-    /// checked against). None where the factor is not supernodal.
-    pub fn energies(&self, bs: &[Vec<f64>]) -> Option<Vec<f64>> {
-        let SymbolicCholeskyRaw::Supernodal(sn) = self.symbolic.raw() else { return None };
-        let (n, k) = (self.symbolic.nrows(), bs.len());
-        let t: Vec<f64> = bs.iter().map(|b| to_one(b)).collect();
-        let mut x = vec![0.0f32; n * k];
-        let perm = self.symbolic.perm().map(|p| p.arrays().0);
-        for ((xc, b), &tc) in x.chunks_exact_mut(n.max(1)).zip(bs).zip(&t) {
-            match perm {
-                // (x = P b, as `solve` permutes)
-                Some(fwd) => xc.iter_mut().zip(fwd).for_each(|(x, &i)| *x = (b[i] * tc) as f32),
-                None => xc.iter_mut().zip(b).for_each(|(x, &v)| *x = (v * tc) as f32),
-            }
-        }
-        let mut buf = MemBuffer::new(self.symbolic.solve_in_place_scratch::<f32>(k, Par::Seq));
-        SupernodalLltRef::new(sn, &self.values).l_solve_with_conj(
-            Conj::No,
-            MatMut::from_column_major_slice_mut(&mut x, n, k),
-            Par::Seq,
-            MemStack::new(&mut buf),
-        );
-        let squares = |xc: &[f32]| xc.iter().map(|&v| f64::from(v).powi(2)).sum::<f64>();
-        Some((x.chunks_exact(n.max(1)).zip(&t)).take(k).map(|(xc, &tc)| squares(xc) * self.scale / (tc * tc)).collect())
-    }
-
-    /// [`SingleCholesky::energies`] of columns given by their non-zeros
-    /// (row, value), through the supernodes they reach alone
-    /// ([`sparse_forward`]): the sparse interface's `K_mr e_i`, non-zero
-    /// on the means of one or two parts. None where the factor is not
-    /// supernodal.
+    /// `b^T K^-1 b` of each column, given by its non-zeros (row, value),
+    /// to single precision: with `K = P^T L L^T P` it is `|L^-1 P b|^2`,
+    /// the forward substitution alone, through the supernodes the columns
+    /// reach ([`sparse_forward`]): the sparse interface's `K_mr e_i`,
+    /// non-zero on the means of one or two parts. None where the factor is
+    /// not supernodal.
     pub fn sparse_energies(&self, cols: &[Vec<(usize, f64)>]) -> Option<Vec<f64>> {
         let (SymbolicCholeskyRaw::Supernodal(sn), Some(paths)) = (self.symbolic.raw(), &self.paths) else {
             return None;
@@ -275,28 +247,9 @@ mod tests {
         a
     }
 
-    /// Two threads substitute what one does, to single precision: the
-    /// subtrees below the root separators side by side, and the top's
-    /// supernodes by one thread or (all of them wide) by both.
-    #[test]
-    fn energies_by_the_forward_substitution_are_those_of_the_solve() {
-        let k = cube(22);
-        let node_of: Vec<usize> = (0..k.n).collect();
-        let f = SingleCholesky::factor(&k, &node_of, Ordering::NestedDissection, 1).expect("positive definite");
-        let bs: Vec<Vec<f64>> = [1.0, 1e-150, 0.0]
-            .iter()
-            .map(|&s| (0..k.n).map(|i| s * (1.0 + (i as f64 * 0.7).cos())).collect())
-            .collect();
-        let e = f.energies(&bs).expect("a supernodal factor");
-        for (b, e) in bs.iter().zip(e) {
-            let want: f64 = b.iter().zip(f.solve(b)).map(|(a, x)| a * x).sum();
-            assert!((e - want).abs() <= 1e-5 * want.abs(), "b^T K^-1 b: {e} against {want}");
-        }
-    }
-
     /// Columns of a few non-zeros each (some sharing rows, one at 1e-150,
-    /// one empty) give through the supernodes they reach what the dense
-    /// forward substitution gives, to single precision.
+    /// one empty) give through the supernodes they reach `b^T K^-1 b` of
+    /// the solve, to single precision.
     #[test]
     fn sparse_columns_reach_the_energies_of_dense_ones() {
         let k = cube(9);
@@ -318,7 +271,7 @@ mod tests {
                 b
             })
             .collect();
-        let want = f.energies(&dense).expect("a supernodal factor");
+        let want: Vec<f64> = dense.iter().map(|b| b.iter().zip(f.solve(b)).map(|(a, x)| a * x).sum()).collect();
         let got = f.sparse_energies(&cols).expect("a supernodal factor");
         for (g, w) in got.iter().zip(&want) {
             assert!((g - w).abs() <= 1e-5 * w.abs(), "b^T K^-1 b: {g:e} against {w:e}");
@@ -326,6 +279,9 @@ mod tests {
         assert!(want.iter().filter(|&&w| w > 0.0).count() == cols.len() - 1, "one empty column");
     }
 
+    /// Two threads substitute what one does, to single precision: the
+    /// subtrees below the root separators side by side, and the top's
+    /// supernodes by one thread or (all of them wide) by both.
     #[test]
     fn two_threads_give_the_answer_of_one() {
         let k = cube(22);
