@@ -13,12 +13,14 @@
 //! so to its end. A converged step is committed once, by
 //! [`super::history::commit`]: where it ended, and the cracks it made.
 
+use super::frame::tangential;
 use super::history::{commit, cracked, law_at, mark_cracks, start_step, History};
 use super::law::{law_residual, stiffness_in, ContactState, Trial};
 use super::options::SlipLaw;
 use super::outcome::{Failed, Outcome, Summary};
 use super::pair_law::PairLaw;
 use super::system::{Accuracy, InterfaceProblem, InterfaceSolution, Relation, SolveFailure};
+use crate::fem::vec3::{norm, sub};
 
 /// A state rule: the relations each iteration solves with, and the verdict
 /// on what came out.
@@ -40,6 +42,13 @@ pub(super) trait Rule {
     /// step reports to have converged ([`LAW_TOLERANCE`]).
     fn answers_to_the_law(&self) -> bool {
         true
+    }
+    /// Where each pair's slip in this step is measured from (its stick
+    /// reference along the joint): the law's residual then checks that a
+    /// slipping pair's friction runs along its slip ([`law_residual`]).
+    /// None: it checks magnitudes alone.
+    fn slip_reference(&self) -> Option<&[[f64; 3]]> {
+        None
     }
     /// What the rule keeps of a converged step beyond [`commit`].
     fn commit(self, _h: &mut History)
@@ -112,7 +121,8 @@ pub(super) fn run(
             tighten = Some(relations);
         }
         let stops = unchanged || summary.cycled || summary.iterations >= max_iterations;
-        let law_residual = if stops { law_residuals(problem, laws, h, &solution) } else { Vec::new() };
+        let reference = rule.slip_reference();
+        let law_residual = if stops { law_residuals(problem, laws, h, &solution, reference) } else { Vec::new() };
         summary.law_broken = unchanged && rule.answers_to_the_law() && breaks_law(problem, &law_residual, &solution);
         summary.converged = unchanged && !summary.law_broken;
         if stops {
@@ -149,13 +159,25 @@ const TIGHTEN_AFTER: usize = 30;
 /// Every pair's [`law_residual`] in the states of `h` with the forces of
 /// `solution`, over its area (stress units): the step's answer as
 /// summary.json reports it. A pair is cracked as [`cracked`] says (in an
-/// earlier step, earlier in this one, or open or slipping now).
-fn law_residuals(problem: &InterfaceProblem, laws: &[PairLaw], h: &History, solution: &InterfaceSolution) -> Vec<f64> {
+/// earlier step, earlier in this one, or open or slipping now). A pair's
+/// slip is measured from `reference` where the rule gives one, and counts
+/// where its stiffness makes of it a force beyond [`LAW_TOLERANCE`] of the
+/// largest force (below it, a slip has no direction the law could check).
+fn law_residuals(
+    problem: &InterfaceProblem,
+    laws: &[PairLaw],
+    h: &History,
+    solution: &InterfaceSolution,
+    reference: Option<&[[f64; 3]]>,
+) -> Vec<f64> {
+    let scale = solution.forces.iter().map(|&f| norm(f)).fold(0.0, f64::max);
     (0..laws.len())
         .map(|p| {
             let (force, rel, area) = (solution.forces[p], solution.rel[p], problem.area(p));
             let stiffness = stiffness_in(h.states[p], || problem.stiffness(p));
-            let trial = Trial { force, area, slip: [0.0; 3], gap: rel[0], stiffness };
+            let slip = reference.map_or([0.0; 3], |r| sub(tangential(rel), r[p]));
+            let slip = if stiffness * norm(slip) > LAW_TOLERANCE * scale { slip } else { [0.0; 3] };
+            let trial = Trial { force, area, slip, gap: rel[0], stiffness };
             let law = law_at(h, laws, p);
             let coulomb = law.slip == SlipLaw::Coulomb;
             law_residual(h.states[p], &trial, &law.strength, cracked(h, p), coulomb) / area

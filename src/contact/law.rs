@@ -282,11 +282,15 @@ pub fn judge(
 /// How far a pair's force is from the contact law in its state, in force
 /// units (the pair's stresses times its area): for a closed pair the
 /// tension beyond `f_t`, and beyond the Coulomb bound `b(p)` when it
-/// sticks or off it when it slips (`| |λ_T| - b(p) |`, or `|λ_T|` for
-/// frictionless slip); for an open pair the force it carries and the
-/// overlap `-gap` times its stiffness. Zero where the law holds exactly:
-/// what a converged iteration reaches to round-off, and what a run that
-/// did not converge reports pair by pair.
+/// sticks or off it when it slips: `| |λ_T| - b(p) |`, and where the
+/// trial carries a slip `s`, `|λ_T - b(p) s / |s||` (the friction of a
+/// slip is along it: a pair at its bound slipping against or across its
+/// force breaks the law), or `|λ_T|` for frictionless slip; for an open
+/// pair the force it carries and the overlap `-gap` times its stiffness.
+/// Zero where the law holds exactly: what a converged iteration reaches
+/// to round-off, and what a run that did not converge reports pair by
+/// pair. A zero slip checks the magnitude alone (a slip too small to
+/// have a direction).
 pub fn law_residual(state: ContactState, t: &Trial, s: &Strength, cracked: bool, coulomb: bool) -> f64 {
     let lam_t = t.force[1].hypot(t.force[2]);
     if state == ContactState::Open {
@@ -294,8 +298,13 @@ pub fn law_residual(state: ContactState, t: &Trial, s: &Strength, cracked: bool,
     }
     let tension = (t.force[0] - s.tensile_limit(cracked) * t.area).max(0.0);
     let (b, _) = friction_bound(s, cracked, t.area, -t.force[0]);
+    let s_t = t.slip[1].hypot(t.slip[2]);
     let shear = match state {
         ContactState::Stick => (lam_t - b).max(0.0),
+        _ if coulomb && s_t > 0.0 => {
+            let (e1, e2) = (t.slip[1] / s_t, t.slip[2] / s_t);
+            (t.force[1] - b * e1).hypot(t.force[2] - b * e2)
+        }
         _ if coulomb => (lam_t - b).abs(),
         _ => lam_t,
     };
@@ -350,6 +359,13 @@ mod tests {
         assert_eq!(res(Stick, t(-4.0, 3.5, 0.0, 0.0)), 0.5, "beyond the bound");
         assert_eq!(res(Slip, t(-4.0, 3.0, 0.1, 0.0)), 0.0, "on the cone");
         assert_eq!(res(Slip, t(-4.0, 2.0, 0.1, 0.0)), 1.0, "below it");
+        // the friction of a slip runs along it: at the bound but against
+        // the slip, or across it, the law is broken; a zero slip has no
+        // direction to check
+        assert_eq!(res(Slip, t(-4.0, -3.0, 0.1, 0.0)), 6.0, "against the slip");
+        let across = Trial { slip: [0.0, 0.0, 0.1], ..t(-4.0, 3.0, 0.0, 0.0) };
+        assert!((res(Slip, across) - 3.0 * 2f64.sqrt()).abs() < 1e-12, "across the slip");
+        assert_eq!(res(Slip, t(-4.0, -3.0, 0.0, 0.0)), 0.0, "no slip");
         assert_eq!(res(Stick, t(2.5, 0.0, 0.0, 0.0)), 0.5, "tension beyond f_t");
         assert_eq!(res(Open, t(0.0, 0.0, 0.0, 1e-3)), 0.0);
         assert_eq!(res(Open, t(-3.0, 4.0, 0.0, 1e-3)), 5.0, "an open pair carries nothing");

@@ -616,6 +616,10 @@ impl Rule for Newton<'_> {
         self.search.reject(&mut h.states)
     }
 
+    fn slip_reference(&self) -> Option<&[[f64; 3]]> {
+        Some(&self.reference)
+    }
+
     /// The stick references of this step are where its pairs are tied from now on.
     fn commit(self, h: &mut History) {
         h.offset = self.reference;
