@@ -106,6 +106,8 @@ pub enum ModelError {
     Inverted { body: String, tag: u64, det_j: f64 },
     #[error("element {tag} ({kind}) of body {body} is folded or inverted: its Jacobian determinant is {det_j:.3e} {}, where it must be positive over the whole element, not only at the integration points. Fix the mesh: corner nodes in the wrong order, or a mid-side node beyond the opposite side (with gmsh: Mesh.HighOrderOptimize = 2, or a finer mesh where the boundary curves)", match node { Some(k) => format!("at its node {k} (gmsh order)"), None => "at its centre".to_string() })]
     Folded { body: String, tag: u64, kind: String, node: Option<usize>, det_j: f64 },
+    #[error("every element of body {body} ({cells} of {cells}) is inverted: its Jacobian determinant is negative, so the body's mesh is mirrored, its elements' nodes running the wrong way round{}", if *dim == 2 { ". In a .geo this is a surface whose curve loop runs clockwise: draw the loop counter-clockwise (its curves negated and in reverse order, e.g. Curve Loop(2) = {-4, -3, -2, -1};) or add Reverse Surface{2}; after the surface" } else { ": check the node order of its elements in the .msh (in a .geo, Reverse Volume{..};)" })]
+    Mirrored { body: String, cells: usize, dim: usize },
     #[error("element {tag} ({kind}) of body {body} is degenerate: its corner nodes {} and {} (gmsh order) lie at the same point ({:.6}, {:.6}, {:.6}), a collapsed edge where its Jacobian determinant is zero. Remesh it: a {kind} must keep its corners apart (a quadrangle or hexahedron collapsed into a triangle, prism or pyramid is not one; let gmsh make triangles, tetrahedra or prisms there), or check the element's node order in the .msh", corners.0, corners.1, at[0], at[1], at[2])]
     Collapsed { body: String, tag: u64, kind: String, corners: (usize, usize), at: [f64; 3] },
 }
@@ -115,7 +117,13 @@ impl ModelError {
     /// that the scene file's name goes in front of it; the mesh's own
     /// faults (inverted, folded, collapsed elements) name the element.
     pub fn about_input(&self) -> bool {
-        !matches!(self, ModelError::Inverted { .. } | ModelError::Folded { .. } | ModelError::Collapsed { .. })
+        !matches!(
+            self,
+            ModelError::Inverted { .. }
+                | ModelError::Folded { .. }
+                | ModelError::Mirrored { .. }
+                | ModelError::Collapsed { .. }
+        )
     }
 }
 

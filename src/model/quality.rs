@@ -32,9 +32,14 @@ use crate::fem::shape::{self, linear_sibling, reference_centre, reference_nodes}
 pub const SLIVER: f64 = 1e-6;
 
 /// The first cell (body order) whose Jacobian determinant is not positive
-/// at one of its nodes or its centre.
+/// at one of its nodes or its centre; a body of several cells that are
+/// all inverted at their centres is named as mirrored instead (a surface
+/// whose curve loop runs clockwise: every cell's nodes do).
 pub fn folded(model: &Model) -> Result<(), ModelError> {
     for body in &model.bodies {
+        if let Some(e) = mirrored(model, body) {
+            return Err(e);
+        }
         for cell in &body.cells {
             let xs: Vec<[f64; 3]> = cell.nodes.iter().map(|&n| model.coords[n]).collect();
             if let Some((a, b)) = collapsed(cell.kind, &xs) {
@@ -59,6 +64,21 @@ pub fn folded(model: &Model) -> Result<(), ModelError> {
         }
     }
     Ok(())
+}
+
+/// Every cell of a body of several inverted at its centre (det J < 0):
+/// the body's mesh is mirrored, not one cell folded.
+fn mirrored(model: &Model, body: &super::body::Body) -> Option<ModelError> {
+    let inverted = |cell: &crate::mesh::Cell| {
+        let xs: Vec<[f64; 3]> = cell.nodes.iter().map(|&n| model.coords[n]).collect();
+        element::point(cell.kind, &xs, reference_centre(cell.kind)).is_err_and(|e| e.det_j < 0.0)
+    };
+    let first = body.cells.first()?;
+    (body.cells.len() > 1 && body.cells.iter().all(inverted)).then(|| ModelError::Mirrored {
+        body: body.label(),
+        cells: body.cells.len(),
+        dim: first.kind.dim(),
+    })
 }
 
 /// Two corners (0-based, gmsh order) of a cell at the same point, within
