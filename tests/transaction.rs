@@ -514,6 +514,28 @@ fn nothing_outside_the_result_directory_is_touched_through_a_link() {
     assert!(msg.contains("symbolic link") && msg.contains("does not exist") && !msg.contains("File exists"), "{msg}");
 }
 
+/// A link where the last run wrote a result file (contact.csv) was
+/// refused only when the results were written, after the whole solve (a
+/// long run lost for a link); it is refused before any work now, and what
+/// it points at stays as it was.
+#[test]
+fn a_link_where_a_result_file_goes_is_refused_before_the_solve() {
+    let case = Case::new("tx-link-early");
+    case.copy("geo/dam.geo");
+    case.write("dam.toml", &dam("A"));
+    solve(&case, "dam.toml", "out");
+    let victim = case.dir.join("victim.csv");
+    std::fs::write(&victim, "someone else's").expect("victim");
+    std::fs::remove_file(case.dir.join("out/contact.csv")).expect("unlink");
+    std::os::unix::fs::symlink(&victim, case.dir.join("out/contact.csv")).expect("link");
+    let o = case.cli(&["solve", "dam.toml", "--out", "out"]);
+    let msg = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{msg}");
+    assert!(msg.contains("out/contact.csv") && msg.contains("symbolic link"), "{msg}");
+    assert!(!msg.contains("DOFs") && !msg.contains("contact iteration"), "refused after work: {msg}");
+    assert_eq!(std::fs::read_to_string(&victim).expect("victim"), "someone else's");
+}
+
 /// Issue 32: a .geo that never finished blocked every later run into its
 /// --out (gmsh meshed under the directory's lock, with no time limit).
 /// Now gmsh meshes outside the lock, and stops at `[gmsh] timeout`.

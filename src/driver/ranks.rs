@@ -89,6 +89,9 @@ pub(super) fn mesh(
 fn root_mesh(scene: &Scene, out: &Path, opts: &RunOptions) -> Result<(Mesh, PathBuf, bool, Option<Stage>, String)> {
     let geo = matches!(scene.mesh, MeshSource::Geo(_));
     let mut stage = if geo || !opts.skip_output { Some(Stage::begin(out, &mut |m| super::say(m))?) } else { None };
+    if let Some(stage) = stage.as_ref().filter(|_| !opts.skip_output) {
+        stage.refuse_in_the_way(&scene.name)?;
+    }
     let (mesh, msh, cached) = mesh_into(scene, stage.as_mut(), opts.allow_geo_commands)?;
     let rel = format!("{}/{}.msh", crate::output::files::MESH_DIR, scene.name);
     Ok((mesh, msh, cached, stage, rel))

@@ -71,6 +71,16 @@ impl Stage {
         Ok(Stage { target, run, name, dir, early: Vec::new(), committed: false })
     }
 
+    /// Refuses, before the run does any work, a symbolic link or a
+    /// directory where `writer` wrote a result file the last time (the
+    /// manifest's names), which the commit would refuse only after the
+    /// whole solve.
+    pub fn refuse_in_the_way(&self, writer: &str) -> Result<(), OutputError> {
+        let Some(out) = open_out(&self.target)? else { return Ok(()) };
+        let manifest = Manifest::read_at(&out);
+        refuse_at(&out, manifest.files(writer).iter().map(String::as_str).filter(|n| !n.contains('/')))
+    }
+
     /// The result directory.
     pub fn out(&self) -> &Path {
         &self.target.path
@@ -246,19 +256,25 @@ fn open_out(t: &Target) -> Result<Option<Dir>, OutputError> {
 /// A directory or a symbolic link where the commit writes a file, or a
 /// `mesh` that is not a plain directory, refuses the commit.
 fn in_the_way(out: &Dir, files: &Staged, mesh: bool) -> Result<(), OutputError> {
-    for name in files.names() {
-        match out.stat(OsStr::new(&name)) {
+    refuse_at(out, files.files.iter().map(|(n, _)| n.as_str()))?;
+    if mesh {
+        mesh_is_plain(out)?;
+    }
+    Ok(())
+}
+
+/// A directory or a symbolic link at one of `names` in `out`.
+fn refuse_at<'a>(out: &Dir, names: impl Iterator<Item = &'a str>) -> Result<(), OutputError> {
+    for name in names {
+        match out.stat(OsStr::new(name)) {
             Ok(Some(st)) if kind(&st) == FileType::Directory => {
-                return Err(OutputError::InTheWay { path: out.path.join(&name) })
+                return Err(OutputError::InTheWay { path: out.path.join(name) })
             }
             Ok(Some(st)) if kind(&st) == FileType::Symlink => {
-                return Err(OutputError::NotOurs { path: out.path.join(&name), what: "a symbolic link" })
+                return Err(OutputError::NotOurs { path: out.path.join(name), what: "a symbolic link" })
             }
             _ => {}
         }
-    }
-    if mesh {
-        mesh_is_plain(out)?;
     }
     Ok(())
 }
