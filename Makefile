@@ -6,7 +6,7 @@ CARGO   ?= cargo
 BIN     := target/release/subcontact
 PYTHON  ?= python3
 
-.PHONY: all deps deps-mpi deps-strace build lint cylinder tunnel tunnel-joints footing footing-layers dam blocks3d dam3d dam3d-joints tunnel3d rockmass wedge safety slope water test test-mpi fuzz bench bench3d bench-blocks bench-ccx bench-interface scaling stress clean
+.PHONY: all deps deps-mpi deps-strace build lint cylinder tunnel tunnel-joints footing footing-layers dam blocks3d dam3d dam3d-joints tunnel3d rockmass wedge safety slope water test test-mpi fuzz bench bench3d bench-blocks bench-ccx bench-interface scaling stress stress-open clean
 
 all: build
 
@@ -185,12 +185,19 @@ deps-strace:
 	  (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq strace >/dev/null) || \
 	  { echo "error: could not install strace; run 'apt-get install -y strace' as root"; exit 1; }; }
 
+# Every binary runs (--no-fail-fast) and the failures are listed at the
+# end. The scenes issue 28 has not yet made converge are skipped here and
+# run by `make stress-open`, which fails until they do (docs/corpus.md,
+# docs/convergence.md say where each stands). About 5 minutes after the build.
+STRESS_OPEN = blocks3d_unconfined_block_mass blocks3d_partly_confined_in_linear_elements \
+	tunnel4sets_k0_bare_opening the_tunnel_meshed_coarser_away_from_the_opening_converges_without_cuts
 stress: deps deps-strace
-	$(CARGO) test --release --test stress -- --ignored --nocapture
-	$(CARGO) test --release --test transaction -- --ignored --nocapture
-	$(CARGO) test --release --test convergence -- --ignored --nocapture
-	$(CARGO) test --release --test joint_sets -- --ignored --nocapture
-	$(CARGO) test --release --test corpus -- --ignored --nocapture
+	$(CARGO) test --release --no-fail-fast --test stress --test transaction --test convergence \
+	  --test joint_sets --test corpus -- --ignored --nocapture $(addprefix --skip ,$(STRESS_OPEN))
+
+stress-open: deps build
+	$(CARGO) test --release --no-fail-fast --test convergence --test corpus -- --ignored --nocapture \
+	  --exact $(STRESS_OPEN)
 
 test: deps deps-strace
 	$(CARGO) test --release

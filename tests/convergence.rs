@@ -199,7 +199,7 @@ fn a_tunnel_through_three_oblique_joint_sets_converges_to_states_that_keep_the_l
 /// them solved for through the tangent of the junction's share it
 /// converges in 40.
 #[test]
-#[ignore = "make stress: about 50 s"]
+#[ignore = "issue 28: not converged since c6a9a60 (docs/convergence.md); make stress-open, 50 s"]
 fn the_tunnel_meshed_coarser_away_from_the_opening_converges_without_cuts() {
     let scene = common::repo_text("tests/geo/tunnel3d_joints_coarse.toml");
     let coarser = scene.replacen("lc_far = 4.0", "lc_far = 6.0", 1);
