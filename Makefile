@@ -188,7 +188,7 @@ deps-strace:
 # Every binary runs (--no-fail-fast) and the failures are listed at the
 # end. The scenes issue 28 has not yet made converge are skipped here and
 # run by `make stress-open`, which fails until they do (docs/corpus.md,
-# docs/convergence.md say where each stands). About 5 minutes after the build.
+# docs/convergence.md say where each stands). About 2.5 minutes after the build.
 STRESS_OPEN = blocks3d_unconfined_block_mass blocks3d_partly_confined_in_linear_elements \
 	tunnel4sets_k0_bare_opening the_tunnel_meshed_coarser_away_from_the_opening_converges_without_cuts
 stress: deps deps-strace
