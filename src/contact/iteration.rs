@@ -121,8 +121,8 @@ pub(super) fn run(
             tighten = Some(relations);
         }
         let stops = unchanged || summary.cycled || summary.iterations >= max_iterations;
-        let reference = rule.slip_reference();
-        let law_residual = if stops { law_residuals(problem, laws, h, &solution, reference) } else { Vec::new() };
+        let law_residual =
+            if stops { law_residuals(problem, laws, h, &solution, rule.slip_reference()) } else { Vec::new() };
         summary.law_broken = unchanged && rule.answers_to_the_law() && breaks_law(problem, &law_residual, &solution);
         summary.converged = unchanged && !summary.law_broken;
         if stops {
