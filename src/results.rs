@@ -135,6 +135,9 @@ pub struct InitialStage {
     pub converged: bool,
     pub cuts: usize,
     pub states: [usize; 3],
+    /// The strength factors it was brought down through where the in-situ
+    /// stress put joints beyond their strength (`Summary::strengths`).
+    pub strength_ramp: Vec<f64>,
     /// The factor of every load case in the stage.
     pub case_factors: Vec<f64>,
     /// Its displacements (every node), and the largest of them (length)

@@ -45,6 +45,7 @@ pub mod options;
 pub mod outcome;
 pub mod pair_law;
 pub mod paper_rule;
+pub mod ramp;
 pub mod safety;
 pub mod system;
 pub mod traction;

@@ -32,6 +32,10 @@ pub struct Summary {
     pub pieces: Vec<f64>,
     /// The piece of a cut step that did not converge at the deepest cut.
     pub stopped_at: Option<(f64, f64)>,
+    /// The strength factors an initial stage was brought down through
+    /// ([`super::ramp`]), the first the in-situ mobilisation, the last 1
+    /// where it converged; empty where it was solved at the strength given.
+    pub strengths: Vec<f64>,
 }
 
 /// How the state iteration of one step ended: the states it ended with,

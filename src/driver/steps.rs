@@ -221,6 +221,7 @@ pub(super) fn initial_stage(
         converged: summary.converged,
         cuts: summary.cuts,
         states,
+        strength_ramp: summary.strengths.clone(),
         case_factors,
         largest: if model.n_nodes() > 0 { length(largest_at) } else { 0.0 },
         largest_at,
@@ -292,8 +293,15 @@ impl Step<'_> {
         }
         let solver = &self.scene.solver;
         let (rule, most, cuts) = (solver.rule, solver.max_iterations, self.cuts());
-        let outcome = contact::cutting::iterate_cutting(problem, &self.laws, rule, from, lambda, history, most, cuts)
-            .map_err(|f| ContactError::failed(self.model, &self.plan.parts, self.scene, step, f))?;
+        // the initial stage (step 0) brings down a strength the in-situ stress exceeds
+        let mobilised = if step == 0 && rule == StateRule::Robust {
+            super::warnings::insitu_mobilised(self.scene, self.model)
+        } else {
+            0.0
+        };
+        let outcome =
+            contact::ramp::iterate_stage(problem, &self.laws, rule, (from, lambda), history, most, cuts, mobilised)
+                .map_err(|f| ContactError::failed(self.model, &self.plan.parts, self.scene, step, f))?;
         out.residual_interface = out.residual_interface.max(outcome.solution.residual);
         out.counters.interface_solves += outcome.summary.iterations;
         let (contact, d_c) = self.contact_run(problem, outcome, lambda);

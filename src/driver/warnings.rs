@@ -34,13 +34,25 @@ fn in_scene(scene: &Scene, w: Vec<String>) -> Vec<String> {
 /// The contact groups the in-situ stress puts beyond their strength
 /// ([`crate::model::insitu`]), one paragraph each.
 pub fn insitu_warnings(scene: &Scene, model: &Model) -> Vec<String> {
-    let strengths: Vec<JointStrength> = (scene.contacts.iter())
+    in_scene(scene, crate::model::insitu::warnings(model, &joint_strengths(scene)))
+}
+
+/// The largest mobilisation `|τ| / (c + f σn')` the in-situ stress puts
+/// on a pair beyond its strength in shear (0 where none is): what the
+/// initial stage's strength ramp starts from ([`crate::contact::ramp`]).
+pub fn insitu_mobilised(scene: &Scene, model: &Model) -> f64 {
+    let beyond = crate::model::insitu::beyond(model, &joint_strengths(scene));
+    beyond.iter().filter(|e| e.shear > 0).map(|e| e.mobilised).fold(0.0, f64::max)
+}
+
+/// What each contact group can carry, as the in-situ check reads it.
+fn joint_strengths(scene: &Scene) -> Vec<JointStrength> {
+    (scene.contacts.iter())
         .map(|c| JointStrength {
             friction: c.strength.friction,
             cohesion: c.strength.cohesion,
             tensile_strength: c.strength.tensile_strength,
             skip: c.slip == SlipLaw::Frictionless || c.water.is_some(),
         })
-        .collect();
-    in_scene(scene, crate::model::insitu::warnings(model, &strengths))
+        .collect()
 }

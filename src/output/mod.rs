@@ -227,13 +227,15 @@ fn steps_summary(run: &Run) -> serde_json::Value {
         .collect::<Vec<_>>())
 }
 
-/// The initial equilibrium stage in summary.json: its iteration, states,
-/// factors and largest displacement (taken off every step's).
+/// The initial equilibrium stage in summary.json: its iteration, the
+/// strength factors it was brought down through, states, factors and
+/// largest displacement (taken off every step's).
 fn initial_stage(run: &Run, s: &crate::results::InitialStage) -> serde_json::Value {
     json!({
         "iterations": s.iterations,
         "converged": s.converged,
         "cuts": s.cuts,
+        "strength_ramp": s.strength_ramp,
         "states": { "stick": s.states[2], "slip": s.states[1], "open": s.states[0] },
         "case_factors": s.case_factors,
         "largest_displacement": s.largest,

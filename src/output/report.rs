@@ -107,9 +107,17 @@ fn contact_rows(s: &mut String, run: &Run) {
         );
         let _ = writeln!(s, "| states stick / slip / open | {} / {} / {} |", k[2], k[1], k[0]);
         if let Some(i) = &run.initial_stage {
+            let ramp = match i.strength_ramp.as_slice() {
+                [] => String::new(),
+                r => format!(
+                    ", the joints' strength brought down from {:.3} times the scene's (where the in-situ stress put none beyond it) in {} pieces",
+                    r[0],
+                    r.len() - 1
+                ),
+            };
             let _ = writeln!(
                 s,
-                "| initial equilibrium stage (taken off the displacements) | {} iterations, {} / {} / {} stick / slip / open, largest displacement {:.3e} |",
+                "| initial equilibrium stage (taken off the displacements) | {} iterations, {} / {} / {} stick / slip / open, largest displacement {:.3e}{ramp} |",
                 i.iterations, i.states[2], i.states[1], i.states[0], i.largest
             );
         }
