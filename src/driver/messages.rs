@@ -279,8 +279,10 @@ impl fmt::Display for ContactError {
                     _ => "",
                 };
                 write!(f, " after {iterations} iteration(s){why}")?;
-                if *cuts > 0 {
-                    write!(f, ", the step cut {cuts} time(s) in halves ([solver] max_cuts)")?;
+                match (cuts, step) {
+                    (0, _) => {}
+                    (_, Some(0)) => write!(f, ", the stage cut {cuts} time(s) in halves (its load, or where the in-situ stress is beyond the joints' strength, the pieces that strength is brought down in; [solver] max_cuts)")?,
+                    _ => write!(f, ", the step cut {cuts} time(s) in halves ([solver] max_cuts)")?,
                 }
                 if let Some(out) = results {
                     let other = if *rule == StateRule::Paper { ", or the default rule = \"robust\"" } else { "" };
