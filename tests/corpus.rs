@@ -298,7 +298,6 @@ fn blocks3d_unconfined_in_linear_elements() {
 /// The tunnel through four sets: the in-situ stress is geostatic, so no
 /// closed form for the excavated state; converged, the law met.
 #[test]
-#[ignore = "issue 28: converges, but in 35 iterations > 30 (docs/corpus.md); make stress-open, 60 s"]
 fn tunnel4sets_k0_bare_opening() {
     let scene = Scene { toml: "tunnel4sets.toml", geo: "tunnel4sets.geo", element: "tet10" };
     let solved = solve(&scene);

@@ -587,7 +587,13 @@ impl Junction {
         let slipping = |j: usize| rel[self.pairs[j]].state == ContactState::Slip;
         let looped = pressure::looped(&tied.split, &lambda, &tied.split.plain(&carried), slipping);
         self.memo.set_looped(looped);
-        self.memo.set_tangent(if looped { Tangent::at(&tied.split, &carried, &lambda, limits) } else { None });
+        // (a share that met no limit is the least-norm one: the next solve
+        // with the same tied rows takes its pressures through it too)
+        self.memo.set_tangent(if looped {
+            Tangent::at(&tied.split, &carried, &lambda, limits)
+        } else {
+            Some(Tangent::plain(&tied.split))
+        });
         let mut out: Vec<PairForces> = rels.iter().map(|&x| ([0.0; 3], x, None)).collect();
         for (&(j, dir), &l) in tied.rows.iter().zip(lambda.iter()) {
             for a in (0..nd).filter(|&a| dir[a] != 0.0) {

@@ -40,6 +40,13 @@ pub(super) struct Tangent {
 }
 
 impl Tangent {
+    /// The least-norm share's (no limit met): its rows of `split`'s pinv.
+    pub(super) fn plain(split: &Split) -> Tangent {
+        let n_r = split.pinv.ncols();
+        let j = DMatrix::<f64>::from_fn(split.rows.len(), n_r, |i, c| split.d[i] * split.pinv[(i, c)]);
+        Tangent { rows: split.rows.clone(), j, offset: DVector::zeros(split.rows.len()) }
+    }
+
     /// The share's derivative at `g`, where `split` shared it as `lambda`
     /// within `limits`; None where no limit is met (the least-norm share,
     /// whose pressures [`super::pressure::Pressure`] takes by itself).
