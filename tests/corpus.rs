@@ -286,10 +286,11 @@ fn blocks3d_unconfined_block_mass() {
     blocks("blocks3d.toml", "tet10");
 }
 
-/// Step 2 (kh = 0.1) settles its states in 21 iterations; four slipping
-/// junction pairs' lagged pressures then take 16 more, the last 6 by
+/// Step 2 (kh = 0.1) settled its states in 21 iterations; four slipping
+/// junction pairs' lagged pressures then took 16 more, the last 6 by
 /// multisecant steps (src/contact/cluster.rs): 21 and 37, so the bound
-/// here is 40, not 30.
+/// here is 40, not 30 (18 and 29 since a held junction takes its
+/// least-norm share's tangent, src/contact/system/junction.rs).
 #[test]
 fn blocks3d_unconfined_in_linear_elements() {
     blocks_within("blocks3d_linear.toml", "tet4", 40);

@@ -417,6 +417,16 @@ impl Junction {
     /// The junction under the relations `rel` (of every model pair) at
     /// `ramp`; `area` gives each pair's area.
     pub fn tie(&self, rel: &[Relation], ramp: f64, area: impl Fn(usize) -> f64) -> Tied {
+        self.tie_held(rel, ramp, true, area)
+    }
+
+    /// [`Junction::tie`], `held`: whether every pair of the interface has
+    /// the state it had in the last solve. A least-norm share's tangent is
+    /// taken only then: while states change elsewhere, a way of solving for
+    /// the pressures that changes with the loops' shares changed the path
+    /// of the state search (blocks3d_linear's step 1: 30 iterations instead
+    /// of 21, to other states).
+    pub fn tie_held(&self, rel: &[Relation], ramp: f64, held: bool, area: impl Fn(usize) -> f64) -> Tied {
         let (nd, n_r) = (self.nd, self.r.len());
         let rows = self.tied_rows(|p| rel[p].state);
         let areas: Vec<f64> = self.pairs.iter().map(|&p| area(p)).collect();
@@ -471,7 +481,7 @@ impl Junction {
         let pressure = if !self.memo.looped() {
             Pressure::new(coupled, per_pressure, &split, None)
         } else {
-            let tangent = self.memo.tangent(&rows);
+            let tangent = self.memo.tangent(&rows).filter(|t| held || !t.plain);
             tangent.and_then(|t| Pressure::new(coupled, per_pressure, &split, Some(&t)))
         };
         for &j in &slipping {
@@ -588,7 +598,8 @@ impl Junction {
         let looped = pressure::looped(&tied.split, &lambda, &tied.split.plain(&carried), slipping);
         self.memo.set_looped(looped);
         // (a share that met no limit is the least-norm one: the next solve
-        // with the same tied rows takes its pressures through it too)
+        // with the same tied rows takes its pressures through it too, if
+        // it holds every state, [`Junction::tie_held`])
         self.memo.set_tangent(if looped {
             Tangent::at(&tied.split, &carried, &lambda, limits)
         } else {

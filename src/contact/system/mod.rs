@@ -91,6 +91,10 @@ pub struct InterfaceProblem<'a> {
     /// junctions solve for their pressures again (see
     /// [`junction::Junction::new_load`]).
     load: std::sync::Mutex<Vec<f64>>,
+    /// The states of the last solve: a junction takes its slipping pairs'
+    /// pressures through a least-norm share's tangent only in a solve
+    /// that holds them (see [`junction::Junction::tie_held`]).
+    states: std::sync::Mutex<Vec<ContactState>>,
     /// Threads for the work of a solve outside the solver: the junctions'
     /// ties and forces, the checks of what holds the parts.
     threads: usize,
@@ -170,6 +174,7 @@ impl<'a> InterfaceProblem<'a> {
             positions,
             spreads,
             load: Default::default(),
+            states: Default::default(),
             threads,
             water: None,
             around: Default::default(),
@@ -322,7 +327,7 @@ impl<'a> InterfaceProblem<'a> {
     }
 
     /// The free directions of the relative displacements under `rel`.
-    fn freedom(&self, rel: &[Relation], ramp: f64) -> Freedom {
+    fn freedom(&self, rel: &[Relation], ramp: f64, held: bool) -> Freedom {
         let (nd, layout) = (self.layout.nd, &self.layout);
         let mut r0 = vec![0.0; layout.nr];
         let mut cols: Vec<Vec<(usize, f64)>> = Vec::new();
@@ -344,7 +349,7 @@ impl<'a> InterfaceProblem<'a> {
         }
         let areas = &self.basis.areas;
         let blocks = in_threads(&layout.junctions, self.threads, |jn| {
-            let tied = jn.tie(rel, ramp, |p| areas[p]);
+            let tied = jn.tie_held(rel, ramp, held, |p| areas[p]);
             // the slipping pairs' springs and forces on the free directions
             let kz = tied.z.transpose() * &tied.k * &tied.z;
             let at_r0 = &tied.f + &tied.k * &tied.r0;
@@ -420,7 +425,15 @@ impl<'a> InterfaceProblem<'a> {
             }
         }
         let t = std::time::Instant::now();
-        let mut freedom = self.freedom(rel, lambda[0]);
+        let held = match self.states.lock() {
+            Ok(mut last) => {
+                let held = *last == states;
+                last.clone_from(&states);
+                held
+            }
+            Err(_) => false,
+        };
+        let mut freedom = self.freedom(rel, lambda[0], held);
         self.add_around(|a| a.relations += t.elapsed().as_secs_f64());
         let mut water_forces = Vec::new();
         if let Some(water) = &self.water {

@@ -37,6 +37,8 @@ pub(super) struct Tangent {
     pub rows: Vec<Row>,
     pub j: DMatrix<f64>,
     pub offset: DVector<f64>,
+    /// The least-norm share's ([`Tangent::plain`]).
+    pub plain: bool,
 }
 
 impl Tangent {
@@ -44,7 +46,7 @@ impl Tangent {
     pub(super) fn plain(split: &Split) -> Tangent {
         let n_r = split.pinv.ncols();
         let j = DMatrix::<f64>::from_fn(split.rows.len(), n_r, |i, c| split.d[i] * split.pinv[(i, c)]);
-        Tangent { rows: split.rows.clone(), j, offset: DVector::zeros(split.rows.len()) }
+        Tangent { rows: split.rows.clone(), j, offset: DVector::zeros(split.rows.len()), plain: true }
     }
 
     /// The share's derivative at `g`, where `split` shared it as `lambda`
@@ -73,6 +75,6 @@ impl Tangent {
         let inner = &split.pinv - &split.null * gp * bm;
         let j = DMatrix::<f64>::from_fn(split.rows.len(), n_r, |i, c| split.d[i] * inner[(i, c)]);
         let offset = lambda - &j * g;
-        Some(Tangent { rows: split.rows.clone(), j, offset })
+        Some(Tangent { rows: split.rows.clone(), j, offset, plain: false })
     }
 }
