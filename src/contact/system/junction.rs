@@ -415,13 +415,17 @@ impl Junction {
     }
 
     /// The junction under the relations `rel` (of every model pair) at
-    /// `ramp`; `area` gives each pair's area.
+    /// `ramp`, every state held; `area` gives each pair's area. The unit
+    /// tests' entry: a solve calls [`Junction::tie_held`].
+    #[cfg(test)]
     pub fn tie(&self, rel: &[Relation], ramp: f64, area: impl Fn(usize) -> f64) -> Tied {
         self.tie_held(rel, ramp, true, area)
     }
 
-    /// [`Junction::tie`], `held`: whether every pair of the interface has
-    /// the state it had in the last solve. A least-norm share's tangent is
+    /// The junction under the relations `rel` (of every model pair) at
+    /// `ramp` (`area` gives each pair's area), `held`: whether every pair
+    /// of the interface has the state it had in the last solve. A
+    /// least-norm share's tangent is
     /// taken only then: while states change elsewhere, a way of solving for
     /// the pressures that changes with the loops' shares changed the path
     /// of the state search (blocks3d_linear's step 1: 30 iterations instead
