@@ -140,8 +140,9 @@ pub struct InitialStage {
     pub strength_ramp: Vec<f64>,
     /// The factor of every load case in the stage.
     pub case_factors: Vec<f64>,
-    /// Its displacements (every node), and the largest of them (length)
-    /// with its model node.
+    /// Its displacements (every node; zero where it did not converge: its
+    /// last iterate is then the run's one step, step 0), and the largest
+    /// of them (length) with its model node.
     pub u: Vec<f64>,
     pub largest: f64,
     pub largest_at: usize,

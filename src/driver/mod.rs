@@ -280,7 +280,8 @@ fn ended(run: &Run, results: Option<PathBuf>, failed: Option<Error>) -> Option<E
 /// its results were written.
 fn not_converged(run: &Run, results: Option<PathBuf>) -> Option<ContactError> {
     let c = run.contact().filter(|c| !c.summary.converged)?;
-    let step = (run.scene.solver.load_steps > 1).then(|| run.last().step);
+    // (step 0: the initial stage, named whatever the number of load steps)
+    let step = (run.scene.solver.load_steps > 1 || run.last().step == 0).then(|| run.last().step);
     Some(ContactError::NotConverged {
         step,
         iterations: c.summary.iterations,

@@ -105,7 +105,13 @@ pub(super) fn run(this: &Step, parts: &Parts, opts: &RunOptions, ranks: &Ranks) 
     let mut out = LoadSteps::default();
     let mut history = History::new(model.pairs.len());
     let bytes_before = ranks.bytes_sent();
-    out.stage = stage(this, parts, opts, ranks, &mut history, &mut out)?;
+    let (stage, failed) = stage(this, parts, opts, ranks, (need_stress, &mut history), &mut out)?;
+    out.stage = stage;
+    if failed {
+        // its last iterate is the run's one step: no load step starts from it
+        out.history = history;
+        return Ok(out);
+    }
     let start = model.stage_factors().unwrap_or_else(|| vec![0.0; model.cases.len()]);
     for step in 1..=n_steps {
         let lambda: Vec<f64> = model.cases.iter().map(|c| c[step - 1]).collect();
@@ -119,12 +125,7 @@ pub(super) fn run(this: &Step, parts: &Parts, opts: &RunOptions, ranks: &Ranks) 
         // record the step; one that did not converge ends the run
         let stop = contact.as_ref().is_some_and(|c| !c.summary.converged);
         if let Some(mut u) = u {
-            let stresses = if need_stress {
-                out.counters.stress_recoveries += 1;
-                recover::nodal_stresses(model, &u)
-            } else {
-                Vec::new()
-            };
+            let stresses = stresses(model, &u, need_stress, &mut out);
             reset(&mut u, out.stage.as_ref());
             out.steps.push(StepResult {
                 step,
@@ -152,18 +153,21 @@ pub(super) fn run(this: &Step, parts: &Parts, opts: &RunOptions, ranks: &Ranks) 
 /// The initial equilibrium stage, when the model has one: its contact
 /// iteration from nothing to [`Model::stage_factors`] in `history`, and its
 /// displacements (recovered whatever the output needs: every step's are
-/// taken off by them). One that does not converge ends the run: no load
-/// step can start from it.
+/// taken off by them); and whether it failed. One that does not converge
+/// ends the run, as a load step does: no load step can start from it, and
+/// its last iterate is written as the run's one step (step 0, its own
+/// displacements, nothing taken off), for report.md and contact.csv to
+/// say where it did not settle.
 fn stage(
     this: &Step,
     parts: &Parts,
     opts: &RunOptions,
     ranks: &Ranks,
-    history: &mut History,
+    (need_stress, history): (bool, &mut History),
     out: &mut LoadSteps,
-) -> Result<Option<InitialStage>> {
+) -> Result<(Option<InitialStage>, bool)> {
     let model = this.model;
-    let Some(factors) = model.stage_factors() else { return Ok(None) };
+    let Some(factors) = model.stage_factors() else { return Ok((None, false)) };
     progress(opts, "initial equilibrium stage: the in-situ stress with the contacts active");
     let zero = vec![0.0; factors.len()];
     let solved = solve(this, parts, ranks, (0, &zero, &factors), true, history, out);
@@ -172,28 +176,36 @@ fn stage(
         .as_ref()
         .map(|c| c.summary.clone())
         .unwrap_or_else(|| crate::contact::Summary { converged: true, ..Default::default() });
-    if ranks.stop(!summary.converged) {
+    let failed = ranks.stop(!summary.converged);
+    if failed {
         insitu_told(this, ranks);
-        return Err(ContactError::NotConverged {
-            step: Some(0),
-            iterations: summary.iterations,
-            cycled: summary.cycled,
-            law_broken: summary.law_broken,
-            cuts: summary.cuts,
-            rule: this.scene.solver.rule,
-            results: None,
-        }
-        .into());
     }
-    let Some(u) = u else { return Ok(None) };
+    let Some(u) = u else { return Ok((None, failed)) };
     let states = contact.as_ref().map_or([0; 3], |c| state_counts(&c.states));
-    Ok(Some(initial_stage(model, &summary, states, factors, u)))
+    let mut staged = initial_stage(model, &summary, states, factors.clone(), u);
+    if failed {
+        let u = std::mem::take(&mut staged.u);
+        staged.u = vec![0.0; u.len()];
+        let stresses = stresses(model, &u, need_stress, out);
+        out.steps.push(StepResult { step: 0, load_factor: 0.0, case_factors: factors, u, stresses, contact });
+    }
+    Ok((Some(staged), failed))
+}
+
+/// The nodal stresses of the displacements `u` when the output wants
+/// them (counted in `out`), else none.
+fn stresses(model: &Model, u: &[f64], need_stress: bool, out: &mut LoadSteps) -> Vec<crate::recover::BodyStress> {
+    if !need_stress {
+        return Vec::new();
+    }
+    out.counters.stress_recoveries += 1;
+    recover::nodal_stresses(model, u)
 }
 
 /// The in-situ warnings on stderr (rank 0) when the stage fails: a run
 /// that succeeds says them with its results, one that fails in the stage
-/// writes none, and they name the joint sets the in-situ stress puts
-/// beyond their strength, which is why a stage fails.
+/// with its error (they name the joint sets the in-situ stress puts
+/// beyond their strength, which is why a stage fails).
 fn insitu_told(this: &Step, ranks: &Ranks) {
     use std::io::Write;
     if ranks.rank() != 0 {

@@ -106,7 +106,13 @@ fn contact_rows(s: &mut String, run: &Run) {
             }
         );
         let _ = writeln!(s, "| states stick / slip / open | {} / {} / {} |", k[2], k[1], k[0]);
-        if let Some(i) = &run.initial_stage {
+        if let Some(i) = run.initial_stage.as_ref().filter(|i| !i.converged) {
+            let _ = writeln!(
+                s,
+                "| initial equilibrium stage | NOT converged after {} iterations: its last iterate is the step reported (step 0), its own displacements, largest {:.3e} |",
+                i.iterations, i.largest
+            );
+        } else if let Some(i) = &run.initial_stage {
             let ramp = match i.strength_ramp.as_slice() {
                 [] => String::new(),
                 r => format!(
@@ -159,7 +165,9 @@ fn iteration_notes(s: &mut String, run: &Run) {
         if it.clusters_solved > 0 {
             let _ = writeln!(s, "\nThe state iteration stalled or cycled on a few pairs {} time(s) and the cluster fallback ended it: the pressures of a stall's slipping pairs solved for (multisecant steps), or the cluster's stick / slip / open sets tried, fewest changes from the load step's start first, until one met the law at every pair.", it.clusters_solved);
         }
-        if it.cuts > 0 {
+        if run.last().step == 0 && (it.cuts > 0 || !it.strengths.is_empty()) {
+            let _ = writeln!(s, "\n{}", stage_cut_sentence(it));
+        } else if it.cuts > 0 {
             let _ = writeln!(s, "\n{}", cut_sentence(it));
         }
         *s += &super::unsettled::report(&run.model, c);
@@ -294,6 +302,28 @@ fn cut_sentence(it: &crate::contact::Summary) -> String {
     }
     s.push('.');
     s
+}
+
+/// What cutting did in an initial stage that did not converge: its load
+/// halved, or where the in-situ stress was beyond the joints' strength the
+/// pieces of the strength ramp (`it.strengths`: the factors reached).
+fn stage_cut_sentence(it: &crate::contact::Summary) -> String {
+    match it.strengths.as_slice() {
+        [] => format!(
+            "The initial stage did not converge and was cut {} time(s) ([solver] max_cuts); its pieces converged up to {} of its load.",
+            it.cuts,
+            match it.pieces.as_slice() {
+                [] => "none".to_string(),
+                p => p.iter().map(|&t| factor(Some(t))).collect::<Vec<_>>().join(", "),
+            }
+        ),
+        r => format!(
+            "The initial stage did not converge: the joints' strength, brought down from {:.4} times the scene's, converged down to {:.4} times it; the next piece did not converge (halved {} time(s), [solver] max_cuts).",
+            r[0],
+            r[r.len() - 1],
+            it.cuts
+        ),
+    }
 }
 
 /// A load factor as the user would write it: up to 4 decimals, no trailing
