@@ -146,6 +146,68 @@ fn a_block_that_holds_in_the_stage_and_slides_under_the_load_has_its_coulomb_fac
     assert!(stage["largest_displacement"].as_f64().expect("largest") > 1e-6, "{stage}");
 }
 
+/// The in-situ shear beyond the joint's strength, the block held in the
+/// stage by its weight: τ = 0.05 mobilises the joint m = τ / (c + f σ) =
+/// 1.208 in situ, yet the stage holds at F = 1, (c A + (σ A + W) f) /
+/// (τ A) = 1.021 (the joint keeps its cohesion where it slips: with the
+/// default residual cohesion 0 the stage fails at F = 1). Step 1 then
+/// slides the block at F = (c A + (q A + W) f) / p = 0.923 > 1 / m, so
+/// every trial of the search below 1 runs a stage the in-situ stress puts
+/// beyond the trial's strength (m F > 1: c and f are both divided by F).
+/// Each solves it as the run does, through the strength ramp from 1.01 m F
+/// times the trial's strength (`contact/ramp.rs`); before, the trials ran
+/// it at once, the way that left the jointed tunnel of
+/// tests/initial_stage.rs unconverged, and the stage written with the
+/// steps was replayed that way too (no `strength_ramp`).
+#[test]
+fn every_trial_whose_stage_is_beyond_its_strength_runs_it_through_the_ramp() {
+    let (tau, p, q) = (0.05, 0.15, 0.15);
+    let m = tau / (COHESION + FRICTION * SIGMA);
+    let stage = (COHESION * AREA + (SIGMA * AREA + WEIGHT) * FRICTION) / (tau * AREA);
+    let exact = (COHESION * AREA + (q * AREA + WEIGHT) * FRICTION) / p;
+    assert!(m > 1.2 && stage > 1.0, "beyond in situ ({m}), the stage holds ({stage})");
+    assert!(exact < 0.95 && m * exact > 1.1, "step 1 fails at F = {exact}, its trials beyond in situ");
+    let loads = format!("[[loads]]\ngroup = \"back\"\npressure = {p}\n[[loads]]\ngroup = \"lid\"\npressure = {q}\n");
+    let keeps = format!("cohesion = {COHESION}\nresidual_cohesion = {COHESION}\n");
+    let toml = scene(tau, &loads).replacen(&format!("cohesion = {COHESION}\n"), &keeps, 1);
+    assert!(toml.contains("residual_cohesion"), "the joint keeps its cohesion");
+    let case = Case::new("stage-safety-ramp");
+    case.write("block.geo", GEO);
+    case.write("block.toml", &toml);
+    let o = case.cli(&["solve", "block.toml", "--out", "r"]);
+    assert!(!o.status.success(), "unsafe as given");
+    let s = json(&case.dir.join("r/summary.json"));
+    let safety = &s["safety"];
+    let (holds, fails) = (safety["factor"].as_f64().expect("factor"), safety["fails_at"].as_f64().expect("fails_at"));
+    eprintln!("step 1 slides after a stage beyond in situ: F in [{holds}, {fails}], (c A + (q A + W) f) / p = {exact}");
+    assert!(holds <= exact && exact <= fails, "F in [{holds}, {fails}], (c A + (q A + W) f) / p = {exact}");
+    // every trial's stage came down from 1 % above its own mobilisation,
+    // each trial's progress line says (F, from where)
+    let err = String::from_utf8_lossy(&o.stderr);
+    let ramps: Vec<(f64, f64)> = (err.lines())
+        .filter_map(|l| {
+            let (f, rest) = l.split_once("safety: F = ")?.1.split_once(": the initial stage in ")?;
+            let top = rest.split_once("brought down from ")?.1.split(' ').next()?;
+            Some((f.parse().ok()?, top.parse().ok()?))
+        })
+        .collect();
+    let trials = safety["trials"].as_array().expect("trials");
+    assert!(trials.len() >= 5, "{} trials", trials.len());
+    for t in trials {
+        let f = t["factor"].as_f64().expect("factor");
+        let Some(&(_, top)) = ramps.iter().find(|r| (r.0 - f).abs() < 1e-4) else {
+            panic!("no ramp at F = {f}: {err}")
+        };
+        assert!((top / (1.01 * m * f) - 1.0).abs() < 1e-3, "F = {f}: from {top}, 1.01 m F = {}", 1.01 * m * f);
+    }
+    // the stage written with the steps is the run's: through the ramp too
+    let ramp: Vec<f64> = (s["initial_stage"]["strength_ramp"].as_array().expect("strength_ramp").iter())
+        .filter_map(|v| v.as_f64())
+        .collect();
+    assert!(ramp.len() >= 3 && (ramp[0] / (1.01 * m) - 1.0).abs() < 1e-9, "the stage's ramp: {ramp:?}");
+    assert_eq!(ramp.last(), Some(&1.0), "{ramp:?}");
+}
+
 /// A stage that fails writes no results, so the in-situ warning that says
 /// why (the set the in-situ stress puts beyond its strength, and how much
 /// of it) goes on stderr with the error. The stress is uniform, so every

@@ -306,11 +306,7 @@ impl Step<'_> {
         let solver = &self.scene.solver;
         let (rule, most, cuts) = (solver.rule, solver.max_iterations, self.cuts());
         // the initial stage (step 0) brings down a strength the in-situ stress exceeds
-        let mobilised = if step == 0 && rule == StateRule::Robust {
-            super::warnings::insitu_mobilised(self.scene, self.model)
-        } else {
-            0.0
-        };
+        let mobilised = if step == 0 { self.stage_mobilised(&self.laws) } else { 0.0 };
         let outcome =
             contact::ramp::iterate_stage(problem, &self.laws, rule, (from, lambda), history, most, cuts, mobilised)
                 .map_err(|f| ContactError::failed(self.model, &self.plan.parts, self.scene, step, f))?;
@@ -318,6 +314,37 @@ impl Step<'_> {
         out.counters.interface_solves += outcome.summary.iterations;
         let (contact, d_c) = self.contact_run(problem, outcome, lambda);
         Ok(Answer { d_c, contact: Some(contact) })
+    }
+
+    /// Where the initial stage's strength ramp starts with the pairs
+    /// carrying `laws` ([`contact::ramp::iterate_stage`]): the largest
+    /// in-situ mobilisation beyond their strength, or 0 (none beyond, or
+    /// the paper's rule: the stage solved as a load step is). The one
+    /// place that decides it, for the run's stage and a safety trial's.
+    pub fn stage_mobilised(&self, laws: &[PairLaw]) -> f64 {
+        if self.scene.solver.rule == StateRule::Robust {
+            super::warnings::insitu_mobilised(self.scene, self.model, laws)
+        } else {
+            0.0
+        }
+    }
+
+    /// The initial stage on rank 0 with the pairs carrying `laws`, from
+    /// nothing (`h` new) to the load factors `to`, as the run solves it:
+    /// through the strength ramp where the in-situ stress puts the joints
+    /// beyond `laws` ([`Step::stage_mobilised`]), each piece halved down
+    /// to [`Step::cuts`] times, with at most `max_iterations` per piece.
+    pub fn iterate_stage(
+        &self,
+        laws: &[PairLaw],
+        to: &[f64],
+        h: &mut History,
+        max_iterations: usize,
+    ) -> Result<Outcome, contact::Failed> {
+        let problem = self.problem.expect("rank 0 has the interface");
+        let (zero, rule, cuts) = (vec![0.0; to.len()], self.scene.solver.rule, self.cuts());
+        let mobilised = self.stage_mobilised(laws);
+        contact::ramp::iterate_stage(problem, laws, rule, (&zero, to), h, max_iterations, cuts, mobilised)
     }
 
     /// How many times a step may be halved where it does not converge

@@ -2,7 +2,7 @@
 //! legal but a user may not mean, and in-situ stresses beyond strength,
 //! each paragraph with the scene file in front.
 
-use crate::contact::SlipLaw;
+use crate::contact::{PairLaw, SlipLaw};
 use crate::model::insitu::JointStrength;
 use crate::model::Model;
 use crate::scene::Scene;
@@ -38,10 +38,21 @@ pub fn insitu_warnings(scene: &Scene, model: &Model) -> Vec<String> {
 }
 
 /// The largest mobilisation `|τ| / (c + f σn')` the in-situ stress puts
-/// on a pair beyond its strength in shear (0 where none is): what the
-/// initial stage's strength ramp starts from ([`crate::contact::ramp`]).
-pub fn insitu_mobilised(scene: &Scene, model: &Model) -> f64 {
-    let beyond = crate::model::insitu::beyond(model, &joint_strengths(scene));
+/// on a pair beyond its strength in shear (0 where none is), the pairs
+/// carrying `laws` (the scene's, or a safety trial's: its strength
+/// divided by F mobilises the joints F times as much where both c and f
+/// are divided, and otherwise as the laws say): what the initial stage's
+/// strength ramp starts from ([`crate::contact::ramp`]). The pairs of one
+/// contact group share its law (a trial reduces groups, not pairs).
+pub fn insitu_mobilised(scene: &Scene, model: &Model, laws: &[PairLaw]) -> f64 {
+    let mut strengths = joint_strengths(scene);
+    for (pair, law) in model.pairs.iter().zip(laws) {
+        let s = &mut strengths[pair.contact];
+        s.friction = law.strength.friction;
+        s.cohesion = law.strength.cohesion;
+        s.tensile_strength = law.strength.tensile_strength;
+    }
+    let beyond = crate::model::insitu::beyond(model, &strengths);
     beyond.iter().filter(|e| e.shear > 0).map(|e| e.mobilised).fold(0.0, f64::max)
 }
 

@@ -16,13 +16,17 @@
 //! reduces the strength of every stage. F is then one factor for the
 //! whole path, and a stage that the in-situ stress already fails at full
 //! strength (a block its joints cannot hold) has an F below 1 like any
-//! load step; a stage kept at full strength would have none. The stage is
-//! replayed with the scene's laws too: the load steps kept start from its
-//! state, and its displacements are taken off theirs as in the run. A
-//! stage that fails at F = 1 leaves no load step to write: the run ends
-//! with the search's error alone. The search upward from a path that
-//! holds at F = 1 starts from where the stage and the steps left it, and
-//! reduces the strength from there.
+//! load step; a stage kept at full strength would have none. Each trial
+//! solves the stage as the run does ([`Step::iterate_stage`]): where the
+//! in-situ stress puts the joints beyond the trial's strength (F times
+//! the scene's mobilisation where c and f are both divided), through the
+//! strength ramp from there ([`crate::contact::ramp`]). The stage is
+//! replayed with the scene's laws too, as the run solved it: the load
+//! steps kept start from its state, and its displacements are taken off
+//! theirs as in the run. A stage that fails at F = 1 leaves no load step
+//! to write: the run ends with the search's error alone. The search
+//! upward from a path that holds at F = 1 starts from where the stage and
+//! the steps left it, and reduces the strength from there.
 //!
 //! With peak strengths (the search's default) the load path may hold at
 //! F = 1 although the load steps, which lose cohesion where pairs crack,
@@ -31,7 +35,6 @@
 
 use super::recovery::{self, recovered};
 use super::trials::{kind, trials, undecided, Held, Trials};
-use crate::contact::cutting::iterate_cutting;
 use crate::contact::safety::{self as reduction, Verdict};
 use crate::contact::{self, History, Outcome};
 use crate::driver::condense::Parts;
@@ -233,14 +236,12 @@ struct Replayed {
 /// the stage did not hold).
 fn replay(step: &Step) -> Replay {
     let (model, solver) = (step.model, &step.scene.solver);
-    let problem = step.problem.expect("a search has an interface");
     let mut h = History::new(model.pairs.len());
     let stage = match model.stage_factors() {
         None => None,
         Some(factors) => {
-            let zero = vec![0.0; factors.len()];
-            let (rule, most) = (solver.rule, solver.max_iterations);
-            match iterate_cutting(problem, &step.laws, rule, &zero, &factors, &mut h, most, step.cuts()) {
+            // as the run solved it (through the strength ramp where it needs one)
+            match step.iterate_stage(&step.laws, &factors, &mut h, solver.max_iterations) {
                 Ok(o) if o.summary.converged => Some((factors, o)),
                 _ => return Replay { stage: None, steps: Vec::new() },
             }

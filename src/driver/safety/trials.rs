@@ -159,22 +159,32 @@ impl<'s, 'a> Trials<'s, 'a> {
     /// One trial of the load path at `f` from its start (below 1): the
     /// initial stage when the scene has one, then every load step, each at
     /// `f` (the stage too: see [`super::below`]), a step that does not
-    /// converge retried with more iterations. Holds with where the last
-    /// step ended.
+    /// converge retried with more iterations. The stage is solved as the
+    /// run solves it ([`Step::iterate_stage`]): where the in-situ stress
+    /// puts the joints beyond the trial's strength, through the strength
+    /// ramp from there. Holds with where the last step ended.
     pub fn path(&mut self, f: f64) -> Verdict<Held, Failure> {
         let t = Instant::now();
         let mut h = History::new(self.step.model.pairs.len());
         let laws = self.varied.laws(&self.laws, f);
         let model = self.step.model;
-        let stage = model.stage_factors().map(|s| ("the initial stage".to_string(), s));
+        let stage = model.stage_factors().map(|s| ("the initial stage".to_string(), true, s));
         let steps = (0..self.step.scene.solver.load_steps)
-            .map(|k| (format!("load step {}", k + 1), model.cases.iter().map(|c| c[k]).collect()));
+            .map(|k| (format!("load step {}", k + 1), false, model.cases.iter().map(|c| c[k]).collect()));
         let mut last = None;
         let mut lambda = Vec::new();
-        for (name, scene_lambda) in stage.into_iter().chain(steps) {
+        for (name, is_stage, scene_lambda) in stage.into_iter().chain(steps) {
             lambda = self.varied.lambda(&scene_lambda, f);
-            match self.path_step(f, &name, &laws, &lambda, &mut h) {
-                Ok(o) => last = Some(o),
+            match self.path_step(f, (&name, is_stage), &laws, &lambda, &mut h) {
+                Ok(o) => {
+                    if let Some(top) = o.summary.strengths.first().filter(|_| is_stage) {
+                        self.say(&format!(
+                            "F = {f:.4}: the initial stage in {} contact iterations, the strength brought down from {top:.4} times the trial's (the in-situ stress is beyond it)",
+                            o.summary.iterations
+                        ));
+                    }
+                    last = Some(o)
+                }
                 Err(e) => {
                     self.log(f, 0.0, t, Err(&e), false);
                     return verdict_of(e);
@@ -186,24 +196,47 @@ impl<'s, 'a> Trials<'s, 'a> {
         Verdict::Holds(Held { factor: f, lambda, history: h, outcome: Some(outcome) })
     }
 
-    /// One step `name` of the load path at `f` from `h`, retried with more
-    /// iterations when it does not converge.
+    /// One step `name` of the load path at `f` from `h` (`stage`: the
+    /// initial stage, from nothing), retried with more iterations when it
+    /// does not converge (the stage again from nothing, each piece of its
+    /// ramp with more).
     fn path_step(
         &mut self,
         f: f64,
-        name: &str,
+        (name, stage): (&str, bool),
         laws: &[PairLaw],
         lambda: &[f64],
         h: &mut History,
     ) -> Result<Outcome, Failure> {
         let most = self.step.scene.solver.max_iterations;
-        let result = self.iterate(laws, lambda, h, most);
+        let start = stage.then(|| h.clone());
+        let result = self.path_iterate(stage, laws, lambda, h, most);
         if !matches!(&result, Err(e) if matches!(e.kind, FailureKind::NotConverged { .. })) {
             return result;
         }
+        if let Some(start) = start {
+            *h = start;
+        }
         let max = most * RETRY_ITERATIONS;
         self.say(&format!("F = {f:.4}: {name} did not converge: retrying it with up to {max} contact iterations"));
-        self.iterate(laws, lambda, h, max)
+        self.path_iterate(stage, laws, lambda, h, max)
+    }
+
+    /// The initial stage (`stage`) as the run solves it, or a load step's
+    /// contact iteration, under `laws` and `lambda` from `h`, judged.
+    fn path_iterate(
+        &mut self,
+        stage: bool,
+        laws: &[PairLaw],
+        lambda: &[f64],
+        h: &mut History,
+        max: usize,
+    ) -> Result<Outcome, Failure> {
+        if !stage {
+            return self.iterate(laws, lambda, h, max);
+        }
+        let r = self.step.iterate_stage(laws, lambda, h, max);
+        self.judge(r, lambda)
     }
 
     /// The contact iteration under `laws` and `lambda` from `h`, judged.
