@@ -229,3 +229,46 @@ fn a_stage_that_fails_says_which_set_the_in_situ_stress_is_beyond() {
     assert_eq!(counts[1..4], ["of", "the", counts[0]], "every pair is beyond: {warning}");
     assert!(warning.contains("pairs of contact \"joint\" beyond its strength"), "{warning}");
 }
+
+/// geo/tunnel_joints.toml with an initial stage, k0 = 0.1 and its joints
+/// 2.3 times weaker: the in-situ stress mobilises joints_a 2.68 times its
+/// strength, so the run's stage comes down a strength ramp of 35 pieces;
+/// the excavation (step 1) then frees a block at the base with the
+/// residual strength, and the search below 1 runs the stage at F = 1
+/// again with peak strength. Before, the trials and the replay of the
+/// stage before the steps written solved it at once: the replay did not
+/// converge, so no result was written (and the trial at F = 1 reached a
+/// stage of its own, not the run's: F in [1.0828, 1.0836]); now both
+/// solve it as the run does (343 iterations, 35 pieces from 2.708), the
+/// load path holds at F = 1 with peak strength and F is sought upward
+/// (F in [1.0836, 1.0844]), and the stage, the failing step's last
+/// iterate and the state at F are written. About 20 s.
+#[test]
+fn the_stage_replayed_for_the_results_is_the_runs_through_the_ramp() {
+    let case = Case::new("stage-safety-tunnel");
+    case.copy("geo/tunnel_joints.geo");
+    let weak = |f: f64, c: f64| format!("friction = {:.6}\ncohesion = {:.6}\n", f / 2.3, c / 2.3);
+    let toml = common::scenes::edited(
+        "geo/tunnel_joints.toml",
+        &[
+            ("k0 = 0.25\nsurface", "k0 = 0.1\nsurface"),
+            ("friction = 0.4\n", &format!("friction = {:.6}\n", 0.4 / 2.3)),
+            ("friction = 0.85\ncohesion = 0.1\n", &weak(0.85, 0.1)),
+            ("friction = 0.85\ncohesion = 0.1\n", &weak(0.85, 0.1)),
+        ],
+    ) + "\n[solver]\ninitial_stage = true\n[safety]\n";
+    case.write("tunnel.toml", &toml);
+    let o = case.cli(&["solve", "tunnel.toml", "--out", "r", "--quiet"]);
+    assert!(!o.status.success(), "the excavation frees a block at F = 1");
+    let summary = case.dir.join("r/summary.json");
+    assert!(summary.exists(), "no results written: {}", String::from_utf8_lossy(&o.stderr));
+    let s = json(&summary);
+    let stage = &s["initial_stage"];
+    assert_eq!(stage["converged"], true, "{stage}");
+    let ramp: Vec<f64> =
+        stage["strength_ramp"].as_array().expect("strength_ramp").iter().filter_map(|v| v.as_f64()).collect();
+    assert!(ramp.len() > 20 && (2.6..2.8).contains(&ramp[0]), "the stage's ramp: {ramp:?}");
+    assert_eq!(ramp.last(), Some(&1.0), "{ramp:?}");
+    let factor = s["safety"]["factor"].as_f64().expect("factor");
+    assert!(factor >= 1.0, "the load path holds at F = 1 with peak strength: F = {factor}");
+}
