@@ -415,11 +415,7 @@ fn the_jointed_tunnel_on_rollers_stays_put_in_the_stage_too() {
 fn at_k0_a_quarter_the_jointed_tunnel_finds_the_stage_where_the_sets_cross() {
     let case = Case::new("stage-tunnel-k0-quarter");
     case.write("tunnel.geo", TUNNEL_GEO);
-    let scene = TUNNEL
-        .replacen("k0 = 0.5", "k0 = 0.25", 1)
-        .replacen("group = \"sides\"\nfix = [\"x\", \"y\", \"z\"]", "group = \"sides\"\nfix = [\"x\"]", 1)
-        .replacen("group = \"bottom\"\nfix = [\"x\", \"y\", \"z\"]", "group = \"bottom\"\nfix = [\"z\"]", 1)
-        + "max_iterations = 40\nmax_cuts = 0\n";
+    let scene = quarter_on_rollers(TUNNEL) + "max_iterations = 40\nmax_cuts = 0\n";
     assert!(scene.contains("k0 = 0.25") && scene.contains("fix = [\"z\"]"), "the scene is edited");
     // (step 1 may or may not converge in 40: the stage's answer is written either way)
     let run = case.run(&case.write("tunnel.toml", &scene));
@@ -445,6 +441,14 @@ fn at_k0_a_quarter_the_jointed_tunnel_finds_the_stage_where_the_sets_cross() {
     assert!(report.contains("strength brought down from 1.07"), "report.md says the ramp");
 }
 
+/// `tunnel` at k0 = 0.25, its sides and base on rollers (x and z held).
+fn quarter_on_rollers(tunnel: &str) -> String {
+    tunnel
+        .replacen("k0 = 0.5", "k0 = 0.25", 1)
+        .replacen("group = \"sides\"\nfix = [\"x\", \"y\", \"z\"]", "group = \"sides\"\nfix = [\"x\"]", 1)
+        .replacen("group = \"bottom\"\nfix = [\"x\", \"y\", \"z\"]", "group = \"bottom\"\nfix = [\"z\"]", 1)
+}
+
 /// The same tunnel at k0 = 0.25 with its top the ground surface (no
 /// load on it, the rock 8-24 m deep): its stage does not converge (in 60
 /// iterations and 3 cuts neither: docs/convergence.md); here it is given
@@ -457,13 +461,12 @@ fn at_k0_a_quarter_the_jointed_tunnel_finds_the_stage_where_the_sets_cross() {
 fn a_stage_that_does_not_converge_writes_its_last_iterate_and_where() {
     let case = Case::new("stage-tunnel-unsettled");
     case.write("tunnel.geo", TUNNEL_GEO);
-    let scene = TUNNEL
-        .replacen("k0 = 0.5", "k0 = 0.25", 1)
-        .replacen("surface = 50.0", "surface = 8.0", 1)
-        .replacen("[[loads]]\ngroup = \"top\"\npressure = 1.112454\n", "", 1)
-        .replacen("group = \"sides\"\nfix = [\"x\", \"y\", \"z\"]", "group = \"sides\"\nfix = [\"x\"]", 1)
-        .replacen("group = \"bottom\"\nfix = [\"x\", \"y\", \"z\"]", "group = \"bottom\"\nfix = [\"z\"]", 1)
-        + "max_iterations = 10\nmax_cuts = 0\nload_steps = 2\n";
+    let shallow = TUNNEL.replacen("surface = 50.0", "surface = 8.0", 1).replacen(
+        "[[loads]]\ngroup = \"top\"\npressure = 1.112454\n",
+        "",
+        1,
+    );
+    let scene = quarter_on_rollers(&shallow) + "max_iterations = 10\nmax_cuts = 0\nload_steps = 2\n";
     assert!(scene.contains("surface = 8.0") && !scene.contains("[[loads]]") && scene.contains("fix = [\"z\"]"));
     case.write("tunnel.toml", &scene);
     let o = case.cli(&["solve", "tunnel.toml", "--out", "r", "--quiet"]);
