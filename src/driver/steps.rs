@@ -306,10 +306,13 @@ impl Step<'_> {
         let solver = &self.scene.solver;
         let (rule, most, cuts) = (solver.rule, solver.max_iterations, self.cuts());
         // the initial stage (step 0) brings down a strength the in-situ stress exceeds
-        let mobilised = if step == 0 { self.stage_mobilised(&self.laws) } else { 0.0 };
-        let outcome =
+        let outcome = if step == 0 {
+            let mobilised = self.stage_mobilised(&self.laws);
             contact::ramp::iterate_stage(problem, &self.laws, rule, (from, lambda), history, most, cuts, mobilised)
-                .map_err(|f| ContactError::failed(self.model, &self.plan.parts, self.scene, step, f))?;
+        } else {
+            self.iterate_step(&self.laws, (from, lambda), history, most)
+        };
+        let outcome = outcome.map_err(|f| ContactError::failed(self.model, &self.plan.parts, self.scene, step, f))?;
         out.residual_interface = out.residual_interface.max(outcome.solution.residual);
         out.counters.interface_solves += outcome.summary.iterations;
         let (contact, d_c) = self.contact_run(problem, outcome, lambda);
@@ -345,6 +348,24 @@ impl Step<'_> {
         let (zero, rule, cuts) = (vec![0.0; to.len()], self.scene.solver.rule, self.cuts());
         let mobilised = self.stage_mobilised(laws);
         contact::ramp::iterate_stage(problem, laws, rule, (&zero, to), h, max_iterations, cuts, mobilised)
+    }
+
+    /// A load step on rank 0 with the pairs carrying `laws`, from the load
+    /// factors `from` (where `h` ended) to `to`, as the run solves it: cut
+    /// in halves down to [`Step::cuts`] times where it does not converge
+    /// ([`contact::cutting`]), with at most `max_iterations` per piece.
+    /// The one place that solves a load step, for the run's and a safety
+    /// trial's.
+    pub fn iterate_step(
+        &self,
+        laws: &[PairLaw],
+        (from, to): (&[f64], &[f64]),
+        h: &mut History,
+        max_iterations: usize,
+    ) -> Result<Outcome, contact::Failed> {
+        let problem = self.problem.expect("rank 0 has the interface");
+        let (rule, cuts) = (self.scene.solver.rule, self.cuts());
+        contact::cutting::iterate_cutting(problem, laws, rule, from, to, h, max_iterations, cuts)
     }
 
     /// How many times a step may be halved where it does not converge

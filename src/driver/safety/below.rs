@@ -250,17 +250,24 @@ fn replay(step: &Step) -> Replay {
     Replay { stage, steps: replay_steps(step, h) }
 }
 
-/// The scene's load steps again with its own laws from `h`: the last that
-/// held, and the failing step's last iterate when it had one.
+/// The scene's load steps again with its own laws from `h`, each cut as
+/// the run cut it ([`Step::iterate_step`]): the last that held, and the
+/// failing step's last iterate when it had one (the step run again uncut,
+/// stopped one iteration before the solve that found no equilibrium).
 fn replay_steps(step: &Step, mut h: History) -> Vec<Replayed> {
     let (model, solver) = (step.model, &step.scene.solver);
     let problem = step.problem.expect("a search has an interface");
     let mut held: Option<Replayed> = None;
+    // each step from where the last ended (the stage, or nothing)
+    let mut from = model.stage_factors().unwrap_or_else(|| vec![0.0; model.cases.len()]);
     for k in 1..=solver.load_steps {
         let lambda: Vec<f64> = model.cases.iter().map(|c| c[k - 1]).collect();
         let before = h.clone();
-        match contact::iterate(problem, &step.laws, solver.rule, &lambda, &mut h, solver.max_iterations) {
-            Ok(o) if o.summary.converged => held = Some(Replayed { step: k, lambda, outcome: o }),
+        match step.iterate_step(&step.laws, (&from, &lambda), &mut h, solver.max_iterations) {
+            Ok(o) if o.summary.converged => {
+                from.clone_from(&lambda);
+                held = Some(Replayed { step: k, lambda, outcome: o });
+            }
             Ok(o) => {
                 return held.into_iter().chain([Replayed { step: k, lambda, outcome: o }]).collect();
             }

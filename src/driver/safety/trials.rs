@@ -7,7 +7,8 @@
 //! A trial whose iteration does not converge decides nothing yet: it is
 //! retried from the same state in [`RETRY_STEPS`] smaller increments of F,
 //! each with [`RETRY_ITERATIONS`] times `[solver] max_iterations` (below 1:
-//! the load steps again with more iterations). A converged loss of
+//! a step of the load path again from its start with more iterations; each
+//! is solved, and cut, as the run solves it). A converged loss of
 //! equilibrium on the way fails the trial; if a step still does not
 //! converge, the trial stays undecided ([`Verdict::Undecided`]).
 
@@ -159,10 +160,12 @@ impl<'s, 'a> Trials<'s, 'a> {
     /// One trial of the load path at `f` from its start (below 1): the
     /// initial stage when the scene has one, then every load step, each at
     /// `f` (the stage too: see [`super::below`]), a step that does not
-    /// converge retried with more iterations. The stage is solved as the
-    /// run solves it ([`Step::iterate_stage`]): where the in-situ stress
-    /// puts the joints beyond the trial's strength, through the strength
-    /// ramp from there. Holds with where the last step ended.
+    /// converge retried with more iterations. Each is solved as the run
+    /// solves it: the stage ([`Step::iterate_stage`]) where the in-situ
+    /// stress puts the joints beyond the trial's strength through the
+    /// strength ramp from there, a load step ([`Step::iterate_step`]) cut
+    /// in halves where it does not converge. Holds with where the last
+    /// step ended.
     pub fn path(&mut self, f: f64) -> Verdict<Held, Failure> {
         let t = Instant::now();
         let mut h = History::new(self.step.model.pairs.len());
@@ -172,10 +175,11 @@ impl<'s, 'a> Trials<'s, 'a> {
         let steps = (0..self.step.scene.solver.load_steps)
             .map(|k| (format!("load step {}", k + 1), false, model.cases.iter().map(|c| c[k]).collect()));
         let mut last = None;
-        let mut lambda = Vec::new();
+        // each load step from where the last ended (the stage, or nothing)
+        let mut lambda = self.varied.lambda(&model.stage_factors().unwrap_or_else(|| vec![0.0; model.cases.len()]), f);
         for (name, is_stage, scene_lambda) in stage.into_iter().chain(steps) {
-            lambda = self.varied.lambda(&scene_lambda, f);
-            match self.path_step(f, (&name, is_stage), &laws, &lambda, &mut h) {
+            let from = std::mem::replace(&mut lambda, self.varied.lambda(&scene_lambda, f));
+            match self.path_step(f, (&name, is_stage), &laws, (&from, &lambda), &mut h) {
                 Ok(o) => {
                     if let Some(top) = o.summary.strengths.first().filter(|_| is_stage) {
                         self.say(&format!(
@@ -197,45 +201,44 @@ impl<'s, 'a> Trials<'s, 'a> {
     }
 
     /// One step `name` of the load path at `f` from `h` (`stage`: the
-    /// initial stage, from nothing), retried with more iterations when it
-    /// does not converge (the stage again from nothing, each piece of its
-    /// ramp with more).
+    /// initial stage, from nothing), retried from its start with more
+    /// iterations when it does not converge (each piece of the stage's
+    /// ramp, or of the load step's cuts, with more).
     fn path_step(
         &mut self,
         f: f64,
         (name, stage): (&str, bool),
         laws: &[PairLaw],
-        lambda: &[f64],
+        (from, lambda): (&[f64], &[f64]),
         h: &mut History,
     ) -> Result<Outcome, Failure> {
         let most = self.step.scene.solver.max_iterations;
-        let start = stage.then(|| h.clone());
-        let result = self.path_iterate(stage, laws, lambda, h, most);
+        let start = h.clone();
+        let result = self.path_iterate(stage, laws, (from, lambda), h, most);
         if !matches!(&result, Err(e) if matches!(e.kind, FailureKind::NotConverged { .. })) {
             return result;
         }
-        if let Some(start) = start {
-            *h = start;
-        }
+        *h = start;
         let max = most * RETRY_ITERATIONS;
         self.say(&format!("F = {f:.4}: {name} did not converge: retrying it with up to {max} contact iterations"));
-        self.path_iterate(stage, laws, lambda, h, max)
+        self.path_iterate(stage, laws, (from, lambda), h, max)
     }
 
-    /// The initial stage (`stage`) as the run solves it, or a load step's
-    /// contact iteration, under `laws` and `lambda` from `h`, judged.
+    /// The initial stage (`stage`) or a load step from the factors `from`
+    /// to `lambda`, as the run solves them, under `laws` from `h`, judged.
     fn path_iterate(
         &mut self,
         stage: bool,
         laws: &[PairLaw],
-        lambda: &[f64],
+        (from, lambda): (&[f64], &[f64]),
         h: &mut History,
         max: usize,
     ) -> Result<Outcome, Failure> {
-        if !stage {
-            return self.iterate(laws, lambda, h, max);
-        }
-        let r = self.step.iterate_stage(laws, lambda, h, max);
+        let r = if stage {
+            self.step.iterate_stage(laws, lambda, h, max)
+        } else {
+            self.step.iterate_step(laws, (from, lambda), h, max)
+        };
         self.judge(r, lambda)
     }
 
