@@ -81,7 +81,16 @@ pub(super) struct Trials<'s, 'a> {
     label: String,
     pub trials: Vec<Trial>,
     pub iterations: usize,
+    /// Halvings of the load steps and stage pieces the trials cut.
+    cuts: usize,
     pub residual: f64,
+}
+
+/// Where a trial started: when, and the search's iterations and cuts.
+struct Started {
+    at: Instant,
+    iterations: usize,
+    cuts: usize,
 }
 
 impl<'s, 'a> Trials<'s, 'a> {
@@ -96,7 +105,8 @@ impl<'s, 'a> Trials<'s, 'a> {
         let problem = step.problem.expect("a search has an interface");
         let n = step.scene.solver.load_steps;
         let lambda = step.model.cases.iter().map(|c| c[n - 1]).collect();
-        Trials { step, problem, varied, laws, lambda, opts, label, trials: Vec::new(), iterations: 0, residual: 0.0 }
+        let trials = Vec::new();
+        Trials { step, problem, varied, laws, lambda, opts, label, trials, iterations: 0, cuts: 0, residual: 0.0 }
     }
 
     /// One trial upward: the contact iteration at `f` from a copy of
@@ -146,7 +156,7 @@ impl<'s, 'a> Trials<'s, 'a> {
 
     /// The contact iteration at `f` from a copy of `from`, with at most `max` iterations.
     fn attempt(&mut self, f: f64, from: &Held, max: usize, retry: bool) -> Verdict<Held, Failure> {
-        let t = Instant::now();
+        let t = self.start();
         let mut h = from.history.clone();
         let (laws, lambda) = (self.varied.laws(&self.laws, f), self.varied.lambda(&self.lambda, f));
         let verdict = self.iterate(&laws, &lambda, &mut h, max);
@@ -167,7 +177,7 @@ impl<'s, 'a> Trials<'s, 'a> {
     /// in halves where it does not converge. Holds with where the last
     /// step ended.
     pub fn path(&mut self, f: f64) -> Verdict<Held, Failure> {
-        let t = Instant::now();
+        let t = self.start();
         let mut h = History::new(self.step.model.pairs.len());
         let laws = self.varied.laws(&self.laws, f);
         let model = self.step.model;
@@ -255,6 +265,7 @@ impl<'s, 'a> Trials<'s, 'a> {
         match r {
             Ok(o) => {
                 self.iterations += o.summary.iterations;
+                self.cuts += o.summary.cuts;
                 if o.summary.converged {
                     self.residual = self.residual.max(o.solution.residual);
                     return Ok(o);
@@ -295,16 +306,28 @@ impl<'s, 'a> Trials<'s, 'a> {
         progress(self.opts, &format!("{}: {what}", self.label));
     }
 
-    /// Records a trial and says how it went.
-    fn log(&mut self, f: f64, from: f64, t: Instant, r: Result<&Outcome, &Failure>, retry: bool) {
+    /// A trial starts now.
+    fn start(&self) -> Started {
+        Started { at: Instant::now(), iterations: self.iterations, cuts: self.cuts }
+    }
+
+    /// Records a trial started at `t` and says how it went: a trial that
+    /// holds, with the contact iterations and cuts of all its steps.
+    fn log(&mut self, f: f64, from: f64, t: Started, r: Result<&Outcome, &Failure>, retry: bool) {
+        let (spent, cuts) = (self.iterations - t.iterations, self.cuts - t.cuts);
         let (holds, iterations, states, failed) = match r {
-            Ok(o) => (true, o.summary.iterations, state_counts(&o.states), None),
+            Ok(o) => (true, spent, state_counts(&o.states), None),
             Err(e) => (false, e.iteration, state_counts(&e.states), Some(e.kind)),
         };
         let k = states;
+        let cut = match cuts {
+            0 => String::new(),
+            1 => " (1 cut)".to_string(),
+            n => format!(" ({n} cuts)"),
+        };
         let what = match r {
             Ok(_) => {
-                format!("holds: {iterations} contact iteration(s), {} stick / {} slip / {} open", k[2], k[1], k[0])
+                format!("holds: {iterations} contact iteration(s){cut}, {} stick / {} slip / {} open", k[2], k[1], k[0])
             }
             Err(e) if matches!(e.kind, FailureKind::NotConverged { .. }) => {
                 format!("decides nothing: {} ({iterations} contact iterations)", e.kind.describe())
@@ -322,7 +345,7 @@ impl<'s, 'a> Trials<'s, 'a> {
             holds,
             iterations,
             states,
-            seconds: t.elapsed().as_secs_f64(),
+            seconds: t.at.elapsed().as_secs_f64(),
             failed,
             retry,
         });
