@@ -180,29 +180,33 @@ impl<'s, 'a> Trials<'s, 'a> {
         let t = self.start();
         let mut h = History::new(self.step.model.pairs.len());
         let laws = self.varied.laws(&self.laws, f);
-        let model = self.step.model;
-        let stage = model.stage_factors().map(|s| ("the initial stage".to_string(), true, s));
-        let steps = (0..self.step.scene.solver.load_steps)
-            .map(|k| (format!("load step {}", k + 1), false, model.cases.iter().map(|c| c[k]).collect()));
+        let (step, model) = (self.step, self.step.model);
         let mut last = None;
-        // each load step from where the last ended (the stage, or nothing)
-        let mut lambda = self.varied.lambda(&model.stage_factors().unwrap_or_else(|| vec![0.0; model.cases.len()]), f);
-        for (name, is_stage, scene_lambda) in stage.into_iter().chain(steps) {
-            let from = std::mem::replace(&mut lambda, self.varied.lambda(&scene_lambda, f));
-            match self.path_step(f, (&name, is_stage), &laws, (&from, &lambda), &mut h) {
+        // the stage from nothing, then each load step from where the last ended
+        let mut lambda = vec![0.0; model.cases.len()];
+        if let Some(factors) = model.stage_factors() {
+            lambda = self.varied.lambda(&factors, f);
+            let stage = |h: &mut History, max| step.iterate_stage(&laws, &lambda, h, max);
+            match self.path_step(f, "the initial stage", &lambda, &mut h, stage) {
                 Ok(o) => {
-                    if let Some(top) = o.summary.strengths.first().filter(|_| is_stage) {
+                    if let Some(top) = o.summary.strengths.first() {
                         self.say(&format!(
                             "F = {f:.4}: the initial stage in {} contact iterations, the strength brought down from {top:.4} times the trial's (the in-situ stress is beyond it)",
                             o.summary.iterations
                         ));
                     }
-                    last = Some(o)
+                    last = Some(o);
                 }
-                Err(e) => {
-                    self.log(f, 0.0, t, Err(&e), false);
-                    return verdict_of(e);
-                }
+                Err(e) => return self.failed(f, t, e),
+            }
+        }
+        for k in 0..step.scene.solver.load_steps {
+            let to = self.varied.lambda(&model.cases.iter().map(|c| c[k]).collect::<Vec<_>>(), f);
+            let from = std::mem::replace(&mut lambda, to);
+            let load = |h: &mut History, max| step.iterate_step(&laws, (&from, &lambda), h, max);
+            match self.path_step(f, &format!("load step {}", k + 1), &lambda, &mut h, load) {
+                Ok(o) => last = Some(o),
+                Err(e) => return self.failed(f, t, e),
             }
         }
         let outcome = last.expect("at least one load step");
@@ -210,46 +214,35 @@ impl<'s, 'a> Trials<'s, 'a> {
         Verdict::Holds(Held { factor: f, lambda, history: h, outcome: Some(outcome) })
     }
 
-    /// One step `name` of the load path at `f` from `h` (`stage`: the
-    /// initial stage, from nothing), retried from its start with more
-    /// iterations when it does not converge (each piece of the stage's
-    /// ramp, or of the load step's cuts, with more).
+    /// A trial of the load path started at `t` that failed with `e`, logged.
+    fn failed(&mut self, f: f64, t: Started, e: Failure) -> Verdict<Held, Failure> {
+        self.log(f, 0.0, t, Err(&e), false);
+        verdict_of(e)
+    }
+
+    /// One step `name` of the load path at `f` to the factors `lambda`,
+    /// `solve`d from `h` with at most so many iterations (per piece),
+    /// judged; retried from its start with more iterations when it does
+    /// not converge (each piece of the stage's ramp, or of the load step's
+    /// cuts, with more).
     fn path_step(
         &mut self,
         f: f64,
-        (name, stage): (&str, bool),
-        laws: &[PairLaw],
-        (from, lambda): (&[f64], &[f64]),
+        name: &str,
+        lambda: &[f64],
         h: &mut History,
+        solve: impl Fn(&mut History, usize) -> Result<Outcome, Failed>,
     ) -> Result<Outcome, Failure> {
         let most = self.step.scene.solver.max_iterations;
         let start = h.clone();
-        let result = self.path_iterate(stage, laws, (from, lambda), h, most);
+        let result = self.judge(solve(h, most), lambda);
         if !matches!(&result, Err(e) if matches!(e.kind, FailureKind::NotConverged { .. })) {
             return result;
         }
         *h = start;
         let max = most * RETRY_ITERATIONS;
         self.say(&format!("F = {f:.4}: {name} did not converge: retrying it with up to {max} contact iterations"));
-        self.path_iterate(stage, laws, (from, lambda), h, max)
-    }
-
-    /// The initial stage (`stage`) or a load step from the factors `from`
-    /// to `lambda`, as the run solves them, under `laws` from `h`, judged.
-    fn path_iterate(
-        &mut self,
-        stage: bool,
-        laws: &[PairLaw],
-        (from, lambda): (&[f64], &[f64]),
-        h: &mut History,
-        max: usize,
-    ) -> Result<Outcome, Failure> {
-        let r = if stage {
-            self.step.iterate_stage(laws, lambda, h, max)
-        } else {
-            self.step.iterate_step(laws, (from, lambda), h, max)
-        };
-        self.judge(r, lambda)
+        self.judge(solve(h, max), lambda)
     }
 
     /// The contact iteration under `laws` and `lambda` from `h`, judged.
