@@ -303,12 +303,10 @@ impl Step<'_> {
             let solution = problem.solve(&[], lambda, Accuracy::Answer).map_err(|_| ContactError::BondedNotHeld)?;
             return Ok(Answer { d_c: solution.d_c, contact: None });
         }
-        let solver = &self.scene.solver;
-        let (rule, most, cuts) = (solver.rule, solver.max_iterations, self.cuts());
-        // the initial stage (step 0) brings down a strength the in-situ stress exceeds
+        let most = self.scene.solver.max_iterations;
+        // the initial stage (step 0, from nothing) as a safety trial solves it
         let outcome = if step == 0 {
-            let mobilised = self.stage_mobilised(&self.laws);
-            contact::ramp::iterate_stage(problem, &self.laws, rule, (from, lambda), history, most, cuts, mobilised)
+            self.iterate_stage(&self.laws, lambda, history, most)
         } else {
             self.iterate_step(&self.laws, (from, lambda), history, most)
         };
@@ -322,9 +320,8 @@ impl Step<'_> {
     /// Where the initial stage's strength ramp starts with the pairs
     /// carrying `laws` ([`contact::ramp::iterate_stage`]): the largest
     /// in-situ mobilisation beyond their strength, or 0 (none beyond, or
-    /// the paper's rule: the stage solved as a load step is). The one
-    /// place that decides it, for the run's stage and a safety trial's.
-    pub fn stage_mobilised(&self, laws: &[PairLaw]) -> f64 {
+    /// the paper's rule: the stage solved as a load step is).
+    fn stage_mobilised(&self, laws: &[PairLaw]) -> f64 {
         if self.scene.solver.rule == StateRule::Robust {
             super::warnings::insitu_mobilised(self.scene, self.model, laws)
         } else {
@@ -337,6 +334,8 @@ impl Step<'_> {
     /// through the strength ramp where the in-situ stress puts the joints
     /// beyond `laws` ([`Step::stage_mobilised`]), each piece halved down
     /// to [`Step::cuts`] times, with at most `max_iterations` per piece.
+    /// The one place that solves the stage, for the run's (step 0), a
+    /// safety trial's and the replay before a search below 1.
     pub fn iterate_stage(
         &self,
         laws: &[PairLaw],
