@@ -165,10 +165,9 @@ fn iteration_notes(s: &mut String, run: &Run) {
         if it.clusters_solved > 0 {
             let _ = writeln!(s, "\nThe state iteration stalled or cycled on a few pairs {} time(s) and the cluster fallback ended it: the pressures of a stall's slipping pairs solved for (multisecant steps), or the cluster's stick / slip / open sets tried, fewest changes from the load step's start first, until one met the law at every pair.", it.clusters_solved);
         }
-        if run.last().step == 0 && (it.cuts > 0 || !it.strengths.is_empty()) {
-            let _ = writeln!(s, "\n{}", stage_cut_sentence(it));
-        } else if it.cuts > 0 {
-            let _ = writeln!(s, "\n{}", cut_sentence(it));
+        let stage = run.last().step == 0;
+        if it.cuts > 0 || (stage && !it.strengths.is_empty()) {
+            let _ = writeln!(s, "\n{}", cut_sentence(it, stage));
         }
         *s += &super::unsettled::report(&run.model, c);
     }
@@ -284,15 +283,30 @@ fn load_steps(s: &mut String, run: &Run) {
     }
 }
 
-/// What load-step cutting did in a step (`it.cuts` > 0).
-fn cut_sentence(it: &crate::contact::Summary) -> String {
+/// What cutting did in a load step, or in an initial stage (`stage`)
+/// that did not converge: its load halved (`it.cuts` > 0), or where the
+/// in-situ stress was beyond the joints' strength the pieces of the
+/// stage's strength ramp (`it.strengths`: the factors reached).
+fn cut_sentence(it: &crate::contact::Summary, stage: bool) -> String {
+    if let (true, Some(top), Some(end)) = (stage, it.strengths.first(), it.strengths.last()) {
+        return format!(
+            "The initial stage did not converge: the joints' strength, brought down from {top:.4} times the scene's, converged down to {end:.4} times it; the next piece did not converge (halved {} time(s), [solver] max_cuts).",
+            it.cuts
+        );
+    }
+    let (what, of) = if stage {
+        ("initial stage did not converge", "its load")
+    } else {
+        ("load step did not converge whole", "the step")
+    };
     let ends: Vec<String> = it.pieces.iter().map(|&t| factor(Some(t))).collect();
     let mut s = format!(
-        "The load step did not converge whole and was cut {} time(s) ([solver] max_cuts); its pieces converged up to {} of the step",
+        "The {what} and was cut {} time(s) ([solver] max_cuts); its pieces converged up to {} of {of}",
         it.cuts,
         if ends.is_empty() { "none".to_string() } else { ends.join(", ") }
     );
-    if let Some((a, b)) = it.stopped_at {
+    // (the stage's sentence ends with its pieces)
+    if let Some((a, b)) = it.stopped_at.filter(|_| !stage) {
         let _ = write!(
             s,
             ", and the piece from {} to {} did not converge at the deepest cut",
@@ -302,28 +316,6 @@ fn cut_sentence(it: &crate::contact::Summary) -> String {
     }
     s.push('.');
     s
-}
-
-/// What cutting did in an initial stage that did not converge: its load
-/// halved, or where the in-situ stress was beyond the joints' strength the
-/// pieces of the strength ramp (`it.strengths`: the factors reached).
-fn stage_cut_sentence(it: &crate::contact::Summary) -> String {
-    match it.strengths.as_slice() {
-        [] => format!(
-            "The initial stage did not converge and was cut {} time(s) ([solver] max_cuts); its pieces converged up to {} of its load.",
-            it.cuts,
-            match it.pieces.as_slice() {
-                [] => "none".to_string(),
-                p => p.iter().map(|&t| factor(Some(t))).collect::<Vec<_>>().join(", "),
-            }
-        ),
-        r => format!(
-            "The initial stage did not converge: the joints' strength, brought down from {:.4} times the scene's, converged down to {:.4} times it; the next piece did not converge (halved {} time(s), [solver] max_cuts).",
-            r[0],
-            r[r.len() - 1],
-            it.cuts
-        ),
-    }
 }
 
 /// A load factor as the user would write it: up to 4 decimals, no trailing
