@@ -305,8 +305,10 @@ fn tunnel4sets_k0_bare_opening() {
     assert_converges("tunnel4sets", &solved.summary, MAX_ITERATIONS_PER_STEP);
 }
 
+/// Step 1 cycled at a node of the jx / jy crossing line (pair 335) until
+/// its junction shared its slipping pairs' pressures with their friction
+/// (src/contact/system/junction.rs, `share_with_friction`): 27 and 15.
 #[test]
-#[ignore = "issue 28: does not converge: pairs 211 / 335 of the steep sets hold in no set of theirs (docs/convergence.md); make stress-open"]
 fn blocks3d_partly_confined_in_linear_elements() {
     blocks("blocks3d_confined.toml", "tet4");
 }

@@ -75,19 +75,56 @@ impl Split {
         // they are the same in every unit of force
         let s = to_one(g.as_slice());
         if s != 1.0 {
-            let scaled: Vec<Limit> = limits
-                .iter()
-                .map(|l| Limit { tension: l.tension * s, cohesion: l.cohesion * s, friction: l.friction })
-                .collect();
-            return self.forces(&(g * s), &scaled) / s;
+            return self.forces(&(g * s), &scaled(limits, s)) / s;
         }
         let nu0 = &self.pinv * g;
         let lambda = |s: &DVector<f64>| {
             DVector::from_fn(self.rows.len(), |i, _| self.d[i] * (nu0[i] + (self.null.row(i) * s)[0]))
         };
-        let zero = DVector::zeros(self.null.ncols());
+        // in s: a . D (nu0 + N s) <= b
+        let row = |i: usize, c: f64| (self.null.row(i).transpose() * (c * self.d[i]), c * self.d[i] * nu0[i]);
+        self.close_in(self.null.ncols(), &lambda, &row, limits)
+    }
+
+    /// Whether the share `lambda` breaks a limit.
+    pub(super) fn breaks(&self, lambda: &DVector<f64>, limits: &[Limit]) -> bool {
+        !self.violations(lambda, limits, CUT_TOL).is_empty()
+    }
+
+    /// How far the share `lambda` is beyond its limits at most (of its largest force).
+    pub(super) fn beyond(&self, lambda: &DVector<f64>, limits: &[Limit]) -> f64 {
+        let scale = lambda.amax().max(f64::MIN_POSITIVE);
+        let cuts = self.violations(lambda, limits, CUT_TOL);
+        cuts.iter().map(|(a, b)| a.iter().map(|&(i, c)| c * lambda[i]).sum::<f64>() - b).fold(0.0, f64::max) / scale
+    }
+
+    /// The share `plain + loops s` of least `|s|` within every limit, where
+    /// `plain` breaks one and the columns of `loops` leave one; else
+    /// `plain` (forces near 1, as [`Split::forces`] brings them).
+    pub(super) fn within(&self, plain: &DVector<f64>, loops: &DMatrix<f64>, limits: &[Limit]) -> DVector<f64> {
+        let s = to_one(plain.as_slice());
+        if s != 1.0 {
+            return self.within(&(plain * s), loops, &scaled(limits, s)) / s;
+        }
+        let lambda = |s: &DVector<f64>| plain + loops * s;
+        let row = |i: usize, c: f64| (loops.row(i).transpose() * c, c * plain[i]);
+        self.close_in(loops.ncols(), &lambda, &row, limits)
+    }
+
+    /// The share `lambda(s)` of least `|s|` (over `n` loop forces) within
+    /// every limit, by cuts `a . lambda(s) <= b`, `row(i, a_i)` giving a
+    /// cut's part over s and its constant of row i; `lambda(0)` where it
+    /// is within them or none is.
+    fn close_in(
+        &self,
+        n: usize,
+        lambda: &dyn Fn(&DVector<f64>) -> DVector<f64>,
+        row: &dyn Fn(usize, f64) -> (DVector<f64>, f64),
+        limits: &[Limit],
+    ) -> DVector<f64> {
+        let zero = DVector::zeros(n);
         let plain = lambda(&zero);
-        if self.null.ncols() == 0 || self.violations(&plain, limits, CUT_TOL).is_empty() {
+        if n == 0 || self.violations(&plain, limits, CUT_TOL).is_empty() {
             return plain;
         }
         // cuts: a row combination of λ with its bound, `a . λ <= b`
@@ -100,17 +137,9 @@ impl Split {
                 return lam;
             }
             cuts.extend(new);
-            // in s: a . D (nu0 + N s) <= b
-            let g_rows: Vec<DVector<f64>> = cuts
-                .iter()
-                .map(|(a, _)| {
-                    a.iter().fold(DVector::zeros(self.null.ncols()), |acc, &(i, c)| {
-                        acc + self.null.row(i).transpose() * (c * self.d[i])
-                    })
-                })
-                .collect();
-            let h: Vec<f64> =
-                cuts.iter().map(|(a, b)| b - a.iter().map(|&(i, c)| c * self.d[i] * nu0[i]).sum::<f64>()).collect();
+            let g_rows: Vec<DVector<f64>> =
+                cuts.iter().map(|(a, _)| a.iter().fold(DVector::zeros(n), |acc, &(i, c)| acc + row(i, c).0)).collect();
+            let h: Vec<f64> = cuts.iter().map(|(a, b)| b - a.iter().map(|&(i, c)| row(i, c).1).sum::<f64>()).collect();
             match least_norm_point(&g_rows, &h) {
                 Some(x) => s = x,
                 // no share within every limit: the loop cannot carry g so
@@ -170,4 +199,9 @@ impl Split {
         }
         out
     }
+}
+
+/// The limits in forces `s` times larger.
+fn scaled(limits: &[Limit], s: f64) -> Vec<Limit> {
+    limits.iter().map(|l| Limit { tension: l.tension * s, cohesion: l.cohesion * s, friction: l.friction }).collect()
 }
