@@ -600,8 +600,8 @@ impl Junction {
                 pressure[j] = pj;
             }
         }
-        let near = |l: &DVector<f64>| tied.split.breaks(l, limits) && tied.split.beyond(l, limits) <= NEAR_LIMIT;
-        if let Some(pr) = tied.pressure.as_ref().filter(|_| near(&lambda)) {
+        let beyond = tied.split.beyond(&lambda, limits);
+        if let Some(pr) = tied.pressure.as_ref().filter(|_| beyond > 0.0 && beyond <= NEAR_LIMIT) {
             if let Some((within, dp)) = self.share_with_friction(tied, pr, &lambda, limits) {
                 for (&j, &d) in pr.pairs.iter().zip(dp.iter()) {
                     pressure[j] += d;
@@ -648,8 +648,9 @@ impl Junction {
     }
 
     /// The share within every limit where the least-norm one breaks one
-    /// by little ([`NEAR_LIMIT`]) and the loops alone cannot mend it, their forces moving the
-    /// slipping pairs' pressures `pr`, and so their friction, with them.
+    /// by little ([`NEAR_LIMIT`]) and the loops alone cannot mend it,
+    /// their forces moving the slipping pairs' pressures `pr`, and so
+    /// their friction, with them.
     /// Round a crossing line whose two stuck pairs carry the friction of
     /// its two slipping ones, the loop shares those pairs' pressures, and
     /// trading pressure between them moves the friction a stuck pair

@@ -91,7 +91,8 @@ impl Split {
         !self.violations(lambda, limits, CUT_TOL).is_empty()
     }
 
-    /// How far the share `lambda` is beyond its limits at most (of its largest force).
+    /// How far the share `lambda` is beyond its limits at most (of its
+    /// largest force): 0 where it breaks none ([`Split::breaks`]).
     pub(super) fn beyond(&self, lambda: &DVector<f64>, limits: &[Limit]) -> f64 {
         let scale = lambda.amax().max(f64::MIN_POSITIVE);
         let cuts = self.violations(lambda, limits, CUT_TOL);
