@@ -651,6 +651,7 @@ impl Junction {
     /// by little ([`NEAR_LIMIT`]) and the loops alone cannot mend it,
     /// their forces moving the slipping pairs' pressures `pr`, and so
     /// their friction, with them.
+    ///
     /// Round a crossing line whose two stuck pairs carry the friction of
     /// its two slipping ones, the loop shares those pairs' pressures, and
     /// trading pressure between them moves the friction a stuck pair
