@@ -244,7 +244,7 @@ mod tests {
     #[test]
     fn plain_data_errors_travel_as_the_same_variant_with_the_same_text() {
         let at = At { step: Some(2), iteration: 7, states: [1, 2, 3] };
-        let contact = ContactError::NotHeld { at, bodies: vec!["block".into()], apex: vec![] };
+        let contact = ContactError::NotHeld { at, bodies: vec!["block".into()], places: vec![None], apex: vec![] };
         let e: Error = contact.clone().into();
         let in_scene = Error::from(contact.clone()).in_scene(Path::new("dam.toml"));
         assert!(in_scene.to_string().starts_with("dam.toml: body \"block\" is held by nothing at"), "{in_scene}");

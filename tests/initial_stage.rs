@@ -544,3 +544,104 @@ fn after_the_stage_the_excavation_alone_is_the_run_without_it() {
         assert!(r.abs() < 1e-9 * weight, "component {c}: loads + contacts + supports = {r} of {weight}");
     }
 }
+
+/// The tunnel's cross-section in plane strain (tri6): the 16 m box, the
+/// R = 2 m opening, the two sets as above, rollers at the sides and base,
+/// the overburden on the top after the stage. Over the crown the sets cut
+/// a wedge of 0.074 m² (J1 dipping 60 degrees one way, J2 70 the other,
+/// apex up), held only by the tangential stress at the crown, which is
+/// (3 k0 - 1) sigma_v round a circular opening (Kirsch): +0.5 sigma_v at
+/// k0 = 0.5, the wedge clamped; -0.25 sigma_v at k0 = 0.25, tension the
+/// joints cannot carry, and the wedge falls once step 1 cuts the opening.
+const SECTION_GEO: &str = r#"
+SetFactory("OpenCASCADE");
+W = 16; H = 16; R = 2;
+Rectangle(1) = {-W / 2, -H / 2, 0, W, H};
+Disk(2) = {0, 0, 0, R};
+BooleanDifference{ Surface{1}; Delete; }{ Surface{2}; Delete; }
+e = 1e-3;
+Physical Surface("rock") = {1};
+Physical Curve("top") = Curve In BoundingBox{-W / 2 - e, H / 2 - e, -e, W / 2 + e, H / 2 + e, e};
+Physical Curve("bottom") = Curve In BoundingBox{-W / 2 - e, -H / 2 - e, -e, W / 2 + e, -H / 2 + e, e};
+Physical Curve("sides") = Curve In BoundingBox{-W / 2 - e, -H / 2 - e, -e, -W / 2 + e, H / 2 + e, e};
+Physical Curve("sides") += Curve In BoundingBox{W / 2 - e, -H / 2 - e, -e, W / 2 + e, H / 2 + e, e};
+wall() = Curve In BoundingBox{-R - e, -R - e, -e, R + e, R + e, e};
+Physical Curve("wall") = {wall()};
+MeshSize{ PointsOf{ Surface{1}; } } = 1.5;
+MeshSize{ PointsOf{ Curve{wall()}; } } = 0.5;
+"#;
+
+fn section(k0: f64) -> String {
+    format!(
+        r#"mesh = "section.geo"
+analysis = "plane_strain"
+gravity = [0.0, -9.81]
+[gmsh]
+order = 2
+[materials.rock]
+E = 5000.0
+nu = 0.25
+density = 2.7e-3
+[[bodies]]
+group = "rock"
+material = "rock"
+k0 = {k0}
+surface = 50.0
+[[joint_sets]]
+name = "J1"
+angle = -60.0
+spacing = 5.0
+offset = 1.3
+friction = 0.7002
+[[joint_sets]]
+name = "J2"
+angle = 70.0
+spacing = 5.0
+offset = 0.7
+friction = 0.7002
+[[supports]]
+group = "sides"
+fix = ["x"]
+[[supports]]
+group = "bottom"
+fix = ["y"]
+[[loads]]
+group = "top"
+pressure = 1.112454
+[solver]
+initial_stage = true
+"#
+    )
+}
+
+/// A key block: at k0 = 0.5 the crown wedge stays (the run converges and
+/// blocks.csv has it held); at k0 = 0.25 the run is refused at load step 1
+/// (not the stage), naming the wedge and where it is — a refusal writes
+/// no blocks.csv to look "rock #12" up in — and writing no results.
+#[test]
+fn a_crown_wedge_in_a_tensile_crown_falls_and_the_refusal_says_which_and_where() {
+    let case = Case::new("stage-section-crown-wedge");
+    case.write("section.geo", SECTION_GEO);
+    let half = case.run(&case.write("half.toml", &section(0.5))).expect("k0 = 0.5 converges");
+    assert!(half.initial_stage.is_some(), "the stage ran");
+    assert!(half.contact().expect("contact").summary.converged, "k0 = 0.5: the wedge is clamped");
+    let blocks = csv_rows(&case.out("half").join("blocks.csv"));
+    let crown = blocks
+        .iter()
+        .find(|r| csv_num(r, "x").abs() < 1.0 && (2.0..3.0).contains(&csv_num(r, "y")))
+        .expect("a block over the crown");
+    assert!(csv_num(crown, "volume") < 0.1, "the crown wedge is the small one: {crown:?}");
+    assert_eq!(crown.get("state").map(String::as_str), Some("held"), "{crown:?}");
+    case.write("quarter.toml", &section(0.25));
+    let o = case.cli(&["solve", "quarter.toml", "--out", "q", "--quiet"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "k0 = 0.25: the wedge falls: {err}");
+    assert!(err.contains("at load step 1, contact iteration"), "the step is named after a stage: {err}");
+    assert!(err.contains("held by nothing") || err.contains("slides or rotates freely"), "{err}");
+    let name = crown.get("name").expect("blocks.csv names the block");
+    let centre =
+        err.split(&format!("body \"{name}\" (centre at (")).nth(1).unwrap_or_else(|| panic!("{name} and where: {err}"));
+    let xy: Vec<f64> = centre.split(')').next().unwrap_or("").split(", ").filter_map(|v| v.parse().ok()).collect();
+    assert!(xy.len() == 3 && xy[0].abs() < 1.0 && (2.0..3.0).contains(&xy[1]), "over the crown: {xy:?} in {err}");
+    assert!(!case.dir.join("q").join("summary.json").exists(), "a refused run writes no results");
+}

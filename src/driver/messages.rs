@@ -44,16 +44,25 @@ pub struct Apex {
 /// Why the contact iteration of a run failed.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum ContactError {
-    /// Bodies held by nothing once their contact pairs opened.
-    NotHeld { at: At, bodies: Vec<String>, apex: Vec<Apex> },
+    /// Bodies held by nothing once their contact pairs opened; `places`:
+    /// where each is, when it is a block of a group cut into several (a
+    /// refused run writes no blocks.csv to look "rock #12" up in).
+    NotHeld { at: At, bodies: Vec<String>, places: Vec<Option<[f64; 3]>>, apex: Vec<Apex> },
     /// Bodies that slide or rotate freely on their slipping pairs (none
     /// named when the cause was not found). `no_shear`: their slipping
     /// contacts carry no shear at all (no friction and no cohesion, or
     /// frictionless slip), so no load along the joint is to blame. `rule`:
     /// the paper's gives a slipping pair a fixed shear, which holds nothing
     /// across its slip (the robust rule's friction does). `motions`: what
-    /// moves, by body (a ring turning in its hole).
-    Sliding { at: At, bodies: Vec<String>, no_shear: bool, rule: StateRule, motions: Vec<(String, RigidMotion)> },
+    /// moves, by body (a ring turning in its hole); `places` as `NotHeld`'s.
+    Sliding {
+        at: At,
+        bodies: Vec<String>,
+        places: Vec<Option<[f64; 3]>>,
+        no_shear: bool,
+        rule: StateRule,
+        motions: Vec<(String, RigidMotion)>,
+    },
     /// A load step's iteration did not converge after `iterations`
     /// (`cycled`: its states cycle; `law_broken`: they settled, but the
     /// forces of the last solve break the contact law) under `rule`;
@@ -126,7 +135,8 @@ impl ContactError {
     /// parts in the interface's order.
     pub(super) fn failed(model: &Model, parts: &[Part], scene: &Scene, step: usize, f: Failed) -> ContactError {
         let at = At {
-            step: (scene.solver.load_steps > 1 || step == 0).then_some(step),
+            // (named where there are several steps, a stage among them)
+            step: (scene.solver.load_steps > 1 || scene.solver.initial_stage || step == 0).then_some(step),
             iteration: f.iteration,
             states: state_counts(&f.states),
         };
@@ -140,13 +150,18 @@ impl ContactError {
             bodies
         };
         let names = |ids: &[usize]| -> Vec<String> { blocks(ids).iter().map(|&b| block_name(model, b)).collect() };
+        let places = |ids: &[usize]| -> Vec<Option<[f64; 3]>> {
+            blocks(ids).iter().map(|&b| model.bodies[b].block.map(|k| k.centre)).collect()
+        };
         match f.failure {
-            SolveFailure::NotHeld(ids) => ContactError::NotHeld { at, bodies: names(&ids), apex: apex(scene) },
+            SolveFailure::NotHeld(ids) => {
+                ContactError::NotHeld { at, bodies: names(&ids), places: places(&ids), apex: apex(scene) }
+            }
             SolveFailure::Sliding(free) => {
-                let bodies = names(&free);
+                let (bodies, places) = (names(&free), places(&free));
                 let no_shear = no_shear(model, scene, &f.states, &blocks(&free));
                 let motions = (free.motions.iter()).map(|&(p, m)| (names(&[p]).join("\", \""), m)).collect();
-                ContactError::Sliding { at, bodies, no_shear, rule: scene.solver.rule, motions }
+                ContactError::Sliding { at, bodies, places, no_shear, rule: scene.solver.rule, motions }
             }
         }
     }
@@ -201,9 +216,14 @@ fn motions_named(motions: &[(String, RigidMotion)]) -> String {
     }
 }
 
-/// "body \"a\"" or "bodies \"a\", \"b\"".
-fn bodies_named(bodies: &[String]) -> String {
-    let names = bodies.iter().map(|b| format!("\"{b}\"")).collect::<Vec<_>>().join(", ");
+/// "body \"a\"" or "bodies \"a\", \"b\"", a block of a group cut into
+/// several with where it is: "body \"rock #12\" (centre at (x, y, z))".
+fn bodies_named(bodies: &[String], places: &[Option<[f64; 3]>]) -> String {
+    let named = |(i, b): (usize, &String)| match places.get(i).copied().flatten() {
+        Some(c) => format!("\"{b}\" (centre at ({:.4}, {:.4}, {:.4}))", c[0], c[1], c[2]),
+        None => format!("\"{b}\""),
+    };
+    let names = bodies.iter().enumerate().map(named).collect::<Vec<_>>().join(", ");
     format!("{} {names}", if bodies.len() == 1 { "body" } else { "bodies" })
 }
 
@@ -226,7 +246,7 @@ impl fmt::Display for At {
 impl fmt::Display for ContactError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            ContactError::NotHeld { at, bodies, apex } => {
+            ContactError::NotHeld { at, bodies, places, apex } => {
                 let one = bodies.len() == 1;
                 let apex = if apex.is_empty() {
                     String::new()
@@ -240,17 +260,17 @@ impl fmt::Display for ContactError {
                 write!(
                     f,
                     "{} {} held by nothing at {at}: {} contact pairs opened and no support holds {}{apex}. Add a support, or check the loads that pull the contact apart",
-                    bodies_named(bodies),
+                    bodies_named(bodies, places),
                     if one { "is" } else { "are" },
                     if one { "its" } else { "their" },
                     if one { "it" } else { "them" },
                 )
             }
-            ContactError::Sliding { at, bodies, no_shear, rule, motions } => {
+            ContactError::Sliding { at, bodies, places, no_shear, rule, motions } => {
                 let (who, moves, its) = match bodies.len() {
                     0 => ("a body".to_string(), "slides or rotates", "its"),
-                    1 => (bodies_named(bodies), "slides or rotates", "its"),
-                    _ => (bodies_named(bodies), "slide or rotate", "their"),
+                    1 => (bodies_named(bodies, places), "slides or rotates", "its"),
+                    _ => (bodies_named(bodies, places), "slide or rotate", "their"),
                 };
                 write!(
                     f,
@@ -341,8 +361,8 @@ fn unsafe_message(e: &SafetyError, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         return Ok(());
     };
     let (cause, no_shear) = match at_one {
-        ContactError::Sliding { at, bodies, no_shear, motions, .. } => {
-            let who = if bodies.is_empty() { "a body".to_string() } else { bodies_named(bodies) };
+        ContactError::Sliding { at, bodies, places, no_shear, motions, .. } => {
+            let who = if bodies.is_empty() { "a body".to_string() } else { bodies_named(bodies, places) };
             let verb = if bodies.len() > 1 { "move" } else { "moves" };
             (
                 format!(
@@ -353,12 +373,12 @@ fn unsafe_message(e: &SafetyError, f: &mut fmt::Formatter<'_>) -> fmt::Result {
                 *no_shear,
             )
         }
-        ContactError::NotHeld { at, bodies, .. } => {
+        ContactError::NotHeld { at, bodies, places, .. } => {
             let one = bodies.len() == 1;
             (
                 format!(
                     "the scene loses equilibrium at {at}: {} {} held by nothing once {} contacts open",
-                    bodies_named(bodies),
+                    bodies_named(bodies, places),
                     if one { "is" } else { "are" },
                     if one { "its" } else { "their" }
                 ),
