@@ -134,12 +134,7 @@ impl ContactError {
     /// The error of a failed iteration at load step `step`; `parts` are the
     /// parts in the interface's order.
     pub(super) fn failed(model: &Model, parts: &[Part], scene: &Scene, step: usize, f: Failed) -> ContactError {
-        let at = At {
-            // (named where there are several steps, a stage among them)
-            step: (scene.solver.load_steps > 1 || scene.solver.initial_stage || step == 0).then_some(step),
-            iteration: f.iteration,
-            states: state_counts(&f.states),
-        };
+        let at = At { step: At::named(scene, step), iteration: f.iteration, states: state_counts(&f.states) };
         // (a block of a group cut by joint sets by its number, "rock #3",
         // as blocks.csv and faces.csv name it: the group's name alone
         // would not say which of its blocks)
@@ -150,15 +145,19 @@ impl ContactError {
             bodies
         };
         let names = |ids: &[usize]| -> Vec<String> { blocks(ids).iter().map(|&b| block_name(model, b)).collect() };
-        let places = |ids: &[usize]| -> Vec<Option<[f64; 3]>> {
-            blocks(ids).iter().map(|&b| model.bodies[b].block.map(|k| k.centre)).collect()
+        // (and where each block of a group cut into several is)
+        let named = |ids: &[usize]| -> (Vec<String>, Vec<Option<[f64; 3]>>) {
+            let bodies = blocks(ids);
+            let places = bodies.iter().map(|&b| model.bodies[b].block.map(|k| k.centre)).collect();
+            (bodies.iter().map(|&b| block_name(model, b)).collect(), places)
         };
         match f.failure {
             SolveFailure::NotHeld(ids) => {
-                ContactError::NotHeld { at, bodies: names(&ids), places: places(&ids), apex: apex(scene) }
+                let (bodies, places) = named(&ids);
+                ContactError::NotHeld { at, bodies, places, apex: apex(scene) }
             }
             SolveFailure::Sliding(free) => {
-                let (bodies, places) = (names(&free), places(&free));
+                let (bodies, places) = named(&free);
                 let no_shear = no_shear(model, scene, &f.states, &blocks(&free));
                 let motions = (free.motions.iter()).map(|&(p, m)| (names(&[p]).join("\", \""), m)).collect();
                 ContactError::Sliding { at, bodies, places, no_shear, rule: scene.solver.rule, motions }
@@ -225,6 +224,14 @@ fn bodies_named(bodies: &[String], places: &[Option<[f64; 3]>]) -> String {
     };
     let names = bodies.iter().enumerate().map(named).collect::<Vec<_>>().join(", ");
     format!("{} {names}", if bodies.len() == 1 { "body" } else { "bodies" })
+}
+
+impl At {
+    /// The load step `step` as a message names it: where the scene has
+    /// several, or a stage before them (step 0, the stage, always).
+    pub(super) fn named(scene: &Scene, step: usize) -> Option<usize> {
+        (scene.solver.load_steps > 1 || scene.solver.initial_stage || step == 0).then_some(step)
+    }
 }
 
 impl fmt::Display for At {

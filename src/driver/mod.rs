@@ -280,12 +280,8 @@ fn ended(run: &Run, results: Option<PathBuf>, failed: Option<Error>) -> Option<E
 /// its results were written.
 fn not_converged(run: &Run, results: Option<PathBuf>) -> Option<ContactError> {
     let c = run.contact().filter(|c| !c.summary.converged)?;
-    // (step 0: the initial stage, named whatever the number of load steps;
-    // after a stage, step 1 too)
-    let solver = &run.scene.solver;
-    let step = (solver.load_steps > 1 || solver.initial_stage || run.last().step == 0).then(|| run.last().step);
     Some(ContactError::NotConverged {
-        step,
+        step: At::named(&run.scene, run.last().step),
         iterations: c.summary.iterations,
         cycled: c.summary.cycled,
         law_broken: c.summary.law_broken,
