@@ -33,6 +33,7 @@
 pub mod basis;
 pub mod capacity;
 mod cluster;
+mod crossing;
 pub mod cutting;
 pub mod frame;
 pub mod history;

@@ -569,6 +569,15 @@ impl Rule for Newton<'_> {
             Some(Step::Held) => self.one_change(h, &mut judged),
             Some(Step::GaveUp) | None => self.break_or_pin(h, &mut judged, summary, tolerance, solution.loose),
         }
+        // a slip a crossing of two joints locks freed by its twin
+        super::crossing::free_locked_slips(
+            self.problem,
+            self.laws,
+            h,
+            &self.force,
+            &mut judged.next,
+            &mut judged.violation,
+        );
         // a cluster's pair held stuck is judged with the cracks of the set
         // held, not those of the iterates that cycled
         let held_stuck =

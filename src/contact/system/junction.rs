@@ -119,6 +119,9 @@ pub struct Junction {
     /// same two copies (the faces of a crease or a corner).
     frames: Vec<Frame>,
     partners: Vec<Vec<usize>>,
+    /// Where two joints cross (four pairs, two on each joint's plane),
+    /// each pair's twin: the other pair on its plane. Empty elsewhere.
+    twins: Vec<usize>,
     nd: usize,
     /// What the last set of tied rows gave (see [`memo`]).
     memo: Memo,
@@ -129,6 +132,10 @@ pub struct Junction {
 /// meet at a crease at 40 degrees or more (`CREASE_ANGLE`), where it is
 /// sin 40 = 0.64.
 const CROSSES: f64 = 1e-3;
+
+/// Two pairs' normals are parallel (one plane) where their dot product is
+/// within this of one: the facets of a planar joint agree to round-off.
+const PARALLEL: f64 = 1e-6;
 
 /// A junction under one set of relations.
 #[derive(Clone, Debug)]
@@ -260,6 +267,20 @@ fn along(nd: usize, v: [f64; 3], dir: [f64; 3]) -> f64 {
     (0..nd).map(|a| v[a] * dir[a]).sum()
 }
 
+/// Where a junction is a crossing of two joints, each pair's twin: four
+/// pairs, each with exactly one other of parallel normal (on one plane,
+/// the two sides of the other joint). Empty where it is not one.
+fn crossing_twins(frames: &[Frame]) -> Vec<usize> {
+    let on_plane = |i: usize, k: usize| k != i && dot(frames[i][0], frames[k][0]).abs() > 1.0 - PARALLEL;
+    let twins: Vec<Vec<usize>> =
+        (0..frames.len()).map(|i| (0..frames.len()).filter(|&k| on_plane(i, k)).collect()).collect();
+    if frames.len() == 4 && twins.iter().all(|t| t.len() == 1) {
+        twins.iter().map(|t| t[0]).collect()
+    } else {
+        Vec::new()
+    }
+}
+
 impl Junction {
     /// The junction of `pairs` (their (k, l) and frames given by `pair`),
     /// with the prescribed value per unit ramp of each model DOF
@@ -288,7 +309,8 @@ impl Junction {
         let ends: Vec<(usize, usize)> = pairs.iter().map(|&p| pair(p)).map(|(k, l, _)| (k.min(l), k.max(l))).collect();
         let partners =
             (0..pairs.len()).map(|j| (0..pairs.len()).filter(|&i| i != j && ends[i] == ends[j]).collect()).collect();
-        Junction { pairs, copies, terms, r, m, rows, consts, frames, partners, nd, memo: Memo::default() }
+        let twins = crossing_twins(&frames);
+        Junction { pairs, copies, terms, r, m, rows, consts, frames, partners, twins, nd, memo: Memo::default() }
     }
 
     /// A new load: the junction solves for its slipping pairs' pressures
@@ -396,30 +418,49 @@ impl Junction {
         if self.nd < 3 || self.r.is_empty() {
             return vec![None; self.pairs.len()];
         }
-        self.memo.with(self, &self.tied_rows(|p| states[p]), |t| t.lines(self).to_vec())
+        self.memo.with(self, &self.tied_rows(|p| states[p]), |t| t.rooms(self).iter().map(|r| r.line()).collect())
     }
 
-    /// [`Self::slip_lines`] where the free directions are `z`.
-    fn lines_along(&self, z: &DMatrix<f64>) -> Vec<Option<[f64; 3]>> {
-        let mut lines = vec![None; self.pairs.len()];
-        for (j, line) in lines.iter_mut().enumerate() {
-            // the shear axes' parts along the free directions
-            let m = DMatrix::<f64>::from_fn(2, z.ncols(), |a, c| {
-                (0..self.r.len()).map(|i| self.rows[j][a + 1][i] * z[(i, c)]).sum()
-            });
-            let scale = (1..3).map(|a| self.rows[j][a].iter().map(|x| x * x).sum::<f64>().sqrt()).fold(0.0, f64::max);
-            if z.ncols() == 0 || scale == 0.0 {
-                continue;
-            }
-            let svd = m.svd(true, false);
-            let u = svd.u.expect("U");
-            let sv = &svd.singular_values;
-            if sv.iter().filter(|&&s| s > 1e-9 * scale).count() == 1 {
-                let k = sv.imax();
-                *line = Some([0.0, u[(0, k)], u[(1, k)]]);
-            }
+    /// How far each of the junction's pairs can slip under `states` (of
+    /// every model pair).
+    pub fn rooms(&self, states: &[ContactState]) -> Vec<Room> {
+        if self.r.is_empty() {
+            return vec![Room::None; self.pairs.len()];
         }
-        lines
+        self.memo.with(self, &self.tied_rows(|p| states[p]), |t| t.rooms(self).to_vec())
+    }
+
+    /// Each pair's twin where the junction is a crossing of two joints
+    /// (see [`crossing_twins`]), as junction indices; None elsewhere.
+    pub fn twin(&self, j: usize) -> Option<usize> {
+        self.twins.get(j).copied()
+    }
+
+    /// [`Self::rooms`] where the free directions are `z`.
+    fn rooms_along(&self, z: &DMatrix<f64>) -> Vec<Room> {
+        (0..self.pairs.len())
+            .map(|j| {
+                let scale =
+                    (1..3).map(|a| self.rows[j][a].iter().map(|x| x * x).sum::<f64>().sqrt()).fold(0.0, f64::max);
+                if z.ncols() == 0 || scale == 0.0 {
+                    return Room::None;
+                }
+                // the shear axes' parts along the free directions
+                let m = DMatrix::<f64>::from_fn(2, z.ncols(), |a, c| {
+                    (0..self.r.len()).map(|i| self.rows[j][a + 1][i] * z[(i, c)]).sum()
+                });
+                let svd = m.svd(true, false);
+                let sv = &svd.singular_values;
+                match sv.iter().filter(|&&s| s > 1e-9 * scale).count() {
+                    0 => Room::None,
+                    1 if self.nd == 3 => {
+                        let (u, k) = (svd.u.expect("U"), sv.imax());
+                        Room::Line([0.0, u[(0, k)], u[(1, k)]])
+                    }
+                    _ => Room::Free,
+                }
+            })
+            .collect()
     }
 
     /// The junction under the relations `rel` (of every model pair) at
@@ -861,11 +902,13 @@ impl Junction {
 }
 
 pub mod pressure;
+mod room;
 mod row;
 mod split;
 mod tangent;
 mod tie_cache;
 use pressure::Pressure;
+pub use room::Room;
 use row::{Row, NORMAL};
 use split::{Split, RANK_TOLERANCE};
 use tangent::Tangent;

@@ -4,7 +4,8 @@
 //! pairs free everything, and a crease (two faces between the same two
 //! copies) slides only along its line and shares a stuck force within both
 //! Coulomb cones, whose change with the force its tangent predicts; a
-//! slipping joint wedged against a roller keeps finite forces.
+//! slipping joint wedged against a roller keeps finite forces; a
+//! crossing locks the diagonal through a corner and frees a joint.
 
 use super::*;
 
@@ -32,6 +33,20 @@ fn stuck_loops_leave_no_free_direction() {
     let tied = j.tie(&stuck(4), 1.0, |_| 1.0);
     assert_eq!(tied.z.ncols(), 0, "eight ties of rank six fix all six relative displacements");
     assert!(tied.r0.norm() < 1e-15);
+}
+
+/// A crossing's twins are the pairs on one plane. The diagonal through
+/// one copy's corner slipping (the other stuck) leaves no pair any room
+/// to slip: the corner can move only along both planes at once. A
+/// joint's two pairs slipping together leave them theirs.
+#[test]
+fn a_crossing_locks_a_diagonal_and_frees_a_joint() {
+    use ContactState::{Slip, Stick};
+    let (_, j) = crossing();
+    assert_eq!((0..4).map(|i| j.twin(i)).collect::<Vec<_>>(), [Some(1), Some(0), Some(3), Some(2)]);
+    assert_eq!(j.rooms(&[Slip, Stick, Slip, Stick]), [Room::None; 4]);
+    assert_eq!(j.rooms(&[Slip, Slip, Stick, Stick]), [Room::Free, Room::Free, Room::None, Room::None]);
+    assert_eq!(j.rooms(&[Stick, Stick, Slip, Slip]), [Room::None, Room::None, Room::Free, Room::Free]);
 }
 
 /// Uniform stress (sxx, syy, sxy) with equal areas: the copies' forces

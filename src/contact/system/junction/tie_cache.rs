@@ -1,8 +1,8 @@
 //! What a junction's ties give that depends only on which rows are tied
 //! (the states of its pairs), kept for the last set of tied rows: the rows
 //! of C and their constants, the free directions Z, the map from the rows'
-//! targets to r0, the split of the force they carry, and the pairs' slip
-//! lines. Each is an SVD (the lines
+//! targets to r0, the split of the force they carry, and the pairs' room
+//! to slip. Each is an SVD (the rooms
 //! one per pair), asked for two or three times per contact iteration
 //! (the relations, the solve, the judgement), while most junctions of a
 //! rock mass keep their states from one contact iteration to the next:
@@ -16,6 +16,7 @@ use std::sync::Mutex;
 
 use nalgebra::DMatrix;
 
+use super::room::Room;
 use super::row::Row;
 use super::split::Split;
 use super::tangent::Tangent;
@@ -50,7 +51,7 @@ pub(super) struct Tying {
     pub z: DMatrix<f64>,
     pub pinv: DMatrix<f64>,
     split: Option<Split>,
-    lines: Option<Vec<Option<[f64; 3]>>>,
+    rooms: Option<Vec<Room>>,
 }
 
 impl Tying {
@@ -61,10 +62,10 @@ impl Tying {
         self.split.get_or_insert_with(|| Split::new(c_rows, rows, areas, n_r))
     }
 
-    /// The pairs' slip lines (see [`Junction::slip_lines`]).
-    pub fn lines(&mut self, jn: &Junction) -> &[Option<[f64; 3]>] {
+    /// How far each pair can slip (see [`Junction::rooms`]).
+    pub fn rooms(&mut self, jn: &Junction) -> &[Room] {
         let z = &self.z;
-        self.lines.get_or_insert_with(|| jn.lines_along(z))
+        self.rooms.get_or_insert_with(|| jn.rooms_along(z))
     }
 }
 
@@ -107,7 +108,7 @@ impl Memo {
             _ => {
                 let (c_rows, consts): (Vec<Vec<f64>>, Vec<f64>) = rows.iter().map(|&row| jn.c_row(row)).unzip();
                 let (z, pinv) = jn.null_space(&c_rows);
-                Tying { rows: rows.to_vec(), c_rows, consts, z, pinv, split: None, lines: None }
+                Tying { rows: rows.to_vec(), c_rows, consts, z, pinv, split: None, rooms: None }
             }
         };
         f(last.insert(tying))

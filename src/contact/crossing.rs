@@ -1,0 +1,97 @@
+//! Where two joints cross: a slip the crossing locks is freed by its twin.
+//!
+//! At a crossing of joints J1 and J2 four blocks meet, and four pairs join
+//! their copies of a node: two on J1's plane (either side of J2) and two on
+//! J2's. The verdict judges each pair by its own force, and where the
+//! stress is near both joints' strength it lets slip the two pairs most
+//! beyond their bounds, one of each joint: the diagonal through one block's
+//! corner. With the other diagonal stuck, the other three blocks move as
+//! one there, and that corner can slip relative to them only along both
+//! planes at once: nowhere in 2D, or along the crossing line in 3D, across
+//! the force that makes it slip (and nowhere where a support holds the
+//! line's direction). Such a slip is not one: the loop's ties hold the
+//! pairs still, their pressures are not fixed by the loop (pressing the
+//! corner in raises both faces' pressures and friction, and puts the
+//! other diagonal in tension), and the verdict turns from one diagonal to
+//! the other. A k0 = 0.25 tunnel's initial stage (J1 and J2 at 60° and
+//! 70° cut 50° corners, self-locking at tan 35°) did so at every crossing
+//! on its end rollers and never converged (406 iterations and 3 cuts,
+//! docs/convergence.md, "Slip hardening does not end the crossing-line
+//! cycles").
+//!
+//! A joint can slip there only as a whole: its two pairs together, with
+//! the blocks either side of it moving as two. So where the verdict lets
+//! a pair slip that its crossing gives no room to ([`Room::None`], or a
+//! [`Room::Line`] more than 60° from its shear force), its twin slips too
+//! if it is near its own bound ([`NEAR_BOUND`]); the next solve and
+//! verdict then judge the joint's slip, which is free. Far from its bound
+//! the twin keeps the joint from slipping, and the pair is left to the
+//! rules for a slip its loop locks (judged by its force as tied,
+//! [`super::newton`]).
+
+use super::frame::tangential;
+use super::history::{cracked, law_at, History};
+use super::law::{friction_bound, ContactState};
+use super::pair_law::PairLaw;
+use super::system::{InterfaceProblem, Room};
+use crate::fem::vec3::norm;
+
+/// A twin slips with its locked pair from this share of its bound on
+/// (its shear over `b(p)` in the last solve). At 0.95 the tunnel's stage
+/// did not converge (406 and 3 cuts), nor at 0.97 blocks3d_confined's
+/// first step (400 and 3 cuts, 27 on main); at 0.8 and 0.9 both did, and
+/// tunnel4sets took 39 iterations (30 on main), at 0 44.
+pub const NEAR_BOUND: f64 = 0.9;
+
+/// A line of room is across a pair's shear force where the cosine of
+/// their angle is below this (60°).
+const ACROSS: f64 = 0.5;
+
+/// Rounds of freeing: a crossing has two pairs of twins.
+const ROUNDS: usize = 4;
+
+/// Frees the slips `next` asks of pairs their crossing gives no room to,
+/// by letting their twins near their bound slip too (see the module
+/// header); `force` is each pair's contact force in the last solve, and a
+/// freed twin takes its pair's `violation`.
+pub(super) fn free_locked_slips(
+    problem: &InterfaceProblem,
+    laws: &[PairLaw],
+    h: &History,
+    force: &[[f64; 3]],
+    next: &mut [ContactState],
+    violation: &mut [f64],
+) {
+    let no_room = |p: usize, room: Room| match room {
+        Room::None => true,
+        Room::Line(d) => {
+            let t = tangential(force[p]);
+            let l = norm(t);
+            l > 0.0 && (d[1] * t[1] + d[2] * t[2]).abs() < ACROSS * l
+        }
+        Room::Free => false,
+    };
+    let mobilised = |q: usize| {
+        let law = law_at(h, laws, q);
+        let f = force[q];
+        let (b, _) = friction_bound(&law.strength, cracked(h, q), problem.area(q), (-f[0]).max(0.0));
+        norm(tangential(f)) / b.max(f64::MIN_POSITIVE)
+    };
+    for _ in 0..ROUNDS {
+        let mut freed = false;
+        for crossing in problem.crossings(next) {
+            let locked = |&(p, q, room): &(usize, usize, Room)| {
+                let twin_near = next[q] == ContactState::Stick && !problem.held(q) && mobilised(q) >= NEAR_BOUND;
+                (next[p] == ContactState::Slip && !problem.held(p) && no_room(p, room) && twin_near).then_some((p, q))
+            };
+            if let Some((p, q)) = crossing.iter().find_map(locked) {
+                next[q] = ContactState::Slip;
+                violation[q] = violation[p];
+                freed = true;
+            }
+        }
+        if !freed {
+            break;
+        }
+    }
+}
