@@ -38,9 +38,9 @@ use crate::fem::vec3::norm;
 
 /// A twin slips with its locked pair from this share of its bound on
 /// (its shear over `b(p)` in the last solve). At 0.95 the tunnel's stage
-/// did not converge (406 and 3 cuts), nor at 0.97 blocks3d_confined's
-/// first step (400 and 3 cuts, 27 on main); at 0.8 and 0.9 both did, and
-/// tunnel4sets took 39 iterations (30 on main), at 0 44.
+/// did not converge (406 and 3 cuts); at 0.8 and 0.9 it did, and
+/// blocks3d_confined took 27, 12 and 17, 12 iterations (27, 15 on main),
+/// tunnel4sets 39 (30 on main); with any twin (0), 28, 12 and 44.
 pub const NEAR_BOUND: f64 = 0.9;
 
 /// A line of room is across a pair's shear force where the cosine of
