@@ -47,8 +47,8 @@ pub const NEAR_BOUND: f64 = 0.9;
 /// their angle is below this (60°).
 const ACROSS: f64 = 0.5;
 
-/// Rounds of freeing: a crossing has two pairs of twins.
-const ROUNDS: usize = 4;
+/// Rounds of freeing at one crossing: it has two pairs of twins.
+const ROUNDS: usize = 2;
 
 /// Frees the slips `next` asks of pairs their crossing gives no room to,
 /// by letting their twins near their bound slip too (see the module
@@ -77,21 +77,20 @@ pub(super) fn free_locked_slips(
         let (b, _) = friction_bound(&law.strength, cracked(h, q), problem.area(q), (-f[0]).max(0.0));
         norm(tangential(f)) / b.max(f64::MIN_POSITIVE)
     };
-    for _ in 0..ROUNDS {
-        let mut freed = false;
-        for crossing in problem.crossings(next) {
-            let locked = |&(p, q, room): &(usize, usize, Room)| {
+    // (a crossing's rooms depend on its own pairs' states alone: each is
+    // freed on its own, up to a change per pair of twins)
+    for jn in problem.crossings() {
+        for _ in 0..ROUNDS {
+            let rooms = jn.rooms(next);
+            let locked = |j: usize| {
+                let (p, q) = (jn.pairs[j], jn.pairs[jn.twin(j)?]);
                 let twin_near = next[q] == ContactState::Stick && !problem.held(q) && mobilised(q) >= NEAR_BOUND;
-                (next[p] == ContactState::Slip && !problem.held(p) && no_room(p, room) && twin_near).then_some((p, q))
+                (next[p] == ContactState::Slip && !problem.held(p) && no_room(p, rooms[j]) && twin_near)
+                    .then_some((p, q))
             };
-            if let Some((p, q)) = crossing.iter().find_map(locked) {
-                next[q] = ContactState::Slip;
-                violation[q] = violation[p];
-                freed = true;
-            }
-        }
-        if !freed {
-            break;
+            let Some((p, q)) = (0..jn.pairs.len()).find_map(locked) else { break };
+            next[q] = ContactState::Slip;
+            violation[q] = violation[p];
         }
     }
 }

@@ -327,16 +327,10 @@ impl<'a> InterfaceProblem<'a> {
         lines
     }
 
-    /// The crossings of two joints (junctions of four pairs, two on each
-    /// joint's plane) under `states`: per crossing, each pair with its
-    /// twin (the other pair on its plane) and its [`Room`] to slip.
-    pub fn crossings(&self, states: &[ContactState]) -> Vec<Vec<(usize, usize, Room)>> {
-        (self.layout.junctions.iter().filter(|jn| jn.twin(0).is_some()))
-            .map(|jn| {
-                let rooms = jn.rooms(states);
-                (0..jn.pairs.len()).filter_map(|j| Some((jn.pairs[j], jn.pairs[jn.twin(j)?], rooms[j]))).collect()
-            })
-            .collect()
+    /// The crossings of two joints: the junctions of four pairs, two on
+    /// each joint's plane ([`junction::Junction::twin`]).
+    pub fn crossings(&self) -> impl Iterator<Item = &junction::Junction> {
+        self.layout.junctions.iter().filter(|jn| jn.twin(0).is_some())
     }
 
     /// The free directions of the relative displacements under `rel`.
