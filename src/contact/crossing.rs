@@ -53,12 +53,16 @@ const ROUNDS: usize = 2;
 /// Frees the slips `next` asks of pairs their crossing gives no room to,
 /// by letting their twins near their bound slip too (see the module
 /// header); `force` is each pair's contact force in the last solve, and a
-/// freed twin takes its pair's `violation`.
+/// freed twin takes its pair's `violation`. A twin `pinned` at a cluster's
+/// candidate set keeps it: freed, it undid the candidate every iteration
+/// (the 34k tunnel's pair 2078, pinned stuck, set slipping each time its
+/// crossing's pair 2079 slipped, so that no candidate's trial settled).
 pub(super) fn free_locked_slips(
     problem: &InterfaceProblem,
     laws: &[PairLaw],
     h: &History,
     force: &[[f64; 3]],
+    pinned: impl Fn(usize) -> bool,
     next: &mut [ContactState],
     violation: &mut [f64],
 ) {
@@ -84,7 +88,8 @@ pub(super) fn free_locked_slips(
             let rooms = jn.rooms(next);
             let locked = |j: usize| {
                 let (p, q) = (jn.pairs[j], jn.pairs[jn.twin(j)?]);
-                let twin_near = next[q] == ContactState::Stick && !problem.held(q) && mobilised(q) >= NEAR_BOUND;
+                let twin_near =
+                    next[q] == ContactState::Stick && !problem.held(q) && !pinned(q) && mobilised(q) >= NEAR_BOUND;
                 (next[p] == ContactState::Slip && !problem.held(p) && no_room(p, rooms[j]) && twin_near)
                     .then_some((p, q))
             };

@@ -570,11 +570,13 @@ impl Rule for Newton<'_> {
             Some(Step::GaveUp) | None => self.break_or_pin(h, &mut judged, summary, tolerance, solution.loose),
         }
         // a slip a crossing of two joints locks freed by its twin
+        let pinned = |p: usize| self.search.pins(p);
         super::crossing::free_locked_slips(
             self.problem,
             self.laws,
             h,
             &self.force,
+            pinned,
             &mut judged.next,
             &mut judged.violation,
         );
