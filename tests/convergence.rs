@@ -92,6 +92,8 @@ fn a_step_that_still_does_not_converge_says_where_its_states_kept_changing() {
         "## Where the iteration did not settle",
         "| contact group | pairs that changed |",
         "| blocks | pairs that changed |",
+        "| sigma_n | tau | law residual | at the last iteration |",
+        "Stresses and the law residual in stress units, at the last iteration.",
     ] {
         assert!(report.contains(want), "report.md lacks {want:?}:\n{report}");
     }

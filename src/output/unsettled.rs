@@ -72,24 +72,80 @@ pub fn report(model: &Model, c: &ContactRun) -> String {
     worst.sort_by(|&a, &b| changes[b].cmp(&changes[a]).then(a.cmp(&b)));
     let _ = writeln!(
         s,
-        "\n| pair | x | y | z | contact group | changes | states, oldest first |\n|---|---|---|---|---|---|---|"
+        "\n| pair | x | y | z | contact group | changes | states, oldest first | sigma_n | tau | law residual | at the last iteration |\n|---|---|---|---|---|---|---|---|---|---|---|"
     );
+    let mut against = false;
     for &p in worst.iter().take(MOST_LISTED) {
         let (pair, x) = (&model.pairs[p], model.coords[model.pairs[p].k]);
         let states: Vec<&str> = recent(c).iter().map(|h| h[p].name()).collect();
+        let r = &c.pairs[p];
+        let tau = r.tau_t.hypot(r.tau_b);
+        let residual = c.law_residual.get(p).copied().unwrap_or(0.0);
+        let how = breach(c.states[p], r.sigma_n, tau, residual);
+        against |= how == SLIPS_BACK;
         let _ = writeln!(
             s,
-            "| {p} | {:.4} | {:.4} | {:.4} | {} | {} | {} |",
+            "| {p} | {:.4} | {:.4} | {:.4} | {} | {} | {} | {:.4} | {tau:.4} | {residual:.3e} | {how} |",
             x[0],
             x[1],
             x[2],
             model.interfaces[pair.contact].name,
             changes[p],
-            states.join(" ")
+            states.join(" "),
+            r.sigma_n,
         );
     }
     if worst.len() > MOST_LISTED {
-        let _ = writeln!(s, "| ({} more pairs) | | | | | | |", worst.len() - MOST_LISTED);
+        let _ = writeln!(s, "| ({} more pairs) | | | | | | | | | | |", worst.len() - MOST_LISTED);
+    }
+    let _ = writeln!(s, "\nStresses and the law residual in stress units, at the last iteration.");
+    if against {
+        let _ = writeln!(s, "\n{AGAINST}");
     }
     s
+}
+
+/// What the table's last column means by a slip against its friction.
+const AGAINST: &str = "A pair that *slips against its friction* (its law residual about twice its shear) was beyond its bound stuck, and let slip it was pushed back by its own friction: its slip presses it harder into the faces round it (a wedge, as where two joints cross at or near a free face). Neither of its states meets the law while the pairs round it keep theirs; where that was measured, more iterations did not end it (docs/convergence.md, the 34k tunnel's crossings).";
+
+/// The last column for a slip against its friction.
+const SLIPS_BACK: &str = "slips against its friction";
+
+/// A slipping pair's law residual from this share of its shear up is a
+/// slip against its friction: at its bound `|λ_T - b e|` is `2 b` for a
+/// slip e straight back, `sqrt(2) b` for one across.
+const AGAINST_SHARE: f64 = 1.5;
+
+/// A law residual below this share of the pair's traction is round-off.
+const ROUND_OFF: f64 = 1e-9;
+
+/// How a pair in `state`, with stresses `sigma_n` and shear `tau` and law
+/// `residual`, breaks the law (see [`crate::contact::law::law_residual`]).
+fn breach(state: ContactState, sigma_n: f64, tau: f64, residual: f64) -> &'static str {
+    match state {
+        _ if residual <= ROUND_OFF * sigma_n.hypot(tau) => "meets the law",
+        ContactState::Stick => "stuck beyond its bound",
+        ContactState::Slip if tau > 0.0 && residual >= AGAINST_SHARE * tau => SLIPS_BACK,
+        ContactState::Slip => "friction off its bound or its slip",
+        ContactState::Open => "open, carrying force or overlapping",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_slip_straight_back_is_against_its_friction_and_one_across_is_not() {
+        // friction 0.7 at sigma_n = -1: the bound b = 0.7
+        let (sn, b): (f64, f64) = (-1.0, 0.7);
+        // at its bound, slipping back (|λ_T - b e| = 2 b) and across (sqrt 2 b)
+        assert_eq!(breach(ContactState::Slip, sn, b, 2.0 * b), SLIPS_BACK);
+        assert_eq!(breach(ContactState::Slip, sn, b, 2f64.sqrt() * b), "friction off its bound or its slip");
+        assert_eq!(breach(ContactState::Stick, sn, 1.99 * b, 0.99 * b), "stuck beyond its bound");
+        // round-off is no breach (pair 2079 of the 34k tunnel: 7.8e-15 MPa)
+        assert_eq!(breach(ContactState::Slip, sn, b, 7.8e-15), "meets the law");
+        assert_eq!(breach(ContactState::Slip, sn, b, 1e-6), "friction off its bound or its slip");
+        assert_eq!(breach(ContactState::Open, 0.0, 0.0, 0.3), "open, carrying force or overlapping");
+    }
 }
