@@ -67,12 +67,16 @@ pub enum ContactError {
     /// (`cycled`: its states cycle; `law_broken`: they settled, but the
     /// forces of the last solve break the contact law) under `rule`;
     /// `results`: where the last iteration's results were written; `cuts`:
-    /// the halvings of the step that were tried ([solver] max_cuts).
+    /// the halvings of the step that were tried ([solver] max_cuts);
+    /// `slipping_back`: the pairs that slip against their friction at the
+    /// last iteration (report.md), which more iterations did not settle
+    /// where measured.
     NotConverged {
         step: Option<usize>,
         iterations: usize,
         cycled: bool,
         law_broken: bool,
+        slipping_back: usize,
         cuts: usize,
         rule: StateRule,
         results: Option<PathBuf>,
@@ -293,7 +297,7 @@ impl fmt::Display for ContactError {
                     write!(f, " — loss of equilibrium: the load along the contact exceeds what friction and cohesion can carry. Reduce the load, add a support that holds {} tangentially, or raise the friction or cohesion of {its} contacts", if bodies.len() > 1 { "them" } else { "it" })
                 }
             }
-            ContactError::NotConverged { step, iterations, cycled, law_broken, cuts, rule, results } => {
+            ContactError::NotConverged { step, iterations, cycled, law_broken, slipping_back, cuts, rule, results } => {
                 write!(f, "the contact iteration did not converge")?;
                 match step {
                     Some(0) => write!(f, " in the initial equilibrium stage ([solver] initial_stage: the in-situ stress with the contacts active, before any load)")?,
@@ -313,7 +317,11 @@ impl fmt::Display for ContactError {
                 }
                 if let Some(out) = results {
                     let other = if *rule == StateRule::Paper { ", or the default rule = \"robust\"" } else { "" };
-                    write!(f, "; the results in {} are those of the last iteration (summary.json contact.converged = false, report.md says where the states kept changing, contact.csv and the contact VTU mark those pairs: `changes`). Look there for a block held by a few pairs, a joint at its strength, or a support missing; or try more [solver] max_iterations{other}", out.display())?;
+                    write!(f, "; the results in {} are those of the last iteration (summary.json contact.converged = false, report.md says where the states kept changing, contact.csv and the contact VTU mark those pairs: `changes`). Look there for a block held by a few pairs, a joint at its strength, or a support missing", out.display())?;
+                    match slipping_back {
+                        0 => write!(f, "; or try more [solver] max_iterations{other}")?,
+                        n => write!(f, ". {n} pair(s) slip against their own friction (contact.csv: a law_residual about twice their shear): stuck, each is beyond its bound, and let slip its friction pushes it back, a wedge such as a corner where two joints cross near a free face; more iterations did not settle such pairs where that was measured (docs/convergence.md){other}")?,
+                    }
                 }
                 Ok(())
             }
@@ -421,5 +429,34 @@ fn unsafe_message(e: &SafetyError, f: &mut fmt::Formatter<'_>) -> fmt::Result {
             f,
             ". Raise the friction or cohesion of those contacts, lower the loads, or hold the blocks that move"
         ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn not_converged(slipping_back: usize) -> String {
+        ContactError::NotConverged {
+            step: Some(1),
+            iterations: 100,
+            cycled: true,
+            law_broken: false,
+            slipping_back,
+            cuts: 0,
+            rule: StateRule::Robust,
+            results: Some(PathBuf::from("out")),
+        }
+        .to_string()
+    }
+
+    #[test]
+    fn more_iterations_are_not_advised_where_pairs_slip_against_their_friction() {
+        // (the 34k tunnel's pairs that slip back did not settle in 700 iterations)
+        let plain = not_converged(0);
+        assert!(plain.contains("or try more [solver] max_iterations"), "{plain}");
+        let back = not_converged(3);
+        assert!(!back.contains("max_iterations"), "{back}");
+        assert!(back.contains("3 pair(s) slip against their own friction (contact.csv"), "{back}");
     }
 }

@@ -285,6 +285,7 @@ fn not_converged(run: &Run, results: Option<PathBuf>) -> Option<ContactError> {
         iterations: c.summary.iterations,
         cycled: c.summary.cycled,
         law_broken: c.summary.law_broken,
+        slipping_back: output::slipping_back(c),
         cuts: c.summary.cuts,
         rule: run.scene.solver.rule,
         results,

@@ -32,6 +32,7 @@ pub mod vtu;
 mod water;
 
 pub use safety::{label as safety_label, other_factor_line, warnings as safety_warnings};
+pub use unsettled::slipping_back;
 
 use serde_json::json;
 

@@ -33,6 +33,21 @@ fn recent(c: &ContactRun) -> &[Vec<ContactState>] {
     &h[h.len().saturating_sub(WINDOW)..]
 }
 
+/// The pairs of a run that did not converge that slip against their
+/// friction at its last iteration (see [`AGAINST`]); 0 for a converged one.
+pub fn slipping_back(c: &ContactRun) -> usize {
+    if c.summary.converged {
+        return 0;
+    }
+    (0..c.states.len())
+        .filter(|&p| {
+            let r = &c.pairs[p];
+            let residual = c.law_residual.get(p).copied().unwrap_or(0.0);
+            breach(c.states[p], r.sigma_n, r.tau_t.hypot(r.tau_b), residual) == SLIPS_BACK
+        })
+        .count()
+}
+
 /// report.md's section on where the iteration did not settle (empty when
 /// it converged).
 pub fn report(model: &Model, c: &ContactRun) -> String {
