@@ -39,13 +39,16 @@ pub fn slipping_back(c: &ContactRun) -> usize {
     if c.summary.converged {
         return 0;
     }
-    (0..c.states.len())
-        .filter(|&p| {
-            let r = &c.pairs[p];
-            let residual = c.law_residual.get(p).copied().unwrap_or(0.0);
-            breach(c.states[p], r.sigma_n, r.tau_t.hypot(r.tau_b), residual) == SLIPS_BACK
-        })
-        .count()
+    (0..c.states.len()).filter(|&p| at_the_end(c, p).2 == SLIPS_BACK).count()
+}
+
+/// Pair `p`'s shear and law residual at the last iteration of `c`, and
+/// how it breaks the law ([`breach`]).
+fn at_the_end(c: &ContactRun, p: usize) -> (f64, f64, &'static str) {
+    let r = &c.pairs[p];
+    let tau = r.tau_t.hypot(r.tau_b);
+    let residual = c.law_residual.get(p).copied().unwrap_or(0.0);
+    (tau, residual, breach(c.states[p], r.sigma_n, tau, residual))
 }
 
 /// report.md's section on where the iteration did not settle (empty when
@@ -93,10 +96,7 @@ pub fn report(model: &Model, c: &ContactRun) -> String {
     for &p in worst.iter().take(MOST_LISTED) {
         let (pair, x) = (&model.pairs[p], model.coords[model.pairs[p].k]);
         let states: Vec<&str> = recent(c).iter().map(|h| h[p].name()).collect();
-        let r = &c.pairs[p];
-        let tau = r.tau_t.hypot(r.tau_b);
-        let residual = c.law_residual.get(p).copied().unwrap_or(0.0);
-        let how = breach(c.states[p], r.sigma_n, tau, residual);
+        let (tau, residual, how) = at_the_end(c, p);
         against |= how == SLIPS_BACK;
         let _ = writeln!(
             s,
@@ -107,7 +107,7 @@ pub fn report(model: &Model, c: &ContactRun) -> String {
             model.interfaces[pair.contact].name,
             changes[p],
             states.join(" "),
-            r.sigma_n,
+            c.pairs[p].sigma_n,
         );
     }
     if worst.len() > MOST_LISTED {
