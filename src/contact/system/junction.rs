@@ -54,12 +54,6 @@ use crate::contact::frame::Frame;
 use crate::contact::law::ContactState;
 use crate::fem::vec3::{dot, norm, sub};
 
-/// The rounds and the tolerance (of the largest carried force) of the
-/// fixed point of a loop's locked slipping pairs' pressures (see
-/// `Junction::settle_locked`).
-const SETTLE_ROUNDS: usize = 200;
-const SETTLED: f64 = 1e-13;
-
 /// How far beyond a limit (of the largest force) the least-norm share of
 /// a loop may be for [`Junction::share_with_friction`] to look for one
 /// within it: a pair at its limit, as blocks3d_confined's pair 335 (5e-4
@@ -836,13 +830,14 @@ impl Junction {
     /// iterated here, r held, instead of over contact iterations (a 3D
     /// tunnel through three joint sets took 20 contact iterations a time
     /// creeping along it). Returns the carried force and its share at the
-    /// pressures found, which it writes into `pressure`. Where the rounds
-    /// do not contract (a wedge: the friction, carried round the loop or
-    /// into a roller, gives the pair's normal back as much pressure as it
-    /// took, or more), the pressures stay the last solve's: on the 86k
-    /// tunnel a J2 pair at the end roller went to 1e34 in 200 rounds, and
-    /// the iteration never recovered. The pair is then judged by its force
-    /// as tied (`forces`): a locked slip changes no displacement.
+    /// pressures found ([`fixed_point::settle`]), which it writes into
+    /// `pressure`. Where the rounds reach none (a wedge: the friction,
+    /// carried round the loop or into a roller, gives the pair's normal
+    /// back as much pressure as it took, or more; or they cycle), the
+    /// pressures stay the last solve's: on the 86k tunnel a J2 pair at the
+    /// end roller went to 1e34 in 200 rounds, and the iteration never
+    /// recovered. The pair is then judged by its force as tied (`forces`):
+    /// a locked slip changes no displacement.
     #[allow(clippy::too_many_arguments)]
     fn settle_locked(
         &self,
@@ -850,7 +845,7 @@ impl Junction {
         rel: &[Relation],
         stuck: &[usize],
         carried: DVector<f64>,
-        mut lambda: DVector<f64>,
+        lambda: DVector<f64>,
         limits: &[Limit],
         pressure: &mut [f64],
     ) -> (DVector<f64>, DVector<f64>) {
@@ -873,27 +868,18 @@ impl Junction {
             })
             .collect();
         let base: Vec<f64> = stuck.iter().map(|&j| rel[self.pairs[j]].pressure).collect();
-        let mut p: Vec<f64> = normal.iter().map(|&i| (-lambda[i]).max(0.0)).collect();
+        let p: Vec<f64> = normal.iter().map(|&i| (-lambda[i]).max(0.0)).collect();
         let scale = carried.amax().max(f64::MIN_POSITIVE);
-        let mut now = carried.clone();
-        let (mut first, mut last) = (None, 0.0);
-        for _ in 0..SETTLE_ROUNDS {
-            now = per.iter().zip(&p).zip(&base).fold(carried.clone(), |acc, ((v, &pj), &b)| acc - v * (pj - b));
-            lambda = tied.split.forces(&now, limits);
+        let at = |p: &[f64]| {
+            let now = per.iter().zip(p).zip(&base).fold(carried.clone(), |acc, ((v, &pj), &b)| acc - v * (pj - b));
+            let lambda = tied.split.forces(&now, limits);
             let next: Vec<f64> = normal.iter().map(|&i| (-lambda[i]).max(0.0)).collect();
-            last = next.iter().zip(&p).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-            first.get_or_insert(last);
-            p = next;
-            if last <= SETTLED * scale {
-                break;
-            }
-        }
-        // (at a gain of 1 each round moves them by about the first's: more
-        // than all the rounds of that is a gain beyond 1, a wedge)
-        if !(last <= SETTLE_ROUNDS as f64 * first.unwrap_or(0.0)) {
+            (now, lambda, next)
+        };
+        let Some((p, (now, lambda, _))) = fixed_point::settle(&at, p, scale) else {
             let lambda = tied.split.forces(&carried, limits);
             return (carried, lambda);
-        }
+        };
         for (&j, &pj) in stuck.iter().zip(&p) {
             pressure[j] = pj;
         }
@@ -901,6 +887,7 @@ impl Junction {
     }
 }
 
+mod fixed_point;
 pub mod pressure;
 mod room;
 mod row;
