@@ -196,6 +196,7 @@ mod tests {
             inexact: false,
             as_tied: vec![None; 3],
             water: Vec::new(),
+            locked_off: Vec::new(),
         };
         commit(&mut h, &solution);
         assert_eq!(h.cracked, vec![true, false, true], "cracked on the way, and open at the end");
@@ -245,6 +246,7 @@ mod tests {
             inexact: false,
             as_tied: vec![None; 2],
             water: Vec::new(),
+            locked_off: Vec::new(),
         };
         h.states = vec![Stick, Slip];
         commit(&mut h, &solution);

@@ -406,7 +406,9 @@ impl Step<'_> {
             force: w.forces(&states, lambda),
         });
         let frames = problem.frames().to_vec();
-        (ContactRun { states, pairs, frames, areas, summary, water, law_residual, cracked }, solution.d_c)
+        let locked_off = solution.locked_off;
+        let run = ContactRun { states, pairs, frames, areas, summary, water, law_residual, cracked, locked_off };
+        (run, solution.d_c)
     }
 }
 

@@ -221,11 +221,20 @@ fn steps_summary(run: &Run) -> serde_json::Value {
             if let Some(c) = &st.contact {
                 let k = state_counts(&c.states);
                 j["contact"] = json!({ "iterations": c.summary.iterations, "converged": c.summary.converged, "cycled": c.summary.cycled,
-                    "states": { "stick": k[2], "slip": k[1], "open": k[0] }, "cuts": c.summary.cuts, "pieces": c.summary.pieces });
+                    "states": { "stick": k[2], "slip": k[1], "open": k[0] }, "cuts": c.summary.cuts, "pieces": c.summary.pieces,
+                    "locked_friction_off": locked_off(c) });
             }
             j
         })
         .collect::<Vec<_>>())
+}
+
+/// The crossings whose locked friction is off the equilibrium solved
+/// (`ContactRun::locked_off`): how many, and the worst one's pairs and
+/// force (absolute, and of the largest pair force); null where none is.
+fn locked_off(c: &crate::results::ContactRun) -> serde_json::Value {
+    json!(c.worst_locked_off().map(|(pairs, f, r)| json!({
+        "crossings": c.locked_off.len(), "pairs": pairs, "force": f, "relative": r })))
 }
 
 /// The initial equilibrium stage in summary.json: its iteration, the
@@ -278,6 +287,7 @@ fn summary(run: &Run) -> serde_json::Value {
             "pieces": it.pieces,
             "unsettled_pairs": unsettled::changes(c).map(|k| k.iter().filter(|&&n| n > 0).count()),
             "law_residual": c.worst_law_residual().map(|(p, r)| json!({ "pair": p, "relative": r, "stress": c.law_residual[p] })),
+            "locked_friction_off": locked_off(c),
             "history": it.history.iter().map(|h| { let k = state_counts(h); json!({"stick": k[2], "slip": k[1], "open": k[0]}) }).collect::<Vec<_>>(),
         });
         if let Some(r) = resultants::of_run(run) {

@@ -171,6 +171,30 @@ fn iteration_notes(s: &mut String, run: &Run) {
         }
         *s += &super::unsettled::report(&run.model, c);
     }
+    locked_off(s, run);
+}
+
+/// The crossings whose locked friction is off the equilibrium solved, step
+/// by step (`ContactRun::locked_off`), and what that means for their forces.
+fn locked_off(s: &mut String, run: &Run) {
+    let off: Vec<_> = (run.steps.iter())
+        .filter_map(|st| {
+            st.contact.as_ref().and_then(|c| c.worst_locked_off().map(|w| (st.step, c.locked_off.len(), w)))
+        })
+        .collect();
+    if off.is_empty() {
+        return;
+    }
+    let _ = writeln!(s, "
+At some crossings of joints the friction of slipping pairs that the crossing locks (they cannot move along their slip) depends on their pressures, which the crossing's share of the forces gives back; there no pressures gave themselves back, and the forces reported for those pairs are one round of that search off the equilibrium solved. Read them as uncertain by that much; the states and the rest of the answer are the iteration's (docs/convergence.md, twentieth session).\n");
+    for (step, n, (pairs, f, r)) in off {
+        let x = run.model.coords[run.model.pairs[pairs[0]].k];
+        let _ = writeln!(
+            s,
+            "- load step {step}: {n} crossing(s); the worst at ({:.3}, {:.3}, {:.3}), pairs {pairs:?}: {f:.3e} in force, {r:.2e} of the largest pair force",
+            x[0], x[1], x.get(2).copied().unwrap_or(0.0)
+        );
+    }
 }
 
 /// The pictures: the deformed shape, the stereonet, the interface plot and the plan views.

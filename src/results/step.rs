@@ -45,6 +45,10 @@ pub struct ContactRun {
     /// this one, or open or slipping now): it has no tensile strength and
     /// its residual cohesion. Empty: none cracked.
     pub cracked: Vec<bool>,
+    /// Crossings whose locked slipping pairs' friction is off the
+    /// equilibrium solved: their pairs, and by how much in force (see
+    /// `contact::system::InterfaceSolution::locked_off`). Empty: none.
+    pub locked_off: Vec<(Vec<usize>, f64)>,
 }
 
 /// The water at every pair of a step (zero on dry pairs).
@@ -69,6 +73,17 @@ impl ContactRun {
         Some((p, if scale > 0.0 { r / scale } else { r }))
     }
 
+    /// The crossing whose locked friction is farthest off the equilibrium
+    /// solved ([`ContactRun::locked_off`]): its pairs, the force, and the
+    /// force relative to the largest pair force (None where none is off).
+    pub fn worst_locked_off(&self) -> Option<(&[usize], f64, f64)> {
+        let scale = (0..self.pairs.len())
+            .map(|p| self.pairs[p].sigma_n.hypot(self.pairs[p].tau()) * self.areas[p])
+            .fold(0.0, f64::max);
+        let (pairs, off) = self.locked_off.iter().max_by(|a, b| a.1.total_cmp(&b.1))?;
+        Some((pairs, *off, if scale > 0.0 { off / scale } else { *off }))
+    }
+
     /// The shear traction of pair `p` on body I in global axes.
     pub fn shear(&self, p: usize) -> [f64; 3] {
         let (f, r) = (&self.frames[p], &self.pairs[p]);
@@ -89,5 +104,32 @@ impl ContactRun {
     pub fn force(&self, p: usize) -> [f64; 3] {
         let (f, r, a) = (&self.frames[p], &self.pairs[p], self.areas[p]);
         std::array::from_fn(|i| (r.sigma_n * f[0][i] + r.tau_t * f[1][i] + r.tau_b * f[2][i]) * a)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_worst_locked_crossing_is_read_against_the_largest_pair_force() {
+        let pair = |sigma_n: f64, tau_t: f64| PairResult { sigma_n, tau_t, ..Default::default() };
+        let mut c = ContactRun {
+            states: vec![ContactState::Slip; 3],
+            // forces 3 x 2 = 6 (5 x 1.2), 2 x 1 and 0
+            pairs: vec![pair(-3.0, 4.0), pair(-2.0, 0.0), pair(0.0, 0.0)],
+            frames: vec![[[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]; 3],
+            areas: vec![1.2, 1.0, 1.0],
+            summary: Summary::default(),
+            water: None,
+            law_residual: Vec::new(),
+            cracked: Vec::new(),
+            locked_off: Vec::new(),
+        };
+        assert!(c.worst_locked_off().is_none(), "none off: nothing to say");
+        c.locked_off = vec![(vec![0, 1], 0.03), (vec![2], 0.12)];
+        let (pairs, f, r) = c.worst_locked_off().expect("two crossings off");
+        assert_eq!((pairs, f), (&[2][..], 0.12));
+        assert!((r - 0.02).abs() < 1e-15, "{r}");
     }
 }

@@ -119,6 +119,8 @@ pub struct Junction {
     nd: usize,
     /// What the last set of tied rows gave (see [`memo`]).
     memo: Memo,
+    /// How far the last solve's locked pressures were from a fixed point.
+    off: Off,
 }
 
 /// A closed partner's normal crosses a pair's shear plane (a crease)
@@ -304,13 +306,35 @@ impl Junction {
         let partners =
             (0..pairs.len()).map(|j| (0..pairs.len()).filter(|&i| i != j && ends[i] == ends[j]).collect()).collect();
         let twins = crossing_twins(&frames);
-        Junction { pairs, copies, terms, r, m, rows, consts, frames, partners, twins, nd, memo: Memo::default() }
+        Junction {
+            pairs,
+            copies,
+            terms,
+            r,
+            m,
+            rows,
+            consts,
+            frames,
+            partners,
+            twins,
+            nd,
+            memo: Memo::default(),
+            off: Off::default(),
+        }
     }
 
     /// A new load: the junction solves for its slipping pairs' pressures
     /// again, until its loops carry part of one (see [`pressure`]).
     pub fn new_load(&self) {
         self.memo.reset_looped();
+    }
+
+    /// How far the pressures its last solve wrote for the locked slipping
+    /// pairs are from those its forces carry (force units; 0 where they
+    /// reached a fixed point or there were none): the rounds' end taken
+    /// where they have none ([`fixed_point::settle`]).
+    pub fn locked_off(&self) -> f64 {
+        self.off.get()
     }
 
     /// The tied rows under `state` (of every model pair): a stuck pair's
@@ -645,6 +669,7 @@ impl Junction {
                 lambda = within;
             }
         }
+        self.off.set(0.0);
         if tied.pressure.is_none() {
             let stuck = self.locked_slipping(tied, rel, rels);
             if !stuck.is_empty() {
@@ -876,10 +901,11 @@ impl Junction {
             let next: Vec<f64> = normal.iter().map(|&i| (-lambda[i]).max(0.0)).collect();
             (now, lambda, next)
         };
-        let Some((p, (now, lambda, _))) = fixed_point::settle(&at, p, scale) else {
+        let Some((p, (now, lambda, _), off)) = fixed_point::settle(&at, p, scale) else {
             let lambda = tied.split.forces(&carried, limits);
             return (carried, lambda);
         };
+        self.off.set(if off > fixed_point::CLOSE * scale { off } else { 0.0 });
         for (&j, &pj) in stuck.iter().zip(&p) {
             pressure[j] = pj;
         }
@@ -894,6 +920,7 @@ mod row;
 mod split;
 mod tangent;
 mod tie_cache;
+use fixed_point::Off;
 use pressure::Pressure;
 pub use room::Room;
 use row::{Row, NORMAL};

@@ -135,6 +135,11 @@ pub struct InterfaceSolution {
     /// The size of the water's force on each pair (empty when dry): what
     /// a force it balances is resolved to.
     pub water: Vec<f64>,
+    /// The junctions whose locked slipping pairs' pressures reached no
+    /// fixed point (see [`junction::Junction::locked_off`]): their pairs,
+    /// and how far the pressures written are from those their forces
+    /// carry (force units).
+    pub locked_off: Vec<(Vec<usize>, f64)>,
 }
 
 /// Why an interface solve failed.
@@ -477,6 +482,10 @@ impl<'a> InterfaceProblem<'a> {
             inexact: answer.inexact,
             as_tied,
             water: water_forces,
+            locked_off: (self.layout.junctions.iter())
+                .filter(|jn| jn.locked_off() > 0.0)
+                .map(|jn| (jn.pairs.clone(), jn.locked_off()))
+                .collect(),
         })
     }
 

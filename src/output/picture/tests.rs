@@ -767,6 +767,7 @@ fn a_joint_set_of_many_planes_gets_a_plan_per_plane_and_one_overview() {
         summary: crate::contact::Summary { iterations: 1, converged: true, ..Default::default() },
         law_residual: Vec::new(),
         cracked: Vec::new(),
+        locked_off: Vec::new(),
     };
     let plans = plan_files(&model);
     let files: Vec<&str> = plans.iter().map(|p| p.file.as_str()).collect();

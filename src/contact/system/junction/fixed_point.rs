@@ -13,20 +13,50 @@
 //! round's change more than [`ROUNDS`] times the first's).
 //!
 //! Their end is taken even where the rounds cycle, which is not a fixed
-//! point: tunnel4sets' junction [1951, 5509, 5510, 5511], four locked
-//! slipping pairs, ends its rounds in an exact three-cycle (pair 1951:
-//! 0.033, 0.090, 0.103 MN), Newton stalls at a residual of 4.3e-2 of
-//! 0.59 MN (P's Jacobian has eigenvalues 1.0017 +- 0.0059i), and the
-//! pressures written are the 200th round's while the forces carried are
-//! the round before's: friction 7-13 % off the equilibrium solved, in a
-//! run said to converge. Taking no such end (the last solve's pressures
-//! instead, as for a wedge) makes tunnel4sets converge in 93 iterations
-//! to consistent forces, but blocks3d_confined, whose middle iterations
-//! take such ends (changes up to 3.4e-3 of 2.7e-2) and whose last solve
-//! settles exactly, no longer converges (400 and 3 cuts):
-//! docs/convergence.md, twentieth session.
+//! point, and said: tunnel4sets' junction [1951, 5509, 5510, 5511] (with
+//! the J1 pairs of its node, three joints crossing), four locked slipping
+//! pairs, ends its rounds in an exact three-cycle (pair 1951: 0.033,
+//! 0.090, 0.103 MN), Newton stalls at a residual of 4.3e-2 of 0.59 MN
+//! (P's Jacobian has eigenvalues 1.0017 +- 0.0059i), and the pressures
+//! written are the 200th round's while the forces carried are the round
+//! before's: friction 7-13 % off the equilibrium solved. The third value
+//! of [`settle`] is that difference, which summary.json and report.md
+//! give (`locked_friction_off`). Taking no such end (the last solve's
+//! pressures instead, as for a wedge) makes tunnel4sets converge in 93
+//! iterations to consistent forces, but blocks3d_confined, which takes
+//! such ends on its way and ends its step 1 on one (5e-6 MN), then no
+//! longer converges (400 and 3 cuts); refused only once the states have
+//! settled, neither converges: docs/convergence.md, twentieth session.
+
+use std::sync::Mutex;
 
 use nalgebra::{DMatrix, DVector};
+
+/// How far a junction's last solve's locked pressures were from a fixed
+/// point ([`settle`]'s third value where beyond [`CLOSE`], else 0).
+#[derive(Default)]
+pub(super) struct Off(Mutex<f64>);
+
+impl Off {
+    pub fn get(&self) -> f64 {
+        *self.0.lock().unwrap_or_else(|e| e.into_inner())
+    }
+    pub fn set(&self, off: f64) {
+        *self.0.lock().unwrap_or_else(|e| e.into_inner()) = off;
+    }
+}
+
+impl Clone for Off {
+    fn clone(&self) -> Off {
+        Off::default()
+    }
+}
+
+impl std::fmt::Debug for Off {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Off({})", self.get())
+    }
+}
 
 /// Plain rounds after Newton's.
 const ROUNDS: usize = 200;
@@ -43,11 +73,21 @@ pub type Round = (DVector<f64>, DVector<f64>, Vec<f64>);
 
 /// The pressures with `P(p) = p` from `p` (Newton takes only a fixed
 /// point where P contracts, the one the rounds would reach), or the plain
-/// rounds' end; and the carried force and share the pressures come from.
-/// None where the rounds grow.
-pub fn settle(at: &impl Fn(&[f64]) -> Round, p: Vec<f64>, scale: f64) -> Option<(Vec<f64>, Round)> {
-    newton(at, p.clone(), scale).or_else(|| rounds(at, p, scale))
+/// rounds' end; the carried force and share the pressures come from; and
+/// how far the pressures written are from those carried (the last
+/// round's change: round-off at a fixed point). None where the rounds
+/// grow.
+pub fn settle(at: &impl Fn(&[f64]) -> Round, p: Vec<f64>, scale: f64) -> Option<(Vec<f64>, Round, f64)> {
+    if let Some((p, round)) = newton(at, p.clone(), scale) {
+        let off = change(&round.2, &p);
+        return Some((p, round, off));
+    }
+    rounds(at, p, scale)
 }
+
+/// A round's change, of the largest carried force, within which the
+/// pressures are at a fixed point (to round-off of the share's solve).
+pub const CLOSE: f64 = 1e-9;
 
 /// The largest change `P(p) - p`.
 fn change(next: &[f64], p: &[f64]) -> f64 {
@@ -94,21 +134,23 @@ fn newton(at: &impl Fn(&[f64]) -> Round, mut p: Vec<f64>, scale: f64) -> Option<
     (change(&round.2, &p) <= SETTLED * scale).then(|| (round.2.clone(), round))
 }
 
-fn rounds(at: &impl Fn(&[f64]) -> Round, mut p: Vec<f64>, scale: f64) -> Option<(Vec<f64>, Round)> {
-    let (mut first, mut last) = (None, 0.0);
-    let mut round = at(&p);
+/// The plain rounds' end and the last round's change; None where they grow.
+fn rounds(at: &impl Fn(&[f64]) -> Round, mut p: Vec<f64>, scale: f64) -> Option<(Vec<f64>, Round, f64)> {
+    let (mut first, mut last, mut end) = (None, 0.0, None);
     for _ in 0..ROUNDS {
-        round = at(&p);
+        let round = at(&p);
         last = change(&round.2, &p);
         first.get_or_insert(last);
         p.clone_from(&round.2);
+        end = Some(round);
         if last <= SETTLED * scale {
             break;
         }
     }
     // (at a gain of 1 each round moves them by about the first's: more
     // than all the rounds of that is a gain beyond 1, a wedge)
-    (last <= ROUNDS as f64 * first.unwrap_or(0.0)).then_some((p, round))
+    let round = end.filter(|_| last <= ROUNDS as f64 * first.unwrap_or(0.0))?;
+    Some((p, round, last))
 }
 
 #[cfg(test)]
@@ -128,10 +170,11 @@ mod tests {
     fn a_slow_contraction_is_settled_at_its_limit() {
         // gain 0.997 a round: 200 plain rounds leave 55 % of the way
         let at = affine(DMatrix::from_row_slice(1, 1, &[0.997]), vec![0.003]);
-        let (p, _) = settle(&at, vec![0.1], 1.0).expect("a fixed point");
+        let (p, _, off) = settle(&at, vec![0.1], 1.0).expect("a fixed point");
+        assert!(off <= SETTLED);
         assert!((p[0] - 1.0).abs() < 1e-12, "p = {}", p[0]);
         let two = affine(DMatrix::from_row_slice(2, 2, &[0.5, 0.3, -0.2, 0.9]), vec![0.1, 0.2]);
-        let (p, (_, _, next)) = settle(&two, vec![0.0, 0.0], 1.0).expect("a fixed point");
+        let (p, (_, _, next), _) = settle(&two, vec![0.0, 0.0], 1.0).expect("a fixed point");
         assert!(change(&next, &p) <= SETTLED);
     }
 
@@ -140,5 +183,20 @@ mod tests {
         // a wedge: each round gives back more than it took
         let grows = affine(DMatrix::from_row_slice(1, 1, &[1.5]), vec![0.1]);
         assert!(settle(&grows, vec![0.1], 1.0).is_none());
+    }
+
+    #[test]
+    fn an_end_that_cycles_is_taken_and_says_how_far_off_it_is() {
+        // a turn by 120 degrees about (1, 1) that grows as tunnel4sets'
+        // junction's did (eigenvalues of modulus 1.0017): Newton does not
+        // take its fixed point, and the rounds turn round it at a radius
+        // of 0.2 (from 1.2, 1.0), 0.35 apart from one round to the next
+        let (c, s) = (-0.5 * 1.0017, 0.75f64.sqrt() * 1.0017);
+        let turn = DMatrix::from_row_slice(2, 2, &[c, -s, s, c]);
+        let centre = DVector::from_vec(vec![1.0, 1.0]);
+        let shift = &centre - &turn * &centre;
+        let at = affine(turn, shift.iter().copied().collect());
+        let (_, _, off) = settle(&at, vec![1.2, 1.0], 1.0).expect("the rounds' end");
+        assert!(off > 0.2 && off < 0.5, "off {off}");
     }
 }
