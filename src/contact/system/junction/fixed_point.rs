@@ -114,8 +114,9 @@ fn newton(at: &impl Fn(&[f64]) -> Round, mut p: Vec<f64>, scale: f64) -> Option<
             }
         }
         // where P does not contract, its fixed point is not the one the
-        // rounds approach (a wedge's, at a pressure that grows each round)
-        if jac.complex_eigenvalues().iter().any(|e| e.norm() >= 1.0) {
+        // rounds approach (a wedge's, at a pressure that grows each round);
+        // nor is there one to find by differences that are not finite
+        if jac.iter().any(|x| !x.is_finite()) || jac.complex_eigenvalues().iter().any(|e| e.norm() >= 1.0) {
             return None;
         }
         let res = DVector::from_iterator(k, next.iter().zip(&p).map(|(a, b)| a - b));
