@@ -298,8 +298,10 @@ fn blocks3d_unconfined_in_linear_elements() {
 }
 
 /// The tunnel through four sets: the in-situ stress is geostatic, so no
-/// closed form for the excavated state; converged, the law met. In 39
-/// iterations, so the bound here is 40: main took 30 to a set in which
+/// closed form for the excavated state; converged, the law met. In 33
+/// iterations (39 while the cycle breaker held every single change for
+/// the friction to settle, `DECIDED` in src/contact/newton.rs), so the
+/// bound here is 35: main took 30 to a set in which
 /// pair 2389 slipped at a J2 crossing its twin 2390 held stuck, a slip
 /// the crossing locks, whose pressure the last solves put at 0.100,
 /// 0.064, 0.041, 0.024, 0.011, 0.100, 0.064 and 0.041 MN in turn (the
@@ -309,7 +311,7 @@ fn blocks3d_unconfined_in_linear_elements() {
 fn tunnel4sets_k0_bare_opening() {
     let scene = Scene { toml: "tunnel4sets.toml", geo: "tunnel4sets.geo", element: "tet10" };
     let solved = solve(&scene);
-    assert_converges("tunnel4sets", &solved.summary, 40);
+    assert_converges("tunnel4sets", &solved.summary, 35);
     // a crossing whose locked friction reached no fixed point is said,
     // and how far off: [1951, 5509, 5510, 5511] and the J1 pairs of that
     // node, 0.0456 MN, 6.1e-3 of the largest pair force

@@ -81,6 +81,17 @@ const SETTLE_FIRST: f64 = 1e-8;
 const MAX_HOLDS: usize = 4;
 const HOLD_GAIN: f64 = 0.5;
 
+/// ... or once, from a solve that is not loose, the most violated pair is
+/// past its state by more than this many times the friction residual
+/// (both relative to the largest force): the friction still to settle
+/// moves the forces by about its residual, which cannot undo a violation
+/// this much larger. `make tunnel3d` waited four holds for each of its
+/// single changes at violations 6-150 times the residual: 37 iterations,
+/// 27 so; tests/corpus/tunnel4sets.toml 39 and 33; the same states pair
+/// by pair, and on the 28 regression cases (the wedge's safety search
+/// 141 contact iterations in all, 111 so).
+const DECIDED: f64 = 5.0;
+
 /// How many times a step keeps a pair stuck under parts a set left free
 /// to slide that their slipping pairs hold ([`Newton::overshoot`]).
 const MAX_OVERSHOOTS: usize = 8;
@@ -312,10 +323,11 @@ impl<'p> Newton<'p> {
     /// violated pair changes, once the slipping pairs' friction has
     /// settled under the current states (at most [`MAX_HOLDS`] iterations
     /// in a row keep them, while the friction residual keeps falling by
-    /// [`HOLD_GAIN`]): a change judged from a linearisation that has
-    /// not settled is as likely to be undone by the next one (2. of the
-    /// iteration). True when this iteration met the cycle.
-    fn break_cycle(&mut self, h: &History, judged: &mut Judged, seen: &[Vec<ContactState>]) -> bool {
+    /// [`HOLD_GAIN`], and the change is not already [`DECIDED`]): a
+    /// change judged from a linearisation that has not settled is as
+    /// likely to be undone by the next one (2. of the iteration). `loose`:
+    /// the solve judged was loose. True when this iteration met the cycle.
+    fn break_cycle(&mut self, h: &History, judged: &mut Judged, seen: &[Vec<ContactState>], loose: bool) -> bool {
         let changing: Vec<usize> = (0..judged.next.len()).filter(|&p| judged.next[p] != h.states[p]).collect();
         if changing.is_empty() || !(self.one_at_a_time || seen.contains(&judged.next)) {
             return false;
@@ -323,7 +335,9 @@ impl<'p> Newton<'p> {
         let first = !self.one_at_a_time;
         self.one_at_a_time = true;
         let settling = self.holds < 2 || judged.residual < HOLD_GAIN * self.last_hold;
-        if judged.residual > SETTLE_FIRST * judged.scale_f && self.holds < MAX_HOLDS && settling {
+        let worst_violation = changing.iter().map(|&p| judged.violation[p]).fold(0.0, f64::max);
+        let decided = !loose && worst_violation > DECIDED * judged.residual / judged.scale_f;
+        if judged.residual > SETTLE_FIRST * judged.scale_f && self.holds < MAX_HOLDS && settling && !decided {
             self.holds += 1;
             self.last_hold = judged.residual;
             judged.next.clone_from(&h.states);
@@ -343,7 +357,7 @@ impl<'p> Newton<'p> {
     /// or, where the states stall or cycle all the same, the fallback of
     /// [`super::cluster`] set going.
     fn break_or_pin(&mut self, h: &History, judged: &mut Judged, summary: &mut Summary, tolerance: f64, loose: bool) {
-        if self.break_cycle(h, judged, &summary.history) {
+        if self.break_cycle(h, judged, &summary.history, loose) {
             summary.cycles_broken += 1;
             self.breaking_from = Some(summary.history.len().saturating_sub(1));
         }
