@@ -43,7 +43,9 @@ fn solve(case: &Case, scene: &str, interface: InterfaceSolver, name: &str) -> Ru
 /// in tests/geo/tunnel3d_joints_2sets.msh: gmsh 4.8 does not mesh this
 /// .geo the same twice, and the iterations depend on the mesh (7, 26, 32
 /// and 33 dense iterations on four meshes; on a fifth the dense interface
-/// did not converge in 400: issue 28). On this one: dense 32, sparse 33.
+/// did not converge in 400: issue 28). On this one: dense 32, sparse 33
+/// when this test was written; 46 and 48 by e481b55; 45 and 49 since the
+/// cycle breaker stops holding a decided change (2509578).
 #[test]
 fn the_sparse_interface_takes_the_dense_ones_path_on_the_jointed_tunnel() {
     let case = Case::new("interface-paths");
@@ -67,6 +69,12 @@ fn the_sparse_interface_takes_the_dense_ones_path_on_the_jointed_tunnel() {
     eprintln!("{} pairs: dense {ds} iterations, sparse {ss}", d.states.len());
     assert!(d.states.iter().any(|&st| st != subcontact::contact::law::ContactState::Stick), "some pairs slip");
     assert_eq!(s.states, d.states, "the same states pair by pair");
-    // (one more where a settled answer late in the step was loose and is solved again)
-    assert!(ss <= ds + 2, "dense {ds} iterations, sparse {ss}");
+    // Up to four more, traced at 45 / 49: where the cycle breaker meets the
+    // cycle (iteration 28) the sparse solve is loose, and a loose solve does
+    // not decide a change, so the breaker holds the states once where the
+    // dense one changes at once; and the end's tight answer takes the
+    // sparse interface four solves from the jump the multisecant pressures
+    // make (1.8e-6, 1.7e-7, 1.2e-7, 2.7e-9, 1.5e-14 of the largest force)
+    // where it takes the dense one two.
+    assert!(ss <= ds + 4, "dense {ds} iterations, sparse {ss}");
 }
