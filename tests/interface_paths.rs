@@ -44,8 +44,8 @@ fn solve(case: &Case, scene: &str, interface: InterfaceSolver, name: &str) -> Ru
 /// .geo the same twice, and the iterations depend on the mesh (7, 26, 32
 /// and 33 dense iterations on four meshes; on a fifth the dense interface
 /// did not converge in 400: issue 28). On this one: dense 32, sparse 33
-/// when this test was written; 46 and 48 by e481b55; 45 and 49 since the
-/// cycle breaker stops holding a decided change (2509578).
+/// when this test was written; 45 and 49 since the cycle breaker stops
+/// holding a decided change (2509578), 46 and 48 with that switched off.
 #[test]
 fn the_sparse_interface_takes_the_dense_ones_path_on_the_jointed_tunnel() {
     let case = Case::new("interface-paths");
