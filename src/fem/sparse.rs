@@ -28,36 +28,39 @@ impl SymMatrix {
     /// The sparsity pattern of the lower triangle for cells given by their
     /// node lists, with `nd` DOFs per node numbered by `dof_of`.
     pub fn pattern<'a>(n: usize, nd: usize, dof_of: &[usize], cells: impl Iterator<Item = &'a [usize]>) -> SymMatrix {
-        let n_nodes = dof_of.len() / nd;
-        let mut adj: Vec<Vec<u32>> = vec![Vec::new(); n_nodes];
+        // a node stands for itself by its lowest equation, so that the work
+        // arrays are the matrix's size, not the model's: a block of the
+        // 1,000-block cube has 81 of the model's 79,600 nodes, and an
+        // adjacency list per model node for each block took 2.6 % of the
+        // run's CPU; a node without an equation has no column
+        let lowest = |node: usize| (0..nd).map(|c| dof_of[node * nd + c]).min().filter(|&d| d != NONE);
+        let mut adj: Vec<Vec<u32>> = vec![Vec::new(); n];
+        // the lowest equation of each equation's node
+        let mut node_of = vec![NONE; n];
         for nodes in cells {
             for &a in nodes {
-                for &b in nodes {
-                    adj[a].push(b as u32);
+                let Some(k) = lowest(a) else { continue };
+                adj[k].extend(nodes.iter().map(|&b| b as u32));
+                for c in 0..nd {
+                    let d = dof_of[a * nd + c];
+                    if d != NONE {
+                        node_of[d] = k;
+                    }
                 }
             }
         }
-        // owner of each equation, to emit columns in order
-        let mut owner = vec![(0usize, 0usize); n];
-        for node in 0..n_nodes {
-            let list = &mut adj[node];
+        for list in adj.iter_mut().filter(|l| !l.is_empty()) {
             list.sort_unstable();
             list.dedup();
-            for c in 0..nd {
-                let d = dof_of[node * nd + c];
-                if d != NONE {
-                    owner[d] = (node, c);
-                }
-            }
         }
         let mut col_ptr = Vec::with_capacity(n + 1);
         let mut row_idx = Vec::new();
         col_ptr.push(0);
         let mut rows = Vec::new();
         for col in 0..n {
-            let (node, _) = owner[col];
             rows.clear();
-            for &j in &adj[node] {
+            let node = adj.get(node_of[col]).map_or(&[][..], |l| l.as_slice());
+            for &j in node {
                 for c in 0..nd {
                     let r = dof_of[j as usize * nd + c];
                     if r != NONE && r >= col {
@@ -249,6 +252,46 @@ mod tests {
             a.add(&dofs, &[1.0, -1.0, -1.0, 1.0]);
         }
         a
+    }
+
+    /// The pattern is every pair of equations two nodes of a cell carry,
+    /// whatever their numbering: two components a node, some of them
+    /// supported, equations numbered out of node order, a node in no cell
+    /// (its equations columns without rows) and nodes with no equation.
+    #[test]
+    fn the_pattern_is_every_pair_of_equations_a_cell_couples() {
+        let (n_nodes, nd) = (30, 2);
+        let mut seed = 7_u64;
+        let mut next = |m: usize| {
+            seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+            (seed >> 33) as usize % m
+        };
+        let mut dof_of = vec![NONE; n_nodes * nd];
+        let mut n = 0;
+        for slot in (0..n_nodes * nd).rev().filter(|&i| i % 7 != 3 && i / nd != 4) {
+            dof_of[slot] = n;
+            n += 1;
+        }
+        // node 29 is in no cell
+        let cells: Vec<Vec<usize>> = (0..12).map(|_| (0..4).map(|_| next(29)).collect()).collect();
+        let a = SymMatrix::pattern(n, nd, &dof_of, cells.iter().map(|c| c.as_slice()));
+        let mut expected = std::collections::BTreeSet::new();
+        for cell in &cells {
+            for (&x, &y) in cell.iter().flat_map(|x| cell.iter().map(move |y| (x, y))) {
+                for (cx, cy) in (0..nd).flat_map(|cx| (0..nd).map(move |cy| (cx, cy))) {
+                    let (i, j) = (dof_of[x * nd + cx], dof_of[y * nd + cy]);
+                    if i != NONE && j != NONE && i >= j {
+                        expected.insert((j, i));
+                    }
+                }
+            }
+        }
+        let got: std::collections::BTreeSet<(usize, usize)> =
+            (0..n).flat_map(|j| a.row_idx[a.col_ptr[j]..a.col_ptr[j + 1]].iter().map(move |&i| (j, i))).collect();
+        assert_eq!(a.row_idx.len(), got.len(), "no row twice");
+        assert_eq!(got, expected);
+        let lonely: Vec<usize> = dof_of[29 * nd..].iter().copied().filter(|&d| d != NONE).collect();
+        assert!(!lonely.is_empty() && lonely.iter().all(|&d| a.col_ptr[d] == a.col_ptr[d + 1]), "node 29's columns");
     }
 
     #[test]
