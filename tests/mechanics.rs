@@ -698,6 +698,9 @@ fn paper_rule_cycles_on_an_opening_joint_and_says_so_while_the_robust_rule_conve
             short.contains("did not converge") && !short.contains("rule = \"robust\""),
             "{name}: no advice to use the rule it used: {short}"
         );
+        // and the advice it gets is the one that helps: the same scene with
+        // the default max_iterations converged above
+        assert!(short.contains("try more [solver] max_iterations"), "{name}: advice to iterate more: {short}");
     }
 }
 
