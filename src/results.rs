@@ -72,9 +72,15 @@ pub struct Timings {
     pub interface_forces: Option<f64>,
     /// Of `interface`, with the sparse interface solver: W's diagonal (the
     /// stiffness of the pairs that slip or open, formed the first time
-    /// they do).
+    /// they do; a check that reads one not yet formed forms it inside
+    /// `interface_checks`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub interface_diagonal: Option<f64>,
+    /// Of `interface`, with the sparse interface solver: setting it up
+    /// once, before the first load step (the pairs' layout, the parts' S
+    /// in the pairs' axes, the means' factorisation).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub interface_setup: Option<f64>,
     pub recover: f64,
     pub output: f64,
     pub total: f64,

@@ -63,6 +63,7 @@ pub(super) fn add_timings(t: &mut Timings, parts: &Parts, done: &LoadSteps) {
         t.interface_relations = Some(split.relations);
         t.interface_forces = Some(split.forces);
         t.interface_diagonal = Some(split.diagonal);
+        t.interface_setup = Some(parts.interface_s);
     }
     t.recover = done.recover_s;
 }
