@@ -26,5 +26,7 @@ pub mod recover;
 pub mod results;
 pub mod scene;
 pub mod substructure;
+#[cfg(test)]
+mod test_rng;
 
 pub use error::{Error, Result};

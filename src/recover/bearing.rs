@@ -346,19 +346,21 @@ mod tests {
     /// pressure, against every pair tried with every pair.
     #[test]
     fn the_grid_reads_the_windows_the_whole_face_does() {
-        let mut seed = 12_345_u64;
-        let mut next = || {
-            seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::test_rng::Lcg::new(12_345);
         for plane in [true, false] {
             let pairs: Vec<BearingPair> = (0..600)
                 .map(|_| {
-                    let (u, v) = (next() * 7.0 - 2.0, if plane { 0.0 } else { next() * 3.0 + 1.0 });
+                    let (u, v) = (rng.unit() * 7.0 - 2.0, if plane { 0.0 } else { rng.unit() * 3.0 + 1.0 });
                     // a face in the plane y = 0.3 x + 1 (3D: tilted about x too)
                     let x = if plane { [u, 0.3 * u + 1.0, 0.0] } else { [u, 0.3 * u + 0.2 * v, v] };
                     let normal = normalized(if plane { [-0.3, 1.0, 0.0] } else { [-0.3, 1.0, -0.2] });
-                    BearingPair { x, normal, area: 0.01 + next() * 0.02, sigma_n: 1.0 - 5.0 * next(), open: false }
+                    BearingPair {
+                        x,
+                        normal,
+                        area: 0.01 + rng.unit() * 0.02,
+                        sigma_n: 1.0 - 5.0 * rng.unit(),
+                        open: false,
+                    }
                 })
                 .collect();
             for window in [0.05, 0.4, 2.5, 50.0] {
