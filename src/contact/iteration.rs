@@ -174,7 +174,7 @@ fn law_residuals(
     (0..laws.len())
         .map(|p| {
             let (force, rel, area) = (solution.forces[p], solution.rel[p], problem.area(p));
-            let stiffness = stiffness_in(h.states[p], || problem.stiffness(p));
+            let stiffness = stiffness_in(h.states[p], rel[0], || problem.stiffness(p));
             let slip = reference.map_or([0.0; 3], |r| sub(tangential(rel), r[p]));
             let slip = if stiffness * norm(slip) > LAW_TOLERANCE * scale { slip } else { [0.0; 3] };
             let trial = Trial { force, area, slip, gap: rel[0], stiffness };

@@ -182,15 +182,19 @@ impl Trial {
     }
 }
 
-/// The stiffness a pair in `state` is judged with ([`Trial::stiffness`]):
-/// `c()` where the law reads it (a slipping pair's ξ and the slip it runs
-/// against, an open pair's slip as it closes and its overlap, [`judge`],
-/// [`law_residual`]); a stuck pair's verdict and residual read none, and 1
-/// stands for it there, so that a stiffness that is costly to form (W's
-/// diagonal on the sparse interface) is formed only where it is read.
-pub fn stiffness_in(state: ContactState, c: impl FnOnce() -> f64) -> f64 {
+/// The stiffness a pair in `state` with opening `gap` is judged with
+/// ([`Trial::stiffness`]): `c()` where the law reads it (a slipping pair's
+/// ξ and the slip it runs against, an open pair's slip as it closes and
+/// its overlap, [`judge`], [`law_residual`]); a stuck pair's verdict and
+/// residual read none, nor do an open pair's that neither closes nor
+/// overlaps (`gap >= 0`), and 1 stands for it there, so that a stiffness
+/// that is costly to form (W's diagonal on the sparse interface) is formed
+/// only where it is read. A pair judged as closing whatever its gap
+/// (a junction's loop keeps it shut) is asked with a gap of -∞.
+pub fn stiffness_in(state: ContactState, gap: f64, c: impl FnOnce() -> f64) -> f64 {
     match state {
         ContactState::Stick => 1.0,
+        ContactState::Open if gap >= 0.0 => 1.0,
         ContactState::Open | ContactState::Slip => c(),
     }
 }
@@ -446,7 +450,7 @@ mod tests {
                     let at = |c: f64| Trial { stiffness: c, ..t(sn, tau, slip, 0.0) };
                     let verdict = |c| judge(Stick, &at(c), &S, cracked, true, 1e-12, 1e-12);
                     let residual = |c| law_residual(Stick, &at(c), &S, cracked, true);
-                    let one = stiffness_in(Stick, || panic!("a stuck pair's stiffness is not formed"));
+                    let one = stiffness_in(Stick, 0.0, || panic!("a stuck pair's stiffness is not formed"));
                     for c in [1e-9, 10.0, 1e12] {
                         assert_eq!(verdict(c), verdict(one), "sigma_n {sn} tau {tau} slip {slip} stiffness {c}");
                         assert_eq!(residual(c), residual(one), "sigma_n {sn} tau {tau} slip {slip} stiffness {c}");
@@ -455,8 +459,37 @@ mod tests {
             }
         }
         // where the law reads it, it is the pair's own
-        assert_eq!(stiffness_in(Slip, || 7.0), 7.0);
-        assert_eq!(stiffness_in(Open, || 7.0), 7.0);
+        assert_eq!(stiffness_in(Slip, 1.0, || 7.0), 7.0);
+        assert_eq!(stiffness_in(Open, -1e-30, || 7.0), 7.0);
+        assert_eq!(stiffness_in(Open, f64::NEG_INFINITY, || 7.0), 7.0);
+    }
+
+    #[test]
+    fn an_open_pairs_verdict_and_residual_read_no_stiffness_unless_it_closes() {
+        // open with a gap of zero or more, whatever it carries, slid or
+        // not, judged with any gap tolerance: any stiffness, the same answer
+        for gap in [0.0, 1e-20, 1.0] {
+            for (sn, tau) in [(0.0, 0.0), (1e-14, -1e-14), (2.0, 0.5)] {
+                for slip in [0.0, 1e-20, -1e-3, 1.0] {
+                    for gap_tol in [0.0, 1e-12] {
+                        let at = |c: f64| Trial { stiffness: c, ..t(sn, tau, slip, gap) };
+                        let verdict = |c| judge(Open, &at(c), &S, true, true, gap_tol, 1e-12);
+                        let residual = |c| law_residual(Open, &at(c), &S, true, true);
+                        let one = stiffness_in(Open, gap, || panic!("an open pair's stiffness is not formed"));
+                        for c in [1e-9, 10.0, 1e12] {
+                            assert_eq!(verdict(c), verdict(one), "gap {gap} slip {slip} stiffness {c}");
+                            assert_eq!(residual(c), residual(one), "gap {gap} slip {slip} stiffness {c}");
+                        }
+                    }
+                }
+            }
+        }
+        // a closing one reads it: a slip of 1e-3 closes sticking or
+        // slipping as its stiffness makes of it a force below or above the
+        // bound at no pressure (the cohesion, 1)
+        let closing = |c: f64| Trial { stiffness: c, ..t(0.0, 0.0, 1e-3, -1.0) };
+        assert_eq!(judge(Open, &closing(10.0), &S, false, true, 0.0, 1e-12), Stick);
+        assert_eq!(judge(Open, &closing(1e4), &S, false, true, 0.0, 1e-12), Slip);
     }
 
     #[test]

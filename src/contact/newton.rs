@@ -268,7 +268,9 @@ impl<'p> Newton<'p> {
                 let t = along(force[p], Some(d));
                 trial_force = [force[p][0], t[1], t[2]];
             }
-            let stiffness = stiffness_in(st, || self.problem.stiffness(p));
+            // (an open pair a junction's loop keeps shut is judged closing)
+            let gap = if self.as_tied[p].is_some() { f64::NEG_INFINITY } else { rel[p][0] };
+            let stiffness = stiffness_in(st, gap, || self.problem.stiffness(p));
             let trial = Trial { force: trial_force, area, slip, gap: rel[p][0], stiffness };
             let coulomb = law.slip == SlipLaw::Coulomb;
             next[p] = match (self.as_tied[p], st) {
@@ -551,8 +553,10 @@ impl Newton<'_> {
 
 impl Rule for Newton<'_> {
     fn relations(&self, h: &History) -> Vec<Relation> {
-        // the stiffness the relations and the next verdict read, formed together
-        self.problem.prepare_stiffness((0..h.states.len()).filter(|&p| h.states[p] != ContactState::Stick));
+        // the stiffness the relations and the next verdict read of slipping
+        // pairs, formed together (an open pair's, where the verdict reads
+        // it, in `judge`)
+        self.problem.prepare_stiffness((0..h.states.len()).filter(|&p| h.states[p] == ContactState::Slip));
         let lines = self.problem.slip_lines(&h.states);
         (0..self.laws.len())
             .map(|p| {
@@ -577,6 +581,13 @@ impl Rule for Newton<'_> {
         }
         // 1. the next state of every pair; 2. a cycle broken, or a cluster's
         // set held (an iterative solve resolves the forces only to its residual)
+        // the stiffness of the open pairs that close or overlap, or that a
+        // junction's loop keeps shut, formed together: the verdict and the
+        // law's residual read it (`law::stiffness_in`)
+        self.problem.prepare_stiffness(
+            (0..h.states.len())
+                .filter(|&p| h.states[p] == ContactState::Open && (self.rel[p][0] < 0.0 || self.as_tied[p].is_some())),
+        );
         let lines = self.problem.slip_lines(&h.states);
         let mut judged = self.next_states(h, &lines);
         let tolerance = (FORCE_TOL * judged.scale_f).max(solution.accuracy);

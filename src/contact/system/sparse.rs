@@ -447,8 +447,8 @@ impl Sparse {
     /// from iteration 3, which cycled for 400 iterations where the dense
     /// interface converged in 38.
     ///
-    /// Formed only where a pair's stiffness is read, a slipping or an open
-    /// pair's (`law::stiffness_in`): a few hundred of the tunnel's 31,704
+    /// Formed only where a pair's stiffness is read, a slipping pair's or an
+    /// open one's that closes (`law::stiffness_in`): a few hundred of the tunnel's 31,704
     /// relative displacements, which all took the setup's longest stage.
     /// One forward substitution through K_mm's factor per displacement
     /// (`|L^-1 P K_mr e_i|^2`), those asked for together in passes of at
