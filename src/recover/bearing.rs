@@ -200,7 +200,7 @@ fn design(
     };
     let at: Vec<[f64; 2]> = pairs.iter().map(|p| [along(p.x, 0), along(p.x, 1)]).collect();
     let grid = Grid::new(&at, plane, d);
-    let mut near = Vec::new();
+    let (mut near, mut marks) = (Vec::new(), vec![0u64; pairs.len().div_ceil(64)]);
     let mut best: Option<(f64, [f64; 3])> = None;
     for (p, &[s1, s2]) in pairs.iter().zip(&at) {
         if !fits(s1, 0) || (!plane && !fits(s2, 1)) {
@@ -217,9 +217,9 @@ fn design(
         // the pair in 3D (sqrt(r^2 + tol d) <= r + tol), with a margin
         let (r, m) = (0.5 * d, 2.0 * tol);
         let along_t1 = if plane { [s1 - m, s1 + d + m] } else { [s1 - r - m, s1 + r + m] };
-        grid.near(along_t1, [s2 - r - m, s2 + r + m], &mut near);
+        grid.near(along_t1, [s2 - r - m, s2 + r + m], |q| inside(at[q]), &mut marks, &mut near);
         let (mut f, mut a) = (0.0, 0.0);
-        for &q in near.iter().filter(|&&q| inside(at[q])) {
+        for &q in &near {
             f += (-pairs[q].sigma_n).max(0.0) * pairs[q].area;
             a += pairs[q].area;
         }
@@ -255,20 +255,32 @@ impl Grid {
         (s / self.h).floor() as i64
     }
 
-    /// The pairs of the cells that meet [r1] x [r2], in the face's order
-    /// (the window's sums then add them as the whole face's loop did).
-    fn near(&self, r1: [f64; 2], r2: [f64; 2], out: &mut Vec<usize>) {
+    /// The pairs of the cells that meet [r1] x [r2] that `keep` keeps, in
+    /// the face's order (the window's sums then add them as the whole
+    /// face's loop did): marked in `marks` (a bit per pair, all clear, and
+    /// left clear), then read off in order, which a window of thousands of
+    /// pairs does in a sweep of the words where sorting them took most of
+    /// the output stage of the 1,000-block cube.
+    fn near(&self, r1: [f64; 2], r2: [f64; 2], keep: impl Fn(usize) -> bool, marks: &mut [u64], out: &mut Vec<usize>) {
         out.clear();
         let (i0, i1) = (self.cell(r1[0]), self.cell(r1[1]));
         let (j0, j1) = if self.plane { (0, 0) } else { (self.cell(r2[0]), self.cell(r2[1])) };
+        let (mut w0, mut w1) = (marks.len(), 0);
         for i in i0..=i1 {
             for j in j0..=j1 {
-                if let Some(c) = self.cells.get(&(i, j)) {
-                    out.extend_from_slice(c);
+                for &q in self.cells.get(&(i, j)).into_iter().flatten().filter(|&&q| keep(q)) {
+                    marks[q / 64] |= 1 << (q % 64);
+                    (w0, w1) = (w0.min(q / 64), w1.max(q / 64 + 1));
                 }
             }
         }
-        out.sort_unstable();
+        for (w, word) in marks.iter_mut().enumerate().take(w1).skip(w0) {
+            let mut bits = std::mem::take(word);
+            while bits != 0 {
+                out.push(64 * w + bits.trailing_zeros() as usize);
+                bits &= bits - 1;
+            }
+        }
     }
 }
 
