@@ -236,14 +236,15 @@ fn write(mut run: Run, opts: &RunOptions, to: &mut Writing, failed: Option<Error
         run.checks.analytic = analytic::check(a, &run.solution());
     }
     run.stats.timings.total = t0.elapsed().as_secs_f64();
-    let (staged, skipped) = output::stage(&run, out)?;
+    let derived = output::Derived::of(&run);
+    let (staged, skipped) = output::stage(&run, &derived, out)?;
     for w in skipped {
         say(&format!("warning: {w}"));
     }
     run.stats.timings.output = t.elapsed().as_secs_f64();
     run.stats.timings.total = t0.elapsed().as_secs_f64();
     // the summary carries the final timings
-    let staged = output::restage_summary(staged, &run)?;
+    let staged = output::restage_summary(staged, &run, &derived)?;
     // one transaction: the files an earlier run of this scene wrote and
     // this one did not (more load steps, contacts, probes) go, nothing else
     let committed = match to.stage.take() {

@@ -45,11 +45,31 @@ use contact_files::{contact_csv, contact_vtu};
 use csv::csv_field;
 use files::Staged;
 
+/// What several result files print that is costly to derive, derived once
+/// a run: the bearing of every contact group and face (a window search
+/// about every pair: seconds on a joint set of the 1,000-block cube, of
+/// 18,900 pairs), which bearing.csv, summary.json and report.md all give.
+pub struct Derived {
+    bearing: Option<Vec<bearing::FaceBearing>>,
+}
+
+impl Derived {
+    /// Derives what the files share from `run`.
+    pub fn of(run: &Run) -> Derived {
+        Derived { bearing: bearing::of_run(run) }
+    }
+
+    /// Every group's bearing, each followed by its faces' (None without contacts).
+    pub fn bearing(&self) -> Option<&[bearing::FaceBearing]> {
+        self.bearing.as_deref()
+    }
+}
+
 /// Stages every result file of a run except `summary.json` and `report.md`
 /// ([`restage_summary`] adds them with the final timings), for the
 /// directory `out`; with a warning for each picture that could not be
 /// drawn (left out: the other files are written).
-pub fn stage(run: &Run, out: &std::path::Path) -> Result<(Staged, Vec<String>)> {
+pub fn stage(run: &Run, derived: &Derived, out: &std::path::Path) -> Result<(Staged, Vec<String>)> {
     finite(run)?;
     let mut staged = Staged::new(out, &run.about.name);
     let name = &run.about.name;
@@ -73,8 +93,8 @@ pub fn stage(run: &Run, out: &std::path::Path) -> Result<(Staged, Vec<String>)> 
     if let Some(r) = resultants::of_run(run) {
         staged.add("faces.csv", faces::faces_csv(model, &r).into_bytes());
     }
-    if let Some(b) = bearing::of_run(run) {
-        staged.add("bearing.csv", bearing::csv(run, &b).into_bytes());
+    if let Some(b) = derived.bearing() {
+        staged.add("bearing.csv", bearing::csv(run, b).into_bytes());
     }
     if run.steps.len() > 1 {
         stage_steps(run, &mut staged, displacement)?;
@@ -170,9 +190,9 @@ fn finite(run: &Run) -> Result<()> {
 
 /// Adds `summary.json` and `report.md`, both with the run's final timings
 /// (the output stage's own included), so that the two files agree.
-pub fn restage_summary(mut staged: Staged, run: &Run) -> Result<Staged> {
-    staged.add("summary.json", serde_json::to_vec_pretty(&summary(run))?);
-    staged.add("report.md", report::report(run).into_bytes());
+pub fn restage_summary(mut staged: Staged, run: &Run, derived: &Derived) -> Result<Staged> {
+    staged.add("summary.json", serde_json::to_vec_pretty(&summary(run, derived))?);
+    staged.add("report.md", report::report(run, derived).into_bytes());
     Ok(staged)
 }
 
@@ -253,7 +273,7 @@ fn initial_stage(run: &Run, s: &crate::results::InitialStage) -> serde_json::Val
     })
 }
 
-fn summary(run: &Run) -> serde_json::Value {
+fn summary(run: &Run, derived: &Derived) -> serde_json::Value {
     let st = &run.stats;
     let mut v = json!({
         "scene": run.about.path.display().to_string(),
@@ -298,8 +318,8 @@ fn summary(run: &Run) -> serde_json::Value {
         if let Some(b) = blocks::of_run(run) {
             v["blocks"] = blocks::summary(&run.model, &b);
         }
-        if let Some(b) = bearing::of_run(run) {
-            v["bearing"] = bearing::summary(run, &b);
+        if let Some(b) = derived.bearing() {
+            v["bearing"] = bearing::summary(run, b);
         }
     }
     v["steps"] = steps_summary(run);

@@ -14,8 +14,8 @@ use crate::results::{state_counts, Run};
 /// Plan views embedded in report.md; beyond, they are listed.
 const MOST_EMBEDDED: usize = 6;
 
-/// The report of one run.
-pub fn report(run: &Run) -> String {
+/// The report of one run (`derived` from it).
+pub fn report(run: &Run, derived: &super::Derived) -> String {
     let mut s = String::new();
     header(&mut s, run);
     size_rows(&mut s, run);
@@ -29,8 +29,8 @@ pub fn report(run: &Run) -> String {
     s += &super::water::report(run);
     s += &super::faces::report(run);
     s += &super::blocks::run_report(run);
-    if let Some(b) = super::bearing::of_run(run) {
-        s += &super::bearing::report(run, &b);
+    if let Some(b) = derived.bearing() {
+        s += &super::bearing::report(run, b);
     }
     s += &super::sections::report(run);
     s += &super::reactions::report(run);

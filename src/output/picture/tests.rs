@@ -443,7 +443,7 @@ fn plan_view_of_a_3d_joint_shows_where_it_slips() {
     }
 
     // in report.md, under the contact pictures
-    let report = crate::output::report::report(&run);
+    let report = crate::output::report::report(&run, &crate::output::Derived::of(&run));
     assert!(report.contains("![plan view of joint: where it sticks, slips and opens; sigma_n](plan_joint.png)"));
 }
 
@@ -454,7 +454,7 @@ fn no_plan_view_in_2d_and_stale_ones_are_removed() {
     assert!(plan_files(&run.model).is_empty());
     let files: Vec<String> = drawn(&snap(&run)).into_iter().map(|(f, _)| f).collect();
     assert_eq!(files, ["deformed_von_mises.png", "interfaces.svg"]);
-    assert!(!crate::output::report::report(&run).contains("plan_"));
+    assert!(!crate::output::report::report(&run, &crate::output::Derived::of(&run)).contains("plan_"));
     // an earlier run's plan views go with the next commit (the manifest
     // lists them); a user's picture stays
     let dir = out_dir("stale_plans").join("out");
@@ -702,7 +702,7 @@ fn a_contact_on_two_planes_gets_a_plan_per_plane_and_an_overview() {
         "one panel per face"
     );
     keep("vgroove_interfaces.png", &interface_plot_png(&run.model, contact(&run)).expect("plot"));
-    let report = crate::output::report::report(&run);
+    let report = crate::output::report::report(&run, &crate::output::Derived::of(&run));
     assert!(report.contains("![every contact surface by state](joints.png)") && report.contains("(plan_groove_2.png)"));
 }
 
