@@ -231,6 +231,7 @@ fn condensation_equals_the_dense_schur_complement() {
     let model = two_body_model();
     let parts = parts(&model);
     assert_eq!(parts.len(), 2);
+    let mut checked = 0;
     for part in parts {
         let dense = dense(&model, &part);
         let name = model.body_names(&part.bodies);
@@ -287,7 +288,19 @@ fn condensation_equals_the_dense_schur_complement() {
                 assert_eq!(u[n * model.nd + k], d_c[q * model.nd + k]);
             }
         }
+        // the part's prescribed DOFs off the interface carry their values
+        // (times the ramp's factor): the left body's top left node its -2e-3
+        let fixed: Vec<usize> = (c.part.nodes(&model).into_iter().flat_map(|n| n * model.nd..(n + 1) * model.nd))
+            .filter(|i| model.prescribed[*i].is_some() && !c.part.interface.contains(&(i / model.nd)))
+            .collect();
+        let mut half = vec![f64::NAN; u.len()];
+        c.recover(&model, &d_c, &[0.5], &mut half);
+        for i in fixed {
+            assert_eq!(half[i], 0.5 * model.prescribed[i].unwrap_or(f64::NAN), "{name}: DOF {i}");
+            checked += usize::from(model.prescribed[i] != Some(0.0));
+        }
     }
+    assert_eq!(checked, 1, "the one DOF moved by a prescribed value is checked");
 }
 
 /// The right body has no support: its S keeps the three rigid-body modes
