@@ -268,7 +268,6 @@ impl<'p> Newton<'p> {
                 let t = along(force[p], Some(d));
                 trial_force = [force[p][0], t[1], t[2]];
             }
-            // (an open pair a junction's loop keeps shut is judged closing)
             let gap = if self.as_tied[p].is_some() { f64::NEG_INFINITY } else { rel[p][0] };
             let stiffness = stiffness_in(st, gap, || self.problem.stiffness(p));
             let trial = Trial { force: trial_force, area, slip, gap: rel[p][0], stiffness };
@@ -579,8 +578,6 @@ impl Rule for Newton<'_> {
                 self.reference[p] = tangential(self.rel[p]);
             }
         }
-        // 1. the next state of every pair; 2. a cycle broken, or a cluster's
-        // set held (an iterative solve resolves the forces only to its residual)
         // the stiffness of the open pairs that close or overlap, or that a
         // junction's loop keeps shut, formed together: the verdict and the
         // law's residual read it (`law::stiffness_in`)
@@ -588,6 +585,8 @@ impl Rule for Newton<'_> {
             (0..h.states.len())
                 .filter(|&p| h.states[p] == ContactState::Open && (self.rel[p][0] < 0.0 || self.as_tied[p].is_some())),
         );
+        // 1. the next state of every pair; 2. a cycle broken, or a cluster's
+        // set held (an iterative solve resolves the forces only to its residual)
         let lines = self.problem.slip_lines(&h.states);
         let mut judged = self.next_states(h, &lines);
         let tolerance = (FORCE_TOL * judged.scale_f).max(solution.accuracy);

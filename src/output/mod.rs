@@ -16,6 +16,7 @@ pub mod closed_form;
 mod contact_files;
 mod csv;
 pub mod cut;
+mod derived;
 pub mod faces;
 pub mod files;
 pub mod number;
@@ -31,6 +32,7 @@ mod unsettled;
 pub mod vtu;
 mod water;
 
+pub use derived::Derived;
 pub use safety::{label as safety_label, other_factor_line, warnings as safety_warnings};
 pub use unsettled::slipping_back;
 
@@ -44,26 +46,6 @@ use bodies_vtu::bodies_vtu;
 use contact_files::{contact_csv, contact_vtu};
 use csv::csv_field;
 use files::Staged;
-
-/// What several result files print that is costly to derive, derived once
-/// a run: the bearing of every contact group and face (a window search
-/// about every pair: seconds on a joint set of the 1,000-block cube, of
-/// 18,900 pairs), which bearing.csv, summary.json and report.md all give.
-pub struct Derived {
-    bearing: Option<Vec<bearing::FaceBearing>>,
-}
-
-impl Derived {
-    /// Derives what the files share from `run`.
-    pub fn of(run: &Run) -> Derived {
-        Derived { bearing: bearing::of_run(run) }
-    }
-
-    /// Every group's bearing, each followed by its faces' (None without contacts).
-    pub fn bearing(&self) -> Option<&[bearing::FaceBearing]> {
-        self.bearing.as_deref()
-    }
-}
 
 /// Stages every result file of a run except `summary.json` and `report.md`
 /// ([`restage_summary`] adds them with the final timings), for the

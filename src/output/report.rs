@@ -15,7 +15,7 @@ use crate::results::{state_counts, Run};
 const MOST_EMBEDDED: usize = 6;
 
 /// The report of one run (`derived` from it).
-pub fn report(run: &Run, derived: &super::Derived) -> String {
+pub fn report(run: &Run, derived: &super::derived::Derived) -> String {
     let mut s = String::new();
     header(&mut s, run);
     size_rows(&mut s, run);
