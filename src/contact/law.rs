@@ -192,10 +192,20 @@ impl Trial {
 /// only where it is read. A pair judged as closing whatever its gap
 /// (a junction's loop keeps it shut) is asked with a gap of -∞.
 pub fn stiffness_in(state: ContactState, gap: f64, c: impl FnOnce() -> f64) -> f64 {
+    if reads_stiffness(state, gap) {
+        c()
+    } else {
+        1.0
+    }
+}
+
+/// Whether the law reads the stiffness of a pair in `state` with opening
+/// `gap` ([`stiffness_in`]): what to form ahead of a verdict.
+pub fn reads_stiffness(state: ContactState, gap: f64) -> bool {
     match state {
-        ContactState::Stick => 1.0,
-        ContactState::Open if gap >= 0.0 => 1.0,
-        ContactState::Open | ContactState::Slip => c(),
+        ContactState::Stick => false,
+        ContactState::Open => gap < 0.0,
+        ContactState::Slip => true,
     }
 }
 

@@ -46,7 +46,7 @@ use super::cluster::{Search, Step, Watch};
 use super::frame::tangential;
 use super::history::{cracked, forget_step_cracks, law_at, opened_twice, History};
 use super::iteration::{Rule, Verdict};
-use super::law::{friction_bound, judge, stiffness_in, ContactState, Trial};
+use super::law::{friction_bound, judge, reads_stiffness, stiffness_in, ContactState, Trial};
 use super::options::SlipLaw;
 use super::outcome::Summary;
 use super::pair_law::{limit, PairLaw};
@@ -268,8 +268,7 @@ impl<'p> Newton<'p> {
                 let t = along(force[p], Some(d));
                 trial_force = [force[p][0], t[1], t[2]];
             }
-            let gap = if self.as_tied[p].is_some() { f64::NEG_INFINITY } else { rel[p][0] };
-            let stiffness = stiffness_in(st, gap, || self.problem.stiffness(p));
+            let stiffness = stiffness_in(st, self.judged_gap(p), || self.problem.stiffness(p));
             let trial = Trial { force: trial_force, area, slip, gap: rel[p][0], stiffness };
             let coulomb = law.slip == SlipLaw::Coulomb;
             next[p] = match (self.as_tied[p], st) {
@@ -483,6 +482,17 @@ impl Newton<'_> {
             .map(|p| (p, Hold::InPlace))
     }
 
+    /// The opening pair `p` is judged at, as `law::stiffness_in` asks it:
+    /// the last solve's, or -∞ where a junction's loop keeps it shut (it is
+    /// judged closing).
+    fn judged_gap(&self, p: usize) -> f64 {
+        if self.as_tied[p].is_some() {
+            f64::NEG_INFINITY
+        } else {
+            self.rel[p][0]
+        }
+    }
+
     /// How far slipping pair `p`'s last force is past its bound, `|ξ| - b`.
     fn excess(&self, h: &History, p: usize) -> f64 {
         let slip = sub(tangential(self.rel[p]), self.reference[p]);
@@ -583,7 +593,7 @@ impl Rule for Newton<'_> {
         // law's residual read it (`law::stiffness_in`)
         self.problem.prepare_stiffness(
             (0..h.states.len())
-                .filter(|&p| h.states[p] == ContactState::Open && (self.rel[p][0] < 0.0 || self.as_tied[p].is_some())),
+                .filter(|&p| h.states[p] == ContactState::Open && reads_stiffness(h.states[p], self.judged_gap(p))),
         );
         // 1. the next state of every pair; 2. a cycle broken, or a cluster's
         // set held (an iterative solve resolves the forces only to its residual)
