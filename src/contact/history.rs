@@ -37,6 +37,9 @@ pub struct History {
     pub dir: Vec<[f64; 3]>,
     /// Normal stress last seen at each pair (for the Coulomb shear).
     pub sigma_n: Vec<f64>,
+    /// Where each pair's spring carries nothing, for joints that deform
+    /// ([`super::elastic`]); empty for rigid ones.
+    pub unloaded: Vec<[f64; 3]>,
 }
 
 impl History {
@@ -54,6 +57,7 @@ impl History {
             force: vec![[0.0; 3]; n],
             dir: vec![[0.0; 3]; n],
             sigma_n: vec![0.0; n],
+            unloaded: Vec::new(),
         }
     }
 }
@@ -172,7 +176,10 @@ mod tests {
         let mut h = History::new(1);
         assert_eq!(healed_or_not(&mut h), Slip, "cracked this step: c = 0, bound 0.5 < 1");
         assert!(cracked(&h, 0) && !h.cracked[0], "cracked in the step, not yet committed");
-        assert_eq!(limit(&PairLaw { strength: S, slip: SlipLaw::Coulomb }, cracked(&h, 0), 1.0).cohesion, 0.0);
+        assert_eq!(
+            limit(&PairLaw { strength: S, slip: SlipLaw::Coulomb, stiffness: None }, cracked(&h, 0), 1.0).cohesion,
+            0.0
+        );
         // the rule before: cracked only by a committed step or the state now;
         // stuck again, the pair had its peak bound 1.5 back and stuck, and
         // the next solve could slip it again
@@ -215,7 +222,9 @@ mod tests {
     fn a_pair_that_opens_twice_in_a_step_closes_without_its_residual_cohesion() {
         // residual cohesion 0.5 (kept once slipping); pair 0 slips, pair 1
         // opens (solved open, then closed, then open again)
-        let laws = [PairLaw { strength: Strength { residual_cohesion: 0.5, ..S }, slip: SlipLaw::Coulomb }; 2];
+        let laws =
+            [PairLaw { strength: Strength { residual_cohesion: 0.5, ..S }, slip: SlipLaw::Coulomb, stiffness: None };
+                2];
         let mut h = History::new(2);
         start_step(&mut h);
         let cohesion = |h: &History, p| law_at(h, &laws, p).strength.effective(cracked(h, p)).1;

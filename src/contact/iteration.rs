@@ -38,6 +38,13 @@ pub(super) trait Rule {
     fn hold_back(&mut self, _h: &mut History, _sliding: &[usize]) -> bool {
         false
     }
+    /// The states in `h`, the last verdict's, could not be solved (parts
+    /// held by nothing or sliding freely, and not held back): a rule may
+    /// judge them again from a shorter step (true), and the step is solved
+    /// again; false: the failure stands.
+    fn step_back(&mut self, _h: &mut History) -> bool {
+        false
+    }
     /// Whether settled states must also meet the law with the forces the
     /// step reports to have converged ([`LAW_TOLERANCE`]).
     fn answers_to_the_law(&self) -> bool {
@@ -90,6 +97,7 @@ pub(super) fn run(
             match problem.solve(&relations, lambda, accuracy) {
                 Ok(solution) => break solution,
                 Err(SolveFailure::Sliding(parts)) if rule.hold_back(h, &parts) => relations = rule.relations(h),
+                Err(_) if rule.step_back(h) => relations = rule.relations(h),
                 Err(failure) => {
                     return Err(Failed { failure, states: h.states.clone(), iteration: summary.iterations })
                 }
@@ -163,6 +171,8 @@ const TIGHTEN_AFTER: usize = 30;
 /// slip is measured from `reference` where the rule gives one, and counts
 /// where its stiffness makes of it a force beyond [`LAW_TOLERANCE`] of the
 /// largest force (below it, a slip has no direction the law could check).
+/// A joint that deforms opens from where its normal spring is unloaded
+/// (`History::unloaded`).
 fn law_residuals(
     problem: &InterfaceProblem,
     laws: &[PairLaw],
@@ -174,10 +184,11 @@ fn law_residuals(
     (0..laws.len())
         .map(|p| {
             let (force, rel, area) = (solution.forces[p], solution.rel[p], problem.area(p));
-            let stiffness = stiffness_in(h.states[p], rel[0], || problem.stiffness(p));
-            let slip = reference.map_or([0.0; 3], |r| sub(tangential(rel), r[p]));
+            let gap = rel[0] - h.unloaded.get(p).map_or(0.0, |r0| r0[0]);
+            let stiffness = stiffness_in(h.states[p], gap, || problem.stiffness(p));
+            let slip = reference.map_or([0.0; 3], |r| sub(tangential(rel), tangential(r[p])));
             let slip = if stiffness * norm(slip) > LAW_TOLERANCE * scale { slip } else { [0.0; 3] };
-            let trial = Trial { force, area, slip, gap: rel[0], stiffness };
+            let trial = Trial { force, area, slip, gap, stiffness };
             let law = law_at(h, laws, p);
             let coulomb = law.slip == SlipLaw::Coulomb;
             law_residual(h.states[p], &trial, &law.strength, cracked(h, p), coulomb) / area

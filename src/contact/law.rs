@@ -78,6 +78,17 @@ pub struct Strength {
     pub residual_cohesion: f64,
 }
 
+/// The stiffness of a joint that deforms (`normal_stiffness`,
+/// `shear_stiffness` of a contact: stress per unit relative displacement,
+/// 3DEC's and UDEC's kn and ks): a closed pair's force is `A k (r - r0)`
+/// with `r0` where its spring carries nothing ([`super::elastic`]), not a
+/// tie. None: the paper's rigid joint.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Stiffness {
+    pub normal: f64,
+    pub shear: f64,
+}
+
 /// What the last solve gave at one pair.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PairResult {

@@ -35,6 +35,7 @@ pub mod capacity;
 mod cluster;
 mod crossing;
 pub mod cutting;
+pub mod elastic;
 pub mod frame;
 pub mod history;
 mod iteration;
@@ -70,7 +71,11 @@ pub fn iterate(
     h: &mut History,
     max_iterations: usize,
 ) -> Result<Outcome, Failed> {
+    let deforms = !h.unloaded.is_empty();
     let mut outcome = match rule {
+        StateRule::Robust if deforms => {
+            iteration::run(elastic::Elastic::new(problem, laws, h), problem, laws, lambda, h, max_iterations)
+        }
         StateRule::Robust => {
             iteration::run(newton::Newton::new(problem, laws, h), problem, laws, lambda, h, max_iterations)
         }
@@ -78,6 +83,12 @@ pub fn iterate(
             iteration::run(paper_rule::Paper::new(problem, laws), problem, laws, lambda, h, max_iterations)
         }
     }?;
+    if deforms {
+        // a joint that deforms opens from where its normal spring is unloaded
+        for (pr, r0) in outcome.solution.pairs.iter_mut().zip(&h.unloaded) {
+            pr.gap -= r0[0];
+        }
+    }
     let before: Vec<bool> = (h.cracked.iter().zip(&h.cracking)).map(|(a, b)| *a || *b).collect();
     outcome.cracked = (before.iter().zip(&outcome.states)).map(|(c, s)| *c || *s != ContactState::Stick).collect();
     Ok(outcome)

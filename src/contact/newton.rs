@@ -241,6 +241,7 @@ impl<'p> Newton<'p> {
             spring,
             pressure: pk,
             limit: Limit::NONE,
+            elastic: false,
         }
     }
 

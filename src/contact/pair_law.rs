@@ -1,7 +1,7 @@
 //! The law of one pair ([`PairLaw`]: its strength and its slip law) and
 //! what it lets the pair carry in force ([`limit`]).
 
-use super::law::Strength;
+use super::law::{Stiffness, Strength};
 use super::options::SlipLaw;
 use super::system::relation::Limit;
 
@@ -10,6 +10,8 @@ use super::system::relation::Limit;
 pub struct PairLaw {
     pub strength: Strength,
     pub slip: SlipLaw,
+    /// A joint that deforms ([`super::elastic`]); None: rigid.
+    pub stiffness: Option<Stiffness>,
 }
 
 /// What pair `p` can carry in force, by its law and whether it is cracked.

@@ -268,7 +268,7 @@ mod tests {
         let r = Reduce::ALL.strength(&s, 3.7);
         assert!((r.cohesion / r.friction - s.cohesion / s.friction).abs() < 1e-12);
         // pairs not chosen keep their law
-        let law = PairLaw { strength: s, slip: SlipLaw::Coulomb };
+        let law = PairLaw { strength: s, slip: SlipLaw::Coulomb, stiffness: None };
         let laws = reduced(&[law, law], &[true, false], Reduce::ALL, 2.0);
         assert_eq!((laws[0].strength.friction, laws[1].strength), (0.3, s));
     }
@@ -379,7 +379,7 @@ mod tests {
     #[test]
     fn peak_strength_keeps_the_cohesion_where_a_pair_cracks_and_residual_the_scenes() {
         let s = Strength { friction: 0.7, cohesion: 25.0, tensile_strength: 5.0, residual_cohesion: 0.0 };
-        let law = PairLaw { strength: s, slip: SlipLaw::Coulomb };
+        let law = PairLaw { strength: s, slip: SlipLaw::Coulomb, stiffness: None };
         let peak = Strengths::Peak.laws(&[law]);
         assert_eq!(peak[0].strength, Strength { residual_cohesion: 25.0, ..s });
         assert_eq!(peak[0].strength.effective(true), (0.0, 25.0), "cracked: no tension, the peak cohesion");

@@ -104,6 +104,11 @@ pub(super) fn run(this: &Step, parts: &Parts, opts: &RunOptions, ranks: &Ranks) 
     }
     let mut out = LoadSteps::default();
     let mut history = History::new(model.pairs.len());
+    if let (Some(problem), Some(stiffness)) = (this.problem, crate::contact::elastic::stiffness(&this.laws)) {
+        // joints that deform start carrying the in-situ stress
+        let traction = crate::model::insitu::tractions(model);
+        history.unloaded = crate::contact::elastic::unloaded(problem, &stiffness, &traction);
+    }
     let bytes_before = ranks.bytes_sent();
     let (stage, failed) = stage(this, parts, opts, ranks, (need_stress, &mut history), &mut out)?;
     out.stage = stage;
@@ -417,7 +422,7 @@ fn laws(model: &Model, scene: &Scene) -> Vec<PairLaw> {
     (model.pairs.iter())
         .map(|p| {
             let c = &scene.contacts[p.contact];
-            PairLaw { strength: c.strength, slip: c.slip }
+            PairLaw { strength: c.strength, slip: c.slip, stiffness: c.stiffness }
         })
         .collect()
 }

@@ -45,6 +45,21 @@ pub struct Beyond {
 /// geostatic stress puts some joints exactly at their limit).
 const ALLOWANCE: f64 = 1e-9;
 
+/// The in-situ traction `σ0 n` on body I at every pair (global axes;
+/// zero where that body carries no initial stress): what a joint that
+/// deforms carries before anything moves.
+pub fn tractions(model: &Model) -> Vec<[f64; 3]> {
+    let body = model.body_of_node();
+    (model.pairs.iter())
+        .map(|pair| {
+            let Some(b) = model.bodies.get(body[pair.k]) else { return [0.0; 3] };
+            let Some(initial) = b.initial else { return [0.0; 3] };
+            let sigma = initial.at(model.coords[pair.k], model.analysis, b.material.density, model.gravity);
+            traction(&sigma, pair.normal)
+        })
+        .collect()
+}
+
 /// Every contact group with pairs beyond its strength (by `strengths`,
 /// indexed as the model's interfaces), in contact order.
 pub fn beyond(model: &Model, strengths: &[JointStrength]) -> Vec<Beyond> {

@@ -368,7 +368,8 @@ pub fn at_safety(run: &Run) -> Option<Vec<Block>> {
     if let (crate::results::SearchKind::Strength(st), Some(o), Some(f)) = (s.kind, run.about.safety.as_ref(), s.factor)
     {
         for &i in &o.contacts {
-            let law = crate::contact::PairLaw { strength: strength[i], slip: run.about.contacts[i].slip };
+            let law =
+                crate::contact::PairLaw { strength: strength[i], slip: run.about.contacts[i].slip, stiffness: None };
             strength[i] = o.reduce.strength(&st.laws(&[law])[0].strength, f);
         }
     }

@@ -64,7 +64,7 @@ pub use validated::{
 };
 
 pub use crate::analytic::Analytic;
-pub use crate::contact::law::Strength;
+pub use crate::contact::law::{Stiffness, Strength};
 pub use crate::contact::safety::{Reduce, Steps, Strengths};
 pub use crate::contact::{InterfaceSolver, SlipLaw, StateRule, TractionRecovery};
 pub use crate::fem::Analysis;

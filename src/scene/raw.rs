@@ -86,6 +86,8 @@ pub(super) struct RawContact {
     pub(super) tensile_strength: Option<f64>,
     pub(super) slip: Option<SlipLaw>,
     pub(super) residual_cohesion: Option<f64>,
+    pub(super) normal_stiffness: Option<f64>,
+    pub(super) shear_stiffness: Option<f64>,
     pub(super) traction: Option<TractionRecovery>,
     pub(super) water: Option<RawWater>,
 }

@@ -144,6 +144,7 @@ fn design_example_parses() {
             groups: ContactGroups::Shared("A-A".into()),
             strength: Strength { friction: 0.8, cohesion: 2.0e4, tensile_strength: 3.0e5, residual_cohesion: 0.0 },
             slip: SlipLaw::Coulomb,
+            stiffness: None,
             residual_given: false,
             traction: TractionRecovery::Lumped,
             water: None,
@@ -329,6 +330,26 @@ fn contact_rules() {
         &c("cohesion = 1\nresidual_cohesion = 2\ngroup = \"x\""),
         &["contacts[1].residual_cohesion", "= 2", "cohesion (1)"],
     );
+}
+
+#[test]
+fn joint_stiffness_rules() {
+    let stiff = "normal_stiffness = 100\nshear_stiffness = 10";
+    let c = |first: &str, second: &str| {
+        minimal(&format!("[[contacts]]\ngroup = \"ok\"\n{first}\n[[contacts]]\ngroup = \"x\"\n{second}\n"))
+    };
+    let both = load(&c(stiff, stiff)).expect("stiffness on every contact");
+    assert_eq!(both.contacts[1].stiffness, Some(Stiffness { normal: 100.0, shear: 10.0 }));
+    assert_eq!(load(&c("", "")).expect("rigid joints").contacts[0].stiffness, None);
+    rejects(&c(stiff, "normal_stiffness = 100"), &["contacts[1].shear_stiffness", "missing", "both", "rigid"]);
+    rejects(&c(stiff, "shear_stiffness = 10"), &["contacts[1].normal_stiffness", "missing", "MPa/m"]);
+    rejects(&c(stiff, "normal_stiffness = 0\nshear_stiffness = 10"), &["contacts[1].normal_stiffness", "0", "> 0"]);
+    rejects(&c(stiff, "normal_stiffness = 1\nshear_stiffness = -1"), &["contacts[1].shear_stiffness", "-1", "> 0"]);
+    rejects(&c(stiff, "normal_stiffness = inf\nshear_stiffness = 1"), &["contacts[1].normal_stiffness", "> 0"]);
+    rejects(&c(stiff, ""), &["contacts[1].normal_stiffness", "missing", "contacts[0]", "every contact"]);
+    rejects(&c("", stiff), &["contacts[0].normal_stiffness", "contacts[1]"]);
+    let paper = c(stiff, stiff) + "[solver]\nrule = \"paper\"\n";
+    rejects(&paper, &["solver.rule", "\"paper\"", "rigid joints only", "robust"]);
 }
 
 #[test]

@@ -90,6 +90,9 @@ impl Checker<'_> {
         let solver = self.solver(raw.solver)?;
         self.factor_tables(&loads, &solver)?;
         self.attach_waters(&mut contacts, waters, &loads, analysis, solver.load_steps)?;
+        let contact_key =
+            |i: usize| i.checked_sub(first_joint).map_or(format!("contacts[{i}]"), |j| joints[j].key.clone());
+        self.stiff_everywhere(&contacts, contact_key, &solver)?;
         let probes = self.probes(raw.probes, analysis)?;
         let analytic = raw.analytic.map(|a| self.analytic(a, analysis, &bodies)).transpose()?;
         let output = self.output(raw.output, analysis, &bodies)?;

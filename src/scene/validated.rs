@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use crate::analytic::Analytic;
-use crate::contact::law::Strength;
+use crate::contact::law::{Stiffness, Strength};
 use crate::contact::{InterfaceSolver, SlipLaw, StateRule, TractionRecovery};
 use crate::fem::Analysis;
 use crate::mesh::joints::JointSpec;
@@ -24,6 +24,9 @@ pub struct Contact {
     /// (each default 0; the residual cohesion at most the cohesion).
     pub strength: Strength,
     pub slip: SlipLaw,
+    /// `normal_stiffness` and `shear_stiffness` (both or neither, > 0):
+    /// a joint that deforms; None: rigid, the paper's.
+    pub stiffness: Option<Stiffness>,
     /// Whether the scene gives `residual_cohesion` (the safety search
     /// says when its default decided something).
     pub residual_given: bool,

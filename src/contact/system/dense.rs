@@ -156,7 +156,7 @@ fn free_system(reduced: &Reduced, fr: &Freedom, c: &[f64]) -> (Mat<f64>, Mat<f64
             _ => ci.iter().map(|&(i, zi)| zi * known[i]).sum(),
         };
     }
-    let mut symmetric = true;
+    let mut symmetric = fr.symmetric;
     for s in &fr.slips {
         let i = fr.pos[s.row];
         rhs[(i, 0)] -= s.force;

@@ -21,6 +21,9 @@ pub struct Freedom {
     /// What the states add to the right-hand side on the rows of r: the
     /// water in the joints pushing the pairs' sides apart (empty when dry).
     pub pushed: Vec<f64>,
+    /// Whether the rows' springs are symmetric (not where a deforming
+    /// joint slips: its friction follows its normal spring).
+    pub symmetric: bool,
 }
 
 impl Freedom {

@@ -499,7 +499,8 @@ impl Junction {
     /// of 21, to other states).
     pub fn tie_held(&self, rel: &[Relation], ramp: f64, held: bool, area: impl Fn(usize) -> f64) -> Tied {
         let (nd, n_r) = (self.nd, self.r.len());
-        let rows = self.tied_rows(|p| rel[p].state);
+        // (a joint that deforms is tied on no axis)
+        let rows = self.tied_rows(|p| if rel[p].elastic { ContactState::Open } else { rel[p].state });
         let areas: Vec<f64> = self.pairs.iter().map(|&p| area(p)).collect();
         if n_r == 0 {
             // every copy held in every component: nothing to solve for
@@ -538,8 +539,9 @@ impl Junction {
         // of 9, measured before the loops' note was kept for the load.)
         let mut k = DMatrix::<f64>::zeros(n_r, n_r);
         let mut f = DVector::<f64>::zeros(n_r);
-        let slipping: Vec<usize> =
-            (0..self.pairs.len()).filter(|&j| rel[self.pairs[j]].state == ContactState::Slip).collect();
+        let slipping: Vec<usize> = (0..self.pairs.len())
+            .filter(|&j| rel[self.pairs[j]].state == ContactState::Slip && !rel[self.pairs[j]].elastic)
+            .collect();
         let coupled: Vec<usize> =
             slipping.iter().copied().filter(|&j| rel[self.pairs[j]].coupling.iter().any(|&c| c != 0.0)).collect();
         let per_pressure = DMatrix::<f64>::from_fn(n_r, coupled.len(), |i, s| {
@@ -555,25 +557,49 @@ impl Junction {
             let tangent = self.memo.tangent(&rows).filter(|t| held || !t.plain);
             tangent.and_then(|t| Pressure::new(coupled, per_pressure, &split, Some(&t)))
         };
-        for &j in &slipping {
+        // (a closed joint that deforms has springs on every axis)
+        let springy = (0..self.pairs.len()).filter(|&j| {
             let rl = &rel[self.pairs[j]];
-            let lagged = if pressure.is_some() { 0.0 } else { rl.pressure };
-            for a in 1..nd {
+            rl.elastic && rl.state != ContactState::Open
+        });
+        let springs: Vec<usize> = slipping.iter().copied().chain(springy).collect();
+        self.add_springs(&springs, rel, pressure.is_some(), ramp, &mut k, &mut f);
+        Tied { z, r0, k, f, rows, split, areas, pressure }
+    }
+
+    /// Adds the springs and forces of the junction's pairs `springs` (a
+    /// slipping pair's on its shear axes, a closed deforming joint's on
+    /// all) over its r to `k` and `f`; `solved`: the slipping pairs'
+    /// pressures are solved for (else the last solve's are in `f`).
+    fn add_springs(
+        &self,
+        springs: &[usize],
+        rel: &[Relation],
+        solved: bool,
+        ramp: f64,
+        k: &mut DMatrix<f64>,
+        f: &mut DVector<f64>,
+    ) {
+        let nd = self.nd;
+        for &j in springs {
+            let rl = &rel[self.pairs[j]];
+            let lagged = if solved { 0.0 } else { rl.pressure };
+            let axes = if rl.elastic { 0..nd } else { 1..nd };
+            for a in axes.clone() {
                 let row_a = DVector::from_column_slice(&self.rows[j][a]);
                 let mut fa = rl.force[a] + rl.coupling[a] * lagged;
-                for c in 1..nd {
+                for c in axes.clone() {
                     let s = rl.spring[a][c];
                     if s == 0.0 {
                         continue;
                     }
                     fa += s * self.consts[j][c] * ramp;
                     let row_c = DVector::from_column_slice(&self.rows[j][c]);
-                    k += &row_a * row_c.transpose() * s;
+                    *k += &row_a * row_c.transpose() * s;
                 }
-                f += &row_a * fa;
+                *f += &row_a * fa;
             }
         }
-        Tied { z, r0, k, f, rows, split, areas, pressure }
     }
 
     /// The contact force on body I of each of the junction's pairs (local
@@ -602,6 +628,10 @@ impl Junction {
         ramp: f64,
     ) -> Vec<PairForces> {
         let rels = self.relative(r, ramp);
+        if self.pairs.iter().all(|&p| rel[p].elastic) {
+            // joints that deform carry what their springs do
+            return rels.iter().zip(&self.pairs).map(|(&x, &p)| (rel[p].spring_force(x), x, None)).collect();
+        }
         let limits: Vec<Limit> = self.pairs.iter().map(|&p| rel[p].limit).collect();
         let mut out = self.carried_forces(tied, rel, &rels, r, g, &limits);
         let locked = self.locked_rows(tied, rel, &rels);

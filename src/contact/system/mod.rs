@@ -18,7 +18,9 @@
 //! and a known relation for the contact force λ (open: λ = 0; slip: the
 //! friction law's force, possibly linearised in the pair's slip and normal
 //! force). With `W r - c = -λ` (reduce.rs) each state set solves only the
-//! rows of its free relative displacements. A supported axis of a pair is a
+//! rows of its free relative displacements. A joint that deforms
+//! ([`Relation::elastic`]) is tied on no axis: closed, its force is a
+//! spring's on every axis, a row of the same kind as a slipping pair's. A supported axis of a pair is a
 //! prescribed `d'`; its force is read on the unsupported side, and is zero
 //! where both are supported (the supports carry it).
 //!
@@ -385,10 +387,17 @@ impl<'a> InterfaceProblem<'a> {
             }
             junctions.push(JunctionBlock { cols: first..cols.len(), kz, fz, r: jn.r.clone(), lift, tied });
         }
-        // the lone slipping pairs' rows
+        // the lone slipping pairs' rows, and the closed deforming joints'
         let mut slips = Vec::new();
         for (p, rl) in rel.iter().enumerate() {
-            if rl.state != ContactState::Slip || layout.in_junction[p].is_some() {
+            if layout.in_junction[p].is_some() {
+                continue;
+            }
+            if rl.elastic {
+                slips.extend(spring_rows(&layout.axes[p], rl, nd, ramp));
+                continue;
+            }
+            if rl.state != ContactState::Slip {
                 continue;
             }
             let ax = &layout.axes[p];
@@ -405,7 +414,8 @@ impl<'a> InterfaceProblem<'a> {
                 });
             }
         }
-        Freedom { r0, cols, pos, junctions, slips, pushed: Vec::new() }
+        let symmetric = !rel.iter().any(|rl| rl.elastic && rl.state == ContactState::Slip);
+        Freedom { r0, cols, pos, junctions, slips, pushed: Vec::new(), symmetric }
     }
 
     /// Solves the interface system for the relations `rel` of every pair
@@ -549,7 +559,9 @@ impl<'a> InterfaceProblem<'a> {
                     }
                 }
             }
-            if rel[p].state == ContactState::Slip {
+            if rel[p].elastic {
+                forces[p] = rel[p].spring_force(rels[p]);
+            } else if rel[p].state == ContactState::Slip {
                 let pn = -forces[p][0];
                 let rl = &rel[p];
                 for a in 1..nd {
@@ -706,6 +718,28 @@ enum SlipHolds {
     Spring,
     /// Its normal only (a fixed friction force holds nothing).
     Normal,
+}
+
+/// The rows of a closed joint that deforms (`rl` elastic; none where it
+/// is open): on each of its axes with an r, `(W r - c)_a + force_a +
+/// sum_c spring_ac r_c = 0`, an axis both sides' supports hold (at
+/// `ramp`) a known r in the force.
+fn spring_rows(axes: &[Axis], rl: &Relation, nd: usize, ramp: f64) -> Vec<SlipRow> {
+    if rl.state == ContactState::Open {
+        return Vec::new();
+    }
+    let held = |c: usize| match axes[c] {
+        Axis::Held { vk, vl } => (vl - vk) * ramp,
+        _ => 0.0,
+    };
+    (0..nd)
+        .filter_map(|a| {
+            let row = axes[a].r()?;
+            let springs = (0..nd).filter_map(|c| axes[c].r().map(|rc| (rc, rl.spring[a][c]))).filter(|s| s.1 != 0.0);
+            let force = rl.force[a] + (0..nd).map(|c| rl.spring[a][c] * held(c)).sum::<f64>();
+            Some(SlipRow { row, normal: None, coupling: 0.0, springs: springs.collect(), force })
+        })
+        .collect()
 }
 
 /// The global directions in which a slipping pair's friction spring (local

@@ -24,6 +24,12 @@ pub struct Relation {
     pub pressure: f64,
     /// What the pair can carry, for a junction choosing its tied forces.
     pub limit: Limit,
+    /// A joint that deforms ([`crate::contact::elastic`]): no axis is
+    /// tied, open or closed; closed, its force on body I is `force +
+    /// spring r` on every axis (`coupling` unused: a slipping pair's
+    /// friction follows its normal spring through `spring`'s t / b rows'
+    /// normal column).
+    pub elastic: bool,
 }
 
 /// What a pair can carry in force, `λ_n <= tension` and `|λ_T| <= cohesion
@@ -45,7 +51,31 @@ impl Limit {
 impl Relation {
     /// Stuck at `target`, open, or slipping with a known tangential force.
     pub fn simple(state: ContactState, target: [f64; 3], force: [f64; 3]) -> Relation {
-        Relation { state, target, force, coupling: [0.0; 3], spring: [[0.0; 3]; 3], pressure: 0.0, limit: Limit::NONE }
+        Relation {
+            state,
+            target,
+            force,
+            coupling: [0.0; 3],
+            spring: [[0.0; 3]; 3],
+            pressure: 0.0,
+            limit: Limit::NONE,
+            elastic: false,
+        }
+    }
+
+    /// A joint that deforms, in `state`: closed, its force is `force +
+    /// spring r`; open, nothing.
+    pub fn elastic(state: ContactState, force: [f64; 3], spring: [[f64; 3]; 3]) -> Relation {
+        Relation { force, spring, elastic: true, ..Relation::simple(state, [0.0; 3], [0.0; 3]) }
+    }
+
+    /// The force of a joint that deforms at the relative displacement `r`
+    /// (zero where it is open).
+    pub fn spring_force(&self, r: [f64; 3]) -> [f64; 3] {
+        if self.state == ContactState::Open {
+            return [0.0; 3];
+        }
+        std::array::from_fn(|a| self.force[a] + (0..3).map(|c| self.spring[a][c] * r[c]).sum::<f64>())
     }
 
     /// The same relation with what the pair can carry.
@@ -54,6 +84,9 @@ impl Relation {
     }
 
     pub fn free_axis(&self, a: usize) -> bool {
+        if self.elastic {
+            return true;
+        }
         match self.state {
             ContactState::Stick => false,
             ContactState::Slip => a > 0,

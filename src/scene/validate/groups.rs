@@ -7,10 +7,11 @@
 use std::collections::BTreeMap;
 
 use super::checker::{quoted_list, Checker, R};
+use crate::contact::law::Stiffness;
 use crate::scene::raw::{RawBody, RawContact, RawLoad, RawMoment, RawPressure, RawSeismic, RawSupport};
 use crate::scene::{
-    Analysis, BodySpec, Contact, ContactGroups, ForceLoad, InitialStress, LoadKind, LoadSpec, Material, Strength,
-    SupportSpec,
+    Analysis, BodySpec, Contact, ContactGroups, ForceLoad, InitialStress, LoadKind, LoadSpec, Material, Solver,
+    StateRule, Strength, SupportSpec,
 };
 
 impl Checker<'_> {
@@ -176,14 +177,69 @@ impl Checker<'_> {
                 format!("the cohesion kept after opening cannot exceed the cohesion ({cohesion}); lower it or raise cohesion."),
             ));
         }
+        let stiffness = self.stiffness(k, c.normal_stiffness, c.shear_stiffness)?;
         Ok(Contact {
             groups,
             strength: Strength { friction, cohesion, tensile_strength, residual_cohesion },
             slip: c.slip.unwrap_or_default(),
+            stiffness,
             residual_given: c.residual_cohesion.is_some(),
             traction: c.traction.unwrap_or_default(),
             water: None,
         })
+    }
+
+    /// Joint stiffness on every contact or on none (`key` names contact
+    /// i's entry), and with what the deforming joints' rule supports.
+    pub(super) fn stiff_everywhere(
+        &self,
+        contacts: &[Contact],
+        key: impl Fn(usize) -> String,
+        solver: &Solver,
+    ) -> R<()> {
+        let Some(stiff) = contacts.iter().position(|c| c.stiffness.is_some()) else { return Ok(()) };
+        if let Some(rigid) = contacts.iter().position(|c| c.stiffness.is_none()) {
+            return Err(self.err(
+                format!("{}.normal_stiffness", key(rigid)),
+                format!("missing, while {} gives its joint a stiffness: give every contact and joint set normal_stiffness and shear_stiffness, or none (rigid joints and joints that deform cannot yet meet where joints cross).", key(stiff)),
+            ));
+        }
+        if solver.rule == StateRule::Paper {
+            return Err(self.bad("solver.rule", "\"paper\"", format!("the paper's rule has rigid joints only, and {} gives its joint a stiffness; use rule = \"robust\" (the default), or leave out the stiffness.", key(stiff))));
+        }
+        Ok(())
+    }
+
+    /// The joint stiffness of entry `k`: `normal_stiffness` and
+    /// `shear_stiffness` together, each finite and > 0, or neither.
+    fn stiffness(&self, k: &str, normal: Option<f64>, shear: Option<f64>) -> R<Option<Stiffness>> {
+        const WHAT: &str = "a joint's stiffness is stress per unit relative displacement (MPa/m where stresses are in MPa and lengths in m; 3DEC's kn and ks)";
+        let (normal, shear) = match (normal, shear) {
+            (None, None) => return Ok(None),
+            (Some(n), Some(s)) => (n, s),
+            (Some(_), None) => {
+                return Err(self.err(
+                    format!("{k}.shear_stiffness"),
+                    format!("missing beside normal_stiffness; give both ({WHAT}), or neither for a rigid joint."),
+                ))
+            }
+            (None, Some(_)) => {
+                return Err(self.err(
+                    format!("{k}.normal_stiffness"),
+                    format!("missing beside shear_stiffness; give both ({WHAT}), or neither for a rigid joint."),
+                ))
+            }
+        };
+        for (v, key) in [(normal, "normal_stiffness"), (shear, "shear_stiffness")] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(self.bad(
+                    format!("{k}.{key}"),
+                    v,
+                    format!("must be > 0: {WHAT}; leave both keys out for a rigid joint."),
+                ));
+            }
+        }
+        Ok(Some(Stiffness { normal, shear }))
     }
 
     pub(super) fn support(&self, i: usize, s: RawSupport, analysis: Analysis) -> R<SupportSpec> {

@@ -95,6 +95,7 @@ fn a_slipping_pair_in_a_stuck_loop_is_locked_and_carries_its_friction() {
         spring: [[0.0; 3]; 3],
         pressure: 0.0,
         limit: Limit::NONE,
+        elastic: false,
     };
     let tied = j.tie(&rel, 1.0, |_| 1.0);
     assert_eq!(tied.z.ncols(), 0);
@@ -132,6 +133,7 @@ fn a_slipping_pairs_friction_follows_the_pressure_the_loop_gives_it() {
         spring: [[0.0; 3]; 3],
         pressure: 9.0,
         limit: Limit::NONE,
+        elastic: false,
     };
     let (sxx, syy, sxy) = (-3.0, -1.5, 0.7);
     let mut g = DVector::<f64>::zeros(6);
@@ -366,6 +368,7 @@ fn roller_wedge(f: Frame, coupling: f64, pk: f64) -> (Junction, [Relation; 1]) {
         spring: [[0.0; 3]; 3],
         pressure: pk,
         limit,
+        elastic: false,
     };
     (j, [slip])
 }
