@@ -23,7 +23,12 @@ pub(crate) fn about(scene: &Scene, model: &Model) -> About {
         analytic: scene.analytic.clone(),
         safety: scene.safety.clone(),
         contacts: (scene.contacts.iter())
-            .map(|c| ContactLaw { strength: c.strength, slip: c.slip, residual_given: c.residual_given })
+            .map(|c| ContactLaw {
+                strength: c.strength,
+                slip: c.slip,
+                residual_given: c.residual_given,
+                stiffness: c.stiffness,
+            })
             .collect(),
         loads: scene.loads.iter().map(|l| l.group.clone()).collect(),
         step_times: step_times(&applied, scene.solver.load_steps),

@@ -123,6 +123,34 @@ pub fn summary(model: &Model, r: &Resultants) -> (serde_json::Value, serde_json:
     (json!(groups), faces)
 }
 
+/// summary.json's `contact.joint_stiffness`: each contact's normal and
+/// shear stiffness where the joints deform, null where they are rigid.
+pub fn stiffness_json(run: &Run) -> serde_json::Value {
+    let m = &run.model;
+    let stiff: Vec<_> = (run.about.contacts.iter().enumerate())
+        .filter_map(|(i, c)| c.stiffness.map(|k| (i, k)))
+        .map(|(i, k)| json!({ "contact": m.interfaces.get(i).map(|g| g.name.as_str()), "normal": k.normal, "shear": k.shear }))
+        .collect();
+    if stiff.is_empty() {
+        serde_json::Value::Null
+    } else {
+        json!(stiff)
+    }
+}
+
+/// report.md's sentence on joints that deform (empty where they are rigid).
+fn stiffness_note(run: &Run) -> String {
+    let m = &run.model;
+    let each: Vec<String> = (run.about.contacts.iter().enumerate())
+        .filter_map(|(i, c)| c.stiffness.map(|k| (i, k)))
+        .map(|(i, k)| format!("`{}` {} / {}", m.interfaces.get(i).map_or("?", |g| g.name.as_str()), k.normal, k.shear))
+        .collect();
+    if each.is_empty() {
+        return String::new();
+    }
+    format!("The joints deform: normal / shear stiffness (stress per length) {}. A closed pair is a spring: its gap is its closure from where the spring is unloaded (sigma_n / k_n; the in-situ stress's closure included), its slip the spring's shear and the plastic slip together.\n\n", each.join(", "))
+}
+
 /// report.md's section on the contact groups and the most mobilised face
 /// pairs (empty without contacts).
 pub fn report(run: &Run) -> String {
@@ -134,6 +162,7 @@ pub fn report(run: &Run) -> String {
         s,
         "Resultant force F on side I (global x, y, z); N = F . n and T = |F - N n| in the group's mean frame n (tension positive); mobilised friction |tau| / (c - f sigma_n), 1 where a pair slips or opens or has no strength left.\n"
     );
+    s.push_str(&stiffness_note(run));
     let wet = !m.water.is_empty();
     if wet {
         let _ = writeln!(s, "With water in a joint, F and N are the solid-to-solid forces (the effective normal stress sigma_n'), and U the water's force pushing the faces apart: the total normal force across the joint is N - U.\n");

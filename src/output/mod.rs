@@ -292,6 +292,7 @@ fn summary(run: &Run, derived: &Derived) -> serde_json::Value {
             "locked_friction_off": locked_off(c),
             "history": it.history.iter().map(|h| { let k = state_counts(h); json!({"stick": k[2], "slip": k[1], "open": k[0]}) }).collect::<Vec<_>>(),
         });
+        v["contact"]["joint_stiffness"] = faces::stiffness_json(run);
         if let Some(r) = resultants::of_run(run) {
             let (groups, faces) = faces::summary(&run.model, &r);
             v["contact"]["groups"] = groups;

@@ -9,7 +9,7 @@
 use std::path::PathBuf;
 
 use crate::analytic::Analytic;
-use crate::contact::law::Strength;
+use crate::contact::law::{Stiffness, Strength};
 use crate::contact::safety::{Reduce, Steps, Strengths};
 use crate::contact::SlipLaw;
 use crate::fem::Analysis;
@@ -48,13 +48,14 @@ pub struct About {
     pub warnings: Vec<String>,
 }
 
-/// A `[[contacts]]` entry's strength and slip law, and whether the scene
-/// gave its `residual_cohesion`.
+/// A `[[contacts]]` entry's strength and slip law, whether the scene
+/// gave its `residual_cohesion`, and its stiffness where it deforms.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ContactLaw {
     pub strength: Strength,
     pub slip: SlipLaw,
     pub residual_given: bool,
+    pub stiffness: Option<Stiffness>,
 }
 
 /// One column of the load-step table: the loads that share a sequence of
