@@ -215,6 +215,26 @@ fn the_tunnel_meshed_coarser_away_from_the_opening_converges_without_cuts() {
     assert!(worst < 1e-7, "law residual {worst:e}");
 }
 
+/// The same 34k-DOF tunnel with joints that deform (k_n = 5,000 MPa/m,
+/// E per metre; k_s a tenth of it: src/contact/elastic.rs): every pair a
+/// spring, no ties, no junction shares to settle. 4 iterations where the
+/// rigid joints never end, the law checked pair by pair from contact.csv.
+#[test]
+#[ignore = "make stress: about 40 s"]
+fn the_tunnel_with_joints_that_deform_converges() {
+    let scene = common::repo_text("tests/geo/tunnel3d_joints_coarse.toml");
+    let coarser = scene.replacen("lc_far = 4.0", "lc_far = 6.0", 1);
+    let stiff =
+        coarser.replace("friction = 0.7002", "friction = 0.7002\nnormal_stiffness = 5.0e3\nshear_stiffness = 5.0e2");
+    assert_eq!(stiff.matches("normal_stiffness").count(), 3, "the edit applies to every set");
+    let (its, worst) = tunnel_through_joints(
+        "conv-tunnel3d-34k-stiff",
+        &format!("{stiff}\n[solver]\nmax_cuts = 0\nmax_iterations = 300\n"),
+    );
+    assert!(its <= 10, "{its} iterations");
+    assert!(worst < 1e-8, "law residual {worst:e}");
+}
+
 /// geo/tunnel_joints.toml (k0 = 0.25) with the set dipping 60 degrees
 /// given f = 0.5 and no cohesion: Mohr's circle puts every pair of it at
 /// tau / sigma_n = (1 - k0) sin 60 cos 60 / (cos^2 60 + k0 sin^2 60) =

@@ -322,6 +322,27 @@ fn tunnel4sets_k0_bare_opening() {
     assert!(off.is_null() || off["relative"].as_f64().is_some_and(|r| r < 1e-2), "{off}");
 }
 
+/// tunnel4sets with joints that deform (k_n = E per metre, k_s a tenth of
+/// it): 8 iterations where the rigid joints take 23, every pair a spring
+/// and no crossing's share to settle, so nothing is off the equilibrium.
+#[test]
+fn tunnel4sets_with_joints_that_deform() {
+    let scene = Scene { toml: "tunnel4sets_stiff.toml", geo: "tunnel4sets.geo", element: "tet10" };
+    let solved = solve(&scene);
+    assert_converges("tunnel4sets_stiff", &solved.summary, 12);
+    assert!(solved.summary["contact"]["locked_friction_off"].is_null());
+    assert!(solved.summary["contact"]["joint_stiffness"].as_array().is_some_and(|a| a.len() == 4));
+}
+
+/// blocks3d with joints that deform: 12 and 16 iterations where the rigid
+/// joints' step 2 cycles at a T-junction on the slab; the reactions its
+/// closed form.
+#[test]
+#[ignore = "make stress: about 80 s"]
+fn blocks3d_with_joints_that_deform() {
+    blocks_within("blocks3d_stiff.toml", "tet10", 20);
+}
+
 /// Step 1 cycled at a node of the jx / jy crossing line (pair 335) until
 /// its junction shared its slipping pairs' pressures with their friction
 /// (src/contact/system/junction.rs, `share_with_friction`): 27 and 15;
