@@ -24,6 +24,10 @@ pub struct Freedom {
     /// Whether the rows' springs are symmetric (not where a deforming
     /// joint slips: its friction follows its normal spring).
     pub symmetric: bool,
+    /// Every pair deforms ([`super::Relation::elastic`]): no axis is tied
+    /// in any solve, so the free directions are the same at every one and
+    /// only the springs on them change.
+    pub deforming: bool,
 }
 
 impl Freedom {

@@ -415,7 +415,8 @@ impl<'a> InterfaceProblem<'a> {
             }
         }
         let symmetric = !rel.iter().any(|rl| rl.elastic && rl.state == ContactState::Slip);
-        Freedom { r0, cols, pos, junctions, slips, pushed: Vec::new(), symmetric }
+        let deforming = !rel.is_empty() && rel.iter().all(|rl| rl.elastic);
+        Freedom { r0, cols, pos, junctions, slips, pushed: Vec::new(), symmetric, deforming }
     }
 
     /// Solves the interface system for the relations `rel` of every pair
