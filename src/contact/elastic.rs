@@ -1,6 +1,6 @@
 //! Joints that deform: `normal_stiffness` k_n and `shear_stiffness` k_s
 //! on a contact (3DEC's and UDEC's kn and ks), the state rule of their
-//! pairs ([`Elastic`]) and where their springs start ([`unloaded`]).
+//! pairs (`Elastic`) and where their springs start ([`unloaded`]).
 //!
 //! A closed pair of area A is a spring, `λ = A K (r - r0)` with `K =
 //! diag(k_n, k_s, k_s)`, r its relative displacement (local axes n, t, b)
@@ -24,7 +24,15 @@
 //! a slipping one's friction linearised at the last iterate (Newton on
 //! the return mapping: with m the trial's direction and β = b / |λ_T,trial|,
 //! `λ_T = (b + f Δp) m + β A k_s (I - m m^T) Δr_T`), then judges every
-//! pair from its r. The rigid joint's machinery (ties, junctions' shares
+//! pair from its r. Newton's full step can overshoot (a rocking block
+//! whose every pair opens at once): between the point a solve was
+//! linearised at and the solve, the forces of both are the same load's,
+//! so the interface's forces are affine along the step and the law's
+//! residual can be had anywhere on it without another solve; the step is
+//! the first of 1, 1/2, ... `MIN_STEP` that lowers it (`Elastic::line_search`).
+//! Where the states judged leave a body free, they are judged again
+//! halfway back along the step ([`Rule::step_back`]) before the failure
+//! stands. The rigid joint's machinery (ties, junctions' shares
 //! of their loops' forces, locked slips, cycle breaking) is not needed:
 //! every pair's force is a function of its own r, where joints cross too.
 //!
