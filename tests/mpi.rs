@@ -91,6 +91,28 @@ fn parts_on_two_and_three_ranks_give_the_serial_answer() {
     }
 }
 
+/// Joints that deform (src/contact/elastic.rs) on two ranks: the block on
+/// block under its oblique push, its joint a spring, cut in two
+/// substructures a body.
+#[test]
+fn joints_that_deform_on_two_ranks_give_the_serial_answer() {
+    let case = Case::new("mpi-stiff");
+    case.copy("geo/blocks3d.geo");
+    let edits = [
+        ("setnumber = { lc = 0.1, hex = 0 }", "setnumber = { lc = 0.2, hex = 0 }"),
+        ("cohesion = 0.0", "cohesion = 0.0\nnormal_stiffness = 2.0e3\nshear_stiffness = 2.0e2"),
+    ];
+    case.write("stiff.toml", &common::scenes::edited("geo/blocks3d.toml", &edits));
+    solve_ok(&case, 0, "stiff.toml", "serial", &["--substructures", "2"]);
+    solve_ok(&case, 2, "stiff.toml", "np2", &["--substructures", "2"]);
+    let e = csv_difference(&case.dir.join("serial/contact.csv"), &case.dir.join("np2/contact.csv"));
+    eprintln!("joints that deform, 2 ranks: contact.csv differs from serial by {e:.1e}");
+    assert!(e < 1e-10, "{e:.2e}");
+    let summary = common::json(&case.dir.join("np2/summary.json"));
+    assert!(summary["contact"]["joint_stiffness"].is_array(), "the joints deform");
+    assert_eq!(summary["contact"]["converged"], true);
+}
+
 #[test]
 fn the_iterative_interface_on_two_and_three_ranks_gives_the_serial_answer() {
     let case = Case::new("mpi-iterative");
