@@ -48,7 +48,7 @@ use super::options::SlipLaw;
 use super::outcome::Summary;
 use super::pair_law::PairLaw;
 use super::system::{InterfaceProblem, InterfaceSolution, Relation};
-use crate::fem::vec3::{dot, norm};
+use crate::fem::vec3::{dot, norm, sub};
 
 /// Forces below this fraction of the largest pair force are round-off: a
 /// pair within it of a limit keeps its state (or its round-off would flip
@@ -222,7 +222,7 @@ impl<'p> Elastic<'p> {
         (0..self.laws.len())
             .map(|p| {
                 let (_, f) = self.map(h, p, point.rel[p], tol);
-                (0..3).map(|a| (f[a] - point.force[a + 3 * p]).powi(2)).sum::<f64>()
+                point.miss(p, f).powi(2)
             })
             .sum()
     }
@@ -259,8 +259,7 @@ impl<'p> Elastic<'p> {
             let (state, f) = self.map(h, p, point.rel[p], tol);
             next[p] = state;
             if state == h.states[p] {
-                let d = (0..3).map(|a| (f[a] - point.force[a + 3 * p]).powi(2)).sum::<f64>().sqrt();
-                law = law.max(d);
+                law = law.max(point.miss(p, f));
             }
             // an open pair closes without shear, where it is
             if h.states[p] == ContactState::Open {
@@ -274,17 +273,17 @@ impl<'p> Elastic<'p> {
     }
 }
 
-/// The relative displacements of every pair and the forces of a solve
-/// (three per pair), or a point between two.
+/// The relative displacements of every pair and the forces of a solve,
+/// or a point between two.
 #[derive(Clone)]
 struct Point {
     rel: Vec<[f64; 3]>,
-    force: Vec<f64>,
+    force: Vec<[f64; 3]>,
 }
 
 impl Point {
     fn new(rel: &[[f64; 3]], force: &[[f64; 3]]) -> Point {
-        Point { rel: rel.to_vec(), force: force.iter().flatten().copied().collect() }
+        Point { rel: rel.to_vec(), force: force.to_vec() }
     }
 
     /// The point `alpha` of the way to `to`.
@@ -292,11 +291,15 @@ impl Point {
         if alpha == 1.0 {
             return to.clone();
         }
-        let mix = |a: f64, b: f64| a + alpha * (b - a);
-        Point {
-            rel: (self.rel.iter().zip(&to.rel)).map(|(a, b)| std::array::from_fn(|i| mix(a[i], b[i]))).collect(),
-            force: (self.force.iter().zip(&to.force)).map(|(&a, &b)| mix(a, b)).collect(),
-        }
+        let mix = |a: &[[f64; 3]], b: &[[f64; 3]]| -> Vec<[f64; 3]> {
+            a.iter().zip(b).map(|(x, y)| std::array::from_fn(|i| x[i] + alpha * (y[i] - x[i]))).collect()
+        };
+        Point { rel: mix(&self.rel, &to.rel), force: mix(&self.force, &to.force) }
+    }
+
+    /// How far pair `p`'s force at this point is from `f`.
+    fn miss(&self, p: usize, f: [f64; 3]) -> f64 {
+        norm(sub(f, self.force[p]))
     }
 }
 

@@ -22,6 +22,7 @@ use std::fmt::Write;
 use serde_json::json;
 
 use super::resultants::{FacePair, LeftOut, Resultant, Resultants, SLIVER};
+use crate::contact::law::Stiffness;
 use crate::model::Model;
 use crate::results::Run;
 
@@ -123,27 +124,31 @@ pub fn summary(model: &Model, r: &Resultants) -> (serde_json::Value, serde_json:
     (json!(groups), faces)
 }
 
+/// The contacts whose joints deform: their group's name and stiffness.
+fn deforming(run: &Run) -> Vec<(Option<&str>, Stiffness)> {
+    (run.about.contacts.iter().enumerate())
+        .filter_map(|(i, c)| c.stiffness.map(|k| (run.model.interfaces.get(i).map(|g| g.name.as_str()), k)))
+        .collect()
+}
+
 /// summary.json's `contact.joint_stiffness`: each contact's normal and
 /// shear stiffness where the joints deform, null where they are rigid.
 pub fn stiffness_json(run: &Run) -> serde_json::Value {
-    let m = &run.model;
-    let stiff: Vec<_> = (run.about.contacts.iter().enumerate())
-        .filter_map(|(i, c)| c.stiffness.map(|k| (i, k)))
-        .map(|(i, k)| json!({ "contact": m.interfaces.get(i).map(|g| g.name.as_str()), "normal": k.normal, "shear": k.shear }))
-        .collect();
+    let stiff = deforming(run);
     if stiff.is_empty() {
-        serde_json::Value::Null
-    } else {
-        json!(stiff)
+        return serde_json::Value::Null;
     }
+    json!(stiff
+        .iter()
+        .map(|(name, k)| json!({ "contact": name, "normal": k.normal, "shear": k.shear }))
+        .collect::<Vec<_>>())
 }
 
 /// report.md's sentence on joints that deform (empty where they are rigid).
 fn stiffness_note(run: &Run) -> String {
-    let m = &run.model;
-    let each: Vec<String> = (run.about.contacts.iter().enumerate())
-        .filter_map(|(i, c)| c.stiffness.map(|k| (i, k)))
-        .map(|(i, k)| format!("`{}` {} / {}", m.interfaces.get(i).map_or("?", |g| g.name.as_str()), k.normal, k.shear))
+    let each: Vec<String> = deforming(run)
+        .iter()
+        .map(|(name, k)| format!("`{}` {} / {}", name.unwrap_or("?"), k.normal, k.shear))
         .collect();
     if each.is_empty() {
         return String::new();
