@@ -19,6 +19,7 @@
 mod common;
 
 use common::measure::loglog_slope;
+use common::scenes::springs;
 use common::Case;
 use subcontact::contact::law::ContactState;
 use subcontact::driver::Run;
@@ -71,10 +72,6 @@ group = "top_face"
     );
     let path = case.write(&format!("{name}.toml"), &scene);
     case.run(&path).unwrap_or_else(|e| panic!("{name}: {e}"))
-}
-
-fn springs(k_n: f64, k_s: f64) -> String {
-    format!("normal_stiffness = {k_n:?}\nshear_stiffness = {k_s:?}")
 }
 
 /// (x, u_y) of every node on the top face.

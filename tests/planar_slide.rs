@@ -12,7 +12,8 @@
 //!
 //! Figures: H = 20 m, face 70 degrees, plane psi = 35 degrees, crack z = 6
 //! m deep with z_w = 4 m of water, c = 50 kPa, phi = 30 degrees, rock 2.6
-//! t/m3 (units kN, m, kPa). Measured: F within 0.002 % of the closed form,
+//! t/m3 (units kN, m, kPa); the scene and the closed form are
+//! tests/common/slopes.rs's. Measured: F within 0.002 % of the closed form,
 //! the closed form inside the search's bracket (tolerance 1e-4 x F); U =
 //! 1/2 gw z_w A to round-off. Tolerance asserted: the closed form within
 //! the bracket widened by one search tolerance, 1e-4 x F.
@@ -20,62 +21,9 @@
 mod common;
 
 use common::cli::says;
-use common::{json, Case};
+use common::json;
+use common::slopes::planar::{self, hoek_bray, TOL};
 use serde_json::Value;
-
-const H: f64 = 20.0;
-const FACE: f64 = 70.0;
-const PSI: f64 = 35.0;
-const Z: f64 = 6.0;
-const Z_W: f64 = 4.0;
-const C: f64 = 50.0;
-const PHI: f64 = 30.0;
-const GAMMA: f64 = 2.6 * 9.81;
-const GW: f64 = 9.81;
-/// `[safety] tolerance` of the scenes.
-const TOL: f64 = 1.0e-4;
-
-/// The scene: `residual` the plane's residual_cohesion line (or none),
-/// `water` its water (or none), `crack` whether the crack holds water.
-fn scene(residual: &str, water: &str, crack: bool) -> String {
-    let (steps, load) = if crack {
-        (
-            "load_steps = 2\ngravity_factors = [1.0, 1.0]",
-            format!(
-                "[[loads]]\ngroup = \"crack_face\"\npressure = {{ surface = {}, unit_weight = {GW} }}\nfactors = [0.0, 1.0]\n",
-                H - Z + Z_W
-            ),
-        )
-    } else {
-        ("load_steps = 1", String::new())
-    };
-    format!(
-        "title = \"Planar slide\"\nmesh = \"planar_slide.geo\"\nanalysis = \"plane_strain\"\ngravity = [0.0, -9.81]\n\n\
-         [gmsh]\norder = 2\nsetnumber = {{ lc = 1.0 }}\n\n\
-         [materials.rock]\nE = 1.0e7\nnu = 0.25\ndensity = 2.6\n\n\
-         [[bodies]]\ngroup = \"block\"\nmaterial = \"rock\"\n\n[[bodies]]\ngroup = \"ground\"\nmaterial = \"rock\"\n\n\
-         [[contacts]]\ngroup = \"slide\"\nfriction = {}\ncohesion = {C}\n{residual}\n{water}\n\n\
-         [[supports]]\ngroup = \"base\"\nfix = [\"x\", \"y\"]\n\n[[supports]]\ngroup = \"sides\"\nfix = [\"x\"]\n\n\
-         {load}\n[solver]\n{steps}\n\n[safety]\ntolerance = {TOL}\n",
-        PHI.to_radians().tan()
-    )
-}
-
-/// The block's weight W and the plane's length A, from the figures.
-fn block() -> (f64, f64) {
-    let psi = PSI.to_radians();
-    let xc = (H - Z) / psi.tan();
-    let pts = [[0.0, 0.0], [xc, H - Z], [xc, H], [H / FACE.to_radians().tan(), H]];
-    let area = 0.5 * (0..4).map(|i| pts[i][0] * pts[(i + 1) % 4][1] - pts[(i + 1) % 4][0] * pts[i][1]).sum::<f64>();
-    (area * GAMMA, (H - Z) / psi.sin())
-}
-
-/// Hoek & Bray's F with the water forces U (plane) and V (crack).
-fn hoek_bray(u: f64, v: f64) -> f64 {
-    let (w, a) = block();
-    let (psi, f) = (PSI.to_radians(), PHI.to_radians().tan());
-    (C * a + (w * psi.cos() - u - v * psi.sin()) * f) / (w * psi.sin() + v * psi.cos())
-}
 
 /// The closed form inside the search's bracket, widened by a tolerance.
 fn assert_bracket(what: &str, safety: &Value, exact: f64) {
@@ -85,28 +33,15 @@ fn assert_bracket(what: &str, safety: &Value, exact: f64) {
     assert!(f * (1.0 - TOL) <= exact && exact <= fails * (1.0 + TOL), "{what}: [{f}, {fails}] against {exact}");
 }
 
-fn case(tag: &str) -> Case {
-    let case = Case::new(tag);
-    case.copy("tests/geo/planar_slide.geo");
-    case
-}
-
 /// With the cohesion kept where the plane slips (residual_cohesion = c),
 /// the load steps hold and the search finds Hoek & Bray's F dry, with V
 /// and with U and V; the plane's water is U = 1/2 gw z_w A.
 #[test]
 fn a_slope_held_by_its_cohesion_slides_at_hoek_and_brays_factor_dry_and_wet() {
-    let case = case("planar-slide-held");
-    let (_, a) = block();
-    let (u, v) = (0.5 * GW * Z_W * a, 0.5 * GW * Z_W * Z_W);
-    let kept = format!("residual_cohesion = {C}");
-    let plane = "water = { face = \"crack_face\", downstream = 0.0, along = [-1.0, 0.0] }";
-    for (name, water, crack, exact) in [
-        ("dry", "", false, hoek_bray(0.0, 0.0)),
-        ("crack", "", true, hoek_bray(0.0, v)),
-        ("wet", plane, true, hoek_bray(u, v)),
-    ] {
-        case.write(&format!("{name}.toml"), &scene(&kept, water, crack));
+    let case = planar::case("planar-slide-held");
+    let (u, _) = planar::water_forces();
+    for (name, water, crack, exact) in planar::waters() {
+        case.write(&format!("{name}.toml"), &planar::scene(&planar::kept(), water, crack));
         let o = case.cli(&["solve", &format!("{name}.toml"), "--out", name, "--quiet"]);
         assert!(o.status.success(), "{name}: {}", String::from_utf8_lossy(&o.stderr));
         let s = json(&case.dir.join(name).join("summary.json"));
@@ -125,8 +60,8 @@ fn a_slope_held_by_its_cohesion_slides_at_hoek_and_brays_factor_dry_and_wet() {
 /// strength's F, which limit equilibrium keeps, at Hoek & Bray's value.
 #[test]
 fn the_same_slope_silent_on_its_residual_cohesion_fails_its_step_but_names_the_peak_factor() {
-    let case = case("planar-slide-silent");
-    case.write("silent.toml", &scene("", "", false));
+    let case = planar::case("planar-slide-silent");
+    case.write("silent.toml", &planar::scene("", "", false));
     let o = case.cli(&["solve", "silent.toml", "--out", "silent", "--quiet"]);
     let msg = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{msg}");

@@ -5,6 +5,8 @@
 //!
 //! - [`scenes`]: scene texts that several test files write (a repository
 //!   scene with edits, two stacked blocks, Lamé's cylinder);
+//! - [`slopes`]: two rock slopes with closed forms (Hoek & Bray's planar
+//!   slide, Goodman & Bray's toppling block), their joints rigid or deforming;
 //! - [`cli`]: the command line's contract for a failed run (one clean
 //!   `error:` paragraph, no result files), and gmsh runs in a case;
 //! - [`msh`]: an MSH 4.1 writer for meshes gmsh does not make;
@@ -16,6 +18,7 @@ pub mod cli;
 pub mod measure;
 pub mod msh;
 pub mod scenes;
+pub mod slopes;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

@@ -1,7 +1,7 @@
 //! Scene texts that several test files write: a repository scene with text
 //! edits, two stacked blocks meeting on a joint, Lamé's cylinder with its
-//! closed form, and the supports of a box of ground. Each returns the TOML
-//! text; the test writes it into its case.
+//! closed form, the supports of a box of ground and a joint's springs. Each
+//! returns the TOML text; the test writes it into its case.
 
 /// The `[[supports]]` of a plane box of ground: its `bottom` group fixed,
 /// its "left" and "right" sides on rollers (x fixed).
@@ -33,6 +33,12 @@ pub fn column(case: &super::Case, name: &str, edits: &[(&str, &str)]) {
     let mut all = vec![("mesh = \"../../geo/blocks3d.geo\"", "mesh = \"geo/blocks3d.geo\"")];
     all.extend_from_slice(edits);
     case.write(name, &edited("scripts/scaling/column.toml", &all));
+}
+
+/// A contact's lines that make its joint deform: `normal_stiffness` k_n
+/// and `shear_stiffness` k_s (stress per length).
+pub fn springs(k_n: f64, k_s: f64) -> String {
+    format!("normal_stiffness = {k_n:?}\nshear_stiffness = {k_s:?}")
 }
 
 /// `repo_toml` (e.g. "geo/cylinder.toml") with `edits` (from, to) applied in
