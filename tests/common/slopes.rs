@@ -1,6 +1,6 @@
 //! Two rock slopes with closed forms, solved by several test files with
 //! rigid joints and with joints that deform (tests/planar_slide.rs,
-//! tests/topple.rs): [`planar`], Hoek &
+//! tests/topple.rs, tests/joint_stiffness_engineer.rs): [`planar`], Hoek &
 //! Bray's planar slide held by its cohesion, and [`topple`], Goodman &
 //! Bray's block on an inclined plane. Each scene takes its joint's extra
 //! `[[contacts]]` lines (a residual cohesion, the joint's stiffness:
