@@ -10,7 +10,8 @@
 //! crack and with it on the plane too, within 1e-4 relative (the search's
 //! tolerance); (2) Goodman & Bray's slender block (tests/topple.rs's) on
 //! springs k_n = 1e4, k_s = 1e3 (10 E and E per metre) is named toppling
-//! about the same toe, in 2D and 3D; (3) geo/dam_uplift.toml (the base's
+//! about the same toe, in 2D and 3D (for now through a rigid re-run: see
+//! the ignored test, which pins that); (3) geo/dam_uplift.toml (the base's
 //! water through drains, a heel crack that fills) with k_n = E of the
 //! rock per metre, k_s = k_n / 10 on every joint converges, and its F is
 //! below the rigid joints' by less than 3 %: the springs let the base
@@ -95,7 +96,10 @@ fn a_planar_slide_on_springs_slides_at_hoek_and_brays_factor_dry_and_wet() {
 }
 
 /// Measured: named toppling about the corner (0.6, 0) in 2D, the edge
-/// through it along -z in 3D, as with rigid joints.
+/// through it along -z in 3D, as with rigid joints. The mechanism comes
+/// from the search below F = 1, whose trials now run the joints rigid
+/// (see the next test); with the springs given to them (tried, not
+/// committed) they name the same corner and edge.
 #[test]
 fn a_slender_block_on_springs_topples_about_its_toe_in_2d_and_3d() {
     let case = topple::case("stiff-topple");
@@ -105,6 +109,25 @@ fn a_slender_block_on_springs_topples_about_its_toe_in_2d_and_3d() {
         let s = topple::assert_topples(&case, name, solid, &springs(k_n, k_s));
         assert_springs(name, &s, k_n, k_s);
     }
+}
+
+/// Open: the run that loses equilibrium at F = 1 is searched and written
+/// with rigid joints. The search below 1 (`Trials::path`) and the replay
+/// of the failing step (safety/below.rs `replay`) start from
+/// `History::new` without the springs' unloaded points, so
+/// `contact::iterate` takes the rigid rule: the 2D block's load step on
+/// springs fails at contact iteration 12, its trials and results at the
+/// rigid joint's 6, and contact.csv's stuck pairs have gap 0 (pair 0:
+/// sigma_n = -835.8, its spring's closure -0.0836), bit for bit the rigid
+/// run's. Giving `path` and `replay` the unloaded points the load steps
+/// start from (driver/steps.rs) makes this pass.
+#[test]
+#[ignore = "open: a failing step on springs is searched and written with rigid joints (safety/below.rs, trials.rs)"]
+fn a_slender_block_on_springs_writes_its_springs_last_iterate() {
+    let case = topple::case("stiff-topple-written");
+    let (k_n, k_s) = (1.0e4, 1.0e3);
+    topple::assert_topples(&case, "slender2D", false, &springs(k_n, k_s));
+    assert_closure(&case.dir.join("slender2D").join("contact.csv"), k_n, false);
 }
 
 /// Measured: converged in 6 contact iterations (rigid 9); F = 2.3047
