@@ -10,8 +10,9 @@
 //! crack and with it on the plane too, within 1e-4 relative (the search's
 //! tolerance); (2) Goodman & Bray's slender block (tests/topple.rs's) on
 //! springs k_n = 1e4, k_s = 1e3 (10 E and E per metre) is named toppling
-//! about the same toe, in 2D and 3D (for now through a rigid re-run: see
-//! the ignored test, which pins that); (3) geo/dam_uplift.toml (the base's
+//! about the same toe, in 2D and 3D, and its failing step's last iterate
+//! is written on its springs (a stuck pair's gap its closure sigma_n /
+//! k_n, not a rigid re-run's 0); (3) geo/dam_uplift.toml (the base's
 //! water through drains, a heel crack that fills) with k_n = E of the
 //! rock per metre, k_s = k_n / 10 on every joint converges, and its F is
 //! below the rigid joints' by less than 3 %: the springs let the base
@@ -97,9 +98,8 @@ fn a_planar_slide_on_springs_slides_at_hoek_and_brays_factor_dry_and_wet() {
 
 /// Measured: named toppling about the corner (0.6, 0) in 2D, the edge
 /// through it along -z in 3D, as with rigid joints. The mechanism comes
-/// from the search below F = 1, whose trials now run the joints rigid
-/// (see the next test); with the springs given to them (tried, not
-/// committed) they name the same corner and edge.
+/// from the search below F = 1, whose trials run the joints on their
+/// springs (see the next test).
 #[test]
 fn a_slender_block_on_springs_topples_about_its_toe_in_2d_and_3d() {
     let case = topple::case("stiff-topple");
@@ -111,18 +111,17 @@ fn a_slender_block_on_springs_topples_about_its_toe_in_2d_and_3d() {
     }
 }
 
-/// Open: the run that loses equilibrium at F = 1 is searched and written
-/// with rigid joints. The search below 1 (`Trials::path`) and the replay
-/// of the failing step (safety/below.rs `replay`) start from
-/// `History::new` without the springs' unloaded points, so
-/// `contact::iterate` takes the rigid rule: the 2D block's load step on
-/// springs fails at contact iteration 12, its trials and results at the
-/// rigid joint's 6, and contact.csv's stuck pairs have gap 0 (pair 0:
-/// sigma_n = -835.8, its spring's closure -0.0836), bit for bit the rigid
-/// run's. Giving `path` and `replay` the unloaded points the load steps
-/// start from (driver/steps.rs) makes this pass.
+/// The run that loses equilibrium at F = 1 is searched and written on its
+/// springs: the search below 1 (`Trials::path`) and the replay of the
+/// failing step (safety/below.rs `replay`) start from the load steps'
+/// history (driver/steps.rs `fresh_history`: the springs unloaded under
+/// the in-situ stress). Measured: the 2D block's load step fails at
+/// contact iteration 12, its trials at 11 to 13, the written iterate is
+/// the 11th, and contact.csv's stuck pair 0 (sigma_n = -835.77) has gap
+/// -0.08358 = sigma_n / k_n. Started from a bare `History::new` they took
+/// the rigid rule: trials failing at the rigid joint's iteration 6, the
+/// 5th written, gap 0, bit for bit the rigid run's.
 #[test]
-#[ignore = "open: a failing step on springs is searched and written with rigid joints (safety/below.rs, trials.rs)"]
 fn a_slender_block_on_springs_writes_its_springs_last_iterate() {
     let case = topple::case("stiff-topple-written");
     let (k_n, k_s) = (1.0e4, 1.0e3);

@@ -103,12 +103,7 @@ pub(super) fn run(this: &Step, parts: &Parts, opts: &RunOptions, ranks: &Ranks) 
         progress(opts, &format!("contact iteration on {} pairs, {} load step(s)", model.pairs.len(), n_steps));
     }
     let mut out = LoadSteps::default();
-    let mut history = History::new(model.pairs.len());
-    if let (Some(problem), Some(stiffness)) = (this.problem, crate::contact::elastic::stiffness(&this.laws)) {
-        // joints that deform start carrying the in-situ stress
-        let traction = crate::model::insitu::tractions(model);
-        history.unloaded = crate::contact::elastic::unloaded(problem, &stiffness, &traction);
-    }
+    let mut history = fresh_history(model, this.problem, &this.laws);
     let bytes_before = ranks.bytes_sent();
     let (stage, failed) = stage(this, parts, opts, ranks, (need_stress, &mut history), &mut out)?;
     out.stage = stage;
@@ -153,6 +148,21 @@ pub(super) fn run(this: &Step, parts: &Parts, opts: &RunOptions, ranks: &Ranks) 
     out.history = history;
     out.counters.interface_applications_per_solve = parts.problem.as_ref().map_or_else(Vec::new, |p| p.applications());
     Ok(out)
+}
+
+/// Where a load path starts from nothing (the run's load steps, a safety
+/// trial's below 1, the replay of the failing step): every pair stuck,
+/// nothing cracked or slipped, and where the joints deform (`laws` with
+/// springs, on rank 0: `problem`) their springs carrying the in-situ
+/// stress, unloaded at [`contact::elastic::unloaded`]. Without them
+/// [`contact::iterate`] runs the rigid rule.
+pub(super) fn fresh_history(model: &Model, problem: Option<&InterfaceProblem>, laws: &[PairLaw]) -> History {
+    let mut history = History::new(model.pairs.len());
+    if let (Some(problem), Some(stiffness)) = (problem, contact::elastic::stiffness(laws)) {
+        let traction = crate::model::insitu::tractions(model);
+        history.unloaded = contact::elastic::unloaded(problem, &stiffness, &traction);
+    }
+    history
 }
 
 /// The initial equilibrium stage, when the model has one: its contact

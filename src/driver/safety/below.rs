@@ -42,7 +42,7 @@ use crate::driver::mechanism;
 use crate::driver::messages::{ContactError, SafetyError};
 use crate::driver::ranks::Ranks;
 use crate::driver::run_options::RunOptions;
-use crate::driver::steps::{LoadSteps, Step};
+use crate::driver::steps::{fresh_history, LoadSteps, Step};
 use crate::error::{Error, Result};
 use crate::parallel::CommExt;
 use crate::results::SafetyRun;
@@ -236,7 +236,7 @@ struct Replayed {
 /// the stage did not hold).
 fn replay(step: &Step) -> Replay {
     let (model, solver) = (step.model, &step.scene.solver);
-    let mut h = History::new(model.pairs.len());
+    let mut h = fresh_history(model, step.problem, &step.laws);
     let stage = match model.stage_factors() {
         None => None,
         Some(factors) => {

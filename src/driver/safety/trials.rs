@@ -19,7 +19,7 @@ use crate::contact::system::{InterfaceProblem, SolveFailure};
 use crate::contact::{self, Failed, History, Outcome, PairLaw};
 use crate::driver::progress::progress;
 use crate::driver::run_options::RunOptions;
-use crate::driver::steps::Step;
+use crate::driver::steps::{fresh_history, Step};
 use crate::results::{state_counts, Failure, FailureKind, SearchKind, Trial, Undecided};
 use crate::scene::Safety;
 
@@ -178,7 +178,7 @@ impl<'s, 'a> Trials<'s, 'a> {
     /// step ended.
     pub fn path(&mut self, f: f64) -> Verdict<Held, Failure> {
         let t = self.start();
-        let mut h = History::new(self.step.model.pairs.len());
+        let mut h = fresh_history(self.step.model, self.step.problem, &self.step.laws);
         let laws = self.varied.laws(&self.laws, f);
         let (step, model) = (self.step, self.step.model);
         let mut last = None;
