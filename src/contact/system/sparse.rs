@@ -106,6 +106,14 @@ const W_BATCH: usize = 64;
 /// 39 and 45 % of the factor on average (the 512-block cube), and fewer
 /// columns a pass read the top more often.
 const W_DIAGONAL_BATCH: usize = 64;
+/// Where every pair deforms, the free block `M` (every relative
+/// displacement) is factorised in single precision, ordered by nested
+/// dissection from this many unknowns (AMD below, as
+/// [`Ordering::choose`]). The 86k tunnel with deforming joints (33,823
+/// unknowns, 28 million entries in M's lower triangle), AMD in double
+/// precision -> this: its factorisation 66-91 s -> 6.4 s, the same 190
+/// GMRES applications, the same states, forces within 3e-9.
+const SINGLE_BLOCK: usize = 5_000;
 
 /// A column over the means by its non-zeros: (mean, value).
 type MeanColumn = Vec<(usize, f64)>;
@@ -447,7 +455,8 @@ impl Sparse {
     /// every pair deforms the last one formed under the same load (its
     /// springs those of the solve it was formed for: the pairs that have
     /// changed state since are few, and GMRES corrects for them; the
-    /// 86k-DOF tunnel's block took 68 s to factorise, at every solve).
+    /// 86k-DOF tunnel's block took 68 s to factorise at every solve, in double
+    /// precision and AMD order; 6.4 s now, [`SINGLE_BLOCK`]).
     fn free_block(&self, free: &Free, lambda: &[f64]) -> std::sync::Arc<Preconditioner> {
         let fr = free.fr;
         if fr.deforming {
@@ -780,12 +789,15 @@ impl Free<'_> {
 /// The free block of the preconditioner, `A_yy`: the Schur complement's
 /// own, or where W's columns would take too much memory `M = Z^T K_rr Z`
 /// with the springs of the slipping pairs and junctions (symmetric; the
-/// coupling to the normal force left out), factorised; its diagonal when
-/// that factorisation fails.
+/// coupling to the normal force left out), factorised (in single precision
+/// where every pair deforms, [`SINGLE_BLOCK`]); its diagonal when that
+/// factorisation fails.
 enum Preconditioner {
     /// The whole free block, from W's columns ([`Sparse::exact_block`]).
     Exact(PartialPivLu<f64>),
     Factor(Cholesky),
+    /// `M` where every pair deforms.
+    Single(Box<SingleCholesky>),
     Diagonal(Vec<f64>),
 }
 
@@ -862,8 +874,23 @@ impl Preconditioner {
                 }
             }
         }
-        let m = lower_from_entries(n, entries);
-        match Cholesky::factor(&m) {
+        Preconditioner::factor(&lower_from_entries(n, entries), fr.deforming, sp.threads)
+    }
+
+    /// `m` factorised: in single precision where every pair deforms
+    /// ([`SINGLE_BLOCK`]), else in double; its diagonal where neither holds.
+    fn factor(m: &SymMatrix, deforming: bool, threads: usize) -> Preconditioner {
+        let n = m.n;
+        if deforming {
+            // every relative displacement free: 33,823 of them on the 86k
+            // tunnel, its block 28 million entries
+            let ordering = if n >= SINGLE_BLOCK { Ordering::NestedDissection } else { Ordering::Amd };
+            let each: Vec<usize> = (0..n).collect();
+            if let Ok(f) = SingleCholesky::factor(m, &each, ordering, threads) {
+                return Preconditioner::Single(Box::new(f));
+            }
+        }
+        match Cholesky::factor(m) {
             Ok(f) => Preconditioner::Factor(f),
             Err(_) => Preconditioner::Diagonal((0..n).map(|i| m.get(i, i)).collect()),
         }
@@ -880,6 +907,7 @@ impl Preconditioner {
                 f.solve(&mut x);
                 x
             }
+            Preconditioner::Single(f) => f.solve(v),
             Preconditioner::Diagonal(d) => v.iter().zip(d).map(|(x, d)| if *d > 0.0 { x / d } else { *x }).collect(),
         }
     }
