@@ -106,6 +106,14 @@ const W_BATCH: usize = 64;
 /// 39 and 45 % of the factor on average (the 512-block cube), and fewer
 /// columns a pass read the top more often.
 const W_DIAGONAL_BATCH: usize = 64;
+/// Where every pair deforms, the free block `M` (every relative
+/// displacement) is factorised in single precision, ordered by nested
+/// dissection from this many unknowns (AMD below, as
+/// [`Ordering::choose`]). The 86k tunnel with deforming joints (33,823
+/// unknowns, 28 million entries in M's lower triangle), AMD in double
+/// precision -> this: its factorisation 66-91 s -> 6.4 s, the same 190
+/// GMRES applications, the same states, forces within 3e-9.
+const SINGLE_BLOCK: usize = 5_000;
 
 /// A column over the means by its non-zeros: (mean, value).
 type MeanColumn = Vec<(usize, f64)>;
@@ -119,6 +127,7 @@ struct Local {
 
 /// The interface with its means factorised; see the module header.
 pub struct Sparse {
+    nd: usize,
     nm: usize,
     nr: usize,
     parts: Vec<Local>,
@@ -186,6 +195,7 @@ impl Sparse {
         let factor = Means::factor(&k_mm, &node_of, Ordering::choose(nm, nd), threads).ok_or(NotHeld)?;
         drop(k_mm);
         let mut solver = Sparse {
+            nd,
             nm,
             nr,
             parts: local,
@@ -447,7 +457,8 @@ impl Sparse {
     /// every pair deforms the last one formed under the same load (its
     /// springs those of the solve it was formed for: the pairs that have
     /// changed state since are few, and GMRES corrects for them; the
-    /// 86k-DOF tunnel's block took 68 s to factorise, at every solve).
+    /// 86k-DOF tunnel's block took 68 s to factorise at every solve, in double
+    /// precision and AMD order; 6.4 s now, [`SINGLE_BLOCK`]).
     fn free_block(&self, free: &Free, lambda: &[f64]) -> std::sync::Arc<Preconditioner> {
         let fr = free.fr;
         if fr.deforming {
@@ -457,7 +468,9 @@ impl Sparse {
                 }
             }
         }
-        let block = std::sync::Arc::new(self.exact_block(free).unwrap_or_else(|| Preconditioner::new(self, fr)));
+        let whole = || fr.deforming.then(|| Preconditioner::whole(self, fr)).flatten();
+        let block =
+            std::sync::Arc::new(self.exact_block(free).or_else(whole).unwrap_or_else(|| Preconditioner::new(self, fr)));
         if fr.deforming {
             if let Ok(mut kept) = self.kept.lock() {
                 *kept = Some(Kept { lambda: lambda.to_vec(), cols: fr.cols.clone(), block: block.clone() });
@@ -571,6 +584,31 @@ impl Sparse {
         k_m
     }
 
+    /// A node id for each of the `n` unknowns `index` numbers (a place:
+    /// the unknowns of the interface nodes that coincide there), for
+    /// nested dissection to keep a place's unknowns together.
+    fn var_nodes(&self, index: impl Fn(Var) -> Option<usize>, n: usize) -> Vec<usize> {
+        fn root(parent: &mut [usize], mut x: usize) -> usize {
+            while parent[x] != x {
+                parent[x] = parent[parent[x]];
+                x = parent[x];
+            }
+            x
+        }
+        let mut parent: Vec<usize> = (0..n).collect();
+        for p in &self.parts {
+            for node in p.terms.chunks(self.nd.max(1)) {
+                let mut vars = node.iter().flat_map(|t| t.vars[..t.n].iter().filter_map(|&(v, _)| index(v)));
+                let Some(first) = vars.next() else { continue };
+                for v in vars {
+                    let (a, b) = (root(&mut parent, first), root(&mut parent, v));
+                    parent[b] = a;
+                }
+            }
+        }
+        (0..n).map(|v| root(&mut parent, v)).collect()
+    }
+
     /// The diagonal of `K_rr`, one sweep per part.
     fn diagonal_r(&self) -> Vec<f64> {
         let mut d = vec![0.0; self.nr];
@@ -620,6 +658,9 @@ impl Solver for Sparse {
         let factor_s = t.elapsed().as_secs_f64();
         let means_s = Cell::new(0.0);
         let precondition = |v: &[f64]| {
+            if let Preconditioner::Whole(f) = &*schur {
+                return f.solve(v);
+            }
             let (v_m, v_y) = v.split_at(nm);
             let dy = schur.apply(v_y);
             let k_mr_z = self.k_mr(&free.expand(&dy));
@@ -780,21 +821,76 @@ impl Free<'_> {
 /// The free block of the preconditioner, `A_yy`: the Schur complement's
 /// own, or where W's columns would take too much memory `M = Z^T K_rr Z`
 /// with the springs of the slipping pairs and junctions (symmetric; the
-/// coupling to the normal force left out), factorised; its diagonal when
-/// that factorisation fails.
+/// coupling to the normal force left out), factorised (in single precision
+/// where every pair deforms, [`SINGLE_BLOCK`]); its diagonal when that
+/// factorisation fails.
 enum Preconditioner {
     /// The whole free block, from W's columns ([`Sparse::exact_block`]).
     Exact(PartialPivLu<f64>),
     Factor(Cholesky),
+    /// `M` where every pair deforms.
+    Single(Box<SingleCholesky>),
+    /// All of K over `[m; y]` where every pair deforms
+    /// ([`Preconditioner::whole`]): applied to the whole residual.
+    Whole(Box<SingleCholesky>),
     Diagonal(Vec<f64>),
 }
 
 impl Preconditioner {
+    /// `M` over the free columns of `fr`, factorised; see the type.
     fn new(sp: &Sparse, fr: &Freedom) -> Preconditioner {
         let n = fr.cols.len();
         if n == 0 {
             return Preconditioner::Diagonal(Vec::new());
         }
+        let entries = Preconditioner::entries(sp, fr);
+        Preconditioner::factor(&lower_from_entries(n, entries), fr.deforming, sp.threads)
+    }
+
+    /// Where every pair deforms, the whole of `K` with the springs over
+    /// `[m; r]`, factorised in single precision: the preconditioner then
+    /// leaves GMRES only the slipping pairs' unsymmetric terms and the
+    /// springs of pairs that changed state since it was formed to mend.
+    /// None where a free column is not one relative displacement, or the
+    /// matrix does not factorise.
+    fn whole(sp: &Sparse, fr: &Freedom) -> Option<Preconditioner> {
+        let nm = sp.nm;
+        let n = nm + fr.cols.len();
+        let mut col_of = vec![usize::MAX; sp.nr];
+        for (c, col) in fr.cols.iter().enumerate() {
+            // (a junction's columns list its zeros)
+            let mut on = col.iter().filter(|e| e.1 != 0.0);
+            match (on.next(), on.next()) {
+                (Some(&(i, z)), None) if z == 1.0 && col_of[i] == usize::MAX => col_of[i] = nm + c,
+                _ => return None,
+            }
+        }
+        let index = |v: Var| match v {
+            Var::M(i) => Some(i),
+            Var::R(i) => (col_of[i] != usize::MAX).then_some(col_of[i]),
+        };
+        let springs = springs(fr, nm);
+        let mut held = cliques(&sp.parts, index);
+        held.extend(springs.iter().map(|(dofs, _)| dofs.clone()));
+        let mut k = SymMatrix::from_cliques(n, &held);
+        drop(held);
+        let mut scratch = CliqueScratch::new(n);
+        for p in &sp.parts {
+            add_clique(&mut k, &p.s, &p.terms, index, &mut scratch);
+        }
+        for (dofs, ke) in &springs {
+            k.add(dofs, ke);
+        }
+        let node_of = sp.var_nodes(index, n);
+        let ordering = if n >= SINGLE_BLOCK { Ordering::NestedDissection } else { Ordering::Amd };
+        let f = SingleCholesky::factor(&k, &node_of, ordering, sp.threads).ok()?;
+        Some(Preconditioner::Whole(Box::new(f)))
+    }
+
+    /// The lower triangle's entries (row, column, value) of `Z^T K_rr Z`
+    /// with the springs of the slipping pairs and junctions.
+    fn entries(sp: &Sparse, fr: &Freedom) -> Vec<(usize, usize, f64)> {
+        let n = fr.cols.len();
         let mut cols_of: Vec<Vec<(usize, f64)>> = vec![Vec::new(); sp.nr];
         for (c, col) in fr.cols.iter().enumerate() {
             for &(i, z) in col {
@@ -845,25 +941,33 @@ impl Preconditioner {
             }
             local.clear();
         }
-        for s in &fr.slips {
-            let i = fr.pos[s.row];
-            entries.extend(
-                s.springs
-                    .iter()
-                    .map(|&(rc, k)| (i.max(fr.pos[rc]), i.min(fr.pos[rc]), if i == fr.pos[rc] { k } else { 0.5 * k })),
-            );
-        }
-        for jb in &fr.junctions {
-            for (a, fa) in jb.cols.clone().enumerate() {
-                for (c, fc) in jb.cols.clone().enumerate() {
-                    if fa >= fc {
-                        entries.push((fa, fc, jb.kz[(a, c)]));
+        for (dofs, ke) in springs(fr, 0) {
+            let m = dofs.len();
+            for (b, &col) in dofs.iter().enumerate() {
+                for (a, &row) in dofs.iter().enumerate() {
+                    if row >= col {
+                        entries.push((row, col, ke[a * m + b]));
                     }
                 }
             }
         }
-        let m = lower_from_entries(n, entries);
-        match Cholesky::factor(&m) {
+        entries
+    }
+
+    /// `m` factorised: in single precision where every pair deforms
+    /// ([`SINGLE_BLOCK`]), else in double; its diagonal where neither holds.
+    fn factor(m: &SymMatrix, deforming: bool, threads: usize) -> Preconditioner {
+        let n = m.n;
+        if deforming {
+            // every relative displacement free: 33,823 of them on the 86k
+            // tunnel, its block 28 million entries
+            let ordering = if n >= SINGLE_BLOCK { Ordering::NestedDissection } else { Ordering::Amd };
+            let each: Vec<usize> = (0..n).collect();
+            if let Ok(f) = SingleCholesky::factor(m, &each, ordering, threads) {
+                return Preconditioner::Single(Box::new(f));
+            }
+        }
+        match Cholesky::factor(m) {
             Ok(f) => Preconditioner::Factor(f),
             Err(_) => Preconditioner::Diagonal((0..n).map(|i| m.get(i, i)).collect()),
         }
@@ -880,9 +984,35 @@ impl Preconditioner {
                 f.solve(&mut x);
                 x
             }
+            Preconditioner::Single(f) | Preconditioner::Whole(f) => f.solve(v),
             Preconditioner::Diagonal(d) => v.iter().zip(d).map(|(x, d)| if *d > 0.0 { x / d } else { *x }).collect(),
         }
     }
+}
+
+/// The springs of the slipping pairs (symmetrised: the coupling to the
+/// normal force halved into both triangles) and of the junctions, each a
+/// small dense matrix (row-major) at its unknowns, the free columns
+/// numbered from `off`.
+fn springs(fr: &Freedom, off: usize) -> Vec<(Vec<usize>, Vec<f64>)> {
+    let mut out = Vec::new();
+    for s in &fr.slips {
+        let i = fr.pos[s.row];
+        for &(rc, k) in &s.springs {
+            let j = fr.pos[rc];
+            if i == j {
+                out.push((vec![off + i], vec![k]));
+            } else {
+                out.push((vec![off + i, off + j], vec![0.0, 0.5 * k, 0.5 * k, 0.0]));
+            }
+        }
+    }
+    for jb in &fr.junctions {
+        let dofs: Vec<usize> = jb.cols.clone().map(|c| off + c).collect();
+        let m = dofs.len();
+        out.push((dofs, (0..m * m).map(|e| jb.kz[(e / m, e % m)]).collect()));
+    }
+    out
 }
 
 /// The lower triangle of an `n x n` symmetric matrix from (row >= col,
@@ -1014,21 +1144,25 @@ fn means_matrix(parts: &[Local], nm: usize) -> SymMatrix {
         Var::M(i) => Some(i),
         Var::R(_) => None,
     };
-    let cliques: Vec<Vec<usize>> = (parts.iter())
-        .map(|p| {
-            let mut c: Vec<usize> =
-                p.terms.iter().flat_map(|t| t.vars[..t.n].iter().filter_map(|&(v, _)| means(v))).collect();
-            c.sort_unstable();
-            c.dedup();
-            c
-        })
-        .collect();
-    let mut k = SymMatrix::from_cliques(nm, &cliques);
+    let mut k = SymMatrix::from_cliques(nm, &cliques(parts, means));
     let mut scratch = CliqueScratch::new(nm);
     for p in parts {
         add_clique(&mut k, &p.s, &p.terms, means, &mut scratch);
     }
     k
+}
+
+/// Each part's unknowns that `index` numbers, as equations: its clique.
+fn cliques(parts: &[Local], index: impl Fn(Var) -> Option<usize>) -> Vec<Vec<usize>> {
+    (parts.iter())
+        .map(|p| {
+            let mut c: Vec<usize> =
+                p.terms.iter().flat_map(|t| t.vars[..t.n].iter().filter_map(|&(v, _)| index(v))).collect();
+            c.sort_unstable();
+            c.dedup();
+            c
+        })
+        .collect()
 }
 
 /// A node id per mean (a lone pair, a junction or a join), for nested
