@@ -52,6 +52,7 @@ mod layout;
 mod least_distance;
 pub mod reduce;
 pub mod relation;
+mod sides;
 pub mod solver;
 pub mod sparse;
 mod threads;

@@ -62,6 +62,7 @@ use super::gmres;
 use super::iterative::{tolerance, LastStates};
 use super::layout::Layout;
 use super::reduce::{combine, NotHeld};
+use super::sides::Sides;
 use super::solver::{Accuracy, Answer, Solver, Split};
 use super::threads::in_runs;
 use super::w_columns::WColumns;
@@ -584,10 +585,11 @@ impl Sparse {
         k_m
     }
 
-    /// A node id for each of the `n` unknowns `index` numbers (a place:
-    /// the unknowns of the interface nodes that coincide there), for
-    /// nested dissection to keep a place's unknowns together.
-    fn var_nodes(&self, index: impl Fn(Var) -> Option<usize>, n: usize) -> Vec<usize> {
+    /// A place id for each of the `n` unknowns `index` numbers: the
+    /// unknowns of the interface nodes that coincide there, and of the
+    /// springs `with` that join them (a junction's, whose copies may share
+    /// no unknown where a support holds them).
+    fn places(&self, index: impl Fn(Var) -> Option<usize>, n: usize, with: &[(Vec<usize>, Vec<f64>)]) -> Vec<usize> {
         fn root(parent: &mut [usize], mut x: usize) -> usize {
             while parent[x] != x {
                 parent[x] = parent[parent[x]];
@@ -604,6 +606,12 @@ impl Sparse {
                     let (a, b) = (root(&mut parent, first), root(&mut parent, v));
                     parent[b] = a;
                 }
+            }
+        }
+        for (xs, _) in with {
+            for &x in &xs[1..] {
+                let (a, b) = (root(&mut parent, xs[0]), root(&mut parent, x));
+                parent[b] = a;
             }
         }
         (0..n).map(|v| root(&mut parent, v)).collect()
@@ -830,9 +838,9 @@ enum Preconditioner {
     Factor(Cholesky),
     /// `M` where every pair deforms.
     Single(Box<SingleCholesky>),
-    /// All of K over `[m; y]` where every pair deforms
+    /// All of K over `[m; y]` with the springs where every pair deforms
     /// ([`Preconditioner::whole`]): applied to the whole residual.
-    Whole(Box<SingleCholesky>),
+    Whole(Box<Sides>),
     Diagonal(Vec<f64>),
 }
 
@@ -848,11 +856,12 @@ impl Preconditioner {
     }
 
     /// Where every pair deforms, the whole of `K` with the springs over
-    /// `[m; r]`, factorised in single precision: the preconditioner then
-    /// leaves GMRES only the slipping pairs' unsymmetric terms and the
-    /// springs of pairs that changed state since it was formed to mend.
-    /// None where a free column is not one relative displacement, or the
-    /// matrix does not factorise.
+    /// `[m; r]`, factorised in single precision through the sides' DOFs
+    /// ([`super::sides`]): the preconditioner then leaves GMRES only the
+    /// slipping pairs' unsymmetric terms and the springs of pairs that
+    /// changed state since it was formed to mend. None where a free
+    /// column is not one relative displacement, or the sides do not
+    /// factorise.
     fn whole(sp: &Sparse, fr: &Freedom) -> Option<Preconditioner> {
         let nm = sp.nm;
         let n = nm + fr.cols.len();
@@ -870,21 +879,10 @@ impl Preconditioner {
             Var::R(i) => (col_of[i] != usize::MAX).then_some(col_of[i]),
         };
         let springs = springs(fr, nm);
-        let mut held = cliques(&sp.parts, index);
-        held.extend(springs.iter().map(|(dofs, _)| dofs.clone()));
-        let mut k = SymMatrix::from_cliques(n, &held);
-        drop(held);
-        let mut scratch = CliqueScratch::new(n);
-        for p in &sp.parts {
-            add_clique(&mut k, &p.s, &p.terms, index, &mut scratch);
-        }
-        for (dofs, ke) in &springs {
-            k.add(dofs, ke);
-        }
-        let node_of = sp.var_nodes(index, n);
-        let ordering = if n >= SINGLE_BLOCK { Ordering::NestedDissection } else { Ordering::Amd };
-        let f = SingleCholesky::factor(&k, &node_of, ordering, sp.threads).ok()?;
-        Some(Preconditioner::Whole(Box::new(f)))
+        let place_of = sp.places(index, n, &springs);
+        let parts: Vec<(&[f64], &[Terms])> = sp.parts.iter().map(|p| (&p.s[..], &p.terms[..])).collect();
+        let sides = Sides::new(&parts, index, n, &springs, &place_of, (sp.nd, sp.threads))?;
+        Some(Preconditioner::Whole(Box::new(sides)))
     }
 
     /// The lower triangle's entries (row, column, value) of `Z^T K_rr Z`
@@ -984,7 +982,8 @@ impl Preconditioner {
                 f.solve(&mut x);
                 x
             }
-            Preconditioner::Single(f) | Preconditioner::Whole(f) => f.solve(v),
+            Preconditioner::Single(f) => f.solve(v),
+            Preconditioner::Whole(f) => f.solve(v),
             Preconditioner::Diagonal(d) => v.iter().zip(d).map(|(x, d)| if *d > 0.0 { x / d } else { *x }).collect(),
         }
     }
