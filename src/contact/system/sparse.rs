@@ -40,6 +40,15 @@
 //! round-off of a direct solve, not the tolerance of an iterative one,
 //! where a joint carries nothing (at a free surface).
 //!
+//! Where every pair deforms (joints with springs, [`Freedom::deforming`])
+//! no axis is tied, every relative displacement is free, and the system
+//! of a solve is `K + F` over `[m; r]`, F the springs (unsymmetric only
+//! at slipping pairs). The preconditioner is then its symmetric part,
+//! whole, factorised once a load through the sides' own DOFs
+//! ([`super::sides`]): GMRES mends only the slipping pairs' terms and the
+//! springs of pairs that changed state since (the 86k tunnel: 21
+//! applications in 4 iterations).
+//!
 //! A stuck pair costs nothing. Each solve starts from the last answer
 //! (means and relative displacements); a solve whose state set differs
 //! from the last one's stops at the iterative interface's loose tolerance
@@ -1143,25 +1152,21 @@ fn means_matrix(parts: &[Local], nm: usize) -> SymMatrix {
         Var::M(i) => Some(i),
         Var::R(_) => None,
     };
-    let mut k = SymMatrix::from_cliques(nm, &cliques(parts, means));
+    let cliques: Vec<Vec<usize>> = (parts.iter())
+        .map(|p| {
+            let mut c: Vec<usize> =
+                p.terms.iter().flat_map(|t| t.vars[..t.n].iter().filter_map(|&(v, _)| means(v))).collect();
+            c.sort_unstable();
+            c.dedup();
+            c
+        })
+        .collect();
+    let mut k = SymMatrix::from_cliques(nm, &cliques);
     let mut scratch = CliqueScratch::new(nm);
     for p in parts {
         add_clique(&mut k, &p.s, &p.terms, means, &mut scratch);
     }
     k
-}
-
-/// Each part's unknowns that `index` numbers, as equations: its clique.
-fn cliques(parts: &[Local], index: impl Fn(Var) -> Option<usize>) -> Vec<Vec<usize>> {
-    (parts.iter())
-        .map(|p| {
-            let mut c: Vec<usize> =
-                p.terms.iter().flat_map(|t| t.vars[..t.n].iter().filter_map(|&(v, _)| index(v))).collect();
-            c.sort_unstable();
-            c.dedup();
-            c
-        })
-        .collect()
 }
 
 /// A node id per mean (a lone pair, a junction or a join), for nested
