@@ -220,7 +220,7 @@ fn the_tunnel_meshed_coarser_away_from_the_opening_converges_without_cuts() {
 /// spring, no ties, no junction shares to settle. 4 iterations where the
 /// rigid joints never end, the law checked pair by pair from contact.csv.
 #[test]
-#[ignore = "make stress: about 40 s"]
+#[ignore = "make stress: about 10 s"]
 fn the_tunnel_with_joints_that_deform_converges() {
     let scene = common::repo_text("tests/geo/tunnel3d_joints_coarse.toml");
     let coarser = scene.replacen("lc_far = 4.0", "lc_far = 6.0", 1);

@@ -323,7 +323,7 @@ fn tunnel4sets_k0_bare_opening() {
 }
 
 /// tunnel4sets with joints that deform (k_n = E per metre, k_s a tenth of
-/// it): 8 iterations where the rigid joints take 23, every pair a spring
+/// it): 9 iterations where the rigid joints take 23, every pair a spring
 /// and no crossing's share to settle, so nothing is off the equilibrium.
 #[test]
 fn tunnel4sets_with_joints_that_deform() {
