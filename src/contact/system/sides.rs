@@ -33,7 +33,7 @@ use crate::substructure::ordering::Ordering;
 use crate::substructure::single_precision::SingleCholesky;
 
 /// One place: its unknowns in x, its sides' DOFs, and `T^-1` there
-/// (row-major over the unknowns, columns the DOFs).
+/// (rows the unknowns, columns the DOFs).
 struct Place {
     vars: Vec<usize>,
     dofs: Vec<usize>,
@@ -43,7 +43,9 @@ struct Place {
 /// `(K + F)^-1` through the sides' DOFs; see the module header.
 pub(super) struct Sides {
     places: Vec<Place>,
+    /// Unknowns in x, and sides' DOFs.
     n: usize,
+    n_d: usize,
     factor: SingleCholesky,
 }
 
@@ -115,14 +117,13 @@ impl Sides {
                 nodes += 1;
             }
         }
-        let ordering = if n_d >= 5_000 { Ordering::NestedDissection } else { Ordering::Amd };
-        let factor = SingleCholesky::factor(&k, &node_of, ordering, threads).ok()?;
-        Some(Sides { places, n, factor })
+        let factor = SingleCholesky::factor(&k, &node_of, Ordering::choose(n_d, nd), threads).ok()?;
+        Some(Sides { places, n, n_d, factor })
     }
 
     /// `(K + F)^-1 v` over x.
     pub fn solve(&self, v: &[f64]) -> Vec<f64> {
-        let mut w = vec![0.0; self.factor_len()];
+        let mut w = vec![0.0; self.n_d];
         for p in &self.places {
             // w = T^-T v at the place
             for (j, &d) in p.dofs.iter().enumerate() {
@@ -137,10 +138,6 @@ impl Sides {
             }
         }
         x
-    }
-
-    fn factor_len(&self) -> usize {
-        self.places.iter().map(|p| p.dofs.len()).sum()
     }
 }
 
