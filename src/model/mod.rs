@@ -45,7 +45,7 @@ mod normals;
 mod pairs;
 pub mod quality;
 mod spec;
-mod topology;
+pub(crate) mod topology;
 pub mod water;
 
 pub mod warnings;

@@ -30,13 +30,13 @@ pub(super) fn corner_key(c: &Cell) -> FaceKey {
 }
 
 /// Disjoint sets over `0..n` with path halving.
-pub(super) struct UnionFind(Vec<usize>);
+pub(crate) struct UnionFind(Vec<usize>);
 
 impl UnionFind {
-    pub(super) fn new(n: usize) -> UnionFind {
+    pub(crate) fn new(n: usize) -> UnionFind {
         UnionFind((0..n).collect())
     }
-    pub(super) fn root(&mut self, mut i: usize) -> usize {
+    pub(crate) fn root(&mut self, mut i: usize) -> usize {
         while self.0[i] != i {
             self.0[i] = self.0[self.0[i]];
             i = self.0[i];
@@ -44,7 +44,7 @@ impl UnionFind {
         i
     }
     /// Joins the sets of a and b; the smaller root becomes the root.
-    pub(super) fn join(&mut self, a: usize, b: usize) {
+    pub(crate) fn join(&mut self, a: usize, b: usize) {
         let (x, y) = (self.root(a), self.root(b));
         if x != y {
             self.0[x.max(y)] = x.min(y);

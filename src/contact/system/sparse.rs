@@ -78,6 +78,7 @@ use super::w_columns::WColumns;
 use crate::contact::law::ContactState;
 use crate::fem::sparse::{Cholesky, SymMatrix};
 use crate::fem::vec3::length;
+use crate::model::topology::UnionFind;
 use crate::substructure::ordering::Ordering;
 use crate::substructure::schur::PartialCholesky;
 use crate::substructure::single_precision::SingleCholesky;
@@ -599,31 +600,18 @@ impl Sparse {
     /// springs `with` that join them (a junction's, whose copies may share
     /// no unknown where a support holds them).
     fn places(&self, index: impl Fn(Var) -> Option<usize>, n: usize, with: &[(Vec<usize>, Vec<f64>)]) -> Vec<usize> {
-        fn root(parent: &mut [usize], mut x: usize) -> usize {
-            while parent[x] != x {
-                parent[x] = parent[parent[x]];
-                x = parent[x];
-            }
-            x
-        }
-        let mut parent: Vec<usize> = (0..n).collect();
+        let mut sets = UnionFind::new(n);
         for p in &self.parts {
             for node in p.terms.chunks(self.nd.max(1)) {
                 let mut vars = node.iter().flat_map(|t| t.vars[..t.n].iter().filter_map(|&(v, _)| index(v)));
                 let Some(first) = vars.next() else { continue };
-                for v in vars {
-                    let (a, b) = (root(&mut parent, first), root(&mut parent, v));
-                    parent[b] = a;
-                }
+                vars.for_each(|v| sets.join(first, v));
             }
         }
         for (xs, _) in with {
-            for &x in &xs[1..] {
-                let (a, b) = (root(&mut parent, xs[0]), root(&mut parent, x));
-                parent[b] = a;
-            }
+            xs[1..].iter().for_each(|&x| sets.join(xs[0], x));
         }
-        (0..n).map(|v| root(&mut parent, v)).collect()
+        (0..n).map(|v| sets.root(v)).collect()
     }
 
     /// The diagonal of `K_rr`, one sweep per part.
