@@ -185,7 +185,9 @@ fn law_residuals(
         .map(|p| {
             let (force, rel, area) = (solution.forces[p], solution.rel[p], problem.area(p));
             let gap = rel[0] - h.unloaded.get(p).map_or(0.0, |r0| r0[0]);
-            let stiffness = stiffness_in(h.states[p], gap, || problem.stiffness(p));
+            // (a joint that deforms: its shear spring, which the slip acts on)
+            let own = || laws[p].stiffness.map_or_else(|| problem.stiffness(p), |k| area * k.shear);
+            let stiffness = stiffness_in(h.states[p], gap, own);
             let slip = reference.map_or([0.0; 3], |r| sub(tangential(rel), tangential(r[p])));
             let slip = if stiffness * norm(slip) > LAW_TOLERANCE * scale { slip } else { [0.0; 3] };
             let trial = Trial { force, area, slip, gap, stiffness };

@@ -27,6 +27,9 @@ pub(super) struct Plan {
     pub kind: InterfaceKind,
     /// Interface DOFs summed over the parts (what decides `kind` by default).
     pub interface_dofs: usize,
+    /// Whether every contact's joints deform (`normal_stiffness`): the
+    /// sparse interface then factorises its means only where asked.
+    pub deforming: bool,
 }
 
 /// The plan of a run on `ranks` MPI ranks (1 without MPI).
@@ -42,7 +45,8 @@ pub(super) fn plan(scene: &Scene, model: &Model, opts: &RunOptions, ranks: usize
     let nd = model.nd;
     let interface_dofs: usize = parts.iter().map(|p| p.interface.len() * nd).sum();
     let kind = InterfaceKind::choose(opts.interface.unwrap_or(scene.solver.interface), &parts, nd);
-    Ok(Plan { parts, owner, threads, kind, interface_dofs })
+    let deforming = !scene.contacts.is_empty() && scene.contacts.iter().all(|c| c.stiffness.is_some());
+    Ok(Plan { parts, owner, threads, kind, interface_dofs, deforming })
 }
 
 /// What a rank's parts need of memory at the run's peak, the run's DOFs,

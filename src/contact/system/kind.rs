@@ -92,7 +92,8 @@ impl InterfaceKind {
         })
     }
 
-    /// Its solver of the condensed `parts`.
+    /// Its solver of the condensed `parts` (`deforming`: every pair's
+    /// joint deforms, [`Sparse::new`]).
     pub(super) fn build<'a>(
         self,
         model: &Model,
@@ -100,11 +101,11 @@ impl InterfaceKind {
         parts: &[OperatorRef],
         rigid: &[PartModes],
         remote: Option<&'a dyn Remote>,
-        threads: usize,
+        (threads, deforming): (usize, bool),
     ) -> Result<Box<dyn Solver + 'a>, NotHeld> {
         Ok(match self {
             InterfaceKind::Dense => Box::new(Dense::new(layout, parts)?),
-            InterfaceKind::Sparse => Box::new(Sparse::new(layout, parts, threads)?),
+            InterfaceKind::Sparse => Box::new(Sparse::new(layout, parts, threads, deforming)?),
             InterfaceKind::Iterative => Box::new(Iterative::build(model, layout, parts, rigid, remote, threads)),
         })
     }

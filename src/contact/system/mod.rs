@@ -165,7 +165,7 @@ impl<'a> InterfaceProblem<'a> {
         model: &Model,
         parts: &[OperatorRef],
         remote: Option<&'a dyn Remote>,
-        threads: usize,
+        (threads, deforming): (usize, bool),
         kind: InterfaceKind,
     ) -> Result<InterfaceProblem<'a>, ModelError> {
         let basis = FaceBasis::new(model);
@@ -174,7 +174,7 @@ impl<'a> InterfaceProblem<'a> {
         let positions = model.pairs.iter().map(|p| model.coords[p.k]).collect();
         let spreads = model.normal_spreads();
         let not_held = |_| crate::model::quality::why_not_held(model);
-        let solver = kind.build(model, &layout, parts, &rigid, remote, threads).map_err(not_held)?;
+        let solver = kind.build(model, &layout, parts, &rigid, remote, (threads, deforming)).map_err(not_held)?;
         Ok(InterfaceProblem {
             layout,
             basis,
@@ -634,7 +634,13 @@ impl<'a> InterfaceProblem<'a> {
     fn slip_stiffness(&self, rel: &[Relation]) -> Vec<f64> {
         rel.iter()
             .enumerate()
-            .map(|(p, rl)| if rl.state == ContactState::Slip { self.stiffness(p) } else { 0.0 })
+            .map(|(p, rl)| match rl.state {
+                // a joint that deforms: its own springs (W's diagonal would
+                // cost the sparse interface its means' factor)
+                ContactState::Slip if rl.elastic => rl.spring.iter().flatten().fold(0.0, |a: f64, b| a.max(b.abs())),
+                ContactState::Slip => self.stiffness(p),
+                _ => 0.0,
+            })
             .collect()
     }
 

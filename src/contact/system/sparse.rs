@@ -58,7 +58,7 @@
 //! took 6-7 applications each to the tight tolerance, now 2.
 
 use std::cell::Cell;
-use std::sync::Mutex;
+use std::sync::{Mutex, OnceLock};
 use std::time::Instant;
 
 use faer::linalg::matmul::matmul;
@@ -142,7 +142,11 @@ pub struct Sparse {
     nm: usize,
     nr: usize,
     parts: Vec<Local>,
-    k_mm: Means,
+    /// K_mm's factor, and the mean of each node it is ordered by: formed
+    /// with the interface, or where every pair deforms at its first use
+    /// ([`Sparse::means`]); None where K_mm does not factorise.
+    k_mm: OnceLock<Option<Means>>,
+    node_of: Vec<usize>,
     /// W's diagonal where a pair's stiffness has been asked for, None
     /// elsewhere ([`Sparse::w_diagonal`]); K_rr's diagonal and where the
     /// parts hold each relative displacement ([`Sparse::holders`]), what
@@ -178,8 +182,16 @@ struct Kept {
 impl Sparse {
     /// The interface of the densely condensed `parts` (in the order of
     /// `layout.parts`), swept in `threads`; fails when even every pair
-    /// stuck leaves a body free.
-    pub(super) fn new(layout: &Layout, parts: &[OperatorRef], threads: usize) -> Result<Sparse, NotHeld> {
+    /// stuck leaves a body free. Where every pair's joint deforms
+    /// (`deforming`) K_mm is factorised only if asked for: the solves are
+    /// preconditioned by all of K with the springs ([`super::sides`]), and
+    /// its factor was a quarter of the 86k tunnel's run (4.5 of 20 s).
+    pub(super) fn new(
+        layout: &Layout,
+        parts: &[OperatorRef],
+        threads: usize,
+        deforming: bool,
+    ) -> Result<Sparse, NotHeld> {
         let (nd, nm, nr) = (layout.nd, layout.nm, layout.nr);
         let cases = parts.iter().map(|p| p.g.len()).max().unwrap_or(1);
         let mut local = Vec::with_capacity(parts.len());
@@ -201,16 +213,13 @@ impl Sparse {
             fixed_load(&s, &map.terms, |i, x| b_fixed[at(i)] += x);
             local.push(Local { s, terms: map.terms.clone() });
         }
-        let k_mm = means_matrix(&local, nm);
-        let node_of = mean_nodes(layout);
-        let factor = Means::factor(&k_mm, &node_of, Ordering::choose(nm, nd), threads).ok_or(NotHeld)?;
-        drop(k_mm);
         let mut solver = Sparse {
             nd,
             nm,
             nr,
             parts: local,
-            k_mm: factor,
+            k_mm: OnceLock::new(),
+            node_of: mean_nodes(layout),
             w_diag: Mutex::new(vec![None; nr]),
             k_rr: Vec::new(),
             holders: Vec::new(),
@@ -224,6 +233,9 @@ impl Sparse {
             w: Mutex::new(WColumns::new(nr)),
             kept: Mutex::new(None),
         };
+        if !deforming && solver.means().is_none() {
+            return Err(NotHeld);
+        }
         let t = Instant::now();
         solver.k_rr = solver.diagonal_r();
         solver.holders = solver.holders();
@@ -280,12 +292,23 @@ impl Sparse {
         self.apply(&vec![0.0; self.nm], r).0
     }
 
-    /// `K_mm^-1 v`, to the factor's precision.
+    /// K_mm's factor, formed at its first use; None where K_mm does not
+    /// factorise.
+    fn means(&self) -> Option<&Means> {
+        (self.k_mm.get_or_init(|| {
+            let k = means_matrix(&self.parts, self.nm);
+            Means::factor(&k, &self.node_of, Ordering::choose(self.nm, self.nd), self.threads)
+        }))
+        .as_ref()
+    }
+
+    /// `K_mm^-1 v`, to the factor's precision (NaN where K_mm does not
+    /// factorise: a solve through it gives no answer).
     fn solve_means(&self, v: &[f64]) -> Vec<f64> {
         if self.nm == 0 {
             return Vec::new();
         }
-        self.k_mm.solve(v)
+        self.means().map_or_else(|| vec![f64::NAN; v.len()], |f| f.solve(v))
     }
 
     /// The means for the relative displacements `r`, `K_mm m = b_m - K_mr
@@ -295,6 +318,9 @@ impl Sparse {
     /// A stuck pair's force is what K makes of the displacements on both
     /// sides: round-off, not the solve's tolerance, where it carries nothing.
     fn refine_means(&self, m: &mut [f64], r: &[f64], b_m: &[f64], scale: f64) -> (Vec<f64>, Vec<f64>) {
+        if self.k_mm.get().is_none() {
+            return self.apply(m, r);
+        }
         let mut last = f64::INFINITY;
         for _ in 0..REFINEMENTS {
             let (k_m, k_r) = self.apply(m, r);
@@ -334,6 +360,13 @@ impl Sparse {
                     k_r.iter_mut().zip(d_r).for_each(|(k, d)| *k += d);
                 }
                 (Start { m: l.m, y0, k_m, k_r }, 0)
+            }
+            // where every pair deforms and the means have no factor, from
+            // m = 0: the preconditioner is all of K
+            None if self.k_mm.get().is_none() => {
+                let m = vec![0.0; nm];
+                let (k_m, k_r) = self.apply(&m, &r_s);
+                (Start { m, y0, k_m, k_r }, 0)
             }
             None => {
                 let k_mr_r = self.k_mr(&r_s);
@@ -427,7 +460,8 @@ impl Sparse {
     /// all at once.
     fn w_columns_of(&self, idx: &[usize]) -> Vec<Vec<f64>> {
         let (k_m, mut k_r) = self.unit_products(idx);
-        let t = self.k_mm.solve_many(&k_m);
+        let Some(means) = self.means() else { return vec![vec![f64::NAN; self.nr]; idx.len()] };
+        let t = means.solve_many(&k_m);
         for (w, kt) in k_r.iter_mut().zip(self.k_rm_many(&t)) {
             w.iter_mut().zip(kt).for_each(|(w, v)| *w -= v);
         }
@@ -445,6 +479,7 @@ impl Sparse {
         }
         let mut w = self.w.lock().ok()?;
         let missing = w.missing(free.fr)?;
+        self.means()?;
         let t = Instant::now();
         for batch in missing.chunks(W_BATCH) {
             let cols = self.w_columns_of(batch);
@@ -521,14 +556,14 @@ impl Sparse {
     fn w_diagonal(&self, idx: &[usize]) -> Vec<f64> {
         let mut d = self.w_diag.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
         let mut missing: Vec<usize> = idx.iter().copied().filter(|&i| d[i].is_none()).collect();
-        if !missing.is_empty() {
+        if let (false, Some(means)) = (missing.is_empty(), self.means()) {
             let t = Instant::now();
-            let k_m = self.mean_columns(&mut missing);
+            let k_m = self.mean_columns(means, &mut missing);
             let per = missing.len().div_ceil(self.threads).min(W_DIAGONAL_BATCH);
             let batches: Vec<&[MeanColumn]> = k_m.chunks(per).collect();
             let threads = self.threads.min(batches.len()).max(1);
             let lowered = in_runs(&batches, threads, |run| {
-                run.iter().flat_map(|batch| self.k_mm.energies(batch, self.nm)).collect::<Vec<f64>>()
+                run.iter().flat_map(|batch| means.energies(batch, self.nm)).collect::<Vec<f64>>()
             });
             // (K_mm's single-precision factor could lose a W far softer than
             // K_rr: that keeps K_rr's)
@@ -545,13 +580,13 @@ impl Sparse {
     /// `missing`, each as its non-zeros; `missing` deduplicated and sorted
     /// as the columns are, by where their substitutions begin
     /// ([`Means::leaf`]), so that a batch's share a path through the factor.
-    fn mean_columns(&self, missing: &mut Vec<usize>) -> Vec<MeanColumn> {
+    fn mean_columns(&self, means: &Means, missing: &mut Vec<usize>) -> Vec<MeanColumn> {
         missing.sort_unstable();
         missing.dedup();
         let mut cols: Vec<(usize, usize, MeanColumn)> = (missing.iter())
             .map(|&i| {
                 let c = self.mean_column(&self.holders[i]);
-                (self.k_mm.leaf(&c), i, c)
+                (means.leaf(&c), i, c)
             })
             .collect();
         cols.sort_by_key(|&(leaf, i, _)| (leaf, i));
