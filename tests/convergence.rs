@@ -235,6 +235,41 @@ fn the_tunnel_with_joints_that_deform_converges() {
     assert!(worst < 1e-8, "law residual {worst:e}");
 }
 
+/// The joint stiffness a step of rigid joints that did not converge
+/// advises, taken as said: the two-set tunnel (tests/interface_paths.rs'
+/// kept mesh, 1,779 pairs) does not converge in 20 iterations with rigid
+/// joints (it takes 45-49, three pairs slipping against their friction at
+/// the 20th), and with the stiffness the message names it does, in 4.
+#[test]
+fn the_joint_stiffness_a_step_that_did_not_converge_advises_ends_it() {
+    let case = Case::new("conv-advice");
+    let text = common::scenes::tunnel_two_sets(&case);
+    let solver = "\n[solver]\nmax_cuts = 0\nmax_iterations = 20\n";
+    case.write("rigid.toml", &format!("{text}{solver}"));
+    let o = case.cli(&["solve", "rigid.toml", "--out", "rigid", "--quiet"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    common::cli::says(&err, &["did not converge after 20 iteration(s)", "[[joint_sets]] entry", "Joints that deform"]);
+    // the values advised, read off the message
+    let value = |key: &str| -> f64 {
+        let at = err.find(&format!("{key} = ")).unwrap_or_else(|| panic!("{key} advised: {err}")) + key.len() + 3;
+        err[at..].split_whitespace().next().and_then(|v| v.parse().ok()).expect("a number")
+    };
+    let (k_n, k_s) = (value("normal_stiffness"), value("shear_stiffness"));
+    assert_eq!((k_n, k_s), (5000.0, 500.0), "the rock's E per unit of length, and a tenth");
+    let stiff = text.replace("friction = 0.7002", &format!("friction = 0.7002\n{}", common::scenes::springs(k_n, k_s)));
+    assert_eq!(stiff.matches("normal_stiffness").count(), 2, "both sets deform");
+    case.write("stiff.toml", &format!("{stiff}{solver}"));
+    let o = case.cli(&["solve", "stiff.toml", "--out", "stiff", "--quiet"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let c = &json(&case.dir.join("stiff/summary.json"))["contact"];
+    let (its, law) =
+        (c["iterations"].as_u64().expect("iterations"), c["law_residual"]["relative"].as_f64().expect("law"));
+    eprintln!("two-set tunnel with the advised springs: {its} iterations, law residual {law:.1e}");
+    assert!(its <= 8, "{its} iterations");
+    assert!(law < 1e-8, "law residual {law:e}");
+}
+
 /// geo/tunnel_joints.toml (k0 = 0.25) with the set dipping 60 degrees
 /// given f = 0.5 and no cohesion: Mohr's circle puts every pair of it at
 /// tau / sigma_n = (1 - k0) sin 60 cos 60 / (cos^2 60 + k0 sin^2 60) =

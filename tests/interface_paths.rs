@@ -27,7 +27,7 @@
 
 mod common;
 
-use common::scenes::edited;
+use common::scenes::tunnel_two_sets;
 use common::Case;
 use subcontact::contact::InterfaceSolver;
 use subcontact::driver::{self, RunOptions};
@@ -49,16 +49,7 @@ fn solve(case: &Case, scene: &str, interface: InterfaceSolver, name: &str) -> Ru
 #[test]
 fn the_sparse_interface_takes_the_dense_ones_path_on_the_jointed_tunnel() {
     let case = Case::new("interface-paths");
-    case.copy("tests/geo/tunnel3d_joints_2sets.msh");
-    let text = edited(
-        "tests/geo/tunnel3d_joints_coarse.toml",
-        &[
-            ("mesh = \"tunnel3d_joints.geo\"", "mesh = \"tunnel3d_joints_2sets.msh\""),
-            ("[gmsh]\norder = 2\nsetnumber = { lc = 2.0, lc_far = 4.0 }\n", ""),
-            ("[[contacts]]\ngroup = \"J3\"\nfriction = 0.7002\n\n", ""),
-        ],
-    );
-    case.write("tunnel.toml", &text);
+    case.write("tunnel.toml", &tunnel_two_sets(&case));
     let dense = solve(&case, "tunnel.toml", InterfaceSolver::Dense, "dense");
     let sparse = solve(&case, "tunnel.toml", InterfaceSolver::Sparse, "sparse");
     assert_eq!((dense.stats.interface_solver, sparse.stats.interface_solver), ("dense", "sparse"));

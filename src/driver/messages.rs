@@ -70,13 +70,15 @@ pub enum ContactError {
     /// the halvings of the step that were tried ([solver] max_cuts);
     /// `slipping_back`: the pairs that slip against their friction at the
     /// last iteration (report.md), which more iterations did not settle
-    /// where measured.
+    /// where measured; `rigid_joints`: where the joints are rigid, the
+    /// softest body's Young's modulus, whose joint stiffness is advised.
     NotConverged {
         step: Option<usize>,
         iterations: usize,
         cycled: bool,
         law_broken: bool,
         slipping_back: usize,
+        rigid_joints: Option<f64>,
         cuts: usize,
         rule: StateRule,
         results: Option<PathBuf>,
@@ -297,7 +299,17 @@ impl fmt::Display for ContactError {
                     write!(f, " — loss of equilibrium: the load along the contact exceeds what friction and cohesion can carry. Reduce the load, add a support that holds {} tangentially, or raise the friction or cohesion of {its} contacts", if bodies.len() > 1 { "them" } else { "it" })
                 }
             }
-            ContactError::NotConverged { step, iterations, cycled, law_broken, slipping_back, cuts, rule, results } => {
+            ContactError::NotConverged {
+                step,
+                iterations,
+                cycled,
+                law_broken,
+                slipping_back,
+                rigid_joints,
+                cuts,
+                rule,
+                results,
+            } => {
                 write!(f, "the contact iteration did not converge")?;
                 match step {
                     Some(0) => write!(f, " in the initial equilibrium stage ([solver] initial_stage: the in-situ stress with the contacts active, before any load)")?,
@@ -322,6 +334,9 @@ impl fmt::Display for ContactError {
                         0 => write!(f, "; or try more [solver] max_iterations{other}")?,
                         n => write!(f, ". {n} pair(s) slip against their own friction (contact.csv: a law_residual about twice their shear): stuck, each is beyond its bound, and let slip its friction pushes it back, a wedge such as a corner where two joints cross near a free face; more iterations did not settle such pairs where that was measured (docs/convergence.md){other}")?,
                     }
+                    if let Some(e) = rigid_joints {
+                        joint_stiffness_advice(f, *e)?;
+                    }
                 }
                 Ok(())
             }
@@ -333,6 +348,17 @@ impl fmt::Display for ContactError {
             }
         }
     }
+}
+
+/// What a step of rigid joints that did not converge can try instead:
+/// joints that deform, with the softest body's `e` per unit of length.
+fn joint_stiffness_advice(f: &mut fmt::Formatter<'_>, e: f64) -> fmt::Result {
+    write!(
+        f,
+        ". Or give the joints a stiffness, as 3DEC's and UDEC's have: normal_stiffness and shear_stiffness on every [[contacts]] and [[joint_sets]] entry, e.g. normal_stiffness = {} and shear_stiffness = {} (the rock's E per unit of length, and a tenth of it). Where rigid joints cross, their forces are shared by ties that can leave no state set keeping the law; a joint that deforms is a spring, and the jointed tunnels whose rigid joints did not end in 300 iterations end in 4 (README, \"Joints that deform\")",
+        e,
+        e / 10.0
+    )
 }
 
 impl fmt::Display for PlanError {
@@ -437,12 +463,17 @@ mod tests {
     use super::*;
 
     fn not_converged(slipping_back: usize) -> String {
+        not_converged_with(slipping_back, None)
+    }
+
+    fn not_converged_with(slipping_back: usize, rigid_joints: Option<f64>) -> String {
         ContactError::NotConverged {
             step: Some(1),
             iterations: 100,
             cycled: true,
             law_broken: false,
             slipping_back,
+            rigid_joints,
             cuts: 0,
             rule: StateRule::Robust,
             results: Some(PathBuf::from("out")),
@@ -458,5 +489,14 @@ mod tests {
         let back = not_converged(3);
         assert!(!back.contains("max_iterations"), "{back}");
         assert!(back.contains("3 pair(s) slip against their own friction (contact.csv"), "{back}");
+    }
+
+    #[test]
+    fn rigid_joints_are_advised_a_stiffness_from_the_rocks_modulus() {
+        assert!(!not_converged(0).contains("normal_stiffness"));
+        for back in [0, 3] {
+            let said = not_converged_with(back, Some(5000.0));
+            assert!(said.contains("normal_stiffness = 5000 and shear_stiffness = 500 "), "{said}");
+        }
     }
 }

@@ -47,6 +47,7 @@ pub use warnings::{insitu_warnings, model_warnings};
 
 use crate::analytic;
 use crate::contact::law::PairResult;
+use crate::contact::options::StateRule;
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::model::Model;
@@ -287,10 +288,20 @@ fn not_converged(run: &Run, results: Option<PathBuf>) -> Option<ContactError> {
         cycled: c.summary.cycled,
         law_broken: c.summary.law_broken,
         slipping_back: output::slipping_back(c),
+        rigid_joints: rigid_joints(&run.scene),
         cuts: c.summary.cuts,
         rule: run.scene.solver.rule,
         results,
     })
+}
+
+/// Where the joints are rigid under the robust rule (for which joints
+/// that deform are built), the softest body's Young's modulus: the joint
+/// stiffness a step that did not converge is advised to try.
+fn rigid_joints(scene: &Scene) -> Option<f64> {
+    let rigid = scene.contacts.iter().all(|c| c.stiffness.is_none());
+    let e = scene.bodies.iter().map(|b| b.material.e).fold(f64::INFINITY, f64::min);
+    (rigid && !scene.contacts.is_empty() && scene.solver.rule == StateRule::Robust && e.is_finite()).then_some(e)
 }
 
 /// Max |sigma_n - exact normal traction| over the pairs, relative to the

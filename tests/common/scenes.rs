@@ -35,6 +35,22 @@ pub fn column(case: &super::Case, name: &str, edits: &[(&str, &str)]) {
     case.write(name, &edited("scripts/scaling/column.toml", &all));
 }
 
+/// The jointed 3D tunnel with two sets (J1, J2 of
+/// tests/geo/tunnel3d_joints_coarse.toml) on its kept mesh
+/// tests/geo/tunnel3d_joints_2sets.msh (1,779 pairs), copied into the case;
+/// returns the scene's text.
+pub fn tunnel_two_sets(case: &super::Case) -> String {
+    case.copy("tests/geo/tunnel3d_joints_2sets.msh");
+    edited(
+        "tests/geo/tunnel3d_joints_coarse.toml",
+        &[
+            ("mesh = \"tunnel3d_joints.geo\"", "mesh = \"tunnel3d_joints_2sets.msh\""),
+            ("[gmsh]\norder = 2\nsetnumber = { lc = 2.0, lc_far = 4.0 }\n", ""),
+            ("[[contacts]]\ngroup = \"J3\"\nfriction = 0.7002\n\n", ""),
+        ],
+    )
+}
+
 /// A contact's lines that make its joint deform: `normal_stiffness` k_n
 /// and `shear_stiffness` k_s (stress per length).
 pub fn springs(k_n: f64, k_s: f64) -> String {
