@@ -6,7 +6,7 @@
 //! says what to do.
 
 use std::fmt;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use crate::contact::law::ContactState;
 use crate::contact::mechanism::BlockState;
@@ -299,47 +299,7 @@ impl fmt::Display for ContactError {
                     write!(f, " — loss of equilibrium: the load along the contact exceeds what friction and cohesion can carry. Reduce the load, add a support that holds {} tangentially, or raise the friction or cohesion of {its} contacts", if bodies.len() > 1 { "them" } else { "it" })
                 }
             }
-            ContactError::NotConverged {
-                step,
-                iterations,
-                cycled,
-                law_broken,
-                slipping_back,
-                rigid_joints,
-                cuts,
-                rule,
-                results,
-            } => {
-                write!(f, "the contact iteration did not converge")?;
-                match step {
-                    Some(0) => write!(f, " in the initial equilibrium stage ([solver] initial_stage: the in-situ stress with the contacts active, before any load)")?,
-                    Some(k) => write!(f, " at load step {k}")?,
-                    None => {}
-                }
-                let why = match (cycled, law_broken) {
-                    (true, _) => " (the states cycle)",
-                    (_, true) => " (the states settled, but their forces break the contact law: see the law residual)",
-                    _ => "",
-                };
-                write!(f, " after {iterations} iteration(s){why}")?;
-                match (cuts, step) {
-                    (0, _) => {}
-                    (_, Some(0)) => write!(f, ", the stage cut {cuts} time(s) in halves (its load, or where the in-situ stress is beyond the joints' strength, the pieces that strength is brought down in; [solver] max_cuts)")?,
-                    _ => write!(f, ", the step cut {cuts} time(s) in halves ([solver] max_cuts)")?,
-                }
-                if let Some(out) = results {
-                    let other = if *rule == StateRule::Paper { ", or the default rule = \"robust\"" } else { "" };
-                    write!(f, "; the results in {} are those of the last iteration (summary.json contact.converged = false, report.md says where the states kept changing, contact.csv and the contact VTU mark those pairs: `changes`). Look there for a block held by a few pairs, a joint at its strength, or a support missing", out.display())?;
-                    match slipping_back {
-                        0 => write!(f, "; or try more [solver] max_iterations{other}")?,
-                        n => write!(f, ". {n} pair(s) slip against their own friction (contact.csv: a law_residual about twice their shear): stuck, each is beyond its bound, and let slip its friction pushes it back, a wedge such as a corner where two joints cross near a free face; more iterations did not settle such pairs where that was measured (docs/convergence.md){other}")?,
-                    }
-                    if let Some(e) = rigid_joints {
-                        joint_stiffness_advice(f, *e)?;
-                    }
-                }
-                Ok(())
-            }
+            ContactError::NotConverged { .. } => self.fmt_not_converged(f),
             ContactError::BondedNotHeld => {
                 write!(f, "the bonded interface system of the substructures is singular: a body is not held")
             }
@@ -347,6 +307,71 @@ impl fmt::Display for ContactError {
                 write!(f, "consistent contact traction: the interface mass matrix: {reason}")
             }
         }
+    }
+}
+
+impl ContactError {
+    /// [`ContactError::NotConverged`] said: where the iteration stopped,
+    /// why, the cuts tried, and where to look and what to try.
+    fn fmt_not_converged(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let ContactError::NotConverged {
+            step,
+            iterations,
+            cycled,
+            law_broken,
+            slipping_back,
+            rigid_joints,
+            cuts,
+            rule,
+            results,
+        } = self
+        else {
+            return Ok(());
+        };
+        write!(f, "the contact iteration did not converge")?;
+        match step {
+            Some(0) => write!(f, " in the initial equilibrium stage ([solver] initial_stage: the in-situ stress with the contacts active, before any load)")?,
+            Some(k) => write!(f, " at load step {k}")?,
+            None => {}
+        }
+        let why = match (cycled, law_broken) {
+            (true, _) => " (the states cycle)",
+            (_, true) => " (the states settled, but their forces break the contact law: see the law residual)",
+            _ => "",
+        };
+        write!(f, " after {iterations} iteration(s){why}")?;
+        match (cuts, step) {
+            (0, _) => {}
+            (_, Some(0)) => write!(f, ", the stage cut {cuts} time(s) in halves (its load, or where the in-situ stress is beyond the joints' strength, the pieces that strength is brought down in; [solver] max_cuts)")?,
+            _ => write!(f, ", the step cut {cuts} time(s) in halves ([solver] max_cuts)")?,
+        }
+        match results {
+            Some(out) => where_to_look(f, out, *slipping_back, *rigid_joints, *rule),
+            None => Ok(()),
+        }
+    }
+}
+
+/// Where the results of a step that did not converge are (`out`), what to
+/// look for there and what to try: more iterations unless pairs slip
+/// against their friction (`slipping_back`), the robust rule, joints that
+/// deform where they are rigid.
+fn where_to_look(
+    f: &mut fmt::Formatter<'_>,
+    out: &Path,
+    slipping_back: usize,
+    rigid_joints: Option<f64>,
+    rule: StateRule,
+) -> fmt::Result {
+    let other = if rule == StateRule::Paper { ", or the default rule = \"robust\"" } else { "" };
+    write!(f, "; the results in {} are those of the last iteration (summary.json contact.converged = false, report.md says where the states kept changing, contact.csv and the contact VTU mark those pairs: `changes`). Look there for a block held by a few pairs, a joint at its strength, or a support missing", out.display())?;
+    match slipping_back {
+        0 => write!(f, "; or try more [solver] max_iterations{other}")?,
+        n => write!(f, ". {n} pair(s) slip against their own friction (contact.csv: a law_residual about twice their shear): stuck, each is beyond its bound, and let slip its friction pushes it back, a wedge such as a corner where two joints cross near a free face; more iterations did not settle such pairs where that was measured (docs/convergence.md){other}")?,
+    }
+    match rigid_joints {
+        Some(e) => joint_stiffness_advice(f, e),
+        None => Ok(()),
     }
 }
 
