@@ -33,9 +33,11 @@ pub(super) fn corner_key(c: &Cell) -> FaceKey {
 pub(crate) struct UnionFind(Vec<usize>);
 
 impl UnionFind {
+    /// Every element of `0..n` alone.
     pub(crate) fn new(n: usize) -> UnionFind {
         UnionFind((0..n).collect())
     }
+    /// The root of i's set: its smallest element (see [`UnionFind::join`]).
     pub(crate) fn root(&mut self, mut i: usize) -> usize {
         while self.0[i] != i {
             self.0[i] = self.0[self.0[i]];
@@ -49,6 +51,20 @@ impl UnionFind {
         if x != y {
             self.0[x.max(y)] = x.min(y);
         }
+    }
+    /// The sets, each ascending, in order of their smallest element.
+    pub(crate) fn groups(&mut self) -> Vec<Vec<usize>> {
+        let mut at = vec![usize::MAX; self.0.len()];
+        let mut groups: Vec<Vec<usize>> = Vec::new();
+        for i in 0..self.0.len() {
+            let r = self.root(i);
+            if at[r] == usize::MAX {
+                at[r] = groups.len();
+                groups.push(Vec::new());
+            }
+            groups[at[r]].push(i);
+        }
+        groups
     }
 }
 
@@ -212,6 +228,18 @@ mod tests {
 
     fn quad(nodes: [usize; 4], tag: u64) -> Cell {
         Cell { kind: CellKind::Quad4, nodes: nodes.to_vec(), tag }
+    }
+
+    /// Joined in any order, every set's root is its smallest element and
+    /// the sets come in order of it.
+    #[test]
+    fn groups_come_in_order_of_their_smallest_element() {
+        let mut sets = UnionFind::new(7);
+        for (a, b) in [(5, 3), (6, 1), (3, 6), (4, 2)] {
+            sets.join(a, b);
+        }
+        assert_eq!(sets.groups(), vec![vec![0], vec![1, 3, 5, 6], vec![2, 4]]);
+        assert_eq!((0..7).map(|i| sets.root(i)).collect::<Vec<_>>(), vec![0, 1, 2, 1, 2, 1, 1]);
     }
 
     /// A 2 x 2 square of quads (nodes 0..9, row-major from the bottom left)

@@ -30,6 +30,7 @@ use super::surface::{facet_patches, Patch};
 use super::view::model_up;
 use crate::fem::vec3::{cross, dot, normalized, sub};
 use crate::mesh::Cell;
+use crate::model::topology::UnionFind;
 use crate::model::Model;
 
 /// How a sheet is laid flat.
@@ -308,14 +309,6 @@ fn canonical(n: [f64; 3]) -> [f64; 3] {
     }
 }
 
-fn find(p: &mut [usize], mut i: usize) -> usize {
-    while p[i] != i {
-        p[i] = p[p[i]];
-        i = p[i];
-    }
-    i
-}
-
 /// A facet's unit normal, area and centroid.
 type FacetGeometry = ([f64; 3], f64, [f64; 3]);
 
@@ -360,8 +353,7 @@ pub(super) fn sheets(model: &Model, ii: usize) -> Vec<Sheet> {
 /// normals differ by less than 35 degrees; pieces and their facets in the
 /// order of their first facet.
 fn smooth_pieces(facets: &[Cell], geo: &[FacetGeometry]) -> Vec<Vec<usize>> {
-    let nf = geo.len();
-    let mut parent: Vec<usize> = (0..nf).collect();
+    let mut sets = UnionFind::new(geo.len());
     let mut edges: Vec<(usize, usize, usize)> = Vec::new();
     for (i, f) in facets.iter().enumerate() {
         let nc = f.kind.n_corners();
@@ -374,21 +366,10 @@ fn smooth_pieces(facets: &[Cell], geo: &[FacetGeometry]) -> Vec<Vec<usize>> {
     let smooth = 35f64.to_radians().cos();
     for w in edges.windows(2) {
         if (w[0].0, w[0].1) == (w[1].0, w[1].1) && dot(geo[w[0].2].0, geo[w[1].2].0).abs() >= smooth {
-            let (x, y) = (find(&mut parent, w[0].2), find(&mut parent, w[1].2));
-            parent[x.max(y)] = x.min(y);
+            sets.join(w[0].2, w[1].2);
         }
     }
-    let mut pieces: Vec<Vec<usize>> = Vec::new();
-    let mut piece_of_root = vec![usize::MAX; nf];
-    for i in 0..nf {
-        let r = find(&mut parent, i);
-        if piece_of_root[r] == usize::MAX {
-            piece_of_root[r] = pieces.len();
-            pieces.push(Vec::new());
-        }
-        pieces[piece_of_root[r]].push(i);
-    }
-    pieces
+    sets.groups()
 }
 
 /// The plane of a flat piece, `(n, offset)` with n canonical and offset
