@@ -13,6 +13,7 @@
 //! joins with other pieces.
 
 use crate::fem::sparse::NONE;
+use crate::model::topology::UnionFind;
 use crate::model::{Model, PartName};
 
 /// One part: its cells, the bodies they belong to, and the nodes it shares.
@@ -47,15 +48,7 @@ impl Part {
 
 /// Groups bodies into parts by shared model nodes.
 pub fn parts(model: &Model) -> Vec<Part> {
-    let nb = model.bodies.len();
-    let mut parent: Vec<usize> = (0..nb).collect();
-    fn root(p: &mut [usize], mut i: usize) -> usize {
-        while p[i] != i {
-            p[i] = p[p[i]];
-            i = p[i];
-        }
-        i
-    }
+    let mut sets = UnionFind::new(model.bodies.len());
     let mut owner = vec![NONE; model.n_nodes()];
     for (b, body) in model.bodies.iter().enumerate() {
         for c in &body.cells {
@@ -63,24 +56,19 @@ pub fn parts(model: &Model) -> Vec<Part> {
                 if owner[n] == NONE {
                     owner[n] = b;
                 } else {
-                    let (x, y) = (root(&mut parent, owner[n]), root(&mut parent, b));
-                    parent[x.max(y)] = x.min(y);
+                    sets.join(owner[n], b);
                 }
             }
         }
     }
-    let mut parts: Vec<Part> = Vec::new();
-    let mut part_of_root = vec![NONE; nb];
-    for b in 0..nb {
-        let r = root(&mut parent, b);
-        if part_of_root[r] == NONE {
-            part_of_root[r] = parts.len();
-            parts.push(Part { bodies: Vec::new(), cells: Vec::new(), interface: Vec::new(), piece: None });
-        }
-        let p = &mut parts[part_of_root[r]];
-        p.bodies.push(b);
-        p.cells.extend((0..model.bodies[b].cells.len()).map(|c| (b, c)));
-    }
+    let mut parts: Vec<Part> = sets
+        .groups()
+        .into_iter()
+        .map(|bodies| {
+            let cells = bodies.iter().flat_map(|&b| (0..model.bodies[b].cells.len()).map(move |c| (b, c))).collect();
+            Part { bodies, cells, interface: Vec::new(), piece: None }
+        })
+        .collect();
     set_interfaces(model, &mut parts);
     parts
 }
