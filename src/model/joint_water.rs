@@ -11,6 +11,7 @@ use super::build_input::Builder;
 use super::contacts::CREASE_ANGLE;
 use super::errors::ModelError;
 use super::mechanical::Model;
+use super::topology::UnionFind;
 use super::water::{Diagram, Field, Fill, GroupWater, JointWater, Levels, Sheet, WaterFace, WaterPressure};
 use crate::fem::vec3::{cross, dot, normalized, sub};
 use crate::fem::Analysis;
@@ -184,35 +185,19 @@ fn sheets_of(model: &Model, ci: usize) -> Vec<usize> {
     }
     edges.sort_unstable();
     let smooth = CREASE_ANGLE.to_radians().cos();
-    let mut parent: Vec<usize> = (0..facets.len()).collect();
+    let mut sets = UnionFind::new(facets.len());
     for (k, e) in edges.iter().enumerate() {
         for o in edges[k + 1..].iter().take_while(|o| (o.0, o.1) == (e.0, e.1)) {
             if dot(normals[e.2], normals[o.2]).abs() >= smooth {
-                let (x, y) = (root(&mut parent, e.2), root(&mut parent, o.2));
-                parent[x.max(y)] = x.min(y);
+                sets.join(e.2, o.2);
             }
         }
     }
-    let mut sheet_of_root = vec![usize::MAX; facets.len()];
-    let mut n = 0;
-    (0..facets.len())
-        .map(|i| {
-            let r = root(&mut parent, i);
-            if sheet_of_root[r] == usize::MAX {
-                sheet_of_root[r] = n;
-                n += 1;
-            }
-            sheet_of_root[r]
-        })
-        .collect()
-}
-
-fn root(parent: &mut [usize], mut i: usize) -> usize {
-    while parent[i] != i {
-        parent[i] = parent[parent[i]];
-        i = parent[i];
+    let mut sheet = vec![0; facets.len()];
+    for (s, group) in sets.groups().into_iter().enumerate() {
+        group.into_iter().for_each(|i| sheet[i] = s);
     }
-    i
+    sheet
 }
 
 /// A facet's unit normal from its corners (its area vector in 3D, the
