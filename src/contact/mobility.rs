@@ -29,6 +29,7 @@ use nalgebra::DMatrix;
 use super::frame::Frame;
 use crate::fem::rigid::{n_modes, RigidModes, RigidMotion};
 use crate::fem::vec3::{dot, norm};
+use crate::model::topology::UnionFind;
 use crate::model::Model;
 
 /// The rigid motions of one part and what its supports make of them.
@@ -232,25 +233,12 @@ pub fn free_groups(np: usize, free: &[usize], ties: &[Tie]) -> Vec<Vec<usize>> {
 
 /// The parts not held, in groups joined by ties between them.
 fn groups(held: &[bool], ties: &[Tie]) -> Vec<Vec<usize>> {
-    let np = held.len();
-    let mut root: Vec<usize> = (0..np).collect();
-    fn find(r: &mut [usize], mut i: usize) -> usize {
-        while r[i] != i {
-            r[i] = r[r[i]];
-            i = r[i];
-        }
-        i
-    }
+    let mut sets = UnionFind::new(held.len());
     for t in ties.iter().filter(|t| !held[t.parts[0]] && !held[t.parts[1]]) {
-        let (a, b) = (find(&mut root, t.parts[0]), find(&mut root, t.parts[1]));
-        root[a.max(b)] = a.min(b);
+        sets.join(t.parts[0], t.parts[1]);
     }
-    let mut of_root: std::collections::BTreeMap<usize, Vec<usize>> = Default::default();
-    for p in (0..np).filter(|&p| !held[p]) {
-        let r = find(&mut root, p);
-        of_root.entry(r).or_default().push(p);
-    }
-    of_root.into_values().collect()
+    // a held part is joined to none: alone in its set
+    sets.groups().into_iter().filter(|g| !held[g[0]]).collect()
 }
 
 /// The parts of `group` that a rigid motion moves, and their motions: the
