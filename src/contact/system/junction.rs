@@ -53,6 +53,7 @@ use super::relation::{Limit, Relation};
 use crate::contact::frame::Frame;
 use crate::contact::law::ContactState;
 use crate::fem::vec3::{dot, norm, sub};
+use crate::model::topology::UnionFind;
 
 /// How far beyond a limit (of the largest force) the least-norm share of
 /// a loop may be for [`Junction::share_with_friction`] to look for one
@@ -67,22 +68,12 @@ const NEAR_LIMIT: f64 = 1e-2;
 /// asks for (a pair whose supports do not lie along its frame). Returns
 /// the clusters, pairs ascending, in order of their first pair.
 pub fn clusters(pairs: &[(usize, usize)], n_nodes: usize, general: impl Fn(usize) -> bool) -> Vec<Vec<usize>> {
-    let mut parent: Vec<usize> = (0..n_nodes).collect();
-    fn root(p: &mut [usize], mut i: usize) -> usize {
-        while p[i] != i {
-            p[i] = p[p[i]];
-            i = p[i];
-        }
-        i
-    }
-    for &(k, l) in pairs {
-        let (a, b) = (root(&mut parent, k), root(&mut parent, l));
-        parent[a.max(b)] = a.min(b);
-    }
+    let mut sets = UnionFind::new(n_nodes);
+    pairs.iter().for_each(|&(k, l)| sets.join(k, l));
     let mut of_root: std::collections::HashMap<usize, usize> = std::collections::HashMap::new();
     let mut all: Vec<Vec<usize>> = Vec::new();
     for (p, &(k, _)) in pairs.iter().enumerate() {
-        let r = root(&mut parent, k);
+        let r = sets.root(k);
         let at = *of_root.entry(r).or_insert_with(|| {
             all.push(Vec::new());
             all.len() - 1
