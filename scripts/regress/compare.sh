@@ -30,10 +30,13 @@ while read -r name scene args; do
     python3 - "$out/run/summary.json" "$out/summary.json" <<'PY'
 import json, sys
 s = json.load(open(sys.argv[1]))
+# (wall times: the stages', the safety search's cost and its trials' seconds)
+def timing(k):
+    return k.startswith("timings") or k.endswith("_s") or k == "seconds"
 def strip(v):
     if isinstance(v, dict):
-        return {k: strip(x) for k, x in v.items() if not k.startswith("timings")
-                and k not in ("condense_s", "peak_memory_bytes", "file")}
+        return {k: strip(x) for k, x in v.items() if not timing(k)
+                and k not in ("peak_memory_bytes", "file")}
     if isinstance(v, list):
         return [strip(x) for x in v]
     return v
