@@ -1216,3 +1216,34 @@ fn mean_nodes(layout: &Layout) -> Vec<usize> {
     }
     node
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The free block `M` where the sides do not factorise (the fallback
+    /// of [`Sparse::free_block`]): where every pair deforms, factorised in
+    /// single precision, and its solve within single precision's reach of
+    /// M's; elsewhere in double, to round-off.
+    #[test]
+    fn the_free_block_is_factorised_in_single_precision_where_every_pair_deforms() {
+        // a chain of springs, each unknown also held by its own
+        let n = 40;
+        let mut entries = Vec::new();
+        for i in 0..n {
+            entries.push((i, i, 2.5 + 0.01 * i as f64));
+            if i > 0 {
+                entries.push((i, i - 1, -1.0));
+            }
+        }
+        let m = lower_from_entries(n, entries);
+        let b: Vec<f64> = (0..n).map(|i| 1.0 + (0.3 * i as f64).sin()).collect();
+        for (deforming, within) in [(true, 1e-5), (false, 1e-12)] {
+            let p = Preconditioner::factor(&m, deforming, 2);
+            assert_eq!(matches!(p, Preconditioner::Single(_)), deforming);
+            let x = p.apply(&b);
+            let r: Vec<f64> = m.mul(&x).iter().zip(&b).map(|(a, b)| a - b).collect();
+            assert!(length(&r) <= within * length(&b), "deforming {deforming}: residual {:e}", length(&r) / length(&b));
+        }
+    }
+}
