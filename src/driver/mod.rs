@@ -299,9 +299,9 @@ fn not_converged(run: &Run, results: Option<PathBuf>) -> Option<ContactError> {
 /// that deform are built), the softest body's Young's modulus: the joint
 /// stiffness a step that did not converge is advised to try.
 fn rigid_joints(scene: &Scene) -> Option<f64> {
-    let rigid = scene.contacts.iter().all(|c| c.stiffness.is_none());
+    let rigid = !scene.contacts.is_empty() && !scene.joints_deform();
     let e = scene.bodies.iter().map(|b| b.material.e).fold(f64::INFINITY, f64::min);
-    (rigid && !scene.contacts.is_empty() && scene.solver.rule == StateRule::Robust && e.is_finite()).then_some(e)
+    (rigid && scene.solver.rule == StateRule::Robust && e.is_finite()).then_some(e)
 }
 
 /// Max |sigma_n - exact normal traction| over the pairs, relative to the

@@ -45,8 +45,7 @@ pub(super) fn plan(scene: &Scene, model: &Model, opts: &RunOptions, ranks: usize
     let nd = model.nd;
     let interface_dofs: usize = parts.iter().map(|p| p.interface.len() * nd).sum();
     let kind = InterfaceKind::choose(opts.interface.unwrap_or(scene.solver.interface), &parts, nd);
-    let deforming = !scene.contacts.is_empty() && scene.contacts.iter().all(|c| c.stiffness.is_some());
-    Ok(Plan { parts, owner, threads, kind, interface_dofs, deforming })
+    Ok(Plan { parts, owner, threads, kind, interface_dofs, deforming: scene.joints_deform() })
 }
 
 /// What a rank's parts need of memory at the run's peak, the run's DOFs,

@@ -110,6 +110,12 @@ impl Scene {
         validate::Checker { path }.scene(raw)
     }
 
+    /// Whether the scene has contacts and their joints deform
+    /// (`normal_stiffness`: validation gives it to every contact or none).
+    pub fn joints_deform(&self) -> bool {
+        self.contacts.first().is_some_and(|c| c.stiffness.is_some())
+    }
+
     /// Bonds every contact ([`Scene::bonded`]): the bodies keep the nodes
     /// they share, and the run is the monolithic solve (with nothing to
     /// reduce in a safety search).

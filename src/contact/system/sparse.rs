@@ -556,7 +556,9 @@ impl Sparse {
     fn w_diagonal(&self, idx: &[usize]) -> Vec<f64> {
         let mut d = self.w_diag.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
         let mut missing: Vec<usize> = idx.iter().copied().filter(|&i| d[i].is_none()).collect();
-        if let (false, Some(means)) = (missing.is_empty(), self.means()) {
+        // (nothing missing forms no factor)
+        let means = if missing.is_empty() { None } else { self.means() };
+        if let Some(means) = means {
             let t = Instant::now();
             let k_m = self.mean_columns(means, &mut missing);
             let per = missing.len().div_ceil(self.threads).min(W_DIAGONAL_BATCH);
