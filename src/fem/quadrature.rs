@@ -78,7 +78,25 @@ fn is_pyramid(kind: CellKind) -> bool {
 /// functions whose pull-back to the cube `a^i b^j (1 - ζ)^m ζ^k` (with the
 /// Jacobian) has i, j <= degree and m + k <= degree + 2, which includes the
 /// products of the pyramids' basis functions (see the module doc).
+///
+/// Each (kind, degree) is computed once and kept: a symmetric table is
+/// expanded from its orbits by permutations, which cost more than the cell
+/// it integrates (the 86k tunnel asked for the degree-5 tet rule once per
+/// cell, three times over, in its block table: 0.5 s).
 pub fn rule(kind: CellKind, degree: usize) -> Vec<QuadPoint> {
+    type Kept = Vec<((CellKind, usize), Vec<QuadPoint>)>;
+    static KEPT: std::sync::Mutex<Kept> = std::sync::Mutex::new(Vec::new());
+    let lock = || KEPT.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    if let Some((_, points)) = lock().iter().find(|(key, _)| *key == (kind, degree)) {
+        return points.clone();
+    }
+    // computed unlocked: a prism's rule asks for its triangle's
+    let points = computed_rule(kind, degree);
+    lock().push(((kind, degree), points.clone()));
+    points
+}
+
+fn computed_rule(kind: CellKind, degree: usize) -> Vec<QuadPoint> {
     let d = kind.dim();
     if d == 0 {
         return vec![QuadPoint { xi: [0.0; 3], w: 1.0 }];
