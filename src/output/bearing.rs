@@ -40,8 +40,12 @@ pub struct FaceBearing {
 /// Every group's bearing, each followed by its face pairs' (None without
 /// contacts).
 pub fn of_run(run: &Run) -> Option<Vec<FaceBearing>> {
+    of(run, &resultants::of_run(run)?)
+}
+
+/// [`of_run`] from the run's resultants `r`.
+pub fn of(run: &Run, r: &resultants::Resultants) -> Option<Vec<FaceBearing>> {
     let c = run.contact()?;
-    let r = resultants::of_run(run)?;
     let m = &run.model;
     let body = m.body_of_node();
     let plane = run.about.analysis.dim() == 2;

@@ -397,7 +397,7 @@ pub fn summary(model: &Model, blocks: &[Block]) -> serde_json::Value {
 }
 
 /// report.md's section on the run's blocks.
-pub fn run_report(run: &Run) -> String {
-    let Some(blocks) = of_run(run) else { return String::new() };
-    report(&run.model, &blocks, run.about.output.wants("displacement") || !run.about.probes.is_empty())
+pub fn run_report(run: &Run, blocks: Option<&[Block]>) -> String {
+    let Some(blocks) = blocks else { return String::new() };
+    report(&run.model, blocks, run.about.output.wants("displacement") || !run.about.probes.is_empty())
 }

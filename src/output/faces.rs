@@ -158,8 +158,8 @@ fn stiffness_note(run: &Run) -> String {
 
 /// report.md's section on the contact groups and the most mobilised face
 /// pairs (empty without contacts).
-pub fn report(run: &Run) -> String {
-    let Some(r) = super::resultants::of_run(run) else { return String::new() };
+pub fn report(run: &Run, r: Option<&super::resultants::Resultants>) -> String {
+    let Some(r) = r else { return String::new() };
     let m = &run.model;
     let mut s = String::new();
     let _ = writeln!(s, "\n## Contact groups\n");

@@ -59,9 +59,9 @@ pub fn stage(run: &Run, derived: &Derived, out: &std::path::Path) -> Result<(Sta
     let last = run.last();
     let displacement = run.about.output.wants("displacement");
     // the blocks: what each does, and its state as a cell field
-    let blocks = blocks::of_run(run);
-    let states: Vec<i32> = blocks.iter().flatten().map(|b| b.state.code()).collect();
-    if let Some(b) = &blocks {
+    let blocks = derived.blocks();
+    let states: Vec<i32> = blocks.into_iter().flatten().map(|b| b.state.code()).collect();
+    if let Some(b) = blocks {
         staged.add("blocks.csv", blocks::blocks_csv(model, b).into_bytes());
     }
     if let Some(b) = blocks::at_safety(run) {
@@ -72,8 +72,8 @@ pub fn stage(run: &Run, derived: &Derived, out: &std::path::Path) -> Result<(Sta
         staged.add(&format!("{name}_contact.vtu"), contact_vtu(model, c)?);
         staged.add("contact.csv", contact_csv(model, c).into_bytes());
     }
-    if let Some(r) = resultants::of_run(run) {
-        staged.add("faces.csv", faces::faces_csv(model, &r).into_bytes());
+    if let Some(r) = derived.resultants() {
+        staged.add("faces.csv", faces::faces_csv(model, r).into_bytes());
     }
     if let Some(b) = derived.bearing() {
         staged.add("bearing.csv", bearing::csv(run, b).into_bytes());
@@ -293,13 +293,13 @@ fn summary(run: &Run, derived: &Derived) -> serde_json::Value {
             "history": it.history.iter().map(|h| { let k = state_counts(h); json!({"stick": k[2], "slip": k[1], "open": k[0]}) }).collect::<Vec<_>>(),
         });
         v["contact"]["joint_stiffness"] = faces::stiffness_json(run);
-        if let Some(r) = resultants::of_run(run) {
-            let (groups, faces) = faces::summary(&run.model, &r);
+        if let Some(r) = derived.resultants() {
+            let (groups, faces) = faces::summary(&run.model, r);
             v["contact"]["groups"] = groups;
             v["contact"]["faces"] = faces;
         }
-        if let Some(b) = blocks::of_run(run) {
-            v["blocks"] = blocks::summary(&run.model, &b);
+        if let Some(b) = derived.blocks() {
+            v["blocks"] = blocks::summary(&run.model, b);
         }
         if let Some(b) = derived.bearing() {
             v["bearing"] = bearing::summary(run, b);

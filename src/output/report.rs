@@ -27,8 +27,8 @@ pub fn report(run: &Run, derived: &super::derived::Derived) -> String {
     iteration_notes(&mut s, run);
     pictures(&mut s, run);
     s += &super::water::report(run);
-    s += &super::faces::report(run);
-    s += &super::blocks::run_report(run);
+    s += &super::faces::report(run, derived.resultants());
+    s += &super::blocks::run_report(run, derived.blocks());
     if let Some(b) = derived.bearing() {
         s += &super::bearing::report(run, b);
     }
