@@ -86,6 +86,11 @@ impl SingleCholesky {
         Ok(SingleCholesky { symbolic, values, scale, twofold, paths })
     }
 
+    /// The order of K.
+    pub fn n(&self) -> usize {
+        self.symbolic.nrows()
+    }
+
     /// `K^-1 b`, to single precision.
     pub fn solve(&self, b: &[f64]) -> Vec<f64> {
         let n = b.len();

@@ -105,7 +105,7 @@ impl InterfaceKind {
     ) -> Result<Box<dyn Solver + 'a>, NotHeld> {
         Ok(match self {
             InterfaceKind::Dense => Box::new(Dense::new(layout, parts)?),
-            InterfaceKind::Sparse => Box::new(Sparse::new(layout, parts, threads, deforming)?),
+            InterfaceKind::Sparse => Box::new(Sparse::new(model, layout, parts, (threads, deforming))?),
             InterfaceKind::Iterative => Box::new(Iterative::build(model, layout, parts, rigid, remote, threads)),
         })
     }

@@ -50,6 +50,7 @@ pub mod junction;
 pub mod kind;
 mod layout;
 mod least_distance;
+mod own;
 pub mod reduce;
 pub mod relation;
 mod sides;

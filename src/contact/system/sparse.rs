@@ -70,15 +70,17 @@ use super::freedom::Freedom;
 use super::gmres;
 use super::iterative::{tolerance, LastStates};
 use super::layout::Layout;
+use super::own::Own;
 use super::reduce::{combine, NotHeld};
 use super::sides::Sides;
 use super::solver::{Accuracy, Answer, Solver, Split};
-use super::threads::in_runs;
+use super::threads::{in_runs, in_threads};
 use super::w_columns::WColumns;
 use crate::contact::law::ContactState;
 use crate::fem::sparse::{Cholesky, SymMatrix};
 use crate::fem::vec3::length;
 use crate::model::topology::UnionFind;
+use crate::model::Model;
 use crate::substructure::ordering::Ordering;
 use crate::substructure::schur::PartialCholesky;
 use crate::substructure::single_precision::SingleCholesky;
@@ -142,6 +144,8 @@ pub struct Sparse {
     nm: usize,
     nr: usize,
     parts: Vec<Local>,
+    /// Each part's own stiffness, where every pair deforms ([`Own`]).
+    own: Option<Vec<Own>>,
     /// K_mm's factor, and the mean of each node it is ordered by: formed
     /// with the interface, or where every pair deforms at its first use
     /// ([`Sparse::means`]); None where K_mm does not factorise.
@@ -187,14 +191,15 @@ impl Sparse {
     /// preconditioned by all of K with the springs ([`super::sides`]), and
     /// its factor was a quarter of the 86k tunnel's run (4.5 of 20 s).
     pub(super) fn new(
+        model: &Model,
         layout: &Layout,
         parts: &[OperatorRef],
-        threads: usize,
-        deforming: bool,
+        (threads, deforming): (usize, bool),
     ) -> Result<Sparse, NotHeld> {
         let (nd, nm, nr) = (layout.nd, layout.nm, layout.nr);
         let cases = parts.iter().map(|p| p.g.len()).max().unwrap_or(1);
         let mut local = Vec::with_capacity(parts.len());
+        let mut held = Vec::with_capacity(parts.len());
         let mut b = vec![vec![0.0; nm + nr]; cases];
         let mut b_fixed = vec![0.0; nm + nr];
         let at = |v: Var| match v {
@@ -212,12 +217,20 @@ impl Sparse {
             }
             fixed_load(&s, &map.terms, |i, x| b_fixed[at(i)] += x);
             local.push(Local { s, terms: map.terms.clone() });
+            held.push((part.part, map));
         }
+        // where every pair deforms, the parts' own stiffness for the sides' factor
+        let own = deforming.then(|| {
+            in_threads(&held, threads, |(part, map)| Own::of(model, part, &map.frames, &map.edges))
+                .into_iter()
+                .collect::<Option<Vec<Own>>>()
+        });
         let mut solver = Sparse {
             nd,
             nm,
             nr,
             parts: local,
+            own: own.flatten(),
             k_mm: OnceLock::new(),
             node_of: mean_nodes(layout),
             w_diag: Mutex::new(vec![None; nr]),
@@ -915,7 +928,7 @@ impl Preconditioner {
         let springs = springs(fr, nm);
         let place_of = sp.places(index, n, &springs);
         let parts: Vec<(&[f64], &[Terms])> = sp.parts.iter().map(|p| (&p.s[..], &p.terms[..])).collect();
-        let sides = Sides::new(&parts, index, n, &springs, &place_of, (sp.nd, sp.threads))?;
+        let sides = Sides::new(&parts, sp.own.as_deref(), index, n, &springs, &place_of, (sp.nd, sp.threads))?;
         Some(Preconditioner::Whole(Box::new(sides)))
     }
 
@@ -1050,7 +1063,7 @@ fn springs(fr: &Freedom, off: usize) -> Vec<(Vec<usize>, Vec<f64>)> {
 
 /// The lower triangle of an `n x n` symmetric matrix from (row >= col,
 /// col, value) entries, repeated ones summed; every diagonal entry present.
-fn lower_from_entries(n: usize, entries: Vec<(usize, usize, f64)>) -> SymMatrix {
+pub(super) fn lower_from_entries(n: usize, entries: Vec<(usize, usize, f64)>) -> SymMatrix {
     // bucketed by column, then each column sorted by row (a sort of all
     // the entries at once took 0.012 s of a 0.02 s preconditioner on the
     // 512-block cube); a column's bucket starts with its diagonal
