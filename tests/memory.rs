@@ -145,14 +145,11 @@ fn the_measured_peak_is_within_the_readmes_range_of_the_estimate_on_every_interf
     case.copy("geo/rockmass.geo");
     case.write("rock.toml", &edited("geo/rockmass.toml", &[("n = 4, m = 2", "n = 3, m = 2")]));
     // the README's measured ranges of peak / estimate, per interface, their
-    // floors 0.05 lower: more cores estimate more (threads · the busiest part);
-    // the sparse interface's counts a solve's dense free block at its
-    // largest (every relative displacement free), which this confined mass
-    // is far from
+    // floors 0.05 lower: more cores estimate more (threads · the busiest part)
     for (scene, interface, range) in [
         ("blocks.toml", "dense", 0.55..=1.0),
         ("blocks.toml", "iterative", 0.65..=1.0),
-        ("rock.toml", "sparse", 0.15..=1.0),
+        ("rock.toml", "sparse", 0.35..=1.0),
     ] {
         let args = ["solve", scene, "--out", interface, "--interface", interface];
         let Some((peak, estimate)) = peak_and_estimate(&case, &args) else {
