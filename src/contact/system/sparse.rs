@@ -945,7 +945,7 @@ impl Preconditioner {
             Var::M(i) => Some(i),
             Var::R(i) => (col_of[i] != usize::MAX).then_some(col_of[i]),
         };
-        let springs = positive_springs(fr, nm);
+        let springs = springs(fr, nm, true);
         let place_of = sp.places(index, n, &springs);
         let parts: Vec<(&[f64], &[Terms])> = sp.parts.iter().map(|p| (&p.s[..], &p.terms[..])).collect();
         let sides = Sides::new(&parts, sp.own.as_deref(), index, n, &springs, &place_of, (sp.nd, sp.threads))?;
@@ -1006,7 +1006,7 @@ impl Preconditioner {
             }
             local.clear();
         }
-        for (dofs, ke) in springs(fr, 0) {
+        for (dofs, ke) in springs(fr, 0, false) {
             let m = dofs.len();
             for (b, &col) in dofs.iter().enumerate() {
                 for (a, &row) in dofs.iter().enumerate() {
@@ -1056,11 +1056,19 @@ impl Preconditioner {
     }
 }
 
-/// The springs of the slipping pairs (symmetrised: the coupling to the
-/// normal force halved into both triangles) and of the junctions, each a
-/// small dense matrix (row-major) at its unknowns, the free columns
-/// numbered from `off`.
-fn springs(fr: &Freedom, off: usize) -> Vec<(Vec<usize>, Vec<f64>)> {
+/// The springs of the slipping pairs and of the junctions, each a small
+/// dense matrix (row-major) at its unknowns, the free columns numbered
+/// from `off`. As they are, a slipping pair's coupling to its normal force
+/// halved into both triangles (the free block M's). `positive` for a
+/// factor that must stay positive definite (the sides' factor,
+/// [`Preconditioner::whole`]): a slipping pair's own springs without the
+/// coupling, and each junction's [`positive_part`]. The coupling, and a
+/// slipping junction's friction rows, made the whole indefinite once pairs
+/// slipped: blocks3d_stiff's second step could not be factorised (not
+/// positive definite even shifted by 1e-2 of its diagonal) and was
+/// preconditioned by the free block alone, 2,900 GMRES applications where
+/// GMRES now corrects for what is left out.
+fn springs(fr: &Freedom, off: usize, positive: bool) -> Vec<(Vec<usize>, Vec<f64>)> {
     let mut out = Vec::new();
     for s in &fr.slips {
         let i = fr.pos[s.row];
@@ -1068,7 +1076,7 @@ fn springs(fr: &Freedom, off: usize) -> Vec<(Vec<usize>, Vec<f64>)> {
             let j = fr.pos[rc];
             if i == j {
                 out.push((vec![off + i], vec![k]));
-            } else {
+            } else if !positive {
                 out.push((vec![off + i, off + j], vec![0.0, 0.5 * k, 0.5 * k, 0.0]));
             }
         }
@@ -1076,32 +1084,7 @@ fn springs(fr: &Freedom, off: usize) -> Vec<(Vec<usize>, Vec<f64>)> {
     for jb in &fr.junctions {
         let dofs: Vec<usize> = jb.cols.clone().map(|c| off + c).collect();
         let m = dofs.len();
-        out.push((dofs, (0..m * m).map(|e| jb.kz[(e / m, e % m)]).collect()));
-    }
-    out
-}
-
-/// [`springs`] for a factor that must stay positive definite (the sides'
-/// factor, [`Preconditioner::whole`]): a slipping pair's own springs
-/// without its coupling to the normal force, and each junction's springs
-/// symmetrised and with their negative eigenvalues dropped. The coupling
-/// halved into both triangles, and a slipping junction's friction rows,
-/// made the whole indefinite once pairs slipped: blocks3d_stiff's second
-/// step could not be factorised (not positive definite even shifted by
-/// 1e-4 of its diagonal) and was preconditioned by the free block alone,
-/// 2,900 GMRES applications where GMRES now corrects for what is left out.
-fn positive_springs(fr: &Freedom, off: usize) -> Vec<(Vec<usize>, Vec<f64>)> {
-    let mut out = Vec::new();
-    for s in &fr.slips {
-        let i = fr.pos[s.row];
-        for &(_, k) in s.springs.iter().filter(|&&(rc, _)| fr.pos[rc] == i) {
-            out.push((vec![off + i], vec![k]));
-        }
-    }
-    for jb in &fr.junctions {
-        let dofs: Vec<usize> = jb.cols.clone().map(|c| off + c).collect();
-        let m = dofs.len();
-        let kz = positive_part(&jb.kz);
+        let kz = if positive { positive_part(&jb.kz) } else { jb.kz.clone() };
         out.push((dofs, (0..m * m).map(|e| kz[(e / m, e % m)]).collect()));
     }
     out
