@@ -76,6 +76,14 @@ fn print_summary(run: &Run, out: &Path) {
             k[0]
         );
     }
+    if let Some(f) = &run.fallback {
+        outln!(
+            "  joints that deform (normal / shear stiffness {} / {}): rigid joints did not converge in {} iteration(s)",
+            f.stiffness.normal,
+            f.stiffness.shear,
+            f.iterations
+        );
+    }
     if let Some(e) = &run.checks.errors {
         outln!(
             "  error vs closed form: displacement {:.3e}, stress {:.3e} (relative L2)",

@@ -126,6 +126,31 @@ pub struct Run {
     /// The initial equilibrium stage before the load steps (`[solver]
     /// initial_stage`), when the run made one.
     pub initial_stage: Option<InitialStage>,
+    /// Where the scene's rigid joints did not converge and the run solved
+    /// it again with joints that deform (`[solver] rigid_fallback`): what
+    /// the rigid run did and the stiffness taken instead.
+    pub fallback: Option<Fallback>,
+}
+
+/// Rigid joints that did not converge, and the stiffness the run gave
+/// every contact instead (`crate::driver`'s fallback).
+#[derive(Clone, Debug)]
+pub struct Fallback {
+    /// Normal and shear stiffness given to every contact.
+    pub stiffness: crate::contact::law::Stiffness,
+    /// The softest body's Young's modulus E and the model's mean block
+    /// size s the stiffness is reckoned from.
+    pub modulus: f64,
+    pub block_size: f64,
+    /// The rigid run's last step (0: the initial stage), its iterations
+    /// and halvings, whether its states cycled, its worst pair's law
+    /// residual (of the largest traction), and the rigid run's seconds.
+    pub step: usize,
+    pub iterations: usize,
+    pub cuts: usize,
+    pub cycled: bool,
+    pub law_residual: Option<f64>,
+    pub seconds: f64,
 }
 
 /// The initial equilibrium stage: the step 0 that brings the bodies to

@@ -149,9 +149,10 @@ fn max_cuts_takes_a_count() {
 }
 
 /// Solves `scene` (the text of a scene on tests/geo/tunnel3d_joints.geo,
-/// friction 0.7002 on every set) and returns its iterations and the worst
-/// pair's distance from Coulomb's law, relative to the largest traction.
-fn tunnel_through_joints(tag: &str, scene: &str) -> (u64, f64) {
+/// friction 0.7002 on every set) and returns its iterations, the worst
+/// pair's distance from Coulomb's law, relative to the largest traction,
+/// and whether rigid joints fell back to joints that deform.
+fn tunnel_through_joints(tag: &str, scene: &str) -> (u64, f64, bool) {
     let case = Case::new(tag);
     case.copy("tests/geo/tunnel3d_joints.geo");
     case.write("tunnel.toml", scene);
@@ -176,8 +177,9 @@ fn tunnel_through_joints(tag: &str, scene: &str) -> (u64, f64) {
         };
         worst = worst.max(residual / scale);
     }
-    eprintln!("{tag}: {its} iterations, {} pairs, law residual {worst:.1e}", rows.len());
-    (its, worst)
+    let fell = !s["contact"]["rigid_fallback"].is_null();
+    eprintln!("{tag}: {its} iterations, {} pairs, law residual {worst:.1e}, fallback {fell}", rows.len());
+    (its, worst, fell)
 }
 
 /// The 3D tunnel of tests/geo/tunnel3d_joints.geo, 44k DOFs, 7,160 pairs,
@@ -189,7 +191,8 @@ fn tunnel_through_joints(tag: &str, scene: &str) -> (u64, f64) {
 #[ignore = "make stress: about 40 s"]
 fn a_tunnel_through_three_oblique_joint_sets_converges_to_states_that_keep_the_law() {
     let scene = common::repo_text("tests/geo/tunnel3d_joints_coarse.toml");
-    let (its, worst) = tunnel_through_joints("conv-tunnel3d", &scene);
+    let (its, worst, fell) = tunnel_through_joints("conv-tunnel3d", &scene);
+    assert!(!fell, "the rigid joints converge");
     assert!(its <= 40, "{its} iterations");
     assert!(worst < 1e-8, "law residual {worst:e}");
 }
@@ -200,17 +203,19 @@ fn a_tunnel_through_three_oblique_joint_sets_converges_to_states_that_keep_the_l
 /// the friction of the junction's slipping pairs settling tenfold per
 /// iteration or not at all, its pressures taken from the last solve. With
 /// them solved for through the tangent of the junction's share it
-/// converges in 40.
+/// converged in 40. Rigid joints alone (`rigid_fallback = false`): the
+/// open question of whether the rigid law has a state set here.
 #[test]
 #[ignore = "issue 28: not converged since c6a9a60 (docs/convergence.md); make stress-open, 50 s"]
 fn the_tunnel_meshed_coarser_away_from_the_opening_converges_without_cuts() {
     let scene = common::repo_text("tests/geo/tunnel3d_joints_coarse.toml");
     let coarser = scene.replacen("lc_far = 4.0", "lc_far = 6.0", 1);
     assert_ne!(coarser, scene, "the edit applies");
-    let (its, worst) = tunnel_through_joints(
+    let (its, worst, fell) = tunnel_through_joints(
         "conv-tunnel3d-34k",
-        &format!("{coarser}\n[solver]\nmax_cuts = 0\nmax_iterations = 300\n"),
+        &format!("{coarser}\n[solver]\nmax_cuts = 0\nmax_iterations = 300\nrigid_fallback = false\n"),
     );
+    assert!(!fell);
     assert!(its <= 50, "{its} iterations");
     assert!(worst < 1e-7, "law residual {worst:e}");
 }
@@ -227,10 +232,27 @@ fn the_tunnel_with_joints_that_deform_converges() {
     let stiff =
         coarser.replace("friction = 0.7002", "friction = 0.7002\nnormal_stiffness = 5.0e3\nshear_stiffness = 5.0e2");
     assert_eq!(stiff.matches("normal_stiffness").count(), 3, "the edit applies to every set");
-    let (its, worst) = tunnel_through_joints(
+    let (its, worst, fell) = tunnel_through_joints(
         "conv-tunnel3d-34k-stiff",
         &format!("{stiff}\n[solver]\nmax_cuts = 0\nmax_iterations = 300\n"),
     );
+    assert!(!fell, "joints that deform do not fall back");
+    assert!(its <= 10, "{its} iterations");
+    assert!(worst < 1e-8, "law residual {worst:e}");
+}
+
+/// The same 34k-DOF tunnel as a user writes it, rigid joints and the
+/// default [solver]: its rigid joints do not converge (100 iterations and
+/// 3 cuts), and the run falls back to joints that deform (k_n = 10 E / s,
+/// s = 3.6 m the mean block size), which converge and keep the law pair
+/// by pair: the run ends, status 0, and says it fell back.
+#[test]
+#[ignore = "make stress: about 60 s"]
+fn the_tunnel_with_rigid_joints_ends_through_the_fallback() {
+    let scene = common::repo_text("tests/geo/tunnel3d_joints_coarse.toml");
+    let coarser = scene.replacen("lc_far = 4.0", "lc_far = 6.0", 1);
+    let (its, worst, fell) = tunnel_through_joints("conv-tunnel3d-34k-fallback", &coarser);
+    assert!(fell, "the rigid joints do not converge here");
     assert!(its <= 10, "{its} iterations");
     assert!(worst < 1e-8, "law residual {worst:e}");
 }
@@ -239,24 +261,34 @@ fn the_tunnel_with_joints_that_deform_converges() {
 /// advises, taken as said: the two-set tunnel (tests/interface_paths.rs'
 /// kept mesh, 1,779 pairs) does not converge in 20 iterations with rigid
 /// joints (it takes 45-49, three pairs slipping against their friction at
-/// the 20th), and with the stiffness the message names it does, in 4.
+/// the 20th); with `rigid_fallback = false` the run stops and names a
+/// stiffness (k_n = 10 E / s, s the mean block size), and with it the
+/// scene converges. By default the run takes that stiffness itself: the
+/// same states and forces as the scene that gives it, said on the
+/// terminal, in summary.json and report.md, exit status 0.
 #[test]
 fn the_joint_stiffness_a_step_that_did_not_converge_advises_ends_it() {
     let case = Case::new("conv-advice");
     let text = common::scenes::tunnel_two_sets(&case);
     let solver = "\n[solver]\nmax_cuts = 0\nmax_iterations = 20\n";
-    case.write("rigid.toml", &format!("{text}{solver}"));
+    case.write("rigid.toml", &format!("{text}{solver}rigid_fallback = false\n"));
     let o = case.cli(&["solve", "rigid.toml", "--out", "rigid", "--quiet"]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{err}");
-    common::cli::says(&err, &["did not converge after 20 iteration(s)", "[[joint_sets]] entry", "Joints that deform"]);
+    common::cli::says(
+        &err,
+        &["did not converge after 20 iteration(s)", "[[joint_sets]] entry", "Joints that deform", "rigid_fallback"],
+    );
     // the values advised, read off the message
     let value = |key: &str| -> f64 {
         let at = err.find(&format!("{key} = ")).unwrap_or_else(|| panic!("{key} advised: {err}")) + key.len() + 3;
         err[at..].split_whitespace().next().and_then(|v| v.parse().ok()).expect("a number")
     };
     let (k_n, k_s) = (value("normal_stiffness"), value("shear_stiffness"));
-    assert_eq!((k_n, k_s), (5000.0, 500.0), "the rock's E per unit of length, and a tenth");
+    assert!(
+        k_n > 5000.0 && (k_s - k_n / 10.0).abs() <= 1e-3 * k_s,
+        "10 E / s with s below 10 m, and a tenth: {k_n}, {k_s}"
+    );
     let stiff = text.replace("friction = 0.7002", &format!("friction = 0.7002\n{}", common::scenes::springs(k_n, k_s)));
     assert_eq!(stiff.matches("normal_stiffness").count(), 2, "both sets deform");
     case.write("stiff.toml", &format!("{stiff}{solver}"));
@@ -268,6 +300,29 @@ fn the_joint_stiffness_a_step_that_did_not_converge_advises_ends_it() {
     eprintln!("two-set tunnel with the advised springs: {its} iterations, law residual {law:.1e}");
     assert!(its <= 8, "{its} iterations");
     assert!(law < 1e-8, "law residual {law:e}");
+
+    // the default: the run falls back to that stiffness by itself
+    case.write("fallback.toml", &format!("{text}{solver}"));
+    let o = case.cli(&["solve", "fallback.toml", "--out", "fallback", "--quiet"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    common::cli::says(
+        &err,
+        &["warning: rigid joints did not converge at load step 1 (20 iteration(s)", "joints that deform"],
+    );
+    let summary = json(&case.dir.join("fallback/summary.json"));
+    let f = &summary["contact"]["rigid_fallback"];
+    assert_eq!(f["iterations"].as_u64(), Some(20), "{f}");
+    assert_eq!((f["normal_stiffness"].as_f64(), f["shear_stiffness"].as_f64()), (Some(k_n), Some(k_s)), "{f}");
+    assert_eq!(summary["contact"]["converged"], true);
+    assert_eq!(summary["contact"]["iterations"].as_u64(), Some(its));
+    let csv = |dir: &str| std::fs::read_to_string(case.dir.join(dir).join("contact.csv")).expect("contact.csv");
+    assert_eq!(csv("fallback"), csv("stiff"), "the fallback solves the scene that gives its stiffness");
+    let report = std::fs::read_to_string(case.dir.join("fallback/report.md")).expect("report.md");
+    assert!(
+        report.contains("**Joints that deform in place of rigid ones:** rigid joints did not converge"),
+        "{report}"
+    );
 }
 
 /// geo/tunnel_joints.toml (k0 = 0.25) with the set dipping 60 degrees

@@ -71,14 +71,17 @@ pub enum ContactError {
     /// `slipping_back`: the pairs that slip against their friction at the
     /// last iteration (report.md), which more iterations did not settle
     /// where measured; `rigid_joints`: where the joints are rigid, the
-    /// softest body's Young's modulus, whose joint stiffness is advised.
+    /// normal and shear stiffness advised (the fallback's); `fell_back`:
+    /// this was the run with joints that deform that rigid joints which
+    /// did not converge fell back to.
     NotConverged {
         step: Option<usize>,
         iterations: usize,
         cycled: bool,
         law_broken: bool,
         slipping_back: usize,
-        rigid_joints: Option<f64>,
+        rigid_joints: Option<[f64; 2]>,
+        fell_back: bool,
         cuts: usize,
         rule: StateRule,
         results: Option<PathBuf>,
@@ -321,6 +324,7 @@ impl ContactError {
             law_broken,
             slipping_back,
             rigid_joints,
+            fell_back,
             cuts,
             rule,
             results,
@@ -340,6 +344,9 @@ impl ContactError {
             _ => "",
         };
         write!(f, " after {iterations} iteration(s){why}")?;
+        if *fell_back {
+            write!(f, " with joints that deform, which the run gave every contact when its rigid joints did not converge either (report.md says the stiffness; [solver] rigid_fallback)")?;
+        }
         match (cuts, step) {
             (0, _) => {}
             (_, Some(0)) => write!(f, ", the stage cut {cuts} time(s) in halves (its load, or where the in-situ stress is beyond the joints' strength, the pieces that strength is brought down in; [solver] max_cuts)")?,
@@ -360,7 +367,7 @@ fn where_to_look(
     f: &mut fmt::Formatter<'_>,
     out: &Path,
     slipping_back: usize,
-    rigid_joints: Option<f64>,
+    rigid_joints: Option<[f64; 2]>,
     rule: StateRule,
 ) -> fmt::Result {
     let other = if rule == StateRule::Paper { ", or the default rule = \"robust\"" } else { "" };
@@ -370,19 +377,21 @@ fn where_to_look(
         n => write!(f, ". {n} pair(s) slip against their own friction (contact.csv: a law_residual about twice their shear): stuck, each is beyond its bound, and let slip its friction pushes it back, a wedge such as a corner where two joints cross near a free face; more iterations did not settle such pairs where that was measured (docs/convergence.md){other}")?,
     }
     match rigid_joints {
-        Some(e) => joint_stiffness_advice(f, e),
+        Some(k) => joint_stiffness_advice(f, k),
         None => Ok(()),
     }
 }
 
 /// What a step of rigid joints that did not converge can try instead:
-/// joints that deform, with the softest body's `e` per unit of length.
-fn joint_stiffness_advice(f: &mut fmt::Formatter<'_>, e: f64) -> fmt::Result {
+/// joints that deform, with the normal and shear stiffness `k` the run's
+/// fallback would take (`[solver] rigid_fallback`, off where this is said).
+fn joint_stiffness_advice(f: &mut fmt::Formatter<'_>, k: [f64; 2]) -> fmt::Result {
     write!(
         f,
-        ". Or give the joints a stiffness, as 3DEC's and UDEC's have: normal_stiffness and shear_stiffness on every [[contacts]] and [[joint_sets]] entry, e.g. normal_stiffness = {} and shear_stiffness = {} (the rock's E per unit of length, and a tenth of it). Where rigid joints cross, their forces are shared by ties that can leave no state set keeping the law; a joint that deforms is a spring, and the jointed tunnels whose rigid joints did not end in 300 iterations end in 4 (README, \"Joints that deform\")",
-        e,
-        e / 10.0
+        ". Or give the joints a stiffness, as 3DEC's and UDEC's have: normal_stiffness and shear_stiffness on every [[contacts]] and [[joint_sets]] entry, e.g. normal_stiffness = {} and shear_stiffness = {} (k_n = {} E / s, E the softest body's modulus and s the mean block size: the joints then add a tenth to the rock mass's compliance; k_s a tenth of k_n), or leave [solver] rigid_fallback at its default (true) and the run does so when rigid joints do not converge. Where rigid joints cross, their forces are shared by ties that can leave no state set keeping the law; a joint that deforms is a spring, and the jointed tunnels whose rigid joints did not end in 300 iterations end in 4 to 6 (README, \"Joints that deform\")",
+        k[0],
+        k[1],
+        super::fallback::STIFFER,
     )
 }
 
@@ -491,7 +500,7 @@ mod tests {
         not_converged_with(slipping_back, None)
     }
 
-    fn not_converged_with(slipping_back: usize, rigid_joints: Option<f64>) -> String {
+    fn not_converged_with(slipping_back: usize, rigid_joints: Option<[f64; 2]>) -> String {
         ContactError::NotConverged {
             step: Some(1),
             iterations: 100,
@@ -499,6 +508,7 @@ mod tests {
             law_broken: false,
             slipping_back,
             rigid_joints,
+            fell_back: false,
             cuts: 0,
             rule: StateRule::Robust,
             results: Some(PathBuf::from("out")),
@@ -520,8 +530,9 @@ mod tests {
     fn rigid_joints_are_advised_a_stiffness_from_the_rocks_modulus() {
         assert!(!not_converged(0).contains("normal_stiffness"));
         for back in [0, 3] {
-            let said = not_converged_with(back, Some(5000.0));
-            assert!(said.contains("normal_stiffness = 5000 and shear_stiffness = 500 "), "{said}");
+            let said = not_converged_with(back, Some([13890.0, 1389.0]));
+            assert!(said.contains("normal_stiffness = 13890 and shear_stiffness = 1389 "), "{said}");
+            assert!(said.contains("rigid_fallback"), "{said}");
         }
     }
 }

@@ -26,6 +26,7 @@ use std::time::Instant;
 
 mod about;
 mod condense;
+mod fallback;
 mod mechanism;
 mod meshing;
 pub(crate) mod messages;
@@ -38,6 +39,7 @@ mod stats;
 mod steps;
 mod warnings;
 
+pub use fallback::said as fallback_said;
 pub use meshing::{gmsh_job, load_mesh, mesh_into};
 pub use messages::{Apex, At, ContactError, PlanError, SafetyError};
 pub use plan::{preview, Memory, Preview};
@@ -47,18 +49,19 @@ pub use warnings::{insitu_warnings, model_warnings};
 
 use crate::analytic;
 use crate::contact::law::PairResult;
-use crate::contact::options::StateRule;
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::model::Model;
 use crate::output;
 use crate::output::files::{Stage, Staged};
-use crate::parallel::{Comm, CommExt, Serial};
+use crate::parallel::{Comm, Serial};
 use crate::recover;
 use crate::scene::Scene;
 
 // what a run returns, defined in `results` (which the writers read)
-pub use crate::results::{state_counts, Checks, ContactRun, Counters, RankStats, Run, Stats, StepResult, Timings};
+pub use crate::results::{
+    state_counts, Checks, ContactRun, Counters, Fallback, RankStats, Run, Stats, StepResult, Timings,
+};
 use crate::substructure::Condensation;
 
 /// Runs a scene file end to end and writes its results.
@@ -111,15 +114,62 @@ struct Writing {
     stage: Option<Stage>,
 }
 
-/// Steps 3 to 7 of [`run_on`], on the mesh of step 2.
+/// Steps 3 to 7 of [`run_on`], on the mesh of step 2; where rigid joints
+/// did not converge, again with joints that deform ([`fallback`]).
 fn solve(
     scene: Scene,
     opts: &RunOptions,
     comm: &dyn Comm,
     (mesh, msh, mesh_cached): (Mesh, PathBuf, bool),
-    mut timings: Timings,
+    timings: Timings,
     to: &mut Writing,
 ) -> Result<Option<Run>> {
+    let again = fallback::eligible(&scene).then(|| (mesh.clone(), msh.clone()));
+    let given = Try::Given { may_fall: again.is_some() };
+    let rigid = attempt(scene, opts, comm, (mesh, msh, mesh_cached), timings.clone(), given, to)?;
+    let (scene, record, (mesh, msh)) = match (rigid, again) {
+        (Attempt::Fell(scene, record), Some(again)) => (*scene, record, again),
+        (Attempt::Ran(run), _) => return Ok(run.map(|r| *r)),
+        (Attempt::Fell(..), None) => unreachable!("only an eligible scene falls back"),
+    };
+    if let Some(r) = &record {
+        say(&format!("warning: {}", fallback::said(r)));
+    }
+    // the rigid attempt's factors are gone: their pages back to the system
+    crate::memory::give_back();
+    match attempt(scene, opts, comm, (mesh, msh, mesh_cached), timings, Try::Fallback(record), to)? {
+        Attempt::Ran(run) => Ok(run.map(|r| *r)),
+        Attempt::Fell(..) => unreachable!("joints that deform do not fall back"),
+    }
+}
+
+/// What one attempt at steps 3 to 7 gave: the run (written), or, where
+/// its rigid joints did not converge and the scene lets the run fall
+/// back, the scene with joints that deform and the record of why (on
+/// rank 0).
+enum Attempt {
+    Ran(Option<Box<Run>>),
+    Fell(Box<Scene>, Option<Fallback>),
+}
+
+/// Which attempt at steps 3 to 7 a run makes: the scene as given
+/// (`may_fall`: whether its rigid joints may fall back), or the fallback
+/// (its record, on rank 0).
+enum Try {
+    Given { may_fall: bool },
+    Fallback(Option<Fallback>),
+}
+
+/// Steps 3 to 7 on the mesh of step 2, as `this` says.
+fn attempt(
+    scene: Scene,
+    opts: &RunOptions,
+    comm: &dyn Comm,
+    (mesh, msh, mesh_cached): (Mesh, PathBuf, bool),
+    mut timings: Timings,
+    this: Try,
+    to: &mut Writing,
+) -> Result<Attempt> {
     // 3. Model.
     let t = Instant::now();
     let model = Model::build(&mesh, &scene.model_spec())?;
@@ -135,17 +185,13 @@ fn solve(
     // search when the scene asks for one (a scene that fails at full
     // strength is unsafe as given).
     let step = steps::Step::new(&scene, &model, &plan, &parts, &ranks)?;
-    let (mut done, safety, failed) = match steps::run(&step, &parts, opts, &ranks) {
-        Ok(done) => (done, None, None),
-        Err(e) => {
-            let below = safety::below_one(&step, &parts, opts, &ranks, e)?;
-            // with no result at all (no step held, no iterate), nothing to write
-            if !ranks.comm().broadcast(&below.safety.as_ref().is_some_and(|_| !below.done.steps.is_empty())) {
-                return Err(below.error);
-            }
-            (below.done, below.safety, Some(below.error))
+    let (mut done, safety, failed) = safety::steps_or_below(&step, &parts, opts, &ranks)?;
+    if matches!(this, Try::Given { may_fall: true }) && failed.is_none() {
+        let seconds = to.t0.elapsed().as_secs_f64();
+        if let Some((scene, record)) = fallback::fall(&scene, &model, &done.steps, ranks.comm(), seconds) {
+            return Ok(Attempt::Fell(Box::new(scene), record));
         }
-    };
+    }
     let safety = match failed {
         Some(_) => safety,
         None => safety::run(&step, &parts, opts, &ranks, &mut done)?,
@@ -157,7 +203,7 @@ fn solve(
     let interface_solver = if parts.problem.is_some() { plan.kind.name() } else { "none" };
     // the factors go before the results are written
     drop(parts);
-    let Some(rank_stats) = gathered else { return Ok(None) };
+    let Some(rank_stats) = gathered else { return Ok(Attempt::Ran(None)) };
     let measured = stats::Measured {
         msh,
         mesh_cached,
@@ -170,14 +216,26 @@ fn solve(
     let stats = stats::stats(&model, &plan.parts, all, measured);
     let initial_stage = done.stage;
     let about = about::about(&scene, &model);
-    let mut run =
-        Run { scene, about, model, steps: done.steps, stats, checks: Checks::default(), safety, initial_stage };
+    let mut run = Run {
+        scene,
+        about,
+        model,
+        steps: done.steps,
+        stats,
+        checks: Checks::default(),
+        safety,
+        initial_stage,
+        fallback: match this {
+            Try::Fallback(record) => record,
+            Try::Given { .. } => None,
+        },
+    };
 
     // 7. What the last step is checked against, then the output, all at once.
     let t = Instant::now();
     run.checks = checks(&run);
     run.stats.timings.recover += t.elapsed().as_secs_f64();
-    write(run, opts, to, failed).map(Some)
+    write(run, opts, to, failed).map(|run| Attempt::Ran(Some(Box::new(run))))
 }
 
 /// Errors against the scene's closed form (body by body, each in its own
@@ -288,20 +346,12 @@ fn not_converged(run: &Run, results: Option<PathBuf>) -> Option<ContactError> {
         cycled: c.summary.cycled,
         law_broken: c.summary.law_broken,
         slipping_back: output::slipping_back(c),
-        rigid_joints: rigid_joints(&run.scene),
+        rigid_joints: fallback::advised(run),
+        fell_back: run.fallback.is_some(),
         cuts: c.summary.cuts,
         rule: run.scene.solver.rule,
         results,
     })
-}
-
-/// Where the joints are rigid under the robust rule (for which joints
-/// that deform are built), the softest body's Young's modulus: the joint
-/// stiffness a step that did not converge is advised to try.
-fn rigid_joints(scene: &Scene) -> Option<f64> {
-    let rigid = !scene.contacts.is_empty() && !scene.joints_deform();
-    let e = scene.bodies.iter().map(|b| b.material.e).fold(f64::INFINITY, f64::min);
-    (rigid && scene.solver.rule == StateRule::Robust && e.is_finite()).then_some(e)
 }
 
 /// Max |sigma_n - exact normal traction| over the pairs, relative to the

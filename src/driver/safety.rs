@@ -63,6 +63,29 @@ pub(super) fn undecided_error(run: &crate::results::Run) -> Option<SafetyError> 
     })
 }
 
+/// Steps 5 and 6: the load steps; where they lose equilibrium, the
+/// search below one (a scene that fails at full strength is unsafe as
+/// given): the steps it kept, the search and the error the run ends
+/// with. The error alone where nothing is left to write (no step held,
+/// no iterate).
+pub(super) fn steps_or_below(
+    step: &Step,
+    parts: &Parts,
+    opts: &RunOptions,
+    ranks: &Ranks,
+) -> Result<(LoadSteps, Option<SafetyRun>, Option<crate::error::Error>)> {
+    match super::steps::run(step, parts, opts, ranks) {
+        Ok(done) => Ok((done, None, None)),
+        Err(e) => {
+            let below = below_one(step, parts, opts, ranks, e)?;
+            if !ranks.comm().broadcast(&below.safety.as_ref().is_some_and(|_| !below.done.steps.is_empty())) {
+                return Err(below.error);
+            }
+            Ok((below.done, below.safety, Some(below.error)))
+        }
+    }
+}
+
 /// Runs the scene's `[safety]` search from the state the load steps left
 /// (`done`), adding its cost to theirs; the search on rank 0, None elsewhere
 /// and when the scene asks for none.

@@ -10,4 +10,4 @@ mod machine;
 
 pub use estimate::{check, estimate, Estimate, TooLarge};
 pub use guard::Guarded;
-pub use machine::{available, human, peak, physical, resident, Available};
+pub use machine::{available, give_back, human, peak, physical, resident, Available};

@@ -252,6 +252,25 @@ fn locked_off(c: &crate::results::ContactRun) -> serde_json::Value {
         "crossings": c.locked_off.len(), "pairs": pairs, "force": f, "relative": r })))
 }
 
+/// summary.json's `contact.rigid_fallback`: what the rigid joints did
+/// and the stiffness the run gave them instead; null where it did not
+/// fall back.
+fn fallback_json(run: &Run) -> serde_json::Value {
+    let Some(f) = &run.fallback else { return serde_json::Value::Null };
+    json!({
+        "step": f.step,
+        "iterations": f.iterations,
+        "cuts": f.cuts,
+        "cycled": f.cycled,
+        "law_residual": f.law_residual,
+        "seconds": f.seconds,
+        "normal_stiffness": f.stiffness.normal,
+        "shear_stiffness": f.stiffness.shear,
+        "modulus": f.modulus,
+        "block_size": f.block_size,
+    })
+}
+
 /// The initial equilibrium stage in summary.json: its iteration, the
 /// strength factors it was brought down through, states, factors and
 /// largest displacement (taken off every step's).
@@ -306,6 +325,7 @@ fn summary(run: &Run, derived: &Derived) -> serde_json::Value {
             "history": it.history.iter().map(|h| { let k = state_counts(h); json!({"stick": k[2], "slip": k[1], "open": k[0]}) }).collect::<Vec<_>>(),
         });
         v["contact"]["joint_stiffness"] = faces::stiffness_json(run);
+        v["contact"]["rigid_fallback"] = fallback_json(run);
         if let Some(r) = derived.resultants() {
             let (groups, faces) = faces::summary(&run.model, r);
             v["contact"]["groups"] = groups;

@@ -58,6 +58,9 @@ fn header(s: &mut String, run: &Run) {
     for w in &run.about.warnings {
         let _ = writeln!(s, "**Warning:** {w}.\n");
     }
+    if let Some(f) = &run.fallback {
+        let _ = writeln!(s, "**Joints that deform in place of rigid ones:** {}.\n", crate::driver::fallback_said(f));
+    }
 }
 
 /// The table's head and the model's size.

@@ -125,6 +125,11 @@ impl Scene {
         self.safety = None;
     }
 
+    /// Gives every contact the joint stiffness `k`: its joints deform.
+    pub fn give_joints_stiffness(&mut self, k: Stiffness) {
+        self.contacts.iter_mut().for_each(|c| c.stiffness = Some(k));
+    }
+
     /// The scene with a safety search: its own `[safety]`, or one with the
     /// defaults (`subcontact safety` on a scene without the table), checked
     /// as the table would be (a scene without contacts has nothing to reduce).

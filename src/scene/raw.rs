@@ -231,6 +231,7 @@ pub(super) struct RawSolver {
     pub(super) substructures: Option<i64>,
     pub(super) interface: Option<InterfaceSolver>,
     pub(super) initial_stage: Option<bool>,
+    pub(super) rigid_fallback: Option<bool>,
 }
 
 #[derive(Deserialize)]

@@ -206,6 +206,7 @@ impl Checker<'_> {
                 rule: s.rule.unwrap_or_default(),
                 interface: s.interface.unwrap_or_default(),
                 initial_stage: s.initial_stage.unwrap_or(false),
+                rigid_fallback: s.rigid_fallback.unwrap_or(true),
                 substructures: self.at_least(
                     s.substructures,
                     1,

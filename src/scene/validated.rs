@@ -58,6 +58,10 @@ pub struct Solver {
     /// contacts active before the loads, displacements then reset (a
     /// step 0; default false).
     pub initial_stage: bool,
+    /// Where rigid joints end a load step without converging, solve the
+    /// scene again with joints that deform and say so (default true;
+    /// `crate::driver`'s fallback).
+    pub rigid_fallback: bool,
 }
 
 impl Default for Solver {
@@ -71,6 +75,7 @@ impl Default for Solver {
             substructures: 1,
             interface: InterfaceSolver::Auto,
             initial_stage: false,
+            rigid_fallback: true,
         }
     }
 }

@@ -1,0 +1,168 @@
+//! Rigid joints that end a load step without converging, solved again as
+//! joints that deform (`[solver] rigid_fallback`, on by default).
+//!
+//! Where rigid joints cross near a free face, the contact law with rigid
+//! ties can have no state set that keeps it (docs/convergence.md: a
+//! corner whose friction wedges it into the other joint with a gain at or
+//! above one, Klarbring's examples of non-existence), and no iteration
+//! ends there. Joints with a stiffness have no ties to share and end: the
+//! model 3DEC and UDEC always solve. So a run whose rigid joints did not
+//! converge is run again, from its mesh, with every contact given
+//!
+//! ```text
+//!     k_n = STIFFER · E / s,   k_s = k_n / 10
+//! ```
+//!
+//! E the softest body's Young's modulus and s the mean block size (the
+//! model's bounding box shared among its bodies: `(V / n)^(1/d)`). A rock
+//! mass of blocks of size s whose joints have k_n is softer than its rock
+//! by `1 / E_m = 1 / E + 1 / (k_n s)`: the joints add a tenth to its
+//! compliance, whatever the units and the mesh. The results are those of
+//! the joints that deform, and the run says so on the terminal, in
+//! report.md and in summary.json (`contact.rigid_fallback`).
+
+use crate::contact::law::Stiffness;
+use crate::model::Model;
+use crate::parallel::{Comm, CommExt};
+use crate::results::{Fallback, Run, StepResult};
+use crate::scene::{Scene, StateRule};
+
+/// `k_n s / E`: the rock mass is `1 + 1 / STIFFER` times as compliant as
+/// its rock.
+pub(crate) const STIFFER: f64 = 10.0;
+
+/// Whether a run of `scene` falls back when its joints do not converge:
+/// rigid joints under the robust rule, and the scene lets it.
+pub(super) fn eligible(scene: &Scene) -> bool {
+    scene.solver.rigid_fallback && rigid_robust(scene)
+}
+
+/// Rigid joints under the robust rule (for which joints that deform are
+/// built): where a step that did not converge is advised a stiffness.
+pub(super) fn rigid_robust(scene: &Scene) -> bool {
+    !scene.contacts.is_empty() && !scene.joints_deform() && scene.solver.rule == StateRule::Robust
+}
+
+/// The stiffness joints that deform take in place of rigid ones:
+/// `STIFFER E / s` normal and a tenth of it in shear, with E the softest
+/// body's modulus and s the model's mean block size; and those E and s.
+pub(crate) fn stiffness(scene: &Scene, model: &Model) -> (Stiffness, f64, f64) {
+    let e = scene.bodies.iter().map(|b| b.material.e).fold(f64::INFINITY, f64::min);
+    let s = block_size(model);
+    // rounded as a user would write them back, so that the same values
+    // given in the scene give the same answer
+    let normal = round(STIFFER * e / s);
+    (Stiffness { normal, shear: round(normal / 10.0) }, e, s)
+}
+
+/// The model's mean block size: its bounding box's measure (area in 2D)
+/// shared among its bodies, to the power one over the dimension. A length
+/// of the model, whatever its mesh.
+fn block_size(model: &Model) -> f64 {
+    let d = model.analysis.dim();
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for n in model.bodies.iter().flat_map(|b| &b.cells).flat_map(|c| &c.nodes) {
+        for k in 0..d {
+            lo[k] = lo[k].min(model.coords[*n][k]);
+            hi[k] = hi[k].max(model.coords[*n][k]);
+        }
+    }
+    let measure: f64 = (0..d).map(|k| (hi[k] - lo[k]).max(0.0)).product();
+    let s = (measure / model.bodies.len().max(1) as f64).powf(1.0 / d as f64);
+    if s.is_finite() && s > 0.0 {
+        s
+    } else {
+        1.0
+    }
+}
+
+/// Where the load steps' last (`steps`, on rank 0) did not converge, as
+/// rank 0 tells every rank: the scene with every contact given the
+/// fallback's stiffness, and the record of why (on rank 0); the rigid
+/// attempt took `seconds`.
+pub(super) fn fall(
+    scene: &Scene,
+    model: &Model,
+    steps: &[StepResult],
+    comm: &dyn Comm,
+    seconds: f64,
+) -> Option<(Scene, Option<Fallback>)> {
+    let stop = steps.last().and_then(|s| s.contact.as_ref()).is_some_and(|c| !c.summary.converged);
+    if !comm.broadcast(&stop) {
+        return None;
+    }
+    let mut stiff = scene.clone();
+    stiff.give_joints_stiffness(stiffness(scene, model).0);
+    Some((stiff, record(scene, model, steps.last(), seconds)))
+}
+
+/// Where the joints are rigid under the robust rule, the normal and
+/// shear stiffness a step that did not converge (or a safety factor
+/// left undecided) is advised to try: those the fallback takes.
+pub(super) fn advised(run: &Run) -> Option<[f64; 2]> {
+    let k = rigid_robust(&run.scene).then(|| stiffness(&run.scene, &run.model).0)?;
+    Some([k.normal, k.shear]).filter(|k| k[0].is_finite())
+}
+
+/// What the rigid run's last step did, where it did not converge (None
+/// where it did, or it has no contact): the record of the fallback, with
+/// the stiffness the run takes instead and the rigid run's `seconds`.
+fn record(scene: &Scene, model: &Model, last: Option<&StepResult>, seconds: f64) -> Option<Fallback> {
+    let last = last?;
+    let c = last.contact.as_ref().filter(|c| !c.summary.converged)?;
+    let (stiffness, modulus, block_size) = stiffness(scene, model);
+    Some(Fallback {
+        stiffness,
+        modulus,
+        block_size,
+        step: last.step,
+        iterations: c.summary.iterations,
+        cuts: c.summary.cuts,
+        cycled: c.summary.cycled,
+        law_residual: c.worst_law_residual().map(|(_, r)| r),
+        seconds,
+    })
+}
+
+/// The sentence the run says on the terminal, in report.md and the
+/// error of a fallback that did not converge either.
+pub fn said(f: &Fallback) -> String {
+    let at = match f.step {
+        0 => "the initial equilibrium stage".to_string(),
+        k => format!("load step {k}"),
+    };
+    let how = if f.cycled { "the states cycled" } else { "the states kept changing" };
+    let law = f.law_residual.map_or(String::new(), |r| format!(", law residual {r:.2e} of the largest traction"));
+    format!(
+        "rigid joints did not converge at {at} ({} iteration(s){}, {how}{law}; {:.1} s), so the scene is solved again with joints that deform, and its results are theirs: normal_stiffness = {} and shear_stiffness = {} on every contact (k_n = {STIFFER} E / s, E = {} the softest body's modulus, s = {} the mean block size: the joints add a tenth to the rock mass's compliance). Where rigid joints cross near a free face the law can have no state set that keeps it (docs/convergence.md). Give the joints your own stiffness, or [solver] rigid_fallback = false to stop with the rigid joints' last iterate",
+        f.iterations,
+        if f.cuts > 0 { format!(" and {} cut(s)", f.cuts) } else { String::new() },
+        f.seconds,
+        f.stiffness.normal,
+        f.stiffness.shear,
+        f.modulus,
+        round(f.block_size),
+    )
+}
+
+/// `x` to four significant digits, for a value a user would write back.
+pub(crate) fn round(x: f64) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
+    let scale = 10f64.powi(3 - x.abs().log10().floor() as i32);
+    (x * scale).round() / scale
+}
+
+#[cfg(test)]
+mod tests {
+    use super::round;
+
+    #[test]
+    fn stiffness_is_rounded_to_four_digits() {
+        assert_eq!(round(13_888.888), 13_890.0);
+        assert_eq!(round(0.012_345_6), 0.012_35);
+        assert_eq!(round(5000.0), 5000.0);
+    }
+}
