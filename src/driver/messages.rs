@@ -114,8 +114,16 @@ pub enum SafetyError {
     },
     /// Converged trials did not decide the factor: they hold at `holds`
     /// and fail at `fails` (None: none converged above), and the trials at
-    /// `undecided` did not converge, even when retried.
-    Undecided { holds: f64, fails: Option<f64>, undecided: Vec<f64>, load: bool, results: Option<PathBuf> },
+    /// `undecided` did not converge, even when retried; `rigid_joints`:
+    /// where the joints are rigid, the normal and shear stiffness advised.
+    Undecided {
+        holds: f64,
+        fails: Option<f64>,
+        undecided: Vec<f64>,
+        load: bool,
+        rigid_joints: Option<[f64; 2]>,
+        results: Option<PathBuf>,
+    },
 }
 
 impl SafetyError {
@@ -413,7 +421,7 @@ impl fmt::Display for SafetyError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             SafetyError::Unsafe { .. } => unsafe_message(self, f),
-            SafetyError::Undecided { holds, fails, undecided, load, results } => {
+            SafetyError::Undecided { holds, fails, undecided, load, rigid_joints, results } => {
                 let what = if *load { "load factor" } else { "factor of safety" };
                 let tried: Vec<String> = undecided.iter().map(|u| format!("{u:.4}")).collect();
                 write!(f, "the {what} is not decided: the contact iteration did not converge at F = {} even when retried in smaller steps with more iterations, so those trials neither hold nor fail. Converged trials hold at F = {holds:.4}", tried.join(", "))?;
@@ -424,7 +432,13 @@ impl fmt::Display for SafetyError {
                 if let Some(out) = results {
                     write!(f, "; the results in {} are those of the last state that holds", out.display())?;
                 }
-                write!(f, ". Try more [solver] max_iterations, a smaller safety.step, or the other [solver] rule")
+                write!(f, ". Try more [solver] max_iterations, a smaller safety.step, or the other [solver] rule")?;
+                match rigid_joints {
+                    // the safety search does not fall back itself: its
+                    // trials would change the model between them
+                    Some(k) => write!(f, "; or give the joints a stiffness, normal_stiffness = {} and shear_stiffness = {} on every [[contacts]] and [[joint_sets]] entry (k_n = {} E / s, E the softest body's modulus and s the mean block size): where rigid joints cross, a trial's law can have no state set that keeps it, and joints that deform have no crossing ties (README, \"Joints that deform\")", k[0], k[1], super::fallback::STIFFER),
+                    None => Ok(()),
+                }
             }
         }
     }
@@ -534,5 +548,23 @@ mod tests {
             assert!(said.contains("normal_stiffness = 13890 and shear_stiffness = 1389 "), "{said}");
             assert!(said.contains("rigid_fallback"), "{said}");
         }
+    }
+
+    #[test]
+    fn an_undecided_safety_factor_on_rigid_joints_is_advised_a_stiffness() {
+        let undecided = |rigid_joints| {
+            SafetyError::Undecided {
+                holds: 1.2,
+                fails: Some(1.4),
+                undecided: vec![1.3],
+                load: false,
+                rigid_joints,
+                results: None,
+            }
+            .to_string()
+        };
+        assert!(!undecided(None).contains("normal_stiffness"));
+        let said = undecided(Some([13890.0, 1389.0]));
+        assert!(said.contains("normal_stiffness = 13890 and shear_stiffness = 1389 on every"), "{said}");
     }
 }

@@ -59,6 +59,7 @@ pub(super) fn undecided_error(run: &crate::results::Run) -> Option<SafetyError> 
             .filter(|&u| u > s.factor.unwrap_or(1.0) && s.fails_at.is_none_or(|x| u < x))
             .collect(),
         load: s.kind == SearchKind::Load,
+        rigid_joints: super::fallback::advised(run),
         results: None,
     })
 }
