@@ -325,6 +325,40 @@ fn the_joint_stiffness_a_step_that_did_not_converge_advises_ends_it() {
     );
 }
 
+/// The fallback in 2D: geo/tunnel_joints.toml (three sets, plane strain)
+/// takes 11 iterations with rigid joints; given 10, it falls back to k_n
+/// = 10 E / s with s = sqrt(A / n) (the bounding box's area shared among
+/// its blocks), which converges in 9, contact.csv the same as the scene
+/// with those keys written; the rigid joints stopped close to the law,
+/// so the warning says more iterations may end them rigid.
+#[test]
+fn the_fallback_in_2d_takes_the_block_size_of_an_area() {
+    let case = Case::new("conv-fallback-2d");
+    case.copy("geo/tunnel_joints.geo");
+    let scene = common::repo_text("geo/tunnel_joints.toml");
+    let solver = "\n[solver]\nmax_iterations = 10\nmax_cuts = 0\n";
+    case.write("rigid.toml", &format!("{scene}{solver}"));
+    let o = case.cli(&["solve", "rigid.toml", "--out", "rigid", "--quiet"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    common::cli::says(&err, &["rigid joints did not converge", "more [solver] max_iterations may end them rigid"]);
+    let f = json(&case.dir.join("rigid/summary.json"))["contact"]["rigid_fallback"].clone();
+    let num = |k: &str| f[k].as_f64().unwrap_or_else(|| panic!("{k}: {f}"));
+    let (k_n, k_s, e, s) = (num("normal_stiffness"), num("shear_stiffness"), num("modulus"), num("block_size"));
+    assert_eq!(e, 5000.0);
+    // the box of the 2D model shared among its blocks, to the power 1/2
+    assert!(s > 1.0 && s < 10.0, "block size {s}");
+    assert!((k_n - 10.0 * e / s).abs() <= 5e-4 * k_n, "k_n = 10 E / s to four digits: {k_n} against {}", 10.0 * e / s);
+    assert!((k_s - k_n / 10.0).abs() <= 5e-4 * k_s, "{k_s}");
+    let stiff = scene.replace("friction = ", &format!("{}\nfriction = ", common::scenes::springs(k_n, k_s)));
+    assert_eq!(stiff.matches("normal_stiffness").count(), 3, "every set deforms");
+    case.write("stiff.toml", &format!("{stiff}{solver}"));
+    let o = case.cli(&["solve", "stiff.toml", "--out", "stiff", "--quiet"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = |dir: &str| std::fs::read_to_string(case.dir.join(dir).join("contact.csv")).expect("contact.csv");
+    assert_eq!(csv("rigid"), csv("stiff"), "the fallback solves the scene that gives its stiffness");
+}
+
 /// geo/tunnel_joints.toml (k0 = 0.25) with the set dipping 60 degrees
 /// given f = 0.5 and no cohesion: Mohr's circle puts every pair of it at
 /// tau / sigma_n = (1 - k0) sin 60 cos 60 / (cos^2 60 + k0 sin^2 60) =

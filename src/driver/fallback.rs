@@ -27,6 +27,10 @@ use crate::parallel::{Comm, CommExt};
 use crate::results::{Fallback, Run, StepResult};
 use crate::scene::{Scene, StateRule};
 
+/// A rigid step's law residual (of the largest traction) below which
+/// the fallback says more iterations may end it rigid.
+const CLOSE: f64 = 1e-6;
+
 /// `k_n s / E`: the rock mass is `1 + 1 / STIFFER` times as compliant as
 /// its rock.
 pub(crate) const STIFFER: f64 = 10.0;
@@ -134,8 +138,16 @@ pub fn said(f: &Fallback) -> String {
     };
     let how = if f.cycled { "the states cycled" } else { "the states kept changing" };
     let law = f.law_residual.map_or(String::new(), |r| format!(", law residual {r:.2e} of the largest traction"));
+    // a rigid iteration stopped this close to the law may end with a few
+    // more iterations: the scene's budget, not the rigid law, ran out
+    let close = match f.law_residual {
+        Some(r) if r < CLOSE => {
+            "; the rigid joints were close to the law, so more [solver] max_iterations may end them rigid"
+        }
+        _ => "",
+    };
     format!(
-        "rigid joints did not converge at {at} ({} iteration(s){}, {how}{law}; {:.1} s), so the scene is solved again with joints that deform, and its results are theirs: normal_stiffness = {} and shear_stiffness = {} on every contact (k_n = {STIFFER} E / s, E = {} the softest body's modulus, s = {} the mean block size: the joints add a tenth to the rock mass's compliance). Where rigid joints cross near a free face the law can have no state set that keeps it (docs/convergence.md). Give the joints your own stiffness, or [solver] rigid_fallback = false to stop with the rigid joints' last iterate",
+        "rigid joints did not converge at {at} ({} iteration(s){}, {how}{law}; {:.1} s{close}), so the scene is solved again with joints that deform, and its results are theirs: normal_stiffness = {} and shear_stiffness = {} on every contact (k_n = {STIFFER} E / s, E = {} the softest body's modulus, s = {} the mean block size: the joints add a tenth to the rock mass's compliance). Where rigid joints cross near a free face the law can have no state set that keeps it (docs/convergence.md). Give the joints your own stiffness, or [solver] rigid_fallback = false to stop with the rigid joints' last iterate",
         f.iterations,
         if f.cuts > 0 { format!(" and {} cut(s)", f.cuts) } else { String::new() },
         f.seconds,
