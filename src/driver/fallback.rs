@@ -129,8 +129,8 @@ fn record(scene: &Scene, model: &Model, last: Option<&StepResult>, seconds: f64)
     })
 }
 
-/// The sentence the run says on the terminal, in report.md and the
-/// error of a fallback that did not converge either.
+/// The sentence the run says on the terminal and in report.md: where
+/// and how the rigid joints stopped, and the stiffness taken instead.
 pub fn said(f: &Fallback) -> String {
     let at = match f.step {
         0 => "the initial equilibrium stage".to_string(),
