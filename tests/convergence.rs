@@ -182,6 +182,15 @@ fn tunnel_through_joints(tag: &str, scene: &str) -> (u64, f64, bool) {
     (its, worst, fell)
 }
 
+/// The text of the 34k-DOF tunnel: tests/geo/tunnel3d_joints_coarse.toml
+/// meshed coarser away from the opening (lc_far 6).
+fn tunnel_34k() -> String {
+    let scene = common::repo_text("tests/geo/tunnel3d_joints_coarse.toml");
+    let coarser = scene.replacen("lc_far = 4.0", "lc_far = 6.0", 1);
+    assert_ne!(coarser, scene, "the edit applies");
+    coarser
+}
+
 /// The 3D tunnel of tests/geo/tunnel3d_joints.geo, 44k DOFs, 7,160 pairs,
 /// 148 blocks: before issue 28 the sparse interface wandered for 85
 /// iterations (and 100+ at 47k DOFs); it converges in 34 (42 while the
@@ -208,9 +217,7 @@ fn a_tunnel_through_three_oblique_joint_sets_converges_to_states_that_keep_the_l
 #[test]
 #[ignore = "issue 28: not converged since c6a9a60 (docs/convergence.md); make stress-open, 50 s"]
 fn the_tunnel_meshed_coarser_away_from_the_opening_converges_without_cuts() {
-    let scene = common::repo_text("tests/geo/tunnel3d_joints_coarse.toml");
-    let coarser = scene.replacen("lc_far = 4.0", "lc_far = 6.0", 1);
-    assert_ne!(coarser, scene, "the edit applies");
+    let coarser = tunnel_34k();
     let (its, worst, fell) = tunnel_through_joints(
         "conv-tunnel3d-34k",
         &format!("{coarser}\n[solver]\nmax_cuts = 0\nmax_iterations = 300\nrigid_fallback = false\n"),
@@ -227,8 +234,7 @@ fn the_tunnel_meshed_coarser_away_from_the_opening_converges_without_cuts() {
 #[test]
 #[ignore = "make stress: about 10 s"]
 fn the_tunnel_with_joints_that_deform_converges() {
-    let scene = common::repo_text("tests/geo/tunnel3d_joints_coarse.toml");
-    let coarser = scene.replacen("lc_far = 4.0", "lc_far = 6.0", 1);
+    let coarser = tunnel_34k();
     let stiff =
         coarser.replace("friction = 0.7002", "friction = 0.7002\nnormal_stiffness = 5.0e3\nshear_stiffness = 5.0e2");
     assert_eq!(stiff.matches("normal_stiffness").count(), 3, "the edit applies to every set");
@@ -249,8 +255,7 @@ fn the_tunnel_with_joints_that_deform_converges() {
 #[test]
 #[ignore = "make stress: about 60 s"]
 fn the_tunnel_with_rigid_joints_ends_through_the_fallback() {
-    let scene = common::repo_text("tests/geo/tunnel3d_joints_coarse.toml");
-    let coarser = scene.replacen("lc_far = 4.0", "lc_far = 6.0", 1);
+    let coarser = tunnel_34k();
     let (its, worst, fell) = tunnel_through_joints("conv-tunnel3d-34k-fallback", &coarser);
     assert!(fell, "the rigid joints do not converge here");
     assert!(its <= 10, "{its} iterations");

@@ -33,7 +33,7 @@ const CLOSE: f64 = 1e-6;
 
 /// `k_n s / E`: the rock mass is `1 + 1 / STIFFER` times as compliant as
 /// its rock.
-pub(crate) const STIFFER: f64 = 10.0;
+pub(super) const STIFFER: f64 = 10.0;
 
 /// Whether a run of `scene` falls back when its joints do not converge:
 /// rigid joints under the robust rule, and the scene lets it.
@@ -50,7 +50,7 @@ pub(super) fn rigid_robust(scene: &Scene) -> bool {
 /// The stiffness joints that deform take in place of rigid ones:
 /// `STIFFER E / s` normal and a tenth of it in shear, with E the softest
 /// body's modulus and s the model's mean block size; and those E and s.
-pub(crate) fn stiffness(scene: &Scene, model: &Model) -> (Stiffness, f64, f64) {
+pub(super) fn stiffness(scene: &Scene, model: &Model) -> (Stiffness, f64, f64) {
     let e = scene.bodies.iter().map(|b| b.material.e).fold(f64::INFINITY, f64::min);
     let s = block_size(model);
     // rounded as a user would write them back, so that the same values
@@ -96,9 +96,10 @@ pub(super) fn fall(
     if !comm.broadcast(&stop) {
         return None;
     }
+    let taken = stiffness(scene, model);
     let mut stiff = scene.clone();
-    stiff.give_joints_stiffness(stiffness(scene, model).0);
-    Some((stiff, record(scene, model, steps.last(), seconds)))
+    stiff.give_joints_stiffness(taken.0);
+    Some((stiff, record(taken, steps.last(), seconds)))
 }
 
 /// Where the joints are rigid under the robust rule, the normal and
@@ -111,11 +112,15 @@ pub(super) fn advised(run: &Run) -> Option<[f64; 2]> {
 
 /// What the rigid run's last step did, where it did not converge (None
 /// where it did, or it has no contact): the record of the fallback, with
-/// the stiffness the run takes instead and the rigid run's `seconds`.
-fn record(scene: &Scene, model: &Model, last: Option<&StepResult>, seconds: f64) -> Option<Fallback> {
+/// the stiffness the run takes instead, its E and s ([`stiffness`]), and
+/// the rigid run's `seconds`.
+fn record(
+    (stiffness, modulus, block_size): (Stiffness, f64, f64),
+    last: Option<&StepResult>,
+    seconds: f64,
+) -> Option<Fallback> {
     let last = last?;
     let c = last.contact.as_ref().filter(|c| !c.summary.converged)?;
-    let (stiffness, modulus, block_size) = stiffness(scene, model);
     Some(Fallback {
         stiffness,
         modulus,
@@ -159,7 +164,7 @@ pub fn said(f: &Fallback) -> String {
 }
 
 /// `x` to four significant digits, for a value a user would write back.
-pub(crate) fn round(x: f64) -> f64 {
+fn round(x: f64) -> f64 {
     if x == 0.0 || !x.is_finite() {
         return x;
     }
