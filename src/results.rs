@@ -143,11 +143,14 @@ pub struct Fallback {
     pub modulus: f64,
     pub block_size: f64,
     /// The rigid run's last step (0: the initial stage), its iterations
-    /// and halvings, whether its states cycled, its worst pair's law
+    /// and halvings (or why it was not halved), whether its states cycled, its worst pair's law
     /// residual (of the largest traction), and the rigid run's seconds.
     pub step: usize,
     pub iterations: usize,
     pub cuts: usize,
+    /// Not cut, the step being the same problem at any load
+    /// ([`crate::contact::Summary::scaled`]).
+    pub scaled: bool,
     pub cycled: bool,
     pub law_residual: Option<f64>,
     pub seconds: f64,

@@ -248,12 +248,14 @@ fn the_tunnel_with_joints_that_deform_converges() {
 }
 
 /// The same 34k-DOF tunnel as a user writes it, rigid joints and the
-/// default [solver]: its rigid joints do not converge (100 iterations and
-/// 3 cuts), and the run falls back to joints that deform (k_n = 10 E / s,
-/// s = 3.6 m the mean block size), which converge and keep the law pair
-/// by pair: the run ends, status 0, and says it fell back.
+/// default [solver]: its rigid joints do not converge (100 iterations,
+/// not cut: a step from no load on joints of friction alone, whose halves
+/// repeat it; 400 iterations and 3 cuts before), and the run falls back
+/// to joints that deform (k_n = 10 E / s, s = 3.6 m the mean block size),
+/// which converge and keep the law pair by pair: the run ends, status 0,
+/// and says it fell back.
 #[test]
-#[ignore = "make stress: about 60 s"]
+#[ignore = "make stress: about 15 s"]
 fn the_tunnel_with_rigid_joints_ends_through_the_fallback() {
     let coarser = tunnel_34k();
     let (its, worst, fell) = tunnel_through_joints("conv-tunnel3d-34k-fallback", &coarser);
@@ -326,6 +328,53 @@ fn the_joint_stiffness_a_step_that_did_not_converge_advises_ends_it() {
     let report = std::fs::read_to_string(case.dir.join("fallback/report.md")).expect("report.md");
     assert!(
         report.contains("**Joints that deform in place of rigid ones:** rigid joints did not converge"),
+        "{report}"
+    );
+}
+
+/// A step from no load on joints of friction alone is the same problem at
+/// any load, so it is not cut: the two-set tunnel given 20 iterations
+/// (rigid joints, `rigid_fallback = false`) stops after its 20 and says
+/// why it was not cut. The evidence that cutting it cannot help: with a
+/// cohesion of 1e-9 MPa on one set (so that the rule lets it cut) it is
+/// cut three times and each piece repeats the whole step's iterations,
+/// the last one at an eighth of the load ending in the same states pair
+/// by pair, after the same state counts, with an eighth of the pressures.
+#[test]
+fn a_step_that_is_the_same_problem_at_any_load_is_not_cut() {
+    let case = Case::new("conv-scaled");
+    let text = common::scenes::tunnel_two_sets(&case);
+    let solver = "\n[solver]\nmax_iterations = 20\nrigid_fallback = false\n";
+    case.write("scaled.toml", &format!("{text}{solver}"));
+    let cohesive = text.replacen("friction = 0.7002", "friction = 0.7002\ncohesion = 1e-9", 1);
+    case.write("cohesive.toml", &format!("{cohesive}{solver}"));
+    for name in ["scaled", "cohesive"] {
+        let o = case.cli(&["solve", &format!("{name}.toml"), "--out", name, "--quiet"]);
+        assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
+        if name == "scaled" {
+            common::cli::says(
+                &String::from_utf8_lossy(&o.stderr),
+                &["after 20 iteration(s), not cut: it starts from no load, on joints of friction alone"],
+            );
+        }
+    }
+    let (a, b) = (json(&case.dir.join("scaled/summary.json")), json(&case.dir.join("cohesive/summary.json")));
+    let (a, b) = (&a["contact"], &b["contact"]);
+    assert_eq!((a["iterations"].as_u64(), a["cuts"].as_u64(), &a["scaled"]), (Some(20), Some(0), &Value::Bool(true)));
+    assert_eq!((b["iterations"].as_u64(), b["cuts"].as_u64(), &b["scaled"]), (Some(80), Some(3), &Value::Bool(false)));
+    assert_eq!(a["history"], b["history"], "the eighth of the load goes through the same state counts");
+    let (whole, eighth) =
+        (csv_rows(&case.dir.join("scaled/contact.csv")), csv_rows(&case.dir.join("cohesive/contact.csv")));
+    assert!(whole.len() > 1000 && whole.len() == eighth.len(), "{} and {} pairs", whole.len(), eighth.len());
+    let scale = whole.iter().map(|r| csv_num(r, "sigma_n").abs()).fold(0.0, f64::max);
+    for (w, e) in whole.iter().zip(&eighth) {
+        assert_eq!(w["status"], e["status"], "pair {}", w["pair"]);
+        let d = (csv_num(w, "sigma_n") - 8.0 * csv_num(e, "sigma_n")).abs();
+        assert!(d <= 1e-6 * scale, "pair {}: sigma_n {} against 8 x {}", w["pair"], w["sigma_n"], e["sigma_n"]);
+    }
+    let report = read(&case.dir.join("scaled/report.md"));
+    assert!(
+        report.contains("The load step did not converge whole and was not cut: it starts from no load"),
         "{report}"
     );
 }

@@ -14,7 +14,11 @@
 //! Under proportional loading a cohesionless joint's states do not depend
 //! on the load's size (the problem is homogeneous), so cutting only helps
 //! where the path matters: cohesion and tension that crack, load cases
-//! that do not grow together, slip that accumulates.
+//! that do not grow together, slip that accumulates. A piece that is the
+//! same problem at any load ([`scales`]) is therefore not cut: its first
+//! half would repeat its iterations at half the load, and so on down
+//! (the 34k tunnel of docs/convergence.md, three cuts: each repeated
+//! the whole step's 100 state sets, its law residual halved).
 
 use super::history::History;
 use super::iterate;
@@ -47,7 +51,8 @@ pub fn iterate_cutting(
     let mut cuts = 0;
     loop {
         let (a, b, depth) = todo.pop().expect("a piece is left until the last one ends the loop");
-        let saved = (depth < max_cuts).then(|| h.clone());
+        let scaled = depth < max_cuts && scales(problem, laws, &at(a), h);
+        let saved = (depth < max_cuts && !scaled).then(|| h.clone());
         let mut outcome = iterate(problem, laws, rule, &at(b), h, max_iterations).map_err(|mut f| {
             f.iteration += iterations;
             f
@@ -58,6 +63,7 @@ pub fn iterate_cutting(
             pieces.push(b);
         }
         if ended && (todo.is_empty() || !outcome.summary.converged) {
+            outcome.summary.scaled = scaled && !outcome.summary.converged;
             outcome.summary.iterations = iterations;
             outcome.summary.cuts = cuts;
             if cuts > 0 {
@@ -74,4 +80,31 @@ pub fn iterate_cutting(
             todo.push((a, mid, depth + 1));
         }
     }
+}
+
+/// Why a step that [`scales`] was not cut, as the run says it.
+pub const NOT_CUT: &str = "not cut: it starts from no load, on joints of friction alone (no cohesion, tensile strength or water), so a half of it is the same problem at half the load and repeats its iterations";
+
+/// Whether the piece that starts at the load factors `start` is the same
+/// problem at any size of its load: it starts from no load, with nothing
+/// carried over in force or displacement in `h` (its states and cracks
+/// are restored for each piece alike), on joints whose strength is their
+/// friction alone, with no water in them. Every force its iteration
+/// solves for is then linear in the load, and every judgement of the law
+/// and every tolerance is relative to it: its first half is itself at
+/// half the load, and halving it cannot help.
+pub(super) fn scales(problem: &InterfaceProblem, laws: &[PairLaw], start: &[f64], h: &History) -> bool {
+    let zero = |v: &[[f64; 3]]| v.iter().all(|x| *x == [0.0; 3]);
+    let strength_is_friction = |l: &PairLaw| {
+        let s = &l.strength;
+        s.cohesion == 0.0 && s.tensile_strength == 0.0 && s.residual_cohesion == 0.0
+    };
+    start.iter().all(|&x| x == 0.0)
+        && problem.water().is_none()
+        && laws.iter().all(strength_is_friction)
+        && zero(&h.offset)
+        && zero(&h.rel_start)
+        && zero(&h.force)
+        && zero(&h.unloaded)
+        && h.sigma_n.iter().all(|&x| x == 0.0)
 }

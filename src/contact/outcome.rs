@@ -30,6 +30,9 @@ pub struct Summary {
     /// Where the pieces of a cut step that converged ended, as fractions
     /// of the step (empty when it was not cut).
     pub pieces: Vec<f64>,
+    /// The step did not converge and was not cut, being the same problem
+    /// at any load ([`super::cutting::scales`]): a half of it repeats it.
+    pub scaled: bool,
     /// The piece of a cut step that did not converge at the deepest cut.
     pub stopped_at: Option<(f64, f64)>,
     /// The strength factors an initial stage was brought down through

@@ -68,6 +68,7 @@ pub enum ContactError {
     /// forces of the last solve break the contact law) under `rule`;
     /// `results`: where the last iteration's results were written; `cuts`:
     /// the halvings of the step that were tried ([solver] max_cuts);
+    /// `scaled`: none was, the step being the same problem at any load;
     /// `slipping_back`: the pairs that slip against their friction at the
     /// last iteration (report.md), which more iterations did not settle
     /// where measured; `rigid_joints`: where the joints are rigid, the
@@ -83,6 +84,7 @@ pub enum ContactError {
         rigid_joints: Option<[f64; 2]>,
         fell_back: bool,
         cuts: usize,
+        scaled: bool,
         rule: StateRule,
         results: Option<PathBuf>,
     },
@@ -334,6 +336,7 @@ impl ContactError {
             rigid_joints,
             fell_back,
             cuts,
+            scaled,
             rule,
             results,
         } = self
@@ -356,6 +359,7 @@ impl ContactError {
             write!(f, " with joints that deform, which the run gave every contact when its rigid joints did not converge either (report.md says the stiffness; [solver] rigid_fallback)")?;
         }
         match (cuts, step) {
+            (0, _) if *scaled => write!(f, ", {} ([solver] max_cuts)", crate::contact::cutting::NOT_CUT)?,
             (0, _) => {}
             (_, Some(0)) => write!(f, ", the stage cut {cuts} time(s) in halves (its load, or where the in-situ stress is beyond the joints' strength, the pieces that strength is brought down in; [solver] max_cuts)")?,
             _ => write!(f, ", the step cut {cuts} time(s) in halves ([solver] max_cuts)")?,
@@ -524,6 +528,7 @@ mod tests {
             rigid_joints,
             fell_back: false,
             cuts: 0,
+            scaled: false,
             rule: StateRule::Robust,
             results: Some(PathBuf::from("out")),
         }

@@ -349,6 +349,7 @@ fn not_converged(run: &Run, results: Option<PathBuf>) -> Option<ContactError> {
         rigid_joints: fallback::advised(run),
         fell_back: run.fallback.is_some(),
         cuts: c.summary.cuts,
+        scaled: c.summary.scaled,
         rule: run.scene.solver.rule,
         results,
     })

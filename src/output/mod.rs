@@ -236,7 +236,7 @@ fn steps_summary(run: &Run) -> serde_json::Value {
             if let Some(c) = &st.contact {
                 let k = state_counts(&c.states);
                 j["contact"] = json!({ "iterations": c.summary.iterations, "converged": c.summary.converged, "cycled": c.summary.cycled,
-                    "states": { "stick": k[2], "slip": k[1], "open": k[0] }, "cuts": c.summary.cuts, "pieces": c.summary.pieces,
+                    "states": { "stick": k[2], "slip": k[1], "open": k[0] }, "cuts": c.summary.cuts, "pieces": c.summary.pieces, "scaled": c.summary.scaled,
                     "locked_friction_off": locked_off(c) });
             }
             j
@@ -261,6 +261,7 @@ fn fallback_json(run: &Run) -> serde_json::Value {
         "step": f.step,
         "iterations": f.iterations,
         "cuts": f.cuts,
+        "scaled": f.scaled,
         "cycled": f.cycled,
         "law_residual": f.law_residual,
         "seconds": f.seconds,
@@ -319,6 +320,7 @@ fn summary(run: &Run, derived: &Derived) -> serde_json::Value {
             "clusters_solved": it.clusters_solved,
             "cuts": it.cuts,
             "pieces": it.pieces,
+            "scaled": it.scaled,
             "unsettled_pairs": unsettled::changes(c).map(|k| k.iter().filter(|&&n| n > 0).count()),
             "law_residual": c.worst_law_residual().map(|(p, r)| json!({ "pair": p, "relative": r, "stress": c.law_residual[p] })),
             "locked_friction_off": locked_off(c),

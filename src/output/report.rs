@@ -169,7 +169,7 @@ fn iteration_notes(s: &mut String, run: &Run) {
             let _ = writeln!(s, "\nThe state iteration stalled or cycled on a few pairs {} time(s) and the cluster fallback ended it: the pressures of a stall's slipping pairs solved for (multisecant steps), or the cluster's stick / slip / open sets tried, fewest changes from the load step's start first, until one met the law at every pair.", it.clusters_solved);
         }
         let stage = run.last().step == 0;
-        if it.cuts > 0 || (stage && !it.strengths.is_empty()) {
+        if it.cuts > 0 || it.scaled || (stage && !it.strengths.is_empty()) {
             let _ = writeln!(s, "\n{}", cut_sentence(it, stage));
         }
         *s += &super::unsettled::report(&run.model, c);
@@ -311,7 +311,8 @@ fn load_steps(s: &mut String, run: &Run) {
 }
 
 /// What cutting did in a load step, or in an initial stage (`stage`)
-/// that did not converge: its load halved (`it.cuts` > 0), or where the
+/// that did not converge: its load halved (`it.cuts` > 0) or why it was
+/// not (`it.scaled`), or where the
 /// in-situ stress was beyond the joints' strength the pieces of the
 /// stage's strength ramp (`it.strengths`: the factors reached).
 fn cut_sentence(it: &crate::contact::Summary, stage: bool) -> String {
@@ -326,6 +327,9 @@ fn cut_sentence(it: &crate::contact::Summary, stage: bool) -> String {
     } else {
         ("load step did not converge whole", "the step")
     };
+    if it.scaled {
+        return format!("The {what} and was {} ([solver] max_cuts).", crate::contact::cutting::NOT_CUT);
+    }
     let ends: Vec<String> = it.pieces.iter().map(|&t| factor(Some(t))).collect();
     let mut s = format!(
         "The {what} and was cut {} time(s) ([solver] max_cuts); its pieces converged up to {} of {of}",
