@@ -195,7 +195,7 @@ STRESS_OPEN = blocks3d_unconfined_with_rigid_joints \
 	the_tunnel_meshed_coarser_away_from_the_opening_converges_without_cuts
 stress: deps deps-strace
 	$(CARGO) test --release --no-fail-fast --test stress --test transaction --test convergence \
-	  --test joint_sets --test corpus -- --ignored --nocapture $(addprefix --skip ,$(STRESS_OPEN))
+	  --test joint_sets --test corpus --test initial_stage -- --ignored --nocapture $(addprefix --skip ,$(STRESS_OPEN))
 
 stress-open: deps build
 	$(CARGO) test --release --no-fail-fast --test convergence --test corpus -- --ignored --nocapture \

@@ -126,6 +126,11 @@ pub enum Error {
         #[source]
         source: PlotError,
     },
+    /// An error of the run with joints that deform, `normal` and `shear`
+    /// on every contact, that a run whose rigid joints did not converge
+    /// fell back to (`[solver] rigid_fallback`; see [`Error::in_fallback`]).
+    #[error("{source} (in the run with joints that deform, normal_stiffness = {normal} and shear_stiffness = {shear} on every contact, that this run fell back to when its rigid joints did not converge; [solver] rigid_fallback = false stops with the rigid joints' last iterate instead)")]
+    InFallback { source: Box<Error>, normal: f64, shear: f64 },
     /// An error about the scene `scene` (see [`Error::in_scene`]),
     /// with the scene's file name in front.
     #[error("{}: {source}", scene.display())]
@@ -185,6 +190,7 @@ impl Error {
             | Error::Contact(_)
             | Error::Safety(_)
             | Error::NotFinite { .. }
+            | Error::InFallback { .. }
             | Error::Joint(_) => Error::InScene { scene: scene.to_path_buf(), source: Box::new(self) },
             e => e,
         }
@@ -194,8 +200,20 @@ impl Error {
     /// the variant a caller matches.
     pub fn without_scene(self) -> Error {
         match self {
-            Error::InScene { source, .. } => *source,
+            Error::InScene { source, .. } => source.without_scene(),
+            Error::InFallback { source, .. } => *source,
             e => e,
+        }
+    }
+
+    /// The error of the run with joints that deform, stiffness `k`, that
+    /// rigid joints which did not converge fell back to, saying so; a
+    /// step that does not converge says it itself
+    /// (`ContactError::NotConverged`'s `fell_back`).
+    pub fn in_fallback(self, k: crate::contact::law::Stiffness) -> Error {
+        match self {
+            Error::Contact(ref c) if matches!(**c, ContactError::NotConverged { .. }) => self,
+            e => Error::InFallback { source: Box::new(e), normal: k.normal, shear: k.shear },
         }
     }
 
@@ -239,6 +257,36 @@ mod tests {
     fn sent(e: &Error) -> Error {
         let bytes = bincode::serialize(&e.to_wire(2)).expect("encodes");
         bincode::deserialize::<Wire>(&bytes).expect("decodes").into()
+    }
+
+    #[test]
+    fn an_error_of_the_fallback_says_so_and_a_step_that_did_not_converge_keeps_its_own() {
+        let k = crate::contact::law::Stiffness { normal: 13880.0, shear: 1388.0 };
+        let at = At { step: Some(1), iteration: 22, states: [39, 329, 516] };
+        let held = ContactError::NotHeld { at, bodies: vec!["rock #9".into()], places: vec![None], apex: vec![] };
+        let e = Error::from(held.clone()).in_fallback(k).in_scene(Path::new("tunnel.toml"));
+        let text = e.to_string();
+        assert!(text.starts_with("tunnel.toml: body \"rock #9\" is held by nothing"), "{text}");
+        assert!(
+            text.contains("(in the run with joints that deform, normal_stiffness = 13880 and shear_stiffness = 1388 on every contact, that this run fell back to"),
+            "{text}"
+        );
+        assert!(matches!(e.without_scene(), Error::Contact(c) if *c == held));
+        let not_converged = ContactError::NotConverged {
+            step: Some(1),
+            iterations: 20,
+            cycled: false,
+            law_broken: false,
+            slipping_back: 0,
+            rigid_joints: None,
+            fell_back: true,
+            cuts: 0,
+            scaled: false,
+            rule: crate::scene::StateRule::Robust,
+            results: None,
+        };
+        let e = Error::from(not_converged.clone()).in_fallback(k);
+        assert!(matches!(e, Error::Contact(ref c) if **c == not_converged), "{e}");
     }
 
     #[test]

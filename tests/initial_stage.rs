@@ -443,6 +443,36 @@ fn at_k0_a_quarter_the_jointed_tunnel_finds_the_stage_where_the_sets_cross() {
     assert!(report.contains("strength brought down from 1.07"), "report.md says the ramp");
 }
 
+/// The same tunnel with the fallback on: step 1's rigid joints do not
+/// converge in 40 iterations, and with joints that deform the crown
+/// wedge falls. The run is refused and writes no results, and its message
+/// names the body and says it was the run with joints that deform, and
+/// their stiffness, that found it (the warning before it says why).
+#[test]
+#[ignore = "make stress: about 35 s"]
+fn a_fallback_that_finds_a_falling_block_says_it_was_the_fallback() {
+    let case = Case::new("stage-tunnel-k0-quarter-fallback");
+    case.write("tunnel.geo", TUNNEL_GEO);
+    case.write("tunnel.toml", &(quarter_on_rollers(TUNNEL) + "max_iterations = 40\nmax_cuts = 0\n"));
+    let o = case.cli(&["solve", "tunnel.toml", "--out", "out", "--quiet"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    let error = err.lines().find(|l| l.starts_with("error: ")).unwrap_or_else(|| panic!("an error line: {err}"));
+    common::cli::says(
+        error,
+        &[
+            "tunnel.toml: ",
+            "\"rock #9\"",
+            "(in the run with joints that deform, normal_stiffness = ",
+            "rigid_fallback = false",
+        ],
+    );
+    common::cli::says(&err, &["warning: rigid joints did not converge at load step 1 (40 iteration(s)"]);
+    for file in ["summary.json", "contact.csv", "report.md"] {
+        assert!(!case.dir.join("out").join(file).exists(), "a refused run writes no {file} (its mesh it keeps)");
+    }
+}
+
 /// `tunnel` at k0 = 0.25, its sides and base on rollers (x and z held).
 fn quarter_on_rollers(tunnel: &str) -> String {
     tunnel

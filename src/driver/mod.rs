@@ -137,7 +137,13 @@ fn solve(
     }
     // the rigid attempt's factors are gone: their pages back to the system
     crate::memory::give_back();
-    match attempt(scene, opts, comm, (mesh, msh, mesh_cached), timings, Try::Fallback(record), to)? {
+    let taken = scene.contacts.first().and_then(|c| c.stiffness);
+    let fell = attempt(scene, opts, comm, (mesh, msh, mesh_cached), timings, Try::Fallback(record), to);
+    let fell = fell.map_err(|e| match taken {
+        Some(k) => e.in_fallback(k),
+        None => e,
+    });
+    match fell? {
         Attempt::Ran(run) => Ok(run.map(|r| *r)),
         Attempt::Fell(..) => unreachable!("joints that deform do not fall back"),
     }
