@@ -32,6 +32,8 @@ use std::sync::Mutex;
 
 use nalgebra::{DMatrix, DVector};
 
+use super::pressure::largest_eigenvalue;
+
 /// How far a junction's last solve's locked pressures were from a fixed
 /// point ([`settle`]'s third value where beyond [`CLOSE`], else 0).
 #[derive(Default)]
@@ -115,8 +117,9 @@ fn newton(at: &impl Fn(&[f64]) -> Round, mut p: Vec<f64>, scale: f64) -> Option<
         }
         // where P does not contract, its fixed point is not the one the
         // rounds approach (a wedge's, at a pressure that grows each round);
-        // nor is there one to find by differences that are not finite
-        if jac.iter().any(|x| !x.is_finite()) || jac.complex_eigenvalues().iter().any(|e| e.norm() >= 1.0) {
+        // nor is there one to find by differences that are not finite, or
+        // where its Jacobian's eigenvalues could not be found
+        if jac.iter().any(|x| !x.is_finite()) || largest_eigenvalue(&jac).is_none_or(|r| r >= 1.0) {
             return None;
         }
         let res = residual(next, &p);

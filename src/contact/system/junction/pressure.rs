@@ -120,7 +120,7 @@ impl Pressure {
 
 /// The largest modulus of `m`'s eigenvalues, or `||m||_inf`, which bounds
 /// it, where that is below [`GAIN`] already (no eigenvalues needed); NaN
-/// where `m` is not finite.
+/// where `m` is not finite or its eigenvalues were not found.
 fn spectral_radius(m: &DMatrix<f64>) -> f64 {
     if !m.iter().all(|v| v.is_finite()) {
         return f64::NAN;
@@ -129,7 +129,22 @@ fn spectral_radius(m: &DMatrix<f64>) -> f64 {
     if bound <= GAIN {
         return bound;
     }
-    m.clone().complex_eigenvalues().iter().map(|z| z.norm()).fold(0.0, f64::max)
+    largest_eigenvalue(m).unwrap_or(f64::NAN)
+}
+
+/// QR sweeps per eigenvalue that the Schur decomposition is given.
+/// LAPACK's dhseqr gives 30; nalgebra's `complex_eigenvalues` gives no
+/// bound, and on some matrices it never ends (nalgebra issues #611,
+/// #764, #1528): a safety search on a 3D rock slope (docs/convergence.md)
+/// hung in it for 20 minutes inside one junction's pressures.
+const SWEEPS_PER_EIGENVALUE: usize = 30;
+
+/// The largest modulus of the eigenvalues of `m` (finite, square), by a
+/// Schur decomposition of bounded work; None where it did not converge.
+pub(super) fn largest_eigenvalue(m: &DMatrix<f64>) -> Option<f64> {
+    let sweeps = SWEEPS_PER_EIGENVALUE * m.nrows().max(1);
+    let schur = nalgebra::Schur::try_new(m.clone(), f64::EPSILON, sweeps)?;
+    Some(schur.complex_eigenvalues().iter().map(|z| z.norm()).fold(0.0, f64::max))
 }
 
 /// Whether the share `lambda` of `split`'s rows is not the least-norm one
@@ -169,5 +184,36 @@ mod tests {
         assert_eq!(spectral_radius(&m), 0.5);
         let m = DMatrix::from_row_slice(1, 1, &[f64::NAN]);
         assert!(spectral_radius(&m).is_nan());
+    }
+}
+
+#[cfg(test)]
+mod eigen_tests {
+    use super::*;
+
+    /// nalgebra issue #611: the companion matrix of x^10 - 1.7748 (its
+    /// eigenvalues the ten roots, of modulus 1.7748^(1/10) = 1.0590), on
+    /// which nalgebra 0.33's `complex_eigenvalues` loops for ever
+    /// (measured: no answer in two minutes).
+    fn companion() -> DMatrix<f64> {
+        let mut m = DMatrix::zeros(10, 10);
+        m[(0, 9)] = 1.7748092111017977;
+        for i in 1..10 {
+            m[(i, i - 1)] = 1.0;
+        }
+        m
+    }
+
+    #[test]
+    fn eigenvalues_a_schur_decomposition_does_not_find_end_in_none() {
+        let (tx, rx) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let _ = tx.send((largest_eigenvalue(&companion()), spectral_radius(&companion())));
+        });
+        let (r, radius) = rx.recv_timeout(std::time::Duration::from_secs(20)).expect("the eigenvalues end");
+        let exact = 1.7748092111017977f64.powf(0.1);
+        assert!(r.is_none_or(|r| (r - exact).abs() < 1e-9), "{r:?}");
+        // (a radius not found is beyond the gain, as one not finite)
+        assert!(if r.is_none() { radius.is_nan() } else { radius == r.unwrap_or(0.0) }, "{radius}");
     }
 }
