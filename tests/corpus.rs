@@ -269,6 +269,28 @@ fn cavern3d_two_oblique_sets_full_tensor_stress() {
     }
 }
 
+/// The 3D rock slope: a 20 m face at 60 degrees above a 10 m floor, 30 m
+/// along strike (the profile's area times 30 m of rock); the supports
+/// carry its weight and nothing sideways. Its wedges plunge steeper than
+/// their friction angle and hold by cohesion (0.1 MPa; with 0.05 a block
+/// at the crest comes loose: tests/corpus/slope3d.toml).
+#[test]
+#[ignore = "make stress: about 15 s"]
+fn slope3d_wedges_held_by_cohesion() {
+    let solved = solve(&Scene { toml: "slope3d.toml", geo: "slope3d.geo", element: "tet10" });
+    let s = &solved.summary;
+    assert_converges("slope3d", s, MAX_ITERATIONS_PER_STEP);
+    assert_eq!(per_step(s).len(), 2, "slope3d: gravity in two load steps");
+    let face = 20.0 / 60f64.to_radians().tan();
+    let profile = 40.0 * 10.0 + 20.0 * 30.0 - 0.5 * 20.0 * face;
+    let weight = ROCK * G * profile * 30.0;
+    let r = total_reaction(s);
+    close("slope3d: vertical reaction", r[2], weight, 1e-6);
+    assert!(r[0].hypot(r[1]) <= 1e-6 * weight, "slope3d: horizontal reaction {r:?} of the weight {weight}");
+    let slip = s["contact"]["states"]["slip"].as_u64().expect("slip");
+    assert!(slip > 100, "slope3d: the wedges' joints slip in part: {slip} pairs");
+}
+
 /// The block mass: the ground (and the rollers, where the variant has
 /// them) carries the rock's weight and the earthquake's kh = 0.1 of it
 /// along x (the slab weighs nothing).
