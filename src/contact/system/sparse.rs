@@ -681,7 +681,9 @@ impl Sparse {
             }
         }
         for (xs, _) in with {
-            xs[1..].iter().for_each(|&x| sets.join(xs[0], x));
+            if let Some((&first, rest)) = xs.split_first() {
+                rest.iter().for_each(|&x| sets.join(first, x));
+            }
         }
         (0..n).map(|v| sets.root(v)).collect()
     }
@@ -1084,6 +1086,11 @@ fn springs(fr: &Freedom, off: usize, positive: bool) -> Vec<(Vec<usize>, Vec<f64
     for jb in &fr.junctions {
         let dofs: Vec<usize> = jb.cols.clone().map(|c| off + c).collect();
         let m = dofs.len();
+        if m == 0 {
+            // (a junction whose every row is tied has no springs: the
+            // fallback of a 3D slope's step 3 met one, docs/corpus.md)
+            continue;
+        }
         let kz = if positive { positive_part(&jb.kz) } else { jb.kz.clone() };
         out.push((dofs, (0..m * m).map(|e| kz[(e / m, e % m)]).collect()));
     }
@@ -1092,11 +1099,29 @@ fn springs(fr: &Freedom, off: usize, positive: bool) -> Vec<(Vec<usize>, Vec<f64
 
 /// The symmetric part of `k` with its negative eigenvalues dropped: the
 /// nearest positive semi-definite matrix to it (in the Frobenius norm).
+/// An empty `k` (a junction whose rows are all tied) is its own: nalgebra
+/// panics on it ("Unable to compute the symmetric tridiagonal
+/// decomposition of an empty matrix", the fallback of a 3D slope's step 3:
+/// docs/corpus.md). Where the eigen-decomposition does not converge in
+/// [`SWEEPS_PER_EIGENVALUE`] sweeps per eigenvalue (nalgebra's own has no
+/// bound), the diagonal's positive part.
 fn positive_part(k: &nalgebra::DMatrix<f64>) -> nalgebra::DMatrix<f64> {
-    let e = ((k + k.transpose()) * 0.5).symmetric_eigen();
-    let kept = e.eigenvalues.map(|l| l.max(0.0));
-    &e.eigenvectors * nalgebra::DMatrix::from_diagonal(&kept) * e.eigenvectors.transpose()
+    if k.is_empty() {
+        return k.clone();
+    }
+    let sym = (k + k.transpose()) * 0.5;
+    let sweeps = SWEEPS_PER_EIGENVALUE * k.nrows();
+    match nalgebra::SymmetricEigen::try_new(sym.clone(), f64::EPSILON, sweeps) {
+        Some(e) => {
+            let kept = e.eigenvalues.map(|l| l.max(0.0));
+            &e.eigenvectors * nalgebra::DMatrix::from_diagonal(&kept) * e.eigenvectors.transpose()
+        }
+        None => nalgebra::DMatrix::from_diagonal(&sym.diagonal().map(|d| d.max(0.0))),
+    }
 }
+
+/// QR sweeps per eigenvalue an eigen-decomposition is given (LAPACK's 30).
+const SWEEPS_PER_EIGENVALUE: usize = 30;
 
 /// The lower triangle of an `n x n` symmetric matrix from (row >= col,
 /// col, value) entries, repeated ones summed; every diagonal entry present.
@@ -1277,6 +1302,12 @@ mod tests {
     /// positive definite block unchanged; an unsymmetric, indefinite one
     /// (a slipping junction's friction rows) symmetrised with its negative
     /// eigenvalue dropped.
+    #[test]
+    fn an_empty_junction_block_is_its_own_positive_part() {
+        let empty = nalgebra::DMatrix::<f64>::zeros(0, 0);
+        assert_eq!(positive_part(&empty).shape(), (0, 0));
+    }
+
     #[test]
     fn a_junctions_springs_keep_only_their_positive_part() {
         let spd = nalgebra::DMatrix::from_row_slice(2, 2, &[4.0, 1.0, 1.0, 3.0]);
