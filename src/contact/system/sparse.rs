@@ -69,6 +69,7 @@ use super::coords::{add_clique, fixed_load, for_each_load, localise, CliqueScrat
 use super::freedom::Freedom;
 use super::gmres;
 use super::iterative::{tolerance, LastStates};
+use super::junction::pressure::SWEEPS_PER_EIGENVALUE;
 use super::layout::Layout;
 use super::own::Own;
 use super::reduce::{combine, NotHeld};
@@ -1104,7 +1105,7 @@ fn springs(fr: &Freedom, off: usize, positive: bool) -> Vec<(Vec<usize>, Vec<f64
 /// decomposition of an empty matrix", the fallback of a 3D slope's step 3:
 /// docs/corpus.md). Where the eigen-decomposition does not converge in
 /// [`SWEEPS_PER_EIGENVALUE`] sweeps per eigenvalue (nalgebra's own has no
-/// bound), the diagonal's positive part.
+/// bound, as the Schur one's), the diagonal's positive part.
 fn positive_part(k: &nalgebra::DMatrix<f64>) -> nalgebra::DMatrix<f64> {
     if k.is_empty() {
         return k.clone();
@@ -1119,9 +1120,6 @@ fn positive_part(k: &nalgebra::DMatrix<f64>) -> nalgebra::DMatrix<f64> {
         None => nalgebra::DMatrix::from_diagonal(&sym.diagonal().map(|d| d.max(0.0))),
     }
 }
-
-/// QR sweeps per eigenvalue an eigen-decomposition is given (LAPACK's 30).
-const SWEEPS_PER_EIGENVALUE: usize = 30;
 
 /// The lower triangle of an `n x n` symmetric matrix from (row >= col,
 /// col, value) entries, repeated ones summed; every diagonal entry present.

@@ -135,9 +135,9 @@ fn spectral_radius(m: &DMatrix<f64>) -> f64 {
 /// QR sweeps per eigenvalue that the Schur decomposition is given.
 /// LAPACK's dhseqr gives 30; nalgebra's `complex_eigenvalues` gives no
 /// bound, and on some matrices it never ends (nalgebra issues #611,
-/// #764, #1528): a safety search on a 3D rock slope (docs/convergence.md)
-/// hung in it for 20 minutes inside one junction's pressures.
-const SWEEPS_PER_EIGENVALUE: usize = 30;
+/// #764, #1528): a safety search on a 3D rock slope (docs/corpus.md)
+/// hung in it for 20 minutes inside one junction's fixed point.
+pub(crate) const SWEEPS_PER_EIGENVALUE: usize = 30;
 
 /// The largest modulus of the eigenvalues of `m` (finite, square), by a
 /// Schur decomposition of bounded work; None where it did not converge.
@@ -185,11 +185,6 @@ mod tests {
         let m = DMatrix::from_row_slice(1, 1, &[f64::NAN]);
         assert!(spectral_radius(&m).is_nan());
     }
-}
-
-#[cfg(test)]
-mod eigen_tests {
-    use super::*;
 
     /// nalgebra issue #611: the companion matrix of x^10 - 1.7748 (its
     /// eigenvalues the ten roots, of modulus 1.7748^(1/10) = 1.0590), on
