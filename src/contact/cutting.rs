@@ -82,9 +82,6 @@ pub fn iterate_cutting(
     }
 }
 
-/// Why a step that [`scales`] was not cut, as the run says it.
-pub const NOT_CUT: &str = "not cut: it starts from no load, on joints of friction alone (no cohesion, tensile strength or water), so a half of it is the same problem at half the load and repeats its iterations";
-
 /// Whether the piece that starts at the load factors `start` is the same
 /// problem at any size of its load: it starts from no load, with nothing
 /// carried over in force or displacement in `h` (its states and cracks

@@ -156,7 +156,7 @@ pub fn said(f: &Fallback) -> String {
         "rigid joints did not converge at {at} ({} iteration(s){}, {how}{law}; {:.1} s{close}), so the scene is solved again with joints that deform, and its results are theirs: normal_stiffness = {} and shear_stiffness = {} on every contact (k_n = {STIFFER} E / s, E = {} the softest body's modulus, s = {} the mean block size: the joints add a tenth to the rock mass's compliance). Where rigid joints cross near a free face the law can have no state set that keeps it (docs/convergence.md). Give the joints your own stiffness, or [solver] rigid_fallback = false to stop with the rigid joints' last iterate",
         f.iterations,
         match (f.cuts, f.scaled) {
-            (0, true) => format!(", {}", crate::contact::cutting::NOT_CUT),
+            (0, true) => format!(", {}", super::messages::NOT_CUT),
             (0, false) => String::new(),
             (n, _) => format!(" and {n} cut(s)"),
         },

@@ -20,6 +20,10 @@ use crate::results::state_counts;
 use crate::scene::Scene;
 use crate::substructure::Part;
 
+/// Why a step that is the same problem at any load
+/// ([`crate::contact::cutting::scales`]) was not cut, as the run says it.
+pub const NOT_CUT: &str = "not cut: it starts from no load, on joints of friction alone (no cohesion, tensile strength or water), so a half of it is the same problem at half the load and repeats its iterations";
+
 /// Where in a run a contact iteration failed.
 #[derive(Clone, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct At {
@@ -359,7 +363,7 @@ impl ContactError {
             write!(f, " with joints that deform, which the run gave every contact when its rigid joints did not converge either (report.md says the stiffness; [solver] rigid_fallback)")?;
         }
         match (cuts, step) {
-            (0, _) if *scaled => write!(f, ", {} ([solver] max_cuts)", crate::contact::cutting::NOT_CUT)?,
+            (0, _) if *scaled => write!(f, ", {} ([solver] max_cuts)", NOT_CUT)?,
             (0, _) => {}
             (_, Some(0)) => write!(f, ", the stage cut {cuts} time(s) in halves (its load, or where the in-situ stress is beyond the joints' strength, the pieces that strength is brought down in; [solver] max_cuts)")?,
             _ => write!(f, ", the step cut {cuts} time(s) in halves ([solver] max_cuts)")?,

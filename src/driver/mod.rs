@@ -41,7 +41,7 @@ mod warnings;
 
 pub use fallback::said as fallback_said;
 pub use meshing::{gmsh_job, load_mesh, mesh_into};
-pub use messages::{Apex, At, ContactError, PlanError, SafetyError};
+pub use messages::{Apex, At, ContactError, PlanError, SafetyError, NOT_CUT};
 pub use plan::{preview, Memory, Preview};
 use progress::{progress, say};
 pub use run_options::RunOptions;

@@ -328,7 +328,7 @@ fn cut_sentence(it: &crate::contact::Summary, stage: bool) -> String {
         ("load step did not converge whole", "the step")
     };
     if it.scaled {
-        return format!("The {what} and was {} ([solver] max_cuts).", crate::contact::cutting::NOT_CUT);
+        return format!("The {what} and was {} ([solver] max_cuts).", crate::driver::NOT_CUT);
     }
     let ends: Vec<String> = it.pieces.iter().map(|&t| factor(Some(t))).collect();
     let mut s = format!(
