@@ -100,3 +100,69 @@ fn uniform_initial_stress_with_boundary_tractions_stays_uniform() {
         assert!((s.stress[0] - (-2.0 + 0.3 / 0.7)).abs() < 1e-9, "sigma_xx {}", s.stress[0]);
     }
 }
+
+/// The same box as OpenCASCADE builds it, cut by two joints that cross
+/// inside it and end on its rollers (`[[joint_sets]]`, one trace each).
+const JOINTED: &str = r#"SetFactory("OpenCASCADE");
+Rectangle(1) = {0, 0, 0, 10, 8};
+e = 1e-3;
+Physical Surface("ground") = {1};
+Physical Curve("bottom") = Curve In BoundingBox{-e, -e, -e, 10 + e, e, e};
+Physical Curve("top") = Curve In BoundingBox{-e, 8 - e, -e, 10 + e, 8 + e, e};
+Physical Curve("sides") = Curve In BoundingBox{-e, -e, -e, e, 8 + e, e};
+Physical Curve("sides") += Curve In BoundingBox{10 - e, -e, -e, 10 + e, 8 + e, e};
+MeshSize{ PointsOf{ Surface{1}; } } = 1.0;
+"#;
+
+/// Geostatic stress in a box of rollers cut by two rigid joints that
+/// cross: nothing moves, so every pair carries the in-situ traction
+/// `σ0 n` where it is, exactly. Where a joint meets a roller, the support
+/// and the joint's ties hold the same nodes, and rigid ties alone leave
+/// their shares undetermined: the joint's is taken from what it carries
+/// in situ (the limit of stiff joints, which carry it from the start).
+/// Shared from nothing, the joint carried 0.137 of the 0.146 MPa at the
+/// left roller (pair 0), 17 % of the rest going to the support.
+#[test]
+fn joints_in_a_geostatic_box_carry_the_in_situ_traction_to_the_rollers() {
+    let case = Case::new("initial-jointed");
+    case.write("box.geo", JOINTED);
+    let (k0, rho_g, top) = (0.5, 2.7e-3 * 9.81, 8.0);
+    let set = |name: &str, angle: f64, offset: f64| {
+        format!("[[joint_sets]]\nname = \"{name}\"\nangle = {angle:?}\nspacing = 100.0\noffset = {offset:?}\nfriction = 0.9\n")
+    };
+    let toml = format!(
+        "mesh = \"box.geo\"\nanalysis = \"plane_strain\"\ngravity = [0.0, -9.81]\n[gmsh]\norder = 2\n\
+         [materials.rock]\nE = 5000.0\nnu = 0.25\ndensity = 2.7e-3\n\
+         [[bodies]]\ngroup = \"ground\"\nmaterial = \"rock\"\nk0 = {k0:?}\nsurface = {top:?}\n\
+         {}{}[[supports]]\ngroup = \"sides\"\nfix = [\"x\"]\n[[supports]]\ngroup = \"bottom\"\nfix = [\"y\"]\n",
+        set("a", 20.0, 2.0),
+        set("b", 100.0, -5.0),
+    );
+    case.write("box.toml", &toml);
+    let o = case.cli(&["solve", "box.toml", "--out", "out", "--quiet"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let rows = common::csv_rows(&case.dir.join("out/contact.csv"));
+    let on_rollers = rows.iter().filter(|r| {
+        let (x, y) = (common::csv_num(r, "x"), common::csv_num(r, "y"));
+        x.abs() < 1e-9 || (x - 10.0).abs() < 1e-9 || y.abs() < 1e-9
+    });
+    assert!(on_rollers.count() >= 3, "both joints end on rollers");
+    for r in &rows {
+        let num = |k: &str| common::csv_num(r, k);
+        let sv = -rho_g * (top - num("y"));
+        let (nx, ny) = (num("n_x"), num("n_y"));
+        let t = [k0 * sv * nx, sv * ny];
+        let (sigma_n, tau) = (t[0] * nx + t[1] * ny, t[1] * nx - t[0] * ny);
+        assert_eq!(r["status"], "2", "pair {} sticks", r["pair"]);
+        let off = (num("sigma_n") - sigma_n).abs().max((num("tau_t").abs() - tau.abs()).abs());
+        assert!(
+            off < 1e-9 * rho_g * top,
+            "pair {} at ({}, {}): sigma_n {} tau {} against {sigma_n}, {tau}",
+            r["pair"],
+            r["x"],
+            r["y"],
+            r["sigma_n"],
+            r["tau_t"]
+        );
+    }
+}

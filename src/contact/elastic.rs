@@ -101,12 +101,22 @@ pub fn stiffness(laws: &[PairLaw]) -> Option<Vec<Stiffness>> {
 /// stress's): `r0 = -K⁻¹ λ0`, λ0 the traction in the pair's axes times
 /// its area.
 pub fn unloaded(problem: &InterfaceProblem, stiffness: &[Stiffness], traction: &[[f64; 3]]) -> Vec<[f64; 3]> {
-    (0..stiffness.len())
-        .map(|p| {
-            let area = problem.area(p);
-            let k = springs(stiffness[p], area);
-            let frame = &problem.frames()[p];
-            std::array::from_fn(|a| -area * dot(frame[a], traction[p]) / k[a])
+    (insitu_forces(problem, traction).iter().enumerate())
+        .map(|(p, f)| {
+            let k = springs(stiffness[p], problem.area(p));
+            std::array::from_fn(|a| -f[a] / k[a])
+        })
+        .collect()
+}
+
+/// Each pair's force on body I under the in-situ `traction` (global axes,
+/// on body I) over its area, in its local axes: what a joint carries
+/// before anything moves.
+pub fn insitu_forces(problem: &InterfaceProblem, traction: &[[f64; 3]]) -> Vec<[f64; 3]> {
+    (traction.iter().enumerate())
+        .map(|(p, t)| {
+            let (area, frame) = (problem.area(p), &problem.frames()[p]);
+            std::array::from_fn(|a| area * dot(frame[a], *t))
         })
         .collect()
 }

@@ -40,6 +40,12 @@ pub struct History {
     /// Where each pair's spring carries nothing, for joints that deform
     /// ([`super::elastic`]); empty for rigid ones.
     pub unloaded: Vec<[f64; 3]>,
+    /// Each pair's force under the in-situ stress alone at a unit factor of
+    /// load case `insitu_case` (local axes, on body I; empty without it):
+    /// what rigid ties carry before anything moves, where a junction's
+    /// share of its force starts from (see [`super::system::Relation::prior`]).
+    pub insitu: Vec<[f64; 3]>,
+    pub insitu_case: usize,
 }
 
 impl History {
@@ -58,6 +64,8 @@ impl History {
             dir: vec![[0.0; 3]; n],
             sigma_n: vec![0.0; n],
             unloaded: Vec::new(),
+            insitu: Vec::new(),
+            insitu_case: 0,
         }
     }
 }

@@ -77,7 +77,7 @@ pub fn iterate(
             iteration::run(elastic::Elastic::new(problem, laws, h), problem, laws, lambda, h, max_iterations)
         }
         StateRule::Robust => {
-            iteration::run(newton::Newton::new(problem, laws, h), problem, laws, lambda, h, max_iterations)
+            iteration::run(newton::Newton::new(problem, laws, h, lambda), problem, laws, lambda, h, max_iterations)
         }
         StateRule::Paper => {
             iteration::run(paper_rule::Paper::new(problem, laws), problem, laws, lambda, h, max_iterations)

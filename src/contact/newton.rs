@@ -142,6 +142,9 @@ pub(super) struct Newton<'p> {
     /// fallback for a stall or a cycle it does not end ([`super::cluster`]).
     breaking_from: Option<usize>,
     search: Search,
+    /// Each pair's in-situ force at this step's factor (empty without
+    /// one): where its junction's share starts from.
+    prior: Vec<[f64; 3]>,
 }
 
 /// Every pair's next state, and how far each changing pair is from its
@@ -156,7 +159,8 @@ struct Judged {
 }
 
 impl<'p> Newton<'p> {
-    pub fn new(problem: &'p InterfaceProblem<'p>, laws: &'p [PairLaw], h: &History) -> Newton<'p> {
+    pub fn new(problem: &'p InterfaceProblem<'p>, laws: &'p [PairLaw], h: &History, lambda: &[f64]) -> Newton<'p> {
+        let factor = lambda.get(h.insitu_case).copied().unwrap_or(0.0);
         let reference = h.rel_start.iter().map(|&r| tangential(r)).collect();
         Newton {
             problem,
@@ -176,6 +180,7 @@ impl<'p> Newton<'p> {
             overshoots: 0,
             breaking_from: None,
             search: Search::default(),
+            prior: h.insitu.iter().map(|f| f.map(|x| factor * x)).collect(),
         }
     }
 
@@ -242,6 +247,7 @@ impl<'p> Newton<'p> {
             pressure: pk,
             limit: Limit::NONE,
             elastic: false,
+            prior: [0.0; 3],
         }
     }
 
@@ -570,11 +576,9 @@ impl Rule for Newton<'_> {
         let lines = self.problem.slip_lines(&h.states);
         (0..self.laws.len())
             .map(|p| {
-                self.relation(h, p, lines[p]).within(limit(
-                    &law_at(h, self.laws, p),
-                    cracked(h, p),
-                    self.problem.area(p),
-                ))
+                let within = limit(&law_at(h, self.laws, p), cracked(h, p), self.problem.area(p));
+                let prior = self.prior.get(p).copied().unwrap_or([0.0; 3]);
+                self.relation(h, p, lines[p]).within(within).after(prior)
             })
             .collect()
     }

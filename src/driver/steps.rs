@@ -158,8 +158,13 @@ pub(super) fn run(this: &Step, parts: &Parts, opts: &RunOptions, ranks: &Ranks) 
 /// [`contact::iterate`] runs the rigid rule.
 pub(super) fn fresh_history(model: &Model, problem: Option<&InterfaceProblem>, laws: &[PairLaw]) -> History {
     let mut history = History::new(model.pairs.len());
-    if let (Some(problem), Some(stiffness)) = (problem, contact::elastic::stiffness(laws)) {
-        let traction = crate::model::insitu::tractions(model);
+    let Some(problem) = problem else { return history };
+    let traction = crate::model::insitu::tractions(model);
+    if traction.iter().any(|t| *t != [0.0; 3]) {
+        history.insitu = contact::elastic::insitu_forces(problem, &traction);
+        history.insitu_case = model.initial_case;
+    }
+    if let Some(stiffness) = contact::elastic::stiffness(laws) {
         history.unloaded = contact::elastic::unloaded(problem, &stiffness, &traction);
     }
     history

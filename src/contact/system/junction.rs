@@ -41,6 +41,16 @@
 //! Under a uniform stress with equal areas around a crossing the
 //! least-norm forces are the exact tractions `σ n A` of each face.
 //!
+//! Stiff joints carry the in-situ stress from the start, before anything
+//! moves, and share only what comes after it; so does a junction: its
+//! loops keep their part of the pairs' in-situ forces (`Relation::prior`,
+//! `N Nᵀ D⁻¹ λ0` in [`split`]) and share the rest least-norm. Where a joint
+//! meets a roller that holds its nodes, the support and the joint's ties
+//! are such a loop: shared from nothing, the joint gave most of its
+//! in-situ force to the support (tests/initial.rs: 0.137 of 0.146 MPa at a
+//! geostatic box's roller; 0.18 of 1.64 MPa at the 34k tunnel's base,
+//! docs/convergence.md), where the stiff joints' limit keeps it.
+//!
 //! A slipping pair's friction force along its free axes is its relation's
 //! `force + coupling p + spring rel` as elsewhere; its pressure p, one of
 //! the tied forces, is solved for with r, or taken from the last solve
@@ -142,6 +152,9 @@ pub struct Tied {
     split: Split,
     /// The area of each of the junction's pairs.
     areas: Vec<f64>,
+    /// What the tied rows carry in situ (`Relation::prior`): the loops
+    /// keep their part of it.
+    prior: DVector<f64>,
     /// The slipping pairs' pressures, solved for with r (see [`pressure`]);
     /// None where they are the last solve's (`Relation::pressure`, in `f`).
     pub pressure: Option<Pressure>,
@@ -503,6 +516,7 @@ impl Junction {
                 k: zero,
                 f: DVector::zeros(0),
                 split,
+                prior: self.prior_of(&rows, rel),
                 rows,
                 areas,
                 pressure: None,
@@ -542,8 +556,9 @@ impl Junction {
         // where the loops have carried part of a pressure, through the
         // tangent of the last solve's share if it tied the same rows; else
         // the last solve's pressures (see `pressure`)
+        let prior = self.prior_of(&rows, rel);
         let pressure = if !self.memo.looped() {
-            Pressure::new(coupled, per_pressure, &split, None)
+            Pressure::new(coupled, per_pressure, &split, Some(&Tangent::plain(&split, &prior)))
         } else {
             let tangent = self.memo.tangent(&rows).filter(|t| held || !t.plain);
             tangent.and_then(|t| Pressure::new(coupled, per_pressure, &split, Some(&t)))
@@ -555,7 +570,7 @@ impl Junction {
         });
         let springs: Vec<usize> = slipping.iter().copied().chain(springy).collect();
         self.add_springs(&springs, rel, pressure.is_some(), ramp, &mut k, &mut f);
-        Tied { z, r0, k, f, rows, split, areas, pressure }
+        Tied { z, r0, k, f, rows, split, areas, prior, pressure }
     }
 
     /// Adds the springs and forces of the junction's pairs `springs` (a
@@ -629,7 +644,7 @@ impl Junction {
         if locked.is_empty() {
             return out;
         }
-        let as_tied = self.forces_as_tied(tied, &out, &locked, g, &limits);
+        let as_tied = self.forces_as_tied(tied, rel, &out, &locked, g, &limits);
         for &(j, _) in &locked {
             out[j].2 = Some(as_tied[j]);
         }
@@ -673,7 +688,7 @@ impl Junction {
             _ => tied.f.clone(),
         };
         let mut carried = g - (&tied.k * r + friction);
-        let mut lambda = tied.split.forces(&carried, limits);
+        let mut lambda = tied.split.forces(&carried, limits, &tied.prior);
         let mut pressure: Vec<f64> = self.pairs.iter().map(|&p| rel[p].pressure).collect();
         if let (Some(pr), Some(p)) = (&tied.pressure, &pressures) {
             for (&j, &pj) in pr.pairs.iter().zip(p.iter()) {
@@ -698,7 +713,7 @@ impl Junction {
             }
         }
         let slipping = |j: usize| rel[self.pairs[j]].state == ContactState::Slip;
-        let looped = pressure::looped(&tied.split, &lambda, &tied.split.plain(&carried), slipping);
+        let looped = pressure::looped(&tied.split, &lambda, &tied.split.plain(&carried, &tied.prior), slipping);
         self.memo.set_looped(looped);
         // (a share that met no limit is the least-norm one: the next solve
         // with the same tied rows takes its pressures through it too, if
@@ -706,7 +721,7 @@ impl Junction {
         self.memo.set_tangent(if looped {
             Tangent::at(&tied.split, &carried, &lambda, limits)
         } else {
-            Some(Tangent::plain(&tied.split))
+            Some(Tangent::plain(&tied.split, &tied.prior))
         });
         let mut out: Vec<PairForces> = rels.iter().map(|&x| ([0.0; 3], x, None)).collect();
         for (&(j, dir), &l) in tied.rows.iter().zip(lambda.iter()) {
@@ -777,6 +792,11 @@ impl Junction {
         Some((within, dp))
     }
 
+    /// What `rows` carry in situ (the pairs' `prior` forces).
+    fn prior_of(&self, rows: &[Row], rel: &[Relation]) -> DVector<f64> {
+        DVector::from_iterator(rows.len(), rows.iter().map(|&(j, dir)| dot(rel[self.pairs[j]].prior, dir)))
+    }
+
     /// The free rows the ties lock (no part along Z): open pairs' normals,
     /// and slipping pairs' shear where they have not slipped (a slip the
     /// loop had locked elsewhere could not be tied back: their shear is
@@ -811,6 +831,7 @@ impl Junction {
     fn forces_as_tied(
         &self,
         tied: &Tied,
+        rel: &[Relation],
         out: &[PairForces],
         locked: &[Row],
         g: &DVector<f64>,
@@ -834,7 +855,8 @@ impl Junction {
             }
         }
         let c_rows: Vec<Vec<f64>> = rows.iter().map(|&row| self.c_row(row).0).collect();
-        let lambda = Split::new(&c_rows, &rows, &tied.areas, g.len()).forces(&carried, limits);
+        let prior = self.prior_of(&rows, rel);
+        let lambda = Split::new(&c_rows, &rows, &tied.areas, g.len()).forces(&carried, limits, &prior);
         let mut as_tied = kept;
         for (&(j, dir), &l) in rows.iter().zip(lambda.iter()) {
             for a in (0..nd).filter(|&a| dir[a] != 0.0) {
@@ -918,12 +940,12 @@ impl Junction {
         let scale = carried.amax().max(f64::MIN_POSITIVE);
         let at = |p: &[f64]| {
             let now = per.iter().zip(p).zip(&base).fold(carried.clone(), |acc, ((v, &pj), &b)| acc - v * (pj - b));
-            let lambda = tied.split.forces(&now, limits);
+            let lambda = tied.split.forces(&now, limits, &tied.prior);
             let next: Vec<f64> = normal.iter().map(|&i| (-lambda[i]).max(0.0)).collect();
             (now, lambda, next)
         };
         let Some((p, (now, lambda, _), off)) = fixed_point::settle(&at, p, scale) else {
-            let lambda = tied.split.forces(&carried, limits);
+            let lambda = tied.split.forces(&carried, limits, &tied.prior);
             return (carried, lambda);
         };
         self.off.set(if off > fixed_point::CLOSE * scale { off } else { 0.0 });

@@ -237,7 +237,8 @@ fn holders(model: &Model, parts: &[OperatorRef]) -> Holders {
 /// symmetry plane obliquely (`frame` turns n onto or off a supported axis
 /// only by a few degrees): its gap, its slip and its strength are then the
 /// joint's own, and what the rigid limit leaves undecided between the
-/// joint and the support is the junction's least-norm share within the
+/// joint and the support is the junction's least-norm share (about the
+/// joint's in-situ force, as every junction's: [`super::junction`]) within the
 /// joint's Coulomb cone.
 #[allow(clippy::type_complexity)]
 fn frames_and_fixed(model: &Model, held: &[Option<f64>]) -> (Vec<Frame>, Vec<Option<[[Option<f64>; 3]; 2]>>) {

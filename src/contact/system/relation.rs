@@ -30,6 +30,9 @@ pub struct Relation {
     /// friction follows its normal spring through `spring`'s t / b rows'
     /// normal column).
     pub elastic: bool,
+    /// Its force under the in-situ stress (local axes; zero without one):
+    /// a junction's loops keep their part of it (see [`super::junction`]).
+    pub prior: [f64; 3],
 }
 
 /// What a pair can carry in force, `λ_n <= tension` and `|λ_T| <= cohesion
@@ -60,6 +63,7 @@ impl Relation {
             pressure: 0.0,
             limit: Limit::NONE,
             elastic: false,
+            prior: [0.0; 3],
         }
     }
 
@@ -81,6 +85,11 @@ impl Relation {
     /// The same relation with what the pair can carry.
     pub fn within(self, limit: Limit) -> Relation {
         Relation { limit, ..self }
+    }
+
+    /// The same relation with its in-situ force.
+    pub fn after(self, prior: [f64; 3]) -> Relation {
+        Relation { prior, ..self }
     }
 
     pub fn free_axis(&self, a: usize) -> bool {

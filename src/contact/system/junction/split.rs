@@ -60,30 +60,44 @@ impl Split {
         Split { rows: rows.to_vec(), d, pinv, null }
     }
 
-    /// The least-norm share of `g`, whatever the limits.
-    pub(super) fn plain(&self, g: &DVector<f64>) -> DVector<f64> {
-        DVector::from_fn(self.rows.len(), |i, _| self.d[i] * (self.pinv.row(i) * g)[0])
+    /// The least-norm share of `g` about the loops' part of `prior`
+    /// (what the rows carry in situ: [`Split::loops_of`]), whatever the limits.
+    pub(super) fn plain(&self, g: &DVector<f64>, prior: &DVector<f64>) -> DVector<f64> {
+        let kept = self.loops_of(prior);
+        DVector::from_fn(self.rows.len(), |i, _| self.d[i] * ((self.pinv.row(i) * g)[0] + kept[i]))
     }
 
-    /// The forces of the rows: the least-norm share of `g`, or where that
+    /// The forces of the rows: the least-norm share of `g` (about the
+    /// loops' part of `prior`, as [`Split::plain`]), or where that
     /// breaks a pair's limit (tension beyond its strength, shear beyond its
     /// Coulomb bound for a stuck pair), the least-norm share within every
     /// limit, when the loops leave one.
-    pub(super) fn forces(&self, g: &DVector<f64>, limits: &[Limit]) -> DVector<f64> {
+    pub(super) fn forces(&self, g: &DVector<f64>, limits: &[Limit], prior: &DVector<f64>) -> DVector<f64> {
         // the forces brought near 1 (exactly, by a power of two) first: the
         // tolerances of `least_norm_point` add forces to lengths, so that
         // they are the same in every unit of force
         let s = to_one(g.as_slice());
         if s != 1.0 {
-            return self.forces(&(g * s), &scaled(limits, s)) / s;
+            return self.forces(&(g * s), &scaled(limits, s), &(prior * s)) / s;
         }
-        let nu0 = &self.pinv * g;
+        let nu0 = &self.pinv * g + self.loops_of(prior);
         let lambda = |s: &DVector<f64>| {
             DVector::from_fn(self.rows.len(), |i, _| self.d[i] * (nu0[i] + (self.null.row(i) * s)[0]))
         };
         // in s: a . D (nu0 + N s) <= b
         let row = |i: usize, c: f64| (self.null.row(i).transpose() * (c * self.d[i]), c * self.d[i] * nu0[i]);
         self.close_in(self.null.ncols(), &lambda, &row, limits)
+    }
+
+    /// The loops' part of the share `prior` (over the rows' ν = λ / sqrt(A)):
+    /// `N Nᵀ D⁻¹ prior`, what the loops keep of it (zero where `prior` is
+    /// empty or the rows have no loop).
+    pub(super) fn loops_of(&self, prior: &DVector<f64>) -> DVector<f64> {
+        if self.null.ncols() == 0 || prior.len() != self.rows.len() {
+            return DVector::zeros(self.rows.len());
+        }
+        let nu = DVector::from_fn(self.rows.len(), |i, _| prior[i] / self.d[i]);
+        &self.null * (self.null.transpose() * nu)
     }
 
     /// Whether the share `lambda` breaks a limit.

@@ -42,11 +42,14 @@ pub(super) struct Tangent {
 }
 
 impl Tangent {
-    /// The least-norm share's (no limit met): its rows of `split`'s pinv.
-    pub(super) fn plain(split: &Split) -> Tangent {
+    /// The least-norm share's (no limit met): its rows of `split`'s pinv,
+    /// offset by the loops' part of `prior`.
+    pub(super) fn plain(split: &Split, prior: &DVector<f64>) -> Tangent {
         let n_r = split.pinv.ncols();
         let j = DMatrix::<f64>::from_fn(split.rows.len(), n_r, |i, c| split.d[i] * split.pinv[(i, c)]);
-        Tangent { rows: split.rows.clone(), j, offset: DVector::zeros(split.rows.len()), plain: true }
+        let kept = split.loops_of(prior);
+        let offset = DVector::from_fn(split.rows.len(), |i, _| split.d[i] * kept[i]);
+        Tangent { rows: split.rows.clone(), j, offset, plain: true }
     }
 
     /// The share's derivative at `g`, where `split` shared it as `lambda`

@@ -96,6 +96,7 @@ fn a_slipping_pair_in_a_stuck_loop_is_locked_and_carries_its_friction() {
         pressure: 0.0,
         limit: Limit::NONE,
         elastic: false,
+        prior: [0.0; 3],
     };
     let tied = j.tie(&rel, 1.0, |_| 1.0);
     assert_eq!(tied.z.ncols(), 0);
@@ -134,6 +135,7 @@ fn a_slipping_pairs_friction_follows_the_pressure_the_loop_gives_it() {
         pressure: 9.0,
         limit: Limit::NONE,
         elastic: false,
+        prior: [0.0; 3],
     };
     let (sxx, syy, sxy) = (-3.0, -1.5, 0.7);
     let mut g = DVector::<f64>::zeros(6);
@@ -243,13 +245,15 @@ fn the_tangent_of_a_share_within_the_cones_predicts_its_change() {
     let rel: Vec<Relation> = stuck(2).into_iter().zip(limits).map(|(r, l)| r.within(l)).collect();
     let tied = j.tie(&rel, 1.0, |_| 1.0);
     let g = DVector::from_column_slice(&[0.0, -2.0 * 0.5f64.sqrt(), 0.3]);
-    let lambda = tied.split.forces(&g, &limits);
+    let lambda = tied.split.forces(&g, &limits, &DVector::zeros(0));
     let t = Tangent::at(&tied.split, &g, &lambda, &limits).expect("the share meets face 0's cone");
     assert!((&t.j * &g + &t.offset - &lambda).norm() < 1e-14, "the tangent passes through the share");
     let dg = DVector::from_column_slice(&[0.0, 0.0, 1e-4]);
-    let change = tied.split.forces(&(&g + &dg), &limits) - &lambda;
+    let change = tied.split.forces(&(&g + &dg), &limits, &DVector::zeros(0)) - &lambda;
     let by_tangent = (&change - &t.j * &dg).norm();
-    let by_plain = (&change - (tied.split.plain(&(&g + &dg)) - tied.split.plain(&g))).norm();
+    let by_plain = (&change
+        - (tied.split.plain(&(&g + &dg), &DVector::zeros(0)) - tied.split.plain(&g, &DVector::zeros(0))))
+    .norm();
     assert!(by_tangent < 1e-6 * change.norm(), "tangent off by {by_tangent:e} of {:e}", change.norm());
     assert!(by_plain > 0.5 * change.norm(), "the least-norm derivative is off by {by_plain:e}");
 }
@@ -369,6 +373,7 @@ fn roller_wedge(f: Frame, coupling: f64, pk: f64) -> (Junction, [Relation; 1]) {
         pressure: pk,
         limit,
         elastic: false,
+        prior: [0.0; 3],
     };
     (j, [slip])
 }
