@@ -200,7 +200,7 @@ pub fn report(run: &Run, r: Option<&super::resultants::Resultants>) -> String {
     } else {
         String::new()
     };
-    let _ = writeln!(s, "\n## Block faces\n\n{which} (a face pair: the part of a contact group between two blocks; every one in `faces.csv`), ranked by the largest mobilised friction away from supported nodes.{left} The same quantities in the face's mean frame, and the face's centre. Where a joint meets a support the support takes part of what its pairs would carry: a face's force is what its contact pairs carry, below what the joint transmits by the blocks' equilibrium on faces that touch a support (`supported_pairs` in faces.csv).\n");
+    let _ = writeln!(s, "\n## Block faces\n\n{which} (a face pair: the part of a contact group between two blocks; every one in `faces.csv`), ranked by the largest mobilised friction away from supported nodes.{left} The same quantities in the face's mean frame, and the face's centre. Where a joint meets a support the support takes part of what its pairs would carry (of what the loads add: the in-situ stress the joint keeps): a face's force is what its contact pairs carry, below what the joint transmits by the blocks' equilibrium on faces that touch a support (`supported_pairs` in faces.csv).\n");
     let _ = writeln!(s, "| contact | block I | block II | centre | area stick / slip / open | mean normal n | F | N | T | mobilised max (at) |");
     let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|");
     for f in most {
