@@ -5,7 +5,8 @@
 //! copies) slides only along its line and shares a stuck force within both
 //! Coulomb cones, whose change with the force its tangent predicts; a
 //! slipping joint wedged against a roller keeps finite forces; a
-//! crossing locks the diagonal through a corner and frees a joint.
+//! crossing locks the diagonal through a corner and frees a joint; a
+//! share about an in-situ prior that carries the load keeps it.
 
 use super::*;
 
@@ -21,6 +22,18 @@ fn crossing() -> (Vec<(usize, usize, Frame)>, Junction) {
     let j = Junction::new((0..4).collect(), |p| pairs[p], &[None; 8], 2, &mut nm, &mut nr);
     assert_eq!((nm, nr), (2, 6));
     (pairs, j)
+}
+
+/// What the crossing's four pairs carrying `force(p, a)` (local axes)
+/// put on its r: g over r = -(force on r from the bodies) = sum_p C_pᵀ λ_p.
+fn load(j: &Junction, force: impl Fn(usize, usize) -> f64) -> DVector<f64> {
+    let mut g = DVector::<f64>::zeros(6);
+    for p in 0..4 {
+        for a in 0..2 {
+            g += DVector::from_column_slice(&j.rows[p][a]) * force(p, a);
+        }
+    }
+    g
 }
 
 fn stuck(n: usize) -> Vec<Relation> {
@@ -64,13 +77,7 @@ fn least_norm_forces_are_the_face_tractions_under_uniform_stress() {
             [syy, -sxy]
         }
     };
-    // g over r = -(force on r from the bodies) = sum_p C_p^T λ_p
-    let mut g = DVector::<f64>::zeros(6);
-    for p in 0..4 {
-        for a in 0..2 {
-            g += DVector::from_column_slice(&j.rows[p][a]) * want(p)[a];
-        }
-    }
+    let g = load(&j, |p, a| want(p)[a]);
     let rel = stuck(4);
     let tied = j.tie(&rel, 1.0, |_| 1.0);
     let out = j.forces(&tied, &rel, &DVector::zeros(6), &g, 1.0);
@@ -79,6 +86,45 @@ fn least_norm_forces_are_the_face_tractions_under_uniform_stress() {
             assert!((out[p].0[a] - want(p)[a]).abs() < 1e-13, "pair {p} axis {a}: {} vs {}", out[p].0[a], want(p)[a]);
         }
     }
+}
+
+/// The same crossing whose pairs carry in situ the face tractions plus
+/// half a loop's self-equilibrated forces (what stiff joints loaded from
+/// the start would carry): the share of the same load about that prior
+/// is the prior, to round-off; the least-norm share from nothing is the
+/// tractions, the loop's forces given away.
+#[test]
+fn a_share_about_an_in_situ_prior_that_carries_the_load_keeps_it() {
+    let (pairs, j) = crossing();
+    let (sxx, syy, sxy) = (-3.0, -1.5, 0.7);
+    let want = |p: usize| -> [f64; 3] {
+        if pairs[p].2 == X {
+            [sxx, sxy, 0.0]
+        } else {
+            [syy, -sxy, 0.0]
+        }
+    };
+    let g = load(&j, |p, a| want(p)[a]);
+    let bare = stuck(4);
+    let tied = j.tie(&bare, 1.0, |_| 1.0);
+    assert_eq!(tied.split.null.ncols(), 2, "two loops");
+    let mut prior: Vec<[f64; 3]> = (0..4).map(want).collect();
+    for (i, &(p, dir)) in tied.rows.iter().enumerate() {
+        let a = dir.iter().position(|&x| x == 1.0).expect("a row along an axis");
+        prior[p][a] += 0.5 * tied.split.d[i] * tied.split.null[(i, 0)];
+    }
+    let rel: Vec<Relation> = bare.iter().zip(&prior).map(|(&r, &f)| r.after(f)).collect();
+    let out = j.forces(&j.tie(&rel, 1.0, |_| 1.0), &rel, &DVector::zeros(6), &g, 1.0);
+    let from_nothing = j.forces(&tied, &bare, &DVector::zeros(6), &g, 1.0);
+    let mut moved: f64 = 0.0;
+    for p in 0..4 {
+        for a in 0..2 {
+            assert!((out[p].0[a] - prior[p][a]).abs() < 1e-13, "pair {p} axis {a}: {} vs {}", out[p].0[a], prior[p][a]);
+            assert!((from_nothing[p].0[a] - want(p)[a]).abs() < 1e-13, "from nothing, the tractions");
+            moved = moved.max((prior[p][a] - want(p)[a]).abs());
+        }
+    }
+    assert!(moved > 0.1, "the prior is not the least-norm share: {moved}");
 }
 
 /// One pair slipping in a stuck loop: the loop still locks its slip
