@@ -36,6 +36,19 @@ fn load(j: &Junction, force: impl Fn(usize, usize) -> f64) -> DVector<f64> {
     g
 }
 
+/// The traction on body I from body II (local axes) of pair `p` of the
+/// crossing under the uniform stress (sxx, syy, sxy) = (-3, -1.5, 0.7):
+/// an x face (n = +x) takes (sxx, sxy), a y face (n = +y, t = -x)
+/// (syy, -sxy).
+fn uniform_traction(pairs: &[(usize, usize, Frame)], p: usize) -> [f64; 3] {
+    let (sxx, syy, sxy) = (-3.0, -1.5, 0.7);
+    if pairs[p].2 == X {
+        [sxx, sxy, 0.0]
+    } else {
+        [syy, -sxy, 0.0]
+    }
+}
+
 fn stuck(n: usize) -> Vec<Relation> {
     (0..n).map(|_| Relation::simple(ContactState::Stick, [0.0; 3], [0.0; 3])).collect()
 }
@@ -68,15 +81,7 @@ fn a_crossing_locks_a_diagonal_and_frees_a_joint() {
 #[test]
 fn least_norm_forces_are_the_face_tractions_under_uniform_stress() {
     let (pairs, j) = crossing();
-    let (sxx, syy, sxy) = (-3.0, -1.5, 0.7);
-    // traction on body I from body II, local axes: t_x face (n = +x): (sxx, sxy); y face (n = +y): local n = y, t = -x
-    let want = |p: usize| -> [f64; 2] {
-        if pairs[p].2 == X {
-            [sxx, sxy]
-        } else {
-            [syy, -sxy]
-        }
-    };
+    let want = |p: usize| uniform_traction(&pairs, p);
     let g = load(&j, |p, a| want(p)[a]);
     let rel = stuck(4);
     let tied = j.tie(&rel, 1.0, |_| 1.0);
@@ -96,14 +101,7 @@ fn least_norm_forces_are_the_face_tractions_under_uniform_stress() {
 #[test]
 fn a_share_about_an_in_situ_prior_that_carries_the_load_keeps_it() {
     let (pairs, j) = crossing();
-    let (sxx, syy, sxy) = (-3.0, -1.5, 0.7);
-    let want = |p: usize| -> [f64; 3] {
-        if pairs[p].2 == X {
-            [sxx, sxy, 0.0]
-        } else {
-            [syy, -sxy, 0.0]
-        }
-    };
+    let want = |p: usize| uniform_traction(&pairs, p);
     let g = load(&j, |p, a| want(p)[a]);
     let bare = stuck(4);
     let tied = j.tie(&bare, 1.0, |_| 1.0);
