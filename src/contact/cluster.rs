@@ -147,7 +147,9 @@ impl Secant {
         // least ||f_k + sum_j beta_j (f_j - f_k)||, then x = g_k + sum_j beta_j (g_j - g_k)
         let a = DMatrix::from_fn(m, k, |i, j| f(j, i) - f(k, i));
         let b = DVector::from_fn(m, |i, _| -f(k, i));
-        let beta = a.clone().svd(true, true).solve(&b, 1e-12 * a.norm()).unwrap_or_else(|_| DVector::zeros(k));
+        let beta = (crate::fem::bounded::svd(a.clone(), true, true))
+            .and_then(|svd| svd.solve(&b, 1e-12 * a.norm()).ok())
+            .unwrap_or_else(|| DVector::zeros(k));
         self.x = (0..m)
             .map(|i| {
                 let x = self.gs[k][i] + (0..k).map(|j| beta[j] * (self.gs[j][i] - self.gs[k][i])).sum::<f64>();

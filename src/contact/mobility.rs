@@ -322,8 +322,10 @@ fn group_matrix(
 
 /// The unit vectors of a symmetric matrix's null space and negative side
 /// (eigenvalues below 1e-12 of the largest in magnitude).
+/// Empty where `m` does not decompose ([`crate::fem::bounded`]): no
+/// motion found.
 fn null_space(m: DMatrix<f64>) -> Vec<nalgebra::DVector<f64>> {
-    let eig = m.symmetric_eigen();
+    let Some(eig) = crate::fem::bounded::symmetric_eigen(m) else { return Vec::new() };
     let big = eig.eigenvalues.iter().fold(0.0f64, |a, &v| a.max(v.abs()));
     (eig.eigenvalues.iter().enumerate())
         .filter(|(_, &lambda)| !(lambda > 1e-12 * big && big > 0.0))
@@ -385,9 +387,10 @@ pub fn free_motion(parts: &[PartModes], ties: &[Tie], group: &[usize], load: &[[
     Some((0..group.len()).map(|i| std::array::from_fn(|a| if a < nm { v[i * nm + a] / big } else { 0.0 })).collect())
 }
 
-/// Whether a part's Gram matrix stops all its rigid motions.
+/// Whether a part's Gram matrix stops all its rigid motions (not where it
+/// does not decompose).
 fn full_rank(g: &DMatrix<f64>) -> bool {
-    let eig = g.clone().symmetric_eigen();
+    let Some(eig) = crate::fem::bounded::symmetric_eigen(g.clone()) else { return false };
     let big = eig.eigenvalues.iter().fold(0.0f64, |a, &v| a.max(v.abs()));
     big > 0.0 && eig.eigenvalues.iter().all(|&l| l > 1e-12 * big)
 }

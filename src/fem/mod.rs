@@ -4,6 +4,7 @@
 //! small 3-vector algebra they all use.
 
 pub mod analysis;
+pub mod bounded;
 pub mod element;
 pub mod material;
 pub mod quadrature;

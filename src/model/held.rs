@@ -66,7 +66,9 @@ pub(super) fn check_held(
         let supported =
             nodes.iter().flat_map(|&n| (0..nd).filter(move |&a| prescribed[n * nd + a].is_some()).map(move |a| (n, a)));
         let g = RigidModes::new(analysis, centre, size).gram_of_supports(coords, supported);
-        let eig = nalgebra::SymmetricEigen::new(g);
+        // (a Gram matrix that does not decompose, not finite, tells
+        // nothing of the body: the solve does)
+        let Some(eig) = crate::fem::bounded::symmetric_eigen(g) else { continue };
         let mut free: Vec<&str> = (0..names.len())
             .filter(|&k| eig.eigenvalues[k] < 1e-9)
             .map(|k| names[eig.eigenvectors.column(k).iamax()])

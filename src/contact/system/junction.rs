@@ -410,8 +410,11 @@ impl Junction {
     fn null_space(&self, c_rows: &[Vec<f64>]) -> (DMatrix<f64>, DMatrix<f64>) {
         let (m_t, n_r) = (c_rows.len(), self.r.len());
         let c_t = DMatrix::<f64>::from_fn(m_t.max(n_r), n_r, |i, c| if i < m_t { c_rows[i][c] } else { 0.0 });
-        // C_T = U S V^T: the null space is V's columns of zero singular values
-        let svd = c_t.svd(true, true);
+        // C_T = U S V^T: the null space is V's columns of zero singular
+        // values; rows that do not decompose (not finite) tie nothing
+        let Some(svd) = crate::fem::bounded::svd(c_t, true, true) else {
+            return (DMatrix::identity(n_r, n_r), DMatrix::zeros(n_r, m_t.max(n_r)));
+        };
         let (u, v_t) = (svd.u.expect("U"), svd.v_t.expect("V^T"));
         let smax = svd.singular_values.iter().copied().fold(0.0, f64::max);
         let rank_of = |s: f64| s > RANK_TOLERANCE * smax.max(f64::MIN_POSITIVE);
@@ -471,7 +474,7 @@ impl Junction {
                 let m = DMatrix::<f64>::from_fn(2, z.ncols(), |a, c| {
                     (0..self.r.len()).map(|i| self.rows[j][a + 1][i] * z[(i, c)]).sum()
                 });
-                let svd = m.svd(true, false);
+                let Some(svd) = crate::fem::bounded::svd(m, true, false) else { return Room::None };
                 let sv = &svd.singular_values;
                 match sv.iter().filter(|&&s| s > 1e-9 * scale).count() {
                     0 => Room::None,

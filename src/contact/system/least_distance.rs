@@ -93,7 +93,9 @@ fn nnls(e: &DMatrix<f64>, f: &DVector<f64>) -> DVector<f64> {
 fn solve_on(e: &DMatrix<f64>, f: &DVector<f64>, passive: &[bool]) -> DVector<f64> {
     let cols: Vec<usize> = (0..passive.len()).filter(|&j| passive[j]).collect();
     let ep = DMatrix::<f64>::from_fn(e.nrows(), cols.len(), |i, c| e[(i, cols[c])]);
-    let zp = ep.svd(true, true).solve(f, TOL).unwrap_or_else(|_| DVector::zeros(cols.len()));
+    let zp = (crate::fem::bounded::svd(ep, true, true))
+        .and_then(|svd| svd.solve(f, TOL).ok())
+        .unwrap_or_else(|| DVector::zeros(cols.len()));
     let mut z = DVector::<f64>::zeros(passive.len());
     for (c, &j) in cols.iter().enumerate() {
         z[j] = zp[c];

@@ -69,7 +69,6 @@ use super::coords::{add_clique, fixed_load, for_each_load, localise, CliqueScrat
 use super::freedom::Freedom;
 use super::gmres;
 use super::iterative::{tolerance, LastStates};
-use super::junction::pressure::SWEEPS_PER_EIGENVALUE;
 use super::layout::Layout;
 use super::own::Own;
 use super::reduce::{combine, NotHeld};
@@ -1103,16 +1102,14 @@ fn springs(fr: &Freedom, off: usize, positive: bool) -> Vec<(Vec<usize>, Vec<f64
 /// An empty `k` (a junction whose rows are all tied) is its own: nalgebra
 /// panics on it ("Unable to compute the symmetric tridiagonal
 /// decomposition of an empty matrix", the fallback of a 3D slope's step 3:
-/// docs/corpus.md). Where the eigen-decomposition does not converge in
-/// [`SWEEPS_PER_EIGENVALUE`] sweeps per eigenvalue (nalgebra's own has no
-/// bound, as the Schur one's), the diagonal's positive part.
+/// docs/corpus.md). Where the eigen-decomposition does not converge
+/// ([`crate::fem::bounded`]), the diagonal's positive part.
 fn positive_part(k: &nalgebra::DMatrix<f64>) -> nalgebra::DMatrix<f64> {
     if k.is_empty() {
         return k.clone();
     }
     let sym = (k + k.transpose()) * 0.5;
-    let sweeps = SWEEPS_PER_EIGENVALUE * k.nrows();
-    match nalgebra::SymmetricEigen::try_new(sym.clone(), f64::EPSILON, sweeps) {
+    match crate::fem::bounded::symmetric_eigen(sym.clone()) {
         Some(e) => {
             let kept = e.eigenvalues.map(|l| l.max(0.0));
             &e.eigenvectors * nalgebra::DMatrix::from_diagonal(&kept) * e.eigenvectors.transpose()

@@ -246,9 +246,11 @@ fn principal(model: &Model, nodes: &[usize], pair_of: &HashMap<usize, usize>) ->
             }
         }
     }
-    let eig = nalgebra::SymmetricEigen::new(cov);
-    let imax = eig.eigenvalues.iamax();
-    let mut dir = [eig.eigenvectors[(0, imax)], eig.eigenvectors[(1, imax)], eig.eigenvectors[(2, imax)]];
+    // (positions that do not decompose are drawn along x)
+    let mut dir = crate::fem::bounded::symmetric_eigen(cov).map_or([1.0, 0.0, 0.0], |eig| {
+        let imax = eig.eigenvalues.iamax();
+        [eig.eigenvectors[(0, imax)], eig.eigenvectors[(1, imax)], eig.eigenvectors[(2, imax)]]
+    });
     if dot(dir, [1.0, 1.0, 1.0]) < 0.0 {
         dir = dir.map(|v| -v);
     }

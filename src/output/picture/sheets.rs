@@ -461,20 +461,22 @@ fn curved(model: &Model, ii: usize, piece: Vec<usize>, geo: &[FacetGeometry], up
             }
         }
     }
-    let eig = nalgebra::SymmetricEigen::new(m);
-    let imin = eig.eigenvalues.imin();
     let iface = &model.interfaces[ii];
     let mut nodes: Vec<usize> = piece.iter().flat_map(|&f| iface.facets[f].nodes.iter().copied()).collect();
     nodes.sort_unstable();
     nodes.dedup();
-    if eig.eigenvalues[imin] <= 0.03 * total {
-        let a = snap(canonical(normalized([
-            eig.eigenvectors[(0, imin)],
-            eig.eigenvectors[(1, imin)],
-            eig.eigenvectors[(2, imin)],
-        ])));
-        if let Some(shape) = cylinder(model, &nodes, a, up) {
-            return Sheet { interface: ii, facets: piece, shape, set: 0 };
+    // (normals that do not decompose are no cylinder)
+    if let Some(eig) = crate::fem::bounded::symmetric_eigen(m) {
+        let imin = eig.eigenvalues.imin();
+        if eig.eigenvalues[imin] <= 0.03 * total {
+            let a = snap(canonical(normalized([
+                eig.eigenvectors[(0, imin)],
+                eig.eigenvectors[(1, imin)],
+                eig.eigenvectors[(2, imin)],
+            ])));
+            if let Some(shape) = cylinder(model, &nodes, a, up) {
+                return Sheet { interface: ii, facets: piece, shape, set: 0 };
+            }
         }
     }
     // the mean of body I's normals, as they are (a dome keeps one side)

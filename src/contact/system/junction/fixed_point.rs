@@ -32,7 +32,7 @@ use std::sync::Mutex;
 
 use nalgebra::{DMatrix, DVector};
 
-use super::pressure::largest_eigenvalue;
+use crate::fem::bounded::largest_eigenvalue;
 
 /// How far a junction's last solve's locked pressures were from a fixed
 /// point ([`settle`]'s third value where beyond [`CLOSE`], else 0).

@@ -44,6 +44,7 @@ use nalgebra::{DMatrix, DVector};
 use super::row::NORMAL;
 use super::split::Split;
 use super::tangent::Tangent;
+use crate::fem::bounded::largest_eigenvalue;
 
 /// A junction's friction in its slipping pairs' pressures.
 #[derive(Clone, Debug)]
@@ -130,21 +131,6 @@ fn spectral_radius(m: &DMatrix<f64>) -> f64 {
         return bound;
     }
     largest_eigenvalue(m).unwrap_or(f64::NAN)
-}
-
-/// QR sweeps per eigenvalue that the Schur decomposition is given.
-/// LAPACK's dhseqr gives 30; nalgebra's `complex_eigenvalues` gives no
-/// bound, and on some matrices it never ends (nalgebra issues #611,
-/// #764, #1528): a safety search on a 3D rock slope (docs/corpus.md)
-/// hung in it for 20 minutes inside one junction's fixed point.
-pub(crate) const SWEEPS_PER_EIGENVALUE: usize = 30;
-
-/// The largest modulus of the eigenvalues of `m` (finite, square), by a
-/// Schur decomposition of bounded work; None where it did not converge.
-pub(super) fn largest_eigenvalue(m: &DMatrix<f64>) -> Option<f64> {
-    let sweeps = SWEEPS_PER_EIGENVALUE * m.nrows().max(1);
-    let schur = nalgebra::Schur::try_new(m.clone(), f64::EPSILON, sweeps)?;
-    Some(schur.complex_eigenvalues().iter().map(|z| z.norm()).fold(0.0, f64::max))
 }
 
 /// Whether the share `lambda` of `split`'s rows is not the least-norm one

@@ -46,7 +46,10 @@ impl Split {
         // D C_T and, past the rank, the null space of C_T^T D
         let n = m_t.max(n_r);
         let dc = DMatrix::<f64>::from_fn(m_t, n, |i, c| if c < n_r { c_rows[i][c] * d[i] } else { 0.0 });
-        let svd = dc.svd(true, true);
+        // (rows that do not decompose, not finite: no share, every force a loop's)
+        let Some(svd) = crate::fem::bounded::svd(dc, true, true) else {
+            return Split { rows: rows.to_vec(), d, pinv: DMatrix::zeros(m_t, n_r), null: DMatrix::identity(m_t, m_t) };
+        };
         let (u, v_t) = (svd.u.expect("U"), svd.v_t.expect("V^T"));
         let sv = &svd.singular_values;
         let smax = sv.iter().copied().fold(0.0, f64::max);
