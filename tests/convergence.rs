@@ -92,12 +92,18 @@ fn a_step_that_still_does_not_converge_says_where_its_states_kept_changing() {
         "## Where the iteration did not settle",
         "| contact group | pairs that changed |",
         "| blocks | pairs that changed |",
+        "| block | pairs that changed on its faces | volume | supports it touches |",
         "| sigma_n | tau | law residual | at the last iteration |",
         "Stresses and the law residual in stress units, at the last iteration.",
     ] {
         assert!(report.contains(want), "report.md lacks {want:?}:\n{report}");
     }
     assert!(report.lines().count() < 150, "the report stays readable: {} lines", report.lines().count());
+    // the base's pairs changed: the rock under it is held at its bottom
+    // and sides, the dam's block on it by nothing but its joints
+    let row = |name: &str| report.lines().find(|l| l.starts_with(&format!("| \"{name}\" |"))).unwrap_or("");
+    assert!(row("rock").ends_with("| \"rock_bottom\" (x, y), \"rock_sides\" (x) |"), "{report}");
+    assert!(row("block_1").ends_with("| none |"), "{report}");
     let worst = base_law_residual(&rows);
     assert!(worst > 1e-6, "the unsettled base is off its law: {worst:e}");
     let reported = s["contact"]["law_residual"]["relative"].as_f64().expect("contact.law_residual");

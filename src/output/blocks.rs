@@ -67,6 +67,11 @@ struct Weights {
     centroid: [f64; 3],
 }
 
+/// Block `b`'s volume (its area times the thickness in plane analyses).
+pub fn volume(model: &Model, b: usize) -> f64 {
+    weights(model, b).volume
+}
+
 fn weights(model: &Model, b: usize) -> Weights {
     let nd = model.nd;
     let mut w = vec![0.0; model.n_nodes()];

@@ -86,6 +86,7 @@ pub fn report(model: &Model, c: &ContactRun) -> String {
     if by_blocks.len() > MOST_LISTED {
         let _ = writeln!(s, "| ({} more block pairs) | |", by_blocks.len() - MOST_LISTED);
     }
+    blocks_held(&mut s, model, &body, &moving);
     let mut worst = moving.clone();
     worst.sort_by(|&a, &b| changes[b].cmp(&changes[a]).then(a.cmp(&b)));
     let _ = writeln!(
@@ -118,6 +119,55 @@ pub fn report(model: &Model, c: &ContactRun) -> String {
         let _ = writeln!(s, "\n{AGAINST}");
     }
     s
+}
+
+/// report.md's table of the blocks whose faces hold the pairs that
+/// changed (of `body`, each node's): the pairs each holds, its volume
+/// and the supports it touches, with the axes they hold. A small block
+/// on a roller is held in the roller's plane by its joints alone: the
+/// 34k tunnel's cycle is a 1.9 m^3 wedge against its end roller, which
+/// converges with the ends clamped (docs/convergence.md).
+fn blocks_held(s: &mut String, model: &Model, body: &[usize], moving: &[usize]) {
+    let mut held: BTreeMap<usize, usize> = BTreeMap::new();
+    for &p in moving {
+        let pair = &model.pairs[p];
+        let (a, b) = (body[pair.k], body[pair.l]);
+        *held.entry(a).or_default() += 1;
+        if b != a {
+            *held.entry(b).or_default() += 1;
+        }
+    }
+    // each block's supports: group -> the axes held at one of its nodes
+    let mut on: BTreeMap<usize, BTreeMap<&str, [bool; 3]>> = BTreeMap::new();
+    for support in &model.supports {
+        for &dof in &support.dofs {
+            let b = body[dof / model.nd];
+            if held.contains_key(&b) {
+                on.entry(b).or_default().entry(&support.group).or_default()[dof % model.nd] = true;
+            }
+        }
+    }
+    let mut ranked: Vec<(usize, usize)> = held.into_iter().collect();
+    ranked.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
+    let _ =
+        writeln!(s, "\n| block | pairs that changed on its faces | volume | supports it touches |\n|---|---|---|---|");
+    for &(b, n) in ranked.iter().take(MOST_LISTED) {
+        let supports: Vec<String> = on.get(&b).map_or_else(Vec::new, |groups| {
+            groups
+                .iter()
+                .map(|(g, axes)| {
+                    let held: Vec<&str> = ["x", "y", "z"].into_iter().zip(axes).filter(|x| *x.1).map(|x| x.0).collect();
+                    format!("\"{g}\" ({})", held.join(", "))
+                })
+                .collect()
+        });
+        let supports = if supports.is_empty() { "none".to_string() } else { supports.join(", ") };
+        let volume = super::blocks::volume(model, b);
+        let _ = writeln!(s, "| {} | {n} | {volume:.4} | {supports} |", model.body_names(&[b]));
+    }
+    if ranked.len() > MOST_LISTED {
+        let _ = writeln!(s, "| ({} more blocks) | | | |", ranked.len() - MOST_LISTED);
+    }
 }
 
 /// What the table's last column means by a slip against its friction.
