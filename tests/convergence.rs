@@ -163,6 +163,20 @@ fn tunnel_through_joints(tag: &str, scene: &str) -> (u64, f64, bool) {
     (its, worst, fell)
 }
 
+/// One step of rigid joints alone: no cuts, 300 iterations, no fallback.
+const RIGID_ALONE: &str = "\n[solver]\nmax_cuts = 0\nmax_iterations = 300\nrigid_fallback = false\n";
+
+/// Asserts that the rigid joints of `scene` on `geo` converge, in at
+/// most `most` iterations, every pair within `law` of Coulomb's law
+/// (relative to the largest traction); the rows of its contact.csv.
+fn rigid_converges(tag: &str, geo: &str, scene: &str, most: u64, law: f64) -> Vec<Row> {
+    let (its, worst, fell, rows) = tunnel_rows(tag, geo, scene);
+    assert!(!fell, "the rigid joints converge");
+    assert!(its <= most, "{its} iterations");
+    assert!(worst < law, "law residual {worst:e}");
+    rows
+}
+
 /// [`tunnel_through_joints`] on the repository's `geo` (copied beside
 /// the scene), with the rows of its contact.csv.
 fn tunnel_rows(tag: &str, geo: &str, scene: &str) -> (u64, f64, bool, Vec<Row>) {
@@ -216,10 +230,7 @@ fn tunnel_34k() -> String {
 #[ignore = "make stress: about 40 s"]
 fn a_tunnel_through_three_oblique_joint_sets_converges_to_states_that_keep_the_law() {
     let scene = common::repo_text("tests/geo/tunnel3d_joints_coarse.toml");
-    let (its, worst, fell) = tunnel_through_joints("conv-tunnel3d", &scene);
-    assert!(!fell, "the rigid joints converge");
-    assert!(its <= 40, "{its} iterations");
-    assert!(worst < 1e-8, "law residual {worst:e}");
+    rigid_converges("conv-tunnel3d", "tests/geo/tunnel3d_joints.geo", &scene, 40, 1e-8);
 }
 
 /// The same tunnel meshed coarser away from the opening (lc_far 6: 34k
@@ -233,14 +244,8 @@ fn a_tunnel_through_three_oblique_joint_sets_converges_to_states_that_keep_the_l
 #[test]
 #[ignore = "issue 28: not converged since c6a9a60 (docs/convergence.md); make stress-open, 50 s"]
 fn the_tunnel_meshed_coarser_away_from_the_opening_converges_without_cuts() {
-    let coarser = tunnel_34k();
-    let (its, worst, fell) = tunnel_through_joints(
-        "conv-tunnel3d-34k",
-        &format!("{coarser}\n[solver]\nmax_cuts = 0\nmax_iterations = 300\nrigid_fallback = false\n"),
-    );
-    assert!(!fell);
-    assert!(its <= 50, "{its} iterations");
-    assert!(worst < 1e-7, "law residual {worst:e}");
+    let scene = format!("{}{RIGID_ALONE}", tunnel_34k());
+    rigid_converges("conv-tunnel3d-34k", "tests/geo/tunnel3d_joints.geo", &scene, 50, 1e-7);
 }
 
 /// The same 34k-DOF tunnel with joints that deform (k_n = 5,000 MPa/m,
@@ -355,11 +360,8 @@ fn the_34k_tunnel_with_its_ends_clamped_converges_with_rigid_joints() {
     let clamped =
         tunnel_34k().replacen("group = \"ends\"\nfix = [\"y\"]", "group = \"ends\"\nfix = [\"x\", \"y\", \"z\"]", 1);
     assert!(clamped.contains("fix = [\"x\", \"y\", \"z\"]"), "the edit applies");
-    let scene = format!("{clamped}\n[solver]\nmax_cuts = 0\nmax_iterations = 300\nrigid_fallback = false\n");
-    let (its, worst, fell) = tunnel_through_joints("conv-tunnel3d-34k-clamped", &scene);
-    assert!(!fell, "the rigid joints converge");
-    assert!(its <= 30, "{its} iterations");
-    assert!(worst < 1e-8, "law residual {worst:e}");
+    let scene = format!("{clamped}{RIGID_ALONE}");
+    rigid_converges("conv-tunnel3d-34k-clamped", "tests/geo/tunnel3d_joints.geo", &scene, 30, 1e-8);
 }
 
 /// Issue 28's speed case as written (docs/convergence/tunnel3d_86k.toml:
@@ -376,10 +378,7 @@ fn the_fine_tunnel_with_rigid_joints_converges_without_the_fallback() {
     let scene = common::repo_text("docs/convergence/tunnel3d_86k.toml");
     let scene = scene.replacen("mesh = \"../../geo/tunnel3d.geo\"", "mesh = \"tunnel3d.geo\"", 1);
     assert!(scene.contains("mesh = \"tunnel3d.geo\""), "the edit applies");
-    let (its, worst, fell, rows) = tunnel_rows("conv-tunnel3d-86k", "geo/tunnel3d.geo", &scene);
-    assert!(!fell, "the rigid joints converge");
-    assert!(its <= 30, "{its} iterations");
-    assert!(worst < 1e-8, "law residual {worst:e}");
+    let rows = rigid_converges("conv-tunnel3d-86k", "geo/tunnel3d.geo", &scene, 30, 1e-8);
     assert!(rows.len() > 13_000, "{} pairs", rows.len());
 }
 

@@ -39,15 +39,14 @@ impl Split {
     pub(super) fn new(c_rows: &[Vec<f64>], rows: &[Row], areas: &[f64], n_r: usize) -> Split {
         let m_t = rows.len();
         let d: Vec<f64> = rows.iter().map(|&(j, _)| areas[j].max(f64::MIN_POSITIVE).sqrt()).collect();
-        if m_t == 0 || n_r == 0 {
-            return Split { rows: rows.to_vec(), d, pinv: DMatrix::zeros(m_t, n_r), null: DMatrix::identity(m_t, m_t) };
-        }
         // (C_T^T D)^T = D C_T, padded to square: its U spans the range of
         // D C_T and, past the rank, the null space of C_T^T D
         let n = m_t.max(n_r);
         let dc = DMatrix::<f64>::from_fn(m_t, n, |i, c| if c < n_r { c_rows[i][c] * d[i] } else { 0.0 });
-        // (rows that do not decompose, not finite: no share, every force a loop's)
-        let Some(svd) = crate::fem::bounded::svd(dc, true, true) else {
+        // no rows, no r, or rows that do not decompose (not finite): no
+        // share, every force a loop's
+        let svd = (m_t > 0 && n_r > 0).then(|| crate::fem::bounded::svd(dc, true, true)).flatten();
+        let Some(svd) = svd else {
             return Split { rows: rows.to_vec(), d, pinv: DMatrix::zeros(m_t, n_r), null: DMatrix::identity(m_t, m_t) };
         };
         let (u, v_t) = (svd.u.expect("U"), svd.v_t.expect("V^T"));
