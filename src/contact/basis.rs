@@ -193,16 +193,9 @@ pub fn transform_matrix(s: &mut [f64], nc: usize, nd: usize, edges: &[[usize; 3]
             }
         }
     }
-    for &[m, c1, c2] in edges {
-        for c in 0..nd {
-            let (im, i1, i2) = (m * nd + c, c1 * nd + c, c2 * nd + c);
-            for j in 0..nc {
-                let v = s[im + j * nc];
-                s[i1 + j * nc] += a * v;
-                s[i2 + j * nc] += a * v;
-                s[im + j * nc] = (1.0 - 2.0 * a) * v;
-            }
-        }
+    // the rows column by column, as a load (along a row, a cache line an entry)
+    for column in s.chunks_exact_mut(nc.max(1)) {
+        transform_load(column, nd, edges);
     }
 }
 

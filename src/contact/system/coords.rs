@@ -123,8 +123,10 @@ pub fn number_pair(fx: &[[Option<f64>; 3]; 2], nd: usize, nm: &mut usize, nr: &m
 /// node blocks are rotated by `t[node]`.
 pub fn rotate_matrix(s: &mut [f64], nc: usize, nd: usize, t: &[Frame]) {
     let mut tmp = [0.0; 3];
-    for i in 0..nc {
-        for (q, tq) in t.iter().enumerate() {
+    // (a node's columns swept down together: row by row across all the
+    // columns read a cache line per entry)
+    for (q, tq) in t.iter().enumerate() {
+        for i in 0..nc {
             for a in 0..nd {
                 tmp[a] = (0..nd).map(|c| s[i + (q * nd + c) * nc] * tq[a][c]).sum();
             }
