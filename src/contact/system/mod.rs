@@ -50,6 +50,7 @@ pub mod junction;
 pub mod kind;
 mod layout;
 mod least_distance;
+mod means_whole;
 mod own;
 pub mod reduce;
 pub mod relation;

@@ -1,6 +1,7 @@
 //! A part's own stiffness, interior and interface, with its interface in
 //! the interface's basis: what the sides' factor ([`super::sides`]) takes
-//! where every pair deforms, in place of the part's dense S.
+//! where every pair deforms, and K_mm's factor ([`super::means_whole`])
+//! where pairs are tied, in place of the part's dense S.
 //!
 //! With the interface DOFs written `d_c = M d'` (M = Q T^T: the face basis
 //! and the pairs' frames, [`super::coords::localise`]),

@@ -70,6 +70,7 @@ use super::freedom::Freedom;
 use super::gmres;
 use super::iterative::{tolerance, LastStates};
 use super::layout::Layout;
+use super::means_whole;
 use super::own::Own;
 use super::reduce::{combine, NotHeld};
 use super::sides::Sides;
@@ -151,7 +152,9 @@ pub struct Sparse {
     nm: usize,
     nr: usize,
     parts: Vec<Local>,
-    /// Each part's own stiffness, where every pair deforms ([`Own`]).
+    /// Each part's own stiffness ([`Own`]): what K_mm's factor is formed
+    /// from, and where every pair deforms the sides' factor; kept past the
+    /// interface's setup only there.
     own: Option<Vec<Own>>,
     /// K_mm's factor, and the mean of each node it is ordered by: formed
     /// with the interface, or where every pair deforms at its first use
@@ -226,18 +229,17 @@ impl Sparse {
             local.push(Local { s, terms: map.terms.clone() });
             held.push((part.part, map));
         }
-        // where every pair deforms, the parts' own stiffness for the sides' factor
-        let own = deforming.then(|| {
-            in_threads(&held, threads, |(part, map)| Own::of(model, part, &map.frames, &map.edges))
-                .into_iter()
-                .collect::<Option<Vec<Own>>>()
-        });
+        // the parts' own stiffness: K_mm's factor through the bonded model
+        // ([`super::means_whole`]), and where every pair deforms the sides'
+        let own = in_threads(&held, threads, |(part, map)| Own::of(model, part, &map.frames, &map.edges))
+            .into_iter()
+            .collect::<Option<Vec<Own>>>();
         let mut solver = Sparse {
             nd,
             nm,
             nr,
             parts: local,
-            own: own.flatten(),
+            own,
             k_mm: OnceLock::new(),
             node_of: mean_nodes(layout),
             w_diag: Mutex::new(vec![None; nr]),
@@ -253,8 +255,12 @@ impl Sparse {
             w: Mutex::new(WColumns::new(nr)),
             kept: Mutex::new(None),
         };
-        if !deforming && solver.means().is_none() {
-            return Err(NotHeld);
+        if !deforming {
+            if solver.means().is_none() {
+                return Err(NotHeld);
+            }
+            // (only the sides' factor needs them past the means')
+            solver.own = None;
         }
         let t = Instant::now();
         solver.k_rr = solver.diagonal_r();
@@ -316,8 +322,14 @@ impl Sparse {
     /// factorise.
     fn means(&self) -> Option<&Means> {
         (self.k_mm.get_or_init(|| {
-            let k = means_matrix(&self.parts, self.nm);
-            Means::factor(&k, &self.node_of, Ordering::choose(self.nm, self.nd), self.threads)
+            let (k, node_of) = match &self.own {
+                Some(own) => {
+                    let terms: Vec<&[Terms]> = self.parts.iter().map(|p| &p.terms[..]).collect();
+                    means_whole::bonded(own, &terms, &self.node_of)
+                }
+                None => (means_matrix(&self.parts, self.nm), self.node_of.clone()),
+            };
+            Means::factor(&k, &node_of, Ordering::choose(k.n, self.nd), self.threads)
         }))
         .as_ref()
     }
@@ -1164,9 +1176,13 @@ pub(super) fn lower_from_entries(n: usize, entries: Vec<(usize, usize, f64)>) ->
 /// preconditions: the solve's residual is taken with K itself), double
 /// where single precision is too coarse for it (`||K x - b|| / ||b||` above
 /// 1e-3 on a test vector: K_mm far from well-conditioned) or breaks down.
+///
+/// Its unknowns may be more than the means, the means first: K_b's, the
+/// bonded model's ([`super::means_whole`]), whose interiors a right-hand
+/// side is zero on and an answer is not read at.
 enum Means {
     Single(SingleCholesky),
-    Double(PartialCholesky),
+    Double(PartialCholesky, usize),
 }
 
 impl Means {
@@ -1180,20 +1196,31 @@ impl Means {
                 return Some(Means::Single(f));
             }
         }
-        PartialCholesky::factor(k, k.n, node_of, ordering, faer::Par::Seq).ok().map(Means::Double)
+        PartialCholesky::factor(k, k.n, node_of, ordering, faer::Par::Seq).ok().map(|f| Means::Double(f, k.n))
+    }
+
+    /// The factor's unknowns.
+    fn n(&self) -> usize {
+        match self {
+            Means::Single(f) => f.n(),
+            Means::Double(_, n) => *n,
+        }
     }
 
     /// `K_mm^-1` of every column of `bs`, in one pass through the factor.
     fn solve_many(&self, bs: &[Vec<f64>]) -> Vec<Vec<f64>> {
-        match self {
-            Means::Single(f) => f.solve_many(bs),
-            Means::Double(f) => {
-                let n = bs.first().map_or(0, Vec::len);
-                let mut x: Vec<f64> = bs.concat();
+        let (nm, n) = (bs.first().map_or(0, Vec::len), self.n());
+        let padded: Vec<Vec<f64>> = bs.iter().map(|b| pad(b, n)).collect();
+        let mut xs = match self {
+            Means::Single(f) => f.solve_many(&padded),
+            Means::Double(f, _) => {
+                let mut x: Vec<f64> = padded.concat();
                 f.solve_many(&mut x, bs.len());
                 x.chunks_exact(n.max(1)).take(bs.len()).map(<[f64]>::to_vec).collect()
             }
-        }
+        };
+        xs.iter_mut().for_each(|x| x.truncate(nm));
+        xs
     }
 
     /// `b^T K_mm^-1 b` of every column of `bs`, each given by its
@@ -1221,20 +1248,29 @@ impl Means {
     fn leaf(&self, b: &[(usize, f64)]) -> usize {
         match self {
             Means::Single(f) => f.leaf(b.iter().map(|&(j, _)| j)),
-            Means::Double(_) => 0,
+            Means::Double(..) => 0,
         }
     }
 
     fn solve(&self, v: &[f64]) -> Vec<f64> {
-        match self {
-            Means::Single(f) => f.solve(v),
-            Means::Double(f) => {
-                let mut x = v.to_vec();
+        let mut x = match self {
+            Means::Single(f) => f.solve(&pad(v, f.n())),
+            Means::Double(f, n) => {
+                let mut x = pad(v, *n);
                 f.solve_many(&mut x, 1);
                 x
             }
-        }
+        };
+        x.truncate(v.len());
+        x
     }
+}
+
+/// `v` with zeros after it to `n` entries (an interior's right-hand side).
+fn pad(v: &[f64], n: usize) -> Vec<f64> {
+    let mut p = v.to_vec();
+    p.resize(n.max(v.len()), 0.0);
+    p
 }
 
 /// How close a single-precision factor of K_mm must come on its test
