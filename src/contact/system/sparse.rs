@@ -216,12 +216,15 @@ impl Sparse {
             Var::M(i) => i,
             Var::R(i) => nm + i,
         };
-        for (part, map) in parts.iter().zip(&layout.parts) {
-            let SchurRef::Dense(s) = part.s else { continue };
-            if part.nc == 0 {
-                continue;
-            }
-            let (s, g) = localise(s, part.g, nd, &map.frames, &map.edges);
+        let dense: Vec<(&[f64], &OperatorRef, _)> = (parts.iter().zip(&layout.parts))
+            .filter_map(|(part, map)| match part.s {
+                SchurRef::Dense(s) if part.nc > 0 => Some((s, part, map)),
+                _ => None,
+            })
+            .collect();
+        // each S in the pairs' frames, in threads (0.29 s of the 86k tunnel's in one)
+        let localised = in_threads(&dense, threads, |(s, part, map)| localise(s, part.g, nd, &map.frames, &map.edges));
+        for ((_, part, map), (s, g)) in dense.iter().zip(localised) {
             for (bc, gc) in b.iter_mut().zip(&g) {
                 for_each_load(gc, &map.terms, |i, x| bc[at(i)] += x);
             }
