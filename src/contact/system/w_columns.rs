@@ -85,15 +85,18 @@ impl WColumns {
         }
     }
 
-    /// `W z` over r for a free column `z` (relative displacement,
-    /// coefficient), every one of whose displacements has a column.
-    pub fn times(&self, z: &[(usize, f64)]) -> Vec<f64> {
-        let mut w = vec![0.0; self.nr];
-        for &(i, zi) in z {
-            let (scale, col) = &self.cols[self.slot[&i]];
-            let zs = zi * scale;
-            w.iter_mut().zip(col).for_each(|(w, &c)| *w += zs * f64::from(c));
+    /// `W z` at the rows `rows` of `w` (the others left as they are) for
+    /// a free column `z` (relative displacement, coefficient), every one
+    /// of whose displacements has a column.
+    pub fn times_at(&self, z: &[(usize, f64)], rows: &[usize], w: &mut [f64]) {
+        let cols: Vec<(f64, &[f32])> = (z.iter())
+            .map(|&(i, zi)| {
+                let (scale, col) = &self.cols[self.slot[&i]];
+                (zi * scale, &col[..])
+            })
+            .collect();
+        for &r in rows {
+            w[r] = cols.iter().fold(0.0, |acc, &(zs, col)| acc + zs * f64::from(col[r]));
         }
-        w
     }
 }
