@@ -902,3 +902,28 @@ fn a_huge_title_is_cut_where_it_is_drawn() {
     );
     assert_eq!(short.text, "dam");
 }
+
+/// Two threads drawing at once each get their own panic's message, and
+/// drawing that does not panic gives its answer after them.
+#[test]
+fn pictures_drawn_in_two_threads_each_keep_their_own_panic() {
+    let said = |name: &'static str| {
+        move || {
+            (0..40).all(|_| {
+                let drawn = super::quietly(|| -> u8 {
+                    // (long enough for the other thread's drawing to overlap)
+                    std::thread::sleep(std::time::Duration::from_millis(1));
+                    panic!("drawing {name} failed")
+                });
+                drawn.is_err_and(|p| p.to_string().contains(&format!("drawing {name} failed")))
+            })
+        }
+    };
+    let (a, b) = std::thread::scope(|s| {
+        let a = s.spawn(said("a"));
+        let b = s.spawn(said("b"));
+        (a.join().unwrap(), b.join().unwrap())
+    });
+    assert!(a && b, "a thread read another's panic, or none");
+    assert_eq!(super::quietly(|| 7).ok(), Some(7));
+}
