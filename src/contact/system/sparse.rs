@@ -69,7 +69,7 @@ use super::coords::{add_clique, fixed_load, for_each_load, localise, CliqueScrat
 use super::freedom::Freedom;
 use super::gmres;
 use super::iterative::{tolerance, LastStates};
-use super::layout::Layout;
+use super::layout::{Layout, PartMap};
 use super::means_whole;
 use super::own::Own;
 use super::reduce::{combine, NotHeld};
@@ -209,42 +209,41 @@ impl Sparse {
         let (nd, nm, nr) = (layout.nd, layout.nm, layout.nr);
         let cases = parts.iter().map(|p| p.g.len()).max().unwrap_or(1);
         let mut local = Vec::with_capacity(parts.len());
-        let mut held = Vec::with_capacity(parts.len());
         let mut b = vec![vec![0.0; nm + nr]; cases];
         let mut b_fixed = vec![0.0; nm + nr];
         let at = |v: Var| match v {
             Var::M(i) => i,
             Var::R(i) => nm + i,
         };
-        let dense: Vec<(&[f64], &OperatorRef, _)> = (parts.iter().zip(&layout.parts))
+        let dense: Vec<(&[f64], &OperatorRef, &PartMap)> = (parts.iter().zip(&layout.parts))
             .filter_map(|(part, map)| match part.s {
                 SchurRef::Dense(s) if part.nc > 0 => Some((s, part, map)),
                 _ => None,
             })
             .collect();
-        // each S in the pairs' frames, in threads (0.29 s of the 86k tunnel's in one)
-        let localised = in_threads(&dense, threads, |(s, part, map)| localise(s, part.g, nd, &map.frames, &map.edges));
-        for ((_, part, map), (s, g)) in dense.iter().zip(localised) {
+        // the parts' own stiffness: K_mm's factor through the bonded model
+        // ([`super::means_whole`]), and where every pair deforms the sides'
+        let own = in_threads(&dense, threads, |(_, part, map)| Own::of(model, part.part, &map.frames, &map.edges))
+            .into_iter()
+            .collect::<Option<Vec<Own>>>();
+        let node_of = mean_nodes(layout);
+        let own_factor = own.as_ref().filter(|_| !deforming);
+        let (localised, k_mm) = localise_and_factor(&dense, own_factor, &node_of, nd, threads);
+        for ((_, _, map), (s, g)) in dense.iter().zip(localised) {
             for (bc, gc) in b.iter_mut().zip(&g) {
                 for_each_load(gc, &map.terms, |i, x| bc[at(i)] += x);
             }
             fixed_load(&s, &map.terms, |i, x| b_fixed[at(i)] += x);
             local.push(Local { s, terms: map.terms.clone() });
-            held.push((part.part, map));
         }
-        // the parts' own stiffness: K_mm's factor through the bonded model
-        // ([`super::means_whole`]), and where every pair deforms the sides'
-        let own = in_threads(&held, threads, |(part, map)| Own::of(model, part, &map.frames, &map.edges))
-            .into_iter()
-            .collect::<Option<Vec<Own>>>();
         let mut solver = Sparse {
             nd,
             nm,
             nr,
             parts: local,
             own,
-            k_mm: OnceLock::new(),
-            node_of: mean_nodes(layout),
+            k_mm: k_mm.map_or_else(OnceLock::new, OnceLock::from),
+            node_of,
             w_diag: Mutex::new(vec![None; nr]),
             k_rr: Vec::new(),
             holders: Vec::new(),
@@ -325,14 +324,12 @@ impl Sparse {
     /// factorise.
     fn means(&self) -> Option<&Means> {
         (self.k_mm.get_or_init(|| {
-            let (k, node_of) = match &self.own {
-                Some(own) => {
-                    let terms: Vec<&[Terms]> = self.parts.iter().map(|p| &p.terms[..]).collect();
-                    means_whole::bonded(own, &terms, &self.node_of)
-                }
-                None => (means_matrix(&self.parts, self.nm), self.node_of.clone()),
-            };
-            Means::factor(&k, &node_of, Ordering::choose(k.n, self.nd), self.threads)
+            if let Some(own) = &self.own {
+                let terms: Vec<&[Terms]> = self.parts.iter().map(|p| &p.terms[..]).collect();
+                return bonded_factor(own, &terms, &self.node_of, self.nd, self.threads);
+            }
+            let k = means_matrix(&self.parts, self.nm);
+            Means::factor(&k, &self.node_of, Ordering::choose(self.nm, self.nd), self.threads)
         }))
         .as_ref()
     }
@@ -1292,6 +1289,37 @@ fn pad(v: &[f64], n: usize) -> Vec<f64> {
     let mut p = v.to_vec();
     p.resize(n.max(v.len()), 0.0);
     p
+}
+
+/// A part's S (column-major) and loads in the pairs' frames.
+type Localised = (Vec<f64>, Vec<Vec<f64>>);
+
+/// Each dense part's S and loads in the pairs' frames, in threads; and
+/// with the parts' `own` stiffness K_mm's factor in a thread of its own
+/// beside them (one thread's work: 0.9 s of the 86k tunnel's, and the S
+/// 0.29 s in one).
+fn localise_and_factor(
+    dense: &[(&[f64], &OperatorRef, &PartMap)],
+    own: Option<&Vec<Own>>,
+    node_of: &[usize],
+    nd: usize,
+    threads: usize,
+) -> (Vec<Localised>, Option<Option<Means>>) {
+    std::thread::scope(|scope| {
+        let factor = own.map(|own| {
+            let terms: Vec<&[Terms]> = dense.iter().map(|(_, _, map)| &map.terms[..]).collect();
+            scope.spawn(move || bonded_factor(own, &terms, node_of, nd, threads))
+        });
+        let localised = in_threads(dense, threads, |(s, part, map)| localise(s, part.g, nd, &map.frames, &map.edges));
+        (localised, factor.map(|f| f.join().unwrap_or_else(|e| std::panic::resume_unwind(e))))
+    })
+}
+
+/// K_mm's factor through the bonded model ([`super::means_whole`]) of the
+/// parts' `own` stiffness and the `terms` of their interface DOFs.
+fn bonded_factor(own: &[Own], terms: &[&[Terms]], mean_node: &[usize], nd: usize, threads: usize) -> Option<Means> {
+    let (k, node_of) = means_whole::bonded(own, terms, mean_node);
+    Means::factor(&k, &node_of, Ordering::choose(k.n, nd), threads)
 }
 
 /// How close a single-precision factor of K_mm must come on its test
