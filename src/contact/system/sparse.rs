@@ -227,7 +227,7 @@ impl Sparse {
             .into_iter()
             .collect::<Option<Vec<Own>>>();
         let node_of = mean_nodes(layout);
-        let own_factor = own.as_ref().filter(|_| !deforming);
+        let own_factor = own.as_ref().filter(|own| !deforming && bonded_pays(own, &dense));
         let (localised, k_mm) = localise_and_factor(&dense, own_factor, &node_of, nd, threads);
         for ((_, _, map), (s, g)) in dense.iter().zip(localised) {
             for (bc, gc) in b.iter_mut().zip(&g) {
@@ -241,7 +241,9 @@ impl Sparse {
             nm,
             nr,
             parts: local,
-            own,
+            // (only the sides' factor needs them past K_mm's, formed above
+            // where it pays)
+            own: own.filter(|_| deforming),
             k_mm: k_mm.map_or_else(OnceLock::new, OnceLock::from),
             node_of,
             w_diag: Mutex::new(vec![None; nr]),
@@ -257,12 +259,8 @@ impl Sparse {
             w: Mutex::new(WColumns::new(nr)),
             kept: Mutex::new(None),
         };
-        if !deforming {
-            if solver.means().is_none() {
-                return Err(NotHeld);
-            }
-            // (only the sides' factor needs them past the means')
-            solver.own = None;
+        if !deforming && solver.means().is_none() {
+            return Err(NotHeld);
         }
         let t = Instant::now();
         solver.k_rr = solver.diagonal_r();
@@ -1315,6 +1313,34 @@ fn localise_and_factor(
     })
 }
 
+/// Whether K_mm is factorised through the bonded model of the parts'
+/// `own` stiffness ([`super::means_whole`]) rather than from the parts'
+/// cliques of means: where the cliques would hold [`BONDED_PAYS`] times
+/// the parts' own entries or more.
+fn bonded_pays(own: &[Own], dense: &[(&[f64], &OperatorRef, &PartMap)]) -> bool {
+    let cliques: f64 = (dense.iter())
+        .map(|(_, _, map)| {
+            let mut means: Vec<usize> = (map.terms.iter())
+                .flat_map(|t| t.vars[..t.n].iter().filter_map(|&(v, _)| if let Var::M(i) = v { Some(i) } else { None }))
+                .collect();
+            means.sort_unstable();
+            means.dedup();
+            let m = means.len() as f64;
+            m * (m + 1.0) / 2.0
+        })
+        .sum();
+    let entries: f64 = own.iter().map(|o| o.entries.len() as f64).sum();
+    cliques >= BONDED_PAYS * entries
+}
+
+/// Measured (cliques / own entries, and K_b's factor against the
+/// cliques' K_mm's): the 86k tunnel 6.4 (34.5 against 72.8 million
+/// values, its run 10.6 -> 7.2 s); the cubes of make bench-blocks, 64
+/// blocks 4.0 (147 against 105 million), 512 blocks 1.8 (57 against 54),
+/// 1,000 blocks 1.9 (146 against 149), each 5-11 % slower with K_b.
+/// Between 4.0 and 6.4, a quarter from each.
+const BONDED_PAYS: f64 = 5.0;
+
 /// K_mm's factor through the bonded model ([`super::means_whole`]) of the
 /// parts' `own` stiffness and the `terms` of their interface DOFs.
 fn bonded_factor(own: &[Own], terms: &[&[Terms]], mean_node: &[usize], nd: usize, threads: usize) -> Option<Means> {
@@ -1400,6 +1426,49 @@ mod tests {
         assert!(p.symmetric_eigenvalues().min() > -1e-12);
     }
 
+    /// The lower entries of a chain of `n` unit springs, each unknown
+    /// with `diagonal(i)` on its diagonal.
+    fn chain(n: usize, diagonal: impl Fn(usize) -> f64) -> Vec<(usize, usize, f64)> {
+        let mut entries = Vec::new();
+        for i in 0..n {
+            entries.push((i, i, diagonal(i)));
+            if i > 0 {
+                entries.push((i, i - 1, -1.0));
+            }
+        }
+        entries
+    }
+
+    /// A factor of K_b over [means; interiors] solves K_mm, the Schur
+    /// complement onto the means, from a right-hand side over the means
+    /// alone (padded with zeros on the interiors): one column and many, to
+    /// single precision; checked against K_mm formed and solved densely.
+    #[test]
+    fn a_factor_of_the_bonded_model_solves_the_means_schur_complement() {
+        // a chain of 12 unknowns, the first 4 the means, its ends joined
+        let n = 12;
+        let mut entries = chain(n, |i| 2.2 + 0.05 * i as f64);
+        entries.push((n - 1, 0, -0.3));
+        let k = lower_from_entries(n, entries);
+        let node_of: Vec<usize> = (0..n).collect();
+        let means = Means::factor(&k, &node_of, Ordering::Amd, 1).expect("a factor");
+        let full = nalgebra::DMatrix::from_fn(n, n, |r, c| k.get(r, c));
+        let nm = 4;
+        let (a, b) = (full.view((0, 0), (nm, nm)), full.view((0, nm), (nm, n - nm)));
+        let d = full.view((nm, nm), (n - nm, n - nm)).into_owned();
+        let schur = a - b * d.try_inverse().expect("an inverse") * b.transpose();
+        let v = vec![1.0, -0.5, 0.25, 2.0];
+        let want = schur.lu().solve(&nalgebra::DVector::from_column_slice(&v)).expect("a solve");
+        let one = means.solve(&v);
+        let many = means.solve_many(&[v.clone(), v.iter().map(|x| 2.0 * x).collect()]);
+        assert_eq!((one.len(), many[0].len(), many[1].len()), (nm, nm, nm));
+        for i in 0..nm {
+            assert!((one[i] - want[i]).abs() < 1e-5 * want.amax(), "{i}: {} against {}", one[i], want[i]);
+            assert!((many[0][i] - want[i]).abs() < 1e-5 * want.amax());
+            assert!((many[1][i] - 2.0 * want[i]).abs() < 2e-5 * want.amax());
+        }
+    }
+
     /// The free block `M` where the sides do not factorise (the fallback
     /// of [`Sparse::free_block`]): where every pair deforms, factorised in
     /// single precision, and its solve within single precision's reach of
@@ -1408,14 +1477,7 @@ mod tests {
     fn the_free_block_is_factorised_in_single_precision_where_every_pair_deforms() {
         // a chain of springs, each unknown also held by its own
         let n = 40;
-        let mut entries = Vec::new();
-        for i in 0..n {
-            entries.push((i, i, 2.5 + 0.01 * i as f64));
-            if i > 0 {
-                entries.push((i, i - 1, -1.0));
-            }
-        }
-        let m = lower_from_entries(n, entries);
+        let m = lower_from_entries(n, chain(n, |i| 2.5 + 0.01 * i as f64));
         let b: Vec<f64> = (0..n).map(|i| 1.0 + (0.3 * i as f64).sin()).collect();
         for (deforming, within) in [(true, 1e-5), (false, 1e-12)] {
             let p = Preconditioner::factor(&m, deforming, 2);
