@@ -1320,12 +1320,7 @@ fn localise_and_factor(
 fn bonded_pays(own: &[Own], dense: &[(&[f64], &OperatorRef, &PartMap)]) -> bool {
     let cliques: f64 = (dense.iter())
         .map(|(_, _, map)| {
-            let mut means: Vec<usize> = (map.terms.iter())
-                .flat_map(|t| t.vars[..t.n].iter().filter_map(|&(v, _)| if let Var::M(i) = v { Some(i) } else { None }))
-                .collect();
-            means.sort_unstable();
-            means.dedup();
-            let m = means.len() as f64;
+            let m = clique(&map.terms).len() as f64;
             m * (m + 1.0) / 2.0
         })
         .sum();
@@ -1358,21 +1353,24 @@ fn means_matrix(parts: &[Local], nm: usize) -> SymMatrix {
         Var::M(i) => Some(i),
         Var::R(_) => None,
     };
-    let cliques: Vec<Vec<usize>> = (parts.iter())
-        .map(|p| {
-            let mut c: Vec<usize> =
-                p.terms.iter().flat_map(|t| t.vars[..t.n].iter().filter_map(|&(v, _)| means(v))).collect();
-            c.sort_unstable();
-            c.dedup();
-            c
-        })
-        .collect();
+    let cliques: Vec<Vec<usize>> = parts.iter().map(|p| clique(&p.terms)).collect();
     let mut k = SymMatrix::from_cliques(nm, &cliques);
     let mut scratch = CliqueScratch::new(nm);
     for p in parts {
         add_clique(&mut k, &p.s, &p.terms, means, &mut scratch);
     }
     k
+}
+
+/// The means a part's interface DOFs (`terms`) reach, ascending: its
+/// clique in K_mm.
+fn clique(terms: &[Terms]) -> Vec<usize> {
+    let mut c: Vec<usize> = (terms.iter())
+        .flat_map(|t| t.vars[..t.n].iter().filter_map(|&(v, _)| if let Var::M(i) = v { Some(i) } else { None }))
+        .collect();
+    c.sort_unstable();
+    c.dedup();
+    c
 }
 
 /// A node id per mean (a lone pair, a junction or a join), for nested
