@@ -26,6 +26,7 @@
 
 use super::coords::localise;
 use crate::contact::frame::Frame;
+use crate::fem::sparse::SymMatrix;
 use crate::model::Model;
 use crate::substructure::{assembly, interior_nodes, numbering, Part};
 
@@ -41,6 +42,15 @@ pub(super) struct Own {
 }
 
 impl Own {
+    /// The entries `part`'s K' would hold, counted from its mesh's pattern
+    /// (the lower triangle over its interior and interface DOFs) without
+    /// assembling it: what [`super::sparse`] weighs K_mm's two factors by.
+    pub fn count(model: &Model, part: &Part) -> usize {
+        let (dof_of, ni, nc) = numbering(model, part);
+        let cells = part.cells.iter().map(|&(b, c)| model.bodies[b].cells[c].nodes.as_slice());
+        SymMatrix::pattern(ni + nc, model.nd, &dof_of, cells).row_idx.len()
+    }
+
     /// `part`'s K' with its interface nodes' `frames` and transformed face
     /// `edges`; None where it cannot be assembled (it was when condensed).
     pub fn of(model: &Model, part: &Part, frames: &[Frame], edges: &[[usize; 3]]) -> Option<Own> {

@@ -221,13 +221,19 @@ impl Sparse {
                 _ => None,
             })
             .collect();
-        // the parts' own stiffness: K_mm's factor through the bonded model
-        // ([`super::means_whole`]), and where every pair deforms the sides'
-        let own = in_threads(&dense, threads, |(_, part, map)| Own::of(model, part.part, &map.frames, &map.edges))
-            .into_iter()
-            .collect::<Option<Vec<Own>>>();
+        // the parts' own stiffness: where every pair deforms the sides'
+        // factor's, else K_mm's through the bonded model
+        // ([`super::means_whole`]) where that pays
+        let bonded = !deforming && bonded_pays(model, &dense, threads);
+        let own = (deforming || bonded)
+            .then(|| {
+                in_threads(&dense, threads, |(_, part, map)| Own::of(model, part.part, &map.frames, &map.edges))
+                    .into_iter()
+                    .collect::<Option<Vec<Own>>>()
+            })
+            .flatten();
         let node_of = mean_nodes(layout);
-        let own_factor = own.as_ref().filter(|own| !deforming && bonded_pays(own, &dense));
+        let own_factor = own.as_ref().filter(|_| bonded);
         let (localised, k_mm) = localise_and_factor(&dense, own_factor, &node_of, nd, threads);
         for ((_, _, map), (s, g)) in dense.iter().zip(localised) {
             for (bc, gc) in b.iter_mut().zip(&g) {
@@ -1314,18 +1320,20 @@ fn localise_and_factor(
 }
 
 /// Whether K_mm is factorised through the bonded model of the parts'
-/// `own` stiffness ([`super::means_whole`]) rather than from the parts'
+/// own stiffness ([`super::means_whole`]) rather than from the parts'
 /// cliques of means: where the cliques would hold [`BONDED_PAYS`] times
-/// the parts' own entries or more.
-fn bonded_pays(own: &[Own], dense: &[(&[f64], &OperatorRef, &PartMap)]) -> bool {
+/// the parts' own entries or more. The entries are counted from the
+/// mesh, not formed: the cubes below, which do not take K_b, formed them
+/// for nothing (the 64 blocks' 8.9 million).
+fn bonded_pays(model: &Model, dense: &[(&[f64], &OperatorRef, &PartMap)], threads: usize) -> bool {
     let cliques: f64 = (dense.iter())
         .map(|(_, _, map)| {
             let m = clique(&map.terms).len() as f64;
             m * (m + 1.0) / 2.0
         })
         .sum();
-    let entries: f64 = own.iter().map(|o| o.entries.len() as f64).sum();
-    cliques >= BONDED_PAYS * entries
+    let entries: usize = in_threads(dense, threads, |(_, part, _)| Own::count(model, part.part)).into_iter().sum();
+    cliques >= BONDED_PAYS * entries as f64
 }
 
 /// Measured (cliques / own entries, and K_b's factor against the
