@@ -76,7 +76,8 @@ use super::reduce::{combine, NotHeld};
 use super::sides::Sides;
 use super::solver::{Accuracy, Answer, Solver, Split};
 use super::threads::{in_runs, in_threads};
-use super::w_columns::WColumns;
+use super::w_columns::{self, WColumns};
+use super::w_entries::WEntries;
 use crate::contact::law::ContactState;
 use crate::fem::sparse::{Cholesky, SymMatrix};
 use crate::fem::vec3::length;
@@ -85,6 +86,7 @@ use crate::model::Model;
 use crate::substructure::ordering::Ordering;
 use crate::substructure::schur::PartialCholesky;
 use crate::substructure::single_precision::SingleCholesky;
+use crate::substructure::sparse_forward::Forward;
 use crate::substructure::{OperatorRef, SchurRef};
 
 const RESTART: usize = 200;
@@ -178,8 +180,8 @@ pub struct Sparse {
     iterations: Mutex<Vec<usize>>,
     /// Where the solves' time went.
     split: Mutex<Split>,
-    /// The columns of W at the relative displacements free so far.
-    w: Mutex<WColumns>,
+    /// W where the free blocks have read it: chosen at the first.
+    w: Mutex<Option<WMemory>>,
     /// The free block's factor kept for the next solve of the same load
     /// where every pair deforms ([`Freedom::deforming`]).
     kept: Mutex<Option<Kept>>,
@@ -191,6 +193,14 @@ struct Kept {
     lambda: Vec<f64>,
     cols: Vec<Vec<(usize, f64)>>,
     block: std::sync::Arc<Preconditioner>,
+}
+
+/// W where the free blocks read it: entry by entry where K_mm's factor
+/// substitutes sparse columns ([`super::w_entries`]), else whole columns
+/// ([`super::w_columns`]).
+enum WMemory {
+    Columns(WColumns),
+    Entries(WEntries),
 }
 
 impl Sparse {
@@ -262,7 +272,7 @@ impl Sparse {
             last_states: LastStates::default(),
             iterations: Mutex::new(Vec::new()),
             split: Mutex::new(Split::default()),
-            w: Mutex::new(WColumns::new(nr)),
+            w: Mutex::new(None),
             kept: Mutex::new(None),
         };
         if !deforming && solver.means().is_none() {
@@ -513,25 +523,26 @@ impl Sparse {
         if n == 0 || self.nm == 0 {
             return None;
         }
-        let mut w = self.w.lock().ok()?;
-        let missing = w.missing(free.fr)?;
-        self.means()?;
+        let means = self.means()?;
+        // W z only at the rows the block's equations read (its free rows,
+        // the slipping pairs' normal rows, the junctions' with free
+        // columns): the 86k tunnel's 289-333 of 31,725
+        let rows = free.rows();
+        let mut memory = self.w.lock().ok()?;
+        let w = self.w_memory(&mut memory, means);
         let t = Instant::now();
-        for batch in missing.chunks(W_BATCH) {
-            let cols = self.w_columns_of(batch);
-            w.add(batch, cols);
-        }
+        let formed = self.form_w(w, means, free.fr, &rows);
         self.add_split(|s| s.columns += t.elapsed().as_secs_f64());
+        formed?;
         let mut e = vec![0.0; n];
         let mut a = Mat::<f64>::zeros(n, n);
-        // W z only at the rows the block's equations read (its free rows,
-        // the slipping pairs' normal rows, the junctions'): the 86k
-        // tunnel's 250-odd of 31,725, where the whole column was formed
-        let rows = free.rows();
         let mut wz = vec![0.0; self.nr];
         for (c, z) in free.fr.cols.iter().enumerate() {
             e[c] = 1.0;
-            w.times_at(z, &rows, &mut wz);
+            match w {
+                WMemory::Columns(w) => w.times_at(z, &rows, &mut wz),
+                WMemory::Entries(w) => w.times_at(z, &rows, &mut wz),
+            }
             let col = free.operator(&e, &wz);
             e[c] = 0.0;
             col.iter().enumerate().for_each(|(i, &v)| a[(i, c)] = v);
@@ -539,6 +550,56 @@ impl Sparse {
         let lu = a.partial_piv_lu();
         let probe = lu.solve(Mat::<f64>::from_fn(n, 1, |_, _| 1.0));
         (0..n).all(|i| probe[(i, 0)].is_finite()).then_some(Preconditioner::Exact(lu))
+    }
+
+    /// Forms what W lacks for a free block over `fr` that reads it at
+    /// `rows`: the forward substitutions of the displacements there, or
+    /// the whole columns at `fr`'s; None where keeping them would take
+    /// more than [`w_columns::MAX_BYTES`].
+    fn form_w(&self, w: &mut WMemory, means: &Means, fr: &Freedom, rows: &[usize]) -> Option<()> {
+        match w {
+            WMemory::Columns(w) => {
+                for batch in w.missing(fr)?.chunks(W_BATCH) {
+                    let cols = self.w_columns_of(batch);
+                    w.add(batch, cols);
+                }
+            }
+            WMemory::Entries(w) => {
+                self.forward_into(w, means, rows);
+                w.form(rows, &fr.cols, self.threads);
+                (w.bytes() <= w_columns::MAX_BYTES).then_some(())?;
+            }
+        }
+        Some(())
+    }
+
+    /// W's memory, chosen at its first use: entries where `means`
+    /// substitutes sparse columns, else whole columns.
+    fn w_memory<'a>(&self, memory: &'a mut Option<WMemory>, means: &Means) -> &'a mut WMemory {
+        memory.get_or_insert_with(|| match means.sparse_forward(&[]) {
+            Some(_) => WMemory::Entries(WEntries::new(self.nr)),
+            None => WMemory::Columns(WColumns::new(self.nr)),
+        })
+    }
+
+    /// Keeps in `w` the forward substitutions of the displacements `idx`
+    /// that lack one, in passes of at most [`W_DIAGONAL_BATCH`] spread
+    /// over the threads (see [`Sparse::w_diagonal`]).
+    fn forward_into(&self, w: &mut WEntries, means: &Means, idx: &[usize]) {
+        let mut missing = w.missing(idx);
+        if missing.is_empty() {
+            return;
+        }
+        let k_m = self.mean_columns(means, &mut missing);
+        let per = missing.len().div_ceil(self.threads).min(W_DIAGONAL_BATCH);
+        let batches: Vec<&[MeanColumn]> = k_m.chunks(per).collect();
+        let threads = self.threads.min(batches.len()).max(1);
+        let forward = in_runs(&batches, threads, |run| {
+            run.iter().flat_map(|batch| means.sparse_forward(batch).unwrap_or_default()).collect::<Vec<_>>()
+        });
+        for (&a, x) in missing.iter().zip(forward.into_iter().flatten()) {
+            w.add(a, x, self.relative_column(&self.holders[a]));
+        }
     }
 
     /// The free block's factor of a solve under `lambda`: formed, or where
@@ -617,22 +678,41 @@ impl Sparse {
         let means = if missing.is_empty() { None } else { self.means() };
         if let Some(means) = means {
             let t = Instant::now();
-            let k_m = self.mean_columns(means, &mut missing);
-            let per = missing.len().div_ceil(self.threads).min(W_DIAGONAL_BATCH);
-            let batches: Vec<&[MeanColumn]> = k_m.chunks(per).collect();
-            let threads = self.threads.min(batches.len()).max(1);
-            let lowered = in_runs(&batches, threads, |run| {
-                run.iter().flat_map(|batch| means.energies(batch, self.nm)).collect::<Vec<f64>>()
-            });
+            let lowered = self.lowered(means, &mut missing);
             // (K_mm's single-precision factor could lose a W far softer than
             // K_rr: that keeps K_rr's)
-            for (&i, l) in missing.iter().zip(lowered.into_iter().flatten()) {
+            for (&i, l) in missing.iter().zip(lowered) {
                 let (k, w) = (self.k_rr[i], self.k_rr[i] - l);
                 d[i] = Some(if w > 1e-6 * k { w } else { k });
             }
             self.add_split(|s| s.diagonal += t.elapsed().as_secs_f64());
         }
         idx.iter().map(|&i| d[i].unwrap_or(self.k_rr[i])).collect()
+    }
+
+    /// `(K_mr e_i)^T K_mm^-1 K_mr e_i` at each relative displacement of
+    /// `missing` (deduplicated and sorted as [`Sparse::mean_columns`]
+    /// does): from the forward substitutions W's entries keep, formed
+    /// where they lack them (the exact block reads the same displacements
+    /// and more), else by a pass of their own.
+    fn lowered(&self, means: &Means, missing: &mut Vec<usize>) -> Vec<f64> {
+        let mut memory = self.w.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        if let WMemory::Entries(w) = self.w_memory(&mut memory, means) {
+            if w.bytes() <= w_columns::MAX_BYTES {
+                missing.sort_unstable();
+                missing.dedup();
+                self.forward_into(w, means, missing);
+                return missing.iter().map(|&i| w.energy(i)).collect();
+            }
+        }
+        let k_m = self.mean_columns(means, missing);
+        let per = missing.len().div_ceil(self.threads).min(W_DIAGONAL_BATCH);
+        let batches: Vec<&[MeanColumn]> = k_m.chunks(per).collect();
+        let threads = self.threads.min(batches.len()).max(1);
+        let lowered = in_runs(&batches, threads, |run| {
+            run.iter().flat_map(|batch| means.energies(batch, self.nm)).collect::<Vec<f64>>()
+        });
+        lowered.into_iter().flatten().collect()
     }
 
     /// The mean rows of K's columns at the relative displacements
@@ -672,21 +752,33 @@ impl Sparse {
     /// The mean rows of K's column at a relative displacement held where
     /// `holders` says: its non-zeros (mean, value), a mean's terms summed.
     fn mean_column(&self, holders: &[(usize, usize, f64)]) -> MeanColumn {
-        let mut k_m = Vec::new();
+        self.sparse_column(holders, |v| if let Var::M(j) = v { Some(j) } else { None })
+    }
+
+    /// The relative rows of that column, likewise: K_rr's.
+    fn relative_column(&self, holders: &[(usize, usize, f64)]) -> Vec<(usize, f64)> {
+        self.sparse_column(holders, |v| if let Var::R(j) = v { Some(j) } else { None })
+    }
+
+    /// The rows `pick` numbers of K's column at a relative displacement
+    /// held where `holders` says: (row, value), ascending, a row's terms
+    /// summed.
+    fn sparse_column(&self, holders: &[(usize, usize, f64)], pick: impl Fn(Var) -> Option<usize>) -> MeanColumn {
+        let mut k = Vec::new();
         self.unit_column(holders, |v, x| {
-            if let Var::M(j) = v {
-                k_m.push((j, x));
+            if let Some(j) = pick(v) {
+                k.push((j, x));
             }
         });
-        k_m.sort_unstable_by_key(|&(j, _)| j);
-        k_m.dedup_by(|b, a| {
+        k.sort_unstable_by_key(|&(j, _)| j);
+        k.dedup_by(|b, a| {
             let same = a.0 == b.0;
             if same {
                 a.1 += b.1;
             }
             same
         });
-        k_m
+        k
     }
 
     /// A place id for each of the `n` unknowns `index` numbers: the
@@ -883,7 +975,9 @@ impl Free<'_> {
             }
             out[i] += s.springs.iter().map(|&(rc, k)| k * y[fr.pos[rc]]).sum::<f64>();
         }
-        for jb in &fr.junctions {
+        // (a junction without free columns adds nothing: 2,047 of the 86k
+        // tunnel's, each lift a product, at each of the exact block's columns)
+        for jb in fr.junctions.iter().filter(|jb| !jb.cols.is_empty()) {
             let lifted = jb.lifted(|i| w[i], y);
             for (a, fa) in jb.cols.clone().enumerate() {
                 out[fa] += jb.cols.clone().enumerate().map(|(c, fc)| jb.kz[(a, c)] * y[fc]).sum::<f64>()
@@ -898,7 +992,9 @@ impl Free<'_> {
         let fr = self.fr;
         let mut rows: Vec<usize> = (fr.cols.iter().flatten().map(|&(i, _)| i))
             .chain(fr.slips.iter().filter_map(|s| s.normal))
-            .chain(fr.junctions.iter().flat_map(|jb| jb.r.iter().copied()))
+            .chain(
+                fr.junctions.iter().filter(|jb| jb.lift.is_some() && !jb.cols.is_empty()).flat_map(|jb| jb.r.clone()),
+            )
             .collect();
         rows.sort_unstable();
         rows.dedup();
@@ -917,7 +1013,7 @@ impl Free<'_> {
                 rhs[i] += s.coupling * known[rn];
             }
         }
-        for jb in &fr.junctions {
+        for jb in fr.junctions.iter().filter(|jb| !jb.cols.is_empty()) {
             let lifted = jb.lifted(|i| -known[i], y0);
             for (a, fa) in jb.cols.clone().enumerate() {
                 rhs[fa] -= jb.fz[a]
@@ -1263,6 +1359,16 @@ impl Means {
             .collect();
         let t = self.solve_many(&dense);
         dense.iter().zip(&t).map(|(a, b)| a.iter().zip(b).map(|(a, b)| a * b).sum::<f64>()).collect()
+    }
+
+    /// Each column's forward substitution and its factor
+    /// ([`SingleCholesky::sparse_forward`]); None where the factor allows
+    /// no sparse substitution.
+    fn sparse_forward(&self, bs: &[MeanColumn]) -> Option<Vec<(Forward, f64)>> {
+        match self {
+            Means::Single(f) => f.sparse_forward(bs),
+            Means::Double(..) => None,
+        }
     }
 
     /// Where the substitution of a column with the non-zeros `b` begins
