@@ -515,9 +515,9 @@ impl Sparse {
     }
 
     /// The free block of a solve, `Z^T W Z` with the friction law's and
-    /// the junctions' rows, from W's columns (those it lacks computed
-    /// first), factorised; None when they would take too much memory or
-    /// the block is singular.
+    /// the junctions' rows, from W's entries or columns (what it lacks
+    /// formed first, [`Sparse::form_w`]), factorised; None when they would
+    /// take too much memory or the block is singular.
     fn exact_block(&self, free: &Free) -> Option<Preconditioner> {
         let n = free.fr.cols.len();
         if n == 0 || self.nm == 0 {
@@ -565,6 +565,7 @@ impl Sparse {
                 }
             }
             WMemory::Entries(w) => {
+                w.admit(&fr.cols).then_some(())?;
                 self.forward_into(w, means, rows);
                 w.form(rows, &fr.cols, self.threads);
                 (w.bytes() <= w_columns::MAX_BYTES).then_some(())?;
@@ -698,9 +699,9 @@ impl Sparse {
     fn lowered(&self, means: &Means, missing: &mut Vec<usize>) -> Vec<f64> {
         let mut memory = self.w.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
         if let WMemory::Entries(w) = self.w_memory(&mut memory, means) {
-            if w.bytes() <= w_columns::MAX_BYTES {
-                missing.sort_unstable();
-                missing.dedup();
+            missing.sort_unstable();
+            missing.dedup();
+            if w.room(w.missing(missing).len()) {
                 self.forward_into(w, means, missing);
                 return missing.iter().map(|&i| w.energy(i)).collect();
             }
@@ -1032,7 +1033,7 @@ impl Free<'_> {
 /// where every pair deforms, [`SINGLE_BLOCK`]); its diagonal when that
 /// factorisation fails.
 enum Preconditioner {
-    /// The whole free block, from W's columns ([`Sparse::exact_block`]).
+    /// The whole free block, from W ([`Sparse::exact_block`]).
     Exact(PartialPivLu<f64>),
     Factor(Cholesky),
     /// `M` where every pair deforms.

@@ -21,6 +21,7 @@
 //! columns 0.97 s.
 
 use super::threads::in_threads;
+use super::w_columns::MAX_BYTES;
 use crate::substructure::sparse_forward::Forward;
 
 /// No slot (a displacement without a forward substitution).
@@ -40,6 +41,9 @@ pub(super) struct WEntries {
     cols: Vec<Vec<f64>>,
     /// The bytes the forward substitutions and K_rr's columns hold.
     bytes: usize,
+    /// The displacements some block has had a free column at, and how many.
+    column: Vec<bool>,
+    columns: usize,
 }
 
 impl WEntries {
@@ -52,7 +56,36 @@ impl WEntries {
             k_rr: Vec::new(),
             cols: Vec::new(),
             bytes: 0,
+            column: vec![false; nr],
+            columns: 0,
         }
+    }
+
+    /// Whether a block over the free columns `cols` is formed: where the
+    /// whole columns of W at every displacement free so far would fit in
+    /// [`MAX_BYTES`], as with them ([`super::w_columns`]). Beyond, the
+    /// blocks grow too (the 1,000-block cube's first: 2,900 free
+    /// columns), and their entries and LU took 297 s of its run. Counts
+    /// the columns of a block admitted.
+    pub fn admit(&mut self, cols: &[Vec<(usize, f64)>]) -> bool {
+        let mut new: Vec<usize> = cols.iter().flatten().map(|&(i, _)| i).filter(|&i| !self.column[i]).collect();
+        new.sort_unstable();
+        new.dedup();
+        if !self.room(new.len()) {
+            return false;
+        }
+        new.iter().for_each(|&i| self.column[i] = true);
+        self.columns += new.len();
+        true
+    }
+
+    /// Whether `more` displacements could still have free columns: what
+    /// W's diagonal keeps its forward substitutions by
+    /// ([`WEntries::admit`]'s bound; the cubes of make bench-blocks,
+    /// whose blocks it refuses, substitute their diagonal's columns
+    /// without keeping them).
+    pub fn room(&self, more: usize) -> bool {
+        (self.columns + more) * self.column.len() * 4 <= MAX_BYTES && self.bytes() <= MAX_BYTES
     }
 
     /// Of `idx`, the relative displacements with no forward substitution
