@@ -154,6 +154,10 @@ pub struct Fallback {
     pub cycled: bool,
     pub law_residual: Option<f64>,
     pub seconds: f64,
+    /// Where the rigid iteration stopped at a state set that holds
+    /// nothing, what it left unheld ("body \"rock #41\" is held by
+    /// nothing"); None where its step ended unconverged.
+    pub unheld: Option<String>,
 }
 
 /// The initial equilibrium stage: the step 0 that brings the bodies to

@@ -24,7 +24,9 @@
 //! the joints that deform, and the run says so on the terminal, in
 //! report.md and in summary.json (`contact.rigid_fallback`).
 
+use super::messages::ContactError;
 use crate::contact::law::Stiffness;
+use crate::error::Error;
 use crate::model::Model;
 use crate::parallel::{Comm, CommExt};
 use crate::results::{Fallback, Run, StepResult};
@@ -105,6 +107,73 @@ pub(super) fn fall(
     Some((stiff, record(taken, steps.last(), seconds)))
 }
 
+/// Where the rigid attempt stopped with `error` at a state set that
+/// holds nothing (a body held by nothing, or free to slide), as rank 0
+/// tells every rank: the scene with every contact given the fallback's
+/// stiffness, and the record of why (on rank 0); the rigid attempt took
+/// `seconds`. An iteration that has not converged passes through state
+/// sets the answer does not have: the 3D slope of tests/corpus with half
+/// its cohesion reached, at step 3's iteration 481, one that left block
+/// 41 held by nothing (a build whose interface solves differed by
+/// round-off from this one's; docs/convergence.md), where the step would
+/// otherwise have ended unconverged and fallen back. Where the scene
+/// itself holds nothing, the joints that deform are refused as well and
+/// the run ends with this error ([`super::solve`]).
+pub(super) fn fall_unheld(
+    scene: &Scene,
+    model: &Model,
+    error: &Error,
+    comm: &dyn Comm,
+    seconds: f64,
+) -> Option<(Scene, Option<Fallback>)> {
+    let stopped = unheld(error);
+    if !comm.broadcast(&stopped.is_some()) {
+        return None;
+    }
+    let taken = stiffness(scene, model);
+    let mut stiff = scene.clone();
+    stiff.give_joints_stiffness(taken.0);
+    let record = stopped.map(|(at, said)| Fallback {
+        stiffness: taken.0,
+        modulus: taken.1,
+        block_size: taken.2,
+        step: at.step.unwrap_or(1),
+        iterations: at.iteration,
+        cuts: 0,
+        scaled: false,
+        cycled: false,
+        law_residual: None,
+        seconds,
+        unheld: Some(said),
+    });
+    Some((stiff, record))
+}
+
+/// Where `error` is a contact iteration's that stopped at a state set
+/// holding nothing, on joints that carry shear: where, and what it left
+/// unheld ("body \"top\" is
+/// held by nothing").
+pub(super) fn unheld(error: &Error) -> Option<(super::messages::At, String)> {
+    let Error::Contact(c) = error else { return None };
+    let named = |bodies: &[String]| match bodies {
+        [one] => format!("body \"{one}\" is"),
+        many => format!("bodies \"{}\" are", many.join("\", \"")),
+    };
+    match &**c {
+        ContactError::NotHeld { at, bodies, .. } => Some((at.clone(), format!("{} held by nothing", named(bodies)))),
+        // (joints that carry no shear hold nothing along them, rigid or
+        // not: the scene's failure, whatever the path)
+        ContactError::Sliding { no_shear: true, .. } => None,
+        ContactError::Sliding { at, bodies, .. } if bodies.is_empty() => {
+            Some((at.clone(), "bodies slide or rotate freely".to_string()))
+        }
+        ContactError::Sliding { at, bodies, .. } => {
+            Some((at.clone(), format!("{} free to slide or rotate", named(bodies))))
+        }
+        _ => None,
+    }
+}
+
 /// Where the joints are rigid under the robust rule, the normal and
 /// shear stiffness a step that did not converge (or a safety factor
 /// left undecided) is advised to try: those the fallback takes.
@@ -135,6 +204,7 @@ fn record(
         cycled: c.summary.cycled,
         law_residual: c.worst_law_residual().map(|(_, r)| r),
         seconds,
+        unheld: None,
     })
 }
 
@@ -145,7 +215,11 @@ pub fn said(f: &Fallback) -> String {
         0 => "the initial equilibrium stage".to_string(),
         k => format!("load step {k}"),
     };
-    let how = if f.cycled { "the states cycled" } else { "the states kept changing" };
+    let how = match &f.unheld {
+        Some(what) => format!("the states reached a set in which {what}"),
+        None if f.cycled => "the states cycled".to_string(),
+        None => "the states kept changing".to_string(),
+    };
     let law = f.law_residual.map_or(String::new(), |r| format!(", law residual {r:.2e} of the largest traction"));
     // a rigid iteration stopped this close to the law may end with a few
     // more iterations: the scene's budget, not the rigid law, ran out
@@ -182,7 +256,35 @@ fn round(x: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::round;
+    use super::super::messages::{At, ContactError};
+    use super::{round, unheld};
+    use crate::error::Error;
+    use crate::scene::StateRule;
+
+    /// A body held by nothing, or free to slide on joints that carry
+    /// shear, falls back; joints that carry no shear, a step that did not
+    /// converge and any other error do not.
+    #[test]
+    fn a_state_set_that_holds_nothing_is_told_from_the_scenes_failure() {
+        let at = At { step: Some(3), iteration: 481, states: [10, 20, 30] };
+        let held =
+            ContactError::NotHeld { at: at.clone(), bodies: vec!["rock #41".into()], places: vec![None], apex: vec![] };
+        let (where_, what) = unheld(&Error::from(held)).expect("held by nothing falls back");
+        assert_eq!((where_, what.as_str()), (at.clone(), "body \"rock #41\" is held by nothing"));
+        let sliding = |no_shear: bool, bodies: Vec<String>| ContactError::Sliding {
+            at: at.clone(),
+            places: vec![None; bodies.len()],
+            bodies,
+            no_shear,
+            rule: StateRule::Robust,
+            motions: Vec::new(),
+        };
+        let two = vec!["a".to_string(), "b".to_string()];
+        let said = unheld(&Error::from(sliding(false, two.clone()))).map(|u| u.1);
+        assert_eq!(said.as_deref(), Some("bodies \"a\", \"b\" are free to slide or rotate"));
+        assert!(unheld(&Error::from(sliding(true, two))).is_none(), "frictionless joints are the scene's");
+        assert!(unheld(&Error::from(ContactError::BondedNotHeld)).is_none());
+    }
 
     #[test]
     fn stiffness_is_rounded_to_four_digits() {

@@ -127,23 +127,35 @@ fn solve(
     let again = fallback::eligible(&scene).then(|| (mesh.clone(), msh.clone()));
     let given = Try::Given { may_fall: again.is_some() };
     let rigid = attempt(scene, opts, comm, (mesh, msh, mesh_cached), timings.clone(), given, to)?;
-    let (scene, record, (mesh, msh)) = match (rigid, again) {
-        (Attempt::Fell(scene, record), Some(again)) => (*scene, record, again),
+    let (scene, record, (mesh, msh), unheld) = match (rigid, again) {
+        (Attempt::Fell(scene, record, unheld), Some(again)) => (*scene, record, again, unheld),
         (Attempt::Ran(run), _) => return Ok(run.map(|r| *r)),
         (Attempt::Fell(..), None) => unreachable!("only an eligible scene falls back"),
     };
-    if let Some(r) = &record {
-        say(&format!("warning: {}", fallback::said(r)));
+    // (where the rigid joints left a body unheld, said once the joints
+    // that deform hold it: where they do not, the rigid error is all the
+    // run says)
+    let warning = record.as_ref().map(|r| format!("warning: {}", fallback::said(r)));
+    let said_after = unheld.is_some();
+    if !said_after {
+        warning.iter().for_each(|w| say(w));
     }
     // the rigid attempt's factors are gone: their pages back to the system
     crate::memory::give_back();
     let taken = scene.contacts.first().and_then(|c| c.stiffness);
     let fell = attempt(scene, opts, comm, (mesh, msh, mesh_cached), timings, Try::Fallback(record), to);
-    let fell = fell.map_err(|e| match taken {
-        Some(k) => e.in_fallback(k),
-        None => e,
+    let fell = fell.map_err(|e| match (unheld, taken) {
+        // a scene that holds nothing with joints that deform either: the
+        // rigid joints' error says so
+        (Some(rigid), _) if fallback::unheld(&e).is_some() => *rigid,
+        (_, Some(k)) => e.in_fallback(k),
+        (_, None) => e,
     });
-    match fell? {
+    let fell = fell?;
+    if said_after {
+        warning.iter().for_each(|w| say(w));
+    }
+    match fell {
         Attempt::Ran(run) => Ok(run.map(|r| *r)),
         Attempt::Fell(..) => unreachable!("joints that deform do not fall back"),
     }
@@ -152,10 +164,11 @@ fn solve(
 /// What one attempt at steps 3 to 7 gave: the run (written), or, where
 /// its rigid joints did not converge and the scene lets the run fall
 /// back, the scene with joints that deform and the record of why (on
-/// rank 0).
+/// rank 0), with the rigid joints' error where they stopped at a state
+/// set that holds nothing.
 enum Attempt {
     Ran(Option<Box<Run>>),
-    Fell(Box<Scene>, Option<Fallback>),
+    Fell(Box<Scene>, Option<Fallback>, Option<Box<crate::error::Error>>),
 }
 
 /// Which attempt at steps 3 to 7 a run makes: the scene as given
@@ -191,13 +204,11 @@ fn attempt(
     // search when the scene asks for one (a scene that fails at full
     // strength is unsafe as given).
     let step = steps::Step::new(&scene, &model, &plan, &parts, &ranks)?;
-    let (mut done, safety, failed) = safety::steps_or_below(&step, &parts, opts, &ranks)?;
-    if matches!(this, Try::Given { may_fall: true }) && failed.is_none() {
-        let seconds = to.t0.elapsed().as_secs_f64();
-        if let Some((scene, record)) = fallback::fall(&scene, &model, &done.steps, ranks.comm(), seconds) {
-            return Ok(Attempt::Fell(Box::new(scene), record));
-        }
-    }
+    let may_fall = matches!(this, Try::Given { may_fall: true });
+    let (mut done, safety, failed) = match steps_or_fall(&step, &parts, opts, &ranks, may_fall, to.t0)? {
+        Ok(done) => done,
+        Err(fell) => return Ok(fell),
+    };
     let safety = match failed {
         Some(_) => safety,
         None => safety::run(&step, &parts, opts, &ranks, &mut done)?,
@@ -242,6 +253,43 @@ fn attempt(
     run.checks = checks(&run);
     run.stats.timings.recover += t.elapsed().as_secs_f64();
     write(run, opts, to, failed).map(|run| Attempt::Ran(Some(Box::new(run))))
+}
+
+/// The load steps, the safety search below one where they failed, and
+/// what they failed with ([`safety::steps_or_below`]).
+type Stepped = (steps::LoadSteps, Option<crate::results::SafetyRun>, Option<Error>);
+
+/// The load steps of `step` and what they failed with
+/// ([`safety::steps_or_below`]); or, where the scene's rigid joints
+/// `may_fall` back and they ended a step unconverged or stopped at a state
+/// set that holds nothing, the attempt that falls back (the run began at
+/// `t0`).
+fn steps_or_fall(
+    step: &steps::Step,
+    parts: &condense::Parts,
+    opts: &RunOptions,
+    ranks: &ranks::Ranks,
+    may_fall: bool,
+    t0: Instant,
+) -> Result<std::result::Result<Stepped, Attempt>> {
+    let (scene, model, comm) = (step.scene, step.model, ranks.comm());
+    let done = match safety::steps_or_below(step, parts, opts, ranks) {
+        Err(e) if may_fall => {
+            let seconds = t0.elapsed().as_secs_f64();
+            let Some((scene, record)) = fallback::fall_unheld(scene, model, &e, comm, seconds) else {
+                return Err(e);
+            };
+            return Ok(Err(Attempt::Fell(Box::new(scene), record, Some(Box::new(e)))));
+        }
+        done => done?,
+    };
+    if may_fall && done.2.is_none() {
+        let seconds = t0.elapsed().as_secs_f64();
+        if let Some((scene, record)) = fallback::fall(scene, model, &done.0.steps, comm, seconds) {
+            return Ok(Err(Attempt::Fell(Box::new(scene), record, None)));
+        }
+    }
+    Ok(Ok(done))
 }
 
 /// Errors against the scene's closed form (body by body, each in its own

@@ -264,6 +264,7 @@ fn fallback_json(run: &Run) -> serde_json::Value {
         "scaled": f.scaled,
         "cycled": f.cycled,
         "law_residual": f.law_residual,
+        "unheld": f.unheld,
         "seconds": f.seconds,
         "normal_stiffness": f.stiffness.normal,
         "shear_stiffness": f.stiffness.shear,
