@@ -26,7 +26,7 @@ use faer::{Conj, MatMut, Par, Side, Spec};
 
 use super::ordering::Ordering;
 use super::schur::symbolic;
-use super::sparse_forward::{self, Paths};
+use super::sparse_forward::{self, Forward, Paths};
 use super::two_threads::Twofold;
 use crate::fem::sparse::{FactorError, SymMatrix};
 use crate::fem::vec3::to_one;
@@ -170,13 +170,36 @@ impl SingleCholesky {
         let (SymbolicCholeskyRaw::Supernodal(sn), Some(paths)) = (self.symbolic.raw(), &self.paths) else {
             return None;
         };
+        let (scaled, t) = self.scaled(cols);
+        let e = sparse_forward::energies(SupernodalLltRef::new(sn, &self.values), paths, &scaled);
+        Some(e.iter().zip(&t).map(|(e, tc)| e * self.scale / (tc * tc)).collect())
+    }
+
+    /// `L^-1 P b` of each column, given by its non-zeros (row, value), to
+    /// single precision, with the factor that scales it to K's units:
+    /// `a^T K^-1 b = f_a f_b (L^-1 P a) . (L^-1 P b)`
+    /// ([`sparse_forward::Forward::dot`]). The forward substitution alone,
+    /// through the supernodes the columns reach; None where the factor is
+    /// not supernodal.
+    pub fn sparse_forward(&self, cols: &[Vec<(usize, f64)>]) -> Option<Vec<(Forward, f64)>> {
+        let (SymbolicCholeskyRaw::Supernodal(sn), Some(paths)) = (self.symbolic.raw(), &self.paths) else {
+            return None;
+        };
+        let (scaled, t) = self.scaled(cols);
+        let x = sparse_forward::forward(SupernodalLltRef::new(sn, &self.values), paths, &scaled);
+        Some(x.into_iter().zip(&t).map(|(x, tc)| (x, self.scale.sqrt() / tc)).collect())
+    }
+
+    /// Sparse columns in the factor's ordering, each scaled by a power of
+    /// two to a largest entry near 1 (single precision holds it), and those
+    /// powers.
+    fn scaled(&self, cols: &[Vec<(usize, f64)>]) -> (Vec<Vec<(usize, f32)>>, Vec<f64>) {
         let t: Vec<f64> = cols.iter().map(|c| to_one(&c.iter().map(|&(_, v)| v).collect::<Vec<f64>>())).collect();
         let inv = self.symbolic.perm().map(|p| p.arrays().1);
         let at = |i: usize| inv.map_or(i, |inv| inv[i]);
-        let scaled: Vec<Vec<(usize, f32)>> =
+        let scaled =
             cols.iter().zip(&t).map(|(c, &tc)| c.iter().map(|&(i, v)| (at(i), (v * tc) as f32)).collect()).collect();
-        let e = sparse_forward::energies(SupernodalLltRef::new(sn, &self.values), paths, &scaled);
-        Some(e.iter().zip(&t).map(|(e, tc)| e * self.scale / (tc * tc)).collect())
+        (scaled, t)
     }
 
     /// The lowest supernode of the rows `rows` (K's ordering): a key to
@@ -270,15 +293,30 @@ mod tests {
         a
     }
 
+    /// [`cube`] of 9^3 factorised in nested dissection, and its equations.
+    fn cube_factor() -> (SingleCholesky, usize) {
+        let k = cube(9);
+        let node_of: Vec<usize> = (0..k.n).collect();
+        (SingleCholesky::factor(&k, &node_of, Ordering::NestedDissection, 1).expect("positive definite"), k.n)
+    }
+
+    /// Each of the sparse `cols` over `n` rows.
+    fn dense(cols: &[Vec<(usize, f64)>], n: usize) -> Vec<Vec<f64>> {
+        (cols.iter())
+            .map(|c| {
+                let mut b = vec![0.0; n];
+                c.iter().for_each(|&(i, v)| b[i] += v);
+                b
+            })
+            .collect()
+    }
+
     /// Columns of a few non-zeros each (some sharing rows, one at 1e-150,
     /// one empty) give through the supernodes they reach `b^T K^-1 b` of
     /// the solve, to single precision.
     #[test]
     fn sparse_columns_reach_the_energies_of_dense_ones() {
-        let k = cube(9);
-        let n = k.n;
-        let node_of: Vec<usize> = (0..n).collect();
-        let f = SingleCholesky::factor(&k, &node_of, Ordering::NestedDissection, 1).expect("positive definite");
+        let (f, n) = cube_factor();
         let mut cols: Vec<Vec<(usize, f64)>> = (0..40)
             .map(|c| {
                 (0..1 + c % 5).map(|j| ((c * 37 + j * 101) % n, 1.0 + (c as f64 + j as f64 * 0.3).sin())).collect()
@@ -287,19 +325,41 @@ mod tests {
         cols.push(cols[3].iter().map(|&(i, v)| (i, 1e-150 * v)).collect());
         cols.push(Vec::new());
         cols.sort_by_key(|c| f.leaf(c.iter().map(|&(i, _)| i)));
-        let dense: Vec<Vec<f64>> = (cols.iter())
-            .map(|c| {
-                let mut b = vec![0.0; n];
-                c.iter().for_each(|&(i, v)| b[i] += v);
-                b
-            })
-            .collect();
+        let dense = dense(&cols, n);
         let want: Vec<f64> = dense.iter().map(|b| b.iter().zip(f.solve(b)).map(|(a, x)| a * x).sum()).collect();
         let got = f.sparse_energies(&cols).expect("a supernodal factor");
         for (g, w) in got.iter().zip(&want) {
             assert!((g - w).abs() <= 1e-5 * w.abs(), "b^T K^-1 b: {g:e} against {w:e}");
         }
         assert!(want.iter().filter(|&&w| w > 0.0).count() == cols.len() - 1, "one empty column");
+    }
+
+    /// The kept forward substitutions of sparse columns give `a^T K^-1 b`
+    /// of every two of them (those whose paths meet only at the top
+    /// separators, and one at 1e-150 against one at 1), to single
+    /// precision: the sparse interface's entries of W.
+    #[test]
+    fn forward_substitutions_give_the_products_of_dense_solves() {
+        let (f, n) = cube_factor();
+        let mut cols: Vec<Vec<(usize, f64)>> = (0..12)
+            .map(|c| (0..1 + c % 3).map(|j| ((c * 61 + j * 7) % n, 1.0 + 0.5 * (c + j) as f64)).collect())
+            .collect();
+        cols.push(cols[5].iter().map(|&(i, v)| (i, 1e-150 * v)).collect());
+        let dense = dense(&cols, n);
+        // two passes, as the interface forms them: the products cross them
+        let (first, second) = cols.split_at(7);
+        let mut kept = f.sparse_forward(first).expect("a supernodal factor");
+        kept.extend(f.sparse_forward(second).expect("a supernodal factor"));
+        for (a, (xa, fa)) in dense.iter().zip(&kept) {
+            let solved = f.solve(a);
+            for (b, (xb, fb)) in dense.iter().zip(&kept) {
+                let want: f64 = b.iter().zip(&solved).map(|(b, x)| b * x).sum();
+                let energy = |v: &[f64]| v.iter().zip(f.solve(v)).map(|(v, x)| v * x).sum::<f64>().sqrt();
+                let size = energy(a) * energy(b);
+                let got = fa * fb * xa.dot(xb);
+                assert!((got - want).abs() <= 1e-5 * size, "a^T K^-1 b: {got:e} against {want:e} (of {size:e})");
+            }
+        }
     }
 
     /// Two threads substitute what one does, to single precision: the

@@ -79,6 +79,88 @@ impl Paths {
 /// (row in the factor's ordering, value), in one pass through the
 /// supernodes their paths reach; see the module header.
 pub fn energies(l: SupernodalLltRef<'_, usize, f32>, paths: &Paths, cols: &[Vec<(usize, f32)>]) -> Vec<f64> {
+    let batch = substitute(l, paths, cols);
+    let m = batch.m;
+    (0..cols.len()).map(|c| batch.x[c * m..(c + 1) * m].iter().map(|&v| f64::from(v).powi(2)).sum()).collect()
+}
+
+/// `L^-1 b` of every column of `cols` (as [`energies`] takes them), each
+/// on the supernodes its own path reaches: what products `b_a^T K^-1 b_b`
+/// of two columns are formed from ([`Forward::dot`]).
+pub fn forward(l: SupernodalLltRef<'_, usize, f32>, paths: &Paths, cols: &[Vec<(usize, f32)>]) -> Vec<Forward> {
+    let batch = substitute(l, paths, cols);
+    let m = batch.m;
+    (cols.iter().enumerate())
+        .map(|(c, col)| {
+            let x = &batch.x[c * m..(c + 1) * m];
+            let (mut nodes, mut values) = (Vec::new(), Vec::new());
+            for s in paths.reach(col.iter().map(|&(r, _)| r)) {
+                nodes.push((s, values.len()));
+                let o = batch.local[s];
+                values.extend_from_slice(&x[o..o + l.supernode(s).val().ncols()]);
+            }
+            Forward { nodes, values }
+        })
+        .collect()
+}
+
+/// One column's `L^-1 b` on the supernodes of its path; see [`forward`].
+pub struct Forward {
+    /// The supernodes, ascending, and where each one's rows begin in `values`.
+    nodes: Vec<(usize, usize)>,
+    values: Vec<f32>,
+}
+
+impl Forward {
+    /// `(L^-1 a)^T (L^-1 b)`, over the supernodes both paths reach (the
+    /// top separators at least), summed in double precision.
+    pub fn dot(&self, other: &Forward) -> f64 {
+        let (mut i, mut j, mut sum) = (0, 0, 0.0);
+        while i < self.nodes.len() && j < other.nodes.len() {
+            let (a, b) = (self.nodes[i], other.nodes[j]);
+            match a.0.cmp(&b.0) {
+                std::cmp::Ordering::Less => i += 1,
+                std::cmp::Ordering::Greater => j += 1,
+                std::cmp::Ordering::Equal => {
+                    let end = |f: &Forward, k: usize| f.nodes.get(k + 1).map_or(f.values.len(), |n| n.1);
+                    sum += dot(&self.values[a.1..end(self, i)], &other.values[b.1..end(other, j)]);
+                    i += 1;
+                    j += 1;
+                }
+            }
+        }
+        sum
+    }
+
+    /// The bytes its values hold.
+    pub fn bytes(&self) -> usize {
+        4 * self.values.len()
+    }
+}
+
+/// `a . b` in double precision, in eight lanes.
+fn dot(a: &[f32], b: &[f32]) -> f64 {
+    let mut lanes = [0.0f64; 8];
+    let (ca, cb) = (a.chunks_exact(8), b.chunks_exact(8));
+    let tail: f64 = ca.remainder().iter().zip(cb.remainder()).map(|(&x, &y)| f64::from(x) * f64::from(y)).sum();
+    for (x, y) in ca.zip(cb) {
+        for k in 0..8 {
+            lanes[k] += f64::from(x[k]) * f64::from(y[k]);
+        }
+    }
+    lanes.iter().sum::<f64>() + tail
+}
+
+/// A batch's forward substitutions, packed over the supernodes their
+/// paths reach: column c's row r at `x[c * m + local[s] + r - begin[s]]`.
+struct Batch {
+    x: Vec<f32>,
+    m: usize,
+    local: Vec<usize>,
+}
+
+/// [`Batch`] of `cols`.
+fn substitute(l: SupernodalLltRef<'_, usize, f32>, paths: &Paths, cols: &[Vec<(usize, f32)>]) -> Batch {
     let k = cols.len();
     let reached = paths.reach(cols.iter().flatten().map(|&(r, _)| r));
     // the reached supernodes' rows, packed in ascending order
@@ -117,5 +199,5 @@ pub fn energies(l: SupernodalLltRef<'_, usize, f32>, paths: &Paths, cols: &[Vec<
             }
         }
     }
-    (0..k).map(|c| x[c * m..(c + 1) * m].iter().map(|&v| f64::from(v).powi(2)).sum()).collect()
+    Batch { x, m, local }
 }

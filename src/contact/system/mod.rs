@@ -59,6 +59,7 @@ pub mod solver;
 pub mod sparse;
 mod threads;
 mod w_columns;
+mod w_entries;
 
 use coords::{Axis, Var};
 pub use freedom::{Freedom, JunctionBlock, Lift, SlipRow};

@@ -57,7 +57,7 @@
 //! step, [`super::iterative::tolerance`]): the 3D tunnel's held solves
 //! took 6-7 applications each to the tight tolerance, now 2.
 
-use std::cell::Cell;
+use std::cell::{Cell, RefCell};
 use std::sync::{Mutex, OnceLock};
 use std::time::Instant;
 
@@ -76,7 +76,8 @@ use super::reduce::{combine, NotHeld};
 use super::sides::Sides;
 use super::solver::{Accuracy, Answer, Solver, Split};
 use super::threads::{in_runs, in_threads};
-use super::w_columns::WColumns;
+use super::w_columns::{self, WColumns};
+use super::w_entries::WEntries;
 use crate::contact::law::ContactState;
 use crate::fem::sparse::{Cholesky, SymMatrix};
 use crate::fem::vec3::length;
@@ -85,6 +86,7 @@ use crate::model::Model;
 use crate::substructure::ordering::Ordering;
 use crate::substructure::schur::PartialCholesky;
 use crate::substructure::single_precision::SingleCholesky;
+use crate::substructure::sparse_forward::Forward;
 use crate::substructure::{OperatorRef, SchurRef};
 
 const RESTART: usize = 200;
@@ -178,8 +180,8 @@ pub struct Sparse {
     iterations: Mutex<Vec<usize>>,
     /// Where the solves' time went.
     split: Mutex<Split>,
-    /// The columns of W at the relative displacements free so far.
-    w: Mutex<WColumns>,
+    /// W where the free blocks have read it: chosen at the first.
+    w: Mutex<Option<WMemory>>,
     /// The free block's factor kept for the next solve of the same load
     /// where every pair deforms ([`Freedom::deforming`]).
     kept: Mutex<Option<Kept>>,
@@ -191,6 +193,14 @@ struct Kept {
     lambda: Vec<f64>,
     cols: Vec<Vec<(usize, f64)>>,
     block: std::sync::Arc<Preconditioner>,
+}
+
+/// W where the free blocks read it: entry by entry where K_mm's factor
+/// substitutes sparse columns ([`super::w_entries`]), else whole columns
+/// ([`super::w_columns`]).
+enum WMemory {
+    Columns(WColumns),
+    Entries(WEntries),
 }
 
 impl Sparse {
@@ -262,7 +272,7 @@ impl Sparse {
             last_states: LastStates::default(),
             iterations: Mutex::new(Vec::new()),
             split: Mutex::new(Split::default()),
-            w: Mutex::new(WColumns::new(nr)),
+            w: Mutex::new(None),
             kept: Mutex::new(None),
         };
         if !deforming && solver.means().is_none() {
@@ -353,13 +363,20 @@ impl Sparse {
     /// refined means (its mean rows, its relative rows).
     /// A stuck pair's force is what K makes of the displacements on both
     /// sides: round-off, not the solve's tolerance, where it carries nothing.
-    fn refine_means(&self, m: &mut [f64], r: &[f64], b_m: &[f64], scale: f64) -> (Vec<f64>, Vec<f64>) {
+    /// `known`: `K [m; r]` where the solve formed it already.
+    fn refine_means(
+        &self,
+        m: &mut [f64],
+        r: &[f64],
+        (b_m, scale): (&[f64], f64),
+        mut known: Option<(Vec<f64>, Vec<f64>)>,
+    ) -> (Vec<f64>, Vec<f64>) {
         if self.k_mm.get().is_none() {
-            return self.apply(m, r);
+            return known.unwrap_or_else(|| self.apply(m, r));
         }
         let mut last = f64::INFINITY;
         for _ in 0..REFINEMENTS {
-            let (k_m, k_r) = self.apply(m, r);
+            let (k_m, k_r) = known.take().unwrap_or_else(|| self.apply(m, r));
             let res: Vec<f64> = b_m.iter().zip(&k_m).map(|(b, k)| b - k).collect();
             let size = length(&res);
             if size <= REFINED * scale || size >= 0.5 * last {
@@ -505,33 +522,34 @@ impl Sparse {
     }
 
     /// The free block of a solve, `Z^T W Z` with the friction law's and
-    /// the junctions' rows, from W's columns (those it lacks computed
-    /// first), factorised; None when they would take too much memory or
-    /// the block is singular.
+    /// the junctions' rows, from W's entries or columns (what it lacks
+    /// formed first, [`Sparse::form_w`]), factorised; None when they would
+    /// take too much memory or the block is singular.
     fn exact_block(&self, free: &Free) -> Option<Preconditioner> {
         let n = free.fr.cols.len();
         if n == 0 || self.nm == 0 {
             return None;
         }
-        let mut w = self.w.lock().ok()?;
-        let missing = w.missing(free.fr)?;
-        self.means()?;
+        let means = self.means()?;
+        // W z only at the rows the block's equations read (its free rows,
+        // the slipping pairs' normal rows, the junctions' with free
+        // columns): the 86k tunnel's 289-333 of 31,725
+        let rows = free.rows();
+        let mut memory = self.w.lock().ok()?;
+        let w = self.w_memory(&mut memory, means);
         let t = Instant::now();
-        for batch in missing.chunks(W_BATCH) {
-            let cols = self.w_columns_of(batch);
-            w.add(batch, cols);
-        }
+        let formed = self.form_w(w, means, free.fr, &rows);
         self.add_split(|s| s.columns += t.elapsed().as_secs_f64());
+        formed?;
         let mut e = vec![0.0; n];
         let mut a = Mat::<f64>::zeros(n, n);
-        // W z only at the rows the block's equations read (its free rows,
-        // the slipping pairs' normal rows, the junctions'): the 86k
-        // tunnel's 250-odd of 31,725, where the whole column was formed
-        let rows = free.rows();
         let mut wz = vec![0.0; self.nr];
         for (c, z) in free.fr.cols.iter().enumerate() {
             e[c] = 1.0;
-            w.times_at(z, &rows, &mut wz);
+            match w {
+                WMemory::Columns(w) => w.times_at(z, &rows, &mut wz),
+                WMemory::Entries(w) => w.times_at(z, &rows, &mut wz),
+            }
             let col = free.operator(&e, &wz);
             e[c] = 0.0;
             col.iter().enumerate().for_each(|(i, &v)| a[(i, c)] = v);
@@ -539,6 +557,57 @@ impl Sparse {
         let lu = a.partial_piv_lu();
         let probe = lu.solve(Mat::<f64>::from_fn(n, 1, |_, _| 1.0));
         (0..n).all(|i| probe[(i, 0)].is_finite()).then_some(Preconditioner::Exact(lu))
+    }
+
+    /// Forms what W lacks for a free block over `fr` that reads it at
+    /// `rows`: the forward substitutions of the displacements there, or
+    /// the whole columns at `fr`'s; None where keeping them would take
+    /// more than [`w_columns::MAX_BYTES`].
+    fn form_w(&self, w: &mut WMemory, means: &Means, fr: &Freedom, rows: &[usize]) -> Option<()> {
+        match w {
+            WMemory::Columns(w) => {
+                for batch in w.missing(fr)?.chunks(W_BATCH) {
+                    let cols = self.w_columns_of(batch);
+                    w.add(batch, cols);
+                }
+            }
+            WMemory::Entries(w) => {
+                w.admit(&fr.cols).then_some(())?;
+                self.forward_into(w, means, rows);
+                w.form(rows, &fr.cols, self.threads);
+                (w.bytes() <= w_columns::MAX_BYTES).then_some(())?;
+            }
+        }
+        Some(())
+    }
+
+    /// W's memory, chosen at its first use: entries where `means`
+    /// substitutes sparse columns, else whole columns.
+    fn w_memory<'a>(&self, memory: &'a mut Option<WMemory>, means: &Means) -> &'a mut WMemory {
+        memory.get_or_insert_with(|| match means.sparse_forward(&[]) {
+            Some(_) => WMemory::Entries(WEntries::new(self.nr)),
+            None => WMemory::Columns(WColumns::new(self.nr)),
+        })
+    }
+
+    /// Keeps in `w` the forward substitutions of the displacements `idx`
+    /// that lack one, in passes of at most [`W_DIAGONAL_BATCH`] spread
+    /// over the threads (see [`Sparse::w_diagonal`]).
+    fn forward_into(&self, w: &mut WEntries, means: &Means, idx: &[usize]) {
+        let mut missing = w.missing(idx);
+        if missing.is_empty() {
+            return;
+        }
+        let k_m = self.mean_columns(means, &mut missing);
+        let per = missing.len().div_ceil(self.threads).min(W_DIAGONAL_BATCH);
+        let batches: Vec<&[MeanColumn]> = k_m.chunks(per).collect();
+        let threads = self.threads.min(batches.len()).max(1);
+        let forward = in_runs(&batches, threads, |run| {
+            run.iter().flat_map(|batch| means.sparse_forward(batch).unwrap_or_default()).collect::<Vec<_>>()
+        });
+        for (&a, x) in missing.iter().zip(forward.into_iter().flatten()) {
+            w.add(a, x, self.relative_column(&self.holders[a]));
+        }
     }
 
     /// The free block's factor of a solve under `lambda`: formed, or where
@@ -617,22 +686,41 @@ impl Sparse {
         let means = if missing.is_empty() { None } else { self.means() };
         if let Some(means) = means {
             let t = Instant::now();
-            let k_m = self.mean_columns(means, &mut missing);
-            let per = missing.len().div_ceil(self.threads).min(W_DIAGONAL_BATCH);
-            let batches: Vec<&[MeanColumn]> = k_m.chunks(per).collect();
-            let threads = self.threads.min(batches.len()).max(1);
-            let lowered = in_runs(&batches, threads, |run| {
-                run.iter().flat_map(|batch| means.energies(batch, self.nm)).collect::<Vec<f64>>()
-            });
+            let lowered = self.lowered(means, &mut missing);
             // (K_mm's single-precision factor could lose a W far softer than
             // K_rr: that keeps K_rr's)
-            for (&i, l) in missing.iter().zip(lowered.into_iter().flatten()) {
+            for (&i, l) in missing.iter().zip(lowered) {
                 let (k, w) = (self.k_rr[i], self.k_rr[i] - l);
                 d[i] = Some(if w > 1e-6 * k { w } else { k });
             }
             self.add_split(|s| s.diagonal += t.elapsed().as_secs_f64());
         }
         idx.iter().map(|&i| d[i].unwrap_or(self.k_rr[i])).collect()
+    }
+
+    /// `(K_mr e_i)^T K_mm^-1 K_mr e_i` at each relative displacement of
+    /// `missing` (deduplicated and sorted as [`Sparse::mean_columns`]
+    /// does): from the forward substitutions W's entries keep, formed
+    /// where they lack them (the exact block reads the same displacements
+    /// and more), else by a pass of their own.
+    fn lowered(&self, means: &Means, missing: &mut Vec<usize>) -> Vec<f64> {
+        let mut memory = self.w.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        if let WMemory::Entries(w) = self.w_memory(&mut memory, means) {
+            missing.sort_unstable();
+            missing.dedup();
+            if w.room(w.missing(missing).len()) {
+                self.forward_into(w, means, missing);
+                return missing.iter().map(|&i| w.energy(i)).collect();
+            }
+        }
+        let k_m = self.mean_columns(means, missing);
+        let per = missing.len().div_ceil(self.threads).min(W_DIAGONAL_BATCH);
+        let batches: Vec<&[MeanColumn]> = k_m.chunks(per).collect();
+        let threads = self.threads.min(batches.len()).max(1);
+        let lowered = in_runs(&batches, threads, |run| {
+            run.iter().flat_map(|batch| means.energies(batch, self.nm)).collect::<Vec<f64>>()
+        });
+        lowered.into_iter().flatten().collect()
     }
 
     /// The mean rows of K's columns at the relative displacements
@@ -672,21 +760,33 @@ impl Sparse {
     /// The mean rows of K's column at a relative displacement held where
     /// `holders` says: its non-zeros (mean, value), a mean's terms summed.
     fn mean_column(&self, holders: &[(usize, usize, f64)]) -> MeanColumn {
-        let mut k_m = Vec::new();
+        self.sparse_column(holders, |v| if let Var::M(j) = v { Some(j) } else { None })
+    }
+
+    /// The relative rows of that column, likewise: K_rr's.
+    fn relative_column(&self, holders: &[(usize, usize, f64)]) -> Vec<(usize, f64)> {
+        self.sparse_column(holders, |v| if let Var::R(j) = v { Some(j) } else { None })
+    }
+
+    /// The rows `pick` numbers of K's column at a relative displacement
+    /// held where `holders` says: (row, value), ascending, a row's terms
+    /// summed.
+    fn sparse_column(&self, holders: &[(usize, usize, f64)], pick: impl Fn(Var) -> Option<usize>) -> MeanColumn {
+        let mut k = Vec::new();
         self.unit_column(holders, |v, x| {
-            if let Var::M(j) = v {
-                k_m.push((j, x));
+            if let Some(j) = pick(v) {
+                k.push((j, x));
             }
         });
-        k_m.sort_unstable_by_key(|&(j, _)| j);
-        k_m.dedup_by(|b, a| {
+        k.sort_unstable_by_key(|&(j, _)| j);
+        k.dedup_by(|b, a| {
             let same = a.0 == b.0;
             if same {
                 a.1 += b.1;
             }
             same
         });
-        k_m
+        k
     }
 
     /// A place id for each of the `n` unknowns `index` numbers: the
@@ -747,10 +847,14 @@ impl Solver for Sparse {
         let mut rhs0: Vec<f64> = b_m.iter().zip(&k_m).map(|(b, k)| b - k).collect();
         rhs0.extend(free.rhs(&known, &y0));
         self.add_split(|s| s.start += t.elapsed().as_secs_f64());
+        // GMRES's last product (x, K's rows): its answer's ([`answer_product`])
+        let last_product = RefCell::new(None);
         let a = |x: &[f64]| {
             let (dm, dy) = x.split_at(nm);
             let (mut out, k_r) = self.apply(dm, &free.expand(dy));
-            out.extend(free.operator(dy, &k_r));
+            let ops = free.operator(dy, &k_r);
+            *last_product.borrow_mut() = Some((x.to_vec(), out.clone(), k_r));
+            out.extend(ops);
             out
         };
         // P = [K_mm, K_mr Z; 0, Z^T K_rr Z]: y from the second row, then the means
@@ -797,7 +901,8 @@ impl Solver for Sparse {
         let mut r = fr.r0.clone();
         r.iter_mut().zip(free.expand(&y)).for_each(|(v, e)| *v += e);
         let t = Instant::now();
-        let (k_m, k_r) = self.refine_means(&mut m, &r, b_m, scale);
+        let known = answer_product(last_product.into_inner(), &dx, (&k_m, &k_r));
+        let (k_m, k_r) = self.refine_means(&mut m, &r, (b_m, scale), known);
         self.add_split(|s| s.refine += t.elapsed().as_secs_f64());
         let residual_r = k_r.iter().zip(b_r).map(|(k, b)| k - b).collect();
         if !residual.is_finite() || m.iter().chain(&r).any(|v| !v.is_finite()) {
@@ -883,7 +988,9 @@ impl Free<'_> {
             }
             out[i] += s.springs.iter().map(|&(rc, k)| k * y[fr.pos[rc]]).sum::<f64>();
         }
-        for jb in &fr.junctions {
+        // (a junction without free columns adds nothing: 2,047 of the 86k
+        // tunnel's, each lift a product, at each of the exact block's columns)
+        for jb in fr.junctions.iter().filter(|jb| !jb.cols.is_empty()) {
             let lifted = jb.lifted(|i| w[i], y);
             for (a, fa) in jb.cols.clone().enumerate() {
                 out[fa] += jb.cols.clone().enumerate().map(|(c, fc)| jb.kz[(a, c)] * y[fc]).sum::<f64>()
@@ -898,7 +1005,9 @@ impl Free<'_> {
         let fr = self.fr;
         let mut rows: Vec<usize> = (fr.cols.iter().flatten().map(|&(i, _)| i))
             .chain(fr.slips.iter().filter_map(|s| s.normal))
-            .chain(fr.junctions.iter().flat_map(|jb| jb.r.iter().copied()))
+            .chain(
+                fr.junctions.iter().filter(|jb| jb.lift.is_some() && !jb.cols.is_empty()).flat_map(|jb| jb.r.clone()),
+            )
             .collect();
         rows.sort_unstable();
         rows.dedup();
@@ -917,7 +1026,7 @@ impl Free<'_> {
                 rhs[i] += s.coupling * known[rn];
             }
         }
-        for jb in &fr.junctions {
+        for jb in fr.junctions.iter().filter(|jb| !jb.cols.is_empty()) {
             let lifted = jb.lifted(|i| -known[i], y0);
             for (a, fa) in jb.cols.clone().enumerate() {
                 rhs[fa] -= jb.fz[a]
@@ -936,7 +1045,7 @@ impl Free<'_> {
 /// where every pair deforms, [`SINGLE_BLOCK`]); its diagonal when that
 /// factorisation fails.
 enum Preconditioner {
-    /// The whole free block, from W's columns ([`Sparse::exact_block`]).
+    /// The whole free block, from W ([`Sparse::exact_block`]).
     Exact(PartialPivLu<f64>),
     Factor(Cholesky),
     /// `M` where every pair deforms.
@@ -1265,6 +1374,16 @@ impl Means {
         dense.iter().zip(&t).map(|(a, b)| a.iter().zip(b).map(|(a, b)| a * b).sum::<f64>()).collect()
     }
 
+    /// Each column's forward substitution and its factor
+    /// ([`SingleCholesky::sparse_forward`]); None where the factor allows
+    /// no sparse substitution.
+    fn sparse_forward(&self, bs: &[MeanColumn]) -> Option<Vec<(Forward, f64)>> {
+        match self {
+            Means::Single(f) => f.sparse_forward(bs),
+            Means::Double(..) => None,
+        }
+    }
+
     /// Where the substitution of a column with the non-zeros `b` begins
     /// (its lowest supernode): what [`Sparse::mean_columns`] sorts by.
     fn leaf(&self, b: &[(usize, f64)]) -> usize {
@@ -1286,6 +1405,32 @@ impl Means {
         x.truncate(v.len());
         x
     }
+}
+
+/// `K [m; r]` at a solve's answer, `[m_s + dm; r_s + Z dy]`, from the
+/// start's (`at_start`, mean and relative rows) and GMRES's `last`
+/// product (its x, its mean and relative rows): `K [m_s; r_s] + K [dm; Z
+/// dy]`, where that x is the answer `dx` times a power of two, as GMRES's
+/// last product is. It saves the refinement one product with every S
+/// (the 86k tunnel's 14 solves: 0.25 s).
+fn answer_product(
+    last: Option<(Vec<f64>, Vec<f64>, Vec<f64>)>,
+    dx: &[f64],
+    at_start: (&[f64], &[f64]),
+) -> Option<(Vec<f64>, Vec<f64>)> {
+    let (x, p_m, p_r) = last?;
+    let t = power_of_two(&x, dx)?;
+    let add = |k: &[f64], p: Vec<f64>| k.iter().zip(p).map(|(k, p)| k + p / t).collect::<Vec<f64>>();
+    Some((add(at_start.0, p_m), add(at_start.1, p_r)))
+}
+
+/// The power of two `t` with `x = t y` to the last bit, where there is one
+/// (and `y` is not zero).
+fn power_of_two(x: &[f64], y: &[f64]) -> Option<f64> {
+    let (a, b) = x.iter().zip(y).find(|(_, &b)| b != 0.0)?;
+    let t = a / b;
+    let exact = t.is_finite() && t > 0.0 && t == 2f64.powi(t.log2().round() as i32);
+    (exact && x.len() == y.len() && x.iter().zip(y).all(|(a, b)| *a == t * b)).then_some(t)
 }
 
 /// `v` with zeros after it to `n` entries (an interior's right-hand side).
@@ -1414,6 +1559,23 @@ mod tests {
     /// positive definite block unchanged; an unsymmetric, indefinite one
     /// (a slipping junction's friction rows) symmetrised with its negative
     /// eigenvalue dropped.
+    /// GMRES's last product is taken for its answer's only where its x is
+    /// the answer times a power of two to the last bit.
+    #[test]
+    fn a_product_is_reused_only_at_a_power_of_two_of_the_answer() {
+        let y = [0.0, 1.5, -3.25e-200, 7.0];
+        let times = |t: f64| y.iter().map(|v| v * t).collect::<Vec<f64>>();
+        assert_eq!(power_of_two(&times(1.0), &y), Some(1.0));
+        assert_eq!(power_of_two(&times(2f64.powi(-40)), &y), Some(2f64.powi(-40)));
+        assert_eq!(power_of_two(&times(3.0), &y), None);
+        let mut off = times(4.0);
+        off[3] = f64::from_bits(off[3].to_bits() + 1);
+        assert_eq!(power_of_two(&off, &y), None, "one bit apart");
+        assert_eq!(power_of_two(&times(-2.0), &y), None);
+        assert_eq!(power_of_two(&[0.0; 4], &[0.0; 4]), None);
+        assert_eq!(power_of_two(&times(1.0)[..3], &y), None, "another length");
+    }
+
     #[test]
     fn an_empty_junction_block_is_its_own_positive_part() {
         let empty = nalgebra::DMatrix::<f64>::zeros(0, 0);

@@ -17,6 +17,11 @@
 //! one contact iteration to the next by a few, so most columns are
 //! computed once a step.
 //!
+//! Where K_mm's factor substitutes sparse columns (single precision and
+//! supernodal, as on every large interface) W is kept entry by entry
+//! instead ([`super::w_entries`]: the 86k tunnel's 1.15 s of columns and
+//! block 0.13 s); these whole columns serve the other factors.
+//!
 //! When they pay. A column costs about a tenth of a GMRES application
 //! (one right-hand side of a batched substitution through K_mm's factor
 //! and of a batched product with the parts' S, against one substitution
@@ -41,7 +46,7 @@ use super::freedom::Freedom;
 
 /// At most this many bytes of columns are kept: a solve that would need
 /// more is preconditioned without them.
-const MAX_BYTES: usize = 128 << 20;
+pub(super) const MAX_BYTES: usize = 128 << 20;
 
 /// The most bytes the columns over `nr` relative displacements can take:
 /// [`MAX_BYTES`], or all `nr` of them in single precision (what the memory
