@@ -75,6 +75,18 @@ pub enum Accuracy {
     /// pair, a force): a fraction of it is enough, an inexact Newton step
     /// (see [`super::iterative::tolerance`]).
     Step(f64),
+    /// As the answer, even where the states changed since the last solve:
+    /// late in a step, where the states it decides are not left to a
+    /// loose solve ([`crate::contact::iteration`]).
+    Tight,
+}
+
+impl Accuracy {
+    /// Whether a solve whose states changed may stop at the iterative
+    /// interfaces' loose tolerance.
+    pub fn may_be_loose(self) -> bool {
+        self != Accuracy::Tight
+    }
 }
 
 /// What a [`Solver`] gives the interface problem.

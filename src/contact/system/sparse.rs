@@ -876,7 +876,7 @@ impl Solver for Sparse {
             out
         };
         let scale = length(&b).max(length(&rhs0)).max(f64::MIN_POSITIVE);
-        let loose = self.last_states.loose(states);
+        let loose = self.last_states.loose(states) && accuracy.may_be_loose();
         let (mut tolerance, looser) = tolerance(loose, accuracy, scale);
         if loose && !matches!(*schur, Preconditioner::Exact(_)) {
             tolerance = tolerance.max(LOOSE_REDUCTION * length(&rhs0));
