@@ -868,3 +868,24 @@ fn add_columns(acc: &mut [Vec<f64>], cols: Vec<Vec<f64>>) {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{tolerance, Accuracy, LOOSE_TOLERANCE, TOLERANCE};
+
+    /// A change of states is solved loosely, unless the iteration asks
+    /// for it tight (late in a step); a Newton step to a fraction of the
+    /// law's residual, within the loose and the tight tolerance.
+    #[test]
+    fn a_solve_is_loose_only_where_the_states_changed_and_it_may_be() {
+        let scale = 2.0;
+        let tight = (TOLERANCE * scale, false);
+        assert_eq!(tolerance(true, Accuracy::Answer, scale), (LOOSE_TOLERANCE * scale, true));
+        assert_eq!(tolerance(true, Accuracy::Tight, scale), tight);
+        assert_eq!(tolerance(false, Accuracy::Tight, scale), tight);
+        assert_eq!(tolerance(false, Accuracy::Answer, scale), tight);
+        assert_eq!(tolerance(false, Accuracy::Step(1.0), scale), (LOOSE_TOLERANCE * scale, true));
+        assert_eq!(tolerance(false, Accuracy::Step(0.0), scale), tight);
+        assert!(!Accuracy::Tight.may_be_loose() && Accuracy::Answer.may_be_loose());
+    }
+}
