@@ -151,8 +151,7 @@ pub(super) fn fall_unheld(
 
 /// Where `error` is a contact iteration's that stopped at a state set
 /// holding nothing, on joints that carry shear: where, and what it left
-/// unheld ("body \"top\" is
-/// held by nothing").
+/// unheld ("body \"top\" is held by nothing").
 pub(super) fn unheld(error: &Error) -> Option<(super::messages::At, String)> {
     let Error::Contact(c) = error else { return None };
     let named = |bodies: &[String]| match bodies {
