@@ -8,8 +8,10 @@
 //! cut ends the step unconverged, as an uncut step would.
 //!
 //! A failure other than non-convergence (a body held by nothing, a
-//! singular interface) is the scene's, not the step size's: it is
-//! returned at once.
+//! singular interface) is not the step size's: it is returned at once
+//! (where rigid joints may fall back, the run then tries joints that
+//! deform, which tell the scene's failure from an iterate's:
+//! `driver::fallback::fall_unheld`).
 //!
 //! Under proportional loading a cohesionless joint's states do not depend
 //! on the load's size (the problem is homogeneous), so cutting only helps
