@@ -101,10 +101,17 @@ pub(super) fn fall(
     if !comm.broadcast(&stop) {
         return None;
     }
+    let (stiff, taken) = stiffened(scene, model);
+    Some((stiff, record(taken, steps.last(), seconds)))
+}
+
+/// `scene` with every contact given the fallback's [`stiffness`], and
+/// that stiffness with its E and s.
+fn stiffened(scene: &Scene, model: &Model) -> (Scene, (Stiffness, f64, f64)) {
     let taken = stiffness(scene, model);
     let mut stiff = scene.clone();
     stiff.give_joints_stiffness(taken.0);
-    Some((stiff, record(taken, steps.last(), seconds)))
+    (stiff, taken)
 }
 
 /// Where the rigid attempt stopped with `error` at a state set that
@@ -130,9 +137,7 @@ pub(super) fn fall_unheld(
     if !comm.broadcast(&stopped.is_some()) {
         return None;
     }
-    let taken = stiffness(scene, model);
-    let mut stiff = scene.clone();
-    stiff.give_joints_stiffness(taken.0);
+    let (stiff, taken) = stiffened(scene, model);
     let record = stopped.map(|(at, said)| Fallback {
         stiffness: taken.0,
         modulus: taken.1,

@@ -598,14 +598,8 @@ impl Sparse {
         if missing.is_empty() {
             return;
         }
-        let k_m = self.mean_columns(means, &mut missing);
-        let per = missing.len().div_ceil(self.threads).min(W_DIAGONAL_BATCH);
-        let batches: Vec<&[MeanColumn]> = k_m.chunks(per).collect();
-        let threads = self.threads.min(batches.len()).max(1);
-        let forward = in_runs(&batches, threads, |run| {
-            run.iter().flat_map(|batch| means.sparse_forward(batch).unwrap_or_default()).collect::<Vec<_>>()
-        });
-        for (&a, x) in missing.iter().zip(forward.into_iter().flatten()) {
+        let forward = self.in_passes(means, &mut missing, |batch| means.sparse_forward(batch).unwrap_or_default());
+        for (&a, x) in missing.iter().zip(forward) {
             w.add(a, x, self.relative_column(&self.holders[a]));
         }
     }
@@ -713,14 +707,25 @@ impl Sparse {
                 return missing.iter().map(|&i| w.energy(i)).collect();
             }
         }
+        self.in_passes(means, missing, |batch| means.energies(batch, self.nm))
+    }
+
+    /// `pass` over the mean columns at the relative displacements
+    /// `missing` ([`Sparse::mean_columns`], which sorts them), in passes of
+    /// at most [`W_DIAGONAL_BATCH`] spread over the threads: one result
+    /// per displacement, in `missing`'s order.
+    fn in_passes<T: Send>(
+        &self,
+        means: &Means,
+        missing: &mut Vec<usize>,
+        pass: impl Fn(&[MeanColumn]) -> Vec<T> + Sync,
+    ) -> Vec<T> {
         let k_m = self.mean_columns(means, missing);
         let per = missing.len().div_ceil(self.threads).min(W_DIAGONAL_BATCH);
         let batches: Vec<&[MeanColumn]> = k_m.chunks(per).collect();
         let threads = self.threads.min(batches.len()).max(1);
-        let lowered = in_runs(&batches, threads, |run| {
-            run.iter().flat_map(|batch| means.energies(batch, self.nm)).collect::<Vec<f64>>()
-        });
-        lowered.into_iter().flatten().collect()
+        let runs = in_runs(&batches, threads, |run| run.iter().flat_map(|batch| pass(batch)).collect::<Vec<T>>());
+        runs.into_iter().flatten().collect()
     }
 
     /// The mean rows of K's columns at the relative displacements
