@@ -158,6 +158,10 @@ pub struct Fallback {
     /// nothing, what it left unheld ("body \"rock #41\" is held by
     /// nothing"); None where its step ended unconverged.
     pub unheld: Option<String>,
+    /// Where the rigid joints left the factor of safety undecided: the
+    /// last factor that held and the trial above it that decided nothing,
+    /// even retried in smaller steps; None where a load step fell back.
+    pub safety: Option<(f64, Undecided)>,
 }
 
 /// The initial equilibrium stage: the step 0 that brings the bodies to

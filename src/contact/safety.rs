@@ -170,11 +170,27 @@ impl<S, E> Bracket<S, E> {
     }
 }
 
+/// What bracketing upward does with a trial that decides nothing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OnUndecided {
+    /// Passes it over: the next factor is tried from the same hold.
+    PassOver,
+    /// Ends the search there, undecided: for a caller with another way to
+    /// decide F (rigid joints that fall back to joints that deform).
+    Stop,
+}
+
 /// F from 1 up: `trial(F, from)` runs the trial at F from the state `from`
 /// of the last factor that held (`start` at F = 1). A trial that decides
 /// nothing is passed over while bracketing (the next factor is tried from
-/// the same hold) and ends the bisection.
-pub fn upward<S, E>(steps: &Steps, start: S, mut trial: impl FnMut(f64, &S) -> Verdict<S, E>) -> Bracket<S, E> {
+/// the same hold), or ends the search as `on_undecided` says, and ends
+/// the bisection.
+pub fn upward<S, E>(
+    steps: &Steps,
+    start: S,
+    on_undecided: OnUndecided,
+    mut trial: impl FnMut(f64, &S) -> Verdict<S, E>,
+) -> Bracket<S, E> {
     let mut holds = (1.0, start);
     let mut undecided = Vec::new();
     let mut k = 0;
@@ -184,7 +200,12 @@ pub fn upward<S, E>(steps: &Steps, start: S, mut trial: impl FnMut(f64, &S) -> V
         match trial(f, &holds.1) {
             Verdict::Holds(s) => holds = (f, s),
             Verdict::Fails(e) => break (f, e),
-            Verdict::Undecided(e) => undecided.push((f, e)),
+            Verdict::Undecided(e) => {
+                undecided.push((f, e));
+                if on_undecided == OnUndecided::Stop {
+                    return Bracket { holds: Some(holds), fails: None, undecided };
+                }
+            }
         }
         if f >= steps.max_factor {
             return Bracket { holds: Some(holds), fails: None, undecided };
@@ -280,7 +301,7 @@ mod tests {
     /// factors that led to it (to see that trials start from the last hold).
     fn search_up(limit: f64, steps: &Steps) -> (Bracket<Vec<f64>, f64>, Log) {
         let mut log = Vec::new();
-        let b = upward(steps, vec![1.0], |f, from: &Vec<f64>| {
+        let b = upward(steps, vec![1.0], OnUndecided::PassOver, |f, from: &Vec<f64>| {
             log.push((f, from.last().copied()));
             if f <= limit {
                 Verdict::Holds([&from[..], &[f]].concat())
@@ -345,7 +366,7 @@ mod tests {
     #[test]
     fn a_trial_that_decides_nothing_is_passed_over_and_leaves_the_bracket_open() {
         // holds up to 1.2345, but the iteration does not converge at 1.3
-        let b = upward(&STEPS, 1.0, |f, _: &f64| {
+        let b = upward(&STEPS, 1.0, OnUndecided::PassOver, |f, _: &f64| {
             if (f - 1.3).abs() < 1e-9 {
                 Verdict::Undecided(f)
             } else if f <= 1.2345 {
@@ -360,7 +381,7 @@ mod tests {
         assert_eq!(b.undecided.len(), 2);
         assert!(!b.decided(&STEPS));
         // undecided only where converged trials bracket anyway: decided
-        let b = upward(&STEPS, 1.0, |f, _: &f64| {
+        let b = upward(&STEPS, 1.0, OnUndecided::PassOver, |f, _: &f64| {
             if (f - 1.5).abs() < 1e-9 {
                 Verdict::Undecided(f)
             } else if f <= 1.2345 {
@@ -371,9 +392,27 @@ mod tests {
         });
         assert!(b.decided(&STEPS) && b.undecided.is_empty());
         // nothing decided above the last hold up to the bound: open
-        let b = upward(&STEPS, 1.0, |f, _: &f64| if f <= 1.1 { Verdict::Holds(f) } else { Verdict::Undecided(f) });
+        let open = |f, _: &f64| if f <= 1.1 { Verdict::Holds(f) } else { Verdict::Undecided(f) };
+        let b = upward(&STEPS, 1.0, OnUndecided::PassOver, open);
         assert!(b.fails.is_none() && !b.decided(&STEPS));
         assert!((b.holds.expect("holds").0 - 1.1).abs() < 1e-12);
+        assert_eq!(b.undecided.len(), 89, "1.2 to the bound, each tried");
+    }
+
+    #[test]
+    fn a_search_told_to_stop_ends_at_its_first_undecided_trial() {
+        let mut tried = Vec::new();
+        let b = upward(&STEPS, 1.0, OnUndecided::Stop, |f, _: &f64| {
+            tried.push(f);
+            if (f - 1.3).abs() < 1e-9 {
+                Verdict::Undecided(f)
+            } else {
+                Verdict::Holds(f)
+            }
+        });
+        assert_eq!(tried.len(), 3, "1.1 and 1.2 hold, 1.3 decides nothing: {tried:?}");
+        assert!((b.holds.as_ref().expect("holds").0 - 1.2).abs() < 1e-12);
+        assert!(b.fails.is_none() && b.undecided.len() == 1 && !b.decided(&STEPS));
     }
 
     #[test]

@@ -29,7 +29,7 @@ use crate::contact::law::Stiffness;
 use crate::error::Error;
 use crate::model::Model;
 use crate::parallel::{Comm, CommExt};
-use crate::results::{Fallback, Run, StepResult};
+use crate::results::{Fallback, Run, SafetyRun, StepResult};
 use crate::scene::{Scene, StateRule};
 
 /// A rigid step's law residual (of the largest traction) below which
@@ -139,17 +139,60 @@ pub(super) fn fall_unheld(
     }
     let (stiff, taken) = stiffened(scene, model);
     let record = stopped.map(|(at, said)| Fallback {
+        unheld: Some(said),
+        ..stopped_at(taken, at.step.unwrap_or(1), at.iteration, seconds)
+    });
+    Some((stiff, record))
+}
+
+/// The record of a rigid attempt stopped at `iterations` of `step` before
+/// its step ended (no cut, no law residual), with the stiffness `taken`.
+fn stopped_at(taken: (Stiffness, f64, f64), step: usize, iterations: usize, seconds: f64) -> Fallback {
+    Fallback {
         stiffness: taken.0,
         modulus: taken.1,
         block_size: taken.2,
-        step: at.step.unwrap_or(1),
-        iterations: at.iteration,
+        step,
+        iterations,
         cuts: 0,
         scaled: false,
         cycled: false,
         law_residual: None,
         seconds,
-        unheld: Some(said),
+        unheld: None,
+        safety: None,
+    }
+}
+
+/// Where the rigid joints' safety search (`safety`, on rank 0) stopped
+/// at a trial that decided nothing, even retried in smaller steps, as
+/// rank 0 tells every rank: the scene with every contact given the
+/// fallback's stiffness, and the record of why (on rank 0); the rigid
+/// attempt took `seconds`, its load steps ending at `step`. Near the
+/// limit, rigid joints cycle or wander where joints that deform end:
+/// the corpus' 3D slope (tests/corpus/slope3d.toml) held at F = 1.3,
+/// left 1.2, 1.375 and 1.4 undecided and failed at 1.5 with block 41
+/// "held by nothing" at an iterate (760 s); with the fallback's
+/// stiffness it holds to F = 3.9, and with ten times that to 3.5 at
+/// least (docs/safety.md).
+pub(super) fn fall_undecided(
+    scene: &Scene,
+    model: &Model,
+    step: usize,
+    safety: Option<&SafetyRun>,
+    comm: &dyn Comm,
+    seconds: f64,
+) -> Option<(Scene, Option<Fallback>)> {
+    let open = safety.filter(|s| !s.decided && !s.below_one);
+    let stop = open.and_then(|s| Some((s.factor?, *s.undecided.last()?)));
+    if !comm.broadcast(&stop.is_some()) {
+        return None;
+    }
+    let (stiff, taken) = stiffened(scene, model);
+    let record = stop.map(|(holds, trial)| Fallback {
+        cycled: trial.cycled,
+        safety: Some((holds, trial)),
+        ..stopped_at(taken, step, trial.iterations, seconds)
     });
     Some((stiff, record))
 }
@@ -209,21 +252,26 @@ fn record(
         law_residual: c.worst_law_residual().map(|(_, r)| r),
         seconds,
         unheld: None,
+        safety: None,
     })
 }
 
 /// The sentence the run says on the terminal and in report.md: where
 /// and how the rigid joints stopped, and the stiffness taken instead.
 pub fn said(f: &Fallback) -> String {
-    let at = match f.step {
-        0 => "the initial equilibrium stage".to_string(),
-        k => format!("load step {k}"),
+    let at = match (f.safety, f.step) {
+        (Some((_, trial)), _) => format!("the safety search's trial at F = {:.4}", trial.factor),
+        (None, 0) => "the initial equilibrium stage".to_string(),
+        (None, k) => format!("load step {k}"),
     };
-    let how = match &f.unheld {
+    let mut how = match &f.unheld {
         Some(what) => format!("the states reached a set in which {what}"),
         None if f.cycled => "the states cycled".to_string(),
         None => "the states kept changing".to_string(),
     };
+    if let Some((holds, _)) = f.safety {
+        how += &format!(", even retried in smaller steps from F = {holds:.4}, the last factor that held");
+    }
     let law = f.law_residual.map_or(String::new(), |r| format!(", law residual {r:.2e} of the largest traction"));
     // a rigid iteration stopped this close to the law may end with a few
     // more iterations: the scene's budget, not the rigid law, ran out
@@ -233,8 +281,12 @@ pub fn said(f: &Fallback) -> String {
         }
         _ => "",
     };
+    let theirs = match f.safety {
+        Some(_) => "its results, the factor of safety with them, are theirs",
+        None => "its results are theirs",
+    };
     format!(
-        "rigid joints did not converge at {at} ({} iteration(s){}, {how}{law}; {:.1} s{close}), so the scene is solved again with joints that deform, and its results are theirs: normal_stiffness = {} and shear_stiffness = {} on every contact (k_n = {STIFFER} E / s, E = {} the softest body's modulus, s = {} the mean block size: the joints add a tenth to the rock mass's compliance). Where rigid joints cross near a free face, their ties' share of the forces can leave no state set that keeps the law, although stiff joints have an answer there (docs/convergence.md). Give the joints your own stiffness, or [solver] rigid_fallback = false to stop with the rigid joints' last iterate",
+        "rigid joints did not converge at {at} ({} iteration(s){}, {how}{law}; {:.1} s{close}), so the scene is solved again with joints that deform, and {theirs}: normal_stiffness = {} and shear_stiffness = {} on every contact (k_n = {STIFFER} E / s, E = {} the softest body's modulus, s = {} the mean block size: the joints add a tenth to the rock mass's compliance). Where rigid joints cross near a free face, their ties' share of the forces can leave no state set that keeps the law, although stiff joints have an answer there (docs/convergence.md). Give the joints your own stiffness, or [solver] rigid_fallback = false to stop with the rigid joints' last iterate",
         f.iterations,
         match (f.cuts, f.scaled) {
             (0, true) => format!(", {}", super::messages::NOT_CUT),
@@ -261,8 +313,10 @@ fn round(x: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::super::messages::{At, ContactError};
-    use super::{round, unheld};
+    use super::{round, said, unheld};
+    use crate::contact::law::Stiffness;
     use crate::error::Error;
+    use crate::results::{Fallback, Undecided};
     use crate::scene::StateRule;
 
     /// A body held by nothing, or free to slide on joints that carry
@@ -288,6 +342,37 @@ mod tests {
         assert_eq!(said.as_deref(), Some("bodies \"a\", \"b\" are free to slide or rotate"));
         assert!(unheld(&Error::from(sliding(true, two))).is_none(), "frictionless joints are the scene's");
         assert!(unheld(&Error::from(ContactError::BondedNotHeld)).is_none());
+    }
+
+    /// A safety search the rigid joints left undecided says which trial,
+    /// from which factor, and that the factor is the deforming joints'.
+    #[test]
+    fn a_fallback_from_the_safety_search_names_its_trial() {
+        let trial = Undecided { factor: 1.2, iterations: 11, cycled: false };
+        let f = Fallback {
+            stiffness: Stiffness { normal: 12_110.0, shear: 1_211.0 },
+            modulus: 1e4,
+            block_size: 8.258,
+            step: 2,
+            iterations: 11,
+            cuts: 0,
+            scaled: false,
+            cycled: false,
+            law_residual: None,
+            seconds: 170.2,
+            unheld: None,
+            safety: Some((1.175, trial)),
+        };
+        let s = said(&f);
+        assert!(s.starts_with("rigid joints did not converge at the safety search's trial at F = 1.2000 (11 iteration(s), the states kept changing, even retried in smaller steps from F = 1.1750, the last factor that held; 170.2 s)"), "{s}");
+        assert!(s.contains("its results, the factor of safety with them, are theirs: normal_stiffness = 12110"), "{s}");
+        let load = said(&Fallback { safety: None, ..f });
+        assert!(
+            load.starts_with(
+                "rigid joints did not converge at load step 2 (11 iteration(s), the states kept changing; 170.2 s)"
+            ),
+            "{load}"
+        );
     }
 
     #[test]

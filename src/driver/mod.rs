@@ -49,6 +49,7 @@ pub use warnings::{insitu_warnings, model_warnings};
 
 use crate::analytic;
 use crate::contact::law::PairResult;
+use crate::contact::safety::OnUndecided;
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::model::Model;
@@ -211,7 +212,10 @@ fn attempt(
     };
     let safety = match failed {
         Some(_) => safety,
-        None => safety::run(&step, &parts, opts, &ranks, &mut done)?,
+        None => match safety_or_fall(&step, &parts, opts, &ranks, &mut done, may_fall, to.t0)? {
+            Ok(safety) => safety,
+            Err(fell) => return Ok(fell),
+        },
     };
     drop(step);
     let gathered = ranks.gather(&stats::rank(&ranks, &parts, &done));
@@ -290,6 +294,32 @@ fn steps_or_fall(
         }
     }
     Ok(Ok(done))
+}
+
+/// The scene's safety search from where the load steps left `done`
+/// ([`safety::run`]); or, where the scene's rigid joints `may_fall` back
+/// and a trial decided nothing, even retried, the attempt that falls
+/// back: the search stops there (the run began at `t0`).
+fn safety_or_fall(
+    step: &steps::Step,
+    parts: &condense::Parts,
+    opts: &RunOptions,
+    ranks: &ranks::Ranks,
+    done: &mut steps::LoadSteps,
+    may_fall: bool,
+    t0: Instant,
+) -> Result<std::result::Result<Option<crate::results::SafetyRun>, Attempt>> {
+    let on_undecided = if may_fall { OnUndecided::Stop } else { OnUndecided::PassOver };
+    let safety = safety::run(step, parts, opts, ranks, done, on_undecided)?;
+    if may_fall {
+        let (scene, model, comm) = (step.scene, step.model, ranks.comm());
+        let seconds = t0.elapsed().as_secs_f64();
+        let last = scene.solver.load_steps;
+        if let Some((scene, record)) = fallback::fall_undecided(scene, model, last, safety.as_ref(), comm, seconds) {
+            return Ok(Err(Attempt::Fell(Box::new(scene), record, None)));
+        }
+    }
+    Ok(Ok(safety))
 }
 
 /// Errors against the scene's closed form (body by body, each in its own

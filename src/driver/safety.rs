@@ -37,7 +37,7 @@ use super::messages::SafetyError;
 use super::ranks::Ranks;
 use super::run_options::RunOptions;
 use super::steps::{LoadSteps, Step};
-use crate::contact::safety::{self as reduction, Bracket, Strengths};
+use crate::contact::safety::{self as reduction, Bracket, OnUndecided, Strengths};
 use crate::contact::History;
 use crate::error::Result;
 use crate::parallel::CommExt;
@@ -89,13 +89,16 @@ pub(super) fn steps_or_below(
 
 /// Runs the scene's `[safety]` search from the state the load steps left
 /// (`done`), adding its cost to theirs; the search on rank 0, None elsewhere
-/// and when the scene asks for none.
+/// and when the scene asks for none. A trial that decides nothing ends
+/// the search undecided where `on_undecided` says so (rigid joints that
+/// fall back).
 pub(super) fn run(
     step: &Step,
     parts: &Parts,
     opts: &RunOptions,
     ranks: &Ranks,
     done: &mut LoadSteps,
+    on_undecided: OnUndecided,
 ) -> Result<Option<SafetyRun>> {
     let Some(options) = &step.scene.safety else { return Ok(None) };
     // a last step that did not converge has no state to reduce from (the
@@ -105,7 +108,7 @@ pub(super) fn run(
         return Ok(None);
     }
     let t = Instant::now();
-    let mut searched = ranks.on_root(&parts.mine, || search(step, options, &done.history, opts));
+    let mut searched = ranks.on_root(&parts.mine, || search(step, options, &done.history, opts, on_undecided));
     let search_s = t.elapsed().as_secs_f64();
     // recover the last state that holds, unless it is the last load step's
     let t = Instant::now();
@@ -195,23 +198,33 @@ struct Searched {
 
 /// Brackets and bisects F from the state at F = 1, names the failing
 /// trial's mechanism and, for strength reduction where the conventions
-/// differ, finds F with the other one too.
-fn search(step: &Step, options: &Safety, history: &History, opts: &RunOptions) -> Searched {
+/// differ, finds F with the other one too (not where a trial that
+/// decided nothing stopped the search: `on_undecided`).
+fn search(step: &Step, options: &Safety, history: &History, opts: &RunOptions, on: OnUndecided) -> Searched {
     let mut t = trials(step, options, options.strengths, opts, "safety");
     t.say(&what(step, options));
-    let b = upward(&mut t, options, history);
+    let b = upward(&mut t, options, history, on);
     let decided = b.decided(&options.steps);
+    let stopped = on == OnUndecided::Stop && !b.undecided.is_empty();
     let held = b.holds.map(|h| h.1).expect("the search upward starts from a state that holds");
     let fails = b.fails.map(|(f, mut e)| {
         e.mechanism = mechanism::of(step.model, &e.blocks, &e.states, &e.lambda);
         (f, e)
     });
     let undecided = undecided(&b.undecided);
-    say_end(&t, held.factor, fails.as_ref().map(|f| f.0), decided, options);
-    let other = (options.raise.is_none() && Strengths::differ(&step.laws)).then(|| {
+    match b.undecided.last().filter(|_| stopped) {
+        Some((f, _)) => t.say(&format!(
+            "F = {f:.4} decided nothing, even retried: the search stops there ({} trials, {} contact iterations), the last factor that held F = {:.4}",
+            t.trials.len(),
+            t.iterations,
+            held.factor
+        )),
+        None => say_end(&t, held.factor, fails.as_ref().map(|f| f.0), decided, options),
+    }
+    let other = (options.raise.is_none() && Strengths::differ(&step.laws) && !stopped).then(|| {
         let s = options.strengths.other();
         let mut o = trials(step, options, s, opts, &format!("safety ({} strength)", s.key()));
-        let b = upward(&mut o, options, history);
+        let b = upward(&mut o, options, history, OnUndecided::PassOver);
         let factor = b.holds.as_ref().map(|h| h.0);
         let decided = b.decided(&options.steps);
         let fails_at = b.fails.as_ref().map(|f| f.0);
@@ -231,10 +244,10 @@ fn search(step: &Step, options: &Safety, history: &History, opts: &RunOptions) -
 }
 
 /// The search upward from the state `history` the load steps left.
-fn upward(t: &mut Trials, options: &Safety, history: &History) -> Bracket<Held, Failure> {
+fn upward(t: &mut Trials, options: &Safety, history: &History, on: OnUndecided) -> Bracket<Held, Failure> {
     let lambda = t.lambda.clone();
     let start = Held { factor: 1.0, history: history.clone(), outcome: None, lambda };
-    reduction::upward(&options.steps, start, |f, from: &Held| t.up(f, from))
+    reduction::upward(&options.steps, start, on, |f, from: &Held| t.up(f, from))
 }
 
 /// The first progress line: what the search varies.

@@ -265,6 +265,7 @@ fn fallback_json(run: &Run) -> serde_json::Value {
         "cycled": f.cycled,
         "law_residual": f.law_residual,
         "unheld": f.unheld,
+        "safety": f.safety.map(|(holds, trial)| json!({ "holds": holds, "undecided": trial.factor })),
         "seconds": f.seconds,
         "normal_stiffness": f.stiffness.normal,
         "shear_stiffness": f.stiffness.shear,

@@ -35,7 +35,7 @@
 
 use super::recovery::{self, recovered};
 use super::trials::{kind, trials, undecided, Held, Trials};
-use crate::contact::safety::{self as reduction, Verdict};
+use crate::contact::safety::{self as reduction, OnUndecided, Verdict};
 use crate::contact::{self, History, Outcome};
 use crate::driver::condense::Parts;
 use crate::driver::mechanism;
@@ -207,7 +207,7 @@ fn search(t: &mut Trials, options: &crate::scene::Safety, step: &Step) -> Found 
 /// peak strengths where the load steps lost cohesion): its bracket as a
 /// [`Found`].
 fn upward_from(t: &mut Trials, options: &crate::scene::Safety, step: &Step, start: Held) -> Found {
-    let b = reduction::upward(&options.steps, start, |f, from: &Held| t.up(f, from));
+    let b = reduction::upward(&options.steps, start, OnUndecided::PassOver, |f, from: &Held| t.up(f, from));
     let decided = b.decided(&options.steps);
     let fails = b.fails.map(|(f, mut e)| {
         e.mechanism = mechanism::of(step.model, &e.blocks, &e.states, &e.lambda);
