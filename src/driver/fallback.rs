@@ -168,7 +168,7 @@ fn stopped_at(taken: (Stiffness, f64, f64), step: usize, iterations: usize, seco
 /// at a trial that decided nothing, even retried in smaller steps, as
 /// rank 0 tells every rank: the scene with every contact given the
 /// fallback's stiffness, and the record of why (on rank 0); the rigid
-/// attempt took `seconds`, its load steps ending at `step`. Near the
+/// attempt took `seconds`. Near the
 /// limit, rigid joints cycle or wander where joints that deform end:
 /// the corpus' 3D slope (tests/corpus/slope3d.toml) held at F = 1.3,
 /// left 1.2, 1.375 and 1.4 undecided and failed at 1.5 with block 41
@@ -178,7 +178,6 @@ fn stopped_at(taken: (Stiffness, f64, f64), step: usize, iterations: usize, seco
 pub(super) fn fall_undecided(
     scene: &Scene,
     model: &Model,
-    step: usize,
     safety: Option<&SafetyRun>,
     comm: &dyn Comm,
     seconds: f64,
@@ -192,7 +191,7 @@ pub(super) fn fall_undecided(
     let record = stop.map(|(holds, trial)| Fallback {
         cycled: trial.cycled,
         safety: Some((holds, trial)),
-        ..stopped_at(taken, step, trial.iterations, seconds)
+        ..stopped_at(taken, scene.solver.load_steps, trial.iterations, seconds)
     });
     Some((stiff, record))
 }

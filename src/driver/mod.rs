@@ -314,8 +314,7 @@ fn safety_or_fall(
     if may_fall {
         let (scene, model, comm) = (step.scene, step.model, ranks.comm());
         let seconds = t0.elapsed().as_secs_f64();
-        let last = scene.solver.load_steps;
-        if let Some((scene, record)) = fallback::fall_undecided(scene, model, last, safety.as_ref(), comm, seconds) {
+        if let Some((scene, record)) = fallback::fall_undecided(scene, model, safety.as_ref(), comm, seconds) {
             return Ok(Err(Attempt::Fell(Box::new(scene), record, None)));
         }
     }
