@@ -77,6 +77,12 @@ pub const LOOSE_TOLERANCE: f64 = 1e-6;
 /// fraction of the law's residual: the step's error is then a thousandth
 /// of what it corrects, and Newton's rate is kept.
 pub const STEP_FRACTION: f64 = 1e-3;
+/// A solve that did not reach its tolerance is still used where its
+/// residual is below this fraction of the load (the answer inexact);
+/// above it the system is taken as singular (a body sliding freely), and
+/// GMRES gives up once its rate cannot bring it there
+/// ([`gmres::Target::enough`]).
+pub const USABLE: f64 = 1e-6;
 const RESTART: usize = 200;
 const MAX_ITERATIONS: usize = 5_000;
 
@@ -94,6 +100,12 @@ pub(super) fn tolerance(loose: bool, accuracy: Accuracy, scale: f64) -> (f64, bo
         (false, Accuracy::Answer) => tight,
     };
     (tol, tol > tight)
+}
+
+/// What GMRES aims at: `tol`, and the [`USABLE`] fraction of the load
+/// `scale`, above which its answer is of no use.
+pub(super) fn target(tol: f64, scale: f64) -> gmres::Target {
+    gmres::Target { tol, enough: USABLE * scale }
 }
 
 /// The state set of the last solve, which tells whether a solve may stop
@@ -474,7 +486,7 @@ impl<'a> Iterative<'a> {
 
     /// Solves one set of relations, given by the free directions `fr` of
     /// the relative displacements, under the load factors `lambda`; `None`
-    /// when GMRES does not get below 1e-6 (a singular system: a body
+    /// when GMRES does not get below [`USABLE`] (a singular system: a body
     /// sliding freely). The unknowns are every mean, then the free columns.
     fn solve_gmres(&self, fr: &Freedom, states: &[ContactState], lambda: &[f64], accuracy: Accuracy) -> Option<Answer> {
         let cols = Columns { nm: self.nm, n: self.nm + self.nr, fr };
@@ -520,12 +532,12 @@ impl<'a> Iterative<'a> {
         };
         let scale = length(&b).max(length(&rhs)).max(f64::MIN_POSITIVE);
         let (tolerance, looser) = tolerance(loose, accuracy, scale);
-        let (dx, conv) = gmres::solve(j, m, &rhs, tolerance, RESTART, MAX_ITERATIONS);
+        let (dx, conv) = gmres::solve(j, m, &rhs, target(tolerance, scale), RESTART, MAX_ITERATIONS);
         if let Ok(mut its) = self.iterations.lock() {
             its.push(conv.iterations + 2); // and the applications for e0 and the forces
         }
         let residual = conv.residual / scale;
-        if !conv.converged && !(residual <= 1e-6) {
+        if !conv.converged && !(residual <= USABLE) {
             return None;
         }
         Some(self.answer(x0, &cols.expand(&dx), &b, (residual, conv.residual), (loose, looser && !loose)))

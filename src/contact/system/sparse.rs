@@ -68,7 +68,7 @@ use faer::{Accum, Mat, MatRef, Par};
 use super::coords::{add_clique, fixed_load, for_each_load, localise, CliqueScratch, Terms, Var};
 use super::freedom::Freedom;
 use super::gmres;
-use super::iterative::{tolerance, LastStates};
+use super::iterative::{target, tolerance, LastStates, USABLE};
 use super::layout::{Layout, PartMap};
 use super::means_whole;
 use super::own::Own;
@@ -887,7 +887,7 @@ impl Solver for Sparse {
             tolerance = tolerance.max(LOOSE_REDUCTION * length(&rhs0));
         }
         let t = Instant::now();
-        let (dx, conv) = gmres::solve(a, precondition, &rhs0, tolerance, RESTART, MAX_ITERATIONS);
+        let (dx, conv) = gmres::solve(a, precondition, &rhs0, target(tolerance, scale), RESTART, MAX_ITERATIONS);
         self.add_split(|s| {
             s.factor += factor_s;
             s.gmres += t.elapsed().as_secs_f64();
@@ -897,7 +897,7 @@ impl Solver for Sparse {
 
         let residual = conv.residual / scale;
         // (a NaN residual is no answer either)
-        if !conv.converged && !(residual <= 1e-6) {
+        if !conv.converged && !(residual <= USABLE) {
             return None;
         }
         let (dm, dy) = dx.split_at(nm);
