@@ -38,6 +38,7 @@ use super::ranks::Ranks;
 use super::run_options::RunOptions;
 use super::steps::{LoadSteps, Step};
 use crate::contact::safety::{self as reduction, Bracket, OnUndecided, Strengths};
+use crate::contact::system::WarmStart;
 use crate::contact::History;
 use crate::error::Result;
 use crate::parallel::CommExt;
@@ -203,7 +204,9 @@ struct Searched {
 fn search(step: &Step, options: &Safety, history: &History, opts: &RunOptions, on: OnUndecided) -> Searched {
     let mut t = trials(step, options, options.strengths, opts, "safety");
     t.say(&what(step, options));
-    let b = upward(&mut t, options, history, on);
+    // (where the load steps' solves ended: both searches start there)
+    let start = t.warm_start();
+    let b = upward(&mut t, options, (history, &start), on);
     let decided = b.decided(&options.steps);
     let stopped = on == OnUndecided::Stop && !b.undecided.is_empty();
     let held = b.holds.map(|h| h.1).expect("the search upward starts from a state that holds");
@@ -224,7 +227,7 @@ fn search(step: &Step, options: &Safety, history: &History, opts: &RunOptions, o
     let other = (options.raise.is_none() && Strengths::differ(&step.laws) && !stopped).then(|| {
         let s = options.strengths.other();
         let mut o = trials(step, options, s, opts, &format!("safety ({} strength)", s.key()));
-        let b = upward(&mut o, options, history, OnUndecided::PassOver);
+        let b = upward(&mut o, options, (history, &start), OnUndecided::PassOver);
         let factor = b.holds.as_ref().map(|h| h.0);
         let decided = b.decided(&options.steps);
         let fails_at = b.fails.as_ref().map(|f| f.0);
@@ -243,10 +246,16 @@ fn search(step: &Step, options: &Safety, history: &History, opts: &RunOptions, o
     }
 }
 
-/// The search upward from the state `history` the load steps left.
-fn upward(t: &mut Trials, options: &Safety, history: &History, on: OnUndecided) -> Bracket<Held, Failure> {
+/// The search upward from the state `history` the load steps left, and
+/// where their solves ended.
+fn upward(
+    t: &mut Trials,
+    options: &Safety,
+    (history, start): (&History, &WarmStart),
+    on: OnUndecided,
+) -> Bracket<Held, Failure> {
     let lambda = t.lambda.clone();
-    let start = Held { factor: 1.0, history: history.clone(), outcome: None, lambda };
+    let start = Held { factor: 1.0, history: history.clone(), outcome: None, lambda, start: start.clone() };
     reduction::upward(&options.steps, start, on, |f, from: &Held| t.up(f, from))
 }
 

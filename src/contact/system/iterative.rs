@@ -44,7 +44,7 @@
 //! comes from the stored `K Φ` without applying S again.
 
 use std::collections::HashMap;
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 
 use faer::linalg::solvers::Solve;
 use faer::Mat;
@@ -55,7 +55,7 @@ use super::freedom::Freedom;
 use super::gmres;
 use super::layout::Layout;
 use super::reduce::combine;
-use super::solver::{Accuracy, Answer, Solver};
+use super::solver::{Accuracy, Answer, Solver, WarmStart};
 use super::threads::in_runs;
 use crate::contact::basis;
 use crate::contact::frame::Frame;
@@ -114,6 +114,18 @@ pub(super) fn target(tol: f64, scale: f64) -> gmres::Target {
 pub(super) struct LastStates(Mutex<Option<Vec<ContactState>>>);
 
 impl LastStates {
+    /// The state set of the last solve.
+    pub(super) fn get(&self) -> Option<Vec<ContactState>> {
+        self.0.lock().ok().and_then(|l| l.clone())
+    }
+
+    /// Takes `states` as the last solve's.
+    pub(super) fn set(&self, states: Option<Vec<ContactState>>) {
+        if let Ok(mut last) = self.0.lock() {
+            *last = states;
+        }
+    }
+
     /// Loose while the states change; the same states as last time (or
     /// none to judge: bonded joins alone) are solved tightly.
     pub(super) fn loose(&self, states: &[ContactState]) -> bool {
@@ -126,6 +138,30 @@ impl LastStates {
             Err(_) => false,
         }
     }
+}
+
+/// A solver's last answer (`last`) and the state set of its last solve,
+/// kept as a [`WarmStart`].
+pub(super) fn keep_start<T: Clone + Send + Sync + 'static>(last: &Mutex<Option<T>>, states: &LastStates) -> WarmStart {
+    let answer = last.lock().ok().and_then(|l| l.clone());
+    WarmStart(Some(Arc::new((answer, states.get()))))
+}
+
+/// Gives back what [`keep_start`] kept of a solver of the same kind (any
+/// other start is passed over).
+pub(super) fn give_start<T: Clone + Send + Sync + 'static>(
+    start: &WarmStart,
+    last: &Mutex<Option<T>>,
+    states: &LastStates,
+) {
+    type Kept<T> = (Option<T>, Option<Vec<ContactState>>);
+    let Some((answer, kept)) = start.0.as_ref().and_then(|s| s.downcast_ref::<Kept<T>>()) else {
+        return;
+    };
+    if let Ok(mut l) = last.lock() {
+        *l = answer.clone();
+    }
+    states.set(kept.clone());
 }
 
 /// Where a part's S is applied.
@@ -769,6 +805,14 @@ impl Solver for Iterative<'_> {
 
     fn counts(&self) -> Vec<usize> {
         self.iterations.lock().map(|v| v.clone()).unwrap_or_default()
+    }
+
+    fn warm_start(&self) -> WarmStart {
+        keep_start(&self.last, &self.last_states)
+    }
+
+    fn start_from(&self, start: &WarmStart) {
+        give_start(start, &self.last, &self.last_states);
     }
 }
 

@@ -68,7 +68,7 @@ pub use junction::Room;
 pub use kind::{InterfaceKind, ITERATIVE_FROM};
 use layout::Layout;
 pub use relation::{Limit, Relation};
-pub use solver::{Accuracy, Answer, Solver, Split};
+pub use solver::{Accuracy, Answer, Solver, Split, WarmStart};
 use threads::in_threads;
 
 use super::basis::FaceBasis;
@@ -219,6 +219,16 @@ impl<'a> InterfaceProblem<'a> {
             forces: around.forces,
             ..s
         })
+    }
+
+    /// Where the next solve would start ([`WarmStart`]).
+    pub fn warm_start(&self) -> WarmStart {
+        self.solver.warm_start()
+    }
+
+    /// Starts the next solve where `start` (taken from this problem) says.
+    pub fn start_from(&self, start: &WarmStart) {
+        self.solver.start_from(start);
     }
 
     /// Adds seconds of work outside the solver to [`InterfaceProblem::split`].

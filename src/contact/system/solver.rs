@@ -1,8 +1,21 @@
 //! The seam between the interface problem and its solvers: [`Solver`]
 //! solves one set of relations and gives an [`Answer`].
 
+use std::any::Any;
+use std::sync::Arc;
+
 use super::freedom::Freedom;
 use crate::contact::law::ContactState;
+
+/// Where a solver's next solve starts: its last answer and the state set
+/// solved for it (an iterative solver starts from that answer, and stops
+/// loose where the states changed). Taken after a solve and given back
+/// before another, so that where a search starts a trial from a state
+/// that held, its solves start from that state's answer, not from
+/// whichever trial was solved last. Opaque: each solver reads its own;
+/// empty for a direct solver.
+#[derive(Clone, Default)]
+pub struct WarmStart(pub(super) Option<Arc<dyn Any + Send + Sync>>);
 
 /// A way of solving the interface system: the seam between
 /// [`super::InterfaceProblem`] and its solvers ([`super::dense::Dense`],
@@ -30,6 +43,12 @@ pub trait Solver {
     fn split(&self) -> Option<Split> {
         None
     }
+    /// Where the next solve would start.
+    fn warm_start(&self) -> WarmStart {
+        WarmStart::default()
+    }
+    /// Starts the next solve where `start` says (taken from this solver).
+    fn start_from(&self, _start: &WarmStart) {}
 }
 
 /// Seconds of the sparse interface's solves, by stage (summed over them).

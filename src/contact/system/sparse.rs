@@ -68,13 +68,13 @@ use faer::{Accum, Mat, MatRef, Par};
 use super::coords::{add_clique, fixed_load, for_each_load, localise, CliqueScratch, Terms, Var};
 use super::freedom::Freedom;
 use super::gmres;
-use super::iterative::{target, tolerance, LastStates, USABLE};
+use super::iterative::{give_start, keep_start, target, tolerance, LastStates, USABLE};
 use super::layout::{Layout, PartMap};
 use super::means_whole;
 use super::own::Own;
 use super::reduce::{combine, NotHeld};
 use super::sides::Sides;
-use super::solver::{Accuracy, Answer, Solver, Split};
+use super::solver::{Accuracy, Answer, Solver, Split, WarmStart};
 use super::threads::{in_runs, in_threads};
 use super::w_columns::{self, WColumns};
 use super::w_entries::WEntries;
@@ -934,6 +934,14 @@ impl Solver for Sparse {
 
     fn split(&self) -> Option<Split> {
         self.split.lock().ok().map(|s| s.clone())
+    }
+
+    fn warm_start(&self) -> WarmStart {
+        keep_start(&self.last, &self.last_states)
+    }
+
+    fn start_from(&self, start: &WarmStart) {
+        give_start(start, &self.last, &self.last_states);
     }
 }
 

@@ -15,7 +15,7 @@
 use std::time::Instant;
 
 use crate::contact::safety::{Reduce, Strengths, Verdict};
-use crate::contact::system::{InterfaceProblem, SolveFailure};
+use crate::contact::system::{InterfaceProblem, SolveFailure, WarmStart};
 use crate::contact::{self, Failed, History, Outcome, PairLaw};
 use crate::driver::progress::progress;
 use crate::driver::run_options::RunOptions;
@@ -57,13 +57,15 @@ impl Varied {
 }
 
 /// A state that held: its factor and load factors, where the states and
-/// slips stand, and the iteration's outcome (None at F = 1: the last load
-/// step's).
+/// slips stand, the iteration's outcome (None at F = 1: the last load
+/// step's), and where its interface solves ended, for the trials that
+/// start from it.
 pub(super) struct Held {
     pub factor: f64,
     pub lambda: Vec<f64>,
     pub history: History,
     pub outcome: Option<Outcome>,
+    pub start: WarmStart,
 }
 
 /// The trials of one search, and their log.
@@ -158,11 +160,12 @@ impl<'s, 'a> Trials<'s, 'a> {
     fn attempt(&mut self, f: f64, from: &Held, max: usize, retry: bool) -> Verdict<Held, Failure> {
         let t = self.start();
         let mut h = from.history.clone();
+        self.problem.start_from(&from.start);
         let (laws, lambda) = (self.varied.laws(&self.laws, f), self.varied.lambda(&self.lambda, f));
         let verdict = self.iterate(&laws, &lambda, &mut h, max);
         self.log(f, from.factor, t, verdict.as_ref(), retry);
         match verdict {
-            Ok(outcome) => Verdict::Holds(Held { factor: f, lambda, history: h, outcome: Some(outcome) }),
+            Ok(outcome) => Verdict::Holds(self.held(f, lambda, h, outcome)),
             Err(e) => verdict_of(e),
         }
     }
@@ -211,7 +214,17 @@ impl<'s, 'a> Trials<'s, 'a> {
         }
         let outcome = last.expect("at least one load step");
         self.log(f, 0.0, t, Ok(&outcome), false);
-        Verdict::Holds(Held { factor: f, lambda, history: h, outcome: Some(outcome) })
+        Verdict::Holds(self.held(f, lambda, h, outcome))
+    }
+
+    /// Where the interface's next solve would start.
+    pub fn warm_start(&self) -> WarmStart {
+        self.problem.warm_start()
+    }
+
+    /// The state that held at `f`, where the solves stand now.
+    fn held(&self, f: f64, lambda: Vec<f64>, history: History, outcome: Outcome) -> Held {
+        Held { factor: f, lambda, history, outcome: Some(outcome), start: self.problem.warm_start() }
     }
 
     /// A trial of the load path started at `t` that failed with `e`, logged.
