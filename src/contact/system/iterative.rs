@@ -140,28 +140,35 @@ impl LastStates {
     }
 }
 
+/// What a [`WarmStart`] keeps of an iterative solver: its last answer
+/// (shared with the solver, not copied: 4 vectors of the interface's size
+/// on the sparse interface) and the state set of its last solve.
+struct Resume<T> {
+    answer: Option<Arc<T>>,
+    states: Option<Vec<ContactState>>,
+}
+
 /// A solver's last answer (`last`) and the state set of its last solve,
 /// kept as a [`WarmStart`].
-pub(super) fn keep_start<T: Clone + Send + Sync + 'static>(last: &Mutex<Option<T>>, states: &LastStates) -> WarmStart {
+pub(super) fn keep_start<T: Send + Sync + 'static>(last: &Mutex<Option<Arc<T>>>, states: &LastStates) -> WarmStart {
     let answer = last.lock().ok().and_then(|l| l.clone());
-    WarmStart(Some(Arc::new((answer, states.get()))))
+    WarmStart(Some(Arc::new(Resume { answer, states: states.get() })))
 }
 
 /// Gives back what [`keep_start`] kept of a solver of the same kind (any
 /// other start is passed over).
-pub(super) fn give_start<T: Clone + Send + Sync + 'static>(
+pub(super) fn give_start<T: Send + Sync + 'static>(
     start: &WarmStart,
-    last: &Mutex<Option<T>>,
+    last: &Mutex<Option<Arc<T>>>,
     states: &LastStates,
 ) {
-    type Kept<T> = (Option<T>, Option<Vec<ContactState>>);
-    let Some((answer, kept)) = start.0.as_ref().and_then(|s| s.downcast_ref::<Kept<T>>()) else {
+    let Some(kept) = start.0.as_ref().and_then(|s| s.downcast_ref::<Resume<T>>()) else {
         return;
     };
     if let Ok(mut l) = last.lock() {
-        *l = answer.clone();
+        *l = kept.answer.clone();
     }
-    states.set(kept.clone());
+    states.set(kept.states.clone());
 }
 
 /// Where a part's S is applied.
@@ -316,7 +323,7 @@ pub struct Iterative<'a> {
     /// The state set of the last solve.
     last_states: LastStates,
     /// The last solution, where the next solve starts.
-    last: Mutex<Option<Vec<f64>>>,
+    last: Mutex<Option<Arc<Vec<f64>>>>,
     /// GMRES iterations of every solve so far.
     iterations: Mutex<Vec<usize>>,
 }
@@ -622,7 +629,7 @@ impl<'a> Iterative<'a> {
         let residual_r = (0..nr).map(|r| kx[nm + r] - b[nm + r]).collect();
         let (m, r) = (x[..nm].to_vec(), x[nm..].to_vec());
         if let Ok(mut last) = self.last.lock() {
-            *last = Some(x);
+            *last = Some(Arc::new(x));
         }
         Answer { m, r, residual_r, residual, accuracy, loose, inexact }
     }
@@ -632,8 +639,13 @@ impl<'a> Iterative<'a> {
     fn start(&self, fr: &Freedom, restrict: impl Fn(&[f64]) -> Vec<f64>) -> (Vec<f64>, Vec<f64>) {
         let (nm, nr) = (self.nm, self.nr);
         let n = nm + nr;
-        let last =
-            self.last.lock().ok().and_then(|l| l.clone()).filter(|l| l.len() == n).unwrap_or_else(|| vec![0.0; n]);
+        let last = self
+            .last
+            .lock()
+            .ok()
+            .and_then(|l| l.clone())
+            .filter(|l| l.len() == n)
+            .map_or_else(|| vec![0.0; n], |l| l.to_vec());
         let mut shifted = vec![0.0; n];
         for i in 0..nr {
             shifted[nm + i] = last[nm + i] - fr.r0[i];

@@ -58,7 +58,7 @@
 //! took 6-7 applications each to the tight tolerance, now 2.
 
 use std::cell::{Cell, RefCell};
-use std::sync::{Mutex, OnceLock};
+use std::sync::{Arc, Mutex, OnceLock};
 use std::time::Instant;
 
 use faer::linalg::matmul::matmul;
@@ -175,7 +175,7 @@ pub struct Sparse {
     b_fixed: Vec<f64>,
     threads: usize,
     /// The last answer, where the next solve starts.
-    last: Mutex<Option<Last>>,
+    last: Mutex<Option<Arc<Last>>>,
     last_states: LastStates,
     iterations: Mutex<Vec<usize>>,
     /// Where the solves' time went.
@@ -192,7 +192,7 @@ pub struct Sparse {
 struct Kept {
     lambda: Vec<f64>,
     cols: Vec<Vec<(usize, f64)>>,
-    block: std::sync::Arc<Preconditioner>,
+    block: Arc<Preconditioner>,
 }
 
 /// W where the free blocks read it: entry by entry where K_mm's factor
@@ -406,13 +406,13 @@ impl Sparse {
                 // last answer's r only where a pair's relation changed, and a
                 // product of few nonzeros sweeps no part's S in whole
                 let dr: Vec<f64> = r_s.iter().zip(&l.r).map(|(a, b)| a - b).collect();
-                let (mut k_m, mut k_r) = (l.k_m, l.k_r);
+                let (mut k_m, mut k_r) = (l.k_m.clone(), l.k_r.clone());
                 if dr.iter().any(|&d| d != 0.0) {
                     let (d_m, d_r) = self.apply(&vec![0.0; nm], &dr);
                     k_m.iter_mut().zip(d_m).for_each(|(k, d)| *k += d);
                     k_r.iter_mut().zip(d_r).for_each(|(k, d)| *k += d);
                 }
-                (Start { m: l.m, y0, k_m, k_r }, 0)
+                (Start { m: l.m.clone(), y0, k_m, k_r }, 0)
             }
             // where every pair deforms and the means have no factor, from
             // m = 0: the preconditioner is all of K
@@ -610,7 +610,7 @@ impl Sparse {
     /// changed state since are few, and GMRES corrects for them; the
     /// 86k-DOF tunnel's block took 68 s to factorise at every solve, in double
     /// precision and AMD order; 6.4 s now, [`SINGLE_BLOCK`]).
-    fn free_block(&self, free: &Free, lambda: &[f64]) -> std::sync::Arc<Preconditioner> {
+    fn free_block(&self, free: &Free, lambda: &[f64]) -> Arc<Preconditioner> {
         let fr = free.fr;
         if fr.deforming {
             if let Ok(kept) = self.kept.lock() {
@@ -620,8 +620,7 @@ impl Sparse {
             }
         }
         let whole = || fr.deforming.then(|| Preconditioner::whole(self, fr)).flatten();
-        let block =
-            std::sync::Arc::new(self.exact_block(free).or_else(whole).unwrap_or_else(|| Preconditioner::new(self, fr)));
+        let block = Arc::new(self.exact_block(free).or_else(whole).unwrap_or_else(|| Preconditioner::new(self, fr)));
         if fr.deforming {
             if let Ok(mut kept) = self.kept.lock() {
                 *kept = Some(Kept { lambda: lambda.to_vec(), cols: fr.cols.clone(), block: block.clone() });
@@ -914,7 +913,7 @@ impl Solver for Sparse {
             return None;
         }
         if let Ok(mut last) = self.last.lock() {
-            *last = Some(Last { m: m.clone(), r: r.clone(), k_m, k_r: k_r.clone() });
+            *last = Some(Arc::new(Last { m: m.clone(), r: r.clone(), k_m, k_r: k_r.clone() }));
         }
 
         Some(Answer { m, r, residual_r, residual, accuracy: conv.residual, loose, inexact: looser && !loose })
@@ -940,14 +939,24 @@ impl Solver for Sparse {
         keep_start(&self.last, &self.last_states)
     }
 
+    /// Forgets the free block's factor kept where every pair deforms: the
+    /// next solve forms it afresh with the springs of the states it starts
+    /// from, so that a trial started from a state that held takes the same
+    /// path whatever was solved in between. A fresh factor for each trial
+    /// also serves its solves better than one formed trials before: the 3D
+    /// slope with both searches (docs/safety.md) took 5,676 GMRES
+    /// applications in all where it took 8,027 with each held state
+    /// keeping its factor, which also kept 145 MB more (12 % of the peak).
     fn start_from(&self, start: &WarmStart) {
         give_start(start, &self.last, &self.last_states);
+        if let Ok(mut kept) = self.kept.lock() {
+            *kept = None;
+        }
     }
 }
 
 /// A solve's answer kept for the next: the means, the relative
 /// displacements and `K [m; r]` (mean rows, relative rows).
-#[derive(Clone)]
 struct Last {
     m: Vec<f64>,
     r: Vec<f64>,
