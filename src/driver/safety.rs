@@ -232,7 +232,7 @@ fn search(step: &Step, options: &Safety, history: &History, opts: &RunOptions, o
         let decided = b.decided(&options.steps);
         let fails_at = b.fails.as_ref().map(|f| f.0);
         say_end(&o, factor.unwrap_or(1.0), fails_at, decided, options);
-        OtherFactor { strengths: s, factor, fails_at, decided, trials: o.trials.len() }
+        OtherFactor { strengths: s, factor, fails_at, decided, trials: o.trials.len(), iterations: o.iterations }
     });
     Searched {
         held,

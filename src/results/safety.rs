@@ -62,6 +62,8 @@ pub struct OtherFactor {
     pub fails_at: Option<f64>,
     pub decided: bool,
     pub trials: usize,
+    /// Contact iterations of its trials.
+    pub iterations: usize,
 }
 
 /// A trial that decided nothing.
