@@ -607,7 +607,8 @@ impl Rule for Newton<'_> {
         let tolerance = (FORCE_TOL * judged.scale_f).max(solution.accuracy);
         let settled = judged.residual <= tolerance;
         let tight = !solution.loose && !solution.inexact;
-        if self.search.feed(&h.states, &judged.next, &solution.forces, settled && tight) {
+        let fed = (!solution.loose).then_some(judged.residual);
+        if self.search.feed(&h.states, &judged.next, &solution.forces, settled && tight, fed) {
             summary.clusters_solved += 1;
         }
         match self.search.judge(&h.states, &mut judged.next, settled && tight) {
