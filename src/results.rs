@@ -143,7 +143,8 @@ pub struct Fallback {
     pub modulus: f64,
     pub block_size: f64,
     /// The rigid run's last step (0: the initial stage), its iterations
-    /// and halvings (or why it was not halved), whether its states cycled, its worst pair's law
+    /// and halvings (or why it was not halved), whether its states cycled
+    /// or settled with their forces breaking the law, its worst pair's law
     /// residual (of the largest traction), and the rigid run's seconds.
     pub step: usize,
     pub iterations: usize,
@@ -152,6 +153,7 @@ pub struct Fallback {
     /// ([`crate::contact::Summary::scaled`]).
     pub scaled: bool,
     pub cycled: bool,
+    pub law_broken: bool,
     pub law_residual: Option<f64>,
     pub seconds: f64,
     /// Where the rigid iteration stopped at a state set that holds

@@ -157,6 +157,7 @@ fn stopped_at(taken: (Stiffness, f64, f64), step: usize, iterations: usize, seco
         cuts: 0,
         scaled: false,
         cycled: false,
+        law_broken: false,
         law_residual: None,
         seconds,
         unheld: None,
@@ -190,6 +191,7 @@ pub(super) fn fall_undecided(
     let (stiff, taken) = stiffened(scene, model);
     let record = stop.map(|(holds, trial)| Fallback {
         cycled: trial.cycled,
+        law_broken: trial.law_broken,
         safety: Some((holds, trial)),
         ..stopped_at(taken, scene.solver.load_steps, trial.iterations, seconds)
     });
@@ -248,6 +250,7 @@ fn record(
         cuts: c.summary.cuts,
         scaled: c.summary.scaled,
         cycled: c.summary.cycled,
+        law_broken: c.summary.law_broken,
         law_residual: c.worst_law_residual().map(|(_, r)| r),
         seconds,
         unheld: None,
@@ -266,6 +269,7 @@ pub fn said(f: &Fallback) -> String {
     let mut how = match &f.unheld {
         Some(what) => format!("the states reached a set in which {what}"),
         None if f.cycled => "the states cycled".to_string(),
+        None if f.law_broken => "the states settled, but their forces broke the contact law".to_string(),
         None => "the states kept changing".to_string(),
     };
     if let Some((holds, _)) = f.safety {
@@ -347,7 +351,7 @@ mod tests {
     /// from which factor, and that the factor is the deforming joints'.
     #[test]
     fn a_fallback_from_the_safety_search_names_its_trial() {
-        let trial = Undecided { factor: 1.2, iterations: 11, cycled: false };
+        let trial = Undecided { factor: 1.2, iterations: 11, cycled: false, law_broken: false };
         let f = Fallback {
             stiffness: Stiffness { normal: 12_110.0, shear: 1_211.0 },
             modulus: 1e4,
@@ -357,6 +361,7 @@ mod tests {
             cuts: 0,
             scaled: false,
             cycled: false,
+            law_broken: false,
             law_residual: None,
             seconds: 170.2,
             unheld: None,
@@ -365,6 +370,11 @@ mod tests {
         let s = said(&f);
         assert!(s.starts_with("rigid joints did not converge at the safety search's trial at F = 1.2000 (11 iteration(s), the states kept changing, even retried in smaller steps from F = 1.1750, the last factor that held; 170.2 s)"), "{s}");
         assert!(s.contains("its results, the factor of safety with them, are theirs: normal_stiffness = 12110"), "{s}");
+        // a trial whose states settled with the law broken says so, not
+        // that they kept changing (the 3D slope's F = 1.2, 9 iterations)
+        let settled = Undecided { iterations: 9, law_broken: true, ..trial };
+        let broken = said(&Fallback { iterations: 9, law_broken: true, safety: Some((1.1, settled)), ..f.clone() });
+        assert!(broken.contains("at F = 1.2000 (9 iteration(s), the states settled, but their forces broke the contact law, even retried in smaller steps from F = 1.1000"), "{broken}");
         let load = said(&Fallback { safety: None, ..f });
         assert!(
             load.starts_with(

@@ -263,6 +263,7 @@ fn fallback_json(run: &Run) -> serde_json::Value {
         "cuts": f.cuts,
         "scaled": f.scaled,
         "cycled": f.cycled,
+        "law_broken": f.law_broken,
         "law_residual": f.law_residual,
         "unheld": f.unheld,
         "safety": f.safety.map(|(holds, trial)| json!({ "holds": holds, "undecided": trial.factor })),

@@ -72,6 +72,8 @@ pub struct Undecided {
     pub factor: f64,
     pub iterations: usize,
     pub cycled: bool,
+    /// Its states settled, but their forces break the contact law.
+    pub law_broken: bool,
 }
 
 /// One trial of the search.
@@ -101,8 +103,9 @@ pub enum FailureKind {
     /// Blocks held by nothing once their pairs opened.
     NotHeld,
     /// No state set was found within `[solver] max_iterations` (`cycled`:
-    /// the states cycle): such a trial decides nothing (it is retried).
-    NotConverged { cycled: bool },
+    /// the states cycle; `law_broken`: they settled, but their forces
+    /// break the contact law): such a trial decides nothing (it is retried).
+    NotConverged { cycled: bool, law_broken: bool },
 }
 
 impl FailureKind {
@@ -120,8 +123,11 @@ impl FailureKind {
         match self {
             FailureKind::Sliding => "loss of equilibrium: blocks slide or rotate freely on their contacts",
             FailureKind::NotHeld => "blocks held by nothing once their contacts opened",
-            FailureKind::NotConverged { cycled: true } => "no equilibrium found: the contact states cycle",
-            FailureKind::NotConverged { cycled: false } => "no equilibrium found within [solver] max_iterations",
+            FailureKind::NotConverged { cycled: true, .. } => "no equilibrium found: the contact states cycle",
+            FailureKind::NotConverged { law_broken: true, .. } => {
+                "no equilibrium found: the contact states settled, but their forces break the contact law"
+            }
+            FailureKind::NotConverged { .. } => "no equilibrium found within [solver] max_iterations",
         }
     }
 }

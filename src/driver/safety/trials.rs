@@ -147,7 +147,7 @@ impl<'s, 'a> Trials<'s, 'a> {
     /// The failure of a retry with no step (never: RETRY_STEPS >= 1).
     fn no_steps(&self) -> Failure {
         Failure {
-            kind: FailureKind::NotConverged { cycled: false },
+            kind: FailureKind::NotConverged { cycled: false, law_broken: false },
             blocks: Vec::new(),
             states: Vec::new(),
             iteration: 0,
@@ -277,7 +277,7 @@ impl<'s, 'a> Trials<'s, 'a> {
                     return Ok(o);
                 }
                 Err(Failure {
-                    kind: FailureKind::NotConverged { cycled: o.summary.cycled },
+                    kind: FailureKind::NotConverged { cycled: o.summary.cycled, law_broken: o.summary.law_broken },
                     blocks: Vec::new(),
                     states: o.states,
                     iteration: o.summary.iterations,
@@ -411,10 +411,12 @@ pub(super) fn trials<'s, 'a>(
 /// The trials that decided nothing, for the results.
 pub(super) fn undecided(u: &[(f64, Failure)]) -> Vec<Undecided> {
     u.iter()
-        .map(|(f, e)| Undecided {
-            factor: *f,
-            iterations: e.iteration,
-            cycled: matches!(e.kind, crate::results::FailureKind::NotConverged { cycled: true }),
+        .map(|(f, e)| {
+            let (cycled, law_broken) = match e.kind {
+                FailureKind::NotConverged { cycled, law_broken } => (cycled, law_broken),
+                _ => (false, false),
+            };
+            Undecided { factor: *f, iterations: e.iteration, cycled, law_broken }
         })
         .collect()
 }
