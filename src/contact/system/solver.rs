@@ -48,6 +48,10 @@ pub trait Solver {
         WarmStart::default()
     }
     /// Starts the next solve where `start` says (taken from this solver).
+    /// What a solver keeps between solves beyond the answer is formed
+    /// afresh from there: the sparse interface forgets the preconditioner
+    /// of the pairs that deform, which a loose answer depends on, so a
+    /// trial's solves do not depend on the trial solved before it.
     fn start_from(&self, _start: &WarmStart) {}
 }
 
