@@ -40,12 +40,13 @@
 //! friction's direction moves with the pressures the solve is not affine
 //! in them and the steps converge more slowly: the four-set tunnel in tet4
 //! (tests/corpus/tunnel4sets_linear.toml) solved a crossing's twin pairs'
-//! pressures in 18 solves, the residual falling by 1e5 with ups and
-//! downs, its last solves within a few times what the solves resolve the
-//! forces to; a bound of `2 m + 3` solves (here 7, meant before but never
-//! applied: it counted the window) left the stall unsolved and took the
-//! step 65 iterations instead of 35, and one on the residual's fall over
-//! four solves 72 (it ended the secant there, at 1.3e-8).
+//! pressures in 18 solves (15 since [`SECANT_CUTOFF`]), the residual
+//! falling by 1e5 with ups and downs, its last solves within a few times
+//! what the solves resolve the forces to; a bound of `2 m + 3` solves
+//! (here 7, meant before but never applied: it counted the window) left
+//! the stall unsolved and took the step 65 iterations instead of 35, and
+//! one on the residual's fall over four solves 72 (it ended the secant
+//! there, at 1.3e-8).
 //!
 //! A second stall, or a cycle, makes a *cluster*: for a stall the
 //! slipping pairs far from the law as above, for a cycle the pairs that
@@ -639,7 +640,7 @@ mod tests {
         );
         // the four-set tunnel in tet4's twin pairs, solve by solve until
         // their friction settled (tests/corpus/tunnel4sets_linear.toml),
-        // the last eight at 1 to 10 times what the solves resolve
+        // the last ones at a few times what the solves resolve (4e-9)
         let tunnel = [
             6.16e-4, 2.41e-3, 7.42e-3, 5.33e-4, 9.08e-5, 1.73e-5, 3.16e-7, 5.32e-7, 1.37e-6, 3.12e-7, 1.26e-7, 9.50e-9,
             1.50e-8, 1.36e-8, 5.61e-8, 1.26e-8,
