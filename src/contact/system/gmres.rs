@@ -1,7 +1,22 @@
-//! Restarted GMRES with right preconditioning (Saad, *Iterative Methods for
-//! Sparse Linear Systems*, 2nd ed., Alg. 9.5): modified Gram-Schmidt
-//! Arnoldi, Givens rotations on the Hessenberg matrix. Right
+//! Restarted flexible GMRES (Saad, *Iterative Methods for Sparse Linear
+//! Systems*, 2nd ed., Alg. 9.6): right preconditioning, modified
+//! Gram-Schmidt Arnoldi, Givens rotations on the Hessenberg matrix. Right
 //! preconditioning keeps the monitored residual the true one, `b - A x`.
+//!
+//! Flexible: a cycle keeps each `z_j = M^-1 v_j` it applied `A` to and
+//! steps along them, `x += Z y`, where plain GMRES (Alg. 9.5) keeps the
+//! basis alone and steps along `M^-1 (V y)`. The two are one where `M^-1`
+//! is linear; the sparse interface's is a factor in single precision
+//! (`SingleCholesky`), which rounds what it is given to 24 bits and is
+//! as far from linear as that rounding times its condition number. On
+//! the 34k tunnel with joints of k_n = 5e7 MPa/m (tests/convergence.rs)
+//! plain GMRES ended cycles whose estimate was 1.7e-2 at a true residual
+//! of 2.3, or 1.2e-3 at 16: its solves stalled, and on one mesh of six
+//! the iteration took the interface for singular. Flexible, each cycle's
+//! estimate is its true residual to four digits, and the scene converges
+//! in 12 iterations on all six (on one both converge on, 1,408 applications
+//! where plain GMRES took 1,877). The price is `restart` vectors more,
+//! kept while a cycle runs (docs/convergence.md).
 //!
 //! The interface systems it serves are unsymmetric where the friction law
 //! is linearised (a slipping pair's tangential rows take in its normal
@@ -82,8 +97,10 @@ pub fn solve(
         let (mut cs, mut sn) = (Vec::<f64>::new(), Vec::<f64>::new());
         let mut g = vec![beta];
         let mut k = 0;
+        let mut z: Vec<Vec<f64>> = Vec::new(); // M^-1 of each of v
         while k < restart && iterations < max_iterations {
-            let mut w = a(&m(&v[k]));
+            z.push(m(&v[k]));
+            let mut w = a(&z[k]);
             iterations += 1;
             let mut hk = vec![0.0; k + 2];
             for (i, vi) in v.iter().enumerate() {
@@ -106,14 +123,11 @@ pub fn solve(
             }
             v.push(next);
         }
-        // y = H^-1 g (upper triangular after the rotations), x += M^-1 V y
+        // y = H^-1 g (upper triangular after the rotations), x += Z y
         let y = back_substitute(&h, &g, k);
-        let mut z = vec![0.0; n];
-        for (vi, yi) in v.iter().zip(&y) {
-            axpy(*yi, vi, &mut z);
+        for (zi, yi) in z.iter().zip(&y) {
+            axpy(*yi, zi, &mut x);
         }
-        let dx = m(&z);
-        axpy(1.0, &dx, &mut x);
         let ax = a(&x);
         r = b.iter().zip(&ax).map(|(b, a)| b - a).collect();
         beta = length(&r);
@@ -242,6 +256,24 @@ mod tests {
         }
     }
 
+    /// A preconditioner that is not linear (as a factor in single
+    /// precision is not, to its rounding times its condition number; here
+    /// Jacobi that halves a negative entry's divisor): the steps are along
+    /// what it gave, so the residual said is the true one, reached in 39
+    /// applications. Stepping along `M^-1 (V y)` (plain GMRES) took 286.
+    #[test]
+    fn a_preconditioner_that_is_not_linear_still_converges() {
+        let want: Vec<f64> = (0..N).map(|i| ((i as f64) * 0.1).sin()).collect();
+        let b = convection(&want);
+        let bent = |v: &[f64]| -> Vec<f64> { v.iter().map(|x| if *x > 0.0 { x / 3.0 } else { x / 1.5 }).collect() };
+        let (x, c) = solve(convection, bent, &b, to(1e-10), 20, 1000);
+        let ax = convection(&x);
+        let true_residual = length(&b.iter().zip(&ax).map(|(b, a)| b - a).collect::<Vec<_>>());
+        assert!(c.converged && true_residual <= 1e-10, "{c:?}, true residual {true_residual:e}");
+        assert!((c.residual - true_residual).abs() <= 1e-12, "{c:?} against {true_residual:e}");
+        assert!(c.iterations < 100, "{c:?}");
+    }
+
     /// A singular system whose right-hand side is not in the range (a
     /// block free to slide under a load along its freedom): the residual
     /// cannot go below the load's part in the null space. The solve gives
@@ -267,13 +299,14 @@ mod tests {
 
     /// A tolerance below what double precision can reach: the solve ends
     /// at the first cycle that leaves the residual no lower, not after
-    /// every application.
+    /// every application: at 2.0e-15, its tenth cycle (210 applications;
+    /// stepping along `M^-1 (V y)`, fewer than 200).
     #[test]
     fn a_residual_at_the_round_off_floor_ends_the_solve() {
         let want: Vec<f64> = (0..N).map(|i| ((i as f64) * 0.1).sin()).collect();
         let b = convection(&want);
         let c = solve(convection, jacobi, &b, Target { tol: 1e-25, enough: 1e-6 }, 20, 1000).1;
         assert!(!c.converged && c.residual < 1e-12, "{c:?}");
-        assert!(c.iterations < 200, "{c:?}");
+        assert!(c.iterations <= 11 * 21, "{c:?}");
     }
 }
