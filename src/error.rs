@@ -275,8 +275,7 @@ mod tests {
         let not_converged = ContactError::NotConverged {
             step: Some(1),
             iterations: 20,
-            cycled: false,
-            law_broken: false,
+            stop: crate::contact::Stop::MaxIterations,
             slipping_back: 0,
             rigid_joints: None,
             fell_back: true,

@@ -24,6 +24,7 @@ pub use step::{ContactRun, PairWater, StepResult};
 
 use crate::analytic::{Check, Solution};
 use crate::contact::law::ContactState;
+use crate::contact::Stop;
 use crate::model::Model;
 use crate::recover::sections::SectionForces;
 use crate::recover::{Errors, Sample};
@@ -143,17 +144,16 @@ pub struct Fallback {
     pub modulus: f64,
     pub block_size: f64,
     /// The rigid run's last step (0: the initial stage), its iterations
-    /// and halvings (or why it was not halved), whether its states cycled
-    /// or settled with their forces breaking the law, its worst pair's law
-    /// residual (of the largest traction), and the rigid run's seconds.
+    /// and halvings (or why it was not halved), why its iteration stopped,
+    /// its worst pair's law residual (of the largest traction), and the
+    /// rigid run's seconds.
     pub step: usize,
     pub iterations: usize,
     pub cuts: usize,
     /// Not cut, the step being the same problem at any load
     /// ([`crate::contact::Summary::scaled`]).
     pub scaled: bool,
-    pub cycled: bool,
-    pub law_broken: bool,
+    pub stop: Stop,
     pub law_residual: Option<f64>,
     pub seconds: f64,
     /// Where the rigid iteration stopped at a state set that holds

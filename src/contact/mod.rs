@@ -58,7 +58,7 @@ use system::InterfaceProblem;
 
 pub use history::History;
 pub use options::{InterfaceSolver, SlipLaw, StateRule, TractionRecovery};
-pub use outcome::{Failed, Outcome, Summary};
+pub use outcome::{Failed, Outcome, Stop, Summary};
 pub use pair_law::PairLaw;
 
 /// Runs the state iteration of one load step under the load factors

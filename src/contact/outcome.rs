@@ -4,6 +4,32 @@
 use super::law::ContactState;
 use super::system::{InterfaceSolution, SolveFailure};
 
+/// Why a step's state iteration ended without converging: the one
+/// record of it that errors, fallbacks and safety trials carry
+/// ([`Summary::stop`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum Stop {
+    /// It ran `[solver] max_iterations`, the states still changing.
+    #[default]
+    MaxIterations,
+    /// A state set came back after other ones in between.
+    Cycled,
+    /// The states settled, but the last solve's forces break the law.
+    LawBroken,
+}
+
+impl Stop {
+    /// summary.json's `cycled`.
+    pub fn cycled(self) -> bool {
+        self == Stop::Cycled
+    }
+
+    /// summary.json's `law_broken`.
+    pub fn law_broken(self) -> bool {
+        self == Stop::LawBroken
+    }
+}
+
 /// How the state iteration of one step went.
 #[derive(Clone, Debug, Default)]
 pub struct Summary {
@@ -39,6 +65,18 @@ pub struct Summary {
     /// ([`super::ramp`]), the first the in-situ mobilisation, the last 1
     /// where it converged; empty where it was solved at the strength given.
     pub strengths: Vec<f64>,
+}
+
+impl Summary {
+    /// Why it stopped, where it did not converge (a cycle said first: its
+    /// states may also have settled on a law-breaking set).
+    pub fn stop(&self) -> Stop {
+        match (self.cycled, self.law_broken) {
+            (true, _) => Stop::Cycled,
+            (_, true) => Stop::LawBroken,
+            _ => Stop::MaxIterations,
+        }
+    }
 }
 
 /// How the state iteration of one step ended: the states it ended with,

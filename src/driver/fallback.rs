@@ -26,6 +26,7 @@
 
 use super::messages::ContactError;
 use crate::contact::law::Stiffness;
+use crate::contact::Stop;
 use crate::error::Error;
 use crate::model::Model;
 use crate::parallel::{Comm, CommExt};
@@ -156,8 +157,7 @@ fn stopped_at(taken: (Stiffness, f64, f64), step: usize, iterations: usize, seco
         iterations,
         cuts: 0,
         scaled: false,
-        cycled: false,
-        law_broken: false,
+        stop: Stop::MaxIterations,
         law_residual: None,
         seconds,
         unheld: None,
@@ -190,8 +190,7 @@ pub(super) fn fall_undecided(
     }
     let (stiff, taken) = stiffened(scene, model);
     let record = stop.map(|(holds, trial)| Fallback {
-        cycled: trial.cycled,
-        law_broken: trial.law_broken,
+        stop: trial.stop,
         safety: Some((holds, trial)),
         ..stopped_at(taken, scene.solver.load_steps, trial.iterations, seconds)
     });
@@ -249,8 +248,7 @@ fn record(
         iterations: c.summary.iterations,
         cuts: c.summary.cuts,
         scaled: c.summary.scaled,
-        cycled: c.summary.cycled,
-        law_broken: c.summary.law_broken,
+        stop: c.summary.stop(),
         law_residual: c.worst_law_residual().map(|(_, r)| r),
         seconds,
         unheld: None,
@@ -268,9 +266,12 @@ pub fn said(f: &Fallback) -> String {
     };
     let mut how = match &f.unheld {
         Some(what) => format!("the states reached a set in which {what}"),
-        None if f.cycled => "the states cycled".to_string(),
-        None if f.law_broken => "the states settled, but their forces broke the contact law".to_string(),
-        None => "the states kept changing".to_string(),
+        None => match f.stop {
+            Stop::Cycled => "the states cycled",
+            Stop::LawBroken => "the states settled, but their forces broke the contact law",
+            Stop::MaxIterations => "the states kept changing",
+        }
+        .to_string(),
     };
     if let Some((holds, _)) = f.safety {
         how += &format!(", even retried in smaller steps from F = {holds:.4}, the last factor that held");
@@ -318,6 +319,7 @@ mod tests {
     use super::super::messages::{At, ContactError};
     use super::{round, said, unheld};
     use crate::contact::law::Stiffness;
+    use crate::contact::Stop;
     use crate::error::Error;
     use crate::results::{Fallback, Undecided};
     use crate::scene::StateRule;
@@ -351,7 +353,7 @@ mod tests {
     /// from which factor, and that the factor is the deforming joints'.
     #[test]
     fn a_fallback_from_the_safety_search_names_its_trial() {
-        let trial = Undecided { factor: 1.2, iterations: 11, cycled: false, law_broken: false };
+        let trial = Undecided { factor: 1.2, iterations: 11, stop: Stop::MaxIterations };
         let f = Fallback {
             stiffness: Stiffness { normal: 12_110.0, shear: 1_211.0 },
             modulus: 1e4,
@@ -360,8 +362,7 @@ mod tests {
             iterations: 11,
             cuts: 0,
             scaled: false,
-            cycled: false,
-            law_broken: false,
+            stop: Stop::MaxIterations,
             law_residual: None,
             seconds: 170.2,
             unheld: None,
@@ -372,8 +373,9 @@ mod tests {
         assert!(s.contains("its results, the factor of safety with them, are theirs: normal_stiffness = 12110"), "{s}");
         // a trial whose states settled with the law broken says so, not
         // that they kept changing (the 3D slope's F = 1.2, 9 iterations)
-        let settled = Undecided { iterations: 9, law_broken: true, ..trial };
-        let broken = said(&Fallback { iterations: 9, law_broken: true, safety: Some((1.1, settled)), ..f.clone() });
+        let settled = Undecided { iterations: 9, stop: Stop::LawBroken, ..trial };
+        let broken =
+            said(&Fallback { iterations: 9, stop: Stop::LawBroken, safety: Some((1.1, settled)), ..f.clone() });
         assert!(broken.contains("at F = 1.2000 (9 iteration(s), the states settled, but their forces broke the contact law, even retried in smaller steps from F = 1.1000"), "{broken}");
         let load = said(&Fallback { safety: None, ..f });
         assert!(

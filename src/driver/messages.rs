@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use crate::contact::law::ContactState;
 use crate::contact::mechanism::BlockState;
 use crate::contact::system::SolveFailure;
-use crate::contact::{Failed, SlipLaw, StateRule};
+use crate::contact::{Failed, SlipLaw, StateRule, Stop};
 use crate::fem::rigid::RigidMotion;
 use crate::fem::sparse::FactorError;
 use crate::model::Model;
@@ -68,8 +68,7 @@ pub enum ContactError {
         motions: Vec<(String, RigidMotion)>,
     },
     /// A load step's iteration did not converge after `iterations`
-    /// (`cycled`: its states cycle; `law_broken`: they settled, but the
-    /// forces of the last solve break the contact law) under `rule`;
+    /// (`stop`: why) under `rule`;
     /// `results`: where the last iteration's results were written; `cuts`:
     /// the halvings of the step that were tried ([solver] max_cuts);
     /// `scaled`: none was, the step being the same problem at any load;
@@ -82,8 +81,7 @@ pub enum ContactError {
     NotConverged {
         step: Option<usize>,
         iterations: usize,
-        cycled: bool,
-        law_broken: bool,
+        stop: Stop,
         slipping_back: usize,
         rigid_joints: Option<[f64; 2]>,
         fell_back: bool,
@@ -334,8 +332,7 @@ impl ContactError {
         let ContactError::NotConverged {
             step,
             iterations,
-            cycled,
-            law_broken,
+            stop,
             slipping_back,
             rigid_joints,
             fell_back,
@@ -353,10 +350,10 @@ impl ContactError {
             Some(k) => write!(f, " at load step {k}")?,
             None => {}
         }
-        let why = match (cycled, law_broken) {
-            (true, _) => " (the states cycle)",
-            (_, true) => " (the states settled, but their forces break the contact law: see the law residual)",
-            _ => "",
+        let why = match stop {
+            Stop::Cycled => " (the states cycle)",
+            Stop::LawBroken => " (the states settled, but their forces break the contact law: see the law residual)",
+            Stop::MaxIterations => "",
         };
         write!(f, " after {iterations} iteration(s){why}")?;
         if *fell_back {
@@ -526,8 +523,7 @@ mod tests {
         ContactError::NotConverged {
             step: Some(1),
             iterations: 100,
-            cycled: true,
-            law_broken: false,
+            stop: Stop::Cycled,
             slipping_back,
             rigid_joints,
             fell_back: false,

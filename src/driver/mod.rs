@@ -426,8 +426,7 @@ fn not_converged(run: &Run, results: Option<PathBuf>) -> Option<ContactError> {
     Some(ContactError::NotConverged {
         step: At::named(&run.scene, run.last().step),
         iterations: c.summary.iterations,
-        cycled: c.summary.cycled,
-        law_broken: c.summary.law_broken,
+        stop: c.summary.stop(),
         slipping_back: output::slipping_back(c),
         rigid_joints: fallback::advised(run),
         fell_back: run.fallback.is_some(),

@@ -169,7 +169,7 @@ pub(super) fn summary(run: &Run) -> Option<Value> {
         "found": s.fails_at.is_some() && s.decided,
         "bound_reached": s.fails_at.is_none() && s.decided,
         "below_one": s.below_one,
-        "undecided": s.undecided.iter().map(|u| json!({ "factor": u.factor, "iterations": u.iterations, "cycled": u.cycled, "law_broken": u.law_broken })).collect::<Vec<_>>(),
+        "undecided": s.undecided.iter().map(|u| json!({ "factor": u.factor, "iterations": u.iterations, "cycled": u.stop.cycled(), "law_broken": u.stop.law_broken() })).collect::<Vec<_>>(),
         "other": s.other.as_ref().map(|x| json!({ "strength": x.strengths.key(), "factor": x.factor, "fails_at": x.fails_at, "decided": x.decided, "trials": x.trials, "iterations": x.iterations, "differs": differ(s.factor, x.factor) })),
         "reduced": if s.kind == SearchKind::Load { Vec::new() } else { o.reduce.names() },
         "raised": o.raise.as_ref().map(|_| raised(run)),

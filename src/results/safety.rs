@@ -11,6 +11,7 @@ use super::step::StepResult;
 use crate::contact::law::ContactState;
 use crate::contact::mechanism::Mechanism;
 use crate::contact::safety::Strengths;
+use crate::contact::Stop;
 
 /// What a search varies.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -71,9 +72,7 @@ pub struct OtherFactor {
 pub struct Undecided {
     pub factor: f64,
     pub iterations: usize,
-    pub cycled: bool,
-    /// Its states settled, but their forces break the contact law.
-    pub law_broken: bool,
+    pub stop: Stop,
 }
 
 /// One trial of the search.
@@ -102,10 +101,9 @@ pub enum FailureKind {
     Sliding,
     /// Blocks held by nothing once their pairs opened.
     NotHeld,
-    /// No state set was found within `[solver] max_iterations` (`cycled`:
-    /// the states cycle; `law_broken`: they settled, but their forces
-    /// break the contact law): such a trial decides nothing (it is retried).
-    NotConverged { cycled: bool, law_broken: bool },
+    /// No state set was found within `[solver] max_iterations`, as the
+    /// iteration stopped: such a trial decides nothing (it is retried).
+    NotConverged(Stop),
 }
 
 impl FailureKind {
@@ -114,7 +112,7 @@ impl FailureKind {
         match self {
             FailureKind::Sliding => "sliding",
             FailureKind::NotHeld => "not_held",
-            FailureKind::NotConverged { .. } => "not_converged",
+            FailureKind::NotConverged(_) => "not_converged",
         }
     }
 
@@ -123,11 +121,11 @@ impl FailureKind {
         match self {
             FailureKind::Sliding => "loss of equilibrium: blocks slide or rotate freely on their contacts",
             FailureKind::NotHeld => "blocks held by nothing once their contacts opened",
-            FailureKind::NotConverged { cycled: true, .. } => "no equilibrium found: the contact states cycle",
-            FailureKind::NotConverged { law_broken: true, .. } => {
+            FailureKind::NotConverged(Stop::Cycled) => "no equilibrium found: the contact states cycle",
+            FailureKind::NotConverged(Stop::LawBroken) => {
                 "no equilibrium found: the contact states settled, but their forces break the contact law"
             }
-            FailureKind::NotConverged { .. } => "no equilibrium found within [solver] max_iterations",
+            FailureKind::NotConverged(Stop::MaxIterations) => "no equilibrium found within [solver] max_iterations",
         }
     }
 }

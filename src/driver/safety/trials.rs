@@ -16,7 +16,7 @@ use std::time::Instant;
 
 use crate::contact::safety::{Reduce, Strengths, Verdict};
 use crate::contact::system::{InterfaceProblem, SolveFailure, WarmStart};
-use crate::contact::{self, Failed, History, Outcome, PairLaw};
+use crate::contact::{self, Failed, History, Outcome, PairLaw, Stop};
 use crate::driver::progress::progress;
 use crate::driver::run_options::RunOptions;
 use crate::driver::steps::{fresh_history, Step};
@@ -147,7 +147,7 @@ impl<'s, 'a> Trials<'s, 'a> {
     /// The failure of a retry with no step (never: RETRY_STEPS >= 1).
     fn no_steps(&self) -> Failure {
         Failure {
-            kind: FailureKind::NotConverged { cycled: false, law_broken: false },
+            kind: FailureKind::NotConverged(Stop::MaxIterations),
             blocks: Vec::new(),
             states: Vec::new(),
             iteration: 0,
@@ -277,7 +277,7 @@ impl<'s, 'a> Trials<'s, 'a> {
                     return Ok(o);
                 }
                 Err(Failure {
-                    kind: FailureKind::NotConverged { cycled: o.summary.cycled, law_broken: o.summary.law_broken },
+                    kind: FailureKind::NotConverged(o.summary.stop()),
                     blocks: Vec::new(),
                     states: o.states,
                     iteration: o.summary.iterations,
@@ -412,11 +412,11 @@ pub(super) fn trials<'s, 'a>(
 pub(super) fn undecided(u: &[(f64, Failure)]) -> Vec<Undecided> {
     u.iter()
         .map(|(f, e)| {
-            let (cycled, law_broken) = match e.kind {
-                FailureKind::NotConverged { cycled, law_broken } => (cycled, law_broken),
-                _ => (false, false),
+            let stop = match e.kind {
+                FailureKind::NotConverged(stop) => stop,
+                _ => Stop::MaxIterations,
             };
-            Undecided { factor: *f, iterations: e.iteration, cycled, law_broken }
+            Undecided { factor: *f, iterations: e.iteration, stop }
         })
         .collect()
 }
