@@ -270,7 +270,9 @@ fn the_tunnel_with_joints_that_deform_converges() {
 
 /// The same 34k-DOF tunnel with joints stiffer and stiffer: k_n = 5e5,
 /// 5e6 and 5e7 MPa/m (360 to 36,000 times E / s; k_s a tenth of it). Each
-/// converges (6, 13, 13 iterations measured), the states are the same pair
+/// converges (6, 11, 12 iterations measured; at 5e7 the sparse interface's
+/// GMRES must be flexible, its preconditioner being single precision:
+/// src/contact/system/gmres.rs), the states are the same pair
 /// by pair from 5e6 on (5,802 / 86 / 2; 5e8 too), and the forces of the
 /// lone pairs away from the supports tend to a limit as 1 / k_n: their
 /// median change falls tenfold for a tenfold stiffness (8.9e-4, 9.3e-5,
