@@ -40,13 +40,11 @@
 //! friction's direction moves with the pressures the solve is not affine
 //! in them and the steps converge more slowly: the four-set tunnel in tet4
 //! (tests/corpus/tunnel4sets_linear.toml) solved a crossing's twin pairs'
-//! pressures in 18 solves (15 since [`SECANT_CUTOFF`]), the residual
-//! falling by 1e5 with ups and downs, its last solves within a few times
-//! what the solves resolve the forces to; a bound of `2 m + 3` solves
-//! (here 7, meant before but never applied: it counted the window) left
-//! the stall unsolved and took the step 65 iterations instead of 35, and
-//! one on the residual's fall over four solves 72 (it ended the secant
-//! there, at 1.3e-8).
+//! pressures in 15 solves, the residual falling by 1e5 with ups and
+//! downs, its last solves within a few times what the solves resolve the
+//! forces to: a bound on the solves, or on the residual's fall over a
+//! few of them, ends such a secant unsolved (docs/corpus.md, "Where the
+//! 35 go").
 //!
 //! A second stall, or a cycle, makes a *cluster*: for a stall the
 //! slipping pairs far from the law as above, for a cycle the pairs that
@@ -173,11 +171,21 @@ impl Secant {
         Secant { pairs, x, xs: Vec::new(), gs: Vec::new(), start, residuals: Vec::new() }
     }
 
+    /// The solves the steps are taken on: `pairs + 1`.
+    fn window(&self) -> usize {
+        self.pairs.len() + 1
+    }
+
+    /// Whether the window holds all the solves it keeps.
+    fn window_full(&self) -> bool {
+        self.gs.len() >= self.window()
+    }
+
     /// The pressures `g` the solve linearised at `x` gave: the next `x`.
     fn step(&mut self, g: Vec<f64>) {
         self.xs.push(std::mem::take(&mut self.x));
         self.gs.push(g);
-        if self.xs.len() > self.pairs.len() + 1 {
+        if self.xs.len() > self.window() {
             self.xs.remove(0);
             self.gs.remove(0);
         }
@@ -300,7 +308,7 @@ impl Search {
             self.mode = Mode::Done;
             return true;
         }
-        if sec.gs.len() > sec.pairs.len() {
+        if sec.window_full() {
             sec.residuals.extend(residual);
         }
         let r = &sec.residuals;
