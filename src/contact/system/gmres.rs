@@ -11,12 +11,11 @@
 //! as far from linear as that rounding times its condition number. On
 //! the 34k tunnel with joints of k_n = 5e7 MPa/m (tests/convergence.rs)
 //! plain GMRES ended cycles whose estimate was 1.7e-2 at a true residual
-//! of 2.3, or 1.2e-3 at 16: its solves stalled, and on one mesh of six
-//! the iteration took the interface for singular. Flexible, each cycle's
-//! estimate is its true residual to four digits, and the scene converges
-//! in 12 iterations on all six (on one both converge on, 1,408 applications
-//! where plain GMRES took 1,877). The price is `restart` vectors more,
-//! kept while a cycle runs (docs/convergence.md).
+//! of 2.3, or 1.2e-3 at 16: its solves stalled, and on each of six
+//! meshes the iteration took the interface for singular. Flexible, each
+//! cycle's estimate is its true residual to four digits, and the scene
+//! converges in 12 iterations on all six. The price is `restart` vectors
+//! more, kept while a cycle runs (docs/convergence.md).
 //!
 //! The interface systems it serves are unsymmetric where the friction law
 //! is linearised (a slipping pair's tangential rows take in its normal
