@@ -37,21 +37,21 @@ probes.csv, summary.json (sizes, timings, errors, contact states), report.md.";
 
 #[derive(Subcommand, Debug)]
 pub enum Command {
-    /// Solve a scene and write its results (default directory results/<scene name>).
+    /// Solve a scene and write its results (default directory `results/<scene name>`).
     Solve {
         #[command(flatten)]
         run: RunArgs,
-        /// Ignore the [[contacts]]: bodies meeting at a shared curve/surface are bonded (one monolithic solve).
+        /// Ignore the `[[contacts]]`: bodies meeting at a shared curve/surface are bonded (one monolithic solve).
         #[arg(long)]
         bonded: bool,
     },
     /// The factor of safety against sliding: solve the load steps, then divide the strength of
     /// the contacts (f = tan(phi), c, f_t) by F, raised step by step from the last step's state
     /// until equilibrium is lost, and bisect F to the tolerance. Options from the scene's
-    /// [safety] table (reduce, contacts, step, tolerance, max_factor), else the defaults: all
+    /// `[safety]` table (reduce, contacts, step, tolerance, max_factor), else the defaults: all
     /// three on every contact, steps of 0.1, tolerance 1e-3 x F, up to F = 10. `solve` runs the
-    /// same search on a scene with a [safety] table. Results as `solve`'s, plus safety.csv (the
-    /// trials), the last state that holds (<name>_safety*.vtu, safety_contact.csv, safety_*.png)
+    /// same search on a scene with a `[safety]` table. Results as `solve`'s, plus safety.csv (the
+    /// trials), the last state that holds (`<name>_safety*.vtu`, safety_contact.csv, safety_*.png)
     /// and F in summary.json ("safety") and report.md. A scene that already fails at F = 1 is
     /// unsafe as given: F is sought below 1, and the run fails naming the blocks that slide.
     Safety {
@@ -60,7 +60,7 @@ pub enum Command {
     },
     /// Run time against error: mesh the scene at successive refinements for each element order,
     /// solve each (with contact, and bonded as the floor of one linear solve), and write
-    /// bench.csv, bench.md (table, fitted convergence rates) and bench.svg to results/<name>/.
+    /// bench.csv, bench.md (table, fitted convergence rates) and bench.svg to `results/<name>/`.
     Bench {
         scene: PathBuf,
         /// Number of refinement levels per order.
@@ -81,7 +81,7 @@ pub enum Command {
         /// Do not time the bonded monolithic solve of each mesh.
         #[arg(long)]
         no_monolithic: bool,
-        /// Directory for bench.csv/md/svg (default results/<scene name>).
+        /// Directory for bench.csv/md/svg (default `results/<scene name>`).
         #[arg(long)]
         out: Option<PathBuf>,
     },
@@ -153,7 +153,7 @@ pub struct RunArgs {
     pub quiet: bool,
     /// Cut every part (bodies joined by shared nodes) into K substructures with METIS,
     /// joined by bonded interfaces: the answer is the uncut one, but each piece is
-    /// factorised alone (in its own thread or MPI rank). Overrides [solver] substructures.
+    /// factorised alone (in its own thread or MPI rank). Overrides `[solver] substructures`.
     #[arg(long, value_name = "K", value_parser = at_least_one)]
     pub substructures: Option<usize>,
     /// Parts condensed at once (default: the machine's cores, divided among MPI ranks).
@@ -164,7 +164,7 @@ pub struct RunArgs {
     /// free relative displacements: many small blocks), iterative (S applied through the
     /// parts' interior factors, GMRES) or auto (sparse from 16 blocks of at most 6,000
     /// interface DOFs, dense below 20,000 interface DOFs, iterative above). Overrides
-    /// [solver] interface.
+    /// `[solver] interface`.
     #[arg(long, value_parser = interface_solver())]
     pub interface: Option<InterfaceSolver>,
     /// Run even when the estimated peak memory exceeds the memory available

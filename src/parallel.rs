@@ -1,5 +1,5 @@
 //! Where a run's processes meet: one process ([`Serial`]), or the ranks of
-//! an MPI job ([`Mpi`], cargo feature `mpi`, over the system's OpenMPI by
+//! an MPI job (`Mpi`, cargo feature `mpi`, over the system's OpenMPI by
 //! the `mpi` crate).
 //!
 //! The substructure method needs few and coarse messages: each rank

@@ -122,7 +122,7 @@ pub struct Errors {
     pub stress_l2: f64,
 }
 
-/// `exact[b]` is the closed form of body b ([`crate::analytic::exact`]).
+/// `exact[b]` is the closed form of body b ([`fn@crate::analytic::exact`]).
 pub fn errors(model: &Model, u: &[f64], exact: &[Box<dyn Exact>]) -> Errors {
     let (mut eu, mut nu_, mut es, mut ns) = (0.0, 0.0, 0.0, 0.0);
     let nd = dofs_per_node(model.analysis);

@@ -7,7 +7,7 @@
 //! timings, counters, ranks) and its [`Checks`] (errors against a closed
 //! form, probes, what the scene's `[analytic]` check adds), and after a
 //! safety search its [`SafetyRun`] (`results/safety.rs`). A step's
-//! [`ContactRun`] keeps the contact iteration's own [`Summary`]. Plain data:
+//! [`ContactRun`] keeps the contact iteration's own [`Summary`](crate::contact::outcome::Summary). Plain data:
 //! the driver fills it, the writers read it, and this module imports
 //! neither.
 

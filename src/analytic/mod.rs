@@ -2,10 +2,10 @@
 //! scene's `[analytic]` asks for.
 //!
 //! The closed forms are displacement and stress fields ([`Exact`]) for the
-//! error norms: Lamé's thick-walled cylinder ([`lame`]) and Einstein &
+//! error norms: Lamé's thick-walled cylinder ([`mod@lame`]) and Einstein &
 //! Schwartz's lined circular tunnel ([`tunnel`]). Beyond the norms, each
 //! kind compares what its application is about ([`check`]): the paper's
-//! Tables 1 and 2 for the cylinder ([`paper`]), the lining's thrust and
+//! Tables 1 and 2 for the cylinder ([`paper_tables`]), the lining's thrust and
 //! moment for the tunnel ([`lining`]). A check reads the solved run
 //! ([`Solution`]) and returns numbers ([`Check`]); `output::closed_form`
 //! formats them for report.md and summary.json.
@@ -81,7 +81,7 @@ pub fn exact(analytic: &Analytic, model: &Model) -> Vec<Box<dyn Exact>> {
 
 /// Lamé's cylinder of a `lame_cylinder` `[analytic]`, in the model's
 /// analysis and with the material of its first body (the tables of
-/// [`paper`] use its stresses, which do not depend on the material but for
+/// [`paper_tables`] use its stresses, which do not depend on the material but for
 /// the axial one).
 pub fn lame(analytic: &Analytic, model: &Model) -> Option<Lame> {
     match *analytic {

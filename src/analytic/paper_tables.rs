@@ -106,7 +106,7 @@ pub fn is_paper_cylinder(l: &Lame) -> bool {
 
 /// The check of Lamé's cylinder: the cylinder, this run's tables, whether
 /// the paper's values go beside them ([`is_paper_cylinder`]) and whether
-/// the bodies' materials differ (see [`super::exact`]).
+/// the bodies' materials differ (see [`fn@super::exact`]).
 #[derive(Clone, Debug)]
 pub struct CylinderCheck {
     pub lame: Lame,

@@ -9,7 +9,7 @@
 //! leaves parts free to slide is put back to the rule first, which may keep
 //! one of their pairs stuck (a Newton step that overshot) before it is a
 //! loss of equilibrium. A pair solved slipping or open in an iteration
-//! after the first has cracked in the step ([`super::cracked`]) and stays
+//! after the first has cracked in the step ([`super::history::cracked`]) and stays
 //! so to its end. A converged step is committed once, by
 //! [`super::history::commit`]: where it ended, and the cracks it made.
 

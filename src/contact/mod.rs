@@ -14,7 +14,7 @@
 //!   friction force of a slipping pair is linearised in its slip and in its
 //!   normal force (slip direction free in the joint plane), so that the
 //!   iteration converges superlinearly once the sets settle;
-//! - `paper` ([`paper`]): the paper's iteration, every pair judged by eq.
+//! - `paper` ([`paper_rule`]): the paper's iteration, every pair judged by eq.
 //!   15–17 from its stresses alone; a slipping pair carries the Coulomb
 //!   shear of the last iteration along its last slip direction (zero with
 //!   `slip = "frictionless"`); cycles are reported, not resolved.

@@ -45,7 +45,7 @@ pub struct Summary {
     /// Cycles broken by changing one pair at a time (robust rule).
     pub cycles_broken: usize,
     /// Stalls or cycles ended by solving the cluster of pairs they were
-    /// on set by set (robust rule, [`cluster`]).
+    /// on set by set (robust rule, `cluster`).
     pub clusters_solved: usize,
     /// Pairs opened in tension between the Coulomb apex c / f and f_t.
     pub apex_openings: usize,

@@ -21,7 +21,7 @@ use crate::scene::Scene;
 use crate::substructure::Part;
 
 /// Why a step that is the same problem at any load
-/// ([`crate::contact::cutting::scales`]) was not cut, as the run says it.
+/// (`crate::contact::cutting::scales`) was not cut, as the run says it.
 pub const NOT_CUT: &str = "not cut: it starts from no load, on joints of friction alone (no cohesion, tensile strength or water), so a half of it is the same problem at half the load and repeats its iterations";
 
 /// Where in a run a contact iteration failed.
@@ -70,7 +70,7 @@ pub enum ContactError {
     /// A load step's iteration did not converge after `iterations`
     /// (`stop`: why) under `rule`;
     /// `results`: where the last iteration's results were written; `cuts`:
-    /// the halvings of the step that were tried ([solver] max_cuts);
+    /// the halvings of the step that were tried (`[solver] max_cuts`);
     /// `scaled`: none was, the step being the same problem at any load;
     /// `slipping_back`: the pairs that slip against their friction at the
     /// last iteration (report.md), which more iterations did not settle

@@ -4,7 +4,7 @@
 //! (`[safety] load`, a load factor search).
 //!
 //! 1. From the last load step's converged state (F = 1), F rises by
-//!    `[safety] step`; each trial ([`trials`]) is the contact iteration with
+//!    `[safety] step`; each trial ([`mod@trials`]) is the contact iteration with
 //!    the chosen contacts' strength divided by F (each pair keeping its peak
 //!    cohesion once it cracks, unless the scene asks for its residual
 //!    strength), or with the chosen loads multiplied by F, started from a

@@ -59,7 +59,7 @@ pub fn d_matrix(analysis: Analysis, e: f64, nu: f64) -> Vec<f64> {
 
 /// The plane strain D (rows and columns xx, yy, xy) with the out-of-plane
 /// normal restored: rows and columns `(xx, yy, zz, xy)`, the layout of the
-/// axisymmetric D. Isotropic: lambda is D[xx][yy], lambda + 2 mu D[xx][xx].
+/// axisymmetric D. Isotropic: lambda is `D[xx][yy]`, lambda + 2 mu `D[xx][xx]`.
 pub fn plane_strain_with_zz(d: &[f64]) -> Vec<f64> {
     let (lambda, normal) = (d[1], d[0]);
     #[rustfmt::skip]

@@ -175,8 +175,8 @@ pub fn extrapolation(kind: CellKind, points: &[QuadPoint]) -> Vec<f64> {
     vec![1.0 / m as f64; nn * m]
 }
 
-/// E = B_nodes * pinv(A) where A[q][b] = N^basis_b(xi_q) and
-/// B_nodes[i][b] = N^basis_b(node_i of kind); None if A is rank deficient
+/// E = B_nodes * pinv(A) where `A[q][b] = N^basis_b(xi_q)` and
+/// `B_nodes[i][b] = N^basis_b(node_i of kind)`; None if A is rank deficient
 /// or badly conditioned.
 fn fit_in_basis(kind: CellKind, basis: CellKind, points: &[QuadPoint]) -> Option<Vec<f64>> {
     use nalgebra::DMatrix;

@@ -9,7 +9,7 @@
 //! motion exactly when the Gram matrix `sum r r^T` of its rows
 //! `r = dir . R(x)` is regular: decided from the geometry, never from the
 //! pivots of a factorisation. [`crate::model`] asks it of the supports with
-//! every contact closed, [`crate::contact::rigid`] of the parts under a set
+//! every contact closed, [`crate::contact::mobility`] of the parts under a set
 //! of contact states.
 //!
 //! A motion nothing stops is named as a person would ([`RigidMotion`]): a

@@ -55,7 +55,8 @@ use crate::mesh::CellKind;
 // Shape functions
 // ---------------------------------------------------------------------------
 
-/// Shape functions n[a] and their reference gradients dn[a][j] = dN_a/dxi_j (j < kind.dim(), other components 0) at xi.
+/// Shape functions `n[a]` and their reference gradients `dn[a][j] = dN_a/dxi_j`
+/// (j < kind.dim(), other components 0) at xi.
 /// n.len() and dn.len() equal kind.n_nodes().
 pub fn eval(kind: CellKind, xi: [f64; 3], n: &mut [f64], dn: &mut [[f64; 3]]) {
     debug_assert_eq!(n.len(), kind.n_nodes(), "eval: n has the wrong length for {}", kind.name());
@@ -300,7 +301,7 @@ fn pyramid_coefficients(kind: CellKind) -> &'static [f64] {
     }
 }
 
-/// Pyramid5, Pyramid13, Pyramid14: N_a = Σ_j c[j][a] mode_j.
+/// Pyramid5, Pyramid13, Pyramid14: `N_a = Σ_j c[j][a] mode_j`.
 fn pyramid(kind: CellKind, xi: [f64; 3], n: &mut [f64], dn: &mut [[f64; 3]]) {
     let m = kind.n_nodes();
     let c = pyramid_coefficients(kind);

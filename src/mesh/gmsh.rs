@@ -117,7 +117,7 @@ pub struct GmshJob {
 /// gmsh's time limit when the scene sets none.
 pub const DEFAULT_TIMEOUT: Duration = Duration::from_secs(600);
 
-/// Whether [`mesh`] ran gmsh or found an up-to-date mesh.
+/// Whether `mesh` ran gmsh or found an up-to-date mesh.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Meshed {
     Generated,

@@ -64,7 +64,7 @@ pub enum Levels {
     /// `downstream` at its downstream end: the builder reads the ends off
     /// the joint.
     Ends { upstream: f64, downstream: f64 },
-    /// An inclined plane `h = c[0] + c[1] x + c[2] y` (c[2] = 0 in 2D).
+    /// An inclined plane `h = c[0] + c[1] x + c[2] y` (`c[2] = 0` in 2D).
     Plane([f64; 3]),
 }
 

@@ -13,7 +13,7 @@
 //!   their rigid motion and coloured by it (the others still), the largest
 //!   motion drawn 10 % of the picture's region;
 //! - `summary.json`'s `safety` object and report.md's section
-//!   ([`report`]), which say what F is (strength reduction with peak or
+//!   ([`fn@report`]), which say what F is (strength reduction with peak or
 //!   residual strength, or a load factor; decided by converged trials or
 //!   only bracketed), name the mechanism and what can help it, set F beside
 //!   the factor with the other strength convention, and beside each reduced

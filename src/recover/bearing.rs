@@ -255,7 +255,7 @@ impl Grid {
         (s / self.h).floor() as i64
     }
 
-    /// The pairs of the cells that meet [r1] x [r2] that `keep` keeps, in
+    /// The pairs of the cells that meet `[r1] x [r2]` that `keep` keeps, in
     /// the face's order (the window's sums then add them as the whole
     /// face's loop did): marked in `marks` (a bit per pair, all clear, and
     /// left clear), then read off in order, which a window of thousands of

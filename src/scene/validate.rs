@@ -1,5 +1,5 @@
 //! The checker: turns the raw scene into a validated [`Scene`], key by key,
-//! applying defaults. Every rule that fails is a [`SceneError::Invalid`]
+//! applying defaults. Every rule that fails is a [`SceneError::Invalid`](super::SceneError::Invalid)
 //! naming the key path, the value as written and what to do. The checks of
 //! the entries that name the mesh's groups (bodies, contacts, supports,
 //! loads) are in `validate/groups.rs`, those of `[analytic]` in

@@ -182,7 +182,7 @@ fn node_graph(
     Ok((xadj, adjncy))
 }
 
-/// METIS_NodeND on a graph of `nn` vertices: perm[new] = old vertex.
+/// METIS_NodeND on a graph of `nn` vertices: `perm[new]` = old vertex.
 fn metis_node_nd(
     xadj: &mut [metis_sys::idx_t],
     adjncy: &mut [metis_sys::idx_t],

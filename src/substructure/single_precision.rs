@@ -210,7 +210,7 @@ impl SingleCholesky {
         self.paths.as_ref().map_or(0, |p| p.leaf(rows.map(|i| inv.map_or(i, |inv| inv[i]))))
     }
 
-    /// Whether substitutions run in two threads (see [`super::twofold`]).
+    /// Whether substitutions run in two threads (see [`super::two_threads`]).
     pub fn twofold(&self) -> bool {
         self.twofold.is_some()
     }

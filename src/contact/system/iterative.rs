@@ -204,7 +204,7 @@ pub struct AppliedPart {
 }
 
 /// A slipping pair's free tangential row `i`, whose equation is the friction
-/// law's (see [`Relation`]):
+/// law's (see [`Relation`](super::Relation)):
 /// `(K x - b)_i + force + coupling (K x - b)_n + sum_c spring_c x_c = 0`.
 struct SlipRow {
     row: usize,

@@ -1,6 +1,6 @@
 //! Bonded joins eliminated by a sparse factorisation.
 //!
-//! A body cut into substructures ([solver] substructures) is held together
+//! A body cut into substructures (`[solver] substructures`) is held together
 //! by joins: nodes shared by pieces, one mean per component, never open and
 //! never slipping. Assembled densely with the contact unknowns, every join
 //! is a row of one dense matrix whose elimination costs the cube of all the

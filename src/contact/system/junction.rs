@@ -118,7 +118,7 @@ pub struct Junction {
     /// each pair's twin: the other pair on its plane. Empty elsewhere.
     twins: Vec<usize>,
     nd: usize,
-    /// What the last set of tied rows gave (see [`memo`]).
+    /// What the last set of tied rows gave (see [`Memo`]).
     memo: Memo,
     /// How far the last solve's locked pressures were from a fixed point.
     off: Off,

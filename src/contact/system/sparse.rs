@@ -31,7 +31,7 @@
 //! too much memory).
 //!
 //! Because K_mm enters only the preconditioner, its factor is kept in
-//! single precision ([`crate::substructure::single`]): half the bytes to
+//! single precision ([`crate::substructure::single_precision`]): half the bytes to
 //! stream per substitution and to factorise (docs/kernels.md). The
 //! residual GMRES monitors is K's own, in double precision, and after
 //! each solve the means are refined to double precision for the

@@ -1,5 +1,5 @@
 //! A scene whose load steps lose equilibrium as given (at F = 1) with a
-//! safety search: unsafe as given. F is sought below 1 ([`downward`], every
+//! safety search: unsafe as given. F is sought below 1 ([`downward`](crate::contact::safety::downward), every
 //! trial running the load steps from the start with the strength raised to
 //! 1 / F, or the raised loads multiplied by F), the blocks' mechanism at
 //! F = 1 is named, and the results that exist are kept for the output:

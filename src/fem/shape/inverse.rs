@@ -12,7 +12,7 @@ use crate::mesh::CellKind;
 /// Tolerance (in reference coordinates) of the "inside" test of [`locate`].
 pub const LOCATE_TOL: f64 = 1e-8;
 
-/// Physical point x(xi) = Σ N_a(xi) coords[a] of the cell with node
+/// Physical point x(xi) = Σ N_a(xi) `coords[a]` of the cell with node
 /// coordinates `coords` (gmsh order).
 pub fn map_point(kind: CellKind, coords: &[[f64; 3]], xi: [f64; 3]) -> [f64; 3] {
     debug_assert_eq!(coords.len(), kind.n_nodes());
@@ -77,7 +77,7 @@ fn cell_size(coords: &[[f64; 3]], d: usize) -> Option<f64> {
 }
 
 /// The residual r = x - x(xi) of the inverse map and its Jacobian
-/// J[i][j] = dx_i/dxi_j, everything relative to the cell's first node.
+/// `J[i][j] = dx_i/dxi_j`, everything relative to the cell's first node.
 struct Residual {
     kind: CellKind,
     d: usize,

@@ -96,7 +96,7 @@ pub struct CutJob {
     /// hexahedra in six-sided blocks of four-sided faces, quadrangles in
     /// four-sided 2D blocks.
     pub structured: bool,
-    /// Bond each sliver block to a neighbour (`merge_slivers`, [`slivers`]).
+    /// Bond each sliver block to a neighbour (`merge_slivers`, `slivers`).
     pub merge_slivers: bool,
 }
 

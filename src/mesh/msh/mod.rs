@@ -9,7 +9,7 @@
 //! tests use mshio as an independent check of this reader.)
 //!
 //! Nodes are kept in file order; cells refer to them by 0-based index. Each
-//! physical group becomes one [`Group`]: every element of every entity of the
+//! physical group becomes one [`Group`](super::Group): every element of every entity of the
 //! group's dimension that carries the group's physical tag. An entity with
 //! several physical tags gives its cells to each of those groups. A group named
 //! in `$PhysicalNames` that no entity carries (gmsh 4.8.4 writes one, without a

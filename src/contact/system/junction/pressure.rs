@@ -1,7 +1,7 @@
 //! A junction's slipping pairs' friction, implicit in their pressure.
 //!
 //! A slipping pair's friction is linearised in its own pressure force p
-//! (`force + coupling p + spring rel`, [`Relation`]). A lone pair's p is a
+//! (`force + coupling p + spring rel`, [`Relation`](crate::contact::system::Relation)). A lone pair's p is a
 //! row of the system (its normal's `W r - c`), so the coupling is a term of
 //! its equation and Newton converges quadratically. At a junction p is the
 //! split of the force the tied rows carry, known only after the solve;
