@@ -117,13 +117,6 @@ pub struct GmshJob {
 /// gmsh's time limit when the scene sets none.
 pub const DEFAULT_TIMEOUT: Duration = Duration::from_secs(600);
 
-/// Whether `mesh` ran gmsh or found an up-to-date mesh.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Meshed {
-    Generated,
-    Cached,
-}
-
 /// The installed gmsh's version, e.g. `4.8.4`.
 pub fn gmsh_version() -> Result<String, GmshError> {
     let out = Command::new("gmsh").arg("--version").stdin(Stdio::null()).output().map_err(spawn_error)?;
