@@ -107,7 +107,9 @@ fn converged(run: &Run) -> &ContactRun {
     assert!(
         c.summary.converged,
         "{}: the contact iteration did not converge ({} iterations, cycled {})",
-        run.scene.name, c.summary.iterations, c.summary.cycled
+        run.scene.name,
+        c.summary.iterations,
+        c.summary.cycled()
     );
     c
 }

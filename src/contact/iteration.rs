@@ -139,12 +139,13 @@ pub(super) fn run(
         if settles && !unchanged && !retightened && summary.iterations >= TIGHTEN_AFTER {
             tighten = Some(relations);
         }
-        let stops = unchanged || summary.cycled || summary.iterations >= max_iterations;
-        let law_residual =
-            if stops { law_residuals(problem, laws, h, &solution, rule.slip_reference()) } else { Vec::new() };
-        summary.law_broken = unchanged && rule.answers_to_the_law() && breaks_law(problem, &law_residual, &solution);
-        summary.converged = unchanged && !summary.law_broken;
+        let stops = unchanged || summary.cycled() || summary.iterations >= max_iterations;
         if stops {
+            let law_residual = law_residuals(problem, laws, h, &solution, rule.slip_reference());
+            summary.end(
+                unchanged,
+                unchanged && rule.answers_to_the_law() && breaks_law(problem, &law_residual, &solution),
+            );
             if summary.converged {
                 commit(h, &solution);
                 rule.commit(h);

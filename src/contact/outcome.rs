@@ -5,8 +5,8 @@ use super::law::ContactState;
 use super::system::{InterfaceSolution, SolveFailure};
 
 /// Why a step's state iteration ended without converging: the one
-/// record of it that errors, fallbacks and safety trials carry
-/// ([`Summary::stop`]).
+/// record of it that the step's [`Summary`], errors, fallbacks and
+/// safety trials carry.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Stop {
     /// It ran `[solver] max_iterations`, the states still changing.
@@ -35,13 +35,10 @@ impl Stop {
 pub struct Summary {
     pub iterations: usize,
     pub converged: bool,
-    /// A state set came back after other ones in between (paper rule: the
-    /// iteration stops there).
-    pub cycled: bool,
-    /// The states settled, but the forces the last solve reports break
-    /// the law at some pair beyond round-off: not converged (see
-    /// [`super::iteration`]).
-    pub law_broken: bool,
+    /// Why it ended without converging: `None` where it converged (or
+    /// runs). A cycle is said first: the paper rule stops at one, and
+    /// the law is judged only at states that settled ([`super::iteration`]).
+    pub stop: Option<Stop>,
     /// Cycles broken by changing one pair at a time (robust rule).
     pub cycles_broken: usize,
     /// Stalls or cycles ended by solving the cluster of pairs they were
@@ -68,14 +65,25 @@ pub struct Summary {
 }
 
 impl Summary {
-    /// Why it stopped, where it did not converge (a cycle said first: its
-    /// states may also have settled on a law-breaking set).
-    pub fn stop(&self) -> Stop {
-        match (self.cycled, self.law_broken) {
-            (true, _) => Stop::Cycled,
-            (_, true) => Stop::LawBroken,
-            _ => Stop::MaxIterations,
-        }
+    /// A state set came back after other ones in between.
+    pub fn cycled(&self) -> bool {
+        self.stop == Some(Stop::Cycled)
+    }
+
+    /// Ends the summary of an iteration that stops: converged where its
+    /// states settled (`unchanged`) and their forces keep the law, else
+    /// why not, a cycle said first.
+    pub(super) fn end(&mut self, unchanged: bool, law_broken: bool) {
+        self.converged = unchanged && !law_broken;
+        self.stop = if self.converged {
+            None
+        } else if self.cycled() {
+            Some(Stop::Cycled)
+        } else if law_broken {
+            Some(Stop::LawBroken)
+        } else {
+            Some(Stop::MaxIterations)
+        };
     }
 }
 

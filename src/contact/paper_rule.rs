@@ -19,7 +19,7 @@ use super::history::History;
 use super::iteration::{Rule, Verdict};
 use super::law::{judge_paper, ContactState, PairResult};
 use super::options::SlipLaw;
-use super::outcome::Summary;
+use super::outcome::{Stop, Summary};
 use super::pair_law::{limit, PairLaw};
 use super::system::{InterfaceProblem, InterfaceSolution, Relation};
 use crate::fem::vec3::{norm, sub};
@@ -84,7 +84,9 @@ impl Rule for Paper<'_> {
         };
         let next: Vec<ContactState> =
             (0..n).map(|p| judge_paper(&judged(p), &self.laws[p].strength, h.cracked[p])).collect();
-        summary.cycled = next != h.states && summary.history.contains(&next);
+        if next != h.states && summary.history.contains(&next) {
+            summary.stop = Some(Stop::Cycled);
+        }
 
         // carry the new states: friction directions, offsets; and how far
         // the Coulomb shear of slipping pairs still moves

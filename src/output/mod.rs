@@ -235,7 +235,7 @@ fn steps_summary(run: &Run) -> serde_json::Value {
             let mut j = json!({ "step": st.step, "ramp": st.load_factor, "case_factors": st.case_factors });
             if let Some(c) = &st.contact {
                 let k = state_counts(&c.states);
-                j["contact"] = json!({ "iterations": c.summary.iterations, "converged": c.summary.converged, "cycled": c.summary.cycled,
+                j["contact"] = json!({ "iterations": c.summary.iterations, "converged": c.summary.converged, "cycled": c.summary.cycled(),
                     "states": { "stick": k[2], "slip": k[1], "open": k[0] }, "cuts": c.summary.cuts, "pieces": c.summary.pieces, "scaled": c.summary.scaled,
                     "locked_friction_off": locked_off(c) });
             }
@@ -317,7 +317,7 @@ fn summary(run: &Run, derived: &Derived) -> serde_json::Value {
             "pairs": c.states.len(),
             "iterations": it.iterations,
             "converged": it.converged,
-            "cycled": it.cycled,
+            "cycled": it.cycled(),
             "states": { "stick": counts[2], "slip": counts[1], "open": counts[0] },
             "cycles_broken": it.cycles_broken,
             "clusters_solved": it.clusters_solved,

@@ -9,6 +9,7 @@
 
 use std::fmt::Write;
 
+use crate::contact::Stop;
 use crate::results::{state_counts, Run};
 
 /// Plan views embedded in report.md; beyond, they are listed.
@@ -100,12 +101,14 @@ fn contact_rows(s: &mut String, run: &Run) {
                 "converged"
             } else if run.safety.as_ref().is_some_and(|s| s.below_one) {
                 "NOT in equilibrium: the last iterate of the load step that lost it (the scene is unsafe as given, see the safety section)"
-            } else if it.cycled {
-                "NOT converged: the states cycle"
-            } else if it.law_broken {
-                "NOT converged: the states settled, but their forces break the contact law (its residual below)"
             } else {
-                "NOT converged"
+                match it.stop {
+                    Some(Stop::Cycled) => "NOT converged: the states cycle",
+                    Some(Stop::LawBroken) => {
+                        "NOT converged: the states settled, but their forces break the contact law (its residual below)"
+                    }
+                    _ => "NOT converged",
+                }
             }
         );
         let _ = writeln!(s, "| states stick / slip / open | {} / {} / {} |", k[2], k[1], k[0]);
