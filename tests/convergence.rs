@@ -575,17 +575,22 @@ fn in_situ_stress_beyond_a_joints_strength_is_named_before_solving() {
 
 /// geo/tunnel_joints.toml in a 10 m box (docs/convergence/
 /// tunnel_joints_10m.toml), one step without cuts: four pairs of a
-/// crossing (24, 25, 95, 96) all slip, and the junction takes their
+/// crossing (24, 25, 95, 96) all slip, and the junction took their
 /// pressures from the last solve, a fixed point whose friction's gain on
 /// them is above 1: with the states held the friction residual grew 5 %
 /// per iteration, 100 iterations (413 with 3 cuts) without converging.
-/// The stall is caught after five held solves and those pressures solved
+/// The stall was caught after five held solves and those pressures solved
 /// for by multisecant steps (`contact/cluster.rs`): converged in 16.
 /// Since joints meeting a roller obliquely keep their own frame (655d6a0)
 /// it takes 24, the same states but pair 143, where joints_b (60 degrees)
 /// meets the bottom roller: open along x on the projected frame before,
 /// stuck now on its own plane (sigma_n 0, its shear 0.095 within its
-/// cohesion; law residual 4.4e-11 of the largest traction).
+/// cohesion; law residual 4.4e-11 of the largest traction); 21 at
+/// f5e94f8. The junction's feedback has a spectral radius of 1.05 but
+/// no eigenvalue of real part above 0.33: its pressures are solved for
+/// in every solve since that is the bound (`junction/pressure.rs`,
+/// `GAIN`), and it converges in 8 without a stall, the same states pair
+/// by pair (pressures within 1e-9 MPa).
 #[test]
 fn a_crossing_whose_slipping_pairs_wedge_it_converges_once_its_pressures_are_solved_for() {
     let case = Case::new("conv-tunnel-10m");
@@ -599,8 +604,8 @@ fn a_crossing_whose_slipping_pairs_wedge_it_converges_once_its_pressures_are_sol
     let c = &s["contact"];
     assert_eq!(c["converged"], Value::Bool(true));
     let its = c["iterations"].as_u64().expect("iterations");
-    assert!(its <= 25, "{its} iterations");
-    assert_eq!(c["clusters_solved"].as_u64(), Some(1), "the stall solved once");
+    assert!(its <= 10, "{its} iterations");
+    assert_eq!(c["clusters_solved"].as_u64(), Some(0), "no stall: the pressures solved for");
     let worst = c["law_residual"]["relative"].as_f64().expect("law residual");
     assert!(worst < 1e-6, "law residual {worst:e}");
     let slip = c["states"]["slip"].as_u64().expect("slip");

@@ -12,7 +12,9 @@
 //! stands in for it.
 
 use nalgebra::allocator::Allocator;
-use nalgebra::{DMatrix, DefaultAllocator, Dim, DimDiff, DimSub, Dyn, OMatrix, Schur, SymmetricEigen, SVD, U1};
+use nalgebra::{
+    Complex, DMatrix, DefaultAllocator, Dim, DimDiff, DimSub, Dyn, OMatrix, Schur, SymmetricEigen, SVD, U1,
+};
 
 /// QR sweeps per eigen- or singular value. LAPACK's dhseqr gives 30.
 pub const SWEEPS_PER_VALUE: usize = 30;
@@ -39,9 +41,18 @@ where
 /// The largest modulus of the eigenvalues of the square `m`, by a Schur
 /// decomposition; None where `m` is not finite or it did not converge.
 pub fn largest_eigenvalue(m: &DMatrix<f64>) -> Option<f64> {
-    let sweeps = SWEEPS_PER_VALUE * m.nrows().max(1);
+    Some(eigenvalues(m)?.iter().map(|z| z.norm()).fold(0.0, f64::max))
+}
+
+/// The eigenvalues of the square `m`, by a Schur decomposition (none of
+/// an empty one); None where `m` is not finite or it did not converge.
+pub fn eigenvalues(m: &DMatrix<f64>) -> Option<Vec<Complex<f64>>> {
+    if m.is_empty() {
+        return Some(Vec::new());
+    }
+    let sweeps = SWEEPS_PER_VALUE * m.nrows();
     let schur = finite(m.as_slice()).then(|| Schur::try_new(m.clone(), f64::EPSILON, sweeps)).flatten()?;
-    Some(schur.complex_eigenvalues().iter().map(|z| z.norm()).fold(0.0, f64::max))
+    Some(schur.complex_eigenvalues().iter().copied().collect())
 }
 
 fn finite(values: &[f64]) -> bool {
