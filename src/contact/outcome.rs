@@ -7,10 +7,9 @@ use super::system::{InterfaceSolution, SolveFailure};
 /// Why a step's state iteration ended without converging: the one
 /// record of it that the step's [`Summary`], errors, fallbacks and
 /// safety trials carry.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Stop {
     /// It ran `[solver] max_iterations`, the states still changing.
-    #[default]
     MaxIterations,
     /// A state set came back after other ones in between.
     Cycled,
@@ -65,6 +64,12 @@ pub struct Summary {
 }
 
 impl Summary {
+    /// Why a step that did not converge stopped (read only where it did
+    /// not: a converged one has no [`Stop`]).
+    pub fn why_not(&self) -> Stop {
+        self.stop.unwrap_or(Stop::MaxIterations)
+    }
+
     /// A state set came back after other ones in between.
     pub fn cycled(&self) -> bool {
         self.stop == Some(Stop::Cycled)

@@ -248,7 +248,7 @@ fn record(
         iterations: c.summary.iterations,
         cuts: c.summary.cuts,
         scaled: c.summary.scaled,
-        stop: c.summary.stop.unwrap_or_default(),
+        stop: c.summary.why_not(),
         law_residual: c.worst_law_residual().map(|(_, r)| r),
         seconds,
         unheld: None,

@@ -426,7 +426,7 @@ fn not_converged(run: &Run, results: Option<PathBuf>) -> Option<ContactError> {
     Some(ContactError::NotConverged {
         step: At::named(&run.scene, run.last().step),
         iterations: c.summary.iterations,
-        stop: c.summary.stop.unwrap_or_default(),
+        stop: c.summary.why_not(),
         slipping_back: output::slipping_back(c),
         rigid_joints: fallback::advised(run),
         fell_back: run.fallback.is_some(),

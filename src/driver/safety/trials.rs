@@ -277,7 +277,7 @@ impl<'s, 'a> Trials<'s, 'a> {
                     return Ok(o);
                 }
                 Err(Failure {
-                    kind: FailureKind::NotConverged(o.summary.stop.unwrap_or_default()),
+                    kind: FailureKind::NotConverged(o.summary.why_not()),
                     blocks: Vec::new(),
                     states: o.states,
                     iteration: o.summary.iterations,
