@@ -334,7 +334,7 @@ impl Rule for Elastic<'_> {
         self.judged_from.clone_from(&h.states);
         let (next, law) = self.verdict_at(h, self.tol);
         let settled = self.alpha == 1.0 && law <= (SETTLED * scale).max(solution.accuracy);
-        Verdict { next, settled, law }
+        Verdict { next, settled, law, again: false }
     }
 
     /// The states judged at the last step's end could not be solved (a

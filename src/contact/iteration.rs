@@ -73,6 +73,32 @@ pub(super) struct Verdict {
     /// How far they are from it (the largest friction residual, a force;
     /// 0 for a rule that does not linearise the friction).
     pub law: f64,
+    /// The solve was loose and left undecided a change its rule waits to
+    /// see decided (`next` keeps the states): the same relations are
+    /// solved again tightly and judged again, as an exact solver's
+    /// answer would have been.
+    pub again: bool,
+}
+
+/// Solves the interface system with `relations`; where the states they
+/// hold leave a part sliding or unheld, `rule` holds a pair back or steps
+/// back and the relations of its new states are solved instead.
+fn solve(
+    rule: &mut impl Rule,
+    problem: &InterfaceProblem,
+    h: &mut History,
+    relations: &mut Vec<Relation>,
+    lambda: &[f64],
+    accuracy: Accuracy,
+) -> Result<InterfaceSolution, SolveFailure> {
+    loop {
+        match problem.solve(relations, lambda, accuracy) {
+            Ok(solution) => return Ok(solution),
+            Err(SolveFailure::Sliding(parts)) if rule.hold_back(h, &parts) => *relations = rule.relations(h),
+            Err(_) if rule.step_back(h) => *relations = rule.relations(h),
+            Err(failure) => return Err(failure),
+        }
+    }
 }
 
 /// Runs `rule` under the load factors `lambda` from the states in `h`.
@@ -93,21 +119,21 @@ pub(super) fn run(
         summary.iterations += 1;
         let retightened = tighten.is_some();
         let mut relations = tighten.take().unwrap_or_else(|| rule.relations(h));
-        let solution = loop {
-            match problem.solve(&relations, lambda, accuracy) {
-                Ok(solution) => break solution,
-                Err(SolveFailure::Sliding(parts)) if rule.hold_back(h, &parts) => relations = rule.relations(h),
-                Err(_) if rule.step_back(h) => relations = rule.relations(h),
-                Err(failure) => {
-                    return Err(Failed { failure, states: h.states.clone(), iteration: summary.iterations })
-                }
-            }
-        };
+        let solution = solve(&mut rule, problem, h, &mut relations, lambda, accuracy).map_err(|failure| Failed {
+            failure,
+            states: h.states.clone(),
+            iteration: summary.iterations,
+        })?;
         if summary.iterations > 1 {
             mark_cracks(h);
         }
         summary.history.push(h.states.clone());
-        let Verdict { next, settled, law } = rule.judge(h, &solution, &mut summary);
+        let Verdict { next, settled, law, again } = rule.judge(h, &solution, &mut summary);
+        // (a change a loose solve left undecided: its system, solved tightly)
+        if again && summary.iterations < max_iterations {
+            (tighten, accuracy) = (Some(relations), Accuracy::Tight);
+            continue;
+        }
         // (a loose or inexact interface solve is never the answer: the
         // next, with the same states, is solved tightly once the friction
         // has settled; until then each is a Newton step solved to a

@@ -81,9 +81,8 @@ const FORCE_TOL: f64 = 1e-12;
 /// pairs' friction is within this fraction of the largest force of the
 /// law, or after this many iterations in a row that kept them, or once
 /// a held solve has not cut the friction residual of the one before by
-/// this factor (from the third held solve: the first follows a loose
-/// solve): friction that turns between two residuals does not settle,
-/// and waiting for it is lost.
+/// this factor (from the third held solve on): friction that turns
+/// between two residuals does not settle, and waiting for it is lost.
 const SETTLE_FIRST: f64 = 1e-8;
 const MAX_HOLDS: usize = 4;
 const HOLD_GAIN: f64 = 0.5;
@@ -340,22 +339,31 @@ impl<'p> Newton<'p> {
     /// [`HOLD_GAIN`], and the change is not already [`DECIDED`]): a
     /// change judged from a linearisation that has not settled is as
     /// likely to be undone by the next one (2. of the iteration). `loose`:
-    /// the solve judged was loose. True when this iteration met the cycle.
-    fn break_cycle(&mut self, h: &History, judged: &mut Judged, seen: &[Vec<ContactState>], loose: bool) -> bool {
+    /// the solve judged was loose (a change of states on the sparse
+    /// interface): neither which pair is the most violated nor whether
+    /// its change is decided is known from it, and the same relations are
+    /// solved again tightly and judged again ([`Cycle::Undecided`]), so
+    /// that every change the breaker makes or holds is judged from the
+    /// forces an exact solve gives.
+    fn break_cycle(&mut self, h: &History, judged: &mut Judged, seen: &[Vec<ContactState>], loose: bool) -> Cycle {
         let changing: Vec<usize> = (0..judged.next.len()).filter(|&p| judged.next[p] != h.states[p]).collect();
         if changing.is_empty() || !(self.one_at_a_time || seen.contains(&judged.next)) {
-            return false;
+            return Cycle::None;
         }
-        let first = !self.one_at_a_time;
+        if loose {
+            judged.next.clone_from(&h.states);
+            return Cycle::Undecided;
+        }
+        let met = if self.one_at_a_time { Cycle::None } else { Cycle::Met };
         self.one_at_a_time = true;
         let settling = self.holds < 2 || judged.residual < HOLD_GAIN * self.last_hold;
         let worst_violation = changing.iter().map(|&p| judged.violation[p]).fold(0.0, f64::max);
-        let decided = !loose && worst_violation > DECIDED * judged.residual / judged.scale_f;
+        let decided = worst_violation > DECIDED * judged.residual / judged.scale_f;
         if judged.residual > SETTLE_FIRST * judged.scale_f && self.holds < MAX_HOLDS && settling && !decided {
             self.holds += 1;
             self.last_hold = judged.residual;
             judged.next.clone_from(&h.states);
-            return first;
+            return met;
         }
         self.holds = 0;
         self.last_hold = f64::INFINITY;
@@ -364,16 +372,28 @@ impl<'p> Newton<'p> {
         for &p in changing.iter().filter(|&&p| Some(p) != worst) {
             judged.next[p] = h.states[p];
         }
-        first
+        met
     }
 
     /// Step 2 of the iteration: a cycle broken ([`Newton::break_cycle`]),
     /// or, where the states stall or cycle all the same, the fallback of
-    /// [`super::cluster`] set going.
-    fn break_or_pin(&mut self, h: &History, judged: &mut Judged, summary: &mut Summary, tolerance: f64, loose: bool) {
-        if self.break_cycle(h, judged, &summary.history, loose) {
-            summary.cycles_broken += 1;
-            self.breaking_from = Some(summary.history.len().saturating_sub(1));
+    /// [`super::cluster`] set going. True when the verdict is
+    /// [`Cycle::Undecided`].
+    fn break_or_pin(
+        &mut self,
+        h: &History,
+        judged: &mut Judged,
+        summary: &mut Summary,
+        tolerance: f64,
+        loose: bool,
+    ) -> bool {
+        match self.break_cycle(h, judged, &summary.history, loose) {
+            Cycle::Undecided => return true,
+            Cycle::Met => {
+                summary.cycles_broken += 1;
+                self.breaking_from = Some(summary.history.len().saturating_sub(1));
+            }
+            Cycle::None => {}
         }
         let problem = self.problem;
         let w = Watch {
@@ -389,6 +409,7 @@ impl<'p> Newton<'p> {
             fixed: &|p| problem.held(p),
         };
         self.search.watch(&w, &mut judged.next);
+        false
     }
 
     /// While a cluster's set is held: of the other pairs the verdict
@@ -611,10 +632,19 @@ impl Rule for Newton<'_> {
         if self.search.feed(&h.states, &judged.next, &solution.forces, settled && tight, fed) {
             summary.clusters_solved += 1;
         }
-        match self.search.judge(&h.states, &mut judged.next, settled && tight) {
-            Some(Step::Solved) => summary.clusters_solved += 1,
-            Some(Step::Held) => self.one_change(h, &mut judged),
+        let again = match self.search.judge(&h.states, &mut judged.next, settled && tight) {
+            Some(Step::Solved) => {
+                summary.clusters_solved += 1;
+                false
+            }
+            Some(Step::Held) => {
+                self.one_change(h, &mut judged);
+                false
+            }
             Some(Step::GaveUp) | None => self.break_or_pin(h, &mut judged, summary, tolerance, solution.loose),
+        };
+        if again {
+            return Verdict { settled, next: judged.next, law: judged.residual, again };
         }
         // a slip a crossing of two joints locks freed by its twin
         let pinned = |p: usize| self.search.pins(p);
@@ -650,7 +680,7 @@ impl Rule for Newton<'_> {
         }
         self.judged_from.clone_from(&h.states);
         self.violation = judged.violation;
-        Verdict { settled, next: judged.next, law: judged.residual }
+        Verdict { settled, next: judged.next, law: judged.residual, again: false }
     }
 
     /// A set the last verdict chose leaves `sliding` free to slide (see
@@ -682,6 +712,18 @@ impl Rule for Newton<'_> {
     fn commit(self, h: &mut History) {
         h.offset = self.reference;
     }
+}
+
+/// What [`Newton::break_cycle`] made of a verdict.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Cycle {
+    /// No cycle met for the first time (none, or one already being broken).
+    None,
+    /// The cycle met for the first time: from now on one change at a time.
+    Met,
+    /// A cycle met, or being broken, on a loose solve: its relations are
+    /// to be solved again tightly before a change is taken.
+    Undecided,
 }
 
 /// Which pair [`Newton::held_back`] keeps stuck: one of those the verdict

@@ -129,7 +129,7 @@ impl Rule for Paper<'_> {
             }
             h.sigma_n[p] = r[p].sigma_n;
         }
-        Verdict { next, settled: shear_moved <= 1e-12 * scale_s.max(f64::MIN_POSITIVE), law: 0.0 }
+        Verdict { next, settled: shear_moved <= 1e-12 * scale_s.max(f64::MIN_POSITIVE), law: 0.0, again: false }
     }
 }
 
