@@ -387,7 +387,7 @@ fn the_fine_tunnel_with_rigid_joints_converges_without_the_fallback() {
 /// The joint stiffness a step of rigid joints that did not converge
 /// advises, taken as said: the two-set tunnel (tests/interface_paths.rs'
 /// kept mesh, 1,779 pairs) does not converge in 12 iterations with rigid
-/// joints (it takes 16 dense, 20 sparse; 45-49 before the forty-first
+/// joints (it takes 16, dense and sparse; 45-49 before the forty-first
 /// session, and this test gave it 20); with `rigid_fallback = false` the run stops and names a
 /// stiffness (k_n = 10 E / s, s the mean block size), and with it the
 /// scene converges. By default the run takes that stiffness itself: the

@@ -115,7 +115,7 @@ fn joints_that_deform_on_two_ranks_give_the_serial_answer() {
 
 /// Rigid joints that do not converge fall back to joints that deform
 /// (src/driver/fallback.rs) on two ranks as on one: the two-set tunnel
-/// given 12 iterations (it needs 16-20 rigid), rank 0 deciding for all.
+/// given 12 iterations (it needs 16 rigid), rank 0 deciding for all.
 #[test]
 fn rigid_joints_that_fall_back_on_two_ranks_give_the_serial_answer() {
     let case = Case::new("mpi-fallback");

@@ -98,6 +98,11 @@ const HOLD_GAIN: f64 = 0.5;
 /// 141 contact iterations in all, 111 so).
 const DECIDED: f64 = 5.0;
 
+/// How far clear of a loose solve's error (relative to the largest
+/// force) each comparison of the cycle breaker must be for the loose
+/// solve's verdict to stand ([`Newton::break_cycle`]).
+const MARGIN: f64 = 10.0;
+
 /// How many times a step keeps a pair stuck under parts a set left free
 /// to slide that their slipping pairs hold ([`Newton::overshoot`]).
 const MAX_OVERSHOOTS: usize = 8;
@@ -338,28 +343,49 @@ impl<'p> Newton<'p> {
     /// in a row keep them, while the friction residual keeps falling by
     /// [`HOLD_GAIN`], and the change is not already [`DECIDED`]): a
     /// change judged from a linearisation that has not settled is as
-    /// likely to be undone by the next one (2. of the iteration). `loose`:
-    /// the solve judged was loose (a change of states on the sparse
-    /// interface): neither which pair is the most violated nor whether
-    /// its change is decided is known from it, and the same relations are
-    /// solved again tightly and judged again ([`Cycle::Undecided`]), so
-    /// that every change the breaker makes or holds is judged from the
-    /// forces an exact solve gives.
-    fn break_cycle(&mut self, h: &History, judged: &mut Judged, seen: &[Vec<ContactState>], loose: bool) -> Cycle {
+    /// likely to be undone by the next one (2. of the iteration).
+    ///
+    /// `loose`: the error of a loose solve's forces, relative to the
+    /// largest (a change of states on the sparse interface; None for a
+    /// tight one). Its verdict is taken only where each comparison it
+    /// turns on (the most violated pair against the next, the violation
+    /// against [`DECIDED`] residuals, the residual against
+    /// [`SETTLE_FIRST`] and [`HOLD_GAIN`]) is clear of that error by
+    /// [`MARGIN`]; elsewhere the same relations are solved again tightly
+    /// and judged again ([`Cycle::Undecided`]), so that the breaker takes
+    /// the path an exact solve takes.
+    fn break_cycle(
+        &mut self,
+        h: &History,
+        judged: &mut Judged,
+        seen: &[Vec<ContactState>],
+        loose: Option<f64>,
+    ) -> Cycle {
         let changing: Vec<usize> = (0..judged.next.len()).filter(|&p| judged.next[p] != h.states[p]).collect();
         if changing.is_empty() || !(self.one_at_a_time || seen.contains(&judged.next)) {
             return Cycle::None;
         }
-        if loose {
-            judged.next.clone_from(&h.states);
-            return Cycle::Undecided;
+        let residual = judged.residual / judged.scale_f;
+        let mut v: Vec<f64> = changing.iter().map(|&p| judged.violation[p]).collect();
+        v.sort_by(|a, b| b.total_cmp(a));
+        let (worst, next) = (v[0].max(0.0), v.get(1).map_or(0.0, |x| x.max(0.0)));
+        let last_hold = self.last_hold / judged.scale_f;
+        if let Some(error) = loose {
+            let clear = |a: f64, b: f64| (a - b).abs() > MARGIN * error;
+            let sure = clear(worst, next)
+                && clear(worst, DECIDED * residual)
+                && clear(residual, SETTLE_FIRST)
+                && (self.holds < 2 || clear(residual, HOLD_GAIN * last_hold));
+            if !sure {
+                judged.next.clone_from(&h.states);
+                return Cycle::Undecided;
+            }
         }
         let met = if self.one_at_a_time { Cycle::None } else { Cycle::Met };
         self.one_at_a_time = true;
-        let settling = self.holds < 2 || judged.residual < HOLD_GAIN * self.last_hold;
-        let worst_violation = changing.iter().map(|&p| judged.violation[p]).fold(0.0, f64::max);
-        let decided = worst_violation > DECIDED * judged.residual / judged.scale_f;
-        if judged.residual > SETTLE_FIRST * judged.scale_f && self.holds < MAX_HOLDS && settling && !decided {
+        let settling = self.holds < 2 || residual < HOLD_GAIN * last_hold;
+        let decided = worst > DECIDED * residual;
+        if residual > SETTLE_FIRST && self.holds < MAX_HOLDS && settling && !decided {
             self.holds += 1;
             self.last_hold = judged.residual;
             judged.next.clone_from(&h.states);
@@ -387,7 +413,7 @@ impl<'p> Newton<'p> {
         tolerance: f64,
         loose: bool,
     ) -> bool {
-        match self.break_cycle(h, judged, &summary.history, loose) {
+        match self.break_cycle(h, judged, &summary.history, loose.then(|| tolerance / judged.scale_f)) {
             Cycle::Undecided => return true,
             Cycle::Met => {
                 summary.cycles_broken += 1;
