@@ -405,9 +405,10 @@ fn blocks_hold(stem: &str, solved: &Solved, bound: u64) {
 /// pairs apart at the free side (x = 0.4 m) for its 100 iterations, not
 /// cut (a step from no load on joints of friction alone), and the run
 /// falls back there: 17 and 18 iterations, 110 s. Since the cycle
-/// breaker judges its changes from tight solves (`Cycle::Undecided` in
-/// src/contact/newton.rs) step 1 converges in 51 and the run falls back
-/// at step 2 again, block 36 held by nothing (docs/corpus.md).
+/// breaker takes its changes as tight solves would (`MARGIN`,
+/// `Cycle::Undecided` in src/contact/newton.rs) step 1 converges in 51
+/// and the run falls back at step 2 again, block 36 held by nothing:
+/// 17 and 18 iterations, 135 s (docs/corpus.md).
 #[test]
 #[ignore = "make stress: about 2 min, most of it the rigid joints' 100 iterations"]
 fn blocks3d_unconfined_block_mass() {
