@@ -361,14 +361,16 @@ impl<'p> Newton<'p> {
         seen: &[Vec<ContactState>],
         loose: Option<f64>,
     ) -> Cycle {
-        let changing: Vec<usize> = (0..judged.next.len()).filter(|&p| judged.next[p] != h.states[p]).collect();
+        let mut changing: Vec<usize> = (0..judged.next.len()).filter(|&p| judged.next[p] != h.states[p]).collect();
         if changing.is_empty() || !(self.one_at_a_time || seen.contains(&judged.next)) {
             return Cycle::None;
         }
+        // most violated first (the first of equals)
+        let v = &judged.violation;
+        changing.sort_by(|&a, &b| v[b].total_cmp(&v[a]).then(a.cmp(&b)));
+        let violation = |k: usize| changing.get(k).map_or(0.0, |&p| v[p].max(0.0));
+        let (worst, next) = (violation(0), violation(1));
         let residual = judged.residual / judged.scale_f;
-        let mut v: Vec<f64> = changing.iter().map(|&p| judged.violation[p]).collect();
-        v.sort_by(|a, b| b.total_cmp(a));
-        let (worst, next) = (v[0].max(0.0), v.get(1).map_or(0.0, |x| x.max(0.0)));
         let last_hold = self.last_hold / judged.scale_f;
         let held = (self.holds >= 2).then_some(last_hold);
         if loose.is_some_and(|error| !sure(error, [worst, next], residual, held)) {
@@ -387,9 +389,7 @@ impl<'p> Newton<'p> {
         }
         self.holds = 0;
         self.last_hold = f64::INFINITY;
-        let v = &judged.violation;
-        let worst = changing.iter().copied().max_by(|&a, &b| v[a].total_cmp(&v[b]).then(b.cmp(&a)));
-        for &p in changing.iter().filter(|&&p| Some(p) != worst) {
+        for &p in &changing[1..] {
             judged.next[p] = h.states[p];
         }
         met
