@@ -73,4 +73,11 @@ fn the_sparse_interface_takes_the_dense_ones_path_on_the_jointed_tunnel() {
     // (at most one solve again per change the cycle breaker makes: here
     // four, each a single change, and none needed)
     assert!(ds <= 20 && ss <= ds + 4, "dense {ds} iterations, sparse {ss}");
+    // the dense interface never solves loosely, so never solves again
+    assert_eq!(d.summary.tight_resolves, 0);
+    assert!(
+        s.summary.tight_resolves <= ss.saturating_sub(ds),
+        "sparse {ss} iterations, {} again",
+        s.summary.tight_resolves
+    );
 }

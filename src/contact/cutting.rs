@@ -48,7 +48,7 @@ pub fn iterate_cutting(
     let at = |t: f64| -> Vec<f64> { from.iter().zip(to).map(|(a, b)| a + t * (b - a)).collect() };
     // pieces still to solve, the next on top: (start, end, depth) as fractions of the step
     let mut todo = vec![(0.0, 1.0, 0usize)];
-    let mut iterations = 0;
+    let (mut iterations, mut resolves) = (0, 0);
     let mut pieces = Vec::new();
     let mut cuts = 0;
     loop {
@@ -60,6 +60,7 @@ pub fn iterate_cutting(
             f
         })?;
         iterations += outcome.summary.iterations;
+        resolves += outcome.summary.tight_resolves;
         let ended = outcome.summary.converged || saved.is_none();
         if outcome.summary.converged {
             pieces.push(b);
@@ -67,6 +68,7 @@ pub fn iterate_cutting(
         if ended && (todo.is_empty() || !outcome.summary.converged) {
             outcome.summary.scaled = scaled && !outcome.summary.converged;
             outcome.summary.iterations = iterations;
+            outcome.summary.tight_resolves = resolves;
             outcome.summary.cuts = cuts;
             if cuts > 0 {
                 outcome.summary.pieces = pieces;

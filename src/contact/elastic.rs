@@ -42,7 +42,7 @@
 
 use super::frame::tangential;
 use super::history::{cracked, law_at, History};
-use super::iteration::{Rule, Verdict};
+use super::iteration::{Next, Rule, Verdict};
 use super::law::{friction_bound, ContactState, Stiffness};
 use super::options::SlipLaw;
 use super::outcome::Summary;
@@ -334,7 +334,7 @@ impl Rule for Elastic<'_> {
         self.judged_from.clone_from(&h.states);
         let (next, law) = self.verdict_at(h, self.tol);
         let settled = self.alpha == 1.0 && law <= (SETTLED * scale).max(solution.accuracy);
-        Verdict { next, settled, law, again: false }
+        Verdict { next: Next::States(next), settled, law }
     }
 
     /// The states judged at the last step's end could not be solved (a

@@ -67,17 +67,23 @@ pub(super) trait Rule {
 
 /// A rule's judgement of one solve.
 pub(super) struct Verdict {
-    pub next: Vec<ContactState>,
+    pub next: Next,
     /// The slipping pairs' forces agree with the law.
     pub settled: bool,
     /// How far they are from it (the largest friction residual, a force;
     /// 0 for a rule that does not linearise the friction).
     pub law: f64,
-    /// The solve was loose and left undecided a change its rule waits to
-    /// see decided (`next` keeps the states): the same relations are
-    /// solved again tightly and judged again, as an exact solver's
-    /// answer would have been.
-    pub again: bool,
+}
+
+/// What a rule makes of a solve's states.
+pub(super) enum Next {
+    /// Every pair's next state.
+    States(Vec<ContactState>),
+    /// The solve was loose and left undecided a change the rule waits to
+    /// see decided: the same relations are solved again tightly and
+    /// judged again, as an exact solver's answer would have been (at the
+    /// step's last iteration, the states are kept).
+    Again,
 }
 
 /// Solves the interface system with `relations`; where the states they
@@ -118,6 +124,7 @@ pub(super) fn run(
     loop {
         summary.iterations += 1;
         let retightened = tighten.is_some();
+        summary.tight_resolves += usize::from(retightened);
         let mut relations = tighten.take().unwrap_or_else(|| rule.relations(h));
         let solution = solve(&mut rule, problem, h, &mut relations, lambda, accuracy).map_err(|failure| Failed {
             failure,
@@ -128,12 +135,16 @@ pub(super) fn run(
             mark_cracks(h);
         }
         summary.history.push(h.states.clone());
-        let Verdict { next, settled, law, again } = rule.judge(h, &solution, &mut summary);
-        // (a change a loose solve left undecided: its system, solved tightly)
-        if again && summary.iterations < max_iterations {
-            (tighten, accuracy) = (Some(relations), Accuracy::Tight);
-            continue;
-        }
+        let Verdict { next, settled, law } = rule.judge(h, &solution, &mut summary);
+        let next = match next {
+            // (a change a loose solve left undecided: its system, solved tightly)
+            Next::Again if summary.iterations < max_iterations => {
+                (tighten, accuracy) = (Some(relations), Accuracy::Tight);
+                continue;
+            }
+            Next::Again => h.states.clone(),
+            Next::States(next) => next,
+        };
         // (a loose or inexact interface solve is never the answer: the
         // next, with the same states, is solved tightly once the friction
         // has settled; until then each is a Newton step solved to a
@@ -167,20 +178,34 @@ pub(super) fn run(
         }
         let stops = unchanged || summary.cycled() || summary.iterations >= max_iterations;
         if stops {
-            let law_residual = law_residuals(problem, laws, h, &solution, rule.slip_reference());
-            summary.end(
-                unchanged,
-                unchanged && rule.answers_to_the_law() && breaks_law(problem, &law_residual, &solution),
-            );
-            if summary.converged {
-                commit(h, &solution);
-                rule.commit(h);
-            }
-            let states = std::mem::replace(&mut h.states, next);
-            return Ok(Outcome { states, solution, summary, law_residual, cracked: Vec::new() });
+            return Ok(end(rule, problem, laws, h, solution, summary, next, unchanged));
         }
         h.states = next;
     }
+}
+
+/// The outcome of a step whose iteration stops with `solution` (its
+/// states `unchanged`, or not): converged where they settled and keep the
+/// law, and then committed; `next` the states its verdict left.
+#[allow(clippy::too_many_arguments)]
+fn end(
+    rule: impl Rule,
+    problem: &InterfaceProblem,
+    laws: &[PairLaw],
+    h: &mut History,
+    solution: InterfaceSolution,
+    mut summary: Summary,
+    next: Vec<ContactState>,
+    unchanged: bool,
+) -> Outcome {
+    let law_residual = law_residuals(problem, laws, h, &solution, rule.slip_reference());
+    summary.end(unchanged, unchanged && rule.answers_to_the_law() && breaks_law(problem, &law_residual, &solution));
+    if summary.converged {
+        commit(h, &solution);
+        rule.commit(h);
+    }
+    let states = std::mem::replace(&mut h.states, next);
+    Outcome { states, solution, summary, law_residual, cracked: Vec::new() }
 }
 
 /// A step whose states have settled has converged only where every pair

@@ -45,7 +45,7 @@ use super::capacity::{capacities, PairLoad};
 use super::cluster::{Search, Step, Watch};
 use super::frame::tangential;
 use super::history::{cracked, forget_step_cracks, law_at, opened_twice, History};
-use super::iteration::{Rule, Verdict};
+use super::iteration::{Next, Rule, Verdict};
 use super::law::{friction_bound, judge, reads_stiffness, stiffness_in, ContactState, Trial};
 use super::options::SlipLaw;
 use super::outcome::Summary;
@@ -664,7 +664,7 @@ impl Rule for Newton<'_> {
             Some(Step::GaveUp) | None => self.break_or_pin(h, &mut judged, summary, tolerance, solution.loose),
         };
         if again {
-            return Verdict { settled, next: judged.next, law: judged.residual, again };
+            return Verdict { next: Next::Again, settled, law: judged.residual };
         }
         // a slip a crossing of two joints locks freed by its twin
         let pinned = |p: usize| self.search.pins(p);
@@ -700,7 +700,7 @@ impl Rule for Newton<'_> {
         }
         self.judged_from.clone_from(&h.states);
         self.violation = judged.violation;
-        Verdict { settled, next: judged.next, law: judged.residual, again: false }
+        Verdict { next: Next::States(judged.next), settled, law: judged.residual }
     }
 
     /// A set the last verdict chose leaves `sliding` free to slide (see

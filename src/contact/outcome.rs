@@ -38,6 +38,11 @@ pub struct Summary {
     /// runs). A cycle is said first: the paper rule stops at one, and
     /// the law is judged only at states that settled ([`super::iteration`]).
     pub stop: Option<Stop>,
+    /// Iterations that solved the last one's relations again, tightly
+    /// (counted in `iterations`): a loose solve's verdict the cycle
+    /// breaker could not be sure of, or a settled loose answer taken again
+    /// late in the step ([`super::iteration::run`]).
+    pub tight_resolves: usize,
     /// Cycles broken by changing one pair at a time (robust rule).
     pub cycles_broken: usize,
     /// Stalls or cycles ended by solving the cluster of pairs they were

@@ -16,7 +16,7 @@
 
 use super::frame::tangential;
 use super::history::History;
-use super::iteration::{Rule, Verdict};
+use super::iteration::{Next, Rule, Verdict};
 use super::law::{judge_paper, ContactState, PairResult};
 use super::options::SlipLaw;
 use super::outcome::{Stop, Summary};
@@ -129,7 +129,8 @@ impl Rule for Paper<'_> {
             }
             h.sigma_n[p] = r[p].sigma_n;
         }
-        Verdict { next, settled: shear_moved <= 1e-12 * scale_s.max(f64::MIN_POSITIVE), law: 0.0, again: false }
+        let settled = shear_moved <= 1e-12 * scale_s.max(f64::MIN_POSITIVE);
+        Verdict { next: Next::States(next), settled, law: 0.0 }
     }
 }
 

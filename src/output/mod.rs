@@ -235,13 +235,37 @@ fn steps_summary(run: &Run) -> serde_json::Value {
             let mut j = json!({ "step": st.step, "ramp": st.load_factor, "case_factors": st.case_factors });
             if let Some(c) = &st.contact {
                 let k = state_counts(&c.states);
-                j["contact"] = json!({ "iterations": c.summary.iterations, "converged": c.summary.converged, "cycled": c.summary.cycled(),
+                j["contact"] = json!({ "iterations": c.summary.iterations, "tight_resolves": c.summary.tight_resolves, "converged": c.summary.converged, "cycled": c.summary.cycled(),
                     "states": { "stick": k[2], "slip": k[1], "open": k[0] }, "cuts": c.summary.cuts, "pieces": c.summary.pieces, "scaled": c.summary.scaled,
                     "locked_friction_off": locked_off(c) });
             }
             j
         })
         .collect::<Vec<_>>())
+}
+
+/// summary.json's `contact`: how the last step's state iteration went
+/// (the rest of it is added by [`summary`]).
+fn contact_json(c: &crate::results::ContactRun) -> serde_json::Value {
+    let counts = state_counts(&c.states);
+    let it = &c.summary;
+    json!({
+        "pairs": c.states.len(),
+        "iterations": it.iterations,
+        "tight_resolves": it.tight_resolves,
+        "converged": it.converged,
+        "cycled": it.cycled(),
+        "states": { "stick": counts[2], "slip": counts[1], "open": counts[0] },
+        "cycles_broken": it.cycles_broken,
+        "clusters_solved": it.clusters_solved,
+        "cuts": it.cuts,
+        "pieces": it.pieces,
+        "scaled": it.scaled,
+        "unsettled_pairs": unsettled::changes(c).map(|k| k.iter().filter(|&&n| n > 0).count()),
+        "law_residual": c.worst_law_residual().map(|(p, r)| json!({ "pair": p, "relative": r, "stress": c.law_residual[p] })),
+        "locked_friction_off": locked_off(c),
+        "history": it.history.iter().map(|h| { let k = state_counts(h); json!({"stick": k[2], "slip": k[1], "open": k[0]}) }).collect::<Vec<_>>(),
+    })
 }
 
 /// The crossings whose locked friction is off the equilibrium solved
@@ -311,24 +335,7 @@ fn summary(run: &Run, derived: &Derived) -> serde_json::Value {
         "warnings": run.about.warnings,
     });
     if let Some(c) = run.contact() {
-        let counts = state_counts(&c.states);
-        let it = &c.summary;
-        v["contact"] = json!({
-            "pairs": c.states.len(),
-            "iterations": it.iterations,
-            "converged": it.converged,
-            "cycled": it.cycled(),
-            "states": { "stick": counts[2], "slip": counts[1], "open": counts[0] },
-            "cycles_broken": it.cycles_broken,
-            "clusters_solved": it.clusters_solved,
-            "cuts": it.cuts,
-            "pieces": it.pieces,
-            "scaled": it.scaled,
-            "unsettled_pairs": unsettled::changes(c).map(|k| k.iter().filter(|&&n| n > 0).count()),
-            "law_residual": c.worst_law_residual().map(|(p, r)| json!({ "pair": p, "relative": r, "stress": c.law_residual[p] })),
-            "locked_friction_off": locked_off(c),
-            "history": it.history.iter().map(|h| { let k = state_counts(h); json!({"stick": k[2], "slip": k[1], "open": k[0]}) }).collect::<Vec<_>>(),
-        });
+        v["contact"] = contact_json(c);
         v["contact"]["joint_stiffness"] = faces::stiffness_json(run);
         v["contact"]["rigid_fallback"] = fallback_json(run);
         if let Some(r) = derived.resultants() {
