@@ -234,38 +234,49 @@ fn steps_summary(run: &Run) -> serde_json::Value {
         .map(|st| {
             let mut j = json!({ "step": st.step, "ramp": st.load_factor, "case_factors": st.case_factors });
             if let Some(c) = &st.contact {
-                let k = state_counts(&c.states);
-                j["contact"] = json!({ "iterations": c.summary.iterations, "tight_resolves": c.summary.tight_resolves, "converged": c.summary.converged, "cycled": c.summary.cycled(),
-                    "states": { "stick": k[2], "slip": k[1], "open": k[0] }, "cuts": c.summary.cuts, "pieces": c.summary.pieces, "scaled": c.summary.scaled,
-                    "locked_friction_off": locked_off(c) });
+                j["contact"] = step_json(c);
             }
             j
         })
         .collect::<Vec<_>>())
 }
 
-/// summary.json's `contact`: how the last step's state iteration went
-/// (the rest of it is added by [`summary`]).
-fn contact_json(c: &crate::results::ContactRun) -> serde_json::Value {
-    let counts = state_counts(&c.states);
+/// How one step's state iteration went: summary.json's `steps[k].contact`,
+/// and the part of its `contact` that is the last step's.
+fn step_json(c: &crate::results::ContactRun) -> serde_json::Value {
     let it = &c.summary;
     json!({
-        "pairs": c.states.len(),
         "iterations": it.iterations,
         "tight_resolves": it.tight_resolves,
         "converged": it.converged,
         "cycled": it.cycled(),
-        "states": { "stick": counts[2], "slip": counts[1], "open": counts[0] },
-        "cycles_broken": it.cycles_broken,
-        "clusters_solved": it.clusters_solved,
+        "states": states_json(&c.states),
         "cuts": it.cuts,
         "pieces": it.pieces,
         "scaled": it.scaled,
-        "unsettled_pairs": unsettled::changes(c).map(|k| k.iter().filter(|&&n| n > 0).count()),
-        "law_residual": c.worst_law_residual().map(|(p, r)| json!({ "pair": p, "relative": r, "stress": c.law_residual[p] })),
         "locked_friction_off": locked_off(c),
-        "history": it.history.iter().map(|h| { let k = state_counts(h); json!({"stick": k[2], "slip": k[1], "open": k[0]}) }).collect::<Vec<_>>(),
     })
+}
+
+/// summary.json's `contact`: how the last step's state iteration went,
+/// [`step_json`] and more (the rest of it is added by [`summary`]).
+fn contact_json(c: &crate::results::ContactRun) -> serde_json::Value {
+    let it = &c.summary;
+    let mut v = step_json(c);
+    v["pairs"] = json!(c.states.len());
+    v["cycles_broken"] = json!(it.cycles_broken);
+    v["clusters_solved"] = json!(it.clusters_solved);
+    v["unsettled_pairs"] = json!(unsettled::changes(c).map(|k| k.iter().filter(|&&n| n > 0).count()));
+    v["law_residual"] =
+        json!(c.worst_law_residual().map(|(p, r)| json!({ "pair": p, "relative": r, "stress": c.law_residual[p] })));
+    v["history"] = json!(it.history.iter().map(|h| states_json(h)).collect::<Vec<_>>());
+    v
+}
+
+/// A state set's counts: `{ "stick", "slip", "open" }`.
+fn states_json(states: &[crate::contact::law::ContactState]) -> serde_json::Value {
+    let k = state_counts(states);
+    json!({ "stick": k[2], "slip": k[1], "open": k[0] })
 }
 
 /// The crossings whose locked friction is off the equilibrium solved
