@@ -22,6 +22,7 @@
 //! (the 34k tunnel of docs/convergence.md, three cuts: each repeated
 //! the whole step's 100 state sets, its law residual halved).
 
+use super::augmented::Rounds;
 use super::history::History;
 use super::iterate;
 use super::options::StateRule;
@@ -48,7 +49,7 @@ pub fn iterate_cutting(
     let at = |t: f64| -> Vec<f64> { from.iter().zip(to).map(|(a, b)| a + t * (b - a)).collect() };
     // pieces still to solve, the next on top: (start, end, depth) as fractions of the step
     let mut todo = vec![(0.0, 1.0, 0usize)];
-    let (mut iterations, mut resolves) = (0, 0);
+    let (mut iterations, mut resolves, mut augmented) = (0, 0, None::<Rounds>);
     let mut pieces = Vec::new();
     let mut cuts = 0;
     loop {
@@ -61,6 +62,11 @@ pub fn iterate_cutting(
         })?;
         iterations += outcome.summary.iterations;
         resolves += outcome.summary.tight_resolves;
+        if let Some(r) = outcome.summary.augmented {
+            let before = augmented.unwrap_or_default();
+            let (rounds, iterations) = (r.rounds + before.rounds, r.iterations + before.iterations);
+            augmented = Some(Rounds { rounds, iterations, stretch: r.stretch });
+        }
         let ended = outcome.summary.converged || saved.is_none();
         if outcome.summary.converged {
             pieces.push(b);
@@ -69,6 +75,7 @@ pub fn iterate_cutting(
             outcome.summary.scaled = scaled && !outcome.summary.converged;
             outcome.summary.iterations = iterations;
             outcome.summary.tight_resolves = resolves;
+            outcome.summary.augmented = augmented;
             outcome.summary.cuts = cuts;
             if cuts > 0 {
                 outcome.summary.pieces = pieces;

@@ -46,6 +46,11 @@ pub struct History {
     /// share of its force starts from (see [`super::system::Relation::prior`]).
     pub insitu: Vec<[f64; 3]>,
     pub insitu_case: usize,
+    /// The springs (per unit area) that rigid joints are solved through
+    /// where their Newton iteration does not end a step
+    /// ([`super::augmented`]; `[solver] augmented_lagrangian`): None where
+    /// the run does not ask for it.
+    pub penalty: Option<super::law::Stiffness>,
 }
 
 impl History {
@@ -66,6 +71,7 @@ impl History {
             unloaded: Vec::new(),
             insitu: Vec::new(),
             insitu_case: 0,
+            penalty: None,
         }
     }
 }

@@ -30,6 +30,7 @@
 //! is a load on both faces of its pairs, so the force solved for is the
 //! solid-to-solid one and the law judges the effective normal stress.
 
+pub mod augmented;
 pub mod basis;
 pub mod capacity;
 mod cluster;
@@ -76,9 +77,7 @@ pub fn iterate(
         StateRule::Robust if deforms => {
             iteration::run(elastic::Elastic::new(problem, laws, h), problem, laws, lambda, h, max_iterations)
         }
-        StateRule::Robust => {
-            iteration::run(newton::Newton::new(problem, laws, h, lambda), problem, laws, lambda, h, max_iterations)
-        }
+        StateRule::Robust => newton_or_rounds(problem, laws, lambda, h, max_iterations),
         StateRule::Paper => {
             iteration::run(paper_rule::Paper::new(problem, laws), problem, laws, lambda, h, max_iterations)
         }
@@ -92,4 +91,48 @@ pub fn iterate(
     let before: Vec<bool> = (h.cracked.iter().zip(&h.cracking)).map(|(a, b)| *a || *b).collect();
     outcome.cracked = (before.iter().zip(&outcome.states)).map(|(c, s)| *c || *s != ContactState::Stick).collect();
     Ok(outcome)
+}
+
+/// The robust rule on rigid joints: the semismooth Newton iteration, and
+/// where it does not end the step and `h` has springs to take
+/// (`History::penalty`), the step solved again from where it started by
+/// augmented Lagrangian rounds ([`augmented`]). Where the rounds do not
+/// end it either, Newton's outcome stands, as without them (cutting and
+/// the fallback go on from it); the summary counts both, and says the
+/// rounds.
+fn newton_or_rounds(
+    problem: &InterfaceProblem,
+    laws: &[PairLaw],
+    lambda: &[f64],
+    h: &mut History,
+    max_iterations: usize,
+) -> Result<Outcome, Failed> {
+    let start = h.penalty.is_some().then(|| h.clone());
+    let newton =
+        iteration::run(newton::Newton::new(problem, laws, h, lambda), problem, laws, lambda, h, max_iterations);
+    let (Some(mut start), Some(k)) = (start, h.penalty) else { return newton };
+    if newton.as_ref().is_ok_and(|o| o.summary.converged) {
+        return newton;
+    }
+    let tried = newton.as_ref().map_or_else(|f| f.iteration, |o| o.summary.iterations);
+    let went = match augmented::run(problem, laws, lambda, &mut start, max_iterations, k) {
+        Ok((mut outcome, went)) => {
+            *h = start;
+            outcome.summary.iterations += tried;
+            outcome.summary.augmented = Some(went);
+            return Ok(outcome);
+        }
+        Err(went) => went,
+    };
+    match newton {
+        Ok(mut outcome) => {
+            outcome.summary.iterations += went.iterations;
+            outcome.summary.augmented = Some(went);
+            Ok(outcome)
+        }
+        Err(mut failed) => {
+            failed.iteration += went.iterations;
+            Err(failed)
+        }
+    }
 }

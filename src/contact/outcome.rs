@@ -43,6 +43,11 @@ pub struct Summary {
     /// breaker could not be sure of, or a settled loose answer taken again
     /// late in the step ([`super::iteration::run`]).
     pub tight_resolves: usize,
+    /// Where the Newton iteration did not end the step and it was solved
+    /// again by augmented Lagrangian rounds (`[solver]
+    /// augmented_lagrangian`): how many, and their springs' last stretch.
+    /// `iterations` counts both.
+    pub augmented: Option<super::augmented::Rounds>,
     /// Cycles broken by changing one pair at a time (robust rule).
     pub cycles_broken: usize,
     /// Stalls or cycles ended by solving the cluster of pairs they were

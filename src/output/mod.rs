@@ -248,6 +248,9 @@ fn step_json(c: &crate::results::ContactRun) -> serde_json::Value {
     json!({
         "iterations": it.iterations,
         "tight_resolves": it.tight_resolves,
+        "augmented": it.augmented.map(|r| json!({
+            "rounds": r.rounds, "iterations": r.iterations, "closed": r.closed(), "stretch": r.stretch
+        })),
         "converged": it.converged,
         "cycled": it.cycled(),
         "states": states_json(&c.states),

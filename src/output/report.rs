@@ -171,6 +171,9 @@ fn iteration_notes(s: &mut String, run: &Run) {
         if it.clusters_solved > 0 {
             let _ = writeln!(s, "\nThe state iteration stalled or cycled on a few pairs {} time(s) and the cluster fallback ended it: the pressures of a stall's slipping pairs solved for (multisecant steps), or the cluster's stick / slip / open sets tried, fewest changes from the load step's start first, until one met the law at every pair.", it.clusters_solved);
         }
+        if let Some(r) = it.augmented {
+            let _ = writeln!(s, "\n{}", augmented_sentence(&r));
+        }
         let stage = run.last().step == 0;
         if it.cuts > 0 || it.scaled || (stage && !it.strengths.is_empty()) {
             let _ = writeln!(s, "\n{}", cut_sentence(it, stage));
@@ -178,6 +181,19 @@ fn iteration_notes(s: &mut String, run: &Run) {
         *s += &super::unsettled::report(&run.model, c);
     }
     locked_off(s, run);
+}
+
+/// What augmented Lagrangian rounds did to a step the Newton iteration of
+/// rigid joints did not end ([`crate::contact::augmented`]).
+fn augmented_sentence(r: &crate::contact::augmented::Rounds) -> String {
+    let what = format!("The Newton iteration of the rigid joints did not end the last load step, so it was solved again by {} augmented Lagrangian round(s) ([solver] augmented_lagrangian; {} iteration(s), counted with Newton's): stiff springs whose load takes the force of the round before", r.rounds, r.iterations);
+    if r.closed() {
+        format!("{what}, until no closed pair's spring stretched by more than 1e-9 of the largest force (the last round: {:.1e}): the rigid joints' answer.", r.stretch)
+    } else if r.stretch.is_finite() {
+        format!("{what}. They did not end it either: the springs' stretch stopped falling at {:.1e} of the largest force (a state set with no rigid answer), and the results are the Newton iteration's.", r.stretch)
+    } else {
+        format!("{what}. They did not end it either: the last round's own iteration did not end, and the results are the Newton iteration's.")
+    }
 }
 
 /// The crossings whose locked friction is off the equilibrium solved, step

@@ -232,6 +232,7 @@ pub(super) struct RawSolver {
     pub(super) interface: Option<InterfaceSolver>,
     pub(super) initial_stage: Option<bool>,
     pub(super) rigid_fallback: Option<bool>,
+    pub(super) augmented_lagrangian: Option<bool>,
 }
 
 #[derive(Deserialize)]

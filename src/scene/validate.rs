@@ -207,6 +207,7 @@ impl Checker<'_> {
                 interface: s.interface.unwrap_or_default(),
                 initial_stage: s.initial_stage.unwrap_or(false),
                 rigid_fallback: s.rigid_fallback.unwrap_or(true),
+                augmented_lagrangian: s.augmented_lagrangian.unwrap_or(false),
                 substructures: self.at_least(
                     s.substructures,
                     1,

@@ -62,6 +62,11 @@ pub struct Solver {
     /// scene again with joints that deform and say so (default true;
     /// `crate::driver`'s fallback).
     pub rigid_fallback: bool,
+    /// Where rigid joints' Newton iteration does not end a load step,
+    /// solve it again by augmented Lagrangian rounds through stiff
+    /// springs, which end at the rigid joints' answer (default false;
+    /// [`crate::contact`]'s `augmented`), before any fallback.
+    pub augmented_lagrangian: bool,
 }
 
 impl Default for Solver {
@@ -76,6 +81,7 @@ impl Default for Solver {
             interface: InterfaceSolver::Auto,
             initial_stage: false,
             rigid_fallback: true,
+            augmented_lagrangian: false,
         }
     }
 }
