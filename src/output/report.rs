@@ -190,7 +190,7 @@ fn augmented_sentence(r: &crate::contact::augmented::Rounds) -> String {
     if r.closed() {
         format!("{what}, until no closed pair's spring stretched by more than 1e-9 of the largest force (the last round: {:.1e}): the rigid joints' answer.", r.stretch)
     } else if r.stretch.is_finite() {
-        format!("{what}. They did not end it either: the springs' stretch stopped falling at {:.1e} of the largest force (a state set with no rigid answer), and the results are the Newton iteration's.", r.stretch)
+        format!("{what}. They did not end it either: their springs still stretched by {:.1e} of the largest force when the stretch stopped halving in four rounds (a state set with no rigid answer) or the rounds ran out, and the results are the Newton iteration's.", r.stretch)
     } else {
         format!("{what}. They did not end it either: the last round's own iteration did not end, and the results are the Newton iteration's.")
     }
