@@ -264,10 +264,12 @@ fn the_34k_tunnel_with_rigid_joints_ends_through_augmented_rounds() {
 
 /// The two-set tunnel whose rigid joints take 16 iterations, given 12
 /// and `[solver] augmented_lagrangian`: the rounds started from its step's
-/// start do not end it either (measured: the 7th round, 729 times the
-/// first's springs, needs more than 12 iterations; 41 in the rounds), so
-/// the run ends as without them (status 1, the Newton iteration's last
-/// iterate), and summary.json and report.md say the rounds did not close.
+/// start do not end it either (the rounds have 12 iterations in all, as
+/// the Newton attempt: measured, the 3rd round has 2 left and does not
+/// end in them; given 12 each, the 7th, at 729 times the first's
+/// springs, did not end in its 12), so the run ends as without them
+/// (status 1, the Newton iteration's last iterate), and summary.json and
+/// report.md say the rounds did not close.
 #[test]
 #[ignore = "make stress: about 35 s"]
 fn augmented_rounds_that_do_not_end_a_step_leave_the_newton_iterations() {
