@@ -22,8 +22,8 @@
 //! them converges in a few iterations from the last; the multipliers then
 //! take the stretch out of the springs. Measured on
 //! tests/corpus/tunnel4sets_linear_fine.toml (rigid: 100 iterations, not
-//! converged): 15 rounds, 68 iterations, stretch 7e-10 of the largest force;
-//! the 34k tunnel (rigid: 300, not converged): 14 rounds, 90 iterations.
+//! converged): 15 rounds, 66 iterations, stretch 7e-10 of the largest force;
+//! the 34k tunnel (rigid: 300, not converged): 14 rounds, 93 iterations.
 //! With fixed springs the stretch fell only 0.9-fold a round; stiffened
 //! tenfold a round, a round's own iteration did not end (1,000 times).
 
@@ -51,15 +51,16 @@ const ROUNDS: usize = 20;
 /// fraction of what it was [`STALL_ROUNDS`] rounds before: a state set
 /// whose rigid joints have no answer, where the multipliers grow without
 /// end and the stretch falls as one over the rounds (the two-set tunnel
-/// of tests/convergence.rs from its rigid iteration's 12th state set:
-/// 9.3e-4, 7.6e-4, 6.7e-4, 5.9e-4, 5.3e-4 ... of the largest force with
-/// the states unchanged, where its rigid iteration ends in other ones).
+/// of tests/convergence.rs, rounds from its step's start with springs
+/// capped at 81 times the first: 9.3e-4, 7.6e-4, 6.7e-4, 5.9e-4, 5.3e-4
+/// ... of the largest force with the states unchanged, three pairs in
+/// other states than those its rigid iteration ends in).
 const STALL: f64 = 0.5;
 const STALL_ROUNDS: usize = 4;
 
 /// How the rounds went: how many, their iterations, and the last one's
 /// largest stretch (of the largest force; infinite where a round's own
-/// iteration did not end).
+/// iteration did not end; the default, no rounds, only to add to).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Rounds {
     pub rounds: usize,
