@@ -78,8 +78,8 @@ impl Rounds {
 /// Solves the step under `lambda` from the states in `h` by rounds of
 /// springs of stiffness `k` (per unit area; the first round's), the
 /// rounds' iterations `max_iterations` in all (as many as the Newton
-/// attempt before them: a scene whose rounds do not close costs at most
-/// twice what it did without them). Where the springs close,
+/// attempt before them: a step whose rounds do not close takes at most
+/// twice the iterations it did without them). Where the springs close,
 /// the outcome, `h` committed as the rigid rule commits it; elsewhere
 /// (a round that does not end, or fails; a stretch that stalls; no
 /// rounds left) how far they went, `h` as it was.
