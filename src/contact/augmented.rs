@@ -27,7 +27,7 @@
 //! With fixed springs the stretch fell only 0.9-fold a round; stiffened
 //! tenfold a round, a round's own iteration did not end (1,000 times).
 
-use super::elastic::Elastic;
+use super::elastic::{springs, Elastic};
 use super::frame::tangential;
 use super::history::{opened_twice, History};
 use super::iteration;
@@ -107,11 +107,8 @@ pub(super) fn run(
     let (mut scale, mut stretches) = (1.0, Vec::new());
     for round in 0..ROUNDS {
         let kr = Stiffness { normal: k.normal * scale, shear: k.shear * scale };
-        let springs: Vec<PairLaw> = laws.iter().map(|l| PairLaw { stiffness: Some(kr), ..*l }).collect();
-        let stiff = |p: usize| {
-            let a = problem.area(p);
-            [a * kr.normal, a * kr.shear, a * kr.shear]
-        };
+        let spring_laws: Vec<PairLaw> = laws.iter().map(|l| PairLaw { stiffness: Some(kr), ..*l }).collect();
+        let stiff = |p: usize| springs(kr, problem.area(p));
         let mut hr = h.clone();
         hr.states.clone_from(&states);
         (hr.cracked, hr.parted) = (cracked.clone(), parted.clone());
@@ -120,12 +117,12 @@ pub(super) fn run(
             (hr.rel_start, hr.force) = (rel, force);
         }
         hr.unloaded = (0..n).map(|p| std::array::from_fn(|a| target[p][a] - mult[p][a] / stiff(p)[a])).collect();
-        let rule = Elastic::new(problem, &springs, &hr);
+        let rule = Elastic::new(problem, &spring_laws, &hr);
         let left = max_iterations.saturating_sub(went.iterations);
         if left == 0 {
             return Err(went);
         }
-        let solved = iteration::run(rule, problem, &springs, lambda, &mut hr, left);
+        let solved = iteration::run(rule, problem, &spring_laws, lambda, &mut hr, left);
         went.rounds = round + 1;
         went.iterations += solved.as_ref().map_or_else(|f| f.iteration, |o| o.summary.iterations);
         let Ok(outcome) = solved.inspect_err(|_| went.stretch = f64::INFINITY) else { return Err(went) };

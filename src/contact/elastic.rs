@@ -86,7 +86,7 @@ pub(super) struct Elastic<'p> {
 }
 
 /// A pair's springs, `A diag(k_n, k_s, k_s)`.
-fn springs(k: Stiffness, area: f64) -> [f64; 3] {
+pub(super) fn springs(k: Stiffness, area: f64) -> [f64; 3] {
     [area * k.normal, area * k.shear, area * k.shear]
 }
 
