@@ -159,7 +159,7 @@ fn interface<'r>(
     if ops.iter().all(|o| o.nc == 0) {
         return Ok(None);
     }
-    let problem = InterfaceProblem::new(model, ops, remote, (plan.threads, plan.deforming), plan.kind)?;
+    let problem = InterfaceProblem::new(model, ops, remote, (plan.threads, plan.springs), plan.kind)?;
     Ok(Some(problem.with_water(Water::new(model))))
 }
 

@@ -9,7 +9,7 @@
 use super::messages::PlanError;
 use super::progress::progress;
 use super::run_options::RunOptions;
-use crate::contact::system::InterfaceKind;
+use crate::contact::system::{InterfaceKind, Springs};
 use crate::memory::{Available, Estimate, TooLarge};
 use crate::model::Model;
 use crate::scene::Scene;
@@ -27,9 +27,11 @@ pub(super) struct Plan {
     pub kind: InterfaceKind,
     /// Interface DOFs summed over the parts (what decides `kind` by default).
     pub interface_dofs: usize,
-    /// Whether every contact's joints deform (`normal_stiffness`): the
-    /// sparse interface then factorises its means only where asked.
-    pub deforming: bool,
+    /// Where the interface's solves put springs on every pair: every
+    /// contact's joints deform (`normal_stiffness`), and the sparse
+    /// interface factorises its means only where asked; or rigid joints
+    /// may be solved again by augmented Lagrangian rounds.
+    pub springs: Springs,
 }
 
 /// The plan of a run on `ranks` MPI ranks (1 without MPI).
@@ -45,7 +47,14 @@ pub(super) fn plan(scene: &Scene, model: &Model, opts: &RunOptions, ranks: usize
     let nd = model.nd;
     let interface_dofs: usize = parts.iter().map(|p| p.interface.len() * nd).sum();
     let kind = InterfaceKind::choose(opts.interface.unwrap_or(scene.solver.interface), &parts, nd);
-    Ok(Plan { parts, owner, threads, kind, interface_dofs, deforming: scene.joints_deform() })
+    let springs = if scene.joints_deform() {
+        Springs::Always
+    } else if scene.solver.augmented_lagrangian && super::fallback::rigid_robust(scene) {
+        Springs::InRounds
+    } else {
+        Springs::Never
+    };
+    Ok(Plan { parts, owner, threads, kind, interface_dofs, springs })
 }
 
 /// What a rank's parts need of memory at the run's peak, the run's DOFs,

@@ -9,7 +9,7 @@ use super::dense::Dense;
 use super::iterative::{Iterative, Remote};
 use super::layout::Layout;
 use super::reduce::NotHeld;
-use super::solver::Solver;
+use super::solver::{Solver, Springs};
 use super::sparse::Sparse;
 use super::w_columns;
 use crate::contact::mobility::PartModes;
@@ -92,8 +92,8 @@ impl InterfaceKind {
         })
     }
 
-    /// Its solver of the condensed `parts` (`deforming`: every pair's
-    /// joint deforms, [`Sparse::new`]).
+    /// Its solver of the condensed `parts` (`springs`: where its solves
+    /// put springs on every pair, [`Sparse::new`]).
     pub(super) fn build<'a>(
         self,
         model: &Model,
@@ -101,11 +101,11 @@ impl InterfaceKind {
         parts: &[OperatorRef],
         rigid: &[PartModes],
         remote: Option<&'a dyn Remote>,
-        (threads, deforming): (usize, bool),
+        (threads, springs): (usize, Springs),
     ) -> Result<Box<dyn Solver + 'a>, NotHeld> {
         Ok(match self {
             InterfaceKind::Dense => Box::new(Dense::new(layout, parts)?),
-            InterfaceKind::Sparse => Box::new(Sparse::new(model, layout, parts, (threads, deforming))?),
+            InterfaceKind::Sparse => Box::new(Sparse::new(model, layout, parts, (threads, springs))?),
             InterfaceKind::Iterative => Box::new(Iterative::build(model, layout, parts, rigid, remote, threads)),
         })
     }

@@ -68,7 +68,7 @@ pub use junction::Room;
 pub use kind::{InterfaceKind, ITERATIVE_FROM};
 use layout::Layout;
 pub use relation::{Limit, Relation};
-pub use solver::{Accuracy, Answer, Solver, Split, WarmStart};
+pub use solver::{Accuracy, Answer, Solver, Split, Springs, WarmStart};
 use threads::in_threads;
 
 use super::basis::FaceBasis;
@@ -163,12 +163,13 @@ impl<'a> InterfaceProblem<'a> {
     /// The interface of the condensed `parts` (every part of the model, in
     /// order), solved the `kind`'s way; `remote` applies the S of parts
     /// condensed for the iterative interface on other MPI ranks, `threads`
-    /// this rank's ones.
+    /// this rank's ones; `springs` where its solves put springs on every
+    /// pair ([`Springs`]).
     pub fn new(
         model: &Model,
         parts: &[OperatorRef],
         remote: Option<&'a dyn Remote>,
-        (threads, deforming): (usize, bool),
+        (threads, springs): (usize, Springs),
         kind: InterfaceKind,
     ) -> Result<InterfaceProblem<'a>, ModelError> {
         let basis = FaceBasis::new(model);
@@ -177,7 +178,7 @@ impl<'a> InterfaceProblem<'a> {
         let positions = model.pairs.iter().map(|p| model.coords[p.k]).collect();
         let spreads = model.normal_spreads();
         let not_held = |_| crate::model::quality::why_not_held(model);
-        let solver = kind.build(model, &layout, parts, &rigid, remote, (threads, deforming)).map_err(not_held)?;
+        let solver = kind.build(model, &layout, parts, &rigid, remote, (threads, springs)).map_err(not_held)?;
         Ok(InterfaceProblem {
             layout,
             basis,

@@ -131,3 +131,16 @@ pub struct Answer {
     /// ([`Accuracy::Step`]) rather than the tight tolerance.
     pub inexact: bool,
 }
+
+/// Where the interface's solves put springs on every pair, which the
+/// sparse interface builds for ([`super::sparse::Sparse::new`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Springs {
+    /// Rigid joints only.
+    Never,
+    /// Every joint deforms (`normal_stiffness`).
+    Always,
+    /// Rigid joints whose steps the augmented Lagrangian rounds may solve
+    /// again with springs on every pair ([`crate::contact::augmented`]).
+    InRounds,
+}

@@ -74,7 +74,7 @@ use super::means_whole;
 use super::own::Own;
 use super::reduce::{combine, NotHeld};
 use super::sides::Sides;
-use super::solver::{Accuracy, Answer, Solver, Split, WarmStart};
+use super::solver::{Accuracy, Answer, Solver, Split, Springs, WarmStart};
 use super::threads::{in_runs, in_threads};
 use super::w_columns::{self, WColumns};
 use super::w_entries::WEntries;
@@ -155,9 +155,11 @@ pub struct Sparse {
     nr: usize,
     parts: Vec<Local>,
     /// Each part's own stiffness ([`Own`]): what K_mm's factor is formed
-    /// from, and where every pair deforms the sides' factor; kept past the
-    /// interface's setup only there.
+    /// from, and where springs come ([`Springs`]) the sides' factor; kept
+    /// past the interface's setup only there.
     own: Option<Vec<Own>>,
+    /// Where the solves put springs on every pair.
+    springs: Springs,
     /// K_mm's factor, and the mean of each node it is ordered by: formed
     /// with the interface, or where every pair deforms at its first use
     /// ([`Sparse::means`]); None where K_mm does not factorise.
@@ -207,15 +209,30 @@ impl Sparse {
     /// The interface of the densely condensed `parts` (in the order of
     /// `layout.parts`), swept in `threads`; fails when even every pair
     /// stuck leaves a body free. Where every pair's joint deforms
-    /// (`deforming`) K_mm is factorised only if asked for: the solves are
-    /// preconditioned by all of K with the springs ([`super::sides`]), and
-    /// its factor was a quarter of the 86k tunnel's run (4.5 of 20 s).
+    /// ([`Springs::Always`]) K_mm is factorised only if asked for: the
+    /// solves are preconditioned by all of K with the springs
+    /// ([`super::sides`]), and its factor was a quarter of the 86k
+    /// tunnel's run (4.5 of 20 s). Where rigid joints may be solved again
+    /// with springs ([`Springs::InRounds`]) the parts' own stiffness is
+    /// kept for those solves' preconditioner too (the sides' factor over
+    /// it, not over the parts' S side by side): the fine tet4 tunnel's
+    /// 66 iterations of rounds, factorisations 5.8-6.4 -> 3.4-3.7 s and
+    /// interface 31.6-35.0 -> 26.4-30.8 s (three runs each). The rest is
+    /// GMRES, 4,850 applications (60 in the 12 solves at the first
+    /// round's stiffness): what the factor leaves out grows with the
+    /// springs, which the rounds stiffen 6,561-fold. The slipping pairs'
+    /// couplings put back by Woodbury's identity took a fifth of the
+    /// applications off and cost more in substitutions (factorisations
+    /// 12.5 s); the 588 junctions' lifts were not tried. A factor in
+    /// double precision took none off.
     pub(super) fn new(
         model: &Model,
         layout: &Layout,
         parts: &[OperatorRef],
-        (threads, deforming): (usize, bool),
+        (threads, springs): (usize, Springs),
     ) -> Result<Sparse, NotHeld> {
+        let deforming = springs == Springs::Always;
+        let keep_own = springs != Springs::Never;
         let (nd, nm, nr) = (layout.nd, layout.nm, layout.nr);
         let cases = parts.iter().map(|p| p.g.len()).max().unwrap_or(1);
         let mut local = Vec::with_capacity(parts.len());
@@ -231,11 +248,11 @@ impl Sparse {
                 _ => None,
             })
             .collect();
-        // the parts' own stiffness: where every pair deforms the sides'
-        // factor's, else K_mm's through the bonded model
-        // ([`super::means_whole`]) where that pays
+        // the parts' own stiffness: where springs come the sides'
+        // factor's, and K_mm's through the bonded model
+        // ([`super::means_whole`]) where the means are and that pays
         let bonded = !deforming && bonded_pays(model, &dense, threads);
-        let own = (deforming || bonded)
+        let own = (keep_own || bonded)
             .then(|| {
                 in_threads(&dense, threads, |(_, part, map)| Own::of(model, part.part, &map.frames, &map.edges))
                     .into_iter()
@@ -259,7 +276,8 @@ impl Sparse {
             parts: local,
             // (only the sides' factor needs them past K_mm's, formed above
             // where it pays)
-            own: own.filter(|_| deforming),
+            own: own.filter(|_| keep_own),
+            springs,
             k_mm: k_mm.map_or_else(OnceLock::new, OnceLock::from),
             node_of,
             w_diag: Mutex::new(vec![None; nr]),
@@ -334,11 +352,11 @@ impl Sparse {
         self.apply(&vec![0.0; self.nm], r).0
     }
 
-    /// K_mm's factor, formed at its first use; None where K_mm does not
-    /// factorise.
+    /// K_mm's factor, formed at its first use (through the bonded model
+    /// where every pair deforms); None where K_mm does not factorise.
     fn means(&self) -> Option<&Means> {
         (self.k_mm.get_or_init(|| {
-            if let Some(own) = &self.own {
+            if let Some(own) = self.own.as_ref().filter(|_| self.springs == Springs::Always) {
                 let terms: Vec<&[Terms]> = self.parts.iter().map(|p| &p.terms[..]).collect();
                 return bonded_factor(own, &terms, &self.node_of, self.nd, self.threads);
             }
