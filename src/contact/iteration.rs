@@ -178,34 +178,37 @@ pub(super) fn run(
         }
         let stops = unchanged || summary.cycled() || summary.iterations >= max_iterations;
         if stops {
-            return Ok(end(rule, problem, laws, h, solution, summary, next, unchanged));
+            return Ok(Stopped { solution, summary, next, unchanged }.end(rule, problem, laws, h));
         }
         h.states = next;
     }
 }
 
-/// The outcome of a step whose iteration stops with `solution` (its
-/// states `unchanged`, or not): converged where they settled and keep the
-/// law, and then committed; `next` the states its verdict left.
-#[allow(clippy::too_many_arguments)]
-fn end(
-    rule: impl Rule,
-    problem: &InterfaceProblem,
-    laws: &[PairLaw],
-    h: &mut History,
+/// Where a step's iteration stopped: its last `solution` and `summary`,
+/// the states its verdict left (`next`), and whether they were
+/// `unchanged`.
+struct Stopped {
     solution: InterfaceSolution,
-    mut summary: Summary,
+    summary: Summary,
     next: Vec<ContactState>,
     unchanged: bool,
-) -> Outcome {
-    let law_residual = law_residuals(problem, laws, h, &solution, rule.slip_reference());
-    summary.end(unchanged, unchanged && rule.answers_to_the_law() && breaks_law(problem, &law_residual, &solution));
-    if summary.converged {
-        commit(h, &solution);
-        rule.commit(h);
+}
+
+impl Stopped {
+    /// The step's outcome: converged where the states settled and keep the
+    /// law, and then committed.
+    fn end(self, rule: impl Rule, problem: &InterfaceProblem, laws: &[PairLaw], h: &mut History) -> Outcome {
+        let Stopped { solution, mut summary, next, unchanged } = self;
+        let law_residual = law_residuals(problem, laws, h, &solution, rule.slip_reference());
+        let breaks = unchanged && rule.answers_to_the_law() && breaks_law(problem, &law_residual, &solution);
+        summary.end(unchanged, breaks);
+        if summary.converged {
+            commit(h, &solution);
+            rule.commit(h);
+        }
+        let states = std::mem::replace(&mut h.states, next);
+        Outcome { states, solution, summary, law_residual, cracked: Vec::new() }
     }
-    let states = std::mem::replace(&mut h.states, next);
-    Outcome { states, solution, summary, law_residual, cracked: Vec::new() }
 }
 
 /// A step whose states have settled has converged only where every pair

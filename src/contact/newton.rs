@@ -52,6 +52,7 @@ use super::outcome::Summary;
 use super::pair_law::{limit, PairLaw};
 use super::system::{InterfaceProblem, InterfaceSolution, Limit, Relation};
 use crate::fem::vec3::{dot, norm, sub};
+use std::ops::ControlFlow;
 
 /// The largest β = b / |ξ| the linearisation uses: k⊥ stays below 1e5 c_p
 /// (a pair that just started slipping is nearly tied across its slip).
@@ -397,8 +398,9 @@ impl<'p> Newton<'p> {
 
     /// Step 2 of the iteration: a cycle broken ([`Newton::break_cycle`]),
     /// or, where the states stall or cycle all the same, the fallback of
-    /// [`super::cluster`] set going. True when the verdict is
-    /// [`Cycle::Undecided`].
+    /// [`super::cluster`] set going. Where the cycle is
+    /// [`Cycle::Undecided`], the verdict waits for a tight solve
+    /// ([`Next::Again`]).
     fn break_or_pin(
         &mut self,
         h: &History,
@@ -406,9 +408,9 @@ impl<'p> Newton<'p> {
         summary: &mut Summary,
         tolerance: f64,
         loose: bool,
-    ) -> bool {
+    ) -> ControlFlow<Next> {
         match self.break_cycle(h, judged, &summary.history, loose.then(|| tolerance / judged.scale_f)) {
-            Cycle::Undecided => return true,
+            Cycle::Undecided => return ControlFlow::Break(Next::Again),
             Cycle::Met => {
                 summary.cycles_broken += 1;
                 self.breaking_from = Some(summary.history.len().saturating_sub(1));
@@ -429,7 +431,7 @@ impl<'p> Newton<'p> {
             fixed: &|p| problem.held(p),
         };
         self.search.watch(&w, &mut judged.next);
-        false
+        ControlFlow::Continue(())
     }
 
     /// While a cluster's set is held: of the other pairs the verdict
@@ -652,19 +654,19 @@ impl Rule for Newton<'_> {
         if self.search.feed(&h.states, &judged.next, &solution.forces, settled && tight, fed) {
             summary.clusters_solved += 1;
         }
-        let again = match self.search.judge(&h.states, &mut judged.next, settled && tight) {
+        let flow = match self.search.judge(&h.states, &mut judged.next, settled && tight) {
             Some(Step::Solved) => {
                 summary.clusters_solved += 1;
-                false
+                ControlFlow::Continue(())
             }
             Some(Step::Held) => {
                 self.one_change(h, &mut judged);
-                false
+                ControlFlow::Continue(())
             }
             Some(Step::GaveUp) | None => self.break_or_pin(h, &mut judged, summary, tolerance, solution.loose),
         };
-        if again {
-            return Verdict { next: Next::Again, settled, law: judged.residual };
+        if let ControlFlow::Break(next) = flow {
+            return Verdict { next, settled, law: judged.residual };
         }
         // a slip a crossing of two joints locks freed by its twin
         let pinned = |p: usize| self.search.pins(p);
