@@ -53,6 +53,14 @@ pub(super) fn rigid_robust(scene: &Scene) -> bool {
     !scene.contacts.is_empty() && !scene.joints_deform() && scene.solver.rule == StateRule::Robust
 }
 
+/// Whether a run of `scene` solves again by augmented Lagrangian rounds
+/// the steps its rigid joints' Newton iteration does not end
+/// (`[solver] augmented_lagrangian`, rigid joints under the robust rule):
+/// what sets `History::penalty` and builds the interface for the rounds.
+pub(super) fn takes_rounds(scene: &Scene) -> bool {
+    scene.solver.augmented_lagrangian && rigid_robust(scene)
+}
+
 /// The stiffness joints that deform take in place of rigid ones:
 /// `STIFFER E / s` normal and a tenth of it in shear, with E the softest
 /// body's modulus and s the model's mean block size; and those E and s.

@@ -49,7 +49,7 @@ pub(super) fn plan(scene: &Scene, model: &Model, opts: &RunOptions, ranks: usize
     let kind = InterfaceKind::choose(opts.interface.unwrap_or(scene.solver.interface), &parts, nd);
     let springs = if scene.joints_deform() {
         Springs::Always
-    } else if scene.solver.augmented_lagrangian && super::fallback::rigid_robust(scene) {
+    } else if super::fallback::takes_rounds(scene) {
         Springs::InRounds
     } else {
         Springs::Never

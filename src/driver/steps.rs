@@ -104,7 +104,7 @@ pub(super) fn run(this: &Step, parts: &Parts, opts: &RunOptions, ranks: &Ranks) 
     }
     let mut out = LoadSteps::default();
     let mut history = fresh_history(model, this.problem, &this.laws);
-    if scene.solver.augmented_lagrangian && super::fallback::rigid_robust(scene) {
+    if super::fallback::takes_rounds(scene) {
         history.penalty = Some(super::fallback::stiffness(scene, model).0);
     }
     let bytes_before = ranks.bytes_sent();
