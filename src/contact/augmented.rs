@@ -6,7 +6,8 @@
 //! stiffness `K = A diag(k_n, k_s, k_s)` (the return mapping of joints that
 //! deform, [`super::elastic`]) loaded with a multiplier `μ`: its force is
 //! `μ + K (r - t)`, t where the rigid joint holds it (its normal at 0, its
-//! shear where the step started). Between rounds the multiplier takes the
+//! shear where the step started, or where it closed if it was open then:
+//! [`Elastic::holding`]). Between rounds the multiplier takes the
 //! force the round ended with (Uzawa's update, the augmented Lagrangian
 //! treatment of frictional contact of Simo & Laursen 1992; a slipping
 //! pair's is at its Coulomb bound, an open one's nothing), and the springs
@@ -100,7 +101,7 @@ pub(super) fn run(
             _ => h.force[p],
         })
         .collect();
-    let target: Vec<[f64; 3]> = (h.rel_start.iter().map(|r| tangential(*r))).map(|t| [0.0, t[1], t[2]]).collect();
+    let mut target: Vec<[f64; 3]> = (h.rel_start.iter().map(|r| tangential(*r))).map(|t| [0.0, t[1], t[2]]).collect();
     let (mut states, mut warm) = (h.states.clone(), None);
     let (mut cracked, mut parted) = (h.cracked.clone(), h.parted.clone());
     let mut went = Rounds { rounds: 0, iterations: 0, stretch: f64::INFINITY };
@@ -117,7 +118,8 @@ pub(super) fn run(
             (hr.rel_start, hr.force) = (rel, force);
         }
         hr.unloaded = (0..n).map(|p| std::array::from_fn(|a| target[p][a] - mult[p][a] / stiff(p)[a])).collect();
-        let rule = Elastic::new(problem, &spring_laws, &hr);
+        hr.offset.clone_from(&target);
+        let rule = Elastic::new(problem, &spring_laws, &hr).holding(&h.states);
         let left = max_iterations.saturating_sub(went.iterations);
         if left == 0 {
             return Err(went);
@@ -126,6 +128,7 @@ pub(super) fn run(
         went.rounds = round + 1;
         went.iterations += solved.as_ref().map_or_else(|f| f.iteration, |o| o.summary.iterations);
         let Ok(outcome) = solved.inspect_err(|_| went.stretch = f64::INFINITY) else { return Err(went) };
+        target.clone_from(&hr.offset);
         went.stretch =
             if outcome.summary.converged { update(&outcome, &target, stiff, &mut mult) } else { f64::INFINITY };
         if went.closed() {
