@@ -262,7 +262,7 @@ mod tests {
     #[test]
     fn an_error_of_the_fallback_says_so_and_a_step_that_did_not_converge_keeps_its_own() {
         let k = crate::contact::law::Stiffness { normal: 13880.0, shear: 1388.0 };
-        let at = At { step: Some(1), iteration: 22, states: [39, 329, 516] };
+        let at = At { step: Some(1), iteration: 22, states: [39, 329, 516], rounds: None };
         let held = ContactError::NotHeld { at, bodies: vec!["rock #9".into()], places: vec![None], apex: vec![] };
         let e = Error::from(held.clone()).in_fallback(k).in_scene(Path::new("tunnel.toml"));
         let text = e.to_string();
@@ -290,11 +290,14 @@ mod tests {
 
     #[test]
     fn plain_data_errors_travel_as_the_same_variant_with_the_same_text() {
-        let at = At { step: Some(2), iteration: 7, states: [1, 2, 3] };
+        let at = At { step: Some(2), iteration: 7, states: [1, 2, 3], rounds: Some([4, 31]) };
         let contact = ContactError::NotHeld { at, bodies: vec!["block".into()], places: vec![None], apex: vec![] };
         let e: Error = contact.clone().into();
         let in_scene = Error::from(contact.clone()).in_scene(Path::new("dam.toml"));
         assert!(in_scene.to_string().starts_with("dam.toml: body \"block\" is held by nothing at"), "{in_scene}");
+        let rounds =
+            "contact iteration 7 (3 stick, 2 slip, 1 open; 31 of the iterations in 4 augmented Lagrangian round(s))";
+        assert!(in_scene.to_string().contains(rounds), "{in_scene}");
         assert!(matches!(in_scene.without_scene(), Error::Contact(c) if *c == contact));
         let back = sent(&e);
         assert!(matches!(&back, Error::Contact(c) if **c == contact), "{back:?}");

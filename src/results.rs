@@ -160,6 +160,10 @@ pub struct Fallback {
     /// nothing, what it left unheld ("body \"rock #41\" is held by
     /// nothing"); None where its step ended unconverged.
     pub unheld: Option<String>,
+    /// The augmented Lagrangian rounds among `iterations` and their
+    /// iterations, where the rigid step was solved again by them
+    /// (`[solver] augmented_lagrangian`) and they did not end it either.
+    pub rounds: Option<[usize; 2]>,
     /// Where the rigid joints left the factor of safety undecided: the
     /// last factor that held and the trial above it that decided nothing,
     /// even retried in smaller steps; None where a load step fell back.

@@ -292,6 +292,20 @@ fn augmented_rounds_that_do_not_end_a_step_leave_the_newton_iterations() {
     assert_eq!(c["iterations"].as_u64(), Some(12 + more), "Newton's and the rounds'");
     let report = std::fs::read_to_string(case.dir.join("rounds/report.md")).expect("report.md");
     assert!(report.contains("They did not end it either"), "{report}");
+    // with the fallback, its record counts the rounds among the rigid
+    // attempt's iterations, and says so
+    let fallback = "\n[solver]\nmax_cuts = 0\nmax_iterations = 12\naugmented_lagrangian = true\n";
+    case.write("fallback.toml", &format!("{text}{fallback}"));
+    let o = case.cli(&["solve", "fallback.toml", "--out", "fallback"]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "the fallback converges: {stderr}");
+    let fell = &json(&case.dir.join("fallback/summary.json"))["contact"]["rigid_fallback"];
+    assert_eq!(fell["augmented"]["iterations"].as_u64(), Some(more), "{fell}");
+    assert_eq!(fell["iterations"].as_u64(), Some(12 + more), "{fell}");
+    let rounds = fell["augmented"]["rounds"].as_u64().expect("the rounds");
+    let said = format!("({} iteration(s), {more} of them in {rounds} augmented Lagrangian round(s), ", 12 + more);
+    eprintln!("{said}");
+    assert!(stderr.contains(&said), "{said}: {stderr}");
 }
 
 /// The same 34k-DOF tunnel with joints that deform (k_n = 5,000 MPa/m,

@@ -74,6 +74,13 @@ impl Rounds {
     pub fn closed(&self) -> bool {
         self.stretch <= CLOSED
     }
+
+    /// These rounds counted after those `before` (of the pieces of a cut
+    /// step before this one): theirs and these, and these' stretch.
+    pub fn after(self, before: Option<Rounds>) -> Rounds {
+        let b = before.unwrap_or_default();
+        Rounds { rounds: b.rounds + self.rounds, iterations: b.iterations + self.iterations, stretch: self.stretch }
+    }
 }
 
 /// Solves the step under `lambda` from the states in `h` by rounds of

@@ -58,14 +58,13 @@ pub fn iterate_cutting(
         let saved = (depth < max_cuts && !scaled).then(|| h.clone());
         let mut outcome = iterate(problem, laws, rule, &at(b), h, max_iterations).map_err(|mut f| {
             f.iteration += iterations;
+            f.augmented = f.augmented.map(|r| r.after(augmented)).or(augmented);
             f
         })?;
         iterations += outcome.summary.iterations;
         resolves += outcome.summary.tight_resolves;
         if let Some(r) = outcome.summary.augmented {
-            let before = augmented.unwrap_or_default();
-            let (rounds, iterations) = (r.rounds + before.rounds, r.iterations + before.iterations);
-            augmented = Some(Rounds { rounds, iterations, stretch: r.stretch });
+            augmented = Some(r.after(augmented));
         }
         let ended = outcome.summary.converged || saved.is_none();
         if outcome.summary.converged {

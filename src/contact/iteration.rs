@@ -130,6 +130,7 @@ pub(super) fn run(
             failure,
             states: h.states.clone(),
             iteration: summary.iterations,
+            augmented: None,
         })?;
         if summary.iterations > 1 {
             mark_cracks(h);

@@ -132,6 +132,7 @@ fn newton_or_rounds(
         }
         Err(mut failed) => {
             failed.iteration += went.iterations;
+            failed.augmented = Some(went);
             Err(failed)
         }
     }

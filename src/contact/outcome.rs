@@ -125,4 +125,7 @@ pub struct Failed {
     pub failure: SolveFailure,
     pub states: Vec<ContactState>,
     pub iteration: usize,
+    /// The augmented Lagrangian rounds among the iterations, where the
+    /// step was solved again by them and they did not end it either.
+    pub augmented: Option<super::augmented::Rounds>,
 }

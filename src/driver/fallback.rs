@@ -149,6 +149,7 @@ pub(super) fn fall_unheld(
     let (stiff, taken) = stiffened(scene, model);
     let record = stopped.map(|(at, said)| Fallback {
         unheld: Some(said),
+        rounds: at.rounds.map(|r| r.map(|n| n as usize)),
         ..stopped_at(taken, at.step.unwrap_or(1), at.iteration, seconds)
     });
     Some((stiff, record))
@@ -169,6 +170,7 @@ fn stopped_at(taken: (Stiffness, f64, f64), step: usize, iterations: usize, seco
         law_residual: None,
         seconds,
         unheld: None,
+        rounds: None,
         safety: None,
     }
 }
@@ -260,6 +262,7 @@ fn record(
         law_residual: c.worst_law_residual().map(|(_, r)| r),
         seconds,
         unheld: None,
+        rounds: c.summary.augmented.map(|r| [r.rounds, r.iterations]),
         safety: None,
     })
 }
@@ -297,8 +300,12 @@ pub fn said(f: &Fallback) -> String {
         Some(_) => "its results, the factor of safety with them, are theirs",
         None => "its results are theirs",
     };
+    let rounds = match f.rounds {
+        Some([rounds, iterations]) => format!(", {iterations} of them in {rounds} augmented Lagrangian round(s)"),
+        None => String::new(),
+    };
     format!(
-        "rigid joints did not converge at {at} ({} iteration(s){}, {how}{law}; {:.1} s{close}), so the scene is solved again with joints that deform, and {theirs}: normal_stiffness = {} and shear_stiffness = {} on every contact (k_n = {STIFFER} E / s, E = {} the softest body's modulus, s = {} the mean block size: the joints add a tenth to the rock mass's compliance). Where rigid joints cross near a free face, their ties' share of the forces can leave no state set that keeps the law, although stiff joints have an answer there (docs/convergence.md). Give the joints your own stiffness, or [solver] rigid_fallback = false to stop with the rigid joints' last iterate",
+        "rigid joints did not converge at {at} ({} iteration(s){}{rounds}, {how}{law}; {:.1} s{close}), so the scene is solved again with joints that deform, and {theirs}: normal_stiffness = {} and shear_stiffness = {} on every contact (k_n = {STIFFER} E / s, E = {} the softest body's modulus, s = {} the mean block size: the joints add a tenth to the rock mass's compliance). Where rigid joints cross near a free face, their ties' share of the forces can leave no state set that keeps the law, although stiff joints have an answer there (docs/convergence.md). Give the joints your own stiffness, or [solver] rigid_fallback = false to stop with the rigid joints' last iterate",
         f.iterations,
         match (f.cuts, f.scaled) {
             (0, true) => format!(", {}", super::messages::NOT_CUT),
@@ -337,7 +344,7 @@ mod tests {
     /// converge and any other error do not.
     #[test]
     fn a_state_set_that_holds_nothing_is_told_from_the_scenes_failure() {
-        let at = At { step: Some(3), iteration: 481, states: [10, 20, 30] };
+        let at = At { step: Some(3), iteration: 481, states: [10, 20, 30], rounds: None };
         let held =
             ContactError::NotHeld { at: at.clone(), bodies: vec!["rock #41".into()], places: vec![None], apex: vec![] };
         let (where_, what) = unheld(&Error::from(held)).expect("held by nothing falls back");
@@ -374,6 +381,7 @@ mod tests {
             law_residual: None,
             seconds: 170.2,
             unheld: None,
+            rounds: None,
             safety: Some((1.175, trial)),
         };
         let s = said(&f);
@@ -385,13 +393,18 @@ mod tests {
         let broken =
             said(&Fallback { iterations: 9, stop: Stop::LawBroken, safety: Some((1.1, settled)), ..f.clone() });
         assert!(broken.contains("at F = 1.2000 (9 iteration(s), the states settled, but their forces broke the contact law, even retried in smaller steps from F = 1.1000"), "{broken}");
-        let load = said(&Fallback { safety: None, ..f });
+        let load = said(&Fallback { safety: None, ..f.clone() });
         assert!(
             load.starts_with(
                 "rigid joints did not converge at load step 2 (11 iteration(s), the states kept changing; 170.2 s)"
             ),
             "{load}"
         );
+        // augmented Lagrangian rounds that did not end the step either
+        // are counted among its iterations, and said
+        let unheld = Some("body \"rock #36\" is held by nothing".to_string());
+        let rounds = said(&Fallback { iterations: 213, safety: None, unheld, rounds: Some([7, 106]), ..f });
+        assert!(rounds.starts_with("rigid joints did not converge at load step 2 (213 iteration(s), 106 of them in 7 augmented Lagrangian round(s), the states reached a set in which body \"rock #36\" is held by nothing; 170.2 s)"), "{rounds}");
     }
 
     #[test]

@@ -31,7 +31,11 @@ pub struct At {
     pub step: Option<usize>,
     pub iteration: usize,
     /// How many pairs were open, slipping and stuck then.
-    pub states: [usize; 3],
+    pub states: [u32; 3],
+    /// The augmented Lagrangian rounds among the iterations and their
+    /// iterations, where the step was solved again by them. (u32: an
+    /// error this size travels in every contact iteration's `Result`.)
+    pub rounds: Option<[u32; 2]>,
 }
 
 /// A contact whose tensile strength exceeds its Coulomb apex c / f: the
@@ -155,7 +159,9 @@ impl ContactError {
     /// The error of a failed iteration at load step `step`; `parts` are the
     /// parts in the interface's order.
     pub(super) fn failed(model: &Model, parts: &[Part], scene: &Scene, step: usize, f: Failed) -> ContactError {
-        let at = At { step: At::named(scene, step), iteration: f.iteration, states: state_counts(&f.states) };
+        let (states, rounds) =
+            (state_counts(&f.states).map(count), f.augmented.map(|r| [r.rounds, r.iterations].map(count)));
+        let at = At { step: At::named(scene, step), iteration: f.iteration, states, rounds };
         // (a block of a group cut by joint sets by its number, "rock #3",
         // as blocks.csv and faces.csv name it: the group's name alone
         // would not say which of its blocks)
@@ -247,6 +253,12 @@ fn bodies_named(bodies: &[String], places: &[Option<[f64; 3]>]) -> String {
     format!("{} {names}", if bodies.len() == 1 { "body" } else { "bodies" })
 }
 
+/// A count as `At` keeps it (saturated: a count past u32 is past any
+/// model this tool solves).
+fn count(n: usize) -> u32 {
+    u32::try_from(n).unwrap_or(u32::MAX)
+}
+
 impl At {
     /// The load step `step` as a message names it: where the scene has
     /// several, or a stage before them (step 0, the stage, always).
@@ -265,9 +277,15 @@ impl fmt::Display for At {
         }
         write!(
             f,
-            "contact iteration {} ({} stick, {} slip, {} open)",
+            "contact iteration {} ({} stick, {} slip, {} open",
             self.iteration, self.states[2], self.states[1], self.states[0]
-        )
+        )?;
+        match self.rounds {
+            Some([rounds, iterations]) => {
+                write!(f, "; {iterations} of the iterations in {rounds} augmented Lagrangian round(s))")
+            }
+            None => write!(f, ")"),
+        }
     }
 }
 

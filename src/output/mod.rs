@@ -304,6 +304,7 @@ fn fallback_json(run: &Run) -> serde_json::Value {
         "law_broken": f.stop.law_broken(),
         "law_residual": f.law_residual,
         "unheld": f.unheld,
+        "augmented": f.rounds.map(|[rounds, iterations]| json!({ "rounds": rounds, "iterations": iterations })),
         "safety": f.safety.map(|(holds, trial)| json!({ "holds": holds, "undecided": trial.factor })),
         "seconds": f.seconds,
         "normal_stiffness": f.stiffness.normal,
