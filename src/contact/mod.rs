@@ -95,11 +95,11 @@ pub fn iterate(
 
 /// The robust rule on rigid joints: the semismooth Newton iteration, and
 /// where it does not end the step and `h` has springs to take
-/// (`History::penalty`), the step solved again from where it started by
-/// augmented Lagrangian rounds ([`augmented`]). Where the rounds do not
-/// end it either, Newton's outcome stands, as without them (cutting and
-/// the fallback go on from it); the summary counts both, and says the
-/// rounds.
+/// (`History::penalty`), the step solved again from where it started (its
+/// history and the interface's warm start) by augmented Lagrangian rounds
+/// ([`augmented`]). Where the rounds do not end it either, Newton's
+/// outcome stands, as without them (cutting and the fallback go on from
+/// it); the summary counts both, and says the rounds.
 fn newton_or_rounds(
     problem: &InterfaceProblem,
     laws: &[PairLaw],
@@ -107,14 +107,17 @@ fn newton_or_rounds(
     h: &mut History,
     max_iterations: usize,
 ) -> Result<Outcome, Failed> {
-    let start = h.penalty.is_some().then(|| h.clone());
+    let start = h.penalty.is_some().then(|| (h.clone(), problem.warm_start()));
     let newton =
         iteration::run(newton::Newton::new(problem, laws, h, lambda), problem, laws, lambda, h, max_iterations);
-    let (Some(mut start), Some(k)) = (start, h.penalty) else { return newton };
+    let (Some((mut start, warm)), Some(k)) = (start, h.penalty) else { return newton };
     if newton.as_ref().is_ok_and(|o| o.summary.converged) {
         return newton;
     }
     let tried = newton.as_ref().map_or_else(|f| f.iteration, |o| o.summary.iterations);
+    // (from where the step started, its interface solves too: not from
+    // Newton's last iterate, as a cut piece, `cutting`)
+    problem.start_from(&warm);
     let went = match augmented::run(problem, laws, lambda, &mut start, max_iterations, k) {
         Ok((mut outcome, went)) => {
             *h = start;
