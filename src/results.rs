@@ -164,6 +164,10 @@ pub struct Fallback {
     /// iterations, where the rigid step was solved again by them
     /// (`[solver] augmented_lagrangian`) and they did not end it either.
     pub rounds: Option<[usize; 2]>,
+    /// Where the rigid step was cut and pieces of it converged: how far
+    /// into the step (a fraction of its load, 0 to 1) the rigid joints
+    /// held its load before a piece did not converge.
+    pub held: Option<f64>,
     /// Where the rigid joints left the factor of safety undecided: the
     /// last factor that held and the trial above it that decided nothing,
     /// even retried in smaller steps; None where a load step fell back.

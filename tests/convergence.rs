@@ -564,27 +564,31 @@ fn a_step_that_is_the_same_problem_at_any_load_is_not_cut() {
 /// corpus with half its cohesion (tests/corpus/slope3d_c005.toml), rigid
 /// joints given 30 iterations and one cut: its step 3 does not converge
 /// whole, and its first half, started from the answer step 2 ended with,
-/// converges in 3 (pieces [0.5]); started from the whole step's last
-/// iterate (the interface's GMRES begins at the last answer), it went
-/// through 30 state sets of up to 738 changes and did not (pieces [];
+/// converges in 3; its second half does not, and the run falls back to
+/// joints that deform, saying that the rigid joints held half the step's
+/// load. Started from the whole step's last iterate (the interface's
+/// GMRES begins at the last answer), the first half went through 30
+/// state sets of up to 738 changes and did not converge (no piece held;
 /// with 100 iterations, it took 100 and did not).
 #[test]
-#[ignore = "make stress: about 25 s"]
+#[ignore = "make stress: about 45 s"]
 fn a_cut_piece_starts_where_its_step_started() {
     let case = Case::new("conv-cut-start");
     case.copy("tests/corpus/slope3d.geo");
     let text = common::repo_text("tests/corpus/slope3d_c005.toml");
-    let solver = "load_steps = 4\nrigid_fallback = false\nmax_iterations = 30\nmax_cuts = 1";
+    let solver = "load_steps = 4\nmax_iterations = 30\nmax_cuts = 1";
     assert!(text.contains("\nload_steps = 4"), "the corpus slope is solved in four steps");
     case.write("slope.toml", &text.replacen("load_steps = 4", solver, 1));
-    let o = case.cli(&["solve", "slope.toml", "--out", "out", "--quiet"]);
+    let o = case.cli(&["solve", "slope.toml", "--out", "out"]);
     let stderr = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(1), "step 3's second half does not converge: {stderr}");
-    let step = &json(&case.dir.join("out/summary.json"))["steps"][2]["contact"];
-    eprintln!("slope3d_c005, step 3 cut once: {step}");
-    assert_eq!((step["cuts"].as_u64(), &step["pieces"]), (Some(1), &serde_json::json!([0.5])), "{step}");
-    let its = step["iterations"].as_u64().expect("iterations");
+    assert_eq!(o.status.code(), Some(0), "the fallback converges: {stderr}");
+    let fell = &json(&case.dir.join("out/summary.json"))["contact"]["rigid_fallback"];
+    eprintln!("slope3d_c005, step 3 cut once: {fell}");
+    assert_eq!((fell["step"].as_u64(), fell["cuts"].as_u64()), (Some(3), Some(1)), "{fell}");
+    assert_eq!(fell["held"].as_f64(), Some(0.5), "the first half held: {fell}");
+    let its = fell["iterations"].as_u64().expect("iterations");
     assert!(its <= 30 + 5 + 30, "30 whole, a few in the first half, 30 in the second: {its}");
+    common::cli::says(&stderr, &["its cut pieces held 0.5 of its load", "check the margin with a [safety] search"]);
 }
 
 /// The fallback in 2D: geo/tunnel_joints.toml (three sets, plane strain)

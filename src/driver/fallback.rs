@@ -171,6 +171,7 @@ fn stopped_at(taken: (Stiffness, f64, f64), step: usize, iterations: usize, seco
         seconds,
         unheld: None,
         rounds: None,
+        held: None,
         safety: None,
     }
 }
@@ -263,6 +264,7 @@ fn record(
         seconds,
         unheld: None,
         rounds: c.summary.augmented.map(|r| [r.rounds, r.iterations]),
+        held: c.summary.pieces.last().copied(),
         safety: None,
     })
 }
@@ -304,8 +306,18 @@ pub fn said(f: &Fallback) -> String {
         Some([rounds, iterations]) => format!(", {iterations} of them in {rounds} augmented Lagrangian round(s)"),
         None => String::new(),
     };
+    // a step whose cut pieces held part of its load: the rigid joints may
+    // be at their limit there (the 3D slope with half its cohesion held
+    // 0.875 of its step 3, its gravity 0.72)
+    let (held, limit) = match f.held {
+        Some(x) => (
+            format!("; its cut pieces held {x} of its load"),
+            format!(" Rigid, the joints held the step's load up to {x} of it and no piece beyond: where rigid joints are at their limit, joints that deform may still stand, so check the margin with a [safety] search."),
+        ),
+        None => (String::new(), String::new()),
+    };
     format!(
-        "rigid joints did not converge at {at} ({} iteration(s){}{rounds}, {how}{law}; {:.1} s{close}), so the scene is solved again with joints that deform, and {theirs}: normal_stiffness = {} and shear_stiffness = {} on every contact (k_n = {STIFFER} E / s, E = {} the softest body's modulus, s = {} the mean block size: the joints add a tenth to the rock mass's compliance). Where rigid joints cross near a free face, their ties' share of the forces can leave no state set that keeps the law, although stiff joints have an answer there (docs/convergence.md). Give the joints your own stiffness, or [solver] rigid_fallback = false to stop with the rigid joints' last iterate",
+        "rigid joints did not converge at {at} ({} iteration(s){}{rounds}, {how}{law}{held}; {:.1} s{close}), so the scene is solved again with joints that deform, and {theirs}: normal_stiffness = {} and shear_stiffness = {} on every contact (k_n = {STIFFER} E / s, E = {} the softest body's modulus, s = {} the mean block size: the joints add a tenth to the rock mass's compliance). Where rigid joints cross near a free face, their ties' share of the forces can leave no state set that keeps the law, although stiff joints have an answer there (docs/convergence.md).{limit} Give the joints your own stiffness, or [solver] rigid_fallback = false to stop with the rigid joints' last iterate",
         f.iterations,
         match (f.cuts, f.scaled) {
             (0, true) => format!(", {}", super::messages::NOT_CUT),
@@ -382,6 +394,7 @@ mod tests {
             seconds: 170.2,
             unheld: None,
             rounds: None,
+            held: None,
             safety: Some((1.175, trial)),
         };
         let s = said(&f);
@@ -403,8 +416,14 @@ mod tests {
         // augmented Lagrangian rounds that did not end the step either
         // are counted among its iterations, and said
         let unheld = Some("body \"rock #36\" is held by nothing".to_string());
-        let rounds = said(&Fallback { iterations: 213, safety: None, unheld, rounds: Some([7, 106]), ..f });
+        let rounds = said(&Fallback { iterations: 213, safety: None, unheld, rounds: Some([7, 106]), ..f.clone() });
         assert!(rounds.starts_with("rigid joints did not converge at load step 2 (213 iteration(s), 106 of them in 7 augmented Lagrangian round(s), the states reached a set in which body \"rock #36\" is held by nothing; 170.2 s)"), "{rounds}");
+        // a cut step whose pieces held part of its load says how much,
+        // and that the rigid joints may be at their limit there
+        let cut = said(&Fallback { iterations: 411, cuts: 3, safety: None, held: Some(0.875), ..f });
+        assert!(cut.starts_with("rigid joints did not converge at load step 2 (411 iteration(s) and 3 cut(s), the states kept changing; its cut pieces held 0.875 of its load; 170.2 s)"), "{cut}");
+        assert!(cut.contains("(docs/convergence.md). Rigid, the joints held the step's load up to 0.875 of it and no piece beyond: where rigid joints are at their limit, joints that deform may still stand, so check the margin with a [safety] search. Give the joints"), "{cut}");
+        assert!(!load.contains("Rigid, the joints held"), "{load}");
     }
 
     #[test]

@@ -306,6 +306,7 @@ fn fallback_json(run: &Run) -> serde_json::Value {
         "unheld": f.unheld,
         "augmented": f.rounds.map(|[rounds, iterations]| json!({ "rounds": rounds, "iterations": iterations })),
         "safety": f.safety.map(|(holds, trial)| json!({ "holds": holds, "undecided": trial.factor })),
+        "held": f.held,
         "seconds": f.seconds,
         "normal_stiffness": f.stiffness.normal,
         "shear_stiffness": f.stiffness.shear,
