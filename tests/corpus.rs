@@ -413,9 +413,12 @@ fn blocks_hold(stem: &str, solved: &Solved, bound: u64) {
 /// breaker takes its changes as tight solves would (`MARGIN`,
 /// `Cycle::Undecided` in src/contact/newton.rs) step 1 converges in 51
 /// and the run falls back at step 2 again, block 36 held by nothing:
-/// 17 and 18 iterations, 135 s (docs/corpus.md).
+/// 17 and 18 iterations, 135 s (docs/corpus.md). Since a cut piece
+/// starts where its step started, step 2's first half holds and the
+/// rigid attempt spends its cuts (396 iterations) before the same
+/// fallback answer: 350 s.
 #[test]
-#[ignore = "make stress: about 2 min, most of it the rigid joints' 100 iterations"]
+#[ignore = "make stress: about 6 min, most of it the rigid joints' 396 iterations"]
 fn blocks3d_unconfined_block_mass() {
     let solved = blocks("blocks3d.toml", "tet10");
     let f = &solved.summary["contact"]["rigid_fallback"];
