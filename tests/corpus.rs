@@ -107,11 +107,15 @@ fn total_reaction(s: &Value) -> [f64; 3] {
     sum
 }
 
+/// A contact group's entry in summary.json.
+fn group<'a>(s: &'a Value, name: &str) -> &'a Value {
+    let groups = s["contact"]["groups"].as_array().expect("contact.groups");
+    groups.iter().find(|g| g["name"] == name).unwrap_or_else(|| panic!("no contact group {name}"))
+}
+
 /// The force a contact group carries.
 fn group_force(s: &Value, name: &str) -> [f64; 3] {
-    let groups = s["contact"]["groups"].as_array().expect("contact.groups");
-    let g = groups.iter().find(|g| g["name"] == name).unwrap_or_else(|| panic!("no contact group {name}"));
-    json_vec3(&g["force"])
+    json_vec3(&group(s, name)["force"])
 }
 
 fn close(what: &str, got: f64, want: f64, rel: f64) {
@@ -255,6 +259,107 @@ fn dam2d_on_jointed_rock_with_the_reservoir_in_steps() {
 fn dam2d_on_weaker_foundation_joints() {
     let solved = solve(&Scene { toml: "dam2d_f070.toml", geo: "dam2d.geo", element: "tri6" });
     assert_converges("dam2d_f070", &solved.summary, MAX_ITERATIONS_PER_STEP);
+}
+
+/// The planar slide of tests/corpus/planar2d.geo, Hoek & Bray's figure
+/// as drawn there: a 30 m face at 60 degrees, the plane at 35 degrees
+/// from the toe to the crack 30 m behind it, 9 m deep. The block's weight
+/// W (MN/m) and the plane's length A.
+fn planar_block() -> (f64, f64) {
+    let (h, psi, xc) = (30.0, 35f64.to_radians(), 30.0);
+    let (yc, xf) = (xc * psi.tan(), h / 60f64.to_radians().tan());
+    let pts = [[0.0, 0.0], [xc, yc], [xc, h], [xf, h]];
+    (ROCK * G * shoelace(&pts), xc.hypot(yc))
+}
+
+/// A polygon's area (counter-clockwise).
+fn shoelace(pts: &[[f64; 2]]) -> f64 {
+    let n = pts.len();
+    0.5 * (0..n).map(|i| pts[i][0] * pts[(i + 1) % n][1] - pts[(i + 1) % n][0] * pts[i][1]).sum::<f64>()
+}
+
+/// Hoek & Bray's F of the planar slide with the water forces U (plane)
+/// and V (crack): c = 0.04 MPa, tan phi = 0.57735, psi = 35 degrees.
+fn hoek_bray(u: f64, v: f64) -> f64 {
+    let ((w, a), psi, f) = (planar_block(), 35f64.to_radians(), 0.57735);
+    (0.04 * a + (w * psi.cos() - u - v * psi.sin()) * f) / (w * psi.sin() + v * psi.cos())
+}
+
+/// The total force a contact group carries: its solid-to-solid force and
+/// its water's (the uplift, pushing the faces apart along its normal).
+fn joint_total(s: &Value, name: &str) -> [f64; 3] {
+    let g = group(s, name);
+    let (f, n, u) = (json_vec3(&g["force"]), json_vec3(&g["normal"]), num(&g["uplift"]));
+    [f[0] - u * n[0], f[1] - u * n[1], f[2] - u * n[2]]
+}
+
+/// The planar slide in five steps: converged; the block held by its plane
+/// and its crack alone, whose forces (with their water) carry its weight
+/// and nothing sideways; the
+/// supports the whole section's; the search's bracket round Hoek & Bray's
+/// F (widened by its tolerance, 1e-4 of F), the block sliding.
+fn planar(stem: &str, toml: &'static str, edits: &[(&str, &str)], element: &'static str, exact: f64) -> Value {
+    let solved = solve_edited(&Scene { toml, geo: "planar2d.geo", element }, stem, edits);
+    let s = solved.summary;
+    assert_converges(stem, &s, MAX_ITERATIONS_PER_STEP);
+    assert_eq!(per_step(&s).len(), 5, "{stem}: gravity in five load steps");
+    let (w, _) = planar_block();
+    let (plane, crack) = (joint_total(&s, "plane"), joint_total(&s, "crack"));
+    close(&format!("{stem}: the plane's and crack's vertical force"), (plane[1] + crack[1]).abs(), w, 1e-6);
+    assert!(
+        (plane[0] + crack[0]).abs() <= 1e-6 * w,
+        "{stem}: the block's joints push it sideways: {plane:?} {crack:?}"
+    );
+    let section = shoelace(&[
+        [-20.0, -20.0],
+        [70.0, -20.0],
+        [70.0, 30.0],
+        [30.0 / 60f64.to_radians().tan(), 30.0],
+        [0.0, 0.0],
+        [-20.0, 0.0],
+    ]);
+    close(&format!("{stem}: vertical reaction"), total_reaction(&s)[1], ROCK * G * section, 1e-6);
+    let safety = &s["safety"];
+    let (f, fails) = (num(&safety["factor"]), num(&safety["fails_at"]));
+    eprintln!("{stem}: F = {f:.6} (fails at {fails:.6}) against Hoek & Bray's {exact:.6}");
+    assert!(f * (1.0 - 1e-4) <= exact && exact <= fails * (1.0 + 1e-4), "{stem}: [{f}, {fails}] against {exact}");
+    assert_eq!(safety["failure"]["kind"].as_str(), Some("sliding"), "{stem}");
+    s
+}
+
+/// The issue's second failure, written from scratch: a planar slope whose
+/// sliding plane keeps its cohesion once it slips, a tension crack behind
+/// the crest, gravity in five steps (400 iterations and not converged
+/// when the issue was filed).
+#[test]
+fn planar2d_tension_crack_cohesion_kept_in_five_steps() {
+    planar("planar2d", "planar2d.toml", &[], "tri6", hoek_bray(0.0, 0.0));
+}
+
+/// The same slide on a coarse, a fine and a linear mesh: a rigid block
+/// on a straight plane fails at the same F on any of them.
+#[test]
+fn planar2d_on_coarse_fine_and_linear_meshes() {
+    for (stem, order, lc, element) in
+        [("planar2d_coarse", 2, 4.0, "tri6"), ("planar2d_fine", 2, 0.5, "tri6"), ("planar2d_linear", 1, 1.5, "tri3")]
+    {
+        let gmsh = format!("order = {order}\nsetnumber = {{ lc = {lc} }}");
+        planar(stem, "planar2d.toml", &[("order = 2", &gmsh)], element, hoek_bray(0.0, 0.0));
+    }
+}
+
+/// With 4 m of water in the crack and on the plane, each given on its own
+/// joint: the slope at its limit (F = 1.026). U = 1/2 gw z_w A to 1e-6;
+/// V to 1 %, its level's kink inside a crack element.
+#[test]
+fn planar2d_with_water_in_its_crack_and_on_its_plane() {
+    let (_, a) = planar_block();
+    let (u, v) = (0.5 * 0.00981 * 4.0 * a, 0.5 * 0.00981 * 16.0);
+    let s = planar("planar2d_wet", "planar2d_wet.toml", &[], "tri6", hoek_bray(u, v));
+    let water = s["water"].as_array().expect("summary.json water");
+    let uplift = |name: &str| num(&water.iter().find(|w| w["contact"] == name).expect("its water")["uplift"]);
+    close("planar2d_wet: U", uplift("plane"), u, 1e-6);
+    close("planar2d_wet: V", uplift("crack"), v, 1e-2);
 }
 
 // ---------------------------------------------------------------- 3D
