@@ -665,6 +665,74 @@ fn in_situ_stress_beyond_a_joints_strength_is_named_before_solving() {
     assert!(warnings.iter().any(|w| w.as_str().is_some_and(|w| w.contains("in-situ stress"))), "{warnings:?}");
 }
 
+/// The unit normal of a set of dip and dip direction (degrees; x east,
+/// y north, z up).
+fn set_normal(dip: f64, dip_direction: f64) -> [f64; 3] {
+    let (d, a) = (dip.to_radians(), dip_direction.to_radians());
+    [d.sin() * a.sin(), d.sin() * a.cos(), d.cos()]
+}
+
+/// The corpus cavern (tests/corpus/cavern3d.toml: tet10, sets J1 50/040
+/// and J2 65/130, f = 0.7, a uniform full-tensor in-situ stress) checked
+/// in 3D, in shear and in tension. A uniform stress puts the same
+/// traction on every pair of a set, so a set is beyond its strength at
+/// all its pairs or none. In shear, both sets given f = 0.3: J2 carries
+/// tau / sigma_n = 0.394780 of the cavern's stress (Cauchy, sigma n), 1.316
+/// times what f = 0.3 carries; J1 0.269413, within it. In tension, the
+/// stress -10 I + 12 n1 n1^T: 2 MPa across J1 and no shear on it, J2 at
+/// tau / sigma_n = 0.344 (holds): J1 is beyond with f_t = 0 and 1.5,
+/// not with 3.
+#[test]
+fn in_situ_stress_beyond_a_3d_joint_set_in_shear_and_in_tension() {
+    let case = Case::new("conv-insitu-3d");
+    case.copy("tests/corpus/cavern3d.geo");
+    let scene = common::repo_text("tests/corpus/cavern3d.toml");
+    let warned = |name: &str, text: &str| -> Vec<String> {
+        case.write(name, text);
+        let o = case.cli(&["check", name]);
+        let err = String::from_utf8_lossy(&o.stderr).to_string();
+        assert!(o.status.success(), "{name}: a warning, not an error: {err}");
+        err.lines().filter(|l| l.contains("in-situ stress")).map(str::to_string).collect()
+    };
+    let all_pairs = |line: &str| {
+        let w: Vec<&str> = line.split_whitespace().collect();
+        let at = w.iter().position(|&x| x == "puts").expect("puts N of the M pairs");
+        assert_eq!(w[at + 1], w[at + 4], "every pair of the set is beyond: {line}");
+    };
+    assert!(warned("as_given.toml", &scene).is_empty(), "the cavern as given holds");
+    // shear
+    let weak = scene.replace("friction = 0.7", "friction = 0.3");
+    assert_eq!(weak.matches("friction = 0.3").count(), 2, "the edit applies to both sets");
+    let lines = warned("weak.toml", &weak);
+    assert_eq!(lines.len(), 1, "one warning, for J2 alone: {lines:?}");
+    common::cli::says(&lines[0], &["contact \"J2\"", "beyond Coulomb", "mobilised up to 1.316 of it"]);
+    all_pairs(&lines[0]);
+    // tension: -10 I + 12 n1 n1^T
+    let n = set_normal(50.0, 40.0);
+    let s = |i: usize, j: usize| 12.0 * n[i] * n[j] - if i == j { 10.0 } else { 0.0 };
+    let tensor = [s(0, 0), s(1, 1), s(2, 2), s(0, 1), s(1, 2), s(0, 2)].map(|x| format!("{x:.12}")).join(", ");
+    let given = "initial_stress = [-12.0, -9.0, -15.0, -2.0, 1.5, -3.0]";
+    assert!(scene.contains(given), "the edit applies");
+    let pulled = scene.replace(given, &format!("initial_stress = [{tensor}]"));
+    let j1 = "offset = 1.5\nsnap = 3.2\nfriction = 0.7";
+    assert!(pulled.contains(j1), "the edit applies");
+    for (f_t, beyond) in [(None, true), (Some(1.5), true), (Some(3.0), false)] {
+        let text = match f_t {
+            Some(f_t) => pulled.replace(j1, &format!("{j1}\ncohesion = 3.0\ntensile_strength = {f_t}")),
+            None => pulled.clone(),
+        };
+        let lines = warned("pulled.toml", &text);
+        if !beyond {
+            assert!(lines.is_empty(), "f_t = {f_t:?} carries the 2 MPa: {lines:?}");
+            continue;
+        }
+        assert_eq!(lines.len(), 1, "f_t = {f_t:?}: one warning, for J1 alone: {lines:?}");
+        common::cli::says(&lines[0], &["contact \"J1\"", "in tension beyond f_t"]);
+        assert!(!lines[0].contains("beyond Coulomb"), "a set in tension is not counted in shear: {}", lines[0]);
+        all_pairs(&lines[0]);
+    }
+}
+
 /// geo/tunnel_joints.toml in a 10 m box (docs/convergence/
 /// tunnel_joints_10m.toml), one step without cuts: four pairs of a
 /// crossing (24, 25, 95, 96) all slip, and the junction took their
