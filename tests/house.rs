@@ -452,6 +452,11 @@ fn inline_paths(code: &str) -> Vec<String> {
 const CALLS_BACK: &[(&str, &str, &str)] = &[
     ("contact/cutting.rs", "iterate", "each piece of a cut load step is solved by the module's entry point"),
     ("contact/ramp.rs", "iterate", "each piece of the stage's strength ramp is solved by the module's entry point"),
+    (
+        "contact/system/iterative/stiffness.rs",
+        "Iterative",
+        "the friction's scale is measured through the interface's own parts and preconditioner blocks",
+    ),
     ("contact/system/junction/tie_cache.rs", "Junction", "the cache memoises the junction's own null space"),
     ("fem/shape/inverse.rs", "eval", "the inverse map's Newton steps evaluate the shape functions themselves"),
     ("output/files/stage.rs", "Staged", "the folder's entry point; in a leaf, staged.rs and stage.rs would circle"),

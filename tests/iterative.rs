@@ -4,13 +4,17 @@
 //! displacements and contact stresses to 1e-8 of their largest values (the
 //! GMRES tolerance is 1e-10 of the load).
 //!
-//! Except after the first load step of the dam: there the two Newton
-//! iterations take different paths (the iterative interface scales the
-//! complementarity by K_cc's diagonal, not W's, as W is never formed: 8
-//! iterations at step 2 against 7) and end 9.5e-7 apart in contact stress,
-//! 9.8e-9 in displacement, each converged to the friction tolerance (1e-12).
-//! A 100 times tighter GMRES tolerance leaves that gap as it is, so it is
-//! not the linear solve's; it is asserted below 1e-5.
+//! The friction law's linearisation takes a stiffness per pair (the `c`
+//! of `ξ = τ + c s`): W's diagonal on the dense interface; here, where W
+//! is never formed, the preconditioner's diagonal scaled down to W's on a
+//! sample of pairs (src/contact/system/iterative/stiffness.rs). Any `c`
+//! has the same answers, not the same path: with the preconditioner's
+//! diagonal alone (3.4 times W's on the corpus cavern) the dam's step 2
+//! took 8 iterations against the dense interface's 7 and ended 3.5e-9
+//! apart in contact stress (9.5e-7 when first measured), and the cavern
+//! below did not converge. Scaled, the dam takes 7 and ends 4.1e-9 apart
+//! (asserted below 1e-7 after its first step), the cavern 6 as the dense
+//! interface does, 4.5e-9 apart (below 1e-7).
 //!
 //! Cases that reach every kind of interface unknown:
 //!
@@ -18,6 +22,8 @@
 //!   oblique load: stick and slip, the friction law linearised;
 //! - the dam slice, three load steps: joints ending on a supported base
 //!   (held contact axes), gravity and water, pairs that open;
+//! - the corpus cavern, tet10, two oblique sets the tool cuts, a
+//!   full-tensor in-situ stress: 154 pairs slipping at rigid joints;
 //! - a column cut into 4 substructures, hex8 and hex20 (quad8 faces),
 //!   pressed and pushed: bonded joins beside the contact.
 
@@ -68,8 +74,9 @@ fn differences(a: &Run, b: &Run) -> (f64, f64, f64) {
     (u, rel(pairs), first)
 }
 
-/// `later`: the bound on contact stresses after the first step.
-fn same_answer(case: &Case, scene: &str, dense_k: usize, iterative_k: usize, later: f64) {
+/// `[first, later]`: the bounds on contact stresses at the first step
+/// and after it (displacements: 1e-8).
+fn same_answer(case: &Case, scene: &str, dense_k: usize, iterative_k: usize, [bound, later]: [f64; 2]) {
     let dense = solve(case, scene, InterfaceSolver::Dense, dense_k);
     let iterative = solve(case, scene, InterfaceSolver::Iterative, iterative_k);
     assert_eq!(dense.stats.counters.interface_applications, 0);
@@ -81,14 +88,14 @@ fn same_answer(case: &Case, scene: &str, dense_k: usize, iterative_k: usize, lat
         "{scene}: {} interface DOFs, contact iterations {its:?}, {} applications of S: displacements {u:.1e}, contact stresses {t:.1e} ({first:.1e} at step 1)",
         iterative.stats.dofs.interface, iterative.stats.counters.interface_applications
     );
-    assert!(u < 1e-8 && first < 1e-8 && t < later, "{scene}: iterative against dense: displacements differ by {u:.1e}, contact stresses by {t:.1e} ({first:.1e} at step 1)");
+    assert!(u < 1e-8 && first < bound && t < later.max(bound), "{scene}: iterative against dense: displacements differ by {u:.1e}, contact stresses by {t:.1e} ({first:.1e} at step 1)");
 }
 
 #[test]
 fn block_on_block_tet10_in_partial_slip_solved_iteratively_is_the_dense_answer() {
     let case = Case::new("iterative-blocks");
     let scene = common::scenes::coarse_blocks(&case);
-    same_answer(&case, scene, 1, 1, 1e-8);
+    same_answer(&case, scene, 1, 1, [1e-8; 2]);
 }
 
 #[test]
@@ -96,19 +103,35 @@ fn the_dam_slice_over_three_load_steps_solved_iteratively_is_the_dense_answer() 
     let case = Case::new("iterative-dam3d");
     case.copy("geo/dam3d.geo");
     case.copy("geo/dam3d.toml");
-    same_answer(&case, "dam3d.toml", 1, 1, 1e-5);
+    same_answer(&case, "dam3d.toml", 1, 1, [1e-8, 1e-7]);
+}
+
+/// The corpus cavern (tests/corpus/cavern3d.toml: tet10, two oblique
+/// sets, a full-tensor in-situ stress, rigid joints): the dense and the
+/// sparse interface end in 6 iterations. With the friction law
+/// linearised at the preconditioner's diagonal this one went through 100
+/// state sets without converging (the run fell back to joints that
+/// deform: 1,863 / 107 / 0 where the rigid joints end 1,815 / 154 / 1);
+/// scaled to W's diagonal, it converges in 6, the same states pair by
+/// pair.
+#[test]
+fn the_corpus_cavern_solved_iteratively_is_the_dense_answer() {
+    let case = Case::new("iterative-cavern");
+    case.copy("tests/corpus/cavern3d.geo");
+    case.copy("tests/corpus/cavern3d.toml");
+    same_answer(&case, "cavern3d.toml", 1, 1, [1e-7; 2]);
 }
 
 #[test]
 fn a_column_cut_into_substructures_solved_iteratively_is_the_uncut_dense_answer() {
     let case = Case::new("iterative-column");
     common::scenes::column(&case, "column.toml", &[("lc = 0.0357142857142857", "lc = 0.125")]);
-    same_answer(&case, "column.toml", 1, 4, 1e-8);
+    same_answer(&case, "column.toml", 1, 4, [1e-8; 2]);
     // hex20: serendipity quad8 faces in the transformed contact basis
     common::scenes::column(
         &case,
         "column20.toml",
         &[("order = 1", "order = 2"), ("lc = 0.0357142857142857, hex = 1", "lc = 0.25, hex = 1, serendipity = 1")],
     );
-    same_answer(&case, "column20.toml", 1, 4, 1e-8);
+    same_answer(&case, "column20.toml", 1, 4, [1e-8; 2]);
 }

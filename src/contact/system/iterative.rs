@@ -43,6 +43,8 @@
 //! Φ holds means only, which are unknowns under every relation, so `J Φ`
 //! comes from the stored `K Φ` without applying S again.
 
+mod stiffness;
+
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
@@ -326,6 +328,9 @@ pub struct Iterative<'a> {
     last: Mutex<Option<Arc<Vec<f64>>>>,
     /// GMRES iterations of every solve so far.
     iterations: Mutex<Vec<usize>>,
+    /// The factor from the preconditioner's diagonal to the stiffness the
+    /// friction law is linearised with, once measured ([`stiffness`]).
+    alpha: Mutex<Option<f64>>,
 }
 
 impl<'a> Iterative<'a> {
@@ -395,6 +400,7 @@ impl<'a> Iterative<'a> {
             last_states: LastStates::default(),
             last: Mutex::new(None),
             iterations: Mutex::new(Vec::new()),
+            alpha: Mutex::new(None),
         };
         // 2. -K w0: the prescribed values at ramp 1
         if it.parts.iter().any(|p| p.terms.iter().any(|t| t.constant != 0.0)) {
@@ -452,6 +458,11 @@ impl<'a> Iterative<'a> {
                 }
             }
         }
+    }
+
+    /// The position of the unknown `v` in `[m; r]`.
+    fn unknown(&self, v: Var) -> usize {
+        index(v, self.nm)
     }
 
     /// `K x`.
@@ -808,11 +819,15 @@ impl Solver for Iterative<'_> {
         self.solve_gmres(fr, states, lambda, accuracy)
     }
 
-    /// The diagonal of the preconditioner's block at relative displacement `r`.
+    /// The stiffness the friction law is linearised with at relative
+    /// displacement `r`: the preconditioner's diagonal scaled down to W's
+    /// ([`stiffness`]).
     fn diagonal(&self, r: usize) -> f64 {
-        let p = self.place[self.nm + r];
-        let (members, m) = &self.blocks[p.block];
-        m[p.at * members.len() + p.at]
+        self.pair_stiffness(&[r])[0]
+    }
+
+    fn prepare_diagonal(&self, rs: &[usize]) {
+        self.pair_stiffness(rs);
     }
 
     fn counts(&self) -> Vec<usize> {
@@ -883,6 +898,22 @@ fn coarse_space(model: &Model, layout: &Layout, parts: &[OperatorRef], rigid: &[
 type Entries = (usize, Vec<(usize, f64)>);
 
 impl AppliedPart {
+    /// Its number, where it is on another rank (which applies it).
+    fn remote(&self) -> Option<usize> {
+        match self.source {
+            Source::Remote(i) => Some(i),
+            Source::Local(_) => None,
+        }
+    }
+
+    /// Its interior factor, where it is on this rank.
+    fn local(&self) -> Option<&SharedSolve> {
+        match &self.source {
+            Source::Local(solve) => Some(solve),
+            Source::Remote(_) => None,
+        }
+    }
+
     /// The part's interface displacements (global axes, nodal basis) for
     /// the unknowns `x` and the prescribed values at `ramp`.
     fn displacements_of(&self, x: &[f64], ramp: f64, nm: usize, nd: usize) -> Vec<f64> {
