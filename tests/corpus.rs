@@ -295,9 +295,9 @@ fn joint_total(s: &Value, name: &str) -> [f64; 3] {
 
 /// The planar slide in five steps: converged; the block held by its plane
 /// and its crack alone, whose forces (with their water) carry its weight
-/// and nothing sideways; the
-/// supports the whole section's; the search's bracket round Hoek & Bray's
-/// F (widened by its tolerance, 1e-4 of F), the block sliding.
+/// and nothing sideways; the supports the whole section's; the search's
+/// bracket round Hoek & Bray's F (widened by its tolerance, 1e-4 of F),
+/// the block sliding.
 fn planar(stem: &str, toml: &'static str, edits: &[(&str, &str)], element: &'static str, exact: f64) -> Value {
     let solved = solve_edited(&Scene { toml, geo: "planar2d.geo", element }, stem, edits);
     let s = solved.summary;

@@ -6,16 +6,17 @@
 //! Each scene is solved as written and with its `[[bodies]]`,
 //! `[[contacts]]` and `[[joint_sets]]` listed in reverse, which renumbers
 //! the bodies, the blocks, the parts and the pairs (and cuts the sets in
-//! the other order: the mesh comes out the same). Pairs are matched by where they are, their
-//! contact group and the centroids of the blocks on their sides. Asserted:
-//! the same iterations, the same state at every pair, the same block
-//! motions, and the same pair stresses away from junctions. At a junction
-//! (a point where pairs of two or more contact groups meet) the tied forces
-//! of a closed loop of stuck pairs are not unique; the interface takes the
-//! least-norm ones, cut back onto the Coulomb cones in rounds where they
-//! break one, and those rounds can end on another admissible split: there
-//! the states are asserted, not the stresses (geo/rockmass: 3 of its 3,024
-//! pairs, all stuck, up to 6 % of their own stress).
+//! the other order: the mesh comes out the same). Pairs are matched by
+//! where they are, their contact group and the centroids of the blocks on
+//! their sides. Asserted: the same iterations, the same state at every
+//! pair, the same block motions, and the same pair stresses away from
+//! junctions. At a junction (a point where pairs of two or more contact
+//! groups meet) the tied forces of a closed loop of stuck pairs are not
+//! unique; the interface takes the least-norm ones, cut back onto the
+//! Coulomb cones in rounds where they break one, and those rounds can end
+//! on another admissible split: there the states are asserted, not the
+//! stresses (geo/rockmass: 3 of its 3,024 pairs, all stuck, up to 6 % of
+//! their own stress).
 
 mod common;
 
