@@ -500,21 +500,13 @@ impl<'a> Iterative<'a> {
                 .collect()
         };
         // the other ranks' parts work while this rank does its own
-        let remote_parts: Vec<(usize, usize)> = (self.parts.iter().enumerate())
-            .filter_map(|(at, p)| match p.source {
-                Source::Remote(i) => Some((i, at)),
-                Source::Local(_) => None,
-            })
-            .collect();
+        let remote_parts: Vec<(usize, usize)> =
+            (self.parts.iter().enumerate()).filter_map(|(at, p)| p.remote().map(|i| (i, at))).collect();
         if let (Some(remote), false) = (self.remote, remote_parts.is_empty()) {
             remote.send(remote_parts.iter().map(|&(i, at)| (i, columns(&self.parts[at]))).collect(), k);
         }
-        let local: Vec<(&AppliedPart, &SharedSolve)> = (self.parts.iter())
-            .filter_map(|p| match &p.source {
-                Source::Local(solve) => Some((p, solve)),
-                Source::Remote(_) => None,
-            })
-            .collect();
+        let local: Vec<(&AppliedPart, &SharedSolve)> =
+            (self.parts.iter()).filter_map(|p| p.local().map(|solve| (p, solve))).collect();
         // each thread sums its parts' contributions
         let sum = |ps: &[(&AppliedPart, &SharedSolve)]| -> Vec<Vec<f64>> {
             let mut acc = vec![vec![0.0; n]; k];
