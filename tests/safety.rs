@@ -427,7 +427,9 @@ fn the_dam_with_cohesion_kept_slides_at_its_bases_factor_every_trial_converged()
 /// block of tests/topple.rs, b/h = 0.5 on a 20 degree plane), trials cycle
 /// even when retried in smaller steps with more iterations. F is then what
 /// converged trials bracket, the closed form tan(phi) / tan(theta) inside,
-/// and the run ends non-zero after writing its results, saying so.
+/// and the run ends non-zero after writing its results, saying so. Its
+/// advice is the robust rule alone (more iterations do not end a cycle),
+/// and taken it decides F: the closed form to the search's tolerance.
 #[test]
 fn a_factor_that_converged_trials_do_not_decide_is_not_reported_as_found() {
     let case = Case::new("safety-undecided");
@@ -451,8 +453,10 @@ fn a_factor_that_converged_trials_do_not_decide_is_not_reported_as_found() {
             "Converged trials hold at F = ",
             "F lies between them",
             "the results in cycles",
+            "Solve it with [solver] rule = \"robust\" (the default)",
         ],
     );
+    assert!(!msg.contains("max_iterations") && !msg.contains("safety.step"), "nothing that cannot help: {msg}");
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(!stdout.contains("F = 2.3"), "no factor printed as found: {stdout}");
     let stderr = String::from_utf8_lossy(&o.stderr);
@@ -470,6 +474,13 @@ fn a_factor_that_converged_trials_do_not_decide_is_not_reported_as_found() {
         assert_eq!((&u["cycled"], &u["law_broken"]), (&Value::Bool(true), &Value::Bool(false)), "{u}");
     }
     says(&read(&case.dir.join("cycles/report.md")), &["**F not decided**"]);
+
+    // the advice taken
+    case.write("advised.toml", &scene.replacen("rule = \"paper\"", "rule = \"robust\"", 1));
+    let (s, _, _) = safety_run(&case, &["solve", "advised.toml", "--quiet"], "advised");
+    eprintln!("robust rule, as advised: F = {} (fails at {})", s["factor"], s["fails_at"]);
+    assert_eq!((s["decided"].as_bool(), s["found"].as_bool()), (Some(true), Some(true)), "{s}");
+    assert_factor("advised", &s, exact, 0.002);
 }
 
 /// The one-paragraph error of a run that ends with exit status 1 after

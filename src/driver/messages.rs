@@ -130,8 +130,25 @@ pub enum SafetyError {
         undecided: Vec<f64>,
         load: bool,
         rigid_joints: Option<[f64; 2]>,
+        retry: RetryAdvice,
         results: Option<PathBuf>,
     },
+}
+
+/// What may decide the trials of a safety search that did not converge,
+/// from how they stopped: only advice that can help those trials is given
+/// (the message said "more max_iterations, a smaller safety.step, or the
+/// other rule" to every search, where the trials of tests/safety.rs cycle
+/// under the paper's rule and only the robust rule decides F).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct RetryAdvice {
+    /// The scene's rule is the paper's, which reports a cycle and does not
+    /// break it: the robust rule's cycle breaker may end them.
+    pub paper_rule: bool,
+    /// A trial stopped at its retry's budget of this many iterations with
+    /// its states still changing (not cycling, not settled against the
+    /// law): more iterations may end it.
+    pub budget: Option<usize>,
 }
 
 impl SafetyError {
@@ -444,7 +461,7 @@ impl fmt::Display for SafetyError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             SafetyError::Unsafe { .. } => unsafe_message(self, f),
-            SafetyError::Undecided { holds, fails, undecided, load, rigid_joints, results } => {
+            SafetyError::Undecided { holds, fails, undecided, load, rigid_joints, retry, results } => {
                 let what = if *load { "load factor" } else { "factor of safety" };
                 let tried: Vec<String> = undecided.iter().map(|u| format!("{u:.4}")).collect();
                 write!(f, "the {what} is not decided: the contact iteration did not converge at F = {} even when retried in smaller steps with more iterations, so those trials neither hold nor fail. Converged trials hold at F = {holds:.4}", tried.join(", "))?;
@@ -455,11 +472,19 @@ impl fmt::Display for SafetyError {
                 if let Some(out) = results {
                     write!(f, "; the results in {} are those of the last state that holds", out.display())?;
                 }
-                write!(f, ". Try more [solver] max_iterations, a smaller safety.step, or the other [solver] rule")?;
+                if retry.paper_rule {
+                    write!(f, ". Solve it with [solver] rule = \"robust\" (the default): the paper's rule reports a cycle of states and does not break it")?;
+                }
+                if let Some(n) = retry.budget {
+                    write!(f, ". Try more [solver] max_iterations: a trial stopped at its retry's {n} iterations with its states still changing")?;
+                }
+                let advised = retry.paper_rule || retry.budget.is_some();
+                let or = if advised { "Or give" } else { "Give" };
                 match rigid_joints {
                     // the safety search does not fall back itself: its
                     // trials would change the model between them
-                    Some(k) => write!(f, "; or give the joints a stiffness, normal_stiffness = {} and shear_stiffness = {} on every [[contacts]] and [[joint_sets]] entry (k_n = {} E / s, E the softest body's modulus and s the mean block size): where rigid joints cross, a trial's law can have no state set that keeps it, and joints that deform have no crossing ties (README, \"Joints that deform\")", k[0], k[1], super::fallback::STIFFER),
+                    Some(k) => write!(f, ". {or} the joints a stiffness, normal_stiffness = {} and shear_stiffness = {} on every [[contacts]] and [[joint_sets]] entry (k_n = {} E / s, E the softest body's modulus and s the mean block size): where rigid joints cross, a trial's law can have no state set that keeps it, and joints that deform have no crossing ties (README, \"Joints that deform\")", k[0], k[1], super::fallback::STIFFER),
+                    None if !advised => write!(f, ". safety.csv lists every trial and how it ended"),
                     None => Ok(()),
                 }
             }
@@ -573,21 +598,40 @@ mod tests {
         }
     }
 
+    /// An undecided search's message, with `rigid_joints` and `retry`.
+    fn undecided(rigid_joints: Option<[f64; 2]>, retry: RetryAdvice) -> String {
+        let (holds, fails, undecided) = (1.2, Some(1.4), vec![1.3]);
+        let (load, results) = (false, None);
+        SafetyError::Undecided { holds, fails, undecided, load, rigid_joints, retry, results }.to_string()
+    }
+
     #[test]
     fn an_undecided_safety_factor_on_rigid_joints_is_advised_a_stiffness() {
-        let undecided = |rigid_joints| {
-            SafetyError::Undecided {
-                holds: 1.2,
-                fails: Some(1.4),
-                undecided: vec![1.3],
-                load: false,
-                rigid_joints,
-                results: None,
-            }
-            .to_string()
-        };
-        assert!(!undecided(None).contains("normal_stiffness"));
-        let said = undecided(Some([13890.0, 1389.0]));
-        assert!(said.contains("normal_stiffness = 13890 and shear_stiffness = 1389 on every"), "{said}");
+        assert!(!undecided(None, RetryAdvice::default()).contains("normal_stiffness"));
+        let said = undecided(Some([13890.0, 1389.0]), RetryAdvice::default());
+        assert!(
+            said.contains(
+                ". Give the joints a stiffness, normal_stiffness = 13890 and shear_stiffness = 1389 on every"
+            ),
+            "{said}"
+        );
+    }
+
+    #[test]
+    fn an_undecided_safety_factor_is_advised_only_what_can_end_its_trials() {
+        let cycled = undecided(None, RetryAdvice::default());
+        for useless in ["max_iterations", "safety.step", "rule"] {
+            assert!(!cycled.contains(useless), "{cycled}");
+        }
+        assert!(cycled.ends_with(". safety.csv lists every trial and how it ended"), "{cycled}");
+        let paper = undecided(None, RetryAdvice { paper_rule: true, budget: None });
+        assert!(paper.contains(". Solve it with [solver] rule = \"robust\" (the default)"), "{paper}");
+        assert!(!paper.contains("max_iterations"), "{paper}");
+        let settling = undecided(Some([13890.0, 1389.0]), RetryAdvice { paper_rule: false, budget: Some(400) });
+        assert!(
+            settling.contains(". Try more [solver] max_iterations: a trial stopped at its retry's 400 iterations"),
+            "{settling}"
+        );
+        assert!(settling.contains(". Or give the joints a stiffness"), "{settling}");
     }
 }

@@ -33,13 +33,13 @@ use std::time::Instant;
 
 use super::condense::Parts;
 use super::mechanism;
-use super::messages::SafetyError;
+use super::messages::{RetryAdvice, SafetyError};
 use super::ranks::Ranks;
 use super::run_options::RunOptions;
 use super::steps::{LoadSteps, Step};
 use crate::contact::safety::{self as reduction, Bracket, OnUndecided, Strengths};
 use crate::contact::system::WarmStart;
-use crate::contact::History;
+use crate::contact::{History, StateRule, Stop};
 use crate::error::Result;
 use crate::parallel::CommExt;
 use crate::results::{Failure, OtherFactor, SafetyRun, SearchCost, SearchKind, StepResult, Trial, Undecided};
@@ -52,17 +52,28 @@ pub(super) use below::below_one;
 /// The error of a run whose safety factor converged trials did not decide.
 pub(super) fn undecided_error(run: &crate::results::Run) -> Option<SafetyError> {
     let s = run.safety.as_ref().filter(|s| !s.decided && !s.below_one)?;
+    let holds = s.factor.unwrap_or(1.0);
+    // those that left the bracket open: above the last hold, below the failure
+    let open: Vec<&Undecided> =
+        s.undecided.iter().filter(|u| u.factor > holds && s.fails_at.is_none_or(|x| u.factor < x)).collect();
     Some(SafetyError::Undecided {
-        holds: s.factor.unwrap_or(1.0),
+        holds,
         fails: s.fails_at,
-        // those that left the bracket open: above the last hold, below the failure
-        undecided: (s.undecided.iter().map(|u| u.factor))
-            .filter(|&u| u > s.factor.unwrap_or(1.0) && s.fails_at.is_none_or(|x| u < x))
-            .collect(),
+        undecided: open.iter().map(|u| u.factor).collect(),
         load: s.kind == SearchKind::Load,
         rigid_joints: super::fallback::advised(run),
+        retry: retry_advice(&run.scene.solver, &open),
         results: None,
     })
+}
+
+/// What may decide the trials `open` under the scene's `solver` options.
+fn retry_advice(solver: &crate::scene::Solver, open: &[&Undecided]) -> RetryAdvice {
+    let settling = open.iter().any(|u| u.stop == Stop::MaxIterations);
+    RetryAdvice {
+        paper_rule: solver.rule == StateRule::Paper,
+        budget: settling.then_some(solver.max_iterations * trials::RETRY_ITERATIONS),
+    }
 }
 
 /// Steps 5 and 6: the load steps; where they lose equilibrium, the
