@@ -142,9 +142,9 @@ pub enum SafetyError {
 /// under the paper's rule and only the robust rule decides F).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct RetryAdvice {
-    /// The scene's rule is the paper's, which reports a cycle and does not
-    /// break it: the robust rule's cycle breaker may end them.
-    pub paper_rule: bool,
+    /// The scene's rule: the paper's reports a cycle and does not break
+    /// it, and the robust rule's cycle breaker may end the trials.
+    pub rule: StateRule,
     /// A trial stopped at its retry's budget of this many iterations with
     /// its states still changing (not cycling, not settled against the
     /// law): more iterations may end it.
@@ -472,13 +472,14 @@ impl fmt::Display for SafetyError {
                 if let Some(out) = results {
                     write!(f, "; the results in {} are those of the last state that holds", out.display())?;
                 }
-                if retry.paper_rule {
+                let paper = retry.rule == StateRule::Paper;
+                if paper {
                     write!(f, ". Solve it with [solver] rule = \"robust\" (the default): the paper's rule reports a cycle of states and does not break it")?;
                 }
                 if let Some(n) = retry.budget {
                     write!(f, ". Try more [solver] max_iterations: a trial stopped at its retry's {n} iterations with its states still changing")?;
                 }
-                let advised = retry.paper_rule || retry.budget.is_some();
+                let advised = paper || retry.budget.is_some();
                 let or = if advised { "Or give" } else { "Give" };
                 match rigid_joints {
                     // the safety search does not fall back itself: its
@@ -624,10 +625,10 @@ mod tests {
             assert!(!cycled.contains(useless), "{cycled}");
         }
         assert!(cycled.ends_with(". safety.csv lists every trial and how it ended"), "{cycled}");
-        let paper = undecided(None, RetryAdvice { paper_rule: true, budget: None });
+        let paper = undecided(None, RetryAdvice { rule: StateRule::Paper, budget: None });
         assert!(paper.contains(". Solve it with [solver] rule = \"robust\" (the default)"), "{paper}");
         assert!(!paper.contains("max_iterations"), "{paper}");
-        let settling = undecided(Some([13890.0, 1389.0]), RetryAdvice { paper_rule: false, budget: Some(400) });
+        let settling = undecided(Some([13890.0, 1389.0]), RetryAdvice { rule: StateRule::Robust, budget: Some(400) });
         assert!(
             settling.contains(". Try more [solver] max_iterations: a trial stopped at its retry's 400 iterations"),
             "{settling}"

@@ -39,7 +39,7 @@ use super::run_options::RunOptions;
 use super::steps::{LoadSteps, Step};
 use crate::contact::safety::{self as reduction, Bracket, OnUndecided, Strengths};
 use crate::contact::system::WarmStart;
-use crate::contact::{History, StateRule, Stop};
+use crate::contact::{History, Stop};
 use crate::error::Result;
 use crate::parallel::CommExt;
 use crate::results::{Failure, OtherFactor, SafetyRun, SearchCost, SearchKind, StepResult, Trial, Undecided};
@@ -70,10 +70,7 @@ pub(super) fn undecided_error(run: &crate::results::Run) -> Option<SafetyError> 
 /// What may decide the trials `open` under the scene's `solver` options.
 fn retry_advice(solver: &crate::scene::Solver, open: &[&Undecided]) -> RetryAdvice {
     let settling = open.iter().any(|u| u.stop == Stop::MaxIterations);
-    RetryAdvice {
-        paper_rule: solver.rule == StateRule::Paper,
-        budget: settling.then_some(solver.max_iterations * trials::RETRY_ITERATIONS),
-    }
+    RetryAdvice { rule: solver.rule, budget: settling.then_some(solver.max_iterations * trials::RETRY_ITERATIONS) }
 }
 
 /// Steps 5 and 6: the load steps; where they lose equilibrium, the
