@@ -15,6 +15,12 @@
 //! (tests/corpus/slope3d_c005.toml) went through 100 state sets and did
 //! not converge; from where the step started, it converges in 3.
 //!
+//! Where rigid joints fall back to joints that deform when a step does
+//! not converge (`driver::fallback`), the pieces are a last try before
+//! it and each takes at most [`PIECE_ITERATIONS`] ([`Budget`]); the
+//! step solved whole keeps `max_iterations`, as do the pieces where
+//! nothing follows them.
+//!
 //! A failure other than non-convergence (a body held by nothing, a
 //! singular interface) is not the step size's: it is returned at once
 //! (where rigid joints may fall back, the run then tries joints that
@@ -38,22 +44,69 @@ use super::outcome::{Failed, Outcome};
 use super::pair_law::PairLaw;
 use crate::contact::system::InterfaceProblem;
 
+/// The most iterations a cut piece takes where joints that deform take
+/// over a step its rigid joints do not end (`driver::fallback`): the
+/// corpus' bound on a step. A piece carries half its parent's load or
+/// less, from where its parent started. On the three corpus scenes whose
+/// rigid joints fall back (blocks3d, dam3d, slope3d_c005), the pieces
+/// that converged took 3 to 5 iterations but one (blocks3d's first half,
+/// 48), and every other piece ran its whole `max_iterations` (100) or
+/// stopped at a set that broke the law after 48 to 90; no step ended
+/// rigid through its cuts. Their rigid attempts took 411, 396 and 359
+/// iterations, 201, 190 and 190 with this bound, to the same fallback
+/// answers (docs/convergence.md, "A cut piece's iterations where the
+/// fallback follows").
+pub const PIECE_ITERATIONS: usize = 30;
+
+/// What a load step may spend: its iterations and halvings
+/// ([`iterate_cutting`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Budget {
+    /// Iterations of the step solved whole (`[solver] max_iterations`).
+    pub iterations: usize,
+    /// Halvings where it does not converge (`[solver] max_cuts`).
+    pub cuts: usize,
+    /// Iterations of each cut piece: `iterations`, or fewer
+    /// ([`Budget::short_pieces`]).
+    pub piece: usize,
+}
+
+impl Budget {
+    /// `iterations` for the step whole and for each of its pieces, halved
+    /// down to `cuts` times.
+    pub fn new(iterations: usize, cuts: usize) -> Budget {
+        Budget { iterations, cuts, piece: iterations }
+    }
+
+    /// The same, with each cut piece given at most [`PIECE_ITERATIONS`].
+    pub fn short_pieces(self) -> Budget {
+        Budget { piece: self.piece.min(PIECE_ITERATIONS), ..self }
+    }
+
+    /// The iterations of a piece halved `depth` times.
+    pub(super) fn at(self, depth: usize) -> usize {
+        if depth == 0 {
+            self.iterations
+        } else {
+            self.piece
+        }
+    }
+}
+
 /// Runs the load step from the factors `from` (where `h` ended) to `to`,
-/// cutting it in halves down to `max_cuts` times where the iteration does
-/// not converge. The outcome is the last piece's; its summary counts the
-/// iterations of every attempt and lists the pieces taken
+/// cutting it in halves down to `budget.cuts` times where the iteration
+/// does not converge. The outcome is the last piece's; its summary counts
+/// the iterations of every attempt and lists the pieces taken
 /// ([`super::Summary::pieces`]) when the step was cut.
-#[allow(clippy::too_many_arguments)]
 pub fn iterate_cutting(
     problem: &InterfaceProblem,
     laws: &[PairLaw],
     rule: StateRule,
-    from: &[f64],
-    to: &[f64],
+    (from, to): (&[f64], &[f64]),
     h: &mut History,
-    max_iterations: usize,
-    max_cuts: usize,
+    budget: Budget,
 ) -> Result<Outcome, Failed> {
+    let max_cuts = budget.cuts;
     let at = |t: f64| -> Vec<f64> { from.iter().zip(to).map(|(a, b)| a + t * (b - a)).collect() };
     // pieces still to solve, the next on top: (start, end, depth) as fractions of the step
     let mut todo = vec![(0.0, 1.0, 0usize)];
@@ -64,7 +117,7 @@ pub fn iterate_cutting(
         let (a, b, depth) = todo.pop().expect("a piece is left until the last one ends the loop");
         let scaled = depth < max_cuts && scales(problem, laws, &at(a), h);
         let saved = (depth < max_cuts && !scaled).then(|| (h.clone(), problem.warm_start()));
-        let mut outcome = iterate(problem, laws, rule, &at(b), h, max_iterations).map_err(|mut f| {
+        let mut outcome = iterate(problem, laws, rule, &at(b), h, budget.at(depth)).map_err(|mut f| {
             f.iteration += iterations;
             f.augmented = f.augmented.map(|r| r.after(augmented)).or(augmented);
             f
@@ -123,4 +176,20 @@ pub(super) fn scales(problem: &InterfaceProblem, laws: &[PairLaw], start: &[f64]
         && zero(&h.force)
         && zero(&h.unloaded)
         && h.sigma_n.iter().all(|&x| x == 0.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_short_budget_shortens_the_cut_pieces_alone() {
+        let budget = Budget::new(100, 3);
+        assert_eq!((budget.at(0), budget.at(1), budget.at(3)), (100, 100, 100));
+        let short = budget.short_pieces();
+        assert_eq!((short.at(0), short.at(1), short.at(3), short.cuts), (100, PIECE_ITERATIONS, PIECE_ITERATIONS, 3));
+        // never more than the step's own budget
+        let few = Budget::new(8, 4).short_pieces();
+        assert_eq!((few.at(0), few.at(2)), (8, 8));
+    }
 }

@@ -24,7 +24,7 @@
 //! A piece that does not converge is halved, as a load step is, down to
 //! `max_cuts` times; one that still does not ends the stage unconverged.
 
-use super::cutting::iterate_cutting;
+use super::cutting::{iterate_cutting, Budget};
 use super::history::History;
 use super::iterate;
 use super::options::StateRule;
@@ -51,25 +51,23 @@ const MARGIN: f64 = 0.01;
 /// [`iterate_cutting`]). The outcome is the last piece's; its summary
 /// counts every piece's iterations and halvings and lists the strength
 /// factors the pieces ended at ([`super::Summary::strengths`]).
-#[allow(clippy::too_many_arguments)]
 pub fn iterate_stage(
     problem: &InterfaceProblem,
     laws: &[PairLaw],
     rule: StateRule,
     (from, to): (&[f64], &[f64]),
     h: &mut History,
-    max_iterations: usize,
-    max_cuts: usize,
+    budget: Budget,
     mobilised: f64,
 ) -> Result<Outcome, Failed> {
     if !(mobilised > 1.0 && mobilised.is_finite()) {
-        return iterate_cutting(problem, laws, rule, from, to, h, max_iterations, max_cuts);
+        return iterate_cutting(problem, laws, rule, (from, to), h, budget);
     }
     let every = vec![true; laws.len()];
     // the strength at t: top^t times the scene's (t = 1: none beyond, none at its limit)
     let top = mobilised * (1.0 + MARGIN);
     let at = |t: f64| reduced(laws, &every, Reduce::ALL, top.powf(-t));
-    let mut outcome = iterate_cutting(problem, &at(1.0), rule, from, to, h, max_iterations, max_cuts)?;
+    let mut outcome = iterate_cutting(problem, &at(1.0), rule, (from, to), h, budget)?;
     let (mut iterations, mut cuts) = (outcome.summary.iterations, outcome.summary.cuts);
     let mut strengths = vec![top];
     let n = (top.ln() / STEP.ln_1p()).ceil().max(1.0) as usize;
@@ -80,8 +78,8 @@ pub fn iterate_stage(
         Vec::new()
     };
     while let Some((a, b, depth)) = todo.pop() {
-        let saved = (depth < max_cuts).then(|| h.clone());
-        outcome = iterate(problem, &at(b), rule, to, h, max_iterations).map_err(|mut f| {
+        let saved = (depth < budget.cuts).then(|| h.clone());
+        outcome = iterate(problem, &at(b), rule, to, h, budget.at(depth)).map_err(|mut f| {
             f.iteration += iterations;
             f
         })?;

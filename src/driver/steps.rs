@@ -20,6 +20,7 @@ use super::plan::Plan;
 use super::progress::progress;
 use super::ranks::{agree, Ranks};
 use super::run_options::RunOptions;
+use crate::contact::cutting::Budget;
 use crate::contact::system::{Accuracy, InterfaceProblem};
 use crate::contact::traction::ConsistentTraction;
 use crate::contact::{self, History, Outcome, PairLaw};
@@ -326,12 +327,12 @@ impl Step<'_> {
             let solution = problem.solve(&[], lambda, Accuracy::Answer).map_err(|_| ContactError::BondedNotHeld)?;
             return Ok(Answer { d_c: solution.d_c, contact: None });
         }
-        let most = self.scene.solver.max_iterations;
+        let budget = self.run_budget();
         // the initial stage (step 0, from nothing) as a safety trial solves it
         let outcome = if step == 0 {
-            self.iterate_stage(&self.laws, lambda, history, most)
+            self.iterate_stage(&self.laws, lambda, history, budget)
         } else {
-            self.iterate_step(&self.laws, (from, lambda), history, most)
+            self.iterate_step(&self.laws, (from, lambda), history, budget)
         };
         let outcome = outcome.map_err(|f| ContactError::failed(self.model, &self.plan.parts, self.scene, step, f))?;
         out.residual_interface = out.residual_interface.max(outcome.solution.residual);
@@ -355,49 +356,60 @@ impl Step<'_> {
     /// The initial stage on rank 0 with the pairs carrying `laws`, from
     /// nothing (`h` new) to the load factors `to`, as the run solves it:
     /// through the strength ramp where the in-situ stress puts the joints
-    /// beyond `laws` ([`Step::stage_mobilised`]), each piece halved down
-    /// to [`Step::cuts`] times, with at most `max_iterations` per piece.
-    /// The one place that solves the stage, for the run's (step 0), a
-    /// safety trial's and the replay before a search below 1.
+    /// beyond `laws` ([`Step::stage_mobilised`]), each piece halved as
+    /// `budget` says. The one place that solves the stage, for the run's
+    /// (step 0), a safety trial's and the replay before a search below 1.
     pub fn iterate_stage(
         &self,
         laws: &[PairLaw],
         to: &[f64],
         h: &mut History,
-        max_iterations: usize,
+        budget: Budget,
     ) -> Result<Outcome, contact::Failed> {
         let problem = self.problem.expect("rank 0 has the interface");
-        let (zero, rule, cuts) = (vec![0.0; to.len()], self.scene.solver.rule, self.cuts());
+        let (zero, rule) = (vec![0.0; to.len()], self.scene.solver.rule);
         let mobilised = self.stage_mobilised(laws);
-        contact::ramp::iterate_stage(problem, laws, rule, (&zero, to), h, max_iterations, cuts, mobilised)
+        contact::ramp::iterate_stage(problem, laws, rule, (&zero, to), h, budget, mobilised)
     }
 
     /// A load step on rank 0 with the pairs carrying `laws`, from the load
     /// factors `from` (where `h` ended) to `to`, as the run solves it: cut
-    /// in halves down to [`Step::cuts`] times where it does not converge
-    /// ([`contact::cutting`]), with at most `max_iterations` per piece.
-    /// The one place that solves a load step, for the run's and a safety
-    /// trial's.
+    /// in halves where it does not converge as `budget` says
+    /// ([`contact::cutting`]). The one place that solves a load step, for
+    /// the run's and a safety trial's.
     pub fn iterate_step(
         &self,
         laws: &[PairLaw],
         (from, to): (&[f64], &[f64]),
         h: &mut History,
-        max_iterations: usize,
+        budget: Budget,
     ) -> Result<Outcome, contact::Failed> {
         let problem = self.problem.expect("rank 0 has the interface");
-        let (rule, cuts) = (self.scene.solver.rule, self.cuts());
-        contact::cutting::iterate_cutting(problem, laws, rule, from, to, h, max_iterations, cuts)
+        contact::cutting::iterate_cutting(problem, laws, self.scene.solver.rule, (from, to), h, budget)
     }
 
-    /// How many times a step may be halved where it does not converge
-    /// (the paper's rule is kept as the paper has it: no cutting).
-    pub fn cuts(&self) -> usize {
+    /// `max_iterations` for a step and for each of its pieces, halved
+    /// down to `[solver] max_cuts` times where it does not converge (the
+    /// paper's rule is kept as the paper has it: no cutting). A safety
+    /// trial's, which gives the iterations it retries with.
+    pub fn budget(&self, max_iterations: usize) -> Budget {
         let solver = &self.scene.solver;
-        if solver.rule == StateRule::Paper {
-            0
+        Budget::new(max_iterations, if solver.rule == StateRule::Paper { 0 } else { solver.max_cuts })
+    }
+
+    /// The run's: `[solver] max_iterations` a step, and where rigid
+    /// joints fall back to joints that deform when a step does not
+    /// converge ([`super::fallback::eligible`]), at most
+    /// [`contact::cutting::PIECE_ITERATIONS`] a cut piece: the pieces are
+    /// a last try before the fallback, which has ended every corpus scene
+    /// whose rigid step the cuts did not (docs/convergence.md, "A cut
+    /// piece's iterations where the fallback follows").
+    pub fn run_budget(&self) -> Budget {
+        let budget = self.budget(self.scene.solver.max_iterations);
+        if super::fallback::eligible(self.scene) {
+            budget.short_pieces()
         } else {
-            solver.max_cuts
+            budget
         }
     }
 

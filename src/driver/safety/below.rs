@@ -235,13 +235,13 @@ struct Replayed {
 /// held and the failing step's last iterate when it had one (no step when
 /// the stage did not hold).
 fn replay(step: &Step) -> Replay {
-    let (model, solver) = (step.model, &step.scene.solver);
+    let model = step.model;
     let mut h = fresh_history(model, step.problem, &step.laws);
     let stage = match model.stage_factors() {
         None => None,
         Some(factors) => {
             // as the run solved it (through the strength ramp where it needs one)
-            match step.iterate_stage(&step.laws, &factors, &mut h, solver.max_iterations) {
+            match step.iterate_stage(&step.laws, &factors, &mut h, step.run_budget()) {
                 Ok(o) if o.summary.converged => Some((factors, o)),
                 _ => return Replay { stage: None, steps: Vec::new() },
             }
@@ -263,7 +263,7 @@ fn replay_steps(step: &Step, mut h: History) -> Vec<Replayed> {
     for k in 1..=solver.load_steps {
         let lambda: Vec<f64> = model.cases.iter().map(|c| c[k - 1]).collect();
         let before = h.clone();
-        match step.iterate_step(&step.laws, (&from, &lambda), &mut h, solver.max_iterations) {
+        match step.iterate_step(&step.laws, (&from, &lambda), &mut h, step.run_budget()) {
             Ok(o) if o.summary.converged => {
                 from.clone_from(&lambda);
                 held = Some(Replayed { step: k, lambda, outcome: o });

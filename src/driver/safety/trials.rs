@@ -189,7 +189,7 @@ impl<'s, 'a> Trials<'s, 'a> {
         let mut lambda = vec![0.0; model.cases.len()];
         if let Some(factors) = model.stage_factors() {
             lambda = self.varied.lambda(&factors, f);
-            let stage = |h: &mut History, max| step.iterate_stage(&laws, &lambda, h, max);
+            let stage = |h: &mut History, max| step.iterate_stage(&laws, &lambda, h, step.budget(max));
             match self.path_step(f, "the initial stage", &lambda, &mut h, stage) {
                 Ok(o) => {
                     if let Some(top) = o.summary.strengths.first() {
@@ -206,7 +206,7 @@ impl<'s, 'a> Trials<'s, 'a> {
         for k in 0..step.scene.solver.load_steps {
             let to = self.varied.lambda(&model.cases.iter().map(|c| c[k]).collect::<Vec<_>>(), f);
             let from = std::mem::replace(&mut lambda, to);
-            let load = |h: &mut History, max| step.iterate_step(&laws, (&from, &lambda), h, max);
+            let load = |h: &mut History, max| step.iterate_step(&laws, (&from, &lambda), h, step.budget(max));
             match self.path_step(f, &format!("load step {}", k + 1), &lambda, &mut h, load) {
                 Ok(o) => last = Some(o),
                 Err(e) => return self.failed(f, t, e),
