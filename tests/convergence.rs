@@ -35,9 +35,13 @@ fn a_step_that_does_not_converge_is_cut_and_converges_to_the_uncut_answer() {
     let case = Case::new("conv-cut");
     dam(&case, "whole.toml", "max_iterations = 100");
     dam(&case, "cut.toml", "max_iterations = 8\nmax_cuts = 4");
+    let mut said = String::new();
     for (scene, out) in [("whole.toml", "whole"), ("cut.toml", "cut")] {
-        let o = case.cli(&["solve", scene, "--out", out, "--quiet"]);
-        assert!(o.status.success(), "{scene}: {}", String::from_utf8_lossy(&o.stderr));
+        // (the cut one not quiet: its attempts are said as they end)
+        let args = ["solve", scene, "--out", out, "--quiet"];
+        let o = case.cli(if out == "whole" { &args } else { &args[..4] });
+        said = String::from_utf8_lossy(&o.stderr).into_owned();
+        assert!(o.status.success(), "{scene}: {said}");
     }
     let (whole, cut) = (json(&case.dir.join("whole/summary.json")), json(&case.dir.join("cut/summary.json")));
     let its = whole["contact"]["iterations"].as_u64().expect("iterations");
@@ -67,6 +71,12 @@ fn a_step_that_does_not_converge_is_cut_and_converges_to_the_uncut_answer() {
     }
     let report = read(&case.dir.join("cut/report.md"));
     assert!(report.contains(&format!("was cut {cuts} time(s)")), "report says the cuts:\n{report}");
+    // the wait said as it goes: the whole step halved, then each piece
+    let halves = "solving it again in two halves from where it started, up to 8 iterations each";
+    common::cli::says(&said, &["load step 1/1: not converged in 8 iteration(s) (", halves]);
+    let end = pieces.len() - 2;
+    let last = format!("load step 1/1 {} -> 1 of its load: converged in", pieces[end]);
+    assert!(said.contains(&last), "the last piece said:\n{said}");
 }
 
 #[test]

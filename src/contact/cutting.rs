@@ -93,9 +93,24 @@ impl Budget {
     }
 }
 
+/// An attempt of a step that was cut, as it ends: the whole step that is
+/// halved, or a piece. What a caller may tell as a long step goes
+/// ([`iterate_cutting`]'s `told`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Attempt {
+    /// Where it started and ended, as fractions of the step.
+    pub from: f64,
+    pub to: f64,
+    pub iterations: usize,
+    pub converged: bool,
+    /// It did not converge, and is solved again in two halves.
+    pub halved: bool,
+}
+
 /// Runs the load step from the factors `from` (where `h` ended) to `to`,
 /// cutting it in halves down to `budget.cuts` times where the iteration
-/// does not converge. The outcome is the last piece's; its summary counts
+/// does not converge, and handing `told` each [`Attempt`] of a step so
+/// cut as it ends. The outcome is the last piece's; its summary counts
 /// the iterations of every attempt and lists the pieces taken
 /// ([`super::Summary::pieces`]) when the step was cut.
 pub fn iterate_cutting(
@@ -105,6 +120,7 @@ pub fn iterate_cutting(
     (from, to): (&[f64], &[f64]),
     h: &mut History,
     budget: Budget,
+    told: &mut dyn FnMut(Attempt),
 ) -> Result<Outcome, Failed> {
     let max_cuts = budget.cuts;
     let at = |t: f64| -> Vec<f64> { from.iter().zip(to).map(|(a, b)| a + t * (b - a)).collect() };
@@ -127,9 +143,13 @@ pub fn iterate_cutting(
         if let Some(r) = outcome.summary.augmented {
             augmented = Some(r.after(augmented));
         }
-        let ended = outcome.summary.converged || saved.is_none();
-        if outcome.summary.converged {
+        let converged = outcome.summary.converged;
+        let ended = converged || saved.is_none();
+        if converged {
             pieces.push(b);
+        }
+        if depth > 0 || !ended {
+            told(Attempt { from: a, to: b, iterations: outcome.summary.iterations, converged, halved: !ended });
         }
         if ended && (todo.is_empty() || !outcome.summary.converged) {
             outcome.summary.scaled = scaled && !outcome.summary.converged;

@@ -61,13 +61,13 @@ pub fn iterate_stage(
     mobilised: f64,
 ) -> Result<Outcome, Failed> {
     if !(mobilised > 1.0 && mobilised.is_finite()) {
-        return iterate_cutting(problem, laws, rule, (from, to), h, budget);
+        return iterate_cutting(problem, laws, rule, (from, to), h, budget, &mut |_| {});
     }
     let every = vec![true; laws.len()];
     // the strength at t: top^t times the scene's (t = 1: none beyond, none at its limit)
     let top = mobilised * (1.0 + MARGIN);
     let at = |t: f64| reduced(laws, &every, Reduce::ALL, top.powf(-t));
-    let mut outcome = iterate_cutting(problem, &at(1.0), rule, (from, to), h, budget)?;
+    let mut outcome = iterate_cutting(problem, &at(1.0), rule, (from, to), h, budget, &mut |_| {})?;
     let (mut iterations, mut cuts) = (outcome.summary.iterations, outcome.summary.cuts);
     let mut strengths = vec![top];
     let n = (top.ln() / STEP.ln_1p()).ceil().max(1.0) as usize;

@@ -204,7 +204,7 @@ fn attempt(
     // 5.–6. The load steps: contact iteration, recovery; then the safety
     // search when the scene asks for one (a scene that fails at full
     // strength is unsafe as given).
-    let step = steps::Step::new(&scene, &model, &plan, &parts, &ranks)?;
+    let step = steps::Step::new(&scene, &model, &plan, &parts, (&ranks, opts))?;
     let may_fall = matches!(this, Try::Given { may_fall: true });
     let (mut done, safety, failed) = match steps_or_fall(&step, &parts, opts, &ranks, may_fall, to.t0)? {
         Ok(done) => done,

@@ -17,10 +17,10 @@ use std::time::Instant;
 use super::condense::Parts;
 use super::messages::ContactError;
 use super::plan::Plan;
-use super::progress::progress;
+use super::progress::{progress, say};
 use super::ranks::{agree, Ranks};
 use super::run_options::RunOptions;
-use crate::contact::cutting::Budget;
+use crate::contact::cutting::{Attempt, Budget};
 use crate::contact::system::{Accuracy, InterfaceProblem};
 use crate::contact::traction::ConsistentTraction;
 use crate::contact::{self, History, Outcome, PairLaw};
@@ -67,6 +67,8 @@ pub(super) struct Step<'a> {
     /// The scene's pair laws, at full strength.
     pub laws: Vec<PairLaw>,
     traction: Option<ConsistentTraction>,
+    /// Progress lines on stderr (`RunOptions::verbose`).
+    verbose: bool,
 }
 
 impl<'a> Step<'a> {
@@ -76,10 +78,11 @@ impl<'a> Step<'a> {
         model: &'a Model,
         plan: &'a Plan,
         parts: &'a Parts,
-        ranks: &Ranks,
+        (ranks, opts): (&Ranks, &RunOptions),
     ) -> Result<Step<'a>> {
         let traction = agree(ranks.comm(), traction(scene, model, parts.problem.as_ref()).map_err(Into::into))?;
-        Ok(Step { scene, model, plan, problem: parts.problem.as_ref(), laws: laws(model, scene), traction })
+        let (problem, laws, verbose) = (parts.problem.as_ref(), laws(model, scene), opts.verbose);
+        Ok(Step { scene, model, plan, problem, laws, traction, verbose })
     }
 
     /// Whether the steps recover the stresses and the interior
@@ -296,6 +299,20 @@ fn solve(
     Ok((u, contact))
 }
 
+/// The progress line of an attempt of load step `step` of `steps` that
+/// was cut, `seconds` after the last: the whole step halved, or a piece.
+fn attempt_said((step, steps): (usize, usize), a: Attempt, budget: Budget, seconds: f64) -> String {
+    let whole = (a.from, a.to) == (0.0, 1.0);
+    let of = if whole { String::new() } else { format!(" {} -> {} of its load", a.from, a.to) };
+    let (its, end) = (a.iterations, if a.converged { "converged" } else { "not converged" });
+    let then = if a.halved {
+        format!(": solving it again in two halves from where it started, up to {} iterations each", budget.piece)
+    } else {
+        String::new()
+    };
+    format!("load step {step}/{steps}{of}: {end} in {its} iteration(s) ({seconds:.1} s){then}")
+}
+
 /// Takes the initial stage's displacements off a step's.
 pub(super) fn reset(u: &mut [f64], stage: Option<&InitialStage>) {
     if let Some(s) = stage {
@@ -332,7 +349,15 @@ impl Step<'_> {
         let outcome = if step == 0 {
             self.iterate_stage(&self.laws, lambda, history, budget)
         } else {
-            self.iterate_step(&self.laws, (from, lambda), history, budget)
+            // a cut step's attempts as they end: a long wait, said
+            let (n, mut t) = (self.scene.solver.load_steps, Instant::now());
+            let mut told = |a: Attempt| {
+                if self.verbose {
+                    say(&attempt_said((step, n), a, budget, t.elapsed().as_secs_f64()));
+                }
+                t = Instant::now();
+            };
+            self.iterate_step(&self.laws, (from, lambda), history, budget, &mut told)
         };
         let outcome = outcome.map_err(|f| ContactError::failed(self.model, &self.plan.parts, self.scene, step, f))?;
         out.residual_interface = out.residual_interface.max(outcome.solution.residual);
@@ -375,17 +400,19 @@ impl Step<'_> {
     /// A load step on rank 0 with the pairs carrying `laws`, from the load
     /// factors `from` (where `h` ended) to `to`, as the run solves it: cut
     /// in halves where it does not converge as `budget` says
-    /// ([`contact::cutting`]). The one place that solves a load step, for
-    /// the run's and a safety trial's.
+    /// ([`contact::cutting`]), each attempt of a cut step `told` as it
+    /// ends. The one place that solves a load step, for the run's and a
+    /// safety trial's.
     pub fn iterate_step(
         &self,
         laws: &[PairLaw],
         (from, to): (&[f64], &[f64]),
         h: &mut History,
         budget: Budget,
+        told: &mut dyn FnMut(Attempt),
     ) -> Result<Outcome, contact::Failed> {
         let problem = self.problem.expect("rank 0 has the interface");
-        contact::cutting::iterate_cutting(problem, laws, self.scene.solver.rule, (from, to), h, budget)
+        contact::cutting::iterate_cutting(problem, laws, self.scene.solver.rule, (from, to), h, budget, told)
     }
 
     /// `max_iterations` for a step and for each of its pieces, halved
@@ -468,4 +495,22 @@ fn traction(
         return Ok(None);
     }
     ConsistentTraction::new(model).map(Some).map_err(|e| ContactError::Traction { reason: e })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_cut_steps_attempts_are_said_with_their_share_of_the_load() {
+        let budget = Budget::new(100, 3).short_pieces();
+        let at = |from, to, converged, halved| Attempt { from, to, iterations: 30, converged, halved };
+        let whole = attempt_said((3, 4), Attempt { iterations: 100, ..at(0.0, 1.0, false, true) }, budget, 44.8);
+        assert_eq!(whole, "load step 3/4: not converged in 100 iteration(s) (44.8 s): solving it again in two halves from where it started, up to 30 iterations each");
+        let held = attempt_said((3, 4), Attempt { iterations: 3, ..at(0.75, 0.875, true, false) }, budget, 0.6);
+        assert_eq!(held, "load step 3/4 0.75 -> 0.875 of its load: converged in 3 iteration(s) (0.6 s)");
+        // the deepest piece that does not converge ends the step: no halves
+        let last = attempt_said((3, 4), at(0.875, 1.0, false, false), budget, 5.6);
+        assert_eq!(last, "load step 3/4 0.875 -> 1 of its load: not converged in 30 iteration(s) (5.6 s)");
+    }
 }

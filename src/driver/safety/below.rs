@@ -263,7 +263,7 @@ fn replay_steps(step: &Step, mut h: History) -> Vec<Replayed> {
     for k in 1..=solver.load_steps {
         let lambda: Vec<f64> = model.cases.iter().map(|c| c[k - 1]).collect();
         let before = h.clone();
-        match step.iterate_step(&step.laws, (&from, &lambda), &mut h, step.run_budget()) {
+        match step.iterate_step(&step.laws, (&from, &lambda), &mut h, step.run_budget(), &mut |_| {}) {
             Ok(o) if o.summary.converged => {
                 from.clone_from(&lambda);
                 held = Some(Replayed { step: k, lambda, outcome: o });

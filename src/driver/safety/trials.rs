@@ -206,7 +206,8 @@ impl<'s, 'a> Trials<'s, 'a> {
         for k in 0..step.scene.solver.load_steps {
             let to = self.varied.lambda(&model.cases.iter().map(|c| c[k]).collect::<Vec<_>>(), f);
             let from = std::mem::replace(&mut lambda, to);
-            let load = |h: &mut History, max| step.iterate_step(&laws, (&from, &lambda), h, step.budget(max));
+            let load =
+                |h: &mut History, max| step.iterate_step(&laws, (&from, &lambda), h, step.budget(max), &mut |_| {});
             match self.path_step(f, &format!("load step {}", k + 1), &lambda, &mut h, load) {
                 Ok(o) => last = Some(o),
                 Err(e) => return self.failed(f, t, e),
