@@ -122,7 +122,6 @@ pub fn iterate_cutting(
     budget: Budget,
     told: &mut dyn FnMut(Attempt),
 ) -> Result<Outcome, Failed> {
-    let max_cuts = budget.cuts;
     let at = |t: f64| -> Vec<f64> { from.iter().zip(to).map(|(a, b)| a + t * (b - a)).collect() };
     // pieces still to solve, the next on top: (start, end, depth) as fractions of the step
     let mut todo = vec![(0.0, 1.0, 0usize)];
@@ -131,8 +130,8 @@ pub fn iterate_cutting(
     let mut cuts = 0;
     loop {
         let (a, b, depth) = todo.pop().expect("a piece is left until the last one ends the loop");
-        let scaled = depth < max_cuts && scales(problem, laws, &at(a), h);
-        let saved = (depth < max_cuts && !scaled).then(|| (h.clone(), problem.warm_start()));
+        let scaled = depth < budget.cuts && scales(problem, laws, &at(a), h);
+        let saved = (depth < budget.cuts && !scaled).then(|| (h.clone(), problem.warm_start()));
         let mut outcome = iterate(problem, laws, rule, &at(b), h, budget.at(depth)).map_err(|mut f| {
             f.iteration += iterations;
             f.augmented = f.augmented.map(|r| r.after(augmented)).or(augmented);
@@ -151,19 +150,19 @@ pub fn iterate_cutting(
         if depth > 0 || !ended {
             told(Attempt { from: a, to: b, iterations: outcome.summary.iterations, converged, halved: !ended });
         }
-        if ended && (todo.is_empty() || !outcome.summary.converged) {
-            outcome.summary.scaled = scaled && !outcome.summary.converged;
+        if ended && (todo.is_empty() || !converged) {
+            outcome.summary.scaled = scaled && !converged;
             outcome.summary.iterations = iterations;
             outcome.summary.tight_resolves = resolves;
             outcome.summary.augmented = augmented;
             outcome.summary.cuts = cuts;
             if cuts > 0 {
                 outcome.summary.pieces = pieces;
-                outcome.summary.stopped_at = (!outcome.summary.converged).then_some((a, b));
+                outcome.summary.stopped_at = (!converged).then_some((a, b));
             }
             return Ok(outcome);
         }
-        if let Some((saved, start)) = saved.filter(|_| !outcome.summary.converged) {
+        if let Some((saved, start)) = saved.filter(|_| !converged) {
             *h = saved;
             problem.start_from(&start);
             cuts += 1;

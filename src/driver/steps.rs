@@ -17,7 +17,7 @@ use std::time::Instant;
 use super::condense::Parts;
 use super::messages::ContactError;
 use super::plan::Plan;
-use super::progress::{progress, say};
+use super::progress::progress;
 use super::ranks::{agree, Ranks};
 use super::run_options::RunOptions;
 use crate::contact::cutting::{Attempt, Budget};
@@ -67,8 +67,8 @@ pub(super) struct Step<'a> {
     /// The scene's pair laws, at full strength.
     pub laws: Vec<PairLaw>,
     traction: Option<ConsistentTraction>,
-    /// Progress lines on stderr (`RunOptions::verbose`).
-    verbose: bool,
+    /// What the run was asked (its progress lines).
+    opts: &'a RunOptions,
 }
 
 impl<'a> Step<'a> {
@@ -78,11 +78,11 @@ impl<'a> Step<'a> {
         model: &'a Model,
         plan: &'a Plan,
         parts: &'a Parts,
-        (ranks, opts): (&Ranks, &RunOptions),
+        (ranks, opts): (&Ranks, &'a RunOptions),
     ) -> Result<Step<'a>> {
         let traction = agree(ranks.comm(), traction(scene, model, parts.problem.as_ref()).map_err(Into::into))?;
-        let (problem, laws, verbose) = (parts.problem.as_ref(), laws(model, scene), opts.verbose);
-        Ok(Step { scene, model, plan, problem, laws, traction, verbose })
+        let (problem, laws) = (parts.problem.as_ref(), laws(model, scene));
+        Ok(Step { scene, model, plan, problem, laws, traction, opts })
     }
 
     /// Whether the steps recover the stresses and the interior
@@ -352,9 +352,7 @@ impl Step<'_> {
             // a cut step's attempts as they end: a long wait, said
             let (n, mut t) = (self.scene.solver.load_steps, Instant::now());
             let mut told = |a: Attempt| {
-                if self.verbose {
-                    say(&attempt_said((step, n), a, budget, t.elapsed().as_secs_f64()));
-                }
+                progress(self.opts, &attempt_said((step, n), a, budget, t.elapsed().as_secs_f64()));
                 t = Instant::now();
             };
             self.iterate_step(&self.laws, (from, lambda), history, budget, &mut told)
