@@ -322,6 +322,12 @@ impl Search {
         false
     }
 
+    /// Whether the search is over for the step (solved, or every
+    /// candidate rejected): it changes no verdict from now on.
+    pub fn done(&self) -> bool {
+        matches!(self.mode, Mode::Done)
+    }
+
     /// Whether pair `p` is held at a candidate now.
     pub fn pins(&self, p: usize) -> bool {
         matches!(&self.mode, Mode::Pinned(pin) if pin.pairs.contains(&p))

@@ -103,6 +103,8 @@ pub struct Attempt {
     pub to: f64,
     pub iterations: usize,
     pub converged: bool,
+    /// It stopped in a closed orbit of state sets (`Stop::Cycled`).
+    pub cycled: bool,
     /// It did not converge, and is solved again in two halves.
     pub halved: bool,
 }
@@ -148,7 +150,8 @@ pub fn iterate_cutting(
             pieces.push(b);
         }
         if depth > 0 || !ended {
-            told(Attempt { from: a, to: b, iterations: outcome.summary.iterations, converged, halved: !ended });
+            let (iterations, cycled) = (outcome.summary.iterations, outcome.summary.cycled());
+            told(Attempt { from: a, to: b, iterations, converged, cycled, halved: !ended });
         }
         if ended && (todo.is_empty() || !converged) {
             outcome.summary.scaled = scaled && !converged;

@@ -45,6 +45,7 @@ pub mod mechanism;
 pub mod mobility;
 pub mod newton;
 pub mod options;
+mod orbit;
 pub mod outcome;
 pub mod pair_law;
 pub mod paper_rule;

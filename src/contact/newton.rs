@@ -48,7 +48,7 @@ use super::history::{cracked, forget_step_cracks, law_at, opened_twice, History}
 use super::iteration::{Next, Rule, Verdict};
 use super::law::{friction_bound, judge, reads_stiffness, stiffness_in, ContactState, Trial};
 use super::options::SlipLaw;
-use super::outcome::Summary;
+use super::outcome::{Stop, Summary};
 use super::pair_law::{limit, PairLaw};
 use super::system::{InterfaceProblem, InterfaceSolution, Limit, Relation};
 use crate::fem::vec3::{dot, norm, sub};
@@ -150,6 +150,9 @@ pub(super) struct Newton<'p> {
     /// Each pair's in-situ force at this step's factor (empty without
     /// one): where its junction's share starts from.
     prior: Vec<[f64; 3]>,
+    /// Each verdict's friction residual this step, beside the summary's
+    /// state sets: where they close an orbit ([`super::orbit`]).
+    residuals: Vec<f64>,
 }
 
 /// Every pair's next state, and how far each changing pair is from its
@@ -186,6 +189,7 @@ impl<'p> Newton<'p> {
             breaking_from: None,
             search: Search::default(),
             prior: h.insitu.iter().map(|f| f.map(|x| factor * x)).collect(),
+            residuals: Vec::new(),
         }
     }
 
@@ -610,6 +614,33 @@ impl Newton<'_> {
     }
 }
 
+impl Newton<'_> {
+    /// The directions of the pairs that slip `next` (3. of the iteration;
+    /// a fallback where ξ vanishes), with the stiffness of those that
+    /// start slipping formed together, and every pair's normal stress.
+    fn keep_directions(
+        &self,
+        h: &mut History,
+        lines: &[Option<[f64; 3]>],
+        next: &[ContactState],
+        solution: &InterfaceSolution,
+    ) {
+        self.problem.prepare_stiffness((0..next.len()).filter(|&p| next[p] == ContactState::Slip));
+        for (p, &line) in lines.iter().enumerate() {
+            if next[p] == ContactState::Slip {
+                let slip = sub(tangential(self.rel[p]), self.reference[p]);
+                let c = self.problem.stiffness(p);
+                let xi = along([0.0, self.force[p][1] + c * slip[1], self.force[p][2] + c * slip[2]], line);
+                let l = norm(xi);
+                if l > 0.0 {
+                    h.dir[p] = [0.0, xi[1] / l, xi[2] / l];
+                }
+            }
+            h.sigma_n[p] = solution.pairs[p].sigma_n;
+        }
+    }
+}
+
 impl Rule for Newton<'_> {
     fn relations(&self, h: &History) -> Vec<Relation> {
         // the stiffness the relations and the next verdict read of slipping
@@ -647,6 +678,7 @@ impl Rule for Newton<'_> {
         // set held (an iterative solve resolves the forces only to its residual)
         let lines = self.problem.slip_lines(&h.states);
         let mut judged = self.next_states(h, &lines);
+        self.residuals.push(judged.residual);
         let tolerance = (FORCE_TOL * judged.scale_f).max(solution.accuracy);
         let settled = judged.residual <= tolerance;
         let tight = !solution.loose && !solution.inexact;
@@ -685,23 +717,13 @@ impl Rule for Newton<'_> {
             (0..judged.next.len()).filter(|&p| self.search.pins(p) && judged.next[p] == ContactState::Stick);
         forget_step_cracks(h, held_stuck);
         summary.apex_openings += self.apex_openings(h, &judged.next);
-        // 3. directions of slipping pairs (a fallback where ξ vanishes),
-        // with the stiffness of those that start slipping formed together
-        self.problem.prepare_stiffness((0..judged.next.len()).filter(|&p| judged.next[p] == ContactState::Slip));
-        for (p, &line) in lines.iter().enumerate() {
-            if judged.next[p] == ContactState::Slip {
-                let slip = sub(tangential(self.rel[p]), self.reference[p]);
-                let c = self.problem.stiffness(p);
-                let xi = along([0.0, self.force[p][1] + c * slip[1], self.force[p][2] + c * slip[2]], line);
-                let l = norm(xi);
-                if l > 0.0 {
-                    h.dir[p] = [0.0, xi[1] / l, xi[2] / l];
-                }
-            }
-            h.sigma_n[p] = solution.pairs[p].sigma_n;
-        }
+        self.keep_directions(h, &lines, &judged.next, solution);
         self.judged_from.clone_from(&h.states);
         self.violation = judged.violation;
+        // an orbit the search has nothing left to change repeats for ever
+        if self.search.done() && super::orbit::period(&summary.history, &self.residuals).is_some() {
+            summary.stop = Some(Stop::Cycled);
+        }
         Verdict { next: Next::States(judged.next), settled, law: judged.residual }
     }
 

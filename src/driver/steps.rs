@@ -305,12 +305,13 @@ fn attempt_said((step, steps): (usize, usize), a: Attempt, budget: Budget, secon
     let whole = (a.from, a.to) == (0.0, 1.0);
     let of = if whole { String::new() } else { format!(" {} -> {} of its load", a.from, a.to) };
     let (its, end) = (a.iterations, if a.converged { "converged" } else { "not converged" });
+    let why = if a.cycled { ", the states cycling" } else { "" };
     let then = if a.halved {
         format!(": solving it again in two halves from where it started, up to {} iterations each", budget.piece)
     } else {
         String::new()
     };
-    format!("load step {step}/{steps}{of}: {end} in {its} iteration(s) ({seconds:.1} s){then}")
+    format!("load step {step}/{steps}{of}: {end} in {its} iteration(s){why} ({seconds:.1} s){then}")
 }
 
 /// Takes the initial stage's displacements off a step's.
@@ -502,9 +503,13 @@ mod tests {
     #[test]
     fn a_cut_steps_attempts_are_said_with_their_share_of_the_load() {
         let budget = Budget::new(100, 3).short_pieces();
-        let at = |from, to, converged, halved| Attempt { from, to, iterations: 30, converged, halved };
+        let at = |from, to, converged, halved| Attempt { from, to, iterations: 30, converged, cycled: false, halved };
         let whole = attempt_said((3, 4), Attempt { iterations: 100, ..at(0.0, 1.0, false, true) }, budget, 44.8);
         assert_eq!(whole, "load step 3/4: not converged in 100 iteration(s) (44.8 s): solving it again in two halves from where it started, up to 30 iterations each");
+        // one that stopped in an orbit says so
+        let orbit =
+            attempt_said((2, 2), Attempt { iterations: 57, cycled: true, ..at(0.0, 1.0, false, true) }, budget, 35.4);
+        assert_eq!(orbit, "load step 2/2: not converged in 57 iteration(s), the states cycling (35.4 s): solving it again in two halves from where it started, up to 30 iterations each");
         let held = attempt_said((3, 4), Attempt { iterations: 3, ..at(0.75, 0.875, true, false) }, budget, 0.6);
         assert_eq!(held, "load step 3/4 0.75 -> 0.875 of its load: converged in 3 iteration(s) (0.6 s)");
         // the deepest piece that does not converge ends the step: no halves
