@@ -612,9 +612,7 @@ impl Newton<'_> {
         let f = self.force[p];
         std::array::from_fn(|i| side * (f[1] * frame[1][i] + f[2] * frame[2][i]))
     }
-}
 
-impl Newton<'_> {
     /// The directions of the pairs that slip `next` (3. of the iteration;
     /// a fallback where ξ vanishes), with the stiffness of those that
     /// start slipping formed together, and every pair's normal stress.
