@@ -150,8 +150,9 @@ pub fn iterate_cutting(
             pieces.push(b);
         }
         if depth > 0 || !ended {
-            let (iterations, cycled) = (outcome.summary.iterations, outcome.summary.cycled());
-            told(Attempt { from: a, to: b, iterations, converged, cycled, halved: !ended });
+            let summary = &outcome.summary;
+            let (its, cycled) = (summary.iterations, summary.cycled());
+            told(Attempt { from: a, to: b, iterations: its, converged, cycled, halved: !ended });
         }
         if ended && (todo.is_empty() || !converged) {
             outcome.summary.scaled = scaled && !converged;
