@@ -117,6 +117,28 @@ fn run(name: &str, toml: &str) -> (Case, Run) {
     (case, run)
 }
 
+/// A piece of the stage's strength ramp that does not converge is halved
+/// as a load step is, and each attempt is said on the terminal as it
+/// ends, with the joints' strengths it ran between: the in-situ stress at
+/// k0 = 0.25 mobilises the joint up to 1.060, so the ramp starts at
+/// 1.071 times its strength and comes down in three pieces (1.047 the
+/// first's end). Two iterations a piece are too few here (three are
+/// enough), and one cut leaves the stage unconverged.
+#[test]
+fn a_stage_piece_halved_is_said_with_its_strengths() {
+    let case = Case::new("stage-said");
+    case.write("box.geo", GEO);
+    let solver = "initial_stage = true\nmax_iterations = 2\nmax_cuts = 1\nrigid_fallback = false";
+    case.write("box.toml", &scene(0.25, true, "").replace("initial_stage = true", solver));
+    let o = case.cli(&["solve", "box.toml", "--out", "box"]);
+    let said = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "two iterations a piece and one cut do not end the stage:\n{said}");
+    let first = "initial stage, the joints' strength 1.071 -> 1.047 times theirs: not converged in 2 iteration(s) (";
+    let halves = "solving it again in two halves from where it started, up to 2 iterations each";
+    let half = "initial stage, the joints' strength 1.071 -> 1.059 times theirs: not converged in 2 iteration(s) (";
+    common::cli::says(&said, &[first, halves, half]);
+}
+
 /// The weight alone would move the top by rho g H^2 / (2 M), M the
 /// constrained modulus: the displacement that "nothing moves" is measured
 /// against.

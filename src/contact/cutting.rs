@@ -107,6 +107,10 @@ pub struct Attempt {
     pub cycled: bool,
     /// It did not converge, and is solved again in two halves.
     pub halved: bool,
+    /// A piece of the initial stage's strength ramp ([`super::ramp`]):
+    /// the joints' strength where it starts and ends, as multiples of
+    /// theirs (`from` and `to` are then fractions of the ramp).
+    pub strength: Option<(f64, f64)>,
 }
 
 /// Runs the load step from the factors `from` (where `h` ended) to `to`,
@@ -152,7 +156,7 @@ pub fn iterate_cutting(
         if depth > 0 || !ended {
             let summary = &outcome.summary;
             let (its, cycled) = (summary.iterations, summary.cycled());
-            told(Attempt { from: a, to: b, iterations: its, converged, cycled, halved: !ended });
+            told(Attempt { from: a, to: b, iterations: its, converged, cycled, halved: !ended, strength: None });
         }
         if ended && (todo.is_empty() || !converged) {
             outcome.summary.scaled = scaled && !converged;

@@ -24,7 +24,7 @@
 //! A piece that does not converge is halved, as a load step is, down to
 //! `max_cuts` times; one that still does not ends the stage unconverged.
 
-use super::cutting::{iterate_cutting, Budget};
+use super::cutting::{iterate_cutting, Attempt, Budget};
 use super::history::History;
 use super::iterate;
 use super::options::StateRule;
@@ -50,24 +50,27 @@ const MARGIN: f64 = 0.01;
 /// `mobilised` (1 or less: the stage is solved as a load step is, by
 /// [`iterate_cutting`]). The outcome is the last piece's; its summary
 /// counts every piece's iterations and halvings and lists the strength
-/// factors the pieces ended at ([`super::Summary::strengths`]).
+/// factors the pieces ended at ([`super::Summary::strengths`]). `told`
+/// hears each [`Attempt`] as it ends where the stage (or its first solve
+/// at the raised strength) is halved as a load step is, or a piece of the
+/// ramp is (with the strengths it runs between).
 pub fn iterate_stage(
     problem: &InterfaceProblem,
-    laws: &[PairLaw],
+    (laws, mobilised): (&[PairLaw], f64),
     rule: StateRule,
     (from, to): (&[f64], &[f64]),
     h: &mut History,
     budget: Budget,
-    mobilised: f64,
+    told: &mut dyn FnMut(Attempt),
 ) -> Result<Outcome, Failed> {
     if !(mobilised > 1.0 && mobilised.is_finite()) {
-        return iterate_cutting(problem, laws, rule, (from, to), h, budget, &mut |_| {});
+        return iterate_cutting(problem, laws, rule, (from, to), h, budget, told);
     }
     let every = vec![true; laws.len()];
     // the strength at t: top^t times the scene's (t = 1: none beyond, none at its limit)
     let top = mobilised * (1.0 + MARGIN);
     let at = |t: f64| reduced(laws, &every, Reduce::ALL, top.powf(-t));
-    let mut outcome = iterate_cutting(problem, &at(1.0), rule, (from, to), h, budget, &mut |_| {})?;
+    let mut outcome = iterate_cutting(problem, &at(1.0), rule, (from, to), h, budget, told)?;
     let (mut iterations, mut cuts) = (outcome.summary.iterations, outcome.summary.cuts);
     let mut strengths = vec![top];
     let n = (top.ln() / STEP.ln_1p()).ceil().max(1.0) as usize;
@@ -84,7 +87,14 @@ pub fn iterate_stage(
             f
         })?;
         iterations += outcome.summary.iterations;
-        if outcome.summary.converged {
+        let summary = &outcome.summary;
+        let converged = summary.converged;
+        let halved = !converged && saved.is_some();
+        if depth > 0 || halved {
+            let (its, cycled, strength) = (summary.iterations, summary.cycled(), Some((top.powf(a), top.powf(b))));
+            told(Attempt { from: a, to: b, iterations: its, converged, cycled, halved, strength });
+        }
+        if converged {
             strengths.push(top.powf(b));
             continue;
         }

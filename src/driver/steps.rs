@@ -299,11 +299,15 @@ fn solve(
     Ok((u, contact))
 }
 
-/// The progress line of an attempt of load step `step` of `steps` that
-/// was cut, `seconds` after the last: the whole step halved, or a piece.
-fn attempt_said((step, steps): (usize, usize), a: Attempt, budget: Budget, seconds: f64) -> String {
-    let whole = (a.from, a.to) == (0.0, 1.0);
-    let of = if whole { String::new() } else { format!(" {} -> {} of its load", a.from, a.to) };
+/// The progress line of an attempt of `what` ("load step 3/4", "initial
+/// stage") that was cut, `seconds` after the last: the whole step halved,
+/// or a piece.
+fn attempt_said(what: &str, a: Attempt, budget: Budget, seconds: f64) -> String {
+    let of = match a.strength {
+        Some((from, to)) => format!(", the joints' strength {from:.3} -> {to:.3} times theirs"),
+        None if (a.from, a.to) == (0.0, 1.0) => String::new(),
+        None => format!(" {} -> {} of its load", a.from, a.to),
+    };
     let (its, end) = (a.iterations, if a.converged { "converged" } else { "not converged" });
     let why = if a.cycled { ", the states cycling" } else { "" };
     let then = if a.halved {
@@ -311,7 +315,7 @@ fn attempt_said((step, steps): (usize, usize), a: Attempt, budget: Budget, secon
     } else {
         String::new()
     };
-    format!("load step {step}/{steps}{of}: {end} in {its} iteration(s){why} ({seconds:.1} s){then}")
+    format!("{what}{of}: {end} in {its} iteration(s){why} ({seconds:.1} s){then}")
 }
 
 /// Takes the initial stage's displacements off a step's.
@@ -346,16 +350,20 @@ impl Step<'_> {
             return Ok(Answer { d_c: solution.d_c, contact: None });
         }
         let budget = self.run_budget();
+        // a cut step's attempts as they end: a long wait, said
+        let what = match step {
+            0 => "initial stage".to_string(),
+            _ => format!("load step {step}/{}", self.scene.solver.load_steps),
+        };
+        let mut t = Instant::now();
+        let mut told = |a: Attempt| {
+            progress(self.opts, &attempt_said(&what, a, budget, t.elapsed().as_secs_f64()));
+            t = Instant::now();
+        };
         // the initial stage (step 0, from nothing) as a safety trial solves it
         let outcome = if step == 0 {
-            self.iterate_stage(&self.laws, lambda, history, budget)
+            self.iterate_stage(&self.laws, lambda, history, budget, &mut told)
         } else {
-            // a cut step's attempts as they end: a long wait, said
-            let (n, mut t) = (self.scene.solver.load_steps, Instant::now());
-            let mut told = |a: Attempt| {
-                progress(self.opts, &attempt_said((step, n), a, budget, t.elapsed().as_secs_f64()));
-                t = Instant::now();
-            };
             self.iterate_step(&self.laws, (from, lambda), history, budget, &mut told)
         };
         let outcome = outcome.map_err(|f| ContactError::failed(self.model, &self.plan.parts, self.scene, step, f))?;
@@ -381,19 +389,21 @@ impl Step<'_> {
     /// nothing (`h` new) to the load factors `to`, as the run solves it:
     /// through the strength ramp where the in-situ stress puts the joints
     /// beyond `laws` ([`Step::stage_mobilised`]), each piece halved as
-    /// `budget` says. The one place that solves the stage, for the run's
-    /// (step 0), a safety trial's and the replay before a search below 1.
+    /// `budget` says, each attempt of a stage so halved `told` as it ends.
+    /// The one place that solves the stage, for the run's (step 0), a
+    /// safety trial's and the replay before a search below 1.
     pub fn iterate_stage(
         &self,
         laws: &[PairLaw],
         to: &[f64],
         h: &mut History,
         budget: Budget,
+        told: &mut dyn FnMut(Attempt),
     ) -> Result<Outcome, contact::Failed> {
         let problem = self.problem.expect("rank 0 has the interface");
         let (zero, rule) = (vec![0.0; to.len()], self.scene.solver.rule);
         let mobilised = self.stage_mobilised(laws);
-        contact::ramp::iterate_stage(problem, laws, rule, (&zero, to), h, budget, mobilised)
+        contact::ramp::iterate_stage(problem, (laws, mobilised), rule, (&zero, to), h, budget, told)
     }
 
     /// A load step on rank 0 with the pairs carrying `laws`, from the load
@@ -503,17 +513,40 @@ mod tests {
     #[test]
     fn a_cut_steps_attempts_are_said_with_their_share_of_the_load() {
         let budget = Budget::new(100, 3).short_pieces();
-        let at = |from, to, converged, halved| Attempt { from, to, iterations: 30, converged, cycled: false, halved };
-        let whole = attempt_said((3, 4), Attempt { iterations: 100, ..at(0.0, 1.0, false, true) }, budget, 44.8);
+        let at = |from, to, converged, halved| Attempt {
+            from,
+            to,
+            iterations: 30,
+            converged,
+            cycled: false,
+            halved,
+            strength: None,
+        };
+        let whole =
+            attempt_said("load step 3/4", Attempt { iterations: 100, ..at(0.0, 1.0, false, true) }, budget, 44.8);
         assert_eq!(whole, "load step 3/4: not converged in 100 iteration(s) (44.8 s): solving it again in two halves from where it started, up to 30 iterations each");
         // one that stopped in an orbit says so
-        let orbit =
-            attempt_said((2, 2), Attempt { iterations: 57, cycled: true, ..at(0.0, 1.0, false, true) }, budget, 35.4);
+        let orbit = attempt_said(
+            "load step 2/2",
+            Attempt { iterations: 57, cycled: true, ..at(0.0, 1.0, false, true) },
+            budget,
+            35.4,
+        );
         assert_eq!(orbit, "load step 2/2: not converged in 57 iteration(s), the states cycling (35.4 s): solving it again in two halves from where it started, up to 30 iterations each");
-        let held = attempt_said((3, 4), Attempt { iterations: 3, ..at(0.75, 0.875, true, false) }, budget, 0.6);
+        let held =
+            attempt_said("load step 3/4", Attempt { iterations: 3, ..at(0.75, 0.875, true, false) }, budget, 0.6);
         assert_eq!(held, "load step 3/4 0.75 -> 0.875 of its load: converged in 3 iteration(s) (0.6 s)");
         // the deepest piece that does not converge ends the step: no halves
-        let last = attempt_said((3, 4), at(0.875, 1.0, false, false), budget, 5.6);
+        let last = attempt_said("load step 3/4", at(0.875, 1.0, false, false), budget, 5.6);
         assert_eq!(last, "load step 3/4 0.875 -> 1 of its load: not converged in 30 iteration(s) (5.6 s)");
+        // an initial stage cut as a load step is
+        let stage = attempt_said("initial stage", at(0.0, 0.5, true, false), budget, 1.2);
+        assert_eq!(stage, "initial stage 0 -> 0.5 of its load: converged in 30 iteration(s) (1.2 s)");
+        // and a piece of its strength ramp says the strengths
+        let piece = Attempt { strength: Some((1.0707, 1.0353)), ..at(1.0, 0.5, false, true) };
+        assert_eq!(
+            attempt_said("initial stage", piece, budget, 0.3),
+            "initial stage, the joints' strength 1.071 -> 1.035 times theirs: not converged in 30 iteration(s) (0.3 s): solving it again in two halves from where it started, up to 30 iterations each"
+        );
     }
 }

@@ -241,7 +241,7 @@ fn replay(step: &Step) -> Replay {
         None => None,
         Some(factors) => {
             // as the run solved it (through the strength ramp where it needs one)
-            match step.iterate_stage(&step.laws, &factors, &mut h, step.run_budget()) {
+            match step.iterate_stage(&step.laws, &factors, &mut h, step.run_budget(), &mut |_| {}) {
                 Ok(o) if o.summary.converged => Some((factors, o)),
                 _ => return Replay { stage: None, steps: Vec::new() },
             }

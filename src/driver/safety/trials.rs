@@ -189,7 +189,7 @@ impl<'s, 'a> Trials<'s, 'a> {
         let mut lambda = vec![0.0; model.cases.len()];
         if let Some(factors) = model.stage_factors() {
             lambda = self.varied.lambda(&factors, f);
-            let stage = |h: &mut History, max| step.iterate_stage(&laws, &lambda, h, step.budget(max));
+            let stage = |h: &mut History, max| step.iterate_stage(&laws, &lambda, h, step.budget(max), &mut |_| {});
             match self.path_step(f, "the initial stage", &lambda, &mut h, stage) {
                 Ok(o) => {
                     if let Some(top) = o.summary.strengths.first() {
