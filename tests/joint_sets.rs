@@ -226,6 +226,43 @@ fn cube_scene(case: &Case, extra: &str) -> std::path::PathBuf {
     case.write("cube.toml", &text)
 }
 
+/// Two single joints whose traces meet the cube's back edge 1 mm apart
+/// (the plane x = 5, and one of dip 45 / 045 through (4.999, 10, 10))
+/// cross 0.7 mm inside it and cut a corner block a hair thick, which
+/// `merge_slivers` bonds across its face on B. Its face on A stays a
+/// contact, three pairs of 1e-7 m² where A's median pair has 2.6 m², as
+/// tests/corpus/dam3d.toml's two sets left at its side
+/// (docs/convergence.md): `check` says so, naming the group and the place.
+/// Moved 0.5 m apart, the joints cut none and it says nothing.
+#[test]
+fn joints_whose_traces_meet_a_hair_apart_are_said() {
+    let case = Case::new("sets-hairline");
+    case.write("cube.geo", CUBE_GEO);
+    let scene = |offset: f64| {
+        let joint = |name: &str, dip: f64, dd: f64, offset: f64| {
+            format!("[[joint_sets]]\nname = \"{name}\"\ndip = {dip}\ndip_direction = {dd}\nspacing = 100.0\noffset = {offset}\nfriction = 0.6\n")
+        };
+        format!(
+            "mesh = \"cube.geo\"\nanalysis = \"solid\"\nmerge_slivers = true\n[materials.rock]\nE = 1000.0\nnu = 0.25\n[[bodies]]\ngroup = \"rock\"\nmaterial = \"rock\"\n{}{}[[supports]]\ngroup = \"base\"\nfix = [\"x\", \"y\", \"z\"]\n[[loads]]\ngroup = \"top\"\npressure = 1.0\n",
+            joint("A", 90.0, 90.0, 5.0),
+            joint("B", 45.0, 45.0, offset)
+        )
+    };
+    // n . (4.999, 10, 10) with n = (1/2, 1/2, 1/sqrt 2)
+    let through = 0.5 * 4.999 + 0.5 * 10.0 + 10.0 / 2f64.sqrt();
+    let check = |name: &str, offset: f64| {
+        let o = case.cli(&["check", &case.write(name, &scene(offset)).to_string_lossy()]);
+        let said = String::from_utf8_lossy(&o.stderr).into_owned();
+        assert!(o.status.success(), "{said}");
+        said
+    };
+    let said = check("hair.toml", through);
+    let a = "contact \"A\" has 3 pair(s)";
+    common::cli::says(&said, &[a, "a facet a hair wide", "at (5.000, 9.999, 10.000)", "Move one joint set's offset"]);
+    let apart = check("apart.toml", through + 0.5);
+    assert!(!apart.contains("hair"), "traces 0.7 m apart are no hairline:\n{apart}");
+}
+
 /// Done-when 2 of issue 31: the user's support and load groups survive
 /// the cutting. Every face of the cube is a group; the joints cut each
 /// into pieces, which keep its area, and the supports and loads on them
