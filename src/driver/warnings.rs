@@ -57,17 +57,24 @@ impl Hairline {
 
 /// The contact groups with pairs on hairline facets, by the areas the
 /// pairs control in the interface basis ([`crate::contact::basis`]: a
-/// quadratic face's corners control none in the nodal one).
+/// quadratic face's corners control none in the nodal one). A pair whose
+/// two sides the supports hold on every axis is left out: nothing is
+/// solved for there (slope3d's six on J1 and J2 lie on its fixed base).
 fn hairline(model: &Model) -> Vec<Hairline> {
     let areas = crate::contact::basis::FaceBasis::new(model).areas;
+    let nd = model.nd;
+    let fixed = |n: usize| (0..nd).all(|c| model.prescribed[n * nd + c].is_some());
+    let held = |p: usize| fixed(model.pairs[p].k) && fixed(model.pairs[p].l);
     let mut out = Vec::new();
     for (c, interface) in model.interfaces.iter().enumerate() {
         let mut group: Vec<(f64, usize)> =
             (0..model.pairs.len()).filter(|&p| model.pairs[p].contact == c).map(|p| (areas[p], p)).collect();
         group.sort_by(|a, b| a.0.total_cmp(&b.0));
         let Some(&(median, _)) = group.get(group.len() / 2) else { continue };
-        let pairs = group.iter().take_while(|(a, _)| *a <= HAIRLINE * median).count();
-        if let Some(&(smallest, p)) = group.first().filter(|_| pairs > 0) {
+        let tiny: Vec<&(f64, usize)> =
+            group.iter().take_while(|(a, _)| *a <= HAIRLINE * median).filter(|(_, p)| !held(*p)).collect();
+        if let Some(&&(smallest, p)) = tiny.first() {
+            let pairs = tiny.len();
             // (rounded as said, + 0.0: no -0.000)
             let at = model.coords[model.pairs[p].k].map(|x| (x * 1e3).round() / 1e3 + 0.0);
             out.push(Hairline { name: interface.name.clone(), pairs, smallest, median, at });
