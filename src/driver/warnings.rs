@@ -49,7 +49,7 @@ impl Hairline {
     fn said(&self) -> String {
         let Hairline { name, pairs, smallest, median, at } = self;
         format!(
-            "contact \"{name}\" has {pairs} pair(s) controlling {HAIRLINE:e} or less of its median pair's area (the smallest {smallest:.2e} against {median:.2e}, at ({:.3}, {:.3}, {:.3})): a facet a hair wide, as where two joints' traces meet the model's boundary a hair apart. Rigid joints across it are ill-conditioned: tests/corpus/dam3d.toml's two sets, whose traces met a side 1 mm apart, changed 628 pairs at once in one iteration, with pair forces 400 times the largest. Move one joint set's offset by a part of its spacing (or one plane of the .geo), so that the traces meet at one point or well apart",
+            "contact \"{name}\" has {pairs} pair(s) controlling {HAIRLINE:e} or less of its median pair's area (the smallest {smallest:.2e} against {median:.2e}, at ({:.3}, {:.3}, {:.3})): a facet a hair wide, as where two joints' traces meet the model's boundary a hair apart. Rigid joints across it are ill-conditioned: tests/corpus/dam3d.toml's two sets, whose traces met a side 1 mm apart, changed 628 pairs at once in one iteration, with pair forces 400 times the largest. Move one joint set's offset by a part of its spacing, or its snap where `check` lists the plane as snapped onto a corner (or one plane of the .geo), so that the traces meet at one point or well apart",
             at[0], at[1], at[2]
         )
     }
