@@ -113,6 +113,15 @@ pub struct Attempt {
     pub strength: Option<(f64, f64)>,
 }
 
+impl Attempt {
+    /// The attempt from `from` to `to` (fractions of its step) whose
+    /// iteration ended with `summary`, `halved` or not: a load's piece.
+    pub(super) fn of(summary: &super::Summary, (from, to): (f64, f64), halved: bool) -> Attempt {
+        let (iterations, converged, cycled) = (summary.iterations, summary.converged, summary.cycled());
+        Attempt { from, to, iterations, converged, cycled, halved, strength: None }
+    }
+}
+
 /// Runs the load step from the factors `from` (where `h` ended) to `to`,
 /// cutting it in halves down to `budget.cuts` times where the iteration
 /// does not converge, and handing `told` each [`Attempt`] of a step so
@@ -154,9 +163,7 @@ pub fn iterate_cutting(
             pieces.push(b);
         }
         if depth > 0 || !ended {
-            let summary = &outcome.summary;
-            let (its, cycled) = (summary.iterations, summary.cycled());
-            told(Attempt { from: a, to: b, iterations: its, converged, cycled, halved: !ended, strength: None });
+            told(Attempt::of(&outcome.summary, (a, b), !ended));
         }
         if ended && (todo.is_empty() || !converged) {
             outcome.summary.scaled = scaled && !converged;

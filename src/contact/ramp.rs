@@ -87,12 +87,11 @@ pub fn iterate_stage(
             f
         })?;
         iterations += outcome.summary.iterations;
-        let summary = &outcome.summary;
-        let converged = summary.converged;
+        let converged = outcome.summary.converged;
         let halved = !converged && saved.is_some();
         if depth > 0 || halved {
-            let (its, cycled, strength) = (summary.iterations, summary.cycled(), Some((top.powf(a), top.powf(b))));
-            told(Attempt { from: a, to: b, iterations: its, converged, cycled, halved, strength });
+            let strength = Some((top.powf(a), top.powf(b)));
+            told(Attempt { strength, ..Attempt::of(&outcome.summary, (a, b), halved) });
         }
         if converged {
             strengths.push(top.powf(b));

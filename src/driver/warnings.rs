@@ -65,10 +65,12 @@ fn hairline(model: &Model) -> Vec<Hairline> {
     let nd = model.nd;
     let fixed = |n: usize| (0..nd).all(|c| model.prescribed[n * nd + c].is_some());
     let held = |p: usize| fixed(model.pairs[p].k) && fixed(model.pairs[p].l);
+    let mut groups: Vec<Vec<(f64, usize)>> = vec![Vec::new(); model.interfaces.len()];
+    for (p, pair) in model.pairs.iter().enumerate() {
+        groups[pair.contact].push((areas[p], p));
+    }
     let mut out = Vec::new();
-    for (c, interface) in model.interfaces.iter().enumerate() {
-        let mut group: Vec<(f64, usize)> =
-            (0..model.pairs.len()).filter(|&p| model.pairs[p].contact == c).map(|p| (areas[p], p)).collect();
+    for (interface, mut group) in model.interfaces.iter().zip(groups) {
         group.sort_by(|a, b| a.0.total_cmp(&b.0));
         let Some(&(median, _)) = group.get(group.len() / 2) else { continue };
         let tiny: Vec<&(f64, usize)> =
