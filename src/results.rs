@@ -168,6 +168,11 @@ pub struct Fallback {
     /// into the step (a fraction of its load, 0 to 1) the rigid joints
     /// held its load before a piece did not converge.
     pub held: Option<f64>,
+    /// Where the fallback held each rigid step to
+    /// [`crate::contact::cutting::SHORT_ITERATIONS`], fewer than the
+    /// scene's `[solver] max_iterations`: that number, which a run
+    /// without the fallback gives a step.
+    pub short_of: Option<usize>,
     /// Where the rigid joints left the factor of safety undecided: the
     /// last factor that held and the trial above it that decided nothing,
     /// even retried in smaller steps; None where a load step fell back.

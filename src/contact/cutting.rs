@@ -16,10 +16,9 @@
 //! not converge; from where the step started, it converges in 3.
 //!
 //! Where rigid joints fall back to joints that deform when a step does
-//! not converge (`driver::fallback`), the pieces are a last try before
-//! it and each takes at most [`PIECE_ITERATIONS`] ([`Budget`]); the
-//! step solved whole keeps `max_iterations`, as do the pieces where
-//! nothing follows them.
+//! not converge (`driver::fallback`), the step and its pieces are a try
+//! before it and each takes at most [`SHORT_ITERATIONS`] ([`Budget`]);
+//! where nothing follows them they take `max_iterations`.
 //!
 //! A failure other than non-convergence (a body held by nothing, a
 //! singular interface) is not the step size's: it is returned at once
@@ -44,52 +43,43 @@ use super::outcome::{Failed, Outcome};
 use super::pair_law::PairLaw;
 use crate::contact::system::InterfaceProblem;
 
-/// The most iterations a cut piece takes where joints that deform take
-/// over a step its rigid joints do not end (`driver::fallback`): the
-/// corpus' bound on a step. A piece carries half its parent's load or
-/// less, from where its parent started. On the three corpus scenes whose
-/// rigid joints fall back (blocks3d, dam3d, slope3d_c005), the pieces
-/// that converged took 3 to 5 iterations but one (blocks3d's first half,
-/// 48), and every other piece ran its whole `max_iterations` (100) or
-/// stopped at a set that broke the law after 48 to 90; no step ended
-/// rigid through its cuts. Their rigid attempts took 411, 396 and 359
-/// iterations, 201, 190 and 190 with this bound, to the same fallback
-/// answers (docs/convergence.md, "A cut piece's iterations where the
-/// fallback follows").
-pub const PIECE_ITERATIONS: usize = 30;
+/// The most iterations a load step, and each cut piece of it, takes
+/// where joints that deform take over a step its rigid joints do not
+/// end (`driver::fallback`): the corpus' bound on a step. On the corpus
+/// no rigid step that needed more ended rigid: blocks3d's step 1 (51)
+/// came before a step 2 that fell back, and every other step or piece
+/// that went past 30 ran its `max_iterations` (100) or stopped at a set
+/// that broke the law. Those iterations were most of the four
+/// fallback runs' time; with this bound the runs take 14.5 -> 6.5 s
+/// (tunnel4sets_linear_fine), 106 -> 54 s (slope3d_c005), 168 -> 40 s
+/// (blocks3d) and 395 -> 139 s (dam3d), to the same answers
+/// (docs/convergence.md, "A rigid step held to 30 iterations where the
+/// fallback follows"). With `rigid_fallback = false` a step takes
+/// `max_iterations`.
+pub const SHORT_ITERATIONS: usize = 30;
 
-/// What a load step may spend: its iterations and halvings
-/// ([`iterate_cutting`]).
+/// What a load step may spend: its iterations, whole and in each cut
+/// piece, and its halvings ([`iterate_cutting`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Budget {
-    /// Iterations of the step solved whole (`[solver] max_iterations`).
+    /// Iterations of the step solved whole, and of each of its pieces
+    /// (`[solver] max_iterations`, or fewer: [`Budget::short`]).
     pub iterations: usize,
     /// Halvings where it does not converge (`[solver] max_cuts`).
     pub cuts: usize,
-    /// Iterations of each cut piece: `iterations`, or fewer
-    /// ([`Budget::short_pieces`]).
-    pub piece: usize,
 }
 
 impl Budget {
     /// `iterations` for the step whole and for each of its pieces, halved
     /// down to `cuts` times.
     pub fn new(iterations: usize, cuts: usize) -> Budget {
-        Budget { iterations, cuts, piece: iterations }
+        Budget { iterations, cuts }
     }
 
-    /// The same, with each cut piece given at most [`PIECE_ITERATIONS`].
-    pub fn short_pieces(self) -> Budget {
-        Budget { piece: self.piece.min(PIECE_ITERATIONS), ..self }
-    }
-
-    /// The iterations of a piece halved `depth` times.
-    pub(super) fn at(self, depth: usize) -> usize {
-        if depth == 0 {
-            self.iterations
-        } else {
-            self.piece
-        }
+    /// The same, with the step and each cut piece given at most
+    /// [`SHORT_ITERATIONS`].
+    pub fn short(self) -> Budget {
+        Budget { iterations: self.iterations.min(SHORT_ITERATIONS), ..self }
     }
 }
 
@@ -147,7 +137,7 @@ pub fn iterate_cutting(
         let (a, b, depth) = todo.pop().expect("a piece is left until the last one ends the loop");
         let scaled = depth < budget.cuts && scales(problem, laws, &at(a), h);
         let saved = (depth < budget.cuts && !scaled).then(|| (h.clone(), problem.warm_start()));
-        let mut outcome = iterate(problem, laws, rule, &at(b), h, budget.at(depth)).map_err(|mut f| {
+        let mut outcome = iterate(problem, laws, rule, &at(b), h, budget.iterations).map_err(|mut f| {
             f.iteration += iterations;
             f.augmented = f.augmented.map(|r| r.after(augmented)).or(augmented);
             f
@@ -217,13 +207,10 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_short_budget_shortens_the_cut_pieces_alone() {
-        let budget = Budget::new(100, 3);
-        assert_eq!((budget.at(0), budget.at(1), budget.at(3)), (100, 100, 100));
-        let short = budget.short_pieces();
-        assert_eq!((short.at(0), short.at(1), short.at(3), short.cuts), (100, PIECE_ITERATIONS, PIECE_ITERATIONS, 3));
+    fn a_short_budget_shortens_the_step_and_its_pieces() {
+        let short = Budget::new(100, 3).short();
+        assert_eq!((short.iterations, short.cuts), (SHORT_ITERATIONS, 3));
         // never more than the step's own budget
-        let few = Budget::new(8, 4).short_pieces();
-        assert_eq!((few.at(0), few.at(2)), (8, 8));
+        assert_eq!(Budget::new(8, 4).short(), Budget::new(8, 4));
     }
 }

@@ -82,7 +82,7 @@ pub fn iterate_stage(
     };
     while let Some((a, b, depth)) = todo.pop() {
         let saved = (depth < budget.cuts).then(|| h.clone());
-        outcome = iterate(problem, &at(b), rule, to, h, budget.at(depth)).map_err(|mut f| {
+        outcome = iterate(problem, &at(b), rule, to, h, budget.iterations).map_err(|mut f| {
             f.iteration += iterations;
             f
         })?;

@@ -25,6 +25,7 @@
 //! report.md and in summary.json (`contact.rigid_fallback`).
 
 use super::messages::ContactError;
+use crate::contact::cutting::SHORT_ITERATIONS;
 use crate::contact::law::Stiffness;
 use crate::contact::Stop;
 use crate::error::Error;
@@ -111,7 +112,8 @@ pub(super) fn fall(
         return None;
     }
     let (stiff, taken) = stiffened(scene, model);
-    Some((stiff, record(taken, steps.last(), seconds)))
+    let short_of = Some(scene.solver.max_iterations).filter(|&n| n > SHORT_ITERATIONS);
+    Some((stiff, record(taken, steps.last(), seconds).map(|f| Fallback { short_of, ..f })))
 }
 
 /// `scene` with every contact given the fallback's [`stiffness`], and
@@ -172,6 +174,7 @@ fn stopped_at(taken: (Stiffness, f64, f64), step: usize, iterations: usize, seco
         unheld: None,
         rounds: None,
         held: None,
+        short_of: None,
         safety: None,
     }
 }
@@ -265,6 +268,7 @@ fn record(
         unheld: None,
         rounds: c.summary.augmented.map(|r| [r.rounds, r.iterations]),
         held: c.summary.pieces.last().copied(),
+        short_of: None,
         safety: None,
     })
 }
@@ -292,11 +296,12 @@ pub fn said(f: &Fallback) -> String {
     let law = f.law_residual.map_or(String::new(), |r| format!(", law residual {r:.2e} of the largest traction"));
     // a rigid iteration stopped this close to the law may end with a few
     // more iterations: the scene's budget, not the rigid law, ran out
-    let close = match f.law_residual {
-        Some(r) if r < CLOSE => {
-            "; the rigid joints were close to the law, so more [solver] max_iterations may end them rigid"
+    let close = match (f.law_residual, f.short_of) {
+        (Some(r), Some(n)) if r < CLOSE => format!("; the rigid joints were close to the law, so more iterations may end them rigid: with [solver] rigid_fallback = false a step takes its max_iterations ({n}), where the fallback gives it {SHORT_ITERATIONS}"),
+        (Some(r), None) if r < CLOSE => {
+            "; the rigid joints were close to the law, so more [solver] max_iterations may end them rigid".to_string()
         }
-        _ => "",
+        _ => String::new(),
     };
     let theirs = match f.safety {
         Some(_) => "its results, the factor of safety with them, are theirs",
@@ -395,6 +400,7 @@ mod tests {
             unheld: None,
             rounds: None,
             held: None,
+            short_of: None,
             safety: Some((1.175, trial)),
         };
         let s = said(&f);
@@ -420,10 +426,16 @@ mod tests {
         assert!(rounds.starts_with("rigid joints did not converge at load step 2 (213 iteration(s), 106 of them in 7 augmented Lagrangian round(s), the states reached a set in which body \"rock #36\" is held by nothing; 170.2 s)"), "{rounds}");
         // a cut step whose pieces held part of its load says how much,
         // and that the rigid joints may be at their limit there
-        let cut = said(&Fallback { iterations: 411, cuts: 3, safety: None, held: Some(0.875), ..f });
+        let cut = said(&Fallback { iterations: 411, cuts: 3, safety: None, held: Some(0.875), ..f.clone() });
         assert!(cut.starts_with("rigid joints did not converge at load step 2 (411 iteration(s) and 3 cut(s), the states kept changing; its cut pieces held 0.875 of its load; 170.2 s)"), "{cut}");
         assert!(cut.contains("(docs/convergence.md). Rigid, the joints held the step's load up to 0.875 of it and no piece beyond: where rigid joints are at their limit, joints that deform may still stand, so check the margin with a [safety] search. Give the joints"), "{cut}");
         assert!(!load.contains("Rigid, the joints held"), "{load}");
+        // close to the law: more iterations, which the fallback's 30 held
+        // back where the scene asked for more
+        let near = Fallback { iterations: 30, safety: None, law_residual: Some(2e-7), ..f.clone() };
+        assert!(said(&near).contains("2.00e-7 of the largest traction; 170.2 s; the rigid joints were close to the law, so more [solver] max_iterations may end them rigid)"), "{}", said(&near));
+        let held_short = said(&Fallback { short_of: Some(100), ..near });
+        assert!(held_short.contains("170.2 s; the rigid joints were close to the law, so more iterations may end them rigid: with [solver] rigid_fallback = false a step takes its max_iterations (100), where the fallback gives it 30)"), "{held_short}");
     }
 
     #[test]

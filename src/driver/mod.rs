@@ -129,7 +129,7 @@ fn solve(
     let given = Try::Given { may_fall: again.is_some() };
     let rigid = attempt(scene, opts, comm, (mesh, msh, mesh_cached), timings.clone(), given, to)?;
     let (scene, record, (mesh, msh), unheld) = match (rigid, again) {
-        (Attempt::Fell(scene, record, unheld), Some(again)) => (*scene, record, again, unheld),
+        (Attempt::Fell(scene, record, unheld), Some(again)) => (*scene, record.map(|r| *r), again, unheld),
         (Attempt::Ran(run), _) => return Ok(run.map(|r| *r)),
         (Attempt::Fell(..), None) => unreachable!("only an eligible scene falls back"),
     };
@@ -169,7 +169,7 @@ fn solve(
 /// set that holds nothing.
 enum Attempt {
     Ran(Option<Box<Run>>),
-    Fell(Box<Scene>, Option<Fallback>, Option<Box<crate::error::Error>>),
+    Fell(Box<Scene>, Option<Box<Fallback>>, Option<Box<crate::error::Error>>),
 }
 
 /// Which attempt at steps 3 to 7 a run makes: the scene as given
@@ -283,14 +283,14 @@ fn steps_or_fall(
             let Some((scene, record)) = fallback::fall_unheld(scene, model, &e, comm, seconds) else {
                 return Err(e);
             };
-            return Ok(Err(Attempt::Fell(Box::new(scene), record, Some(Box::new(e)))));
+            return Ok(Err(Attempt::Fell(Box::new(scene), record.map(Box::new), Some(Box::new(e)))));
         }
         done => done?,
     };
     if may_fall && done.2.is_none() {
         let seconds = t0.elapsed().as_secs_f64();
         if let Some((scene, record)) = fallback::fall(scene, model, &done.0.steps, comm, seconds) {
-            return Ok(Err(Attempt::Fell(Box::new(scene), record, None)));
+            return Ok(Err(Attempt::Fell(Box::new(scene), record.map(Box::new), None)));
         }
     }
     Ok(Ok(done))
@@ -315,7 +315,7 @@ fn safety_or_fall(
         let (scene, model, comm) = (step.scene, step.model, ranks.comm());
         let seconds = t0.elapsed().as_secs_f64();
         if let Some((scene, record)) = fallback::fall_undecided(scene, model, safety.as_ref(), comm, seconds) {
-            return Ok(Err(Attempt::Fell(Box::new(scene), record, None)));
+            return Ok(Err(Attempt::Fell(Box::new(scene), record.map(Box::new), None)));
         }
     }
     Ok(Ok(safety))

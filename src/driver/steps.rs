@@ -311,7 +311,7 @@ fn attempt_said(what: &str, a: Attempt, budget: Budget, seconds: f64) -> String 
     let (its, end) = (a.iterations, if a.converged { "converged" } else { "not converged" });
     let why = if a.cycled { ", the states cycling" } else { "" };
     let then = if a.halved {
-        format!(": solving it again in two halves from where it started, up to {} iterations each", budget.piece)
+        format!(": solving it again in two halves from where it started, up to {} iterations each", budget.iterations)
     } else {
         String::new()
     };
@@ -433,17 +433,17 @@ impl Step<'_> {
         Budget::new(max_iterations, if solver.rule == StateRule::Paper { 0 } else { solver.max_cuts })
     }
 
-    /// The run's: `[solver] max_iterations` a step, and where rigid
-    /// joints fall back to joints that deform when a step does not
-    /// converge ([`super::fallback::eligible`]), at most
-    /// [`contact::cutting::PIECE_ITERATIONS`] a cut piece: the pieces are
-    /// a last try before the fallback, which has ended every corpus scene
-    /// whose rigid step the cuts did not (docs/convergence.md, "A cut
-    /// piece's iterations where the fallback follows").
+    /// The run's: `[solver] max_iterations` a step and each of its cut
+    /// pieces, and where rigid joints fall back to joints that deform
+    /// when a step does not converge ([`super::fallback::eligible`]), at
+    /// most [`contact::cutting::SHORT_ITERATIONS`]: the rigid attempt is a
+    /// try before the fallback, which has ended every corpus scene whose
+    /// rigid step did not end in as many (docs/convergence.md, "A rigid
+    /// step held to 30 iterations where the fallback follows").
     pub fn run_budget(&self) -> Budget {
         let budget = self.budget(self.scene.solver.max_iterations);
         if super::fallback::eligible(self.scene) {
-            budget.short_pieces()
+            budget.short()
         } else {
             budget
         }
@@ -512,7 +512,7 @@ mod tests {
 
     #[test]
     fn a_cut_steps_attempts_are_said_with_their_share_of_the_load() {
-        let budget = Budget::new(100, 3).short_pieces();
+        let budget = Budget::new(100, 3).short();
         let at = |from, to, converged, halved| Attempt {
             from,
             to,
@@ -522,17 +522,24 @@ mod tests {
             halved,
             strength: None,
         };
-        let whole =
-            attempt_said("load step 3/4", Attempt { iterations: 100, ..at(0.0, 1.0, false, true) }, budget, 44.8);
-        assert_eq!(whole, "load step 3/4: not converged in 100 iteration(s) (44.8 s): solving it again in two halves from where it started, up to 30 iterations each");
+        let whole = attempt_said("load step 3/4", at(0.0, 1.0, false, true), budget, 5.8);
+        assert_eq!(whole, "load step 3/4: not converged in 30 iteration(s) (5.8 s): solving it again in two halves from where it started, up to 30 iterations each");
+        // where nothing follows, the pieces take the step's own budget
+        let long = attempt_said(
+            "load step 3/4",
+            Attempt { iterations: 100, ..at(0.0, 1.0, false, true) },
+            Budget::new(100, 3),
+            44.8,
+        );
+        assert_eq!(long, "load step 3/4: not converged in 100 iteration(s) (44.8 s): solving it again in two halves from where it started, up to 100 iterations each");
         // one that stopped in an orbit says so
         let orbit = attempt_said(
             "load step 2/2",
-            Attempt { iterations: 57, cycled: true, ..at(0.0, 1.0, false, true) },
+            Attempt { iterations: 27, cycled: true, ..at(0.0, 1.0, false, true) },
             budget,
-            35.4,
+            15.4,
         );
-        assert_eq!(orbit, "load step 2/2: not converged in 57 iteration(s), the states cycling (35.4 s): solving it again in two halves from where it started, up to 30 iterations each");
+        assert_eq!(orbit, "load step 2/2: not converged in 27 iteration(s), the states cycling (15.4 s): solving it again in two halves from where it started, up to 30 iterations each");
         let held =
             attempt_said("load step 3/4", Attempt { iterations: 3, ..at(0.75, 0.875, true, false) }, budget, 0.6);
         assert_eq!(held, "load step 3/4 0.75 -> 0.875 of its load: converged in 3 iteration(s) (0.6 s)");
