@@ -131,7 +131,7 @@ pub(super) fn run(
         if left == 0 {
             return Err(went);
         }
-        let solved = iteration::run(rule, problem, &spring_laws, lambda, &mut hr, left);
+        let solved = iteration::run(rule, problem, &spring_laws, lambda, &mut hr, left.into());
         went.rounds = round + 1;
         went.iterations += solved.as_ref().map_or_else(|f| f.iteration, |o| o.summary.iterations);
         let Ok(outcome) = solved.inspect_err(|_| went.stretch = f64::INFINITY) else { return Err(went) };

@@ -59,6 +59,7 @@ use law::ContactState;
 use system::InterfaceProblem;
 
 pub use history::History;
+pub use iteration::Limit;
 pub use options::{InterfaceSolver, SlipLaw, StateRule, TractionRecovery};
 pub use outcome::{Failed, Outcome, Stop, Summary};
 pub use pair_law::PairLaw;
@@ -71,17 +72,16 @@ pub fn iterate(
     rule: StateRule,
     lambda: &[f64],
     h: &mut History,
-    max_iterations: usize,
+    limit: impl Into<Limit>,
 ) -> Result<Outcome, Failed> {
+    let limit = limit.into();
     let deforms = !h.unloaded.is_empty();
     let mut outcome = match rule {
         StateRule::Robust if deforms => {
-            iteration::run(elastic::Elastic::new(problem, laws, h), problem, laws, lambda, h, max_iterations)
+            iteration::run(elastic::Elastic::new(problem, laws, h), problem, laws, lambda, h, limit)
         }
-        StateRule::Robust => newton_or_rounds(problem, laws, lambda, h, max_iterations),
-        StateRule::Paper => {
-            iteration::run(paper_rule::Paper::new(problem, laws), problem, laws, lambda, h, max_iterations)
-        }
+        StateRule::Robust => newton_or_rounds(problem, laws, lambda, h, limit),
+        StateRule::Paper => iteration::run(paper_rule::Paper::new(problem, laws), problem, laws, lambda, h, limit),
     }?;
     if deforms {
         // a joint that deforms opens from where its normal spring is unloaded
@@ -106,11 +106,10 @@ fn newton_or_rounds(
     laws: &[PairLaw],
     lambda: &[f64],
     h: &mut History,
-    max_iterations: usize,
+    limit: Limit,
 ) -> Result<Outcome, Failed> {
     let start = h.penalty.is_some().then(|| (h.clone(), problem.warm_start()));
-    let newton =
-        iteration::run(newton::Newton::new(problem, laws, h, lambda), problem, laws, lambda, h, max_iterations);
+    let newton = iteration::run(newton::Newton::new(problem, laws, h, lambda), problem, laws, lambda, h, limit);
     let (Some((mut start, warm)), Some(k)) = (start, h.penalty) else { return newton };
     if newton.as_ref().is_ok_and(|o| o.summary.converged) {
         return newton;
@@ -119,7 +118,7 @@ fn newton_or_rounds(
     // (from where the step started, its interface solves too: not from
     // Newton's last iterate, as a cut piece, `cutting`)
     problem.start_from(&warm);
-    let went = match augmented::run(problem, laws, lambda, &mut start, max_iterations, k) {
+    let went = match augmented::run(problem, laws, lambda, &mut start, limit.most, k) {
         Ok((mut outcome, went)) => {
             *h = start;
             outcome.summary.iterations += tried;

@@ -311,7 +311,10 @@ fn attempt_said(what: &str, a: Attempt, budget: Budget, seconds: f64) -> String 
     let (its, end) = (a.iterations, if a.converged { "converged" } else { "not converged" });
     let why = if a.cycled { ", the states cycling" } else { "" };
     let then = if a.halved {
-        format!(": solving it again in two halves from where it started, up to {} iterations each", budget.iterations)
+        format!(
+            ": solving it again in two halves from where it started, up to {} iterations each",
+            budget.iterations.most
+        )
     } else {
         String::new()
     };
