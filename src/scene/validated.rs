@@ -41,7 +41,9 @@ pub struct Contact {
 pub struct Solver {
     /// Load increments (default 1), >= 1.
     pub load_steps: usize,
-    /// Contact state iterations per step (default 100), >= 1.
+    /// Contact state iterations per step (default 100), >= 1; where
+    /// rigid joints may fall back, 30 at most unless the step's states
+    /// have all but settled (`crate::contact::cutting::SHORT_ITERATIONS`).
     pub max_iterations: usize,
     /// Halvings of a load step that does not converge (default 3: down to
     /// an eighth of it), >= 0; 0 turns load-step cutting off.
