@@ -23,6 +23,7 @@ use super::run_options::RunOptions;
 use crate::contact::cutting::{Attempt, Budget};
 use crate::contact::system::{Accuracy, InterfaceProblem};
 use crate::contact::traction::ConsistentTraction;
+use crate::contact::Limit;
 use crate::contact::{self, History, Outcome, PairLaw};
 use crate::error::Result;
 use crate::model::Model;
@@ -311,10 +312,10 @@ fn attempt_said(what: &str, a: Attempt, budget: Budget, seconds: f64) -> String 
     let (its, end) = (a.iterations, if a.converged { "converged" } else { "not converged" });
     let why = if a.cycled { ", the states cycling" } else { "" };
     let then = if a.halved {
-        format!(
-            ": solving it again in two halves from where it started, up to {} iterations each",
-            budget.iterations.most
-        )
+        let Limit { most, settling } = budget.iterations;
+        let more =
+            if settling > most { format!(" ({settling} while their states all but settle)") } else { String::new() };
+        format!(": solving it again in two halves from where it started, up to {most} iterations each{more}")
     } else {
         String::new()
     };
@@ -526,7 +527,7 @@ mod tests {
             strength: None,
         };
         let whole = attempt_said("load step 3/4", at(0.0, 1.0, false, true), budget, 5.8);
-        assert_eq!(whole, "load step 3/4: not converged in 30 iteration(s) (5.8 s): solving it again in two halves from where it started, up to 30 iterations each");
+        assert_eq!(whole, "load step 3/4: not converged in 30 iteration(s) (5.8 s): solving it again in two halves from where it started, up to 30 iterations each (100 while their states all but settle)");
         // where nothing follows, the pieces take the step's own budget
         let long = attempt_said(
             "load step 3/4",
@@ -542,7 +543,7 @@ mod tests {
             budget,
             15.4,
         );
-        assert_eq!(orbit, "load step 2/2: not converged in 27 iteration(s), the states cycling (15.4 s): solving it again in two halves from where it started, up to 30 iterations each");
+        assert_eq!(orbit, "load step 2/2: not converged in 27 iteration(s), the states cycling (15.4 s): solving it again in two halves from where it started, up to 30 iterations each (100 while their states all but settle)");
         let held =
             attempt_said("load step 3/4", Attempt { iterations: 3, ..at(0.75, 0.875, true, false) }, budget, 0.6);
         assert_eq!(held, "load step 3/4 0.75 -> 0.875 of its load: converged in 3 iteration(s) (0.6 s)");
@@ -556,7 +557,7 @@ mod tests {
         let piece = Attempt { strength: Some((1.0707, 1.0353)), ..at(1.0, 0.5, false, true) };
         assert_eq!(
             attempt_said("initial stage", piece, budget, 0.3),
-            "initial stage, the joints' strength 1.071 -> 1.035 times theirs: not converged in 30 iteration(s) (0.3 s): solving it again in two halves from where it started, up to 30 iterations each"
+            "initial stage, the joints' strength 1.071 -> 1.035 times theirs: not converged in 30 iteration(s) (0.3 s): solving it again in two halves from where it started, up to 30 iterations each (100 while their states all but settle)"
         );
     }
 }
