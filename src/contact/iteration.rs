@@ -123,10 +123,15 @@ impl From<usize> for Limit {
 }
 
 impl Limit {
+    /// Whether a step may go past `most` (while it all but settles).
+    pub fn runs_on(self) -> bool {
+        self.settling > self.most
+    }
+
     /// The iterations of a step whose states went through `history`
     /// (one set an iteration, the last the current one).
     fn of(self, history: &[Vec<ContactState>]) -> usize {
-        if self.settling > self.most && all_but_settled(history) {
+        if self.runs_on() && all_but_settled(history) {
             self.settling
         } else {
             self.most

@@ -313,8 +313,11 @@ fn attempt_said(what: &str, a: Attempt, budget: Budget, seconds: f64) -> String 
     let why = if a.cycled { ", the states cycling" } else { "" };
     let then = if a.halved {
         let Limit { most, settling } = budget.iterations;
-        let more =
-            if settling > most { format!(" ({settling} while their states all but settle)") } else { String::new() };
+        let more = if budget.iterations.runs_on() {
+            format!(" ({settling} while their states all but settle)")
+        } else {
+            String::new()
+        };
         format!(": solving it again in two halves from where it started, up to {most} iterations each{more}")
     } else {
         String::new()
